@@ -1,0 +1,285 @@
+"""Model parameters (spec §5, §9): a frozen, validated object loaded from TOML.
+
+The TOML file uses the thesis' units (m, deg, kg, kg·mm²); :class:`Params` holds SI values
+(m, rad, kg, kg·m²). Every rule that fails raises :class:`ParameterError` naming the key,
+the value and the rule.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ._paths import models_dir
+
+DEFAULT_PARAMS = "pollard.toml"
+
+BODY_NAMES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link_1", "link_2")
+CHAIN0_KEYS = ("z10", "x32", "x65", "x1514", "x1918")
+LEG_KEYS = ("side", "y10", "z32", "x43", "beta54", "x87", "x1211", "z1312", "beta1413")
+LEG_ANGLES = ("beta54", "beta1413")  # given in deg
+LEG_LENGTHS = ("y10", "z32", "x43", "x87")  # strictly positive
+LEG_OFFSETS = ("x1211", "z1312")  # may be zero, not negative
+BODY_KEYS = ("mass", "com", "inertia")
+HOME_KEYS = ("tip", "orientation")
+BRANCH_KEYS = ("chain0", "leg1", "leg2")
+SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches")
+
+
+class ParameterError(ValueError):
+    """A parameter file or override breaks a rule; the message names key, value and rule."""
+
+
+@dataclass(frozen=True)
+class Leg:
+    """Geometry of leg i (spec §3, §4), SI units."""
+
+    side: int  # s_i, the thesis "signo"
+    y10: float
+    z32: float
+    x43: float
+    beta54: float  # rad
+    x87: float
+    x1211: float
+    z1312: float
+    beta1413: float  # rad
+
+    @property
+    def attachment(self) -> np.ndarray:
+        """Point A_i without the x65 term: offset of the spherical joint in the platform frame."""
+        c, s = math.cos(-self.beta1413), math.sin(-self.beta1413)
+        return np.array([-self.x1211 * c, -self.x1211 * s, -self.z1312])
+
+
+@dataclass(frozen=True)
+class Body:
+    """Mass [kg], centre of gravity [m] and inertia about it [kg·m²], in the body frame."""
+
+    mass: float
+    com: tuple[float, float, float]
+    inertia: tuple[tuple[float, float, float], ...]
+
+    @property
+    def inertia_matrix(self) -> np.ndarray:
+        return np.array(self.inertia, dtype=float)
+
+
+@dataclass(frozen=True)
+class Params:
+    """All model numbers, SI units. Build with :func:`load_params`; never mutated."""
+
+    z10: float
+    x32: float
+    x65: float
+    x1514: float
+    x1918: float
+    legs: tuple[Leg, Leg]
+    bodies: tuple[tuple[str, Body], ...]  # ordered (name, Body) pairs, BODY_NAMES order
+    home_pose: tuple[float, ...]  # (x, y, z, psi, theta, phi), m and rad
+    branches: tuple[int, int, int]  # chain0, leg1, leg2
+    source: str = "<python>"
+
+    def body(self, name: str) -> Body:
+        return dict(self.bodies)[name]
+
+    def attachment(self, i: int) -> np.ndarray:
+        """A_i of spec §4 in the platform frame (i = 0 or 1 for legs 1 and 2)."""
+        return np.array([self.x65, 0.0, 0.0]) + self.legs[i].attachment
+
+    @property
+    def total_mass(self) -> float:
+        return sum(b.mass for _, b in self.bodies)
+
+    def to_toml_dict(self) -> dict:
+        """The thesis-unit dictionary that :func:`params_from_dict` reads back."""
+        d: dict[str, Any] = {"chain0": {k: getattr(self, k) for k in CHAIN0_KEYS}}
+        for i, leg in enumerate(self.legs, start=1):
+            entry = {k: getattr(leg, k) for k in LEG_KEYS}
+            for k in LEG_ANGLES:
+                entry[k] = math.degrees(entry[k])
+            d[f"leg{i}"] = entry
+        d["bodies"] = {
+            name: {"mass": b.mass, "com": list(b.com),
+                   "inertia": (np.array(b.inertia) * 1e6).tolist()}
+            for name, b in self.bodies
+        }
+        d["home"] = {"tip": list(self.home_pose[:3]),
+                     "orientation": [math.degrees(a) for a in self.home_pose[3:]]}
+        d["branches"] = dict(zip(BRANCH_KEYS, self.branches))
+        return d
+
+
+def _fail(key: str, value: Any, rule: str) -> None:
+    raise ParameterError(f"parameter '{key}' = {value!r}: {rule}")
+
+
+def _check_keys(key: str, table: Any, expected: tuple[str, ...]) -> None:
+    if not isinstance(table, Mapping):
+        _fail(key, table, "must be a table")
+    missing = [k for k in expected if k not in table]
+    unknown = [k for k in table if k not in expected]
+    if missing:
+        _fail(f"{key}.{missing[0]}" if key else missing[0], None,
+              f"missing key (expected keys: {', '.join(expected)})")
+    if unknown:
+        _fail(f"{key}.{unknown[0]}" if key else unknown[0], table[unknown[0]],
+              f"unknown key (expected keys: {', '.join(expected)})")
+
+
+def _number(key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(key, value, "must be a number")
+    if not math.isfinite(value):
+        _fail(key, value, "must be finite")
+    return float(value)
+
+
+def _positive(key: str, value: Any) -> float:
+    v = _number(key, value)
+    if v <= 0.0:
+        _fail(key, value, "must be > 0")
+    return v
+
+
+def _nonnegative(key: str, value: Any) -> float:
+    v = _number(key, value)
+    if v < 0.0:
+        _fail(key, value, "must be >= 0")
+    return v
+
+
+def _sign(key: str, value: Any) -> int:
+    if isinstance(value, bool) or value not in (-1, 1):
+        _fail(key, value, "must be -1 or +1")
+    return int(value)
+
+
+def _vector(key: str, value: Any, n: int) -> list[float]:
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        _fail(key, value, f"must be a list of {n} numbers")
+    return [_number(f"{key}[{j}]", v) for j, v in enumerate(value)]
+
+
+def _inertia(key: str, value: Any) -> tuple[tuple[float, ...], ...]:
+    """kg·mm² in, kg·m² out; a physical rigid-body inertia or ParameterError."""
+    if not isinstance(value, (list, tuple)) or len(value) != 3:
+        _fail(key, value, "must be a 3x3 matrix (list of 3 rows)")
+    rows = [_vector(f"{key}[{r}]", row, 3) for r, row in enumerate(value)]
+    m = np.array(rows)
+    scale = max(np.abs(m).max(), 1e-300)
+    if np.abs(m - m.T).max() > 1e-9 * scale:
+        _fail(key, rows, "inertia tensor must be symmetric")
+    eig = np.linalg.eigvalsh(m)
+    if eig[0] <= 0.0:
+        _fail(key, rows, f"inertia tensor must be positive definite (eigenvalues {eig.tolist()})")
+    if eig[0] + eig[1] < eig[2] * (1.0 - 1e-12):
+        _fail(key, rows, "principal moments violate the triangle inequality "
+              f"I1 + I2 >= I3 ({eig[0]:.6g} + {eig[1]:.6g} < {eig[2]:.6g})")
+    return tuple(tuple(float(x) * 1e-6 for x in row) for row in rows)
+
+
+def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
+                     check_home: bool = True) -> Params:
+    """Validate a thesis-unit dictionary (the TOML layout) and build :class:`Params`."""
+    _check_keys("", d, SECTIONS)
+    _check_keys("chain0", d["chain0"], CHAIN0_KEYS)
+    chain0 = {k: _positive(f"chain0.{k}", d["chain0"][k]) for k in CHAIN0_KEYS}
+    legs = []
+    for i in (1, 2):
+        sec = f"leg{i}"
+        t = d[sec]
+        _check_keys(sec, t, LEG_KEYS)
+        vals: dict[str, Any] = {"side": _sign(f"{sec}.side", t["side"])}
+        for k in LEG_LENGTHS:
+            vals[k] = _positive(f"{sec}.{k}", t[k])
+        for k in LEG_OFFSETS:
+            vals[k] = _nonnegative(f"{sec}.{k}", t[k])
+        for k in LEG_ANGLES:
+            vals[k] = math.radians(_number(f"{sec}.{k}", t[k]))
+        legs.append(Leg(**vals))
+    if legs[0].side == legs[1].side:
+        _fail("leg2.side", legs[1].side, "the two legs must stand on opposite sides (s_1 = -s_2)")
+    _check_keys("bodies", d["bodies"], BODY_NAMES)
+    bodies = []
+    for name in BODY_NAMES:
+        key = f"bodies.{name}"
+        t = d["bodies"][name]
+        _check_keys(key, t, BODY_KEYS)
+        bodies.append((name, Body(mass=_positive(f"{key}.mass", t["mass"]),
+                                  com=tuple(_vector(f"{key}.com", t["com"], 3)),
+                                  inertia=_inertia(f"{key}.inertia", t["inertia"]))))
+    _check_keys("home", d["home"], HOME_KEYS)
+    tip = _vector("home.tip", d["home"]["tip"], 3)
+    ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
+    _check_keys("branches", d["branches"], BRANCH_KEYS)
+    branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)
+    p = Params(**chain0, legs=tuple(legs), bodies=tuple(bodies), home_pose=tuple(tip + ori),
+               branches=branches, source=source)
+    if check_home:
+        _check_home_reachable(p)
+    return p
+
+
+def _check_home_reachable(p: Params) -> None:
+    # Closed-form IK (spec §7) at the home pose; it raises with the chain and the shortfall.
+    from .thesis.ik import UnreachableError, position_ik
+
+    try:
+        position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
+    except UnreachableError as exc:
+        raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation) "
+                             f"is unreachable with these parameters: {exc}") from None
+
+
+def _set_path(d: dict, path: str, value: Any) -> None:
+    parts = path.split(".")
+    node = d
+    for part in parts[:-1]:
+        if not isinstance(node, dict) or part not in node:
+            _fail(path, value, "override names no parameter (unknown section)")
+        node = node[part]
+    if not isinstance(node, dict) or parts[-1] not in node:
+        _fail(path, value, "override names no parameter (unknown key)")
+    node[parts[-1]] = value
+
+
+def read_params_dict(path: str | Path | None = None) -> dict:
+    """The raw thesis-unit dictionary of a parameter file (default: the shipped one)."""
+    path = Path(path) if path is not None else models_dir() / DEFAULT_PARAMS
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except FileNotFoundError:
+        raise ParameterError(f"parameter file {str(path)!r} does not exist") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError(f"parameter file {str(path)!r} is not valid TOML: {exc}") from None
+
+
+def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | None = None,
+                check_home: bool = True) -> Params:
+    """Load and validate parameters.
+
+    ``overrides`` maps dotted keys in thesis units to values, e.g.
+    ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "leg1.beta1413": 270}``.
+    """
+    d = read_params_dict(path)
+    for key, value in (overrides or {}).items():
+        _set_path(d, key, value)
+    src = str(path) if path is not None else DEFAULT_PARAMS
+    return params_from_dict(d, source=src, check_home=check_home)
+
+
+def replace(p: Params, overrides: Mapping[str, Any]) -> Params:
+    """A new validated :class:`Params` with thesis-unit dotted-key overrides applied."""
+    d = p.to_toml_dict()
+    for key, value in overrides.items():
+        _set_path(d, key, value)
+    return params_from_dict(d, source=p.source + " (modified)")
+
+
+__all__ = ["Params", "Leg", "Body", "ParameterError", "load_params", "params_from_dict",
+           "read_params_dict", "replace", "BODY_NAMES"]
