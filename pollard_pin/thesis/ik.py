@@ -1,0 +1,312 @@
+"""Closed-form inverse kinematics of the thesis (spec §7), its exact time derivatives, and the
+numpy forward chain of spec §3 used to check it.
+
+Poses are (x, y, z, ψ, θ, φ) in the thesis order (spec §2): tip frame Tx(x)Ty(y)Tz(z)·R with
+R = Rx(θ)Ry(ψ)Rz(φ). Velocities and accelerations come from running the same closed forms on
+:class:`~pollard_pin.thesis.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import jet as J
+from .jet import Jet, value
+
+JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
+          "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2",
+          "theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
+TREE_JOINTS = JOINTS[:12]
+SPHERICAL_JOINTS = JOINTS[12:]
+ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+ACTUATED_INDEX = tuple(JOINTS.index(n) for n in ACTUATED)
+CHAINS = ("chain 0", "leg 1", "leg 2")
+_TARGETS = {"chain 0": "the wrist centre", "leg 1": "its attachment point",
+            "leg 2": "its attachment point"}
+
+
+class UnreachableError(ValueError):
+    """The closed form of spec §7 has no solution (``kind == "unreachable"``) or the wrist is
+    singular (``kind == "singular"``, subclass :class:`WristSingularError`).
+
+    Attributes: ``chain`` ("chain 0", "leg 1", "leg 2" or "wrist"), ``sample`` (first bad sample
+    index), ``count`` (number of bad samples), ``ratio`` and ``shortfall``:
+
+    - unreachable: ``ratio`` = |−C/R| of the equation C + A cos + B sin = 0 (> 1 when there is no
+      solution); ``shortfall`` [m] = distance by which the target lies outside the reachable
+      shell of the arm + link pair (``too_close`` tells whether it is inside the inner radius);
+    - singular: ``ratio`` = |sin θ1716|; ``shortfall`` = wrist_margin − |sin θ1716| (≥ 0).
+    """
+
+    kind = "unreachable"
+
+    def __init__(self, chain: str, sample: int, shortfall: float, ratio: float,
+                 count: int = 1, too_close: bool = False, message: str | None = None):
+        self.chain, self.sample, self.shortfall, self.ratio = chain, sample, shortfall, ratio
+        self.count, self.too_close = count, too_close
+        if message is None:
+            how = "target too close by" if too_close else "short by"
+            message = (f"{chain} cannot reach {_TARGETS.get(chain, 'its target')} at sample "
+                       f"{sample}: |−C/R| = {ratio:.6g} ({how} {shortfall * 1e3:.4g} mm)")
+            if count > 1:
+                message += f"; {count} samples fail in all"
+        super().__init__(message)
+
+
+class WristSingularError(UnreachableError):
+    """θ1716 at (or within ``wrist_margin`` of) 0 or π: the XZX wrist loses a DOF (spec §3)."""
+
+    kind = "singular"
+
+    def __init__(self, sample: int, sin1716: float, margin: float, count: int = 1):
+        msg = (f"wrist is singular at sample {sample}: |sin θ1716| = {sin1716:.6g} "
+               f"<= wrist_margin = {margin:.6g} (spray axis parallel to the platform arm)")
+        if count > 1:
+            msg += f"; {count} samples fail in all"
+        super().__init__("wrist", sample, margin - sin1716, sin1716, count=count, message=msg)
+
+
+def _per_sample(mask: np.ndarray) -> np.ndarray:
+    return mask.reshape(mask.shape[0], -1).any(axis=1)
+
+
+def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
+    """Solve C + A cos t + B sin t = 0: t = atan2(B, A) + branch·acos(−C/√(A²+B²)) (spec §7).
+
+    rho, off: in-plane / out-of-plane distance of the target from the circle the elbow
+    describes (radius r); L is the second link. Used only to word the shortfall.
+    """
+    Rn = J.sqrt(A * A + B * B)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = -C / Rn
+    cv = value(c)
+    bad = ~(np.abs(cv) <= 1.0)
+    if bad.any():
+        rows = _per_sample(bad)
+        idx = np.unravel_index(np.argmax(bad), bad.shape)  # C order: first bad sample
+        k = int(idx[0])
+        ratio = float(abs(cv[idx]))
+        rh, of = float(value(rho)[idx]), float(value(off)[idx])
+        too_close = bool(cv[idx] > 1.0)
+        short = (L - np.hypot(rh + r, of)) if too_close else (np.hypot(rh - r, of) - L)
+        raise UnreachableError(chain, k, float(short), ratio, int(rows.sum()), too_close)
+    return J.atan2(B, A) + branch * J.acos(J.clip_unit(c))
+
+
+def _solve(p, pose, wrist_margin=0.0):
+    """All 18 closed-form angles (spec §7) as a dict; pose is an (..., 6) array or jet.
+
+    Also returns the platform rotation, for callers that need it.
+    """
+    x, y, z, psi, th, phi = (pose[..., k] for k in range(6))
+    R = J.Rx(th) @ J.Ry(psi) @ J.Rz(phi)
+    L = p.x65 + p.x1514
+    P15 = J.stack([x, y, z]) - p.x1918 * R[..., :, 0]
+
+    # Chain 0, (2.8)-(2.23): the wrist centre lies at L from the elbow circle (radius x32, xz).
+    dx, dy, dz = P15[..., 0], P15[..., 1], P15[..., 2] - p.z10
+    A, B = -2.0 * p.x32 * dx, 2.0 * p.x32 * dz
+    C = dx * dx + dy * dy + dz * dz + (p.x32 ** 2 - L ** 2)
+    q = {"theta21": _circle_angle(A, B, C, p.branches[0], "chain 0",
+                                  J.sqrt(dx * dx + dz * dz), dy, p.x32, L)}
+    E = J.stack([p.x32 * J.cos(q["theta21"]), 0.0, p.z10 - p.x32 * J.sin(q["theta21"])])
+    u = (P15 - E) / L
+    a = J.atan2(-u[..., 2], u[..., 0])  # θ21 + θ43
+    q["theta43"] = a - q["theta21"]
+    q["theta54"] = J.asin(J.clip_unit(u[..., 1]))
+    Rp = J.Ry(a) @ J.Rz(q["theta54"])
+
+    # Wrist (2.34)-(2.47): XZX Euler angles of Rpᵀ R.
+    M = J.transpose(Rp) @ R
+    c1716 = J.clip_unit(M[..., 0, 0])
+    s1716 = np.sqrt(1.0 - value(c1716) ** 2)
+    bad = s1716 <= wrist_margin
+    if bad.any():
+        rows = _per_sample(bad)
+        k = int(np.argmax(rows))
+        raise WristSingularError(k, float(s1716[k].min()), float(wrist_margin), int(rows.sum()))
+    q["theta1615"] = J.atan2(M[..., 2, 0], M[..., 1, 0])
+    q["theta1716"] = J.acos(c1716)
+    q["theta1817"] = J.atan2(M[..., 0, 2], -M[..., 0, 1])
+
+    # Legs (2.89)-(2.105): the attachment point lies at x87 from the elbow circle (radius x43, xy).
+    for i, leg in enumerate(p.legs):
+        s = f"_{i + 1}"
+        Aw = E + J.matvec(Rp, p.attachment(i))
+        c = np.array([0.0, leg.side * leg.y10, -leg.z32])
+        px, py, pz = Aw[..., 0] - c[0], Aw[..., 1] - c[1], Aw[..., 2] - c[2]
+        A, B = -2.0 * leg.x43 * px, -2.0 * leg.x43 * py
+        C = px * px + py * py + pz * pz + (leg.x43 ** 2 - leg.x87 ** 2)
+        t21 = _circle_angle(A, B, C, p.branches[i + 1], CHAINS[i + 1],
+                            J.sqrt(px * px + py * py), pz, leg.x43, leg.x87)
+        elbow = J.stack([leg.x43 * J.cos(t21), c[1] + leg.x43 * J.sin(t21), c[2]])
+        Rc = J.Rz(t21) @ J.Rx(np.asarray(leg.beta54))
+        w = J.matvec(J.transpose(Rc), Aw - elbow) / leg.x87
+        q["theta21" + s] = t21
+        q["theta65" + s] = J.atan2(-w[..., 2], w[..., 0])
+        q["theta76" + s] = J.asin(J.clip_unit(w[..., 1]))
+        # Spherical joint, spec §4: ZYZ of R_linkᵀ Rp Rz(−β1413), θ109 in [0, π].
+        Rl = Rc @ J.Ry(q["theta65" + s]) @ J.Rz(q["theta76" + s])
+        Ms = J.transpose(Rl) @ Rp @ J.Rz(np.asarray(-leg.beta1413))
+        q["theta98" + s] = J.atan2(Ms[..., 1, 2], Ms[..., 0, 2])
+        q["theta109" + s] = J.acos(J.clip_unit(Ms[..., 2, 2]))
+        q["theta1110" + s] = J.atan2(Ms[..., 2, 1], -Ms[..., 2, 0])
+    return q
+
+
+def _as_poses(poses) -> np.ndarray:
+    a = np.asarray(poses, dtype=float)
+    a = a[None, :] if a.ndim == 1 else a
+    if a.ndim != 2 or a.shape[1] != 6:
+        raise ValueError(f"poses must have shape (N, 6) or (6,), got {np.shape(poses)}")
+    return a
+
+
+def _wrap(a):
+    """Into (−π, π]."""
+    return np.pi - np.mod(np.pi - a, 2.0 * np.pi)
+
+
+def make_continuous(q: np.ndarray, reference=None) -> np.ndarray:
+    """Shift sample 0 by 2πk into (−π, π] (or nearest ``reference``), then unwrap along axis 0."""
+    q = np.asarray(q, dtype=float)
+    ref = np.zeros(q.shape[1]) if reference is None else np.asarray(reference, dtype=float)
+    shift = ref + _wrap(q[0] - ref) - q[0]
+    return np.unwrap(q + shift, axis=0)
+
+
+def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.ndarray:
+    """(N, 18) joint angles in :data:`JOINTS` order for (N, 6) poses (spec §7).
+
+    Raises :class:`UnreachableError` (chain, sample, shortfall) or :class:`WristSingularError`.
+    """
+    q = _solve(params, _as_poses(poses), wrist_margin)
+    return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
+
+
+def ik(params, poses, d_poses, dd_poses, reference=None, wrist_margin: float = 0.0):
+    """(q, qd, qdd), each (N, 18): the closed forms and their exact time derivatives."""
+    x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
+    q = J.stack([_solve(params, x, wrist_margin)[n] for n in JOINTS], axis=-1)
+    return make_continuous(q.v, reference), q.d, q.dd
+
+
+def direction_jet(poses, d_poses=None, dd_poses=None) -> Jet:
+    """Pose jet with value (N, 1, 6) and K derivative directions (N, K, 6): the six unit
+    vectors e_j (so d = ∂/∂q_j, dd = 0), plus the actual (q̇, q̈) as a 7th if given."""
+    x = _as_poses(poses)
+    n = x.shape[0]
+    d = np.broadcast_to(np.eye(6), (n, 6, 6))
+    dd = np.zeros((n, 6, 6))
+    if d_poses is not None:
+        qdd = np.zeros_like(x) if dd_poses is None else _as_poses(dd_poses)
+        d = np.concatenate([d, _as_poses(d_poses)[:, None, :]], axis=1)
+        dd = np.concatenate([dd, qdd[:, None, :]], axis=1)
+    return Jet(x[:, None, :], d, dd)
+
+
+def actuation_jacobian(params, poses, wrist_margin: float = 0.0) -> np.ndarray:
+    """J_τ = ∂(actuator angles, :data:`ACTUATED` order)/∂(x, y, z, ψ, θ, φ), shape (N, 6, 6)."""
+    q = _solve(params, direction_jet(poses), wrist_margin)
+    return np.stack([q[n].d for n in ACTUATED], axis=-2)
+
+
+# --- forward chain of spec §3 (numpy or jets) ---------------------------------------------
+
+def _angles(q):
+    """Accept a name→angle mapping or an (..., 18)/(..., 12) array in JOINTS order."""
+    if isinstance(q, dict):
+        return q
+    q = np.asarray(q, dtype=float)
+    return {n: q[..., k] for k, n in enumerate(JOINTS[: q.shape[-1]])}
+
+
+def forward_frames(params, q) -> dict:
+    """World (R, origin) of every frame of spec §3 from the 12 tree angles.
+
+    Keys: arm0, cross0, platform, wrist1, wrist2, gun, tip, arm_i, cross_i, link_i (i = 1, 2),
+    closure_link_i / closure_platform_i (origins only meaningful; R of the carrying body).
+    """
+    q = _angles(q)
+    ex = np.array([1.0, 0.0, 0.0])
+    f = {}
+    f["arm0"] = (J.Ry(q["theta21"]), np.array([0.0, 0.0, params.z10]))
+    R = f["arm0"][0] @ J.Ry(q["theta43"])
+    f["cross0"] = (R, f["arm0"][1] + J.matvec(f["arm0"][0], params.x32 * ex))
+    f["platform"] = (R @ J.Rz(q["theta54"]), f["cross0"][1])
+    Rp, op = f["platform"]
+    o15 = op + J.matvec(Rp, (params.x65 + params.x1514) * ex)
+    f["wrist1"] = (Rp @ J.Rx(q["theta1615"]), o15)
+    f["wrist2"] = (f["wrist1"][0] @ J.Rz(q["theta1716"]), o15)
+    f["gun"] = (f["wrist2"][0] @ J.Rx(q["theta1817"]), o15)
+    f["tip"] = (f["gun"][0], o15 + J.matvec(f["gun"][0], params.x1918 * ex))
+    for i, leg in enumerate(params.legs):
+        s = f"_{i + 1}"
+        Ra = J.Rz(q["theta21" + s])
+        oa = np.array([0.0, leg.side * leg.y10, 0.0])
+        Rc = Ra @ J.Rx(np.asarray(leg.beta54))
+        oc = oa + J.matvec(Ra, np.array([leg.x43, 0.0, -leg.z32]))
+        Rl = Rc @ J.Ry(q["theta65" + s]) @ J.Rz(q["theta76" + s])
+        f["arm" + s], f["cross" + s], f["link" + s] = (Ra, oa), (Rc, oc), (Rl, oc)
+        f["closure_link" + s] = (Rl, oc + J.matvec(Rl, leg.x87 * ex))
+        f["closure_platform" + s] = (Rp, op + J.matvec(Rp, params.attachment(i)))
+    return f
+
+
+def rotation_to_pose_angles(R):
+    """(ψ, θ, φ) of R = Rx(θ)Ry(ψ)Rz(φ), ψ in [−π/2, π/2]."""
+    psi = np.arctan2(R[..., 0, 2], np.hypot(R[..., 1, 2], R[..., 2, 2]))
+    theta = np.arctan2(-R[..., 1, 2], R[..., 2, 2])
+    phi = np.arctan2(-R[..., 0, 1], R[..., 0, 0])
+    return psi, theta, phi
+
+
+def forward_tool_pose(params, q) -> np.ndarray:
+    """Tip pose (…, 6) = (x, y, z, ψ, θ, φ) from the chain-0 angles of q (numpy only)."""
+    R, o = forward_frames(params, q)["tip"]
+    o = np.broadcast_to(o, R.shape[:-1])
+    return np.concatenate([o, np.stack(rotation_to_pose_angles(R), axis=-1)], axis=-1)
+
+
+def closure_points(params, q) -> np.ndarray:
+    """(…, 2, 2, 3): [leg, 0] = Tx(x87) on link_i, [leg, 1] = A_i on the platform (spec §4)."""
+    f = forward_frames(params, q)
+    return np.stack([np.stack([f[f"closure_link_{i}"][1], f[f"closure_platform_{i}"][1]], -2)
+                     for i in (1, 2)], -3)
+
+
+# --- body kinematics ----------------------------------------------------------------------
+
+BODIES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link_1", "link_2")
+
+
+def body_jets(params, pose_jet, wrist_margin: float = 0.0) -> dict:
+    """name → (R jet, CoG position jet), world frame, for the 9 moving bodies (spec §3, §5)."""
+    f = forward_frames(params, _solve(params, pose_jet, wrist_margin))
+    out = {}
+    for name in BODIES:
+        R, o = f[name]
+        out[name] = (R, o + J.matvec(R, np.asarray(params.body(name).com)))
+    return out
+
+
+def vee_skew(W):
+    """Axial vector of the skew part of W (..., 3, 3)."""
+    return 0.5 * np.stack([W[..., 2, 1] - W[..., 1, 2], W[..., 0, 2] - W[..., 2, 0],
+                           W[..., 1, 0] - W[..., 0, 1]], axis=-1)
+
+
+def angular_rates(R: Jet):
+    """World ω = vee(Ṙ Rᵀ) and α = vee(skew(R̈ Rᵀ)) (Ṙ Ṙᵀ is symmetric, so it drops out)."""
+    Rt = np.swapaxes(R.v, -1, -2)
+    return vee_skew(R.d @ Rt), vee_skew(R.dd @ Rt)
+
+
+def body_kinematics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
+    """name → dict(R, r, v, a, omega, alpha): world rotation, CoG position, CoG velocity and
+    acceleration, angular velocity and acceleration (world frame), each (N, ...)."""
+    x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
+    out = {}
+    for name, (R, r) in body_jets(params, x, wrist_margin).items():
+        w, al = angular_rates(R)
+        out[name] = {"R": R.v, "r": r.v, "v": r.d, "a": r.dd, "omega": w, "alpha": al}
+    return out

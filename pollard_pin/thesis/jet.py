@@ -1,0 +1,255 @@
+"""Second-order truncated Taylor jets: exact forward-mode derivatives along time.
+
+A :class:`Jet` holds ``(v, d, dd)`` = (value, first, second time derivative) of an array
+quantity. Arithmetic and the elementary functions propagate them by the chain rule
+(Leibniz rule for products), so the IK closed forms of spec §7 give exact velocities and
+accelerations with no finite differences.
+
+Shapes: ``d`` and ``dd`` need only broadcast against ``v``. This lets one value carry many
+derivative directions: ``v`` of shape (N, 1, ...) with ``d`` of shape (N, K, ...) is K
+directional derivatives of the same N samples (used for Jacobians). ``v``, ``d`` and ``dd``
+always have the same number of dimensions.
+
+Every helper below (``sin``, ``stack``, ``matvec``, ``Rx`` ...) also accepts plain numpy arrays
+and then returns plain arrays, so the same closed-form code serves positions only (fast) and
+jets. ``A @ B`` on jets multiplies trailing 3x3 matrices; the right operand is a 3-vector when it
+is a jet with one dimension fewer than the left one, or a 1-D array; otherwise use
+:func:`matvec` to be explicit.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Jet", "value", "sin", "cos", "sqrt", "atan2", "asin", "acos", "stack", "matvec",
+           "transpose", "cross", "dot", "Rx", "Ry", "Rz", "clip_unit"]
+
+
+def _pad(a: np.ndarray, n: int) -> np.ndarray:
+    return a.reshape((1,) * (n - a.ndim) + a.shape) if a.ndim < n else a
+
+
+def _mv(a, b):
+    return (a @ b[..., None])[..., 0]
+
+
+class Jet:
+    """(value, d/dt, d²/dt²) of an array; exact second-order forward mode."""
+
+    __slots__ = ("v", "d", "dd")
+    __array_ufunc__ = None  # numpy operands defer to the reflected Jet operators
+
+    def __init__(self, v, d=None, dd=None):
+        v = np.asarray(v, dtype=float)
+        d = np.zeros_like(v) if d is None else np.asarray(d, dtype=float)
+        dd = np.zeros_like(v) if dd is None else np.asarray(dd, dtype=float)
+        n = max(v.ndim, d.ndim, dd.ndim)
+        self.v, self.d, self.dd = _pad(v, n), _pad(d, n), _pad(dd, n)
+
+    # -- structure ------------------------------------------------------------------------
+    @property
+    def shape(self):
+        return self.v.shape
+
+    @property
+    def ndim(self):
+        return self.v.ndim
+
+    def __getitem__(self, idx):
+        return Jet(self.v[idx], self.d[idx], self.dd[idx])
+
+    @property
+    def T(self):
+        """Transpose of the trailing two axes."""
+        return Jet(np.swapaxes(self.v, -1, -2), np.swapaxes(self.d, -1, -2),
+                   np.swapaxes(self.dd, -1, -2))
+
+    def sum(self, axis=-1):
+        return Jet(self.v.sum(axis), self.d.sum(axis), self.dd.sum(axis))
+
+    def __repr__(self):
+        return f"Jet(v={self.v!r}, d={self.d!r}, dd={self.dd!r})"
+
+    # -- linear operations ----------------------------------------------------------------
+    def __neg__(self):
+        return Jet(-self.v, -self.d, -self.dd)
+
+    def __add__(self, o):
+        if isinstance(o, Jet):
+            return Jet(self.v + o.v, self.d + o.d, self.dd + o.dd)
+        return Jet(self.v + np.asarray(o), self.d, self.dd)
+
+    __radd__ = __add__
+
+    def __sub__(self, o):
+        return self + (-o)
+
+    def __rsub__(self, o):
+        return (-self) + o
+
+    # -- bilinear operations (Leibniz rule) ------------------------------------------------
+    def _bilinear(self, o, op):
+        if not isinstance(o, Jet):
+            o = np.asarray(o, dtype=float)
+            return Jet(op(self.v, o), op(self.d, o), op(self.dd, o))
+        return Jet(op(self.v, o.v), op(self.d, o.v) + op(self.v, o.d),
+                   op(self.dd, o.v) + 2.0 * op(self.d, o.d) + op(self.v, o.dd))
+
+    def _rbilinear(self, o, op):
+        o = np.asarray(o, dtype=float)
+        return Jet(op(o, self.v), op(o, self.d), op(o, self.dd))
+
+    def __mul__(self, o):
+        return self._bilinear(o, np.multiply)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, o):
+        if isinstance(o, Jet):
+            return self * o.reciprocal()
+        return self * (1.0 / np.asarray(o, dtype=float))
+
+    def __rtruediv__(self, o):
+        return self.reciprocal() * o
+
+    def reciprocal(self):
+        r = 1.0 / self.v
+        return _chain(self, r, -r * r, 2.0 * r * r * r)
+
+    def __pow__(self, n):
+        if n == 2:
+            return self * self
+        return _chain(self, self.v ** n, n * self.v ** (n - 1), n * (n - 1) * self.v ** (n - 2))
+
+    def __matmul__(self, o):
+        vec = o.ndim == self.ndim - 1 if isinstance(o, Jet) else np.ndim(o) == 1
+        return self._bilinear(o, _mv if vec else np.matmul)
+
+    def __rmatmul__(self, o):
+        return self._rbilinear(o, _mv if self.ndim == 1 else np.matmul)
+
+
+def _chain(a: Jet, f0, f1, f2) -> Jet:
+    """f(a) given f, f', f'' at a.v: (f∘a)' = f'·a', (f∘a)'' = f''·a'² + f'·a''."""
+    return Jet(f0, f1 * a.d, f2 * a.d * a.d + f1 * a.dd)
+
+
+def value(x):
+    """The value part of a jet (a plain array is returned as is)."""
+    return x.v if isinstance(x, Jet) else np.asarray(x)
+
+
+def sin(a):
+    if not isinstance(a, Jet):
+        return np.sin(a)
+    s, c = np.sin(a.v), np.cos(a.v)
+    return _chain(a, s, c, -s)
+
+
+def cos(a):
+    if not isinstance(a, Jet):
+        return np.cos(a)
+    s, c = np.sin(a.v), np.cos(a.v)
+    return _chain(a, c, -s, -c)
+
+
+def sqrt(a):
+    if not isinstance(a, Jet):
+        return np.sqrt(a)
+    r = np.sqrt(a.v)
+    return _chain(a, r, 0.5 / r, -0.25 / (r * a.v))
+
+
+def asin(a):
+    if not isinstance(a, Jet):
+        return np.arcsin(a)
+    w = 1.0 / np.sqrt(1.0 - a.v * a.v)
+    return _chain(a, np.arcsin(a.v), w, a.v * w * w * w)
+
+
+def acos(a):
+    if not isinstance(a, Jet):
+        return np.arccos(a)
+    w = 1.0 / np.sqrt(1.0 - a.v * a.v)
+    return _chain(a, np.arccos(a.v), -w, -a.v * w * w * w)
+
+
+def atan2(y, x):
+    """atan2 with exact derivatives: θ' = (x y' − y x')/r², r² = x² + y²."""
+    if not isinstance(y, Jet) and not isinstance(x, Jet):
+        return np.arctan2(y, x)
+    y = y if isinstance(y, Jet) else Jet(y)
+    x = x if isinstance(x, Jet) else Jet(x)
+    r2 = x.v * x.v + y.v * y.v
+    n = x.v * y.d - y.v * x.d
+    dn = x.v * y.dd - y.v * x.dd  # the x'y' terms cancel
+    dr2 = 2.0 * (x.v * x.d + y.v * y.d)
+    return Jet(np.arctan2(y.v, x.v), n / r2, (dn * r2 - n * dr2) / (r2 * r2))
+
+
+def clip_unit(a):
+    """Clip the value into [−1, 1] (rounding guard before asin/acos); derivatives kept."""
+    if not isinstance(a, Jet):
+        return np.clip(a, -1.0, 1.0)
+    return Jet(np.clip(a.v, -1.0, 1.0), a.d, a.dd)
+
+
+def stack(items, axis=-1):
+    """np.stack with broadcasting; items may mix jets, arrays and scalars."""
+    if not any(isinstance(i, Jet) for i in items):
+        return np.stack(np.broadcast_arrays(*[np.asarray(i, dtype=float) for i in items]), axis)
+    jets = [i if isinstance(i, Jet) else Jet(i) for i in items]
+    sv = np.broadcast_shapes(*[j.v.shape for j in jets])
+    sd = np.broadcast_shapes(sv, *[j.d.shape for j in jets])
+    sdd = np.broadcast_shapes(sv, *[j.dd.shape for j in jets])
+    return Jet(np.stack([np.broadcast_to(j.v, sv) for j in jets], axis),
+               np.stack([np.broadcast_to(_pad(j.d, len(sd)), sd) for j in jets], axis),
+               np.stack([np.broadcast_to(_pad(j.dd, len(sdd)), sdd) for j in jets], axis))
+
+
+def matvec(A, x):
+    """A (..., 3, 3) times x (..., 3), batched."""
+    if isinstance(A, Jet):
+        return A._bilinear(x, _mv)
+    if isinstance(x, Jet):
+        return x._rbilinear(A, _mv)
+    return _mv(np.asarray(A), np.asarray(x))
+
+
+def transpose(A):
+    return A.T if isinstance(A, Jet) else np.swapaxes(A, -1, -2)
+
+
+def cross(a, b):
+    op = lambda u, w: np.cross(u, w)  # noqa: E731
+    if isinstance(a, Jet):
+        return a._bilinear(b, op)
+    if isinstance(b, Jet):
+        return b._rbilinear(a, op)
+    return np.cross(a, b)
+
+
+def dot(a, b):
+    """Sum over the trailing axis of a*b."""
+    p = a * b
+    return p.sum(-1) if isinstance(p, Jet) else np.sum(p, axis=-1)
+
+
+def _rot(a, i, j):
+    c, s = cos(a), sin(a)
+    z, o = 0.0, 1.0
+    rows = [[o, z, z], [z, o, z], [z, z, o]]
+    rows[i][i], rows[i][j], rows[j][i], rows[j][j] = c, -s, s, c
+    return stack([stack(r, -1) for r in rows], -2)
+
+
+def Rx(a):
+    """Rotation about x by a (array or jet), shape a.shape + (3, 3)."""
+    return _rot(a, 1, 2)
+
+
+def Ry(a):
+    return _rot(a, 2, 0)
+
+
+def Rz(a):
+    return _rot(a, 0, 1)
