@@ -1,0 +1,29 @@
+# The two commands of the README. Both build .venv from nothing (Python 3.11 + the registry).
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV := .venv
+STAMP := $(VENV)/.installed
+
+.PHONY: run test venv clean urdf bench
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(VENV)/bin/python -m pip install --quiet -e ".[test,plots]"
+	touch $(STAMP)
+
+venv: $(STAMP)
+
+run: $(STAMP)
+	$(VENV)/bin/pollard-pin run
+
+test: $(STAMP)
+	$(VENV)/bin/python -m pytest -q
+
+urdf: $(STAMP)
+	$(VENV)/bin/pollard-pin urdf
+
+bench: $(STAMP)
+	$(VENV)/bin/python scripts/benchmark.py
+
+clean:
+	rm -rf $(VENV) build *.egg-info

@@ -1,0 +1,136 @@
+"""``pollard-pin`` command line: a thin layer over the public API."""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+
+def _progress(label: str, enabled: bool):
+    if not enabled:
+        return None
+    state = {"last": -1}
+
+    def report(done: int, total: int) -> None:
+        pct = 100 * done // total
+        if pct != state["last"] and (pct % 5 == 0 or done == total):
+            state["last"] = pct
+            sys.stderr.write(f"\r{label}: {pct:3d}% ({done}/{total})")
+            if done == total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+
+    return report
+
+
+def _load_trajectory(args, params):
+    from .trajectory import THESIS_DURATION, THESIS_SAMPLES, from_csv, thesis_trajectory
+
+    if args.trajectory == "thesis":
+        return thesis_trajectory(duration=args.duration or THESIS_DURATION,
+                                 samples=args.samples or THESIS_SAMPLES,
+                                 home_pose=params.home_pose)
+    if args.duration is not None or args.samples is not None:
+        print("note: --duration/--samples apply to the thesis trajectory only; "
+              "the CSV file's own times are used", file=sys.stderr)
+    traj = from_csv(args.trajectory)
+    if traj.derivatives != "file columns":
+        print(f"note: derivatives of {args.trajectory} come from a {traj.derivatives} "
+              "(no d_*/dd_* columns in the file)", file=sys.stderr)
+    return traj
+
+
+def cmd_urdf(args) -> int:
+    from .model import generate
+    from .params import load_params
+
+    params = load_params(args.params)
+    urdf, srdf = generate(params)
+    out = Path(args.out)
+    out.write_text(urdf)
+    srdf_out = out.with_suffix(".srdf")
+    srdf_out.write_text(srdf)
+    print(f"wrote {out} and {srdf_out} from {params.source}")
+    return 0
+
+
+def cmd_info(args) -> int:
+    import numpy as np
+
+    from .model import constraint_residual, load
+
+    robot = load(args.params)
+    q = robot.home()
+    r = constraint_residual(robot.model, robot.data, robot.constraint_models,
+                            robot.constraint_datas, q)
+    print(f"Pollard robot: nq = {robot.model.nq}, total mass {robot.params.total_mass:.4f} kg")
+    for name, b in robot.params.bodies:
+        print(f"  {name:9s} {b.mass:.3f} kg")
+    print("home configuration (deg):")
+    for name, val in robot.as_dict(q).items():
+        print(f"  {name:10s} {np.degrees(val):10.4f}")
+    print(f"closure residual at home: {np.abs(r).max():.3g} m")
+    return 0
+
+
+def cmd_run(args) -> int:
+    from .model import load
+    from .outputs import run_pipeline, summary, write_csv
+
+    robot = load(args.params)
+    t0 = time.perf_counter()
+    traj = _load_trajectory(args, robot.params)
+    result = run_pipeline(robot, traj, progress=_progress("solving", len(traj) >= 500 and
+                                                           not args.quiet))
+    wall = time.perf_counter() - t0
+    write_csv(result, args.out)
+    print(summary(result, wall))
+    print(f"wrote {len(traj)} rows to {args.out}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("urdf", help="generate models/pollard.urdf (+ .srdf) from parameters")
+    p.add_argument("--params", help="parameter TOML (default: the shipped models/pollard.toml)")
+    p.add_argument("--out", default="models/pollard.urdf", help="output URDF path")
+    p.set_defaults(func=cmd_urdf)
+
+    p = sub.add_parser("info", help="load the model and print home configuration and masses")
+    p.add_argument("--params", help="parameter TOML")
+    p.set_defaults(func=cmd_info)
+
+    p = sub.add_parser("run", help="solve a trajectory: kinematics and dynamics → CSV")
+    p.add_argument("--trajectory", default="thesis", help="'thesis' or a CSV file")
+    p.add_argument("--duration", type=float, default=None, help="thesis trajectory duration [s]")
+    p.add_argument("--samples", type=int, default=None, help="thesis trajectory samples")
+    p.add_argument("--out", default="run.csv", help="output CSV")
+    p.add_argument("--params", help="parameter TOML")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_run)
+    return ap
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    from .kinematics import ClosureError, KinematicsError
+    from .model import ModelFileError
+    from .params import ParameterError
+    from .trajectory import TrajectoryError
+
+    try:
+        return args.func(args)
+    except (ParameterError, TrajectoryError, KinematicsError, ClosureError,
+            ModelFileError) as exc:
+        print(f"pollard-pin {args.command}: error: {exc}", file=sys.stderr)
+        out = getattr(args, "out", None)
+        if out and args.command == "run":
+            print(f"pollard-pin {args.command}: nothing written to {out}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

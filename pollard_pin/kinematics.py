@@ -1,0 +1,356 @@
+"""Constrained kinematics with Pinocchio: closure solve / forward kinematics (spec §4)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+from .model import Robot, constraint_jacobian, constraint_residual
+
+CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
+MAX_ITER = 50
+
+
+class ClosureError(RuntimeError):
+    """The loops cannot be closed for the given actuator angles."""
+
+    def __init__(self, message: str, leg: int | None = None, residual: float | None = None):
+        super().__init__(message)
+        self.leg = leg
+        self.residual = residual
+
+
+def _leg_residuals(r: np.ndarray) -> np.ndarray:
+    return np.linalg.norm(r.reshape(2, 3), axis=1)
+
+
+def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
+                  tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER) -> np.ndarray:
+    """Full configuration (12,) with the six actuator angles fixed and the loops closed.
+
+    Newton on the passive angles with the constraint Jacobian, warm-started at ``q_guess``
+    (default: the home posture). Raises :class:`ClosureError` naming the leg and the residual
+    reached when the actuator set cannot be assembled.
+    """
+    model, data = robot.model, robot.data
+    cms, cds = robot.constraint_models, robot.constraint_datas
+    act = np.asarray(actuated, dtype=float).reshape(-1)
+    if act.shape != (6,) or not np.all(np.isfinite(act)):
+        raise ValueError(f"actuator angles must be 6 finite numbers "
+                         f"({', '.join(robot.actuated)}), got {act!r}")
+    q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
+    ia, ip = robot.actuated_v, robot.passive_v
+    q[ia] = act
+    r = constraint_residual(model, data, cms, cds, q)
+    best = np.inf
+    for _ in range(max_iter):
+        err = np.abs(r).max()
+        best = min(best, err)
+        if err <= tol:
+            return q
+        Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
+        step = np.linalg.lstsq(Jp, r, rcond=None)[0]
+        # Damped step: never move a passive angle by more than 0.5 rad at once.
+        scale = min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
+        q_new = q.copy()
+        q_new[ip] -= scale * step
+        r_new = constraint_residual(model, data, cms, cds, q_new)
+        q, r = q_new, r_new
+    legs = _leg_residuals(r)
+    leg = int(np.argmax(legs)) + 1
+    raise ClosureError(
+        f"cannot close the loops for actuator angles {dict(zip(robot.actuated, act.round(6)))} "
+        f"(rad): after {max_iter} Newton steps the residual is {legs[0]*1e3:.4g} mm on leg 1 and "
+        f"{legs[1]*1e3:.4g} mm on leg 2 (tolerance {tol:g} m); leg {leg} cannot reach its "
+        f"attachment point", leg=leg, residual=float(legs.max()))
+
+
+def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
+    """World placement of the ``tip`` frame."""
+    pin.framesForwardKinematics(robot.model, robot.data, q)
+    return pin.SE3(robot.data.oMf[robot.tip_frame])
+
+
+def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """Actuator angles (N, 6) → full configurations (N, 12) and task poses (N, 6).
+
+    Each sample warm-starts from the previous one, so a trajectory stays on one branch.
+    """
+    from .taskspace import pose_from_se3
+
+    act = np.atleast_2d(np.asarray(actuated, dtype=float))
+    qs = np.empty((len(act), robot.model.nq))
+    poses = np.empty((len(act), 6))
+    q = q_guess
+    for k, a in enumerate(act):
+        try:
+            q = solve_closure(robot, a, q_guess=q)
+        except ClosureError as exc:
+            raise ClosureError(f"sample {k}: {exc}", exc.leg, exc.residual) from None
+        qs[k] = q
+        poses[k] = pose_from_se3(tool_pose(robot, q))
+    return qs, poses
+
+
+# --- inverse kinematics along a trajectory (issue: constrained kinematics) -------------------
+SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
+IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
+SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
+WRIST_MARGIN = 0.05  # default smallest |sin θ1716| allowed (≈ 2.9°)
+BRANCH_TOL = 0.05  # rad, largest departure from the trapezoid prediction between samples
+
+
+class KinematicsError(RuntimeError):
+    """IK failed at a sample: ``chain``, ``sample``, ``time`` and ``amount`` say where and how far."""
+
+    def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
+                 chain: str | None = None, amount: float | None = None):
+        where = "" if sample is None else f"sample {sample}" + (
+            "" if time is None else f" (t = {time:.6g} s)")
+        super().__init__(f"{where}: {message}" if where else message)
+        self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
+
+
+class UnreachablePoseError(KinematicsError):
+    """A chain cannot reach the requested tool pose."""
+
+
+class SingularityError(KinematicsError):
+    """The trajectory passes closer to a singularity than the configured margin."""
+
+
+class BranchFlipError(KinematicsError):
+    """The solution jumped to another assembly branch between consecutive samples."""
+
+
+def _zyz(M: np.ndarray) -> np.ndarray:
+    """ZYZ angles of M = Rz(a) Ry(b) Rz(c), b in [0, π] (spec §4)."""
+    b = np.arccos(np.clip(M[2, 2], -1.0, 1.0))
+    return np.array([np.arctan2(M[1, 2], M[0, 2]), b, np.arctan2(M[2, 1], -M[2, 0])])
+
+
+def _zyz_rate_matrix(ang: np.ndarray) -> np.ndarray:
+    """w = Z(a, b) · (ȧ, ḃ, ċ) for M = Rz(a) Ry(b) Rz(c), Ṁ Mᵀ = ŵ."""
+    a, b = ang[0], ang[1]
+    return np.array([[0.0, -np.sin(a), np.cos(a) * np.sin(b)],
+                     [0.0, np.cos(a), np.sin(a) * np.sin(b)],
+                     [1.0, 0.0, np.cos(b)]])
+
+
+@dataclass
+class KinematicFrames:
+    """Frame and joint ids used on the hot path, looked up once."""
+
+    tip: int
+    closure_a: tuple[int, ...]
+    closure_b: tuple[int, ...]
+    link_joints: tuple[int, ...]
+    platform_joint: int
+    spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i)
+    actuated_v: np.ndarray
+    passive_v: np.ndarray
+    wrist_q: int
+
+    @classmethod
+    def of(cls, robot: Robot) -> "KinematicFrames":
+        def rz(a):
+            c, s = np.cos(a), np.sin(a)
+            return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+        return cls(tip=robot.tip_frame,
+                   closure_a=tuple(robot.frame_id(c.frame_a) for c in robot.closures),
+                   closure_b=tuple(robot.frame_id(c.frame_b) for c in robot.closures),
+                   link_joints=tuple(robot.joint_id(f"theta76_{i}") for i in (1, 2)),
+                   platform_joint=robot.joint_id("theta54"),
+                   spherical_offset=tuple(rz(-leg.beta1413) for leg in robot.params.legs),
+                   actuated_v=robot.actuated_v, passive_v=robot.passive_v,
+                   wrist_q=robot.idx_q("theta1716"))
+
+
+def _pose_error(model, data, fr: KinematicFrames, q, p_des, R_des):
+    """[closure residual (6); tip position error (3); tip orientation error (3)], world axes."""
+    pin.forwardKinematics(model, data, q)
+    for f in fr.closure_a + fr.closure_b + (fr.tip,):
+        pin.updateFramePlacement(model, data, f)
+    res = [data.oMf[a].translation - data.oMf[b].translation
+           for a, b in zip(fr.closure_a, fr.closure_b)]
+    tip = data.oMf[fr.tip]
+    res.append(tip.translation - p_des)
+    res.append(pin.log3(tip.rotation @ R_des.T))
+    return np.concatenate(res)
+
+
+def _kinematic_matrix(model, data, cms, cds, fr: KinematicFrames, q):
+    """K = [Jc; J_tool] (12 × 12), world axes: K v = [closure velocity; tool twist]."""
+    Jc = constraint_jacobian(model, data, cms, cds, q)
+    Jt = pin.getFrameJacobian(model, data, fr.tip, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    return np.vstack([Jc, Jt])
+
+
+def _drifts(model, data, fr: KinematicFrames, q, v):
+    """[closure acceleration drift; tool drift] at a = 0: K̇ v from classical accelerations."""
+    pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
+    LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    out = [pin.getFrameClassicalAcceleration(model, data, a, LWA).linear
+           - pin.getFrameClassicalAcceleration(model, data, b, LWA).linear
+           for a, b in zip(fr.closure_a, fr.closure_b)]
+    acc = pin.getFrameClassicalAcceleration(model, data, fr.tip, LWA)
+    out += [acc.linear, acc.angular]
+    return np.concatenate(out)
+
+
+def _spherical(data, fr: KinematicFrames):
+    """Cut spherical-joint angles (6,) and rates (6,) after forwardKinematics(q, v)."""
+    oMp = data.oMi[fr.platform_joint]
+    w_p = oMp.rotation @ data.v[fr.platform_joint].angular
+    ang, rate = [], []
+    for jl, C in zip(fr.link_joints, fr.spherical_offset):
+        oMl = data.oMi[jl]
+        a = _zyz(oMl.rotation.T @ oMp.rotation @ C)
+        w_rel = oMl.rotation.T @ (w_p - oMl.rotation @ data.v[jl].angular)
+        ang.append(a)
+        rate.append(np.linalg.solve(_zyz_rate_matrix(a), w_rel))
+    return np.concatenate(ang), np.concatenate(rate)
+
+
+@dataclass
+class IKResult:
+    """Joint motion along a trajectory. Arrays have one row per sample; tree joints in
+    :attr:`Robot.joint_names` order, spherical angles in :data:`SPHERICAL` order."""
+
+    t: np.ndarray
+    poses: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    spherical: np.ndarray
+    d_spherical: np.ndarray
+    closure_residual: np.ndarray  # max |p_A − p_B| component [m]
+    tool_error: np.ndarray  # max |pose error| component [m, rad]
+    wrist_margin: np.ndarray  # |sin θ1716|
+    sigma_parallel: np.ndarray  # σ_min of Jc over the passive joints
+    sigma_serial: np.ndarray  # σ_min of the actuator-rate → tool-twist map
+    joint_names: tuple[str, ...] = field(default=())
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+def _newton(model, data, cms, cds, fr, q, p_des, R_des, tol, max_iter):
+    e = _pose_error(model, data, fr, q, p_des, R_des)
+    for _ in range(max_iter):
+        if np.abs(e).max() <= tol:
+            return q, e, True
+        K = _kinematic_matrix(model, data, cms, cds, fr, q)
+        step = np.linalg.solve(K, e)
+        q = q - step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
+        e = _pose_error(model, data, fr, q, p_des, R_des)
+    return q, e, np.abs(e).max() <= tol
+
+
+def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
+    """Why Newton failed at sample k: the closed form names the chain and the shortfall."""
+    from .thesis.ik import UnreachableError, position_ik
+
+    try:
+        position_ik(robot.params, np.asarray(pose)[None, :])
+    except UnreachableError as exc:
+        return UnreachablePoseError(str(exc).replace("sample 0", "this pose"), sample=k, time=tk,
+                                    chain=exc.chain, amount=exc.shortfall)
+    return UnreachablePoseError(
+        f"Newton did not converge to pose {np.round(pose, 6).tolist()}: closure residual "
+        f"{np.abs(e[:6]).max():.3g} m, tool error {np.abs(e[6:]).max():.3g} (m/rad)",
+        sample=k, time=tk, amount=float(np.abs(e).max()))
+
+
+def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
+                       q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
+                       singularity_margin: float = SINGULARITY_MARGIN,
+                       wrist_margin: float = WRIST_MARGIN, branch_tol: float = BRANCH_TOL,
+                       progress=None) -> IKResult:
+    """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
+
+    Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
+    sample (the first from ``q_start``, default the SRDF home posture, spec §9 branches).
+    Velocities: ``[Jc; J_tool] v = [0; twist]``. Accelerations: the same matrix with the exact
+    drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
+    at the first unreachable, singular or branch-flipping sample.
+    """
+    from .taskspace import rotation, twist, twist_dot
+
+    model, data = robot.model, robot.data
+    cms, cds = robot.constraint_models, robot.constraint_datas
+    fr = KinematicFrames.of(robot)
+    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    n = len(poses)
+    d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
+    dd_poses = np.zeros_like(poses) if dd_poses is None else np.atleast_2d(dd_poses)
+    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+    for name, arr in (("pose", poses), ("pose rate", d_poses), ("pose acceleration", dd_poses)):
+        bad = np.argwhere(~np.isfinite(arr))
+        if len(bad):
+            k, c = bad[0]
+            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
+    Rs = rotation(poses)
+    tw, twd = twist(poses, d_poses), twist_dot(poses, d_poses, dd_poses)
+    nv = model.nv
+    out = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
+    sph, dsph = np.empty((n, 6)), np.empty((n, 6))
+    stats = np.empty((n, 5))
+    q = (robot.q_reference if q_start is None else np.asarray(q_start, dtype=float)).copy()
+    rhs_v = np.zeros(12)
+    for k in range(n):
+        if k > 0:  # predictor: second-order Taylor step from the previous sample
+            dt = t[k] - t[k - 1]
+            q = out["q"][k - 1] + dt * out["v"][k - 1] + 0.5 * dt * dt * out["a"][k - 1]
+        q, e, ok = _newton(model, data, cms, cds, fr, q, poses[k, :3], Rs[k], tol, max_iter)
+        if not ok:
+            raise _diagnose(robot, poses[k], k, t[k], e, wrist_margin)
+        K = _kinematic_matrix(model, data, cms, cds, fr, q)
+        rhs_v[6:] = tw[k]
+        v = np.linalg.solve(K, rhs_v)
+        drift = _drifts(model, data, fr, q, v)
+        rhs_a = -drift
+        rhs_a[6:] += twd[k]
+        a = np.linalg.solve(K, rhs_a)
+        sph[k], dsph[k] = _spherical(data, fr)
+        # Singularity measures (issue: workspace and singularities).
+        Jc, Jt = K[:6], K[6:]
+        Jp = Jc[:, fr.passive_v]
+        sig_par = np.linalg.svd(Jp, compute_uv=False)[-1]
+        N = np.zeros((nv, 6))
+        N[fr.actuated_v] = np.eye(6)
+        N[fr.passive_v] = -np.linalg.solve(Jp, Jc[:, fr.actuated_v])
+        sig_ser = np.linalg.svd(Jt @ N, compute_uv=False)[-1]
+        wm = abs(np.sin(q[fr.wrist_q]))
+        stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), wm, sig_par, sig_ser)
+        if wm < wrist_margin:
+            raise SingularityError(
+                f"wrist |sin θ1716| = {wm:.4g} is below the margin {wrist_margin:g} "
+                f"(θ1716 = {np.degrees(q[fr.wrist_q]):.3f}°: spray axis nearly parallel to the "
+                "platform arm)", sample=k, time=t[k], chain="wrist", amount=wrist_margin - wm)
+        for label, s in (("parallel (passive-joint constraint Jacobian)", sig_par),
+                         ("serial (actuator-rate to tool-twist map)", sig_ser)):
+            if s < singularity_margin:
+                raise SingularityError(
+                    f"{label} smallest singular value {s:.4g} is below the margin "
+                    f"{singularity_margin:g}", sample=k, time=t[k], chain=label.split()[0],
+                    amount=singularity_margin - s)
+        if k > 0:
+            jump = np.abs(q - out["q"][k - 1] - 0.5 * (t[k] - t[k - 1]) * (v + out["v"][k - 1]))
+            j = int(np.argmax(jump))
+            if jump[j] > branch_tol:
+                raise BranchFlipError(
+                    f"joint {robot.joint_names[j]} jumped {jump[j]:.4g} rad more than its rate "
+                    f"predicts (limit {branch_tol:g} rad): assembly branch flip or samples too "
+                    "sparse", sample=k, time=t[k], chain=robot.joint_names[j],
+                    amount=float(jump[j]))
+        out["q"][k], out["v"][k], out["a"][k] = q, v, a
+        if progress is not None:
+            progress(k + 1, n)
+    return IKResult(t=t, poses=poses, q=out["q"], v=out["v"], a=out["a"], spherical=sph,
+                    d_spherical=dsph, closure_residual=stats[:, 0], tool_error=stats[:, 1],
+                    wrist_margin=stats[:, 2], sigma_parallel=stats[:, 3],
+                    sigma_serial=stats[:, 4], joint_names=robot.joint_names)

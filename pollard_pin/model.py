@@ -1,0 +1,212 @@
+"""The Pinocchio model: open tree from the URDF plus the two cut spherical joints (spec §4).
+
+Closure i is the 3D point constraint ``closure{i}_A`` (on ``link_i``) == ``closure{i}_B`` (on
+``platform``). Its residual is ``p_A − p_B`` in world axes; with the constraint Jacobian
+``Jc = ∂(p_A − p_B)/∂q`` (LOCAL_WORLD_ALIGNED), a multiplier λ_i in ``τ = Sᵀτ_act + Jcᵀλ`` is
+the force the platform exerts on ``link_i`` at the ball joint, in world axes.
+"""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+from ._paths import models_dir
+from .params import Params, load_params
+from .urdf import generate_srdf, generate_urdf
+
+ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+PASSIVE = ("theta43", "theta54", "theta65_1", "theta76_1", "theta65_2", "theta76_2")
+TIP_FRAME = "tip"
+DEFAULT_URDF = "pollard.urdf"
+DEFAULT_SRDF = "pollard.srdf"
+
+
+class ModelFileError(ValueError):
+    """The URDF/SRDF is malformed or does not describe the Pollard tree."""
+
+
+@dataclass(frozen=True)
+class Closure:
+    """A cut spherical joint: frame ``frame_a`` (leg side) coincides with ``frame_b`` (platform)."""
+
+    name: str
+    frame_a: str
+    frame_b: str
+
+
+@dataclass
+class Robot:
+    """Pinocchio model, data, geometry and loop closures of the Pollard robot."""
+
+    params: Params
+    model: pin.Model
+    data: pin.Data
+    visual_model: pin.GeometryModel
+    collision_model: pin.GeometryModel
+    closures: tuple[Closure, ...]
+    constraint_models: list
+    constraint_datas: list
+    urdf: str  # the URDF text the model was built from
+    actuated: tuple[str, ...] = ACTUATED
+    passive: tuple[str, ...] = PASSIVE
+    visual_data: pin.GeometryData = field(init=False)
+    collision_data: pin.GeometryData = field(init=False)
+
+    def __post_init__(self):
+        self.visual_data = self.visual_model.createData()
+        self.collision_data = self.collision_model.createData()
+
+    # --- name ↔ index helpers -------------------------------------------------------------
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """The tree joints in configuration order (universe excluded)."""
+        return tuple(self.model.names[1:])
+
+    def joint_id(self, name: str) -> int:
+        if not self.model.existJointName(name):
+            raise KeyError(f"no joint named {name!r}; joints: {', '.join(self.joint_names)}")
+        return int(self.model.getJointId(name))
+
+    def idx_q(self, name: str) -> int:
+        return int(self.model.joints[self.joint_id(name)].idx_q)
+
+    def idx_v(self, name: str) -> int:
+        return int(self.model.joints[self.joint_id(name)].idx_v)
+
+    def frame_id(self, name: str) -> int:
+        if not self.model.existFrame(name):
+            raise KeyError(f"no frame named {name!r}")
+        return int(self.model.getFrameId(name))
+
+    @property
+    def actuated_v(self) -> np.ndarray:
+        return np.array([self.idx_v(n) for n in self.actuated])
+
+    @property
+    def passive_v(self) -> np.ndarray:
+        return np.array([self.idx_v(n) for n in self.passive])
+
+    @property
+    def tip_frame(self) -> int:
+        return self.frame_id(TIP_FRAME)
+
+    @property
+    def q_reference(self) -> np.ndarray:
+        """The SRDF ``home`` posture (closed-form IK, as written in the file)."""
+        return np.array(self.model.referenceConfigurations["home"])
+
+    def home(self) -> np.ndarray:
+        """Spec §9 home configuration with the closure solved to ≤ 1e-12 m."""
+        from .kinematics import solve_closure
+
+        q_ref = self.q_reference
+        return solve_closure(self, q_ref[self.actuated_v], q_guess=q_ref)
+
+    def as_dict(self, q: np.ndarray) -> dict[str, float]:
+        return {n: float(q[self.idx_q(n)]) for n in self.joint_names}
+
+
+def parse_closures(urdf: str) -> tuple[Closure, ...]:
+    """The ``<loop_closure>`` elements of a Pollard URDF."""
+    try:
+        root = ET.fromstring(urdf)
+    except ET.ParseError as exc:
+        raise ModelFileError(f"URDF is not well-formed XML: {exc}") from None
+    closures = []
+    for el in root.iter("loop_closure"):
+        try:
+            c = Closure(el.attrib["name"], el.attrib["frame_a"], el.attrib["frame_b"])
+        except KeyError as exc:
+            raise ModelFileError(f"<loop_closure> {el.attrib} lacks attribute {exc}") from None
+        if el.attrib.get("type", "spherical") != "spherical":
+            raise ModelFileError(f"loop closure {c.name!r}: only type='spherical' is supported")
+        closures.append(c)
+    if len(closures) != 2:
+        raise ModelFileError(f"expected 2 <loop_closure> elements (spec §4), found {len(closures)}")
+    return tuple(closures)
+
+
+def _constraint(model: pin.Model, c: Closure) -> pin.RigidConstraintModel:
+    fa, fb = (model.frames[model.getFrameId(n)] for n in (c.frame_a, c.frame_b))
+    cm = pin.RigidConstraintModel(pin.ContactType.CONTACT_3D, model, fa.parentJoint,
+                                  fa.placement, fb.parentJoint, fb.placement,
+                                  pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    cm.name = c.name
+    return cm
+
+
+def build(params: Params, urdf: str, srdf: str) -> Robot:
+    """Assemble a :class:`Robot` from URDF and SRDF text."""
+    try:
+        model = pin.buildModelFromXML(urdf)
+    except Exception as exc:  # Pinocchio raises RuntimeError/ValueError with its own text
+        raise ModelFileError(f"Pinocchio cannot build the URDF: {exc}") from None
+    missing = [n for n in ACTUATED + PASSIVE if not model.existJointName(n)]
+    if missing or model.nq != 12 or model.nv != 12:
+        raise ModelFileError(f"URDF is not the Pollard tree of spec §3: missing joints {missing},"
+                             f" nq={model.nq}, nv={model.nv} (expected 12, 12)")
+    closures = parse_closures(urdf)
+    for c in closures:
+        for f in (c.frame_a, c.frame_b):
+            if not model.existFrame(f):
+                raise ModelFileError(f"loop closure {c.name!r} names frame {f!r}, not in the URDF")
+    pin.loadReferenceConfigurationsFromXML(model, srdf, False)
+    if "home" not in model.referenceConfigurations:
+        raise ModelFileError("SRDF has no group_state named 'home'")
+    visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
+    collision = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.COLLISION)
+    cmodels = [_constraint(model, c) for c in closures]
+    return Robot(params=params, model=model, data=model.createData(), visual_model=visual,
+                 collision_model=collision, closures=closures, constraint_models=cmodels,
+                 constraint_datas=[cm.createData() for cm in cmodels], urdf=urdf)
+
+
+def home_joint_values(params: Params) -> dict[str, float]:
+    """Tree joint values at the home pose, by the closed-form IK of spec §7."""
+    from .thesis.ik import JOINTS, position_ik
+
+    q = position_ik(params, np.asarray(params.home_pose)[None, :])[0]
+    return {n: float(v) for n, v in zip(JOINTS[:12], q[:12])}
+
+
+def generate(params: Params) -> tuple[str, str]:
+    """URDF and SRDF text for these parameters."""
+    return generate_urdf(params), generate_srdf(params, home_joint_values(params))
+
+
+def load(params: Params | str | Path | None = None) -> Robot:
+    """Load the robot.
+
+    ``None`` loads the shipped ``models/pollard.urdf`` and ``pollard.srdf`` with the shipped
+    parameters; a :class:`Params` (or a path to a parameter TOML) generates the description in
+    memory from those parameters.
+    """
+    if params is None:
+        d = models_dir()
+        return build(load_params(), (d / DEFAULT_URDF).read_text(), (d / DEFAULT_SRDF).read_text())
+    if not isinstance(params, Params):
+        params = load_params(params)
+    return build(params, *generate(params))
+
+
+# --- constraint residual and Jacobian ---------------------------------------------------------
+def constraint_residual(model, data, cmodels, cdatas, q) -> np.ndarray:
+    """Stacked ``p_A − p_B`` [m] of the closures, world axes (kinematics updated here)."""
+    pin.forwardKinematics(model, data, q)
+    out = []
+    for cm, cd in zip(cmodels, cdatas):
+        cm.calc(model, data, cd)
+        out.append(cd.oMc1.translation - cd.oMc2.translation)
+    return np.concatenate(out)
+
+
+def constraint_jacobian(model, data, cmodels, cdatas, q) -> np.ndarray:
+    """``∂(p_A − p_B)/∂q`` (6 × nv), world axes."""
+    pin.computeJointJacobians(model, data, q)
+    for cm, cd in zip(cmodels, cdatas):
+        cm.calc(model, data, cd)  # refresh before reading the Jacobian (stale otherwise)
+    return pin.getConstraintsJacobian(model, data, cmodels, cdatas)

@@ -1,0 +1,92 @@
+"""Task coordinates (spec §2): q = (x, y, z, ψ, θ, φ), R = Rx(θ) Ry(ψ) Rz(φ).
+
+Vectorised over samples: arrays of shape (N, 6) in, (N, ...) out. ω is the tool's angular
+velocity in world axes.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+TASK_NAMES = ("x", "y", "z", "psi", "theta", "phi")
+
+
+def rotation(pose: np.ndarray) -> np.ndarray:
+    """R = Rx(θ) Ry(ψ) Rz(φ) for poses (..., 6) → (..., 3, 3)."""
+    pose = np.asarray(pose, dtype=float)
+    psi, th, phi = pose[..., 3], pose[..., 4], pose[..., 5]
+    cs, ss, ct, st, cp, sp = np.cos(psi), np.sin(psi), np.cos(th), np.sin(th), np.cos(phi), np.sin(phi)
+    R = np.empty(pose.shape[:-1] + (3, 3))
+    R[..., 0, 0] = cs * cp
+    R[..., 0, 1] = -cs * sp
+    R[..., 0, 2] = ss
+    R[..., 1, 0] = st * ss * cp + ct * sp
+    R[..., 1, 1] = -st * ss * sp + ct * cp
+    R[..., 1, 2] = -st * cs
+    R[..., 2, 0] = -ct * ss * cp + st * sp
+    R[..., 2, 1] = ct * ss * sp + st * cp
+    R[..., 2, 2] = ct * cs
+    return R
+
+
+def angles_from_rotation(R: np.ndarray) -> np.ndarray:
+    """(ψ, θ, φ) of R = Rx(θ) Ry(ψ) Rz(φ), with ψ in [−π/2, π/2]."""
+    psi = np.arctan2(R[..., 0, 2], np.hypot(R[..., 0, 0], R[..., 0, 1]))
+    th = np.arctan2(-R[..., 1, 2], R[..., 2, 2])
+    phi = np.arctan2(-R[..., 0, 1], R[..., 0, 0])
+    return np.stack([psi, th, phi], axis=-1)
+
+
+def pose_from_se3(M) -> np.ndarray:
+    """Task pose (6,) of a pinocchio.SE3."""
+    return np.concatenate([M.translation, angles_from_rotation(M.rotation)])
+
+
+def se3_from_pose(pose):
+    import pinocchio as pin
+
+    pose = np.asarray(pose, dtype=float)
+    return pin.SE3(rotation(pose), pose[:3].copy())
+
+
+def rate_matrix(pose: np.ndarray) -> np.ndarray:
+    """E with ω = E · (ψ̇, θ̇, φ̇): columns Rx(θ)e_y, e_x, Rx(θ)Ry(ψ)e_z. Shape (..., 3, 3)."""
+    pose = np.asarray(pose, dtype=float)
+    psi, th = pose[..., 3], pose[..., 4]
+    E = np.zeros(pose.shape[:-1] + (3, 3))
+    E[..., 1, 0], E[..., 2, 0] = np.cos(th), np.sin(th)
+    E[..., 0, 1] = 1.0
+    E[..., 0, 2] = np.sin(psi)
+    E[..., 1, 2] = -np.sin(th) * np.cos(psi)
+    E[..., 2, 2] = np.cos(th) * np.cos(psi)
+    return E
+
+
+def rate_matrix_dot(pose: np.ndarray, dpose: np.ndarray) -> np.ndarray:
+    """Ė, the time derivative of :func:`rate_matrix` along ``dpose``."""
+    psi, th = pose[..., 3], pose[..., 4]
+    dpsi, dth = dpose[..., 3], dpose[..., 4]
+    Ed = np.zeros(np.shape(pose)[:-1] + (3, 3))
+    Ed[..., 1, 0], Ed[..., 2, 0] = -np.sin(th) * dth, np.cos(th) * dth
+    Ed[..., 0, 2] = np.cos(psi) * dpsi
+    Ed[..., 1, 2] = -np.cos(th) * np.cos(psi) * dth + np.sin(th) * np.sin(psi) * dpsi
+    Ed[..., 2, 2] = -np.sin(th) * np.cos(psi) * dth - np.cos(th) * np.sin(psi) * dpsi
+    return Ed
+
+
+def twist(pose: np.ndarray, dpose: np.ndarray) -> np.ndarray:
+    """Tool twist (v, ω), world axes, (..., 6), from pose rates."""
+    w = np.einsum("...ij,...j->...i", rate_matrix(pose), dpose[..., 3:])
+    return np.concatenate([dpose[..., :3], w], axis=-1)
+
+
+def twist_dot(pose: np.ndarray, dpose: np.ndarray, ddpose: np.ndarray) -> np.ndarray:
+    """Tool point acceleration and angular acceleration (a, ω̇), world axes: ω̇ = E ë + Ė ė."""
+    wd = (np.einsum("...ij,...j->...i", rate_matrix(pose), ddpose[..., 3:])
+          + np.einsum("...ij,...j->...i", rate_matrix_dot(pose, dpose), dpose[..., 3:]))
+    return np.concatenate([ddpose[..., :3], wd], axis=-1)
+
+
+def euler_rates(pose: np.ndarray, tw: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`twist`: pose rates (..., 6) from (v, ω). Singular where cos ψ = 0."""
+    rates = np.linalg.solve(rate_matrix(pose), tw[..., 3:, None])[..., 0]
+    return np.concatenate([tw[..., :3], rates], axis=-1)

@@ -1,0 +1,197 @@
+"""Tool-pose trajectories: the thesis painting curve (spec §9) and user CSV files.
+
+A :class:`Trajectory` holds times and task poses q = (x, y, z, ψ, θ, φ) (spec §2) with their
+first and second time derivatives, SI units and radians.
+"""
+from __future__ import annotations
+
+import csv
+import difflib
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .taskspace import TASK_NAMES
+
+THESIS_DURATION = 20.0  # s (spec §9)
+THESIS_SAMPLES = 2001
+U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
+MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
+MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
+
+
+class TrajectoryError(ValueError):
+    """A trajectory (file) is malformed; the message names the row and column."""
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    t: np.ndarray  # (N,) s, strictly increasing
+    poses: np.ndarray  # (N, 6)
+    d_poses: np.ndarray  # (N, 6)
+    dd_poses: np.ndarray  # (N, 6)
+    name: str = "trajectory"
+    derivatives: str = "analytic"  # or "quintic spline", ...
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __post_init__(self):
+        n = len(self.t)
+        for label, arr in (("poses", self.poses), ("d_poses", self.d_poses),
+                           ("dd_poses", self.dd_poses)):
+            if np.shape(arr) != (n, 6):
+                raise TrajectoryError(f"{self.name}: {label} has shape {np.shape(arr)}, "
+                                      f"expected ({n}, 6)")
+
+
+def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
+                      home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
+    """Thesis appendix B curve x = −0.001u², y = u, z = 100 sin(0.3u) [mm], added to the home
+    pose, u linear in t over [−60π, 60π] (spec §9). Derivatives are analytic."""
+    if not (duration > 0 and math.isfinite(duration)):
+        raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
+    if int(samples) != samples or samples < 2:
+        raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
+    t = np.linspace(0.0, duration, int(samples))
+    ud = 2.0 * U_RANGE / duration
+    u = -U_RANGE + ud * t
+    mm = 1e-3
+    poses = np.tile(np.asarray(home_pose, dtype=float), (len(t), 1))
+    d, dd = np.zeros_like(poses), np.zeros_like(poses)
+    poses[:, 0] += -0.001 * u**2 * mm
+    poses[:, 1] += u * mm
+    poses[:, 2] += 100.0 * np.sin(0.3 * u) * mm
+    d[:, 0] = -0.002 * u * ud * mm
+    d[:, 1] = ud * mm
+    d[:, 2] = 30.0 * np.cos(0.3 * u) * ud * mm
+    dd[:, 0] = -0.002 * ud**2 * mm
+    dd[:, 2] = -9.0 * np.sin(0.3 * u) * ud**2 * mm
+    return Trajectory(t, poses, d, dd, name="thesis", derivatives="analytic")
+
+
+def _spline_derivatives(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First and second derivatives of the quintic interpolating spline (not-a-knot ends)."""
+    from scipy.interpolate import make_interp_spline
+
+    spl = make_interp_spline(t, y, k=5, axis=0)
+    return spl.derivative(1)(t), spl.derivative(2)(t)
+
+
+def from_csv(path: str | Path) -> Trajectory:
+    """Read ``t,x,y,z,psi,theta,phi`` (+ optional ``d_*`` and ``dd_*``) from a CSV file.
+
+    Without derivative columns, derivatives come from a quintic interpolating spline and a
+    :class:`UserWarning` says so.
+    """
+    path = Path(path)
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as exc:
+        raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: {exc}") from None
+    rows = [r for r in rows if r and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
+    header = [h.strip() for h in rows[0]]
+    base = ("t",) + TASK_NAMES
+    allowed = base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
+    for h in header:
+        if h not in allowed:
+            close = difflib.get_close_matches(h, allowed, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise TrajectoryError(f"{path}: unknown column {h!r}{hint}; "
+                                  f"expected {', '.join(base)} and optional d_*, dd_*")
+    if len(set(header)) != len(header):
+        raise TrajectoryError(f"{path}: duplicate column names in header {header}")
+    missing = [c for c in base if c not in header]
+    if missing:
+        raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")
+    data = np.empty((len(rows) - 1, len(header)))
+    for r, row in enumerate(rows[1:]):
+        line = r + 2  # 1-based file line, header is line 1 (comment lines not counted)
+        if len(row) != len(header):
+            raise TrajectoryError(f"{path}: row {line} has {len(row)} fields, "
+                                  f"expected {len(header)}")
+        for c, cell in enumerate(row):
+            try:
+                data[r, c] = float(cell)
+            except ValueError:
+                raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
+                                      f"{cell!r} is not a number") from None
+            if not math.isfinite(data[r, c]):
+                raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
+                                      f"value {cell!r} is not finite")
+    if len(data) < 2:
+        raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
+    col = {h: data[:, i] for i, h in enumerate(header)}
+    t = col["t"]
+    dt = np.diff(t)
+    if np.any(dt <= 0):
+        r = int(np.argmax(dt <= 0))
+        kind = "duplicate" if dt[r] == 0 else "decreasing"
+        raise TrajectoryError(f"{path}: row {r + 3}, column 't': {kind} time {t[r + 1]!r} "
+                              f"after {t[r]!r} (times must increase strictly)")
+    poses = np.column_stack([col[n] for n in TASK_NAMES])
+    for c, name in enumerate(TASK_NAMES):
+        limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \
+            (MAX_ANGLE, "degrees (expected rad)")
+        big = np.abs(poses[:, c]) > limit
+        if np.any(big):
+            r = int(np.argmax(big))
+            raise TrajectoryError(f"{path}: row {r + 2}, column {name!r}: {poses[r, c]!r} looks "
+                                  f"like {unit}; |value| > {limit:.4g}")
+    derivs = []
+    for prefix in ("d_", "dd_"):
+        names = [prefix + n for n in TASK_NAMES]
+        present = [n for n in names if n in col]
+        if present and len(present) != 6:
+            absent = [n for n in names if n not in col]
+            raise TrajectoryError(f"{path}: derivative columns must come as a full set; "
+                                  f"missing {', '.join(absent)}")
+        derivs.append(np.column_stack([col[n] for n in names]) if present else None)
+    source = "file columns"
+    if derivs[0] is None or derivs[1] is None:
+        if len(t) < 6:
+            raise TrajectoryError(f"{path}: {len(t)} samples are too few for the quintic spline "
+                                  "that supplies missing derivatives (need >= 6)")
+        d_spl, dd_spl = _spline_derivatives(t, poses)
+        if derivs[0] is None:
+            derivs[0] = d_spl
+        if derivs[1] is None:
+            derivs[1] = dd_spl
+        source = "quintic spline"
+        warnings.warn(f"{path}: no d_*/dd_* columns; derivatives taken from a quintic "
+                      "interpolating spline through the samples", UserWarning, stacklevel=2)
+    return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source)
+
+
+def to_csv(traj: Trajectory, path: str | Path) -> None:
+    header = ["t", *TASK_NAMES, *(f"d_{n}" for n in TASK_NAMES), *(f"dd_{n}" for n in TASK_NAMES)]
+    np.savetxt(path, np.column_stack([traj.t, traj.poses, traj.d_poses, traj.dd_poses]),
+               delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+
+
+def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int = 401,
+                             home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),
+                             amplitude=(0.04, 0.06, 0.05, 0.2, 0.2, 0.3)) -> Trajectory:
+    """Sum-of-sines motion about the home pose, analytic derivatives (for tests and sweeps)."""
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0.0, duration, samples)
+    amp = np.asarray(amplitude) * rng.uniform(0.5, 1.0, 6)
+    w = rng.uniform(0.5, 2.5, 6) * 2 * math.pi / duration
+    ph = rng.uniform(0, 2 * math.pi, 6)
+    arg = np.outer(t, w) + ph
+    base = amp * np.sin(ph)  # start exactly at home
+    poses = np.asarray(home_pose) + amp * np.sin(arg) - base
+    d = amp * w * np.cos(arg)
+    dd = -amp * w**2 * np.sin(arg)
+    return Trajectory(t, poses, d, dd, name=f"random{seed}", derivatives="analytic")
+
+
+__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "from_csv", "to_csv",
+           "smooth_random_trajectory"]
+
