@@ -3,7 +3,12 @@ jet derivatives and the Euler–Lagrange dynamics in task coordinates. Never imp
 from .ik import (ACTUATED, JOINTS, TREE_JOINTS, UnreachableError, WristSingularError,
                  actuation_jacobian, body_kinematics, closure_points, forward_frames,
                  forward_tool_pose, ik, position_ik)
+from .lagrange import (energy, gravity_torques, inverse_dynamics, mass_matrix,
+                       three_actuator_analysis)
+from .trajectory import painting_trajectory, sinusoid_trajectory
 
 __all__ = ["ACTUATED", "JOINTS", "TREE_JOINTS", "UnreachableError", "WristSingularError",
            "actuation_jacobian", "body_kinematics", "closure_points", "forward_frames",
-           "forward_tool_pose", "ik", "position_ik"]
+           "forward_tool_pose", "ik", "position_ik", "energy", "gravity_torques",
+           "inverse_dynamics", "mass_matrix", "three_actuator_analysis", "painting_trajectory",
+           "sinusoid_trajectory"]

@@ -1,0 +1,129 @@
+"""The thesis' Euler–Lagrange dynamics in task coordinates (spec §8, thesis §3.3–3.7).
+
+q = (x, y, z, ψ, θ, φ). For each of the 9 moving bodies k, v_G = M_v(q) q̇ and ω = M_ω(q) q̇
+(world frame). The M's are exact: the closed-form IK (spec §7) run on jets whose derivative
+directions are the unit vectors e_j with q̈ = 0 (column j of M = ∂/∂q_j). A 7th direction carrying
+the actual q̇ (still q̈ = 0) gives v, ω and Ṁ_v q̇, Ṁ_ω q̇ in the same pass.
+
+    D(q)     = Σ m M_vᵀ M_v + M_ωᵀ I_w M_ω,             I_w = R I Rᵀ
+    V(q,q̇)q̇ = Σ m M_vᵀ (Ṁ_v q̇) + M_ωᵀ (I_w Ṁ_ω q̇ + ω × I_w ω)
+    C(q)     = ∂U/∂q = −Σ m M_vᵀ g,                      g = (0, 0, −9.81)
+    Q        = D q̈ + V q̇ + C = J_τᵀ τ                  (3.152)–(3.154)
+
+V q̇ is the projection of the rate of momentum minus D q̈ (Kane/Jourdain form); it equals the
+Lagrangian Ḋ q̇ − ½ ∂(q̇ᵀ D q̇)/∂q because ∂v/∂q̇ = M_v and d/dt(∂v/∂q̇) = ∂v/∂q (the "cancellation
+of dots"); the tests check this identity against finite differences of D(q).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import jet as J
+from .ik import ACTUATED, BODIES, _as_poses, _solve, direction_jet, forward_frames, vee_skew
+
+GRAVITY = np.array([0.0, 0.0, -9.81])
+
+
+def _terms(params, poses, d_poses=None, wrist_margin=0.0):
+    """D, V q̇, C, J_τ, K, U for (N, 6) poses; V q̇ and K need d_poses."""
+    x = direction_jet(poses, d_poses)
+    q = _solve(params, x, wrist_margin)
+    f = forward_frames(params, q)
+    n = x.v.shape[0]
+    moving = d_poses is not None
+    D = np.zeros((n, 6, 6))
+    C = np.zeros((n, 6))
+    Vqd, K, U = np.zeros((n, 6)), np.zeros(n), np.zeros(n)
+    for name in BODIES:
+        b = params.body(name)
+        R, o = f[name]
+        r = o + J.matvec(R, np.asarray(b.com))
+        Rv = R.v[:, 0]
+        Iw = Rv @ b.inertia_matrix @ np.swapaxes(Rv, -1, -2)
+        Mv = r.d[:, :6]  # (N, 6, 3): row j = ∂r_G/∂q_j, i.e. M_vᵀ
+        om = vee_skew(R.d @ np.swapaxes(R.v, -1, -2))  # (N, K, 3)
+        Mw = om[:, :6]
+        D += b.mass * Mv @ np.swapaxes(Mv, -1, -2) + Mw @ Iw @ np.swapaxes(Mw, -1, -2)
+        C -= b.mass * Mv @ GRAVITY
+        U -= b.mass * r.v[:, 0] @ GRAVITY
+        if moving:
+            v, w = r.d[:, 6], om[:, 6]
+            Mdv = r.dd[:, 6]  # Ṁ_v q̇ (the q̈ = 0 direction)
+            Mdw = vee_skew(R.dd[:, 6] @ np.swapaxes(Rv, -1, -2))  # Ṁ_ω q̇
+            Iww = np.einsum("nij,nj->ni", Iw, w)
+            h = np.einsum("nij,nj->ni", Iw, Mdw) + np.cross(w, Iww)
+            Vqd += np.einsum("nij,nj->ni", Mv, b.mass * Mdv) + np.einsum("nij,nj->ni", Mw, h)
+            K += 0.5 * (b.mass * np.einsum("ni,ni->n", v, v) + np.einsum("ni,ni->n", w, Iww))
+    J_tau = np.stack([q[a].d[:, :6] for a in ACTUATED], axis=-2)
+    return {"D": D, "Vqd": Vqd, "C": C, "J_tau": J_tau, "K": K, "U": U}
+
+
+def _solve_T(J_tau, Q):
+    """τ = J_τ⁻ᵀ Q, batched."""
+    return np.linalg.solve(np.swapaxes(J_tau, -1, -2), Q[..., None])[..., 0]
+
+
+def inverse_dynamics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
+    """Actuator torques along a task trajectory by (3.154) with all six actuators (spec §6, §8).
+
+    Returns a dict of arrays: 'tau' (N, 6) in ACTUATED order [N·m], 'D' (N, 6, 6), 'Vqd', 'C',
+    'Q' (N, 6), 'J_tau' (N, 6, 6), 'qd_act' = J_τ q̇ (N, 6), 'K', 'U' (N,) energies [J].
+    """
+    qd, qdd = _as_poses(d_poses), _as_poses(dd_poses)
+    out = _terms(params, poses, qd, wrist_margin)
+    out["Q"] = np.einsum("nij,nj->ni", out["D"], qdd) + out["Vqd"] + out["C"]
+    out["tau"] = _solve_T(out["J_tau"], out["Q"])
+    out["qd_act"] = np.einsum("nij,nj->ni", out["J_tau"], qd)
+    return out
+
+
+def mass_matrix(params, poses) -> np.ndarray:
+    """D(q), (N, 6, 6)."""
+    return _terms(params, poses)["D"]
+
+
+def energy(params, poses, d_poses):
+    """(K, U) [J], each (N,): kinetic and gravitational potential energy (U = −Σ m gᵀ r_G)."""
+    t = _terms(params, poses, _as_poses(d_poses))
+    return t["K"], t["U"]
+
+
+def gravity_torques(params, poses) -> np.ndarray:
+    """Static actuator torques (N, 6): τ = J_τ⁻ᵀ ∂U/∂q."""
+    t = _terms(params, poses)
+    return _solve_T(t["J_tau"], t["C"])
+
+
+def three_actuator_analysis(params, poses, d_poses, dd_poses) -> dict:
+    """What (3.154) gives with the thesis' three base actuators only (spec §6).
+
+    J_τ is then 3×6 and J_τ⁻ᵀ does not exist: J_τᵀ τ = Q is 6 equations in 3 unknowns. This
+    returns the least-squares torques τ_ls = pinv(J_3ᵀ) Q, the residual r = Q − J_3ᵀ τ_ls (the part
+    of Q no base torque can produce), the wrist share Q_w = J_wᵀ τ_w of the six-actuator
+    solution, the singular values of J_3, and a 'summary' dict of headline numbers.
+    """
+    full = inverse_dynamics(params, poses, d_poses, dd_poses)
+    Q, Jt = full["Q"], full["J_tau"]
+    J3, Jw = Jt[:, :3], Jt[:, 3:]
+    tau_ls = np.einsum("nij,nj->ni", np.linalg.pinv(np.swapaxes(J3, -1, -2)), Q)
+    resid = Q - np.einsum("nji,nj->ni", J3, tau_ls)
+    Qw = np.einsum("nji,nj->ni", Jw, full["tau"][:, 3:])
+    qn = np.linalg.norm(Q, axis=1)
+    rel = np.linalg.norm(resid, axis=1) / np.where(qn > 0, qn, np.nan)
+    summary = {
+        "rank_J3": int(np.linalg.matrix_rank(J3[0])),
+        "max_rel_residual": float(np.nanmax(rel)),
+        "median_rel_residual": float(np.nanmedian(rel)),
+        "max_abs_residual": np.abs(resid).max(axis=0).tolist(),
+        "peak_tau_ls": np.abs(tau_ls).max(axis=0).tolist(),
+        "peak_tau6_base": np.abs(full["tau"][:, :3]).max(axis=0).tolist(),
+        "max_abs_tau_ls_minus_tau6_base": np.abs(tau_ls - full["tau"][:, :3]).max(axis=0).tolist(),
+        "peak_tau6_wrist": np.abs(full["tau"][:, 3:]).max(axis=0).tolist(),
+    }
+    return {"tau_ls": tau_ls, "residual": resid, "rel_residual": rel, "Q": Q, "Q_wrist": Qw,
+            "tau6": full["tau"], "singular_values_J3": np.linalg.svd(J3, compute_uv=False),
+            "summary": summary}
+
+
+__all__ = ["GRAVITY", "inverse_dynamics", "mass_matrix", "energy", "gravity_torques",
+           "three_actuator_analysis"]
