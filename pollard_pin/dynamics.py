@@ -151,8 +151,8 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     model = robot.model
     kp, kd = baumgarte
     for cm in robot.constraint_models:
-        cm.m_baumgarte_parameters.Kp = np.full(3, kp)
-        cm.m_baumgarte_parameters.Kd = np.full(3, kd)
+        cm.m_baumgarte_parameters.Kp = float(kp)
+        cm.m_baumgarte_parameters.Kd = float(kd)
     pin.initConstraintDynamics(model, robot.data, robot.constraint_models,
                                robot.constraint_datas)
     settings = pin.ProximalSettings(1e-14, 0.0, 1)
@@ -182,3 +182,22 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
         q = q + dt / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
         v = v + dt / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
     return SimulationResult(t=ts, q=Q, v=V, closure_residual=res)
+
+
+def trajectory_torques(robot: Robot, curve, q_start=None):
+    """``t → τ (6,)``: IK + inverse dynamics of ``curve(t) → (pose, rate, acc)`` at any time.
+
+    Evaluated exactly at every integrator stage (no interpolation), warm-started from the
+    previous call, so :func:`simulate` can replay a trajectory's own torques.
+    """
+    from .kinematics import inverse_kinematics
+
+    state = {"q": q_start}
+
+    def torques(t: float) -> np.ndarray:
+        pose, d, dd = curve(np.array([t]))
+        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"])
+        state["q"] = ik.q[0]
+        return inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
+
+    return torques

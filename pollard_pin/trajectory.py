@@ -48,15 +48,14 @@ class Trajectory:
                                       f"expected ({n}, 6)")
 
 
-def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
-                      home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
-    """Thesis appendix B curve x = −0.001u², y = u, z = 100 sin(0.3u) [mm], added to the home
-    pose, u linear in t over [−60π, 60π] (spec §9). Derivatives are analytic."""
-    if not (duration > 0 and math.isfinite(duration)):
-        raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
-    if int(samples) != samples or samples < 2:
-        raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
-    t = np.linspace(0.0, duration, int(samples))
+def thesis_curve(t, duration: float = THESIS_DURATION,
+                 home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)):
+    """Poses, rates and accelerations (each (N, 6)) of the thesis curve at times ``t`` [s].
+
+    Appendix B: x = −0.001u², y = u, z = 100 sin(0.3u) [mm], u linear in t from −60π at
+    t = 0 to 60π at ``duration``, added to the home pose (spec §9). Exact derivatives.
+    """
+    t = np.atleast_1d(np.asarray(t, dtype=float))
     ud = 2.0 * U_RANGE / duration
     u = -U_RANGE + ud * t
     mm = 1e-3
@@ -70,7 +69,19 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     d[:, 2] = 30.0 * np.cos(0.3 * u) * ud * mm
     dd[:, 0] = -0.002 * ud**2 * mm
     dd[:, 2] = -9.0 * np.sin(0.3 * u) * ud**2 * mm
-    return Trajectory(t, poses, d, dd, name="thesis", derivatives="analytic")
+    return poses, d, dd
+
+
+def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
+                      home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
+    """The default painting trajectory (spec §9) sampled at ``samples`` points."""
+    if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
+        raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
+    if int(samples) != samples or samples < 2:
+        raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
+    t = np.linspace(0.0, duration, int(samples))
+    return Trajectory(t, *thesis_curve(t, duration, home_pose), name="thesis",
+                      derivatives="analytic")
 
 
 def _spline_derivatives(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -192,6 +203,6 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
     return Trajectory(t, poses, d, dd, name=f"random{seed}", derivatives="analytic")
 
 
-__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "from_csv", "to_csv",
+__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "from_csv", "to_csv",
            "smooth_random_trajectory"]
 
