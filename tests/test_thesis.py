@@ -9,9 +9,9 @@ import pytest
 from pollard_pin.params import load_params
 from pollard_pin.thesis import (ACTUATED, JOINTS, UnreachableError, WristSingularError,
                                 actuation_jacobian, body_kinematics, closure_points, energy,
-                                forward_tool_pose, gravity_torques, ik, inverse_dynamics,
-                                mass_matrix, painting_trajectory, position_ik,
-                                sinusoid_trajectory, three_actuator_analysis)
+                                forward_frames, forward_tool_pose, gravity_torques, ik,
+                                inverse_dynamics, mass_matrix, painting_trajectory,
+                                position_ik, sinusoid_trajectory, three_actuator_analysis)
 from pollard_pin.thesis import jet as J
 from pollard_pin.thesis.ik import ACTUATED_INDEX
 
@@ -238,3 +238,15 @@ def test_jet_chain_rule_against_closed_form():
     assert np.allclose(R.d, (Rn(t + h) - Rn(t - h)) / (2 * h), atol=1e-7)
     v = R @ J.stack([x, 1.0, x * x])
     assert v.shape == (7, 3)
+
+
+def test_body_frames_agree_with_forward_chain(p):
+    # body_kinematics reuses the IK's rotations; they must equal the spec §3 tree built anew.
+    args = sinusoid_trajectory(p, t=T_PROBE)[1:]
+    bk = body_kinematics(p, *args)
+    f = forward_frames(p, position_ik(p, args[0]))
+    for name, b in bk.items():
+        R, o = f[name]
+        assert np.abs(b["R"] - R).max() < 1e-14, name
+        r = o + R @ np.asarray(p.body(name).com)
+        assert np.abs(b["r"] - r).max() < 1e-14, name

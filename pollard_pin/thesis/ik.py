@@ -92,13 +92,16 @@ def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
     return J.atan2(B, A) + branch * J.acos(J.clip_unit(c))
 
 
-def _solve(p, pose, wrist_margin=0.0):
-    """All 18 closed-form angles (spec §7) as a dict; pose is an (..., 6) array or jet.
+def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
+    """Closed-form angles (spec §7) as a name → angle dict; pose is an (..., 6) array or jet.
+    The six spherical-joint angles are skipped unless ``spherical``. If ``frames`` is a dict,
+    it receives the world (R, origin) of the 9 moving bodies (as :func:`forward_frames`, but
+    reusing the rotations already built here).
 
-    Also returns the platform rotation, for callers that need it.
+    Rotation products use J.rot / J.rot_left (two-column mixes) for speed.
     """
     x, y, z, psi, th, phi = (pose[..., k] for k in range(6))
-    R = J.Rx(th) @ J.Ry(psi) @ J.Rz(phi)
+    R = J.rot(J.rot(J.Rx(th), 1, psi), 2, phi)
     L = p.x65 + p.x1514
     P15 = J.stack([x, y, z]) - p.x1918 * R[..., :, 0]
 
@@ -113,10 +116,10 @@ def _solve(p, pose, wrist_margin=0.0):
     a = J.atan2(-u[..., 2], u[..., 0])  # θ21 + θ43
     q["theta43"] = a - q["theta21"]
     q["theta54"] = J.asin(J.clip_unit(u[..., 1]))
-    Rp = J.Ry(a) @ J.Rz(q["theta54"])
+    Rp = J.rot(J.Ry(a), 2, q["theta54"])
 
-    # Wrist (2.34)-(2.47): XZX Euler angles of Rpᵀ R.
-    M = J.transpose(Rp) @ R
+    # Wrist (2.34)-(2.47): XZX Euler angles of Rpᵀ R = Rz(−θ54) Ry(−a) R.
+    M = J.rot_left(2, -q["theta54"], J.rot_left(1, -a, R))
     c1716 = J.clip_unit(M[..., 0, 0])
     s1716 = np.sqrt(1.0 - value(c1716) ** 2)
     bad = s1716 <= wrist_margin
@@ -127,6 +130,12 @@ def _solve(p, pose, wrist_margin=0.0):
     q["theta1615"] = J.atan2(M[..., 2, 0], M[..., 1, 0])
     q["theta1716"] = J.acos(c1716)
     q["theta1817"] = J.atan2(M[..., 0, 2], -M[..., 0, 1])
+    if frames is not None:
+        frames["arm0"] = (J.Ry(q["theta21"]), np.array([0.0, 0.0, p.z10]))
+        frames["platform"] = (Rp, E)
+        frames["wrist1"] = (J.rot(Rp, 0, q["theta1615"]), P15)
+        frames["wrist2"] = (J.rot(frames["wrist1"][0], 2, q["theta1716"]), P15)
+        frames["gun"] = (R, P15)
 
     # Legs (2.89)-(2.105): the attachment point lies at x87 from the elbow circle (radius x43, xy).
     for i, leg in enumerate(p.legs):
@@ -139,14 +148,25 @@ def _solve(p, pose, wrist_margin=0.0):
         t21 = _circle_angle(A, B, C, p.branches[i + 1], CHAINS[i + 1],
                             J.sqrt(px * px + py * py), pz, leg.x43, leg.x87)
         elbow = J.stack([leg.x43 * J.cos(t21), c[1] + leg.x43 * J.sin(t21), c[2]])
-        Rc = J.Rz(t21) @ J.Rx(np.asarray(leg.beta54))
+        Ra = J.Rz(t21)
+        Rc = J.rot(Ra, 0, np.asarray(leg.beta54))
         w = J.matvec(J.transpose(Rc), Aw - elbow) / leg.x87
         q["theta21" + s] = t21
         q["theta65" + s] = J.atan2(-w[..., 2], w[..., 0])
         q["theta76" + s] = J.asin(J.clip_unit(w[..., 1]))
-        # Spherical joint, spec §4: ZYZ of R_linkᵀ Rp Rz(−β1413), θ109 in [0, π].
-        Rl = Rc @ J.Ry(q["theta65" + s]) @ J.Rz(q["theta76" + s])
-        Ms = J.transpose(Rl) @ Rp @ J.Rz(np.asarray(-leg.beta1413))
+        if frames is not None:
+            frames["arm" + s] = (Ra, np.array([0.0, c[1], 0.0]))
+            frames["link" + s] = (J.rot(J.rot(Rc, 1, q["theta65" + s]), 2, q["theta76" + s]),
+                                  elbow)
+        if not spherical:
+            continue
+        # Spherical joint, spec §4: ZYZ of R_linkᵀ Rp Rz(−β1413), θ109 in [0, π], with
+        # R_linkᵀ = Rz(−θ76) Ry(−θ65) Rx(−β54) Rz(−θ21i).
+        Ms = Rp
+        for axis, ang in ((2, -t21), (0, np.asarray(-leg.beta54)), (1, -q["theta65" + s]),
+                          (2, -q["theta76" + s])):
+            Ms = J.rot_left(axis, ang, Ms)
+        Ms = J.rot(Ms, 2, np.asarray(-leg.beta1413))
         q["theta98" + s] = J.atan2(Ms[..., 1, 2], Ms[..., 0, 2])
         q["theta109" + s] = J.acos(J.clip_unit(Ms[..., 2, 2]))
         q["theta1110" + s] = J.atan2(Ms[..., 2, 1], -Ms[..., 2, 0])
@@ -186,7 +206,8 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
 def ik(params, poses, d_poses, dd_poses, reference=None, wrist_margin: float = 0.0):
     """(q, qd, qdd), each (N, 18): the closed forms and their exact time derivatives."""
     x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
-    q = J.stack([_solve(params, x, wrist_margin)[n] for n in JOINTS], axis=-1)
+    sol = _solve(params, x, wrist_margin)
+    q = J.stack([sol[n] for n in JOINTS], axis=-1)
     return make_continuous(q.v, reference), q.d, q.dd
 
 
@@ -206,7 +227,7 @@ def direction_jet(poses, d_poses=None, dd_poses=None) -> Jet:
 
 def actuation_jacobian(params, poses, wrist_margin: float = 0.0) -> np.ndarray:
     """J_τ = ∂(actuator angles, :data:`ACTUATED` order)/∂(x, y, z, ψ, θ, φ), shape (N, 6, 6)."""
-    q = _solve(params, direction_jet(poses), wrist_margin)
+    q = _solve(params, direction_jet(poses), wrist_margin, spherical=False)
     return np.stack([q[n].d for n in ACTUATED], axis=-2)
 
 
@@ -230,22 +251,22 @@ def forward_frames(params, q) -> dict:
     ex = np.array([1.0, 0.0, 0.0])
     f = {}
     f["arm0"] = (J.Ry(q["theta21"]), np.array([0.0, 0.0, params.z10]))
-    R = f["arm0"][0] @ J.Ry(q["theta43"])
+    R = J.rot(f["arm0"][0], 1, q["theta43"])
     f["cross0"] = (R, f["arm0"][1] + J.matvec(f["arm0"][0], params.x32 * ex))
-    f["platform"] = (R @ J.Rz(q["theta54"]), f["cross0"][1])
+    f["platform"] = (J.rot(R, 2, q["theta54"]), f["cross0"][1])
     Rp, op = f["platform"]
     o15 = op + J.matvec(Rp, (params.x65 + params.x1514) * ex)
-    f["wrist1"] = (Rp @ J.Rx(q["theta1615"]), o15)
-    f["wrist2"] = (f["wrist1"][0] @ J.Rz(q["theta1716"]), o15)
-    f["gun"] = (f["wrist2"][0] @ J.Rx(q["theta1817"]), o15)
+    f["wrist1"] = (J.rot(Rp, 0, q["theta1615"]), o15)
+    f["wrist2"] = (J.rot(f["wrist1"][0], 2, q["theta1716"]), o15)
+    f["gun"] = (J.rot(f["wrist2"][0], 0, q["theta1817"]), o15)
     f["tip"] = (f["gun"][0], o15 + J.matvec(f["gun"][0], params.x1918 * ex))
     for i, leg in enumerate(params.legs):
         s = f"_{i + 1}"
         Ra = J.Rz(q["theta21" + s])
         oa = np.array([0.0, leg.side * leg.y10, 0.0])
-        Rc = Ra @ J.Rx(np.asarray(leg.beta54))
+        Rc = J.rot(Ra, 0, np.asarray(leg.beta54))
         oc = oa + J.matvec(Ra, np.array([leg.x43, 0.0, -leg.z32]))
-        Rl = Rc @ J.Ry(q["theta65" + s]) @ J.Rz(q["theta76" + s])
+        Rl = J.rot(J.rot(Rc, 1, q["theta65" + s]), 2, q["theta76" + s])
         f["arm" + s], f["cross" + s], f["link" + s] = (Ra, oa), (Rc, oc), (Rl, oc)
         f["closure_link" + s] = (Rl, oc + J.matvec(Rl, leg.x87 * ex))
         f["closure_platform" + s] = (Rp, op + J.matvec(Rp, params.attachment(i)))
@@ -281,7 +302,8 @@ BODIES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link
 
 def body_jets(params, pose_jet, wrist_margin: float = 0.0) -> dict:
     """name → (R jet, CoG position jet), world frame, for the 9 moving bodies (spec §3, §5)."""
-    f = forward_frames(params, _solve(params, pose_jet, wrist_margin))
+    f = {}
+    _solve(params, pose_jet, wrist_margin, spherical=False, frames=f)
     out = {}
     for name in BODIES:
         R, o = f[name]

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import jet as J
-from .ik import ACTUATED, BODIES, _as_poses, _solve, direction_jet, forward_frames, vee_skew
+from .ik import ACTUATED, BODIES, _as_poses, _solve, direction_jet, vee_skew
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 
@@ -27,8 +27,8 @@ GRAVITY = np.array([0.0, 0.0, -9.81])
 def _terms(params, poses, d_poses=None, wrist_margin=0.0):
     """D, V q̇, C, J_τ, K, U for (N, 6) poses; V q̇ and K need d_poses."""
     x = direction_jet(poses, d_poses)
-    q = _solve(params, x, wrist_margin)
-    f = forward_frames(params, q)
+    f = {}
+    q = _solve(params, x, wrist_margin, spherical=False, frames=f)
     n = x.v.shape[0]
     moving = d_poses is not None
     D = np.zeros((n, 6, 6))
