@@ -211,18 +211,11 @@ def ik(params, poses, d_poses, dd_poses, reference=None, wrist_margin: float = 0
     return make_continuous(q.v, reference), q.d, q.dd
 
 
-def direction_jet(poses, d_poses=None, dd_poses=None) -> Jet:
-    """Pose jet with value (N, 1, 6) and K derivative directions (N, K, 6): the six unit
-    vectors e_j (so d = ∂/∂q_j, dd = 0), plus the actual (q̇, q̈) as a 7th if given."""
+def direction_jet(poses) -> Jet:
+    """First-order pose jet: value (N, 1, 6), derivatives (N, 6, 6) along the unit vectors e_j,
+    so any quantity's ``.d[:, j]`` is its partial derivative ∂/∂q_j."""
     x = _as_poses(poses)
-    n = x.shape[0]
-    d = np.broadcast_to(np.eye(6), (n, 6, 6))
-    dd = np.zeros((n, 6, 6))
-    if d_poses is not None:
-        qdd = np.zeros_like(x) if dd_poses is None else _as_poses(dd_poses)
-        d = np.concatenate([d, _as_poses(d_poses)[:, None, :]], axis=1)
-        dd = np.concatenate([dd, qdd[:, None, :]], axis=1)
-    return Jet(x[:, None, :], d, dd)
+    return Jet(x[:, None, :], np.broadcast_to(np.eye(6), (x.shape[0], 6, 6)), order=1)
 
 
 def actuation_jacobian(params, poses, wrist_margin: float = 0.0) -> np.ndarray:
@@ -300,15 +293,16 @@ def closure_points(params, q) -> np.ndarray:
 BODIES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link_1", "link_2")
 
 
-def body_jets(params, pose_jet, wrist_margin: float = 0.0) -> dict:
-    """name → (R jet, CoG position jet), world frame, for the 9 moving bodies (spec §3, §5)."""
+def body_states(params, pose_jet, wrist_margin: float = 0.0):
+    """({name: (R jet, CoG position jet)} for the 9 moving bodies (world frame, spec §3, §5),
+    {angle name: jet}) from the closed-form IK run on ``pose_jet``."""
     f = {}
-    _solve(params, pose_jet, wrist_margin, spherical=False, frames=f)
-    out = {}
+    q = _solve(params, pose_jet, wrist_margin, spherical=False, frames=f)
+    bodies = {}
     for name in BODIES:
         R, o = f[name]
-        out[name] = (R, o + J.matvec(R, np.asarray(params.body(name).com)))
-    return out
+        bodies[name] = (R, o + J.matvec(R, np.asarray(params.body(name).com)))
+    return bodies, q
 
 
 def vee_skew(W):
@@ -328,7 +322,7 @@ def body_kinematics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0)
     acceleration, angular velocity and acceleration (world frame), each (N, ...)."""
     x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
     out = {}
-    for name, (R, r) in body_jets(params, x, wrist_margin).items():
+    for name, (R, r) in body_states(params, x, wrist_margin)[0].items():
         w, al = angular_rates(R)
         out[name] = {"R": R.v, "r": r.v, "v": r.d, "a": r.dd, "omega": w, "alpha": al}
     return out

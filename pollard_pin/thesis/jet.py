@@ -1,7 +1,7 @@
 """Second-order truncated Taylor jets: exact forward-mode derivatives along time.
 
 A :class:`Jet` holds ``(v, d, dd)`` = (value, first, second time derivative) of an array
-quantity. Arithmetic and the elementary functions propagate them by the chain rule
+quantity; ``dd`` may be None (first-order jet, half the work, used for Jacobians). Arithmetic and the elementary functions propagate them by the chain rule
 (Leibniz rule for products), so the IK closed forms of spec §7 give exact velocities and
 accelerations with no finite differences.
 
@@ -38,12 +38,20 @@ class Jet:
     __slots__ = ("v", "d", "dd")
     __array_ufunc__ = None  # numpy operands defer to the reflected Jet operators
 
-    def __init__(self, v, d=None, dd=None):
+    def __init__(self, v, d=None, dd=None, order: int = 2):
         v = np.asarray(v, dtype=float)
         d = np.zeros_like(v) if d is None else np.asarray(d, dtype=float)
+        if order == 1:
+            n = max(v.ndim, d.ndim)
+            self.v, self.d, self.dd = _pad(v, n), _pad(d, n), None
+            return
         dd = np.zeros_like(v) if dd is None else np.asarray(dd, dtype=float)
         n = max(v.ndim, d.ndim, dd.ndim)
         self.v, self.d, self.dd = _pad(v, n), _pad(d, n), _pad(dd, n)
+
+    @classmethod
+    def _make(cls, v, d, dd):
+        return cls(v, d, dd, order=1 if dd is None else 2)
 
     # -- structure ------------------------------------------------------------------------
     @property
@@ -55,28 +63,28 @@ class Jet:
         return self.v.ndim
 
     def __getitem__(self, idx):
-        return Jet(self.v[idx], self.d[idx], self.dd[idx])
+        return Jet._make(self.v[idx], self.d[idx], _opt(lambda a: a[idx], self.dd))
 
     @property
     def T(self):
         """Transpose of the trailing two axes."""
-        return Jet(np.swapaxes(self.v, -1, -2), np.swapaxes(self.d, -1, -2),
-                   np.swapaxes(self.dd, -1, -2))
+        sw = lambda a: np.swapaxes(a, -1, -2)  # noqa: E731
+        return Jet._make(sw(self.v), sw(self.d), _opt(sw, self.dd))
 
     def sum(self, axis=-1):
-        return Jet(self.v.sum(axis), self.d.sum(axis), self.dd.sum(axis))
+        return Jet._make(self.v.sum(axis), self.d.sum(axis), _opt(lambda a: a.sum(axis), self.dd))
 
     def __repr__(self):
         return f"Jet(v={self.v!r}, d={self.d!r}, dd={self.dd!r})"
 
     # -- linear operations ----------------------------------------------------------------
     def __neg__(self):
-        return Jet(-self.v, -self.d, -self.dd)
+        return Jet._make(-self.v, -self.d, _opt(np.negative, self.dd))
 
     def __add__(self, o):
         if isinstance(o, Jet):
-            return Jet(self.v + o.v, self.d + o.d, self.dd + o.dd)
-        return Jet(self.v + np.asarray(o), self.d, self.dd)
+            return Jet._make(self.v + o.v, self.d + o.d, _opt(np.add, self.dd, o.dd))
+        return Jet._make(self.v + np.asarray(o), self.d, self.dd)
 
     __radd__ = __add__
 
@@ -90,13 +98,15 @@ class Jet:
     def _bilinear(self, o, op):
         if not isinstance(o, Jet):
             o = np.asarray(o, dtype=float)
-            return Jet(op(self.v, o), op(self.d, o), op(self.dd, o))
-        return Jet(op(self.v, o.v), op(self.d, o.v) + op(self.v, o.d),
-                   op(self.dd, o.v) + 2.0 * op(self.d, o.d) + op(self.v, o.dd))
+            return Jet._make(op(self.v, o), op(self.d, o), _opt(lambda a: op(a, o), self.dd))
+        dd = None
+        if self.dd is not None and o.dd is not None:
+            dd = op(self.dd, o.v) + 2.0 * op(self.d, o.d) + op(self.v, o.dd)
+        return Jet._make(op(self.v, o.v), op(self.d, o.v) + op(self.v, o.d), dd)
 
     def _rbilinear(self, o, op):
         o = np.asarray(o, dtype=float)
-        return Jet(op(o, self.v), op(o, self.d), op(o, self.dd))
+        return Jet._make(op(o, self.v), op(o, self.d), _opt(lambda a: op(o, a), self.dd))
 
     def __mul__(self, o):
         return self._bilinear(o, np.multiply)
@@ -130,7 +140,14 @@ class Jet:
 
 def _chain(a: Jet, f0, f1, f2) -> Jet:
     """f(a) given f, f', f'' at a.v: (f∘a)' = f'·a', (f∘a)'' = f''·a'² + f'·a''."""
+    if a.dd is None:
+        return Jet(f0, f1 * a.d, order=1)
     return Jet(f0, f1 * a.d, f2 * a.d * a.d + f1 * a.dd)
+
+
+def _opt(f, *xs):
+    """f(*xs), or None when a second derivative is absent (first-order jet)."""
+    return None if any(x is None for x in xs) else f(*xs)
 
 
 def value(x):
@@ -181,6 +198,8 @@ def atan2(y, x):
     x = x if isinstance(x, Jet) else Jet(x)
     r2 = x.v * x.v + y.v * y.v
     n = x.v * y.d - y.v * x.d
+    if x.dd is None or y.dd is None:
+        return Jet(np.arctan2(y.v, x.v), n / r2, order=1)
     dn = x.v * y.dd - y.v * x.dd  # the x'y' terms cancel
     dr2 = 2.0 * (x.v * x.d + y.v * y.d)
     return Jet(np.arctan2(y.v, x.v), n / r2, (dn * r2 - n * dr2) / (r2 * r2))
@@ -190,7 +209,7 @@ def clip_unit(a):
     """Clip the value into [−1, 1] (rounding guard before asin/acos); derivatives kept."""
     if not isinstance(a, Jet):
         return np.clip(a, -1.0, 1.0)
-    return Jet(np.clip(a.v, -1.0, 1.0), a.d, a.dd)
+    return Jet._make(np.clip(a.v, -1.0, 1.0), a.d, a.dd)
 
 
 def stack(items, axis=-1):
@@ -199,11 +218,15 @@ def stack(items, axis=-1):
         return np.stack(np.broadcast_arrays(*[np.asarray(i, dtype=float) for i in items]), axis)
     jets = [i if isinstance(i, Jet) else Jet(i) for i in items]
     sv = np.broadcast_shapes(*[j.v.shape for j in jets])
-    sd = np.broadcast_shapes(sv, *[j.d.shape for j in jets])
-    sdd = np.broadcast_shapes(sv, *[j.dd.shape for j in jets])
-    return Jet(np.stack([np.broadcast_to(j.v, sv) for j in jets], axis),
-               np.stack([np.broadcast_to(_pad(j.d, len(sd)), sd) for j in jets], axis),
-               np.stack([np.broadcast_to(_pad(j.dd, len(sdd)), sdd) for j in jets], axis))
+
+    def part(arrays):
+        sh = np.broadcast_shapes(sv, *[a.shape for a in arrays])
+        return np.stack([np.broadcast_to(_pad(a, len(sh)), sh) for a in arrays], axis)
+
+    dd = None
+    if not any(isinstance(i, Jet) and i.dd is None for i in items):
+        dd = part([j.dd for j in jets])
+    return Jet._make(part([j.v for j in jets]), part([j.d for j in jets]), dd)
 
 
 def matvec(A, x):

@@ -19,42 +19,48 @@ from __future__ import annotations
 import numpy as np
 
 from . import jet as J
-from .ik import ACTUATED, BODIES, _as_poses, _solve, direction_jet, vee_skew
+from .ik import ACTUATED, BODIES, _as_poses, body_states, direction_jet, vee_skew
+from .jet import Jet
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 
 
 def _terms(params, poses, d_poses=None, wrist_margin=0.0):
-    """D, V q̇, C, J_τ, K, U for (N, 6) poses; V q̇ and K need d_poses."""
-    x = direction_jet(poses, d_poses)
-    f = {}
-    q = _solve(params, x, wrist_margin, spherical=False, frames=f)
-    n = x.v.shape[0]
+    """D, V q̇, C, J_τ, K, U for (N, 6) poses; V q̇ and K need d_poses (else zero).
+
+    Two jet passes: first order along e_1..e_6 (the M's, J_τ), and second order along the
+    actual q̇ with q̈ = 0 (v, ω and Ṁ_v q̇, Ṁ_ω q̇).
+    """
+    x = _as_poses(poses)
+    n = x.shape[0]
+    unit, q = body_states(params, direction_jet(x), wrist_margin)
     moving = d_poses is not None
+    if moving:
+        along, _ = body_states(params, Jet(x, _as_poses(d_poses), np.zeros_like(x)),
+                                wrist_margin)
     D = np.zeros((n, 6, 6))
-    C = np.zeros((n, 6))
-    Vqd, K, U = np.zeros((n, 6)), np.zeros(n), np.zeros(n)
+    C, Vqd, K, U = np.zeros((n, 6)), np.zeros((n, 6)), np.zeros(n), np.zeros(n)
     for name in BODIES:
         b = params.body(name)
-        R, o = f[name]
-        r = o + J.matvec(R, np.asarray(b.com))
+        R, r = unit[name]
         Rv = R.v[:, 0]
-        Iw = Rv @ b.inertia_matrix @ np.swapaxes(Rv, -1, -2)
-        Mv = r.d[:, :6]  # (N, 6, 3): row j = ∂r_G/∂q_j, i.e. M_vᵀ
-        om = vee_skew(R.d @ np.swapaxes(R.v, -1, -2))  # (N, K, 3)
-        Mw = om[:, :6]
+        Rt = np.swapaxes(Rv, -1, -2)
+        Iw = Rv @ b.inertia_matrix @ Rt
+        Mv = r.d  # (N, 6, 3): row j = ∂r_G/∂q_j, i.e. M_vᵀ
+        Mw = vee_skew(R.d @ Rt[:, None])  # (N, 6, 3): row j = vee(∂R/∂q_j Rᵀ), i.e. M_ωᵀ
         D += b.mass * Mv @ np.swapaxes(Mv, -1, -2) + Mw @ Iw @ np.swapaxes(Mw, -1, -2)
         C -= b.mass * Mv @ GRAVITY
         U -= b.mass * r.v[:, 0] @ GRAVITY
         if moving:
-            v, w = r.d[:, 6], om[:, 6]
-            Mdv = r.dd[:, 6]  # Ṁ_v q̇ (the q̈ = 0 direction)
-            Mdw = vee_skew(R.dd[:, 6] @ np.swapaxes(Rv, -1, -2))  # Ṁ_ω q̇
+            R2, r2 = along[name]
+            v, w = r2.d, vee_skew(R2.d @ Rt)
+            Mdv = r2.dd  # Ṁ_v q̇ (q̈ = 0)
+            Mdw = vee_skew(R2.dd @ Rt)  # Ṁ_ω q̇
             Iww = np.einsum("nij,nj->ni", Iw, w)
             h = np.einsum("nij,nj->ni", Iw, Mdw) + np.cross(w, Iww)
             Vqd += np.einsum("nij,nj->ni", Mv, b.mass * Mdv) + np.einsum("nij,nj->ni", Mw, h)
             K += 0.5 * (b.mass * np.einsum("ni,ni->n", v, v) + np.einsum("ni,ni->n", w, Iww))
-    J_tau = np.stack([q[a].d[:, :6] for a in ACTUATED], axis=-2)
+    J_tau = np.stack([q[a].d for a in ACTUATED], axis=-2)
     return {"D": D, "Vqd": Vqd, "C": C, "J_tau": J_tau, "K": K, "U": U}
 
 
