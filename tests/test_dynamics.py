@@ -1,0 +1,149 @@
+"""Closed-loop dynamics (issue 4): Pinocchio vs the thesis' Euler–Lagrange method, energy
+balance, forward-dynamics round trip and replay, statics by virtual work."""
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.dynamics import (JointLosses, forward_dynamics, inverse_dynamics,
+                                  inverse_dynamics_sample, simulate, trajectory_torques)
+from pollard_pin.thesis import lagrange
+from pollard_pin.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return pp.load()
+
+
+def _solve(robot, traj):
+    ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    return ik, inverse_dynamics(robot, ik)
+
+
+@pytest.fixture(scope="module")
+def thesis_run(robot):
+    traj = thesis_trajectory(samples=1001)
+    return (traj, *_solve(robot, traj))
+
+
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_torques_match_thesis_euler_lagrange(robot, thesis_run, seed):
+    if seed is None:
+        traj, _, dyn = thesis_run
+    else:
+        traj = smooth_random_trajectory(seed, samples=201)
+        dyn = _solve(robot, traj)[1]
+    ref = lagrange.inverse_dynamics(robot.params, traj.poses, traj.d_poses, traj.dd_poses)["tau"]
+    peak = np.abs(ref).max()
+    assert peak > 0.1  # a real load, not a trivial zero
+    assert np.abs(dyn.tau - ref).max() <= 1e-6 * peak
+
+
+def test_power_balance_converges(robot):
+    """Σ τ·q̇ = d(K + U)/dt; the central-difference error shrinks as dt² (independent of IK)."""
+    errs = []
+    for n in (401, 801, 1601):
+        traj = smooth_random_trajectory(3, samples=n)
+        dyn = _solve(robot, traj)[1]
+        dE = (dyn.energy[2:] - dyn.energy[:-2]) / (dyn.t[2:] - dyn.t[:-2])
+        P = dyn.power.sum(axis=1)[1:-1]
+        errs.append(np.abs(P - dE).max() / np.abs(P).max())
+    assert errs[-1] < 1e-4
+    assert errs[0] / errs[1] > 3.5 and errs[1] / errs[2] > 3.5  # second order
+
+
+def test_work_is_integral_of_power(robot, thesis_run):
+    _, _, dyn = thesis_run
+    # Total actuator work over the run equals the change of mechanical energy (no losses).
+    dE = dyn.energy[-1] - dyn.energy[0]
+    assert abs(dyn.work[-1].sum() - dE) < 1e-4 * np.abs(dyn.power).sum(1).max() * dyn.t[-1]
+
+
+def test_forward_dynamics_round_trip(robot, thesis_run):
+    _, ik, dyn = thesis_run
+    pin.initConstraintDynamics(robot.model, robot.data, robot.constraint_models,
+                               robot.constraint_datas)
+    for k in (0, 333, 777):
+        a = forward_dynamics(robot, ik.q[k], ik.v[k], dyn.tau[k])
+        assert np.abs(a - ik.a[k]).max() <= 1e-9
+        # Pinocchio's own constraint forces equal our closure forces.
+        assert np.allclose(robot.data.lambda_c, dyn.closure_forces[k].ravel(), atol=1e-9)
+
+
+def test_replay_reproduces_trajectory(robot):
+    """Open-loop replay of the inverse-dynamics torques (RK4, 1 ms) stays on the curve."""
+    home = robot.params.home_pose
+
+    def curve(t):
+        return thesis_curve(t, 20.0, home)
+
+    ik0 = pp.inverse_kinematics(robot, *curve(np.array([0.0])), np.array([0.0]))
+    sim = simulate(robot, trajectory_torques(robot, curve, ik0.q[0]), ik0.q[0], ik0.v[0],
+                   duration=0.5, dt=1e-3)
+    ref = curve(sim.t)[0]
+    drift = max(np.linalg.norm(pp.tool_pose(robot, q).translation - ref[k, :3])
+                for k, q in enumerate(sim.q))
+    assert drift <= 1e-5
+    assert sim.closure_residual.max() <= 1e-9
+
+
+def test_static_torques_are_virtual_work_gradient(robot):
+    """At rest, τ = ∂U/∂θ_act along the closed-loop manifold (finite differences of U)."""
+    q0 = robot.home()
+    act = q0[robot.actuated_v]
+    tau, _, _ = inverse_dynamics_sample(robot, q0, np.zeros(12), np.zeros(12))
+    h = 1e-6
+    grad = np.empty(6)
+    for j in range(6):
+        U = []
+        for s in (1, -1):
+            a = act.copy()
+            a[j] += s * h
+            q = pp.solve_closure(robot, a, q_guess=q0)
+            U.append(pin.computePotentialEnergy(robot.model, robot.data, q))
+        grad[j] = (U[0] - U[1]) / (2 * h)
+    assert np.abs(tau - grad).max() <= 1e-7 * np.abs(grad).max()
+    assert np.abs(grad).max() > 0.1
+
+
+def test_actuated_viscous_friction_adds_exactly(robot, thesis_run):
+    """Friction on the actuated joints only adds c·q̇ to their torques; closure forces stay."""
+    _, ik, dyn = thesis_run
+    c = np.zeros(12)
+    c[robot.actuated_v] = 0.05
+    lossy = inverse_dynamics(robot, ik, JointLosses(viscous=c))
+    assert np.allclose(lossy.tau - dyn.tau, 0.05 * dyn.actuator_velocity, atol=1e-12)
+    assert np.allclose(lossy.closure_forces, dyn.closure_forces, atol=1e-10)
+
+
+def test_closure_forces_balance_link(robot, thesis_run):
+    """Newton–Euler on link_i alone, independent of the 12 × 12 solve: the U joint transmits
+    no moment about its two axes, so about those axes the closure force's moment must equal
+    the moment link_i needs (inertial wrench minus gravity)."""
+    _, ik, dyn = thesis_run
+    model, data = robot.model, robot.data
+    for k in (100, 600):
+        pin.forwardKinematics(model, data, ik.q[k])  # rnea does not update data.oMi
+        pin.rnea(model, data, ik.q[k], ik.v[k], ik.a[k])  # fills data.v and data.a_gf
+        for i in (1, 2):
+            j = robot.joint_id(f"theta76_{i}")
+            Y, v = model.inertias[j], data.v[j]
+            needed = (Y * data.a_gf[j] + v.cross(Y * v)).angular  # about the joint, link axes
+            lam = data.oMi[j].rotation.T @ dyn.closure_forces[k, i - 1]
+            p = model.frames[robot.frame_id(f"closure{i}_A")].placement.translation
+            moment = np.cross(p, lam)
+            th76 = ik.q[k, robot.idx_q(f"theta76_{i}")]
+            axes = (np.array([0.0, 0.0, 1.0]),  # theta76 axis
+                    np.array([np.sin(th76), np.cos(th76), 0.0]))  # theta65 axis, link axes
+            for ax in axes:
+                assert abs(needed @ ax - moment @ ax) < 1e-9
+            assert np.abs(needed).max() > 1e-3
+
+
+def test_three_actuator_formula_is_ill_posed(robot, thesis_run):
+    traj, _, _ = thesis_run
+    out = lagrange.three_actuator_analysis(robot.params, traj.poses[::50], traj.d_poses[::50],
+                                           traj.dd_poses[::50])
+    # With only the base actuators the wrist part of Q cannot be produced.
+    assert np.max(out["rel_residual"]) > 1e-3
