@@ -198,6 +198,8 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
     """(N, 18) joint angles in :data:`JOINTS` order for (N, 6) poses (spec §7).
 
     Raises :class:`UnreachableError` (chain, sample, shortfall) or :class:`WristSingularError`.
+    The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
+    θ98 ± θ1110 is defined, and their derivatives from :func:`ik` are then not finite.
     """
     q = _solve(params, _as_poses(poses), wrist_margin)
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
