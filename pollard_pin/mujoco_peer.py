@@ -1,0 +1,297 @@
+"""Independent engine check: closed-loop inverse dynamics with MuJoCo (spec §3, §4, §6).
+
+Uses only numpy, MuJoCo (imported lazily: a test/benchmark dependency) and the URDF file; no
+Pinocchio. The URDF open tree is loaded with ``MjSpec.from_file``; the two cut spherical
+joints of spec §4 become ``mjEQ_CONNECT`` equalities between sites at Tx(x87i) on ``link_i``
+and A_i on ``platform`` (positions read from the URDF fixed joints of the ``<loop_closure>``
+frames). ``mj_inverse`` gives the open-tree torques; the actuator torques τ and the closure
+forces λ then solve ``[Sᵀ Jcᵀ] [τ; λ] = τ_tree`` with Jc the connect rows of ``efc_J``.
+
+Modelling notes:
+- MuJoCo rejects massless moving bodies, so each massless U-joint cross (spec §5) is removed
+  and its hinge moved into its child body ahead of the child's own hinge. MuJoCo composes the
+  joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54) etc. (spec §3).
+- ``inertiafromgeom`` is off, so masses and inertias are the URDF inertials (checked).
+- Contacts, joint limits, springs, dampers and friction loss are disabled (spec: ideal joints).
+"""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+# Tree joints in the order of pollard_pin.kinematics (IKResult.q columns), spec §3.
+JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
+          "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
+ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")  # §6
+GRAVITY = np.array([0.0, 0.0, -9.81])  # spec §2
+MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check
+
+_CACHE: dict[str, tuple] = {}
+
+
+# --- URDF reading (independent of Pinocchio and of MuJoCo's parser) ---------------------------
+def _vec(el, attr, default="0 0 0") -> np.ndarray:
+    return np.array([float(x) for x in (el.get(attr) if el is not None and el.get(attr)
+                                        is not None else default).split()])
+
+
+def _rpy(rpy) -> np.ndarray:
+    """URDF fixed-axis roll-pitch-yaw: R = Rz(y) Ry(p) Rx(r)."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def read_urdf(path) -> dict:
+    """Links' inertials, joints and ``<loop_closure>`` pairs of the URDF."""
+    root = ET.parse(str(path)).getroot()
+    inertials = {}
+    for link in root.iter("link"):
+        el = link.find("inertial")
+        if el is None:
+            continue
+        o, i = el.find("origin"), el.find("inertia")
+        I = np.array([[float(i.get(k, 0)) for k in row] for row in
+                      (("ixx", "ixy", "ixz"), ("ixy", "iyy", "iyz"), ("ixz", "iyz", "izz"))])
+        R = _rpy(_vec(o, "rpy"))
+        inertials[link.get("name")] = dict(mass=float(el.find("mass").get("value")),
+                                           com=_vec(o, "xyz"), inertia=R @ I @ R.T)
+    joints = {}
+    for j in root.iter("joint"):
+        o = j.find("origin")
+        joints[j.get("name")] = dict(type=j.get("type"), parent=j.find("parent").get("link"),
+                                     child=j.find("child").get("link"), xyz=_vec(o, "xyz"),
+                                     rpy=_vec(o, "rpy"))
+    closures = [(c.get("name"), c.get("frame_a"), c.get("frame_b"))
+                for c in root.iter("loop_closure")]
+    return dict(inertials=inertials, joints=joints, closures=closures)
+
+
+def _point_on_moving_link(urdf: dict, frame: str) -> tuple[str, np.ndarray]:
+    """(moving link, position of ``frame``'s origin in it), walking up fixed joints."""
+    by_child = {j["child"]: j for j in urdf["joints"].values()}
+    p = np.zeros(3)
+    link = frame
+    while link in by_child and by_child[link]["type"] == "fixed":
+        j = by_child[link]
+        p = j["xyz"] + _rpy(j["rpy"]) @ p
+        link = j["parent"]
+    return link, p
+
+
+# --- model construction -----------------------------------------------------------------------
+def _default_urdf() -> Path:
+    from ._paths import models_dir
+
+    return models_dir() / "pollard.urdf"
+
+
+def _merge_massless_crosses(spec) -> list[str]:
+    """Move each massless jointed body's hinges into its only child (see module notes)."""
+    import mujoco
+
+    merged = []
+    for body in list(spec.bodies):
+        if body.name == "world" or body.explicitinertial or body.mass != 0.0:
+            continue
+        joints, kids = list(body.joints), list(body.bodies)
+        if not joints:
+            continue  # static: fusestatic handles it
+        if len(kids) != 1 or np.any(kids[0].pos != 0) or np.any(kids[0].quat != [1, 0, 0, 0]):
+            raise ValueError(f"massless moving body {body.name!r} cannot be merged into a child")
+        child = kids[0]
+        specs = [dict(name=j.name, type=j.type, axis=np.array(j.axis), pos=np.array(j.pos),
+                      ref=j.ref) for j in joints + list(child.joints)]
+        for j in joints + list(child.joints):
+            spec.delete(j)
+        for s in specs:  # parent's hinge first: R = R_parent_joint · R_child_joint
+            if s["type"] != mujoco.mjtJoint.mjJNT_HINGE:
+                raise ValueError(f"joint {s['name']!r} is not a hinge")
+            child.add_joint(**s)
+        merged.append(body.name)
+    return merged
+
+
+def build_mujoco(urdf_path=None):
+    """Compile the closed-loop MuJoCo model. Returns ``(model, data, info)``.
+
+    ``info`` holds the name→address maps (in :data:`JOINTS` order), the site/equality ids, the
+    efc sign and the mass/inertia check against the URDF. Raises ``ValueError`` when a check
+    fails (gravity, masses, inertias, joints, constraint rows).
+    """
+    import mujoco
+
+    path = Path(urdf_path) if urdf_path is not None else _default_urdf()
+    urdf = read_urdf(path)
+    if len(urdf["closures"]) != 2:
+        raise ValueError(f"{path}: expected 2 <loop_closure> elements (spec §4)")
+    spec = mujoco.MjSpec.from_file(str(path))
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.compiler.balanceinertia = False
+    spec.compiler.boundmass = spec.compiler.boundinertia = 0.0
+    merged = _merge_massless_crosses(spec)
+    for j in spec.joints:  # ideal joints
+        j.limited = mujoco.mjtLimited.mjLIMITED_FALSE
+        j.damping = j.stiffness = np.zeros(3)  # MuJoCo 4: polynomial coefficients
+        j.armature = j.frictionloss = 0.0
+        j.springdamper = np.zeros(2)
+    sites, eq_names = [], []
+    for name, fa, fb in urdf["closures"]:
+        pair = []
+        for tag, frame in (("A", fa), ("B", fb)):
+            link, pos = _point_on_moving_link(urdf, frame)
+            site = f"{name}_{tag}_site"
+            spec.body(link).add_site(name=site, pos=pos)
+            pair.append((site, link, pos))
+        spec.add_equality(name=name, type=mujoco.mjtEq.mjEQ_CONNECT,
+                          objtype=mujoco.mjtObj.mjOBJ_SITE, name1=pair[0][0], name2=pair[1][0])
+        sites.append(pair)
+        eq_names.append(name)
+    model = spec.compile()
+    D = mujoco.mjtDisableBit
+    model.opt.disableflags |= (D.mjDSBL_CONTACT | D.mjDSBL_LIMIT | D.mjDSBL_SPRING
+                               | D.mjDSBL_DAMPER | D.mjDSBL_FRICTIONLOSS)
+    model.opt.jacobian = mujoco.mjtJacobian.mjJAC_DENSE
+    data = mujoco.MjData(model)
+
+    if not np.array_equal(model.opt.gravity, GRAVITY):
+        raise ValueError(f"MuJoCo gravity {model.opt.gravity} != spec §2 {GRAVITY}")
+    for n in JOINTS:
+        if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n) < 0:
+            raise ValueError(f"joint {n!r} missing from the MuJoCo model")
+    if model.nv != 12 or np.any(model.jnt_type != mujoco.mjtJoint.mjJNT_HINGE):
+        raise ValueError(f"expected 12 hinges, got nv={model.nv}")
+    if np.any(model.dof_armature) or np.any(model.dof_damping) or np.any(model.jnt_stiffness):
+        raise ValueError("armature/damping/stiffness left in the MuJoCo model")
+    jid = [model.joint(n).id for n in JOINTS]
+    qadr = model.jnt_qposadr[jid].copy()
+    dadr = model.jnt_dofadr[jid].copy()
+    if np.any(model.qpos0[qadr] != 0):
+        raise ValueError("nonzero qpos0 (joint ref): angles would be offset")
+
+    # Masses and inertias (about the CoG, body frame) against the URDF, spec §5.
+    mass_err, inertia_err, body_mass = 0.0, 0.0, {}
+    for b in range(1, model.nbody):
+        name = model.body(b).name
+        body_mass[name] = float(model.body_mass[b])
+        ref = urdf["inertials"].get(name)
+        if ref is None:
+            if model.body_mass[b] != 0:
+                raise ValueError(f"MuJoCo body {name!r} has mass but no URDF inertial")
+            continue
+        R = np.empty(9)
+        mujoco.mju_quat2Mat(R, model.body_iquat[b])
+        R = R.reshape(3, 3)
+        I = R @ np.diag(model.body_inertia[b]) @ R.T
+        mass_err = max(mass_err, abs(model.body_mass[b] - ref["mass"]) / ref["mass"])
+        scale = np.abs(ref["inertia"]).max()
+        inertia_err = max(inertia_err, np.abs(I - ref["inertia"]).max() / scale,
+                          np.abs(model.body_ipos[b] - ref["com"]).max())
+    missing = sorted(set(urdf["inertials"]) - set(body_mass))
+    if missing or mass_err > MASS_TOL or inertia_err > MASS_TOL:
+        raise ValueError(f"MuJoCo inertials differ from the URDF: missing {missing}, mass "
+                         f"rel. error {mass_err:.3g}, inertia/CoG error {inertia_err:.3g}")
+
+    # Constraint rows and their sign: efc_J = s·∂(p_A − p_B)/∂q (checked against mj_jacSite).
+    site_ids = np.array([[model.site(s[0]).id for s in pair] for pair in sites])
+    eq_ids = np.array([model.equality(n).id for n in eq_names])
+    rng = np.random.default_rng(0)
+    data.qpos[:] = rng.uniform(-1, 1, model.nq)
+    mujoco.mj_fwdPosition(model, data)
+    rows, signs = _efc_rows(model, data, eq_ids), []
+    jA, jB = np.zeros((3, model.nv)), np.zeros((3, model.nv))
+    J = data.efc_J.reshape(data.nefc, model.nv)
+    for i, (sa, sb) in enumerate(site_ids):
+        mujoco.mj_jacSite(model, data, jA, None, sa)
+        mujoco.mj_jacSite(model, data, jB, None, sb)
+        Jref, Ji = jA - jB, J[rows[i]]
+        s = [s for s in (1.0, -1.0) if np.abs(Ji - s * Jref).max() <= 1e-12 * np.abs(Jref).max()]
+        if not s:
+            raise ValueError(f"connect rows of {eq_names[i]!r} are not ±(J_A − J_B)")
+        signs.append(s[0])
+    mujoco.mj_resetData(model, data)
+    info = dict(urdf_path=str(path), joints=JOINTS, actuated=ACTUATED, qpos_adr=qadr,
+                dof_adr=dadr, actuated_idx=np.array([JOINTS.index(n) for n in ACTUATED]),
+                closures=tuple(eq_names), eq_ids=eq_ids, efc_rows=rows, site_ids=site_ids,
+                sites=[[(s, link, pos.tolist()) for s, link, pos in pair] for pair in sites],
+                efc_sign=np.array(signs), merged_bodies=merged, body_mass=body_mass,
+                total_mass=float(mujoco.mj_getTotalmass(model)), mass_rel_error=mass_err,
+                inertia_error=inertia_err, gravity=model.opt.gravity.copy())
+    return model, data, info
+
+
+def _efc_rows(model, data, eq_ids) -> np.ndarray:
+    """(2, 3) efc row indices of the connect equalities; fails on any other active row."""
+    import mujoco
+
+    if data.nefc != 3 * len(eq_ids) or np.any(data.efc_type[:data.nefc]
+                                             != mujoco.mjtConstraint.mjCNSTR_EQUALITY):
+        raise ValueError(f"expected only the {3 * len(eq_ids)} connect rows, got nefc="
+                         f"{data.nefc} of types {data.efc_type[:data.nefc]}")
+    ids = data.efc_id[:data.nefc]
+    rows = np.array([np.flatnonzero(ids == e) for e in eq_ids])
+    if rows.shape != (len(eq_ids), 3):
+        raise ValueError(f"connect rows not found: efc_id {ids}")
+    return rows
+
+
+def _built(urdf_path):
+    key = str(Path(urdf_path).resolve()) if urdf_path is not None else "<default>"
+    if key not in _CACHE:
+        _CACHE[key] = build_mujoco(urdf_path)
+    return _CACHE[key]
+
+
+# --- inverse dynamics -------------------------------------------------------------------------
+def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
+    """Closed-loop inverse dynamics with MuJoCo at samples (N, 12) in :data:`JOINTS` order.
+
+    Returns a dict of
+      ``tau`` (N, 6): actuator torques [N·m], :data:`ACTUATED` order (spec §6);
+      ``closure_forces`` (N, 2, 3): force the platform exerts ON ``link_i`` at the ball joint
+        [N], world axes (spec §4);
+      ``tree`` (N, 12): open-tree torques (M a + c + g) [N·m], :data:`JOINTS` order;
+      ``residual`` (N, 2): |p_A − p_B| of each connect pair in MuJoCo [m] (sanity check);
+      ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
+    ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used.
+    """
+    import mujoco
+
+    model, data, info = built if built is not None else _built(urdf_path)
+    q, v, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v, a))
+    n = len(q)
+    for label, x in (("q", q), ("v", v), ("a", a)):
+        if x.shape != (n, 12):
+            raise ValueError(f"{label} has shape {x.shape}, expected ({n}, 12) in order {JOINTS}")
+    qadr, dadr, rows = info["qpos_adr"], info["dof_adr"], info["efc_rows"].reshape(-1)
+    sa, sb = info["site_ids"][:, 0], info["site_ids"][:, 1]
+    tree = np.empty((n, 12))
+    Jc = np.empty((n, 6, 12))
+    res = np.empty((n, 2, 3))
+    for k in range(n):
+        data.qpos[qadr] = q[k]
+        data.qvel[dadr] = v[k]
+        data.qacc[dadr] = a[k]
+        mujoco.mj_inverse(model, data)
+        if data.nefc != 6:
+            raise ValueError(f"sample {k}: {data.nefc} constraint rows, expected 6")
+        # qfrc_inverse has the (soft, ~1e-13) equality force subtracted: add it back → open tree.
+        tree[k] = (data.qfrc_inverse + data.qfrc_constraint + data.qfrc_passive)[dadr]
+        Jc[k] = data.efc_J.reshape(6, model.nv)[rows][:, dadr]
+        res[k] = data.site_xpos[sa] - data.site_xpos[sb]
+    # [Sᵀ Jcᵀ][τ; λ] = τ_tree, 12 unknowns per sample.
+    A = np.zeros((n, 12, 12))
+    A[:, info["actuated_idx"], np.arange(6)] = 1.0
+    A[:, :, 6:] = Jc.transpose(0, 2, 1)
+    x = np.linalg.solve(A, tree[:, :, None])[:, :, 0]
+    # efc rows are s·(J_A − J_B); λ·s is then the force on link_i (A side).
+    lam = x[:, 6:].reshape(n, 2, 3) * info["efc_sign"][None, :, None]
+    return dict(tau=x[:, :6], closure_forces=lam, tree=tree,
+                residual=np.linalg.norm(res, axis=2), residual_vec=res)
+
+
+__all__ = ["JOINTS", "ACTUATED", "build_mujoco", "inverse_dynamics_mujoco", "read_urdf"]
