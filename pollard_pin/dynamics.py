@@ -143,7 +143,7 @@ def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) ->
 
 def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
              baumgarte: tuple[float, float] = (400.0, 40.0)) -> SimulationResult:
-    """Integrate the closed-loop dynamics under ``torques(t) → (6,)`` with fixed-step RK4.
+    """Integrate the closed-loop dynamics under ``torques(t, q, v) → (6,)`` with fixed-step RK4.
 
     Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
     ``Kd`` default to a critically damped 20 rad/s correction.
@@ -158,7 +158,7 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     settings = pin.ProximalSettings(1e-14, 0.0, 1)
 
     def f(t, q, v):
-        return forward_dynamics(robot, q, v, torques(t), settings)
+        return forward_dynamics(robot, q, v, torques(t, q, v), settings)
 
     steps = int(round(duration / dt))
     ts = np.arange(steps + 1) * dt
@@ -184,20 +184,44 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     return SimulationResult(t=ts, q=Q, v=V, closure_residual=res)
 
 
-def trajectory_torques(robot: Robot, curve, q_start=None):
-    """``t → τ (6,)``: IK + inverse dynamics of ``curve(t) → (pose, rate, acc)`` at any time.
+def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
+    """Closed-loop inertia seen by the actuators, Nᵀ M N with v = N q̇_act (6 × 6)."""
+    model, data = robot.model, robot.data
+    Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
+    ia, ip = robot.actuated_v, robot.passive_v
+    N = np.zeros((model.nv, 6))
+    N[ia] = np.eye(6)
+    N[ip] = -np.linalg.solve(Jc[:, ip], Jc[:, ia])
+    M = pin.crba(model, data, q)
+    M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
+    return N.T @ M @ N
+
+
+def trajectory_torques(robot: Robot, curve, q_start=None, bandwidth: float | None = None):
+    """``(t, q, v) → τ (6,)``: IK + inverse dynamics of ``curve(t) → (pose, rate, acc)``.
 
     Evaluated exactly at every integrator stage (no interpolation), warm-started from the
-    previous call, so :func:`simulate` can replay a trajectory's own torques.
+    previous call, so :func:`simulate` can replay a trajectory's own torques. With
+    ``bandwidth`` ω [rad/s], a critically damped PD ``M_red (ω² e + 2ω ė)`` on the actuator
+    errors is added to this feedforward; ``torques.state["feedback"]`` records its peak
+    |torque|. Open loop (``None``) the replay is gravity-unstable over long horizons.
     """
     from .kinematics import inverse_kinematics
 
-    state = {"q": q_start}
+    state = {"q": q_start, "feedback": 0.0}
+    ia = robot.actuated_v
 
-    def torques(t: float) -> np.ndarray:
+    def torques(t: float, q=None, v=None) -> np.ndarray:
         pose, d, dd = curve(np.array([t]))
         ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"])
         state["q"] = ik.q[0]
-        return inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
+        tau = inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
+        if bandwidth is not None and q is not None:
+            e, ed = ik.q[0, ia] - q[ia], ik.v[0, ia] - v[ia]
+            fb = reduced_mass_matrix(robot, q) @ (bandwidth**2 * e + 2 * bandwidth * ed)
+            state["feedback"] = max(state["feedback"], float(np.abs(fb).max()))
+            tau = tau + fb
+        return tau
 
+    torques.state = state
     return torques
