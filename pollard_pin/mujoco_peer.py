@@ -269,20 +269,23 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
             raise ValueError(f"{label} has shape {x.shape}, expected ({n}, 12) in order {JOINTS}")
     qadr, dadr, rows = info["qpos_adr"], info["dof_adr"], info["efc_rows"].reshape(-1)
     sa, sb = info["site_ids"][:, 0], info["site_ids"][:, 1]
-    tree = np.empty((n, 12))
-    Jc = np.empty((n, 6, 12))
-    res = np.empty((n, 2, 3))
+    nv = model.nv
+    # Raw MuJoCo arrays in the loop; index mapping vectorised afterwards.
+    Q, V, Acc = np.zeros((n, model.nq)), np.zeros((n, nv)), np.zeros((n, nv))
+    Q[:, qadr], V[:, dadr], Acc[:, dadr] = q, v, a
+    F, Jraw, X = np.empty((n, nv)), np.empty((n, 6 * nv)), np.empty((n, model.nsite, 3))
     for k in range(n):
-        data.qpos[qadr] = q[k]
-        data.qvel[dadr] = v[k]
-        data.qacc[dadr] = a[k]
+        data.qpos[:], data.qvel[:], data.qacc[:] = Q[k], V[k], Acc[k]
         mujoco.mj_inverse(model, data)
         if data.nefc != 6:
             raise ValueError(f"sample {k}: {data.nefc} constraint rows, expected 6")
         # qfrc_inverse has the (soft, ~1e-13) equality force subtracted: add it back → open tree.
-        tree[k] = (data.qfrc_inverse + data.qfrc_constraint + data.qfrc_passive)[dadr]
-        Jc[k] = data.efc_J.reshape(6, model.nv)[rows][:, dadr]
-        res[k] = data.site_xpos[sa] - data.site_xpos[sb]
+        F[k] = data.qfrc_inverse + data.qfrc_constraint + data.qfrc_passive
+        Jraw[k] = data.efc_J
+        X[k] = data.site_xpos
+    tree = F[:, dadr]
+    Jc = Jraw.reshape(n, 6, nv)[:, rows][:, :, dadr]
+    res = X[:, sa] - X[:, sb]
     # [Sᵀ Jcᵀ][τ; λ] = τ_tree, 12 unknowns per sample.
     A = np.zeros((n, 12, 12))
     A[:, info["actuated_idx"], np.arange(6)] = 1.0
