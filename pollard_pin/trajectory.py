@@ -186,23 +186,32 @@ def to_csv(traj: Trajectory, path: str | Path) -> None:
                delimiter=",", header=",".join(header), comments="", fmt="%.17g")
 
 
+def sinusoid_curve(t, home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),
+                   amplitude=(0.04, 0.05, 0.04, 0.25, 0.3, 0.35),
+                   freq=(0.31, 0.23, 0.41, 0.37, 0.29, 0.19),
+                   phase=(0.3, 1.1, 2.0, 0.7, 2.5, 1.6)):
+    """Poses, rates, accelerations of a_k sin(2π f_k t + φ_k) about the home pose [m, rad, Hz]."""
+    t = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
+    a, w, ph = np.asarray(amplitude), 2 * math.pi * np.asarray(freq), np.asarray(phase)
+    arg = w * t + ph
+    return (np.asarray(home_pose, dtype=float) + a * np.sin(arg), a * w * np.cos(arg),
+            -a * w * w * np.sin(arg))
+
+
 def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int = 401,
                              home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),
                              amplitude=(0.04, 0.06, 0.05, 0.2, 0.2, 0.3)) -> Trajectory:
-    """Sum-of-sines motion about the home pose, analytic derivatives (for tests and sweeps)."""
+    """Random sum-of-sines motion of all six task coordinates about home, exact derivatives."""
     rng = np.random.default_rng(seed)
-    t = np.linspace(0.0, duration, samples)
     amp = np.asarray(amplitude) * rng.uniform(0.5, 1.0, 6)
-    w = rng.uniform(0.5, 2.5, 6) * 2 * math.pi / duration
-    ph = rng.uniform(0, 2 * math.pi, 6)
-    arg = np.outer(t, w) + ph
-    base = amp * np.sin(ph)  # start exactly at home
-    poses = np.asarray(home_pose) + amp * np.sin(arg) - base
-    d = amp * w * np.cos(arg)
-    dd = -amp * w**2 * np.sin(arg)
-    return Trajectory(t, poses, d, dd, name=f"random{seed}", derivatives="analytic")
+    freq = rng.uniform(0.5, 2.5, 6) / duration
+    phase = rng.uniform(0, 2 * math.pi, 6)
+    t = np.linspace(0.0, duration, samples)
+    pose, d, dd = sinusoid_curve(t, home_pose, amp, freq, phase)
+    pose -= amp * np.sin(phase)  # start exactly at home
+    return Trajectory(t, pose, d, dd, name=f"random{seed}", derivatives="analytic")
 
 
-__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "from_csv", "to_csv",
+__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "sinusoid_curve", "from_csv", "to_csv",
            "smooth_random_trajectory"]
 

@@ -10,10 +10,23 @@ from pollard_pin.params import load_params
 from pollard_pin.thesis import (ACTUATED, JOINTS, UnreachableError, WristSingularError,
                                 actuation_jacobian, body_kinematics, closure_points, energy,
                                 forward_frames, forward_tool_pose, gravity_torques, ik,
-                                inverse_dynamics, mass_matrix, painting_trajectory,
-                                position_ik, sinusoid_trajectory, three_actuator_analysis)
+                                inverse_dynamics, mass_matrix,
+                                position_ik, three_actuator_analysis)
 from pollard_pin.thesis import jet as J
 from pollard_pin.thesis.ik import ACTUATED_INDEX
+from pollard_pin.trajectory import sinusoid_curve, thesis_curve
+
+
+def painting_trajectory(p, n=2001, duration=20.0, t=None):
+    """(t, poses, rates, accelerations) of the spec §9 curve; ``t`` may be any times."""
+    t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
+    return (t, *thesis_curve(t, duration, p.home_pose))
+
+
+def sinusoid_trajectory(p, n=401, duration=4.0, t=None):
+    """All six task coordinates moving about home (sinusoid_curve defaults)."""
+    t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
+    return (t, *sinusoid_curve(t, p.home_pose))
 
 HOME_DEG = {  # spec §9, rounded to 3 decimals
     "theta21": -77.629, "theta43": 104.487, "theta54": 0.0,

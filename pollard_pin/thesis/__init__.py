@@ -5,10 +5,8 @@ from .ik import (ACTUATED, JOINTS, TREE_JOINTS, UnreachableError, WristSingularE
                  forward_tool_pose, ik, position_ik)
 from .lagrange import (energy, gravity_torques, inverse_dynamics, mass_matrix,
                        three_actuator_analysis)
-from .trajectory import painting_trajectory, sinusoid_trajectory
 
 __all__ = ["ACTUATED", "JOINTS", "TREE_JOINTS", "UnreachableError", "WristSingularError",
            "actuation_jacobian", "body_kinematics", "closure_points", "forward_frames",
            "forward_tool_pose", "ik", "position_ik", "energy", "gravity_torques",
-           "inverse_dynamics", "mass_matrix", "three_actuator_analysis", "painting_trajectory",
-           "sinusoid_trajectory"]
+           "inverse_dynamics", "mass_matrix", "three_actuator_analysis"]
