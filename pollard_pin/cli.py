@@ -48,6 +48,7 @@ def cmd_urdf(args) -> int:
     params = load_params(args.params)
     urdf, srdf = generate(params)
     out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(urdf)
     srdf_out = out.with_suffix(".srdf")
     srdf_out.write_text(srdf)

@@ -59,8 +59,9 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
         q, r = q_new, r_new
     legs = _leg_residuals(r)
     leg = int(np.argmax(legs)) + 1
+    angles = dict(zip(robot.actuated, act.round(6).tolist()))
     raise ClosureError(
-        f"cannot close the loops for actuator angles {dict(zip(robot.actuated, act.round(6)))} "
+        f"cannot close the loops for actuator angles {angles} "
         f"(rad): after {max_iter} Newton steps the residual is {legs[0]*1e3:.4g} mm on leg 1 and "
         f"{legs[1]*1e3:.4g} mm on leg 2 (tolerance {tol:g} m); leg {leg} cannot reach its "
         f"attachment point", leg=leg, residual=float(legs.max()))

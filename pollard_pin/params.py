@@ -232,7 +232,8 @@ def _check_home_reachable(p: Params) -> None:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
     except UnreachableError as exc:
         raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation) "
-                             f"is unreachable with these parameters: {exc}") from None
+                             "is unreachable with these parameters: "
+                             f"{str(exc).replace(' at sample 0', '')}") from None
 
 
 def _set_path(d: dict, path: str, value: Any) -> None:
