@@ -1,0 +1,696 @@
+"""Issue 3: constrained kinematics along trajectories, checked against independent numbers.
+
+- Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of spec §7
+  (``pollard_pin.thesis.ik``, numpy only, exact jet derivatives), on the default trajectory,
+  smooth random trajectories and isolated random reachable poses;
+- velocities and accelerations against central finite differences of the IK positions;
+- forward kinematics (Pinocchio closure solve and the numpy chain of spec §3) back to the poses;
+- loop-closure residuals, recomputed with Pinocchio and with the numpy chain;
+- task-space rotation, Euler-angle round trip and twist maps against elementary rotations and
+  finite differences of R(t);
+- every error path of the IK, the CSV reader and ``pollard-pin run``.
+"""
+import importlib
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin import taskspace as ts
+from pollard_pin.cli import main
+from pollard_pin.kinematics import (BRANCH_TOL, SPHERICAL, WRIST_MARGIN, BranchFlipError,
+                                    KinematicsError, SingularityError, UnreachablePoseError)
+from pollard_pin.model import constraint_residual
+from pollard_pin.outputs import run_pipeline
+from pollard_pin.trajectory import (Trajectory, TrajectoryError, from_csv,
+                                    smooth_random_trajectory, thesis_trajectory, to_csv)
+
+T = importlib.import_module("pollard_pin.thesis.ik")  # the module (pollard_pin.thesis.ik is ik())
+
+TASK = ("x", "y", "z", "psi", "theta", "phi")
+HEADER = "t,x,y,z,psi,theta,phi"
+SEEDS = (1, 2, 3)
+
+# Acceptance tolerances (issue 3).
+POS_TOL, VEL_TOL, ACC_TOL = 1e-9, 1e-7, 1e-5  # rad, rad/s, rad/s²
+FK_TOL = 1e-10  # m and rad
+CLOSURE_TOL = 1e-10  # m
+
+
+def wrap(a):
+    """Angles into (−π, π]."""
+    return np.pi - np.mod(np.pi - np.asarray(a), 2.0 * np.pi)
+
+
+def Rx(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def Ry(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def Rz(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def vee(W):
+    return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+
+def solve(robot, traj, **kw):
+    return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, **kw)
+
+
+def thesis_reference(robot, poses, d_poses, dd_poses):
+    """Closed-form (q, qd, qdd) split into tree joints (robot.joint_names order) and the six
+    spherical angles (SPHERICAL order)."""
+    q, qd, qdd = T.ik(robot.params, poses, d_poses, dd_poses)
+    tree = [T.JOINTS.index(n) for n in robot.joint_names]
+    sph = [T.JOINTS.index(n) for n in SPHERICAL]
+    return {"q": q[:, tree], "v": qd[:, tree], "a": qdd[:, tree],
+            "sph": q[:, sph], "dsph": qd[:, sph]}
+
+
+def to_joints_order(robot, q_tree):
+    """Pinocchio tree configuration (N, 12) → thesis JOINTS order (first 12)."""
+    return q_tree[:, [robot.joint_names.index(n) for n in T.JOINTS[:12]]]
+
+
+def write_text(path, header, rows):
+    path.write_text(header + "\n" + "\n".join(",".join(str(c) for c in r) for r in rows) + "\n")
+    return path
+
+
+def write_poses_csv(path, t, poses):
+    np.savetxt(path, np.column_stack([t, poses]), delimiter=",", header=HEADER, comments="",
+               fmt="%.17g")
+    return path
+
+
+def read_out(path):
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return dict(zip(header, data.T)), header
+
+
+# --- shared runs -----------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def runs(robot):
+    """name → (trajectory, IKResult): the full default trajectory (2001 samples, spec §9) and
+    three smooth random trajectories."""
+    out = {}
+    traj = thesis_trajectory()
+    out["thesis"] = (traj, solve(robot, traj))
+    for seed in SEEDS:
+        traj = smooth_random_trajectory(seed, samples=401)
+        out[f"random{seed}"] = (traj, solve(robot, traj))
+    return out
+
+
+RUN_NAMES = ["thesis"] + [f"random{s}" for s in SEEDS]
+
+
+# --- Pinocchio IK vs the thesis closed form -----------------------------------------------------
+@pytest.mark.parametrize("name", RUN_NAMES)
+def test_ik_matches_thesis_closed_form_along_trajectory(robot, runs, name):
+    traj, ik = runs[name]
+    ref = thesis_reference(robot, traj.poses, traj.d_poses, traj.dd_poses)
+    assert ik.q.shape == ik.v.shape == ik.a.shape == (len(traj), 12)
+    assert ik.spherical.shape == ik.d_spherical.shape == (len(traj), 6)
+    assert tuple(ik.joint_names) == tuple(robot.joint_names)
+    # The joints really move (the comparison is not between two constants).
+    assert np.ptp(ref["q"], axis=0).max() > 0.1 and np.abs(ref["a"]).max() > 1.0
+    assert np.abs(wrap(ik.q - ref["q"])).max() <= POS_TOL
+    assert np.abs(ik.v - ref["v"]).max() <= VEL_TOL
+    assert np.abs(ik.a - ref["a"]).max() <= ACC_TOL
+    assert np.abs(wrap(ik.spherical - ref["sph"])).max() <= POS_TOL
+    assert np.abs(ik.d_spherical - ref["dsph"]).max() <= VEL_TOL
+
+
+def test_ik_matches_thesis_closed_form_at_random_reachable_poses(robot):
+    """Isolated poses (each its own one-sample problem, Newton from the SRDF home posture) with
+    arbitrary pose rates and accelerations: the solution must be the spec-§9 branch of the closed
+    form, including the wrist branch θ1716 > 0."""
+    rng = np.random.default_rng(0)
+    home = np.asarray(robot.params.home_pose)
+    amp = np.array([0.08, 0.10, 0.08, 0.4, 0.4, 0.6])
+    checked, failures = 0, []
+    for k in range(60):
+        x = home + amp * rng.uniform(-1.0, 1.0, 6)
+        xd, xdd = 0.3 * rng.normal(size=6), rng.normal(size=6)
+        try:  # reachable and away from the wrist singularity, by the closed form
+            T.position_ik(robot.params, x, wrist_margin=2 * WRIST_MARGIN)
+        except T.UnreachableError:
+            continue
+        ik = pp.inverse_kinematics(robot, x[None], xd[None], xdd[None])
+        ref = thesis_reference(robot, x[None], xd[None], xdd[None])
+        errs = (np.abs(wrap(ik.q - ref["q"])).max(), np.abs(ik.v - ref["v"]).max(),
+                np.abs(ik.a - ref["a"]).max(), np.abs(wrap(ik.spherical - ref["sph"])).max(),
+                np.abs(ik.d_spherical - ref["dsph"]).max())
+        checked += 1
+        if not (errs[0] <= POS_TOL and errs[1] <= VEL_TOL and errs[2] <= ACC_TOL
+                and errs[3] <= POS_TOL and errs[4] <= VEL_TOL):
+            failures.append((k, np.round(x, 6).tolist(), errs))
+    assert checked >= 40
+    assert not failures, failures
+
+
+# --- finite differences along the trajectory ---------------------------------------------------
+def _fd_errors(q, v, a, h, s):
+    """Max |central difference − analytic| per column with step s·h (v from q, a from q)."""
+    H = s * h
+    ev = np.abs((q[2 * s:] - q[:-2 * s]) / (2 * H) - v[s:-s]).max(axis=0)
+    ea = None if a is None else \
+        np.abs((q[2 * s:] - 2 * q[s:-s] + q[:-2 * s]) / H**2 - a[s:-s]).max(axis=0)
+    return ev, ea
+
+
+@pytest.mark.parametrize("name", RUN_NAMES)
+def test_rates_match_central_differences_of_positions(runs, name):
+    """Central differences of the IK positions have error h²/6·q''' (velocity) and h²/12·q''''
+    (acceleration); the derivative bounds come from 5-point differences of the positions alone.
+    Doubling h must multiply the error by 4 (the IK rates carry no O(1) bias)."""
+    traj, ik = runs[name]
+    h = traj.t[1] - traj.t[0]
+    assert np.allclose(np.diff(traj.t), h)
+    for q, v, a in ((np.unwrap(ik.q, axis=0), ik.v, ik.a),
+                    (np.unwrap(ik.spherical, axis=0), ik.d_spherical, None)):
+        d3 = (q[4:] - 2 * q[3:-1] + 2 * q[1:-3] - q[:-4]) / (2 * h**3)
+        d4 = (q[4:] - 4 * q[3:-1] + 6 * q[2:-2] - 4 * q[1:-3] + q[:-4]) / h**4
+        ev1, ea1 = _fd_errors(q, v, a, h, 1)
+        ev2, ea2 = _fd_errors(q, v, a, h, 2)
+        tol_v = 2.0 * h**2 / 6 * np.abs(d3).max(axis=0) + 1e-8
+        assert np.all(ev1 <= tol_v), (ev1, tol_v)
+        big = ev1 > 1e-6  # well above rounding noise
+        assert big.sum() >= 3
+        assert np.all((ev2[big] / ev1[big] > 3.5) & (ev2[big] / ev1[big] < 4.5)), ev2 / ev1
+        if a is not None:
+            tol_a = 2.0 * h**2 / 12 * np.abs(d4).max(axis=0) + 1e-5
+            assert np.all(ea1 <= tol_a), (ea1, tol_a)
+            big = ea1 > 1e-5
+            assert big.sum() >= 3
+            assert np.all((ea2[big] / ea1[big] > 3.5) & (ea2[big] / ea1[big] < 4.5)), ea2 / ea1
+            # Accelerations also against central differences of the velocities.
+            eav = np.abs((v[2:] - v[:-2]) / (2 * h) - a[1:-1]).max(axis=0)
+            assert np.all(eav <= 4.0 * tol_a + 1e-5)
+
+
+# --- forward kinematics and closures -------------------------------------------------------------
+@pytest.mark.parametrize("name", RUN_NAMES)
+def test_forward_kinematics_reproduces_input_poses(robot, runs, name):
+    traj, ik = runs[name]
+    step = 4 if name == "thesis" else 2  # subsample: FK warm-starts from the previous sample
+    act = ik.q[::step, robot.actuated_v]
+    qs, poses = pp.forward_kinematics(robot, act)
+    want = traj.poses[::step]
+    assert np.abs(poses[:, :3] - want[:, :3]).max() <= FK_TOL
+    assert np.abs(wrap(poses[:, 3:] - want[:, 3:])).max() <= FK_TOL
+    assert np.abs(wrap(qs - ik.q[::step])).max() <= 1e-9
+    # The numpy forward chain of spec §3 (no Pinocchio) from all IK tree angles.
+    fk = T.forward_tool_pose(robot.params, to_joints_order(robot, ik.q))
+    assert np.abs(fk[:, :3] - traj.poses[:, :3]).max() <= FK_TOL
+    assert np.abs(wrap(fk[:, 3:] - traj.poses[:, 3:])).max() <= FK_TOL
+
+
+@pytest.mark.parametrize("name", RUN_NAMES)
+def test_closure_residual_along_trajectory(robot, runs, name):
+    traj, ik = runs[name]
+    assert ik.closure_residual.shape == (len(traj),)
+    assert ik.closure_residual.max() <= CLOSURE_TOL
+    assert ik.tool_error.max() <= FK_TOL
+    m, d = robot.model, robot.data
+    res = np.array([constraint_residual(m, d, robot.constraint_models, robot.constraint_datas, q)
+                    for q in ik.q[::2]])
+    assert res.shape == (len(ik.q[::2]), 6)
+    assert np.abs(res).max() <= CLOSURE_TOL
+    # Independently with the numpy chain of spec §3/§4: link ball centre vs attachment point.
+    cp = T.closure_points(robot.params, to_joints_order(robot, ik.q))
+    assert np.linalg.norm(cp[..., 0, :] - cp[..., 1, :], axis=-1).max() <= CLOSURE_TOL
+
+
+def test_ik_diagnostics_are_reported_per_sample(runs):
+    traj, ik = runs["thesis"]
+    q1716 = ik.q[:, list(ik.joint_names).index("theta1716")]
+    assert np.allclose(ik.wrist_margin, np.abs(np.sin(q1716)), rtol=0, atol=1e-15)
+    # spec §9: θ1716 stays between about 15° and 47° along the default trajectory.
+    deg = np.degrees(np.arcsin(ik.wrist_margin))
+    assert 13.0 < deg.min() < 17.0 and 45.0 < deg.max() < 49.0
+    assert ik.sigma_parallel.min() > 1e-3 and ik.sigma_serial.min() > 1e-3
+
+
+# --- task space -----------------------------------------------------------------------------------
+def test_rotation_is_rx_theta_ry_psi_rz_phi():
+    rng = np.random.default_rng(5)
+    poses = np.column_stack([rng.normal(size=(50, 3)), rng.uniform(-np.pi, np.pi, (50, 3))])
+    R = ts.rotation(poses)
+    assert R.shape == (50, 3, 3)
+    for p, Rk in zip(poses, R):
+        psi, th, phi = p[3:]
+        assert np.abs(Rk - Rx(th) @ Ry(psi) @ Rz(phi)).max() <= 1e-15
+    # Batched leading dimensions.
+    assert np.array_equal(ts.rotation(poses.reshape(5, 10, 6)), R.reshape(5, 10, 3, 3))
+    # se3_from_pose / pose_from_se3.
+    M = ts.se3_from_pose(poses[0])
+    assert np.abs(M.rotation - R[0]).max() <= 1e-15 and np.allclose(M.translation, poses[0, :3])
+
+
+def test_angles_from_rotation_round_trip():
+    rng = np.random.default_rng(6)
+    n = 200
+    ang = np.column_stack([rng.uniform(-np.pi / 2 + 1e-3, np.pi / 2 - 1e-3, n),
+                           rng.uniform(-np.pi, np.pi, n), rng.uniform(-np.pi, np.pi, n)])
+    poses = np.column_stack([np.zeros((n, 3)), ang])
+    back = ts.angles_from_rotation(ts.rotation(poses))
+    assert np.abs(wrap(back - ang)).max() <= 1e-12
+    assert np.all(np.abs(back[:, 0]) <= np.pi / 2)
+    # Arbitrary rotations (QR of random matrices, det +1): R → angles → R.
+    Q = np.linalg.qr(rng.normal(size=(n, 3, 3)))[0]
+    Q *= np.sign(np.linalg.det(Q))[:, None, None]
+    R2 = ts.rotation(np.column_stack([np.zeros((n, 3)), ts.angles_from_rotation(Q)]))
+    assert np.abs(R2 - Q).max() <= 1e-12
+    # pose_from_se3 inverts se3_from_pose.
+    p = np.concatenate([[0.1, -0.2, 0.3], ang[0]])
+    assert np.abs(wrap(ts.pose_from_se3(ts.se3_from_pose(p)) - p)).max() <= 1e-12
+
+
+def _pose_curve(t):
+    """A smooth pose curve with large angles, and its exact first/second derivatives."""
+    a = np.array([0.1, -0.2, 0.05, 0.6, -0.9, 1.3])
+    w = np.array([1.1, 0.7, 1.9, 1.3, 0.8, 1.7])
+    c = np.array([0.5, 0.0, 0.2, 0.3, 0.4, -0.5])
+    t = np.atleast_1d(t)[:, None]
+    return c + a * np.sin(w * t + c), a * w * np.cos(w * t + c), -a * w**2 * np.sin(w * t + c)
+
+
+def test_twist_is_rdot_rt_and_twist_dot_its_derivative():
+    h = 1e-5
+    t = np.linspace(0.0, 5.0, 23)
+    p, pd, pdd = _pose_curve(t)
+    tw, twd = ts.twist(p, pd), ts.twist_dot(p, pd, pdd)
+    Rp, Rm, R = (ts.rotation(_pose_curve(t + s)[0]) for s in (h, -h, 0.0))
+    omegas = []
+    for k in range(len(t)):
+        W = (Rp[k] - Rm[k]) / (2 * h) @ R[k].T  # ω̂ = Ṙ Rᵀ
+        assert np.abs(W + W.T).max() <= 1e-8  # skew
+        omegas.append(vee(W))
+    omegas = np.array(omegas)
+    assert np.abs(omegas).max() > 0.5
+    assert np.abs(tw[:, 3:] - omegas).max() <= 1e-8
+    assert np.array_equal(tw[:, :3], pd[:, :3])
+    # ω̇ and the point acceleration by central differences of the twist along the curve.
+    twp, twm = (ts.twist(*_pose_curve(t + s)[:2]) for s in (h, -h))
+    assert np.abs(twd - (twp - twm) / (2 * h)).max() <= 1e-7
+    assert np.array_equal(twd[:, :3], pdd[:, :3])
+    # euler_rates inverts twist.
+    assert np.abs(ts.euler_rates(p, tw) - pd).max() <= 1e-12
+
+
+def test_rate_matrix_dot_matches_finite_difference():
+    h = 1e-6
+    t = np.linspace(0.0, 3.0, 11)
+    p, pd, _ = _pose_curve(t)
+    fd = (ts.rate_matrix(_pose_curve(t + h)[0]) - ts.rate_matrix(_pose_curve(t - h)[0])) / (2 * h)
+    assert np.abs(ts.rate_matrix_dot(p, pd) - fd).max() <= 1e-8
+
+
+# --- error paths -----------------------------------------------------------------------------------
+def _chain0_shortfall(params, pose):
+    """Distance [m] by which the wrist centre lies beyond the reach of chain 0: the nearest
+    point of the elbow circle (radius x32 in the xz plane at height z10) is further than L."""
+    R = Rx(pose[4]) @ Ry(pose[3]) @ Rz(pose[5])
+    P15 = pose[:3] - params.x1918 * R[:, 0]
+    d = P15 - np.array([0.0, 0.0, params.z10])
+    rho = math.hypot(d[0], d[2])
+    return math.hypot(rho - params.x32, d[1]) - (params.x65 + params.x1514)
+
+
+def test_unreachable_single_pose(robot):
+    pose = np.asarray(robot.params.home_pose, dtype=float).copy()
+    pose[0] = 2.0  # tool 1.45 m further than home: far out of reach
+    with pytest.raises(UnreachablePoseError) as ei:
+        pp.inverse_kinematics(robot, pose[None])
+    e = ei.value
+    assert isinstance(e, KinematicsError)
+    assert e.chain == "chain 0" and e.sample == 0 and e.time == 0.0
+    msg = str(e)
+    assert "chain 0" in msg and "sample 0" in msg and "t = 0" in msg
+    want = _chain0_shortfall(robot.params, pose)
+    assert want > 1.0
+    assert e.amount > 0 and abs(e.amount - want) <= 1e-9
+
+
+@pytest.mark.parametrize("shift, too_close", [(1.0, False), (-0.5, True)])
+def test_unreachable_part_of_trajectory(robot, shift, too_close):
+    traj = thesis_trajectory(samples=201)
+    poses = traj.poses.copy()
+    poses[150:, 0] += shift
+    with pytest.raises(UnreachablePoseError) as ei:
+        pp.inverse_kinematics(robot, poses, traj.d_poses, traj.dd_poses, traj.t)
+    e = ei.value
+    assert (e.sample, e.time, e.chain) == (150, 15.0, "chain 0")
+    msg = str(e)
+    assert "sample 150" in msg and "t = 15" in msg and "chain 0" in msg
+    assert e.amount > 0
+    if not too_close:
+        assert abs(e.amount - _chain0_shortfall(robot.params, poses[150])) <= 1e-9
+    else:
+        assert "too close" in msg
+
+
+def test_unreachable_leg(robot):
+    pose = np.asarray(robot.params.home_pose, dtype=float).copy()
+    pose[0] = 0.75  # chain 0 still reaches the wrist centre; leg 1 falls short by ~6 mm
+    with pytest.raises(T.UnreachableError) as ref:
+        T.position_ik(robot.params, pose)
+    with pytest.raises(UnreachablePoseError) as ei:
+        pp.inverse_kinematics(robot, pose[None])
+    e = ei.value
+    assert e.chain == ref.value.chain and e.chain.startswith("leg")
+    assert e.chain in str(e) and "sample 0" in str(e)
+    assert 0 < e.amount < 0.02
+
+
+def _wrist_singular_pose(params):
+    """Home wrist centre, tool axis along the platform arm: θ1716 = 0 exactly."""
+    f = {}
+    T._solve(params, np.asarray(params.home_pose, dtype=float)[None], frames=f)
+    Rp, P15 = f["platform"][0][0], f["wrist1"][1][0]
+    return np.concatenate([P15 + params.x1918 * Rp[:, 0], ts.angles_from_rotation(Rp)])
+
+
+def test_wrist_singular_pose_raises_singularity_error(robot):
+    pose = _wrist_singular_pose(robot.params)
+    with pytest.raises(T.WristSingularError):  # the closed form agrees it is singular
+        T.position_ik(robot.params, pose)
+    with pytest.raises(SingularityError) as ei:
+        pp.inverse_kinematics(robot, pose[None])
+    e = ei.value
+    assert e.chain == "wrist" and "wrist" in str(e) and e.sample == 0
+    assert abs(e.amount - WRIST_MARGIN) <= 1e-9  # margin − |sin θ1716|, θ1716 = 0
+
+
+def test_trajectory_approaching_wrist_singularity(robot):
+    home = np.asarray(robot.params.home_pose, dtype=float)
+    sing = _wrist_singular_pose(robot.params)
+    n, dur = 201, 2.0
+    s = np.linspace(0.0, 0.99, n)
+    poses = home + np.outer(s, sing - home)
+    d = np.tile(0.99 * (sing - home) / dur, (n, 1))
+    t = s / 0.99 * dur
+    sin1716 = np.abs(np.sin(T.position_ik(robot.params, poses)[:, T.JOINTS.index("theta1716")]))
+    first = int(np.argmax(sin1716 < WRIST_MARGIN))
+    assert 0 < first < n - 1
+    with pytest.raises(SingularityError) as ei:
+        pp.inverse_kinematics(robot, poses, d, np.zeros_like(poses), t)
+    e = ei.value
+    assert (e.sample, e.chain) == (first, "wrist")
+    assert e.time == pytest.approx(t[first], abs=1e-12)
+    assert "wrist" in str(e) and f"sample {first}" in str(e)
+    assert abs(e.amount - (WRIST_MARGIN - sin1716[first])) <= 1e-9
+
+
+def test_wrist_margin_above_trajectory_minimum(robot, runs):
+    traj, ik = runs["thesis"]
+    sin1716 = np.abs(np.sin(T.position_ik(robot.params, traj.poses)[:, T.JOINTS.index(
+        "theta1716")]))
+    margin = 0.5 * (sin1716.min() + sin1716.max())
+    first = int(np.argmax(sin1716 < margin))
+    with pytest.raises(SingularityError) as ei:
+        solve(robot, traj, wrist_margin=margin)
+    e = ei.value
+    assert (e.sample, e.chain) == (first, "wrist") and e.time == traj.t[first]
+    assert f"sample {first}" in str(e) and "wrist" in str(e)
+    assert abs(e.amount - (margin - sin1716[first])) <= 1e-9
+
+
+def _first_violation(ik, margin):
+    """(sample, chain) of the first parallel/serial margin violation, parallel checked first."""
+    for k in range(len(ik)):
+        if ik.sigma_parallel[k] < margin:
+            return k, "parallel"
+        if ik.sigma_serial[k] < margin:
+            return k, "serial"
+    return None
+
+
+@pytest.mark.parametrize("which", ["parallel", "serial"])
+def test_parallel_and_serial_singularity_margins(robot, which):
+    traj = thesis_trajectory(samples=201)
+    base = solve(robot, traj)
+    # Independent check of σ_parallel at sample 0: smallest singular value of ∂(closure)/∂passive.
+    Jc = pp.constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                                robot.constraint_datas, base.q[0])
+    s0 = np.linalg.svd(Jc[:, robot.passive_v], compute_uv=False)[-1]
+    assert abs(s0 - base.sigma_parallel[0]) <= 1e-12
+    # A margin whose first violation is of the requested kind.
+    grid = np.linspace(min(base.sigma_parallel.min(), base.sigma_serial.min()),
+                       max(base.sigma_parallel.max(), base.sigma_serial.max()), 400)[1:]
+    margin = next(m for m in grid if (_first_violation(base, m) or (0, ""))[1] == which)
+    k, chain = _first_violation(base, margin)
+    with pytest.raises(SingularityError) as ei:
+        solve(robot, traj, singularity_margin=margin)
+    e = ei.value
+    assert (e.sample, e.chain, e.time) == (k, chain, traj.t[k])
+    assert which in str(e) and f"sample {k}" in str(e)
+    sigma = base.sigma_parallel[k] if which == "parallel" else base.sigma_serial[k]
+    assert abs(e.amount - (margin - sigma)) <= 1e-9
+
+
+def test_branch_flip_from_sparse_sampling(robot):
+    traj = thesis_trajectory(samples=21)  # 1 s between samples: Newton lands on another branch
+    with pytest.raises(BranchFlipError) as ei:
+        solve(robot, traj)
+    e = ei.value
+    assert e.sample >= 1 and e.time == traj.t[e.sample]
+    assert e.chain in robot.joint_names and e.amount > BRANCH_TOL
+    assert "branch" in str(e) and f"sample {e.sample}" in str(e) and e.chain in str(e)
+
+
+def test_branch_flip_from_jump_in_poses(robot):
+    traj = thesis_trajectory(samples=201)
+    poses = traj.poses.copy()
+    poses[100:, 1] += 0.05  # a 5 cm step the pose rates know nothing about
+    with pytest.raises(BranchFlipError) as ei:
+        pp.inverse_kinematics(robot, poses, traj.d_poses, traj.dd_poses, traj.t)
+    e = ei.value
+    assert (e.sample, e.time) == (100, 10.0)
+    assert e.amount > BRANCH_TOL and "sample 100" in str(e)
+    # The same step is fine when the tolerance allows it (the jump is the only problem).
+    pp.inverse_kinematics(robot, poses, traj.d_poses, traj.dd_poses, traj.t, branch_tol=1.0)
+
+
+@pytest.mark.parametrize("which, k, c, bad", [("poses", 77, 4, np.nan), ("d_poses", 12, 1, np.inf),
+                                              ("dd_poses", 150, 0, -np.inf)])
+def test_non_finite_input_names_the_sample(robot, which, k, c, bad):
+    traj = thesis_trajectory(samples=201)
+    arrays = {n: getattr(traj, n).copy() for n in ("poses", "d_poses", "dd_poses")}
+    arrays[which][k, c] = bad
+    with pytest.raises(KinematicsError) as ei:
+        pp.inverse_kinematics(robot, arrays["poses"], arrays["d_poses"], arrays["dd_poses"],
+                              traj.t)
+    e = ei.value
+    assert e.sample == k and e.time == traj.t[k]
+    assert f"sample {k}" in str(e) and str(bad) in str(e)
+
+
+# --- CSV input -------------------------------------------------------------------------------------
+def _good_rows(n=8):
+    traj = thesis_trajectory(samples=n)
+    return [[f"{v:.12g}" for v in row] for row in np.column_stack([traj.t, traj.poses])]
+
+
+def _edit(rows, r, c, value):
+    rows = [list(x) for x in rows]
+    rows[r][c] = value
+    return rows
+
+
+@pytest.mark.parametrize("header, rows, pattern", [
+    # Row numbers are file lines (header = line 1), so data row index i is line i + 2.
+    (HEADER, _edit(_good_rows(), 2, 2, "0.1x"), r"row 4, column 'y'.*'0\.1x' is not a number"),
+    (HEADER, _edit(_good_rows(), 5, 3, "nan"), r"row 7, column 'z'.*not finite"),
+    (HEADER, _edit(_good_rows(), 1, 6, "inf"), r"row 3, column 'phi'.*not finite"),
+    (HEADER, _edit(_good_rows(), 3, 0, "-1"), r"row 5, column 't'.*decreasing"),
+    (HEADER, _edit(_good_rows(), 4, 0, _good_rows()[3][0]), r"row 6, column 't'.*duplicate"),
+    (HEADER, _edit(_good_rows(), 0, 4, "30"), r"row 2, column 'psi'.*degrees"),
+    (HEADER, _edit(_good_rows(), 6, 5, "-45.0"), r"row 8, column 'theta'.*degrees"),
+    (HEADER, _edit(_good_rows(), 3, 1, "550"), r"row 5, column 'x'.*millimetres"),
+    ("t,x,y,z,psi,theta", [r[:6] for r in _good_rows()], r"missing column.*phi"),
+    ("t,x,y,z,psi,thetta,phi", _good_rows(), r"unknown column 'thetta'.*did you mean 'theta'"),
+    ("time,x,y,z,psi,theta,phi", _good_rows(), r"unknown column 'time'"),
+    (HEADER, _edit(_good_rows(), 2, 6, "0.0,1.0"), r"row 4 has 8 fields"),
+])
+def test_malformed_csv_names_row_and_column(tmp_path, header, rows, pattern):
+    path = write_text(tmp_path / "bad.csv", header, rows)
+    with pytest.raises(TrajectoryError, match=pattern):
+        from_csv(path)
+
+
+def test_csv_file_with_all_units_scaled_looks_like_mm_and_degrees(tmp_path):
+    traj = thesis_trajectory(samples=50)
+    mm = traj.poses.copy()
+    mm[:, :3] *= 1e3
+    with pytest.raises(TrajectoryError, match=r"row 2, column 'x'.*millimetres"):
+        from_csv(write_poses_csv(tmp_path / "mm.csv", traj.t, mm))
+    deg = smooth_random_trajectory(4, samples=50).poses.copy()
+    deg[:, 3:] = np.degrees(deg[:, 3:]) + 20.0
+    with pytest.raises(TrajectoryError, match=r"column 'psi'.*degrees"):
+        from_csv(write_poses_csv(tmp_path / "deg.csv", traj.t, deg))
+
+
+def test_csv_row_numbers_count_comment_lines(tmp_path):
+    """A user looking up "row N" in the file must find the offending line N."""
+    rows = _edit(_good_rows(), 2, 2, "oops")  # data row 2
+    path = tmp_path / "commented.csv"
+    text = "# exported by a test\n" + HEADER + "\n" + "\n".join(",".join(r) for r in rows) + "\n"
+    path.write_text(text)
+    lines = text.splitlines()
+    with pytest.raises(TrajectoryError) as ei:
+        from_csv(path)
+    n = int(str(ei.value).split("row ")[1].split(",")[0])
+    assert "oops" in lines[n - 1], (str(ei.value), lines[n - 1])
+
+
+def test_csv_without_derivatives_uses_spline_that_matches_analytic_derivatives(tmp_path):
+    traj = smooth_random_trajectory(3, samples=201)
+    path = write_poses_csv(tmp_path / "smooth.csv", traj.t, traj.poses)
+    with pytest.warns(UserWarning, match="spline"):
+        got = from_csv(path)
+    assert got.derivatives != "file columns"
+    assert np.array_equal(got.t, traj.t) and np.array_equal(got.poses, traj.poses)
+    d_scale, dd_scale = np.abs(traj.d_poses).max(), np.abs(traj.dd_poses).max()
+    assert np.abs(got.d_poses - traj.d_poses).max() <= 1e-6 * d_scale
+    assert np.abs(got.dd_poses - traj.dd_poses).max() <= 1e-4 * dd_scale
+    assert np.abs(got.d_poses - traj.d_poses)[10:-10].max() <= 1e-10 * d_scale  # interior
+
+
+def test_csv_with_derivative_columns_is_exact(tmp_path):
+    traj = smooth_random_trajectory(2, samples=101)
+    path = tmp_path / "exact.csv"
+    to_csv(traj, path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = from_csv(path)
+    assert got.derivatives == "file columns"
+    for name in ("t", "poses", "d_poses", "dd_poses"):
+        assert np.array_equal(getattr(got, name), getattr(traj, name)), name
+    # Columns may come in any order.
+    cols = ["dd_phi", "t"] + list(TASK) + [f"d_{n}" for n in TASK] + \
+        [f"dd_{n}" for n in TASK[:-1]]
+    data = {"t": traj.t, **{n: traj.poses[:, i] for i, n in enumerate(TASK)},
+            **{f"d_{n}": traj.d_poses[:, i] for i, n in enumerate(TASK)},
+            **{f"dd_{n}": traj.dd_poses[:, i] for i, n in enumerate(TASK)}}
+    shuffled = tmp_path / "shuffled.csv"
+    np.savetxt(shuffled, np.column_stack([data[c] for c in cols]), delimiter=",",
+               header=",".join(cols), comments="", fmt="%.17g")
+    got = from_csv(shuffled)
+    assert np.array_equal(got.dd_poses, traj.dd_poses) and np.array_equal(got.poses, traj.poses)
+
+
+def test_csv_partial_derivative_columns_rejected(tmp_path):
+    traj = smooth_random_trajectory(2, samples=20)
+    cols = list(HEADER.split(",")) + ["d_x", "d_y"]
+    arr = np.column_stack([traj.t, traj.poses, traj.d_poses[:, :2]])
+    path = tmp_path / "partial.csv"
+    np.savetxt(path, arr, delimiter=",", header=",".join(cols), comments="", fmt="%.17g")
+    with pytest.raises(TrajectoryError, match="d_z"):
+        from_csv(path)
+
+
+# --- pollard-pin run ----------------------------------------------------------------------------
+def _expected_columns(robot):
+    tree = list(robot.joint_names)
+    assert tree[0] == "theta21" and tree[-1] == "theta76_2"
+    sph = [f"{a}_{i}" for i in (1, 2) for a in ("theta98", "theta109", "theta1110")]
+    return (["t", *TASK, *tree, *sph], [f"d_{n}" for n in tree], [f"dd_{n}" for n in tree],
+            ["wrist_margin", "sigma_parallel", "sigma_serial"])
+
+
+def _check_run_output(robot, out, traj):
+    cols, header = read_out(out)
+    first, d, dd, diag = _expected_columns(robot)
+    assert header[:len(first)] == first
+    for name in d + dd + diag:
+        assert name in cols, name
+    assert len(cols["t"]) == len(traj)
+    ik = solve(robot, traj)
+    assert np.array_equal(cols["t"], traj.t)
+    for i, n in enumerate(TASK):
+        assert np.array_equal(cols[n], traj.poses[:, i])
+    for i, n in enumerate(robot.joint_names):
+        assert np.abs(wrap(cols[n] - ik.q[:, i])).max() <= 1e-12, n
+        assert np.abs(cols[f"d_{n}"] - ik.v[:, i]).max() <= 1e-10, n
+        assert np.abs(cols[f"dd_{n}"] - ik.a[:, i]).max() <= 1e-8, n
+    for i, n in enumerate(SPHERICAL):
+        assert np.abs(wrap(cols[n] - ik.spherical[:, i])).max() <= 1e-12, n
+    for n in diag:
+        assert np.allclose(cols[n], getattr(ik, n), rtol=1e-10, atol=1e-14), n
+    # Exactly what the pipeline computes (%.17g round-trips doubles).
+    ref = run_pipeline(robot, traj).columns()
+    assert list(ref) == header
+    for n in header:
+        assert np.array_equal(cols[n], ref[n]), n
+    return cols
+
+
+def test_cli_run_thesis_trajectory(robot, tmp_path, capsys):
+    out = tmp_path / "thesis.csv"
+    rc = main(["run", "--samples", "201", "--out", str(out), "--quiet"])
+    assert rc == 0
+    assert "wrote 201 rows" in capsys.readouterr().out
+    traj = thesis_trajectory(samples=201, home_pose=robot.params.home_pose)
+    _check_run_output(robot, out, traj)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["thesis.csv"]  # no temp leftovers
+
+
+def test_cli_run_csv_trajectory(robot, tmp_path, capsys):
+    src = tmp_path / "traj.csv"
+    traj = smooth_random_trajectory(5, samples=151)
+    to_csv(traj, src)
+    out = tmp_path / "run.csv"
+    assert main(["run", "--trajectory", str(src), "--out", str(out), "--quiet"]) == 0
+    _check_run_output(robot, out, from_csv(src))
+    # Without derivative columns the run still works and says where the derivatives came from.
+    bare = write_poses_csv(tmp_path / "bare.csv", traj.t, traj.poses)
+    out2 = tmp_path / "run2.csv"
+    with pytest.warns(UserWarning):
+        assert main(["run", "--trajectory", str(bare), "--out", str(out2), "--quiet"]) == 0
+    assert "spline" in capsys.readouterr().err
+    with pytest.warns(UserWarning):
+        _check_run_output(robot, out2, from_csv(bare))
+
+
+@pytest.mark.parametrize("kind", ["unreachable", "malformed", "singular"])
+def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
+    traj = smooth_random_trajectory(5, samples=101)
+    poses = traj.poses.copy()
+    if kind == "unreachable":
+        poses[60:, 0] += 1.0
+    elif kind == "singular":
+        poses[:] = _wrist_singular_pose(robot.params)
+    src = tmp_path / "in.csv"
+    to_csv(Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses), src)
+    if kind == "malformed":
+        lines = src.read_text().splitlines()
+        lines[40] = lines[40].replace(",", ",abc", 1)
+        src.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "out.csv"
+    rc = main(["run", "--trajectory", str(src), "--out", str(out), "--quiet"])
+    assert rc != 0
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv"]  # no temp file either
+    err = capsys.readouterr().err
+    assert "error" in err and "nothing written" in err
+    if kind == "unreachable":
+        assert "sample 60" in err and "chain 0" in err
+    elif kind == "malformed":
+        assert "row 41" in err
+    else:
+        assert "wrist" in err and "sample 0" in err
