@@ -105,19 +105,32 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
 
 def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = None
                      ) -> DynamicsResult:
-    """Actuator torques, closure forces and energies along an IK result."""
+    """Actuator torques, closure forces and energies along an IK result.
+
+    One RNEA and the two energies per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked,
+    reusing the constraint Jacobians of the IK when it carries them.
+    """
     model, data = robot.model, robot.data
     n = len(ik)
-    tau, lam, tree = np.empty((n, 6)), np.empty((n, 2, 3)), np.empty((n, model.nv))
-    K, U = np.empty(n), np.empty(n)
+    tree, K, U = np.empty((n, model.nv)), np.empty(n), np.empty(n)
+    Q, V, A = ik.q, ik.v, ik.a
     for k in range(n):
-        tau[k], lam[k], tree[k] = inverse_dynamics_sample(robot, ik.q[k], ik.v[k], ik.a[k],
-                                                          losses)
-        K[k] = pin.computeKineticEnergy(model, data, ik.q[k], ik.v[k])
-        U[k] = pin.computePotentialEnergy(model, data, ik.q[k])
-    return DynamicsResult(t=ik.t, tau=tau, closure_forces=lam, tau_tree=tree,
-                          actuator_velocity=ik.v[:, robot.actuated_v], kinetic=K, potential=U,
-                          actuated=robot.actuated)
+        tree[k] = pin.rnea(model, data, Q[k], V[k], A[k])
+        K[k] = pin.computeKineticEnergy(model, data, Q[k], V[k])
+        U[k] = pin.computePotentialEnergy(model, data, Q[k])
+    if losses is not None:
+        tree += losses.torque(V, A)
+    Jc = ik.constraint_jacobian
+    if Jc is None:
+        Jc = np.stack([constraint_jacobian(model, data, robot.constraint_models,
+                                           robot.constraint_datas, q) for q in Q])
+    Amat = np.zeros((n, model.nv, 12))
+    Amat[:, robot.actuated_v, np.arange(6)] = 1.0
+    Amat[:, :, 6:] = np.swapaxes(Jc, 1, 2)
+    x = np.linalg.solve(Amat, tree[:, :, None])[:, :, 0]
+    return DynamicsResult(t=ik.t, tau=x[:, :6], closure_forces=x[:, 6:].reshape(n, 2, 3),
+                          tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,
+                          potential=U, actuated=robot.actuated)
 
 
 # --- forward dynamics ---------------------------------------------------------------------

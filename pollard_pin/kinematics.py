@@ -234,6 +234,7 @@ class IKResult:
     sigma_parallel: np.ndarray  # σ_min of Jc over the passive joints
     sigma_serial: np.ndarray  # σ_min of the actuator-rate → tool-twist map
     joint_names: tuple[str, ...] = field(default=())
+    constraint_jacobian: np.ndarray | None = None  # (N, 6, nv) at q, reused by dynamics
 
     def __len__(self) -> int:
         return len(self.t)
@@ -241,9 +242,12 @@ class IKResult:
 
 def _newton(model, data, cms, cds, fr, q, p_des, R_des, tol, max_iter):
     e = _pose_error(model, data, fr, q, p_des, R_des)
+    polished = False
     for _ in range(max_iter):
         if np.abs(e).max() <= tol:
-            return q, e, True
+            if polished:
+                return q, e, True
+            polished = True  # one more step past tol: quadratic convergence to round-off
         K = _kinematic_matrix(model, data, cms, cds, fr, q)
         step = np.linalg.solve(K, e)
         q = q - step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
@@ -266,6 +270,19 @@ def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
         sample=k, time=tk, amount=float(np.abs(e).max()))
 
 
+def _closed_form_start(robot: Robot, pose, time, wrist_margin=0.0):
+    import importlib
+
+    cf = importlib.import_module(".thesis.ik", __package__)
+    try:
+        return cf.position_ik(robot.params, np.asarray(pose)[None, :],
+                              wrist_margin=wrist_margin)[0, :12]
+    except cf.UnreachableError as exc:
+        cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
+        raise cls(str(exc).replace("sample 0", "this pose"), sample=0, time=float(time),
+                  chain=exc.chain, amount=exc.shortfall) from None
+
+
 def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                        q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
                        singularity_margin: float = SINGULARITY_MARGIN,
@@ -274,7 +291,7 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
-    sample (the first from ``q_start``, default the SRDF home posture, spec §9 branches).
+    sample (the first from ``q_start``, default the closed form on the spec §9 branches).
     Velocities: ``[Jc; J_tool] v = [0; twist]``. Accelerations: the same matrix with the exact
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
@@ -300,7 +317,10 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     out = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
     stats = np.empty((n, 5))
-    q = (robot.q_reference if q_start is None else np.asarray(q_start, dtype=float)).copy()
+    if q_start is None:  # the spec §9 branches, through the closed form at the first pose
+        q = _closed_form_start(robot, poses[0], t[0], wrist_margin)
+    else:
+        q = np.asarray(q_start, dtype=float).copy()
     rhs_v = np.zeros(12)
     for k in range(n):
         if k > 0:  # predictor: second-order Taylor step from the previous sample
@@ -317,41 +337,274 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
         rhs_a[6:] += twd[k]
         a = np.linalg.solve(K, rhs_a)
         sph[k], dsph[k] = _spherical(data, fr)
-        # Singularity measures (issue: workspace and singularities).
         Jc, Jt = K[:6], K[6:]
         Jp = Jc[:, fr.passive_v]
-        sig_par = np.linalg.svd(Jp, compute_uv=False)[-1]
-        N = np.zeros((nv, 6))
-        N[fr.actuated_v] = np.eye(6)
-        N[fr.passive_v] = -np.linalg.solve(Jp, Jc[:, fr.actuated_v])
-        sig_ser = np.linalg.svd(Jt @ N, compute_uv=False)[-1]
-        wm = abs(np.sin(q[fr.wrist_q]))
-        stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), wm, sig_par, sig_ser)
-        if wm < wrist_margin:
-            raise SingularityError(
-                f"wrist |sin θ1716| = {wm:.4g} is below the margin {wrist_margin:g} "
-                f"(θ1716 = {np.degrees(q[fr.wrist_q]):.3f}°: spray axis nearly parallel to the "
-                "platform arm)", sample=k, time=t[k], chain="wrist", amount=wrist_margin - wm)
-        for label, s in (("parallel (passive-joint constraint Jacobian)", sig_par),
-                         ("serial (actuator-rate to tool-twist map)", sig_ser)):
-            if s < singularity_margin:
-                raise SingularityError(
-                    f"{label} smallest singular value {s:.4g} is below the margin "
-                    f"{singularity_margin:g}", sample=k, time=t[k], chain=label.split()[0],
-                    amount=singularity_margin - s)
-        if k > 0:
-            jump = np.abs(q - out["q"][k - 1] - 0.5 * (t[k] - t[k - 1]) * (v + out["v"][k - 1]))
-            j = int(np.argmax(jump))
-            if jump[j] > branch_tol:
-                raise BranchFlipError(
-                    f"joint {robot.joint_names[j]} jumped {jump[j]:.4g} rad more than its rate "
-                    f"predicts (limit {branch_tol:g} rad): assembly branch flip or samples too "
-                    "sparse", sample=k, time=t[k], chain=robot.joint_names[j],
-                    amount=float(jump[j]))
+        fwd = Jt[:, fr.actuated_v] - Jt[:, fr.passive_v] @ np.linalg.solve(
+            Jp, Jc[:, fr.actuated_v])  # actuator rates → tool twist
+        stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), abs(np.sin(q[fr.wrist_q])),
+                    np.linalg.svd(Jp, compute_uv=False)[-1],
+                    np.linalg.svd(fwd, compute_uv=False)[-1])
         out["q"][k], out["v"][k], out["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
-    return IKResult(t=t, poses=poses, q=out["q"], v=out["v"], a=out["a"], spherical=sph,
-                    d_spherical=dsph, closure_residual=stats[:, 0], tool_error=stats[:, 1],
-                    wrist_margin=stats[:, 2], sigma_parallel=stats[:, 3],
-                    sigma_serial=stats[:, 4], joint_names=robot.joint_names)
+        if stats[k, 2] < wrist_margin or stats[k, 3:].min() < singularity_margin:
+            n = k + 1  # stop here: the check below raises at the first offending sample
+            break
+    result = IKResult(t=t[:n], poses=poses[:n], q=out["q"][:n], v=out["v"][:n],
+                      a=out["a"][:n], spherical=sph[:n], d_spherical=dsph[:n],
+                      closure_residual=stats[:n, 0], tool_error=stats[:n, 1],
+                      wrist_margin=stats[:n, 2], sigma_parallel=stats[:n, 3],
+                      sigma_serial=stats[:n, 4], joint_names=robot.joint_names)
+    _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    return result
+
+
+# --- batched path (issue: speed) -----------------------------------------------------------
+# Per sample only the unavoidable Pinocchio calls run in Python (joint Jacobians, their time
+# variation, joint placements); points, residuals, drifts and all 12 × 12 solves are stacked
+# over samples in numpy.
+@dataclass(frozen=True)
+class _Point:
+    """A point fixed on joint ``joint`` (local coordinates ``local``), with its support mask."""
+
+    slot: int  # index into the gathered joint placements
+    local: np.ndarray
+    mask: np.ndarray  # (nv,) 1.0 on the joints that move it
+
+
+def _batch_layout(robot: Robot):
+    model = robot.model
+    joints = (robot.joint_id("theta54"), robot.joint_id("theta1817"),
+              robot.joint_id("theta76_1"), robot.joint_id("theta76_2"))
+
+    def point(frame_name):
+        f = model.frames[robot.frame_id(frame_name)]
+        mask = np.zeros(model.nv)
+        for j in model.supports[f.parentJoint][1:]:
+            mask[model.joints[j].idx_v] = 1.0
+        return _Point(joints.index(f.parentJoint), np.array(f.placement.translation), mask)
+
+    pts = [(point(c.frame_a), point(c.frame_b)) for c in robot.closures]
+    return joints, pts, point(TIP_FRAME_NAME)
+
+
+TIP_FRAME_NAME = "tip"
+
+
+def _gather(robot: Robot, joints, Q, V=None):
+    """Stacked world joint Jacobians J (N, 6, nv), dJ if V is given, and placements (N, m, 4, 4)."""
+    model, data = robot.model, robot.data
+    n = len(Q)
+    J = np.empty((n, 6, model.nv))
+    dJ = np.empty((n, 6, model.nv)) if V is not None else None
+    H = np.empty((n, len(joints), 4, 4))
+    oMi = data.oMi
+    for k in range(n):
+        if V is None:
+            pin.computeJointJacobians(model, data, Q[k])
+        else:
+            pin.computeJointJacobiansTimeVariation(model, data, Q[k], V[k])
+            dJ[k] = data.dJ
+        J[k] = data.J
+        for m, j in enumerate(joints):
+            H[k, m] = oMi[j].homogeneous
+    return J, dJ, H
+
+
+def _point_pos(H, p: _Point):
+    return H[:, p.slot, :3, :3] @ p.local + H[:, p.slot, :3, 3]
+
+
+def _point_jac(J, pos, p: _Point):
+    """Linear Jacobian (N, 3, nv) of a point at world position pos: J_lin + J_ang × p."""
+    Jl, Ja = J[:, :3] * p.mask, J[:, 3:] * p.mask
+    return Jl + np.cross(Ja, pos[:, :, None], axisa=1, axisb=1, axisc=1)
+
+
+def _log3(R):
+    """Batched SO(3) logarithm (vector), exact away from π."""
+    w = 0.5 * np.stack([R[:, 2, 1] - R[:, 1, 2], R[:, 0, 2] - R[:, 2, 0],
+                        R[:, 1, 0] - R[:, 0, 1]], axis=1)
+    s = np.linalg.norm(w, axis=1)
+    c = 0.5 * (np.trace(R, axis1=1, axis2=2) - 1.0)
+    th = np.arctan2(s, c)
+    scale = np.where(s > 1e-8, th / np.where(s > 1e-8, s, 1.0), 1.0 + s * s / 6.0)
+    return w * scale[:, None]
+
+
+def _stack_K(J, H, pts, tip):
+    """K = [Jc; J_tool] (N, 12, nv) and the world positions of all points."""
+    rows, pos = [], {}
+    for a, b in pts:
+        pa, pb = _point_pos(H, a), _point_pos(H, b)
+        rows.append(_point_jac(J, pa, a) - _point_jac(J, pb, b))
+        pos[id(a)], pos[id(b)] = pa, pb
+    pt = _point_pos(H, tip)
+    pos[id(tip)] = pt
+    rows += [_point_jac(J, pt, tip), J[:, 3:] * tip.mask]
+    return np.concatenate(rows, axis=1), pos
+
+
+def _residuals(H, pos, pts, tip, P_des, R_des):
+    res = [pos[id(a)] - pos[id(b)] for a, b in pts]
+    R_tip = H[:, tip.slot, :3, :3]
+    res += [pos[id(tip)] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
+    return np.concatenate(res, axis=1)
+
+
+def _point_drift(J, dJ, v, pos, p: _Point):
+    """Classical acceleration of a point at a = 0: J̇_lin v + (J̇_ang v) × p + ω × ṗ."""
+    Jl, Ja = J[:, :3] * p.mask, J[:, 3:] * p.mask
+    dJl, dJa = dJ[:, :3] * p.mask, dJ[:, 3:] * p.mask
+    w = np.einsum("nij,nj->ni", Ja, v)
+    pdot = np.einsum("nij,nj->ni", Jl, v) + np.cross(w, pos)
+    return np.einsum("nij,nj->ni", dJl, v) + np.cross(np.einsum("nij,nj->ni", dJa, v), pos) \
+        + np.cross(w, pdot)
+
+
+def _sigma_min(A):
+    return np.linalg.svd(A, compute_uv=False)[:, -1]
+
+
+def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
+                             tol: float = IK_TOL,
+                             singularity_margin: float = SINGULARITY_MARGIN,
+                             wrist_margin: float = WRIST_MARGIN,
+                             branch_tol: float = BRANCH_TOL) -> IKResult:
+    """Same result as :func:`inverse_kinematics`, stacked over samples.
+
+    Positions start from the closed-form IK of spec §7 (vectorised) and take one Newton step on
+    Pinocchio's [closure residual; tool-pose error]; velocities and accelerations solve Pinocchio's
+    ``[Jc; J_tool]`` systems with drifts from ``computeJointJacobiansTimeVariation``. The
+    closure residual and tool error reported are re-measured at the returned configuration.
+    """
+    import importlib
+
+    from .taskspace import rotation, twist, twist_dot
+
+    cf = importlib.import_module(".thesis.ik", __package__)
+    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    n = len(poses)
+    d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
+    dd_poses = np.zeros_like(poses) if dd_poses is None else np.atleast_2d(dd_poses)
+    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+    for name, arr in (("pose", poses), ("pose rate", d_poses), ("pose acceleration", dd_poses)):
+        bad = np.argwhere(~np.isfinite(arr))
+        if len(bad):
+            k, c = bad[0]
+            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
+    try:
+        q0 = cf.position_ik(robot.params, poses)[:, :12]
+    except cf.UnreachableError as exc:
+        cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
+        raise cls(str(exc), sample=exc.sample, time=float(t[exc.sample]), chain=exc.chain,
+                  amount=exc.shortfall) from None
+    assert tuple(cf.TREE_JOINTS) == robot.joint_names  # same order, spec §3
+    joints, pts, tip = _batch_layout(robot)
+    P_des, R_des = poses[:, :3], rotation(poses)
+    # Newton polish at the closed form, and velocities with the same factorisation.
+    J, _, H = _gather(robot, joints, q0)
+    K, pos = _stack_K(J, H, pts, tip)
+    rhs = np.zeros((n, 12, 2))
+    rhs[:, :, 0] = _residuals(H, pos, pts, tip, P_des, R_des)
+    rhs[:, 6:, 1] = twist(poses, d_poses)
+    sol = np.linalg.solve(K, rhs)
+    q = q0 - sol[:, :, 0]
+    v = sol[:, :, 1]
+    # Accelerations: K a = [−closure drift; tool acceleration − tool drift], at the final q.
+    J, dJ, H = _gather(robot, joints, q, v)
+    K, pos = _stack_K(J, H, pts, tip)
+    drift = [_point_drift(J, dJ, v, pos[id(a)], a) - _point_drift(J, dJ, v, pos[id(b)], b)
+             for a, b in pts]
+    drift.append(_point_drift(J, dJ, v, pos[id(tip)], tip))
+    drift.append(np.einsum("nij,nj->ni", dJ[:, 3:] * tip.mask, v))
+    rhs_a = twist_dot(poses, d_poses, dd_poses)
+    rhs_a = np.concatenate([np.zeros((n, 6)), rhs_a], axis=1) - np.concatenate(drift, axis=1)
+    a = np.linalg.solve(K, rhs_a[:, :, None])[:, :, 0]
+    err = np.abs(_residuals(H, pos, pts, tip, P_des, R_des))
+    if err.max() > tol:
+        k = int(np.argmax(err.max(axis=1)))
+        raise UnreachablePoseError(
+            f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
+            f"(tolerance {tol:g})", sample=k, time=float(t[k]), amount=float(err[k].max()))
+    # Spherical-joint angles and rates (spec §4) and singularity measures.
+    sph, dsph = _spherical_batch(robot, H, J, v)
+    ia, ip = robot.actuated_v, robot.passive_v
+    Jc, Jt = K[:, :6], K[:, 6:]
+    Jp = Jc[:, :, ip]
+    N_p = -np.linalg.solve(Jp, Jc[:, :, ia])
+    fwd = Jt[:, :, ia] + Jt[:, :, ip] @ N_p  # actuator rates → tool twist
+    result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
+                      closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
+                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
+                      sigma_parallel=_sigma_min(Jp), sigma_serial=_sigma_min(fwd),
+                      joint_names=robot.joint_names)
+    result.constraint_jacobian = Jc.copy()
+    _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    return result
+
+
+def _spherical_batch(robot: Robot, H, J, v):
+    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates, stacked (N, 6)."""
+    R_p = H[:, 0, :3, :3]
+    w_p = np.einsum("nij,nj->ni", J[:, 3:] * _support_mask(robot, "theta54"), v)
+    ang, rate = [], []
+    for i, leg in enumerate(robot.params.legs, start=1):
+        R_l = H[:, 1 + i, :3, :3]
+        c, s = np.cos(-leg.beta1413), np.sin(-leg.beta1413)
+        C = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        M = np.swapaxes(R_l, 1, 2) @ R_p @ C
+        b = np.arccos(np.clip(M[:, 2, 2], -1.0, 1.0))
+        a_ = np.arctan2(M[:, 1, 2], M[:, 0, 2])
+        c_ = np.arctan2(M[:, 2, 1], -M[:, 2, 0])
+        w_l = np.einsum("nij,nj->ni", J[:, 3:] * _support_mask(robot, f"theta76_{i}"), v)
+        w_rel = np.einsum("nji,nj->ni", R_l, w_p - w_l)
+        Z = np.zeros((len(b), 3, 3))
+        Z[:, 0, 1], Z[:, 0, 2] = -np.sin(a_), np.cos(a_) * np.sin(b)
+        Z[:, 1, 1], Z[:, 1, 2] = np.cos(a_), np.sin(a_) * np.sin(b)
+        Z[:, 2, 0], Z[:, 2, 2] = 1.0, np.cos(b)
+        ang.append(np.stack([a_, b, c_], axis=1))
+        rate.append(np.linalg.solve(Z, w_rel[:, :, None])[:, :, 0])
+    return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
+
+
+def _support_mask(robot: Robot, joint: str) -> np.ndarray:
+    model = robot.model
+    mask = np.zeros(model.nv)
+    for j in model.supports[robot.joint_id(joint)][1:]:
+        mask[model.joints[j].idx_v] = 1.0
+    return mask
+
+
+def _check_margins(robot: Robot, r: IKResult, singularity_margin, wrist_margin, branch_tol):
+    """Raise at the first sample closer to a singularity than the margins, or a branch flip."""
+    checks = [(r.wrist_margin, wrist_margin, "wrist", SingularityError,
+               "wrist |sin θ1716| = {v:.4g} is below the margin {m:g} (spray axis nearly "
+               "parallel to the platform arm)"),
+              (r.sigma_parallel, singularity_margin, "parallel", SingularityError,
+               "parallel (passive-joint constraint Jacobian) smallest singular value {v:.4g} "
+               "is below the margin {m:g}"),
+              (r.sigma_serial, singularity_margin, "serial", SingularityError,
+               "serial (actuator-rate to tool-twist map) smallest singular value {v:.4g} is "
+               "below the margin {m:g}")]
+    first = None
+    for values, margin, chain, cls, msg in checks:
+        bad = np.flatnonzero(values < margin)
+        if len(bad) and (first is None or bad[0] < first[0]):
+            k = int(bad[0])
+            first = (k, cls(msg.format(v=values[k], m=margin), sample=k, time=float(r.t[k]),
+                            chain=chain, amount=float(margin - values[k])))
+    if len(r) > 1:
+        dt = np.diff(r.t)[:, None]
+        jump = np.abs(np.diff(r.q, axis=0) - 0.5 * dt * (r.v[1:] + r.v[:-1]))
+        bad = np.flatnonzero(jump.max(axis=1) > branch_tol)
+        if len(bad) and (first is None or bad[0] + 1 < first[0]):
+            k = int(bad[0]) + 1
+            j = int(np.argmax(jump[k - 1]))
+            name = robot.joint_names[j]
+            first = (k, BranchFlipError(
+                f"joint {name} jumped {jump[k - 1, j]:.4g} rad more than its rate predicts "
+                f"(limit {branch_tol:g} rad): assembly branch flip or samples too sparse",
+                sample=k, time=float(r.t[k]), chain=name, amount=float(jump[k - 1, j])))
+    if first is not None:
+        raise first[1]
