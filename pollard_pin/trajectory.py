@@ -101,10 +101,14 @@ def from_csv(path: str | Path) -> Trajectory:
     path = Path(path)
     try:
         with open(path, newline="") as f:
-            rows = list(csv.reader(f))
+            reader = csv.reader(f)
+            rows, lines = [], []  # lines: 1-based file line of each kept row
+            for r in reader:
+                if r and not r[0].lstrip().startswith("#"):
+                    rows.append(r)
+                    lines.append(reader.line_num)
     except OSError as exc:
         raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: {exc}") from None
-    rows = [r for r in rows if r and not r[0].lstrip().startswith("#")]
     if not rows:
         raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
     header = [h.strip() for h in rows[0]]
@@ -123,7 +127,7 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")
     data = np.empty((len(rows) - 1, len(header)))
     for r, row in enumerate(rows[1:]):
-        line = r + 2  # 1-based file line, header is line 1 (comment lines not counted)
+        line = lines[r + 1]  # file line, comment and blank lines counted
         if len(row) != len(header):
             raise TrajectoryError(f"{path}: row {line} has {len(row)} fields, "
                                   f"expected {len(header)}")
@@ -144,8 +148,8 @@ def from_csv(path: str | Path) -> Trajectory:
     if np.any(dt <= 0):
         r = int(np.argmax(dt <= 0))
         kind = "duplicate" if dt[r] == 0 else "decreasing"
-        raise TrajectoryError(f"{path}: row {r + 3}, column 't': {kind} time {t[r + 1]!r} "
-                              f"after {t[r]!r} (times must increase strictly)")
+        raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': {kind} time "
+                              f"{t[r + 1]!r} after {t[r]!r} (times must increase strictly)")
     poses = np.column_stack([col[n] for n in TASK_NAMES])
     for c, name in enumerate(TASK_NAMES):
         limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \
@@ -153,8 +157,8 @@ def from_csv(path: str | Path) -> Trajectory:
         big = np.abs(poses[:, c]) > limit
         if np.any(big):
             r = int(np.argmax(big))
-            raise TrajectoryError(f"{path}: row {r + 2}, column {name!r}: {poses[r, c]!r} looks "
-                                  f"like {unit}; |value| > {limit:.4g}")
+            raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {name!r}: "
+                                  f"{poses[r, c]!r} looks like {unit}; |value| > {limit:.4g}")
     derivs = []
     for prefix in ("d_", "dd_"):
         names = [prefix + n for n in TASK_NAMES]
