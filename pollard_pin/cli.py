@@ -91,6 +91,24 @@ def cmd_run(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    from .sweep import load_grid, run_sweep, summary, write_csv
+
+    sweep = load_grid(args.grid)
+    where = (f"Dask cluster {args.dask}" if args.dask else
+             "this process" if args.workers == 1 else
+             f"{args.workers or __import__('os').cpu_count()} local processes")
+    print(f"{sweep.source}: {len(sweep)} variants on {where}", file=sys.stderr)
+    t0 = time.perf_counter()
+    rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
+                     progress=_progress("sweep", not args.quiet))
+    wall = time.perf_counter() - t0
+    write_csv(rows, args.out, sweep.columns)
+    print(summary(rows))
+    print(f"wrote {len(rows)} rows to {args.out} (wall time {wall:.2f} s)")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
     sub = ap.add_subparsers(dest="command", required=True)
@@ -112,6 +130,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--params", help="parameter TOML")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("sweep", help="design sweep: parameter variants over a trajectory → CSV")
+    p.add_argument("--grid", required=True, help="grid TOML file (see pollard_pin.sweep)")
+    p.add_argument("--out", default="sweep.csv", help="output CSV")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local processes (default: all cores; 1 = serial)")
+    p.add_argument("--dask", metavar="ADDRESS", default=None,
+                   help="run on this Dask scheduler (needs pollard-pin[cluster])")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_sweep)
     return ap
 
 
@@ -120,15 +148,16 @@ def main(argv=None) -> int:
     from .kinematics import ClosureError, KinematicsError
     from .model import ModelFileError
     from .params import ParameterError
+    from .sweep import SweepError
     from .trajectory import TrajectoryError
 
     try:
         return args.func(args)
     except (ParameterError, TrajectoryError, KinematicsError, ClosureError,
-            ModelFileError) as exc:
+            ModelFileError, SweepError) as exc:
         print(f"pollard-pin {args.command}: error: {exc}", file=sys.stderr)
         out = getattr(args, "out", None)
-        if out and args.command == "run":
+        if out and args.command in ("run", "sweep"):
             print(f"pollard-pin {args.command}: nothing written to {out}", file=sys.stderr)
         return 2
 

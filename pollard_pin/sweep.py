@@ -590,7 +590,7 @@ def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
     n_ok = sum(1 for r in rows if r["feasible"])
     lines = [f"{len(rows)} variants: {n_ok} feasible, {len(rows) - n_ok} infeasible"]
     width = min(40, max([len("variant")] + [len(str(r["variant"])) for r in rows]))
-    lines.append(f"{'variant':{width}s}  {'max|τ| [N·m] (actuator)':>26s}  "
+    lines.append(f"{'variant':{width}s}  {'max|τ| [N·m] (actuator)':>25s}  "
                  f"{'max|P| [W]':>10s}  {'max|λ| [N]':>10s}")
     for r in list(rows)[:max_rows]:
         name = str(r["variant"])
