@@ -1,0 +1,370 @@
+"""MeshCat viewer: the robot animated along a trajectory, live in a browser or as a static page.
+
+The scene holds
+
+* the robot's visual geometry (``models/pollard.urdf``), loaded by Pinocchio's
+  :class:`~pinocchio.visualize.MeshcatVisualizer`;
+* both sides of each cut spherical joint (spec §4): a translucent sphere on the leg
+  (``closure{i}_A``, leg colour) and a small solid red sphere on the platform (``closure{i}_B``).
+  When the loop is closed the red sphere sits at the centre of the translucent one;
+* the tool path, a magenta line through the commanded tip positions;
+* optionally the tool (``tip``) and platform frames as RGB triads (x red, y green, z blue);
+* a MeshCat animation: one key frame per ``1/fps`` s of trajectory time, played in real time,
+  with MeshCat's own controls (Open Controls → Animations: play, pause, reset, time scrubber,
+  time scale).
+
+:func:`serve` starts MeshCat's server on localhost and keeps serving. :func:`static_html`
+builds the same scene offline, without a server or sockets, and returns MeshCat's static
+export: one self-contained HTML page (MeshCat's viewer bundle plus the scene commands) that any
+browser opens from disk.
+"""
+from __future__ import annotations
+
+import base64
+import signal
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+ROOT = "pollard"  # scene node of everything this module draws
+PATH_COLOUR = 0xD0208C  # tool path (magenta)
+CLOSURE_B_COLOUR = (0.85, 0.05, 0.05, 1.0)  # platform side of the ball joint
+CLOSURE_A_ALPHA = 0.45
+CLOSURE_A_RADIUS = 0.016  # m
+CLOSURE_B_RADIUS = 0.006  # m
+FRAME_SCALE = 0.06  # m, length of the frame triads
+DEFAULT_FPS = 25.0
+FLOOR_SIZE = 1.0  # m, the floor grid drawn at z = 0
+FLOOR_ORIGIN = (-0.3, -0.5)
+FLOOR_Z = -0.05  # m, just below the legs' lowest point
+BACKGROUND = (0.96, 0.96, 0.96)
+# Camera: orbit centre (world) and camera offset from it (world axes), chosen to frame the
+# robot and the painting curve in front of it.
+CAMERA_TARGET = (0.34, -0.03, 0.08)
+CAMERA_OFFSET = (0.34, -0.58, 0.30)
+
+
+# --- an offline MeshCat "window": records commands exactly as MeshCat's server does ---------
+class OfflineWindow:
+    """Stand-in for ``meshcat.visualizer.ViewerWindow`` that needs no server.
+
+    It keeps the scene tree the way ``meshcat.servers.zmqserver`` does (objects, properties,
+    transforms, animation per path) and renders it with :meth:`get_scene`.
+    """
+
+    web_url = None
+    zmq_url = None
+
+    def __init__(self):
+        from meshcat.servers.tree import SceneTree
+
+        self.tree = SceneTree()
+
+    def send(self, command) -> None:
+        import umsgpack
+        from meshcat.servers.tree import SceneTree, find_node
+
+        data = command.lower()
+        cmd = data["type"]
+        path = [p for p in data["path"].split("/") if p]
+        blob = umsgpack.packb(data)
+        node = find_node(self.tree, path)
+        if cmd == "set_object":
+            node.object, node.properties = blob, []
+        elif cmd == "set_transform":
+            node.transform = blob
+        elif cmd == "set_property":
+            node.properties.append(blob)
+        elif cmd == "set_animation":
+            node.animation = blob
+        elif cmd == "delete":
+            if path:
+                parent = find_node(self.tree, path[:-1])
+                parent.pop(path[-1], None)
+            else:
+                self.tree = SceneTree()
+        else:  # pragma: no cover - meshcat has no other scene commands
+            raise ValueError(f"unsupported meshcat command {cmd!r}")
+
+    def commands(self) -> list[bytes]:
+        """The msgpack command blobs in the order MeshCat's server replays them."""
+        from meshcat.servers.tree import walk
+
+        out = []
+        for node in walk(self.tree):
+            if node.object is not None:
+                out.append(node.object)
+            out += node.properties
+            if node.transform is not None:
+                out.append(node.transform)
+            if node.animation is not None:
+                out.append(node.animation)
+        return out
+
+    def get_scene(self, title: str = "Pollard robot (MeshCat)") -> str:
+        return static_page(self.commands(), title)
+
+    def get_image(self):
+        raise RuntimeError("an offline MeshCat scene has no browser to capture images from")
+
+    def close(self):
+        pass
+
+
+def _viewer_bundle() -> str:
+    import meshcat
+
+    return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text()
+
+
+def static_page(commands: list[bytes], title: str = "Pollard robot (MeshCat)") -> str:
+    """MeshCat's static export of a list of command blobs.
+
+    Same layout as the page MeshCat's server returns for ``get_scene`` (viewer bundle inline,
+    then the commands), except that the commands are decoded and applied synchronously, in
+    order, rather than through one asynchronous ``fetch`` each, and that the page marks
+    itself ready (``document.body.dataset.meshcatReady = "1"``) once all are applied.
+    """
+    blobs = ",\n".join(f'"{base64.b64encode(c).decode()}"' for c in commands)
+    return f"""<!DOCTYPE html>
+<html>
+<head><meta charset="utf-8"><title>{title}</title>
+<style>
+body {{ margin: 0; }}
+#meshcat-pane {{ width: 100vw; height: 100vh; overflow: hidden; }}
+</style>
+</head>
+<body>
+<div id="meshcat-pane"></div>
+<script>
+{_viewer_bundle()}
+</script>
+<script>
+var viewer = new MeshCat.Viewer(document.getElementById("meshcat-pane"));
+var meshcat_commands = [
+{blobs}
+];
+for (const b64 of meshcat_commands) {{
+    const raw = atob(b64);
+    const bytes = new Uint8Array(raw.length);
+    for (let i = 0; i < raw.length; i++) bytes[i] = raw.charCodeAt(i);
+    viewer.handle_command_bytearray(bytes);
+}}
+viewer.gui.open();
+document.body.dataset.meshcatReady = "1";
+</script>
+</body>
+</html>
+"""
+
+
+# --- scene ----------------------------------------------------------------------------------
+@dataclass
+class Scene:
+    """What :func:`build_scene` drew: node paths and the animation's key frames."""
+
+    geometry_nodes: dict[str, str]  # geometry object name → meshcat path
+    frame_nodes: dict[str, str]  # frame name → meshcat path (empty without frames)
+    path_node: str
+    samples: np.ndarray  # IK sample index shown at each key frame
+    fps: float
+    duration: float  # s
+
+
+def _rgba_int(rgba) -> int:
+    return int(rgba[0] * 255) * 65536 + int(rgba[1] * 255) * 256 + int(rgba[2] * 255)
+
+
+def viewer_geometry(robot) -> pin.GeometryModel:
+    """The robot's visual model with the closure spheres restyled as the two-sided markers.
+
+    The URDF's own closure spheres are replaced by a translucent sphere on ``closure{i}_A``
+    (leg side) and a small solid red sphere on ``closure{i}_B`` (platform side), each with an
+    explicit parent joint and frame.
+    """
+    import coal
+
+    from .urdf import CHAIN_COLOURS
+
+    gm = robot.visual_model.copy()
+    model = robot.model
+    for c in robot.closures:
+        for frame in (c.frame_a, c.frame_b):
+            for g in list(gm.geometryObjects):
+                if g.name.startswith(frame + "_"):
+                    gm.removeGeometryObject(g.name)
+    for i, c in enumerate(robot.closures, start=1):
+        leg_rgba = np.array(CHAIN_COLOURS[f"leg{i}"][:3] + (CLOSURE_A_ALPHA,))
+        for frame, radius, rgba in ((c.frame_a, CLOSURE_A_RADIUS, leg_rgba),
+                                    (c.frame_b, CLOSURE_B_RADIUS, np.array(CLOSURE_B_COLOUR))):
+            fid = model.getFrameId(frame)
+            f = model.frames[fid]
+            g = pin.GeometryObject(f"{frame}_marker", f.parentJoint, fid, f.placement,
+                                   coal.Sphere(radius))
+            g.meshColor = rgba
+            g.overrideMaterial = True
+            gm.addGeometryObject(g)
+    return gm
+
+
+def _triad_object(scale: float):
+    import meshcat.geometry as mg
+
+    pos = np.array([[0, 0, 0], [scale, 0, 0], [0, 0, 0], [0, scale, 0], [0, 0, 0], [0, 0, scale]],
+                   dtype=np.float32).T
+    col = np.array([[1, 0, 0], [1, 0, 0], [0, 0.7, 0], [0, 0.7, 0], [0, 0, 1], [0, 0, 1]],
+                   dtype=np.float32).T
+    return mg.LineSegments(mg.PointsGeometry(position=pos, color=col),
+                           mg.LineBasicMaterial(vertexColors=True, linewidth=3))
+
+
+def _floor_grid(size: float = FLOOR_SIZE, step: float = 0.1, z: float = 0.0):
+    import meshcat.geometry as mg
+
+    xs = np.arange(FLOOR_ORIGIN[0], FLOOR_ORIGIN[0] + size + 1e-9, step)
+    ys = np.arange(FLOOR_ORIGIN[1], FLOOR_ORIGIN[1] + size + 1e-9, step)
+    seg = [((x, ys[0], z), (x, ys[-1], z)) for x in xs] + [((xs[0], y, z), (xs[-1], y, z))
+                                                          for y in ys]
+    pts = np.array([p for s in seg for p in s], dtype=np.float32).T
+    return mg.LineSegments(mg.PointsGeometry(pts), mg.LineBasicMaterial(color=0xB0B0B0))
+
+
+def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Key-frame times (from 0, real time at ``fps``) and the nearest IK sample of each."""
+    t = np.asarray(t, dtype=float) - t[0]
+    n_keys = int(np.floor(t[-1] * fps + 1e-9)) + 1
+    key_t = np.arange(n_keys) / fps
+    if key_t[-1] < t[-1]:
+        key_t = np.append(key_t, t[-1])
+    idx = np.clip(np.searchsorted(t, key_t), 0, len(t) - 1)
+    prev = np.clip(idx - 1, 0, len(t) - 1)
+    idx = np.where(np.abs(t[prev] - key_t) < np.abs(t[idx] - key_t), prev, idx)
+    return key_t, idx
+
+
+def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
+                play: bool = True, camera: bool = True) -> Scene:
+    """Draw the robot, closure markers, tool path (and frames) into meshcat ``vis`` and set
+    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.IKResult`) on it."""
+    import meshcat.geometry as mg
+    from meshcat.animation import Animation
+    from pinocchio.visualize import MeshcatVisualizer
+
+    if not fps > 0:
+        raise ValueError(f"fps must be positive, got {fps}")
+    gm = viewer_geometry(robot)
+    viz = MeshcatVisualizer(robot.model, None, gm)
+    viz.initViewer(viewer=vis)
+    viz.loadViewerModel(rootNodeName=ROOT)
+    model, data, gdata = viz.model, viz.data, viz.visual_data
+
+    vis["/Background"].set_property("top_color", list(BACKGROUND))
+    vis["/Background"].set_property("bottom_color", list(BACKGROUND))
+    if camera:
+        # MeshCat 0.3's orbit controls always aim at the world origin. Shift the drawn world
+        # (our nodes, grid and axes) by −target so that the orbit centre is CAMERA_TARGET.
+        shift = pin.SE3(np.eye(3), -np.asarray(CAMERA_TARGET)).homogeneous
+        for node in ("/meshcat", "/Axes"):
+            vis[node].set_transform(shift)
+        off = np.asarray(CAMERA_OFFSET)
+        # The camera lives in MeshCat's y-up "rotated" frame: world (x, y, z) = (a, −c, b).
+        vis["/Cameras/default/rotated/<object>"].set_property(
+            "position", [float(off[0]), float(off[2]), float(-off[1])])
+
+    # MeshCat's 20 m grid is replaced by a 1 m floor grid, 0.1 m squares, under the robot.
+    vis["/Grid"].set_property("visible", False)
+    vis[f"{ROOT}/floor"].set_object(_floor_grid(z=FLOOR_Z))
+
+    path_node = f"{ROOT}/tool_path"
+    pts = np.asarray(ik.poses[:, :3], dtype=np.float32).T
+    vis[path_node].set_object(mg.Line(mg.PointsGeometry(pts),
+                                      mg.LineBasicMaterial(color=PATH_COLOUR, linewidth=2)))
+
+    frame_nodes = {}
+    if frames:
+        for name in ("tip", "platform"):
+            frame_nodes[name] = f"{ROOT}/frames/{name}"
+            vis[frame_nodes[name]].set_object(_triad_object(FRAME_SCALE))
+    frame_ids = {name: model.getFrameId(name) for name in frame_nodes}
+
+    geom_nodes = {g.name: viz.getViewerNodeName(g, pin.GeometryType.VISUAL)
+                  for g in gm.geometryObjects}
+
+    def place(k: int) -> dict[str, np.ndarray]:
+        pin.forwardKinematics(model, data, ik.q[k])
+        pin.updateGeometryPlacements(model, data, gm, gdata)
+        out = {geom_nodes[g.name]: gdata.oMg[gid].homogeneous
+               for gid, g in enumerate(gm.geometryObjects)}
+        if frame_ids:
+            pin.updateFramePlacements(model, data)
+            out.update({frame_nodes[n]: data.oMf[f].homogeneous for n, f in frame_ids.items()})
+        return out
+
+    # Initial pose (what a browser shows before the animation runs), then the key frames.
+    for node, T in place(0).items():
+        vis[node].set_transform(T)
+    key_t, idx = _key_samples(ik.t, fps)
+    anim = Animation(default_framerate=fps)
+    for j, k in enumerate(idx):
+        with anim.at_frame(vis, float(key_t[j] * fps)) as frame:
+            for node, T in place(int(k)).items():
+                frame[node].set_transform(T)
+    vis.set_animation(anim, play=play, repetitions=1)
+    return Scene(geometry_nodes=geom_nodes, frame_nodes=frame_nodes, path_node=path_node,
+                 samples=idx, fps=fps, duration=float(key_t[-1]))
+
+
+def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
+                title: str | None = None) -> str:
+    """The scene of :func:`build_scene` as a self-contained HTML page (no server needed)."""
+    import meshcat
+
+    window = OfflineWindow()
+    vis = meshcat.Visualizer(window=window)
+    build_scene(vis, robot, ik, frames=frames, fps=fps)
+    return window.get_scene(title or "Pollard robot (MeshCat)")
+
+
+def write_html(path, robot, ik, **kwargs) -> Path:
+    path = Path(path)
+    if path.parent and not path.parent.exists():
+        path.parent.mkdir(parents=True)
+    path.write_text(static_html(robot, ik, **kwargs))
+    return path
+
+
+def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.stdout,
+          ready=None) -> None:
+    """Start MeshCat's server on localhost, draw the scene and serve until interrupted
+    (Ctrl-C or SIGTERM); the server process is stopped on the way out."""
+    import meshcat
+
+    from contextlib import redirect_stdout
+
+    with redirect_stdout(sys.stderr):  # meshcat prints its own banner; keep stdout ours
+        vis = meshcat.Visualizer()
+    window = vis.window
+    previous = signal.signal(signal.SIGTERM, lambda *_: (_ for _ in ()).throw(KeyboardInterrupt))
+    try:
+        scene = build_scene(vis, robot, ik, frames=frames, fps=fps)
+        print(f"MeshCat viewer: {window.web_url}", file=out)
+        print(f"(zmq {window.zmq_url}; {len(scene.geometry_nodes)} bodies, "
+              f"{scene.duration:.3g} s animation at {scene.fps:g} key frames/s; "
+              "Open Controls → Animations to play and scrub; Ctrl-C to stop)", file=out)
+        out.flush()
+        if ready is not None:
+            ready(vis, scene)
+        while True:
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        print("stopping the MeshCat server", file=out)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        proc = getattr(window, "server_proc", None)
+        if proc is not None and proc.poll() is None:
+            proc.kill()
+            proc.wait()
