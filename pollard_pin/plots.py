@@ -1,0 +1,215 @@
+"""Figures like the thesis' chapter 4 (positions, velocities, accelerations; torque, power and
+work of the actuators) plus closure forces, singularity margins and the tool path.
+
+Every curve is a column of the ``run`` CSV (:meth:`RunResult.columns`): each plotted line
+carries that column's name as its matplotlib ``gid`` (``|f1|`` for a force magnitude), and
+angles are drawn in degrees where the axis label says ``[deg…]``. Matplotlib's non-interactive
+``Agg`` backend is used, so no display is needed.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+# Figure name → file name (without .png), in the order they are written.
+FIGURES = ("chain0_joints", "wrist_joints", "leg1_joints", "leg2_joints", "spherical_joints",
+           "actuators", "closure_forces", "conditioning", "tool_path")
+
+LABELS = {  # thesis symbols
+    "theta21": "θ21", "theta43": "θ43", "theta54": "θ54", "theta1615": "θ1615",
+    "theta1716": "θ1716", "theta1817": "θ1817",
+    **{f"{n}_{i}": f"{s}{i}" for i in (1, 2) for n, s in
+       (("theta21", "θ21_"), ("theta65", "θ65_"), ("theta76", "θ76_"), ("theta98", "θ98_"),
+        ("theta109", "θ109_"), ("theta1110", "θ1110_"))},
+}
+ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+BASE, WRIST = ACTUATED[:3], ACTUATED[3:]
+COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _line(ax, x, y, gid, **kw):
+    (ln,) = ax.plot(x, y, **kw)
+    ln.set_gid(gid)
+    return ln
+
+
+def _finish(ax, ylabel, title=None, legend=True):
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if legend:
+        ax.legend(fontsize=8, loc="upper right", ncol=3, framealpha=0.85)
+
+
+def _joint_figure(plt, cols, joints, title, roles):
+    """Three rows: position [deg], velocity [deg/s], acceleration [deg/s²]."""
+    t = cols["t"]
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    for row, (prefix, label, name) in enumerate(
+            (("", "position [deg]", "Position"), ("d_", "velocity [deg/s]", "Velocity"),
+             ("dd_", "acceleration [deg/s²]", "Acceleration"))):
+        ax = axes[row]
+        for j, n in enumerate(joints):
+            _line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
+                  label=f"{LABELS[n]} ({roles[j]})")
+        _finish(ax, label, f"{name}")
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def _spherical_figure(plt, cols):
+    t = cols["t"]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 6), sharex=True)
+    for i in (1, 2):
+        names = [f"theta98_{i}", f"theta109_{i}", f"theta1110_{i}"]
+        for row, (prefix, label) in enumerate((("", "angle [deg]"),
+                                               ("d_", "rate [deg/s]"))):
+            ax = axes[row, i - 1]
+            for j, n in enumerate(names):
+                _line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
+                      label=LABELS[n])
+            _finish(ax, label, f"Leg {i} spherical joint (ZYZ), {'angles' if row == 0 else 'rates'}")
+        axes[1, i - 1].set_xlabel("t [s]")
+    fig.suptitle("Cut spherical joints: the legs' ball joints on the platform arm (spec §4)")
+    fig.tight_layout()
+    return fig
+
+
+def _actuator_figure(plt, cols):
+    t = cols["t"]
+    fig, axes = plt.subplots(3, 2, figsize=(11, 8), sharex=True)
+    rows = (("tau_", "torque [N·m]", "Torque"), ("power_", "power [W]", "Power τ·q̇"),
+            ("work_", "cumulative work [J]", "Work ∫τ·q̇ dt"))
+    for c, (group, gname) in enumerate(((BASE, "base actuators"), (WRIST, "wrist actuators"))):
+        for r, (prefix, label, name) in enumerate(rows):
+            ax = axes[r, c]
+            for j, n in enumerate(group):
+                _line(ax, t, cols[prefix + n], prefix + n, color=COLOURS[3 * c + j],
+                      label=LABELS[n])
+            _finish(ax, label, f"{name}, {gname}")
+        axes[-1, c].set_xlabel("t [s]")
+    fig.suptitle("Actuators (spec §6): torque, power and work along the trajectory")
+    fig.tight_layout()
+    return fig
+
+
+def _closure_figure(plt, cols):
+    t = cols["t"]
+    fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for i in (1, 2):
+        ax = axes[i - 1]
+        comps = [cols[f"f{i}_{c}"] for c in "xyz"]
+        for j, c in enumerate("xyz"):
+            _line(ax, t, comps[j], f"f{i}_{c}", color=COLOURS[j], label=f"f{i},{c}")
+        _line(ax, t, np.sqrt(sum(x * x for x in comps)), f"|f{i}|", color="k", lw=1.2,
+              label=f"|f{i}|")
+        _finish(ax, "force [N]", f"Leg {i} ball joint: force of the platform on link_{i} "
+                                 "(world axes)")
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle("Closure (spherical-joint) reaction forces")
+    fig.tight_layout()
+    return fig
+
+
+def _conditioning_figure(plt, cols):
+    from .kinematics import SINGULARITY_MARGIN, WRIST_MARGIN
+
+    t = cols["t"]
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    for ax, (col, label, title, limit) in zip(axes, (
+            ("wrist_margin", "|sin θ1716| [-]",
+             "Wrist margin (XZX wrist singular at θ1716 = 0, π)", WRIST_MARGIN),
+            ("sigma_parallel", "σ_min [m/rad]",
+             "Parallel (closure) conditioning: σ_min of Jc over the passive joints",
+             SINGULARITY_MARGIN),
+            ("sigma_serial", "σ_min [SI]",
+             "Serial conditioning: σ_min of the actuator-rate → tool-twist map",
+             SINGULARITY_MARGIN))):
+        _line(ax, t, cols[col], col, color="tab:blue", label=col)
+        ax.axhline(limit, color="tab:red", ls="--", lw=1, label=f"IK limit {limit:g}")
+        ax.set_ylim(bottom=0)
+        _finish(ax, label, title)
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle("Distance to singularities along the trajectory")
+    fig.tight_layout()
+    return fig
+
+
+def _path_figure(plt, cols, name):
+    fig = plt.figure(figsize=(7, 6))
+    ax = fig.add_subplot(projection="3d")
+    x, y, z = cols["x"], cols["y"], cols["z"]
+    (ln,) = ax.plot(x, y, z, color="tab:purple", lw=1, label="tool tip")
+    ln.set_gid("tool_path")
+    ax.scatter([x[0]], [y[0]], [z[0]], color="tab:green", s=30, label="start")
+    ax.scatter([x[-1]], [y[-1]], [z[-1]], color="tab:red", s=30, label="end")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.set_title(f"Tool path ({name}): tip position in world axes")
+    ax.legend(fontsize=8)
+    from matplotlib.ticker import MaxNLocator
+
+    ext = np.array([np.ptp(x), np.ptp(y), np.ptp(z)])
+    ax.set_box_aspect(np.maximum(ext, 0.35 * max(ext.max(), 1e-6)))
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(4))
+    fig.tight_layout()
+    return fig
+
+
+def figures(result) -> dict:
+    """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.outputs.RunResult` (with its
+    dynamics). Close them with ``matplotlib.pyplot.close(fig)`` when done."""
+    if result.dynamics is None:
+        raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")
+    plt = _pyplot()
+    cols = result.columns()
+    name = result.trajectory.name
+    out = {
+        "chain0_joints": _joint_figure(
+            plt, cols, ("theta21", "theta43", "theta54"),
+            f"Chain 0 joints ({name} trajectory)", ("actuated", "U joint", "U joint")),
+        "wrist_joints": _joint_figure(
+            plt, cols, ("theta1615", "theta1716", "theta1817"),
+            f"Wrist joints, chain 0 ({name} trajectory)", ("actuated",) * 3),
+    }
+    for i in (1, 2):
+        out[f"leg{i}_joints"] = _joint_figure(
+            plt, cols, (f"theta21_{i}", f"theta65_{i}", f"theta76_{i}"),
+            f"Leg {i} joints, chain {i} ({name} trajectory)",
+            ("actuated", "U joint", "U joint"))
+    out["spherical_joints"] = _spherical_figure(plt, cols)
+    out["actuators"] = _actuator_figure(plt, cols)
+    out["closure_forces"] = _closure_figure(plt, cols)
+    out["conditioning"] = _conditioning_figure(plt, cols)
+    out["tool_path"] = _path_figure(plt, cols, name)
+    assert tuple(out) == FIGURES
+    return out
+
+
+def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
+    """Write every figure of :func:`figures` as ``out_dir/<name>.png``; returns the paths."""
+    plt = _pyplot()
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, fig in figures(result).items():
+        path = out_dir / f"{name}.png"
+        fig.savefig(path, dpi=dpi)
+        plt.close(fig)
+        paths.append(path)
+    return paths
