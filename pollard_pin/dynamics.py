@@ -107,27 +107,29 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
                      ) -> DynamicsResult:
     """Actuator torques, closure forces and energies along an IK result.
 
-    One RNEA and the two energies per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked,
-    reusing the constraint Jacobians of the IK when it carries them.
+    One RNEA and the two energies per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked
+    (passive rows first, 6 × 6), reusing the constraint Jacobians of the IK when it has them.
     """
     model, data = robot.model, robot.data
     n = len(ik)
     tree, K, U = np.empty((n, model.nv)), np.empty(n), np.empty(n)
     Q, V, A = ik.q, ik.v, ik.a
+    rnea, kinetic, potential = pin.rnea, pin.computeKineticEnergy, pin.computePotentialEnergy
     for k in range(n):
-        tree[k] = pin.rnea(model, data, Q[k], V[k], A[k])
-        K[k] = pin.computeKineticEnergy(model, data, Q[k], V[k])
-        U[k] = pin.computePotentialEnergy(model, data, Q[k])
+        tree[k] = rnea(model, data, Q[k], V[k], A[k])
+        K[k] = kinetic(model, data)  # rnea's forward pass has set data.v
+        U[k] = potential(model, data, Q[k])
     if losses is not None:
         tree += losses.torque(V, A)
     Jc = ik.constraint_jacobian
     if Jc is None:
         Jc = np.stack([constraint_jacobian(model, data, robot.constraint_models,
                                            robot.constraint_datas, q) for q in Q])
-    Amat = np.zeros((n, model.nv, 12))
-    Amat[:, robot.actuated_v, np.arange(6)] = 1.0
-    Amat[:, :, 6:] = np.swapaxes(Jc, 1, 2)
-    x = np.linalg.solve(Amat, tree[:, :, None])[:, :, 0]
+    # tau_tree = Sᵀτ + Jcᵀλ: the passive rows give Jc_pᵀλ = tau_p (6 × 6), then τ.
+    ia, ip = robot.actuated_v, robot.passive_v
+    lam = np.linalg.solve(np.swapaxes(Jc[:, :, ip], 1, 2), tree[:, ip, None])
+    tau = tree[:, ia] - (np.swapaxes(Jc[:, :, ia], 1, 2) @ lam)[:, :, 0]
+    x = np.concatenate([tau, lam[:, :, 0]], axis=1)
     return DynamicsResult(t=ik.t, tau=x[:, :6], closure_forces=x[:, 6:].reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,
                           potential=U, actuated=robot.actuated)
@@ -226,7 +228,8 @@ def trajectory_torques(robot: Robot, curve, q_start=None, bandwidth: float | Non
 
     def torques(t: float, q=None, v=None) -> np.ndarray:
         pose, d, dd = curve(np.array([t]))
-        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"])
+        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"],
+                                method="newton")
         state["q"] = ik.q[0]
         tau = inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
         if bandwidth is not None and q is not None:

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
-from .model import Robot, constraint_jacobian, constraint_residual
+from .model import TIP_FRAME, Robot, constraint_jacobian, constraint_residual
 
 CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
 MAX_ITER = 50
@@ -270,25 +270,53 @@ def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
         sample=k, time=tk, amount=float(np.abs(e).max()))
 
 
-def _closed_form_start(robot: Robot, pose, time, wrist_margin=0.0):
+def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
+    """Closed-form tree angles (N, 12) on the spec §9 branches, errors mapped to ours."""
     import importlib
 
     cf = importlib.import_module(".thesis.ik", __package__)
     try:
-        return cf.position_ik(robot.params, np.asarray(pose)[None, :],
-                              wrist_margin=wrist_margin)[0, :12]
+        return cf.position_ik(robot.params, poses, wrist_margin=wrist_margin)[:, :12]
     except cf.UnreachableError as exc:
-        cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
-        raise cls(str(exc).replace("sample 0", "this pose"), sample=0, time=float(time),
-                  chain=exc.chain, amount=exc.shortfall) from None
+        k, tk = exc.sample, float(t[exc.sample])
+        if exc.kind == "singular":
+            raise SingularityError(
+                f"wrist |sin θ1716| = {exc.ratio:.4g} is below the margin {wrist_margin:g} "
+                "(spray axis parallel to the platform arm)", sample=k, time=tk, chain="wrist",
+                amount=wrist_margin - exc.ratio) from None
+        msg = str(exc) if len(poses) > 1 else str(exc).replace(" at sample 0", "")
+        raise UnreachablePoseError(msg, sample=k, time=tk, chain=exc.chain,
+                                   amount=exc.shortfall) from None
 
 
 def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
-                       q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
-                       singularity_margin: float = SINGULARITY_MARGIN,
-                       wrist_margin: float = WRIST_MARGIN, branch_tol: float = BRANCH_TOL,
-                       progress=None) -> IKResult:
+                       q_start=None, *, method: str | None = None, progress=None,
+                       **options) -> IKResult:
     """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
+
+    ``method="batch"`` (the default without ``q_start``) stacks the work over samples (see
+    :func:`inverse_kinematics_batch`); ``method="newton"`` (the default with ``q_start``)
+    solves sample by sample (see :func:`inverse_kinematics_newton`). Both give the same result
+    to round-off. ``options``: ``tol``, ``singularity_margin``, ``wrist_margin``, ``branch_tol``.
+    """
+    method = method or ("newton" if q_start is not None else "batch")
+    if method == "newton":
+        return inverse_kinematics_newton(robot, poses, d_poses, dd_poses, t, q_start,
+                                         progress=progress, **options)
+    if method != "batch":
+        raise ValueError(f"method must be 'batch' or 'newton', got {method!r}")
+    if q_start is not None:
+        raise ValueError("q_start applies to method='newton' only")
+    return inverse_kinematics_batch(robot, poses, d_poses, dd_poses, t, progress=progress,
+                                    **options)
+
+
+def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
+                              q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
+                              singularity_margin: float = SINGULARITY_MARGIN,
+                              wrist_margin: float = WRIST_MARGIN, branch_tol: float = BRANCH_TOL,
+                              progress=None) -> IKResult:
+    """Sample-by-sample constrained IK.
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
     sample (the first from ``q_start``, default the closed form on the spec §9 branches).
@@ -318,7 +346,7 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
     stats = np.empty((n, 5))
     if q_start is None:  # the spec §9 branches, through the closed form at the first pose
-        q = _closed_form_start(robot, poses[0], t[0], wrist_margin)
+        q = _closed_form(robot, poses[:1], t[:1], wrist_margin)[0]
     else:
         q = np.asarray(q_start, dtype=float).copy()
     rhs_v = np.zeros(12)
@@ -360,65 +388,119 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
 
 
 # --- batched path (issue: speed) -----------------------------------------------------------
-# Per sample only the unavoidable Pinocchio calls run in Python (joint Jacobians, their time
-# variation, joint placements); points, residuals, drifts and all 12 × 12 solves are stacked
-# over samples in numpy.
-@dataclass(frozen=True)
+# Per sample only the Pinocchio Jacobian calls run in Python; joint placements come from one
+# forward pass over Pinocchio's model tree stacked over samples, and points, residuals,
+# drifts and every 12 × 12 solve are stacked over samples in numpy.
+_AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
+
+
+@dataclass(frozen=True, eq=False)  # hashed by identity: a key for its world position
 class _Point:
-    """A point fixed on joint ``joint`` (local coordinates ``local``), with its support mask."""
+    """A point fixed in joint ``joint``'s frame (``local``), moved by the v-columns ``cols``."""
 
-    slot: int  # index into the gathered joint placements
+    joint: int
     local: np.ndarray
-    mask: np.ndarray  # (nv,) 1.0 on the joints that move it
+    cols: np.ndarray
 
 
-def _batch_layout(robot: Robot):
+@dataclass(frozen=True)
+class _Layout:
+    closures: tuple[tuple[_Point, _Point], ...]
+    tip: _Point
+    platform: int
+    links: tuple[int, ...]
+    spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i), spec §4
+    joints: tuple[int, ...]  # every joint whose placement is needed, parents first
+
+
+def _support_cols(model, joint: int) -> np.ndarray:
+    return np.array([model.joints[j].idx_v for j in model.supports[joint][1:]])
+
+
+def _layout(robot: Robot) -> _Layout:
     model = robot.model
-    joints = (robot.joint_id("theta54"), robot.joint_id("theta1817"),
-              robot.joint_id("theta76_1"), robot.joint_id("theta76_2"))
 
     def point(frame_name):
         f = model.frames[robot.frame_id(frame_name)]
-        mask = np.zeros(model.nv)
-        for j in model.supports[f.parentJoint][1:]:
-            mask[model.joints[j].idx_v] = 1.0
-        return _Point(joints.index(f.parentJoint), np.array(f.placement.translation), mask)
+        local = np.array(f.placement.translation)
+        return _Point(int(f.parentJoint), local, _support_cols(model, f.parentJoint))
 
-    pts = [(point(c.frame_a), point(c.frame_b)) for c in robot.closures]
-    return joints, pts, point(TIP_FRAME_NAME)
+    fr = KinematicFrames.of(robot)
+    tip = point(TIP_FRAME)
+    closures = tuple((point(c.frame_a), point(c.frame_b)) for c in robot.closures)
+    ends = {tip.joint, fr.platform_joint, *fr.link_joints,
+            *(p.joint for pair in closures for p in pair)}
+    joints = sorted({j for e in ends for j in model.supports[e][1:]})
+    return _Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
+                   tuple(joints))
 
 
-TIP_FRAME_NAME = "tip"
+def _placements(model, Q: np.ndarray, joints) -> dict:
+    """World rotation (N, 3, 3) and origin (N, 3) of each listed joint frame at every sample."""
+    n = len(Q)
+    out = {0: (np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3)))}
+    for j in joints:
+        axis = _AXES.get(model.joints[j].shortname())
+        if axis is None:
+            raise NotImplementedError(f"batched kinematics: joint {model.names[j]} is a "
+                                      f"{model.joints[j].shortname()}, not RX/RY/RZ")
+        Rp, op = out[model.parents[j]]
+        M = model.jointPlacements[j]
+        B = Rp if np.array_equal(M.rotation, np.eye(3)) else Rp @ M.rotation
+        qj = Q[:, model.joints[j].idx_q, None]
+        c, s = np.cos(qj), np.sin(qj)
+        i1, i2 = (axis + 1) % 3, (axis + 2) % 3
+        R = np.empty((n, 3, 3))  # B · R_axis(q) by mixing two columns
+        R[:, :, axis] = B[:, :, axis]
+        R[:, :, i1] = B[:, :, i1] * c + B[:, :, i2] * s
+        R[:, :, i2] = B[:, :, i2] * c - B[:, :, i1] * s
+        out[j] = (R, op + Rp @ M.translation)
+    return out
 
 
-def _gather(robot: Robot, joints, Q, V=None):
-    """Stacked world joint Jacobians J (N, 6, nv), dJ if V is given, and placements (N, m, 4, 4)."""
+def _jacobians(robot: Robot, Q: np.ndarray, V: np.ndarray | None = None):
+    """Stacked world joint Jacobians J (N, 6, nv), and their time variation if V is given."""
     model, data = robot.model, robot.data
     n = len(Q)
     J = np.empty((n, 6, model.nv))
-    dJ = np.empty((n, 6, model.nv)) if V is not None else None
-    H = np.empty((n, len(joints), 4, 4))
-    oMi = data.oMi
+    if V is None:
+        jac = pin.computeJointJacobians
+        for k in range(n):
+            J[k] = jac(model, data, Q[k])
+        return J, None
+    dJ = np.empty_like(J)
+    jac_dot = pin.computeJointJacobiansTimeVariation
     for k in range(n):
-        if V is None:
-            pin.computeJointJacobians(model, data, Q[k])
-        else:
-            pin.computeJointJacobiansTimeVariation(model, data, Q[k], V[k])
-            dJ[k] = data.dJ
-        J[k] = data.J
-        for m, j in enumerate(joints):
-            H[k, m] = oMi[j].homogeneous
-    return J, dJ, H
+        jac_dot(model, data, Q[k], V[k])
+        J[k], dJ[k] = data.J, data.dJ
+    return J, dJ
 
 
-def _point_pos(H, p: _Point):
-    return H[:, p.slot, :3, :3] @ p.local + H[:, p.slot, :3, 3]
+def _position(pl, p: _Point) -> np.ndarray:
+    R, o = pl[p.joint]
+    return R @ p.local + o
 
 
-def _point_jac(J, pos, p: _Point):
-    """Linear Jacobian (N, 3, nv) of a point at world position pos: J_lin + J_ang × p."""
-    Jl, Ja = J[:, :3] * p.mask, J[:, 3:] * p.mask
-    return Jl + np.cross(Ja, pos[:, :, None], axisa=1, axisb=1, axisc=1)
+def _matvec(A, x):
+    return (A @ x[:, :, None])[:, :, 0]
+
+
+def _stack_K(J, pos, lay: _Layout) -> np.ndarray:
+    """K = [Jc; J_tool] (N, 12, nv): point Jacobians J_lin + J_ang × p on their support."""
+    n, _, nv = J.shape
+    K = np.zeros((n, 12, nv))
+
+    def add(rows, p: _Point, sign):
+        c = p.cols
+        jp = J[:, :3][:, :, c] + np.cross(J[:, 3:][:, :, c], pos[p][:, :, None], axis=1)
+        K[:, rows.start:rows.stop, c] += sign * jp
+
+    for i, (a, b) in enumerate(lay.closures):
+        add(slice(3 * i, 3 * i + 3), a, 1.0)
+        add(slice(3 * i, 3 * i + 3), b, -1.0)
+    add(slice(6, 9), lay.tip, 1.0)
+    K[:, 9:, lay.tip.cols] = J[:, 3:][:, :, lay.tip.cols]
+    return K
 
 
 def _log3(R):
@@ -432,45 +514,38 @@ def _log3(R):
     return w * scale[:, None]
 
 
-def _stack_K(J, H, pts, tip):
-    """K = [Jc; J_tool] (N, 12, nv) and the world positions of all points."""
-    rows, pos = [], {}
-    for a, b in pts:
-        pa, pb = _point_pos(H, a), _point_pos(H, b)
-        rows.append(_point_jac(J, pa, a) - _point_jac(J, pb, b))
-        pos[id(a)], pos[id(b)] = pa, pb
-    pt = _point_pos(H, tip)
-    pos[id(tip)] = pt
-    rows += [_point_jac(J, pt, tip), J[:, 3:] * tip.mask]
-    return np.concatenate(rows, axis=1), pos
-
-
-def _residuals(H, pos, pts, tip, P_des, R_des):
-    res = [pos[id(a)] - pos[id(b)] for a, b in pts]
-    R_tip = H[:, tip.slot, :3, :3]
-    res += [pos[id(tip)] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
+def _residuals(pl, pos, lay: _Layout, P_des, R_des) -> np.ndarray:
+    """[closure p_A − p_B (6); tip position error (3); orientation error (3)], (N, 12)."""
+    res = [pos[a] - pos[b] for a, b in lay.closures]
+    R_tip = pl[lay.tip.joint][0]
+    res += [pos[lay.tip] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
     return np.concatenate(res, axis=1)
 
 
-def _point_drift(J, dJ, v, pos, p: _Point):
+def _drift(J, dJ, v, pos, p: _Point) -> np.ndarray:
     """Classical acceleration of a point at a = 0: J̇_lin v + (J̇_ang v) × p + ω × ṗ."""
-    Jl, Ja = J[:, :3] * p.mask, J[:, 3:] * p.mask
-    dJl, dJa = dJ[:, :3] * p.mask, dJ[:, 3:] * p.mask
-    w = np.einsum("nij,nj->ni", Ja, v)
-    pdot = np.einsum("nij,nj->ni", Jl, v) + np.cross(w, pos)
-    return np.einsum("nij,nj->ni", dJl, v) + np.cross(np.einsum("nij,nj->ni", dJa, v), pos) \
-        + np.cross(w, pdot)
+    c = p.cols
+    vc = v[:, c]
+    w = _matvec(J[:, 3:][:, :, c], vc)
+    pdot = _matvec(J[:, :3][:, :, c], vc) + np.cross(w, pos[p])
+    return (_matvec(dJ[:, :3][:, :, c], vc) + np.cross(_matvec(dJ[:, 3:][:, :, c], vc), pos[p])
+            + np.cross(w, pdot))
 
 
 def _sigma_min(A):
-    return np.linalg.svd(A, compute_uv=False)[:, -1]
+    """Smallest singular value of each (6 × 6) matrix, from the Gram matrix's eigenvalues."""
+    return np.sqrt(np.maximum(np.linalg.eigvalsh(np.swapaxes(A, 1, 2) @ A)[:, 0], 0.0))
+
+
+BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
 
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
                              tol: float = IK_TOL,
                              singularity_margin: float = SINGULARITY_MARGIN,
                              wrist_margin: float = WRIST_MARGIN,
-                             branch_tol: float = BRANCH_TOL) -> IKResult:
+                             branch_tol: float = BRANCH_TOL, progress=None,
+                             chunk: int = BATCH_CHUNK) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
     Positions start from the closed-form IK of spec §7 (vectorised) and take one Newton step on
@@ -478,11 +553,6 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     ``[Jc; J_tool]`` systems with drifts from ``computeJointJacobiansTimeVariation``. The
     closure residual and tool error reported are re-measured at the returned configuration.
     """
-    import importlib
-
-    from .taskspace import rotation, twist, twist_dot
-
-    cf = importlib.import_module(".thesis.ik", __package__)
     poses = np.atleast_2d(np.asarray(poses, dtype=float))
     n = len(poses)
     d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
@@ -493,72 +563,91 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
         if len(bad):
             k, c = bad[0]
             raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
-    try:
-        q0 = cf.position_ik(robot.params, poses)[:, :12]
-    except cf.UnreachableError as exc:
-        cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
-        raise cls(str(exc), sample=exc.sample, time=float(t[exc.sample]), chain=exc.chain,
-                  amount=exc.shortfall) from None
-    assert tuple(cf.TREE_JOINTS) == robot.joint_names  # same order, spec §3
-    joints, pts, tip = _batch_layout(robot)
-    P_des, R_des = poses[:, :3], rotation(poses)
-    # Newton polish at the closed form, and velocities with the same factorisation.
-    J, _, H = _gather(robot, joints, q0)
-    K, pos = _stack_K(J, H, pts, tip)
-    rhs = np.zeros((n, 12, 2))
-    rhs[:, :, 0] = _residuals(H, pos, pts, tip, P_des, R_des)
-    rhs[:, 6:, 1] = twist(poses, d_poses)
-    sol = np.linalg.solve(K, rhs)
-    q = q0 - sol[:, :, 0]
-    v = sol[:, :, 1]
-    # Accelerations: K a = [−closure drift; tool acceleration − tool drift], at the final q.
-    J, dJ, H = _gather(robot, joints, q, v)
-    K, pos = _stack_K(J, H, pts, tip)
-    drift = [_point_drift(J, dJ, v, pos[id(a)], a) - _point_drift(J, dJ, v, pos[id(b)], b)
-             for a, b in pts]
-    drift.append(_point_drift(J, dJ, v, pos[id(tip)], tip))
-    drift.append(np.einsum("nij,nj->ni", dJ[:, 3:] * tip.mask, v))
-    rhs_a = twist_dot(poses, d_poses, dd_poses)
-    rhs_a = np.concatenate([np.zeros((n, 6)), rhs_a], axis=1) - np.concatenate(drift, axis=1)
-    a = np.linalg.solve(K, rhs_a[:, :, None])[:, :, 0]
-    err = np.abs(_residuals(H, pos, pts, tip, P_des, R_des))
-    if err.max() > tol:
-        k = int(np.argmax(err.max(axis=1)))
-        raise UnreachablePoseError(
-            f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
-            f"(tolerance {tol:g})", sample=k, time=float(t[k]), amount=float(err[k].max()))
-    # Spherical-joint angles and rates (spec §4) and singularity measures.
-    sph, dsph = _spherical_batch(robot, H, J, v)
-    ia, ip = robot.actuated_v, robot.passive_v
-    Jc, Jt = K[:, :6], K[:, 6:]
-    Jp = Jc[:, :, ip]
-    N_p = -np.linalg.solve(Jp, Jc[:, :, ia])
-    fwd = Jt[:, :, ia] + Jt[:, :, ip] @ N_p  # actuator rates → tool twist
-    result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
-                      closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
-                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
-                      sigma_parallel=_sigma_min(Jp), sigma_serial=_sigma_min(fwd),
-                      joint_names=robot.joint_names)
-    result.constraint_jacobian = Jc.copy()
+    q0 = _closed_form(robot, poses, t, wrist_margin)
+    parts = []
+    for start in range(0, n, chunk):
+        sl = slice(start, min(start + chunk, n))
+        parts.append(_batch_block(robot, q0[sl], poses[sl], d_poses[sl], dd_poses[sl], t[sl],
+                                  tol, start))
+        if progress is not None:
+            progress(sl.stop, n)
+    if len(parts) == 1:
+        result = parts[0]
+    else:
+        result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
+                                 if f != "joint_names" else parts[0].joint_names)
+                             for f in IKResult.__dataclass_fields__})
     _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
     return result
 
 
-def _spherical_batch(robot: Robot, H, J, v):
-    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates, stacked (N, 6)."""
-    R_p = H[:, 0, :3, :3]
-    w_p = np.einsum("nij,nj->ni", J[:, 3:] * _support_mask(robot, "theta54"), v)
+def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start) -> IKResult:
+    from .taskspace import rotation, twist, twist_dot
+
+    n = len(poses)
+    model = robot.model
+    lay = _layout(robot)
+    points = [p for pair in lay.closures for p in pair] + [lay.tip]
+    P_des, R_des = poses[:, :3], rotation(poses)
+    # Newton polish at the closed form; velocities with the same matrix (one stacked solve).
+    pl = _placements(model, q0, lay.joints)
+    pos = {p: _position(pl, p) for p in points}
+    J, _ = _jacobians(robot, q0)
+    rhs = np.zeros((n, 12, 2))
+    rhs[:, :, 0] = _residuals(pl, pos, lay, P_des, R_des)
+    rhs[:, 6:, 1] = twist(poses, d_poses)
+    sol = np.linalg.solve(_stack_K(J, pos, lay), rhs)
+    q, v = q0 - sol[:, :, 0], sol[:, :, 1]
+    # Accelerations: K a = [−closure drift; tool acceleration − tool drift], at the final q.
+    pl = _placements(model, q, lay.joints)
+    pos = {p: _position(pl, p) for p in points}
+    J, dJ = _jacobians(robot, q, v)
+    K = _stack_K(J, pos, lay)
+    rhs_a = np.empty((n, 12))
+    for i, (a_, b_) in enumerate(lay.closures):
+        rhs_a[:, 3 * i:3 * i + 3] = _drift(J, dJ, v, pos, b_) - _drift(J, dJ, v, pos, a_)
+    tc = lay.tip.cols
+    rhs_a[:, 6:] = twist_dot(poses, d_poses, dd_poses)
+    rhs_a[:, 6:9] -= _drift(J, dJ, v, pos, lay.tip)
+    rhs_a[:, 9:] -= _matvec(dJ[:, 3:][:, :, tc], v[:, tc])
+    a = np.linalg.solve(K, rhs_a[:, :, None])[:, :, 0]
+    err = np.abs(_residuals(pl, pos, lay, P_des, R_des))
+    if err.max() > tol:
+        k = int(np.argmax(err.max(axis=1)))
+        raise UnreachablePoseError(
+            f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
+            f"(tolerance {tol:g})", sample=start + k, time=float(t[k]),
+            amount=float(err[k].max()))
+    sph, dsph = _spherical_batch(robot, lay, pl, J, v)
+    ia, ip = robot.actuated_v, robot.passive_v
+    Jc, Jt = K[:, :6], K[:, 6:]
+    Jp = Jc[:, :, ip]
+    fwd = Jt[:, :, ia] - Jt[:, :, ip] @ np.linalg.solve(Jp, Jc[:, :, ia])  # act. rates → twist
+    result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
+                      closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
+                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
+                      sigma_parallel=_sigma_min(Jp), sigma_serial=_sigma_min(fwd),
+                      joint_names=robot.joint_names, constraint_jacobian=Jc)
+    return result
+
+
+def _spherical_batch(robot: Robot, lay: _Layout, pl, J, v):
+    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates (spec §4), (N, 6) each."""
+    model = robot.model
+
+    def omega(joint):
+        c = _support_cols(model, joint)
+        return _matvec(J[:, 3:][:, :, c], v[:, c])
+
+    R_p, w_p = pl[lay.platform][0], omega(lay.platform)
     ang, rate = [], []
-    for i, leg in enumerate(robot.params.legs, start=1):
-        R_l = H[:, 1 + i, :3, :3]
-        c, s = np.cos(-leg.beta1413), np.sin(-leg.beta1413)
-        C = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    for link, C in zip(lay.links, lay.spherical_offset):
+        R_l = pl[link][0]
         M = np.swapaxes(R_l, 1, 2) @ R_p @ C
         b = np.arccos(np.clip(M[:, 2, 2], -1.0, 1.0))
         a_ = np.arctan2(M[:, 1, 2], M[:, 0, 2])
         c_ = np.arctan2(M[:, 2, 1], -M[:, 2, 0])
-        w_l = np.einsum("nij,nj->ni", J[:, 3:] * _support_mask(robot, f"theta76_{i}"), v)
-        w_rel = np.einsum("nji,nj->ni", R_l, w_p - w_l)
+        w_rel = _matvec(np.swapaxes(R_l, 1, 2), w_p - omega(link))
         Z = np.zeros((len(b), 3, 3))
         Z[:, 0, 1], Z[:, 0, 2] = -np.sin(a_), np.cos(a_) * np.sin(b)
         Z[:, 1, 1], Z[:, 1, 2] = np.cos(a_), np.sin(a_) * np.sin(b)
@@ -566,14 +655,6 @@ def _spherical_batch(robot: Robot, H, J, v):
         ang.append(np.stack([a_, b, c_], axis=1))
         rate.append(np.linalg.solve(Z, w_rel[:, :, None])[:, :, 0])
     return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
-
-
-def _support_mask(robot: Robot, joint: str) -> np.ndarray:
-    model = robot.model
-    mask = np.zeros(model.nv)
-    for j in model.supports[robot.joint_id(joint)][1:]:
-        mask[model.joints[j].idx_v] = 1.0
-    return mask
 
 
 def _check_margins(robot: Robot, r: IKResult, singularity_margin, wrist_margin, branch_tol):
