@@ -300,13 +300,25 @@ def _fmt(value: Any) -> str:
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
+def _short_keys(keys: Sequence[str]) -> dict[str, str]:
+    """Each key without its first section (``bodies.gun.mass`` → ``gun.mass``) where that
+    stays unambiguous among ``keys``; the full key otherwise."""
+    short = {k: k.split(".", 1)[-1] for k in keys}
+    clash = {s for s in short.values() if list(short.values()).count(s) > 1}
+    return {k: (k if s in clash else s) for k, s in short.items()}
+
+
 def grid_variants(grid: Mapping[str, Sequence[Any]]) -> list[tuple[str, dict]]:
-    """The cartesian product of ``{key: [values]}`` as (name, overrides); first key slowest."""
+    """The cartesian product of ``{key: [values]}`` as (name, overrides); first key slowest.
+
+    Names read ``x32=0.32 gun.mass=0.05`` (keys without their first section where unambiguous).
+    """
     keys = list(grid)
+    label = _short_keys(keys)
     out = []
     for combo in itertools.product(*(grid[k] for k in keys)):
         ov = dict(zip(keys, combo))
-        out.append((" ".join(f"{k}={_fmt(v)}" for k, v in ov.items()), ov))
+        out.append((" ".join(f"{label[k]}={_fmt(v)}" for k, v in ov.items()), ov))
     return out
 
 
@@ -470,7 +482,7 @@ def _checked(name: str, future_or_fn, *args):
 
 
 def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
-              progress: Progress | None = None, mp_context: str = "spawn") -> list[dict]:
+              progress: Progress | None = None, mp_context: str | None = None) -> list[dict]:
     """Evaluate every variant; the rows of the result table, in the sweep's variant order.
 
     ``dask``: a scheduler address (``"tcp://host:8786"``) or a ``distributed.Client`` runs
@@ -478,10 +490,12 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     (default ``os.cpu_count()``); ``workers=1`` runs serially in this process.
     ``progress(done, total)`` is called as variants finish.
 
-    The pool starts its workers with ``mp_context`` (default ``"spawn"``: a fresh interpreter,
-    safe in a threaded parent such as a Dask client or a GUI, the same on every platform).
-    As with any spawn-based pool, a script that calls this must guard its top level with
-    ``if __name__ == "__main__":``.
+    The pool starts its workers with the multiprocessing start method ``mp_context``. The
+    default is ``"fork"`` where the platform has it and this process runs a single Python
+    thread (workers start at once, with everything imported), otherwise ``"spawn"`` (a fresh
+    interpreter: safe in a threaded parent such as a Dask client or a GUI). Under ``"spawn"``
+    or ``"forkserver"`` a script that calls this must guard its top level with
+    ``if __name__ == "__main__":``, as with any such pool.
     """
     specs = sweep.specs()
     if dask is not None:
@@ -501,6 +515,12 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
+    if mp_context is None:
+        import threading
+
+        fork_ok = ("fork" in multiprocessing.get_all_start_methods()
+                   and threading.active_count() == 1)
+        mp_context = "fork" if fork_ok else "spawn"
     ctx = multiprocessing.get_context(mp_context)
     with ProcessPoolExecutor(max_workers=min(workers, n), mp_context=ctx) as pool:
         futures = {pool.submit(evaluate_variant, spec): k for k, spec in enumerate(specs)}
@@ -589,7 +609,7 @@ def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
     """A short text table: per variant the worst actuator torque and power, or the failure."""
     n_ok = sum(1 for r in rows if r["feasible"])
     lines = [f"{len(rows)} variants: {n_ok} feasible, {len(rows) - n_ok} infeasible"]
-    width = min(40, max([len("variant")] + [len(str(r["variant"])) for r in rows]))
+    width = min(48, max([len("variant")] + [len(str(r["variant"])) for r in rows]))
     lines.append(f"{'variant':{width}s}  {'max|τ| [N·m] (actuator)':>25s}  "
                  f"{'max|P| [W]':>10s}  {'max|λ| [N]':>10s}")
     for r in list(rows)[:max_rows]:
