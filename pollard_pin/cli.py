@@ -109,6 +109,70 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def _solve(args, dynamics: bool = True):
+    """Load the model and the chosen trajectory, run the pipeline (view/plot/report)."""
+    from .model import load
+    from .outputs import run_pipeline
+
+    robot = load(args.params)
+    traj = _load_trajectory(args, robot.params)
+    result = run_pipeline(robot, traj, dynamics=dynamics,
+                          progress=_progress("solving", len(traj) >= 500 and not args.quiet))
+    return robot, result
+
+
+def cmd_view(args) -> int:
+    from . import viewer
+
+    robot, result = _solve(args, dynamics=False)
+    if args.html:
+        path = viewer.write_html(args.html, robot, result.ik, frames=args.frames, fps=args.fps)
+        print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB, {len(result.ik)} samples, "
+              f"{result.ik.t[-1] - result.ik.t[0]:.4g} s): open it in a browser, no server "
+              "needed; Open Controls → Animations to play and scrub")
+        return 0
+    viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps)
+    return 0
+
+
+def cmd_plot(args) -> int:
+    from .plots import write_figures
+
+    _, result = _solve(args)
+    for path in write_figures(result, args.out, dpi=args.dpi):
+        print(f"wrote {path}")
+    return 0
+
+
+def cmd_report(args) -> int:
+    from .report import report, to_json, to_markdown
+
+    robot, result = _solve(args)
+    rep = report(robot, result, cross_check=not args.no_cross_check)
+    text = to_json(rep) + "\n" if args.format == "json" else to_markdown(rep)
+    if args.out:
+        Path(args.out).write_text(text)
+        print(f"wrote {args.out}", file=sys.stderr)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _positive(text: str) -> float:
+    value = float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+    return value
+
+
+def _trajectory_args(p) -> None:
+    p.add_argument("--trajectory", default="thesis", help="'thesis' or a CSV file")
+    p.add_argument("--duration", type=float, default=None, help="thesis trajectory duration [s]")
+    p.add_argument("--samples", type=int, default=None, help="thesis trajectory samples")
+    p.add_argument("--params", help="parameter TOML")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
     sub = ap.add_subparsers(dest="command", required=True)
@@ -140,6 +204,29 @@ def build_parser() -> argparse.ArgumentParser:
                    help="run on this Dask scheduler (needs pollard-pin[cluster])")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
+
+    p = sub.add_parser("view", help="MeshCat 3D viewer: live on localhost, or --html FILE")
+    _trajectory_args(p)
+    p.add_argument("--html", metavar="FILE", help="write a self-contained static page instead "
+                   "of serving")
+    p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
+    p.add_argument("--fps", type=_positive, default=25.0,
+                   help="animation key frames per second of trajectory time (default 25)")
+    p.set_defaults(func=cmd_view)
+
+    p = sub.add_parser("plot", help="chapter-4 style PNG figures of a trajectory")
+    _trajectory_args(p)
+    p.add_argument("--out", default="plots", help="output directory (default plots/)")
+    p.add_argument("--dpi", type=int, default=100, help="PNG resolution")
+    p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser("report", help="actuator sizing table and engine cross-checks")
+    _trajectory_args(p)
+    p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
+    p.add_argument("--out", help="write to this file instead of stdout")
+    p.add_argument("--no-cross-check", action="store_true",
+                   help="sizing only: skip the thesis and MuJoCo comparisons")
+    p.set_defaults(func=cmd_report)
     return ap
 
 

@@ -1,0 +1,207 @@
+"""Actuator sizing report and engine cross-check for one trajectory.
+
+**Sizing** (from the same arrays as the ``run`` CSV; t is the sample time, integrals by the
+trapezoid rule over the samples):
+
+* peak torque ``max |τ|`` [N·m]; RMS torque ``sqrt(∫τ² dt / T)`` [N·m], T the duration;
+* peak speed ``max |q̇|`` [rad/s]; peak power ``max |τ·q̇|`` [W];
+* energy ``∫|τ·q̇| dt`` [J] (all mechanical energy through the actuator, motoring and braking)
+  and net work ``∫τ·q̇ dt`` [J] (the CSV's final ``work_*``);
+* per spherical joint: peak ``|f_i|`` [N] and the time it occurs, and RMS ``|f_i|``.
+
+**Cross-checks**: the same trajectory through
+
+* the thesis' method (``pollard_pin.thesis``: closed-form IK, task-space Euler–Lagrange,
+  numpy only): joint positions, velocities, accelerations and actuator torques;
+* MuJoCo (``pollard_pin.mujoco_peer``: the URDF in MuJoCo, ``mj_inverse`` plus the connect
+  constraints): actuator torques and closure forces. If MuJoCo is not installed the report
+  says so and skips it.
+
+Agreement is reported as the largest absolute difference and that difference relative to the
+largest magnitude of the reference quantity.
+"""
+from __future__ import annotations
+
+import importlib
+import json
+import math
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+SIZING_FIELDS = (  # key, heading, unit
+    ("peak_torque", "peak |τ|", "N·m"),
+    ("rms_torque", "RMS τ", "N·m"),
+    ("peak_speed", "peak |q̇|", "rad/s"),
+    ("peak_power", "peak |P|", "W"),
+    ("energy", "energy ∫|P|dt", "J"),
+    ("net_work", "net work ∫P dt", "J"),
+)
+
+
+def _trapz(y, t):
+    y = np.asarray(y, dtype=float)
+    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t))) if len(t) > 1 else 0.0
+
+
+def _rms(y, t):
+    T = float(t[-1] - t[0])
+    if T <= 0:
+        return float(np.sqrt(np.mean(np.square(y))))
+    return math.sqrt(_trapz(np.square(y), t) / T)
+
+
+def sizing(columns: dict, actuated) -> dict:
+    """Sizing figures from run columns (:meth:`RunResult.columns` or a ``run`` CSV read back)."""
+    t = np.asarray(columns["t"], dtype=float)
+    acts = {}
+    for n in actuated:
+        tau, qd = np.asarray(columns[f"tau_{n}"]), np.asarray(columns[f"d_{n}"])
+        p = np.asarray(columns[f"power_{n}"])
+        acts[n] = {
+            "peak_torque": float(np.max(np.abs(tau))),
+            "rms_torque": _rms(tau, t),
+            "peak_speed": float(np.max(np.abs(qd))),
+            "peak_power": float(np.max(np.abs(p))),
+            "energy": _trapz(np.abs(p), t),
+            "net_work": float(np.asarray(columns[f"work_{n}"])[-1]),
+        }
+    joints = {}
+    for i in (1, 2):
+        f = np.sqrt(sum(np.square(np.asarray(columns[f"f{i}_{c}"])) for c in "xyz"))
+        k = int(np.argmax(f))
+        joints[f"spherical_{i}"] = {"peak_force": float(f[k]), "peak_time": float(t[k]),
+                                    "rms_force": _rms(f, t)}
+    return {"actuators": acts, "spherical_joints": joints}
+
+
+def _agreement(ours, ref) -> dict:
+    ours, ref = np.asarray(ours, dtype=float), np.asarray(ref, dtype=float)
+    diff = float(np.max(np.abs(ours - ref)))
+    scale = float(np.max(np.abs(ref)))
+    return {"max_abs_diff": diff, "reference_peak": scale,
+            "relative": diff / scale if scale > 0 else float("nan")}
+
+
+def _wrap(a):
+    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def cross_check_thesis(robot, result) -> dict:
+    """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
+    ik_mod = importlib.import_module("pollard_pin.thesis.ik")
+    lagrange = importlib.import_module("pollard_pin.thesis.lagrange")
+    traj, ik, dyn = result.trajectory, result.ik, result.dynamics
+    q_th, v_th, a_th = ik_mod.ik(robot.params, traj.poses, traj.d_poses, traj.dd_poses)
+    cols = [ik_mod.JOINTS.index(n) for n in ik.joint_names]
+    out = {
+        "joint_position_rad": {"max_abs_diff": float(np.max(np.abs(_wrap(ik.q - q_th[:, cols]))))},
+        "joint_velocity": _agreement(ik.v, v_th[:, cols]),
+        "joint_acceleration": _agreement(ik.a, a_th[:, cols]),
+    }
+    if dyn is not None:
+        tau_th = lagrange.inverse_dynamics(robot.params, traj.poses, traj.d_poses,
+                                           traj.dd_poses)["tau"]
+        out["torque"] = _agreement(dyn.tau, tau_th)
+    return out
+
+
+def cross_check_mujoco(robot, result) -> dict:
+    """Pinocchio vs MuJoCo: actuator torques and closure forces (skipped without MuJoCo)."""
+    try:
+        import mujoco  # noqa: F401
+    except ImportError as exc:
+        return {"available": False,
+                "reason": f"MuJoCo is not installed ({exc}); pip install mujoco to compare"}
+    try:
+        peer = importlib.import_module("pollard_pin.mujoco_peer")
+    except ImportError as exc:  # pragma: no cover - module shipped with the package
+        return {"available": False, "reason": f"pollard_pin.mujoco_peer unavailable: {exc}"}
+    ik, dyn = result.ik, result.dynamics
+    cols = [list(ik.joint_names).index(n) for n in peer.JOINTS]
+    with tempfile.TemporaryDirectory() as tmp:
+        urdf = Path(tmp) / "pollard.urdf"
+        urdf.write_text(robot.urdf)  # the model actually used, whatever its parameters
+        mj = peer.inverse_dynamics_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
+                                          urdf_path=urdf)
+    act = [list(peer.ACTUATED).index(n) for n in robot.actuated]
+    return {"available": True,
+            "torque": _agreement(dyn.tau, mj["tau"][:, act]),
+            "closure_force": _agreement(dyn.closure_forces, mj["closure_forces"]),
+            "mujoco_closure_residual_m": float(np.max(mj["residual"]))}
+
+
+def report(robot, result, cross_check: bool = True) -> dict:
+    """The whole report as a JSON-ready dict."""
+    if result.dynamics is None:
+        raise ValueError("the report needs the dynamics: run_pipeline(..., dynamics=True)")
+    ik, traj = result.ik, result.trajectory
+    out = {
+        "trajectory": {"name": traj.name, "samples": len(ik), "t0": float(ik.t[0]),
+                       "duration": float(ik.t[-1] - ik.t[0]), "derivatives": traj.derivatives},
+        "model": {"parameters": str(robot.params.source),
+                  "total_mass": float(robot.params.total_mass)},
+        "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
+                                                        "peak_time": "s"},
+        "sizing": sizing(result.columns(), robot.actuated),
+    }
+    if cross_check:
+        out["cross_check"] = {"thesis": cross_check_thesis(robot, result),
+                              "mujoco": cross_check_mujoco(robot, result)}
+    return out
+
+
+def to_json(rep: dict) -> str:
+    return json.dumps(rep, indent=2, ensure_ascii=False)
+
+
+def _agree_row(label, a, unit):
+    rel = a.get("relative")
+    rel_s = f"{rel:.2e}" if rel is not None and math.isfinite(rel) else "–"
+    peak = a.get("reference_peak")
+    return (f"| {label} | {a['max_abs_diff']:.3e} {unit} | "
+            f"{'–' if peak is None else f'{peak:.4g} {unit}'} | {rel_s} |")
+
+
+def to_markdown(rep: dict) -> str:
+    tr, sz = rep["trajectory"], rep["sizing"]
+    lines = [f"# Actuator sizing report: {tr['name']} trajectory", "",
+             f"{tr['samples']} samples over {tr['duration']:.4g} s (derivatives: "
+             f"{tr['derivatives']}); model parameters {rep['model']['parameters']}, total "
+             f"mass {rep['model']['total_mass']:.4g} kg.", "", "## Actuators", "",
+             "| actuator | " + " | ".join(f"{h} [{u}]".replace("|", "\\|")
+                                         for _, h, u in SIZING_FIELDS) + " |",
+             "|---|" + "---:|" * len(SIZING_FIELDS)]
+    for n, a in sz["actuators"].items():
+        lines.append(f"| `{n}` | " + " | ".join(f"{a[k]:.4g}" for k, _, _ in SIZING_FIELDS)
+                     + " |")
+    lines += ["", "## Spherical joints (closure forces)", "",
+              "| joint | peak ‖f‖ [N] | at t [s] | RMS ‖f‖ [N] |", "|---|---:|---:|---:|"]
+    for n, j in sz["spherical_joints"].items():
+        lines.append(f"| leg {n[-1]} ball joint | {j['peak_force']:.4g} | "
+                     f"{j['peak_time']:.4g} | {j['rms_force']:.4g} |")
+    lines += ["", "RMS = sqrt(∫x² dt / T); energy = ∫|τ·q̇| dt; net work = ∫τ·q̇ dt "
+              "(trapezoid rule over the samples)."]
+    cc = rep.get("cross_check")
+    if cc:
+        th, mj = cc["thesis"], cc["mujoco"]
+        lines += ["", "## Cross-checks (Pinocchio vs reference)", "",
+                  "| quantity | max abs difference | reference peak | relative |",
+                  "|---|---:|---:|---:|",
+                  f"| joint positions, thesis closed-form IK | "
+                  f"{th['joint_position_rad']['max_abs_diff']:.3e} rad | – | – |",
+                  _agree_row("joint velocities, thesis IK", th["joint_velocity"], "rad/s"),
+                  _agree_row("joint accelerations, thesis IK", th["joint_acceleration"],
+                             "rad/s²")]
+        if "torque" in th:
+            lines.append(_agree_row("actuator torques, thesis Euler–Lagrange", th["torque"],
+                                    "N·m"))
+        if mj.get("available"):
+            lines += [_agree_row("actuator torques, MuJoCo", mj["torque"], "N·m"),
+                      _agree_row("closure forces, MuJoCo", mj["closure_force"], "N"),
+                      "", f"MuJoCo's own closure residual at the Pinocchio states: "
+                          f"{mj['mujoco_closure_residual_m']:.2e} m."]
+        else:
+            lines += ["", f"MuJoCo cross-check skipped: {mj['reason']}."]
+    return "\n".join(lines) + "\n"
