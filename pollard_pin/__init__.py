@@ -23,6 +23,8 @@ _API = {
     "BranchFlipError": "kinematics",
     "Trajectory": "trajectory", "thesis_trajectory": "trajectory", "from_csv": "trajectory",
     "TrajectoryError": "trajectory", "smooth_random_trajectory": "trajectory",
+    "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
+    "evaluate_variant": "sweep", "SweepError": "sweep",
 }
 
 __all__ = sorted(_API)
