@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from .kinematics import IKResult
+from .kinematics import IKResult, Stopwatch
 from .model import Robot, constraint_jacobian, constraint_residual
 
 
@@ -103,13 +103,14 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
     return x[:6], x[6:].reshape(2, 3), tau_tree
 
 
-def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = None
-                     ) -> DynamicsResult:
+def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = None,
+                     timings: dict | None = None) -> DynamicsResult:
     """Actuator torques, closure forces and energies along an IK result.
 
     One RNEA and the two energies per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked
     (passive rows first, 6 × 6), reusing the constraint Jacobians of the IK when it has them.
     """
+    clock = Stopwatch(timings)
     model, data = robot.model, robot.data
     n = len(ik)
     tree, K, U = np.empty((n, model.nv)), np.empty(n), np.empty(n)
@@ -130,6 +131,7 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     lam = np.linalg.solve(np.swapaxes(Jc[:, :, ip], 1, 2), tree[:, ip, None])
     tau = tree[:, ia] - (np.swapaxes(Jc[:, :, ia], 1, 2) @ lam)[:, :, 0]
     x = np.concatenate([tau, lam[:, :, 0]], axis=1)
+    clock.lap("dynamics")
     return DynamicsResult(t=ik.t, tau=x[:, :6], closure_forces=x[:, 6:].reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,
                           potential=U, actuated=robot.actuated)

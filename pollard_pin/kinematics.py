@@ -1,6 +1,7 @@
 """Constrained kinematics with Pinocchio: closure solve / forward kinematics (spec §4)."""
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -540,19 +541,37 @@ def _sigma_min(A):
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
 
 
+class Stopwatch:
+    """Accumulates wall time per stage into ``sink`` (a dict) — or does nothing if it is None."""
+
+    def __init__(self, sink: dict | None):
+        self.sink = sink
+        self.t = time.perf_counter()
+
+    def lap(self, stage: str) -> None:
+        if self.sink is not None:
+            now = time.perf_counter()
+            self.sink[stage] = self.sink.get(stage, 0.0) + now - self.t
+            self.t = now
+
+
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
                              tol: float = IK_TOL,
                              singularity_margin: float = SINGULARITY_MARGIN,
                              wrist_margin: float = WRIST_MARGIN,
                              branch_tol: float = BRANCH_TOL, progress=None,
-                             chunk: int = BATCH_CHUNK) -> IKResult:
+                             chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
     Positions start from the closed-form IK of spec §7 (vectorised) and take one Newton step on
     Pinocchio's [closure residual; tool-pose error]; velocities and accelerations solve Pinocchio's
     ``[Jc; J_tool]`` systems with drifts from ``computeJointJacobiansTimeVariation``. The
     closure residual and tool error reported are re-measured at the returned configuration.
+    ``timings`` (a dict) accumulates seconds per stage: position (closed form, Jacobians,
+    residual), velocity (the stacked solve shared with the Newton step), acceleration,
+    analysis (spherical angles, singularity measures, margin checks).
     """
+    clock = Stopwatch(timings)
     poses = np.atleast_2d(np.asarray(poses, dtype=float))
     n = len(poses)
     d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
@@ -564,11 +583,12 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
             k, c = bad[0]
             raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
     q0 = _closed_form(robot, poses, t, wrist_margin)
+    clock.lap("position")
     parts = []
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
         parts.append(_batch_block(robot, q0[sl], poses[sl], d_poses[sl], dd_poses[sl], t[sl],
-                                  tol, start))
+                                  tol, start, clock))
         if progress is not None:
             progress(sl.stop, n)
     if len(parts) == 1:
@@ -578,10 +598,11 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
                                  if f != "joint_names" else parts[0].joint_names)
                              for f in IKResult.__dataclass_fields__})
     _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    clock.lap("analysis")
     return result
 
 
-def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start) -> IKResult:
+def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, clock) -> IKResult:
     from .taskspace import rotation, twist, twist_dot
 
     n = len(poses)
@@ -595,9 +616,12 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start) -> I
     J, _ = _jacobians(robot, q0)
     rhs = np.zeros((n, 12, 2))
     rhs[:, :, 0] = _residuals(pl, pos, lay, P_des, R_des)
+    K = _stack_K(J, pos, lay)
+    clock.lap("position")
     rhs[:, 6:, 1] = twist(poses, d_poses)
-    sol = np.linalg.solve(_stack_K(J, pos, lay), rhs)
+    sol = np.linalg.solve(K, rhs)
     q, v = q0 - sol[:, :, 0], sol[:, :, 1]
+    clock.lap("velocity")
     # Accelerations: K a = [−closure drift; tool acceleration − tool drift], at the final q.
     pl = _placements(model, q, lay.joints)
     pos = {p: _position(pl, p) for p in points}
@@ -618,6 +642,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start) -> I
             f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
             f"(tolerance {tol:g})", sample=start + k, time=float(t[k]),
             amount=float(err[k].max()))
+    clock.lap("acceleration")
     sph, dsph = _spherical_batch(robot, lay, pl, J, v)
     ia, ip = robot.actuated_v, robot.passive_v
     Jc, Jt = K[:, :6], K[:, 6:]
@@ -628,6 +653,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start) -> I
                       wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
                       sigma_parallel=_sigma_min(Jp), sigma_serial=_sigma_min(fwd),
                       joint_names=robot.joint_names, constraint_jacobian=Jc)
+    clock.lap("analysis")
     return result
 
 
