@@ -552,7 +552,14 @@ def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> lis
         raise SweepError("--dask needs dask.distributed: pip install 'pollard-pin[cluster]'"
                          ) from None
     own = not isinstance(address, Client)
-    client = Client(address) if own else address
+    if own:
+        try:
+            client = Client(address)
+        except (OSError, TimeoutError) as exc:
+            raise SweepError(f"cannot connect to the Dask scheduler at {address!r}: {exc}"
+                             ) from None
+    else:
+        client = address
     try:
         futures = client.map(evaluate_variant, specs, pure=False)
         index = {f.key: k for k, f in enumerate(futures)}
