@@ -50,10 +50,8 @@ import copy
 import csv
 import itertools
 import json
-import math
 import os
 import re
-import sys
 import tempfile
 import tomllib
 from dataclasses import dataclass
