@@ -177,18 +177,31 @@ class Page:
 MESHCAT_READY = "document.body && document.body.dataset.meshcatReady === '1'"
 
 
-def capture_meshcat(html: str | Path, png: str | Path, *, width: int = 1200, height: int = 750,
-                    time_s: float | None = None, controls: bool = True) -> dict:
-    """Open a static MeshCat page, wait for its scene, optionally pause the animation at
-    ``time_s``, render, save a PNG screenshot and return facts read from the live viewer."""
+def _node(path: str) -> str:
+    """JavaScript for the three.js object of a MeshCat node path such as ``/meshcat/a/b``."""
+    return f"viewer.scene_tree.find({json.dumps([p for p in path.split('/') if p])}).object"
+
+
+def capture_meshcat(html: str | Path, png: str | Path | None, *, width: int = 1200,
+                    height: int = 750, time_s: float | None = None, controls: bool = True,
+                    hide: tuple[str, ...] = (), project: tuple[str, ...] = ()) -> dict:
+    """Open a MeshCat page (a file or a live server's URL), wait for its scene, optionally
+    pause the animation at ``time_s`` and hide nodes, render, save a PNG screenshot and return
+    facts read from the live viewer: animation duration and number of animated nodes, meshes
+    in the scene, WebGL renderer, and the pixel position of each node in ``project``."""
     with Page(width, height) as page:
-        page.open(html)
-        page.wait_for(MESHCAT_READY)
+        page.open(str(html))
+        if "://" in str(html) and not str(html).startswith("file:"):
+            page.wait_for("typeof viewer !== 'undefined' && viewer.animator.duration > 0")
+        else:
+            page.wait_for(MESHCAT_READY)
         if time_s is not None:
             page.evaluate(f"viewer.animator.pause(); viewer.animator.seek({float(time_s)}); "
                           f"viewer.animator.display_progress({float(time_s)}); 1")
         if not controls:
             page.evaluate("viewer.gui.close(); 1")
+        for path in hide:
+            page.evaluate(f"{_node(path)}.visible = false; 1")
         page.evaluate("viewer.render(); 1")
         # Two animation frames so the canvas shows the rendered scene.
         page.evaluate("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
@@ -196,9 +209,22 @@ def capture_meshcat(html: str | Path, png: str | Path, *, width: int = 1200, hei
             const a = viewer.animator;
             let meshes = 0;
             viewer.scene.traverse(o => { if (o.isMesh) meshes++; });
+            const gl = viewer.renderer.getContext();
             return {duration: a.duration, actions: a.actions.length, meshes: meshes,
-                    renderer: viewer.renderer.getContext().getParameter(
-                        viewer.renderer.getContext().RENDERER)};
+                    renderer: gl.getParameter(gl.RENDERER),
+                    canvas: [viewer.renderer.domElement.width, viewer.renderer.domElement.height]};
         })()""")
-        page.screenshot(png)
+        facts["screen"] = {}
+        for path in project:
+            facts["screen"][path] = page.evaluate(f"""(() => {{
+                const o = {_node(path)};
+                viewer.scene.updateMatrixWorld(true);
+                const v = o.position.clone();
+                o.getWorldPosition(v);
+                v.project(viewer.camera);
+                const c = viewer.renderer.domElement;
+                return [(v.x + 1) / 2 * c.clientWidth, (1 - v.y) / 2 * c.clientHeight];
+            }})()""")
+        if png is not None:
+            page.screenshot(png)
     return facts

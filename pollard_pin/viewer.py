@@ -162,6 +162,21 @@ document.body.dataset.meshcatReady = "1";
 """
 
 
+def page_commands(html: str) -> list[dict]:
+    """The decoded MeshCat commands of a static page: ours (:func:`static_page`) or the one
+    MeshCat's server returns for ``get_scene``."""
+    import re
+
+    import umsgpack
+
+    blobs = re.findall(r'data:application/octet-binary;base64,([A-Za-z0-9+/=]+)', html)
+    if not blobs:
+        start = html.index("var meshcat_commands = [")
+        body = html[start:html.index("];", start)]
+        blobs = re.findall(r'"([A-Za-z0-9+/=]+)"', body)
+    return [umsgpack.unpackb(base64.b64decode(b)) for b in blobs]
+
+
 # --- scene ----------------------------------------------------------------------------------
 @dataclass
 class Scene:
@@ -352,7 +367,7 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
     try:
         scene = build_scene(vis, robot, ik, frames=frames, fps=fps)
         print(f"MeshCat viewer: {window.web_url}", file=out)
-        print(f"(zmq {window.zmq_url}; {len(scene.geometry_nodes)} bodies, "
+        print(f"(zmq {window.zmq_url}; {len(scene.geometry_nodes)} shapes, "
               f"{scene.duration:.3g} s animation at {scene.fps:g} key frames/s; "
               "Open Controls → Animations to play and scrub; Ctrl-C to stop)", file=out)
         out.flush()
