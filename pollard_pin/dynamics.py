@@ -42,8 +42,8 @@ class DynamicsResult:
     closure_forces: np.ndarray  # (N, 2, 3) force of the platform on link_i [N], world axes
     tau_tree: np.ndarray  # (N, 12) open-tree RNEA torques (losses included)
     actuator_velocity: np.ndarray  # (N, 6) [rad/s]
-    kinetic: np.ndarray  # (N,) [J]
-    potential: np.ndarray  # (N,) [J], gravity (spec §2)
+    kinetic: np.ndarray | None  # (N,) [J]; None when computed with energies=False
+    potential: np.ndarray | None  # (N,) [J], gravity (spec §2)
     actuated: tuple[str, ...]
 
     @property
@@ -61,6 +61,9 @@ class DynamicsResult:
 
     @property
     def energy(self) -> np.ndarray:
+        """Total mechanical energy K + U [J] of all bodies."""
+        if self.kinetic is None:
+            raise ValueError("energies were not computed (inverse_dynamics(..., energies=False))")
         return self.kinetic + self.potential
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -70,7 +73,8 @@ class DynamicsResult:
         for i in range(2):
             cols.update({f"f{i + 1}_{c}": self.closure_forces[:, i, j]
                          for j, c in enumerate("xyz")})
-        cols.update({"kinetic_energy": self.kinetic, "potential_energy": self.potential})
+        if self.kinetic is not None:
+            cols.update({"kinetic_energy": self.kinetic, "potential_energy": self.potential})
         return cols
 
     def summary_lines(self) -> list[str]:
@@ -104,22 +108,29 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
 
 
 def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = None,
-                     timings: dict | None = None) -> DynamicsResult:
+                     energies: bool = True, timings: dict | None = None) -> DynamicsResult:
     """Actuator torques, closure forces and energies along an IK result.
 
-    One RNEA and the two energies per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked
+    One RNEA (and, with ``energies``, K and U) per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked
     (passive rows first, 6 × 6), reusing the constraint Jacobians of the IK when it has them.
     """
     clock = Stopwatch(timings)
     model, data = robot.model, robot.data
     n = len(ik)
-    tree, K, U = np.empty((n, model.nv)), np.empty(n), np.empty(n)
+    tree = np.empty((n, model.nv))
     Q, V, A = ik.q, ik.v, ik.a
-    rnea, kinetic, potential = pin.rnea, pin.computeKineticEnergy, pin.computePotentialEnergy
-    for k in range(n):
-        tree[k] = rnea(model, data, Q[k], V[k], A[k])
-        K[k] = kinetic(model, data)  # rnea's forward pass has set data.v
-        U[k] = potential(model, data, Q[k])
+    rnea = pin.rnea
+    if energies:
+        K, U = np.empty(n), np.empty(n)
+        kinetic, potential = pin.computeKineticEnergy, pin.computePotentialEnergy
+        for k in range(n):
+            tree[k] = rnea(model, data, Q[k], V[k], A[k])
+            K[k] = kinetic(model, data)  # rnea's forward pass has set data.v
+            U[k] = potential(model, data, Q[k])
+    else:
+        K = U = None
+        for k in range(n):
+            tree[k] = rnea(model, data, Q[k], V[k], A[k])
     if losses is not None:
         tree += losses.torque(V, A)
     Jc = ik.constraint_jacobian

@@ -460,7 +460,8 @@ def _placements(model, Q: np.ndarray, joints) -> dict:
 
 
 def _jacobians(robot: Robot, Q: np.ndarray, V: np.ndarray | None = None):
-    """Stacked world joint Jacobians J (N, 6, nv), and their time variation if V is given."""
+    """Stacked world joint Jacobians J (N, 6, nv) — or, if V is given, only their time
+    variation dJ (J at the same q is the caller's already)."""
     model, data = robot.model, robot.data
     n = len(Q)
     J = np.empty((n, 6, model.nv))
@@ -473,13 +474,22 @@ def _jacobians(robot: Robot, Q: np.ndarray, V: np.ndarray | None = None):
     jac_dot = pin.computeJointJacobiansTimeVariation
     for k in range(n):
         jac_dot(model, data, Q[k], V[k])
-        J[k], dJ[k] = data.J, data.dJ
-    return J, dJ
+        dJ[k] = data.dJ
+    return None, dJ
 
 
 def _position(pl, p: _Point) -> np.ndarray:
     R, o = pl[p.joint]
     return R @ p.local + o
+
+
+def _cross(a, b):
+    """Cross product along axis 1 (components), broadcasting the rest; cheaper than np.cross."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
 
 
 def _matvec(A, x):
@@ -493,7 +503,7 @@ def _stack_K(J, pos, lay: _Layout) -> np.ndarray:
 
     def add(rows, p: _Point, sign):
         c = p.cols
-        jp = J[:, :3][:, :, c] + np.cross(J[:, 3:][:, :, c], pos[p][:, :, None], axis=1)
+        jp = J[:, :3][:, :, c] + _cross(J[:, 3:][:, :, c], pos[p][:, :, None])
         K[:, rows.start:rows.stop, c] += sign * jp
 
     for i, (a, b) in enumerate(lay.closures):
@@ -528,9 +538,9 @@ def _drift(J, dJ, v, pos, p: _Point) -> np.ndarray:
     c = p.cols
     vc = v[:, c]
     w = _matvec(J[:, 3:][:, :, c], vc)
-    pdot = _matvec(J[:, :3][:, :, c], vc) + np.cross(w, pos[p])
-    return (_matvec(dJ[:, :3][:, :, c], vc) + np.cross(_matvec(dJ[:, 3:][:, :, c], vc), pos[p])
-            + np.cross(w, pdot))
+    pdot = _matvec(J[:, :3][:, :, c], vc) + _cross(w, pos[p])
+    return (_matvec(dJ[:, :3][:, :, c], vc) + _cross(_matvec(dJ[:, 3:][:, :, c], vc), pos[p])
+            + _cross(w, pdot))
 
 
 def _sigma_min(A):
@@ -539,6 +549,7 @@ def _sigma_min(A):
 
 
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
+POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step is applied
 
 
 class Stopwatch:
@@ -620,13 +631,26 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     clock.lap("position")
     rhs[:, 6:, 1] = twist(poses, d_poses)
     sol = np.linalg.solve(K, rhs)
-    q, v = q0 - sol[:, :, 0], sol[:, :, 1]
+    v = sol[:, :, 1]
+    # The closed form is exact to round-off: apply the Newton step only where the residual is
+    # above POLISH_TOL, and re-evaluate just those samples, so K and the placements below are
+    # those of the returned configuration.
+    moved = np.flatnonzero(np.abs(rhs[:, :, 0]).max(axis=1) > POLISH_TOL)
+    q = q0.copy()
+    if len(moved):
+        q[moved] -= sol[moved, :, 0]
+        pl_m = _placements(model, q[moved], lay.joints)
+        for j in pl:
+            if j:
+                pl[j][0][moved], pl[j][1][moved] = pl_m[j]
+        for p in points:
+            pos[p][moved] = _position(pl_m, p)
+        J[moved] = _jacobians(robot, q[moved])[0]
+        K[moved] = _stack_K(J[moved], {p: pos[p][moved] for p in points}, lay)
+        v[moved] = np.linalg.solve(K[moved], rhs[moved, :, 1:])[:, :, 0]
     clock.lap("velocity")
-    # Accelerations: K a = [−closure drift; tool acceleration − tool drift], at the final q.
-    pl = _placements(model, q, lay.joints)
-    pos = {p: _position(pl, p) for p in points}
-    J, dJ = _jacobians(robot, q, v)
-    K = _stack_K(J, pos, lay)
+    # Accelerations: K a = [−closure drift; tool acceleration − tool drift].
+    _, dJ = _jacobians(robot, q, v)
     rhs_a = np.empty((n, 12))
     for i, (a_, b_) in enumerate(lay.closures):
         rhs_a[:, 3 * i:3 * i + 3] = _drift(J, dJ, v, pos, b_) - _drift(J, dJ, v, pos, a_)

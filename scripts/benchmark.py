@@ -60,7 +60,7 @@ def pinocchio_batch(robot, traj):
     def run(timings):
         ik = inverse_kinematics_batch(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                                       timings=timings)
-        inverse_dynamics(robot, ik, timings=timings)
+        inverse_dynamics(robot, ik, energies=False, timings=timings)
     return run
 
 
@@ -70,7 +70,7 @@ def pinocchio_newton(robot, traj):
         ik = inverse_kinematics_newton(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
         timings["ik (all stages, per sample)"] = time.perf_counter() - t0
         ik.constraint_jacobian = None  # the old path recomputed Jc per sample
-        inverse_dynamics(robot, ik, timings=timings)
+        inverse_dynamics(robot, ik, energies=False, timings=timings)
     return run
 
 
