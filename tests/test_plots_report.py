@@ -1,0 +1,206 @@
+"""``plot`` and ``report``: figures carry the run's arrays; the report's numbers are the CSV's."""
+import csv
+import json
+import sys
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.cli import main
+from pollard_pin.outputs import run_pipeline, write_csv
+from pollard_pin.plots import FIGURES, figures
+from pollard_pin.report import SIZING_FIELDS, report, to_markdown
+
+SAMPLES = 401
+ARGS = ["--samples", str(SAMPLES), "--quiet"]
+ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    data = np.array(rows[1:], dtype=float)
+    return {h: data[:, i] for i, h in enumerate(rows[0])}
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return pp.load()
+
+
+@pytest.fixture(scope="module")
+def result(robot):
+    return run_pipeline(robot, pp.thesis_trajectory(samples=SAMPLES))
+
+
+@pytest.fixture(scope="module")
+def run_csv(tmp_path_factory):
+    """The ``run`` command's CSV for the same trajectory."""
+    path = tmp_path_factory.mktemp("run") / "run.csv"
+    assert main(["run", *ARGS, "--out", str(path)]) == 0
+    return read_csv(path)
+
+
+# --- plots ---------------------------------------------------------------------------------
+def test_plot_command_writes_every_figure(tmp_path, capsys):
+    from PIL import Image
+
+    out = tmp_path / "figs"
+    assert main(["plot", *ARGS, "--out", str(out), "--dpi", "50"]) == 0
+    written = sorted(p.name for p in out.iterdir())
+    assert written == sorted(f"{n}.png" for n in FIGURES)
+    for name in FIGURES:
+        path = out / f"{name}.png"
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        with Image.open(path) as im:
+            assert im.width >= 300 and im.height >= 250
+            px = np.asarray(im.convert("L"))
+        assert px.std() > 5, f"{name}.png looks blank"
+    assert str(out / "actuators.png") in capsys.readouterr().out
+
+
+def _scale(ylabel):
+    return np.degrees(1.0) if "[deg" in ylabel else 1.0
+
+
+def test_figures_plot_the_run_arrays(result, run_csv):
+    import matplotlib.pyplot as plt
+
+    figs = figures(result)
+    assert tuple(figs) == FIGURES
+    seen = set()
+    try:
+        for name, fig in figs.items():
+            assert fig._suptitle is not None or any(ax.get_title() for ax in fig.axes), name
+            for ax in fig.axes:
+                lines = [ln for ln in ax.get_lines() if ln.get_gid()]
+                assert lines, f"{name}: an axes without data"
+                assert ax.get_title(), f"{name}: untitled axes"
+                assert "[" in ax.get_ylabel() or name == "tool_path", (name, ax.get_ylabel())
+                assert ax.get_legend() is not None, f"{name}: no legend"
+                if name != "tool_path":
+                    assert ax.get_xlabel() in ("", "t [s]")
+                for ln in lines:
+                    gid = ln.get_gid()
+                    if name == "tool_path":
+                        x, y, z = ln.get_data_3d()
+                        for arr, col in ((x, "x"), (y, "y"), (z, "z")):
+                            np.testing.assert_allclose(arr, run_csv[col], rtol=0, atol=1e-15)
+                        seen.add(gid)
+                        continue
+                    x, y = ln.get_data()
+                    np.testing.assert_allclose(x, run_csv["t"], rtol=0, atol=1e-15)
+                    if gid.startswith("|"):  # force magnitude
+                        i = gid[2]
+                        ref = np.sqrt(sum(run_csv[f"f{i}_{c}"] ** 2 for c in "xyz"))
+                    else:
+                        ref = run_csv[gid] * _scale(ax.get_ylabel())
+                    np.testing.assert_allclose(y, ref, rtol=1e-12, atol=1e-12,
+                                               err_msg=f"{name}: {gid}")
+                    seen.add(gid)
+            if name == "tool_path":
+                assert fig.axes[0].get_zlabel() == "z [m]"
+    finally:
+        for fig in figs.values():
+            plt.close(fig)
+    # Everything the issue asks for is on some figure.
+    tree = ["theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817"] + [
+        f"{n}_{i}" for i in (1, 2) for n in ("theta21", "theta65", "theta76")]
+    wanted = {p + j for j in tree for p in ("", "d_", "dd_")}
+    wanted |= {f"{p}_{n}" for p in ("tau", "power", "work") for n in ACTUATED}
+    wanted |= {f"f{i}_{c}" for i in (1, 2) for c in "xyz"} | {"|f1|", "|f2|"}
+    wanted |= {"wrist_margin", "sigma_parallel", "sigma_serial", "tool_path"}
+    assert wanted <= seen, sorted(wanted - seen)
+
+
+def test_figures_need_dynamics(robot):
+    res = run_pipeline(robot, pp.thesis_trajectory(samples=SAMPLES), dynamics=False)
+    with pytest.raises(ValueError, match="dynamics"):
+        figures(res)
+
+
+# --- report --------------------------------------------------------------------------------
+def _trapz(y, t):
+    return float(np.sum((y[1:] + y[:-1]) * np.diff(t)) / 2)
+
+
+def test_report_numbers_equal_the_run_csv(run_csv, capsys):
+    assert main(["report", *ARGS, "--format", "json"]) == 0
+    rep = json.loads(capsys.readouterr().out)
+    t = run_csv["t"]
+    T = t[-1] - t[0]
+    assert rep["trajectory"]["samples"] == len(t) == SAMPLES
+    acts = rep["sizing"]["actuators"]
+    assert list(acts) == list(ACTUATED)
+    for n in ACTUATED:
+        tau, qd, p = run_csv[f"tau_{n}"], run_csv[f"d_{n}"], run_csv[f"power_{n}"]
+        np.testing.assert_allclose(p, tau * qd, rtol=1e-12, atol=1e-15)
+        expected = {
+            "peak_torque": np.abs(tau).max(),
+            "rms_torque": np.sqrt(_trapz(tau ** 2, t) / T),
+            "peak_speed": np.abs(qd).max(),
+            "peak_power": np.abs(p).max(),
+            "energy": _trapz(np.abs(p), t),
+            "net_work": run_csv[f"work_{n}"][-1],
+        }
+        assert set(acts[n]) == {k for k, _, _ in SIZING_FIELDS}
+        for key, value in expected.items():
+            assert acts[n][key] == pytest.approx(value, rel=1e-12, abs=1e-18), (n, key)
+    # Net work is also ∫P dt of the CSV's power column.
+    for n in ACTUATED[:3]:
+        assert acts[n]["net_work"] == pytest.approx(_trapz(run_csv[f"power_{n}"], t), rel=1e-9)
+    for i in (1, 2):
+        f = np.sqrt(sum(run_csv[f"f{i}_{c}"] ** 2 for c in "xyz"))
+        j = rep["sizing"]["spherical_joints"][f"spherical_{i}"]
+        assert j["peak_force"] == pytest.approx(f.max(), rel=1e-12)
+        assert j["peak_time"] == t[np.argmax(f)]
+        assert j["rms_force"] == pytest.approx(np.sqrt(_trapz(f ** 2, t) / T), rel=1e-12)
+    # The base actuators carry the load (spec §6): torques of order 1 N·m.
+    assert 0.3 < acts["theta21"]["peak_torque"] < 5
+
+
+def test_report_cross_checks_agree(run_csv, capsys):
+    assert main(["report", *ARGS, "--format", "json"]) == 0
+    cc = json.loads(capsys.readouterr().out)["cross_check"]
+    th = cc["thesis"]
+    assert th["joint_position_rad"]["max_abs_diff"] < 1e-9
+    for key in ("joint_velocity", "joint_acceleration", "torque"):
+        assert th[key]["relative"] < 1e-8, key
+        assert th[key]["reference_peak"] > 0
+    mj = cc["mujoco"]
+    try:
+        import mujoco  # noqa: F401
+    except ImportError:
+        assert mj["available"] is False and "not installed" in mj["reason"]
+    else:
+        assert mj["available"] is True
+        assert mj["torque"]["relative"] < 1e-8
+        assert mj["closure_force"]["relative"] < 1e-8
+
+
+def test_report_without_mujoco_says_so(robot, result, monkeypatch):
+    monkeypatch.setitem(sys.modules, "mujoco", None)  # import mujoco → ImportError
+    rep = report(robot, result)
+    assert rep["cross_check"]["mujoco"]["available"] is False
+    md = to_markdown(rep)
+    assert "MuJoCo cross-check skipped" in md and "not installed" in md
+    assert "actuator torques, thesis Euler–Lagrange" in md
+
+
+def test_report_markdown_table(robot, result, capsys):
+    assert main(["report", *ARGS]) == 0
+    md = capsys.readouterr().out
+    rep = report(robot, result, cross_check=False)
+    lines = md.splitlines()
+    assert lines[0].startswith("# Actuator sizing report")
+    for n, a in rep["sizing"]["actuators"].items():
+        (row,) = [ln for ln in lines if ln.startswith(f"| `{n}` |")]
+        cells = [c.strip() for c in row.strip("|").split("|")][1:]
+        assert [float(c) for c in cells] == pytest.approx(
+            [a[k] for k, _, _ in SIZING_FIELDS], rel=1e-3, abs=1e-300)
+        assert len(cells) == len(SIZING_FIELDS)
+    # Table headers stay tables: a literal | inside a cell is escaped.
+    header = [ln for ln in lines if ln.startswith("| actuator |")][0]
+    assert header.count(" | ") == len(SIZING_FIELDS)
+    assert "## Cross-checks" in md and "MuJoCo" in md
