@@ -23,6 +23,8 @@ _API = {
     "BranchFlipError": "kinematics",
     "Trajectory": "trajectory", "thesis_trajectory": "trajectory", "from_csv": "trajectory",
     "TrajectoryError": "trajectory", "smooth_random_trajectory": "trajectory",
+    "run_pipeline": "outputs", "write_csv": "outputs", "RunResult": "outputs",
+    "write_figures": "plots", "write_html": "viewer", "sizing_report": "report",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
 }

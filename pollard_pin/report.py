@@ -132,8 +132,10 @@ def cross_check_mujoco(robot, result) -> dict:
             "mujoco_closure_residual_m": float(np.max(mj["residual"]))}
 
 
-def report(robot, result, cross_check: bool = True) -> dict:
-    """The whole report as a JSON-ready dict."""
+def sizing_report(robot, result, cross_check: bool = True) -> dict:
+    """The whole report for a :class:`~pollard_pin.outputs.RunResult` as a JSON-ready dict:
+    ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
+    ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
     if result.dynamics is None:
         raise ValueError("the report needs the dynamics: run_pipeline(..., dynamics=True)")
     ik, traj = result.ik, result.trajectory
@@ -150,6 +152,9 @@ def report(robot, result, cross_check: bool = True) -> dict:
         out["cross_check"] = {"thesis": cross_check_thesis(robot, result),
                               "mujoco": cross_check_mujoco(robot, result)}
     return out
+
+
+report = sizing_report
 
 
 def to_json(rep: dict) -> str:
