@@ -128,17 +128,20 @@ class BranchFlipError(KinematicsError):
 
 
 def _zyz(M: np.ndarray) -> np.ndarray:
-    """ZYZ angles of M = Rz(a) Ry(b) Rz(c), b in [0, π] (spec §4)."""
-    b = np.arccos(np.clip(M[2, 2], -1.0, 1.0))
-    return np.array([np.arctan2(M[1, 2], M[0, 2]), b, np.arctan2(M[2, 1], -M[2, 0])])
+    """ZYZ angles (..., 3) of M = Rz(a) Ry(b) Rz(c) (..., 3, 3), b in [0, π] (spec §4)."""
+    b = np.arccos(np.clip(M[..., 2, 2], -1.0, 1.0))
+    return np.stack([np.arctan2(M[..., 1, 2], M[..., 0, 2]), b,
+                     np.arctan2(M[..., 2, 1], -M[..., 2, 0])], axis=-1)
 
 
-def _zyz_rate_matrix(ang: np.ndarray) -> np.ndarray:
-    """w = Z(a, b) · (ȧ, ḃ, ċ) for M = Rz(a) Ry(b) Rz(c), Ṁ Mᵀ = ŵ."""
-    a, b = ang[0], ang[1]
-    return np.array([[0.0, -np.sin(a), np.cos(a) * np.sin(b)],
-                     [0.0, np.cos(a), np.sin(a) * np.sin(b)],
-                     [1.0, 0.0, np.cos(b)]])
+def _zyz_rates(ang: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """(ȧ, ḃ, ċ) from w, where Ṁ Mᵀ = ŵ and w = ȧ e_z + ḃ Rz(a) e_y + ċ Rz(a)Ry(b) e_z."""
+    a, b = ang[..., 0], ang[..., 1]
+    Z = np.zeros(ang.shape[:-1] + (3, 3))
+    Z[..., 0, 1], Z[..., 0, 2] = -np.sin(a), np.cos(a) * np.sin(b)
+    Z[..., 1, 1], Z[..., 1, 2] = np.cos(a), np.sin(a) * np.sin(b)
+    Z[..., 2, 0], Z[..., 2, 2] = 1.0, np.cos(b)
+    return np.linalg.solve(Z, w[..., None])[..., 0]
 
 
 @dataclass
@@ -211,9 +214,8 @@ def _spherical(data, fr: KinematicFrames):
     for jl, C in zip(fr.link_joints, fr.spherical_offset):
         oMl = data.oMi[jl]
         a = _zyz(oMl.rotation.T @ oMp.rotation @ C)
-        w_rel = oMl.rotation.T @ (w_p - oMl.rotation @ data.v[jl].angular)
         ang.append(a)
-        rate.append(np.linalg.solve(_zyz_rate_matrix(a), w_rel))
+        rate.append(_zyz_rates(a, oMl.rotation.T @ (w_p - oMl.rotation @ data.v[jl].angular)))
     return np.concatenate(ang), np.concatenate(rate)
 
 
@@ -269,6 +271,30 @@ def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
         f"Newton did not converge to pose {np.round(pose, 6).tolist()}: closure residual "
         f"{np.abs(e[:6]).max():.3g} m, tool error {np.abs(e[6:]).max():.3g} (m/rad)",
         sample=k, time=tk, amount=float(np.abs(e).max()))
+
+
+def _task_inputs(poses, d_poses, dd_poses, t):
+    """Validated (N, 6) poses, rates, accelerations (zeros when None) and times (N,)."""
+    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    n = len(poses)
+    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float).reshape(-1)
+    arrays = [poses]
+    for arr in (d_poses, dd_poses):
+        arrays.append(np.zeros_like(poses) if arr is None
+                      else np.atleast_2d(np.asarray(arr, dtype=float)))
+    names = ("pose", "pose rate", "pose acceleration")
+    for name, arr in zip(names, arrays):
+        if arr.shape != (n, 6):
+            raise KinematicsError(f"{name} array has shape {arr.shape}, expected ({n}, 6) "
+                                  "(x, y, z, psi, theta, phi per sample)")
+    if t.shape != (n,):
+        raise KinematicsError(f"times have shape {t.shape}, expected ({n},)")
+    for name, arr in zip(names, arrays):
+        bad = np.argwhere(~np.isfinite(arr))
+        if len(bad):
+            k, c = bad[0]
+            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
+    return (*arrays, t)
 
 
 def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
@@ -330,16 +356,8 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     model, data = robot.model, robot.data
     cms, cds = robot.constraint_models, robot.constraint_datas
     fr = KinematicFrames.of(robot)
-    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    poses, d_poses, dd_poses, t = _task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
-    d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
-    dd_poses = np.zeros_like(poses) if dd_poses is None else np.atleast_2d(dd_poses)
-    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
-    for name, arr in (("pose", poses), ("pose rate", d_poses), ("pose acceleration", dd_poses)):
-        bad = np.argwhere(~np.isfinite(arr))
-        if len(bad):
-            k, c = bad[0]
-            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
     Rs = rotation(poses)
     tw, twd = twist(poses, d_poses), twist_dot(poses, d_poses, dd_poses)
     nv = model.nv
@@ -583,16 +601,8 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     analysis (spherical angles, singularity measures, margin checks).
     """
     clock = Stopwatch(timings)
-    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    poses, d_poses, dd_poses, t = _task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
-    d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(d_poses)
-    dd_poses = np.zeros_like(poses) if dd_poses is None else np.atleast_2d(dd_poses)
-    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
-    for name, arr in (("pose", poses), ("pose rate", d_poses), ("pose acceleration", dd_poses)):
-        bad = np.argwhere(~np.isfinite(arr))
-        if len(bad):
-            k, c = bad[0]
-            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
     q0 = _closed_form(robot, poses, t, wrist_margin)
     clock.lap("position")
     parts = []
@@ -693,17 +703,8 @@ def _spherical_batch(robot: Robot, lay: _Layout, pl, J, v):
     ang, rate = [], []
     for link, C in zip(lay.links, lay.spherical_offset):
         R_l = pl[link][0]
-        M = np.swapaxes(R_l, 1, 2) @ R_p @ C
-        b = np.arccos(np.clip(M[:, 2, 2], -1.0, 1.0))
-        a_ = np.arctan2(M[:, 1, 2], M[:, 0, 2])
-        c_ = np.arctan2(M[:, 2, 1], -M[:, 2, 0])
-        w_rel = _matvec(np.swapaxes(R_l, 1, 2), w_p - omega(link))
-        Z = np.zeros((len(b), 3, 3))
-        Z[:, 0, 1], Z[:, 0, 2] = -np.sin(a_), np.cos(a_) * np.sin(b)
-        Z[:, 1, 1], Z[:, 1, 2] = np.cos(a_), np.sin(a_) * np.sin(b)
-        Z[:, 2, 0], Z[:, 2, 2] = 1.0, np.cos(b)
-        ang.append(np.stack([a_, b, c_], axis=1))
-        rate.append(np.linalg.solve(Z, w_rel[:, :, None])[:, :, 0])
+        ang.append(_zyz(np.swapaxes(R_l, 1, 2) @ R_p @ C))
+        rate.append(_zyz_rates(ang[-1], _matvec(np.swapaxes(R_l, 1, 2), w_p - omega(link))))
     return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
 
 
