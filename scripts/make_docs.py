@@ -1,0 +1,31 @@
+"""Regenerate the README's pictures: docs/viewer.png (the static MeshCat page rendered in
+headless Chromium) and docs/plots/*.png (``pollard-pin plot`` of the thesis trajectory).
+
+    .venv/bin/python scripts/make_docs.py
+
+Needs Debian's ``chromium`` for the screenshot.
+"""
+import tempfile
+from pathlib import Path
+
+import pollard_pin as pp
+from pollard_pin.browser import capture_meshcat
+
+DOCS = Path(__file__).resolve().parent.parent / "docs"
+
+
+def main():
+    robot = pp.load()
+    result = pp.run_pipeline(robot, pp.thesis_trajectory())
+    for path in pp.write_figures(result, DOCS / "plots", dpi=72):
+        print(f"wrote {path} ({path.stat().st_size // 1024} kB)")
+    with tempfile.TemporaryDirectory() as tmp:
+        html = pp.write_html(Path(tmp) / "pollard.html", robot, result.ik, frames=True)
+        png = DOCS / "viewer.png"
+        facts = capture_meshcat(html, png, width=1100, height=640, time_s=10.0)
+    print(f"wrote {png} ({png.stat().st_size // 1024} kB; {facts['meshes']} meshes, "
+          f"{facts['duration']} s animation, renderer {facts['renderer']})")
+
+
+if __name__ == "__main__":
+    main()
