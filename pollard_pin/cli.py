@@ -10,11 +10,11 @@ from pathlib import Path
 def _progress(label: str, enabled: bool):
     if not enabled:
         return None
-    state = {"last": -1}
+    state = {"last": -100}
 
     def report(done: int, total: int) -> None:
         pct = 100 * done // total
-        if pct != state["last"] and (pct % 5 == 0 or done == total):
+        if pct >= state["last"] + 5 or done == total:
             state["last"] = pct
             sys.stderr.write(f"\r{label}: {pct:3d}% ({done}/{total})")
             if done == total:

@@ -58,6 +58,9 @@ def write_csv(result: RunResult, path: str | Path) -> None:
         with os.fdopen(fd, "w") as f:
             np.savetxt(f, np.column_stack(list(cols.values())), delimiter=",",
                        header=",".join(cols), comments="", fmt="%.17g")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual file mode
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)
