@@ -1,0 +1,40 @@
+"""The example scripts run and use the public API only."""
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SCRIPTS = Path(__file__).resolve().parent.parent / "scripts"
+EXAMPLES = {  # script → (arguments, text its output must contain, files it must write)
+    "thesis_run.py": (["--samples", "401"], "| `theta21` |", ["run.csv"]),
+    "custom_trajectory.py": ([], "wrote circle_run.csv", ["circle.csv", "circle_run.csv"]),
+    "view.py": (["--html", "p.html"], "wrote p.html", ["p.html"]),
+    "cross_check.py": ([], "Pinocchio vs thesis", []),
+}
+PUBLIC = {"pollard_pin", "pollard_pin.report", "pollard_pin.viewer", "pollard_pin.plots",
+          "pollard_pin.browser"}
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_example_script_runs(name, tmp_path):
+    args, expect, files = EXAMPLES[name]
+    r = subprocess.run([sys.executable, str(SCRIPTS / name), *args], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert expect in r.stdout
+    for f in files:
+        assert (tmp_path / f).stat().st_size > 0, f
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES) + ["make_docs.py"])
+def test_example_script_uses_public_api(name):
+    tree = ast.parse((SCRIPTS / name).read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module.startswith("pollard_pin"):
+            assert node.module in PUBLIC, f"{name} imports {node.module}"
+            assert not any(a.name.startswith("_") for a in node.names), name
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
+                and node.value.id == "pp":
+            assert not node.attr.startswith("_"), f"{name} uses pp.{node.attr}"
