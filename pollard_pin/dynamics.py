@@ -141,14 +141,17 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     ia, ip = robot.actuated_v, robot.passive_v
     lam = np.linalg.solve(np.swapaxes(Jc[:, :, ip], 1, 2), tree[:, ip, None])
     tau = tree[:, ia] - (np.swapaxes(Jc[:, :, ia], 1, 2) @ lam)[:, :, 0]
-    x = np.concatenate([tau, lam[:, :, 0]], axis=1)
     clock.lap("dynamics")
-    return DynamicsResult(t=ik.t, tau=x[:, :6], closure_forces=x[:, 6:].reshape(n, 2, 3),
+    return DynamicsResult(t=ik.t, tau=tau, closure_forces=lam.reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,
                           potential=U, actuated=robot.actuated)
 
 
 # --- forward dynamics ---------------------------------------------------------------------
+class SimulationError(RuntimeError):
+    """The integration produced a non-finite state."""
+
+
 @dataclass
 class SimulationResult:
     t: np.ndarray
@@ -177,10 +180,20 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     ``Kd`` default to a critically damped 20 rad/s correction.
     """
     model = robot.model
-    kp, kd = baumgarte
-    for cm in robot.constraint_models:
-        cm.m_baumgarte_parameters.Kp = float(kp)
-        cm.m_baumgarte_parameters.Kd = float(kd)
+    saved = [(cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd)
+             for cm in robot.constraint_models]
+    try:
+        for cm in robot.constraint_models:
+            cm.m_baumgarte_parameters.Kp = float(baumgarte[0])
+            cm.m_baumgarte_parameters.Kd = float(baumgarte[1])
+        return _rk4(robot, torques, q0, v0, duration, dt)
+    finally:  # the robot's constraint models are left as they were
+        for cm, (kp, kd) in zip(robot.constraint_models, saved):
+            cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd = kp, kd
+
+
+def _rk4(robot: Robot, torques, q0, v0, duration: float, dt: float) -> SimulationResult:
+    model = robot.model
     pin.initConstraintDynamics(model, robot.data, robot.constraint_models,
                                robot.constraint_datas)
     settings = pin.ProximalSettings(1e-14, 0.0, 1)
@@ -194,6 +207,9 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     res = np.empty(steps + 1)
     q, v = np.array(q0, dtype=float), np.array(v0, dtype=float)
     for k, t in enumerate(ts):
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+            raise SimulationError(f"simulation diverged at step {k} (t = {t:.6g} s): "
+                                  "non-finite state; reduce dt or stabilise the motion")
         Q[k], V[k] = q, v
         res[k] = np.abs(constraint_residual(model, robot.data, robot.constraint_models,
                                             robot.constraint_datas, q)).max()
