@@ -16,7 +16,6 @@ Modelling notes:
 """
 from __future__ import annotations
 
-import math
 import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -354,13 +353,40 @@ def home_configuration(srdf_path=None, urdf_path=None) -> np.ndarray:
     raise ValueError(f"{srdf_path}: no group_state named 'home'")
 
 
-def _log3(R) -> np.ndarray:
-    """SO(3) logarithm (rotation vector) of a 3 × 3 matrix, exact away from a half turn."""
-    w = 0.5 * np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
-    s = math.sqrt(w @ w)
-    if s < 1e-8:
-        return w * (1.0 + s * s / 6.0)
-    return w * (math.atan2(s, 0.5 * (R[0, 0] + R[1, 1] + R[2, 2] - 1.0)) / s)
+def _drift(model, data, sites, q, v, out, acc6=None):
+    """K̇ v (12,) at MuJoCo-ordered ``q``, ``v`` into ``out``: [closure drifts (p̈_A − p̈_B at
+    q̈ = 0) (6); tip classical acceleration at q̈ = 0 (3); ω̇ at q̈ = 0 (3)], world axes.
+
+    qvel = v, qacc = 0; ``mj_comVel`` + ``mj_rnePostConstraint`` fill ``cacc``, and
+    ``mj_objectAcceleration(…, flg_local=0)`` returns (ω̇, p̈) of a site: the classical
+    acceleration of its point (the ω × v term included; checked against finite differences in
+    the tests). ``cacc`` of the world body is −gravity, a uniform offset in every linear
+    acceleration: it cancels in the closure differences and is added back for the tip.
+    ``sites`` = (A1, B1, A2, B2, tip) site ids.
+    """
+    import mujoco
+
+    acc6 = np.empty(6) if acc6 is None else acc6
+    sa1, sb1, sa2, sb2, tip = sites
+    data.qpos[:], data.qvel[:] = q, v
+    data.qacc[:] = 0.0
+    mujoco.mj_kinematics(model, data)
+    mujoco.mj_comPos(model, data)
+    mujoco.mj_comVel(model, data)
+    mujoco.mj_rnePostConstraint(model, data)
+    oacc, SITE = mujoco.mj_objectAcceleration, mujoco.mjtObj.mjOBJ_SITE
+    oacc(model, data, SITE, sa1, acc6, 0)
+    out[0:3] = acc6[3:]
+    oacc(model, data, SITE, sb1, acc6, 0)
+    out[0:3] -= acc6[3:]
+    oacc(model, data, SITE, sa2, acc6, 0)
+    out[3:6] = acc6[3:]
+    oacc(model, data, SITE, sb2, acc6, 0)
+    out[3:6] -= acc6[3:]
+    oacc(model, data, SITE, tip, acc6, 0)
+    out[6:9] = acc6[3:] + model.opt.gravity
+    out[9:12] = acc6[:3]
+    return out
 
 
 class _Clock:
@@ -432,8 +458,8 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     q = np.zeros(nv)
     q[qadr] = (home_configuration(urdf_path=info["urdf_path"]) if q_start is None
                else np.asarray(q_start, dtype=float).reshape(12))
-    # Residual maps, linear in MuJoCo's outputs: e[:9] = P·site_xpos − [0; p_des] and
-    # (w, tr R_err) = L_k·xmat_tip with w = vee of the antisymmetric part of R_err = R_tip R_desᵀ.
+    # e[:9] = P·site_xpos − [0; p_des]; the orientation error log(R_tip R_desᵀ) = R_des·r with
+    # r from mju_subQuat(q_tip, q_des) (q_des·exp(r) = q_tip).
     P = np.zeros((9, model.nsite, 3))
     for rows, site, sign in ((0, sa1, 1.0), (0, sb1, -1.0), (3, sa2, 1.0), (3, sb2, -1.0),
                              (6, tip, 1.0)):
@@ -441,12 +467,10 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     P = P.reshape(9, -1)
     Pd = np.zeros((n, 9))
     Pd[:, 6:] = Pdes
-    L = np.zeros((n, 4, 3, 3))  # [w_x, w_y, w_z, trace] as linear forms in R_tip (row-major)
-    for i, j, c in ((0, 2, 1), (1, 0, 2), (2, 1, 0)):  # w_c = ½ Σ_m (T_im D_jm − T_jm D_im)
-        L[:, c, i] += 0.5 * Rdes[:, j]
-        L[:, c, j] -= 0.5 * Rdes[:, i]
-    L[:, 3] = Rdes
-    L = L.reshape(n, 4, 9)
+    Rflat = np.ascontiguousarray(Rdes.reshape(n, 9))
+    Qdes = np.empty((n, 4))
+    for k in range(n):
+        mujoco.mju_mat2Quat(Qdes[k], Rflat[k])
 
     Q, Ks = np.empty((n, nv)), np.empty((n, 12, nv))
     res, tool_err, iters = np.empty(n), np.empty(n), np.empty(n, dtype=int)
@@ -459,7 +483,8 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     xpos, xmat_tip, qpos = data.site_xpos.reshape(-1), data.site_xmat[tip], data.qpos
     K1, K2, Kt, Kr = K[0:3], K[3:6], K[6:9], K[9:12]
     e9, ew = e[:9], e[9:]
-    sqrt, atan2 = math.sqrt, math.atan2
+    mat2quat, subquat, rotate = mujoco.mju_mat2Quat, mujoco.mju_subQuat, mujoco.mju_mulMatVec3
+    quat, r = np.empty(4), np.empty(3)
 
     def jacobian():  # K at the kinematics in data
         jac(model, data, K1, None, sa1)
@@ -473,17 +498,16 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     for k in range(n):
         if predictor == "secant" and k >= 2:
             q = 2.0 * Q[k - 1] - Q[k - 2]
-        Pd_k, L_k = Pd[k], L[k]
+        Pd_k, qd_k, Rd_k = Pd[k], Qdes[k], Rflat[k]
         polished = False
         for it in range(max_iter + 1):
             qpos[:] = q
             kin(model, data)
             com(model, data)
             np.subtract(P @ xpos, Pd_k, out=e9)
-            wx, wy, wz, tr = L_k @ xmat_tip
-            sw = sqrt(wx * wx + wy * wy + wz * wz)
-            f = atan2(sw, 0.5 * (tr - 1.0)) / sw if sw > 1e-8 else 1.0 + sw * sw / 6.0
-            ew[0], ew[1], ew[2] = wx * f, wy * f, wz * f  # log(R_tip R_desᵀ)
+            mat2quat(quat, xmat_tip)
+            subquat(r, quat, qd_k)
+            rotate(ew, Rd_k, r)  # log(R_tip R_desᵀ), world axes
             err = np.abs(e).max()
             if polished:
                 break
@@ -494,7 +518,8 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
                     f"sample {k}: Newton did not converge to pose {np.round(poses[k], 6).tolist()}"
                     f" in {max_iter} steps: closure residual {np.abs(e[:6]).max():.3g} m, tool "
                     f"error {np.abs(e[6:]).max():.3g} (m/rad)", sample=k, residual=float(err))
-            jacobian()
+            if not polished or it == 0:  # the last step past tol reuses K (round-off level)
+                jacobian()
             # K is square and well conditioned away from singularities (cond ≈ 20–45 on the
             # thesis curve): normal equations with MuJoCo's dense Cholesky, far cheaper than
             # numpy's solve for one 12 × 12 system; LU fallback if the factor is rank deficient.
@@ -520,32 +545,11 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     V = np.linalg.solve(Ks, rhs)[:, :, 0]
     clock.lap("velocity")
 
-    # Drifts K̇ v: classical site accelerations at qacc = 0 (see the docstring).
-    acc6 = np.empty(6)
     drift = np.empty((n, 12))
-    g = model.opt.gravity.copy()
-    qvel, qacc = data.qvel, data.qacc
-    cvel, rne, oacc = mujoco.mj_comVel, mujoco.mj_rnePostConstraint, mujoco.mj_objectAcceleration
-    SITE = mujoco.mjtObj.mjOBJ_SITE
+    acc6 = np.empty(6)
+    sites = (sa1, sb1, sa2, sb2, tip)
     for k in range(n):
-        qpos[:], qvel[:] = Q[k], V[k]
-        qacc[:] = 0.0
-        kin(model, data)
-        com(model, data)
-        cvel(model, data)
-        rne(model, data)
-        out = drift[k]
-        oacc(model, data, SITE, sa1, acc6, 0)
-        out[0:3] = acc6[3:]
-        oacc(model, data, SITE, sb1, acc6, 0)
-        out[0:3] -= acc6[3:]
-        oacc(model, data, SITE, sa2, acc6, 0)
-        out[3:6] = acc6[3:]
-        oacc(model, data, SITE, sb2, acc6, 0)
-        out[3:6] -= acc6[3:]
-        oacc(model, data, SITE, tip, acc6, 0)
-        out[6:9] = acc6[3:] + g  # cacc carries −gravity from the world body
-        out[9:12] = acc6[:3]
+        _drift(model, data, sites, Q[k], V[k], drift[k], acc6)
     rhs = -drift
     rhs[:, 6:] += twd
     A = np.linalg.solve(Ks, rhs[:, :, None])[:, :, 0]
