@@ -60,6 +60,7 @@ class OfflineWindow:
     zmq_url = None
 
     def __init__(self):
+        _meshcat()
         from meshcat.servers.tree import SceneTree
 
         self.tree = SceneTree()
@@ -115,8 +116,20 @@ class OfflineWindow:
         pass
 
 
+def _meshcat():
+    """``import meshcat`` without its pyzmq deprecation warning (zmq.eventloop.ioloop)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", category=DeprecationWarning, module="meshcat")
+        warnings.filterwarnings("ignore", message=".*zmq.eventloop.ioloop.*")
+        import meshcat
+        import meshcat.servers.zmqserver  # noqa: F401 - where the warning comes from
+    return meshcat
+
+
 def _viewer_bundle() -> str:
-    import meshcat
+    meshcat = _meshcat()
 
     return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text()
 
@@ -336,7 +349,7 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
 def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
                 title: str | None = None) -> str:
     """The scene of :func:`build_scene` as a self-contained HTML page (no server needed)."""
-    import meshcat
+    meshcat = _meshcat()
 
     window = OfflineWindow()
     vis = meshcat.Visualizer(window=window)
@@ -356,14 +369,20 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
           ready=None) -> None:
     """Start MeshCat's server on localhost, draw the scene and serve until interrupted
     (Ctrl-C or SIGTERM); the server process is stopped on the way out."""
-    import meshcat
-
     from contextlib import redirect_stdout
+
+    meshcat = _meshcat()
 
     with redirect_stdout(sys.stderr):  # meshcat prints its own banner; keep stdout ours
         vis = meshcat.Visualizer()
     window = vis.window
-    previous = signal.signal(signal.SIGTERM, lambda *_: (_ for _ in ()).throw(KeyboardInterrupt))
+    def _terminate(signum, frame):
+        raise KeyboardInterrupt
+
+    try:  # SIGTERM stops the server as Ctrl-C does (only possible in the main thread)
+        previous = signal.signal(signal.SIGTERM, _terminate)
+    except ValueError:
+        previous = None
     try:
         scene = build_scene(vis, robot, ik, frames=frames, fps=fps)
         print(f"MeshCat viewer: {window.web_url}", file=out)
@@ -378,7 +397,8 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
     except KeyboardInterrupt:
         print("stopping the MeshCat server", file=out)
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
         proc = getattr(window, "server_proc", None)
         if proc is not None and proc.poll() is None:
             proc.kill()
