@@ -208,9 +208,13 @@ def test_live_server_serves_the_same_scene(ik, robot, tmp_path):
         with pytest.raises((urllib.error.URLError, ConnectionError)):
             urllib.request.urlopen(web_url, timeout=5)
     finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
+        if proc.poll() is None:  # a failed assertion: SIGTERM lets view stop its server
+            proc.terminate()
+            try:
+                proc.wait(20)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
 
 
 # --- the static page in a real browser ------------------------------------------------------
