@@ -11,8 +11,9 @@ import pytest
 mujoco = pytest.importorskip("mujoco")
 
 from pollard_pin._paths import models_dir  # noqa: E402
-from pollard_pin.mujoco_peer import (ACTUATED, JOINTS, build_mujoco,  # noqa: E402
-                                     inverse_dynamics_mujoco)
+from pollard_pin.mujoco_peer import (ACTUATED, JOINTS, MujocoIKError,  # noqa: E402
+                                     build_mujoco, home_configuration, inverse_dynamics_mujoco,
+                                     inverse_kinematics_mujoco, pipeline_mujoco)
 
 URDF = models_dir() / "pollard.urdf"
 TOL_CLOSURE = 1e-10  # m
@@ -85,8 +86,11 @@ def test_joint_order_is_the_ik_order(robot):
 
 def test_module_does_not_import_pinocchio():
     code = ("import sys, numpy as np; from pollard_pin.mujoco_peer import "
-            "inverse_dynamics_mujoco as f; r = f(np.zeros(12), np.zeros(12), np.zeros(12)); "
+            "inverse_dynamics_mujoco as f, pipeline_mujoco as p; "
+            "r = f(np.zeros(12), np.zeros(12), np.zeros(12)); "
             "assert r['tau'].shape == (1, 6) and r['closure_forces'].shape == (1, 2, 3); "
+            "r = p(np.array([[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])); "
+            "assert r['q'].shape == (1, 12) and r['tau'].shape == (1, 6); "
             "assert 'pinocchio' not in sys.modules, 'pinocchio imported'")
     subprocess.run([sys.executable, "-c", code], check=True, timeout=60)
 
@@ -219,3 +223,145 @@ def test_static_torques_by_virtual_work(built):
         grad[i] = (U[0] - 8 * U[1] + 8 * U[2] - U[3]) / (12 * h)
     tau = out["tau"][0]
     assert np.abs(tau - grad).max() <= 1e-8 * np.abs(tau).max(), (tau, grad)
+
+
+# --- (4) MuJoCo constrained IK (inverse_kinematics_mujoco, pipeline_mujoco) ----------------------
+TOL_Q, TOL_V, TOL_A = 1e-9, 1e-7, 1e-5  # rad, rad/s, rad/s² against Pinocchio's IK
+
+
+def _wrap(x):
+    return (x + np.pi) % (2 * np.pi) - np.pi
+
+
+@pytest.fixture(scope="module")
+def short_trajs():
+    from pollard_pin.trajectory import smooth_random_trajectory, thesis_trajectory
+
+    return {"thesis201": thesis_trajectory(samples=201),
+            "random0": smooth_random_trajectory(0, samples=101),
+            "random1": smooth_random_trajectory(1, samples=101)}
+
+
+@pytest.mark.parametrize("name", ["thesis201", "random0", "random1"])
+def test_mujoco_ik_and_pipeline_match_pinocchio(name, short_trajs, robot, built):
+    inverse_dynamics = _pin_dynamics()
+    traj = short_trajs[name]
+    ik = _ik(robot, traj)
+    timings = {}
+    out = pipeline_mujoco(traj.poses, traj.d_poses, traj.dd_poses, timings=timings, built=built)
+    assert set(timings) == {"position", "velocity", "acceleration", "dynamics"}
+    assert all(t > 0 for t in timings.values())
+    n = len(traj)
+    for key in ("q", "v", "a"):
+        assert out[key].shape == (n, 12)
+    assert out["closure_residual"].shape == (n,)
+    assert np.abs(_wrap(out["q"] - ik.q)).max() <= TOL_Q
+    assert np.abs(out["v"] - ik.v).max() <= TOL_V
+    assert np.abs(out["a"] - ik.a).max() <= TOL_A
+    assert out["closure_residual"].max() <= TOL_CLOSURE
+    assert out["tool_error"].max() <= 1e-12
+    # The dynamics half of the pipeline sees closed loops too.
+    assert out["residual"].max() <= TOL_CLOSURE
+    pin = inverse_dynamics(robot, ik)
+    e_tau = _rel_errors(out["tau"], pin.tau, axis=0)
+    assert e_tau.max() <= TOL_REL, dict(zip(ACTUATED, e_tau))
+    peak_f = np.linalg.norm(pin.closure_forces, axis=2).max(axis=0)
+    e_f = np.abs(out["closure_forces"] - pin.closure_forces).max(axis=(0, 2)) / peak_f
+    assert e_f.max() <= TOL_REL, e_f
+
+
+def test_home_configuration_from_srdf(robot):
+    q = home_configuration()
+    root = ET.parse(models_dir() / "pollard.srdf").getroot()
+    (gs,) = [g for g in root.iter("group_state") if g.get("name") == "home"]
+    assert {j.get("name"): float(j.get("value")) for j in gs.iter("joint")} == dict(zip(JOINTS, q))
+    # Spec §9 table (degrees, rounded to 1e-3).
+    deg = np.degrees(q)
+    assert deg[JOINTS.index("theta21")] == pytest.approx(-77.629, abs=1e-3)
+    assert deg[JOINTS.index("theta76_2")] == pytest.approx(-46.778, abs=1e-3)
+
+
+def test_mujoco_ik_at_home_pose_returns_srdf_home(built):
+    home = home_configuration()
+    out = inverse_kinematics_mujoco(np.array([0.55, 0.0, 0.16, 0.0, 0.0, 0.0]), built=built)
+    # The SRDF values are rounded to 1e-12 rad; Newton lands within a few of those.
+    assert np.abs(out["q"][0] - home).max() <= 1e-10
+    assert np.abs(out["v"]).max() == 0.0 and np.abs(out["a"]).max() <= 1e-12
+
+
+def test_mujoco_ik_warm_start_options_agree(short_trajs, built):
+    """q_start and the secant predictor change the iterates, not the solution."""
+    traj = short_trajs["random1"]
+    ref = inverse_kinematics_mujoco(traj.poses, traj.d_poses, traj.dd_poses, built=built)
+    sec = inverse_kinematics_mujoco(traj.poses, traj.d_poses, traj.dd_poses, built=built,
+                                    predictor="secant")
+    start = inverse_kinematics_mujoco(traj.poses, traj.d_poses, traj.dd_poses, built=built,
+                                      q_start=ref["q"][0] + 0.02)
+    for other in (sec, start):
+        assert np.abs(other["q"] - ref["q"]).max() <= 1e-12
+        assert np.abs(other["a"] - ref["a"]).max() <= 1e-9
+    assert sec["iterations"].sum() < ref["iterations"].sum()
+    assert np.all(ref["iterations"] <= 6)
+
+
+def test_mujoco_ik_accelerations_by_finite_differences_in_time(built):
+    """Pinocchio-free: v and a are the time derivatives of the IK positions along the thesis
+    curve (exact poses at t ± h from pollard_pin.trajectory.thesis_curve)."""
+    from pollard_pin.trajectory import thesis_curve
+
+    h = 1e-4
+    t0 = np.linspace(0.3, 19.7, 7)
+    ts = (t0[:, None] + h * np.array([-2, -1, 0, 1, 2])[None, :]).reshape(-1)
+    out = inverse_kinematics_mujoco(*thesis_curve(ts), built=built)
+    q = out["q"].reshape(len(t0), 5, 12)
+    v, a = out["v"].reshape(len(t0), 5, 12)[:, 2], out["a"].reshape(len(t0), 5, 12)[:, 2]
+    dq = (q[:, 0] - 8 * q[:, 1] + 8 * q[:, 3] - q[:, 4]) / (12 * h)
+    vv = out["v"].reshape(len(t0), 5, 12)
+    dv = (vv[:, 0] - 8 * vv[:, 1] + 8 * vv[:, 3] - vv[:, 4]) / (12 * h)
+    assert np.abs(dq - v).max() <= 1e-7 * np.abs(v).max()
+    assert np.abs(dv - a).max() <= 1e-6 * np.abs(a).max()
+
+
+def test_objectacceleration_drift_is_classical_by_finite_differences(built):
+    """The drift recipe (qacc = 0, mj_rnePostConstraint, mj_objectAcceleration flg_local=0,
+    gravity added back) is K̇ v: the derivative of K(q) v along q + s v (4th-order central
+    differences), at random states, gravity on."""
+    from pollard_pin.mujoco_peer import _drift
+
+    model, _, info = built
+    data = mujoco.MjData(model)
+    assert not np.array_equal(model.opt.gravity, 0.0)
+    sites = (*info["site_ids"].reshape(-1), info["tip_site"])
+
+    def K(q):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_comPos(model, data)
+        J = np.zeros((len(sites), 6, model.nv))
+        for i, s in enumerate(sites):
+            mujoco.mj_jacSite(model, data, J[i, :3], J[i, 3:], s)
+        return np.vstack([J[0, :3] - J[1, :3], J[2, :3] - J[3, :3], J[4, :3], J[4, 3:]])
+
+    rng = np.random.default_rng(3)
+    h = 1e-3
+    for _ in range(5):
+        q, v = rng.uniform(-2, 2, model.nv), rng.uniform(-3, 3, model.nv)
+        fd = (K(q - 2 * h * v) @ v - 8 * K(q - h * v) @ v + 8 * K(q + h * v) @ v
+              - K(q + 2 * h * v) @ v) / (12 * h)
+        got = _drift(model, data, sites, q, v, np.empty(12))
+        assert np.abs(got - fd).max() <= 1e-8 * np.abs(fd).max(), (got, fd)
+        # The ω × ṗ term separates classical from spatial acceleration: it is far above the
+        # tolerance, so a spatial acceleration would fail the check above.
+        Kq = K(q)
+        wxv = np.cross(Kq[9:12] @ v, Kq[6:9] @ v)
+        assert np.abs(wxv).max() > 1e-3 * np.abs(fd).max()
+
+
+def test_mujoco_ik_errors(built):
+    with pytest.raises(ValueError, match="shape"):
+        inverse_kinematics_mujoco(np.zeros((3, 5)), built=built)
+    with pytest.raises(ValueError, match="predictor"):
+        inverse_kinematics_mujoco(np.zeros(6), built=built, predictor="cubic")
+    with pytest.raises(MujocoIKError) as exc:  # 2 m away: out of reach
+        inverse_kinematics_mujoco(np.array([2.5, 0.0, 0.16, 0.0, 0.0, 0.0]), built=built)
+    assert exc.value.sample == 0 and exc.value.residual > 0.1
