@@ -7,6 +7,12 @@ and A_i on ``platform`` (positions read from the URDF fixed joints of the ``<loo
 frames). ``mj_inverse`` gives the open-tree torques; the actuator torques τ and the closure
 forces λ then solve ``[Sᵀ Jcᵀ] [τ; λ] = τ_tree`` with Jc the connect rows of ``efc_J``.
 
+The constrained inverse kinematics (:func:`inverse_kinematics_mujoco`) is MuJoCo's too: Newton
+on the closure residual and tool-pose error with ``mj_jacSite`` Jacobians (a site ``tip_site``
+at the URDF ``tip`` frame, Tx(x1918) on ``gun``), and exact acceleration drifts from
+``mj_rnePostConstraint`` + ``mj_objectAcceleration``. :func:`pipeline_mujoco` chains IK and
+inverse dynamics: the complete MuJoCo peer path, timed per stage.
+
 Modelling notes:
 - MuJoCo rejects massless moving bodies, so each massless U-joint cross (spec §5) is removed
   and its hinge moved into its child body ahead of the child's own hinge. MuJoCo composes the
@@ -418,9 +424,13 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
       added back (gravity stays untouched in the model).
     ``timings`` (a dict) accumulates seconds in 'position', 'velocity', 'acceleration'.
 
+    ``predictor="secant"`` starts Newton from 2 q[k−1] − q[k−2] instead of q[k−1] (about one
+    step fewer per sample on evenly sampled paths; same solution).
+    Angles are not wrapped: they move continuously from the start configuration.
+
     Returns ``q``, ``v``, ``a`` (N, 12) in :data:`JOINTS` order, ``closure_residual`` (N,)
     and ``tool_error`` (N,) (max |p_A − p_B| and tool-pose error components [m, rad] at the
-    returned q) and ``iterations`` (N,) (Newton steps taken).
+    returned q) and ``iterations`` (N,) (Newton steps taken, the one past tol included).
     Raises :class:`MujocoIKError` at the first sample where Newton does not converge.
     """
     import mujoco
@@ -522,7 +532,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
                 jacobian()
             # K is square and well conditioned away from singularities (cond ≈ 20–45 on the
             # thesis curve): normal equations with MuJoCo's dense Cholesky, far cheaper than
-            # numpy's solve for one 12 × 12 system; LU fallback if the factor is rank deficient.
+            # numpy's solve for one 12 × 12 system; least squares if the factor is singular.
             mTm(H, K, K)
             mTv(g, K, e)
             if chol(H, 0.0) == nv:
@@ -559,14 +569,16 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
 
 
 def pipeline_mujoco(poses, d_poses=None, dd_poses=None, timings: dict | None = None,
-                    q_start=None, urdf_path=None, built=None, tol: float = IK_TOL) -> dict:
+                    q_start=None, urdf_path=None, built=None, tol: float = IK_TOL,
+                    **ik_options) -> dict:
     """The complete MuJoCo peer path: :func:`inverse_kinematics_mujoco` then
     :func:`inverse_dynamics_mujoco`. Returns the keys of both (``q``, ``v``, ``a``,
     ``closure_residual``, ``tool_error``, ``iterations``, ``tau``, ``closure_forces``, ``tree``,
-    ``residual``, ``residual_vec``); ``timings`` also gets 'dynamics'."""
+    ``residual``, ``residual_vec``); ``timings`` also gets 'dynamics'. ``ik_options``:
+    ``max_iter``, ``predictor``."""
     built = built if built is not None else _built(urdf_path)
     ik = inverse_kinematics_mujoco(poses, d_poses, dd_poses, q_start=q_start, built=built,
-                                   tol=tol, timings=timings)
+                                   tol=tol, timings=timings, **ik_options)
     clock = _Clock(timings)
     dyn = inverse_dynamics_mujoco(ik["q"], ik["v"], ik["a"], built=built)
     clock.lap("dynamics")
