@@ -82,7 +82,7 @@ def thesis_path(robot, traj):
         t0 = time.perf_counter()
         cf.position_ik(robot.params, traj.poses)
         t1 = time.perf_counter()
-        cf.ik(robot.params, traj.poses, traj.d_poses, traj.dd_poses)
+        cf.inverse_kinematics(robot.params, traj.poses, traj.d_poses, traj.dd_poses)
         t2 = time.perf_counter()
         lag.inverse_dynamics(robot.params, traj.poses, traj.d_poses, traj.dd_poses)
         t3 = time.perf_counter()

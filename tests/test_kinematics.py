@@ -28,7 +28,7 @@ from pollard_pin.outputs import run_pipeline
 from pollard_pin.trajectory import (Trajectory, TrajectoryError, from_csv,
                                     smooth_random_trajectory, thesis_trajectory, to_csv)
 
-T = importlib.import_module("pollard_pin.thesis.ik")  # the module (pollard_pin.thesis.ik is ik())
+T = importlib.import_module("pollard_pin.thesis.ik")
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"
@@ -71,7 +71,7 @@ def solve(robot, traj, **kw):
 def thesis_reference(robot, poses, d_poses, dd_poses):
     """Closed-form (q, qd, qdd) split into tree joints (robot.joint_names order) and the six
     spherical angles (SPHERICAL order)."""
-    q, qd, qdd = T.ik(robot.params, poses, d_poses, dd_poses)
+    q, qd, qdd = T.inverse_kinematics(robot.params, poses, d_poses, dd_poses)
     tree = [T.JOINTS.index(n) for n in robot.joint_names]
     sph = [T.JOINTS.index(n) for n in SPHERICAL]
     return {"q": q[:, tree], "v": qd[:, tree], "a": qdd[:, tree],

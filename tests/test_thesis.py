@@ -9,8 +9,8 @@ import pytest
 from pollard_pin.params import load_params
 from pollard_pin.thesis import (ACTUATED, JOINTS, UnreachableError, WristSingularError,
                                 actuation_jacobian, body_kinematics, closure_points, energy,
-                                forward_frames, forward_tool_pose, gravity_torques, ik,
-                                inverse_dynamics, mass_matrix,
+                                forward_frames, forward_tool_pose, gravity_torques,
+                                inverse_dynamics, inverse_kinematics, mass_matrix,
                                 position_ik, three_actuator_analysis)
 from pollard_pin.thesis import jet as J
 from pollard_pin.thesis.ik import ACTUATED_INDEX
@@ -81,7 +81,7 @@ def test_reference_selects_the_2pi_representative(p):
 def test_velocities_and_accelerations_match_finite_differences(p, traj):
     h = 1e-4
     _, x, xd, xdd = traj(p, t=T_PROBE)
-    q, qd, qdd = ik(p, x, xd, xdd)
+    q, qd, qdd = inverse_kinematics(p, x, xd, xdd)
     assert np.allclose(q, position_ik(p, x), atol=1e-14)
     qp = position_ik(p, traj(p, t=T_PROBE + h)[1], reference=q[0])
     qm = position_ik(p, traj(p, t=T_PROBE - h)[1], reference=q[0])

@@ -205,7 +205,8 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
 
 
-def ik(params, poses, d_poses, dd_poses, reference=None, wrist_margin: float = 0.0):
+def inverse_kinematics(params, poses, d_poses, dd_poses, reference=None,
+                       wrist_margin: float = 0.0):
     """(q, qd, qdd), each (N, 18): the closed forms and their exact time derivatives."""
     x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
     sol = _solve(params, x, wrist_margin)
