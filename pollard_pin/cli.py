@@ -83,7 +83,9 @@ def cmd_run(args) -> int:
     t0 = time.perf_counter()
     traj = _load_trajectory(args, robot.params)
     result = run_pipeline(robot, traj, progress=_progress("solving", len(traj) >= 500 and
-                                                           not args.quiet))
+                                                           not args.quiet),
+                          wrist_margin=args.wrist_margin,
+                          singularity_margin=args.singularity_margin)
     wall = time.perf_counter() - t0
     write_csv(result, args.out)
     print(summary(result, wall))
@@ -174,6 +176,8 @@ def _trajectory_args(p) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from .kinematics import SINGULARITY_MARGIN, WRIST_MARGIN
+
     ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
     sub = ap.add_subparsers(dest="command", required=True)
 
@@ -193,6 +197,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="run.csv", help="output CSV")
     p.add_argument("--params", help="parameter TOML")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--wrist-margin", type=float, default=WRIST_MARGIN,
+                   help="fail where |sin θ1716| drops below this (default %(default)s)")
+    p.add_argument("--singularity-margin", type=float, default=SINGULARITY_MARGIN,
+                   help="fail where the parallel or serial σ_min drops below this "
+                        "(default %(default)s)")
     p.set_defaults(func=cmd_run)
 
     p = sub.add_parser("sweep", help="design sweep: parameter variants over a trajectory → CSV")

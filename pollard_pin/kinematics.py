@@ -309,7 +309,8 @@ def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
         if exc.kind == "singular":
             raise SingularityError(
                 f"wrist |sin θ1716| = {exc.ratio:.4g} is below the margin {wrist_margin:g} "
-                "(spray axis parallel to the platform arm)", sample=k, time=tk, chain="wrist",
+                "(near the wrist singularity: spray axis parallel to the platform arm)",
+                sample=k, time=tk, chain="wrist",
                 amount=wrist_margin - exc.ratio) from None
         msg = str(exc) if len(poses) > 1 else str(exc).replace(" at sample 0", "")
         raise UnreachablePoseError(msg, sample=k, time=tk, chain=exc.chain,

@@ -36,17 +36,15 @@ class RunResult:
         return cols
 
 
-def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True) -> RunResult:
+def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
+                 **ik_options) -> RunResult:
+    """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
+    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``branch_tol``, ``method``)."""
+    from .dynamics import inverse_dynamics
+
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
-                            progress=progress)
-    result = RunResult(traj, ik)
-    if dynamics:
-        try:
-            from .dynamics import inverse_dynamics
-        except ImportError:  # dynamics not built yet
-            return result
-        result.dynamics = inverse_dynamics(robot, ik)
-    return result
+                            progress=progress, **ik_options)
+    return RunResult(traj, ik, inverse_dynamics(robot, ik) if dynamics else None)
 
 
 def write_csv(result: RunResult, path: str | Path) -> None:
