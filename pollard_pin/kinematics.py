@@ -44,20 +44,14 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
     ia, ip = robot.actuated_v, robot.passive_v
     q[ia] = act
     r = constraint_residual(model, data, cms, cds, q)
-    best = np.inf
     for _ in range(max_iter):
-        err = np.abs(r).max()
-        best = min(best, err)
-        if err <= tol:
+        if np.abs(r).max() <= tol:
             return q
         Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
-        step = np.linalg.lstsq(Jp, r, rcond=None)[0]
+        step = np.linalg.lstsq(Jp, r, rcond=None)[0]  # least squares: survives singular Jp
         # Damped step: never move a passive angle by more than 0.5 rad at once.
-        scale = min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
-        q_new = q.copy()
-        q_new[ip] -= scale * step
-        r_new = constraint_residual(model, data, cms, cds, q_new)
-        q, r = q_new, r_new
+        q[ip] -= step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
+        r = constraint_residual(model, data, cms, cds, q)
     legs = _leg_residuals(r)
     leg = int(np.argmax(legs)) + 1
     angles = dict(zip(robot.actuated, act.round(6).tolist()))
@@ -112,6 +106,7 @@ class KinematicsError(RuntimeError):
         where = "" if sample is None else f"sample {sample}" + (
             "" if time is None else f" (t = {time:.6g} s)")
         super().__init__(f"{where}: {message}" if where else message)
+        self.detail = message  # the message without the sample/time prefix
         self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
 
 
@@ -260,13 +255,10 @@ def _newton(model, data, cms, cds, fr, q, p_des, R_des, tol, max_iter):
 
 def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
     """Why Newton failed at sample k: the closed form names the chain and the shortfall."""
-    from .thesis.ik import UnreachableError, position_ik
-
     try:
-        position_ik(robot.params, np.asarray(pose)[None, :])
-    except UnreachableError as exc:
-        return UnreachablePoseError(str(exc).replace("sample 0", "this pose"), sample=k, time=tk,
-                                    chain=exc.chain, amount=exc.shortfall)
+        _closed_form(robot, np.asarray(pose)[None, :], np.array([tk]), wrist_margin)
+    except KinematicsError as exc:
+        return type(exc)(exc.detail, sample=k, time=tk, chain=exc.chain, amount=exc.amount)
     return UnreachablePoseError(
         f"Newton did not converge to pose {np.round(pose, 6).tolist()}: closure residual "
         f"{np.abs(e[:6]).max():.3g} m, tool error {np.abs(e[6:]).max():.3g} (m/rad)",
