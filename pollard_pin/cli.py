@@ -6,6 +6,8 @@ import sys
 import time
 from pathlib import Path
 
+from ._io import atomic_open
+
 
 def _progress(label: str, enabled: bool):
     if not enabled:
@@ -48,10 +50,10 @@ def cmd_urdf(args) -> int:
     params = load_params(args.params)
     urdf, srdf = generate(params)
     out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(urdf)
     srdf_out = out.with_suffix(".srdf")
-    srdf_out.write_text(srdf)
+    for path, text in ((out, urdf), (srdf_out, srdf)):
+        with atomic_open(path) as f:
+            f.write(text)
     print(f"wrote {out} and {srdf_out} from {params.source}")
     return 0
 
@@ -153,7 +155,8 @@ def cmd_report(args) -> int:
     rep = report(robot, result, cross_check=not args.no_cross_check)
     text = to_json(rep) + "\n" if args.format == "json" else to_markdown(rep)
     if args.out:
-        Path(args.out).write_text(text)
+        with atomic_open(args.out) as f:
+            f.write(text)
         print(f"wrote {args.out}", file=sys.stderr)
     else:
         sys.stdout.write(text)

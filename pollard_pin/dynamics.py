@@ -179,7 +179,6 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
     ``Kd`` default to a critically damped 20 rad/s correction.
     """
-    model = robot.model
     saved = [(cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd)
              for cm in robot.constraint_models]
     try:

@@ -1,13 +1,12 @@
 """Run a trajectory through the pipeline and turn the results into named columns / CSV."""
 from __future__ import annotations
 
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ._io import atomic_open
 from .kinematics import SPHERICAL, IKResult, inverse_kinematics
 from .taskspace import TASK_NAMES
 from .trajectory import Trajectory
@@ -50,19 +49,9 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
 def write_csv(result: RunResult, path: str | Path) -> None:
     """Write atomically: a failed run never leaves a half-written file behind."""
     cols = result.columns()
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", suffix=".csv.tmp")
-    try:
-        with os.fdopen(fd, "w") as f:
-            np.savetxt(f, np.column_stack(list(cols.values())), delimiter=",",
-                       header=",".join(cols), comments="", fmt="%.17g")
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual file mode
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    with atomic_open(path) as f:
+        np.savetxt(f, np.column_stack(list(cols.values())), delimiter=",",
+                   header=",".join(cols), comments="", fmt="%.17g")
 
 
 def summary(result: RunResult, wall: float) -> str:

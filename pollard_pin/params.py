@@ -6,7 +6,9 @@ the value and the rule.
 """
 from __future__ import annotations
 
+import copy
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -236,16 +238,94 @@ def _check_home_reachable(p: Params) -> None:
                              f"{str(exc).replace(' at sample 0', '')}") from None
 
 
-def _set_path(d: dict, path: str, value: Any) -> None:
-    parts = path.split(".")
-    node = d
-    for part in parts[:-1]:
-        if not isinstance(node, dict) or part not in node:
-            _fail(path, value, "override names no parameter (unknown section)")
+_UNSET = object()
+_KEY_RE = re.compile(r"^([A-Za-z_][\w]*(?:\.[A-Za-z_][\w]*)*)((?:\[\d+\])*)$")
+
+
+def _split_key(key: str) -> tuple[list[str], list[int]]:
+    """``"bodies.gun.inertia[1][2]"`` → (["bodies", "gun", "inertia"], [1, 2])."""
+    m = _KEY_RE.match(key) if isinstance(key, str) else None
+    if m is None:
+        raise ParameterError(f"parameter '{key}': not a dotted parameter key "
+                             "(like 'chain0.x32' or 'home.tip[2]')")
+    return m.group(1).split("."), [int(i) for i in re.findall(r"\[(\d+)\]", m.group(2))]
+
+
+def lookup(d: Mapping, key: str, value: Any = _UNSET) -> Any:
+    """The value at ``key`` in a thesis-unit parameter dictionary (ParameterError if none);
+    ``value``, if given, is the override being applied (shown in the message)."""
+    shown = "" if value is _UNSET else f" = {value!r}"
+    path, index = _split_key(key)
+    node: Any = d
+    for j, part in enumerate(path):
+        if not isinstance(node, Mapping) or part not in node:
+            what = "unknown key" if j == len(path) - 1 else "unknown section"
+            raise ParameterError(f"parameter '{key}'{shown}: override names no parameter "
+                                 f"({what})")
         node = node[part]
-    if not isinstance(node, dict) or parts[-1] not in node:
-        _fail(path, value, "override names no parameter (unknown key)")
-    node[parts[-1]] = value
+    if isinstance(node, Mapping):
+        raise ParameterError(f"parameter '{key}'{shown}: names a section, not a parameter")
+    for j, i in enumerate(index):
+        if not isinstance(node, list) or i >= len(node):
+            raise ParameterError(f"parameter '{key}'{shown}: index [{i}] is out of range for "
+                                 f"'{path[-1]}' = {node!r}")
+        node = node[i]
+    return node
+
+
+def value_shape(value: Any) -> tuple[int, ...] | None:
+    """Shape of a number (()) or nested list of numbers; None for anything else."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, (int, float)):
+        return ()
+    if isinstance(value, (list, tuple)) and value:
+        shapes = {value_shape(v) for v in value}
+        if len(shapes) == 1 and None not in shapes:
+            return (len(value),) + shapes.pop()
+    return None
+
+
+def plain_value(value: Any) -> Any:
+    """Tuples/arrays → lists, numpy scalars → Python numbers (TOML layout)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [plain_value(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
+    """A deep copy of the thesis-unit dictionary ``d`` with ``overrides`` applied.
+
+    Plain dotted keys (``"chain0.x32"``) replace a parameter; ``key[i]`` (``key[i][j]``) replaces one component of a vector (matrix) parameter. The new
+    value must have the shape of the old one; values themselves are validated later by
+    :func:`params_from_dict`.
+    """
+    out = copy.deepcopy(dict(d))
+    for key, value in overrides.items():
+        value = plain_value(value)
+        old = lookup(out, key, value)
+        if value_shape(value) != value_shape(old):
+            shape = value_shape(old)
+            want = ("a number" if shape == () else
+                    f"a list of {shape[0]} numbers" if len(shape) == 1 else
+                    f"a {'x'.join(map(str, shape))} matrix (list of {shape[0]} rows)")
+            raise ParameterError(f"parameter '{key}' = {value!r}: must be {want}")
+        path, index = _split_key(key)
+        node: Any = out
+        for part in path[:-1]:
+            node = node[part]
+        if not index:
+            node[path[-1]] = value
+            continue
+        node = node[path[-1]]
+        for i in index[:-1]:
+            node = node[i]
+        node[index[-1]] = value
+    return out
 
 
 def read_params_dict(path: str | Path | None = None) -> dict:
@@ -265,20 +345,17 @@ def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | N
     """Load and validate parameters.
 
     ``overrides`` maps dotted keys in thesis units to values, e.g.
-    ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "leg1.beta1413": 270}``.
+    ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "home.tip[2]": 0.2}`` (see
+    :func:`apply_overrides`).
     """
-    d = read_params_dict(path)
-    for key, value in (overrides or {}).items():
-        _set_path(d, key, value)
+    d = apply_overrides(read_params_dict(path), overrides or {})
     src = str(path) if path is not None else DEFAULT_PARAMS
     return params_from_dict(d, source=src, check_home=check_home)
 
 
 def replace(p: Params, overrides: Mapping[str, Any]) -> Params:
     """A new validated :class:`Params` with thesis-unit dotted-key overrides applied."""
-    d = p.to_toml_dict()
-    for key, value in overrides.items():
-        _set_path(d, key, value)
+    d = apply_overrides(p.to_toml_dict(), overrides)
     return params_from_dict(d, source=p.source + " (modified)")
 
 

@@ -51,8 +51,6 @@ import csv
 import itertools
 import json
 import os
-import re
-import tempfile
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -60,7 +58,9 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .params import ParameterError, params_from_dict, read_params_dict
+from ._io import atomic_open
+from .params import (ParameterError, apply_overrides, lookup, params_from_dict,
+                     plain_value, read_params_dict)
 
 # Spec §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
 ACTUATORS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
@@ -78,92 +78,6 @@ class SweepError(ValueError):
 
 
 # --- overrides with component keys ----------------------------------------------------------
-_KEY_RE = re.compile(r"^([A-Za-z_][\w]*(?:\.[A-Za-z_][\w]*)*)((?:\[\d+\])*)$")
-
-
-def _split_key(key: str) -> tuple[list[str], list[int]]:
-    """``"bodies.gun.inertia[1][2]"`` → (["bodies", "gun", "inertia"], [1, 2])."""
-    m = _KEY_RE.match(key) if isinstance(key, str) else None
-    if m is None:
-        raise ParameterError(f"parameter '{key}': not a dotted parameter key "
-                             "(like 'chain0.x32' or 'home.tip[2]')")
-    return m.group(1).split("."), [int(i) for i in re.findall(r"\[(\d+)\]", m.group(2))]
-
-
-def _lookup(d: Mapping, key: str) -> Any:
-    """The value at ``key`` in a thesis-unit parameter dictionary (ParameterError if none)."""
-    path, index = _split_key(key)
-    node: Any = d
-    for j, part in enumerate(path):
-        if not isinstance(node, Mapping) or part not in node:
-            what = "unknown key" if j == len(path) - 1 else "unknown section"
-            raise ParameterError(f"parameter '{key}': names no parameter ({what} "
-                                 f"'{'.'.join(path[:j + 1])}')")
-        node = node[part]
-    if isinstance(node, Mapping):
-        raise ParameterError(f"parameter '{key}': names a section, not a parameter")
-    for j, i in enumerate(index):
-        if not isinstance(node, list) or i >= len(node):
-            raise ParameterError(f"parameter '{key}': index [{i}] is out of range for "
-                                 f"'{path[-1]}' = {node!r}")
-        node = node[i]
-    return node
-
-
-def _shape(value: Any) -> tuple[int, ...] | None:
-    """Shape of a number (()) or nested list of numbers; None for anything else."""
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, (int, float)):
-        return ()
-    if isinstance(value, (list, tuple)) and value:
-        shapes = {_shape(v) for v in value}
-        if len(shapes) == 1 and None not in shapes:
-            return (len(value),) + shapes.pop()
-    return None
-
-
-def _plain(value: Any) -> Any:
-    """Tuples/arrays → lists, numpy scalars → Python numbers (TOML layout)."""
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
-    """A deep copy of the thesis-unit dictionary ``d`` with ``overrides`` applied.
-
-    Plain dotted keys replace a parameter as :func:`~pollard_pin.params.load_params` does;
-    ``key[i]`` (``key[i][j]``) replaces one component of a vector (matrix) parameter. The new
-    value must have the shape of the old one; values themselves are validated later by
-    :func:`~pollard_pin.params.params_from_dict`.
-    """
-    out = copy.deepcopy(dict(d))
-    for key, value in overrides.items():
-        value = _plain(value)
-        old = _lookup(out, key)
-        if _shape(value) != _shape(old):
-            want = ("a number" if _shape(old) == () else
-                    f"a {'x'.join(map(str, _shape(old)))} list of numbers (like {old!r})")
-            raise ParameterError(f"parameter '{key}' = {value!r}: must be {want}")
-        path, index = _split_key(key)
-        node: Any = out
-        for part in path[:-1]:
-            node = node[part]
-        if not index:
-            node[path[-1]] = value
-            continue
-        node = node[path[-1]]
-        for i in index[:-1]:
-            node = node[i]
-        node[index[-1]] = value
-    return out
-
-
 # --- the per-variant function (pure, picklable) -----------------------------------------------
 def _trajectory(spec: Mapping, home_pose):
     from .trajectory import Trajectory, thesis_trajectory
@@ -225,13 +139,13 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     overrides = dict(spec.get("overrides") or {})
     keys = list(spec.get("keys") or overrides)
     row: dict[str, Any] = {"variant": spec.get("name", "")}
-    row.update({k: _plain(overrides[k]) if k in overrides else None for k in keys})
+    row.update({k: plain_value(overrides[k]) if k in overrides else None for k in keys})
     row.update({c: None for c in FAILURE_COLUMNS})
     row.update({c: None for c in METRIC_COLUMNS})
     try:
         base = spec.get("params")
         d = apply_overrides(base if base is not None else read_params_dict(), overrides)
-        row.update({k: _lookup(d, k) for k in keys})
+        row.update({k: lookup(d, k) for k in keys})
         params = params_from_dict(d, source=f"variant {row['variant']}")
     except ParameterError as exc:
         return _failure(row, exc)
@@ -294,7 +208,7 @@ class Sweep:
 
 def _fmt(value: Any) -> str:
     if isinstance(value, (list, tuple, np.ndarray)):
-        return json.dumps(_plain(value))
+        return json.dumps(plain_value(value))
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
@@ -586,7 +500,7 @@ def _cell(value: Any) -> str:
     if isinstance(value, float):
         return repr(value)  # round-trips exactly
     if isinstance(value, (list, tuple)):
-        return json.dumps(_plain(value))
+        return json.dumps(plain_value(value))
     return str(value)
 
 
@@ -594,20 +508,11 @@ def write_csv(rows: Sequence[Mapping[str, Any]], path: str | Path,
               columns: Sequence[str] | None = None) -> None:
     """The result table as CSV (atomic write). Empty cells: not applicable / infeasible."""
     columns = list(columns or (rows[0].keys() if rows else ()))
-    path = Path(path)
-    parent = path.parent if str(path.parent) else Path(".")
-    parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=parent, suffix=".csv.tmp")
-    try:
-        with os.fdopen(fd, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(columns)
-            for row in rows:
-                w.writerow([_cell(row.get(c)) for c in columns])
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    with atomic_open(path, newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for row in rows:
+            w.writerow([_cell(row.get(c)) for c in columns])
 
 
 def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:

@@ -358,11 +358,12 @@ def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
 
 
 def write_html(path, robot, ik, **kwargs) -> Path:
-    path = Path(path)
-    if path.parent and not path.parent.exists():
-        path.parent.mkdir(parents=True)
-    path.write_text(static_html(robot, ik, **kwargs))
-    return path
+    from ._io import atomic_open
+
+    html = static_html(robot, ik, **kwargs)
+    with atomic_open(path) as f:
+        f.write(html)
+    return Path(path)
 
 
 def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.stdout,

@@ -24,7 +24,7 @@ def main():
     print(f"wrote {len(traj)} rows to {args.out}")
 
     dyn = result.dynamics
-    print(f"peak |tau| per actuator [N·m]: "
+    print("peak |tau| per actuator [N·m]: "
           + ", ".join(f"{n} {abs(dyn.tau[:, i]).max():.4g}" for i, n in enumerate(robot.actuated)))
     print(to_markdown(pp.sizing_report(robot, result, cross_check=False)))
 

@@ -188,7 +188,7 @@ def test_csv_trajectory_and_explicit_variants(tmp_path):
     ('[[variant]]\nname = "a"\n"bodies.gun.masss" = 0.1\n', "'bodies.gun.masss'"),
     ('[grid]\n"chain0.x32" = [0.33, -0.3]\n', "'chain0.x32' = -0.3: must be > 0"),
     ('[grid]\n"bodies.gun.mass" = ["heavy"]\n', "'bodies.gun.mass' = 'heavy': must be a number"),
-    ('[grid]\n"home.tip" = [0.55, 0.0, 0.16]\n', "'home.tip' = 0.55: must be a 3 list"),
+    ('[grid]\n"home.tip" = [0.55, 0.0, 0.16]\n', "'home.tip' = 0.55: must be a list of 3 numbers"),
     ('[grid]\n"home.tip[3]" = [0.1]\n', "index [3] is out of range"),
     ('[grid]\n"chain0.x32" = 0.33\n', "must be a list of values"),
     ('[grid]\n"chain0.x32" = []\n', "empty list"),

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import jet as J
 from .ik import ACTUATED, BODIES, _as_poses, body_states, direction_jet, vee_skew
 from .jet import Jet
 
