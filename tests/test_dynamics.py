@@ -147,3 +147,33 @@ def test_three_actuator_formula_is_ill_posed(robot, thesis_run):
                                            traj.dd_poses[::50])
     # With only the base actuators the wrist part of Q cannot be produced.
     assert np.max(out["rel_residual"]) > 1e-3
+
+
+def test_three_way_agreement_with_modified_parameters(tmp_path):
+    """Twisted U joints (β54 ≠ 0), another attachment angle, longer arm, off-axis CoG: the
+    batched and per-sample IK, the thesis' Euler–Lagrange torques and MuJoCo still agree."""
+    from pollard_pin.kinematics import inverse_kinematics_batch, inverse_kinematics_newton
+    from pollard_pin.model import generate
+
+    params = pp.load_params(overrides={
+        "leg1.beta54": 10.0, "leg2.beta54": -5.0, "leg1.beta1413": 260.0, "chain0.x32": 0.34,
+        "bodies.platform.com": [0.2, 0.01, -0.005], "bodies.gun.mass": 0.05})
+    robot = pp.load(params)
+    traj = smooth_random_trajectory(3, samples=201, home_pose=params.home_pose)
+    args = (traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    ik, ref = inverse_kinematics_batch(robot, *args), inverse_kinematics_newton(robot, *args)
+    assert np.abs(ik.q - ref.q).max() <= 1e-12 and np.abs(ik.a - ref.a).max() <= 1e-11
+    dyn = inverse_dynamics(robot, ik)
+    peak = np.abs(dyn.tau).max()
+    thesis = lagrange.inverse_dynamics(params, traj.poses, traj.d_poses, traj.dd_poses)["tau"]
+    assert np.abs(dyn.tau - thesis).max() <= 1e-6 * peak
+    peer = pytest.importorskip("pollard_pin.mujoco_peer")
+    pytest.importorskip("mujoco")
+    urdf = tmp_path / "modified.urdf"
+    urdf_text, srdf_text = generate(params)
+    urdf.write_text(urdf_text)
+    urdf.with_suffix(".srdf").write_text(srdf_text)
+    mj = peer.inverse_dynamics_mujoco(ik.q, ik.v, ik.a, urdf_path=urdf)
+    assert np.abs(mj["tau"] - dyn.tau).max() <= 1e-8 * peak
+    assert np.abs(mj["closure_forces"] - dyn.closure_forces).max() <= \
+        1e-8 * np.abs(dyn.closure_forces).max()
