@@ -187,7 +187,12 @@ def load(params: Params | str | Path | None = None) -> Robot:
     """
     if params is None:
         d = models_dir()
-        return build(load_params(), (d / DEFAULT_URDF).read_text(), (d / DEFAULT_SRDF).read_text())
+        params = load_params()
+        urdf, srdf = (d / DEFAULT_URDF).read_text(), (d / DEFAULT_SRDF).read_text()
+        if (urdf, srdf) != generate(params):  # someone edited the TOML (or the URDF) by hand
+            raise ModelFileError(f"{d / DEFAULT_URDF} and {DEFAULT_SRDF} do not match "
+                                 f"{d / 'pollard.toml'}: regenerate them with `pollard-pin urdf`")
+        return build(params, urdf, srdf)
     if not isinstance(params, Params):
         params = load_params(params)
     return build(params, *generate(params))

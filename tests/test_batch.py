@@ -44,3 +44,4 @@ def test_batch_reports_first_bad_sample_across_chunks(robot):
     with pytest.raises(pp.UnreachablePoseError) as ei:
         inverse_kinematics_batch(robot, poses, traj.d_poses, traj.dd_poses, traj.t, chunk=100)
     assert ei.value.sample == 250 and ei.value.time == pytest.approx(traj.t[250])
+

@@ -748,3 +748,22 @@ def test_pip_install_with_dependencies_in_a_fresh_venv(wheel, tmp_path):
                           str(wheel)], capture_output=True, text=True, timeout=900)
     assert out.returncode == 0, out.stdout + out.stderr
     _check_installed(venv, tmp_path)
+
+
+def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypatch):
+    pp = pollard_pin
+    import shutil
+
+    import pollard_pin.model as model_mod
+    import pollard_pin.params as params_mod
+    from pollard_pin._paths import models_dir
+
+    for f in ("pollard.toml", "pollard.urdf", "pollard.srdf"):
+        shutil.copy(models_dir() / f, tmp_path / f)
+    monkeypatch.setattr(model_mod, "models_dir", lambda: tmp_path)
+    monkeypatch.setattr(params_mod, "models_dir", lambda: tmp_path)
+    assert pp.load().params.body("gun").mass == 0.035  # the copy is consistent
+    toml = tmp_path / "pollard.toml"
+    toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
+    with pytest.raises(pp.ModelFileError, match="regenerate them with `pollard-pin urdf`"):
+        pp.load()
