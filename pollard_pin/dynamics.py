@@ -111,8 +111,8 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
                      energies: bool = True, timings: dict | None = None) -> DynamicsResult:
     """Actuator torques, closure forces and energies along an IK result.
 
-    One RNEA (and, with ``energies``, K and U) per sample; the ``[Sᵀ Jcᵀ]`` systems are solved stacked
-    (passive rows first, 6 × 6), reusing the constraint Jacobians of the IK when it has them.
+    One RNEA (and, with ``energies``, K and U) per sample; the ``[Sᵀ Jcᵀ]`` systems are solved
+    stacked (passive rows first, 6 × 6), reusing the IK's constraint Jacobians when it has them.
     """
     clock = Stopwatch(timings)
     model, data = robot.model, robot.data

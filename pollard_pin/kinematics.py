@@ -99,7 +99,7 @@ BRANCH_TOL = 0.05  # rad, largest departure from the trapezoid prediction betwee
 
 
 class KinematicsError(RuntimeError):
-    """IK failed at a sample: ``chain``, ``sample``, ``time`` and ``amount`` say where and how far."""
+    """IK failed at a sample: ``chain``, ``sample``, ``time``, ``amount`` say where, how far."""
 
     def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
                  chain: str | None = None, amount: float | None = None):

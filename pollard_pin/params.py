@@ -300,7 +300,8 @@ def plain_value(value: Any) -> Any:
 def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
     """A deep copy of the thesis-unit dictionary ``d`` with ``overrides`` applied.
 
-    Plain dotted keys (``"chain0.x32"``) replace a parameter; ``key[i]`` (``key[i][j]``) replaces one component of a vector (matrix) parameter. The new
+    Plain dotted keys (``"chain0.x32"``) replace a parameter; ``key[i]`` (``key[i][j]``)
+    replaces one component of a vector (matrix) parameter. The new
     value must have the shape of the old one; values themselves are validated later by
     :func:`params_from_dict`.
     """

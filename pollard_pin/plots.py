@@ -81,7 +81,8 @@ def _spherical_figure(plt, cols):
             for j, n in enumerate(names):
                 _line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
                       label=LABELS[n])
-            _finish(ax, label, f"Leg {i} spherical joint (ZYZ), {'angles' if row == 0 else 'rates'}")
+            kind = "angles" if row == 0 else "rates"
+            _finish(ax, label, f"Leg {i} spherical joint (ZYZ), {kind}")
         axes[1, i - 1].set_xlabel("t [s]")
     fig.suptitle("Cut spherical joints: the legs' ball joints on the platform arm (spec §4)")
     fig.tight_layout()

@@ -93,7 +93,8 @@ def cross_check_thesis(robot, result) -> dict:
     ik_mod = importlib.import_module("pollard_pin.thesis.ik")
     lagrange = importlib.import_module("pollard_pin.thesis.lagrange")
     traj, ik, dyn = result.trajectory, result.ik, result.dynamics
-    q_th, v_th, a_th = ik_mod.inverse_kinematics(robot.params, traj.poses, traj.d_poses, traj.dd_poses)
+    q_th, v_th, a_th = ik_mod.inverse_kinematics(robot.params, traj.poses, traj.d_poses,
+                                                 traj.dd_poses)
     cols = [ik_mod.JOINTS.index(n) for n in ik.joint_names]
     out = {
         "joint_position_rad": {"max_abs_diff": float(np.max(np.abs(_wrap(ik.q - q_th[:, cols]))))},

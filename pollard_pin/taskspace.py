@@ -14,7 +14,8 @@ def rotation(pose: np.ndarray) -> np.ndarray:
     """R = Rx(θ) Ry(ψ) Rz(φ) for poses (..., 6) → (..., 3, 3)."""
     pose = np.asarray(pose, dtype=float)
     psi, th, phi = pose[..., 3], pose[..., 4], pose[..., 5]
-    cs, ss, ct, st, cp, sp = np.cos(psi), np.sin(psi), np.cos(th), np.sin(th), np.cos(phi), np.sin(phi)
+    cs, ss, ct, st = np.cos(psi), np.sin(psi), np.cos(th), np.sin(th)
+    cp, sp = np.cos(phi), np.sin(phi)
     R = np.empty(pose.shape[:-1] + (3, 3))
     R[..., 0, 0] = cs * cp
     R[..., 0, 1] = -cs * sp

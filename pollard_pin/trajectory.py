@@ -216,6 +216,7 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
     return Trajectory(t, pose, d, dd, name=f"random{seed}", derivatives="analytic")
 
 
-__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "sinusoid_curve", "from_csv", "to_csv",
+__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "sinusoid_curve",
+           "from_csv", "to_csv",
            "smooth_random_trajectory"]
 
