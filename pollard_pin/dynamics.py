@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from .kinematics import IKResult, Stopwatch
+from .kinematics import IKResult, Stopwatch, actuator_velocity_map
 from .model import Robot, constraint_jacobian, constraint_residual
 
 
@@ -88,12 +88,15 @@ class DynamicsResult:
         return lines
 
 
-def _actuation_matrix(robot: Robot, Jc: np.ndarray) -> np.ndarray:
-    """[Sᵀ Jcᵀ] (12 × 12): columns are actuator unit torques, then closure force components."""
-    A = np.zeros((robot.model.nv, 12))
-    A[robot.actuated_v, np.arange(6)] = 1.0
-    A[:, 6:] = Jc.T
-    return A
+def _split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray):
+    """Solve tau_tree = Sᵀτ + Jcᵀλ (stacked (..., 6, nv), (..., nv)) for τ and λ.
+
+    The passive rows alone give Jc_pᵀλ = tau_p (6 × 6); the actuated rows then give τ.
+    """
+    ia, ip = robot.actuated_v, robot.passive_v
+    lam = np.linalg.solve(np.swapaxes(Jc[..., ip], -1, -2), tau_tree[..., ip, None])
+    tau = tau_tree[..., ia] - (np.swapaxes(Jc[..., ia], -1, -2) @ lam)[..., 0]
+    return tau, lam[..., 0]
 
 
 def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = None):
@@ -103,8 +106,8 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
     if losses is not None:
         tau_tree += losses.torque(v, a)
     Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
-    x = np.linalg.solve(_actuation_matrix(robot, Jc), tau_tree)
-    return x[:6], x[6:].reshape(2, 3), tau_tree
+    tau, lam = _split_tree_torques(robot, Jc, tau_tree)
+    return tau, lam.reshape(2, 3), tau_tree
 
 
 def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = None,
@@ -137,10 +140,7 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     if Jc is None:
         Jc = np.stack([constraint_jacobian(model, data, robot.constraint_models,
                                            robot.constraint_datas, q) for q in Q])
-    # tau_tree = Sᵀτ + Jcᵀλ: the passive rows give Jc_pᵀλ = tau_p (6 × 6), then τ.
-    ia, ip = robot.actuated_v, robot.passive_v
-    lam = np.linalg.solve(np.swapaxes(Jc[:, :, ip], 1, 2), tree[:, ip, None])
-    tau = tree[:, ia] - (np.swapaxes(Jc[:, :, ia], 1, 2) @ lam)[:, :, 0]
+    tau, lam = _split_tree_torques(robot, Jc, tree)
     clock.lap("dynamics")
     return DynamicsResult(t=ik.t, tau=tau, closure_forces=lam.reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,
@@ -231,10 +231,7 @@ def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
     """Closed-loop inertia seen by the actuators, Nᵀ M N with v = N q̇_act (6 × 6)."""
     model, data = robot.model, robot.data
     Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
-    ia, ip = robot.actuated_v, robot.passive_v
-    N = np.zeros((model.nv, 6))
-    N[ia] = np.eye(6)
-    N[ip] = -np.linalg.solve(Jc[:, ip], Jc[:, ia])
+    N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
     M = pin.crba(model, data, q)
     M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
     return N.T @ M @ N

@@ -377,13 +377,8 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
         rhs_a[6:] += twd[k]
         a = np.linalg.solve(K, rhs_a)
         sph[k], dsph[k] = _spherical(data, fr)
-        Jc, Jt = K[:6], K[6:]
-        Jp = Jc[:, fr.passive_v]
-        fwd = Jt[:, fr.actuated_v] - Jt[:, fr.passive_v] @ np.linalg.solve(
-            Jp, Jc[:, fr.actuated_v])  # actuator rates → tool twist
         stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), abs(np.sin(q[fr.wrist_q])),
-                    np.linalg.svd(Jp, compute_uv=False)[-1],
-                    np.linalg.svd(fwd, compute_uv=False)[-1])
+                    *_conditioning(K, fr.actuated_v, fr.passive_v))
         out["q"][k], out["v"][k], out["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
@@ -556,7 +551,23 @@ def _drift(J, dJ, v, pos, p: _Point) -> np.ndarray:
 
 def _sigma_min(A):
     """Smallest singular value of each (6 × 6) matrix, from the Gram matrix's eigenvalues."""
-    return np.sqrt(np.maximum(np.linalg.eigvalsh(np.swapaxes(A, 1, 2) @ A)[:, 0], 0.0))
+    return np.sqrt(np.maximum(np.linalg.eigvalsh(np.swapaxes(A, -1, -2) @ A)[..., 0], 0.0))
+
+
+def actuator_velocity_map(Jc: np.ndarray, actuated_v, passive_v) -> np.ndarray:
+    """N (..., nv, 6) with v = N q̇_act on the closed loops: Jc_p q̇_p = −Jc_a q̇_act."""
+    N = np.zeros(Jc.shape[:-2] + (Jc.shape[-1], len(actuated_v)))
+    N[..., actuated_v, :] = np.eye(len(actuated_v))
+    N[..., passive_v, :] = -np.linalg.solve(Jc[..., passive_v], Jc[..., actuated_v])
+    return N
+
+
+def _conditioning(K: np.ndarray, actuated_v, passive_v):
+    """σ_min of the passive-joint constraint Jacobian (parallel singularity) and of the
+    actuator-rate → tool-twist map (serial singularity), from K = [Jc; J_tool] (..., 12, nv)."""
+    Jc, Jt = K[..., :6, :], K[..., 6:, :]
+    return (_sigma_min(Jc[..., passive_v]),
+            _sigma_min(Jt @ actuator_velocity_map(Jc, actuated_v, passive_v)))
 
 
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
@@ -671,15 +682,12 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             amount=float(err[k].max()))
     clock.lap("acceleration")
     sph, dsph = _spherical_batch(robot, lay, pl, J, v)
-    ia, ip = robot.actuated_v, robot.passive_v
-    Jc, Jt = K[:, :6], K[:, 6:]
-    Jp = Jc[:, :, ip]
-    fwd = Jt[:, :, ia] - Jt[:, :, ip] @ np.linalg.solve(Jp, Jc[:, :, ia])  # act. rates → twist
+    sigma_parallel, sigma_serial = _conditioning(K, robot.actuated_v, robot.passive_v)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
                       wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
-                      sigma_parallel=_sigma_min(Jp), sigma_serial=_sigma_min(fwd),
-                      joint_names=robot.joint_names, constraint_jacobian=Jc)
+                      sigma_parallel=sigma_parallel, sigma_serial=sigma_serial,
+                      joint_names=robot.joint_names, constraint_jacobian=K[:, :6])
     clock.lap("analysis")
     return result
 
