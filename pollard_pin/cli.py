@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -78,20 +79,15 @@ def cmd_info(args) -> int:
 
 
 def cmd_run(args) -> int:
-    from .model import load
-    from .outputs import run_pipeline, summary, write_csv
+    from .outputs import summary, write_csv
 
-    robot = load(args.params)
     t0 = time.perf_counter()
-    traj = _load_trajectory(args, robot.params)
-    result = run_pipeline(robot, traj, progress=_progress("solving", len(traj) >= 500 and
-                                                           not args.quiet),
-                          wrist_margin=args.wrist_margin,
-                          singularity_margin=args.singularity_margin)
-    wall = time.perf_counter() - t0
+    _, result = _solve(args, wrist_margin=args.wrist_margin,
+                       singularity_margin=args.singularity_margin)
+    wall = time.perf_counter() - t0  # model load included
     write_csv(result, args.out)
     print(summary(result, wall))
-    print(f"wrote {len(traj)} rows to {args.out}")
+    print(f"wrote {len(result.ik)} rows to {args.out}")
     return 0
 
 
@@ -101,7 +97,7 @@ def cmd_sweep(args) -> int:
     sweep = load_grid(args.grid)
     where = (f"Dask cluster {args.dask}" if args.dask else
              "this process" if args.workers == 1 else
-             f"{args.workers or __import__('os').cpu_count()} local processes")
+             f"{args.workers or os.cpu_count()} local processes")
     print(f"{sweep.source}: {len(sweep)} variants on {where}", file=sys.stderr)
     t0 = time.perf_counter()
     rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
@@ -113,15 +109,16 @@ def cmd_sweep(args) -> int:
     return 0
 
 
-def _solve(args, dynamics: bool = True):
-    """Load the model and the chosen trajectory, run the pipeline (view/plot/report)."""
+def _solve(args, dynamics: bool = True, **ik_options):
+    """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
     from .model import load
     from .outputs import run_pipeline
 
     robot = load(args.params)
     traj = _load_trajectory(args, robot.params)
     result = run_pipeline(robot, traj, dynamics=dynamics,
-                          progress=_progress("solving", len(traj) >= 500 and not args.quiet))
+                          progress=_progress("solving", len(traj) >= 500 and not args.quiet),
+                          **ik_options)
     return robot, result
 
 
