@@ -1,6 +1,7 @@
 """pollard-pin: a verified multibody model of the Pollard spray-painting parallel robot.
 
-Public API (imported lazily, so ``pollard_pin.thesis`` stays free of Pinocchio)::
+Public API (imported lazily: ``pollard_pin.kinematics.closed_form`` and
+``pollard_pin.crosscheck.euler_lagrange`` stay free of Pinocchio)::
 
     robot = pollard_pin.load()                       # model, data, closures, geometry
     traj = pollard_pin.thesis_trajectory()           # spec §9 painting curve
@@ -13,18 +14,23 @@ import importlib
 __version__ = "0.1.0"
 
 _API = {
-    "load": "model", "Robot": "model", "ACTUATED": "model", "PASSIVE": "model",
-    "ModelFileError": "model", "constraint_residual": "model", "constraint_jacobian": "model",
-    "load_params": "params", "Params": "params", "ParameterError": "params",
-    "solve_closure": "kinematics", "forward_kinematics": "kinematics",
-    "inverse_kinematics": "kinematics", "tool_pose": "kinematics", "IKResult": "kinematics",
-    "ClosureError": "kinematics", "KinematicsError": "kinematics",
-    "UnreachablePoseError": "kinematics", "SingularityError": "kinematics",
-    "BranchFlipError": "kinematics",
-    "Trajectory": "trajectory", "thesis_trajectory": "trajectory", "from_csv": "trajectory",
-    "TrajectoryError": "trajectory", "smooth_random_trajectory": "trajectory",
-    "run_pipeline": "outputs", "write_csv": "outputs", "RunResult": "outputs",
-    "write_figures": "plots", "write_html": "viewer", "sizing_report": "report",
+    "load": "model.build", "Robot": "model.build", "ACTUATED": "model.build",
+    "PASSIVE": "model.build", "ModelFileError": "model.build",
+    "constraint_residual": "model.build", "constraint_jacobian": "model.build",
+    "load_params": "model.params", "Params": "model.params", "ParameterError": "model.params",
+    "solve_closure": "kinematics.closure", "forward_kinematics": "kinematics.closure",
+    "tool_pose": "kinematics.closure",
+    "inverse_kinematics": "kinematics.pipeline", "IKResult": "kinematics.pipeline",
+    "ClosureError": "kinematics.errors", "KinematicsError": "kinematics.errors",
+    "UnreachablePoseError": "kinematics.errors", "SingularityError": "kinematics.errors",
+    "BranchFlipError": "kinematics.errors",
+    "inverse_dynamics": "dynamics.inverse", "forward_dynamics": "dynamics.forward",
+    "simulate": "dynamics.forward",
+    "Trajectory": "io.trajectory", "thesis_trajectory": "io.trajectory",
+    "from_csv": "io.trajectory", "TrajectoryError": "io.trajectory",
+    "smooth_random_trajectory": "io.trajectory",
+    "run_pipeline": "io.results", "write_csv": "io.results", "RunResult": "io.results",
+    "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
 }

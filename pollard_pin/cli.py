@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from ._io import atomic_open
+from .io.atomic import atomic_open
 
 
 def _progress(label: str, enabled: bool):
@@ -28,7 +28,7 @@ def _progress(label: str, enabled: bool):
 
 
 def _load_trajectory(args, params):
-    from .trajectory import THESIS_DURATION, THESIS_SAMPLES, from_csv, thesis_trajectory
+    from .io.trajectory import THESIS_DURATION, THESIS_SAMPLES, from_csv, thesis_trajectory
 
     if args.trajectory == "thesis":
         return thesis_trajectory(duration=args.duration or THESIS_DURATION,
@@ -45,8 +45,8 @@ def _load_trajectory(args, params):
 
 
 def cmd_urdf(args) -> int:
-    from .model import generate
-    from .params import load_params
+    from .model.build import generate
+    from .model.params import load_params
 
     params = load_params(args.params)
     urdf, srdf = generate(params)
@@ -62,7 +62,7 @@ def cmd_urdf(args) -> int:
 def cmd_info(args) -> int:
     import numpy as np
 
-    from .model import constraint_residual, load
+    from .model.build import constraint_residual, load
 
     robot = load(args.params)
     q = robot.home()
@@ -79,7 +79,7 @@ def cmd_info(args) -> int:
 
 
 def cmd_run(args) -> int:
-    from .outputs import summary, write_csv
+    from .io.results import summary, write_csv
 
     t0 = time.perf_counter()
     _, result = _solve(args, wrist_margin=args.wrist_margin,
@@ -111,8 +111,8 @@ def cmd_sweep(args) -> int:
 
 def _solve(args, dynamics: bool = True, **ik_options):
     """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
-    from .model import load
-    from .outputs import run_pipeline
+    from .model.build import load
+    from .io.results import run_pipeline
 
     robot = load(args.params)
     traj = _load_trajectory(args, robot.params)
@@ -123,7 +123,7 @@ def _solve(args, dynamics: bool = True, **ik_options):
 
 
 def cmd_view(args) -> int:
-    from . import viewer
+    from .viz import viewer
 
     robot, result = _solve(args, dynamics=False)
     if args.html:
@@ -137,7 +137,7 @@ def cmd_view(args) -> int:
 
 
 def cmd_plot(args) -> int:
-    from .plots import write_figures
+    from .viz.plots import write_figures
 
     _, result = _solve(args)
     for path in write_figures(result, args.out, dpi=args.dpi):
@@ -146,7 +146,7 @@ def cmd_plot(args) -> int:
 
 
 def cmd_report(args) -> int:
-    from .report import report, to_json, to_markdown
+    from .viz.report import report, to_json, to_markdown
 
     robot, result = _solve(args)
     rep = report(robot, result, cross_check=not args.no_cross_check)
@@ -176,7 +176,7 @@ def _trajectory_args(p) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from .kinematics import SINGULARITY_MARGIN, WRIST_MARGIN
+    from .kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
     ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
     sub = ap.add_subparsers(dest="command", required=True)
@@ -241,11 +241,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    from .kinematics import ClosureError, KinematicsError
-    from .model import ModelFileError
-    from .params import ParameterError
+    from .kinematics.errors import ClosureError, KinematicsError
+    from .model.build import ModelFileError
+    from .model.params import ParameterError
     from .sweep import SweepError
-    from .trajectory import TrajectoryError
+    from .io.trajectory import TrajectoryError
 
     try:
         return args.func(args)

@@ -1,7 +1,7 @@
 """Design sweeps: evaluate many parameter variants over one trajectory, in parallel.
 
 A sweep is a list of *variants*, each a set of parameter overrides in thesis units (the dotted
-keys of :func:`pollard_pin.params.load_params`, e.g. ``"chain0.x32"``, ``"bodies.gun.mass"``,
+keys of :func:`pollard_pin.model.params.load_params`, e.g. ``"chain0.x32"``, ``"bodies.gun.mass"``,
 ``"bodies.gun.com"``, ``"home.tip"``; a single component of a vector or matrix parameter is
 ``"home.tip[2]"`` or ``"bodies.gun.inertia[1][1]"``). Every variant is run through the whole
 pipeline (inverse kinematics, inverse dynamics) by :func:`evaluate_variant`, a pure, picklable
@@ -16,7 +16,7 @@ module-level function of plain data, and yields one flat row of the result table
   RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
 * ``peak_force_leg1``, ``peak_force_leg2`` = max |λ_i| [N] at the spherical joints;
 * ``min_wrist_margin``, ``min_sigma_parallel``, ``min_sigma_serial``: how close the variant
-  came to the singularities (see :class:`pollard_pin.kinematics.IKResult`).
+  came to the singularities (see :class:`pollard_pin.kinematics.pipeline.IKResult`).
 
 Metric cells of an infeasible variant are ``None`` (empty in the CSV).
 
@@ -58,8 +58,8 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ._io import atomic_open
-from .params import (ParameterError, apply_overrides, lookup, params_from_dict,
+from .io.atomic import atomic_open
+from .model.params import (ParameterError, apply_overrides, lookup, params_from_dict,
                      plain_value, read_params_dict)
 
 # Spec §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
@@ -80,7 +80,7 @@ class SweepError(ValueError):
 # --- overrides with component keys ----------------------------------------------------------
 # --- the per-variant function (pure, picklable) -----------------------------------------------
 def _trajectory(spec: Mapping, home_pose):
-    from .trajectory import Trajectory, thesis_trajectory
+    from .io.trajectory import Trajectory, thesis_trajectory
 
     if spec["kind"] == "thesis":
         return thesis_trajectory(duration=spec["duration"], samples=spec["samples"],
@@ -121,20 +121,20 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
       variant's home pose) or ``{"kind": "arrays", "t": …, "poses": …, "d_poses": …,
       "dd_poses": …}`` (absolute; (N,) and (N, 6) sequences);
     * ``params`` (optional): the base thesis-unit parameter dictionary (the TOML layout of
-      :func:`~pollard_pin.params.read_params_dict`); default: the shipped parameter file;
+      :func:`~pollard_pin.model.params.read_params_dict`); default: the shipped parameter file;
     * ``keys`` (optional): the parameter columns of the row (default: the override keys);
       each holds the value the variant used (the base value if it does not override it).
 
     The function has no side effects and depends on nothing but ``spec``, so it gives the same
     row in any process or machine with the same pollard-pin installed. An invalid parameter set
-    (:class:`~pollard_pin.params.ParameterError`, e.g. an unreachable home pose) and a
-    trajectory the variant cannot follow (:class:`~pollard_pin.kinematics.KinematicsError`,
-    :class:`~pollard_pin.kinematics.ClosureError`, a singular linear system) give an infeasible
+    (:class:`~pollard_pin.model.params.ParameterError`, e.g. an unreachable home pose) and a
+    trajectory the variant cannot follow (:class:`~pollard_pin.kinematics.errors.KinematicsError`,
+    :class:`~pollard_pin.kinematics.errors.ClosureError`, a singular linear system) give an infeasible
     row; anything else is a bug and raises.
     """
-    from .kinematics import ClosureError, KinematicsError
-    from .model import load
-    from .outputs import run_pipeline
+    from .kinematics.errors import ClosureError, KinematicsError
+    from .model.build import load
+    from .io.results import run_pipeline
 
     overrides = dict(spec.get("overrides") or {})
     keys = list(spec.get("keys") or overrides)
@@ -162,7 +162,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     except np.linalg.LinAlgError as exc:
         return _failure(row, exc)
     if result.dynamics is None:
-        raise SweepError("pollard_pin.dynamics is not available: cannot compute torques")
+        raise SweepError("pollard_pin.dynamics.inverse is not available: cannot compute torques")
     dyn, ik = result.dynamics, result.ik
     if tuple(dyn.actuated) != ACTUATORS:
         raise SweepError(f"actuator order {dyn.actuated} is not the spec §6 order {ACTUATORS}")
@@ -240,7 +240,7 @@ def trajectory_spec(trajectory: Any = "thesis", duration: float | None = None,
 
     A CSV file is read here, once, and travels as arrays, so workers need no access to it.
     """
-    from .trajectory import THESIS_DURATION, THESIS_SAMPLES, Trajectory, from_csv, \
+    from .io.trajectory import THESIS_DURATION, THESIS_SAMPLES, Trajectory, from_csv, \
         thesis_trajectory
 
     if isinstance(trajectory, str) and trajectory == "thesis":
@@ -368,7 +368,7 @@ def load_grid(path: str | Path) -> Sweep:
     for k in ("duration", "samples"):
         if k in d and (isinstance(d[k], bool) or not isinstance(d[k], (int, float))):
             raise SweepError(f"{path}: {k} = {d[k]!r} must be a number")
-    from .trajectory import TrajectoryError
+    from .io.trajectory import TrajectoryError
 
     try:
         return make_sweep(_flatten(grid),

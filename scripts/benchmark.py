@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 
 import pollard_pin as pp
-from pollard_pin.dynamics import inverse_dynamics
-from pollard_pin.kinematics import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.dynamics.inverse import inverse_dynamics
+from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
 
@@ -75,8 +75,8 @@ def pinocchio_newton(robot, traj):
 
 
 def thesis_path(robot, traj):
-    cf = importlib.import_module("pollard_pin.thesis.ik")
-    lag = importlib.import_module("pollard_pin.thesis.lagrange")
+    cf = importlib.import_module("pollard_pin.kinematics.closed_form")
+    lag = importlib.import_module("pollard_pin.crosscheck.euler_lagrange")
 
     def run(timings):
         t0 = time.perf_counter()
@@ -92,7 +92,7 @@ def thesis_path(robot, traj):
 
 
 def mujoco_path(traj, ik):
-    peer = importlib.import_module("pollard_pin.mujoco_peer")
+    peer = importlib.import_module("pollard_pin.crosscheck.mujoco")
     built = peer.build_mujoco()
     if hasattr(peer, "pipeline_mujoco"):
         def run(timings):

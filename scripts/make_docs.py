@@ -5,13 +5,17 @@ headless Chromium) and docs/plots/*.png (``pollard-pin plot`` of the thesis traj
 
 Needs Debian's ``chromium`` for the screenshot.
 """
+import sys
 import tempfile
 from pathlib import Path
 
 import pollard_pin as pp
-from pollard_pin.browser import capture_meshcat
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))  # the headless-browser helper is a test utility
+from browser import capture_meshcat  # noqa: E402
+
+DOCS = ROOT / "docs"
 
 
 def main():

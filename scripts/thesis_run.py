@@ -8,7 +8,7 @@ the same CSV as ``pollard-pin run`` and print the sizing report.
 import argparse
 
 import pollard_pin as pp
-from pollard_pin.report import to_markdown
+from pollard_pin.viz.report import to_markdown
 
 
 def main():

@@ -9,7 +9,7 @@ use "Open Controls" → Animations → play / pause / time to scrub.
 import argparse
 
 import pollard_pin as pp
-from pollard_pin.viewer import serve
+from pollard_pin.viz.viewer import serve
 
 
 def main():

@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.dynamics import inverse_dynamics
-from pollard_pin.kinematics import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.dynamics.inverse import inverse_dynamics
+from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
 
 FIELDS = ("q", "v", "a", "spherical", "d_spherical", "wrist_margin", "sigma_parallel",
           "sigma_serial")

@@ -5,10 +5,10 @@ import pinocchio as pin
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.dynamics import (JointLosses, forward_dynamics, inverse_dynamics,
-                                  inverse_dynamics_sample, simulate, trajectory_torques)
-from pollard_pin.thesis import lagrange
-from pollard_pin.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
+from pollard_pin.dynamics.forward import forward_dynamics, simulate, trajectory_torques
+from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
+from pollard_pin.crosscheck import euler_lagrange as lagrange
+from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
 
 @pytest.fixture(scope="module")
@@ -152,8 +152,8 @@ def test_three_actuator_formula_is_ill_posed(robot, thesis_run):
 def test_three_way_agreement_with_modified_parameters(tmp_path):
     """Twisted U joints (β54 ≠ 0), another attachment angle, longer arm, off-axis CoG: the
     batched and per-sample IK, the thesis' Euler–Lagrange torques and MuJoCo still agree."""
-    from pollard_pin.kinematics import inverse_kinematics_batch, inverse_kinematics_newton
-    from pollard_pin.model import generate
+    from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
+    from pollard_pin.model.build import generate
 
     params = pp.load_params(overrides={
         "leg1.beta54": 10.0, "leg2.beta54": -5.0, "leg1.beta1413": 260.0, "chain0.x32": 0.34,
@@ -167,7 +167,7 @@ def test_three_way_agreement_with_modified_parameters(tmp_path):
     peak = np.abs(dyn.tau).max()
     thesis = lagrange.inverse_dynamics(params, traj.poses, traj.d_poses, traj.dd_poses)["tau"]
     assert np.abs(dyn.tau - thesis).max() <= 1e-6 * peak
-    peer = pytest.importorskip("pollard_pin.mujoco_peer")
+    peer = pytest.importorskip("pollard_pin.crosscheck.mujoco")
     pytest.importorskip("mujoco")
     urdf = tmp_path / "modified.urdf"
     urdf_text, srdf_text = generate(params)

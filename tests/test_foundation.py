@@ -23,10 +23,11 @@ import pinocchio as pin
 import pytest
 
 import pollard_pin
-from pollard_pin.kinematics import ClosureError, forward_kinematics, solve_closure, tool_pose
-from pollard_pin.model import (ModelFileError, build, constraint_jacobian, constraint_residual,
+from pollard_pin.kinematics.closure import forward_kinematics, solve_closure, tool_pose
+from pollard_pin.kinematics.errors import ClosureError
+from pollard_pin.model.build import (ModelFileError, build, constraint_jacobian, constraint_residual,
                                generate, load)
-from pollard_pin.params import ParameterError, load_params, read_params_dict
+from pollard_pin.model.params import ParameterError, load_params, read_params_dict
 
 REPO = Path(__file__).resolve().parents[1]
 MODELS = REPO / "models"
@@ -298,7 +299,7 @@ def test_forward_kinematics_from_home_actuators_reproduces_home(robot, q_home):
 
 
 def test_forward_kinematics_inverts_the_closed_form_ik(robot, q_home):
-    from pollard_pin.thesis.ik import JOINTS, position_ik
+    from pollard_pin.kinematics.closed_form import JOINTS, position_ik
 
     home = np.asarray(robot.params.home_pose)
     poses = home + np.array([[0.0, 0, 0, 0, 0, 0], [-0.02, 0.05, 0.03, 0.1, -0.05, 0.2],
@@ -686,7 +687,10 @@ def test_wheel_ships_the_models(wheel):
         for f in ("pollard.urdf", "pollard.srdf", "pollard.toml"):
             assert f"pollard_pin/models/{f}" in names
             assert z.read(f"pollard_pin/models/{f}").decode() == (MODELS / f).read_text()
-        assert "pollard_pin/thesis/ik.py" in names
+        package = MODELS.parent / "pollard_pin"
+        sources = {f"pollard_pin/{f.relative_to(package).as_posix()}"
+                   for f in package.rglob("*.py")}
+        assert sources <= names, f"modules missing from the wheel: {sorted(sources - names)}"
         entry = z.read(next(n for n in names if n.endswith("entry_points.txt"))).decode()
     assert "pollard-pin = pollard_pin.cli:main" in entry
 
@@ -717,7 +721,7 @@ def _check_installed(venv, cwd):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     code = textwrap.dedent("""
         import json, numpy as np, pollard_pin
-        from pollard_pin._paths import models_dir
+        from pollard_pin.model.paths import models_dir
         r = pollard_pin.load()
         q = r.home()
         tip = pollard_pin.tool_pose(r, q).translation
@@ -754,9 +758,9 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
     pp = pollard_pin
     import shutil
 
-    import pollard_pin.model as model_mod
-    import pollard_pin.params as params_mod
-    from pollard_pin._paths import models_dir
+    import pollard_pin.model.build as model_mod
+    import pollard_pin.model.params as params_mod
+    from pollard_pin.model.paths import models_dir
 
     for f in ("pollard.toml", "pollard.urdf", "pollard.srdf"):
         shutil.copy(models_dir() / f, tmp_path / f)

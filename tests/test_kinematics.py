@@ -19,16 +19,18 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin import taskspace as ts
+from pollard_pin.kinematics import taskspace as ts
 from pollard_pin.cli import main
-from pollard_pin.kinematics import (BRANCH_TOL, SPHERICAL, WRIST_MARGIN, BranchFlipError,
-                                    KinematicsError, SingularityError, UnreachablePoseError)
-from pollard_pin.model import constraint_residual
-from pollard_pin.outputs import run_pipeline
-from pollard_pin.trajectory import (Trajectory, TrajectoryError, from_csv,
+from pollard_pin.kinematics.errors import (BranchFlipError, KinematicsError, SingularityError,
+                                           UnreachablePoseError)
+from pollard_pin.kinematics.pipeline import SPHERICAL
+from pollard_pin.kinematics.singularity import BRANCH_TOL, WRIST_MARGIN
+from pollard_pin.model.build import constraint_residual
+from pollard_pin.io.results import run_pipeline
+from pollard_pin.io.trajectory import (Trajectory, TrajectoryError, from_csv,
                                     smooth_random_trajectory, thesis_trajectory, to_csv)
 
-T = importlib.import_module("pollard_pin.thesis.ik")
+T = importlib.import_module("pollard_pin.kinematics.closed_form")
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"

@@ -10,8 +10,8 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
-from pollard_pin._paths import models_dir  # noqa: E402
-from pollard_pin.mujoco_peer import (ACTUATED, JOINTS, MujocoIKError,  # noqa: E402
+from pollard_pin.model.paths import models_dir  # noqa: E402
+from pollard_pin.crosscheck.mujoco import (ACTUATED, JOINTS, MujocoIKError,  # noqa: E402
                                      build_mujoco, home_configuration, inverse_dynamics_mujoco,
                                      inverse_kinematics_mujoco, pipeline_mujoco)
 
@@ -33,14 +33,14 @@ def robot():
 
 
 def _ik(robot, traj):
-    from pollard_pin.kinematics import inverse_kinematics
+    from pollard_pin.kinematics.pipeline import inverse_kinematics
 
     return inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
 
 
 @pytest.fixture(scope="module")
 def iks(robot):
-    from pollard_pin.trajectory import smooth_random_trajectory, thesis_trajectory
+    from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_trajectory
 
     return {"thesis": _ik(robot, thesis_trajectory()),
             "random0": _ik(robot, smooth_random_trajectory(0)),
@@ -85,7 +85,7 @@ def test_joint_order_is_the_ik_order(robot):
 
 
 def test_module_does_not_import_pinocchio():
-    code = ("import sys, numpy as np; from pollard_pin.mujoco_peer import "
+    code = ("import sys, numpy as np; from pollard_pin.crosscheck.mujoco import "
             "inverse_dynamics_mujoco as f, pipeline_mujoco as p; "
             "r = f(np.zeros(12), np.zeros(12), np.zeros(12)); "
             "assert r['tau'].shape == (1, 6) and r['closure_forces'].shape == (1, 2, 3); "
@@ -111,7 +111,7 @@ def test_closure_residual_at_ik_configurations(iks, built):
 
 # --- (3) against pollard_pin.dynamics (Pinocchio RNEA + closure Jacobian) -----------------------
 def _pin_dynamics():
-    dyn = pytest.importorskip("pollard_pin.dynamics")
+    dyn = pytest.importorskip("pollard_pin.dynamics.inverse")
     if not hasattr(dyn, "inverse_dynamics"):
         pytest.skip("pollard_pin.dynamics.inverse_dynamics not written yet")
     return dyn.inverse_dynamics
@@ -202,8 +202,8 @@ def _potential(model, data, info, q):
 def test_static_torques_by_virtual_work(built):
     """At rest, τ_i = ∂U/∂θ_i along the closed-loop manifold (spec §8, virtual work). Home comes
     from the closed-form IK (pollard_pin.thesis, no Pinocchio), closed by Newton in MuJoCo."""
-    from pollard_pin.params import load_params
-    from pollard_pin.thesis.ik import JOINTS as THESIS_JOINTS, position_ik
+    from pollard_pin.model.params import load_params
+    from pollard_pin.kinematics.closed_form import JOINTS as THESIS_JOINTS, position_ik
 
     model, _, info = built
     data = mujoco.MjData(model)
@@ -235,7 +235,7 @@ def _wrap(x):
 
 @pytest.fixture(scope="module")
 def short_trajs():
-    from pollard_pin.trajectory import smooth_random_trajectory, thesis_trajectory
+    from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_trajectory
 
     return {"thesis201": thesis_trajectory(samples=201),
             "random0": smooth_random_trajectory(0, samples=101),
@@ -307,7 +307,7 @@ def test_mujoco_ik_warm_start_options_agree(short_trajs, built):
 def test_mujoco_ik_accelerations_by_finite_differences_in_time(built):
     """Pinocchio-free: v and a are the time derivatives of the IK positions along the thesis
     curve (exact poses at t ± h from pollard_pin.trajectory.thesis_curve)."""
-    from pollard_pin.trajectory import thesis_curve
+    from pollard_pin.io.trajectory import thesis_curve
 
     h = 1e-4
     t0 = np.linspace(0.3, 19.7, 7)
@@ -326,7 +326,7 @@ def test_objectacceleration_drift_is_classical_by_finite_differences(built):
     """The drift recipe (qacc = 0, mj_rnePostConstraint, mj_objectAcceleration flg_local=0,
     gravity added back) is K̇ v: the derivative of K(q) v along q + s v (4th-order central
     differences), at random states, gravity on."""
-    from pollard_pin.mujoco_peer import _drift
+    from pollard_pin.crosscheck.mujoco import _drift
 
     model, _, info = built
     data = mujoco.MjData(model)

@@ -8,9 +8,9 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.cli import main
-from pollard_pin.outputs import run_pipeline, write_csv
-from pollard_pin.plots import FIGURES, figures
-from pollard_pin.report import SIZING_FIELDS, report, to_markdown
+from pollard_pin.io.results import run_pipeline, write_csv
+from pollard_pin.viz.plots import FIGURES, figures
+from pollard_pin.viz.report import SIZING_FIELDS, report, to_markdown
 
 SAMPLES = 401
 ARGS = ["--samples", str(SAMPLES), "--quiet"]

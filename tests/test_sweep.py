@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.outputs import run_pipeline
+from pollard_pin.io.results import run_pipeline
 from pollard_pin.sweep import (ACTUATORS, METRIC_COLUMNS, SweepError, evaluate_variant,
                                load_grid, make_sweep, run_sweep, write_csv)
 
@@ -166,7 +166,7 @@ def test_evaluate_variant_is_pure_and_picklable(sweep):
 
 def test_csv_trajectory_and_explicit_variants(tmp_path):
     traj = pp.thesis_trajectory(duration=20.0, samples=SAMPLES)
-    from pollard_pin.trajectory import to_csv
+    from pollard_pin.io.trajectory import to_csv
 
     to_csv(traj, tmp_path / "traj.csv")
     (tmp_path / "g.toml").write_text(

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin import viewer
-from pollard_pin.browser import capture_meshcat, find_chromium
+from pollard_pin.viz import viewer
+from browser import capture_meshcat, find_chromium
 from pollard_pin.cli import main
-from pollard_pin.outputs import run_pipeline
+from pollard_pin.io.results import run_pipeline
 
 SAMPLES = 401  # thesis curve, 20 s: dense enough for the IK's branch check, quick to solve
 CHAINS = {  # chain → (geometry nodes drawn in its colour, pixel test for that colour)

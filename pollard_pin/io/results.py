@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ._io import atomic_open
-from .kinematics import SPHERICAL, IKResult, inverse_kinematics
-from .taskspace import TASK_NAMES
+from .atomic import atomic_open
+from ..kinematics.pipeline import SPHERICAL, IKResult, inverse_kinematics
+from ..kinematics.taskspace import TASK_NAMES
 from .trajectory import Trajectory
 
 
@@ -39,7 +39,7 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
                  **ik_options) -> RunResult:
     """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
     :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``branch_tol``, ``method``)."""
-    from .dynamics import inverse_dynamics
+    from ..dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             progress=progress, **ik_options)

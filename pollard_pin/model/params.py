@@ -16,7 +16,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ._paths import models_dir
+from .paths import models_dir
 
 DEFAULT_PARAMS = "pollard.toml"
 
@@ -228,7 +228,7 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
 
 def _check_home_reachable(p: Params) -> None:
     # Closed-form IK (spec §7) at the home pose; it raises with the chain and the shortfall.
-    from .thesis.ik import UnreachableError, position_ik
+    from ..kinematics.closed_form import UnreachableError, position_ik
 
     try:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])

@@ -105,7 +105,7 @@ def _point_on_moving_link(urdf: dict, frame: str) -> tuple[str, np.ndarray]:
 
 # --- model construction -----------------------------------------------------------------------
 def _default_urdf() -> Path:
-    from ._paths import models_dir
+    from ..model.paths import models_dir
 
     return models_dir() / "pollard.urdf"
 
@@ -435,7 +435,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     """
     import mujoco
 
-    from .taskspace import rotation, twist, twist_dot
+    from ..kinematics.taskspace import rotation, twist, twist_dot
 
     clock = _Clock(timings)
     model, data, info = built if built is not None else _built(urdf_path)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 
 def models_dir() -> Path:
-    repo = Path(__file__).resolve().parent.parent / "models"
+    repo = Path(__file__).resolve().parents[2] / "models"
     if (repo / "pollard.toml").is_file():
         return repo
     # Installed wheel: models/ is shipped as the data package pollard_pin.models.

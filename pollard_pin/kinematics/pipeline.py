@@ -1,125 +1,22 @@
-"""Constrained kinematics with Pinocchio: closure solve / forward kinematics (spec §4)."""
+"""Constrained inverse kinematics along a trajectory (docs/model.md §7, §11): positions,
+velocities and accelerations of all tree joints from the tool pose, batched or per sample."""
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import pinocchio as pin
 
-from .model import TIP_FRAME, Robot, constraint_jacobian, constraint_residual
+from ..model.build import TIP_FRAME, Robot, constraint_jacobian
+from ..timing import Stopwatch
+from . import closed_form
+from .errors import KinematicsError, SingularityError, UnreachablePoseError
+from .singularity import (BRANCH_TOL, SINGULARITY_MARGIN, WRIST_MARGIN, check_margins,
+                          conditioning)
+from .taskspace import rotation, twist, twist_dot
 
-CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
-MAX_ITER = 50
-
-
-class ClosureError(RuntimeError):
-    """The loops cannot be closed for the given actuator angles."""
-
-    def __init__(self, message: str, leg: int | None = None, residual: float | None = None):
-        super().__init__(message)
-        self.leg = leg
-        self.residual = residual
-
-
-def _leg_residuals(r: np.ndarray) -> np.ndarray:
-    return np.linalg.norm(r.reshape(2, 3), axis=1)
-
-
-def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
-                  tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER) -> np.ndarray:
-    """Full configuration (12,) with the six actuator angles fixed and the loops closed.
-
-    Newton on the passive angles with the constraint Jacobian, warm-started at ``q_guess``
-    (default: the home posture). Raises :class:`ClosureError` naming the leg and the residual
-    reached when the actuator set cannot be assembled.
-    """
-    model, data = robot.model, robot.data
-    cms, cds = robot.constraint_models, robot.constraint_datas
-    act = np.asarray(actuated, dtype=float).reshape(-1)
-    if act.shape != (6,) or not np.all(np.isfinite(act)):
-        raise ValueError(f"actuator angles must be 6 finite numbers "
-                         f"({', '.join(robot.actuated)}), got {act!r}")
-    q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
-    ia, ip = robot.actuated_v, robot.passive_v
-    q[ia] = act
-    r = constraint_residual(model, data, cms, cds, q)
-    for _ in range(max_iter):
-        if np.abs(r).max() <= tol:
-            return q
-        Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
-        step = np.linalg.lstsq(Jp, r, rcond=None)[0]  # least squares: survives singular Jp
-        # Damped step: never move a passive angle by more than 0.5 rad at once.
-        q[ip] -= step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
-        r = constraint_residual(model, data, cms, cds, q)
-    legs = _leg_residuals(r)
-    leg = int(np.argmax(legs)) + 1
-    angles = dict(zip(robot.actuated, act.round(6).tolist()))
-    raise ClosureError(
-        f"cannot close the loops for actuator angles {angles} "
-        f"(rad): after {max_iter} Newton steps the residual is {legs[0]*1e3:.4g} mm on leg 1 and "
-        f"{legs[1]*1e3:.4g} mm on leg 2 (tolerance {tol:g} m); leg {leg} cannot reach its "
-        f"attachment point", leg=leg, residual=float(legs.max()))
-
-
-def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
-    """World placement of the ``tip`` frame."""
-    pin.framesForwardKinematics(robot.model, robot.data, q)
-    return pin.SE3(robot.data.oMf[robot.tip_frame])
-
-
-def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None
-                       ) -> tuple[np.ndarray, np.ndarray]:
-    """Actuator angles (N, 6) → full configurations (N, 12) and task poses (N, 6).
-
-    Each sample warm-starts from the previous one, so a trajectory stays on one branch.
-    """
-    from .taskspace import pose_from_se3
-
-    act = np.atleast_2d(np.asarray(actuated, dtype=float))
-    qs = np.empty((len(act), robot.model.nq))
-    poses = np.empty((len(act), 6))
-    q = q_guess
-    for k, a in enumerate(act):
-        try:
-            q = solve_closure(robot, a, q_guess=q)
-        except ClosureError as exc:
-            raise ClosureError(f"sample {k}: {exc}", exc.leg, exc.residual) from None
-        qs[k] = q
-        poses[k] = pose_from_se3(tool_pose(robot, q))
-    return qs, poses
-
-
-# --- inverse kinematics along a trajectory (issue: constrained kinematics) -------------------
 SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
-SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
-WRIST_MARGIN = 0.05  # default smallest |sin θ1716| allowed (≈ 2.9°)
-BRANCH_TOL = 0.05  # rad, largest departure from the trapezoid prediction between samples
-
-
-class KinematicsError(RuntimeError):
-    """IK failed at a sample: ``chain``, ``sample``, ``time``, ``amount`` say where, how far."""
-
-    def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
-                 chain: str | None = None, amount: float | None = None):
-        where = "" if sample is None else f"sample {sample}" + (
-            "" if time is None else f" (t = {time:.6g} s)")
-        super().__init__(f"{where}: {message}" if where else message)
-        self.detail = message  # the message without the sample/time prefix
-        self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
-
-
-class UnreachablePoseError(KinematicsError):
-    """A chain cannot reach the requested tool pose."""
-
-
-class SingularityError(KinematicsError):
-    """The trajectory passes closer to a singularity than the configured margin."""
-
-
-class BranchFlipError(KinematicsError):
-    """The solution jumped to another assembly branch between consecutive samples."""
 
 
 def _zyz(M: np.ndarray) -> np.ndarray:
@@ -291,12 +188,9 @@ def _task_inputs(poses, d_poses, dd_poses, t):
 
 def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
     """Closed-form tree angles (N, 12) on the spec §9 branches, errors mapped to ours."""
-    import importlib
-
-    cf = importlib.import_module(".thesis.ik", __package__)
     try:
-        return cf.position_ik(robot.params, poses, wrist_margin=wrist_margin)[:, :12]
-    except cf.UnreachableError as exc:
+        return closed_form.position_ik(robot.params, poses, wrist_margin=wrist_margin)[:, :12]
+    except closed_form.UnreachableError as exc:
         k, tk = exc.sample, float(t[exc.sample])
         if exc.kind == "singular":
             raise SingularityError(
@@ -344,8 +238,6 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
     """
-    from .taskspace import rotation, twist, twist_dot
-
     model, data = robot.model, robot.data
     cms, cds = robot.constraint_models, robot.constraint_datas
     fr = KinematicFrames.of(robot)
@@ -378,7 +270,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
         a = np.linalg.solve(K, rhs_a)
         sph[k], dsph[k] = _spherical(data, fr)
         stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), abs(np.sin(q[fr.wrist_q])),
-                    *_conditioning(K, fr.actuated_v, fr.passive_v))
+                    *conditioning(K, fr.actuated_v, fr.passive_v))
         out["q"][k], out["v"][k], out["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
@@ -390,7 +282,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
                       closure_residual=stats[:n, 0], tool_error=stats[:n, 1],
                       wrist_margin=stats[:n, 2], sigma_parallel=stats[:n, 3],
                       sigma_serial=stats[:n, 4], joint_names=robot.joint_names)
-    _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
     return result
 
 
@@ -549,43 +441,8 @@ def _drift(J, dJ, v, pos, p: _Point) -> np.ndarray:
             + _cross(w, pdot))
 
 
-def _sigma_min(A):
-    """Smallest singular value of each (6 × 6) matrix, from the Gram matrix's eigenvalues."""
-    return np.sqrt(np.maximum(np.linalg.eigvalsh(np.swapaxes(A, -1, -2) @ A)[..., 0], 0.0))
-
-
-def actuator_velocity_map(Jc: np.ndarray, actuated_v, passive_v) -> np.ndarray:
-    """N (..., nv, 6) with v = N q̇_act on the closed loops: Jc_p q̇_p = −Jc_a q̇_act."""
-    N = np.zeros(Jc.shape[:-2] + (Jc.shape[-1], len(actuated_v)))
-    N[..., actuated_v, :] = np.eye(len(actuated_v))
-    N[..., passive_v, :] = -np.linalg.solve(Jc[..., passive_v], Jc[..., actuated_v])
-    return N
-
-
-def _conditioning(K: np.ndarray, actuated_v, passive_v):
-    """σ_min of the passive-joint constraint Jacobian (parallel singularity) and of the
-    actuator-rate → tool-twist map (serial singularity), from K = [Jc; J_tool] (..., 12, nv)."""
-    Jc, Jt = K[..., :6, :], K[..., 6:, :]
-    return (_sigma_min(Jc[..., passive_v]),
-            _sigma_min(Jt @ actuator_velocity_map(Jc, actuated_v, passive_v)))
-
-
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
 POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step is applied
-
-
-class Stopwatch:
-    """Accumulates wall time per stage into ``sink`` (a dict) — or does nothing if it is None."""
-
-    def __init__(self, sink: dict | None):
-        self.sink = sink
-        self.t = time.perf_counter()
-
-    def lap(self, stage: str) -> None:
-        if self.sink is not None:
-            now = time.perf_counter()
-            self.sink[stage] = self.sink.get(stage, 0.0) + now - self.t
-            self.t = now
 
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
@@ -622,14 +479,12 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
         result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
                                  if f != "joint_names" else parts[0].joint_names)
                              for f in IKResult.__dataclass_fields__})
-    _check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
     clock.lap("analysis")
     return result
 
 
 def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, clock) -> IKResult:
-    from .taskspace import rotation, twist, twist_dot
-
     n = len(poses)
     model = robot.model
     lay = _layout(robot)
@@ -682,7 +537,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             amount=float(err[k].max()))
     clock.lap("acceleration")
     sph, dsph = _spherical_batch(robot, lay, pl, J, v)
-    sigma_parallel, sigma_serial = _conditioning(K, robot.actuated_v, robot.passive_v)
+    sigma_parallel, sigma_serial = conditioning(K, robot.actuated_v, robot.passive_v)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
                       wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
@@ -707,37 +562,3 @@ def _spherical_batch(robot: Robot, lay: _Layout, pl, J, v):
         ang.append(_zyz(np.swapaxes(R_l, 1, 2) @ R_p @ C))
         rate.append(_zyz_rates(ang[-1], _matvec(np.swapaxes(R_l, 1, 2), w_p - omega(link))))
     return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
-
-
-def _check_margins(robot: Robot, r: IKResult, singularity_margin, wrist_margin, branch_tol):
-    """Raise at the first sample closer to a singularity than the margins, or a branch flip."""
-    checks = [(r.wrist_margin, wrist_margin, "wrist", SingularityError,
-               "wrist |sin θ1716| = {v:.4g} is below the margin {m:g} (spray axis nearly "
-               "parallel to the platform arm)"),
-              (r.sigma_parallel, singularity_margin, "parallel", SingularityError,
-               "parallel (passive-joint constraint Jacobian) smallest singular value {v:.4g} "
-               "is below the margin {m:g}"),
-              (r.sigma_serial, singularity_margin, "serial", SingularityError,
-               "serial (actuator-rate to tool-twist map) smallest singular value {v:.4g} is "
-               "below the margin {m:g}")]
-    first = None
-    for values, margin, chain, cls, msg in checks:
-        bad = np.flatnonzero(values < margin)
-        if len(bad) and (first is None or bad[0] < first[0]):
-            k = int(bad[0])
-            first = (k, cls(msg.format(v=values[k], m=margin), sample=k, time=float(r.t[k]),
-                            chain=chain, amount=float(margin - values[k])))
-    if len(r) > 1:
-        dt = np.diff(r.t)[:, None]
-        jump = np.abs(np.diff(r.q, axis=0) - 0.5 * dt * (r.v[1:] + r.v[:-1]))
-        bad = np.flatnonzero(jump.max(axis=1) > branch_tol)
-        if len(bad) and (first is None or bad[0] + 1 < first[0]):
-            k = int(bad[0]) + 1
-            j = int(np.argmax(jump[k - 1]))
-            name = robot.joint_names[j]
-            first = (k, BranchFlipError(
-                f"joint {name} jumped {jump[k - 1, j]:.4g} rad more than its rate predicts "
-                f"(limit {branch_tol:g} rad): assembly branch flip or samples too sparse",
-                sample=k, time=float(r.t[k]), chain=name, amount=float(jump[k - 1, j])))
-    if first is not None:
-        raise first[1]

@@ -126,7 +126,7 @@ def _closure_figure(plt, cols):
 
 
 def _conditioning_figure(plt, cols):
-    from .kinematics import SINGULARITY_MARGIN, WRIST_MARGIN
+    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
     t = cols["t"]
     fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
@@ -173,7 +173,7 @@ def _path_figure(plt, cols, name):
 
 
 def figures(result) -> dict:
-    """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.outputs.RunResult` (with its
+    """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.io.results.RunResult` (with its
     dynamics). Close them with ``matplotlib.pyplot.close(fig)`` when done."""
     if result.dynamics is None:
         raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")

@@ -11,9 +11,9 @@ trapezoid rule over the samples):
 
 **Cross-checks**: the same trajectory through
 
-* the thesis' method (``pollard_pin.thesis``: closed-form IK, task-space Euler–Lagrange,
+* the thesis' method (``pollard_pin.crosscheck.euler_lagrange``: closed-form IK, task-space Euler–Lagrange,
   numpy only): joint positions, velocities, accelerations and actuator torques;
-* MuJoCo (``pollard_pin.mujoco_peer``: the URDF in MuJoCo, ``mj_inverse`` plus the connect
+* MuJoCo (``pollard_pin.crosscheck.mujoco``: the URDF in MuJoCo, ``mj_inverse`` plus the connect
   constraints): actuator torques and closure forces. If MuJoCo is not installed the report
   says so and skips it.
 
@@ -22,7 +22,6 @@ largest magnitude of the reference quantity.
 """
 from __future__ import annotations
 
-import importlib
 import json
 import math
 import tempfile
@@ -90,8 +89,9 @@ def _wrap(a):
 
 def cross_check_thesis(robot, result) -> dict:
     """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
-    ik_mod = importlib.import_module("pollard_pin.thesis.ik")
-    lagrange = importlib.import_module("pollard_pin.thesis.lagrange")
+    from ..crosscheck import euler_lagrange as lagrange
+    from ..kinematics import closed_form as ik_mod
+
     traj, ik, dyn = result.trajectory, result.ik, result.dynamics
     q_th, v_th, a_th = ik_mod.inverse_kinematics(robot.params, traj.poses, traj.d_poses,
                                                  traj.dd_poses)
@@ -115,10 +115,8 @@ def cross_check_mujoco(robot, result) -> dict:
     except ImportError as exc:
         return {"available": False,
                 "reason": f"MuJoCo is not installed ({exc}); pip install mujoco to compare"}
-    try:
-        peer = importlib.import_module("pollard_pin.mujoco_peer")
-    except ImportError as exc:  # pragma: no cover - module shipped with the package
-        return {"available": False, "reason": f"pollard_pin.mujoco_peer unavailable: {exc}"}
+    from ..crosscheck import mujoco as peer
+
     ik, dyn = result.ik, result.dynamics
     cols = [list(ik.joint_names).index(n) for n in peer.JOINTS]
     with tempfile.TemporaryDirectory() as tmp:
@@ -134,7 +132,7 @@ def cross_check_mujoco(robot, result) -> dict:
 
 
 def sizing_report(robot, result, cross_check: bool = True) -> dict:
-    """The whole report for a :class:`~pollard_pin.outputs.RunResult` as a JSON-ready dict:
+    """The whole report for a :class:`~pollard_pin.io.results.RunResult` as a JSON-ready dict:
     ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
     ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
     if result.dynamics is None:

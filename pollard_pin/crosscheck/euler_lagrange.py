@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .ik import ACTUATED, BODIES, _as_poses, body_states, direction_jet, vee_skew
-from .jet import Jet
+from ..kinematics.closed_form import ACTUATED, BODIES, _as_poses, body_states, direction_jet, vee_skew
+from ..kinematics.jet import Jet
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 

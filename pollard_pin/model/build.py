@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from ._paths import models_dir
+from .paths import models_dir
 from .params import Params, load_params
 from .urdf import generate_srdf, generate_urdf
 
@@ -100,11 +100,10 @@ class Robot:
         return np.array(self.model.referenceConfigurations["home"])
 
     def home(self) -> np.ndarray:
-        """Spec §9 home configuration with the closure solved to ≤ 1e-12 m."""
-        from .kinematics import solve_closure
-
-        q_ref = self.q_reference
-        return solve_closure(self, q_ref[self.actuated_v], q_guess=q_ref)
+        """The home configuration (docs/model.md §9) at full precision: the closed-form IK of
+        the home pose, whose loops close to round-off (the SRDF keeps 12 digits)."""
+        values = home_joint_values(self.params)
+        return np.array([values[n] for n in self.joint_names])
 
     def as_dict(self, q: np.ndarray) -> dict[str, float]:
         return {n: float(q[self.idx_q(n)]) for n in self.joint_names}
@@ -167,7 +166,7 @@ def build(params: Params, urdf: str, srdf: str) -> Robot:
 
 def home_joint_values(params: Params) -> dict[str, float]:
     """Tree joint values at the home pose, by the closed-form IK of spec §7."""
-    from .thesis.ik import JOINTS, position_ik
+    from ..kinematics.closed_form import JOINTS, position_ik
 
     q = position_ik(params, np.asarray(params.home_pose)[None, :])[0]
     return {n: float(v) for n, v in zip(JOINTS[:12], q[:12])}

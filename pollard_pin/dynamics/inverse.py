@@ -1,10 +1,8 @@
-"""Closed-loop dynamics with Pinocchio.
+"""Closed-loop inverse dynamics with Pinocchio (docs/model.md §13).
 
-Inverse dynamics: RNEA on the open tree, then ``tau_tree = Sᵀ τ + Jcᵀ λ`` (12 × 12, square)
-for the six actuator torques τ (spec §6 order) and the two closure forces λ_i, the force the
-platform exerts on ``link_i`` at the ball joint, world axes [N] (see :mod:`pollard_pin.model`).
-Forward dynamics: ``pin.constraintDynamics`` (exact, proximal μ = 0) with Baumgarte closure
-stabilisation and a fixed-step RK4 integrator.
+RNEA on the open tree, then ``tau_tree = Sᵀ τ + Jcᵀ λ`` (12 × 12, square) for the six actuator
+torques τ (docs/model.md §6 order) and the two closure forces λ_i, the force the platform exerts
+on ``link_i`` at the ball joint, world axes [N] (docs/model.md §4).
 """
 from __future__ import annotations
 
@@ -13,8 +11,10 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from .kinematics import IKResult, Stopwatch, actuator_velocity_map
-from .model import Robot, constraint_jacobian, constraint_residual
+from ..kinematics.pipeline import IKResult
+from ..kinematics.singularity import actuator_velocity_map
+from ..model.build import Robot, constraint_jacobian
+from ..timing import Stopwatch
 
 
 @dataclass(frozen=True)
@@ -147,86 +147,6 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
                           potential=U, actuated=robot.actuated)
 
 
-# --- forward dynamics ---------------------------------------------------------------------
-class SimulationError(RuntimeError):
-    """The integration produced a non-finite state."""
-
-
-@dataclass
-class SimulationResult:
-    t: np.ndarray
-    q: np.ndarray
-    v: np.ndarray
-    closure_residual: np.ndarray  # max |p_A − p_B| component [m]
-
-
-def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
-    """Joint accelerations (12,) under actuator torques ``tau_act`` (6,) with the loops closed."""
-    model, data = robot.model, robot.data
-    tau = np.zeros(model.nv)
-    tau[robot.actuated_v] = tau_act
-    if losses is not None:
-        tau -= losses.torque(v, np.zeros(model.nv))  # armature is not handled here
-    settings = settings or pin.ProximalSettings(1e-14, 0.0, 1)
-    return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
-                                  robot.constraint_datas, settings).copy()
-
-
-def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
-             baumgarte: tuple[float, float] = (400.0, 40.0)) -> SimulationResult:
-    """Integrate the closed-loop dynamics under ``torques(t, q, v) → (6,)`` with fixed-step RK4.
-
-    Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
-    ``Kd`` default to a critically damped 20 rad/s correction.
-    """
-    saved = [(cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd)
-             for cm in robot.constraint_models]
-    try:
-        for cm in robot.constraint_models:
-            cm.m_baumgarte_parameters.Kp = float(baumgarte[0])
-            cm.m_baumgarte_parameters.Kd = float(baumgarte[1])
-        return _rk4(robot, torques, q0, v0, duration, dt)
-    finally:  # the robot's constraint models are left as they were
-        for cm, (kp, kd) in zip(robot.constraint_models, saved):
-            cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd = kp, kd
-
-
-def _rk4(robot: Robot, torques, q0, v0, duration: float, dt: float) -> SimulationResult:
-    model = robot.model
-    pin.initConstraintDynamics(model, robot.data, robot.constraint_models,
-                               robot.constraint_datas)
-    settings = pin.ProximalSettings(1e-14, 0.0, 1)
-
-    def f(t, q, v):
-        return forward_dynamics(robot, q, v, torques(t, q, v), settings)
-
-    steps = int(round(duration / dt))
-    ts = np.arange(steps + 1) * dt
-    Q, V = np.empty((steps + 1, model.nq)), np.empty((steps + 1, model.nv))
-    res = np.empty(steps + 1)
-    q, v = np.array(q0, dtype=float), np.array(v0, dtype=float)
-    for k, t in enumerate(ts):
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            raise SimulationError(f"simulation diverged at step {k} (t = {t:.6g} s): "
-                                  "non-finite state; reduce dt or stabilise the motion")
-        Q[k], V[k] = q, v
-        res[k] = np.abs(constraint_residual(model, robot.data, robot.constraint_models,
-                                            robot.constraint_datas, q)).max()
-        if k == steps:
-            break
-        # RK4 on (q, v); revolute joints, so q integrates additively.
-        a1 = f(t, q, v)
-        q2, v2 = q + 0.5 * dt * v, v + 0.5 * dt * a1
-        a2 = f(t + 0.5 * dt, q2, v2)
-        q3, v3 = q + 0.5 * dt * v2, v + 0.5 * dt * a2
-        a3 = f(t + 0.5 * dt, q3, v3)
-        q4, v4 = q + dt * v3, v + dt * a3
-        a4 = f(t + dt, q4, v4)
-        q = q + dt / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
-        v = v + dt / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
-    return SimulationResult(t=ts, q=Q, v=V, closure_residual=res)
-
-
 def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
     """Closed-loop inertia seen by the actuators, Nᵀ M N with v = N q̇_act (6 × 6)."""
     model, data = robot.model, robot.data
@@ -235,34 +155,3 @@ def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
     M = pin.crba(model, data, q)
     M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
     return N.T @ M @ N
-
-
-def trajectory_torques(robot: Robot, curve, q_start=None, bandwidth: float | None = None):
-    """``(t, q, v) → τ (6,)``: IK + inverse dynamics of ``curve(t) → (pose, rate, acc)``.
-
-    Evaluated exactly at every integrator stage (no interpolation), warm-started from the
-    previous call, so :func:`simulate` can replay a trajectory's own torques. With
-    ``bandwidth`` ω [rad/s], a critically damped PD ``M_red (ω² e + 2ω ė)`` on the actuator
-    errors is added to this feedforward; ``torques.state["feedback"]`` records its peak
-    |torque|. Open loop (``None``) the replay is gravity-unstable over long horizons.
-    """
-    from .kinematics import inverse_kinematics
-
-    state = {"q": q_start, "feedback": 0.0}
-    ia = robot.actuated_v
-
-    def torques(t: float, q=None, v=None) -> np.ndarray:
-        pose, d, dd = curve(np.array([t]))
-        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"],
-                                method="newton")
-        state["q"] = ik.q[0]
-        tau = inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
-        if bandwidth is not None and q is not None:
-            e, ed = ik.q[0, ia] - q[ia], ik.v[0, ia] - v[ia]
-            fb = reduced_mass_matrix(robot, q) @ (bandwidth**2 * e + 2 * bandwidth * ed)
-            state["feedback"] = max(state["feedback"], float(np.abs(fb).max()))
-            tau = tau + fb
-        return tau
-
-    torques.state = state
-    return torques

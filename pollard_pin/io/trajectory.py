@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .taskspace import TASK_NAMES
+from ..kinematics.taskspace import TASK_NAMES
 
 THESIS_DURATION = 20.0  # s (spec §9)
 THESIS_SAMPLES = 2001

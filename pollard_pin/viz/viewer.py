@@ -216,7 +216,7 @@ def viewer_geometry(robot) -> pin.GeometryModel:
     """
     import coal
 
-    from .urdf import CHAIN_COLOURS
+    from ..model.urdf import CHAIN_COLOURS
 
     gm = robot.visual_model.copy()
     model = robot.model
@@ -277,7 +277,7 @@ def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
 def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
                 play: bool = True, camera: bool = True) -> Scene:
     """Draw the robot, closure markers, tool path (and frames) into meshcat ``vis`` and set
-    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.IKResult`) on it."""
+    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.pipeline.IKResult`) on it."""
     import meshcat.geometry as mg
     from meshcat.animation import Animation
     from pinocchio.visualize import MeshcatVisualizer
@@ -358,7 +358,7 @@ def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
 
 
 def write_html(path, robot, ik, **kwargs) -> Path:
-    from ._io import atomic_open
+    from ..io.atomic import atomic_open
 
     html = static_html(robot, ik, **kwargs)
     with atomic_open(path) as f:

@@ -1,0 +1,78 @@
+"""Closing the loops: the passive angles for given actuator angles (forward kinematics),
+by Newton on the cut spherical joints' residual (docs/model.md §4)."""
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from ..model.build import Robot, constraint_jacobian, constraint_residual
+from .errors import ClosureError
+from .taskspace import pose_from_se3
+
+CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
+MAX_ITER = 50
+
+def _leg_residuals(r: np.ndarray) -> np.ndarray:
+    return np.linalg.norm(r.reshape(2, 3), axis=1)
+
+
+def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
+                  tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER) -> np.ndarray:
+    """Full configuration (12,) with the six actuator angles fixed and the loops closed.
+
+    Newton on the passive angles with the constraint Jacobian, warm-started at ``q_guess``
+    (default: the home posture). Raises :class:`ClosureError` naming the leg and the residual
+    reached when the actuator set cannot be assembled.
+    """
+    model, data = robot.model, robot.data
+    cms, cds = robot.constraint_models, robot.constraint_datas
+    act = np.asarray(actuated, dtype=float).reshape(-1)
+    if act.shape != (6,) or not np.all(np.isfinite(act)):
+        raise ValueError(f"actuator angles must be 6 finite numbers "
+                         f"({', '.join(robot.actuated)}), got {act!r}")
+    q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
+    ia, ip = robot.actuated_v, robot.passive_v
+    q[ia] = act
+    r = constraint_residual(model, data, cms, cds, q)
+    for _ in range(max_iter):
+        if np.abs(r).max() <= tol:
+            return q
+        Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
+        step = np.linalg.lstsq(Jp, r, rcond=None)[0]  # least squares: survives singular Jp
+        # Damped step: never move a passive angle by more than 0.5 rad at once.
+        q[ip] -= step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
+        r = constraint_residual(model, data, cms, cds, q)
+    legs = _leg_residuals(r)
+    leg = int(np.argmax(legs)) + 1
+    angles = dict(zip(robot.actuated, act.round(6).tolist()))
+    raise ClosureError(
+        f"cannot close the loops for actuator angles {angles} "
+        f"(rad): after {max_iter} Newton steps the residual is {legs[0]*1e3:.4g} mm on leg 1 and "
+        f"{legs[1]*1e3:.4g} mm on leg 2 (tolerance {tol:g} m); leg {leg} cannot reach its "
+        f"attachment point", leg=leg, residual=float(legs.max()))
+
+
+def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
+    """World placement of the ``tip`` frame."""
+    pin.framesForwardKinematics(robot.model, robot.data, q)
+    return pin.SE3(robot.data.oMf[robot.tip_frame])
+
+
+def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """Actuator angles (N, 6) → full configurations (N, 12) and task poses (N, 6).
+
+    Each sample warm-starts from the previous one, so a trajectory stays on one branch.
+    """
+    act = np.atleast_2d(np.asarray(actuated, dtype=float))
+    qs = np.empty((len(act), robot.model.nq))
+    poses = np.empty((len(act), 6))
+    q = q_guess
+    for k, a in enumerate(act):
+        try:
+            q = solve_closure(robot, a, q_guess=q)
+        except ClosureError as exc:
+            raise ClosureError(f"sample {k}: {exc}", exc.leg, exc.residual) from None
+        qs[k] = q
+        poses[k] = pose_from_se3(tool_pose(robot, q))
+    return qs, poses
