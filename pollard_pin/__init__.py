@@ -4,7 +4,7 @@ Public API (imported lazily: ``pollard_pin.kinematics.closed_form`` and
 ``pollard_pin.crosscheck.euler_lagrange`` stay free of Pinocchio)::
 
     robot = pollard_pin.load()                       # model, data, closures, geometry
-    traj = pollard_pin.thesis_trajectory()           # spec §9 painting curve
+    traj = pollard_pin.thesis_trajectory()           # docs/model.md §9 painting curve
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
 """
 from __future__ import annotations

@@ -12,7 +12,8 @@ module-level function of plain data, and yields one flat row of the result table
   ``failure`` (its message), ``failure_sample``, ``failure_time`` [s] and ``failure_chain``
   (first unreachable/singular/branch-flipping sample, as the kinematics reports it; empty when
   the parameter set itself is invalid, e.g. the home pose is unreachable);
-* per actuator (spec §6 order): ``peak_tau_<a>`` = max |τ| [N·m], ``rms_tau_<a>`` = the time
+* per actuator (docs/model.md §6 order): ``peak_tau_<a>`` = max |τ| [N·m], ``rms_tau_<a>`` = the
+time
   RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
 * ``peak_force_leg1``, ``peak_force_leg2`` = max |λ_i| [N] at the spherical joints;
 * ``min_wrist_margin``, ``min_sigma_parallel``, ``min_sigma_serial``: how close the variant
@@ -62,7 +63,7 @@ from .io.atomic import atomic_open
 from .model.params import (ParameterError, apply_overrides, lookup, params_from_dict,
                      plain_value, read_params_dict)
 
-# Spec §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
+# docs/model.md §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
 ACTUATORS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 FAILURE_COLUMNS = ("feasible", "failure_kind", "failure", "failure_sample", "failure_time",
                    "failure_chain")
@@ -129,7 +130,8 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     row in any process or machine with the same pollard-pin installed. An invalid parameter set
     (:class:`~pollard_pin.model.params.ParameterError`, e.g. an unreachable home pose) and a
     trajectory the variant cannot follow (:class:`~pollard_pin.kinematics.errors.KinematicsError`,
-    :class:`~pollard_pin.kinematics.errors.ClosureError`, a singular linear system) give an infeasible
+    :class:`~pollard_pin.kinematics.errors.ClosureError`, a singular linear system) give an
+    infeasible
     row; anything else is a bug and raises.
     """
     from .kinematics.errors import ClosureError, KinematicsError
@@ -165,7 +167,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
         raise SweepError("pollard_pin.dynamics.inverse is not available: cannot compute torques")
     dyn, ik = result.dynamics, result.ik
     if tuple(dyn.actuated) != ACTUATORS:
-        raise SweepError(f"actuator order {dyn.actuated} is not the spec §6 order {ACTUATORS}")
+        raise SweepError(f"actuator order {dyn.actuated} is not docs/model.md §6 order {ACTUATORS}")
     tau, power = dyn.tau, dyn.power
     peak, rms, ppow = np.abs(tau).max(0), _time_rms(ik.t, tau), np.abs(power).max(0)
     force = np.linalg.norm(dyn.closure_forces, axis=2).max(0)

@@ -1,4 +1,4 @@
-"""Run the thesis painting trajectory (spec §9) and print the actuator sizing table.
+"""Run the thesis painting trajectory (docs/model.md §9) and print the actuator sizing table.
 
     .venv/bin/python scripts/thesis_run.py [--out run.csv]
 
@@ -17,7 +17,7 @@ def main():
     ap.add_argument("--samples", type=int, default=2001)
     args = ap.parse_args()
 
-    robot = pp.load()  # models/pollard.urdf + pollard.srdf, spec §5 parameters
+    robot = pp.load()  # models/pollard.urdf + pollard.srdf, docs/model.md §5 parameters
     traj = pp.thesis_trajectory(duration=20.0, samples=args.samples)
     result = pp.run_pipeline(robot, traj)  # constrained IK, then RNEA + closure forces
     pp.write_csv(result, args.out)

@@ -1,7 +1,8 @@
 """Issue 2: the foundation — parameters, URDF/SRDF, the Pinocchio model with its two loop
-closures, and closure solving — checked against the numbers of model-spec §3–§5 and §9.
+closures, and closure solving — checked against the numbers of docs/model.md §3–§5 and §9.
 
-The expected values below are typed in from the spec, not read from the package, so the tests
+The expected values below are typed in from docs/model.md (§3–§5, §9), not read from the package,
+so the tests
 can fail when the package drifts from the spec.
 """
 import json
@@ -25,7 +26,8 @@ import pytest
 import pollard_pin
 from pollard_pin.kinematics.closure import forward_kinematics, solve_closure, tool_pose
 from pollard_pin.kinematics.errors import ClosureError
-from pollard_pin.model.build import (ModelFileError, build, constraint_jacobian, constraint_residual,
+from pollard_pin.model.build import (ModelFileError, build, constraint_jacobian,
+                                     constraint_residual,
                                generate, load)
 from pollard_pin.model.params import ParameterError, load_params, read_params_dict
 
@@ -126,7 +128,8 @@ def joint_axis(model, jid):
 
 
 def chain_points(g, qd):
-    """Independent numpy forward chain of spec §3: world tip pose, platform pose, elbow, the
+    """Independent numpy forward chain of docs/model.md §3: world tip pose, platform pose, elbow,
+    the
     leg-side ball centres and link rotations, from joint values ``qd`` (name → rad)."""
     L = g["x65"] + g["x1514"]
     E = np.array([0, 0, g["z10"]]) + ry(qd["theta21"]) @ np.array([g["x32"], 0, 0])
@@ -249,7 +252,7 @@ def test_home_tip_and_closure_points(robot, q_home):
         pa = data.oMf[robot.frame_id(f"closure{i}_A")].translation
         pb = data.oMf[robot.frame_id(f"closure{i}_B")].translation
         assert np.abs(pa - pb).max() <= 1e-12, (i, pa - pb)
-        # B from spec §4/§7: E + R_platform·A_i; A from the spec leg chain.
+        # B from docs/model.md §4/§7: E + R_platform·A_i; A from the spec leg chain.
         assert np.abs(pb - (ref["E"] + ref["R_platform"] @ SPEC_A[i])).max() <= 1e-9
         assert np.abs(pa - ref["legs"][i][0]).max() <= 1e-9
     r = constraint_residual(*residual_args(robot), q_home)
@@ -630,7 +633,7 @@ _ONE_CLOSURE = '  <loop_closure name="closure2" type="spherical" frame_a="closur
 
 @pytest.mark.parametrize("edit, pattern", [
     (lambda u: re.sub(r"  <loop_closure[^\n]*\n", "", u),
-     r"expected 2 <loop_closure> elements \(spec §4\), found 0"),
+     r"expected 2 <loop_closure> elements \(docs/model.md §4\), found 0"),
     (lambda u: u.replace(_ONE_CLOSURE, ""), r"expected 2 <loop_closure> elements.*found 1"),
     (lambda u: u.replace(_ONE_CLOSURE, _ONE_CLOSURE * 2),
      r"expected 2 <loop_closure> elements.*found 3"),
@@ -642,7 +645,7 @@ _ONE_CLOSURE = '  <loop_closure name="closure2" type="spherical" frame_a="closur
     (lambda u: u.replace('name="closure1" type="spherical"', 'name="closure1" type="revolute"'),
      r"loop closure 'closure1': only type='spherical' is supported"),
     (lambda u: u.replace('"theta43"', '"theta_43"'),
-     r"URDF is not the Pollard tree of spec §3: missing joints \['theta43'\]"),
+     r"URDF is not the Pollard tree of docs/model.md §3: missing joints \['theta43'\]"),
     (lambda u: u.replace("</robot>", ""), r"^Pinocchio cannot build the URDF|not well-formed"),
 ])
 def test_malformed_urdf_raises_model_file_error(edit, pattern):

@@ -1,10 +1,12 @@
 """Issue 3: constrained kinematics along trajectories, checked against independent numbers.
 
-- Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of spec §7
+- Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of
+docs/model.md §7
   (``pollard_pin.thesis.ik``, numpy only, exact jet derivatives), on the default trajectory,
   smooth random trajectories and isolated random reachable poses;
 - velocities and accelerations against central finite differences of the IK positions;
-- forward kinematics (Pinocchio closure solve and the numpy chain of spec §3) back to the poses;
+- forward kinematics (Pinocchio closure solve and the numpy chain of docs/model.md §3) back to the
+poses;
 - loop-closure residuals, recomputed with Pinocchio and with the numpy chain;
 - task-space rotation, Euler-angle round trip and twist maps against elementary rotations and
   finite differences of R(t);
@@ -106,7 +108,8 @@ def read_out(path):
 # --- shared runs -----------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def runs(robot):
-    """name → (trajectory, IKResult): the full default trajectory (2001 samples, spec §9) and
+    """name → (trajectory, IKResult): the full default trajectory (2001 samples, docs/model.md §9)
+    and
     three smooth random trajectories."""
     out = {}
     traj = thesis_trajectory()
@@ -235,7 +238,7 @@ def test_forward_kinematics_reproduces_input_poses(robot, runs, name):
     assert np.abs(poses[:, :3] - want[:, :3]).max() <= FK_TOL
     assert np.abs(wrap(poses[:, 3:] - want[:, 3:])).max() <= FK_TOL
     assert np.abs(wrap(qs - ik.q[::step])).max() <= 1e-9
-    # The numpy forward chain of spec §3 (no Pinocchio) from all IK tree angles.
+    # The numpy forward chain of docs/model.md §3 (no Pinocchio) from all IK tree angles.
     fk = T.forward_tool_pose(robot.params, to_joints_order(robot, ik.q))
     assert np.abs(fk[:, :3] - traj.poses[:, :3]).max() <= FK_TOL
     assert np.abs(wrap(fk[:, 3:] - traj.poses[:, 3:])).max() <= FK_TOL
@@ -252,7 +255,8 @@ def test_closure_residual_along_trajectory(robot, runs, name):
                     for q in ik.q[::2]])
     assert res.shape == (len(ik.q[::2]), 6)
     assert np.abs(res).max() <= CLOSURE_TOL
-    # Independently with the numpy chain of spec §3/§4: link ball centre vs attachment point.
+    # Independently with the numpy chain of docs/model.md §3/§4: link ball centre vs attachment
+    # point.
     cp = T.closure_points(robot.params, to_joints_order(robot, ik.q))
     assert np.linalg.norm(cp[..., 0, :] - cp[..., 1, :], axis=-1).max() <= CLOSURE_TOL
 
@@ -261,7 +265,7 @@ def test_ik_diagnostics_are_reported_per_sample(runs):
     traj, ik = runs["thesis"]
     q1716 = ik.q[:, list(ik.joint_names).index("theta1716")]
     assert np.allclose(ik.wrist_margin, np.abs(np.sin(q1716)), rtol=0, atol=1e-15)
-    # spec §9: θ1716 stays between about 15° and 47° along the default trajectory.
+    # docs/model.md §9: θ1716 stays between about 15° and 47° along the default trajectory.
     deg = np.degrees(np.arcsin(ik.wrist_margin))
     assert 13.0 < deg.min() < 17.0 and 45.0 < deg.max() < 49.0
     assert ik.sigma_parallel.min() > 1e-3 and ik.sigma_serial.min() > 1e-3

@@ -47,7 +47,8 @@ def iks(robot):
             "random1": _ik(robot, smooth_random_trajectory(1))}
 
 
-# --- (1) model contents (spec §2, §5) ----------------------------------------------------------
+# --- (1) model contents (docs/model.md §2, §5)
+# ----------------------------------------------------------
 def test_masses_and_gravity_match_urdf(built):
     model, _, info = built
     assert mujoco.mj_getTotalmass(model) == pytest.approx(0.92, abs=1e-12)
@@ -71,7 +72,7 @@ def test_ideal_joints_and_only_closure_constraints(built):
     assert not np.any(model.jnt_limited)
     assert model.neq == 2 and np.all(model.eq_type == mujoco.mjtEq.mjEQ_CONNECT)
     assert sorted(info["merged_bodies"]) == ["cross0", "cross_1", "cross_2"]
-    # Sites where spec §4/§5 put them: Tx(x87i) on link_i, A_i on the platform.
+    # Sites where docs/model.md §4/§5 put them: Tx(x87i) on link_i, A_i on the platform.
     (a1, b1), (a2, b2) = info["sites"]
     assert a1[1:] == ("link_1", [0.325, 0.0, 0.0]) and a2[1:] == ("link_2", [0.325, 0.0, 0.0])
     assert b1[1] == b2[1] == "platform"
@@ -102,7 +103,8 @@ def test_input_shapes(built):
         inverse_dynamics_mujoco(np.zeros((3, 12)), np.zeros((3, 12)), np.zeros((3, 11)))
 
 
-# --- (2) Pinocchio's IK closes the loops in MuJoCo (spec §4) ------------------------------------
+# --- (2) Pinocchio's IK closes the loops in MuJoCo (docs/model.md §4)
+# ------------------------------------
 def test_closure_residual_at_ik_configurations(iks, built):
     for name, ik in iks.items():
         out = inverse_dynamics_mujoco(ik.q, ik.v, ik.a, built=built)
@@ -145,7 +147,7 @@ def test_torques_and_closure_forces_match_pinocchio(name, iks, robot, built):
 def test_closure_force_sign_by_applied_forces(iks, built):
     """τ on the actuators, λ_i at the ball centre on link_i and −λ_i on the platform, applied to
     the OPEN tree in forward dynamics, reproduce the commanded accelerations: λ_i is the force ON
-    link_i (spec §4), in MuJoCo's own force convention."""
+    link_i (docs/model.md §4), in MuJoCo's own force convention."""
     model, data, info = build_mujoco()  # private copy: the equality flag is toggled below
     model.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_EQUALITY
     ik = iks["random0"]
@@ -200,7 +202,8 @@ def _potential(model, data, info, q):
 
 
 def test_static_torques_by_virtual_work(built):
-    """At rest, τ_i = ∂U/∂θ_i along the closed-loop manifold (spec §8, virtual work). Home comes
+    """At rest, τ_i = ∂U/∂θ_i along the closed-loop manifold (docs/model.md §8, virtual work). Home
+    comes
     from the closed-form IK (pollard_pin.thesis, no Pinocchio), closed by Newton in MuJoCo."""
     from pollard_pin.model.params import load_params
     from pollard_pin.kinematics.closed_form import JOINTS as THESIS_JOINTS, position_ik
@@ -275,7 +278,7 @@ def test_home_configuration_from_srdf(robot):
     root = ET.parse(models_dir() / "pollard.srdf").getroot()
     (gs,) = [g for g in root.iter("group_state") if g.get("name") == "home"]
     assert {j.get("name"): float(j.get("value")) for j in gs.iter("joint")} == dict(zip(JOINTS, q))
-    # Spec §9 table (degrees, rounded to 1e-3).
+    # docs/model.md §9 table (degrees, rounded to 1e-3).
     deg = np.degrees(q)
     assert deg[JOINTS.index("theta21")] == pytest.approx(-77.629, abs=1e-3)
     assert deg[JOINTS.index("theta76_2")] == pytest.approx(-46.778, abs=1e-3)

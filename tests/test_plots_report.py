@@ -156,7 +156,7 @@ def test_report_numbers_equal_the_run_csv(run_csv, capsys):
         assert j["peak_force"] == pytest.approx(f.max(), rel=1e-12)
         assert j["peak_time"] == t[np.argmax(f)]
         assert j["rms_force"] == pytest.approx(np.sqrt(_trapz(f ** 2, t) / T), rel=1e-12)
-    # The base actuators carry the load (spec §6): torques of order 1 N·m.
+    # The base actuators carry the load (docs/model.md §6): torques of order 1 N·m.
     assert 0.3 < acts["theta21"]["peak_torque"] < 5
 
 

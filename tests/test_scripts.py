@@ -13,7 +13,8 @@ EXAMPLES = {  # script → (arguments, text its output must contain, files it mu
     "view.py": (["--html", "p.html"], "wrote p.html", ["p.html"]),
     "cross_check.py": ([], "Pinocchio vs thesis", []),
 }
-PUBLIC = {"pollard_pin", "pollard_pin.viz.report", "pollard_pin.viz.viewer", "pollard_pin.viz.plots"}
+PUBLIC = {"pollard_pin", "pollard_pin.viz.report", "pollard_pin.viz.viewer",
+          "pollard_pin.viz.plots"}
 
 
 @pytest.mark.parametrize("name", sorted(EXAMPLES))

@@ -1,4 +1,4 @@
-"""The thesis' analytic method (pollard_pin.thesis) against independent numbers: the spec §9
+"""The thesis' analytic method (pollard_pin.thesis) against independent numbers: docs/model.md §9
 home table, the numpy forward chain, finite differences and energy balance."""
 import subprocess
 import sys
@@ -20,7 +20,7 @@ from pollard_pin.io.trajectory import sinusoid_curve, thesis_curve
 
 
 def painting_trajectory(p, n=2001, duration=20.0, t=None):
-    """(t, poses, rates, accelerations) of the spec §9 curve; ``t`` may be any times."""
+    """(t, poses, rates, accelerations) of docs/model.md §9 curve; ``t`` may be any times."""
     t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
     return (t, *thesis_curve(t, duration, p.home_pose))
 
@@ -30,7 +30,7 @@ def sinusoid_trajectory(p, n=401, duration=4.0, t=None):
     t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
     return (t, *sinusoid_curve(t, p.home_pose))
 
-HOME_DEG = {  # spec §9, rounded to 3 decimals
+HOME_DEG = {  # docs/model.md §9, rounded to 3 decimals
     "theta21": -77.629, "theta43": 104.487, "theta54": 0.0,
     "theta1615": 90.0, "theta1716": 26.858, "theta1817": -90.0,
     "theta21_1": -26.390, "theta65_1": -92.623, "theta76_1": 46.778,
@@ -69,7 +69,7 @@ def test_trajectory_stays_continuous_and_away_from_singularity(p):
     q = position_ik(p, x)
     assert np.abs(np.diff(q, axis=0)).max() < 0.05  # no branch jumps or 2π wraps
     t1716 = np.degrees(q[:, JOINTS.index("theta1716")])
-    assert 10.0 < t1716.min() and t1716.max() < 50.0  # spec §9: about 15° to 47°
+    assert 10.0 < t1716.min() and t1716.max() < 50.0  # docs/model.md §9: about 15° to 47°
 
 
 def test_reference_selects_the_2pi_representative(p):
@@ -259,7 +259,7 @@ def test_jet_chain_rule_against_closed_form():
 
 
 def test_body_frames_agree_with_forward_chain(p):
-    # body_kinematics reuses the IK's rotations; they must equal the spec §3 tree built anew.
+    # body_kinematics reuses the IK's rotations; they must equal docs/model.md §3 tree built anew.
     args = sinusoid_trajectory(p, t=T_PROBE)[1:]
     bk = body_kinematics(p, *args)
     f = forward_frames(p, position_ik(p, args[0]))

@@ -1,7 +1,7 @@
-"""The thesis' Euler–Lagrange dynamics in task coordinates (spec §8, thesis §3.3–3.7).
+"""The thesis' Euler–Lagrange dynamics in task coordinates (docs/model.md §8, thesis §3.3–3.7).
 
 q = (x, y, z, ψ, θ, φ). For each of the 9 moving bodies k, v_G = M_v(q) q̇ and ω = M_ω(q) q̇
-(world frame). The M's are exact: the closed-form IK (spec §7) run on jets whose derivative
+(world frame). The M's are exact: the closed-form IK (docs/model.md §7) run on jets whose derivative
 directions are the unit vectors e_j with q̈ = 0 (column j of M = ∂/∂q_j). A 7th direction carrying
 the actual q̇ (still q̈ = 0) gives v, ω and Ṁ_v q̇, Ṁ_ω q̇ in the same pass.
 
@@ -18,7 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kinematics.closed_form import ACTUATED, BODIES, _as_poses, body_states, direction_jet, vee_skew
+from ..kinematics.closed_form import (ACTUATED, BODIES, _as_poses, body_states, direction_jet,
+                                      vee_skew)
 from ..kinematics.jet import Jet
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
@@ -69,7 +70,8 @@ def _solve_T(J_tau, Q):
 
 
 def inverse_dynamics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
-    """Actuator torques along a task trajectory by (3.154) with all six actuators (spec §6, §8).
+    """Actuator torques along a task trajectory by (3.154) with all six actuators (docs/model.md
+    §6, §8).
 
     Returns a dict of arrays: 'tau' (N, 6) in ACTUATED order [N·m], 'D' (N, 6, 6), 'Vqd', 'C',
     'Q' (N, 6), 'J_tau' (N, 6, 6), 'qd_act' = J_τ q̇ (N, 6), 'K', 'U' (N,) energies [J].
@@ -100,7 +102,7 @@ def gravity_torques(params, poses) -> np.ndarray:
 
 
 def three_actuator_analysis(params, poses, d_poses, dd_poses) -> dict:
-    """What (3.154) gives with the thesis' three base actuators only (spec §6).
+    """What (3.154) gives with the thesis' three base actuators only (docs/model.md §6).
 
     J_τ is then 3×6 and J_τ⁻ᵀ does not exist: J_τᵀ τ = Q is 6 equations in 3 unknowns. This
     returns the least-squares torques τ_ls = pinv(J_3ᵀ) Q, the residual r = Q − J_3ᵀ τ_ls (the part

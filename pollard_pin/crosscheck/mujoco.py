@@ -1,8 +1,9 @@
-"""Independent engine check: closed-loop inverse dynamics with MuJoCo (spec §3, §4, §6).
+"""Independent engine check: closed-loop inverse dynamics with MuJoCo (docs/model.md §3, §4, §6).
 
 Uses only numpy, MuJoCo (imported lazily: a test/benchmark dependency) and the URDF file; no
 Pinocchio. The URDF open tree is loaded with ``MjSpec.from_file``; the two cut spherical
-joints of spec §4 become ``mjEQ_CONNECT`` equalities between sites at Tx(x87i) on ``link_i``
+joints of docs/model.md §4 become ``mjEQ_CONNECT`` equalities between sites at Tx(x87i) on
+``link_i``
 and A_i on ``platform`` (positions read from the URDF fixed joints of the ``<loop_closure>``
 frames). ``mj_inverse`` gives the open-tree torques; the actuator torques τ and the closure
 forces λ then solve ``[Sᵀ Jcᵀ] [τ; λ] = τ_tree`` with Jc the connect rows of ``efc_J``.
@@ -14,11 +15,14 @@ at the URDF ``tip`` frame, Tx(x1918) on ``gun``), and exact acceleration drifts 
 inverse dynamics: the complete MuJoCo peer path, timed per stage.
 
 Modelling notes:
-- MuJoCo rejects massless moving bodies, so each massless U-joint cross (spec §5) is removed
+- MuJoCo rejects massless moving bodies, so each massless U-joint cross (docs/model.md §5) is
+removed
   and its hinge moved into its child body ahead of the child's own hinge. MuJoCo composes the
-  joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54) etc. (spec §3).
+  joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54) etc. (docs/model.md
+  §3).
 - ``inertiafromgeom`` is off, so masses and inertias are the URDF inertials (checked).
-- Contacts, joint limits, springs, dampers and friction loss are disabled (spec: ideal joints).
+- Contacts, joint limits, springs, dampers and friction loss are disabled (docs/model.md §13: ideal
+joints).
 """
 from __future__ import annotations
 
@@ -28,13 +32,13 @@ from pathlib import Path
 
 import numpy as np
 
-# Tree joints in the order of pollard_pin.kinematics (IKResult.q columns), spec §3.
+# Tree joints in the order of pollard_pin.kinematics (IKResult.q columns), docs/model.md §3.
 JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
           "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
 ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")  # §6
-GRAVITY = np.array([0.0, 0.0, -9.81])  # spec §2
+GRAVITY = np.array([0.0, 0.0, -9.81])  # docs/model.md §2
 MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check
-TIP = "tip"  # tool-tip frame of the URDF (spec §3: Tx(x1918) on gun)
+TIP = "tip"  # tool-tip frame of the URDF (docs/model.md §3: Tx(x1918) on gun)
 
 _CACHE: dict[str, tuple] = {}
 
@@ -148,7 +152,7 @@ def build_mujoco(urdf_path=None):
     path = Path(urdf_path) if urdf_path is not None else _default_urdf()
     urdf = read_urdf(path)
     if len(urdf["closures"]) != 2:
-        raise ValueError(f"{path}: expected 2 <loop_closure> elements (spec §4)")
+        raise ValueError(f"{path}: expected 2 <loop_closure> elements (docs/model.md §4)")
     spec = mujoco.MjSpec.from_file(str(path))
     spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
     spec.compiler.balanceinertia = False
@@ -172,7 +176,7 @@ def build_mujoco(urdf_path=None):
         sites.append(pair)
         eq_names.append(name)
     tip = None
-    if TIP in {j["child"] for j in urdf["joints"].values()}:  # spec §3: Tx(x1918) on gun
+    if TIP in {j["child"] for j in urdf["joints"].values()}:  # docs/model.md §3: Tx(x1918) on gun
         link, pos, R = _frame_on_moving_link(urdf, TIP)
         quat = np.empty(4)
         mujoco.mju_mat2Quat(quat, R.reshape(-1))
@@ -186,7 +190,7 @@ def build_mujoco(urdf_path=None):
     data = mujoco.MjData(model)
 
     if not np.array_equal(model.opt.gravity, GRAVITY):
-        raise ValueError(f"MuJoCo gravity {model.opt.gravity} != spec §2 {GRAVITY}")
+        raise ValueError(f"MuJoCo gravity {model.opt.gravity} != docs/model.md §2 {GRAVITY}")
     for n in JOINTS:
         if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n) < 0:
             raise ValueError(f"joint {n!r} missing from the MuJoCo model")
@@ -200,7 +204,7 @@ def build_mujoco(urdf_path=None):
     if np.any(model.qpos0[qadr] != 0):
         raise ValueError("nonzero qpos0 (joint ref): angles would be offset")
 
-    # Masses and inertias (about the CoG, body frame) against the URDF, spec §5.
+    # Masses and inertias (about the CoG, body frame) against the URDF, docs/model.md §5.
     mass_err, inertia_err, body_mass = 0.0, 0.0, {}
     for b in range(1, model.nbody):
         name = model.body(b).name
@@ -279,9 +283,9 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
     """Closed-loop inverse dynamics with MuJoCo at samples (N, 12) in :data:`JOINTS` order.
 
     Returns a dict of
-      ``tau`` (N, 6): actuator torques [N·m], :data:`ACTUATED` order (spec §6);
+      ``tau`` (N, 6): actuator torques [N·m], :data:`ACTUATED` order (docs/model.md §6);
       ``closure_forces`` (N, 2, 3): force the platform exerts ON ``link_i`` at the ball joint
-        [N], world axes (spec §4);
+        [N], world axes (docs/model.md §4);
       ``tree`` (N, 12): open-tree torques (M a + c + g) [N·m], :data:`JOINTS` order;
       ``residual`` (N, 2): |p_A − p_B| of each connect pair in MuJoCo [m] (sanity check);
       ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
@@ -340,7 +344,7 @@ class MujocoIKError(RuntimeError):
 
 
 def home_configuration(srdf_path=None, urdf_path=None) -> np.ndarray:
-    """The SRDF's ``group_state`` "home" (12,) in :data:`JOINTS` order (spec §9).
+    """The SRDF's ``group_state`` "home" (12,) in :data:`JOINTS` order (docs/model.md §9).
 
     Default file: the ``.srdf`` beside ``urdf_path`` if there is one, else models/pollard.srdf.
     """
@@ -409,7 +413,7 @@ class _Clock:
 def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, urdf_path=None,
                               built=None, tol: float = IK_TOL, timings: dict | None = None,
                               max_iter: int = IK_MAX_ITER, predictor: str = "previous") -> dict:
-    """Constrained IK with MuJoCo along task poses (N, 6) = (x, y, z, ψ, θ, φ) (spec §2).
+    """Constrained IK with MuJoCo along task poses (N, 6) = (x, y, z, ψ, θ, φ) (docs/model.md §2).
 
     - Positions: per sample, Newton on e = [p_A − p_B of both closures (6); tip position error
       (3); log(R_tip R_desᵀ) (3)], world axes, with K = [J_A − J_B; J_tip; J_rot,tip] from
@@ -441,7 +445,8 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     model, data, info = built if built is not None else _built(urdf_path)
     tip = info.get("tip_site", -1)
     if tip < 0:
-        raise ValueError(f"{info['urdf_path']}: no '{TIP}' frame for the tool tip (spec §3)")
+        raise ValueError(f"{info['urdf_path']}: no '{TIP}' frame for the tool tip "
+                         "(docs/model.md §3)")
     poses = np.atleast_2d(np.asarray(poses, dtype=float))
     n = len(poses)
     d_poses = np.zeros_like(poses) if d_poses is None else np.atleast_2d(

@@ -19,7 +19,8 @@ from ..timing import Stopwatch
 
 @dataclass(frozen=True)
 class JointLosses:
-    """Optional joint friction and rotor inertia, per tree joint (default zero, spec silent).
+    """Optional joint friction and rotor inertia, per tree joint (default zero; the thesis gives
+    none).
 
     ``viscous`` [N·m·s/rad] and ``armature`` [kg·m²] are (12,) arrays or scalars; ``coulomb``
     [N·m] acts as ``coulomb · tanh(q̇ / coulomb_speed)``.
@@ -38,12 +39,12 @@ class JointLosses:
 @dataclass
 class DynamicsResult:
     t: np.ndarray
-    tau: np.ndarray  # (N, 6) actuator torques [N·m], spec §6 order
+    tau: np.ndarray  # (N, 6) actuator torques [N·m], docs/model.md §6 order
     closure_forces: np.ndarray  # (N, 2, 3) force of the platform on link_i [N], world axes
     tau_tree: np.ndarray  # (N, 12) open-tree RNEA torques (losses included)
     actuator_velocity: np.ndarray  # (N, 6) [rad/s]
     kinetic: np.ndarray | None  # (N,) [J]; None when computed with energies=False
-    potential: np.ndarray | None  # (N,) [J], gravity (spec §2)
+    potential: np.ndarray | None  # (N,) [J], gravity (docs/model.md §2)
     actuated: tuple[str, ...]
 
     @property

@@ -1,6 +1,7 @@
-"""Tool-pose trajectories: the thesis painting curve (spec §9) and user CSV files.
+"""Tool-pose trajectories: the thesis painting curve (docs/model.md §9) and user CSV files.
 
-A :class:`Trajectory` holds times and task poses q = (x, y, z, ψ, θ, φ) (spec §2) with their
+A :class:`Trajectory` holds times and task poses q = (x, y, z, ψ, θ, φ) (docs/model.md §2) with
+their
 first and second time derivatives, SI units and radians.
 """
 from __future__ import annotations
@@ -16,7 +17,7 @@ import numpy as np
 
 from ..kinematics.taskspace import TASK_NAMES
 
-THESIS_DURATION = 20.0  # s (spec §9)
+THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
 U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
@@ -53,7 +54,7 @@ def thesis_curve(t, duration: float = THESIS_DURATION,
     """Poses, rates and accelerations (each (N, 6)) of the thesis curve at times ``t`` [s].
 
     Appendix B: x = −0.001u², y = u, z = 100 sin(0.3u) [mm], u linear in t from −60π at
-    t = 0 to 60π at ``duration``, added to the home pose (spec §9). Exact derivatives.
+    t = 0 to 60π at ``duration``, added to the home pose (docs/model.md §9). Exact derivatives.
     """
     t = np.atleast_1d(np.asarray(t, dtype=float))
     ud = 2.0 * U_RANGE / duration
@@ -74,7 +75,7 @@ def thesis_curve(t, duration: float = THESIS_DURATION,
 
 def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
                       home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
-    """The default painting trajectory (spec §9) sampled at ``samples`` points."""
+    """The default painting trajectory (docs/model.md §9) sampled at ``samples`` points."""
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
     if int(samples) != samples or samples < 2:

@@ -1,7 +1,9 @@
-"""Closed-form inverse kinematics of the thesis (spec §7), its exact time derivatives, and the
-numpy forward chain of spec §3 used to check it.
+"""Closed-form inverse kinematics of the thesis (docs/model.md §7), its exact time derivatives, and
+the
+numpy forward chain of docs/model.md §3 used to check it.
 
-Poses are (x, y, z, ψ, θ, φ) in the thesis order (spec §2): tip frame Tx(x)Ty(y)Tz(z)·R with
+Poses are (x, y, z, ψ, θ, φ) in the thesis order (docs/model.md §2): tip frame Tx(x)Ty(y)Tz(z)·R
+with
 R = Rx(θ)Ry(ψ)Rz(φ). Velocities and accelerations come from running the same closed forms on
 :class:`~pollard_pin.thesis.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
 """
@@ -25,7 +27,8 @@ _TARGETS = {"chain 0": "the wrist centre", "leg 1": "its attachment point",
 
 
 class UnreachableError(ValueError):
-    """The closed form of spec §7 has no solution (``kind == "unreachable"``) or the wrist is
+    """The closed form of docs/model.md §7 has no solution (``kind == "unreachable"``) or the wrist
+    is
     singular (``kind == "singular"``, subclass :class:`WristSingularError`).
 
     Attributes: ``chain`` ("chain 0", "leg 1", "leg 2" or "wrist"), ``sample`` (first bad sample
@@ -53,7 +56,8 @@ class UnreachableError(ValueError):
 
 
 class WristSingularError(UnreachableError):
-    """θ1716 at (or within ``wrist_margin`` of) 0 or π: the XZX wrist loses a DOF (spec §3)."""
+    """θ1716 at (or within ``wrist_margin`` of) 0 or π: the XZX wrist loses a DOF (docs/model.md
+    §3)."""
 
     kind = "singular"
 
@@ -70,7 +74,8 @@ def _per_sample(mask: np.ndarray) -> np.ndarray:
 
 
 def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
-    """Solve C + A cos t + B sin t = 0: t = atan2(B, A) + branch·acos(−C/√(A²+B²)) (spec §7).
+    """Solve C + A cos t + B sin t = 0: t = atan2(B, A) + branch·acos(−C/√(A²+B²)) (docs/model.md
+    §7).
 
     rho, off: in-plane / out-of-plane distance of the target from the circle the elbow
     describes (radius r); L is the second link. Used only to word the shortfall.
@@ -93,7 +98,8 @@ def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
 
 
 def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
-    """Closed-form angles (spec §7) as a name → angle dict; pose is an (..., 6) array or jet.
+    """Closed-form angles (docs/model.md §7) as a name → angle dict; pose is an (..., 6) array or
+    jet.
     The six spherical-joint angles are skipped unless ``spherical``. If ``frames`` is a dict,
     it receives the world (R, origin) of the 9 moving bodies (as :func:`forward_frames`, but
     reusing the rotations already built here).
@@ -160,7 +166,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
                                   elbow)
         if not spherical:
             continue
-        # Spherical joint, spec §4: ZYZ of R_linkᵀ Rp Rz(−β1413), θ109 in [0, π], with
+        # Spherical joint, docs/model.md §4: ZYZ of R_linkᵀ Rp Rz(−β1413), θ109 in [0, π], with
         # R_linkᵀ = Rz(−θ76) Ry(−θ65) Rx(−β54) Rz(−θ21i).
         Ms = Rp
         for axis, ang in ((2, -t21), (0, np.asarray(-leg.beta54)), (1, -q["theta65" + s]),
@@ -195,7 +201,7 @@ def make_continuous(q: np.ndarray, reference=None) -> np.ndarray:
 
 
 def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.ndarray:
-    """(N, 18) joint angles in :data:`JOINTS` order for (N, 6) poses (spec §7).
+    """(N, 18) joint angles in :data:`JOINTS` order for (N, 6) poses (docs/model.md §7).
 
     Raises :class:`UnreachableError` (chain, sample, shortfall) or :class:`WristSingularError`.
     The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
@@ -227,7 +233,8 @@ def actuation_jacobian(params, poses, wrist_margin: float = 0.0) -> np.ndarray:
     return np.stack([q[n].d for n in ACTUATED], axis=-2)
 
 
-# --- forward chain of spec §3 (numpy or jets) ---------------------------------------------
+# --- forward chain of docs/model.md §3 (numpy or jets)
+# ---------------------------------------------
 
 def _angles(q):
     """Accept a name→angle mapping or an (..., 18)/(..., 12) array in JOINTS order."""
@@ -238,7 +245,7 @@ def _angles(q):
 
 
 def forward_frames(params, q) -> dict:
-    """World (R, origin) of every frame of spec §3 from the 12 tree angles.
+    """World (R, origin) of every frame of docs/model.md §3 from the 12 tree angles.
 
     Keys: arm0, cross0, platform, wrist1, wrist2, gun, tip, arm_i, cross_i, link_i (i = 1, 2),
     closure_link_i / closure_platform_i (origins only meaningful; R of the carrying body).
@@ -285,7 +292,8 @@ def forward_tool_pose(params, q) -> np.ndarray:
 
 
 def closure_points(params, q) -> np.ndarray:
-    """(…, 2, 2, 3): [leg, 0] = Tx(x87) on link_i, [leg, 1] = A_i on the platform (spec §4)."""
+    """(…, 2, 2, 3): [leg, 0] = Tx(x87) on link_i, [leg, 1] = A_i on the platform (docs/model.md
+    §4)."""
     f = forward_frames(params, q)
     return np.stack([np.stack([f[f"closure_link_{i}"][1], f[f"closure_platform_{i}"][1]], -2)
                      for i in (1, 2)], -3)
@@ -297,7 +305,8 @@ BODIES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link
 
 
 def body_states(params, pose_jet, wrist_margin: float = 0.0):
-    """({name: (R jet, CoG position jet)} for the 9 moving bodies (world frame, spec §3, §5),
+    """({name: (R jet, CoG position jet)} for the 9 moving bodies (world frame, docs/model.md §3,
+    §5),
     {angle name: jet}) from the closed-form IK run on ``pose_jet``."""
     f = {}
     q = _solve(params, pose_jet, wrist_margin, spherical=False, frames=f)

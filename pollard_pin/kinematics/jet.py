@@ -2,7 +2,8 @@
 
 A :class:`Jet` holds ``(v, d, dd)`` = (value, first, second time derivative) of an array
 quantity; ``dd`` may be None (first-order jet, half the work, used for Jacobians). Arithmetic
-and the elementary functions propagate them by the chain rule (Leibniz rule for products), so the IK closed forms of spec §7 give exact velocities and
+and the elementary functions propagate them by the chain rule (Leibniz rule for products), so the
+IK closed forms of docs/model.md §7 give exact velocities and
 accelerations with no finite differences.
 
 Shapes: ``d`` and ``dd`` need only broadcast against ``v``. This lets one value carry many

@@ -20,7 +20,7 @@ IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newto
 
 
 def _zyz(M: np.ndarray) -> np.ndarray:
-    """ZYZ angles (..., 3) of M = Rz(a) Ry(b) Rz(c) (..., 3, 3), b in [0, π] (spec §4)."""
+    """ZYZ angles (..., 3) of M = Rz(a) Ry(b) Rz(c) (..., 3, 3), b in [0, π] (docs/model.md §4)."""
     b = np.arccos(np.clip(M[..., 2, 2], -1.0, 1.0))
     return np.stack([np.arctan2(M[..., 1, 2], M[..., 0, 2]), b,
                      np.arctan2(M[..., 2, 1], -M[..., 2, 0])], axis=-1)
@@ -187,7 +187,7 @@ def _task_inputs(poses, d_poses, dd_poses, t):
 
 
 def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
-    """Closed-form tree angles (N, 12) on the spec §9 branches, errors mapped to ours."""
+    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours."""
     try:
         return closed_form.position_ik(robot.params, poses, wrist_margin=wrist_margin)[:, :12]
     except closed_form.UnreachableError as exc:
@@ -233,7 +233,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     """Sample-by-sample constrained IK.
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
-    sample (the first from ``q_start``, default the closed form on the spec §9 branches).
+    sample (the first from ``q_start``, default the closed form on docs/model.md §9 branches).
     Velocities: ``[Jc; J_tool] v = [0; twist]``. Accelerations: the same matrix with the exact
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
@@ -249,7 +249,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     out = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
     stats = np.empty((n, 5))
-    if q_start is None:  # the spec §9 branches, through the closed form at the first pose
+    if q_start is None:  # docs/model.md §9 branches, through the closed form at the first pose
         q = _closed_form(robot, poses[:1], t[:1], wrist_margin)[0]
     else:
         q = np.asarray(q_start, dtype=float).copy()
@@ -308,7 +308,7 @@ class _Layout:
     tip: _Point
     platform: int
     links: tuple[int, ...]
-    spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i), spec §4
+    spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i), docs/model.md §4
     joints: tuple[int, ...]  # every joint whose placement is needed, parents first
 
 
@@ -453,7 +453,8 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
                              chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
-    Positions start from the closed-form IK of spec §7 (vectorised) and take one Newton step on
+    Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
+    step on
     Pinocchio's [closure residual; tool-pose error]; velocities and accelerations solve Pinocchio's
     ``[Jc; J_tool]`` systems with drifts from ``computeJointJacobiansTimeVariation``. The
     closure residual and tool error reported are re-measured at the returned configuration.
@@ -548,7 +549,8 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
 
 
 def _spherical_batch(robot: Robot, lay: _Layout, pl, J, v):
-    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates (spec §4), (N, 6) each."""
+    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates (docs/model.md §4), (N, 6)
+    each."""
     model = robot.model
 
     def omega(joint):

@@ -1,4 +1,4 @@
-"""Task coordinates (spec §2): q = (x, y, z, ψ, θ, φ), R = Rx(θ) Ry(ψ) Rz(φ).
+"""Task coordinates (docs/model.md §2): q = (x, y, z, ψ, θ, φ), R = Rx(θ) Ry(ψ) Rz(φ).
 
 Vectorised over samples: arrays of shape (N, 6) in, (N, ...) out. ω is the tool's angular
 velocity in world axes.

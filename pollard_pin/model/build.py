@@ -1,4 +1,5 @@
-"""The Pinocchio model: open tree from the URDF plus the two cut spherical joints (spec §4).
+"""The Pinocchio model: open tree from the URDF plus the two cut spherical joints (docs/model.md
+§4).
 
 Closure i is the 3D point constraint ``closure{i}_A`` (on ``link_i``) == ``closure{i}_B`` (on
 ``platform``). Its residual is ``p_A − p_B`` in world axes; with the constraint Jacobian
@@ -125,7 +126,8 @@ def parse_closures(urdf: str) -> tuple[Closure, ...]:
             raise ModelFileError(f"loop closure {c.name!r}: only type='spherical' is supported")
         closures.append(c)
     if len(closures) != 2:
-        raise ModelFileError(f"expected 2 <loop_closure> elements (spec §4), found {len(closures)}")
+        raise ModelFileError("expected 2 <loop_closure> elements (docs/model.md §4), "
+                             f"found {len(closures)}")
     return tuple(closures)
 
 
@@ -146,7 +148,8 @@ def build(params: Params, urdf: str, srdf: str) -> Robot:
         raise ModelFileError(f"Pinocchio cannot build the URDF: {exc}") from None
     missing = [n for n in ACTUATED + PASSIVE if not model.existJointName(n)]
     if missing or model.nq != 12 or model.nv != 12:
-        raise ModelFileError(f"URDF is not the Pollard tree of spec §3: missing joints {missing},"
+        raise ModelFileError("URDF is not the Pollard tree of docs/model.md §3: "
+                             f"missing joints {missing},"
                              f" nq={model.nq}, nv={model.nv} (expected 12, 12)")
     closures = parse_closures(urdf)
     for c in closures:
@@ -165,7 +168,7 @@ def build(params: Params, urdf: str, srdf: str) -> Robot:
 
 
 def home_joint_values(params: Params) -> dict[str, float]:
-    """Tree joint values at the home pose, by the closed-form IK of spec §7."""
+    """Tree joint values at the home pose, by the closed-form IK of docs/model.md §7."""
     from ..kinematics.closed_form import JOINTS, position_ik
 
     q = position_ik(params, np.asarray(params.home_pose)[None, :])[0]

@@ -1,4 +1,4 @@
-"""Model parameters (spec §5, §9): a frozen, validated object loaded from TOML.
+"""Model parameters (docs/model.md §5, §9): a frozen, validated object loaded from TOML.
 
 The TOML file uses the thesis' units (m, deg, kg, kg·mm²); :class:`Params` holds SI values
 (m, rad, kg, kg·m²). Every rule that fails raises :class:`ParameterError` naming the key,
@@ -38,7 +38,7 @@ class ParameterError(ValueError):
 
 @dataclass(frozen=True)
 class Leg:
-    """Geometry of leg i (spec §3, §4), SI units."""
+    """Geometry of leg i (docs/model.md §3, §4), SI units."""
 
     side: int  # s_i, the thesis "signo"
     y10: float
@@ -89,7 +89,7 @@ class Params:
         return dict(self.bodies)[name]
 
     def attachment(self, i: int) -> np.ndarray:
-        """A_i of spec §4 in the platform frame (i = 0 or 1 for legs 1 and 2)."""
+        """A_i of docs/model.md §4 in the platform frame (i = 0 or 1 for legs 1 and 2)."""
         return np.array([self.x65, 0.0, 0.0]) + self.legs[i].attachment
 
     @property
@@ -227,7 +227,8 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
 
 
 def _check_home_reachable(p: Params) -> None:
-    # Closed-form IK (spec §7) at the home pose; it raises with the chain and the shortfall.
+    # Closed-form IK (docs/model.md §7) at the home pose; it raises with the chain and the
+    # shortfall.
     from ..kinematics.closed_form import UnreachableError, position_ik
 
     try:

@@ -84,7 +84,8 @@ def _spherical_figure(plt, cols):
             kind = "angles" if row == 0 else "rates"
             _finish(ax, label, f"Leg {i} spherical joint (ZYZ), {kind}")
         axes[1, i - 1].set_xlabel("t [s]")
-    fig.suptitle("Cut spherical joints: the legs' ball joints on the platform arm (spec §4)")
+    fig.suptitle("Cut spherical joints: the legs' ball joints on the platform arm "
+                 "(docs/model.md §4)")
     fig.tight_layout()
     return fig
 
@@ -102,7 +103,7 @@ def _actuator_figure(plt, cols):
                       label=LABELS[n])
             _finish(ax, label, f"{name}, {gname}")
         axes[-1, c].set_xlabel("t [s]")
-    fig.suptitle("Actuators (spec §6): torque, power and work along the trajectory")
+    fig.suptitle("Actuators (docs/model.md §6): torque, power and work along the trajectory")
     fig.tight_layout()
     return fig
 

@@ -11,7 +11,8 @@ trapezoid rule over the samples):
 
 **Cross-checks**: the same trajectory through
 
-* the thesis' method (``pollard_pin.crosscheck.euler_lagrange``: closed-form IK, task-space Euler–Lagrange,
+* the thesis' method (``pollard_pin.crosscheck.euler_lagrange``: closed-form IK, task-space
+Euler–Lagrange,
   numpy only): joint positions, velocities, accelerations and actuator torques;
 * MuJoCo (``pollard_pin.crosscheck.mujoco``: the URDF in MuJoCo, ``mj_inverse`` plus the connect
   constraints): actuator torques and closure forces. If MuJoCo is not installed the report

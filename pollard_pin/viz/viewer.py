@@ -4,7 +4,7 @@ The scene holds
 
 * the robot's visual geometry (``models/pollard.urdf``), loaded by Pinocchio's
   :class:`~pinocchio.visualize.MeshcatVisualizer`;
-* both sides of each cut spherical joint (spec §4): a translucent sphere on the leg
+* both sides of each cut spherical joint (docs/model.md §4): a translucent sphere on the leg
   (``closure{i}_A``, leg colour) and a small solid red sphere on the platform (``closure{i}_B``).
   When the loop is closed the red sphere sits at the centre of the translucent one;
 * the tool path, a magenta line through the commanded tip positions;
