@@ -13,12 +13,15 @@ import pollard_pin as pp
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))  # the headless-browser helper is a test utility
-from browser import capture_meshcat  # noqa: E402
+from browser import capture_meshcat, find_chromium  # noqa: E402
 
 DOCS = ROOT / "docs"
 
 
 def main():
+    if find_chromium() is None:  # check before writing anything
+        sys.exit("make_docs: the viewer screenshot needs Chromium, which is not installed "
+                 "(Debian: apt-get install chromium; or set POLLARD_CHROMIUM=/path/to/chrome)")
     robot = pp.load()
     result = pp.run_pipeline(robot, pp.thesis_trajectory())
     for path in pp.write_figures(result, DOCS / "plots", dpi=72):

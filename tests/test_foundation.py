@@ -740,10 +740,19 @@ def _check_installed(venv, cwd):
     assert str(Path(res["models"]).resolve()).startswith(site), res["models"]
     assert res["nq"] == 12 and abs(res["mass"] - 0.92) <= 1e-12
     assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-9
-    cli = subprocess.run([str(venv / "bin" / "pollard-pin"), "info"], cwd=cwd, env=env,
-                         capture_output=True, text=True, timeout=120)
-    assert cli.returncode == 0, cli.stderr
-    assert "total mass 0.9200 kg" in cli.stdout
+    # Every command the README shows works from the installed package (plots included).
+    short = ["--samples", "401"]
+    for args, made in ((["info"], None), (["run", *short, "--out", "r.csv"], "r.csv"),
+                       (["plot", *short, "--out", "figs"], "figs/actuators.png"),
+                       (["report", *short, "--no-cross-check", "--out", "rep.md"], "rep.md"),
+                       (["view", *short, "--html", "p.html"], "p.html")):
+        cli = subprocess.run([str(venv / "bin" / "pollard-pin"), *args], cwd=cwd, env=env,
+                             capture_output=True, text=True, timeout=300)
+        assert cli.returncode == 0 and "Traceback" not in cli.stderr, (args, cli.stderr)
+        if made is None:
+            assert "total mass 0.9200 kg" in cli.stdout
+        else:
+            assert (Path(cwd) / made).stat().st_size > 0, (args, made)
 
 
 @pytest.mark.slow

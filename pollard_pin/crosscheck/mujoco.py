@@ -108,6 +108,16 @@ def _point_on_moving_link(urdf: dict, frame: str) -> tuple[str, np.ndarray]:
 
 
 # --- model construction -----------------------------------------------------------------------
+def _mujoco():
+    """The ``mujoco`` module, or one clear line on what to install (an optional dependency)."""
+    try:
+        import mujoco
+    except ImportError:
+        raise ImportError("the MuJoCo peer needs MuJoCo, which is not installed: "
+                          "pip install 'pollard-pin[mujoco]'") from None
+    return mujoco
+
+
 def _default_urdf() -> Path:
     from ..model.paths import models_dir
 
@@ -116,7 +126,7 @@ def _default_urdf() -> Path:
 
 def _merge_massless_crosses(spec) -> list[str]:
     """Move each massless jointed body's hinges into its only child (see module notes)."""
-    import mujoco
+    mujoco = _mujoco()
 
     merged = []
     for body in list(spec.bodies):
@@ -147,7 +157,7 @@ def build_mujoco(urdf_path=None):
     efc sign and the mass/inertia check against the URDF. Raises ``ValueError`` when a check
     fails (gravity, masses, inertias, joints, constraint rows).
     """
-    import mujoco
+    mujoco = _mujoco()
 
     path = Path(urdf_path) if urdf_path is not None else _default_urdf()
     urdf = read_urdf(path)
@@ -258,7 +268,7 @@ def build_mujoco(urdf_path=None):
 
 def _efc_rows(model, data, eq_ids) -> np.ndarray:
     """(2, 3) efc row indices of the connect equalities; fails on any other active row."""
-    import mujoco
+    mujoco = _mujoco()
 
     if data.nefc != 3 * len(eq_ids) or np.any(data.efc_type[:data.nefc]
                                              != mujoco.mjtConstraint.mjCNSTR_EQUALITY):
@@ -291,7 +301,7 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
       ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
     ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used.
     """
-    import mujoco
+    mujoco = _mujoco()
 
     model, data, info = built if built is not None else _built(urdf_path)
     q, v, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v, a))
@@ -374,7 +384,7 @@ def _drift(model, data, sites, q, v, out, acc6=None):
     acceleration: it cancels in the closure differences and is added back for the tip.
     ``sites`` = (A1, B1, A2, B2, tip) site ids.
     """
-    import mujoco
+    mujoco = _mujoco()
 
     acc6 = np.empty(6) if acc6 is None else acc6
     sa1, sb1, sa2, sb2, tip = sites
@@ -437,7 +447,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     returned q) and ``iterations`` (N,) (Newton steps taken, the one past tol included).
     Raises :class:`MujocoIKError` at the first sample where Newton does not converge.
     """
-    import mujoco
+    mujoco = _mujoco()
 
     from ..kinematics.taskspace import rotation, twist, twist_dot
 

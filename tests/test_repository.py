@@ -1,0 +1,185 @@
+"""The repository stands on its own: nothing points outside it, the package's layers import one
+way, every core dependency is used, and each optional one that is missing gives one clear line.
+"""
+import ast
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = ROOT / "pollard_pin"
+OUTSIDE = ("../shared", "model-spec", "/work/", "verified-facts")
+
+
+def _tracked_files():
+    try:
+        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
+                             check=True).stdout.decode()
+        return [ROOT / f for f in out.split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):  # not a checkout: every file but the venv
+        return [f for f in ROOT.rglob("*") if f.is_file() and ".venv" not in f.parts
+                and ".git" not in f.parts]
+
+
+def test_no_tracked_file_points_outside_the_repository():
+    bad = []
+    for f in _tracked_files():
+        if f == Path(__file__).resolve() or not f.is_file():
+            continue
+        try:
+            text = f.read_text(encoding="utf-8")
+        except UnicodeDecodeError:
+            continue  # pictures
+        bad += [f"{f.relative_to(ROOT)}: {s}" for s in OUTSIDE if s in text]
+    assert not bad, "files that refer to something outside the repository:\n" + "\n".join(bad)
+
+
+def test_citations_point_into_the_model_document():
+    sections = {int(line.split()[1].rstrip(".")) for line in
+                (ROOT / "docs" / "model.md").read_text(encoding="utf-8").splitlines()
+                if line.startswith("## ") and line.split()[1].rstrip(".").isdigit()}
+    import re
+
+    cited = set()
+    for f in _tracked_files():
+        if f.suffix in (".py", ".md", ".toml", ".urdf", ".srdf"):
+            for m in re.finditer(r"model\.md ((?:§\d+(?:[–,-] ?)?)+)", f.read_text("utf-8")):
+                cited |= {int(n) for n in re.findall(r"§(\d+)", m.group(1))}
+    assert cited and cited <= sections, f"cited sections missing: {sorted(cited - sections)}"
+
+
+# --- layers --------------------------------------------------------------------------------
+# Lower rank = lower layer; a module may import only modules of its own rank or below. The
+# numpy-only kinematics leaves (jets, task-space conventions, the closed form) sit under the
+# model, which uses the closed form for its home posture (docs/model.md §9).
+RANKS = [
+    ("pollard_pin.timing", 0), ("pollard_pin.kinematics.jet", 0),
+    ("pollard_pin.kinematics.taskspace", 0), ("pollard_pin.kinematics.closed_form", 1),
+    ("pollard_pin.model", 2), ("pollard_pin.kinematics", 3), ("pollard_pin.dynamics", 4),
+    ("pollard_pin.io", 5), ("pollard_pin.crosscheck", 6), ("pollard_pin.viz", 7),
+    ("pollard_pin.sweep", 8), ("pollard_pin.cli", 9), ("pollard_pin", 10),
+]
+
+
+def _rank(module: str) -> int:
+    return next(r for prefix, r in RANKS if module == prefix or module.startswith(prefix + "."))
+
+
+def _module_imports():
+    """{module: {imported pollard_pin module}} from every import statement (lazy ones too)."""
+    files = {".".join(p.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__"): p
+             for p in PACKAGE.rglob("*.py")}
+    graph = {}
+    for mod, path in files.items():
+        pkg = mod if path.name == "__init__.py" else mod.rpartition(".")[0]
+        out = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                base = pkg.split(".")[: len(pkg.split(".")) - node.level + 1] if node.level \
+                    else []
+                stem = ".".join(base + ([node.module] if node.module else []))
+                # ``from package import module`` depends on the module, not the package
+                names = [f"{stem}.{a.name}" if f"{stem}.{a.name}" in files else stem
+                         for a in node.names]
+            else:
+                continue
+            for n in names:
+                while n and n not in files:
+                    n = n.rpartition(".")[0]
+                if n and n != mod:
+                    out.add(n)
+        graph[mod] = out
+    return graph
+
+
+def test_layers_import_one_way():
+    graph = _module_imports()
+    assert len(graph) > 20
+    upward = [f"{m} (rank {_rank(m)}) imports {t} (rank {_rank(t)})"
+              for m, ts in graph.items() for t in ts
+              if _rank(t) > _rank(m) and not (m == "pollard_pin" or t == "pollard_pin")]
+    assert not upward, "\n".join(upward)
+
+
+def test_no_import_cycle_between_modules():
+    graph = {m: {t for t in ts if t != "pollard_pin" and not m.startswith(t + ".")}
+             for m, ts in _module_imports().items()}
+    state = {}
+
+    def visit(m, path):
+        state[m] = "open"
+        for t in graph.get(m, ()):
+            if state.get(t) == "open":
+                pytest.fail("import cycle: " + " -> ".join(path + [m, t]))
+            if t not in state:
+                visit(t, path + [m])
+        state[m] = "done"
+
+    for m in graph:
+        if m not in state:
+            visit(m, [])
+
+
+# --- dependencies ---------------------------------------------------------------------------
+IMPORT_NAME = {"pin": "pinocchio", "numpy": "numpy", "scipy": "scipy",
+               "matplotlib": "matplotlib", "meshcat": "meshcat"}
+
+
+def test_every_core_dependency_is_imported_by_the_package():
+    deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
+    names = {d.split(">")[0].split("<")[0].split("=")[0].strip() for d in deps}
+    assert not names & {"example-robot-data", "yourdfpy"}, "test-only packages in the core"
+    imported = set()
+    for path in PACKAGE.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                imported |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and not node.level:
+                imported.add(node.module.split(".")[0])
+    unused = [n for n in names if IMPORT_NAME.get(n, n) not in imported]
+    assert not unused, f"core dependencies no module imports: {unused}"
+
+
+def _run_hidden(module: str, code: str):
+    """Run ``code`` in a fresh interpreter where ``import module`` fails."""
+    prelude = f"import sys; sys.modules[{module!r}] = None\n"
+    return subprocess.run([sys.executable, "-c", prelude + code], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+
+
+def _one_line(text: str) -> str:
+    lines = [ln for ln in text.strip().splitlines() if ln.strip()]
+    assert len(lines) == 1 and "Traceback" not in text, text
+    return lines[0]
+
+
+def test_mujoco_missing_gives_one_line():
+    r = _run_hidden("mujoco", "from pollard_pin.crosscheck.mujoco import build_mujoco\n"
+                              "try:\n    build_mujoco()\n"
+                              "except ImportError as e:\n    print(e)\n")
+    assert r.returncode == 0, r.stderr
+    assert "pip install 'pollard-pin[mujoco]'" in _one_line(r.stdout)
+
+
+def test_dask_missing_gives_one_line():
+    r = _run_hidden("distributed", "import sys; from pollard_pin.cli import main\n"
+                    "sys.exit(main(['sweep', '--grid', 'examples/sweep.toml', '--dask', "
+                    "'tcp://127.0.0.1:1', '--out', 'never.csv']))")
+    assert r.returncode == 2, r.stderr
+    assert "pip install 'pollard-pin[cluster]'" in r.stderr.splitlines()[-2]
+    assert "Traceback" not in r.stderr and not (ROOT / "never.csv").exists()
+
+
+def test_chromium_missing_gives_one_line_and_writes_nothing():
+    before = {p: p.stat().st_mtime_ns for p in (ROOT / "docs").rglob("*.png")}
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "make_docs.py")], cwd=ROOT,
+                       capture_output=True, text=True, timeout=120,
+                       env={"PATH": "/usr/bin:/bin", "POLLARD_CHROMIUM": "/nonexistent/chrome"})
+    assert r.returncode == 1
+    assert "needs Chromium" in _one_line(r.stderr)
+    assert before == {p: p.stat().st_mtime_ns for p in (ROOT / "docs").rglob("*.png")}
