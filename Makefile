@@ -20,7 +20,7 @@ test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
 
 urdf: $(STAMP)
-	$(VENV)/bin/pollard-pin urdf
+	$(VENV)/bin/pollard-pin urdf --out models/pollard.urdf
 
 bench: $(STAMP)
 	$(VENV)/bin/python scripts/benchmark.py

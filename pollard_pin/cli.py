@@ -1,70 +1,198 @@
-"""``pollard-pin`` command line: a thin layer over the public API."""
+"""The pollard-pin command: a thin layer over the public API.
+
+Every command loads the model (the shipped one, or --params FILE.toml and --set KEY=VALUE),
+solves, and writes its output only when all went well. Errors are one line on standard error
+with exit status 2; outputs are checked for writability before the work starts.
+"""
 from __future__ import annotations
 
 import argparse
-import os
+import logging
+import math
 import sys
 import time
+import warnings
 from pathlib import Path
 
-from .io.atomic import atomic_open
+from . import __version__
+from .io.atomic import STDOUT, atomic_open, check_destination
+
+log = logging.getLogger("pollard_pin")
+
+DESCRIPTION = """\
+Verified multibody model of the Pollard spray-painting parallel robot (Pinocchio).
+
+Solve a painting trajectory for every joint's motion and every actuator's torque, view it in
+a browser, plot it, size the actuators, and sweep the design. See docs/model.md for the model
+and its conventions.
+"""
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (no usage block): ``pollard-pin run: error: ...``."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
+    pass
+
+
+# --- argument types: each rejects what the API would reject, before any work ----------------
+def _float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+    return value
+
+
+def _positive(text: str) -> float:
+    value = _float(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+    return value
+
+
+def _nonnegative(text: str) -> float:
+    value = _float(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+    return value
+
+
+def _count(minimum: int, maximum: int | None = None):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+        if value < minimum or (maximum is not None and value > maximum):
+            bound = f"between {minimum} and {maximum}" if maximum else f">= {minimum}"
+            raise argparse.ArgumentTypeError(f"must be {bound}, got {text}")
+        return value
+
+    return parse
+
+
+# --- shared steps ---------------------------------------------------------------------------
 def _progress(label: str, enabled: bool):
+    """A tqdm bar fed by the pipeline's ``progress(done, total)`` calls; silent when not on a
+    terminal (tqdm's ``disable=None``) or with --quiet."""
     if not enabled:
         return None
-    state = {"last": -100}
+    from tqdm import tqdm
+
+    state = {}
 
     def report(done: int, total: int) -> None:
-        pct = 100 * done // total
-        if pct >= state["last"] + 5 or done == total:
-            state["last"] = pct
-            sys.stderr.write(f"\r{label}: {pct:3d}% ({done}/{total})")
-            if done == total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
+        bar = state.get("bar")
+        if bar is None:
+            bar = state["bar"] = tqdm(total=total, desc=label, unit="sample", disable=None,
+                                      leave=False, file=sys.stderr)
+        bar.update(done - bar.n)
+        if done >= total:
+            bar.close()
 
     return report
+
+
+def _params(args):
+    """The parameters of --params (a file, possibly partial) and --set, or None (shipped)."""
+    from .model.params import load_params, parse_assignment
+
+    sets = dict(parse_assignment(s) for s in getattr(args, "set", None) or ())
+    if args.params is None and not sets:
+        return None
+    return load_params(args.params, overrides=sets)
+
+
+def _robot(args):
+    from .model.build import load
+
+    t0 = time.perf_counter()
+    robot = load(_params(args))
+    log.info("model %s loaded in %.1f ms", robot.params.source, 1e3 * (time.perf_counter() - t0))
+    return robot
 
 
 def _load_trajectory(args, params):
     from .io.trajectory import THESIS_DURATION, THESIS_SAMPLES, from_csv, thesis_trajectory
 
     if args.trajectory == "thesis":
-        return thesis_trajectory(duration=args.duration or THESIS_DURATION,
-                                 samples=args.samples or THESIS_SAMPLES,
+        duration = THESIS_DURATION if args.duration is None else args.duration
+        samples = THESIS_SAMPLES if args.samples is None else args.samples
+        return thesis_trajectory(duration=duration, samples=samples,
                                  home_pose=params.home_pose)
     if args.duration is not None or args.samples is not None:
         print("note: --duration/--samples apply to the thesis trajectory only; "
               "the CSV file's own times are used", file=sys.stderr)
-    traj = from_csv(args.trajectory)
-    if traj.derivatives != "file columns":
-        print(f"note: derivatives of {args.trajectory} come from a {traj.derivatives} "
-              "(no d_*/dd_* columns in the file)", file=sys.stderr)
+    with warnings.catch_warnings(record=True) as caught:  # said once, below, as a note
+        warnings.simplefilter("always")
+        traj = from_csv(args.trajectory)
+    for w in caught:
+        print(f"note: {w.message}", file=sys.stderr)
     return traj
 
 
+def _solve(args, dynamics: bool = True, **ik_options):
+    """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
+    from .io.results import run_pipeline
+
+    robot = _robot(args)
+    traj = _load_trajectory(args, robot.params)
+    log.info("trajectory %s: %d samples over %.4g s (derivatives: %s)", traj.name, len(traj),
+             traj.t[-1] - traj.t[0], traj.derivatives)
+    t0 = time.perf_counter()
+    result = run_pipeline(robot, traj, dynamics=dynamics,
+                          progress=_progress("solving", len(traj) >= 500 and not args.quiet),
+                          **ik_options)
+    log.info("solved in %.3f s", time.perf_counter() - t0)
+    return robot, result
+
+
+def _wrote(path, what: str = "") -> None:
+    if str(path) != STDOUT:
+        print(f"wrote {path}{what}", file=sys.stderr)
+
+
+# --- commands -------------------------------------------------------------------------------
 def cmd_urdf(args) -> int:
     from .model.build import generate
-    from .model.params import load_params
 
-    params = load_params(args.params)
+    out = Path(args.out) if args.out != STDOUT else None
+    if out is not None:
+        installed = Path(__file__).resolve().parent
+        if installed in out.resolve().parents:
+            raise _UsageError(f"--out {out}: refusing to write inside the installed package "
+                              f"({installed}); write elsewhere and load it with --params")
+        check_destination(out)
+        check_destination(out.with_suffix(".srdf"))
+    params = _params(args)
+    if params is None:
+        from .model.params import load_params
+
+        params = load_params()
     urdf, srdf = generate(params)
-    out = Path(args.out)
-    srdf_out = out.with_suffix(".srdf")
-    for path, text in ((out, urdf), (srdf_out, srdf)):
+    if out is None:
+        sys.stdout.write(urdf)
+        return 0
+    for path, text in ((out, urdf), (out.with_suffix(".srdf"), srdf)):
         with atomic_open(path) as f:
             f.write(text)
-    print(f"wrote {out} and {srdf_out} from {params.source}")
+    print(f"wrote {out} and {out.with_suffix('.srdf')} from {params.source}")
     return 0
 
 
 def cmd_info(args) -> int:
     import numpy as np
 
-    from .model.build import constraint_residual, load
+    from .model.build import constraint_residual
 
-    robot = load(args.params)
+    robot = _robot(args)
     q = robot.home()
     r = constraint_residual(robot.model, robot.data, robot.constraint_models,
                             robot.constraint_datas, q)
@@ -81,19 +209,24 @@ def cmd_info(args) -> int:
 def cmd_run(args) -> int:
     from .io.results import summary, write_csv
 
+    check_destination(args.out)
     t0 = time.perf_counter()
     _, result = _solve(args, wrist_margin=args.wrist_margin,
                        singularity_margin=args.singularity_margin)
     wall = time.perf_counter() - t0  # model load included
     write_csv(result, args.out)
-    print(summary(result, wall))
-    print(f"wrote {len(result.ik)} rows to {args.out}")
+    text = summary(result, wall)
+    print(text, file=sys.stderr if args.out == STDOUT else sys.stdout)
+    _wrote(args.out, f" ({len(result.ik)} rows)")
     return 0
 
 
 def cmd_sweep(args) -> int:
+    import os
+
     from .sweep import load_grid, run_sweep, summary, write_csv
 
+    check_destination(args.out)
     sweep = load_grid(args.grid)
     where = (f"Dask cluster {args.dask}" if args.dask else
              "this process" if args.workers == 1 else
@@ -104,33 +237,23 @@ def cmd_sweep(args) -> int:
                      progress=_progress("sweep", not args.quiet))
     wall = time.perf_counter() - t0
     write_csv(rows, args.out, sweep.columns)
-    print(summary(rows))
-    print(f"wrote {len(rows)} rows to {args.out} (wall time {wall:.2f} s)")
+    print(summary(rows), file=sys.stderr if args.out == STDOUT else sys.stdout)
+    _wrote(args.out, f" ({len(rows)} rows, wall time {wall:.2f} s)")
     return 0
-
-
-def _solve(args, dynamics: bool = True, **ik_options):
-    """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
-    from .model.build import load
-    from .io.results import run_pipeline
-
-    robot = load(args.params)
-    traj = _load_trajectory(args, robot.params)
-    result = run_pipeline(robot, traj, dynamics=dynamics,
-                          progress=_progress("solving", len(traj) >= 500 and not args.quiet),
-                          **ik_options)
-    return robot, result
 
 
 def cmd_view(args) -> int:
     from .viz import viewer
 
+    if args.html:
+        check_destination(args.html)
     robot, result = _solve(args, dynamics=False)
     if args.html:
         path = viewer.write_html(args.html, robot, result.ik, frames=args.frames, fps=args.fps)
-        print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB, {len(result.ik)} samples, "
-              f"{result.ik.t[-1] - result.ik.t[0]:.4g} s): open it in a browser, no server "
-              "needed; Open Controls → Animations to play and scrub")
+        if args.html != STDOUT:
+            print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB, {len(result.ik)} samples,"
+                  f" {result.ik.t[-1] - result.ik.t[0]:.4g} s): open it in a browser, no server "
+                  "needed; Open Controls → Animations to play and scrub", file=sys.stderr)
         return 0
     viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps)
     return 0
@@ -139,6 +262,7 @@ def cmd_view(args) -> int:
 def cmd_plot(args) -> int:
     from .viz.plots import write_figures
 
+    check_destination(args.out, folder=True)
     _, result = _solve(args)
     for path in write_figures(result, args.out, dpi=args.dpi):
         print(f"wrote {path}")
@@ -148,114 +272,158 @@ def cmd_plot(args) -> int:
 def cmd_report(args) -> int:
     from .viz.report import report, to_json, to_markdown
 
+    out = args.out or STDOUT
+    check_destination(out)
     robot, result = _solve(args)
     rep = report(robot, result, cross_check=not args.no_cross_check)
     text = to_json(rep) + "\n" if args.format == "json" else to_markdown(rep)
-    if args.out:
-        with atomic_open(args.out) as f:
-            f.write(text)
-        print(f"wrote {args.out}", file=sys.stderr)
-    else:
-        sys.stdout.write(text)
+    with atomic_open(out) as f:
+        f.write(text)
+    _wrote(out)
     return 0
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
-    return value
+def cmd_export(args) -> int:
+    from .crosscheck.mujoco import export_mjcf
+
+    check_destination(args.out)
+    robot = _robot(args)
+    path = export_mjcf(args.out, urdf=robot.urdf)
+    _wrote(path, f" (MJCF: {len(robot.joint_names)} joints, {len(robot.closures)} connect "
+                 "equalities)")
+    return 0
 
 
-def _trajectory_args(p) -> None:
-    p.add_argument("--trajectory", default="thesis", help="'thesis' or a CSV file")
-    p.add_argument("--duration", type=float, default=None, help="thesis trajectory duration [s]")
-    p.add_argument("--samples", type=int, default=None, help="thesis trajectory samples")
-    p.add_argument("--params", help="parameter TOML")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+class _UsageError(ValueError):
+    """A command-line value the command cannot use (one line)."""
 
 
+# --- parser ---------------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
     from .kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
-    ap = argparse.ArgumentParser(prog="pollard-pin", description=__doc__)
-    sub = ap.add_subparsers(dest="command", required=True)
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS,
+                        help="log what happens (-vv: debug)")
+    ap = _Parser(prog="pollard-pin", description=DESCRIPTION, formatter_class=_Help)
+    ap.add_argument("--version", action="version", version=f"pollard-pin {__version__}")
+    ap.add_argument("-v", "--verbose", action="count", default=0,
+                    help="log what happens (-vv: debug)")
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                            parser_class=_Parser)
 
-    p = sub.add_parser("urdf", help="generate models/pollard.urdf (+ .srdf) from parameters")
-    p.add_argument("--params", help="parameter TOML (default: the shipped models/pollard.toml)")
-    p.add_argument("--out", default="models/pollard.urdf", help="output URDF path")
-    p.set_defaults(func=cmd_urdf)
+    def command(name, help, func):
+        p = sub.add_parser(name, help=help, description=help, parents=[common],
+                           formatter_class=_Help)
+        p.set_defaults(func=func)
+        return p
 
-    p = sub.add_parser("info", help="load the model and print home configuration and masses")
-    p.add_argument("--params", help="parameter TOML")
-    p.set_defaults(func=cmd_info)
+    def model_args(p):
+        p.add_argument("--params", metavar="FILE.toml", default=None,
+                       help="parameter file; may list only the values that differ from the "
+                            "shipped models/pollard.toml")
+        p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
+                       help="override one parameter, e.g. chain0.x32=0.35 (repeatable; "
+                            "units as in the parameter file)")
 
-    p = sub.add_parser("run", help="solve a trajectory: kinematics and dynamics → CSV")
-    p.add_argument("--trajectory", default="thesis", help="'thesis' or a CSV file")
-    p.add_argument("--duration", type=float, default=None, help="thesis trajectory duration [s]")
-    p.add_argument("--samples", type=int, default=None, help="thesis trajectory samples")
-    p.add_argument("--out", default="run.csv", help="output CSV")
-    p.add_argument("--params", help="parameter TOML")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.add_argument("--wrist-margin", type=float, default=WRIST_MARGIN,
-                   help="fail where |sin θ1716| drops below this (default %(default)s)")
-    p.add_argument("--singularity-margin", type=float, default=SINGULARITY_MARGIN,
-                   help="fail where the parallel or serial σ_min drops below this "
-                        "(default %(default)s)")
-    p.set_defaults(func=cmd_run)
+    def trajectory_args(p):
+        model_args(p)
+        p.add_argument("--trajectory", metavar="thesis|FILE.csv", default="thesis",
+                       help="the thesis painting curve or a trajectory CSV")
+        p.add_argument("--duration", type=_positive, default=None, metavar="S",
+                       help="thesis trajectory duration [s] (default 20)")
+        p.add_argument("--samples", type=_count(2), default=None, metavar="N",
+                       help="thesis trajectory samples (default 2001)")
+        p.add_argument("--quiet", action="store_true", help="no progress bar")
 
-    p = sub.add_parser("sweep", help="design sweep: parameter variants over a trajectory → CSV")
-    p.add_argument("--grid", required=True, help="grid TOML file (see pollard_pin.sweep)")
-    p.add_argument("--out", default="sweep.csv", help="output CSV")
-    p.add_argument("--workers", type=int, default=None,
+    p = command("urdf", "generate the URDF (and the SRDF beside it) from parameters", cmd_urdf)
+    model_args(p)
+    p.add_argument("--out", default="pollard.urdf", metavar="FILE.urdf",
+                   help="output URDF ('-': the URDF on standard output); the shipped "
+                        "model is regenerated with --out models/pollard.urdf")
+
+    p = command("info", "load the model and print home configuration and masses", cmd_info)
+    model_args(p)
+
+    p = command("run", "solve a trajectory: kinematics and dynamics → CSV", cmd_run)
+    trajectory_args(p)
+    p.add_argument("--out", default="run.csv", metavar="FILE.csv",
+                   help="output CSV ('-': standard output)")
+    p.add_argument("--wrist-margin", type=_nonnegative, default=WRIST_MARGIN,
+                   help="fail where |sin θ1716| drops below this")
+    p.add_argument("--singularity-margin", type=_nonnegative, default=SINGULARITY_MARGIN,
+                   help="fail where the parallel or serial σ_min drops below this")
+
+    p = command("sweep", "design sweep: parameter variants over a trajectory → CSV", cmd_sweep)
+    p.add_argument("--grid", required=True, metavar="FILE.toml",
+                   help="grid file (see examples/sweep.toml)")
+    p.add_argument("--out", default="sweep.csv", metavar="FILE.csv",
+                   help="output CSV ('-': standard output)")
+    p.add_argument("--workers", type=_count(1), default=None,
                    help="local processes (default: all cores; 1 = serial)")
     p.add_argument("--dask", metavar="ADDRESS", default=None,
                    help="run on this Dask scheduler (needs pollard-pin[cluster])")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_sweep)
 
-    p = sub.add_parser("view", help="MeshCat 3D viewer: live on localhost, or --html FILE")
-    _trajectory_args(p)
-    p.add_argument("--html", metavar="FILE", help="write a self-contained static page instead "
-                   "of serving")
+    p = command("view", "MeshCat 3D viewer: live on localhost, or --html FILE", cmd_view)
+    trajectory_args(p)
+    p.add_argument("--html", metavar="FILE", default=None,
+                   help="write a self-contained static page instead of serving")
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
     p.add_argument("--fps", type=_positive, default=25.0,
-                   help="animation key frames per second of trajectory time (default 25)")
-    p.set_defaults(func=cmd_view)
+                   help="animation key frames per second of trajectory time")
 
-    p = sub.add_parser("plot", help="chapter-4 style PNG figures of a trajectory")
-    _trajectory_args(p)
-    p.add_argument("--out", default="plots", help="output directory (default plots/)")
-    p.add_argument("--dpi", type=int, default=100, help="PNG resolution")
-    p.set_defaults(func=cmd_plot)
+    p = command("plot", "chapter-4 style PNG figures of a trajectory", cmd_plot)
+    trajectory_args(p)
+    p.add_argument("--out", default="plots", metavar="FOLDER", help="output folder")
+    p.add_argument("--dpi", type=_count(10, 1200), default=100, help="PNG resolution")
 
-    p = sub.add_parser("report", help="actuator sizing table and engine cross-checks")
-    _trajectory_args(p)
+    p = command("report", "actuator sizing table and engine cross-checks", cmd_report)
+    trajectory_args(p)
     p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
-    p.add_argument("--out", help="write to this file instead of stdout")
+    p.add_argument("--out", metavar="FILE", default=None,
+                   help="write to this file (default: standard output)")
     p.add_argument("--no-cross-check", action="store_true",
                    help="sizing only: skip the thesis and MuJoCo comparisons")
-    p.set_defaults(func=cmd_report)
+
+    p = command("export", "write the model for another engine (MuJoCo MJCF)", cmd_export)
+    model_args(p)
+    p.add_argument("--format", choices=("mjcf",), default="mjcf", help="output format")
+    p.add_argument("--out", default="pollard.xml", metavar="FILE",
+                   help="output file ('-': standard output)")
     return ap
 
 
-def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
+def _errors() -> tuple[type[BaseException], ...]:
+    """The project's own errors: each is one line for the user, never a traceback."""
+    from .io.atomic import OutputError
+    from .io.trajectory import TrajectoryError
     from .kinematics.errors import ClosureError, KinematicsError
     from .model.build import ModelFileError
     from .model.params import ParameterError
     from .sweep import SweepError
-    from .io.trajectory import TrajectoryError
 
+    return (ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
+            SweepError, OutputError, _UsageError, ImportError)
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
+                        format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
+    errors = _errors()
     try:
         return args.func(args)
-    except (ParameterError, TrajectoryError, KinematicsError, ClosureError,
-            ModelFileError, SweepError) as exc:
-        print(f"pollard-pin {args.command}: error: {exc}", file=sys.stderr)
-        out = getattr(args, "out", None)
-        if out and args.command in ("run", "sweep"):
-            print(f"pollard-pin {args.command}: nothing written to {out}", file=sys.stderr)
+    except errors as exc:
+        message = " ".join(str(exc).split()) or type(exc).__name__
+        out = getattr(args, "out", None) or getattr(args, "html", None)
+        if out and out != STDOUT and args.command != "plot":
+            message += f" (nothing written to {out})"
+        print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"pollard-pin {args.command}: interrupted, nothing written", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

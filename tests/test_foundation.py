@@ -29,7 +29,8 @@ from pollard_pin.kinematics.errors import ClosureError
 from pollard_pin.model.build import (ModelFileError, build, constraint_jacobian,
                                      constraint_residual,
                                generate, load)
-from pollard_pin.model.params import ParameterError, load_params, read_params_dict
+from pollard_pin.model.params import (ParameterError, load_params, params_from_dict,
+                                      read_params_dict)
 
 REPO = Path(__file__).resolve().parents[1]
 MODELS = REPO / "models"
@@ -446,11 +447,8 @@ def _toml_variant(tmp_path, edit):
 
 
 @pytest.mark.parametrize("edit, pattern", [
-    (lambda t: t.replace("x32 = 0.33", "", 1),
-     r"^parameter 'chain0\.x32' = None: missing key \(expected keys: z10, x32, x65, x1514, "
-     r"x1918\)$"),
-    (lambda t: t.replace("x87 = 0.325", "x78 = 0.325", 1),
-     r"^parameter 'leg1\.x87' = None: missing key"),
+    (lambda t: t.replace("x87 = 0.325", "x78 = 0.325", 1),  # a typo is not a partial file
+     r"^parameter 'leg1\.x78' = 0\.325: unknown key \(expected keys: side, y10, "),
     (lambda t: t.replace("z10 = 0.05", "z10 = 0.05\nz11 = 0.01", 1),
      r"^parameter 'chain0\.z11' = 0\.01: unknown key \(expected keys: z10, "),
     (lambda t: t.replace("[bodies.gun]", "[bodies.gun]\ncolour = 'red'", 1),
@@ -458,10 +456,12 @@ def _toml_variant(tmp_path, edit):
      r"inertia\)$"),
     (lambda t: t.replace("[branches]", "[extras]\nx = 1\n[branches]", 1),
      rf"^parameter 'extras' = \{{'x': 1\}}: unknown key \(expected keys: {ROOT_KEYS}\)$"),
-    (lambda t: t[:t.index("[home]")] + t[t.index("[branches]"):],
-     rf"^parameter 'home' = None: missing key \(expected keys: {ROOT_KEYS}\)$"),
     (lambda t: t.replace("[bodies.wrist2]", "[bodies.wrist3]", 1),
-     r"^parameter 'bodies\.wrist2' = None: missing key"),
+     r"^parameter 'bodies\.wrist3' = \{.*\}: unknown key \(expected keys: arm0, "),
+    (lambda t: t.replace("x32 = 0.33", "x32 = 330.0", 1),  # millimetres by mistake
+     r"^parameter 'chain0\.x32' = 330\.0: must be at most 10 m \(lengths are in metres"),
+    (lambda t: t.replace("x32 = 0.33", "x32 = 1e300", 1),
+     r"^parameter 'chain0\.x32' = 1e\+300: must be at most 10 m"),
     (lambda t: t.replace("x32 = 0.33", "x32 = nan", 1),
      r"^parameter 'chain0\.x32' = nan: must be finite$"),
     (lambda t: t.replace("mass = 0.166", "mass = -inf", 1),
@@ -474,6 +474,37 @@ def _toml_variant(tmp_path, edit):
 def test_parameter_file_rules(tmp_path, edit, pattern):
     path = _toml_variant(tmp_path, edit)
     with pytest.raises(ParameterError, match=pattern):
+        load_params(path)
+
+
+@pytest.mark.parametrize("drop, key", [
+    (lambda d: d["chain0"].pop("x32"), r"chain0\.x32"),
+    (lambda d: d["leg1"].pop("x87"), r"leg1\.x87"),
+    (lambda d: d.pop("home"), "home"),
+    (lambda d: d["bodies"].pop("wrist2"), r"bodies\.wrist2"),
+])
+def test_parameter_dictionary_must_be_complete(drop, key):
+    d = read_params_dict()
+    drop(d)
+    with pytest.raises(ParameterError, match=rf"^parameter '{key}' = None: missing key"):
+        params_from_dict(d)
+
+
+def test_partial_parameter_file_overrides_the_shipped_values(tmp_path):
+    path = tmp_path / "mine.toml"
+    path.write_text("[chain0]\nx32 = 0.34\n[bodies.gun]\nmass = 0.05\n")
+    mine = load_params(path)
+    same = load_params(overrides={"chain0.x32": 0.34, "bodies.gun.mass": 0.05})
+    assert mine.to_toml_dict() == same.to_toml_dict() and mine.source == str(path)
+    assert (mine.x32, mine.body("gun").mass, mine.x65) == (0.34, 0.05, 0.37)
+    # the whole shipped file is a "partial" file that overrides everything with itself
+    assert load_params(TOML_PATH).to_toml_dict() == load_params().to_toml_dict()
+
+
+def test_parameter_file_not_utf8(tmp_path):
+    path = tmp_path / "latin1.toml"
+    path.write_bytes("# m\xfcde\n[chain0]\nx32 = 0.34\n".encode("latin-1"))
+    with pytest.raises(ParameterError, match=r"is not UTF-8 text \(byte 3: b'\\xfc'\)"):
         load_params(path)
 
 
@@ -494,8 +525,8 @@ def test_parameter_file_missing_and_defaults(tmp_path):
 # --- URDF / SRDF files ----------------------------------------------------------------------
 def test_committed_urdf_and_srdf_are_generated():
     urdf, srdf = generate(load_params())
-    assert urdf == URDF_PATH.read_text(), "models/pollard.urdf is stale: run `pollard-pin urdf`"
-    assert srdf == SRDF_PATH.read_text(), "models/pollard.srdf is stale: run `pollard-pin urdf`"
+    assert urdf == URDF_PATH.read_text(), "stale: run `make urdf`"
+    assert srdf == SRDF_PATH.read_text(), "stale: run `make urdf`"
     assert generate(load_params()) == (urdf, srdf)  # deterministic
 
 
@@ -781,5 +812,5 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
     assert pp.load().params.body("gun").mass == 0.035  # the copy is consistent
     toml = tmp_path / "pollard.toml"
     toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
-    with pytest.raises(pp.ModelFileError, match="regenerate them with `pollard-pin urdf`"):
+    with pytest.raises(pp.ModelFileError, match=r"regenerate them with `pollard-pin urdf --out .*/pollard\.urdf`"):
         pp.load()

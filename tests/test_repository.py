@@ -171,7 +171,7 @@ def test_dask_missing_gives_one_line():
                     "sys.exit(main(['sweep', '--grid', 'examples/sweep.toml', '--dask', "
                     "'tcp://127.0.0.1:1', '--out', 'never.csv']))")
     assert r.returncode == 2, r.stderr
-    assert "pip install 'pollard-pin[cluster]'" in r.stderr.splitlines()[-2]
+    assert "pip install 'pollard-pin[cluster]'" in r.stderr.splitlines()[-1]
     assert "Traceback" not in r.stderr and not (ROOT / "never.csv").exists()
 
 

@@ -1,22 +1,96 @@
-"""Atomic file output: a failed or interrupted write never leaves a half-written file."""
+"""Output files that are never left half-written, and destinations checked before the work.
+
+A regular file (or a new one) is written to a temporary file beside it and renamed onto it
+when complete, so a failed run leaves an existing file untouched. Anything else that exists
+(a FIFO, a character device such as ``/dev/null``) is written in place: renaming onto it would
+replace the device by a regular file. ``-`` is standard output.
+"""
 from __future__ import annotations
 
 import contextlib
 import os
+import stat
+import sys
 import tempfile
 from pathlib import Path
 
+STDOUT = "-"
+
+
+class OutputError(OSError):
+    """An output destination cannot be written (one line: which path, why)."""
+
+    def __str__(self) -> str:
+        return self.args[0] if self.args else "cannot write the output"
+
+
+def _is_special(path: Path) -> bool:
+    """An existing destination that is not a regular file (FIFO, device, socket)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return False
+    return not stat.S_ISREG(mode) and not stat.S_ISDIR(mode)
+
+
+def check_destination(path: str | Path, *, folder: bool = False) -> None:
+    """Raise :class:`OutputError` unless ``path`` can be written (a folder if ``folder``),
+    before any work is done: it or its nearest existing parent must be writable."""
+    if str(path) == STDOUT and not folder:
+        return
+    path = Path(path)
+    if path.exists():
+        if folder and not path.is_dir():
+            raise OutputError(f"{path}: names a file, but a folder is expected")
+        if not folder and path.is_dir():
+            raise OutputError(f"{path}: is a folder, but a file is expected")
+        target = path if folder or _is_special(path) else path.parent
+        if not os.access(target if str(target) else ".", os.W_OK):
+            raise OutputError(f"{path}: permission denied")
+        return
+    parent = path.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputError(f"{path}: cannot create it, {parent} is a file, not a folder")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{path}: cannot create it, permission denied in {parent}")
+
+
+def make_folder(path: str | Path) -> Path:
+    """Create the output folder ``path`` (and parents), or raise :class:`OutputError`."""
+    check_destination(path, folder=True)
+    path = Path(path)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{path}: cannot create the folder: {exc.strerror}") from None
+    return path
+
 
 @contextlib.contextmanager
-def atomic_open(path: str | Path, newline: str | None = None):
-    """Open a temporary file beside ``path`` for writing text; rename it onto ``path`` only
-    when the block completes (created parent folders, usual file mode)."""
+def atomic_open(path: str | Path, newline: str | None = None, binary: bool = False):
+    """Open ``path`` for writing (text, or bytes if ``binary``); see the module notes."""
+    mode = "wb" if binary else "w"
+    if str(path) == STDOUT:
+        out = sys.stdout.buffer if binary else sys.stdout
+        yield out
+        out.flush()
+        return
     path = Path(path)
+    check_destination(path)
+    if _is_special(path):
+        with open(path, mode, **({} if binary else {"newline": newline})) as f:
+            yield f
+        return
     parent = path.parent if str(path.parent) else Path(".")
-    parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, "w", newline=newline) as f:
+        parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=parent, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as exc:
+        raise OutputError(f"{path}: cannot write: {exc.strerror}") from None
+    try:
+        with os.fdopen(fd, mode, **({} if binary else {"newline": newline})) as f:
             yield f
         umask = os.umask(0)
         os.umask(umask)

@@ -101,7 +101,7 @@ def from_csv(path: str | Path) -> Trajectory:
     """
     path = Path(path)
     try:
-        with open(path, newline="") as f:
+        with open(path, newline="", encoding="utf-8") as f:
             reader = csv.reader(f)
             rows, lines = [], []  # lines: 1-based file line of each kept row
             for r in reader:
@@ -109,7 +109,12 @@ def from_csv(path: str | Path) -> Trajectory:
                     rows.append(r)
                     lines.append(reader.line_num)
     except OSError as exc:
-        raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: {exc}") from None
+        raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: "
+                              f"{exc.strerror or exc}") from None
+    except UnicodeDecodeError as exc:
+        raise TrajectoryError(f"{path}: not UTF-8 text (byte {exc.start}: "
+                              f"{exc.object[exc.start:exc.start + 1]!r}); save it as UTF-8 "
+                              "CSV") from None
     if not rows:
         raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
     header = [h.strip() for h in rows[0]]

@@ -193,7 +193,8 @@ def load(params: Params | str | Path | None = None) -> Robot:
         urdf, srdf = (d / DEFAULT_URDF).read_text(), (d / DEFAULT_SRDF).read_text()
         if (urdf, srdf) != generate(params):  # someone edited the TOML (or the URDF) by hand
             raise ModelFileError(f"{d / DEFAULT_URDF} and {DEFAULT_SRDF} do not match "
-                                 f"{d / 'pollard.toml'}: regenerate them with `pollard-pin urdf`")
+                                 f"{d / 'pollard.toml'}: regenerate them with "
+                                 f"`pollard-pin urdf --out {d / DEFAULT_URDF}`")
         return build(params, urdf, srdf)
     if not isinstance(params, Params):
         params = load_params(params)

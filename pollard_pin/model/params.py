@@ -116,7 +116,7 @@ class Params:
 
 
 def _fail(key: str, value: Any, rule: str) -> None:
-    raise ParameterError(f"parameter '{key}' = {value!r}: {rule}")
+    raise ParameterError(f"parameter '{key}' = {plain_value(value)!r}: {rule}")
 
 
 def _check_keys(key: str, table: Any, expected: tuple[str, ...]) -> None:
@@ -140,17 +140,24 @@ def _number(key: str, value: Any) -> float:
     return float(value)
 
 
-def _positive(key: str, value: Any) -> float:
+MAX_LENGTH = 10.0  # m: a longer link is a unit slip (mm?) and overflows the closed form
+
+
+def _positive(key: str, value: Any, limit: float | None = None) -> float:
     v = _number(key, value)
     if v <= 0.0:
         _fail(key, value, "must be > 0")
+    if limit is not None and v > limit:
+        _fail(key, value, f"must be at most {limit:g} m (lengths are in metres, not mm)")
     return v
 
 
-def _nonnegative(key: str, value: Any) -> float:
+def _nonnegative(key: str, value: Any, limit: float | None = None) -> float:
     v = _number(key, value)
     if v < 0.0:
         _fail(key, value, "must be >= 0")
+    if limit is not None and v > limit:
+        _fail(key, value, f"must be at most {limit:g} m (lengths are in metres, not mm)")
     return v
 
 
@@ -189,7 +196,7 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
     """Validate a thesis-unit dictionary (the TOML layout) and build :class:`Params`."""
     _check_keys("", d, SECTIONS)
     _check_keys("chain0", d["chain0"], CHAIN0_KEYS)
-    chain0 = {k: _positive(f"chain0.{k}", d["chain0"][k]) for k in CHAIN0_KEYS}
+    chain0 = {k: _positive(f"chain0.{k}", d["chain0"][k], MAX_LENGTH) for k in CHAIN0_KEYS}
     legs = []
     for i in (1, 2):
         sec = f"leg{i}"
@@ -197,9 +204,9 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
         _check_keys(sec, t, LEG_KEYS)
         vals: dict[str, Any] = {"side": _sign(f"{sec}.side", t["side"])}
         for k in LEG_LENGTHS:
-            vals[k] = _positive(f"{sec}.{k}", t[k])
+            vals[k] = _positive(f"{sec}.{k}", t[k], MAX_LENGTH)
         for k in LEG_OFFSETS:
-            vals[k] = _nonnegative(f"{sec}.{k}", t[k])
+            vals[k] = _nonnegative(f"{sec}.{k}", t[k], MAX_LENGTH)
         for k in LEG_ANGLES:
             vals[k] = math.radians(_number(f"{sec}.{k}", t[k]))
         legs.append(Leg(**vals))
@@ -216,6 +223,9 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
                                   inertia=_inertia(f"{key}.inertia", t["inertia"]))))
     _check_keys("home", d["home"], HOME_KEYS)
     tip = _vector("home.tip", d["home"]["tip"], 3)
+    for j, x in enumerate(tip):
+        if abs(x) > MAX_LENGTH:
+            _fail(f"home.tip[{j}]", x, f"must be within ±{MAX_LENGTH:g} m (metres, not mm)")
     ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
     _check_keys("branches", d["branches"], BRANCH_KEYS)
     branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)
@@ -331,26 +341,66 @@ def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
 
 
 def read_params_dict(path: str | Path | None = None) -> dict:
-    """The raw thesis-unit dictionary of a parameter file (default: the shipped one)."""
+    """The raw thesis-unit dictionary of a parameter file (default: the shipped one), as
+    written: a partial file gives a partial dictionary (see :func:`merge_partial`)."""
     path = Path(path) if path is not None else models_dir() / DEFAULT_PARAMS
     try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
+        data = path.read_bytes()
     except FileNotFoundError:
         raise ParameterError(f"parameter file {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise ParameterError(f"parameter file {str(path)!r} cannot be read: "
+                             f"{exc.strerror}") from None
+    try:
+        return tomllib.loads(data.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ParameterError(f"parameter file {str(path)!r} is not UTF-8 text (byte "
+                             f"{exc.start}: {data[exc.start:exc.start + 1]!r})") from None
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError(f"parameter file {str(path)!r} is not valid TOML: {exc}") from None
 
 
+def merge_partial(base: Mapping, partial: Mapping, prefix: str = "") -> dict:
+    """``base`` (a complete thesis-unit dictionary) with the values of ``partial`` put in.
+
+    A parameter file may list only what differs from the shipped one; a key or section that
+    the base does not have is an error (a typo must not pass silently)."""
+    if not isinstance(partial, Mapping):
+        _fail(prefix, partial, "must be a table")
+    out = copy.deepcopy(dict(base))
+    for k, v in partial.items():
+        key = f"{prefix}.{k}" if prefix else k
+        if k not in out:
+            _fail(key, v, f"unknown key (expected keys: {', '.join(out)})")
+        out[k] = merge_partial(out[k], v, key) if isinstance(out[k], Mapping) else v
+    return out
+
+
+def parse_assignment(text: str) -> tuple[str, Any]:
+    """``"chain0.x32=0.35"`` or ``"home.tip=[0.5, 0, 0.2]"`` → (key, value), value as TOML."""
+    key, sep, value = text.partition("=")
+    if not sep or not key.strip():
+        raise ParameterError(f"--set {text!r}: expected KEY=VALUE, e.g. chain0.x32=0.35")
+    try:
+        return key.strip(), tomllib.loads(f"v = {value.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        raise ParameterError(f"--set {text!r}: the value is not a number or a list of "
+                             "numbers") from None
+
+
 def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | None = None,
                 check_home: bool = True) -> Params:
-    """Load and validate parameters.
+    """Load and validate parameters: the shipped file, with the keys of the file ``path``
+    (which may list only some parameters) and then ``overrides`` put in.
 
     ``overrides`` maps dotted keys in thesis units to values, e.g.
     ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "home.tip[2]": 0.2}`` (see
     :func:`apply_overrides`).
     """
-    d = apply_overrides(read_params_dict(path), overrides or {})
+    d = read_params_dict()
+    if path is not None:  # a partial file overrides the shipped values
+        d = merge_partial(d, read_params_dict(path))
+    d = apply_overrides(d, overrides or {})
     src = str(path) if path is not None else DEFAULT_PARAMS
     return params_from_dict(d, source=src, check_home=check_home)
 
