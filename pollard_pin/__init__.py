@@ -27,7 +27,7 @@ _API = {
     "inverse_dynamics": "dynamics.inverse", "forward_dynamics": "dynamics.forward",
     "simulate": "dynamics.forward",
     "Trajectory": "io.trajectory", "thesis_trajectory": "io.trajectory",
-    "from_csv": "io.trajectory", "TrajectoryError": "io.trajectory",
+    "from_csv": "io.trajectory", "to_csv": "io.trajectory", "TrajectoryError": "io.trajectory",
     "smooth_random_trajectory": "io.trajectory",
     "run_pipeline": "io.results", "write_csv": "io.results", "RunResult": "io.results",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",

@@ -36,7 +36,13 @@ class _Parser(argparse.ArgumentParser):
 
 
 class _Help(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
-    pass
+    """Every default in --help: shown by argparse, or said in the help text where the default
+    is "none given" (then the text says what happens)."""
+
+    def _get_help_string(self, action):
+        if action.default in (None, [], False, argparse.SUPPRESS):
+            return action.help
+        return super()._get_help_string(action)
 
 
 # --- argument types: each rejects what the API would reject, before any work ----------------
@@ -284,9 +290,9 @@ def cmd_report(args) -> int:
 
 
 def cmd_export(args) -> int:
+    check_destination(args.out)
     from .crosscheck.mujoco import export_mjcf
 
-    check_destination(args.out)
     robot = _robot(args)
     path = export_mjcf(args.out, urdf=robot.urdf)
     _wrote(path, f" (MJCF: {len(robot.joint_names)} joints, {len(robot.closures)} connect "
@@ -321,19 +327,19 @@ def build_parser() -> argparse.ArgumentParser:
     def model_args(p):
         p.add_argument("--params", metavar="FILE.toml", default=None,
                        help="parameter file; may list only the values that differ from the "
-                            "shipped models/pollard.toml")
+                            "shipped models/pollard.toml (default: the shipped parameters)")
         p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
                        help="override one parameter, e.g. chain0.x32=0.35 (repeatable; "
-                            "units as in the parameter file)")
+                            "units as in the parameter file; default: none)")
 
     def trajectory_args(p):
         model_args(p)
         p.add_argument("--trajectory", metavar="thesis|FILE.csv", default="thesis",
                        help="the thesis painting curve or a trajectory CSV")
         p.add_argument("--duration", type=_positive, default=None, metavar="S",
-                       help="thesis trajectory duration [s] (default 20)")
+                       help="thesis trajectory duration [s] (default: 20)")
         p.add_argument("--samples", type=_count(2), default=None, metavar="N",
-                       help="thesis trajectory samples (default 2001)")
+                       help="thesis trajectory samples (default: 2001)")
         p.add_argument("--quiet", action="store_true", help="no progress bar")
 
     p = command("urdf", "generate the URDF (and the SRDF beside it) from parameters", cmd_urdf)
@@ -360,15 +366,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="sweep.csv", metavar="FILE.csv",
                    help="output CSV ('-': standard output)")
     p.add_argument("--workers", type=_count(1), default=None,
-                   help="local processes (default: all cores; 1 = serial)")
+                   help="local processes (1 = serial; default: all cores)")
     p.add_argument("--dask", metavar="ADDRESS", default=None,
-                   help="run on this Dask scheduler (needs pollard-pin[cluster])")
+                   help="run on this Dask scheduler (needs pollard-pin[cluster]; default: "
+                        "local processes)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
     p = command("view", "MeshCat 3D viewer: live on localhost, or --html FILE", cmd_view)
     trajectory_args(p)
     p.add_argument("--html", metavar="FILE", default=None,
-                   help="write a self-contained static page instead of serving")
+                   help="write a self-contained static page instead of serving (default: "
+                        "serve on localhost)")
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
     p.add_argument("--fps", type=_positive, default=25.0,
                    help="animation key frames per second of trajectory time")

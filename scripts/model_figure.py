@@ -65,7 +65,8 @@ def graph(robot):
             kind = "actuated" if f.name in robot.actuated else "passive"
             axis = M.rotation @ np.eye(3)[:, "xyz".index(AXIS_NAMES[model.joints[j].shortname()])]
             edges.append({"name": f.name, "parent": parent, "child": child, "kind": kind,
-                          "axis": axis, "xyz": M.translation, "rpy": pin.rpy.matrixToRpy(M.rotation)})
+                          "axis": axis, "xyz": M.translation,
+                          "rpy": pin.rpy.matrixToRpy(M.rotation)})
         else:
             edges.append({"name": f.name, "parent": parent, "child": child, "kind": "fixed",
                           "axis": None, "xyz": f.placement.translation,

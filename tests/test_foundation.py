@@ -812,5 +812,6 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
     assert pp.load().params.body("gun").mass == 0.035  # the copy is consistent
     toml = tmp_path / "pollard.toml"
     toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
-    with pytest.raises(pp.ModelFileError, match=r"regenerate them with `pollard-pin urdf --out .*/pollard\.urdf`"):
+    with pytest.raises(pp.ModelFileError,
+                       match=r"regenerate them with `pollard-pin urdf --out .*/pollard\.urdf`"):
         pp.load()

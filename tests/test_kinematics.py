@@ -2,7 +2,8 @@
 
 - Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of
 docs/model.md §7
-  (``pollard_pin.thesis.ik``, numpy only, exact jet derivatives), on the default trajectory,
+  (``pollard_pin.kinematics.closed_form``, numpy only, exact jet derivatives), on the default
+  trajectory,
   smooth random trajectories and isolated random reachable poses;
 - velocities and accelerations against central finite differences of the IK positions;
 - forward kinematics (Pinocchio closure solve and the numpy chain of docs/model.md §3) back to the

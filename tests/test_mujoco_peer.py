@@ -204,7 +204,8 @@ def _potential(model, data, info, q):
 def test_static_torques_by_virtual_work(built):
     """At rest, τ_i = ∂U/∂θ_i along the closed-loop manifold (docs/model.md §8, virtual work). Home
     comes
-    from the closed-form IK (pollard_pin.thesis, no Pinocchio), closed by Newton in MuJoCo."""
+    from the closed-form IK (pollard_pin.kinematics.closed_form, no Pinocchio), closed by Newton
+    in MuJoCo."""
     from pollard_pin.model.params import load_params
     from pollard_pin.kinematics.closed_form import JOINTS as THESIS_JOINTS, position_ik
 

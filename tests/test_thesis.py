@@ -1,4 +1,5 @@
-"""The thesis' analytic method (pollard_pin.thesis) against independent numbers: docs/model.md §9
+"""The thesis' analytic method (pollard_pin.kinematics.closed_form,
+pollard_pin.crosscheck.euler_lagrange) against independent numbers: docs/model.md §9
 home table, the numpy forward chain, finite differences and energy balance."""
 import subprocess
 import sys

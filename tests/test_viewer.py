@@ -182,9 +182,10 @@ def test_live_server_serves_the_same_scene(ik, robot, tmp_path):
                              str(SAMPLES), "--quiet"], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     try:
-        m, _ = _read_until(proc, r"MeshCat viewer: (http://127\.0\.0\.1:\d+/static/)", 60)
+        m, seen = _read_until(proc, r"MeshCat viewer: (http://127\.0\.0\.1:\d+/static/)", 60)
         web_url = m.group(1)
-        m, _ = _read_until(proc, r"zmq (tcp://127\.0\.0\.1:\d+)", 5)
+        m, more = _read_until(proc, r"zmq (tcp://127\.0\.0\.1:\d+)", 5)
+        seen += more
         ctx = zmq.Context.instance()
         sock = ctx.socket(zmq.REQ)
         sock.setsockopt(zmq.RCVTIMEO, 20000)
@@ -204,7 +205,10 @@ def test_live_server_serves_the_same_scene(ik, robot, tmp_path):
             assert facts["actions"] == len(viewer.viewer_geometry(robot).geometryObjects)
         proc.send_signal(signal.SIGINT)
         assert proc.wait(20) == 0
-        assert "stopping the MeshCat server" in proc.stdout.read()
+        rest = proc.stdout.read()
+        assert "stopping the MeshCat server" in rest
+        said = "".join(seen) + rest + proc.stderr.read()
+        assert said.count(web_url.rstrip("/").rsplit("/", 1)[0]) == 1, said  # the URL, once
         with pytest.raises((urllib.error.URLError, ConnectionError)):
             urllib.request.urlopen(web_url, timeout=5)
     finally:

@@ -5,7 +5,7 @@ numpy forward chain of docs/model.md §3 used to check it.
 Poses are (x, y, z, ψ, θ, φ) in the thesis order (docs/model.md §2): tip frame Tx(x)Ty(y)Tz(z)·R
 with
 R = Rx(θ)Ry(ψ)Rz(φ). Velocities and accelerations come from running the same closed forms on
-:class:`~pollard_pin.thesis.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
+:class:`~pollard_pin.kinematics.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
 """
 from __future__ import annotations
 

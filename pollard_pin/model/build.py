@@ -39,7 +39,7 @@ class Closure:
     frame_b: str
 
 
-@dataclass
+@dataclass(repr=False)
 class Robot:
     """Pinocchio model, data, geometry and loop closures of the Pollard robot."""
 
@@ -60,6 +60,12 @@ class Robot:
     def __post_init__(self):
         self.visual_data = self.visual_model.createData()
         self.collision_data = self.collision_model.createData()
+
+    def __repr__(self) -> str:
+        closures = ", ".join(c.name for c in self.closures)
+        return (f"Robot(name={self.model.name!r}, nq={self.model.nq}, nv={self.model.nv}, "
+                f"constraints={len(self.constraint_models)} × 3D point ({closures}), "
+                f"mass={self.params.total_mass:.4g} kg, params={self.params.source!r})")
 
     # --- name ↔ index helpers -------------------------------------------------------------
     @property

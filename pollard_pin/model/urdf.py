@@ -1,10 +1,9 @@
 """URDF and SRDF of the open tree (docs/model.md §3) generated from
-:class:`~pollard_pin.params.Params`.
+:class:`~pollard_pin.model.params.Params`.
 
-The two cut spherical joints (docs/model.md §4) are written as ``<loop_closure>`` elements, which
-plain
-URDF parsers ignore and :mod:`pollard_pin.model` reads, so the file is self-contained. The
-closure points are fixed frames ``closure{i}_A`` (on ``link_i``, the leg side) and
+The two cut spherical joints (docs/model.md §4) are written as ``<loop_closure>`` elements,
+which plain URDF parsers ignore and :mod:`pollard_pin.model.build` reads, so the file is
+self-contained. The closure points are fixed frames ``closure{i}_A`` (on ``link_i``, the leg side) and
 ``closure{i}_B`` (on ``platform``, at A_i).
 """
 from __future__ import annotations

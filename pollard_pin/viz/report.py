@@ -192,7 +192,8 @@ def to_markdown(rep: dict) -> str:
     if cc:
         th, mj = cc["thesis"], cc["mujoco"]
         lines += ["", "## Cross-checks (Pinocchio vs reference)", "",
-                  "| quantity | max abs difference | reference peak | relative |",
+                  "| quantity | max abs difference | reference peak \\|component\\| "
+                  "| relative |",
                   "|---|---:|---:|---:|",
                   f"| joint positions, thesis closed-form IK | "
                   f"{th['joint_position_rad']['max_abs_diff']:.3e} rad | – | – |",
@@ -204,7 +205,11 @@ def to_markdown(rep: dict) -> str:
                                     "N·m"))
         if mj.get("available"):
             lines += [_agree_row("actuator torques, MuJoCo", mj["torque"], "N·m"),
-                      _agree_row("closure forces, MuJoCo", mj["closure_force"], "N"),
+                      _agree_row("closure forces (x, y, z components), MuJoCo",
+                                 mj["closure_force"], "N"),
+                      "", "Peaks and differences here are over single components (largest "
+                          "|f_x|, |f_y|, |f_z|); the spherical-joint table above "
+                          "gives the peak magnitude ‖f‖.",
                       "", f"MuJoCo's own closure residual at the Pinocchio states: "
                           f"{mj['mujoco_closure_residual_m']:.2e} m."]
         else:

@@ -21,6 +21,7 @@ browser opens from disk.
 from __future__ import annotations
 
 import base64
+import io
 import signal
 import sys
 import time
@@ -374,7 +375,7 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
 
     meshcat = _meshcat()
 
-    with redirect_stdout(sys.stderr):  # meshcat prints its own banner; keep stdout ours
+    with redirect_stdout(io.StringIO()):  # meshcat's own URL banner: we print the URL once
         vis = meshcat.Visualizer()
     window = vis.window
     def _terminate(signum, frame):
