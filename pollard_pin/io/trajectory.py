@@ -155,7 +155,8 @@ def from_csv(path: str | Path) -> Trajectory:
         r = int(np.argmax(dt <= 0))
         kind = "duplicate" if dt[r] == 0 else "decreasing"
         raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': {kind} time "
-                              f"{t[r + 1]!r} after {t[r]!r} (times must increase strictly)")
+                              f"{float(t[r + 1])!r} after {float(t[r])!r} (times must "
+                              "increase strictly)")
     poses = np.column_stack([col[n] for n in TASK_NAMES])
     for c, name in enumerate(TASK_NAMES):
         limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \
@@ -164,7 +165,8 @@ def from_csv(path: str | Path) -> Trajectory:
         if np.any(big):
             r = int(np.argmax(big))
             raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {name!r}: "
-                                  f"{poses[r, c]!r} looks like {unit}; |value| > {limit:.4g}")
+                                  f"{float(poses[r, c])!r} looks like {unit}; "
+                                  f"|value| > {limit:.4g}")
     derivs = []
     for prefix in ("d_", "dd_"):
         names = [prefix + n for n in TASK_NAMES]

@@ -265,7 +265,7 @@ def _split_key(key: str) -> tuple[list[str], list[int]]:
 def lookup(d: Mapping, key: str, value: Any = _UNSET) -> Any:
     """The value at ``key`` in a thesis-unit parameter dictionary (ParameterError if none);
     ``value``, if given, is the override being applied (shown in the message)."""
-    shown = "" if value is _UNSET else f" = {value!r}"
+    shown = "" if value is _UNSET else f" = {plain_value(value)!r}"
     path, index = _split_key(key)
     node: Any = d
     for j, part in enumerate(path):
