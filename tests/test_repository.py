@@ -127,7 +127,8 @@ def test_no_import_cycle_between_modules():
 
 # --- dependencies ---------------------------------------------------------------------------
 IMPORT_NAME = {"pin": "pinocchio", "numpy": "numpy", "scipy": "scipy",
-               "matplotlib": "matplotlib", "meshcat": "meshcat"}
+               "matplotlib": "matplotlib", "meshcat": "meshcat", "tqdm": "tqdm",
+               "polars": "polars", "pyarrow": "pyarrow"}
 
 
 def test_every_core_dependency_is_imported_by_the_package():

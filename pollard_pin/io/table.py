@@ -1,0 +1,170 @@
+"""Result tables on disk: CSV and Parquet, written chunk by chunk, read back exactly.
+
+* CSV (polars ``write_csv``): one header row with the column names, every float64 written so
+  that reading it back gives the same bits. Units and run metadata go to a sidecar JSON file
+  beside it, ``NAME.units.json`` (not written for standard output or a FIFO/device).
+* Parquet (pyarrow, zstd): units and run metadata in the file's key-value metadata
+  (``pollard_pin.units``, ``pollard_pin.metadata``, JSON).
+
+Column units follow docs/model.md §15; :func:`column_unit` derives them from the names.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Mapping
+
+import numpy as np
+
+from .atomic import STDOUT, OutputError, _is_special, atomic_open
+
+UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
+FORMATS = ("csv", "parquet")
+_TASK_LENGTHS = ("x", "y", "z")
+_FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_parallel": "m",
+          "sigma_serial": "mixed (m, 1)", "kinetic_energy": "J", "potential_energy": "J"}
+_PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"))
+
+
+def column_unit(name: str) -> str:
+    """SI unit of a result column from its name (docs/model.md §15)."""
+    if name in _FIXED:
+        return _FIXED[name]
+    for prefix, unit in _PREFIX:
+        if name.startswith(prefix):
+            return unit
+    if len(name) == 4 and name[0] == "f" and name[2] == "_":  # f1_x … f2_z
+        return "N"
+    order = 2 if name.startswith("dd_") else 1 if name.startswith("d_") else 0
+    base = name.split("_", order)[-1] if order else name
+    length = base in _TASK_LENGTHS
+    return ("m" if length else "rad") + ("", "/s", "/s²")[order]
+
+
+def table_format(path: str | Path, fmt: str | None = None) -> str:
+    """``csv`` or ``parquet``: ``fmt`` if given, else from the file name (default CSV)."""
+    if fmt is not None:
+        if fmt not in FORMATS:
+            raise OutputError(f"unknown table format {fmt!r} (expected csv or parquet)")
+        return fmt
+    return "parquet" if str(path).lower().endswith((".parquet", ".pq")) else "csv"
+
+
+def units_path(path: str | Path) -> Path:
+    """The sidecar of a CSV table: ``run.csv`` → ``run.units.json``."""
+    path = Path(path)
+    return path.with_name(path.stem + ".units.json")
+
+
+class TableWriter:
+    """Write a table in chunks of columns (``write({name: array})``), atomically.
+
+    The column names are fixed by the first chunk; ``metadata`` (JSON-ready) is stored with the
+    units. Use as a context manager: the file appears only if the block completes.
+    """
+
+    def __init__(self, path: str | Path, metadata: Mapping | None = None,
+                 fmt: str | None = None):
+        self.path, self.fmt = path, table_format(path, fmt)
+        self.metadata = dict(metadata or {})
+        self.columns: list[str] | None = None
+        self.rows = 0
+        self._ctx = self._file = self._parquet = None
+
+    def __enter__(self) -> "TableWriter":
+        self._ctx = atomic_open(self.path, binary=True)
+        self._file = self._ctx.__enter__()
+        return self
+
+    def write(self, chunk: Mapping[str, np.ndarray]) -> None:
+        if self.columns is None:
+            self.columns = list(chunk)
+        elif list(chunk) != self.columns:
+            raise ValueError("every chunk must have the same columns, in the same order")
+        if self.fmt == "csv":
+            import polars as pl
+
+            pl.DataFrame({k: np.asarray(v, dtype=np.float64) for k, v in chunk.items()}) \
+                .write_csv(self._file, include_header=self.rows == 0)
+        else:
+            self._write_parquet(chunk)
+        self.rows += len(next(iter(chunk.values())))
+
+    def _write_parquet(self, chunk) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        table = pa.table({k: np.asarray(v, dtype=np.float64) for k, v in chunk.items()})
+        if self._parquet is None:
+            schema = table.schema.with_metadata({UNITS_KEY: json.dumps(self.units()),
+                                                 META_KEY: json.dumps(self.metadata)})
+            self._parquet = pq.ParquetWriter(self._file, schema, compression="zstd")
+        self._parquet.write_table(table.replace_schema_metadata(self._parquet.schema.metadata))
+
+    def units(self) -> dict[str, str]:
+        return {c: column_unit(c) for c in self.columns or ()}
+
+    def __exit__(self, kind, exc, tb) -> None:
+        try:
+            if self._parquet is not None:
+                self._parquet.close()
+        finally:
+            self._ctx.__exit__(kind, exc, tb)
+        if kind is None and self.fmt == "csv" and self._sidecar():
+            with atomic_open(units_path(self.path)) as f:
+                json.dump({"units": self.units(), "metadata": self.metadata}, f, indent=1,
+                          ensure_ascii=False)
+                f.write("\n")
+
+    def _sidecar(self) -> bool:
+        return str(self.path) != STDOUT and not _is_special(Path(self.path))
+
+
+def write_table(path: str | Path, chunks: Iterable[Mapping[str, np.ndarray]] | Mapping,
+                metadata: Mapping | None = None, fmt: str | None = None) -> int:
+    """Write one table (a dict of columns, or an iterable of such chunks); returns the rows."""
+    if isinstance(chunks, Mapping):
+        chunks = (chunks,)
+    with TableWriter(path, metadata, fmt) as w:
+        for chunk in chunks:
+            w.write(chunk)
+    return w.rows
+
+
+@dataclass
+class ResultTable:
+    """A result read back: ``columns`` (name → float64 array), ``units``, ``metadata``."""
+
+    columns: dict[str, np.ndarray]
+    units: dict[str, str] = field(default_factory=dict)
+    metadata: dict = field(default_factory=dict)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+    def __len__(self) -> int:
+        return len(next(iter(self.columns.values()))) if self.columns else 0
+
+
+def read_result(path: str | Path) -> ResultTable:
+    """Read a table written by :class:`TableWriter` (``run``, ``sweep``…), CSV or Parquet."""
+    path = Path(path)
+    if not path.is_file():
+        raise OutputError(f"{path}: no such result file")
+    if table_format(path) == "parquet":
+        import pyarrow.parquet as pq
+
+        table = pq.read_table(path)
+        meta = table.schema.metadata or {}
+        cols = {n: table.column(n).to_numpy() for n in table.column_names}
+        return ResultTable(cols, json.loads(meta.get(UNITS_KEY.encode(), b"{}")),
+                           json.loads(meta.get(META_KEY.encode(), b"{}")))
+    import polars as pl
+
+    frame = pl.read_csv(path, infer_schema_length=0)  # strings first: float64 for every column
+    cols = {n: frame[n].cast(pl.Float64).to_numpy() for n in frame.columns}
+    side = units_path(path)
+    extra = json.loads(side.read_text(encoding="utf-8")) if side.is_file() else {}
+    return ResultTable(cols, extra.get("units", {c: column_unit(c) for c in cols}),
+                       extra.get("metadata", {}))
