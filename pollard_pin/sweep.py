@@ -48,7 +48,6 @@ The thesis trajectory is laid around each variant's own home pose (as ``pollard-
 from __future__ import annotations
 
 import copy
-import csv
 import itertools
 import json
 import os
@@ -508,13 +507,15 @@ def _cell(value: Any) -> str:
 
 def write_csv(rows: Sequence[Mapping[str, Any]], path: str | Path,
               columns: Sequence[str] | None = None) -> None:
-    """The result table as CSV (atomic write). Empty cells: not applicable / infeasible."""
+    """The result table as CSV (polars, atomic write). Empty cells: not applicable or
+    infeasible; floats as their shortest exact repr, lists as JSON."""
+    import polars as pl
+
     columns = list(columns or (rows[0].keys() if rows else ()))
-    with atomic_open(path, newline="") as f:
-        w = csv.writer(f)
-        w.writerow(columns)
-        for row in rows:
-            w.writerow([_cell(row.get(c)) for c in columns])
+    table = pl.DataFrame({c: [None if row.get(c) is None else _cell(row.get(c)) for row in rows]
+                          for c in columns}, schema={c: pl.String for c in columns})
+    with atomic_open(path, binary=True) as f:
+        table.write_csv(f)
 
 
 def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:

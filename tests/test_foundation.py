@@ -375,7 +375,7 @@ def test_modified_params_give_a_model_whose_placements_follow():
 
 
 # --- parameter validation -------------------------------------------------------------------
-ROOT_KEYS = "chain0, leg1, leg2, bodies, home, branches"
+ROOT_KEYS = "chain0, leg1, leg2, bodies, home, branches, limits"
 VALIDATION = [  # overrides, key named in the message, rule text
     ({"chain0.x32": math.nan}, "chain0.x32", "must be finite"),
     ({"chain0.z10": math.inf}, "chain0.z10", "must be finite"),

@@ -3,10 +3,10 @@
 Uses only numpy, MuJoCo (imported lazily: a test/benchmark dependency) and the URDF file; no
 Pinocchio. The URDF open tree is loaded with ``MjSpec.from_file``; the two cut spherical
 joints of docs/model.md §4 become ``mjEQ_CONNECT`` equalities between sites at Tx(x87i) on
-``link_i``
-and A_i on ``platform`` (positions read from the URDF fixed joints of the ``<loop_closure>``
-frames). ``mj_inverse`` gives the open-tree torques; the actuator torques τ and the closure
-forces λ then solve ``[Sᵀ Jcᵀ] [τ; λ] = τ_tree`` with Jc the connect rows of ``efc_J``.
+``link_i`` and A_i on ``platform`` (positions read from the URDF fixed joints of the
+``<loop_closure>`` frames). ``mj_inverse`` gives the open-tree torques; the actuator torques τ
+and the closure forces λ then solve ``[Sᵀ Jcᵀ] [τ; λ] = τ_tree`` with Jc the connect rows of
+``efc_J``.
 
 The constrained inverse kinematics (:func:`inverse_kinematics_mujoco`) is MuJoCo's too: Newton
 on the closure residual and tool-pose error with ``mj_jacSite`` Jacobians (a site ``tip_site``
@@ -14,15 +14,18 @@ at the URDF ``tip`` frame, Tx(x1918) on ``gun``), and exact acceleration drifts 
 ``mj_rnePostConstraint`` + ``mj_objectAcceleration``. :func:`pipeline_mujoco` chains IK and
 inverse dynamics: the complete MuJoCo peer path, timed per stage.
 
+:func:`export_mjcf` writes the same closed-loop model as a standalone MJCF file (with the URDF
+limits, motors on the actuated joints and the home keyframe); :func:`build_mujoco` and the
+functions above read such a file with ``mjcf_path=`` and check it against the URDF.
+
 Modelling notes:
 - MuJoCo rejects massless moving bodies, so each massless U-joint cross (docs/model.md §5) is
-removed
-  and its hinge moved into its child body ahead of the child's own hinge. MuJoCo composes the
-  joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54) etc. (docs/model.md
-  §3).
+  removed and its hinge moved into its child body ahead of the child's own hinge. MuJoCo
+  composes the joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54)
+  etc. (docs/model.md §3).
 - ``inertiafromgeom`` is off, so masses and inertias are the URDF inertials (checked).
-- Contacts, joint limits, springs, dampers and friction loss are disabled (docs/model.md §13: ideal
-joints).
+- Contacts, joint limits, springs, dampers and friction loss are disabled (docs/model.md §13:
+  ideal joints). The exported file keeps the joint limits (the URDF's); the peer turns them off.
 """
 from __future__ import annotations
 
@@ -58,9 +61,13 @@ def _rpy(rpy) -> np.ndarray:
                      [-sp, cp * sr, cp * cr]])
 
 
-def read_urdf(path) -> dict:
-    """Links' inertials, joints and ``<loop_closure>`` pairs of the URDF."""
-    root = ET.parse(str(path)).getroot()
+def _is_text(source) -> bool:
+    return isinstance(source, str) and source.lstrip().startswith("<")
+
+
+def read_urdf(source) -> dict:
+    """Links' inertials, joints and ``<loop_closure>`` pairs of the URDF (a path or its text)."""
+    root = ET.fromstring(source) if _is_text(source) else ET.parse(str(source)).getroot()
     inertials = {}
     for link in root.iter("link"):
         el = link.find("inertial")
@@ -75,9 +82,12 @@ def read_urdf(path) -> dict:
     joints = {}
     for j in root.iter("joint"):
         o = j.find("origin")
+        lim = j.find("limit")
         joints[j.get("name")] = dict(type=j.get("type"), parent=j.find("parent").get("link"),
                                      child=j.find("child").get("link"), xyz=_vec(o, "xyz"),
-                                     rpy=_vec(o, "rpy"))
+                                     rpy=_vec(o, "rpy"), limit=None if lim is None else {
+                                         k: float(lim.get(k, 0)) for k in
+                                         ("lower", "upper", "effort", "velocity")})
     closures = [(c.get("name"), c.get("frame_a"), c.get("frame_b"))
                 for c in root.iter("loop_closure")]
     return dict(inertials=inertials, joints=joints, closures=closures)
@@ -139,7 +149,9 @@ def _merge_massless_crosses(spec) -> list[str]:
             raise ValueError(f"massless moving body {body.name!r} cannot be merged into a child")
         child = kids[0]
         specs = [dict(name=j.name, type=j.type, axis=np.array(j.axis), pos=np.array(j.pos),
-                      ref=j.ref) for j in joints + list(child.joints)]
+                      ref=j.ref, limited=j.limited, range=np.array(j.range),
+                      actfrclimited=j.actfrclimited, actfrcrange=np.array(j.actfrcrange))
+                 for j in joints + list(child.joints)]
         for j in joints + list(child.joints):
             spec.delete(j)
         for s in specs:  # parent's hinge first: R = R_parent_joint · R_child_joint
@@ -150,8 +162,78 @@ def _merge_massless_crosses(spec) -> list[str]:
     return merged
 
 
-def build_mujoco(urdf_path=None):
+def _closed_loop_spec(urdf):
+    """MjSpec of the URDF (a path or its text) with the loops closed (see module notes).
+
+    Returns ``(spec, urdf_info, merged)``: ``urdf_info`` from :func:`read_urdf`, ``merged`` the
+    crosses whose hinges moved into their child."""
+    mujoco = _mujoco()
+
+    info = read_urdf(urdf)
+    where = "URDF" if _is_text(urdf) else str(urdf)
+    if len(info["closures"]) != 2:
+        raise ValueError(f"{where}: expected 2 <loop_closure> elements (docs/model.md §4)")
+    spec = (mujoco.MjSpec.from_string(urdf) if _is_text(urdf)
+            else mujoco.MjSpec.from_file(str(urdf)))
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    spec.compiler.balanceinertia = False
+    spec.compiler.boundmass = spec.compiler.boundinertia = 0.0
+    merged = _merge_massless_crosses(spec)
+    for name, fa, fb in info["closures"]:
+        for tag, frame in (("A", fa), ("B", fb)):
+            link, pos = _point_on_moving_link(info, frame)
+            spec.body(link).add_site(name=f"{name}_{tag}_site", pos=pos)
+        spec.add_equality(name=name, type=mujoco.mjtEq.mjEQ_CONNECT,
+                          objtype=mujoco.mjtObj.mjOBJ_SITE, name1=f"{name}_A_site",
+                          name2=f"{name}_B_site")
+    if TIP in {j["child"] for j in info["joints"].values()}:  # docs/model.md §3: Tx(x1918)
+        link, pos, R = _frame_on_moving_link(info, TIP)
+        quat = np.empty(4)
+        mujoco.mju_mat2Quat(quat, R.reshape(-1))
+        spec.body(link).add_site(name=f"{TIP}_site", pos=pos, quat=quat)
+    return spec, info, merged
+
+
+def _check_mjcf(model, urdf: dict, path) -> None:
+    """The MJCF's closure sites, connect equalities and tip site are where the URDF puts them."""
+    mujoco = _mujoco()
+
+    def names(kind, n):
+        return [mujoco.mj_id2name(model, kind, i) for i in range(n)]
+
+    sites = names(mujoco.mjtObj.mjOBJ_SITE, model.nsite)
+    frames = [(f"{c}_{tag}_site", f) for c, fa, fb in urdf["closures"]
+              for tag, f in (("A", fa), ("B", fb))]
+    if TIP in {j["child"] for j in urdf["joints"].values()}:
+        frames.append((f"{TIP}_site", TIP))
+    for site, frame in frames:
+        link, pos = _point_on_moving_link(urdf, frame)
+        if site not in sites:
+            raise ValueError(f"{path}: no site {site!r} (URDF frame {frame!r})")
+        s = model.site(site)
+        body = model.body(int(s.bodyid[0])).name
+        if body != link or np.abs(s.pos - pos).max() > 1e-12:
+            raise ValueError(f"{path}: site {site!r} is on {body!r} at {s.pos.tolist()}, the "
+                             f"URDF puts frame {frame!r} on {link!r} at {pos.tolist()}")
+    eqs = names(mujoco.mjtObj.mjOBJ_EQUALITY, model.neq)
+    for c, _, _ in urdf["closures"]:
+        e = model.equality(c) if c in eqs else None
+        ok = (e is not None and e.type[0] == mujoco.mjtEq.mjEQ_CONNECT
+              and model.eq_objtype[e.id] == mujoco.mjtObj.mjOBJ_SITE
+              and [int(e.obj1id[0]), int(e.obj2id[0])]
+              == [model.site(f"{c}_A_site").id, model.site(f"{c}_B_site").id])
+        if not ok:
+            raise ValueError(f"{path}: no connect equality {c!r} between sites {c}_A_site "
+                             f"and {c}_B_site (docs/model.md §4)")
+
+
+def build_mujoco(urdf_path=None, mjcf_path=None):
     """Compile the closed-loop MuJoCo model. Returns ``(model, data, info)``.
+
+    The model is built from the URDF ``urdf_path`` (default: the shipped one), or read from an
+    MJCF file ``mjcf_path`` (as :func:`export_mjcf` writes it); the URDF is then the reference
+    its contents are checked against (sites, equalities, masses, inertias). Either way the
+    joints are made ideal (no limits, springs, damping, friction, contacts: docs/model.md §13).
 
     ``info`` holds the name→address maps (in :data:`JOINTS` order), the site/equality ids, the
     efc sign and the mass/inertia check against the URDF. Raises ``ValueError`` when a check
@@ -160,38 +242,19 @@ def build_mujoco(urdf_path=None):
     mujoco = _mujoco()
 
     path = Path(urdf_path) if urdf_path is not None else _default_urdf()
-    urdf = read_urdf(path)
-    if len(urdf["closures"]) != 2:
-        raise ValueError(f"{path}: expected 2 <loop_closure> elements (docs/model.md §4)")
-    spec = mujoco.MjSpec.from_file(str(path))
-    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
-    spec.compiler.balanceinertia = False
-    spec.compiler.boundmass = spec.compiler.boundinertia = 0.0
-    merged = _merge_massless_crosses(spec)
+    if mjcf_path is None:
+        spec, urdf, merged = _closed_loop_spec(path)
+    else:
+        urdf = read_urdf(path)
+        spec = mujoco.MjSpec.from_file(str(mjcf_path))
+        moving = [j["child"] for j in urdf["joints"].values() if j["type"] != "fixed"]
+        merged = [b for b in moving if b not in {x.name for x in spec.bodies}
+                  or not spec.body(b).joints]  # crosses: fused into their parent
     for j in spec.joints:  # ideal joints
-        j.limited = mujoco.mjtLimited.mjLIMITED_FALSE
+        j.limited = j.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE
         j.damping = j.stiffness = np.zeros(3)  # MuJoCo 4: polynomial coefficients
         j.armature = j.frictionloss = 0.0
         j.springdamper = np.zeros(2)
-    sites, eq_names = [], []
-    for name, fa, fb in urdf["closures"]:
-        pair = []
-        for tag, frame in (("A", fa), ("B", fb)):
-            link, pos = _point_on_moving_link(urdf, frame)
-            site = f"{name}_{tag}_site"
-            spec.body(link).add_site(name=site, pos=pos)
-            pair.append((site, link, pos))
-        spec.add_equality(name=name, type=mujoco.mjtEq.mjEQ_CONNECT,
-                          objtype=mujoco.mjtObj.mjOBJ_SITE, name1=pair[0][0], name2=pair[1][0])
-        sites.append(pair)
-        eq_names.append(name)
-    tip = None
-    if TIP in {j["child"] for j in urdf["joints"].values()}:  # docs/model.md §3: Tx(x1918) on gun
-        link, pos, R = _frame_on_moving_link(urdf, TIP)
-        quat = np.empty(4)
-        mujoco.mju_mat2Quat(quat, R.reshape(-1))
-        spec.body(link).add_site(name=f"{TIP}_site", pos=pos, quat=quat)
-        tip = (link, pos.tolist())
     model = spec.compile()
     D = mujoco.mjtDisableBit
     model.opt.disableflags |= (D.mjDSBL_CONTACT | D.mjDSBL_LIMIT | D.mjDSBL_SPRING
@@ -199,6 +262,8 @@ def build_mujoco(urdf_path=None):
     model.opt.jacobian = mujoco.mjtJacobian.mjJAC_DENSE
     data = mujoco.MjData(model)
 
+    if mjcf_path is not None:
+        _check_mjcf(model, urdf, mjcf_path)
     if not np.array_equal(model.opt.gravity, GRAVITY):
         raise ValueError(f"MuJoCo gravity {model.opt.gravity} != docs/model.md §2 {GRAVITY}")
     for n in JOINTS:
@@ -238,7 +303,10 @@ def build_mujoco(urdf_path=None):
                          f"rel. error {mass_err:.3g}, inertia/CoG error {inertia_err:.3g}")
 
     # Constraint rows and their sign: efc_J = s·∂(p_A − p_B)/∂q (checked against mj_jacSite).
-    site_ids = np.array([[model.site(s[0]).id for s in pair] for pair in sites])
+    eq_names = [c for c, _, _ in urdf["closures"]]
+    site_ids = np.array([[model.site(f"{c}_{tag}_site").id for tag in "AB"] for c in eq_names])
+    sites = [[(model.site(i).name, model.body(int(model.site(i).bodyid[0])).name,
+               model.site(i).pos.copy()) for i in pair] for pair in site_ids]
     eq_ids = np.array([model.equality(n).id for n in eq_names])
     rng = np.random.default_rng(0)
     data.qpos[:] = rng.uniform(-1, 1, model.nq)
@@ -255,15 +323,71 @@ def build_mujoco(urdf_path=None):
             raise ValueError(f"connect rows of {eq_names[i]!r} are not ±(J_A − J_B)")
         signs.append(s[0])
     mujoco.mj_resetData(model, data)
-    info = dict(urdf_path=str(path), joints=JOINTS, actuated=ACTUATED, qpos_adr=qadr,
+    has_tip = f"{TIP}_site" in [model.site(i).name for i in range(model.nsite)]
+    tip = None
+    if has_tip:
+        s = model.site(f"{TIP}_site")
+        tip = (model.body(int(s.bodyid[0])).name, s.pos.tolist())
+    info = dict(urdf_path=str(path), mjcf_path=None if mjcf_path is None else str(mjcf_path),
+                joints=JOINTS, actuated=ACTUATED, qpos_adr=qadr,
                 dof_adr=dadr, actuated_idx=np.array([JOINTS.index(n) for n in ACTUATED]),
                 closures=tuple(eq_names), eq_ids=eq_ids, efc_rows=rows, site_ids=site_ids,
                 sites=[[(s, link, pos.tolist()) for s, link, pos in pair] for pair in sites],
                 efc_sign=np.array(signs), merged_bodies=merged, body_mass=body_mass,
                 total_mass=float(mujoco.mj_getTotalmass(model)), mass_rel_error=mass_err,
                 inertia_error=inertia_err, gravity=model.opt.gravity.copy(),
-                tip_site=model.site(f"{TIP}_site").id if tip else -1, tip=tip)
+                tip_site=model.site(f"{TIP}_site").id if has_tip else -1, tip=tip)
     return model, data, info
+
+
+# --- MJCF export -------------------------------------------------------------------------------
+def export_mjcf(path, urdf=None, home=None) -> Path:
+    """Write the closed-loop model as a standalone MJCF file and return its path (``-``: stdout).
+
+    ``urdf``: a URDF path or its text (default: the shipped one). The file holds what
+    :func:`build_mujoco` builds: the open tree with the massless crosses merged, the same joint
+    names, masses and inertias (full precision), sites at the closure frames and at the tool tip,
+    and the two loop closures as ``connect`` equalities (docs/model.md §4). For simulation it
+    also mirrors the URDF limits (joint ranges, enforced; force ranges), drives each actuated
+    joint (docs/model.md §6) with a ``motor`` of the same name whose ``ctrlrange`` is ± its
+    effort limit, and keeps the ideal-joint assumption of docs/model.md §13 otherwise (no
+    damping, friction or contacts). ``home`` ((12,) in :data:`JOINTS` order or name → value)
+    becomes the keyframe "home"; by default the SRDF beside a URDF path gives it. Geometry is
+    primitive shapes only: the file refers to no other file.
+    """
+    mujoco = _mujoco()
+    from ..io.atomic import atomic_open
+
+    source = urdf if urdf is not None else _default_urdf()
+    if not _is_text(source):
+        source = Path(source)
+        side = source.with_suffix(".srdf")
+        if home is None and side.is_file():
+            home = home_configuration(side)
+    spec, info, _ = _closed_loop_spec(source)
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT  # ideal: no collisions
+    for j in spec.joints:
+        if j.name not in ACTUATED:  # URDF effort 0: no actuator, not "unlimited"
+            j.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE
+    for n in ACTUATED:
+        effort = info["joints"][n]["limit"]["effort"]
+        act = spec.add_actuator(name=n, target=n, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+        act.set_to_motor()
+        act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
+        act.ctrlrange = [-effort, effort]
+    spec.compiler.savecompiled = False  # save the spec itself: 17 significant digits
+    model = spec.compile()
+    if home is not None:
+        values = (np.array([home[n] for n in JOINTS]) if hasattr(home, "keys")
+                  else np.asarray(home, dtype=float).reshape(12))
+        qpos = np.zeros(model.nq)
+        qpos[model.jnt_qposadr[[model.joint(n).id for n in JOINTS]]] = values
+        spec.add_key(name="home", qpos=qpos)
+    xml = spec.to_xml()
+    mujoco.MjModel.from_xml_string(xml)  # stands alone: no file next to it is needed
+    with atomic_open(path) as f:
+        f.write(xml)
+    return Path(path)
 
 
 def _efc_rows(model, data, eq_ids) -> np.ndarray:
@@ -281,15 +405,16 @@ def _efc_rows(model, data, eq_ids) -> np.ndarray:
     return rows
 
 
-def _built(urdf_path):
-    key = str(Path(urdf_path).resolve()) if urdf_path is not None else "<default>"
+def _built(urdf_path, mjcf_path=None):
+    key = tuple(str(Path(p).resolve()) if p is not None else "<default>"
+                for p in (urdf_path, mjcf_path))
     if key not in _CACHE:
-        _CACHE[key] = build_mujoco(urdf_path)
+        _CACHE[key] = build_mujoco(urdf_path, mjcf_path)
     return _CACHE[key]
 
 
 # --- inverse dynamics -------------------------------------------------------------------------
-def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
+def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None, mjcf_path=None) -> dict:
     """Closed-loop inverse dynamics with MuJoCo at samples (N, 12) in :data:`JOINTS` order.
 
     Returns a dict of
@@ -299,11 +424,12 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None) -> dict:
       ``tree`` (N, 12): open-tree torques (M a + c + g) [N·m], :data:`JOINTS` order;
       ``residual`` (N, 2): |p_A − p_B| of each connect pair in MuJoCo [m] (sanity check);
       ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
-    ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used.
+    ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used, built from
+    ``urdf_path`` or read from ``mjcf_path`` (see :func:`build_mujoco`).
     """
     mujoco = _mujoco()
 
-    model, data, info = built if built is not None else _built(urdf_path)
+    model, data, info = built if built is not None else _built(urdf_path, mjcf_path)
     q, v, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v, a))
     n = len(q)
     for label, x in (("q", q), ("v", v), ("a", a)):
@@ -600,5 +726,6 @@ def pipeline_mujoco(poses, d_poses=None, dd_poses=None, timings: dict | None = N
     return {**ik, **dyn}
 
 
-__all__ = ["JOINTS", "ACTUATED", "MujocoIKError", "build_mujoco", "home_configuration",
+__all__ = ["JOINTS", "ACTUATED", "MujocoIKError", "build_mujoco", "export_mjcf",
+           "home_configuration",
            "inverse_dynamics_mujoco", "inverse_kinematics_mujoco", "pipeline_mujoco", "read_urdf"]

@@ -12,7 +12,9 @@ import numpy as np
 import pinocchio as pin
 
 from ..kinematics.pipeline import IKResult
-from ..kinematics.singularity import actuator_velocity_map
+from ..kinematics.errors import SingularityError
+from ..kinematics.singularity import (SIGMA_FLOOR, actuator_velocity_map, sigma_range,
+                                      solve_stack)
 from ..model.build import Robot, constraint_jacobian
 from ..timing import Stopwatch
 
@@ -89,14 +91,33 @@ class DynamicsResult:
         return lines
 
 
-def _split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray):
+def _parallel_singular(robot: Robot, Jc, k: int, sp=None, sp_max=None, t=None, why=""):
+    if sp is None:
+        sp, sp_max = (float(x) for x in sigma_range(Jc.reshape((-1,) + Jc.shape[-2:])[k][
+            :, robot.passive_v]))
+    return SingularityError(
+        f"the closure-force system Jc_pᵀ λ = τ_passive is singular{why}: the passive-joint "
+        f"constraint Jacobian's smallest singular value {sp:.3g} is below the numerical floor "
+        f"{SIGMA_FLOOR:g} × σ_max = {SIGMA_FLOOR * sp_max:.3g} (parallel singularity, "
+        "docs/model.md §12)", sigma=sp, chain="parallel",
+        sample=k if Jc.ndim > 2 else None,
+        time=None if t is None else float(np.atleast_1d(t)[k]))
+
+
+def _split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray, t=None):
     """Solve tau_tree = Sᵀτ + Jcᵀλ (stacked (..., 6, nv), (..., nv)) for τ and λ.
 
-    The passive rows alone give Jc_pᵀλ = tau_p (6 × 6); the actuated rows then give τ.
+    The passive rows alone give Jc_pᵀλ = tau_p (6 × 6); the actuated rows then give τ. Where
+    Jc_p is exactly singular, or the result is not finite, raises :class:`SingularityError`
+    naming the sample, its time (from ``t``) and σ.
     """
     ia, ip = robot.actuated_v, robot.passive_v
-    lam = np.linalg.solve(np.swapaxes(Jc[..., ip], -1, -2), tau_tree[..., ip, None])
+    lam, _ = solve_stack(np.swapaxes(Jc[..., ip], -1, -2), tau_tree[..., ip, None])
     tau = tau_tree[..., ia] - (np.swapaxes(Jc[..., ia], -1, -2) @ lam)[..., 0]
+    bad = ~(np.isfinite(tau).all(axis=-1) & np.isfinite(lam).all(axis=(-2, -1)))
+    if bad.any():
+        raise _parallel_singular(robot, Jc, int(np.argmax(bad.reshape(-1))), t=t,
+                                 why=" (torques not finite)")
     return tau, lam[..., 0]
 
 
@@ -107,6 +128,9 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
     if losses is not None:
         tau_tree += losses.torque(v, a)
     Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
+    sp, sp_max = (float(x) for x in sigma_range(Jc[:, robot.passive_v]))
+    if not sp >= SIGMA_FLOOR * sp_max:
+        raise _parallel_singular(robot, Jc, 0, sp, sp_max)
     tau, lam = _split_tree_torques(robot, Jc, tau_tree)
     return tau, lam.reshape(2, 3), tau_tree
 
@@ -141,7 +165,15 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     if Jc is None:
         Jc = np.stack([constraint_jacobian(model, data, robot.constraint_models,
                                            robot.constraint_datas, q) for q in Q])
-    tau, lam = _split_tree_torques(robot, Jc, tree)
+    # Numerically singular Jc_p (docs/model.md §12): the IK measured σ at the same q.
+    sp, sp_max = ik.sigma_parallel, getattr(ik, "sigma_parallel_max", None)
+    if sp is None or sp_max is None:
+        sp, sp_max = sigma_range(Jc[..., robot.passive_v])
+    low = np.flatnonzero(~(sp >= SIGMA_FLOOR * sp_max))
+    if len(low):
+        k = int(low[0])
+        raise _parallel_singular(robot, Jc, k, float(sp[k]), float(sp_max[k]), ik.t)
+    tau, lam = _split_tree_torques(robot, Jc, tree, ik.t)
     clock.lap("dynamics")
     return DynamicsResult(t=ik.t, tau=tau, closure_forces=lam.reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,

@@ -38,7 +38,7 @@ class RunResult:
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
                  **ik_options) -> RunResult:
     """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
-    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``branch_tol``, ``method``)."""
+    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``)."""
     from ..dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,

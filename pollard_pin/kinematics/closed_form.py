@@ -13,6 +13,7 @@ import numpy as np
 
 from . import jet as J
 from .jet import Jet, value
+from .taskspace import TaskInputError, check_task_array
 
 JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
           "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2",
@@ -22,6 +23,16 @@ SPHERICAL_JOINTS = JOINTS[12:]
 ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 ACTUATED_INDEX = tuple(JOINTS.index(n) for n in ACTUATED)
 CHAINS = ("chain 0", "leg 1", "leg 2")
+_CHAIN_OF = {**{n: "chain 0" for n in JOINTS[:3]}, **{n: "wrist" for n in JOINTS[3:6]},
+             **{n: f"leg {n[-1]}" for n in JOINTS[6:12]},
+             **{n: f"spherical joint {n[-1]}" for n in SPHERICAL_JOINTS}}
+# Round-off tolerance of every arccos/arcsin argument (docs/model.md §7): a ratio within
+# ROUNDOFF·scale of ±1 is on the boundary and taken as ±1 exactly; beyond 1 + ROUNDOFF·scale
+# there is no solution. ``scale`` is the size of the terms the ratio was formed from, relative
+# to its denominator (1 for entries of unit vectors and rotation matrices): each of the ~10
+# roundings on the way costs ≤ ε of that size, so 16 ε bounds the error with room to spare,
+# yet is 1e-14 of a reach of ~1 m — far below anything physical.
+ROUNDOFF = 16 * np.finfo(float).eps
 _TARGETS = {"chain 0": "the wrist centre", "leg 1": "its attachment point",
             "leg 2": "its attachment point"}
 
@@ -48,8 +59,10 @@ class UnreachableError(ValueError):
         self.count, self.too_close = count, too_close
         if message is None:
             how = "target too close by" if too_close else "short by"
+            # Just past the boundary, 6 digits would print "1": show the excess instead.
+            shown = f"1 + {ratio - 1.0:.3g}" if 0.0 < ratio - 1.0 < 1e-5 else f"{ratio:.6g}"
             message = (f"{chain} cannot reach {_TARGETS.get(chain, 'its target')} at sample "
-                       f"{sample}: |−C/R| = {ratio:.6g} ({how} {shortfall * 1e3:.4g} mm)")
+                       f"{sample}: |−C/R| = {shown} ({how} {shortfall * 1e3:.4g} mm)")
             if count > 1:
                 message += f"; {count} samples fail in all"
         super().__init__(message)
@@ -69,8 +82,39 @@ class WristSingularError(UnreachableError):
         super().__init__("wrist", sample, margin - sin1716, sin1716, count=count, message=msg)
 
 
+class SingularPoseError(UnreachableError):
+    """A pose exactly on a singularity (an arccos/arcsin argument at ±1, docs/model.md §7, §12):
+    the angles exist but their rates do not. ``kind == "singular"``; ``chain`` as for
+    :class:`UnreachableError`, ``joint`` the first angle whose derivative is not finite."""
+
+    kind = "singular"
+
+    def __init__(self, chain: str, sample: int, joint: str, count: int = 1):
+        self.joint = joint
+        msg = (f"{chain} is exactly at a singularity at sample {sample}: the rate of {joint} "
+               "is not finite (on a reach boundary, or a joint at its gimbal angle)")
+        if count > 1:
+            msg += f"; {count} samples fail in all"
+        super().__init__(chain, sample, 0.0, 1.0, count=count, message=msg)
+
+
 def _per_sample(mask: np.ndarray) -> np.ndarray:
     return mask.reshape(mask.shape[0], -1).any(axis=1)
+
+
+def _unit(c, scale=1.0):
+    """(c clipped into [−1, 1], values within ROUNDOFF·scale of ±1 set to ±1 exactly; mask of
+    |c| beyond 1 + ROUNDOFF·scale or NaN). Jets keep their derivatives. Entries of unit
+    vectors and rotation matrices (scale 1) leave [−1, 1] only by round-off (|u| = |w| = 1
+    once the circle equations are solved), so those call sites need no mask."""
+    cv = value(c)
+    tol = ROUNDOFF * scale
+    with np.errstate(invalid="ignore"):
+        a = np.abs(cv)
+        near = np.abs(a - 1.0) <= tol
+        beyond = ~(a <= 1.0 + tol)
+        cv = np.clip(np.where(near, np.sign(cv), cv), -1.0, 1.0)
+    return (Jet._make(cv, c.d, c.dd) if isinstance(c, Jet) else cv), beyond
 
 
 def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
@@ -78,23 +122,36 @@ def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
     §7).
 
     rho, off: in-plane / out-of-plane distance of the target from the circle the elbow
-    describes (radius r); L is the second link. Used only to word the shortfall.
+    describes (radius r); L is the second link. Used for the tolerance and the shortfall.
     """
     Rn = J.sqrt(A * A + B * B)
+    Rv, rh, of = value(Rn), value(rho), value(off)
+    # C = ρ² + off² + r² − L² rounds at the size of its terms (tolerance scale, see ROUNDOFF).
     with np.errstate(divide="ignore", invalid="ignore"):
+        scale = np.where(Rv > 0.0, (rh * rh + of * of + r * r + L * L) / Rv, 0.0)
         c = -C / Rn
-    cv = value(c)
-    bad = ~(np.abs(cv) <= 1.0)
+    ratio = value(c)
+    c, bad = _unit(c, scale)
     if bad.any():
         rows = _per_sample(bad)
         idx = np.unravel_index(np.argmax(bad), bad.shape)  # C order: first bad sample
         k = int(idx[0])
-        ratio = float(abs(cv[idx]))
-        rh, of = float(value(rho)[idx]), float(value(off)[idx])
-        too_close = bool(cv[idx] > 1.0)
-        short = (L - np.hypot(rh + r, of)) if too_close else (np.hypot(rh - r, of) - L)
-        raise UnreachableError(chain, k, float(short), ratio, int(rows.sum()), too_close)
-    return J.atan2(B, A) + branch * J.acos(J.clip_unit(c))
+        cv, Rk, rk, ok_ = float(ratio[idx]), float(Rv[idx]), float(rh[idx]), float(of[idx])
+        too_close = bool(cv > 1.0)
+        if Rk > 0.0:
+            # Distance from the target to the nearest (farthest) point of the reachable shell,
+            # from the same ratio that failed: d² − L² = R (|c| − 1), so it is > 0 here.
+            d = np.hypot(rk + r, ok_) if too_close else np.hypot(rk - r, ok_)
+            short = Rk * (abs(cv) - 1.0) / (d + L)
+            raise UnreachableError(chain, k, float(short), abs(cv), int(rows.sum()), too_close)
+        d = float(np.hypot(r, ok_))  # target on the axis of the base joint: R = 0
+        if d != L:
+            raise UnreachableError(chain, k, abs(d - L), abs(cv), int(rows.sum()), d < L)
+        raise UnreachableError(chain, k, 0.0, abs(cv), int(rows.sum()), message=(
+            f"{chain} cannot place {_TARGETS.get(chain, 'its target')} at sample {k}: the "
+            "target lies on the axis of its base joint at exactly the link length, so the "
+            "base angle is undetermined (singular)"))
+    return J.atan2(B, A) + branch * J.acos(c)
 
 
 def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
@@ -121,12 +178,12 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
     u = (P15 - E) / L
     a = J.atan2(-u[..., 2], u[..., 0])  # θ21 + θ43
     q["theta43"] = a - q["theta21"]
-    q["theta54"] = J.asin(J.clip_unit(u[..., 1]))
+    q["theta54"] = J.asin(_unit(u[..., 1])[0])
     Rp = J.rot(J.Ry(a), 2, q["theta54"])
 
     # Wrist (2.34)-(2.47): XZX Euler angles of Rpᵀ R = Rz(−θ54) Ry(−a) R.
     M = J.rot_left(2, -q["theta54"], J.rot_left(1, -a, R))
-    c1716 = J.clip_unit(M[..., 0, 0])
+    c1716 = _unit(M[..., 0, 0])[0]
     s1716 = np.sqrt(1.0 - value(c1716) ** 2)
     bad = s1716 <= wrist_margin
     if bad.any():
@@ -159,7 +216,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
         w = J.matvec(J.transpose(Rc), Aw - elbow) / leg.x87
         q["theta21" + s] = t21
         q["theta65" + s] = J.atan2(-w[..., 2], w[..., 0])
-        q["theta76" + s] = J.asin(J.clip_unit(w[..., 1]))
+        q["theta76" + s] = J.asin(_unit(w[..., 1])[0])
         if frames is not None:
             frames["arm" + s] = (Ra, np.array([0.0, c[1], 0.0]))
             frames["link" + s] = (J.rot(J.rot(Rc, 1, q["theta65" + s]), 2, q["theta76" + s]),
@@ -174,17 +231,51 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
             Ms = J.rot_left(axis, ang, Ms)
         Ms = J.rot(Ms, 2, np.asarray(-leg.beta1413))
         q["theta98" + s] = J.atan2(Ms[..., 1, 2], Ms[..., 0, 2])
-        q["theta109" + s] = J.acos(J.clip_unit(Ms[..., 2, 2]))
+        q["theta109" + s] = J.acos(_unit(Ms[..., 2, 2])[0])
         q["theta1110" + s] = J.atan2(Ms[..., 2, 1], -Ms[..., 2, 0])
     return q
 
 
-def _as_poses(poses) -> np.ndarray:
+def _as_poses(poses, prefix: str = "") -> np.ndarray:
+    """(N, 6) float array, checked: N ≥ 1, every entry finite and within MAX_ABS_TASK (the
+    error names the column, e.g. ``d_psi``, and the sample)."""
+    what = {"": "poses", "d_": "pose rates", "dd_": "pose accelerations"}[prefix]
     a = np.asarray(poses, dtype=float)
     a = a[None, :] if a.ndim == 1 else a
     if a.ndim != 2 or a.shape[1] != 6:
-        raise ValueError(f"poses must have shape (N, 6) or (6,), got {np.shape(poses)}")
+        raise TaskInputError(f"{what} must have shape (N, 6) or (6,) (x, y, z, psi, "
+                             f"theta, phi), got {np.shape(poses)}")
+    if len(a) == 0:
+        raise TaskInputError(f"no {what}: the array is empty (shape {a.shape}); give at "
+                             "least one sample (x, y, z, psi, theta, phi)")
+    check_task_array(a, prefix)
     return a
+
+
+def _check_wrist_margin(wrist_margin) -> float:
+    try:
+        m = float(wrist_margin)
+    except (TypeError, ValueError):
+        m = np.nan
+    if not 0.0 <= m <= 1.0:  # NaN fails too
+        raise TaskInputError(f"wrist_margin = {wrist_margin!r} must be a number in [0, 1] "
+                             "(the smallest |sin θ1716| allowed)", column="wrist_margin")
+    return m
+
+
+def _check_rates(q: Jet, names) -> None:
+    """Derivatives are infinite exactly on a singularity (an arccos/arcsin at ±1): say where
+    instead of returning them."""
+    for part in (q.d, q.dd):
+        if part is None:
+            continue
+        bad = ~np.isfinite(part)
+        if bad.any():
+            rows = _per_sample(bad)
+            k = int(np.argmax(rows))
+            j = int(np.argmax(bad[k].reshape(-1, len(names)).any(axis=0)))
+            raise SingularPoseError(_CHAIN_OF.get(names[j], names[j]), k, names[j],
+                                    int(rows.sum()))
 
 
 def _wrap(a):
@@ -207,16 +298,24 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
     The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
     θ98 ± θ1110 is defined, and their derivatives from :func:`ik` are then not finite.
     """
-    q = _solve(params, _as_poses(poses), wrist_margin)
+    q = _solve(params, _as_poses(poses), _check_wrist_margin(wrist_margin))
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
 
 
 def inverse_kinematics(params, poses, d_poses, dd_poses, reference=None,
                        wrist_margin: float = 0.0):
-    """(q, qd, qdd), each (N, 18): the closed forms and their exact time derivatives."""
-    x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
-    sol = _solve(params, x, wrist_margin)
-    q = J.stack([sol[n] for n in JOINTS], axis=-1)
+    """(q, qd, qdd), each (N, 18): the closed forms and their exact time derivatives.
+
+    Raises :class:`SingularPoseError` where a derivative is not finite (a pose exactly on a
+    reach boundary or a wrist/joint singularity)."""
+    x = [_as_poses(a, pre) for a, pre in ((poses, ""), (d_poses, "d_"), (dd_poses, "dd_"))]
+    if not x[0].shape == x[1].shape == x[2].shape:
+        raise TaskInputError(f"poses, rates and accelerations differ in shape: "
+                             f"{[a.shape for a in x]}")
+    with np.errstate(divide="ignore", invalid="ignore"):  # checked just below
+        sol = _solve(params, Jet(*x), _check_wrist_margin(wrist_margin))
+        q = J.stack([sol[n] for n in JOINTS], axis=-1)
+    _check_rates(q, JOINTS)
     return make_continuous(q.v, reference), q.d, q.dd
 
 
@@ -229,8 +328,12 @@ def direction_jet(poses) -> Jet:
 
 def actuation_jacobian(params, poses, wrist_margin: float = 0.0) -> np.ndarray:
     """J_τ = ∂(actuator angles, :data:`ACTUATED` order)/∂(x, y, z, ψ, θ, φ), shape (N, 6, 6)."""
-    q = _solve(params, direction_jet(poses), wrist_margin, spherical=False)
-    return np.stack([q[n].d for n in ACTUATED], axis=-2)
+    with np.errstate(divide="ignore", invalid="ignore"):  # checked just below
+        q = _solve(params, direction_jet(poses), _check_wrist_margin(wrist_margin),
+                   spherical=False)
+        Jt = J.stack([q[n] for n in ACTUATED], axis=-1)
+    _check_rates(Jt, ACTUATED)
+    return np.swapaxes(Jt.d, -1, -2)
 
 
 # --- forward chain of docs/model.md §3 (numpy or jets)
@@ -332,7 +435,7 @@ def angular_rates(R: Jet):
 def body_kinematics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
     """name → dict(R, r, v, a, omega, alpha): world rotation, CoG position, CoG velocity and
     acceleration, angular velocity and acceleration (world frame), each (N, ...)."""
-    x = Jet(_as_poses(poses), _as_poses(d_poses), _as_poses(dd_poses))
+    x = Jet(_as_poses(poses), _as_poses(d_poses, "d_"), _as_poses(dd_poses, "dd_"))
     out = {}
     for name, (R, r) in body_states(params, x, wrist_margin)[0].items():
         w, al = angular_rates(R)

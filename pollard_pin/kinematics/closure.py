@@ -6,11 +6,13 @@ import numpy as np
 import pinocchio as pin
 
 from ..model.build import Robot, constraint_jacobian, constraint_residual
-from .errors import ClosureError
+from .errors import ClosureError, ClosureSingularError
+from .singularity import SIGMA_FLOOR, sigma_range
 from .taskspace import pose_from_se3
 
 CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
 MAX_ITER = 50
+
 
 def _leg_residuals(r: np.ndarray) -> np.ndarray:
     return np.linalg.norm(r.reshape(2, 3), axis=1)
@@ -22,21 +24,26 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
 
     Newton on the passive angles with the constraint Jacobian, warm-started at ``q_guess``
     (default: the home posture). Raises :class:`ClosureError` naming the leg and the residual
-    reached when the actuator set cannot be assembled.
+    reached when the actuator set cannot be assembled, and :class:`ClosureSingularError` (also
+    a :class:`SingularityError`, chain "parallel", with σ) when the loops close on a parallel
+    singularity, where the passive angles are not locally unique (docs/model.md §12).
     """
     model, data = robot.model, robot.data
     cms, cds = robot.constraint_models, robot.constraint_datas
     act = np.asarray(actuated, dtype=float).reshape(-1)
     if act.shape != (6,) or not np.all(np.isfinite(act)):
         raise ValueError(f"actuator angles must be 6 finite numbers "
-                         f"({', '.join(robot.actuated)}), got {act!r}")
+                         f"({', '.join(robot.actuated)}), got {act.tolist()}")
     q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
+    if q.shape != (robot.model.nq,) or not np.all(np.isfinite(q)):
+        raise ValueError(f"q_guess must be {robot.model.nq} finite joint angles, got "
+                         f"{np.asarray(q_guess).tolist()}")
     ia, ip = robot.actuated_v, robot.passive_v
     q[ia] = act
     r = constraint_residual(model, data, cms, cds, q)
     for _ in range(max_iter):
         if np.abs(r).max() <= tol:
-            return q
+            return _check_regular(robot, q, act)
         Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
         step = np.linalg.lstsq(Jp, r, rcond=None)[0]  # least squares: survives singular Jp
         # Damped step: never move a passive angle by more than 0.5 rad at once.
@@ -50,6 +57,23 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
         f"(rad): after {max_iter} Newton steps the residual is {legs[0]*1e3:.4g} mm on leg 1 and "
         f"{legs[1]*1e3:.4g} mm on leg 2 (tolerance {tol:g} m); leg {leg} cannot reach its "
         f"attachment point", leg=leg, residual=float(legs.max()))
+
+
+def _check_regular(robot: Robot, q: np.ndarray, act: np.ndarray) -> np.ndarray:
+    """q, unless Jc_p is singular there (σ_min < SIGMA_FLOOR σ_max): the loops then close on a
+    parallel singularity and the passive angles are not locally unique."""
+    Jp = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                             robot.constraint_datas, q)[:, robot.passive_v]
+    smin, smax = (float(x) for x in sigma_range(Jp))
+    if smin >= SIGMA_FLOOR * smax:
+        return q
+    angles = dict(zip(robot.actuated, act.round(6).tolist()))
+    raise ClosureSingularError(
+        f"the loops close for actuator angles {angles} (rad) only on a parallel singularity: "
+        f"the passive-joint constraint Jacobian's smallest singular value {smin:.3g} is below "
+        f"the numerical floor {SIGMA_FLOOR:g} × σ_max (docs/model.md §12), so the passive "
+        "angles are not unique there", chain="parallel", sigma=smin,
+        amount=SIGMA_FLOOR * smax - smin)
 
 
 def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
@@ -71,6 +95,9 @@ def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray |
     for k, a in enumerate(act):
         try:
             q = solve_closure(robot, a, q_guess=q)
+        except ClosureSingularError as exc:
+            raise ClosureSingularError(exc.detail, sample=k, chain=exc.chain, sigma=exc.sigma,
+                                       amount=exc.amount) from None
         except ClosureError as exc:
             raise ClosureError(f"sample {k}: {exc}", exc.leg, exc.residual) from None
         qs[k] = q

@@ -23,13 +23,38 @@ class KinematicsError(RuntimeError):
         self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
 
 
+class KinematicsInputError(KinematicsError, ValueError):
+    """An argument is invalid before any kinematics runs: empty or mis-shaped arrays, a
+    non-finite or absurd pose component (``chain`` names the column, e.g. ``"d_psi"``),
+    times that do not increase, a negative or NaN margin. Both a :class:`KinematicsError`
+    (sample and time when known) and a :class:`ValueError`."""
+
+
 class UnreachablePoseError(KinematicsError):
     """A chain cannot reach the requested tool pose."""
 
 
 class SingularityError(KinematicsError):
-    """The trajectory passes closer to a singularity than the configured margin."""
+    """The trajectory passes closer to a singularity than the configured margin, or a linear
+    system of the pipeline is singular at round-off level (docs/model.md §12). ``sigma`` is the
+    measure that failed (smallest singular value, or |sin| of the angle) when there is one."""
+
+    def __init__(self, message: str, *, sigma: float | None = None, **where):
+        super().__init__(message, **where)
+        self.sigma = sigma
+
+
+class ClosureSingularError(SingularityError, ClosureError):
+    """The loops cannot be closed because the passive-joint constraint Jacobian is singular
+    (a :class:`ClosureError` and a :class:`SingularityError`)."""
+
+    def __init__(self, message: str, *, leg: int | None = None,
+                 residual: float | None = None, **kw):
+        super().__init__(message, **kw)
+        self.leg, self.residual = leg, residual
 
 
 class BranchFlipError(KinematicsError):
-    """The solution jumped to another assembly branch between consecutive samples."""
+    """The solution changed assembly branch between consecutive samples: a branch-defining sign
+    (docs/model.md §7: the branch term of a circle equation, cos θ54, sin θ1716, cos θ76_i)
+    changed, i.e. the motion passed through the boundary between two assembly modes."""

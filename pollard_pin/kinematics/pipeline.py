@@ -2,6 +2,7 @@
 velocities and accelerations of all tree joints from the tool pose, batched or per sample."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -10,30 +11,45 @@ import pinocchio as pin
 from ..model.build import TIP_FRAME, Robot, constraint_jacobian
 from ..timing import Stopwatch
 from . import closed_form
-from .errors import KinematicsError, SingularityError, UnreachablePoseError
-from .singularity import (BRANCH_TOL, SINGULARITY_MARGIN, WRIST_MARGIN, check_margins,
-                          conditioning)
-from .taskspace import rotation, twist, twist_dot
+from .errors import (KinematicsError, KinematicsInputError, SingularityError,
+                     UnreachablePoseError)
+from .singularity import (SERIAL_FLOOR, SIGMA_FLOOR, SINGULARITY_MARGIN,
+                          WRIST_MARGIN, BranchQuantities, check_margins,
+                          conditioning, flip_error, floor_message, same_branch,
+                          solve_stack)
+from .taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
 
 SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
 
 
 def _zyz(M: np.ndarray) -> np.ndarray:
-    """ZYZ angles (..., 3) of M = Rz(a) Ry(b) Rz(c) (..., 3, 3), b in [0, π] (docs/model.md §4)."""
-    b = np.arccos(np.clip(M[..., 2, 2], -1.0, 1.0))
+    """ZYZ angles (..., 3) of M = Rz(a) Ry(b) Rz(c) (..., 3, 3), b in [0, π] (docs/model.md §4).
+    b from atan2(sin b, cos b): accurate to round-off near 0 and π, where arccos is not."""
+    b = np.arctan2(np.hypot(M[..., 0, 2], M[..., 1, 2]), M[..., 2, 2])
     return np.stack([np.arctan2(M[..., 1, 2], M[..., 0, 2]), b,
                      np.arctan2(M[..., 2, 1], -M[..., 2, 0])], axis=-1)
 
 
 def _zyz_rates(ang: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """(ȧ, ḃ, ċ) from w, where Ṁ Mᵀ = ŵ and w = ȧ e_z + ḃ Rz(a) e_y + ċ Rz(a)Ry(b) e_z."""
+    """(ȧ, ḃ, ċ) from w, where Ṁ Mᵀ = ŵ and w = ȧ e_z + ḃ Rz(a) e_y + ċ Rz(a)Ry(b) e_z.
+
+    Solved in closed form: Rz(−a) w = (ċ sin b, ḃ, ȧ + ċ cos b). At sin b = 0 (θ109 = 0 or π)
+    the system is singular and the rates are not finite; :func:`check_margins` rejects such
+    samples (|sin θ109| below SIGMA_FLOOR, docs/model.md §12)."""
+    if ang.ndim == 1:  # one sample (per-sample Newton): scalar math
+        a, b = float(ang[0]), float(ang[1])
+        wx, wy, wz = w.tolist()
+        ca, sa, sb = math.cos(a), math.sin(a), math.sin(b)
+        cdot = (ca * wx + sa * wy) / sb if sb else math.copysign(math.inf, ca * wx + sa * wy)
+        return np.array([wz - cdot * math.cos(b), ca * wy - sa * wx, cdot])
     a, b = ang[..., 0], ang[..., 1]
-    Z = np.zeros(ang.shape[:-1] + (3, 3))
-    Z[..., 0, 1], Z[..., 0, 2] = -np.sin(a), np.cos(a) * np.sin(b)
-    Z[..., 1, 1], Z[..., 1, 2] = np.cos(a), np.sin(a) * np.sin(b)
-    Z[..., 2, 0], Z[..., 2, 2] = 1.0, np.cos(b)
-    return np.linalg.solve(Z, w[..., None])[..., 0]
+    ca, sa = np.cos(a), np.sin(a)
+    wx = ca * w[..., 0] + sa * w[..., 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cdot = wx / np.sin(b)
+    return np.stack([w[..., 2] - cdot * np.cos(b), ca * w[..., 1] - sa * w[..., 0], cdot],
+                    axis=-1)
 
 
 @dataclass
@@ -130,6 +146,8 @@ class IKResult:
     sigma_serial: np.ndarray  # σ_min of the actuator-rate → tool-twist map
     joint_names: tuple[str, ...] = field(default=())
     constraint_jacobian: np.ndarray | None = None  # (N, 6, nv) at q, reused by dynamics
+    sigma_parallel_max: np.ndarray | None = None  # σ_max of the same maps: the scale of the
+    sigma_serial_max: np.ndarray | None = None  # numerical floors (docs/model.md §12)
 
     def __len__(self) -> int:
         return len(self.t)
@@ -144,10 +162,37 @@ def _newton(model, data, cms, cds, fr, q, p_des, R_des, tol, max_iter):
                 return q, e, True
             polished = True  # one more step past tol: quadratic convergence to round-off
         K = _kinematic_matrix(model, data, cms, cds, fr, q)
-        step = np.linalg.solve(K, e)
+        try:
+            step = np.linalg.solve(K, e)
+        except np.linalg.LinAlgError:  # exactly singular K on the way: least-squares step
+            step = np.linalg.lstsq(K, e, rcond=None)[0]
         q = q - step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
         e = _pose_error(model, data, fr, q, p_des, R_des)
     return q, e, np.abs(e).max() <= tol
+
+
+MIN_SUBSTEP = 2.0 ** -10  # finest continuation step, as a fraction of one sample interval
+
+
+def _follow(solve, signs_of, q0, pose_a, pose_b, ref):
+    """Newton continuation from q0 (solution at pose_a) along the straight pose segment to
+    pose_b, halving the step until Newton converges on the branch signs ``ref``.
+
+    Returns (q, e, ok, flip): flip = (s, q_before, q_after) when a step of MIN_SUBSTEP from a
+    solution on ``ref`` (q_before) still converges on other signs (q_after) at the fraction s:
+    the segment crosses the boundary of the assembly mode (docs/model.md §7), a real flip."""
+    s, h, q, q_old, s_old, e = 0.0, 1.0, q0, None, 0.0, None
+    while s < 1.0:
+        s1 = min(1.0, s + h)
+        guess = q if q_old is None else q + (s1 - s) / (s - s_old) * (q - q_old)
+        qn, e, ok = solve(guess, pose_a + s1 * (pose_b - pose_a))
+        if ok and same_branch(signs_of(qn), ref):
+            q_old, s_old, q, s, h = q, s, qn, s1, 2.0 * h
+            continue
+        if h <= MIN_SUBSTEP:
+            return qn, e, False, ((s1, q, qn) if ok else None)
+        h *= 0.5
+    return q, e, True, None
 
 
 def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
@@ -155,17 +200,30 @@ def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
     try:
         _closed_form(robot, np.asarray(pose)[None, :], np.array([tk]), wrist_margin)
     except KinematicsError as exc:
-        return type(exc)(exc.detail, sample=k, time=tk, chain=exc.chain, amount=exc.amount)
+        extra = {"sigma": exc.sigma} if isinstance(exc, SingularityError) else {}
+        return type(exc)(exc.detail, sample=k, time=tk, chain=exc.chain, amount=exc.amount,
+                         **extra)
     return UnreachablePoseError(
         f"Newton did not converge to pose {np.round(pose, 6).tolist()}: closure residual "
         f"{np.abs(e[:6]).max():.3g} m, tool error {np.abs(e[6:]).max():.3g} (m/rad)",
         sample=k, time=tk, amount=float(np.abs(e).max()))
 
 
+MIN_TIME_STEP = 1e-9  # s: closer samples are duplicated or mis-scaled times (a 1 GHz rate)
+
+
 def _task_inputs(poses, d_poses, dd_poses, t):
-    """Validated (N, 6) poses, rates, accelerations (zeros when None) and times (N,)."""
+    """Validated (N, 6) poses, rates, accelerations (zeros when None) and times (N,).
+
+    Raises :class:`KinematicsInputError` naming the cause: an empty or mis-shaped array,
+    times that are not finite or not increasing by at least MIN_TIME_STEP (sample k), or a
+    non-finite or absurd entry (column x … phi, d_x … d_phi, dd_x … dd_phi; sample, value)."""
     poses = np.atleast_2d(np.asarray(poses, dtype=float))
     n = len(poses)
+    if poses.size == 0:
+        raise KinematicsInputError(f"no samples: the pose array is empty (shape "
+                                   f"{poses.shape}); give at least one pose (x, y, z, psi, "
+                                   "theta, phi)")
     t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float).reshape(-1)
     arrays = [poses]
     for arr in (d_poses, dd_poses):
@@ -174,33 +232,73 @@ def _task_inputs(poses, d_poses, dd_poses, t):
     names = ("pose", "pose rate", "pose acceleration")
     for name, arr in zip(names, arrays):
         if arr.shape != (n, 6):
-            raise KinematicsError(f"{name} array has shape {arr.shape}, expected ({n}, 6) "
-                                  "(x, y, z, psi, theta, phi per sample)")
+            raise KinematicsInputError(f"{name} array has shape {arr.shape}, expected ({n}, 6) "
+                                       "(x, y, z, psi, theta, phi per sample)")
     if t.shape != (n,):
-        raise KinematicsError(f"times have shape {t.shape}, expected ({n},)")
-    for name, arr in zip(names, arrays):
-        bad = np.argwhere(~np.isfinite(arr))
+        raise KinematicsInputError(f"times have shape {t.shape}, expected ({n},)")
+    bad = np.flatnonzero(~np.isfinite(t))
+    if len(bad):
+        k = int(bad[0])
+        raise KinematicsInputError(f"time t = {t[k]} is not a finite number", sample=k,
+                                   chain="t")
+    if n > 1:
+        dt = np.diff(t)
+        bad = np.flatnonzero(~(dt >= MIN_TIME_STEP))
         if len(bad):
-            k, c = bad[0]
-            raise KinematicsError(f"{name} column {c} is {arr[k, c]}", sample=int(k), time=t[k])
+            k = int(bad[0]) + 1
+            what = ("times are not increasing" if dt[k - 1] <= 0 else
+                    f"time step too small (below {MIN_TIME_STEP:g} s)")
+            raise KinematicsInputError(
+                f"{what}: t = {t[k]:.17g} s follows t = {t[k - 1]:.17g} s at sample {k - 1} "
+                f"(step {dt[k - 1]:.3g} s)", sample=k, time=float(t[k]), chain="t",
+                amount=float(dt[k - 1]))
+    try:
+        for prefix, arr in zip(("", "d_", "dd_"), arrays):
+            check_task_array(arr, prefix)
+    except TaskInputError as exc:
+        raise KinematicsInputError(exc.detail, sample=exc.sample, time=float(t[exc.sample]),
+                                   chain=exc.column, amount=abs(exc.value)) from None
     return (*arrays, t)
+
+
+def _check_options(tol, singularity_margin, wrist_margin, **counts) -> None:
+    """Reject a non-finite, negative (or, for wrist_margin, > 1) margin, a tolerance that is not
+    a positive number and counts below 1, before any work (:class:`KinematicsInputError`)."""
+    rules = (("singularity_margin", singularity_margin, 0.0, np.inf, "a finite number >= 0"),
+             ("wrist_margin", wrist_margin, 0.0, 1.0,
+              "a number in [0, 1] (the smallest |sin θ1716| allowed)"),
+             ("tol", tol, np.finfo(float).tiny, np.inf, "a finite number > 0"))
+    for name, value, lo, hi, rule in rules:
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            x = np.nan
+        if not (lo <= x <= hi and np.isfinite(x)):
+            raise KinematicsInputError(f"{name} = {value!r}: must be {rule}", chain=name)
+    for name, value in counts.items():
+        if not (isinstance(value, (int, np.integer)) and value >= 1):
+            raise KinematicsInputError(f"{name} = {value!r}: must be an integer >= 1",
+                                       chain=name)
 
 
 def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
     """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours."""
     try:
-        return closed_form.position_ik(robot.params, poses, wrist_margin=wrist_margin)[:, :12]
+        # The wrist's numerical floor applies even with margin 0 (docs/model.md §12).
+        limit = max(wrist_margin, SERIAL_FLOOR)
+        return closed_form.position_ik(robot.params, poses, wrist_margin=limit)[:, :12]
     except closed_form.UnreachableError as exc:
         k, tk = exc.sample, float(t[exc.sample])
-        if exc.kind == "singular":
+        if exc.kind == "singular" and exc.chain == "wrist":
             raise SingularityError(
-                f"wrist |sin θ1716| = {exc.ratio:.4g} is below the margin {wrist_margin:g} "
-                "(near the wrist singularity: spray axis parallel to the platform arm)",
-                sample=k, time=tk, chain="wrist",
-                amount=wrist_margin - exc.ratio) from None
+                floor_message("wrist |sin θ1716| =", exc.ratio, wrist_margin, limit,
+                              SERIAL_FLOOR)
+                + " (near the wrist singularity: spray axis parallel to the platform arm)",
+                sample=k, time=tk, chain="wrist", sigma=exc.ratio,
+                amount=limit - exc.ratio) from None
         msg = str(exc) if len(poses) > 1 else str(exc).replace(" at sample 0", "")
-        raise UnreachablePoseError(msg, sample=k, time=tk, chain=exc.chain,
-                                   amount=exc.shortfall) from None
+        cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
+        raise cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall) from None
 
 
 def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
@@ -211,33 +309,58 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     ``method="batch"`` (the default without ``q_start``) stacks the work over samples (see
     :func:`inverse_kinematics_batch`); ``method="newton"`` (the default with ``q_start``)
     solves sample by sample (see :func:`inverse_kinematics_newton`). Both give the same result
-    to round-off. ``options``: ``tol``, ``singularity_margin``, ``wrist_margin``, ``branch_tol``.
+    to round-off. ``options``: ``tol``, ``singularity_margin``, ``wrist_margin`` (and
+    ``max_iter`` for Newton). Invalid arguments (a negative or NaN margin, empty or non-finite
+    poses, times that do not increase) raise :class:`KinematicsInputError`, a ValueError.
     """
     method = method or ("newton" if q_start is not None else "batch")
     if method == "newton":
         return inverse_kinematics_newton(robot, poses, d_poses, dd_poses, t, q_start,
                                          progress=progress, **options)
     if method != "batch":
-        raise ValueError(f"method must be 'batch' or 'newton', got {method!r}")
+        raise KinematicsInputError(f"method must be 'batch' or 'newton', got {method!r}")
     if q_start is not None:
-        raise ValueError("q_start applies to method='newton' only")
+        raise KinematicsInputError("q_start applies to method='newton' only")
     return inverse_kinematics_batch(robot, poses, d_poses, dd_poses, t, progress=progress,
                                     **options)
+
+
+def _start_configuration(robot: Robot, q_start) -> np.ndarray:
+    q = np.asarray(q_start, dtype=float).reshape(-1)
+    if q.shape != (robot.model.nq,) or not np.isfinite(q).all():
+        raise KinematicsInputError(f"q_start must be {robot.model.nq} finite joint angles "
+                                   f"({', '.join(robot.joint_names)}), got {q_start!r}",
+                                   chain="q_start")
+    return q.copy()
+
+
+def _stop(stats_row, singularity_margin, wrist_margin) -> bool:
+    """A margin or numerical floor is crossed at this sample (check_margins names it)."""
+    _, _, wrist, sp, ss, sp_max, ss_max = stats_row
+    return not (wrist >= max(wrist_margin, SERIAL_FLOOR)
+                and sp >= max(singularity_margin, SIGMA_FLOOR * sp_max)
+                and ss >= max(singularity_margin, SERIAL_FLOOR * ss_max))
 
 
 def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                               q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
                               singularity_margin: float = SINGULARITY_MARGIN,
-                              wrist_margin: float = WRIST_MARGIN, branch_tol: float = BRANCH_TOL,
-                              progress=None) -> IKResult:
+                              wrist_margin: float = WRIST_MARGIN, progress=None) -> IKResult:
     """Sample-by-sample constrained IK.
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
-    sample (the first from ``q_start``, default the closed form on docs/model.md §9 branches).
+    sample (the first from ``q_start``, default the closed form on docs/model.md §9 branches)
+    by a second-order Taylor predictor. The solution must keep the previous sample's
+    assembly-branch signs (:data:`~.singularity.BRANCH_SIGNS`); when the predictor lands
+    elsewhere (sparse samples), the motion is followed by continuation along the straight
+    pose segment between the samples, so any sampling density gives the same branch. If even
+    the finest continuation step changes a sign, the motion really crosses the boundary of the
+    assembly mode: :class:`BranchFlipError`.
     Velocities: ``[Jc; J_tool] v = [0; twist]``. Accelerations: the same matrix with the exact
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
     """
+    _check_options(tol, singularity_margin, wrist_margin, max_iter=max_iter)
     model, data = robot.model, robot.data
     cms, cds = robot.constraint_models, robot.constraint_datas
     fr = KinematicFrames.of(robot)
@@ -248,41 +371,72 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     nv = model.nv
     out = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
-    stats = np.empty((n, 5))
+    stats = np.empty((n, 7))
     if q_start is None:  # docs/model.md §9 branches, through the closed form at the first pose
         q = _closed_form(robot, poses[:1], t[:1], wrist_margin)[0]
     else:
-        q = np.asarray(q_start, dtype=float).copy()
+        q = _start_configuration(robot, q_start)
+
+    def solve(guess, pose, R=None):
+        return _newton(model, data, cms, cds, fr, guess, pose[:3],
+                       rotation(pose) if R is None else R, tol, max_iter)
+
+    branch = BranchQuantities(robot)
     rhs_v = np.zeros(12)
+    ref = None
     for k in range(n):
-        if k > 0:  # predictor: second-order Taylor step from the previous sample
+        if k == 0:
+            q, e, ok = solve(q, poses[0], Rs[0])
+            signs = branch.signs_list(q)
+        else:  # predictor: second-order Taylor step from the previous sample
             dt = t[k] - t[k - 1]
-            q = out["q"][k - 1] + dt * out["v"][k - 1] + 0.5 * dt * dt * out["a"][k - 1]
-        q, e, ok = _newton(model, data, cms, cds, fr, q, poses[k, :3], Rs[k], tol, max_iter)
+            q_prev = out["q"][k - 1]
+            q = q_prev + dt * out["v"][k - 1] + 0.5 * dt * dt * out["a"][k - 1]
+            q, e, ok = solve(q if np.isfinite(q).all() else q_prev, poses[k], Rs[k])
+            signs = branch.signs_list(q)
+            if not (ok and same_branch(signs, ref)):
+                q, e, ok, flip = _follow(solve, branch.signs_list, q_prev, poses[k - 1],
+                                         poses[k], ref)
+                if flip is not None:
+                    s_, q_a, q_b = flip
+                    va, vb = branch(q_a), branch(q_b)
+                    j = next(i for i, (a_, b_) in enumerate(zip(branch.signs_list(q_b), ref))
+                             if a_ * b_ < 0)
+                    raise flip_error(k - 1, k, j, float(va[j]), float(vb[j]), t[k],
+                                     near=float(t[k - 1] + s_ * dt))
+                signs = branch.signs_list(q)
         if not ok:
             raise _diagnose(robot, poses[k], k, t[k], e, wrist_margin)
+        # The reference keeps the last non-zero sign (a zero is a boundary: no information).
+        ref = signs if ref is None else [s if s else r for s, r in zip(signs, ref)]
         K = _kinematic_matrix(model, data, cms, cds, fr, q)
-        rhs_v[6:] = tw[k]
-        v = np.linalg.solve(K, rhs_v)
-        drift = _drifts(model, data, fr, q, v)
-        rhs_a = -drift
-        rhs_a[6:] += twd[k]
-        a = np.linalg.solve(K, rhs_a)
-        sph[k], dsph[k] = _spherical(data, fr)
         stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), abs(np.sin(q[fr.wrist_q])),
-                    *conditioning(K, fr.actuated_v, fr.passive_v))
+                    *conditioning(K, fr.actuated_v, fr.passive_v, full=True))
+        rhs_v[6:] = tw[k]
+        try:
+            v = np.linalg.solve(K, rhs_v)
+            drift = _drifts(model, data, fr, q, v)
+            rhs_a = -drift
+            rhs_a[6:] += twd[k]
+            a = np.linalg.solve(K, rhs_a)
+        except np.linalg.LinAlgError:  # singular K: check_margins names the singularity
+            v = a = np.full(nv, np.nan)
+            pin.forwardKinematics(model, data, q, np.zeros(nv))
+        sph[k], dsph[k] = _spherical(data, fr)
         out["q"][k], out["v"][k], out["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
-        if stats[k, 2] < wrist_margin or stats[k, 3:].min() < singularity_margin:
+        if (_stop(stats[k], singularity_margin, wrist_margin)
+                or not math.isfinite(float(v.sum() + a.sum()))):  # NaN or inf anywhere
             n = k + 1  # stop here: the check below raises at the first offending sample
             break
     result = IKResult(t=t[:n], poses=poses[:n], q=out["q"][:n], v=out["v"][:n],
                       a=out["a"][:n], spherical=sph[:n], d_spherical=dsph[:n],
                       closure_residual=stats[:n, 0], tool_error=stats[:n, 1],
                       wrist_margin=stats[:n, 2], sigma_parallel=stats[:n, 3],
-                      sigma_serial=stats[:n, 4], joint_names=robot.joint_names)
-    check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+                      sigma_serial=stats[:n, 4], joint_names=robot.joint_names,
+                      sigma_parallel_max=stats[:n, 5], sigma_serial_max=stats[:n, 6])
+    check_margins(robot, result, singularity_margin, wrist_margin)
     return result
 
 
@@ -448,8 +602,7 @@ POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
                              tol: float = IK_TOL,
                              singularity_margin: float = SINGULARITY_MARGIN,
-                             wrist_margin: float = WRIST_MARGIN,
-                             branch_tol: float = BRANCH_TOL, progress=None,
+                             wrist_margin: float = WRIST_MARGIN, progress=None,
                              chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
@@ -461,7 +614,13 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     ``timings`` (a dict) accumulates seconds per stage: position (closed form, Jacobians,
     residual), velocity (the stacked solve shared with the Newton step), acceleration,
     analysis (spherical angles, singularity measures, margin checks).
+
+    Every sample is solved on the same assembly branches (the closed form's signs), whatever
+    the sampling density. A singular stacked system fails no other sample: its samples get NaN
+    and :func:`~.singularity.check_margins` raises :class:`SingularityError` at the first
+    singular (or margin-violating) sample, naming its time, chain and σ.
     """
+    _check_options(tol, singularity_margin, wrist_margin, chunk=chunk)
     clock = Stopwatch(timings)
     poses, d_poses, dd_poses, t = _task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
@@ -480,7 +639,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
         result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
                                  if f != "joint_names" else parts[0].joint_names)
                              for f in IKResult.__dataclass_fields__})
-    check_margins(robot, result, singularity_margin, wrist_margin, branch_tol)
+    check_margins(robot, result, singularity_margin, wrist_margin)
     clock.lap("analysis")
     return result
 
@@ -500,12 +659,13 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     K = _stack_K(J, pos, lay)
     clock.lap("position")
     rhs[:, 6:, 1] = twist(poses, d_poses)
-    sol = np.linalg.solve(K, rhs)
+    sol = solve_stack(K, rhs)[0]  # NaN where K is singular (never moved, checked below)
     v = sol[:, :, 1]
     # The closed form is exact to round-off: apply the Newton step only where the residual is
     # above POLISH_TOL, and re-evaluate just those samples, so K and the placements below are
     # those of the returned configuration.
-    moved = np.flatnonzero(np.abs(rhs[:, :, 0]).max(axis=1) > POLISH_TOL)
+    moved = np.flatnonzero((np.abs(rhs[:, :, 0]).max(axis=1) > POLISH_TOL)
+                           & np.isfinite(sol[:, :, 0]).all(axis=1))
     q = q0.copy()
     if len(moved):
         q[moved] -= sol[moved, :, 0]
@@ -517,9 +677,12 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             pos[p][moved] = _position(pl_m, p)
         J[moved] = _jacobians(robot, q[moved])[0]
         K[moved] = _stack_K(J[moved], {p: pos[p][moved] for p in points}, lay)
-        v[moved] = np.linalg.solve(K[moved], rhs[moved, :, 1:])[:, :, 0]
+        v[moved] = solve_stack(K[moved], rhs[moved, :, 1:])[0][:, :, 0]
     clock.lap("velocity")
     # Accelerations: K a = [−closure drift; tool acceleration − tool drift].
+    singular = ~np.isfinite(v).all(axis=1)
+    if singular.any():  # keep NaN out of Pinocchio; those samples stay NaN
+        v = np.where(singular[:, None], 0.0, v)
     _, dJ = _jacobians(robot, q, v)
     rhs_a = np.empty((n, 12))
     for i, (a_, b_) in enumerate(lay.closures):
@@ -528,9 +691,11 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     rhs_a[:, 6:] = twist_dot(poses, d_poses, dd_poses)
     rhs_a[:, 6:9] -= _drift(J, dJ, v, pos, lay.tip)
     rhs_a[:, 9:] -= _matvec(dJ[:, 3:][:, :, tc], v[:, tc])
-    a = np.linalg.solve(K, rhs_a[:, :, None])[:, :, 0]
+    a = solve_stack(K, rhs_a[:, :, None])[0][:, :, 0]
+    if singular.any():
+        v[singular] = a[singular] = np.nan
     err = np.abs(_residuals(pl, pos, lay, P_des, R_des))
-    if err.max() > tol:
+    if not err.max() <= tol:
         k = int(np.argmax(err.max(axis=1)))
         raise UnreachablePoseError(
             f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
@@ -538,12 +703,13 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             amount=float(err[k].max()))
     clock.lap("acceleration")
     sph, dsph = _spherical_batch(robot, lay, pl, J, v)
-    sigma_parallel, sigma_serial = conditioning(K, robot.actuated_v, robot.passive_v)
+    sp, ss, sp_max, ss_max = conditioning(K, robot.actuated_v, robot.passive_v, full=True)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
                       wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
-                      sigma_parallel=sigma_parallel, sigma_serial=sigma_serial,
-                      joint_names=robot.joint_names, constraint_jacobian=K[:, :6])
+                      sigma_parallel=sp, sigma_serial=ss, sigma_parallel_max=sp_max,
+                      sigma_serial_max=ss_max, joint_names=robot.joint_names,
+                      constraint_jacobian=K[:, :6])
     clock.lap("analysis")
     return result
 

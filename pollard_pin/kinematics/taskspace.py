@@ -8,6 +8,41 @@ from __future__ import annotations
 import numpy as np
 
 TASK_NAMES = ("x", "y", "z", "psi", "theta", "phi")
+# Largest |component| accepted (m, rad, and per s, per s²): a robot of ~1 m never needs more,
+# and squares of larger values lose every digit of the closed form's C = |d|² + r² − L²
+# (docs/model.md §7) long before they overflow. Beyond it the input is a unit or data error.
+MAX_ABS_TASK = 1e6
+_UNITS = {"": ("m", "rad"), "d_": ("m/s", "rad/s"), "dd_": ("m/s²", "rad/s²")}
+
+
+class TaskInputError(ValueError):
+    """An invalid task-space input (numpy-only layer; the pipeline re-raises it as
+    :class:`~pollard_pin.kinematics.errors.KinematicsInputError` with the sample's time).
+    ``column`` names the entry (e.g. ``"d_psi"``, ``"wrist_margin"``), ``sample`` its row."""
+
+    def __init__(self, detail: str, sample: int | None = None, column: str | None = None,
+                 value: float | None = None):
+        super().__init__(detail if sample is None else f"sample {sample}: {detail}")
+        self.detail, self.sample, self.column, self.value = detail, sample, column, value
+
+
+def check_task_array(arr, prefix: str = "") -> None:
+    """Raise :class:`TaskInputError` at the first non-finite or absurd (> MAX_ABS_TASK)
+    entry of an (N, 6) pose (``prefix`` ""), rate ("d_") or acceleration ("dd_") array,
+    naming the column (e.g. ``d_psi``), the sample and its value."""
+    a = np.asarray(arr, dtype=float)
+    bad = ~(np.abs(a) <= MAX_ABS_TASK)  # NaN compares False: caught here too
+    if not bad.any():
+        return
+    k, c = (int(i) for i in np.argwhere(bad)[0])
+    v, name = a[k, c], prefix + TASK_NAMES[c]
+    if np.isfinite(v):
+        unit = _UNITS.get(prefix, ("", ""))[c >= 3]
+        msg = (f"{name} = {v:.6g} is absurd: |{name}| > {MAX_ABS_TASK:g} {unit} "
+               "(a unit or data error?)")
+    else:
+        msg = f"{name} = {v} is not a finite number"
+    raise TaskInputError(msg, sample=k, column=name, value=float(v))
 
 
 def rotation(pose: np.ndarray) -> np.ndarray:

@@ -1,8 +1,8 @@
-"""Model parameters (docs/model.md §5, §9): a frozen, validated object loaded from TOML.
+"""Model parameters (docs/model.md §3, §5, §9): a frozen, validated object loaded from TOML.
 
-The TOML file uses the thesis' units (m, deg, kg, kg·mm²); :class:`Params` holds SI values
-(m, rad, kg, kg·m²). Every rule that fails raises :class:`ParameterError` naming the key,
-the value and the rule.
+The TOML file uses the thesis' units (m, deg, kg, kg·mm²; joint limits in deg, N·m, rad/s);
+:class:`Params` holds SI values (m, rad, kg, kg·m², N·m, rad/s). Every rule that fails
+raises :class:`ParameterError` naming the key, the value and the rule.
 """
 from __future__ import annotations
 
@@ -29,7 +29,12 @@ LEG_OFFSETS = ("x1211", "z1312")  # may be zero, not negative
 BODY_KEYS = ("mass", "com", "inertia")
 HOME_KEYS = ("tip", "orientation")
 BRANCH_KEYS = ("chain0", "leg1", "leg2")
-SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches")
+# Tree joints (docs/model.md §3, the order of pollard_pin.kinematics) and the actuated ones (§6).
+JOINT_NAMES = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
+               "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
+ACTUATED_JOINTS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+LIMIT_KEYS = ("lower", "upper", "effort", "velocity")  # deg, deg, N·m, rad/s
+SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches", "limits")
 
 
 class ParameterError(ValueError):
@@ -71,6 +76,17 @@ class Body:
 
 
 @dataclass(frozen=True)
+class JointLimits:
+    """URDF ``<limit>`` of one joint (docs/model.md §3): position [rad], effort [N·m] (0 for
+    a passive joint: no actuator), velocity [rad/s]."""
+
+    lower: float
+    upper: float
+    effort: float
+    velocity: float
+
+
+@dataclass(frozen=True)
 class Params:
     """All model numbers, SI units. Build with :func:`load_params`; never mutated."""
 
@@ -83,10 +99,14 @@ class Params:
     bodies: tuple[tuple[str, Body], ...]  # ordered (name, Body) pairs, BODY_NAMES order
     home_pose: tuple[float, ...]  # (x, y, z, psi, theta, phi), m and rad
     branches: tuple[int, int, int]  # chain0, leg1, leg2
+    limits: tuple[tuple[str, JointLimits], ...]  # ordered (joint, limits), JOINT_NAMES order
     source: str = "<python>"
 
     def body(self, name: str) -> Body:
         return dict(self.bodies)[name]
+
+    def joint_limits(self, name: str) -> JointLimits:
+        return dict(self.limits)[name]
 
     def attachment(self, i: int) -> np.ndarray:
         """A_i of docs/model.md §4 in the platform frame (i = 0 or 1 for legs 1 and 2)."""
@@ -112,6 +132,13 @@ class Params:
         d["home"] = {"tip": list(self.home_pose[:3]),
                      "orientation": [math.degrees(a) for a in self.home_pose[3:]]}
         d["branches"] = dict(zip(BRANCH_KEYS, self.branches))
+
+        def deg(a):  # 9 decimals: deg → rad → deg gives the same number back
+            return round(math.degrees(a), 9)
+
+        d["limits"] = {n: {"lower": deg(lim.lower), "upper": deg(lim.upper),
+                           "effort": lim.effort, "velocity": lim.velocity}
+                       for n, lim in self.limits}
         return d
 
 
@@ -191,6 +218,23 @@ def _inertia(key: str, value: Any) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(x) * 1e-6 for x in row) for row in rows)
 
 
+def _joint_limits(key: str, t: Any, actuated: bool) -> JointLimits:
+    """One ``limits.<joint>`` table (deg, deg, N·m, rad/s) → :class:`JointLimits` (SI)."""
+    _check_keys(key, t, LIMIT_KEYS)
+    lower, upper = (_number(f"{key}.{k}", t[k]) for k in ("lower", "upper"))
+    if not lower < upper:
+        _fail(f"{key}.upper", t["upper"], f"must be greater than {key}.lower = {lower:g} deg")
+    if upper - lower > 360.0:  # a revolute joint's range; wider is a placeholder
+        _fail(f"{key}.upper", t["upper"], f"range {upper - lower:g} deg exceeds one turn (360)")
+    effort = _number(f"{key}.effort", t["effort"])
+    if actuated and effort <= 0.0:
+        _fail(f"{key}.effort", t["effort"], "must be > 0 N·m (an actuated joint)")
+    if not actuated and effort != 0.0:
+        _fail(f"{key}.effort", t["effort"], "must be 0 (a passive joint has no actuator)")
+    return JointLimits(math.radians(lower), math.radians(upper), effort,
+                       _positive(f"{key}.velocity", t["velocity"]))
+
+
 def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
                      check_home: bool = True) -> Params:
     """Validate a thesis-unit dictionary (the TOML layout) and build :class:`Params`."""
@@ -229,8 +273,11 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
     ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
     _check_keys("branches", d["branches"], BRANCH_KEYS)
     branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)
+    _check_keys("limits", d["limits"], JOINT_NAMES)
+    limits = tuple((n, _joint_limits(f"limits.{n}", d["limits"][n], n in ACTUATED_JOINTS))
+                   for n in JOINT_NAMES)
     p = Params(**chain0, legs=tuple(legs), bodies=tuple(bodies), home_pose=tuple(tip + ori),
-               branches=branches, source=source)
+               branches=branches, limits=limits, source=source)
     if check_home:
         _check_home_reachable(p)
     return p
@@ -411,5 +458,5 @@ def replace(p: Params, overrides: Mapping[str, Any]) -> Params:
     return params_from_dict(d, source=p.source + " (modified)")
 
 
-__all__ = ["Params", "Leg", "Body", "ParameterError", "load_params", "params_from_dict",
-           "read_params_dict", "replace", "BODY_NAMES"]
+__all__ = ["Params", "Leg", "Body", "JointLimits", "ParameterError", "load_params",
+           "params_from_dict", "read_params_dict", "replace", "BODY_NAMES", "JOINT_NAMES"]

@@ -3,8 +3,18 @@
 
 The two cut spherical joints (docs/model.md §4) are written as ``<loop_closure>`` elements,
 which plain URDF parsers ignore and :mod:`pollard_pin.model.build` reads, so the file is
-self-contained. The closure points are fixed frames ``closure{i}_A`` (on ``link_i``, the leg side) and
-``closure{i}_B`` (on ``platform``, at A_i).
+self-contained. The closure points are fixed frames ``closure{i}_A`` (on ``link_i``, the leg
+side) and ``closure{i}_B`` (on ``platform``, at A_i).
+
+Joint limits (docs/model.md §3) come from the ``[limits]`` table of the parameter file; the
+thesis gives neither joint ranges nor actuator data, so they are design values:
+
+- position: the range the closed-form IK (docs/model.md §7) needs over the design workspace
+  :data:`WORKSPACE` about the home pose, widened and rounded outward (:func:`position_limits`
+  recomputes the shipped numbers; a test checks they agree);
+- effort: 0 on the passive joints (no actuator); on the actuators, twice the peak |τ| of their
+  group (base, wrist) on the default trajectory (docs/model.md §9), rounded up;
+- velocity: twice the peak |q̇| of the group (base, wrist, passive) on the default trajectory.
 """
 from __future__ import annotations
 
@@ -14,12 +24,19 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .params import Params
+from .params import JOINT_NAMES, Params
 
-# Wide limits keep nq = nv (a URDF 'continuous' joint has nq = 2) without ever binding.
-JOINT_LIMIT = 4.0 * math.pi
-EFFORT_LIMIT = 50.0  # N·m, not used by the model; URDF requires it
-VELOCITY_LIMIT = 20.0  # rad/s
+# Design workspace of the position limits: ± half-widths about the home pose in (x, y, z) [m]
+# and (ψ, θ, φ) [rad] (docs/model.md §2). It holds the thesis curve (docs/model.md §9: x from
+# −36 mm to 0, y ± 189 mm, z ± 100 mm) with 2–3 cm to spare, and spray-gun tilts.
+WORKSPACE = (0.06, 0.22, 0.12, math.radians(20.0), math.radians(20.0), math.radians(30.0))
+WORKSPACE_SAMPLES = 5  # grid points per axis: 5⁶ = 15,625 poses
+WORKSPACE_WRIST_MARGIN = 0.05  # |sin θ1716| at or below: singular, left out (kinematics default)
+LIMIT_MARGIN = 5.0  # deg each side: the grid's spacing (7⁶ grid, 2·10⁵ random poses: inside)
+LIMIT_STEP = 5.0  # deg, rounding outward
+# Caps in deg: θ1716 stays on the closed form's wrist branch (acos: 0–180°, 0 is singular);
+# the wrist rolls (and any joint) get at most one turn centred on home (see position_limits).
+BRANCH = {"theta1716": (0.0, 180.0)}
 
 ROBOT_NAME = "pollard"
 CHAIN_COLOURS = {  # one colour per chain (docs/model.md §1)
@@ -113,6 +130,49 @@ def tree(p: Params) -> tuple[list[str], list[Joint], dict[str, list[Shape]], dic
     return links, joints, shapes, chain
 
 
+def workspace_ranges(p: Params, half_widths=WORKSPACE, samples: int = WORKSPACE_SAMPLES,
+                     wrist_margin: float = WORKSPACE_WRIST_MARGIN) -> dict[str, tuple]:
+    """(min, max) [rad] of each tree joint over a ``samples``⁶ grid of poses home ± half_widths,
+    by the closed-form IK (docs/model.md §7). Unreachable and wrist-singular poses are left
+    out; angles are taken within ±π of the home configuration."""
+    from ..kinematics.closed_form import UnreachableError, position_ik
+
+    home = np.asarray(p.home_pose, dtype=float)
+    axes = [np.linspace(-h, h, samples) for h in half_widths]
+    poses = home + np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 6)
+    q_home = position_ik(p, home[None])[0, :12]
+
+    def solve(block):  # bisect around the unreachable poses (the closed form raises)
+        try:
+            return [position_ik(p, block, wrist_margin=wrist_margin)[:, :12]]
+        except UnreachableError:
+            if len(block) == 1:
+                return []
+            h = len(block) // 2
+            return solve(block[:h]) + solve(block[h:])
+
+    q = np.concatenate([q_home[None]] + solve(poses))
+    q = q_home + (np.pi - np.mod(np.pi - (q - q_home), 2.0 * np.pi))  # into home ± π
+    return {n: (float(lo), float(hi)) for n, lo, hi in zip(JOINT_NAMES, q.min(0), q.max(0))}
+
+
+def position_limits(p: Params, **workspace) -> dict[str, tuple[float, float]]:
+    """Position limits [deg] from :func:`workspace_ranges`: widened by :data:`LIMIT_MARGIN`,
+    rounded outward to :data:`LIMIT_STEP`, capped by :data:`BRANCH` and to home ± 180°."""
+    from ..kinematics.closed_form import position_ik
+
+    home = np.degrees(position_ik(p, np.asarray(p.home_pose)[None])[0, :12])
+    out, step, eps = {}, LIMIT_STEP, 1e-9  # eps: round-off at exact multiples of the step
+    for (n, (lo, hi)), h in zip(workspace_ranges(p, **workspace).items(), home):
+        lo = math.floor((math.degrees(lo) - LIMIT_MARGIN) / step + eps) * step
+        hi = math.ceil((math.degrees(hi) + LIMIT_MARGIN) / step - eps) * step
+        cap_lo, cap_hi = BRANCH.get(n, (-math.inf, math.inf))
+        cap_lo = max(cap_lo, math.ceil((h - 180.0) / step - eps) * step)
+        cap_hi = min(cap_hi, math.floor((h + 180.0) / step + eps) * step)
+        out[n] = (max(lo, cap_lo), min(hi, cap_hi))
+    return out
+
+
 def _f(x: float) -> str:
     return repr(float(x)) if x != 0 else "0"
 
@@ -156,7 +216,10 @@ def generate_urdf(p: Params) -> str:
            "     GENERATED by `pollard-pin urdf` from the parameter file; do not edit by hand.",
            f"     Parameters: {p.source}. SI units; inertias about the CoG (docs/model.md §5).",
            "     <loop_closure> elements: the cut spherical joints of docs/model.md §4",
-           "     (ignored by plain URDF parsers, read by pollard_pin.load()). -->",
+           "     (ignored by plain URDF parsers, read by pollard_pin.load()).",
+           "     Joint limits: the parameter file's [limits] (design values, docs/model.md §3):",
+           "     position = range over the design workspace; effort = 0 on passive joints,",
+           "     else 2 x the peak on the default trajectory; velocity likewise. -->",
            f'<robot name="{ROBOT_NAME}">']
     for name, rgba in CHAIN_COLOURS.items():
         out.append(f'  <material name="{name}"><color rgba="{_vec(rgba)}"/></material>')
@@ -179,16 +242,19 @@ def generate_urdf(p: Params) -> str:
             for s in shapes.get(link, []):
                 out += _shape_xml(s, "collision", "    ")
         out.append("  </link>")
+    limits = dict(p.limits)
     for j in joints:
+        # 'revolute' (not 'continuous', whose nq = 2) with the [limits] of the parameter file.
         kind = "fixed" if j.axis is None else "revolute"
         out += [f'  <joint name="{j.name}" type="{kind}">',
                 f'    <parent link="{j.parent}"/>',
                 f'    <child link="{j.child}"/>',
                 f'    <origin xyz="{_vec(j.xyz)}" rpy="{_vec(j.rpy)}"/>']
         if j.axis is not None:
+            lim = limits[j.name]
             out += [f'    <axis xyz="{_vec(j.axis)}"/>',
-                    f'    <limit lower="{_f(-JOINT_LIMIT)}" upper="{_f(JOINT_LIMIT)}"'
-                    f' effort="{_f(EFFORT_LIMIT)}" velocity="{_f(VELOCITY_LIMIT)}"/>']
+                    f'    <limit lower="{_f(lim.lower)}" upper="{_f(lim.upper)}"'
+                    f' effort="{_f(lim.effort)}" velocity="{_f(lim.velocity)}"/>']
         out.append("  </joint>")
     for i in (1, 2):
         out.append(f'  <loop_closure name="closure{i}" type="spherical"'
