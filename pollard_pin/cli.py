@@ -125,14 +125,16 @@ def _robot(args):
     return robot
 
 
-def _load_trajectory(args, params):
-    from .io.trajectory import THESIS_DURATION, THESIS_SAMPLES, from_csv, thesis_trajectory
+def _load_trajectory(args, params, lazy: bool = False):
+    """The chosen trajectory; ``lazy``: the thesis curve evaluated window by window (run)."""
+    from .io.trajectory import (THESIS_DURATION, THESIS_SAMPLES, ThesisTrajectory, from_csv,
+                                thesis_trajectory)
 
     if args.trajectory == "thesis":
         duration = THESIS_DURATION if args.duration is None else args.duration
         samples = THESIS_SAMPLES if args.samples is None else args.samples
-        return thesis_trajectory(duration=duration, samples=samples,
-                                 home_pose=params.home_pose)
+        make = ThesisTrajectory if lazy else thesis_trajectory
+        return make(duration=duration, samples=samples, home_pose=params.home_pose)
     if args.duration is not None or args.samples is not None:
         print("note: --duration/--samples apply to the thesis trajectory only; "
               "the CSV file's own times are used", file=sys.stderr)
@@ -213,17 +215,32 @@ def cmd_info(args) -> int:
 
 
 def cmd_run(args) -> int:
-    from .io.results import summary, write_csv
+    from .io.results import stream_run, summary
 
     check_destination(args.out)
-    t0 = time.perf_counter()
-    _, result = _solve(args, wrist_margin=args.wrist_margin,
-                       singularity_margin=args.singularity_margin)
-    wall = time.perf_counter() - t0  # model load included
-    write_csv(result, args.out)
-    text = summary(result, wall)
+    robot = _robot(args)
+    traj = _load_trajectory(args, robot.params, lazy=True)
+    n = len(traj)
+    log.info("trajectory %s: %d samples (derivatives: %s)", traj.name, n, traj.derivatives)
+    metadata = {"pollard_pin": __version__, "command": "run",
+                "parameters_source": str(robot.params.source),
+                "parameters": robot.params.to_toml_dict(),
+                "trajectory": {"name": traj.name, "source": args.trajectory, "samples": n,
+                               "derivatives": traj.derivatives},
+                "options": {"wrist_margin": args.wrist_margin,
+                            "singularity_margin": args.singularity_margin,
+                            "loads": args.loads}}
+    timings: dict = {}
+    stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
+                       progress=_progress("solving", n >= 500 and not args.quiet),
+                       wrist_margin=args.wrist_margin,
+                       singularity_margin=args.singularity_margin, loads=args.loads)
+    solve, write = timings["solve"], timings["write"]
+    text = summary(stats) + (
+        f"\nsolve {solve:.3f} s ({1e6 * solve / n:.2f} µs/sample), write {write:.3f} s "
+        f"({1e6 * write / n:.2f} µs/sample; model loading and imports not included)")
     print(text, file=sys.stderr if args.out == STDOUT else sys.stdout)
-    _wrote(args.out, f" ({len(result.ik)} rows)")
+    _wrote(args.out, f" ({stats.samples} rows)")
     return 0
 
 
@@ -351,14 +368,19 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("info", "load the model and print home configuration and masses", cmd_info)
     model_args(p)
 
-    p = command("run", "solve a trajectory: kinematics and dynamics → CSV", cmd_run)
+    p = command("run", "solve a trajectory: kinematics and dynamics → CSV or Parquet", cmd_run)
     trajectory_args(p)
-    p.add_argument("--out", default="run.csv", metavar="FILE.csv",
-                   help="output CSV ('-': standard output)")
+    p.add_argument("--out", default="run.csv", metavar="FILE.csv|FILE.parquet",
+                   help="output table: CSV with a NAME.units.json sidecar, or Parquet (zstd, "
+                        "units and metadata inside) for a .parquet name; '-': CSV on standard "
+                        "output")
     p.add_argument("--wrist-margin", type=_nonnegative, default=WRIST_MARGIN,
                    help="fail where |sin θ1716| drops below this")
     p.add_argument("--singularity-margin", type=_nonnegative, default=SINGULARITY_MARGIN,
                    help="fail where the parallel or serial σ_min drops below this")
+    p.add_argument("--loads", action="store_true",
+                   help="also write the load of every tree joint: F_<joint>_x/y/z [N] and "
+                        "M_<joint>_x/y/z [N·m], world axes (docs/model.md §17)")
 
     p = command("sweep", "design sweep: parameter variants over a trajectory → CSV", cmd_sweep)
     p.add_argument("--grid", required=True, metavar="FILE.toml",

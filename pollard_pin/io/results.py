@@ -1,12 +1,14 @@
 """Run a trajectory through the pipeline and turn the results into named columns / CSV."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .atomic import atomic_open
+from .table import TableWriter, write_table
 from ..kinematics.pipeline import SPHERICAL, IKResult, inverse_kinematics
 from ..kinematics.taskspace import TASK_NAMES
 from .trajectory import Trajectory
@@ -17,6 +19,7 @@ class RunResult:
     trajectory: Trajectory
     ik: IKResult
     dynamics: object | None = None  # dynamics.DynamicsResult once computed
+    loads: object | None = None  # dynamics.loads.JointLoads (run --loads, docs/model.md §17)
 
     def columns(self) -> dict[str, np.ndarray]:
         """Every output column by name, SI units and radians (the ``run`` CSV layout)."""
@@ -32,42 +35,169 @@ class RunResult:
                      "sigma_parallel": ik.sigma_parallel, "sigma_serial": ik.sigma_serial})
         if self.dynamics is not None:
             cols.update(self.dynamics.columns())
+        if self.loads is not None:
+            cols.update(self.loads.columns())
         return cols
 
 
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
-                 **ik_options) -> RunResult:
+                 loads: bool = False, **ik_options) -> RunResult:
     """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
-    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``)."""
+    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``).
+    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``)."""
     from ..dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             progress=progress, **ik_options)
-    return RunResult(traj, ik, inverse_dynamics(robot, ik) if dynamics else None)
+    dyn = inverse_dynamics(robot, ik) if dynamics or loads else None
+    if not loads:
+        return RunResult(traj, ik, dyn if dynamics else None)
+    from ..dynamics.loads import joint_loads
+
+    return RunResult(traj, ik, dyn, joint_loads(robot, ik, dyn))
 
 
-def write_csv(result: RunResult, path: str | Path) -> None:
-    """Write atomically: a failed run never leaves a half-written file behind."""
-    cols = result.columns()
-    with atomic_open(path) as f:
-        np.savetxt(f, np.column_stack(list(cols.values())), delimiter=",",
-                   header=",".join(cols), comments="", fmt="%.17g")
+def write_csv(result: RunResult, path: str | Path, metadata: dict | None = None) -> None:
+    """Write the result's columns (CSV, or Parquet for ``*.parquet``) through
+    :mod:`pollard_pin.io.table`, atomically: a failed run never leaves a half-written file."""
+    write_table(path, result.columns(), metadata)
 
 
-def summary(result: RunResult, wall: float) -> str:
-    ik = result.ik
-    lines = [
-        f"trajectory {result.trajectory.name}: {len(ik)} samples over {ik.t[-1] - ik.t[0]:.4g} s"
-        f" (derivatives: {result.trajectory.derivatives})",
-        f"max closure residual {ik.closure_residual.max():.3g} m, "
-        f"max tool-pose error {ik.tool_error.max():.3g}",
-        f"wrist margin |sin θ1716| in [{ik.wrist_margin.min():.4f}, {ik.wrist_margin.max():.4f}]"
-        f" (θ1716 in [{np.degrees(np.arcsin(ik.wrist_margin.min())):.2f}°, "
-        f"{np.degrees(np.arcsin(ik.wrist_margin.max())):.2f}°])",
-        f"worst conditioning: σ_min parallel {ik.sigma_parallel.min():.4g}, "
-        f"serial {ik.sigma_serial.min():.4g}",
-    ]
-    if result.dynamics is not None:
-        lines += result.dynamics.summary_lines()
-    lines.append(f"wall time {wall:.3f} s ({1e6 * wall / len(ik):.1f} µs/sample)")
+# --- streaming: solve and write window by window (docs/model.md §15) ------------------------
+STREAM_CHUNK = 4096  # samples per window: bounds memory whatever the trajectory's length
+_PEAK = ("tau_", "power_")
+
+
+@dataclass
+class RunStats:
+    """What the summary needs, accumulated window by window (nothing per sample is kept)."""
+
+    name: str
+    derivatives: str
+    samples: int = 0
+    t_first: float = math.nan
+    t_last: float = math.nan
+    closure_residual: float = 0.0
+    tool_error: float = 0.0
+    wrist: tuple[float, float] = (math.inf, -math.inf)
+    sigma_parallel: float = math.inf
+    sigma_serial: float = math.inf
+    actuated: tuple[str, ...] = ()
+    peak: dict = field(default_factory=dict)  # column → max |value|
+    work: dict = field(default_factory=dict)  # work column → last value
+    closure_force: list = field(default_factory=lambda: [0.0, 0.0])
+
+    def add(self, ik: IKResult, cols: dict) -> None:
+        n = len(cols["t"])
+        if not n:
+            return
+        skip = len(ik) - n  # the overlap sample of a window is counted once
+        if not self.samples:
+            self.t_first = float(cols["t"][0])
+        self.samples += n
+        self.t_last = float(cols["t"][-1])
+        self.closure_residual = max(self.closure_residual, float(cols["closure_residual"].max()))
+        self.tool_error = max(self.tool_error, float(ik.tool_error[skip:].max()))
+        w = cols["wrist_margin"]
+        self.wrist = (min(self.wrist[0], float(w.min())), max(self.wrist[1], float(w.max())))
+        self.sigma_parallel = min(self.sigma_parallel, float(cols["sigma_parallel"].min()))
+        self.sigma_serial = min(self.sigma_serial, float(cols["sigma_serial"].min()))
+        for name, col in cols.items():
+            if name.startswith(_PEAK):
+                self.peak[name] = max(self.peak.get(name, 0.0), float(np.abs(col).max()))
+            elif name.startswith("work_"):
+                self.work[name] = float(col[-1])
+        for i in range(2):
+            if f"f{i + 1}_x" in cols:
+                f = np.sqrt(sum(cols[f"f{i + 1}_{c}"] ** 2 for c in "xyz"))
+                self.closure_force[i] = max(self.closure_force[i], float(f.max()))
+        if not self.actuated:
+            self.actuated = tuple(c[4:] for c in cols if c.startswith("tau_"))
+
+    def lines(self) -> list[str]:
+        wmin, wmax = self.wrist
+        lines = [
+            f"trajectory {self.name}: {self.samples} samples over "
+            f"{self.t_last - self.t_first:.4g} s (derivatives: {self.derivatives})",
+            f"max closure residual {self.closure_residual:.3g} m, "
+            f"max tool-pose error {self.tool_error:.3g}",
+            f"wrist margin |sin θ1716| in [{wmin:.4f}, {wmax:.4f}] "
+            f"(θ1716 in [{math.degrees(math.asin(wmin)):.2f}°, "
+            f"{math.degrees(math.asin(wmax)):.2f}°])",
+            f"worst conditioning: σ_min parallel {self.sigma_parallel:.4g}, "
+            f"serial {self.sigma_serial:.4g}",
+        ]
+        if self.actuated:
+            lines.append("actuator        peak |τ| [N·m]   peak |power| [W]   net work [J]")
+            for n in self.actuated:
+                lines.append(f"  {n:12s} {self.peak[f'tau_{n}']:14.5g} "
+                             f"{self.peak[f'power_{n}']:18.5g} {self.work[f'work_{n}']:14.5g}")
+            f = self.closure_force
+            lines.append(f"peak closure force: leg 1 {f[0]:.4g} N, leg 2 {f[1]:.4g} N")
+        return lines
+
+
+def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK,
+               metadata: dict | None = None, fmt: str | None = None, progress=None,
+               timings: dict | None = None, **options) -> RunStats:
+    """Solve ``traj`` (a :class:`Trajectory` or :class:`ThesisTrajectory`) window by window and
+    write each window's columns to ``path`` as it is done; memory stays that of one window.
+
+    The same rows as ``write_csv(run_pipeline(robot, traj, **options), path)``: each window
+    after the first starts with the previous window's last sample, so branch flips between
+    windows are caught and the cumulative work carries on; that sample is written once. Errors
+    count samples from the trajectory's start; the file appears only if every window is solved
+    (atomic). ``options`` go to :func:`run_pipeline`; ``timings`` gets ``solve`` and ``write``
+    seconds.
+    """
+    from ..kinematics.errors import KinematicsError
+
+    if not (isinstance(chunk, int) and chunk >= 2):
+        raise ValueError(f"chunk must be an integer >= 2, got {chunk!r}")
+    timings = {} if timings is None else timings
+    timings.setdefault("solve", 0.0)
+    timings.setdefault("write", 0.0)
+    stats = RunStats(traj.name, traj.derivatives)
+    n = len(traj)
+    last, work = None, None
+    with TableWriter(path, metadata, fmt) as writer:
+        for start, win in traj.windows(chunk):
+            t0 = time.perf_counter()
+            if last is not None:
+                win = Trajectory(*(np.concatenate([a, b]) for a, b in zip(
+                    (last.t, last.poses, last.d_poses, last.dd_poses),
+                    (win.t, win.poses, win.d_poses, win.dd_poses))), win.name, win.derivatives)
+            skip = 0 if last is None else 1
+            try:
+                result = run_pipeline(robot, win, **options)
+            except KinematicsError as exc:
+                raise exc.shifted(start - skip) from None
+            cols = result.columns()
+            if skip:
+                cols = {k: v[1:] for k, v in cols.items()}
+            for k in cols:
+                if k.startswith("work_"):
+                    cols[k] = cols[k] + (work[k] if work else 0.0)
+            work = {k: v[-1] for k, v in cols.items() if k.startswith("work_")}
+            last = win.window(len(win) - 1, len(win))
+            stats.add(result.ik, cols)
+            t1 = time.perf_counter()
+            writer.write(cols)
+            timings["solve"] += t1 - t0
+            timings["write"] += time.perf_counter() - t1
+            if progress is not None:
+                progress(min(start + chunk, n), n)
+    return stats
+
+
+def summary(result: RunResult | RunStats, wall: float | None = None) -> str:
+    """The run's summary text; ``wall`` [s] adds the time per sample."""
+    if isinstance(result, RunResult):
+        stats = RunStats(result.trajectory.name, result.trajectory.derivatives)
+        stats.add(result.ik, result.columns())
+    else:
+        stats = result
+    lines = stats.lines()
+    if wall is not None:
+        lines.append(f"wall time {wall:.3f} s ({1e6 * wall / stats.samples:.1f} µs/sample)")
     return "\n".join(lines)

@@ -24,7 +24,8 @@ FORMATS = ("csv", "parquet")
 _TASK_LENGTHS = ("x", "y", "z")
 _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_parallel": "m",
           "sigma_serial": "mixed (m, 1)", "kinetic_energy": "J", "potential_energy": "J"}
-_PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"))
+_PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
+           ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 
 
 def column_unit(name: str) -> str:
@@ -73,6 +74,10 @@ class TableWriter:
         self._ctx = self._file = self._parquet = None
 
     def __enter__(self) -> "TableWriter":
+        if self.fmt == "csv":  # imported here, so that write() times only the writing
+            import polars  # noqa: F401
+        else:
+            import pyarrow.parquet  # noqa: F401
         self._ctx = atomic_open(self.path, binary=True)
         self._file = self._ctx.__enter__()
         return self

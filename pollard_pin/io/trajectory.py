@@ -40,6 +40,17 @@ class Trajectory:
     def __len__(self) -> int:
         return len(self.t)
 
+    def window(self, start: int, stop: int) -> "Trajectory":
+        """Samples ``start:stop`` as a trajectory of their own (views, no copy)."""
+        return Trajectory(self.t[start:stop], self.poses[start:stop],
+                          self.d_poses[start:stop], self.dd_poses[start:stop], self.name,
+                          self.derivatives)
+
+    def windows(self, size: int):
+        """``(start, window)`` pairs of at most ``size`` samples, in order (streaming)."""
+        for start in range(0, len(self), size):
+            yield start, self.window(start, start + size)
+
     def __post_init__(self):
         n = len(self.t)
         for label, arr in (("poses", self.poses), ("d_poses", self.d_poses),
@@ -83,6 +94,36 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     t = np.linspace(0.0, duration, int(samples))
     return Trajectory(t, *thesis_curve(t, duration, home_pose), name="thesis",
                       derivatives="analytic")
+
+
+class ThesisTrajectory:
+    """The thesis trajectory evaluated window by window, never whole: a million samples cost
+    one window's memory. ``windows(size)`` yields exactly the slices of
+    :func:`thesis_trajectory` with the same arguments (same bits: ``np.linspace``'s rule)."""
+
+    def __init__(self, duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
+                 home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)):
+        thesis_trajectory(duration, 2, home_pose)  # the same argument checks
+        if int(samples) != samples or samples < 2:
+            raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
+        self.duration, self.samples = float(duration), int(samples)
+        self.home_pose = tuple(float(x) for x in home_pose)
+        self.name, self.derivatives = "thesis", "analytic"
+
+    def __len__(self) -> int:
+        return self.samples
+
+    def window(self, start: int, stop: int) -> Trajectory:
+        stop = min(stop, self.samples)
+        t = np.arange(start, stop, dtype=float) * (self.duration / (self.samples - 1))
+        if stop == self.samples:
+            t[-1] = self.duration  # as np.linspace: the end point exactly
+        return Trajectory(t, *thesis_curve(t, self.duration, self.home_pose), name=self.name,
+                          derivatives=self.derivatives)
+
+    def windows(self, size: int):
+        for start in range(0, self.samples, size):
+            yield start, self.window(start, start + size)
 
 
 def _spline_derivatives(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

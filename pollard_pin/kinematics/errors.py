@@ -1,6 +1,11 @@
 """The kinematics' errors: each says where (sample, time, chain) and how far off (amount)."""
 from __future__ import annotations
 
+import copy
+import re
+
+_SAMPLE_WORDS = re.compile(r"\b(samples? )(\d+)(?:( and )(\d+))?")
+
 
 class ClosureError(RuntimeError):
     """The loops cannot be closed for the given actuator angles."""
@@ -21,6 +26,25 @@ class KinematicsError(RuntimeError):
         super().__init__(f"{where}: {message}" if where else message)
         self.detail = message  # the message without the sample/time prefix
         self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
+
+    def shifted(self, offset: int) -> "KinematicsError":
+        """The same error for a window of a longer trajectory that starts at sample
+        ``offset``: every sample number (attribute and message) counts from the full
+        trajectory's start. Used by the streaming run (pollard_pin.io.results)."""
+        if not offset:
+            return self
+
+        def move(m):
+            out = m.group(1) + str(int(m.group(2)) + offset)
+            return out + (m.group(3) + str(int(m.group(4)) + offset) if m.group(3) else "")
+
+        other = copy.copy(self)
+        other.detail = _SAMPLE_WORDS.sub(move, self.detail)
+        other.sample = None if self.sample is None else self.sample + offset
+        where = "" if other.sample is None else f"sample {other.sample}" + (
+            "" if self.time is None else f" (t = {self.time:.6g} s)")
+        other.args = (f"{where}: {other.detail}" if where else other.detail,)
+        return other
 
 
 class KinematicsInputError(KinematicsError, ValueError):

@@ -1,0 +1,123 @@
+"""The streaming run (pollard_pin.io.results.stream_run): window by window it writes the rows of
+the whole-trajectory solve (to round-off: numpy's vectorised sin/cos may round the last bit
+differently at other array offsets), CSV or Parquet, with units and metadata; errors count
+samples from the trajectory's start; a failure leaves an existing output untouched."""
+import json
+import re
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.io.results import RunStats, stream_run, summary, write_csv
+from pollard_pin.io.table import read_result, units_path
+from pollard_pin.io.trajectory import ThesisTrajectory, Trajectory, thesis_trajectory
+from pollard_pin.kinematics.errors import SingularityError
+
+# A pose exactly on leg 2's reach boundary (tests/test_solver_edges.py): a singular sample.
+ROUND_OFF = 1e-13  # × max(1, column peak)
+EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
+                 0.1515515281768794, 0.34846838034929445, 0.04014162356854648])
+
+
+@pytest.fixture(scope="module")
+def whole(robot, tmp_path_factory):
+    path = tmp_path_factory.mktemp("whole") / "whole.csv"
+    write_csv(pp.run_pipeline(robot, thesis_trajectory(samples=1201)), path)
+    return read_result(path)
+
+
+@pytest.mark.parametrize("chunk", [2, 97, 500, 1201, 5000])
+def test_windows_give_the_whole_solve(robot, whole, tmp_path, chunk):
+    path = tmp_path / "s.csv"
+    stats = stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=chunk)
+    got = read_result(path)
+    assert list(got.columns) == list(whole.columns) and len(got) == 1201 == stats.samples
+    _same(got, whole)
+
+
+def _same(got, ref):
+    for name, col in ref.columns.items():  # work carried across windows too
+        scale = max(1.0, np.abs(col).max())
+        assert np.abs(got[name] - col).max() <= ROUND_OFF * scale, name
+
+
+def test_summary_is_the_whole_runs(robot, tmp_path):
+    traj = thesis_trajectory(samples=801)
+    stats = stream_run(robot, traj, tmp_path / "s.csv", chunk=128)
+    whole = summary(pp.run_pipeline(robot, traj))
+    number = re.compile(r"-?\d+\.?\d*(?:e[+-]?\d+)?")
+    same_words = re.compile(r"\s+")
+    assert [same_words.sub(" ", number.sub("#", x)) for x in (summary(stats), whole)] == \
+        [same_words.sub(" ", number.sub("#", whole))] * 2  # the same lines
+    a, b = (np.array([float(x) for x in number.findall(s)]) for s in (summary(stats), whole))
+    assert np.abs(a - b).max() <= 1e-12  # and the same figures (θ1817's τ is round-off)
+
+
+def test_parquet_round_trip_units_and_metadata(robot, whole, tmp_path):
+    path = tmp_path / "s.parquet"
+    meta = {"trajectory": {"name": "thesis", "samples": 1201}, "pollard_pin": pp.__version__}
+    stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=300, metadata=meta)
+    got = read_result(path)
+    _same(got, whole)
+    assert got.metadata == meta
+    assert got.units["tau_theta21"] == "N·m" and got.units["d_theta43"] == "rad/s"
+    assert got.units["x"] == "m" and got.units["f1_z"] == "N"
+    assert not units_path(path).exists()  # Parquet carries its own units
+
+
+def test_csv_sidecar_names_every_column(robot, tmp_path):
+    path = tmp_path / "s.csv"
+    stream_run(robot, ThesisTrajectory(samples=50), path, metadata={"k": 1})
+    side = json.loads(units_path(path).read_text(encoding="utf-8"))
+    header = path.read_text().splitlines()[0].split(",")
+    assert list(side["units"]) == header and side["metadata"] == {"k": 1}
+    assert all(side["units"].values())
+
+
+def _with_singular_sample(k, n=1201):
+    traj = thesis_trajectory(samples=n)
+    poses, d, dd = traj.poses.copy(), traj.d_poses.copy(), traj.dd_poses.copy()
+    poses[k], d[k], dd[k] = EDGE, 0.0, 0.0
+    return Trajectory(traj.t, poses, d, dd, name="edge")
+
+
+@pytest.mark.parametrize("k", [0, 299, 300, 301, 1000, 1200])
+def test_errors_count_samples_from_the_start(robot, tmp_path, k):
+    traj = _with_singular_sample(k)
+    with pytest.raises(SingularityError) as whole:
+        pp.run_pipeline(robot, traj)
+    path = tmp_path / "s.csv"
+    path.write_text("keep me\n")
+    with pytest.raises(SingularityError) as streamed:
+        stream_run(robot, traj, path, chunk=300)
+    assert whole.value.sample == streamed.value.sample == k
+    assert whole.value.chain == streamed.value.chain
+    # the same message; σ at round-off level (≈ 1e-17) need not have the same bits
+    number = re.compile(r"\d\.\d+e-1\d")
+    assert number.sub("σ", str(streamed.value)) == number.sub("σ", str(whole.value))
+    assert streamed.value.time == whole.value.time == traj.t[k]
+    assert path.read_text() == "keep me\n"  # untouched
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
+
+
+def test_shifted_moves_every_sample_number():
+    from pollard_pin.kinematics.errors import BranchFlipError
+
+    e = BranchFlipError("assembly branch flip between samples 3 and 4: sin θ1716 changed sign",
+                        sample=4, time=0.5, chain="wrist", amount=0.1)
+    s = e.shifted(1000)
+    assert type(s) is BranchFlipError and (s.sample, s.time, s.chain) == (1004, 0.5, "wrist")
+    assert str(s) == ("sample 1004 (t = 0.5 s): assembly branch flip between samples 1003 and "
+                      "1004: sin θ1716 changed sign")
+    assert e.sample == 4 and e.shifted(0) is e  # the original is left alone
+
+
+def test_stats_of_a_window_equal_a_direct_computation(robot):
+    r = pp.run_pipeline(robot, thesis_trajectory(samples=301))
+    st = RunStats("thesis", "analytic")
+    st.add(r.ik, r.columns())
+    assert st.peak["tau_theta21"] == np.abs(r.dynamics.tau[:, 0]).max()
+    f = np.linalg.norm(r.dynamics.closure_forces, axis=2).max(0)
+    assert st.closure_force == [f[0], f[1]]
+    assert st.sigma_serial == r.ik.sigma_serial.min()
