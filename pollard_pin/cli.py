@@ -241,7 +241,14 @@ def cmd_run(args) -> int:
         f"({1e6 * write / n:.2f} µs/sample; model loading and imports not included)")
     print(text, file=sys.stderr if args.out == STDOUT else sys.stdout)
     _wrote(args.out, f" ({stats.samples} rows)")
+    from .timing import peak_memory_mb
+
+    log.info("peak resident memory %s MB", _fmt_mb(peak_memory_mb()))
     return 0
+
+
+def _fmt_mb(mb: float | None) -> str:
+    return "unknown" if mb is None else f"{mb:.0f}"
 
 
 def cmd_sweep(args) -> int:
@@ -282,11 +289,29 @@ def cmd_view(args) -> int:
     return 0
 
 
+def _simulation_table(path):
+    """The columns and metadata of a ``simulate`` table (one-line error otherwise)."""
+    from .io.table import read_result
+    from .viz.simulation import check_simulation_columns
+
+    table = read_result(path)
+    check_simulation_columns(table.columns, str(path))
+    return table
+
+
 def cmd_plot(args) -> int:
     from .viz.plots import write_figures
 
     check_destination(args.out, folder=True)
-    _, result = _solve(args)
+    if args.simulation:  # the simulation's figures only (docs/model.md §18)
+        from .viz.simulation import write_simulation_figures
+
+        table = _simulation_table(args.simulation)
+        name = f"{table.metadata.get('controller', 'simulation')}, {Path(args.simulation).name}"
+        for path in write_simulation_figures(table.columns, args.out, dpi=args.dpi, name=name):
+            print(f"wrote {path}")
+        return 0
+    _, result = _solve(args, loads=True)  # joint-loads figure, docs/model.md §17
     for path in write_figures(result, args.out, dpi=args.dpi):
         print(f"wrote {path}")
     return 0
@@ -297,9 +322,47 @@ def cmd_report(args) -> int:
 
     out = args.out or STDOUT
     check_destination(out)
+    table = _simulation_table(args.simulation) if args.simulation else None
     robot, result = _solve(args)
     rep = report(robot, result, cross_check=not args.no_cross_check)
+    if table is not None:
+        from .viz.simulation import simulation_summary
+
+        rep["simulation"] = simulation_summary(table.columns, table.metadata)
     text = to_json(rep) + "\n" if args.format == "json" else to_markdown(rep)
+    with atomic_open(out) as f:
+        f.write(text)
+    _wrote(out)
+    return 0
+
+
+def cmd_size(args) -> int:
+    from .dynamics.actuators import load_actuators
+    from .io.trajectory import to_csv
+    from .viz.sizing import actuator_sizing, to_json, to_markdown, write_torque_speed
+
+    out = args.out or STDOUT
+    if args.retime == STDOUT and out == STDOUT:
+        raise _UsageError("--retime - and the report both on standard output: give --out FILE "
+                          "or --retime FILE.csv")
+    for path in (out, args.retime):
+        if path is not None:
+            check_destination(path)
+    if args.plot is not None:
+        check_destination(args.plot, folder=True)
+    actuators = load_actuators(args.actuators)
+    robot, result = _solve(args)
+    t0 = time.perf_counter()
+    sized = actuator_sizing(robot, result, actuators)
+    log.info("sized in %.3f s (TOPP-RA solves: %d)", time.perf_counter() - t0,
+             sized.timing.iterations)
+    if args.retime is not None:
+        to_csv(sized.retimed, args.retime)
+        _wrote(args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
+                            f"{len(sized.retimed)} rows)")
+    if args.plot is not None:
+        _wrote(write_torque_speed(sized, args.plot))
+    text = to_json(sized.report) + "\n" if args.format == "json" else to_markdown(sized.report)
     with atomic_open(out) as f:
         f.write(text)
     _wrote(out)
@@ -314,6 +377,62 @@ def cmd_export(args) -> int:
     path = export_mjcf(args.out, urdf=robot.urdf)
     _wrote(path, f" (MJCF: {len(robot.joint_names)} joints, {len(robot.closures)} connect "
                  "equalities)")
+    return 0
+
+
+def cmd_simulate(args) -> int:
+    import numpy as np
+
+    from .dynamics.control import Gains, MeasurementNoise, simulate_tracking
+    from .dynamics.inverse import JointLosses
+    from .dynamics.plant import PlantErrors
+    from .io.table import write_table
+
+    check_destination(args.out)
+    gains = Gains(args.wn, args.zeta)
+    noise = (MeasurementNoise(args.noise, args.velocity_noise, args.seed)
+             if args.noise or args.velocity_noise else None)
+    if args.torque_limit is not None and len(args.torque_limit) not in (1, 6):
+        raise _UsageError(f"--torque-limit takes 1 value (all actuators) or 6, got "
+                          f"{len(args.torque_limit)}")
+    robot = _robot(args)
+    losses = known = None
+    limit = args.torque_limit
+    if args.actuators:  # motors known to the controller (docs/model.md §18, §19)
+        from .dynamics.actuators import load_actuators
+
+        if args.armature or args.viscous or args.coulomb:
+            raise _UsageError("--actuators gives the rotor inertia and friction; do not "
+                              "combine it with --armature/--viscous/--coulomb")
+        motors = load_actuators(args.actuators)
+        losses = known = motors.joint_losses(robot.joint_names)
+        if limit is None:
+            limit = motors.column("gear_ratio") * motors.column("peak_torque")
+    elif args.armature or args.viscous or args.coulomb:  # on the six actuated joints
+        per_joint = {}
+        for name, value in (("armature", args.armature), ("viscous", args.viscous),
+                            ("coulomb", args.coulomb)):
+            per_joint[name] = np.zeros(robot.model.nv)
+            per_joint[name][robot.actuated_v] = value
+        losses = JointLosses(**per_joint)
+    errors = PlantErrors(args.payload, args.mass_error, losses)
+    traj = _load_trajectory(args, robot.params)
+    start = None if args.start == "path" else robot.home()
+    t0 = time.perf_counter()
+    result = simulate_tracking(
+        robot, traj, args.controller, errors, gains=gains, dt=args.dt,
+        control_period=args.control_period, torque_limit=limit, noise=noise,
+        start=start, known_losses=known, progress=_progress("simulating", len(traj) >= 500 and not args.quiet))
+    wall = time.perf_counter() - t0
+    meta = {"command": "simulate", "trajectory": traj.name, **result.settings,
+            "summary": result.summary()}
+    rows = write_table(args.out, result.columns(), metadata=meta)
+    lines = [f"{args.controller} on {traj.name}: {len(traj)} samples over "
+             f"{traj.t[-1] - traj.t[0]:.4g} s, dt {args.dt:g} s, control period "
+             f"{args.control_period:g} s, ω {args.wn:g} rad/s, ζ {args.zeta:g}",
+             *result.summary_lines(), f"wall time {wall:.2f} s (desired trajectory included)"]
+    print("\n".join(lines), file=sys.stderr if args.out == STDOUT else sys.stdout)
+    _wrote(args.out, f" ({rows} rows)")
     return 0
 
 
@@ -407,6 +526,10 @@ def build_parser() -> argparse.ArgumentParser:
     trajectory_args(p)
     p.add_argument("--out", default="plots", metavar="FOLDER", help="output folder")
     p.add_argument("--dpi", type=_count(10, 1200), default=100, help="PNG resolution")
+    p.add_argument("--simulation", metavar="SIM.csv", default=None,
+                   help="plot this closed-loop simulation (pollard-pin simulate) instead: "
+                        "tracking errors, torques, desired vs actual path (default: plot the "
+                        "trajectory)")
 
     p = command("report", "actuator sizing table and engine cross-checks", cmd_report)
     trajectory_args(p)
@@ -415,6 +538,65 @@ def build_parser() -> argparse.ArgumentParser:
                    help="write to this file (default: standard output)")
     p.add_argument("--no-cross-check", action="store_true",
                    help="sizing only: skip the thesis and MuJoCo comparisons")
+    p.add_argument("--simulation", metavar="SIM.csv", default=None,
+                   help="add this closed-loop simulation's tracking errors and torques "
+                        "(pollard-pin simulate; default: none)")
+
+    p = command("size", "motors and gearboxes: ratings check, shortest uniform and "
+                "time-optimal cycle of the path", cmd_size)
+    trajectory_args(p)
+    p.add_argument("--actuators", required=True, metavar="FILE.toml",
+                   help="one table per actuator (see examples/actuators.toml)")
+    p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
+    p.add_argument("--out", metavar="FILE", default=None,
+                   help="write the table to this file (default: standard output)")
+    p.add_argument("--retime", metavar="OUT.csv", default=None,
+                   help="write the time-optimal traversal as a trajectory CSV (replay it with "
+                        "run --trajectory OUT.csv; default: not written)")
+    p.add_argument("--plot", metavar="FOLDER", default=None,
+                   help="write FOLDER/torque_speed.png, the motors' operating points and "
+                        "ratings (default: no figure)")
+
+    p = command("simulate", "closed-loop simulation: a controller tracking a trajectory on a "
+                "(perturbed) plant → CSV or Parquet", cmd_simulate)
+    trajectory_args(p)
+    p.add_argument("--controller", choices=("computed-torque", "pd"), default="computed-torque",
+                   help="computed-torque (nominal feedforward + inertia-scaled PD) or pd (PD + "
+                        "gravity compensation)")
+    p.add_argument("--wn", type=_nonnegative, default=60.0, metavar="RAD/S",
+                   help="natural frequency ω of the actuator error dynamics")
+    p.add_argument("--zeta", type=_nonnegative, default=1.0, metavar="Z",
+                   help="damping ratio ζ of the actuator error dynamics")
+    p.add_argument("--dt", type=_positive, default=1e-3, metavar="S", help="RK4 step")
+    p.add_argument("--control-period", type=_positive, default=1e-3, metavar="S",
+                   help="controller period (torque held in between)")
+    p.add_argument("--torque-limit", type=_positive, nargs="+", default=None, metavar="N·M",
+                   help="|τ| limit: one value for all actuators or six (default: none)")
+    p.add_argument("--payload", type=_nonnegative, default=0.0, metavar="KG",
+                   help="point mass at the tool tip, unknown to the controller (default: 0)")
+    p.add_argument("--mass-error", type=_float, default=0.0, metavar="FRACTION",
+                   help="plant link masses and inertias × (1 + FRACTION) (default: 0, exact)")
+    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+                   help="motors and gearboxes (format of examples/actuators.toml): their "
+                        "reflected rotor inertia N²·Jm and friction act in the plant and are "
+                        "known to the controller; --torque-limit defaults to N × peak motor "
+                        "torque (default: ideal joints)")
+    p.add_argument("--armature", type=_nonnegative, default=0.0, metavar="KG·M²",
+                   help="rotor inertia on each actuated joint (plant only; default: 0)")
+    p.add_argument("--viscous", type=_nonnegative, default=0.0, metavar="N·M·S",
+                   help="viscous friction on each actuated joint (plant only; default: 0)")
+    p.add_argument("--coulomb", type=_nonnegative, default=0.0, metavar="N·M",
+                   help="Coulomb friction on each actuated joint (plant only; default: 0)")
+    p.add_argument("--noise", type=_nonnegative, default=0.0, metavar="RAD",
+                   help="standard deviation of the measured actuator angles (default: 0, exact)")
+    p.add_argument("--velocity-noise", type=_nonnegative, default=0.0, metavar="RAD/S",
+                   help="standard deviation of the measured actuator rates (default: 0, exact)")
+    p.add_argument("--seed", type=_count(0), default=0, help="noise seed (default: 0)")
+    p.add_argument("--start", choices=("path", "home"), default="path",
+                   help="plant start: on the path (the reference's first state) or at rest at "
+                        "home (the trajectory must then start at the home pose, at rest)")
+    p.add_argument("--out", default="sim.csv", metavar="FILE.csv|FILE.parquet",
+                   help="output table ('-': CSV on standard output)")
 
     p = command("export", "write the model for another engine (MuJoCo MJCF)", cmd_export)
     model_args(p)
@@ -426,6 +608,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _errors() -> tuple[type[BaseException], ...]:
     """The project's own errors: each is one line for the user, never a traceback."""
+    from .dynamics.control import ControlError
+    from .dynamics.forward import SimulationError
+    from .dynamics.plant import PlantError
+    from .dynamics.actuators import ActuatorError
     from .io.atomic import OutputError
     from .io.trajectory import TrajectoryError
     from .kinematics.errors import ClosureError, KinematicsError
@@ -433,8 +619,9 @@ def _errors() -> tuple[type[BaseException], ...]:
     from .model.params import ParameterError
     from .sweep import SweepError
 
-    return (ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
-            SweepError, OutputError, _UsageError, ImportError)
+    return (ControlError, PlantError, SimulationError,
+            ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
+            SweepError, OutputError, _UsageError, ImportError, ActuatorError)
 
 
 def main(argv=None) -> int:

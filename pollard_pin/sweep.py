@@ -17,7 +17,9 @@ time
   RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
 * ``peak_force_leg1``, ``peak_force_leg2`` = max |λ_i| [N] at the spherical joints;
 * ``min_wrist_margin``, ``min_sigma_parallel``, ``min_sigma_serial``: how close the variant
-  came to the singularities (see :class:`pollard_pin.kinematics.pipeline.IKResult`).
+  came to the singularities (see :class:`pollard_pin.kinematics.pipeline.IKResult`);
+* per tree joint (docs/model.md §17): ``peak_axial_<j>``, ``peak_radial_<j>`` [N] and
+  ``peak_bending_<j>`` [N·m], the peak bearing loads.
 
 Metric cells of an infeasible variant are ``None`` (empty in the CSV).
 
@@ -70,6 +72,11 @@ METRIC_COLUMNS = (tuple(f"{m}_{a}" for m in ("peak_tau", "rms_tau", "peak_power"
                         for a in ACTUATORS)
                   + ("peak_force_leg1", "peak_force_leg2",
                      "min_wrist_margin", "min_sigma_parallel", "min_sigma_serial"))
+# Peak bearing loads per tree joint (docs/model.md §2 order, §17).
+TREE_JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
+               "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
+LOAD_METRICS = ("peak_axial", "peak_radial", "peak_bending")
+METRIC_COLUMNS += tuple(f"{m}_{j}" for m in LOAD_METRICS for j in TREE_JOINTS)
 GRID_KEYS = ("trajectory", "duration", "samples", "params", "grid", "variant")
 
 
@@ -153,7 +160,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     try:
         robot = load(params)
         traj = _trajectory(spec["trajectory"], params.home_pose)
-        result = run_pipeline(robot, traj)
+        result = run_pipeline(robot, traj, loads=True)
     except KinematicsError as exc:
         return _failure(row, exc, exc.chain, exc.sample, exc.time)
     except ClosureError as exc:
@@ -179,6 +186,9 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     row["min_wrist_margin"] = float(ik.wrist_margin.min())
     row["min_sigma_parallel"] = float(ik.sigma_parallel.min())
     row["min_sigma_serial"] = float(ik.sigma_serial.min())
+    bearings = result.loads.bearing_table()["joints"]
+    for m in LOAD_METRICS:
+        row.update({f"{m}_{j}": bearings[j][m] for j in TREE_JOINTS})
     return row
 
 

@@ -6,11 +6,14 @@ Paths: the Pinocchio pipeline (batched, the default), the same pipeline sample b
 Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints the machine.
 
     python scripts/benchmark.py [--samples 2001 20001] [--repeats 5] [--no-mujoco] [--no-cli]
+                                [--big 1000001]
+                                [--no-loads] [--no-simulate] [--no-size]
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import math
 import os
 import platform
 import statistics
@@ -106,12 +109,141 @@ def mujoco_path(traj, ik):
     return run_id, "MuJoCo inverse dynamics only (no MuJoCo IK available)"
 
 
-def cli_time(samples: int) -> float:
-    exe = Path(sys.executable).with_name("pollard-pin")
-    cmd = [str(exe), "run", "--samples", str(samples), "--out", os.devnull, "--quiet"]
+def loads_section(robot, n: int, repeats: int) -> None:
+    """Extra cost of the joint loads (docs/model.md §17, ``run --loads``), beside the per-sample
+    ``data.f`` reference and the free-body cross-check."""
+    from pollard_pin.crosscheck import newton_euler
+    from pollard_pin.dynamics.loads import joint_loads, joint_loads_rnea
+
+    traj = pp.thesis_trajectory(samples=n)
+    ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    dyn = inverse_dynamics(robot, ik)
+    paths = {"stacked RNEA (run --loads)": lambda: joint_loads(robot, ik, dyn),
+             "per-sample rnea + data.f (reference)": lambda: joint_loads_rnea(robot, ik, dyn),
+             "free bodies, closed form (cross-check)": lambda: newton_euler.joint_loads(
+                 robot.params, traj.poses, traj.d_poses, traj.dd_poses)}
+    print(f"\njoint loads, {n} samples, median of {repeats} runs [µs/sample]")
+    for name, fn in paths.items():
+        fn()  # warm-up
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t0)
+        print(f"  {name:<44s} {1e6 * statistics.median(times) / n:8.2f}")
+
+
+def simulation_section(robot, repeats: int) -> None:
+    """Closed-loop simulation (docs/model.md §18): 20 s of the thesis curve at dt = 1 ms (RK4)
+    and a 1 ms control period, both controllers, exact and perturbed plant."""
+    from pollard_pin.dynamics.control import desired_trajectory, simulate_tracking
+    from pollard_pin.dynamics.plant import PlantErrors
+
+    traj = pp.thesis_trajectory()
     t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    return time.perf_counter() - t0
+    desired = desired_trajectory(robot, traj)
+    print(f"\nclosed-loop simulation, {traj.t[-1]:g} s, dt = control period = 1 ms; desired "
+          f"trajectory (batched IK + ID, {len(desired.t)} ticks) {time.perf_counter() - t0:.2f} s")
+    for controller in ("computed-torque", "pd"):
+        for label, errors in (("exact", None),
+                              ("payload 0.05 kg + mass +10 %", PlantErrors(0.05, 0.1))):
+            walls = []
+            for _ in range(max(1, repeats // 2)):
+                t0 = time.perf_counter()
+                res = simulate_tracking(robot, traj, controller, errors, desired=desired)
+                walls.append(time.perf_counter() - t0)
+            print(f"  {controller:<16s} {label:<30s} {statistics.median(walls):6.2f} s wall "
+                  f"({res.steps} RK4 steps), max tip error {res.tip_position_error.max():.3g} m")
+
+
+def sizing_section(robot, sizes, repeats: int) -> None:
+    """Motor sizing (docs/model.md §19, ``pollard-pin size``): path dynamics (3 RNEA passes),
+    the exact uniform scaling, and TOPP-RA with its viscous re-solves."""
+    from pollard_pin.dynamics import actuators as act_mod
+
+    act = act_mod.load_actuators(Path(__file__).resolve().parent.parent / "examples"
+                                 / "actuators.toml")
+    print(f"\nmotor sizing (examples/actuators.toml), median of {repeats} runs [ms]")
+    for n in sizes:
+        traj = pp.thesis_trajectory(samples=n)
+        ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+        path = act_mod.path_dynamics(robot, ik)
+        steps = {"path dynamics": lambda: act_mod.path_dynamics(robot, ik),
+                 "uniform_min_duration": lambda: act_mod.uniform_min_duration(act, path),
+                 "time_optimal (TOPP-RA)": lambda: act_mod.time_optimal(act, path)}
+        for name, fn in steps.items():
+            times = []
+            for _ in range(repeats):
+                t0 = time.perf_counter()
+                out = fn()
+                times.append(time.perf_counter() - t0)
+            extra = (f"  ({out.iterations} solves, {out.duration:.4g} s cycle)"
+                     if name.startswith("time") else "")
+            print(f"  {n:6d} samples  {name:<24s} {1e3 * statistics.median(times):9.1f}{extra}")
+
+
+def cli_run(samples: int, out: str) -> tuple[float, float, str]:
+    """``pollard-pin run`` as a user runs it: (wall seconds, peak resident MB, its output)."""
+    exe = Path(sys.executable).with_name("pollard-pin")
+    cmd = [str(exe), "-v", "run", "--samples", str(samples), "--out", out, "--quiet"]
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    text = proc.stdout.read()
+    status = proc.wait()
+    wall = time.perf_counter() - t0
+    if status:
+        raise SystemExit(f"{' '.join(cmd)} failed: {text.strip().splitlines()[-1]}")
+    # the process's own high-water mark (run -v logs it; ru_maxrss would include this parent)
+    peak = [x for x in text.splitlines() if "peak resident memory" in x]
+    mb = float(peak[0].split()[-2]) if peak and peak[0].split()[-2] != "unknown" else math.nan
+    return wall, mb, text
+
+
+def cli_section(sizes: tuple[int, int], repeats: int, big: int) -> None:
+    """Whole-process marginal cost per sample of ``run`` (best of repeats), CSV and Parquet."""
+    import tempfile
+
+    small, large = sizes
+    print(f"\n`pollard-pin run`, whole process (start, imports, model, solve, write), best of "
+          f"{repeats}; marginal = (T({large}) − T({small})) / {large - small}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for fmt in ("csv", "parquet"):
+            out = str(Path(tmp) / f"run.{fmt}")
+            best = {n: min(cli_run(n, out)[0] for _ in range(repeats)) for n in sizes}
+            marginal = 1e6 * (best[large] - best[small]) / (large - small)
+            print(f"  {fmt:8s} T({small}) = {best[small]:.3f} s, T({large}) = {best[large]:.3f} s"
+                  f", marginal {marginal:.2f} µs/sample")
+        if big:
+            out = str(Path(tmp) / "big.csv")
+            wall, rss, text = cli_run(big, out)
+            solve = [x for x in text.splitlines() if x.startswith("solve ")]
+            print(f"  {big} samples, CSV: {wall:.1f} s, peak resident {rss:.0f} MB "
+                  f"({solve[0] if solve else ''})")
+            for n in (big // 5,):
+                wall, rss, _ = cli_run(n, out)
+                print(f"  {n} samples, CSV: {wall:.1f} s, peak resident {rss:.0f} MB")
+
+
+def mujoco_marginal(sizes: tuple[int, int], repeats: int) -> None:
+    """The MuJoCo path (its own IK + closed-loop inverse dynamics) on the same job, in process."""
+    try:
+        peer = importlib.import_module("pollard_pin.crosscheck.mujoco")
+        peer.build_mujoco()
+    except ImportError as exc:
+        print(f"  mujoco path skipped: {exc}")
+        return
+    best = {}
+    for n in sizes:
+        traj = pp.thesis_trajectory(samples=n)
+        runs = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            peer.pipeline_mujoco(traj.poses, traj.d_poses, traj.dd_poses)
+            runs.append(time.perf_counter() - t0)
+        best[n] = min(runs)
+    small, large = sizes
+    print(f"  MuJoCo path (IK + inverse dynamics, no output), in process: marginal "
+          f"{1e6 * (best[large] - best[small]) / (large - small):.2f} µs/sample")
 
 
 def main(argv=None) -> int:
@@ -121,6 +253,13 @@ def main(argv=None) -> int:
     ap.add_argument("--no-mujoco", action="store_true")
     ap.add_argument("--no-newton", action="store_true", help="skip the per-sample reference")
     ap.add_argument("--no-cli", action="store_true")
+    ap.add_argument("--big", type=int, default=0, metavar="N",
+                    help="also time `run --samples N` and N/5 and report their peak memory "
+                         "(e.g. 1000001)")
+    ap.add_argument("--no-loads", action="store_true", help="skip the joint-loads section")
+    ap.add_argument("--no-simulate", action="store_true",
+                    help="skip the closed-loop simulation section")
+    ap.add_argument("--no-size", action="store_true", help="skip the motor-sizing section")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
@@ -158,11 +297,20 @@ def main(argv=None) -> int:
               "singularity analysis, which the other paths do not compute):")
         for name, r in results.items():
             print(f"  {name:<60s} {r['total'] / base:8.2f}x  [{r['total'] / core:6.2f}x]")
-    if not args.no_cli:
+    if not args.no_loads:
         for n in args.samples:
-            wall = min(cli_time(n) for _ in range(3))
-            print(f"\n`pollard-pin run --samples {n}` end to end (process start, imports, "
-                  f"model load, solve, CSV): {wall:.3f} s")
+            loads_section(robot, n, args.repeats)
+    if not args.no_simulate:
+        simulation_section(robot, args.repeats)
+    if not args.no_size:
+        sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
+    if not args.no_cli:
+        sizes = (min(args.samples), max(args.samples))
+        if sizes[0] == sizes[1]:
+            sizes = (sizes[0], 10 * sizes[0])
+        cli_section(sizes, 3, args.big)
+        if not args.no_mujoco:
+            mujoco_marginal(sizes, 3)
     return 0
 
 

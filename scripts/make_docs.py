@@ -23,7 +23,7 @@ def main():
         sys.exit("make_docs: the viewer screenshot needs Chromium, which is not installed "
                  "(Debian: apt-get install chromium; or set POLLARD_CHROMIUM=/path/to/chrome)")
     robot = pp.load()
-    result = pp.run_pipeline(robot, pp.thesis_trajectory())
+    result = pp.run_pipeline(robot, pp.thesis_trajectory(), loads=True)  # + joint_loads.png
     for path in pp.write_figures(result, DOCS / "plots", dpi=72):
         print(f"wrote {path} ({path.stat().st_size // 1024} kB)")
     with tempfile.TemporaryDirectory() as tmp:

@@ -45,3 +45,25 @@ def test_batch_reports_first_bad_sample_across_chunks(robot):
         inverse_kinematics_batch(robot, poses, traj.d_poses, traj.dd_poses, traj.t, chunk=100)
     assert ei.value.sample == 250 and ei.value.time == pytest.approx(traj.t[250])
 
+
+
+def test_batched_jacobians_equal_pinocchios(robot):
+    # The batched path's J and dJ (numpy over the placements) against Pinocchio's
+    # computeJointJacobians / computeJointJacobiansTimeVariation at random states.
+    import pinocchio as pin
+
+    from pollard_pin.kinematics.pipeline import _jacobians, _layout, _placements
+
+    rng = np.random.default_rng(3)
+    Q = rng.uniform(-np.pi, np.pi, (25, robot.model.nq))
+    V = rng.normal(0.0, 2.0, (25, robot.model.nv))
+    lay = _layout(robot)
+    assert len(lay.joints) == robot.model.njoints - 1  # every joint's column is filled
+    pl = _placements(robot.model, Q, lay.joints)
+    J, dJ = _jacobians(robot.model, pl, lay.joints), _jacobians(robot.model, pl, lay.joints, V)
+    for k in range(len(Q)):
+        ref = pin.computeJointJacobians(robot.model, robot.data, Q[k])
+        assert np.abs(J[k] - ref).max() <= 1e-14
+        pin.computeJointJacobiansTimeVariation(robot.model, robot.data, Q[k], V[k])
+        assert np.abs(dJ[k] - robot.data.dJ).max() <= 1e-13 * max(1.0, np.abs(robot.data.dJ).max())
+

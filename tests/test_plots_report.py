@@ -9,7 +9,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.cli import main
 from pollard_pin.io.results import run_pipeline, write_csv
-from pollard_pin.viz.plots import FIGURES, figures
+from pollard_pin.viz.plots import FIGURES, LOAD_FIGURES, figures
 from pollard_pin.viz.report import SIZING_FIELDS, report, to_markdown
 
 SAMPLES = 401
@@ -49,7 +49,7 @@ def test_plot_command_writes_every_figure(tmp_path, capsys):
     out = tmp_path / "figs"
     assert main(["plot", *ARGS, "--out", str(out), "--dpi", "50"]) == 0
     written = sorted(p.name for p in out.iterdir())
-    assert written == sorted(f"{n}.png" for n in FIGURES)
+    assert written == sorted(f"{n}.png" for n in FIGURES + LOAD_FIGURES)
     for name in FIGURES:
         path = out / f"{name}.png"
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -28,15 +28,33 @@ class SimulationResult:
 
 
 def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
-    """Joint accelerations (12,) under actuator torques ``tau_act`` (6,) with the loops closed."""
+    """Joint accelerations (12,) under actuator torques ``tau_act`` (6,) with the loops closed.
+
+    ``losses`` (:class:`JointLosses`) subtract friction and add the rotor inertia (armature) to
+    the mass matrix: the inverse of ``inverse_dynamics_sample(robot, q, v, a, losses)``.
+    """
     model, data = robot.model, robot.data
     tau = np.zeros(model.nv)
     tau[robot.actuated_v] = tau_act
+    if settings is None:  # a standalone call: constraintDynamics needs its workspace sized
+        pin.initConstraintDynamics(model, data, robot.constraint_models, robot.constraint_datas)
+        settings = pin.ProximalSettings(1e-14, 0.0, 1)
+    armature = None
     if losses is not None:
-        tau -= losses.torque(v, np.zeros(model.nv))  # armature is not handled here
-    settings = settings or pin.ProximalSettings(1e-14, 0.0, 1)
-    return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
-                                  robot.constraint_datas, settings).copy()
+        tau -= losses.torque(v, np.zeros(model.nv))  # friction; armature·a is on M below
+        armature = np.broadcast_to(np.asarray(losses.armature, dtype=float), (model.nv,))
+    if armature is None or not np.any(armature):
+        return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
+                                      robot.constraint_datas, settings).copy()
+    # Rotor inertia on the mass-matrix diagonal (Pinocchio's model.armature, also seen by
+    # rnea), for this call only: the same convention as inverse_dynamics(..., losses).
+    saved = model.armature.copy()
+    model.armature = saved + armature
+    try:
+        return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
+                                      robot.constraint_datas, settings).copy()
+    finally:
+        model.armature = saved
 
 
 def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .table import TableWriter, write_table
-from ..kinematics.pipeline import SPHERICAL, IKResult, inverse_kinematics
+from ..kinematics.pipeline import BATCH_CHUNK, SPHERICAL, IKResult, inverse_kinematics
 from ..kinematics.taskspace import TASK_NAMES
 from .trajectory import Trajectory
 
@@ -64,7 +64,7 @@ def write_csv(result: RunResult, path: str | Path, metadata: dict | None = None)
 
 
 # --- streaming: solve and write window by window (docs/model.md §15) ------------------------
-STREAM_CHUNK = 4096  # samples per window: bounds memory whatever the trajectory's length
+STREAM_CHUNK = BATCH_CHUNK  # samples per solve (overlap included): bounded memory
 _PEAK = ("tau_", "power_")
 
 
@@ -161,7 +161,8 @@ def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK,
     n = len(traj)
     last, work = None, None
     with TableWriter(path, metadata, fmt) as writer:
-        for start, win in traj.windows(chunk):
+        # windows of chunk − 1 new samples: with the overlap sample, one IK block each
+        for start, win in traj.windows(chunk - 1):
             t0 = time.perf_counter()
             if last is not None:
                 win = Trajectory(*(np.concatenate([a, b]) for a, b in zip(
@@ -186,7 +187,7 @@ def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK,
             timings["solve"] += t1 - t0
             timings["write"] += time.perf_counter() - t1
             if progress is not None:
-                progress(min(start + chunk, n), n)
+                progress(min(start + chunk - 1, n), n)
     return stats
 
 

@@ -23,7 +23,10 @@ UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
 _TASK_LENGTHS = ("x", "y", "z")
 _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_parallel": "m",
-          "sigma_serial": "mixed (m, 1)", "kinetic_energy": "J", "potential_energy": "J"}
+          "sigma_serial": "mixed (m, 1)", "kinetic_energy": "J", "potential_energy": "J",
+          # closed-loop simulation, docs/model.md §18
+          "tip_position_error": "m", "tip_orientation_error": "rad", "desired_x": "m",
+          "desired_y": "m", "desired_z": "m"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 

@@ -234,9 +234,15 @@ def from_csv(path: str | Path) -> Trajectory:
 
 
 def to_csv(traj: Trajectory, path: str | Path) -> None:
-    header = ["t", *TASK_NAMES, *(f"d_{n}" for n in TASK_NAMES), *(f"dd_{n}" for n in TASK_NAMES)]
-    np.savetxt(path, np.column_stack([traj.t, traj.poses, traj.d_poses, traj.dd_poses]),
-               delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+    """Write the trajectory in the ``run`` input format (``t``, poses, ``d_*``, ``dd_*``; every
+    float64 exact) through :mod:`pollard_pin.io.table`, atomically, units in the sidecar."""
+    from .table import write_table
+
+    cols = {"t": traj.t}
+    for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
+        cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
+    write_table(path, cols, {"trajectory": traj.name, "derivatives": traj.derivatives},
+                fmt="csv")
 
 
 def sinusoid_curve(t, home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),

@@ -15,8 +15,8 @@ from .errors import (KinematicsError, KinematicsInputError, SingularityError,
                      UnreachablePoseError)
 from .singularity import (SERIAL_FLOOR, SIGMA_FLOOR, SINGULARITY_MARGIN,
                           WRIST_MARGIN, BranchQuantities, check_margins,
-                          conditioning, flip_error, floor_message, same_branch,
-                          solve_stack)
+                          conditioning, flip_error, floor_message, inverse_stack,
+                          same_branch, solve_stack)
 from .taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
 
 SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
@@ -511,23 +511,32 @@ def _placements(model, Q: np.ndarray, joints) -> dict:
     return out
 
 
-def _jacobians(robot: Robot, Q: np.ndarray, V: np.ndarray | None = None):
-    """Stacked world joint Jacobians J (N, 6, nv) — or, if V is given, only their time
-    variation dJ (J at the same q is the caller's already)."""
-    model, data = robot.model, robot.data
-    n = len(Q)
-    J = np.empty((n, 6, model.nv))
-    if V is None:
-        jac = pin.computeJointJacobians
-        for k in range(n):
-            J[k] = jac(model, data, Q[k])
-        return J, None
-    dJ = np.empty_like(J)
-    jac_dot = pin.computeJointJacobiansTimeVariation
-    for k in range(n):
-        jac_dot(model, data, Q[k], V[k])
-        dJ[k] = data.dJ
-    return None, dJ
+def _jacobians(model, pl, joints, V: np.ndarray | None = None):
+    """Stacked world joint Jacobians J (N, 6, nv) of Pinocchio's WORLD convention (as
+    ``computeJointJacobians``) from the placements ``pl`` — or, if V is given, only their time
+    variation dJ (as ``computeJointJacobiansTimeVariation``). For a revolute joint j with world
+    axis z_j through o_j: J_j = [o_j × z_j; z_j]; dJ_j = [ȯ_j × z_j + o_j × ż_j; ż_j] with
+    ż_j = ω_parent × z_j and ȯ_j the velocity of the parent body's point o_j. Columns of joints
+    not listed stay zero."""
+    R0, o0 = pl[0]
+    n = len(o0)
+    J = np.zeros((n, 6, model.nv))
+    w, vo = {0: np.zeros((n, 3))}, {0: np.zeros((n, 3))}
+    for j in joints:
+        R, o = pl[j]
+        z = R[:, :, _AXES[model.joints[j].shortname()]]
+        c = model.joints[j].idx_v
+        if V is None:
+            J[:, 3:, c] = z
+            J[:, :3, c] = _cross(o, z)
+            continue
+        p = model.parents[j]
+        vo[j] = vo[p] + _cross(w[p], o - pl[p][1])
+        zd = _cross(w[p], z)
+        J[:, 3:, c] = zd
+        J[:, :3, c] = _cross(vo[j], z) + _cross(o, zd)
+        w[j] = w[p] + z * V[:, c, None]
+    return J
 
 
 def _position(pl, p: _Point) -> np.ndarray:
@@ -653,13 +662,16 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     # Newton polish at the closed form; velocities with the same matrix (one stacked solve).
     pl = _placements(model, q0, lay.joints)
     pos = {p: _position(pl, p) for p in points}
-    J, _ = _jacobians(robot, q0)
+    J = _jacobians(model, pl, lay.joints)
     rhs = np.zeros((n, 12, 2))
     rhs[:, :, 0] = _residuals(pl, pos, lay, P_des, R_des)
     K = _stack_K(J, pos, lay)
     clock.lap("position")
     rhs[:, 6:, 1] = twist(poses, d_poses)
-    sol = solve_stack(K, rhs)[0]  # NaN where K is singular (never moved, checked below)
+    # One LU per sample: K⁻¹ serves the Newton step, the velocities, the accelerations and the
+    # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
+    K_inv = inverse_stack(K)
+    sol = K_inv @ rhs
     v = sol[:, :, 1]
     # The closed form is exact to round-off: apply the Newton step only where the residual is
     # above POLISH_TOL, and re-evaluate just those samples, so K and the placements below are
@@ -675,15 +687,16 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
                 pl[j][0][moved], pl[j][1][moved] = pl_m[j]
         for p in points:
             pos[p][moved] = _position(pl_m, p)
-        J[moved] = _jacobians(robot, q[moved])[0]
+        J[moved] = _jacobians(model, pl_m, lay.joints)
         K[moved] = _stack_K(J[moved], {p: pos[p][moved] for p in points}, lay)
-        v[moved] = solve_stack(K[moved], rhs[moved, :, 1:])[0][:, :, 0]
+        K_inv[moved] = inverse_stack(K[moved])
+        v[moved] = _matvec(K_inv[moved], rhs[moved, :, 1])
     clock.lap("velocity")
     # Accelerations: K a = [−closure drift; tool acceleration − tool drift].
     singular = ~np.isfinite(v).all(axis=1)
     if singular.any():  # keep NaN out of Pinocchio; those samples stay NaN
         v = np.where(singular[:, None], 0.0, v)
-    _, dJ = _jacobians(robot, q, v)
+    dJ = _jacobians(model, pl, lay.joints, v)
     rhs_a = np.empty((n, 12))
     for i, (a_, b_) in enumerate(lay.closures):
         rhs_a[:, 3 * i:3 * i + 3] = _drift(J, dJ, v, pos, b_) - _drift(J, dJ, v, pos, a_)
@@ -691,7 +704,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     rhs_a[:, 6:] = twist_dot(poses, d_poses, dd_poses)
     rhs_a[:, 6:9] -= _drift(J, dJ, v, pos, lay.tip)
     rhs_a[:, 9:] -= _matvec(dJ[:, 3:][:, :, tc], v[:, tc])
-    a = solve_stack(K, rhs_a[:, :, None])[0][:, :, 0]
+    a = _matvec(K_inv, rhs_a)
     if singular.any():
         v[singular] = a[singular] = np.nan
     err = np.abs(_residuals(pl, pos, lay, P_des, R_des))
@@ -703,7 +716,8 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             amount=float(err[k].max()))
     clock.lap("acceleration")
     sph, dsph = _spherical_batch(robot, lay, pl, J, v)
-    sp, ss, sp_max, ss_max = conditioning(K, robot.actuated_v, robot.passive_v, full=True)
+    sp, ss, sp_max, ss_max = conditioning(K, robot.actuated_v, robot.passive_v, full=True,
+                                          K_inv=K_inv)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
                       wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),

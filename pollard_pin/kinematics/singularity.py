@@ -103,6 +103,16 @@ def solve_stack(A, B):
     return X.reshape(shape + B.shape[-2:]), bad.reshape(shape)
 
 
+def inverse_stack(A):
+    """``np.linalg.inv`` over a stack (..., n, n), NaN for a singular member (never raises)."""
+    try:
+        return np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        n = A.shape[-1]
+        X, _ = solve_stack(A, np.broadcast_to(np.eye(n), A.shape))
+        return X
+
+
 def _velocity_map(Jc, actuated_v, passive_v):
     """N of :func:`actuator_velocity_map`, NaN where Jc_p is exactly singular; and that mask."""
     N = np.zeros(Jc.shape[:-2] + (Jc.shape[-1], len(actuated_v)))
@@ -134,14 +144,27 @@ def actuator_velocity_map(Jc: np.ndarray, actuated_v, passive_v, t=None) -> np.n
     return N
 
 
-def conditioning(K: np.ndarray, actuated_v, passive_v, full: bool = False):
+def conditioning(K: np.ndarray, actuated_v, passive_v, full: bool = False, K_inv=None):
     """σ_min of the passive-joint constraint Jacobian (parallel singularity) and of the
     actuator-rate → tool-twist map (serial singularity), from K = [Jc; J_tool] (..., 12, nv);
     with ``full`` also their σ_max (the scale of the numerical floors). Never raises: where
-    Jc_p is exactly singular the serial values are NaN."""
+    Jc_p is exactly singular the serial values are NaN.
+
+    With ``K_inv`` (K⁻¹, already at hand in the batched IK) the serial map is not formed: since
+    K v = [0; twist] gives q̇_act = K⁻¹[act, 6:] twist, (J_tool N)⁻¹ = K⁻¹[act, 6:], so its
+    singular values are the reciprocals of that block's (docs/model.md §12)."""
     Jc, Jt = K[..., :6, :], K[..., 6:, :]
     sp, sp_max = sigma_range(Jc[..., passive_v])
-    ss, ss_max = sigma_range(Jt @ _velocity_map(Jc, actuated_v, passive_v)[0])
+    if K_inv is None:
+        ss, ss_max = sigma_range(Jt @ _velocity_map(Jc, actuated_v, passive_v)[0])
+    else:
+        with np.errstate(divide="ignore"):
+            lo, hi = sigma_range(K_inv[..., actuated_v, 6:])
+            ss, ss_max = np.atleast_1d(1.0 / hi), np.atleast_1d(1.0 / lo)
+        bad = ~np.isfinite(ss)
+        if bad.any():  # K singular: its inverse says nothing, the map itself is still defined
+            ss[bad], ss_max[bad] = sigma_range(
+                Jt[bad] @ _velocity_map(Jc[bad], actuated_v, passive_v)[0])
     return (sp, ss, sp_max, ss_max) if full else (sp, ss)
 
 

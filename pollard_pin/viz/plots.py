@@ -5,6 +5,10 @@ Every curve is a column of the ``run`` CSV (:meth:`RunResult.columns`): each plo
 carries that column's name as its matplotlib ``gid`` (``|f1|`` for a force magnitude), and
 angles are drawn in degrees where the axis label says ``[deg…]``. Matplotlib's non-interactive
 ``Agg`` backend is used, so no display is needed.
+
+With the joint loads (``run_pipeline(..., loads=True)``, docs/model.md §17) a further figure,
+``joint_loads``, draws the axial and radial force and the bending moment of every tree joint,
+derived from the ``F_<joint>_*``/``M_<joint>_*`` columns (gid ``axial_<joint>`` etc.).
 """
 from __future__ import annotations
 
@@ -23,6 +27,7 @@ LABELS = {  # thesis symbols
        (("theta21", "θ21_"), ("theta65", "θ65_"), ("theta76", "θ76_"), ("theta98", "θ98_"),
         ("theta109", "θ109_"), ("theta1110", "θ1110_"))},
 }
+LOAD_FIGURES = ("joint_loads",)  # written when the result has its joint loads
 ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 BASE, WRIST = ACTUATED[:3], ACTUATED[3:]
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
@@ -126,6 +131,31 @@ def _closure_figure(plt, cols):
     return fig
 
 
+def _loads_figure(plt, loads, name):
+    """One row per chain (docs/model.md §17): axial force, radial force, bending moment."""
+    from ..dynamics.loads import CHAIN_JOINTS
+
+    t = loads.t
+    quantities = (("axial", loads.axial, "axial force [N]"),
+                  ("radial", loads.radial, "radial force [N]"),
+                  ("bending", loads.bending, "bending moment [N·m]"))
+    fig, axes = plt.subplots(len(CHAIN_JOINTS), 3, figsize=(12, 10), sharex=True)
+    for r, (chain, joints) in enumerate(CHAIN_JOINTS):
+        for c, (key, arr, ylabel) in enumerate(quantities):
+            ax = axes[r, c]
+            for k, joint in enumerate(joints):
+                _line(ax, t, arr[:, loads.joints.index(joint)], f"{key}_{joint}",
+                      color=COLOURS[k], label=LABELS.get(joint, joint))
+            _finish(ax, ylabel, f"{chain}: {key}", legend=c == 0)
+    for ax in axes[-1]:
+        ax.set_xlabel("t [s]")
+    fig.suptitle(f"Joint loads ({name} trajectory): force and moment of the parent on the "
+                 "child at each joint origin; the two joints of a U-joint cross carry one "
+                 "wrench", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
 def _conditioning_figure(plt, cols):
     from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
@@ -200,6 +230,8 @@ def figures(result) -> dict:
     out["conditioning"] = _conditioning_figure(plt, cols)
     out["tool_path"] = _path_figure(plt, cols, name)
     assert tuple(out) == FIGURES
+    if getattr(result, "loads", None) is not None:
+        out["joint_loads"] = _loads_figure(plt, result.loads, name)
     return out
 
 

@@ -7,7 +7,10 @@ trapezoid rule over the samples):
 * peak speed ``max |q̇|`` [rad/s]; peak power ``max |τ·q̇|`` [W];
 * energy ``∫|τ·q̇| dt`` [J] (all mechanical energy through the actuator, motoring and braking)
   and net work ``∫τ·q̇ dt`` [J] (the CSV's final ``work_*``);
-* per spherical joint: peak ``|f_i|`` [N] and the time it occurs, and RMS ``|f_i|``.
+* per spherical joint: peak ``|f_i|`` [N] and the time it occurs, and RMS ``|f_i|``;
+* bearings (docs/model.md §17): per tree joint, peak axial and radial force, peak bending
+  moment and the ISO 281 equivalent (time-weighted cubic mean) radial and axial loads; per
+  ball joint, peak and equivalent ``|f_i|``.
 
 **Cross-checks**: the same trajectory through
 
@@ -37,6 +40,13 @@ SIZING_FIELDS = (  # key, heading, unit
     ("peak_power", "peak |P|", "W"),
     ("energy", "energy ∫|P|dt", "J"),
     ("net_work", "net work ∫P dt", "J"),
+)
+
+
+BEARING_FIELDS = (  # key, heading (docs/model.md §17); torque in N·m, forces in N
+    ("peak_axial", "peak axial [N]"), ("peak_radial", "peak radial [N]"),
+    ("peak_bending", "peak bending [N·m]"), ("peak_torque", "peak axis torque [N·m]"),
+    ("equivalent_radial", "equiv. radial [N]"), ("equivalent_axial", "equiv. axial [N]"),
 )
 
 
@@ -88,6 +98,15 @@ def _wrap(a):
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
+def _loads(robot, result):
+    """The run's joint loads (docs/model.md §17), computed here if the run did not keep them."""
+    if getattr(result, "loads", None) is not None:
+        return result.loads
+    from ..dynamics.loads import joint_loads
+
+    return joint_loads(robot, result.ik, result.dynamics)
+
+
 def cross_check_thesis(robot, result) -> dict:
     """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
     from ..crosscheck import euler_lagrange as lagrange
@@ -106,6 +125,12 @@ def cross_check_thesis(robot, result) -> dict:
         tau_th = lagrange.inverse_dynamics(robot.params, traj.poses, traj.d_poses,
                                            traj.dd_poses)["tau"]
         out["torque"] = _agreement(dyn.tau, tau_th)
+        from ..crosscheck import newton_euler
+
+        ne, loads = newton_euler.joint_loads(robot.params, traj.poses, traj.d_poses,
+                                             traj.dd_poses), _loads(robot, result)
+        out["joint_force"] = _agreement(loads.force, ne["force"])
+        out["joint_moment"] = _agreement(loads.moment, ne["moment"])
     return out
 
 
@@ -125,10 +150,17 @@ def cross_check_mujoco(robot, result) -> dict:
         urdf.write_text(robot.urdf)  # the model actually used, whatever its parameters
         mj = peer.inverse_dynamics_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
                                           urdf_path=urdf)
+        from ..crosscheck.mujoco_loads import joint_loads_mujoco
+
+        mjl = joint_loads_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
+                                 mj["closure_forces"], built=peer._built(urdf))
     act = [list(peer.ACTUATED).index(n) for n in robot.actuated]
+    loads, back = _loads(robot, result), [list(peer.JOINTS).index(n) for n in ik.joint_names]
     return {"available": True,
             "torque": _agreement(dyn.tau, mj["tau"][:, act]),
             "closure_force": _agreement(dyn.closure_forces, mj["closure_forces"]),
+            "joint_force": _agreement(loads.force, mjl["force"][:, back]),
+            "joint_moment": _agreement(loads.moment, mjl["moment"][:, back]),
             "mujoco_closure_residual_m": float(np.max(mj["residual"]))}
 
 
@@ -147,7 +179,10 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
         "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
                                                         "peak_time": "s"},
         "sizing": sizing(result.columns(), robot.actuated),
+        "bearings": _loads(robot, result).bearing_table(),
     }
+    out["units"] |= {k: ("N·m" if k in ("peak_bending", "peak_torque") else "N")
+                     for k, _ in BEARING_FIELDS} | {"peak_force": "N", "equivalent_force": "N"}
     if cross_check:
         out["cross_check"] = {"thesis": cross_check_thesis(robot, result),
                               "mujoco": cross_check_mujoco(robot, result)}
@@ -188,6 +223,20 @@ def to_markdown(rep: dict) -> str:
                      f"{j['peak_time']:.4g} | {j['rms_force']:.4g} |")
     lines += ["", "RMS = sqrt(∫x² dt / T); energy = ∫|τ·q̇| dt; net work = ∫τ·q̇ dt "
               "(trapezoid rule over the samples)."]
+    if "bearings" in rep:
+        b = rep["bearings"]
+        lines += ["", "## Bearings and pins (joint loads, docs/model.md §17)", "",
+                  "| joint | " + " | ".join(h for _, h in BEARING_FIELDS) + " |",
+                  "|---|" + "---:|" * len(BEARING_FIELDS)]
+        for n, row in b["joints"].items():
+            lines.append(f"| {n} | " + " | ".join(f"{row[k]:.4g}" for k, _ in BEARING_FIELDS)
+                         + " |")
+        lines += ["", "| ball joint | peak ‖f‖ [N] | equiv. ‖f‖ [N] |", "|---|---:|---:|"]
+        lines += [f"| {n} | {r['peak_force']:.4g} | {r['equivalent_force']:.4g} |"
+                  for n, r in b["spherical"].items()]
+        lines += ["", "Axial: along the joint axis; radial, bending: perpendicular to it. "
+                      "Equivalent load (ISO 281, fluctuating load): (∫|F|³ dt / T)^(1/3). "
+                      "The two joints of a U-joint cross carry the same wrench."]
     cc = rep.get("cross_check")
     if cc:
         th, mj = cc["thesis"], cc["mujoco"]
@@ -203,10 +252,18 @@ def to_markdown(rep: dict) -> str:
         if "torque" in th:
             lines.append(_agree_row("actuator torques, thesis Euler–Lagrange", th["torque"],
                                     "N·m"))
+        if "joint_force" in th:
+            lines += [_agree_row("joint forces, free bodies (closed form)", th["joint_force"],
+                                 "N"),
+                      _agree_row("joint moments, free bodies (closed form)",
+                                 th["joint_moment"], "N·m")]
         if mj.get("available"):
             lines += [_agree_row("actuator torques, MuJoCo", mj["torque"], "N·m"),
                       _agree_row("closure forces (x, y, z components), MuJoCo",
                                  mj["closure_force"], "N"),
+                      *([_agree_row("joint forces, MuJoCo cfrc_int", mj["joint_force"], "N"),
+                         _agree_row("joint moments, MuJoCo cfrc_int", mj["joint_moment"],
+                                    "N·m")] if "joint_force" in mj else []),
                       "", "Peaks and differences here are over single components (largest "
                           "|f_x|, |f_y|, |f_z|); the spherical-joint table above "
                           "gives the peak magnitude ‖f‖.",
@@ -214,4 +271,8 @@ def to_markdown(rep: dict) -> str:
                           f"{mj['mujoco_closure_residual_m']:.2e} m."]
         else:
             lines += ["", f"MuJoCo cross-check skipped: {mj['reason']}."]
+    if "simulation" in rep:  # pollard-pin report --simulation, docs/model.md §18
+        from .simulation import simulation_markdown
+
+        lines += simulation_markdown(rep["simulation"])
     return "\n".join(lines) + "\n"

@@ -1,0 +1,290 @@
+"""Loads in every joint: the wrench each bearing, pin and U-joint cross carries
+(docs/model.md §17).
+
+For every tree joint, the force and the moment that the parent body exerts on the child body
+through the joint, about the URDF joint origin, in world axes. They follow from the recursive
+Newton–Euler algorithm (RNEA, Featherstone ch. 5) with the closure forces of the inverse
+dynamics (docs/model.md §13) applied to the bodies they act on: +λ_i on ``link_i``, −λ_i on
+the platform, each at its side of the ball joint (docs/model.md §4).
+
+Two implementations of the same recursion, on Pinocchio's model tree (placements, inertias,
+gravity):
+
+* :func:`joint_loads` (production): the forward (kinematics) and backward (forces) passes
+  stacked over samples in numpy — no Python loop over samples;
+* :func:`joint_loads_rnea` (reference): Pinocchio's own ``rnea`` with the closure forces as
+  external forces, sample by sample, reading the joint forces ``data.f`` (local joint frames)
+  and rotating them into world axes. The tests hold the two equal to round-off.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from ..kinematics.pipeline import IKResult
+from ..model.build import Robot
+from ..timing import Stopwatch
+
+_AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
+# Joints drawn together (docs/model.md §3): base chain 0, wrist, legs.
+CHAIN_JOINTS = (("chain 0", ("theta21", "theta43", "theta54")),
+                ("wrist", ("theta1615", "theta1716", "theta1817")),
+                ("leg 1", ("theta21_1", "theta65_1", "theta76_1")),
+                ("leg 2", ("theta21_2", "theta65_2", "theta76_2")))
+
+
+def _cross(a, b):
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
+
+
+def _mv(R, x):
+    return (R @ x[..., None])[..., 0]
+
+
+def cubic_mean(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Time-weighted cubic mean (∫|x|³ dt / T)^(1/3) along axis 0 (trapezoid rule), the ISO 281
+    equivalent load of a fluctuating load (docs/model.md §17); |x| for one sample."""
+    x3 = np.abs(x) ** 3
+    if len(t) < 2 or t[-1] == t[0]:
+        return np.cbrt(x3.mean(axis=0))
+    dt = np.diff(t).reshape((-1,) + (1,) * (x.ndim - 1))
+    return np.cbrt((0.5 * (x3[1:] + x3[:-1]) * dt).sum(axis=0) / (t[-1] - t[0]))
+
+
+@dataclass
+class JointLoads:
+    """Joint wrenches along a trajectory (docs/model.md §17). Arrays have one row per sample;
+    joints in :attr:`joints` order (the tree order of docs/model.md §2)."""
+
+    t: np.ndarray
+    joints: tuple[str, ...]
+    force: np.ndarray  # (N, 12, 3) force of the parent on the child [N], world axes
+    moment: np.ndarray  # (N, 12, 3) its moment about the joint origin [N·m], world axes
+    axis: np.ndarray  # (N, 12, 3) unit joint axis, world axes
+    closure_forces: np.ndarray  # (N, 2, 3) ball-joint force λ_i on link_i [N], world axes
+
+    @property
+    def axial(self) -> np.ndarray:
+        """Force along the joint axis [N], (N, 12), signed."""
+        return np.einsum("nji,nji->nj", self.force, self.axis)
+
+    @property
+    def radial(self) -> np.ndarray:
+        """Force perpendicular to the joint axis [N], (N, 12), magnitude."""
+        f = self.force - self.axial[..., None] * self.axis
+        return np.linalg.norm(f, axis=-1)
+
+    @property
+    def torque(self) -> np.ndarray:
+        """Moment along the joint axis [N·m], (N, 12): the actuator torque for the actuated
+        joints, zero for the passive ones."""
+        return np.einsum("nji,nji->nj", self.moment, self.axis)
+
+    @property
+    def bending(self) -> np.ndarray:
+        """Moment perpendicular to the joint axis [N·m], (N, 12), magnitude."""
+        m = self.moment - self.torque[..., None] * self.axis
+        return np.linalg.norm(m, axis=-1)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """``F_<joint>_x/y/z`` [N] and ``M_<joint>_x/y/z`` [N·m] per tree joint (world axes)."""
+        cols = {}
+        for j, name in enumerate(self.joints):
+            for prefix, arr in (("F", self.force), ("M", self.moment)):
+                cols.update({f"{prefix}_{name}_{c}": arr[:, j, i] for i, c in enumerate("xyz")})
+        return cols
+
+    def bearing_table(self) -> dict:
+        """Per joint: peak axial, radial [N], bending, axis torque [N·m] and the ISO 281 cubic
+        means of the radial and axial force (time-weighted) [N]; per ball joint: peak and cubic
+        mean of |λ_i| [N]."""
+        ax, rad = np.abs(self.axial), self.radial
+        peaks = {"peak_axial": ax.max(0), "peak_radial": rad.max(0),
+                 "peak_bending": self.bending.max(0), "peak_torque": np.abs(self.torque).max(0),
+                 "equivalent_radial": cubic_mean(self.t, rad),
+                 "equivalent_axial": cubic_mean(self.t, ax)}
+        lam = np.linalg.norm(self.closure_forces, axis=-1)
+        joints = {n: {k: float(v[j]) for k, v in peaks.items()}
+                  for j, n in enumerate(self.joints)}
+        balls = {f"leg {i + 1}": {"peak_force": float(lam[:, i].max()),
+                                  "equivalent_force": float(cubic_mean(self.t, lam[:, i]))}
+                 for i in range(lam.shape[1])}
+        return {"joints": joints, "spherical": balls}
+
+    def summary_lines(self) -> list[str]:
+        tab = self.bearing_table()
+        lines = ["joint loads     peak axial [N]  peak radial [N]  peak bending [N·m]  "
+                 "equiv. radial [N]"]
+        for n, r in tab["joints"].items():
+            lines.append(f"  {n:12s} {r['peak_axial']:14.5g} {r['peak_radial']:16.5g} "
+                         f"{r['peak_bending']:19.5g} {r['equivalent_radial']:18.5g}")
+        lines.append("ball joints: " + ", ".join(
+            f"{k} peak {r['peak_force']:.4g} N (equiv. {r['equivalent_force']:.4g} N)"
+            for k, r in tab["spherical"].items()))
+        return lines
+
+
+@dataclass(frozen=True)
+class _Tree:
+    """What the recursion needs from Pinocchio's model, once per robot."""
+
+    parents: tuple[int, ...]
+    axes: tuple[int, ...]
+    rotations: tuple[np.ndarray | None, ...]  # fixed rotation of each joint placement, or None
+    translations: tuple[np.ndarray, ...]
+    masses: tuple[float, ...]
+    levers: tuple[np.ndarray, ...]  # CoG in the joint frame
+    inertias: tuple[np.ndarray, ...]  # about the CoG, joint frame
+    idx_v: tuple[int, ...]
+    gravity: np.ndarray
+    # closure i: (joint, point in its frame) for the leg side A and the platform side B
+    closure_points: tuple[tuple[tuple[int, np.ndarray], tuple[int, np.ndarray]], ...]
+
+
+def _tree(robot: Robot) -> _Tree:
+    model = robot.model
+    parents, axes, rots, trans, masses, levers, inertias, idx_v = ([0], [0], [None], [None],
+                                                                    [0.0], [None], [None], [0])
+    for j in range(1, model.njoints):
+        axis = _AXES.get(model.joints[j].shortname())
+        if axis is None:
+            raise NotImplementedError(f"joint loads: joint {model.names[j]} is a "
+                                      f"{model.joints[j].shortname()}, not RX/RY/RZ")
+        M, Y = model.jointPlacements[j], model.inertias[j]
+        parents.append(int(model.parents[j]))
+        axes.append(axis)
+        rots.append(None if np.array_equal(M.rotation, np.eye(3)) else np.array(M.rotation))
+        trans.append(np.array(M.translation))
+        masses.append(float(Y.mass))
+        levers.append(np.array(Y.lever))
+        inertias.append(np.array(Y.inertia))
+        idx_v.append(int(model.joints[j].idx_v))
+
+    def point(frame):
+        f = model.frames[robot.frame_id(frame)]
+        return int(f.parentJoint), np.array(f.placement.translation)
+
+    closures = tuple((point(c.frame_a), point(c.frame_b)) for c in robot.closures)
+    return _Tree(tuple(parents), tuple(axes), tuple(rots), tuple(trans), tuple(masses),
+                 tuple(levers), tuple(inertias), tuple(idx_v), np.array(model.gravity.linear),
+                 closures)
+
+
+def _passes(tree: _Tree, Q, V, A, lam):
+    """RNEA stacked over samples (world axes). Returns force, moment about each joint origin,
+    joint axis, each (N, njoints − 1, 3)."""
+    n, nj = len(Q), len(tree.parents)
+    zero = np.zeros((n, 3))
+    R, o = [np.broadcast_to(np.eye(3), (n, 3, 3))], [zero]
+    w, al, acc = [zero], [zero], [zero]  # angular velocity, acceleration, origin acceleration
+    for j in range(1, nj):
+        p, ax = tree.parents[j], tree.axes[j]
+        B = R[p] if tree.rotations[j] is None else R[p] @ tree.rotations[j]
+        qj = Q[:, tree.idx_v[j], None]
+        c, s = np.cos(qj), np.sin(qj)
+        i1, i2 = (ax + 1) % 3, (ax + 2) % 3
+        Rj = np.empty((n, 3, 3))  # B · R_axis(q): mixes two columns
+        Rj[:, :, ax] = B[:, :, ax]
+        Rj[:, :, i1] = B[:, :, i1] * c + B[:, :, i2] * s
+        Rj[:, :, i2] = B[:, :, i2] * c - B[:, :, i1] * s
+        d = R[p] @ tree.translations[j]
+        u = Rj[:, :, ax]
+        wq = u * V[:, tree.idx_v[j], None]
+        R.append(Rj)
+        if tree.translations[j].any():
+            o.append(o[p] + d)
+            acc.append(acc[p] + _cross(al[p], d) + _cross(w[p], _cross(w[p], d)))
+        else:  # same origin as the parent's (U joints, the wrist)
+            o.append(o[p])
+            acc.append(acc[p])
+        w.append(w[p] + wq)
+        al.append(al[p] + _cross(w[p], wq) + u * A[:, tree.idx_v[j], None])
+    F = [zero.copy() for _ in range(nj)]
+    M = [zero.copy() for _ in range(nj)]
+    for i, ends in enumerate(tree.closure_points):  # +λ on link_i (A), −λ on the platform (B)
+        for (j, local), sign in zip(ends, (1.0, -1.0)):
+            f = sign * lam[:, i]
+            F[j] -= f
+            M[j] -= _cross(R[j] @ local, f)
+    for j in range(nj - 1, 0, -1):
+        m = tree.masses[j]
+        if m > 0.0:  # massless U-joint crosses carry nothing of their own
+            r = R[j] @ tree.levers[j]
+            a_c = acc[j] + _cross(al[j], r) + _cross(w[j], _cross(w[j], r))
+            f = m * (a_c - tree.gravity)
+            Rt = np.swapaxes(R[j], -1, -2)
+            wb, ab = _mv(Rt, w[j]), _mv(Rt, al[j])  # body axes: I is constant there
+            Iw = wb @ tree.inertias[j]  # I symmetric: (I ω)ᵀ = ωᵀ I
+            F[j] += f
+            M[j] += _mv(R[j], ab @ tree.inertias[j] + _cross(wb, Iw)) + _cross(r, f)
+        p = tree.parents[j]
+        if p:
+            F[p] += F[j]
+            M[p] += M[j] if o[j] is o[p] else M[j] + _cross(o[j] - o[p], F[j])
+    return (np.stack(F[1:], axis=1), np.stack(M[1:], axis=1),
+            np.stack([R[j][:, :, tree.axes[j]] for j in range(1, nj)], axis=1))
+
+
+def _closure_forces(robot: Robot, ik: IKResult, dyn) -> np.ndarray:
+    lam = np.asarray(dyn.closure_forces, dtype=float)
+    if lam.shape != (len(ik), len(robot.closures), 3):
+        raise ValueError(f"closure forces of shape {lam.shape} do not match the IK result's "
+                         f"{len(ik)} samples × {len(robot.closures)} closures × 3")
+    return lam
+
+
+def joint_loads(robot: Robot, ik: IKResult, dyn, timings: dict | None = None) -> JointLoads:
+    """Joint loads along an IK result and its inverse dynamics (``dyn``, for the closure forces),
+    stacked over samples (docs/model.md §17).
+
+    Ideal joints, as ``run``: with ``JointLosses`` in ``dyn`` the axis moment is τ minus the
+    loss torque of the joint, not τ."""
+    clock = Stopwatch(timings)
+    lam = _closure_forces(robot, ik, dyn)
+    F, M, U = _passes(_tree(robot), ik.q, ik.v, ik.a, lam)
+    clock.lap("loads")
+    return JointLoads(t=ik.t, joints=robot.joint_names, force=F, moment=M, axis=U,
+                      closure_forces=lam)
+
+
+def joint_loads_rnea(robot: Robot, ik: IKResult, dyn) -> JointLoads:
+    """The same loads from Pinocchio's ``rnea`` with the closure forces as external forces,
+    sample by sample: ``data.f[j]`` is the force of joint j's parent on its child, in the local
+    joint frame at the joint origin."""
+    model, data = robot.model, robot.data
+    n, nj = len(ik), model.njoints
+    lam = _closure_forces(robot, ik, dyn)
+    points = [tuple((model.frames[robot.frame_id(f)].parentJoint,
+                     np.array(model.frames[robot.frame_id(f)].placement.translation))
+                    for f in (c.frame_a, c.frame_b)) for c in robot.closures]
+    axes = [_AXES[model.joints[j].shortname()] for j in range(1, nj)]
+    F, M, U = (np.empty((n, nj - 1, 3)) for _ in range(3))
+    for k in range(n):
+        pin.forwardKinematics(model, data, ik.q[k])
+        fext = pin.StdVec_Force()
+        for _ in range(nj):
+            fext.append(pin.Force.Zero())
+        for i, ends in enumerate(points):
+            for (j, local), sign in zip(ends, (1.0, -1.0)):
+                Rj = data.oMi[j].rotation
+                f_local = Rj.T @ (sign * lam[k, i])  # local axes, applied at ``local``
+                fext[j] = fext[j] + pin.Force(f_local, np.cross(local, f_local))
+        pin.rnea(model, data, ik.q[k], ik.v[k], ik.a[k], fext)
+        for j in range(1, nj):
+            Rj = data.oMi[j].rotation
+            F[k, j - 1] = Rj @ data.f[j].linear
+            M[k, j - 1] = Rj @ data.f[j].angular
+            U[k, j - 1] = Rj[:, axes[j - 1]]
+    return JointLoads(t=ik.t, joints=robot.joint_names, force=F, moment=M, axis=U,
+                      closure_forces=lam)
+
+
+__all__ = ["JointLoads", "joint_loads", "joint_loads_rnea", "cubic_mean", "CHAIN_JOINTS"]

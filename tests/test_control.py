@@ -1,0 +1,262 @@
+"""Closed-loop simulation (docs/model.md §18): tracking, the plant against its own inverse
+dynamics and against MuJoCo, energy conservation to RK4's order, and the CLI's bad inputs."""
+import numpy as np
+import pytest
+
+from pollard_pin.dynamics.control import (ComputedTorque, ControlError, Gains,
+                                          MeasurementNoise, desired_trajectory,
+                                          simulate_tracking)
+from pollard_pin.dynamics.forward import forward_dynamics
+from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
+from pollard_pin.dynamics.plant import Plant, PlantError, PlantErrors
+from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
+
+PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
+
+
+def _head(seconds: float, step: float = 0.01) -> Trajectory:
+    """The first ``seconds`` of the thesis trajectory (20 s), sampled every ``step``."""
+    full = thesis_trajectory(samples=int(round(20.0 / step)) + 1)
+    n = int(round(seconds / step)) + 1
+    return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
+                      name="thesis head")
+
+
+@pytest.fixture(scope="module")
+def traj():
+    return _head(2.0)
+
+
+@pytest.fixture(scope="module")
+def desired(robot, traj):
+    return desired_trajectory(robot, traj)
+
+
+@pytest.fixture(scope="module")
+def runs(robot, traj, desired):
+    """Both controllers on the exact and on the perturbed plant."""
+    return {(c, e): simulate_tracking(robot, traj, c, errs, desired=desired)
+            for c in ("computed-torque", "pd")
+            for e, errs in (("exact", None), ("perturbed", PERTURBED))}
+
+
+def test_computed_torque_tracks_the_exact_model(runs):
+    res = runs["computed-torque", "exact"]
+    assert res.tip_position_error.max() <= 1e-6
+    assert res.tip_orientation_error.max() <= 1e-5
+    assert res.max_closure_residual <= 1e-10
+    assert res.closure_residual.max() <= 1e-10
+
+
+def test_payload_and_mass_error_stay_bounded_and_pd_is_worse(runs):
+    ct, pd = runs["computed-torque", "perturbed"], runs["pd", "perturbed"]
+    s = ct.summary()
+    # Bounded: the steady payload offset of an ω = 60 rad/s loop (a few mm), not a drift.
+    assert 1e-5 < s["max_tip_position_error"] < 1e-2
+    late = ct.tip_position_error[len(ct) // 2:]
+    assert late.max() < 1.5 * ct.tip_position_error[:len(ct) // 2].max()
+    assert s["rms_tip_position_error"] <= s["max_tip_position_error"]
+    for model in ("exact", "perturbed"):
+        assert (runs["pd", model].tip_position_error.max()
+                > runs["computed-torque", model].tip_position_error.max())
+    assert pd.tip_position_error.max() > 1e-3  # PD lags the moving reference by ~2ζv/ω
+
+
+def test_plant_obeys_its_inverse_dynamics(robot, traj, desired):
+    """ID(q, v, a) of the simulated states (payload, mass error, rotor inertia, friction)
+    returns the applied torque."""
+    losses = JointLosses(viscous=np.full(12, 2e-3), coulomb=np.full(12, 1e-3),
+                         armature=np.full(12, 1e-4))
+    errors = PlantErrors(payload=0.05, mass_error=0.1, losses=losses)
+    res = simulate_tracking(robot, traj, "computed-torque", errors, desired=desired)
+    plant = Plant(robot, errors)
+    worst = 0.0
+    for k in range(0, len(res), 10):
+        tau = plant.actuator_torque(res.q[k], res.v[k], res.a[k])
+        worst = max(worst, np.abs(tau - res.tau[k]).max() / np.abs(res.tau[k]).max())
+    assert worst <= 1e-6
+    # The nominal model's ID does not match: the check can fail.
+    k = len(res) // 2
+    nominal = inverse_dynamics_sample(robot, res.q[k], res.v[k], res.a[k])[0]
+    assert np.abs(nominal - res.tau[k]).max() > 1e-3 * np.abs(res.tau[k]).max()
+
+
+def test_forward_dynamics_honours_armature(robot, desired):
+    q, v = desired.q[50], desired.v[50]
+    tau = desired.tau_exact[50]
+    losses = JointLosses(viscous=0.01, coulomb=0.02, armature=np.linspace(1e-4, 1e-3, 12))
+    a = forward_dynamics(robot, q, v, tau, losses=losses)
+    assert np.abs(inverse_dynamics_sample(robot, q, v, a, losses)[0] - tau).max() < 1e-10
+    assert not np.any(robot.model.armature)  # restored
+    assert np.abs(a - forward_dynamics(robot, q, v, tau)).max() > 1e-3
+
+
+def test_mujoco_peer_forward_dynamics_agrees(robot, runs):
+    """KKT solve with MuJoCo's mass matrix, bias forces and connect Jacobian (J̇v by central
+    differences of MuJoCo's efc_J) against the plant's accelerations at simulated states."""
+    mujoco = pytest.importorskip("mujoco")
+    from pollard_pin.crosscheck.mujoco import JOINTS, build_mujoco
+
+    model, data, info = build_mujoco()
+    assert tuple(JOINTS) == robot.joint_names
+    qadr, dadr, rows = info["qpos_adr"], info["dof_adr"], info["efc_rows"].reshape(-1)
+    ia = robot.actuated_v
+    res = runs["computed-torque", "perturbed"]  # states off the reference, nominal plant below
+    plant = Plant(robot)
+
+    def jacobian(q):
+        data.qpos[qadr] = q
+        mujoco.mj_forward(model, data)
+        return data.efc_J.reshape(data.nefc, model.nv)[rows][:, dadr].copy()
+
+    worst = 0.0
+    for k in (0, 57, 133, 200):
+        q, v, tau = res.q[k], res.v[k], res.tau[k]
+        h = 1e-6
+        jdot_v = (jacobian(q + h * v) - jacobian(q - h * v)) / (2 * h) @ v
+        J = jacobian(q)
+        data.qvel[dadr] = v
+        mujoco.mj_forward(model, data)
+        M = np.zeros((model.nv, model.nv))
+        mujoco.mj_fullM(model, data, M)  # MuJoCo 4 signature
+        M, bias = M[np.ix_(dadr, dadr)], data.qfrc_bias[dadr]
+        f = -bias
+        f[ia] += tau
+        kkt = np.block([[M, J.T], [J, np.zeros((6, 6))]])
+        a_mj = np.linalg.solve(kkt, np.concatenate([f, -jdot_v]))[:12]
+        a = plant.acceleration(q, v, tau)
+        worst = max(worst, np.abs(a - a_mj).max() / np.abs(a).max())
+    assert worst < 1e-8  # seen 5.6e-10: the central difference for J̇v
+
+
+def test_energy_is_conserved_to_fourth_order(robot):
+    """Controller off, no friction: the energy drift falls ~16× per halving of dt (RK4)."""
+    traj = _head(0.3)
+    plant = Plant(robot)
+
+    def off(t, q, v):
+        return np.zeros(6)
+
+    drift = []
+    for dt in (5e-3, 2.5e-3, 1.25e-3):
+        res = simulate_tracking(robot, traj, off, dt=dt, control_period=0.01)
+        e = np.array([plant.energy(q, v) for q, v in zip(res.q, res.v)])
+        drift.append(np.abs(e - e[0]).max())
+    rates = [drift[0] / drift[1], drift[1] / drift[2]]
+    assert all(10 < r < 24 for r in rates), (drift, rates)
+    assert drift[-1] < 1e-7
+
+
+def test_zero_order_hold_saturation_and_user_controller(robot, traj, desired):
+    calls = []
+    inner = ComputedTorque(robot, desired, Gains(60.0, 1.0))
+
+    def mine(t, q, v):
+        calls.append(t)
+        return inner(t, q, v)
+
+    res = simulate_tracking(robot, traj, mine, control_period=5e-3, torque_limit=0.8,
+                            desired=desired_trajectory(robot, traj, 5e-3))
+    assert np.allclose(np.diff(calls), 5e-3)
+    assert np.abs(res.tau).max() <= 0.8 + 1e-15
+    assert res.saturation_time > 0
+    assert len(res) == len(traj) and np.array_equal(res.t, traj.t)
+
+
+def test_noise_is_seeded(robot, traj, desired):
+    runs = [simulate_tracking(robot, traj, "computed-torque", desired=desired,
+                              noise=MeasurementNoise(1e-4, 1e-2, seed)) for seed in (1, 1, 2)]
+    assert np.array_equal(runs[0].tau, runs[1].tau)
+    assert not np.array_equal(runs[0].tau, runs[2].tau)
+    assert 1e-6 < runs[0].tip_position_error.max() < 1e-3
+
+
+@pytest.mark.parametrize("kwargs, says", [
+    (dict(controller="lqr"), "unknown controller 'lqr'"),
+    (dict(gains=None), "--wn must be"),
+    (dict(dt=0.0), "time step --dt must be > 0"),
+    (dict(start="home"), "trajectory starts off the path"),
+    (dict(errors=None, torque_limit=[1, 2]), "give one value or 6"),
+])
+def test_bad_api_inputs(robot, traj, desired, kwargs, says):
+    if "gains" in kwargs:
+        with pytest.raises(ControlError, match=says):
+            Gains(-1.0, 1.0)
+        return
+    if kwargs.get("start") == "home":
+        kwargs["start"] = robot.home()
+    with pytest.raises(ControlError, match=says):
+        simulate_tracking(robot, traj, desired=desired, **kwargs)
+    with pytest.raises(PlantError, match="fraction > -1"):
+        PlantErrors(mass_error=-1.5)
+
+
+@pytest.fixture(scope="module")
+def short_csv(tmp_path_factory):
+    from pollard_pin.io.trajectory import to_csv
+
+    path = tmp_path_factory.mktemp("sim") / "head.csv"
+    to_csv(_head(0.5), path)
+    return path
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["--controller", "lqr"], "invalid choice: 'lqr'"),
+    (["--wn", "-3"], "must be >= 0, got -3"),
+    (["--dt", "0"], "must be positive, got 0"),
+    (["--mass-error", "-2"], "mass error must be a fraction > -1"),
+    (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
+    (["--start", "home"], "trajectory starts off the path"),
+])
+def test_cli_bad_inputs_one_line_exit_2_nothing_written(short_csv, tmp_path, capsys, argv,
+                                                        says):
+    from pollard_pin.cli import main
+
+    out = tmp_path / "sim.csv"
+    try:
+        code = main(["simulate", "--trajectory", str(short_csv), "--out", str(out), *argv])
+    except SystemExit as exc:  # argparse's own one-line errors
+        code = exc.code
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and says in err and len(err.splitlines()) == 1, err
+    assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_cli_simulate_writes_the_columns(short_csv, tmp_path, capsys):
+    from pollard_pin.cli import main
+    from pollard_pin.io.table import read_result
+
+    out = tmp_path / "sim.csv"
+    assert main(["simulate", "--trajectory", str(short_csv), "--payload", "0.05",
+                 "--mass-error", "0.1", "--out", str(out)]) == 0
+    table = read_result(out)
+    for name in ("t", "theta21", "d_theta43", "dd_theta76_2", "tau_theta1817",
+                 "tip_position_error", "tip_orientation_error", "closure_residual"):
+        assert name in table.columns
+    assert table.units["tip_position_error"] == "m"
+    assert len(table) == 51
+    summary = table.metadata["summary"]
+    assert summary["max_tip_position_error"] == pytest.approx(
+        table["tip_position_error"].max(), rel=1e-12)
+    assert "tool-tip position error" in capsys.readouterr().out
+
+
+def test_plot_and_report_show_a_simulation(short_csv, tmp_path, capsys):
+    from pollard_pin.cli import main
+
+    sim = tmp_path / "sim.csv"
+    assert main(["simulate", "--trajectory", str(short_csv), "--controller", "pd",
+                 "--out", str(sim)]) == 0
+    assert main(["plot", "--simulation", str(sim), "--out", str(tmp_path / "plots")]) == 0
+    assert sorted(p.name for p in (tmp_path / "plots").iterdir()) == [
+        "simulation_path.png", "simulation_torques.png", "simulation_tracking.png"]
+    md = tmp_path / "report.md"
+    assert main(["report", "--trajectory", str(short_csv), "--no-cross-check",
+                 "--simulation", str(sim), "--out", str(md)]) == 0
+    text = md.read_text()
+    assert "## Closed-loop simulation" in text and "controller pd" in text
+    capsys.readouterr()
+    # Not a simulation table: one line, exit 2.
+    assert main(["plot", "--simulation", str(short_csv), "--out", str(tmp_path / "p2")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "not a simulation table" in err and len(err.splitlines()) == 1
