@@ -35,6 +35,7 @@ _API = {
     "from_csv": "io.trajectory", "to_csv": "io.trajectory", "TrajectoryError": "io.trajectory",
     "smooth_random_trajectory": "io.trajectory",
     "run_pipeline": "io.results", "write_csv": "io.results", "RunResult": "io.results",
+    "stream_run": "io.results", "read_result": "io.table", "ThesisTrajectory": "io.trajectory",
     "load_actuators": "dynamics.actuators", "Actuators": "dynamics.actuators",
     "ActuatorError": "dynamics.actuators", "actuator_sizing": "viz.sizing",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",

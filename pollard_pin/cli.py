@@ -424,7 +424,9 @@ def cmd_simulate(args) -> int:
         control_period=args.control_period, torque_limit=limit, noise=noise,
         start=start, known_losses=known, progress=_progress("simulating", len(traj) >= 500 and not args.quiet))
     wall = time.perf_counter() - t0
-    meta = {"command": "simulate", "trajectory": traj.name, **result.settings,
+    meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
+            "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
+            **result.settings,
             "summary": result.summary()}
     rows = write_table(args.out, result.columns(), metadata=meta)
     lines = [f"{args.controller} on {traj.name}: {len(traj)} samples over "

@@ -1,5 +1,7 @@
 """Closed-loop simulation (docs/model.md §18): tracking, the plant against its own inverse
 dynamics and against MuJoCo, energy conservation to RK4's order, and the CLI's bad inputs."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -12,6 +14,7 @@ from pollard_pin.dynamics.plant import Plant, PlantError, PlantErrors
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 
 PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
+MOTORS = Path(__file__).resolve().parents[1] / "examples" / "actuators.toml"
 
 
 def _head(seconds: float, step: float = 0.01) -> Trajectory:
@@ -79,6 +82,23 @@ def test_plant_obeys_its_inverse_dynamics(robot, traj, desired):
     k = len(res) // 2
     nominal = inverse_dynamics_sample(robot, res.q[k], res.v[k], res.a[k])[0]
     assert np.abs(nominal - res.tau[k]).max() > 1e-3 * np.abs(res.tau[k]).max()
+
+
+def test_known_motors_are_compensated(robot, traj):
+    """The example motors (reflected rotor inertia N²·Jm, friction) in the plant: unknown to
+    the controller they stall the light wrist; known, computed torque tracks again."""
+    from pollard_pin.dynamics.actuators import load_actuators
+
+    motors = load_actuators(MOTORS)
+    losses = motors.joint_losses(robot.joint_names)
+    blind, known = (simulate_tracking(robot, traj, "computed-torque", PlantErrors(losses=losses),
+                                      known_losses=k) for k in (None, losses))
+    assert known.tip_position_error.max() < 1e-5
+    assert blind.tip_orientation_error.max() > 100 * known.tip_orientation_error.max()
+    plant = Plant(robot, PlantErrors(losses=losses))
+    k = len(known) // 2
+    tau = plant.actuator_torque(known.q[k], known.v[k], known.a[k])
+    assert np.abs(tau - known.tau[k]).max() <= 1e-9 * np.abs(known.tau[k]).max()
 
 
 def test_forward_dynamics_honours_armature(robot, desired):
@@ -163,6 +183,18 @@ def test_zero_order_hold_saturation_and_user_controller(robot, traj, desired):
     assert len(res) == len(traj) and np.array_equal(res.t, traj.t)
 
 
+def test_output_samples_off_the_control_grid(robot, traj):
+    """Sample times (10 ms) that are not ticks (3 ms) nor RK4 steps (0.7 ms) are inserted as
+    breakpoints: every output row is at its own time, tracking unchanged."""
+    res = simulate_tracking(robot, traj, "computed-torque", dt=7e-4, control_period=3e-3)
+    assert np.array_equal(res.t, traj.t)
+    assert res.tip_position_error.max() <= 1e-6
+    plant = Plant(robot)
+    k = 77
+    assert np.abs(plant.actuator_torque(res.q[k], res.v[k], res.a[k]) - res.tau[k]).max() \
+        <= 1e-9 * np.abs(res.tau[k]).max()
+
+
 def test_noise_is_seeded(robot, traj, desired):
     runs = [simulate_tracking(robot, traj, "computed-torque", desired=desired,
                               noise=MeasurementNoise(1e-4, 1e-2, seed)) for seed in (1, 1, 2)]
@@ -207,6 +239,8 @@ def short_csv(tmp_path_factory):
     (["--mass-error", "-2"], "mass error must be a fraction > -1"),
     (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
     (["--start", "home"], "trajectory starts off the path"),
+    (["--actuators", str(MOTORS), "--armature", "1"], "do not combine"),
+    (["--actuators", "missing.toml"], "does not exist"),
 ])
 def test_cli_bad_inputs_one_line_exit_2_nothing_written(short_csv, tmp_path, capsys, argv,
                                                         says):

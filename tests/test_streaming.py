@@ -121,3 +121,33 @@ def test_stats_of_a_window_equal_a_direct_computation(robot):
     f = np.linalg.norm(r.dynamics.closure_forces, axis=2).max(0)
     assert st.closure_force == [f[0], f[1]]
     assert st.sigma_serial == r.ik.sigma_serial.min()
+
+
+def test_memory_is_one_window(robot, tmp_path, monkeypatch):
+    # Bounded memory: the pipeline never sees more than one window, and the lazy thesis
+    # trajectory never builds the whole time grid.
+    import pollard_pin.io.results as results
+
+    seen = []
+    real = results.run_pipeline
+    monkeypatch.setattr(results, "run_pipeline",
+                        lambda robot, traj, **kw: seen.append(len(traj)) or real(robot, traj, **kw))
+    traj = ThesisTrajectory(samples=5001)
+    stats = stream_run(robot, traj, tmp_path / "s.parquet", chunk=1000)
+    assert stats.samples == 5001 and max(seen) == 1000 and sum(seen) == 5001 + len(seen) - 1
+    assert not hasattr(traj, "t")
+
+
+def test_cli_run_parquet_and_times(tmp_path, capsys):
+    from pollard_pin.cli import main
+
+    out = tmp_path / "r.parquet"
+    assert main(["run", "--samples", "301", "--out", str(out), "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "solve " in text and "write " in text and "µs/sample" in text
+    got = read_result(out)
+    assert len(got) == 301 and got.metadata["trajectory"]["samples"] == 301
+    assert got.metadata["parameters"]["chain0"]["x32"] == 0.33
+    ref = pp.run_pipeline(pp.load(), thesis_trajectory(samples=301)).columns()
+    for name, col in ref.items():
+        assert np.abs(got[name] - col).max() <= ROUND_OFF * max(1.0, np.abs(col).max()), name
