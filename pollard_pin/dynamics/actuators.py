@@ -18,14 +18,13 @@ import contextlib
 import difflib
 import logging
 import math
-import tomllib
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
 
-from ..model.params import ACTUATED_JOINTS, JOINT_NAMES
+from ..model.params import ACTUATED_JOINTS, JOINT_NAMES, read_toml
 from .inverse import JointLosses, inverse_dynamics
 
 KEYS = ("gear_ratio", "rotor_inertia", "viscous", "coulomb", "peak_torque",
@@ -134,21 +133,7 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
 
 def load_actuators(path: str | Path, names: tuple[str, ...] = ACTUATED_JOINTS) -> Actuators:
     """Read and validate an actuator TOML file (format: ``examples/actuators.toml``)."""
-    path = Path(path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise ActuatorError(f"actuator file {str(path)!r} does not exist") from None
-    except OSError as exc:
-        raise ActuatorError(f"actuator file {str(path)!r} cannot be read: "
-                            f"{exc.strerror}") from None
-    try:
-        d = tomllib.loads(data.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise ActuatorError(f"actuator file {str(path)!r} is not UTF-8 text (byte "
-                            f"{exc.start})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ActuatorError(f"actuator file {str(path)!r} is not valid TOML: {exc}") from None
+    d = read_toml(path, "actuator file", ActuatorError)
     return actuators_from_dict(d, str(path), names)
 
 

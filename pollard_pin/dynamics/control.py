@@ -376,6 +376,9 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     last = len(pts) - 1
     for i in range(len(pts)):
         t = pts[i]
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+            raise SimulationError(f"simulation diverged at t = {t:.6g} s: non-finite state; "
+                                  "reduce --dt or raise the gains")
         if is_tick[i]:
             qm, vm = q, v
             if rng is not None:
@@ -394,9 +397,6 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
             elif clipped and saturated_since is None:
                 saturated_since = t
             max_res = max(max_res, plant.closure_residual(q))
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            raise SimulationError(f"simulation diverged at t = {t:.6g} s: non-finite state; "
-                                  "reduce --dt or raise the gains")
         a1 = f(q, v, tau)
         k = sample_of[i]
         if k >= 0:

@@ -86,6 +86,7 @@ class RunStats:
     peak: dict = field(default_factory=dict)  # column → max |value|
     work: dict = field(default_factory=dict)  # work column → last value
     closure_force: list = field(default_factory=lambda: [0.0, 0.0])
+    joint_load: dict = field(default_factory=dict)  # joint → [peak |F| N, peak |M| N·m]
 
     def add(self, ik: IKResult, cols: dict) -> None:
         n = len(cols["t"])
@@ -111,6 +112,13 @@ class RunStats:
             if f"f{i + 1}_x" in cols:
                 f = np.sqrt(sum(cols[f"f{i + 1}_{c}"] ** 2 for c in "xyz"))
                 self.closure_force[i] = max(self.closure_force[i], float(f.max()))
+        for name in cols:  # run --loads: F_<joint>_x … M_<joint>_z (docs/model.md §17)
+            if name.startswith("F_") and name.endswith("_x"):
+                joint = name[2:-2]
+                peak = self.joint_load.setdefault(joint, [0.0, 0.0])
+                for i, kind in enumerate("FM"):
+                    mag = np.sqrt(sum(cols[f"{kind}_{joint}_{c}"] ** 2 for c in "xyz"))
+                    peak[i] = max(peak[i], float(mag.max()))
         if not self.actuated:
             self.actuated = tuple(c[4:] for c in cols if c.startswith("tau_"))
 
@@ -134,6 +142,11 @@ class RunStats:
                              f"{self.peak[f'power_{n}']:18.5g} {self.work[f'work_{n}']:14.5g}")
             f = self.closure_force
             lines.append(f"peak closure force: leg 1 {f[0]:.4g} N, leg 2 {f[1]:.4g} N")
+        if self.joint_load:
+            lines.append("joint          peak |force| [N]  peak |moment| [N·m]  (pollard-pin "
+                         "report: axial/radial/bending)")
+            for joint, (fmax, mmax) in self.joint_load.items():
+                lines.append(f"  {joint:12s} {fmax:16.5g} {mmax:20.5g}")
         return lines
 
 

@@ -387,24 +387,29 @@ def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
     return out
 
 
+def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
+    """The TOML file ``path`` as a dictionary; a missing, unreadable, non-UTF-8 or malformed
+    file raises ``error`` with one line naming ``what`` (e.g. "parameter file") and the cause."""
+    try:
+        data = Path(path).read_bytes()
+    except FileNotFoundError:
+        raise error(f"{what} {str(path)!r} does not exist") from None
+    except OSError as exc:
+        raise error(f"{what} {str(path)!r} cannot be read: {exc.strerror}") from None
+    try:
+        return tomllib.loads(data.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise error(f"{what} {str(path)!r} is not UTF-8 text (byte "
+                    f"{exc.start}: {data[exc.start:exc.start + 1]!r})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise error(f"{what} {str(path)!r} is not valid TOML: {exc}") from None
+
+
 def read_params_dict(path: str | Path | None = None) -> dict:
     """The raw thesis-unit dictionary of a parameter file (default: the shipped one), as
     written: a partial file gives a partial dictionary (see :func:`merge_partial`)."""
     path = Path(path) if path is not None else models_dir() / DEFAULT_PARAMS
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise ParameterError(f"parameter file {str(path)!r} does not exist") from None
-    except OSError as exc:
-        raise ParameterError(f"parameter file {str(path)!r} cannot be read: "
-                             f"{exc.strerror}") from None
-    try:
-        return tomllib.loads(data.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise ParameterError(f"parameter file {str(path)!r} is not UTF-8 text (byte "
-                             f"{exc.start}: {data[exc.start:exc.start + 1]!r})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ParameterError(f"parameter file {str(path)!r} is not valid TOML: {exc}") from None
+    return read_toml(path, "parameter file", ParameterError)
 
 
 def merge_partial(base: Mapping, partial: Mapping, prefix: str = "") -> dict:
