@@ -440,10 +440,10 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     return result
 
 
-# --- batched path (issue: speed) -----------------------------------------------------------
-# Per sample only the Pinocchio Jacobian calls run in Python; joint placements come from one
-# forward pass over Pinocchio's model tree stacked over samples, and points, residuals,
-# drifts and every 12 × 12 solve are stacked over samples in numpy.
+# --- batched path ------------------------------------------------------------------------------
+# No Python loop over samples: joint placements, Jacobians and their time variation come from
+# passes over Pinocchio's model tree stacked over samples (docs/model.md §11), and points,
+# residuals, drifts and every 12 × 12 system are stacked over samples in numpy.
 _AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
 
 
@@ -616,9 +616,10 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
     Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
-    step on
-    Pinocchio's [closure residual; tool-pose error]; velocities and accelerations solve Pinocchio's
-    ``[Jc; J_tool]`` systems with drifts from ``computeJointJacobiansTimeVariation``. The
+    step on the [closure residual; tool-pose error]; velocities and accelerations solve the
+    ``[Jc; J_tool]`` systems (one K⁻¹ per sample) with drifts from the Jacobians' time
+    variation, all evaluated on Pinocchio's model tree stacked over samples (docs/model.md
+    §11). The
     closure residual and tool error reported are re-measured at the returned configuration.
     ``timings`` (a dict) accumulates seconds per stage: position (closed form, Jacobians,
     residual), velocity (the stacked solve shared with the Newton step), acceleration,
