@@ -7,8 +7,11 @@ with exit status 2; outputs are checked for writability before the work starts.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import errno
 import logging
 import math
+import os
 import sys
 import time
 import warnings
@@ -231,14 +234,17 @@ def cmd_run(args) -> int:
                             "singularity_margin": args.singularity_margin,
                             "loads": args.loads}}
     timings: dict = {}
+    workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS)
     stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
+                       workers=workers,
                        progress=_progress("solving", n >= 500 and not args.quiet),
                        wrist_margin=args.wrist_margin,
                        singularity_margin=args.singularity_margin, loads=args.loads)
-    solve, write = timings["solve"], timings["write"]
+    wall, write = timings["wall"], timings["write"]
     text = summary(stats) + (
-        f"\nsolve {solve:.3f} s ({1e6 * solve / n:.2f} µs/sample), write {write:.3f} s "
-        f"({1e6 * write / n:.2f} µs/sample; model loading and imports not included)")
+        f"\nsolved and written in {wall:.3f} s ({1e6 * wall / n:.2f} µs/sample; model loading "
+        f"and imports not included): {workers} solver thread(s), writing {write:.3f} s "
+        f"({1e6 * write / n:.2f} µs/sample) in the main thread meanwhile")
     print(text, file=sys.stderr if args.out == STDOUT else sys.stdout)
     _wrote(args.out, f" ({stats.samples} rows)")
     from .timing import peak_memory_mb
@@ -252,8 +258,6 @@ def _fmt_mb(mb: float | None) -> str:
 
 
 def cmd_sweep(args) -> int:
-    import os
-
     from .sweep import load_grid, run_sweep, summary, write_csv
 
     check_destination(args.out)
@@ -438,6 +442,10 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+MAX_RUN_WORKERS = 4  # run: solver threads by default (each holds one window in memory)
+STREAM_WINDOW = 4096  # = pollard_pin.io.results.STREAM_CHUNK (not imported: --help stays fast)
+
+
 class _UsageError(ValueError):
     """A command-line value the command cannot use (one line)."""
 
@@ -502,6 +510,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--loads", action="store_true",
                    help="also write the load of every tree joint: F_<joint>_x/y/z [N] and "
                         "M_<joint>_x/y/z [N·m], world axes (docs/model.md §17)")
+    p.add_argument("--workers", type=_count(1, 64), default=None,
+                   help=f"solver threads, one window of {STREAM_WINDOW} samples each (default: "
+                        f"the cores, at most {MAX_RUN_WORKERS}; 1 = no threads)")
 
     p = command("sweep", "design sweep: parameter variants over a trajectory → CSV", cmd_sweep)
     p.add_argument("--grid", required=True, metavar="FILE.toml",
@@ -615,6 +626,7 @@ def _errors() -> tuple[type[BaseException], ...]:
     from .dynamics.plant import PlantError
     from .dynamics.actuators import ActuatorError
     from .io.atomic import OutputError
+    from .io.table import ResultFileError
     from .io.trajectory import TrajectoryError
     from .kinematics.errors import ClosureError, KinematicsError
     from .model.build import ModelFileError
@@ -623,7 +635,7 @@ def _errors() -> tuple[type[BaseException], ...]:
 
     return (ControlError, PlantError, SimulationError,
             ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
-            SweepError, OutputError, _UsageError, ImportError, ActuatorError)
+            SweepError, OutputError, _UsageError, ImportError, ActuatorError, ResultFileError)
 
 
 def main(argv=None) -> int:
@@ -643,6 +655,20 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print(f"pollard-pin {args.command}: interrupted, nothing written", file=sys.stderr)
         return 130
+    except OSError as exc:
+        if not _broken_pipe(exc):
+            raise
+        # The reader of standard output or of a FIFO stopped (`run --out - | head`): stop
+        # quietly like any Unix filter, 128 + SIGPIPE, with no flush error at exit.
+        with contextlib.suppress(OSError, ValueError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+
+
+def _broken_pipe(exc: OSError) -> bool:
+    """EPIPE, from Python or from polars' writer (a plain OSError naming the Rust os error)."""
+    return (isinstance(exc, BrokenPipeError) or exc.errno == errno.EPIPE
+            or f"(os error {errno.EPIPE})" in str(exc))
 
 
 if __name__ == "__main__":

@@ -53,7 +53,6 @@ import copy
 import itertools
 import json
 import os
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, Sequence
@@ -62,7 +61,7 @@ import numpy as np
 
 from .io.atomic import atomic_open
 from .model.params import (ParameterError, apply_overrides, lookup, params_from_dict,
-                     plain_value, read_params_dict)
+                     plain_value, read_params_dict, read_toml)
 
 # docs/model.md §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
 ACTUATORS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
@@ -348,13 +347,7 @@ def _flatten(table: Mapping, prefix: str = "") -> dict:
 def load_grid(path: str | Path) -> Sweep:
     """Read and validate a grid TOML file (format: module docstring)."""
     path = Path(path)
-    try:
-        with open(path, "rb") as f:
-            d = tomllib.load(f)
-    except FileNotFoundError:
-        raise SweepError(f"grid file {str(path)!r} does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SweepError(f"grid file {str(path)!r} is not valid TOML: {exc}") from None
+    d = read_toml(path, "grid file", SweepError)
     unknown = [k for k in d if k not in GRID_KEYS]
     if unknown:
         raise SweepError(f"{path}: unknown entry '{unknown[0]}' (expected: "

@@ -67,6 +67,17 @@ def pinocchio_batch(robot, traj):
     return run
 
 
+def pinocchio_threads(robot, traj, workers: int):
+    """The pipeline as ``run`` drives it: windows of 4096 samples solved by ``workers`` threads
+    (IK, singularity analysis, inverse dynamics with energies, output columns; no writing)."""
+    from pollard_pin.io.results import solve_windows
+
+    def run(timings):
+        for _ in solve_windows(robot, traj, workers=workers):
+            pass
+    return run
+
+
 def pinocchio_newton(robot, traj):
     def run(timings):
         t0 = time.perf_counter()
@@ -216,7 +227,7 @@ def cli_section(sizes: tuple[int, int], repeats: int, big: int) -> None:
         if big:
             out = str(Path(tmp) / "big.csv")
             wall, rss, text = cli_run(big, out)
-            solve = [x for x in text.splitlines() if x.startswith("solve ")]
+            solve = [x for x in text.splitlines() if x.startswith("solved and written")]
             print(f"  {big} samples, CSV: {wall:.1f} s, peak resident {rss:.0f} MB "
                   f"({solve[0] if solve else ''})")
             for n in (big // 5,):
@@ -268,6 +279,9 @@ def main(argv=None) -> int:
         traj = pp.thesis_trajectory(samples=n)
         reps = args.repeats if n <= 5000 else max(1, args.repeats // 2)
         paths = {"pinocchio (batched)": pinocchio_batch(robot, traj)}
+        for w in (1, 2):
+            paths[f"pinocchio, run, {w} thread{'s' * (w > 1)}"] = \
+                pinocchio_threads(robot, traj, w)
         if not args.no_newton:
             paths["pinocchio (per sample)"] = pinocchio_newton(robot, traj)
         paths["thesis (closed form + E-L)"] = thesis_path(robot, traj)

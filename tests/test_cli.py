@@ -72,6 +72,8 @@ BAD = [  # (argv, what the one error line must say)
     (["run", "--trajectory", "missing.csv", "--out", "r.csv"], "No such file"),
     (["run", *SHORT, "--params", "huge.toml", "--out", "r.csv"], "must be at most 10 m"),
     (["sweep", "--grid", "missing.toml", "--out", "s.csv"], "missing.toml"),
+    (["sweep", "--grid", "latin1.toml", "--out", "s.csv"], "is not UTF-8 text"),
+    (["sweep", "--grid", "afolder", "--out", "s.csv"], "cannot be read"),
     (["sweep", "--grid", "g.toml", "--workers", "0"], "must be >= 1"),
     (["sweep", "--grid", str(EXAMPLES / "sweep.toml"), "--out", "afile/s.csv"], "not a folder"),
     (["view", *SHORT, "--html", "afile/p.html"], "not a folder"),
@@ -81,6 +83,8 @@ BAD = [  # (argv, what the one error line must say)
     (["plot", *SHORT, "--out", "afile"], "names a file, but a folder is expected"),
     (["report", *SHORT, "--format", "xml"], "invalid choice"),
     (["report", *SHORT, "--out", "afile/r.md"], "not a folder"),
+    (["report", *SHORT, "--simulation", "latin1.csv", "--out", "r.md"], "not UTF-8 text"),
+    (["plot", *SHORT, "--simulation", "afolder", "--out", "p"], "is a folder, not a result"),
     (["export", "--format", "stl"], "invalid choice"),
     (["export", "--out", "afile/m.xml"], "not a folder"),
     (["frobnicate"], "invalid choice"),
@@ -141,6 +145,18 @@ def test_run_out_dash_writes_the_csv_to_stdout(files, capsys):
     assert "peak closure force" in err
     assert sorted(p.name for p in files.iterdir()) == ["afile", "afolder", "broken.toml",
                                                        "huge.toml", "latin1.csv", "latin1.toml"]
+
+
+def test_run_out_dash_into_a_closed_pipe_stops_quietly(tmp_path):
+    # `pollard-pin run --out - | head -1`: the reader leaves; no traceback, status 128 + SIGPIPE
+    proc = subprocess.Popen([sys.executable, "-m", "pollard_pin.cli", "run", "--out", "-",
+                             "--samples", "20001", "--quiet"], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout.readline().startswith(b"t,x,y,z,")
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(60) == 141, err
+    assert err == "" and not list(tmp_path.iterdir())
 
 
 def test_urdf_default_writes_here_and_never_the_shipped_files(files, capsys):

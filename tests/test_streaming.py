@@ -27,10 +27,12 @@ def whole(robot, tmp_path_factory):
     return read_result(path)
 
 
-@pytest.mark.parametrize("chunk", [2, 97, 500, 1201, 5000])
-def test_windows_give_the_whole_solve(robot, whole, tmp_path, chunk):
+@pytest.mark.parametrize("chunk, workers", [(2, 1), (97, 1), (500, 1), (1201, 1), (5000, 1),
+                                            (97, 3), (500, 2)])
+def test_windows_give_the_whole_solve(robot, whole, tmp_path, chunk, workers):
     path = tmp_path / "s.csv"
-    stats = stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=chunk)
+    stats = stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=chunk,
+                       workers=workers)
     got = read_result(path)
     assert list(got.columns) == list(whole.columns) and len(got) == 1201 == stats.samples
     _same(got, whole)
@@ -82,15 +84,16 @@ def _with_singular_sample(k, n=1201):
     return Trajectory(traj.t, poses, d, dd, name="edge")
 
 
+@pytest.mark.parametrize("workers", [1, 2])
 @pytest.mark.parametrize("k", [0, 299, 300, 301, 1000, 1200])
-def test_errors_count_samples_from_the_start(robot, tmp_path, k):
+def test_errors_count_samples_from_the_start(robot, tmp_path, k, workers):
     traj = _with_singular_sample(k)
     with pytest.raises(SingularityError) as whole:
         pp.run_pipeline(robot, traj)
     path = tmp_path / "s.csv"
     path.write_text("keep me\n")
     with pytest.raises(SingularityError) as streamed:
-        stream_run(robot, traj, path, chunk=300)
+        stream_run(robot, traj, path, chunk=300, workers=workers)
     assert whole.value.sample == streamed.value.sample == k
     assert whole.value.chain == streamed.value.chain
     # the same message; σ at round-off level (≈ 1e-17) need not have the same bits
@@ -144,10 +147,63 @@ def test_cli_run_parquet_and_times(tmp_path, capsys):
     out = tmp_path / "r.parquet"
     assert main(["run", "--samples", "301", "--out", str(out), "--quiet"]) == 0
     text = capsys.readouterr().out
-    assert "solve " in text and "write " in text and "µs/sample" in text
+    assert "solved and written in " in text and "writing " in text and "µs/sample" in text
     got = read_result(out)
     assert len(got) == 301 and got.metadata["trajectory"]["samples"] == 301
     assert got.metadata["parameters"]["chain0"]["x32"] == 0.33
     ref = pp.run_pipeline(pp.load(), thesis_trajectory(samples=301)).columns()
     for name, col in ref.items():
         assert np.abs(got[name] - col).max() <= ROUND_OFF * max(1.0, np.abs(col).max()), name
+
+
+def test_first_error_in_order_with_threads(robot, tmp_path):
+    # Two bad samples in different windows: the earlier one is reported, whichever thread
+    # finished first.
+    traj = _with_singular_sample(1100)
+    poses = traj.poses.copy()
+    poses[400] = EDGE
+    traj = Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses, name="edge")
+    with pytest.raises(SingularityError) as ei:
+        stream_run(robot, traj, tmp_path / "s.csv", chunk=300, workers=3)
+    assert ei.value.sample == 400
+
+
+def test_worker_robots_do_not_share_pinocchio_data(robot):
+    from pollard_pin.io.results import worker_robot
+
+    other = worker_robot(robot)
+    assert other.model is robot.model and other.data is not robot.data
+    assert all(a is not b for a, b in zip(other.constraint_datas, robot.constraint_datas))
+
+
+@pytest.mark.parametrize("name, content, says", [
+    ("missing.csv", None, "no such result file"),
+    ("folder.csv", "DIR", "is a folder"),
+    ("garbage.parquet", b"not parquet at all", "not a readable parquet result table"),
+    ("empty.csv", b"", "not a readable csv result table"),
+    ("latin1.csv", "t,x\n0,\xe9\n".encode("latin-1"), "not UTF-8 text (byte 6"),
+    ("text.csv", b"t,x\n0,abc\n", "not a readable csv result table"),
+    ("ragged.csv", b"t,x\n0,1,2,3\n", "not a readable csv result table"),
+])
+def test_read_result_of_a_bad_file_is_one_error(tmp_path, name, content, says):
+    from pollard_pin.io.table import ResultFileError
+
+    path = tmp_path / name
+    if content == "DIR":
+        path.mkdir()
+    elif content is not None:
+        path.write_bytes(content)
+    with pytest.raises(ResultFileError) as info:
+        read_result(path)
+    assert str(info.value).startswith(f"{path}: ") and says in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_read_result_names_a_broken_sidecar(robot, tmp_path):
+    from pollard_pin.io.table import ResultFileError
+
+    path = tmp_path / "r.csv"
+    stream_run(robot, ThesisTrajectory(samples=5), path)
+    units_path(path).write_text("{broken")
+    with pytest.raises(ResultFileError, match=r"r\.units\.json: not a readable units sidecar"):
+        read_result(path)

@@ -377,7 +377,12 @@ def _toppra_constraints(act: Actuators, path: PathDynamics, s_dot_viscous: np.nd
     canlinear_colloc_to_interpolate = toppra.constraint.canlinear_colloc_to_interpolate
 
     alpha, beta, gamma, delta = _motor_coefficients(act, path, at_rest)
-    gamma = gamma + delta * s_dot_viscous[:, None]  # viscous: b·N·q_s·ṡ at the last ṡ(s)
+    # viscous δ·ṡ = δ·√x, linearised in x = ṡ² about the last ṡ_v(s) (its tangent, exact at
+    # x = ṡ_v²): δ·(x + ṡ_v²)/(2 ṡ_v); δ·ṡ_v = 0 where ṡ_v = 0
+    sv = s_dot_viscous[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        beta = beta + np.where(sv > 0, delta / (2 * sv), 0.0)
+    gamma = gamma + delta * sv / 2
     peak = act.column("peak_torque")
     m, n = len(peak), len(path.s)
     F = np.broadcast_to(np.vstack([np.eye(m), -np.eye(m)]), (n, 2 * m, m))
@@ -427,24 +432,40 @@ def time_optimal(act: Actuators, path: PathDynamics, s_dot_start: float = 0.0,
     toppra = _toppra()
     s = np.asarray(path.s, dtype=float)
     dummy = toppra.SplineInterpolator([0.0, 1.0], [[0.0], [1.0]])  # the grid is all it uses
-    s_dot = np.zeros(len(s))
     at_rest = np.zeros(len(s), dtype=bool)
     at_rest[[0, -1]] = s_dot_start == 0, s_dot_end == 0
     has_viscous = bool(np.any(act.column("viscous") > 0))
-    for it in range(1, max_iterations + 1):
-        constraints = _toppra_constraints(act, path, s_dot, at_rest)
+    # Viscous friction enters at ṡ_v(s): the last solution, or, where that is so fast that
+    # its viscous torque leaves no traversal, a step back towards the last ṡ_v that solved
+    # (halved until one solves); converged when the solution equals the ṡ_v it was given.
+    s_dot_v = solved_at = np.zeros(len(s))
+    step, it, change = 1.0, 0, np.inf
+    while it < max_iterations and step >= 1.0 / 64:
+        it += 1
+        constraints = _toppra_constraints(act, path, s_dot_v, at_rest)
         solver = toppra.algorithm.TOPPRA(constraints, dummy, gridpoints=s,
                                          solver_wrapper="seidel")
         with _quiet("toppra"):  # its failure warnings; the error below says it in one line
-            s_ddot, sd, _ = solver.compute_parameterization(s_dot_start, s_dot_end)
+            s_ddot_new, sd, _ = solver.compute_parameterization(s_dot_start, s_dot_end)
         if sd is None or np.any(~np.isfinite(sd)):
-            raise ActuatorError(
-                "no traversal of the path meets the peak-torque and speed ratings (TOPP-RA "
-                "found the path uncontrollable: gravity alone may exceed a peak torque)")
-        change = np.abs(sd - s_dot).max() / max(sd.max(), 1e-300)
-        s_dot = np.maximum(sd, 0.0)
+            if it == 1:  # no viscous term yet: the path itself is uncontrollable
+                raise ActuatorError(
+                    "no traversal of the path meets the peak-torque and speed ratings "
+                    "(TOPP-RA found the path uncontrollable: gravity alone may exceed a peak "
+                    "torque)")
+            step /= 2
+            s_dot_v = solved_at + step * (s_dot - solved_at)
+            continue
+        s_ddot, s_dot, solved_at = s_ddot_new, np.maximum(sd, 0.0), s_dot_v
+        change = np.abs(s_dot - s_dot_v).max() / max(s_dot.max(), 1e-300)
         if not has_viscous or change <= tol:
             break
+        s_dot_v = solved_at + step * (s_dot - solved_at)
+    if has_viscous and change > tol:
+        raise ActuatorError(
+            f"the time-optimal traversal with viscous friction did not converge in {it} "
+            f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
+            "torque b·ωm at the motors' speeds is too close to their peak torque")
     ds = np.diff(s)
     dt = 2.0 * ds / (s_dot[:-1] + s_dot[1:])
     t = np.concatenate([[0.0], np.cumsum(dt)])

@@ -155,24 +155,62 @@ class ResultTable:
         return len(next(iter(self.columns.values()))) if self.columns else 0
 
 
-def read_result(path: str | Path) -> ResultTable:
-    """Read a table written by :class:`TableWriter` (``run``, ``sweep``…), CSV or Parquet."""
-    path = Path(path)
-    if not path.is_file():
-        raise OutputError(f"{path}: no such result file")
-    if table_format(path) == "parquet":
-        import pyarrow.parquet as pq
+class ResultFileError(ValueError):
+    """A result table that cannot be read back (one line: which file, why)."""
 
-        table = pq.read_table(path)
-        meta = table.schema.metadata or {}
-        cols = {n: table.column(n).to_numpy() for n in table.column_names}
-        return ResultTable(cols, json.loads(meta.get(UNITS_KEY.encode(), b"{}")),
-                           json.loads(meta.get(META_KEY.encode(), b"{}")))
+
+def read_result(path: str | Path) -> ResultTable:
+    """Read a table written by :class:`TableWriter` (``run``, ``sweep``…), CSV or Parquet;
+    a missing, unreadable or malformed file raises :class:`ResultFileError`."""
+    path = Path(path)
+    if path.is_dir():
+        raise ResultFileError(f"{path}: is a folder, not a result file")
+    if not path.is_file():
+        raise ResultFileError(f"{path}: no such result file")
+    fmt = table_format(path)
+    try:
+        return _read_parquet(path) if fmt == "parquet" else _read_csv(path)
+    except ResultFileError:
+        raise
+    except (OSError, ValueError, _polars_error()) as exc:  # pyarrow's are ValueError/OSError
+        cause = " ".join(str(exc).split()) or type(exc).__name__
+        raise ResultFileError(f"{path}: not a readable {fmt} result table ({cause})") from None
+
+
+def _polars_error() -> type[Exception]:
+    from polars.exceptions import PolarsError
+
+    return PolarsError
+
+
+def _read_parquet(path: Path) -> ResultTable:
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(path)
+    meta = table.schema.metadata or {}
+    cols = {n: table.column(n).to_numpy() for n in table.column_names}
+    return ResultTable(cols, json.loads(meta.get(UNITS_KEY.encode(), b"{}")),
+                       json.loads(meta.get(META_KEY.encode(), b"{}")))
+
+
+def _read_csv(path: Path) -> ResultTable:
+    import codecs
+
     import polars as pl
 
+    with open(path, "rb") as f:  # polars reads a bad header lossily: check it is UTF-8
+        head = f.read(1 << 16)
+    try:
+        codecs.getincrementaldecoder("utf-8")().decode(head, final=False)
+    except UnicodeDecodeError as exc:
+        raise ResultFileError(f"{path}: not UTF-8 text (byte {exc.start}: "
+                              f"{head[exc.start:exc.start + 1]!r})") from None
     frame = pl.read_csv(path, infer_schema_length=0)  # strings first: float64 for every column
     cols = {n: frame[n].cast(pl.Float64).to_numpy() for n in frame.columns}
     side = units_path(path)
-    extra = json.loads(side.read_text(encoding="utf-8")) if side.is_file() else {}
+    try:
+        extra = json.loads(side.read_text(encoding="utf-8")) if side.is_file() else {}
+    except ValueError as exc:  # JSON or UTF-8
+        raise ResultFileError(f"{side}: not a readable units sidecar ({exc})") from None
     return ResultTable(cols, extra.get("units", {c: column_unit(c) for c in cols}),
                        extra.get("metadata", {}))
