@@ -12,7 +12,9 @@ import errno
 import logging
 import math
 import os
+import signal
 import sys
+import threading
 import time
 import warnings
 from pathlib import Path
@@ -643,6 +645,7 @@ def main(argv=None) -> int:
     logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
                         format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
     errors = _errors()
+    previous = _catch_sigterm()
     try:
         return args.func(args)
     except errors as exc:
@@ -652,9 +655,10 @@ def main(argv=None) -> int:
             message += f" (nothing written to {out})"
         print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"pollard-pin {args.command}: interrupted, nothing written", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:
+        how = "terminated" if isinstance(exc, _Terminated) else "interrupted"
+        print(f"pollard-pin {args.command}: {how}, nothing written", file=sys.stderr)
+        return 143 if isinstance(exc, _Terminated) else 130
     except OSError as exc:
         if not _broken_pipe(exc):
             raise
@@ -663,6 +667,25 @@ def main(argv=None) -> int:
         with contextlib.suppress(OSError, ValueError):
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM (kill, a scheduler's time limit) raised like Ctrl-C, so that the temporary
+    output files are removed; Python's default would end the process on the spot."""
+
+
+def _catch_sigterm():
+    """Turn SIGTERM into :class:`_Terminated` (main thread only); the previous handler."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+
+    def terminate(signum, frame):
+        raise _Terminated
+
+    return signal.signal(signal.SIGTERM, terminate)
 
 
 def _broken_pipe(exc: OSError) -> bool:

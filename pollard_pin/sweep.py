@@ -59,6 +59,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
+from .dynamics.averages import time_rms
 from .io.atomic import atomic_open
 from .model.params import (ParameterError, apply_overrides, lookup, params_from_dict,
                      plain_value, read_params_dict, read_toml)
@@ -99,13 +100,6 @@ def _trajectory(spec: Mapping, home_pose):
                           name=spec.get("name", "trajectory"),
                           derivatives=spec.get("derivatives", "file columns"))
     raise SweepError(f"unknown trajectory kind {spec['kind']!r} (expected 'thesis' or 'arrays')")
-
-
-def _time_rms(t: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """sqrt(1/T ∫ x² dt) per column, trapezoid rule."""
-    dt = np.diff(t)[:, None]
-    integral = (0.5 * (x[1:] ** 2 + x[:-1] ** 2) * dt).sum(axis=0)
-    return np.sqrt(integral / (t[-1] - t[0]))
 
 
 def _failure(row: dict, exc: BaseException, chain=None, sample=None, time=None) -> dict:
@@ -174,7 +168,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     if tuple(dyn.actuated) != ACTUATORS:
         raise SweepError(f"actuator order {dyn.actuated} is not docs/model.md §6 order {ACTUATORS}")
     tau, power = dyn.tau, dyn.power
-    peak, rms, ppow = np.abs(tau).max(0), _time_rms(ik.t, tau), np.abs(power).max(0)
+    peak, rms, ppow = np.abs(tau).max(0), time_rms(ik.t, tau), np.abs(power).max(0)
     force = np.linalg.norm(dyn.closure_forces, axis=2).max(0)
     row["feasible"] = True
     for i, a in enumerate(ACTUATORS):

@@ -178,6 +178,30 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
     assert shares["switching"] < 0.15  # ≈ 80 switches, 2 % of the time at 2001 samples
 
 
+@pytest.mark.parametrize("viscous", [5e-5, 1e-4])
+def test_time_optimal_with_strong_viscous_friction(robot, thesis, act, viscous):
+    # b·ωm at the motors' max speed is half / all of their peak torque: the viscous term,
+    # evaluated at the frictionless profile's speed, left no traversal and the sizing
+    # claimed the path uncontrollable. Replayed through the pipeline, the limits hold.
+    from pollard_pin.viz.sizing import actuator_sizing
+
+    sticky = A.Actuators(act.names, tuple(A.Actuator(**{**u.__dict__, "viscous": viscous})
+                                          for u in act.units))
+    sized = actuator_sizing(robot, thesis, sticky)
+    cols = pp.run_pipeline(robot, sized.retimed).columns()
+    use = []
+    for name in NAMES:
+        r = {**RATINGS[name], "viscous": viscous}
+        n, qd = r["gear_ratio"], cols[f"d_{name}"]
+        tau_m = (cols[f"tau_{name}"] / n + r["rotor_inertia"] * n * cols[f"dd_{name}"]
+                 + viscous * n * qd + r["coulomb"] * np.sign(qd))
+        use.append(np.maximum(np.abs(tau_m) / r["peak_torque"], np.abs(n * qd) / r["max_speed"]))
+    use = np.max(use, axis=0)
+    assert 1.0 - 1e-9 <= use.max() <= 1.0 + 1e-9  # a limit is used, none is exceeded
+    assert cols["t"][-1] == pytest.approx(sized.timing.duration, rel=1e-12)
+    assert sized.timing.duration < sized.uniform.duration
+
+
 def test_reflected_inertia_as_joint_losses(robot, thesis, act):
     """JointLosses from the actuators put N²Jm, N²b on the joints: with Coulomb set aside,
     the joint torque with losses over N is the motor torque of the motor model."""
@@ -252,6 +276,12 @@ BAD = [  # (file text, what the one line must name)
     (_toml(_with("theta21", "rotor_inertia", math.nan)), "'theta21.rotor_inertia' = nan: "
      "must be finite"),
     (_toml(_with("theta21", "continuous_torque", 0.08)), "exceeds theta21.peak_torque"),
+    # magnitudes that overflowed the motor model (traceback) or gave an infinite cycle
+    (_toml(_with("theta21", "gear_ratio", 1e300)), "'theta21.gear_ratio' = 1e+300: must be "
+     "between 1e-06 and 1e+06"),
+    (_toml(_with("theta21", "rotor_inertia", 1e300)), "must be at most 1e+06 kg·m²"),
+    (_toml(_with("theta21", "max_speed", 1e-300)), "'theta21.max_speed' = 1e-300: must be "
+     "between 1e-06 and 1e+06 rad/s"),
     (_toml({**{n: RATINGS[n] for n in NAMES}, "theta22": RATINGS["theta21"]}),
      "[theta22] is not an actuator (did you mean"),
     (_toml({n: RATINGS[n] for n in NAMES[:-1]}), "missing table(s) [theta1817]"),
@@ -273,6 +303,16 @@ def test_bad_actuator_files_give_one_line(tmp_path, capsys, text, message):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and message in lines[0], err
     assert not out.exists()
+
+
+def test_size_of_a_two_sample_path_is_one_line_and_writes_nothing(tmp_path, capsys):
+    # rest to rest over one interval never moves: the retimed CSV had t = inf, the JSON NaN
+    code, out, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
+                           "--format", "json", "--retime", str(tmp_path / "r.csv")], capsys)
+    assert code == 2 and out == "", (out, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "needs at least 3 samples of the path, got 2" in lines[0], err
+    assert "Traceback" not in err and not list(tmp_path.iterdir())
 
 
 def test_size_checks_destinations_before_the_work(tmp_path, capsys):

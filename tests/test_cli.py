@@ -159,6 +159,25 @@ def test_run_out_dash_into_a_closed_pipe_stops_quietly(tmp_path):
     assert err == "" and not list(tmp_path.iterdir())
 
 
+def test_terminated_run_removes_its_temporary_file(tmp_path):
+    # SIGTERM (kill, a job's time limit) ended Python on the spot: a 100 MB temporary stayed
+    out = tmp_path / "big.parquet"
+    out.write_text("precious\n")
+    proc = subprocess.Popen([sys.executable, "-m", "pollard_pin.cli", "run", "--out", str(out),
+                             "--samples", "3000001", "--quiet"], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    temporaries = []
+    while proc.poll() is None and not temporaries:  # writing has begun
+        threading.Event().wait(0.02)
+        temporaries = list(tmp_path.glob(".big.parquet.*.tmp"))
+    proc.terminate()
+    _, err = proc.communicate(60)
+    assert temporaries, "the run ended before writing"
+    assert proc.returncode == 143, err
+    assert err.decode().strip() == "pollard-pin run: terminated, nothing written"
+    assert sorted(tmp_path.iterdir()) == [out] and out.read_text() == "precious\n"
+
+
 def test_urdf_default_writes_here_and_never_the_shipped_files(files, capsys):
     shipped = {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
     code, out, err = _run(["urdf", "--set", "chain0.x32=0.34"], capsys)

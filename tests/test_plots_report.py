@@ -2,6 +2,7 @@
 import csv
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -58,6 +59,27 @@ def test_plot_command_writes_every_figure(tmp_path, capsys):
             px = np.asarray(im.convert("L"))
         assert px.std() > 5, f"{name}.png looks blank"
     assert str(out / "actuators.png") in capsys.readouterr().out
+
+
+def test_a_failed_figure_leaves_the_existing_png(result, tmp_path, monkeypatch):
+    # savefig wrote straight into the PNG: a failure half-way left a truncated figure
+    import matplotlib.figure
+
+    from pollard_pin.viz.plots import write_figures
+
+    old = tmp_path / f"{FIGURES[0]}.png"
+    old.write_bytes(b"precious")
+
+    def broken_savefig(fig, target, **kw):  # to a path or into a file object
+        with open(target, "wb") if isinstance(target, (str, Path)) else target as f:
+            f.write(b"\x89PNG half")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", broken_savefig)
+    with pytest.raises(OSError, match="disk full"):
+        write_figures(result, tmp_path, dpi=20)
+    assert [p.name for p in tmp_path.iterdir()] == [old.name]
+    assert old.read_bytes() == b"precious"
 
 
 def _scale(ylabel):

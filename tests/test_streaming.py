@@ -207,3 +207,16 @@ def test_read_result_names_a_broken_sidecar(robot, tmp_path):
     units_path(path).write_text("{broken")
     with pytest.raises(ResultFileError, match=r"r\.units\.json: not a readable units sidecar"):
         read_result(path)
+
+
+def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
+    # the sidecar was checked only after the CSV had replaced the old one
+    from pollard_pin.io.atomic import OutputError
+
+    out = tmp_path / "r.csv"
+    out.write_text("precious\n")
+    units_path(out).mkdir()
+    with pytest.raises(OutputError, match=r"r\.units\.json: is a folder"):
+        stream_run(robot, ThesisTrajectory(samples=11), out)
+    assert out.read_text() == "precious\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv", "r.units.json"]

@@ -15,7 +15,6 @@ Along a path s ∈ [0, 1] the closed-loop joint torques are exactly τ = a(s)·s
 from __future__ import annotations
 
 import contextlib
-import difflib
 import logging
 import math
 from dataclasses import dataclass, replace
@@ -24,12 +23,17 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..model.params import ACTUATED_JOINTS, JOINT_NAMES, read_toml
+from ..model.params import ACTUATED_JOINTS, JOINT_NAMES, did_you_mean, read_toml
+from .averages import time_rms as rms, trapezoid_weights
 from .inverse import JointLosses, inverse_dynamics
 
 KEYS = ("gear_ratio", "rotor_inertia", "viscous", "coulomb", "peak_torque",
         "continuous_torque", "max_speed")
 _POSITIVE = ("gear_ratio", "peak_torque", "continuous_torque", "max_speed")
+# Every value (SI, motor side) in [0 or MIN_POSITIVE, MAX_VALUE]: outside, it is a unit slip,
+# and the motor model's squares and roots overflow float64 (1e300 gave a traceback).
+MIN_POSITIVE, MAX_VALUE = 1e-6, 1e6
+UNITS = dict(zip(KEYS, ("", " kg·m²", " N·m·s/rad", " N·m", " N·m", " N·m", " rad/s")))
 LIMITS = ("peak_torque", "rms_torque", "speed")  # the three checks, in report order
 
 
@@ -89,9 +93,8 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
         raise ActuatorError(f"{source}: expected one table per actuator")
     for name in d:
         if name not in names:
-            close = difflib.get_close_matches(name, names, n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
-            raise ActuatorError(f"{source}: [{name}] is not an actuator{hint}; expected "
+            raise ActuatorError(f"{source}: [{name}] is not an actuator"
+                                f"{did_you_mean(name, names)}; expected "
                                 f"one table for each of {', '.join(names)}")
     missing = [n for n in names if n not in d]
     if missing:
@@ -108,10 +111,8 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
             raise ActuatorError(f"{source}: '{name}.{absent[0]}' is missing (every actuator "
                                 f"needs {', '.join(KEYS)})")
         if unknown:
-            close = difflib.get_close_matches(unknown[0], KEYS, n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
-            _fail(source, f"{name}.{unknown[0]}", table[unknown[0]], f"unknown key{hint}; "
-                  f"expected {', '.join(KEYS)}")
+            _fail(source, f"{name}.{unknown[0]}", table[unknown[0]],
+                  f"unknown key{did_you_mean(unknown[0], KEYS)}; expected {', '.join(KEYS)}")
         values = {}
         for k in KEYS:
             v, key = table[k], f"{name}.{k}"
@@ -123,6 +124,9 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
                 _fail(source, key, v, "must be > 0")
             if v < 0:
                 _fail(source, key, v, "must be >= 0")
+            if (k in _POSITIVE and v < MIN_POSITIVE) or v > MAX_VALUE:
+                low = f"between {MIN_POSITIVE:g} and" if k in _POSITIVE else "at most"
+                _fail(source, key, v, f"must be {low} {MAX_VALUE:g}{UNITS[k]} (motor side)")
             values[k] = float(v)
         if values["continuous_torque"] > values["peak_torque"]:
             _fail(source, f"{name}.continuous_torque", table["continuous_torque"],
@@ -148,22 +152,6 @@ def motor_torque(act: Actuators, tau, v, a) -> np.ndarray:
 def motor_speed(act: Actuators, v) -> np.ndarray:
     """ωm = N·q̇ [rad/s]."""
     return act.column("gear_ratio") * np.asarray(v)
-
-
-def rms(t: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """sqrt(∫x² dt / T) by the trapezoid rule over the samples, per column."""
-    t = np.asarray(t, dtype=float)
-    w = trapezoid_weights(t)
-    return np.sqrt(w @ np.asarray(x) ** 2)
-
-
-def trapezoid_weights(t: np.ndarray) -> np.ndarray:
-    """Weights w with w @ f = ∫f dt / T (trapezoid rule)."""
-    dt = np.diff(t)
-    w = np.zeros(len(t))
-    w[:-1] += dt / 2
-    w[1:] += dt / 2
-    return w / (t[-1] - t[0])
 
 
 @dataclass(frozen=True)
@@ -420,17 +408,21 @@ def _quiet(logger_name: str):
 
 
 def time_optimal(act: Actuators, path: PathDynamics, s_dot_start: float = 0.0,
-                 s_dot_end: float = 0.0, max_iterations: int = 20,
+                 s_dot_end: float = 0.0, max_iterations: int = 50,
                  tol: float = 1e-9) -> TimeOptimal:
     """Shortest traversal of the path under the peak-torque and speed limits (TOPP-RA,
     interpolation discretisation on the path's own samples; rest to rest by default).
 
     TOPP-RA needs constraints of the form α s̈ + β ṡ² + γ; the viscous term b·N·q_s·ṡ is
-    linear in ṡ, so it enters γ at the previous solution's ṡ(s), repeated until ṡ(s) changes
-    by less than ``tol`` (relative): the limits then hold at the final profile.
+    linear in ṡ = √(ṡ²), so it enters linearised in ṡ² about the previous solution's ṡ(s)
+    (docs/model.md §19), repeated until ṡ(s) changes by less than ``tol`` (relative): the
+    limits then hold at the final profile. Not converging is an :class:`ActuatorError`.
     """
     toppra = _toppra()
     s = np.asarray(path.s, dtype=float)
+    if len(s) < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
+        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
+                            f"samples of the path, got {len(s)}")
     dummy = toppra.SplineInterpolator([0.0, 1.0], [[0.0], [1.0]])  # the grid is all it uses
     at_rest = np.zeros(len(s), dtype=bool)
     at_rest[[0, -1]] = s_dot_start == 0, s_dot_end == 0
@@ -467,7 +459,12 @@ def time_optimal(act: Actuators, path: PathDynamics, s_dot_start: float = 0.0,
             f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
             "torque b·ωm at the motors' speeds is too close to their peak torque")
     ds = np.diff(s)
-    dt = 2.0 * ds / (s_dot[:-1] + s_dot[1:])
+    with np.errstate(divide="ignore"):
+        dt = 2.0 * ds / (s_dot[:-1] + s_dot[1:])
+    if not np.all(np.isfinite(dt)):
+        k = int(np.argmax(~np.isfinite(dt)))
+        raise ActuatorError(f"the time-optimal traversal stops between samples {k} and "
+                            f"{k + 1} of the path (ṡ = 0 at both): no finite duration")
     t = np.concatenate([[0.0], np.cumsum(dt)])
     # s̈ jumps at the samples; both one-sided values are exact and within the limits. Keep
     # the one that loads the motors more (the worse side), so that a replay checks it.

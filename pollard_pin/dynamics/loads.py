@@ -26,6 +26,7 @@ import pinocchio as pin
 from ..kinematics.pipeline import IKResult
 from ..model.build import Robot
 from ..timing import Stopwatch
+from .averages import cubic_mean
 
 _AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
 # Joints drawn together (docs/model.md §3): base chain 0, wrist, legs.
@@ -47,16 +48,6 @@ def _cross(a, b):
 
 def _mv(R, x):
     return (R @ x[..., None])[..., 0]
-
-
-def cubic_mean(t: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Time-weighted cubic mean (∫|x|³ dt / T)^(1/3) along axis 0 (trapezoid rule), the ISO 281
-    equivalent load of a fluctuating load (docs/model.md §17); |x| for one sample."""
-    x3 = np.abs(x) ** 3
-    if len(t) < 2 or t[-1] == t[0]:
-        return np.cbrt(x3.mean(axis=0))
-    dt = np.diff(t).reshape((-1,) + (1,) * (x.ndim - 1))
-    return np.cbrt((0.5 * (x3[1:] + x3[:-1]) * dt).sum(axis=0) / (t[-1] - t[0]))
 
 
 @dataclass

@@ -17,7 +17,7 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
-from .atomic import STDOUT, OutputError, _is_special, atomic_open
+from .atomic import STDOUT, OutputError, _is_special, atomic_open, check_destination
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
@@ -79,6 +79,9 @@ class TableWriter:
     def __enter__(self) -> "TableWriter":
         if self.fmt == "csv":  # imported here, so that write() times only the writing
             import polars  # noqa: F401
+
+            if self._sidecar():  # it follows the table: check it before anything is written
+                check_destination(units_path(self.path))
         else:
             import pyarrow.parquet  # noqa: F401
         self._ctx = atomic_open(self.path, binary=True)
@@ -160,8 +163,9 @@ class ResultFileError(ValueError):
 
 
 def read_result(path: str | Path) -> ResultTable:
-    """Read a table written by :class:`TableWriter` (``run``, ``sweep``…), CSV or Parquet;
-    a missing, unreadable or malformed file raises :class:`ResultFileError`."""
+    """Read a table written by :class:`TableWriter` (``run``, ``simulate``, ``size
+    --retime``), CSV or Parquet: every column float64. A missing, unreadable or malformed file
+    (or one with text columns, such as a ``sweep`` table) raises :class:`ResultFileError`."""
     path = Path(path)
     if path.is_dir():
         raise ResultFileError(f"{path}: is a folder, not a result file")

@@ -7,7 +7,6 @@ first and second time derivatives, SI units and radians.
 from __future__ import annotations
 
 import csv
-import difflib
 import math
 import warnings
 from dataclasses import dataclass
@@ -16,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..kinematics.taskspace import TASK_NAMES
+from ..model.params import did_you_mean
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
@@ -163,9 +163,7 @@ def from_csv(path: str | Path) -> Trajectory:
     allowed = base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
     for h in header:
         if h not in allowed:
-            close = difflib.get_close_matches(h, allowed, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise TrajectoryError(f"{path}: unknown column {h!r}{hint}; "
+            raise TrajectoryError(f"{path}: unknown column {h!r}{did_you_mean(h, allowed)}; "
                                   f"expected {', '.join(base)} and optional d_*, dd_*")
     if len(set(header)) != len(header):
         raise TrajectoryError(f"{path}: duplicate column names in header {header}")

@@ -387,6 +387,14 @@ def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
     return out
 
 
+def did_you_mean(word: str, choices) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``choices`` to a misspelt ``word``, or ""."""
+    import difflib
+
+    close = difflib.get_close_matches(word, list(choices), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
 def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
     """The TOML file ``path`` as a dictionary; a missing, unreadable, non-UTF-8 or malformed
     file raises ``error`` with one line naming ``what`` (e.g. "parameter file") and the cause."""

@@ -235,15 +235,22 @@ def figures(result) -> dict:
     return out
 
 
+def save_png(fig, path, dpi: int = 100) -> Path:
+    """Write ``fig`` to ``path`` as PNG, atomically (an existing file stays as it was if the
+    writing fails), and close it."""
+    from ..io.atomic import atomic_open
+
+    try:
+        with atomic_open(path, binary=True) as f:
+            fig.savefig(f, dpi=dpi, format="png")
+    finally:
+        _pyplot().close(fig)
+    return Path(path)
+
+
 def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
     """Write every figure of :func:`figures` as ``out_dir/<name>.png``; returns the paths."""
-    plt = _pyplot()
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, fig in figures(result).items():
-        path = out_dir / f"{name}.png"
-        fig.savefig(path, dpi=dpi)
-        plt.close(fig)
-        paths.append(path)
-    return paths
+    from ..io.atomic import make_folder
+
+    out_dir = make_folder(out_dir)
+    return [save_png(fig, out_dir / f"{name}.png", dpi) for name, fig in figures(result).items()]

@@ -33,6 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dynamics.averages import time_mean, time_rms
+
 SIZING_FIELDS = (  # key, heading, unit
     ("peak_torque", "peak |τ|", "N·m"),
     ("rms_torque", "RMS τ", "N·m"),
@@ -50,18 +52,6 @@ BEARING_FIELDS = (  # key, heading (docs/model.md §17); torque in N·m, forces 
 )
 
 
-def _trapz(y, t):
-    y = np.asarray(y, dtype=float)
-    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t))) if len(t) > 1 else 0.0
-
-
-def _rms(y, t):
-    T = float(t[-1] - t[0])
-    if T <= 0:
-        return float(np.sqrt(np.mean(np.square(y))))
-    return math.sqrt(_trapz(np.square(y), t) / T)
-
-
 def sizing(columns: dict, actuated) -> dict:
     """Sizing figures from run columns (:meth:`RunResult.columns` or a ``run`` CSV read back)."""
     t = np.asarray(columns["t"], dtype=float)
@@ -71,10 +61,10 @@ def sizing(columns: dict, actuated) -> dict:
         p = np.asarray(columns[f"power_{n}"])
         acts[n] = {
             "peak_torque": float(np.max(np.abs(tau))),
-            "rms_torque": _rms(tau, t),
+            "rms_torque": float(time_rms(t, tau)),
             "peak_speed": float(np.max(np.abs(qd))),
             "peak_power": float(np.max(np.abs(p))),
-            "energy": _trapz(np.abs(p), t),
+            "energy": float((t[-1] - t[0]) * time_mean(t, np.abs(p))),
             "net_work": float(np.asarray(columns[f"work_{n}"])[-1]),
         }
     joints = {}
@@ -82,7 +72,7 @@ def sizing(columns: dict, actuated) -> dict:
         f = np.sqrt(sum(np.square(np.asarray(columns[f"f{i}_{c}"])) for c in "xyz"))
         k = int(np.argmax(f))
         joints[f"spherical_{i}"] = {"peak_force": float(f[k]), "peak_time": float(t[k]),
-                                    "rms_force": _rms(f, t)}
+                                    "rms_force": float(time_rms(t, f))}
     return {"actuators": acts, "spherical_joints": joints}
 
 

@@ -189,15 +189,10 @@ def torque_speed_figure(sizing: Sizing):
 
 def write_torque_speed(sizing: Sizing, out_dir, dpi: int = 100) -> Path:
     """Write :func:`torque_speed_figure` as ``out_dir/torque_speed.png``."""
-    from ..io.atomic import atomic_open, make_folder
-    from .plots import _pyplot
+    from ..io.atomic import make_folder
+    from .plots import save_png
 
-    path = make_folder(out_dir) / "torque_speed.png"
-    fig = torque_speed_figure(sizing)
-    with atomic_open(path, binary=True) as f:
-        fig.savefig(f, dpi=dpi, format="png")
-    _pyplot().close(fig)
-    return path
+    return save_png(torque_speed_figure(sizing), make_folder(out_dir) / "torque_speed.png", dpi)
 
 
 __all__ = ["Sizing", "actuator_sizing", "binding_shares", "to_json", "to_markdown",
