@@ -296,7 +296,7 @@ def _closed_form(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
                 + " (near the wrist singularity: spray axis parallel to the platform arm)",
                 sample=k, time=tk, chain="wrist", sigma=exc.ratio,
                 amount=limit - exc.ratio) from None
-        msg = str(exc) if len(poses) > 1 else str(exc).replace(" at sample 0", "")
+        msg = str(exc).replace(f" at sample {exc.sample}", "")  # the prefix says where
         cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
         raise cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall) from None
 
