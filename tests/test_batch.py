@@ -52,14 +52,14 @@ def test_batched_jacobians_equal_pinocchios(robot):
     # computeJointJacobians / computeJointJacobiansTimeVariation at random states.
     import pinocchio as pin
 
-    from pollard_pin.kinematics.pipeline import _jacobians, _layout, _placements
+    from pollard_pin.kinematics.pipeline import _jacobians, _layout, joint_placements
 
     rng = np.random.default_rng(3)
     Q = rng.uniform(-np.pi, np.pi, (25, robot.model.nq))
     V = rng.normal(0.0, 2.0, (25, robot.model.nv))
     lay = _layout(robot)
     assert len(lay.joints) == robot.model.njoints - 1  # every joint's column is filled
-    pl = _placements(robot.model, Q, lay.joints)
+    pl = joint_placements(robot.model, Q, lay.joints)
     J, dJ = _jacobians(robot.model, pl, lay.joints), _jacobians(robot.model, pl, lay.joints, V)
     for k in range(len(Q)):
         ref = pin.computeJointJacobians(robot.model, robot.data, Q[k])
@@ -67,3 +67,22 @@ def test_batched_jacobians_equal_pinocchios(robot):
         pin.computeJointJacobiansTimeVariation(robot.model, robot.data, Q[k], V[k])
         assert np.abs(dJ[k] - robot.data.dJ).max() <= 1e-13 * max(1.0, np.abs(robot.data.dJ).max())
 
+
+
+def test_stacked_energies_equal_pinocchios(robot):
+    # The inverse dynamics' energies (one numpy pass over the tree) against Pinocchio's
+    # computeKineticEnergy / computePotentialEnergy, sample by sample.
+    import pinocchio as pin
+
+    from pollard_pin.dynamics.inverse import stacked_energies
+
+    rng = np.random.default_rng(11)
+    m = robot.model
+    Q = rng.uniform(-np.pi, np.pi, (30, m.nq))
+    V = rng.normal(0.0, 2.0, (30, m.nv))
+    K, U = stacked_energies(m, Q, V)
+    for k in range(len(Q)):
+        pin.forwardKinematics(m, robot.data, Q[k], V[k])
+        assert K[k] == pytest.approx(pin.computeKineticEnergy(m, robot.data), rel=1e-13)
+        assert U[k] == pytest.approx(pin.computePotentialEnergy(m, robot.data, Q[k]),
+                                     rel=1e-13, abs=1e-15)

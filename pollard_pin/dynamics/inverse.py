@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..kinematics.pipeline import IKResult
+from ..kinematics.pipeline import _AXES, IKResult, _cross, joint_placements
 from ..kinematics.errors import SingularityError
 from ..kinematics.singularity import (SIGMA_FLOOR, actuator_velocity_map, sigma_range,
                                       solve_stack)
@@ -91,6 +91,35 @@ class DynamicsResult:
         return lines
 
 
+def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
+    """Kinetic and potential energy (N,) of every sample at once, as Pinocchio's
+    ``computeKineticEnergy`` / ``computePotentialEnergy`` (U = −Σ m gᵀ c), from one pass over
+    the model tree in numpy (docs/model.md §13): no Python loop over samples."""
+    joints = tuple(range(1, model.njoints))
+    pl = joint_placements(model, Q, joints)
+    n = len(Q)
+    kinetic, potential = np.zeros(n), np.zeros(n)
+    g = np.asarray(model.gravity.linear)
+    w, vo = {0: np.zeros((n, 3))}, {0: np.zeros((n, 3))}
+    for j in joints:
+        p = model.parents[j]
+        R, o = pl[j]
+        vo[j] = vo[p] + _cross(w[p], o - pl[p][1])
+        w[j] = w[p] + R[:, :, _AXES[model.joints[j].shortname()]] * V[:, model.joints[j].idx_v,
+                                                                         None]
+        Y = model.inertias[j]
+        if Y.mass <= 0.0:
+            continue
+        c = np.asarray(Y.lever)
+        r = R[:, :, 0] * c[0] + R[:, :, 1] * c[1] + R[:, :, 2] * c[2]
+        v_c = vo[j] + _cross(w[j], r)
+        wb = np.einsum("nji,nj->ni", R, w[j])  # body axes: the inertia is constant there
+        kinetic += 0.5 * (Y.mass * (v_c * v_c).sum(axis=1)
+                          + ((wb @ np.asarray(Y.inertia)) * wb).sum(axis=1))
+        potential -= Y.mass * ((o + r) @ g)
+    return kinetic, potential
+
+
 def _parallel_singular(robot: Robot, Jc, k: int, sp=None, sp_max=None, t=None, why=""):
     if sp is None:
         sp, sp_max = (float(x) for x in sigma_range(Jc.reshape((-1,) + Jc.shape[-2:])[k][
@@ -148,17 +177,9 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     tree = np.empty((n, model.nv))
     Q, V, A = ik.q, ik.v, ik.a
     rnea = pin.rnea
-    if energies:
-        K, U = np.empty(n), np.empty(n)
-        kinetic, potential = pin.computeKineticEnergy, pin.computePotentialEnergy
-        for k in range(n):
-            tree[k] = rnea(model, data, Q[k], V[k], A[k])
-            K[k] = kinetic(model, data)  # rnea's forward pass has set data.v
-            U[k] = potential(model, data, Q[k])
-    else:
-        K = U = None
-        for k in range(n):
-            tree[k] = rnea(model, data, Q[k], V[k], A[k])
+    for k in range(n):
+        tree[k] = rnea(model, data, Q[k], V[k], A[k])
+    K, U = stacked_energies(model, Q, V) if energies else (None, None)
     if losses is not None:
         tree += losses.torque(V, A)
     Jc = ik.constraint_jacobian

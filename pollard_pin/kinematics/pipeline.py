@@ -488,7 +488,7 @@ def _layout(robot: Robot) -> _Layout:
                    tuple(joints))
 
 
-def _placements(model, Q: np.ndarray, joints) -> dict:
+def joint_placements(model, Q: np.ndarray, joints) -> dict:
     """World rotation (N, 3, 3) and origin (N, 3) of each listed joint frame at every sample."""
     n = len(Q)
     out = {0: (np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3)))}
@@ -661,7 +661,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     points = [p for pair in lay.closures for p in pair] + [lay.tip]
     P_des, R_des = poses[:, :3], rotation(poses)
     # Newton polish at the closed form; velocities with the same matrix (one stacked solve).
-    pl = _placements(model, q0, lay.joints)
+    pl = joint_placements(model, q0, lay.joints)
     pos = {p: _position(pl, p) for p in points}
     J = _jacobians(model, pl, lay.joints)
     rhs = np.zeros((n, 12, 2))
@@ -682,7 +682,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     q = q0.copy()
     if len(moved):
         q[moved] -= sol[moved, :, 0]
-        pl_m = _placements(model, q[moved], lay.joints)
+        pl_m = joint_placements(model, q[moved], lay.joints)
         for j in pl:
             if j:
                 pl[j][0][moved], pl[j][1][moved] = pl_m[j]
