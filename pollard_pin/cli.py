@@ -236,7 +236,8 @@ def cmd_run(args) -> int:
                             "singularity_margin": args.singularity_margin,
                             "loads": args.loads}}
     timings: dict = {}
-    workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS)
+    workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
+                                  -(-n // (STREAM_WINDOW - 1)))  # no idle threads
     stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
                        workers=workers,
                        progress=_progress("solving", n >= 500 and not args.quiet),
