@@ -31,6 +31,7 @@ from pollard_pin.model.build import constraint_residual
 from pollard_pin.io.results import run_pipeline
 from pollard_pin.io.trajectory import (Trajectory, TrajectoryError, from_csv,
                                     smooth_random_trajectory, thesis_trajectory, to_csv)
+from poses import wrist_singular_pose  # tests/poses.py
 
 T = importlib.import_module("pollard_pin.kinematics.closed_form")
 
@@ -403,16 +404,8 @@ def test_unreachable_leg(robot):
     assert 0 < e.amount < 0.02
 
 
-def _wrist_singular_pose(params):
-    """Home wrist centre, tool axis along the platform arm: θ1716 = 0 exactly."""
-    f = {}
-    T._solve(params, np.asarray(params.home_pose, dtype=float)[None], frames=f)
-    Rp, P15 = f["platform"][0][0], f["wrist1"][1][0]
-    return np.concatenate([P15 + params.x1918 * Rp[:, 0], ts.angles_from_rotation(Rp)])
-
-
 def test_wrist_singular_pose_raises_singularity_error(robot):
-    pose = _wrist_singular_pose(robot.params)
+    pose = wrist_singular_pose(robot.params)
     with pytest.raises(T.WristSingularError):  # the closed form agrees it is singular
         T.position_ik(robot.params, pose)
     with pytest.raises(SingularityError) as ei:
@@ -424,7 +417,7 @@ def test_wrist_singular_pose_raises_singularity_error(robot):
 
 def test_trajectory_approaching_wrist_singularity(robot):
     home = np.asarray(robot.params.home_pose, dtype=float)
-    sing = _wrist_singular_pose(robot.params)
+    sing = wrist_singular_pose(robot.params)
     n, dur = 201, 2.0
     s = np.linspace(0.0, 0.99, n)
     poses = home + np.outer(s, sing - home)
@@ -714,7 +707,7 @@ def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
     if kind == "unreachable":
         poses[60:, 0] += 1.0
     elif kind == "singular":
-        poses[:] = _wrist_singular_pose(robot.params)
+        poses[:] = wrist_singular_pose(robot.params)
     src = tmp_path / "in.csv"
     to_csv(Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses), src)
     if kind == "malformed":

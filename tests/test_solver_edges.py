@@ -32,6 +32,7 @@ from pollard_pin.kinematics.pipeline import MIN_SUBSTEP, _zyz, _zyz_rates
 from pollard_pin.kinematics.singularity import (BRANCH_SIGNS, SERIAL_FLOOR, SIGMA_FLOOR,
                                                 actuator_velocity_map, branch_quantities,
                                                 check_margins, solve_stack)
+from poses import wrist_singular_pose  # tests/poses.py
 
 # A pose exactly on leg 2's reach boundary (θ76_2 = 0), from the issue.
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
@@ -75,14 +76,6 @@ def leg_geometry(p, pose, i):
     rho = math.hypot(w[0], w[1])
     ratio = -(w @ w + leg.x43 ** 2 - leg.x87 ** 2) / (2 * leg.x43 * rho)
     return ratio, rho, w[2]
-
-
-def wrist_singular_pose(params):
-    """Home wrist centre, tool axis along the platform arm: θ1716 = 0 exactly."""
-    f = {}
-    T._solve(params, np.asarray(params.home_pose, dtype=float)[None], frames=f)
-    Rp, P15 = f["platform"][0][0], f["wrist1"][1][0]
-    return np.concatenate([P15 + params.x1918 * Rp[:, 0], ts.angles_from_rotation(Rp)])
 
 
 # --- 1. singular linear systems --------------------------------------------------------------

@@ -1,0 +1,13 @@
+"""Special tool poses shared by the kinematics tests, from the closed form's own frames."""
+import numpy as np
+
+from pollard_pin.kinematics import closed_form as T
+from pollard_pin.kinematics import taskspace as ts
+
+
+def wrist_singular_pose(params):
+    """Home wrist centre, tool axis along the platform arm: θ1716 = 0 exactly."""
+    f = {}
+    T._solve(params, np.asarray(params.home_pose, dtype=float)[None], frames=f)
+    Rp, P15 = f["platform"][0][0], f["wrist1"][1][0]
+    return np.concatenate([P15 + params.x1918 * Rp[:, 0], ts.angles_from_rotation(Rp)])
