@@ -776,7 +776,12 @@ def _check_installed(venv, cwd):
     for args, made in ((["info"], None), (["run", *short, "--out", "r.csv"], "r.csv"),
                        (["plot", *short, "--out", "figs"], "figs/actuators.png"),
                        (["report", *short, "--no-cross-check", "--out", "rep.md"], "rep.md"),
-                       (["view", *short, "--html", "p.html"], "p.html")):
+                       (["view", *short, "--html", "p.html"], "p.html"),
+                       (["run", *short, "--loads", "--out", "loads.parquet"], "loads.parquet"),
+                       (["size", "--actuators", str(REPO / "examples" / "actuators.toml"),
+                         *short, "--format", "json", "--out", "size.json"], "size.json"),
+                       (["simulate", "--duration", "1", "--samples", "51", "--quiet",
+                         "--out", "sim.csv"], "sim.csv")):
         cli = subprocess.run([str(venv / "bin" / "pollard-pin"), *args], cwd=cwd, env=env,
                              capture_output=True, text=True, timeout=300)
         assert cli.returncode == 0 and "Traceback" not in cli.stderr, (args, cli.stderr)
@@ -784,6 +789,20 @@ def _check_installed(venv, cwd):
             assert "total mass 0.9200 kg" in cli.stdout
         else:
             assert (Path(cwd) / made).stat().st_size > 0, (args, made)
+    # The Parquet run (with joint loads) and the CSV run read back through the installed API
+    # (polars and pyarrow resolved there) and agree on the torques.
+    code = textwrap.dedent("""
+        import json, numpy as np, pollard_pin as pp
+        a, b = pp.read_result("r.csv"), pp.read_result("loads.parquet")
+        print(json.dumps(dict(rows=[len(a), len(b)], loads=sum(c.startswith("F_") for c in b.columns),
+                              dtau=float(np.abs(a["tau_theta21"] - b["tau_theta21"]).max()))))
+    """)
+    out = subprocess.run([str(venv / "bin" / "python"), "-c", code], cwd=cwd, env=env,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout)
+    assert res["rows"] == [401, 401] and res["loads"] == 36 and res["dtau"] <= 1e-12, res
+    assert json.loads((Path(cwd) / "size.json").read_text())["actuators"].keys() >= {"theta21"}
 
 
 @pytest.mark.slow
