@@ -15,6 +15,7 @@ from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 
 PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
 MOTORS = Path(__file__).resolve().parents[1] / "examples" / "actuators.toml"
+FIGURE8 = MOTORS.parent / "figure8.csv"
 
 
 def _head(seconds: float, step: float = 0.01) -> Trajectory:
@@ -239,6 +240,8 @@ def short_csv(tmp_path_factory):
     (["--mass-error", "-2"], "mass error must be a fraction > -1"),
     (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
     (["--start", "home"], "trajectory starts off the path"),
+    # figure8 starts at home's tool pose but moving: not "off the path" (QA, issue 14)
+    (["--start", "home", "--trajectory", str(FIGURE8)], "trajectory starts moving"),
     (["--actuators", str(MOTORS), "--armature", "1"], "do not combine"),
     (["--actuators", "missing.toml"], "does not exist"),
 ])

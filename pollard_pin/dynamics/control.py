@@ -283,6 +283,11 @@ def _start_state(plant: Plant, desired: DesiredTrajectory, trajectory, start):
     p_err = float(np.linalg.norm(M.translation - trajectory.poses[0, :3]))
     o_err = float(np.linalg.norm(pin.log3(M.rotation @ rotation(trajectory.poses[0]).T)))
     rate = float(np.abs(trajectory.d_poses[0]).max())
+    if rate > START_TOL >= max(p_err, o_err):
+        # On the path but moving: say so, rather than "off the path" at 1e-16 m.
+        raise ControlError(
+            f"trajectory starts moving (pose rate {rate:.4g} > {START_TOL:g}) but a given start "
+            "configuration is at rest: start the trajectory at rest or use --start path")
     if p_err > START_TOL or o_err > START_TOL or rate > START_TOL:
         raise ControlError(
             f"trajectory starts off the path: its first pose is {p_err:.4g} m and "
