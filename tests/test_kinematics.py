@@ -31,7 +31,7 @@ from pollard_pin.model.build import constraint_residual
 from pollard_pin.io.results import run_pipeline
 from pollard_pin.io.trajectory import (Trajectory, TrajectoryError, from_csv,
                                     smooth_random_trajectory, thesis_trajectory, to_csv)
-from poses import wrist_singular_pose  # tests/poses.py
+from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
 T = importlib.import_module("pollard_pin.kinematics.closed_form")
 
@@ -416,13 +416,8 @@ def test_wrist_singular_pose_raises_singularity_error(robot):
 
 
 def test_trajectory_approaching_wrist_singularity(robot):
-    home = np.asarray(robot.params.home_pose, dtype=float)
-    sing = wrist_singular_pose(robot.params)
-    n, dur = 201, 2.0
-    s = np.linspace(0.0, 0.99, n)
-    poses = home + np.outer(s, sing - home)
-    d = np.tile(0.99 * (sing - home) / dur, (n, 1))
-    t = s / 0.99 * dur
+    n = 201
+    t, poses, d = path_to_wrist_singularity(robot.params, 0.99, n, 2.0)
     sin1716 = np.abs(np.sin(T.position_ik(robot.params, poses)[:, T.JOINTS.index("theta1716")]))
     first = int(np.argmax(sin1716 < WRIST_MARGIN))
     assert 0 < first < n - 1

@@ -32,7 +32,7 @@ from pollard_pin.kinematics.pipeline import MIN_SUBSTEP, _zyz, _zyz_rates
 from pollard_pin.kinematics.singularity import (BRANCH_SIGNS, SERIAL_FLOOR, SIGMA_FLOOR,
                                                 actuator_velocity_map, branch_quantities,
                                                 check_margins, solve_stack)
-from poses import wrist_singular_pose  # tests/poses.py
+from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
 # A pose exactly on leg 2's reach boundary (θ76_2 = 0), from the issue.
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
@@ -577,13 +577,8 @@ def test_newton_keeps_the_branch_of_its_start(robot):
 def test_motion_through_the_wrist_singularity_is_a_branch_flip(robot):
     # A straight pose path through θ1716 = 0 (margins 0, no sample on it): followed by
     # continuation, sin θ1716 changes sign — a real change of assembly mode.
-    home = np.asarray(robot.params.home_pose, dtype=float)
-    sing = wrist_singular_pose(robot.params)
     n, dur = 40, 3.9
-    s = np.linspace(0.0, 1.9, n)
-    poses = home + np.outer(s, sing - home)
-    d = np.tile((sing - home) * 1.9 / dur, (n, 1))
-    t = s / 1.9 * dur
+    t, poses, d = path_to_wrist_singularity(robot.params, 1.9, n, dur)
     t_cross = dur / 1.9  # s = 1
     k = int(np.searchsorted(t, t_cross))
     assert t[k - 1] < t_cross < t[k]

@@ -220,3 +220,11 @@ def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
         stream_run(robot, ThesisTrajectory(samples=11), out)
     assert out.read_text() == "precious\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv", "r.units.json"]
+
+
+def test_cli_window_size_is_the_streaming_window():
+    # cli.py keeps its own copy (importing io.results would slow --help): they must agree.
+    from pollard_pin import cli
+    from pollard_pin.io import results
+
+    assert cli.STREAM_WINDOW == results.STREAM_CHUNK

@@ -80,15 +80,6 @@ class DynamicsResult:
             cols.update({"kinetic_energy": self.kinetic, "potential_energy": self.potential})
         return cols
 
-    def summary_lines(self) -> list[str]:
-        lines = ["actuator        peak |τ| [N·m]   peak |power| [W]   net work [J]"]
-        peak_t, peak_p, work = (np.abs(self.tau).max(0), np.abs(self.power).max(0),
-                                self.work[-1])
-        for i, n in enumerate(self.actuated):
-            lines.append(f"  {n:12s} {peak_t[i]:14.5g} {peak_p[i]:18.5g} {work[i]:14.5g}")
-        f = np.linalg.norm(self.closure_forces, axis=2).max(0)
-        lines.append(f"peak closure force: leg 1 {f[0]:.4g} N, leg 2 {f[1]:.4g} N")
-        return lines
 
 
 def stacked_energies(model, Q: np.ndarray, V: np.ndarray):

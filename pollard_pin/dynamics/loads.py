@@ -110,17 +110,6 @@ class JointLoads:
                  for i in range(lam.shape[1])}
         return {"joints": joints, "spherical": balls}
 
-    def summary_lines(self) -> list[str]:
-        tab = self.bearing_table()
-        lines = ["joint loads     peak axial [N]  peak radial [N]  peak bending [N·m]  "
-                 "equiv. radial [N]"]
-        for n, r in tab["joints"].items():
-            lines.append(f"  {n:12s} {r['peak_axial']:14.5g} {r['peak_radial']:16.5g} "
-                         f"{r['peak_bending']:19.5g} {r['equivalent_radial']:18.5g}")
-        lines.append("ball joints: " + ", ".join(
-            f"{k} peak {r['peak_force']:.4g} N (equiv. {r['equivalent_force']:.4g} N)"
-            for k, r in tab["spherical"].items()))
-        return lines
 
 
 @dataclass(frozen=True)

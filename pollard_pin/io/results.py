@@ -110,15 +110,13 @@ class RunStats:
                 self.work[name] = float(col[-1])
         for i in range(2):
             if f"f{i + 1}_x" in cols:
-                f = np.sqrt(sum(cols[f"f{i + 1}_{c}"] ** 2 for c in "xyz"))
-                self.closure_force[i] = max(self.closure_force[i], float(f.max()))
+                self.closure_force[i] = max(self.closure_force[i], _peak_norm(cols, f"f{i + 1}"))
         for name in cols:  # run --loads: F_<joint>_x … M_<joint>_z (docs/model.md §17)
             if name.startswith("F_") and name.endswith("_x"):
                 joint = name[2:-2]
                 peak = self.joint_load.setdefault(joint, [0.0, 0.0])
                 for i, kind in enumerate("FM"):
-                    mag = np.sqrt(sum(cols[f"{kind}_{joint}_{c}"] ** 2 for c in "xyz"))
-                    peak[i] = max(peak[i], float(mag.max()))
+                    peak[i] = max(peak[i], _peak_norm(cols, f"{kind}_{joint}"))
         if not self.actuated:
             self.actuated = tuple(c[4:] for c in cols if c.startswith("tau_"))
 
@@ -148,6 +146,11 @@ class RunStats:
             for joint, (fmax, mmax) in self.joint_load.items():
                 lines.append(f"  {joint:12s} {fmax:16.5g} {mmax:20.5g}")
         return lines
+
+
+def _peak_norm(cols: dict, stem: str) -> float:
+    """Largest magnitude of the vector columns ``<stem>_x``, ``_y``, ``_z``."""
+    return float(np.sqrt(sum(cols[f"{stem}_{c}"] ** 2 for c in "xyz")).max())
 
 
 def _overlapping_windows(traj, size: int):
@@ -276,14 +279,11 @@ def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK, work
     return stats
 
 
-def summary(result: RunResult | RunStats, wall: float | None = None) -> str:
-    """The run's summary text; ``wall`` [s] adds the time per sample."""
+def summary(result: RunResult | RunStats) -> str:
+    """The run's summary text."""
     if isinstance(result, RunResult):
         stats = RunStats(result.trajectory.name, result.trajectory.derivatives)
         stats.add(result.ik, result.columns())
     else:
         stats = result
-    lines = stats.lines()
-    if wall is not None:
-        lines.append(f"wall time {wall:.3f} s ({1e6 * wall / stats.samples:.1f} µs/sample)")
-    return "\n".join(lines)
+    return "\n".join(stats.lines())

@@ -16,7 +16,7 @@ from .errors import (KinematicsError, KinematicsInputError, SingularityError,
 from .singularity import (SERIAL_FLOOR, SIGMA_FLOOR, SINGULARITY_MARGIN,
                           WRIST_MARGIN, BranchQuantities, check_margins,
                           conditioning, flip_error, floor_message, inverse_stack,
-                          same_branch, solve_stack)
+                          same_branch)
 from .taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
 
 SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
