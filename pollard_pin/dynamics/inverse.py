@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..kinematics.pipeline import _AXES, IKResult, _cross, joint_placements
+from ..kinematics.pipeline import IKResult, _cross, joint_placements, joint_velocities
 from ..kinematics.errors import SingularityError
 from ..kinematics.singularity import (SIGMA_FLOOR, actuator_velocity_map, sigma_range,
                                       solve_stack)
@@ -91,13 +91,9 @@ def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
     n = len(Q)
     kinetic, potential = np.zeros(n), np.zeros(n)
     g = np.asarray(model.gravity.linear)
-    w, vo = {0: np.zeros((n, 3))}, {0: np.zeros((n, 3))}
+    w, vo = joint_velocities(model, pl, joints, V)
     for j in joints:
-        p = model.parents[j]
         R, o = pl[j]
-        vo[j] = vo[p] + _cross(w[p], o - pl[p][1])
-        w[j] = w[p] + R[:, :, _AXES[model.joints[j].shortname()]] * V[:, model.joints[j].idx_v,
-                                                                         None]
         Y = model.inertias[j]
         if Y.mass <= 0.0:
             continue

@@ -511,6 +511,21 @@ def joint_placements(model, Q: np.ndarray, joints) -> dict:
     return out
 
 
+def joint_velocities(model, pl, joints, V: np.ndarray):
+    """Angular velocity ω_j of each listed joint's body and linear velocity ȯ_j of its origin
+    (world axes, dicts by joint, 0 = the base) at rates V (N, nv), from the placements ``pl``:
+    ȯ_j = ȯ_parent + ω_parent × (o_j − o_parent), ω_j = ω_parent + z_j q̇_j."""
+    n = len(pl[0][1])
+    w, vo = {0: np.zeros((n, 3))}, {0: np.zeros((n, 3))}
+    for j in joints:
+        p = model.parents[j]
+        R, o = pl[j]
+        vo[j] = vo[p] + _cross(w[p], o - pl[p][1])
+        w[j] = w[p] + R[:, :, _AXES[model.joints[j].shortname()]] * V[
+            :, model.joints[j].idx_v, None]
+    return w, vo
+
+
 def _jacobians(model, pl, joints, V: np.ndarray | None = None):
     """Stacked world joint Jacobians J (N, 6, nv) of Pinocchio's WORLD convention (as
     ``computeJointJacobians``) from the placements ``pl`` — or, if V is given, only their time
@@ -518,10 +533,9 @@ def _jacobians(model, pl, joints, V: np.ndarray | None = None):
     axis z_j through o_j: J_j = [o_j × z_j; z_j]; dJ_j = [ȯ_j × z_j + o_j × ż_j; ż_j] with
     ż_j = ω_parent × z_j and ȯ_j the velocity of the parent body's point o_j. Columns of joints
     not listed stay zero."""
-    R0, o0 = pl[0]
-    n = len(o0)
-    J = np.zeros((n, 6, model.nv))
-    w, vo = {0: np.zeros((n, 3))}, {0: np.zeros((n, 3))}
+    J = np.zeros((len(pl[0][1]), 6, model.nv))
+    if V is not None:
+        w, vo = joint_velocities(model, pl, joints, V)
     for j in joints:
         R, o = pl[j]
         z = R[:, :, _AXES[model.joints[j].shortname()]]
@@ -530,12 +544,9 @@ def _jacobians(model, pl, joints, V: np.ndarray | None = None):
             J[:, 3:, c] = z
             J[:, :3, c] = _cross(o, z)
             continue
-        p = model.parents[j]
-        vo[j] = vo[p] + _cross(w[p], o - pl[p][1])
-        zd = _cross(w[p], z)
+        zd = _cross(w[model.parents[j]], z)
         J[:, 3:, c] = zd
         J[:, :3, c] = _cross(vo[j], z) + _cross(o, zd)
-        w[j] = w[p] + z * V[:, c, None]
     return J
 
 
