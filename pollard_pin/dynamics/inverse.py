@@ -107,6 +107,21 @@ def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
     return kinetic, potential
 
 
+RNEA_THREADS = 2  # OpenMP threads of Pinocchio's batched RNEA
+
+
+def batched_rnea(model, Q: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarray:
+    """Open-tree RNEA torques (N, nv) of every sample: Pinocchio's ``rneaInParallel`` over a
+    model pool, one call for the whole stack (no Python loop over samples)."""
+    n = len(Q)
+    tau = np.empty((model.nv, n), order="F")
+    if n:
+        pool = pin.ModelPool(model, RNEA_THREADS)
+        pin.rneaInParallel(RNEA_THREADS, pool, np.asfortranarray(Q.T), np.asfortranarray(V.T),
+                           np.asfortranarray(A.T), tau)
+    return tau.T
+
+
 def _parallel_singular(robot: Robot, Jc, k: int, sp=None, sp_max=None, t=None, why=""):
     if sp is None:
         sp, sp_max = (float(x) for x in sigma_range(Jc.reshape((-1,) + Jc.shape[-2:])[k][
@@ -161,11 +176,8 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     clock = Stopwatch(timings)
     model, data = robot.model, robot.data
     n = len(ik)
-    tree = np.empty((n, model.nv))
     Q, V, A = ik.q, ik.v, ik.a
-    rnea = pin.rnea
-    for k in range(n):
-        tree[k] = rnea(model, data, Q[k], V[k], A[k])
+    tree = batched_rnea(model, Q, V, A)
     K, U = stacked_energies(model, Q, V) if energies else (None, None)
     if losses is not None:
         tree += losses.torque(V, A)

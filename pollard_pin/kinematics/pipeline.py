@@ -464,6 +464,9 @@ class _Layout:
     links: tuple[int, ...]
     spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i), docs/model.md §4
     joints: tuple[int, ...]  # every joint whose placement is needed, parents first
+    # K's block-triangular partition (closure rows, tool rows, tool-support columns, the
+    # others), when the tool is moved by exactly as many joints as it has rows; else None.
+    blocks: tuple[np.ndarray, ...] | None = None
 
 
 def _support_cols(model, joint: int) -> np.ndarray:
@@ -484,8 +487,24 @@ def _layout(robot: Robot) -> _Layout:
     ends = {tip.joint, fr.platform_joint, *fr.link_joints,
             *(p.joint for pair in closures for p in pair)}
     joints = sorted({j for e in ends for j in model.supports[e][1:]})
+    rows = 3 * len(closures)
+    blocks = None
+    if len(tip.cols) == 6 and rows + 6 == model.nv:
+        others = np.setdiff1d(np.arange(model.nv), tip.cols)
+        blocks = (np.arange(rows), np.arange(rows, rows + 6), np.sort(tip.cols), others)
     return _Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
-                   tuple(joints))
+                   tuple(joints), blocks)
+
+
+def _inverse(K: np.ndarray, lay: _Layout) -> np.ndarray:
+    """K⁻¹ of the stacked [Jc; J_tool] (NaN where singular). The tool rows involve only the
+    tool's supporting joints, so K is block-triangular (docs/model.md §11) and two inverses of
+    half the size give K⁻¹ (compiled, :func:`.kernels.block_inverse`)."""
+    if lay.blocks is None:
+        return inverse_stack(K)
+    from .kernels import block_inverse  # compiled on first use (numba): keeps start-up fast
+
+    return block_inverse(np.ascontiguousarray(K), *lay.blocks)
 
 
 def joint_placements(model, Q: np.ndarray, joints) -> dict:
@@ -682,7 +701,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     rhs[:, 6:, 1] = twist(poses, d_poses)
     # One LU per sample: K⁻¹ serves the Newton step, the velocities, the accelerations and the
     # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
-    K_inv = inverse_stack(K)
+    K_inv = _inverse(K, lay)
     sol = K_inv @ rhs
     v = sol[:, :, 1]
     # The closed form is exact to round-off: apply the Newton step only where the residual is
@@ -701,7 +720,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             pos[p][moved] = _position(pl_m, p)
         J[moved] = _jacobians(model, pl_m, lay.joints)
         K[moved] = _stack_K(J[moved], {p: pos[p][moved] for p in points}, lay)
-        K_inv[moved] = inverse_stack(K[moved])
+        K_inv[moved] = _inverse(K[moved], lay)
         v[moved] = _matvec(K_inv[moved], rhs[moved, :, 1])
     clock.lap("velocity")
     # Accelerations: K a = [−closure drift; tool acceleration − tool drift].

@@ -52,8 +52,9 @@ def _batched(A):
 def sigma_range(A):
     """(σ_min, σ_max) of each matrix of a stack (..., m, n), m ≥ n; NaN for non-finite ones.
 
-    From the Gram matrix's eigenvalues (fast); where σ_min < GRAM_TRUSTED σ_max the Gram value
-    is round-off, so those few are recomputed by SVD. A single matrix goes straight to SVD."""
+    From the Gram matrix's extreme eigenvalues (compiled, :mod:`.kernels`); where
+    σ_min < GRAM_TRUSTED σ_max the Gram value is round-off, so those few are recomputed by SVD.
+    A single matrix goes straight to SVD."""
     A = np.asarray(A, dtype=float)
     if A.ndim == 2:
         if not np.isfinite(A).all():
@@ -64,8 +65,10 @@ def sigma_range(A):
     ok = np.isfinite(A).all(axis=(1, 2))
     if not ok.all():
         A = np.where(ok[:, None, None], A, 0.0)
-    lam = np.linalg.eigvalsh(np.swapaxes(A, 1, 2) @ A)
-    smin, smax = np.sqrt(np.maximum(lam[:, 0], 0.0)), np.sqrt(np.maximum(lam[:, -1], 0.0))
+    from .kernels import gram_extremes  # compiled on first use (numba): keeps start-up fast
+
+    lo, hi = gram_extremes(np.ascontiguousarray(A))
+    smin, smax = np.sqrt(np.maximum(lo, 0.0)), np.sqrt(np.maximum(hi, 0.0))
     low = ok & ~(smin > GRAM_TRUSTED * smax)
     if low.any():
         s = np.linalg.svd(A[low], compute_uv=False)

@@ -1,0 +1,110 @@
+"""The compiled kernels (pollard_pin/kinematics/kernels.py) and Pinocchio's batched RNEA against
+independent references: LAPACK's eigvalsh and inverse, and Pinocchio's per-sample rnea."""
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.dynamics.inverse import batched_rnea
+from pollard_pin.kinematics.kernels import block_inverse, gram_extremes
+from pollard_pin.kinematics.pipeline import _inverse, _layout, _stack_K, _jacobians, \
+    _position, joint_placements
+
+RNG = np.random.default_rng(20261123)
+
+
+def _graded(n, rng, k=6):
+    """Matrices U diag(s) Vᵀ with singular values over 15 decades, repeated and zero ones."""
+    out = []
+    for _ in range(n):
+        U, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        V, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        s = np.exp(rng.uniform(-12.0, 3.0, k))
+        if rng.random() < 0.3:
+            s[:3] = s[0]  # a triple singular value: Laguerre's slow (linear) case
+        if rng.random() < 0.2:
+            s[-1] = 0.0
+        out.append(U @ np.diag(s) @ V.T)
+    return np.array(out)
+
+
+STACKS = {
+    "gaussian 6x6": RNG.standard_normal((500, 6, 6)),
+    "gaussian 7x5": RNG.standard_normal((100, 7, 5)),
+    "graded": _graded(300, RNG),
+    "special": np.array([np.eye(6), np.zeros((6, 6)), np.diag([1, 1, 1, 1e-6, 1e-6, 1.0]),
+                         1e-200 * np.eye(6), 1e150 * RNG.standard_normal((6, 6)),
+                         np.ones((6, 6))]),
+}
+
+
+@pytest.mark.parametrize("name", STACKS)
+def test_gram_extremes_match_lapack(name):
+    A = STACKS[name]
+    lo, hi = gram_extremes(np.ascontiguousarray(A))
+    ev = np.linalg.eigvalsh(np.swapaxes(A, 1, 2) @ A)
+    scale = np.maximum(ev[:, -1], np.finfo(float).tiny)
+    # Both backward stable, errors O(k ε λ_max) (forming AᵀA alone rounds by m ε λ_max; LAPACK
+    # and the squared SVD differ by up to 12 ε here): 4 k ε.
+    tol = 4 * A.shape[-1] * np.finfo(float).eps * scale
+    assert np.all(np.abs(lo - ev[:, 0]) <= tol)
+    assert np.all(np.abs(hi - ev[:, -1]) <= tol)
+
+
+def test_gram_extremes_on_the_robot(robot, ik_traj):
+    """The two maps whose σ the IK reports (docs/model.md §12), along the thesis trajectory."""
+    Jc = ik_traj.constraint_jacobian[..., robot.passive_v]
+    lo, hi = gram_extremes(np.ascontiguousarray(Jc))
+    s = np.linalg.svd(Jc, compute_uv=False)
+    assert np.abs(np.sqrt(lo) - s[:, -1]).max() <= 1e-12 * s[:, 0].max()
+    assert np.abs(np.sqrt(hi) - s[:, 0]).max() <= 1e-14 * s[:, 0].max()
+
+
+def _robot_K(robot, q):
+    lay = _layout(robot)
+    pl = joint_placements(robot.model, q, lay.joints)
+    points = [p for pair in lay.closures for p in pair] + [lay.tip]
+    return _stack_K(_jacobians(robot.model, pl, lay.joints), {p: _position(pl, p)
+                                                              for p in points}, lay), lay
+
+
+def test_block_inverse_equals_lapack(robot, ik_traj):
+    K, lay = _robot_K(robot, ik_traj.q)
+    assert lay.blocks is not None
+    top, bottom, first, second = lay.blocks
+    assert np.all(K[:, bottom][:, :, second] == 0.0)  # the structure the kernel relies on
+    Ki = _inverse(K, lay)
+    ref = np.linalg.inv(K)
+    assert np.abs(Ki - ref).max() <= 1e-13 * np.abs(ref).max()
+    assert np.abs(Ki @ K - np.eye(12)).max() <= 1e-12
+
+
+def test_block_inverse_random_and_singular():
+    K = RNG.standard_normal((50, 8, 8))
+    top, bottom, first, second = np.arange(4), np.arange(4, 8), np.array([0, 2, 4, 6]), \
+        np.array([1, 3, 5, 7])
+    K[:, 4:, 1::2] = 0.0
+    K[7, :4, 3] = 0.0  # X has a zero column: exactly singular
+    K[9, 5, [0, 2, 4, 6]] = 0.0  # T has a zero row
+    Ki = block_inverse(K, top, bottom, first, second)
+    bad = ~np.isfinite(Ki).all(axis=(1, 2))
+    assert np.flatnonzero(bad).tolist() == [7, 9]
+    ok = ~bad
+    ref = np.linalg.inv(K[ok])
+    assert np.abs(Ki[ok] - ref).max() <= 1e-11 * np.abs(ref).max()
+
+
+def test_batched_rnea_equals_pinocchio(robot):
+    model, data = robot.model, robot.data
+    n = 37
+    Q, V, A = (RNG.uniform(-2, 2, (n, model.nv)) for _ in range(3))
+    tau = batched_rnea(model, Q, V, A)
+    ref = np.array([pin.rnea(model, data, Q[k], V[k], A[k]) for k in range(n)])
+    assert np.abs(tau - ref).max() <= 1e-12 * np.abs(ref).max()
+    assert batched_rnea(model, Q[:0], V[:0], A[:0]).shape == (0, model.nv)
+
+
+@pytest.fixture(scope="module")
+def ik_traj(robot):
+    traj = pp.thesis_trajectory(samples=401)
+    return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
