@@ -47,25 +47,33 @@ def test_batch_reports_first_bad_sample_across_chunks(robot):
 
 
 
-def test_batched_jacobians_equal_pinocchios(robot):
-    # The batched path's J and dJ (numpy over the placements) against Pinocchio's
-    # computeJointJacobians / computeJointJacobiansTimeVariation at random states.
+def test_compiled_K_and_drifts_equal_pinocchios(robot):
+    # The batched path's K = [Jc; J_tool], its drifts K̇v and the bodies' angular velocities
+    # (compiled kernels over the placements) against Pinocchio's constraint and frame
+    # Jacobians, classical accelerations and data.v, sample by sample at random states.
     import pinocchio as pin
 
-    from pollard_pin.kinematics.pipeline import _jacobians, _layout, joint_placements
+    from pollard_pin.kinematics.pipeline import (KinematicFrames, _drifts, _kinematic_matrix,
+                                                 _layout, _point_drifts, _point_rows)
 
     rng = np.random.default_rng(3)
-    Q = rng.uniform(-np.pi, np.pi, (25, robot.model.nq))
-    V = rng.normal(0.0, 2.0, (25, robot.model.nv))
+    m, d = robot.model, robot.data
+    Q = rng.uniform(-np.pi, np.pi, (25, m.nq))
+    V = rng.normal(0.0, 2.0, (25, m.nv))
     lay = _layout(robot)
-    assert len(lay.joints) == robot.model.njoints - 1  # every joint's column is filled
-    pl = joint_placements(robot.model, Q, lay.joints)
-    J, dJ = _jacobians(robot.model, pl, lay.joints), _jacobians(robot.model, pl, lay.joints, V)
+    assert len(lay.joints) == m.njoints - 1  # every joint's column is filled
+    R, o = lay.tree.placements(Q)
+    K, pos = _point_rows(lay, R, o, m.nv)
+    drift, omega = _point_drifts(lay, R, o, V, pos)
+    fr = KinematicFrames.of(robot)
     for k in range(len(Q)):
-        ref = pin.computeJointJacobians(robot.model, robot.data, Q[k])
-        assert np.abs(J[k] - ref).max() <= 1e-14
-        pin.computeJointJacobiansTimeVariation(robot.model, robot.data, Q[k], V[k])
-        assert np.abs(dJ[k] - robot.data.dJ).max() <= 1e-13 * max(1.0, np.abs(robot.data.dJ).max())
+        ref = _kinematic_matrix(m, d, robot.constraint_models, robot.constraint_datas, fr, Q[k])
+        assert np.abs(K[k] - ref).max() <= 1e-14
+        ref_drift = _drifts(m, d, fr, Q[k], V[k])  # also runs forwardKinematics(q, v, 0)
+        assert np.abs(drift[k] - ref_drift).max() <= 1e-13 * max(1.0, np.abs(ref_drift).max())
+        for j, i in lay.tree.slot.items():
+            w = d.oMi[j].rotation @ d.v[j].angular
+            assert np.abs(omega[i, k] - w).max() <= 1e-13 * max(1.0, np.abs(w).max())
 
 
 

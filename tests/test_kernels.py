@@ -7,8 +7,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import batched_rnea
 from pollard_pin.kinematics.kernels import block_inverse, gram_extremes
-from pollard_pin.kinematics.pipeline import _inverse, _layout, _stack_K, _jacobians, \
-    _position, joint_placements
+from pollard_pin.kinematics.pipeline import _inverse, _layout, _point_rows
 
 RNG = np.random.default_rng(20261123)
 
@@ -62,10 +61,8 @@ def test_gram_extremes_on_the_robot(robot, ik_traj):
 
 def _robot_K(robot, q):
     lay = _layout(robot)
-    pl = joint_placements(robot.model, q, lay.joints)
-    points = [p for pair in lay.closures for p in pair] + [lay.tip]
-    return _stack_K(_jacobians(robot.model, pl, lay.joints), {p: _position(pl, p)
-                                                              for p in points}, lay), lay
+    R, o = lay.tree.placements(q)
+    return _point_rows(lay, R, o, robot.model.nv)[0], lay
 
 
 def test_block_inverse_equals_lapack(robot, ik_traj):

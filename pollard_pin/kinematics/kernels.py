@@ -87,17 +87,19 @@ def _laguerre(d, e2, x, upward, tiny, tol):
         q = d[0] - x
         if q == 0.0:
             q = tiny  # x is an eigenvalue of a leading block: the usual Sturm shift
+        iq = 1.0 / q  # one division per row: they dominate the cost
         dq, ddq = -1.0, 0.0
-        g = dq / q
+        g = -iq
         h = g * g
         for i in range(1, k):
-            r = e2[i - 1] / q
-            q, dq, ddq = d[i] - x - r, -1.0 + r * dq / q, r * (ddq - 2.0 * dq * dq / q) / q
+            r = e2[i - 1] * iq
+            q, dq, ddq = d[i] - x - r, -1.0 + r * dq * iq, r * (ddq - 2.0 * dq * dq * iq) * iq
             if q == 0.0:
                 q = tiny
-            u = dq / q
+            iq = 1.0 / q
+            u = dq * iq
             g += u
-            h += u * u - ddq / q
+            h += u * u - ddq * iq
         disc = (k - 1) * (k * h - g * g)
         root = np.sqrt(disc) if disc > 0.0 else 0.0
         den = g - root if upward else g + root
@@ -142,9 +144,10 @@ def gram_extremes(A):
         if scale == 0.0:  # the zero matrix
             lo[s] = hi[s] = 0.0
             continue
+        inv = 1.0 / scale
         for i in range(k):
             for j in range(k):
-                G[i, j] /= scale
+                G[i, j] *= inv
         _tridiagonalize(G, d, e, v, p)
         low, high = np.inf, -np.inf
         for i in range(k):
@@ -237,3 +240,126 @@ def block_inverse(K, top, bottom, first, second):
                     acc += Xi[i, r] * CTi[r, j]
                 out[s, second[i], bottom[j]] = -acc
     return out
+
+
+@njit(cache=True, nogil=True)
+def tree_placements(C, S, parent, axis, idx_q, M_rot, M_trans):
+    """World rotations (J + 1, n, 3, 3) and origins (J + 1, n, 3) of J revolute joints at n
+    samples, slot 0 the base, from cos/sin of the configurations (n, nq): R_j =
+    R_parent M_rot_j R_axis(q), o_j = o_parent + R_parent M_trans_j (docs/model.md §11).
+    ``parent`` holds each joint's parent slot, listed before it."""
+    n, J = C.shape[0], axis.shape[0]
+    R = np.empty((J + 1, n, 3, 3))
+    o = np.empty((J + 1, n, 3))
+    B = np.empty((3, 3))
+    for s in range(n):
+        for a in range(3):
+            o[0, s, a] = 0.0
+            for b in range(3):
+                R[0, s, a, b] = 1.0 if a == b else 0.0
+    for j in range(J):  # joint by joint: each pass streams through its parent's arrays
+        p, ax = parent[j], axis[j]
+        i1, i2 = (ax + 1) % 3, (ax + 2) % 3
+        for s in range(n):
+            c, sn = C[s, idx_q[j]], S[s, idx_q[j]]
+            for a in range(3):
+                acc = 0.0
+                for b in range(3):
+                    B[a, b] = (R[p, s, a, 0] * M_rot[j, 0, b] + R[p, s, a, 1] * M_rot[j, 1, b]
+                               + R[p, s, a, 2] * M_rot[j, 2, b])
+                    acc += R[p, s, a, b] * M_trans[j, b]
+                o[j + 1, s, a] = o[p, s, a] + acc
+                # B · R_axis(q): the axis column stays, the other two turn by q
+                R[j + 1, s, a, ax] = B[a, ax]
+                R[j + 1, s, a, i1] = B[a, i1] * c + B[a, i2] * sn
+                R[j + 1, s, a, i2] = B[a, i2] * c - B[a, i1] * sn
+    return R, o
+
+
+@njit(cache=True, nogil=True)
+def point_jacobians(R, o, axis, pt_slot, pt_local, pt_support, pt_col, pt_row, pt_sign,
+                    ang_point, ang_row, nv):
+    """K (n, ang_row + 3, nv) and point positions (n, P, 3) from the placements R, o of
+    :func:`tree_placements` (docs/model.md §11). Point i, fixed in slot pt_slot[i] at
+    pt_local[i], adds pt_sign[i] · z_c × (p − o_c) to rows pt_row[i] … + 2, column pt_col[i, m],
+    for each revolute joint c = pt_support[i, m] (−1 ends the list) that moves it; the rows
+    ang_row … + 2 are the angular velocity of point ang_point's body: z_c per column."""
+    n, P = R.shape[1], pt_slot.shape[0]
+    K = np.zeros((n, ang_row + 3, nv))
+    pos = np.empty((n, P, 3))
+    for s in range(n):
+        for i in range(P):
+            b, row, sign = pt_slot[i], pt_row[i], pt_sign[i]
+            for a in range(3):
+                pos[s, i, a] = (R[b, s, a, 0] * pt_local[i, 0] + R[b, s, a, 1] * pt_local[i, 1]
+                                + R[b, s, a, 2] * pt_local[i, 2] + o[b, s, a])
+            for m in range(pt_support.shape[1]):
+                c = pt_support[i, m]
+                if c < 0:
+                    break
+                ax, col = axis[c], pt_col[i, m]
+                z0, z1, z2 = R[c, s, 0, ax], R[c, s, 1, ax], R[c, s, 2, ax]
+                d0, d1, d2 = (pos[s, i, 0] - o[c, s, 0], pos[s, i, 1] - o[c, s, 1],
+                              pos[s, i, 2] - o[c, s, 2])
+                K[s, row, col] += sign * (z1 * d2 - z2 * d1)
+                K[s, row + 1, col] += sign * (z2 * d0 - z0 * d2)
+                K[s, row + 2, col] += sign * (z0 * d1 - z1 * d0)
+                if i == ang_point:
+                    for a in range(3):
+                        K[s, ang_row + a, col] = R[c, s, a, ax]
+    return K, pos
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _cross3(a, b, out):
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+
+
+@njit(cache=True, nogil=True)
+def point_drifts(R, o, parent, axis, col, V, pt_slot, pt_row, pt_sign, pos, ang_point,
+                 ang_row):
+    """The drifts K̇ v (n, ang_row + 3) at rates V (n, nv), with K as :func:`point_jacobians`
+    builds it, and every body's angular velocity ω (slots, n, 3), world axes.
+
+    Forward recursion at q̈ = 0 (docs/model.md §11), joint j in parent body p, r = o_j − o_p:
+    ω_j = ω_p + z_j q̇_j, α_j = α_p + (ω_p × z_j) q̇_j, ö_j = ö_p + α_p × r + ω_p × (ω_p × r);
+    a point fixed in body b at r = x − o_b accelerates by ö_b + α_b × r + ω_b × (ω_b × r)."""
+    S, n = R.shape[0], R.shape[1]
+    drift = np.zeros((n, ang_row + 3))
+    omega = np.empty((S, n, 3))
+    w, al, acc = np.zeros((S, 3)), np.zeros((S, 3)), np.zeros((S, 3))
+    r, t1, t2 = np.empty(3), np.empty(3), np.empty(3)
+    for s in range(n):
+        for a in range(3):
+            omega[0, s, a] = 0.0
+        for j in range(1, S):
+            p = parent[j]
+            for a in range(3):
+                r[a] = o[j, s, a] - o[p, s, a]
+            _cross3(al[p], r, t1)
+            _cross3(w[p], r, t2)
+            _cross3(w[p], t2, r)  # ω_p × (ω_p × r), r no longer needed
+            qd = V[s, col[j]]
+            ax = axis[j]
+            for a in range(3):
+                acc[j, a] = acc[p, a] + t1[a] + r[a]
+                t1[a] = R[j, s, a, ax]  # z_j
+            _cross3(w[p], t1, t2)
+            for a in range(3):
+                al[j, a] = al[p, a] + t2[a] * qd
+                w[j, a] = w[p, a] + t1[a] * qd
+                omega[j, s, a] = w[j, a]
+        for i in range(pt_slot.shape[0]):
+            b, row, sign = pt_slot[i], pt_row[i], pt_sign[i]
+            for a in range(3):
+                r[a] = pos[s, i, a] - o[b, s, a]
+            _cross3(al[b], r, t1)
+            _cross3(w[b], r, t2)
+            _cross3(w[b], t2, r)
+            for a in range(3):
+                drift[s, row + a] += sign * (acc[b, a] + t1[a] + r[a])
+        for a in range(3):
+            drift[s, ang_row + a] = al[pt_slot[ang_point], a]
+    return drift, omega

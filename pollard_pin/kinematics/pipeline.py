@@ -467,6 +467,66 @@ class _Layout:
     # K's block-triangular partition (closure rows, tool rows, tool-support columns, the
     # others), when the tool is moved by exactly as many joints as it has rows; else None.
     blocks: tuple[np.ndarray, ...] | None = None
+    tree: "_TreeArrays | None" = None  # the same, as arrays for the compiled kernels
+
+
+@dataclass(frozen=True, eq=False)
+class _TreeArrays:
+    """The layout as flat arrays (slot 0 = the base, then ``joints`` in order) for
+    :mod:`.kernels`: placements, K rows of the points, drifts."""
+
+    slot: dict  # joint id → slot
+    parent: np.ndarray  # (S,) parent slot
+    axis: np.ndarray  # (S,) revolute axis 0/1/2
+    idx_q: np.ndarray  # (S,) configuration index
+    col: np.ndarray  # (S,) velocity index
+    rot: np.ndarray  # (S, 3, 3) joint placement rotation in the parent
+    trans: np.ndarray  # (S, 3) joint placement translation in the parent
+    pt_slot: np.ndarray  # (P,) points: closure A/B pairs, then the tip
+    pt_local: np.ndarray  # (P, 3)
+    pt_support: np.ndarray  # (P, depth) slots of the joints moving each point, −1 padded
+    pt_col: np.ndarray  # (P, depth) their velocity indices
+    pt_row: np.ndarray  # (P,) first row of the point's block of K
+    pt_sign: np.ndarray  # (P,) +1 for A and the tip, −1 for B
+
+    def placements(self, Q: np.ndarray):
+        """World rotations (S, N, 3, 3) and origins (S, N, 3) at configurations Q (N, nq)."""
+        from .kernels import tree_placements  # compiled on first use (numba)
+
+        Q = np.ascontiguousarray(Q, dtype=float)
+        return tree_placements(np.cos(Q), np.sin(Q), self.parent[1:], self.axis[1:],
+                               self.idx_q[1:], self.rot[1:], self.trans[1:])
+
+
+def _tree_arrays(model, joints, points, rows, signs) -> _TreeArrays:
+    joints = tuple(joints)
+    slot = {0: 0, **{j: i + 1 for i, j in enumerate(joints)}}
+    for j in joints:
+        if model.joints[j].shortname() not in _AXES:
+            raise NotImplementedError(f"batched kinematics: joint {model.names[j]} is a "
+                                      f"{model.joints[j].shortname()}, not RX/RY/RZ")
+        if slot.get(model.parents[j], len(slot)) > slot[j]:
+            raise ValueError(f"batched kinematics: the parent of {model.names[j]} must be "
+                             "listed before it")
+    every = (0,) + joints
+    ints = lambda xs: np.array(xs, dtype=np.int64)  # noqa: E731
+    support = [[slot[j] for j in model.supports[p.joint][1:]] for p in points]
+    depth = max((len(x) for x in support), default=1)
+    return _TreeArrays(
+        slot=slot, parent=ints([0] + [slot[model.parents[j]] for j in joints]),
+        axis=ints([0] + [_AXES[model.joints[j].shortname()] for j in joints]),
+        idx_q=ints([0] + [model.joints[j].idx_q for j in joints]),
+        col=ints([0] + [model.joints[j].idx_v for j in joints]),
+        rot=np.array([np.eye(3) if j == 0 else model.jointPlacements[j].rotation
+                      for j in every]).reshape(-1, 3, 3),
+        trans=np.array([np.zeros(3) if j == 0 else model.jointPlacements[j].translation
+                        for j in every]).reshape(-1, 3),
+        pt_slot=ints([slot[p.joint] for p in points]),
+        pt_local=np.array([p.local for p in points]).reshape(-1, 3),
+        pt_support=ints([x + [-1] * (depth - len(x)) for x in support]),
+        pt_col=ints([[model.joints[j].idx_v for j in model.supports[p.joint][1:]]
+                     + [-1] * (depth - len(model.supports[p.joint]) + 1) for p in points]),
+        pt_row=ints(rows), pt_sign=np.array(signs, dtype=float))
 
 
 def _support_cols(model, joint: int) -> np.ndarray:
@@ -492,8 +552,12 @@ def _layout(robot: Robot) -> _Layout:
     if len(tip.cols) == 6 and rows + 6 == model.nv:
         others = np.setdiff1d(np.arange(model.nv), tip.cols)
         blocks = (np.arange(rows), np.arange(rows, rows + 6), np.sort(tip.cols), others)
+    points = [p for pair in closures for p in pair] + [tip]
+    tree = _tree_arrays(model, joints, points,
+                        [3 * i for i in range(len(closures)) for _ in range(2)] + [rows],
+                        [1.0, -1.0] * len(closures) + [1.0])
     return _Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
-                   tuple(joints), blocks)
+                   tuple(joints), blocks, tree)
 
 
 def _inverse(K: np.ndarray, lay: _Layout) -> np.ndarray:
@@ -508,26 +572,12 @@ def _inverse(K: np.ndarray, lay: _Layout) -> np.ndarray:
 
 
 def joint_placements(model, Q: np.ndarray, joints) -> dict:
-    """World rotation (N, 3, 3) and origin (N, 3) of each listed joint frame at every sample."""
-    n = len(Q)
-    out = {0: (np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3)))}
-    for j in joints:
-        axis = _AXES.get(model.joints[j].shortname())
-        if axis is None:
-            raise NotImplementedError(f"batched kinematics: joint {model.names[j]} is a "
-                                      f"{model.joints[j].shortname()}, not RX/RY/RZ")
-        Rp, op = out[model.parents[j]]
-        M = model.jointPlacements[j]
-        B = Rp if np.array_equal(M.rotation, np.eye(3)) else Rp @ M.rotation
-        qj = Q[:, model.joints[j].idx_q, None]
-        c, s = np.cos(qj), np.sin(qj)
-        i1, i2 = (axis + 1) % 3, (axis + 2) % 3
-        R = np.empty((n, 3, 3))  # B · R_axis(q) by mixing two columns
-        R[:, :, axis] = B[:, :, axis]
-        R[:, :, i1] = B[:, :, i1] * c + B[:, :, i2] * s
-        R[:, :, i2] = B[:, :, i2] * c - B[:, :, i1] * s
-        out[j] = (R, op + Rp @ M.translation)
-    return out
+    """World rotation (N, 3, 3) and origin (N, 3) of each listed joint frame at every sample
+    (dict by joint, 0 = the base); the parent of each listed joint must be listed before it.
+    One compiled pass over the tree (:func:`.kernels.tree_placements`)."""
+    tree = _tree_arrays(model, joints, (), (), ())
+    R, o = tree.placements(Q)
+    return {j: (R[i], o[i]) for j, i in tree.slot.items()}
 
 
 def joint_velocities(model, pl, joints, V: np.ndarray):
@@ -545,35 +595,6 @@ def joint_velocities(model, pl, joints, V: np.ndarray):
     return w, vo
 
 
-def _jacobians(model, pl, joints, V: np.ndarray | None = None):
-    """Stacked world joint Jacobians J (N, 6, nv) of Pinocchio's WORLD convention (as
-    ``computeJointJacobians``) from the placements ``pl`` — or, if V is given, only their time
-    variation dJ (as ``computeJointJacobiansTimeVariation``). For a revolute joint j with world
-    axis z_j through o_j: J_j = [o_j × z_j; z_j]; dJ_j = [ȯ_j × z_j + o_j × ż_j; ż_j] with
-    ż_j = ω_parent × z_j and ȯ_j the velocity of the parent body's point o_j. Columns of joints
-    not listed stay zero."""
-    J = np.zeros((len(pl[0][1]), 6, model.nv))
-    if V is not None:
-        w, vo = joint_velocities(model, pl, joints, V)
-    for j in joints:
-        R, o = pl[j]
-        z = R[:, :, _AXES[model.joints[j].shortname()]]
-        c = model.joints[j].idx_v
-        if V is None:
-            J[:, 3:, c] = z
-            J[:, :3, c] = _cross(o, z)
-            continue
-        zd = _cross(w[model.parents[j]], z)
-        J[:, 3:, c] = zd
-        J[:, :3, c] = _cross(vo[j], z) + _cross(o, zd)
-    return J
-
-
-def _position(pl, p: _Point) -> np.ndarray:
-    R, o = pl[p.joint]
-    return R @ p.local + o
-
-
 def _cross(a, b):
     """Cross product along axis 1 (components), broadcasting the rest; cheaper than np.cross."""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape))
@@ -587,24 +608,6 @@ def _matvec(A, x):
     return (A @ x[:, :, None])[:, :, 0]
 
 
-def _stack_K(J, pos, lay: _Layout) -> np.ndarray:
-    """K = [Jc; J_tool] (N, 12, nv): point Jacobians J_lin + J_ang × p on their support."""
-    n, _, nv = J.shape
-    K = np.zeros((n, 12, nv))
-
-    def add(rows, p: _Point, sign):
-        c = p.cols
-        jp = J[:, :3][:, :, c] + _cross(J[:, 3:][:, :, c], pos[p][:, :, None])
-        K[:, rows.start:rows.stop, c] += sign * jp
-
-    for i, (a, b) in enumerate(lay.closures):
-        add(slice(3 * i, 3 * i + 3), a, 1.0)
-        add(slice(3 * i, 3 * i + 3), b, -1.0)
-    add(slice(6, 9), lay.tip, 1.0)
-    K[:, 9:, lay.tip.cols] = J[:, 3:][:, :, lay.tip.cols]
-    return K
-
-
 def _log3(R):
     """Batched SO(3) logarithm (vector), exact away from π."""
     w = 0.5 * np.stack([R[:, 2, 1] - R[:, 1, 2], R[:, 0, 2] - R[:, 2, 0],
@@ -616,22 +619,36 @@ def _log3(R):
     return w * scale[:, None]
 
 
-def _residuals(pl, pos, lay: _Layout, P_des, R_des) -> np.ndarray:
-    """[closure p_A − p_B (6); tip position error (3); orientation error (3)], (N, 12)."""
-    res = [pos[a] - pos[b] for a, b in lay.closures]
-    R_tip = pl[lay.tip.joint][0]
-    res += [pos[lay.tip] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
+def _residuals(R, pos, lay: _Layout, P_des, R_des) -> np.ndarray:
+    """[closure p_A − p_B (6); tip position error (3); orientation error (3)], (N, 12), from
+    the placements R and point positions of :func:`_point_rows`."""
+    nc = len(lay.closures)
+    res = [pos[:, 2 * i] - pos[:, 2 * i + 1] for i in range(nc)]
+    R_tip = R[lay.tree.slot[lay.tip.joint]]
+    res += [pos[:, 2 * nc] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
     return np.concatenate(res, axis=1)
 
 
-def _drift(J, dJ, v, pos, p: _Point) -> np.ndarray:
-    """Classical acceleration of a point at a = 0: J̇_lin v + (J̇_ang v) × p + ω × ṗ."""
-    c = p.cols
-    vc = v[:, c]
-    w = _matvec(J[:, 3:][:, :, c], vc)
-    pdot = _matvec(J[:, :3][:, :, c], vc) + _cross(w, pos[p])
-    return (_matvec(dJ[:, :3][:, :, c], vc) + _cross(_matvec(dJ[:, 3:][:, :, c], vc), pos[p])
-            + _cross(w, pdot))
+def _point_rows(lay: _Layout, R, o, nv: int):
+    """K = [Jc; J_tool] (N, 12, nv) and the points' positions (N, P, 3): point Jacobians
+    z_c × (p − o_c) summed over the joints moving each point, compiled
+    (:func:`.kernels.point_jacobians`)."""
+    from .kernels import point_jacobians  # compiled on first use (numba)
+
+    t = lay.tree
+    return point_jacobians(R, o, t.axis, t.pt_slot, t.pt_local, t.pt_support, t.pt_col,
+                           t.pt_row, t.pt_sign, len(t.pt_slot) - 1, 3 * len(t.pt_slot) - 6,
+                           nv)
+
+
+def _point_drifts(lay: _Layout, R, o, v, pos):
+    """K̇ v (N, 12) and every body's angular velocity (S, N, 3), compiled
+    (:func:`.kernels.point_drifts`)."""
+    from .kernels import point_drifts  # compiled on first use (numba)
+
+    t = lay.tree
+    return point_drifts(R, o, t.parent, t.axis, t.col, np.ascontiguousarray(v), t.pt_slot,
+                        t.pt_row, t.pt_sign, pos, len(t.pt_slot) - 1, 3 * len(t.pt_slot) - 6)
 
 
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
@@ -688,18 +705,15 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     n = len(poses)
     model = robot.model
     lay = _layout(robot)
-    points = [p for pair in lay.closures for p in pair] + [lay.tip]
     P_des, R_des = poses[:, :3], rotation(poses)
     # Newton polish at the closed form; velocities with the same matrix (one stacked solve).
-    pl = joint_placements(model, q0, lay.joints)
-    pos = {p: _position(pl, p) for p in points}
-    J = _jacobians(model, pl, lay.joints)
+    R, o = lay.tree.placements(q0)
+    K, pos = _point_rows(lay, R, o, model.nv)
     rhs = np.zeros((n, 12, 2))
-    rhs[:, :, 0] = _residuals(pl, pos, lay, P_des, R_des)
-    K = _stack_K(J, pos, lay)
+    rhs[:, :, 0] = _residuals(R, pos, lay, P_des, R_des)
     clock.lap("position")
     rhs[:, 6:, 1] = twist(poses, d_poses)
-    # One LU per sample: K⁻¹ serves the Newton step, the velocities, the accelerations and the
+    # One K⁻¹ per sample serves the Newton step, the velocities, the accelerations and the
     # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
     K_inv = _inverse(K, lay)
     sol = K_inv @ rhs
@@ -712,33 +726,23 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     q = q0.copy()
     if len(moved):
         q[moved] -= sol[moved, :, 0]
-        pl_m = joint_placements(model, q[moved], lay.joints)
-        for j in pl:
-            if j:
-                pl[j][0][moved], pl[j][1][moved] = pl_m[j]
-        for p in points:
-            pos[p][moved] = _position(pl_m, p)
-        J[moved] = _jacobians(model, pl_m, lay.joints)
-        K[moved] = _stack_K(J[moved], {p: pos[p][moved] for p in points}, lay)
+        R_m, o_m = lay.tree.placements(q[moved])
+        R[:, moved], o[:, moved] = R_m, o_m
+        K[moved], pos[moved] = _point_rows(lay, R_m, o_m, model.nv)
         K_inv[moved] = _inverse(K[moved], lay)
         v[moved] = _matvec(K_inv[moved], rhs[moved, :, 1])
     clock.lap("velocity")
     # Accelerations: K a = [−closure drift; tool acceleration − tool drift].
     singular = ~np.isfinite(v).all(axis=1)
-    if singular.any():  # keep NaN out of Pinocchio; those samples stay NaN
+    if singular.any():  # keep NaN out of the drifts; those samples stay NaN
         v = np.where(singular[:, None], 0.0, v)
-    dJ = _jacobians(model, pl, lay.joints, v)
-    rhs_a = np.empty((n, 12))
-    for i, (a_, b_) in enumerate(lay.closures):
-        rhs_a[:, 3 * i:3 * i + 3] = _drift(J, dJ, v, pos, b_) - _drift(J, dJ, v, pos, a_)
-    tc = lay.tip.cols
-    rhs_a[:, 6:] = twist_dot(poses, d_poses, dd_poses)
-    rhs_a[:, 6:9] -= _drift(J, dJ, v, pos, lay.tip)
-    rhs_a[:, 9:] -= _matvec(dJ[:, 3:][:, :, tc], v[:, tc])
+    drift, omega = _point_drifts(lay, R, o, v, pos)
+    rhs_a = -drift
+    rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
     a = _matvec(K_inv, rhs_a)
     if singular.any():
         v[singular] = a[singular] = np.nan
-    err = np.abs(_residuals(pl, pos, lay, P_des, R_des))
+    err = np.abs(_residuals(R, pos, lay, P_des, R_des))
     if not err.max() <= tol:
         k = int(np.argmax(err.max(axis=1)))
         raise UnreachablePoseError(
@@ -746,7 +750,7 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
             f"(tolerance {tol:g})", sample=start + k, time=float(t[k]),
             amount=float(err[k].max()))
     clock.lap("acceleration")
-    sph, dsph = _spherical_batch(robot, lay, pl, J, v)
+    sph, dsph = _spherical_batch(lay, R, omega)
     sp, ss, sp_max, ss_max = conditioning(K, robot.actuated_v, robot.passive_v, full=True,
                                           K_inv=K_inv)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
@@ -759,19 +763,15 @@ def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, cloc
     return result
 
 
-def _spherical_batch(robot: Robot, lay: _Layout, pl, J, v):
+def _spherical_batch(lay: _Layout, R, omega):
     """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates (docs/model.md §4), (N, 6)
-    each."""
-    model = robot.model
-
-    def omega(joint):
-        c = _support_cols(model, joint)
-        return _matvec(J[:, 3:][:, :, c], v[:, c])
-
-    R_p, w_p = pl[lay.platform][0], omega(lay.platform)
+    each, from the placements R and body angular velocities ω (slots first)."""
+    slot = lay.tree.slot
+    R_p, w_p = R[slot[lay.platform]], omega[slot[lay.platform]]
     ang, rate = [], []
     for link, C in zip(lay.links, lay.spherical_offset):
-        R_l = pl[link][0]
+        R_l = R[slot[link]]
         ang.append(_zyz(np.swapaxes(R_l, 1, 2) @ R_p @ C))
-        rate.append(_zyz_rates(ang[-1], _matvec(np.swapaxes(R_l, 1, 2), w_p - omega(link))))
+        rate.append(_zyz_rates(ang[-1], _matvec(np.swapaxes(R_l, 1, 2),
+                                                w_p - omega[slot[link]])))
     return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
