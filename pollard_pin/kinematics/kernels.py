@@ -1,9 +1,11 @@
 """Compiled kernels (numba) of the batched pipeline: small dense linear algebra, one loop over
 the samples of a stack, the GIL released (so the run's window threads use the cores).
 
-``block_inverse`` inverts the stacked [Jc; J_tool] systems through their block-triangular
-structure (docs/model.md §11). ``gram_extremes(A)`` gives λ_min and λ_max of AᵀA for every matrix of a stack, in one
-compiled loop that releases the GIL: the Gram matrix, its Householder reduction to a
+``tree_placements``, ``point_jacobians`` and ``point_drifts`` evaluate the joint placements,
+K = [Jc; J_tool] and its drifts K̇v on Pinocchio's model tree (docs/model.md §11);
+``block_inverse`` inverts K through its block-triangular structure (§11).
+``gram_extremes(A)`` gives λ_min and λ_max of AᵀA for every matrix of a stack (§12): the Gram
+matrix, its Householder reduction to a
 symmetric tridiagonal T (the first step of LAPACK's ``dsyevd``), then Laguerre's iteration on
 det(T − λI), evaluated with its first two derivatives by the LDLᵀ pivot recurrence, from the
 Gershgorin bounds inwards. For a polynomial with only real roots Laguerre's iteration
@@ -78,7 +80,7 @@ def _tridiagonalize(G, d, e, v, p):
 
 
 @njit(cache=True, nogil=True)
-def _laguerre(d, e2, x, upward, tiny, tol):
+def _laguerre(d, e2, x, upward, tol):
     """The eigenvalue of the tridiagonal (d, e² = e2) next to x, x outside the spectrum on the
     low side (``upward``) or the high side. Pivots q_i(x) of T − xI, their x-derivatives and
     Σ q_i'/q_i = p'/p (G), −(p'/p)' (H) give Laguerre's step n / (G ∓ √((n−1)(nH − G²)))."""
@@ -86,7 +88,7 @@ def _laguerre(d, e2, x, upward, tiny, tol):
     for _ in range(MAX_STEPS):
         q = d[0] - x
         if q == 0.0:
-            q = tiny  # x is an eigenvalue of a leading block: the usual Sturm shift
+            q = EPS  # x is an eigenvalue of a leading block: the usual Sturm shift
         iq = 1.0 / q  # one division per row: they dominate the cost
         dq, ddq = -1.0, 0.0
         g = -iq
@@ -95,7 +97,7 @@ def _laguerre(d, e2, x, upward, tiny, tol):
             r = e2[i - 1] * iq
             q, dq, ddq = d[i] - x - r, -1.0 + r * dq * iq, r * (ddq - 2.0 * dq * dq * iq) * iq
             if q == 0.0:
-                q = tiny
+                q = EPS
             iq = 1.0 / q
             u = dq * iq
             g += u
@@ -162,8 +164,8 @@ def gram_extremes(A):
         start = max(low - tol, -PSD_SLACK)
         if _below(d, e2, start) > 0:
             start = low - tol
-        lo[s] = scale * _laguerre(d, e2, start, True, EPS, tol)
-        hi[s] = scale * _laguerre(d, e2, high + tol, False, EPS, tol)
+        lo[s] = scale * _laguerre(d, e2, start, True, tol)
+        hi[s] = scale * _laguerre(d, e2, high + tol, False, tol)
     return lo, hi
 
 
@@ -277,12 +279,12 @@ def tree_placements(C, S, parent, axis, idx_q, M_rot, M_trans):
 
 
 @njit(cache=True, nogil=True)
-def point_jacobians(R, o, axis, pt_slot, pt_local, pt_support, pt_col, pt_row, pt_sign,
+def point_jacobians(R, o, axis, col, pt_slot, pt_local, pt_support, pt_row, pt_sign,
                     ang_point, ang_row, nv):
     """K (n, ang_row + 3, nv) and point positions (n, P, 3) from the placements R, o of
     :func:`tree_placements` (docs/model.md §11). Point i, fixed in slot pt_slot[i] at
-    pt_local[i], adds pt_sign[i] · z_c × (p − o_c) to rows pt_row[i] … + 2, column pt_col[i, m],
-    for each revolute joint c = pt_support[i, m] (−1 ends the list) that moves it; the rows
+    pt_local[i], adds pt_sign[i] · z_c × (p − o_c) to rows pt_row[i] … + 2, column col[c], for
+    each revolute joint (slot) c = pt_support[i, m] (−1 ends the list) that moves it; the rows
     ang_row … + 2 are the angular velocity of point ang_point's body: z_c per column."""
     n, P = R.shape[1], pt_slot.shape[0]
     K = np.zeros((n, ang_row + 3, nv))
@@ -297,16 +299,16 @@ def point_jacobians(R, o, axis, pt_slot, pt_local, pt_support, pt_col, pt_row, p
                 c = pt_support[i, m]
                 if c < 0:
                     break
-                ax, col = axis[c], pt_col[i, m]
+                ax, v = axis[c], col[c]
                 z0, z1, z2 = R[c, s, 0, ax], R[c, s, 1, ax], R[c, s, 2, ax]
                 d0, d1, d2 = (pos[s, i, 0] - o[c, s, 0], pos[s, i, 1] - o[c, s, 1],
                               pos[s, i, 2] - o[c, s, 2])
-                K[s, row, col] += sign * (z1 * d2 - z2 * d1)
-                K[s, row + 1, col] += sign * (z2 * d0 - z0 * d2)
-                K[s, row + 2, col] += sign * (z0 * d1 - z1 * d0)
+                K[s, row, v] += sign * (z1 * d2 - z2 * d1)
+                K[s, row + 1, v] += sign * (z2 * d0 - z0 * d2)
+                K[s, row + 2, v] += sign * (z0 * d1 - z1 * d0)
                 if i == ang_point:
                     for a in range(3):
-                        K[s, ang_row + a, col] = R[c, s, a, ax]
+                        K[s, ang_row + a, v] = R[c, s, a, ax]
     return K, pos
 
 

@@ -485,9 +485,14 @@ class _TreeArrays:
     pt_slot: np.ndarray  # (P,) points: closure A/B pairs, then the tip
     pt_local: np.ndarray  # (P, 3)
     pt_support: np.ndarray  # (P, depth) slots of the joints moving each point, −1 padded
-    pt_col: np.ndarray  # (P, depth) their velocity indices
     pt_row: np.ndarray  # (P,) first row of the point's block of K
     pt_sign: np.ndarray  # (P,) +1 for A and the tip, −1 for B
+
+    @property
+    def tool(self) -> tuple[int, int]:
+        """The tip (the last point) and the first of the tool's angular rows (after its
+        linear ones): K's last three rows."""
+        return len(self.pt_slot) - 1, int(self.pt_row[-1]) + 3
 
     def placements(self, Q: np.ndarray):
         """World rotations (S, N, 3, 3) and origins (S, N, 3) at configurations Q (N, nq)."""
@@ -524,8 +529,6 @@ def _tree_arrays(model, joints, points, rows, signs) -> _TreeArrays:
         pt_slot=ints([slot[p.joint] for p in points]),
         pt_local=np.array([p.local for p in points]).reshape(-1, 3),
         pt_support=ints([x + [-1] * (depth - len(x)) for x in support]),
-        pt_col=ints([[model.joints[j].idx_v for j in model.supports[p.joint][1:]]
-                     + [-1] * (depth - len(model.supports[p.joint]) + 1) for p in points]),
         pt_row=ints(rows), pt_sign=np.array(signs, dtype=float))
 
 
@@ -636,9 +639,8 @@ def _point_rows(lay: _Layout, R, o, nv: int):
     from .kernels import point_jacobians  # compiled on first use (numba)
 
     t = lay.tree
-    return point_jacobians(R, o, t.axis, t.pt_slot, t.pt_local, t.pt_support, t.pt_col,
-                           t.pt_row, t.pt_sign, len(t.pt_slot) - 1, 3 * len(t.pt_slot) - 6,
-                           nv)
+    return point_jacobians(R, o, t.axis, t.col, t.pt_slot, t.pt_local, t.pt_support, t.pt_row,
+                           t.pt_sign, *t.tool, nv)
 
 
 def _point_drifts(lay: _Layout, R, o, v, pos):
@@ -648,7 +650,7 @@ def _point_drifts(lay: _Layout, R, o, v, pos):
 
     t = lay.tree
     return point_drifts(R, o, t.parent, t.axis, t.col, np.ascontiguousarray(v), t.pt_slot,
-                        t.pt_row, t.pt_sign, pos, len(t.pt_slot) - 1, 3 * len(t.pt_slot) - 6)
+                        t.pt_row, t.pt_sign, pos, *t.tool)
 
 
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
