@@ -1,6 +1,6 @@
 """pollard-pin: a verified multibody model of the Pollard spray-painting parallel robot.
 
-Public API (imported lazily: ``pollard_pin.kinematics.closed_form`` and
+Public API (imported lazily: ``pollard_pin.analytic.closed_form`` and
 ``pollard_pin.crosscheck.euler_lagrange`` stay free of Pinocchio)::
 
     robot = pollard_pin.load()                       # model, data, closures, geometry

@@ -61,20 +61,24 @@ import numpy as np
 
 from .dynamics.averages import time_rms
 from .io.atomic import atomic_open
-from .model.params import (ParameterError, apply_overrides, lookup, params_from_dict,
-                     plain_value, read_params_dict, read_toml)
+from .model.names import ACTUATED, TREE_JOINTS
+from .model.params import (
+    ParameterError,
+    apply_overrides,
+    lookup,
+    params_from_dict,
+    plain_value,
+    read_params_dict,
+    read_toml,
+)
 
-# docs/model.md §6 actuator order; equals ``Robot.actuated`` (checked in the tests).
-ACTUATORS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 FAILURE_COLUMNS = ("feasible", "failure_kind", "failure", "failure_sample", "failure_time",
                    "failure_chain")
 METRIC_COLUMNS = (tuple(f"{m}_{a}" for m in ("peak_tau", "rms_tau", "peak_power")
-                        for a in ACTUATORS)
+                        for a in ACTUATED)
                   + ("peak_force_leg1", "peak_force_leg2",
                      "min_wrist_margin", "min_sigma_parallel", "min_sigma_serial"))
 # Peak bearing loads per tree joint (docs/model.md §2 order, §17).
-TREE_JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
-               "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
 LOAD_METRICS = ("peak_axial", "peak_radial", "peak_bending")
 METRIC_COLUMNS += tuple(f"{m}_{j}" for m in LOAD_METRICS for j in TREE_JOINTS)
 GRID_KEYS = ("trajectory", "duration", "samples", "params", "grid", "variant")
@@ -133,9 +137,9 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     infeasible
     row; anything else is a bug and raises.
     """
+    from .io.results import run_pipeline
     from .kinematics.errors import ClosureError, KinematicsError
     from .model.build import load
-    from .io.results import run_pipeline
 
     overrides = dict(spec.get("overrides") or {})
     keys = list(spec.get("keys") or overrides)
@@ -165,13 +169,13 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     if result.dynamics is None:
         raise SweepError("pollard_pin.dynamics.inverse is not available: cannot compute torques")
     dyn, ik = result.dynamics, result.ik
-    if tuple(dyn.actuated) != ACTUATORS:
-        raise SweepError(f"actuator order {dyn.actuated} is not docs/model.md §6 order {ACTUATORS}")
+    if tuple(dyn.actuated) != ACTUATED:
+        raise SweepError(f"actuator order {dyn.actuated} is not docs/model.md §6 order {ACTUATED}")
     tau, power = dyn.tau, dyn.power
     peak, rms, ppow = np.abs(tau).max(0), time_rms(ik.t, tau), np.abs(power).max(0)
     force = np.linalg.norm(dyn.closure_forces, axis=2).max(0)
     row["feasible"] = True
-    for i, a in enumerate(ACTUATORS):
+    for i, a in enumerate(ACTUATED):
         row[f"peak_tau_{a}"] = float(peak[i])
         row[f"rms_tau_{a}"] = float(rms[i])
         row[f"peak_power_{a}"] = float(ppow[i])
@@ -244,8 +248,13 @@ def trajectory_spec(trajectory: Any = "thesis", duration: float | None = None,
 
     A CSV file is read here, once, and travels as arrays, so workers need no access to it.
     """
-    from .io.trajectory import THESIS_DURATION, THESIS_SAMPLES, Trajectory, from_csv, \
-        thesis_trajectory
+    from .io.trajectory import (
+        THESIS_DURATION,
+        THESIS_SAMPLES,
+        Trajectory,
+        from_csv,
+        thesis_trajectory,
+    )
 
     if isinstance(trajectory, str) and trajectory == "thesis":
         spec = {"kind": "thesis",
@@ -526,11 +535,11 @@ def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
         name = str(r["variant"])
         name = name if len(name) <= width else name[:width - 1] + "…"
         if r["feasible"]:
-            peaks = [r[f"peak_tau_{a}"] for a in ACTUATORS]
+            peaks = [r[f"peak_tau_{a}"] for a in ACTUATED]
             i = int(np.argmax(peaks))
-            pmax = max(r[f"peak_power_{a}"] for a in ACTUATORS)
+            pmax = max(r[f"peak_power_{a}"] for a in ACTUATED)
             fmax = max(r["peak_force_leg1"], r["peak_force_leg2"])
-            lines.append(f"{name:{width}s}  {peaks[i]:12.4g} ({ACTUATORS[i]:>10s})  "
+            lines.append(f"{name:{width}s}  {peaks[i]:12.4g} ({ACTUATED[i]:>10s})  "
                          f"{pmax:10.4g}  {fmax:10.4g}")
         else:
             where = []
@@ -549,4 +558,4 @@ def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
 
 __all__ = ["Sweep", "SweepError", "evaluate_variant", "make_sweep", "load_grid", "run_sweep",
            "grid_variants", "trajectory_spec", "apply_overrides", "write_csv", "summary",
-           "ACTUATORS", "METRIC_COLUMNS", "FAILURE_COLUMNS"]
+           "METRIC_COLUMNS", "FAILURE_COLUMNS"]

@@ -89,7 +89,7 @@ def pinocchio_newton(robot, traj):
 
 
 def thesis_path(robot, traj):
-    cf = importlib.import_module("pollard_pin.kinematics.closed_form")
+    cf = importlib.import_module("pollard_pin.analytic.closed_form")
     lag = importlib.import_module("pollard_pin.crosscheck.euler_lagrange")
 
     def run(timings):

@@ -26,11 +26,15 @@ import pytest
 import pollard_pin
 from pollard_pin.kinematics.closure import forward_kinematics, solve_closure, tool_pose
 from pollard_pin.kinematics.errors import ClosureError
-from pollard_pin.model.build import (ModelFileError, build, constraint_jacobian,
-                                     constraint_residual,
-                               generate, load)
-from pollard_pin.model.params import (ParameterError, load_params, params_from_dict,
-                                      read_params_dict)
+from pollard_pin.model.build import (
+    ModelFileError,
+    build,
+    constraint_jacobian,
+    constraint_residual,
+    generate,
+    load,
+)
+from pollard_pin.model.params import ParameterError, load_params, params_from_dict, read_params_dict
 
 REPO = Path(__file__).resolve().parents[1]
 MODELS = REPO / "models"
@@ -303,7 +307,7 @@ def test_forward_kinematics_from_home_actuators_reproduces_home(robot, q_home):
 
 
 def test_forward_kinematics_inverts_the_closed_form_ik(robot, q_home):
-    from pollard_pin.kinematics.closed_form import JOINTS, position_ik
+    from pollard_pin.analytic.closed_form import JOINTS, position_ik
 
     home = np.asarray(robot.params.home_pose)
     poses = home + np.array([[0.0, 0, 0, 0, 0, 0], [-0.02, 0.05, 0.03, 0.1, -0.05, 0.2],

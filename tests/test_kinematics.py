@@ -2,7 +2,7 @@
 
 - Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of
 docs/model.md §7
-  (``pollard_pin.kinematics.closed_form``, numpy only, exact jet derivatives), on the default
+  (``pollard_pin.analytic.closed_form``, numpy only, exact jet derivatives), on the default
   trajectory,
   smooth random trajectories and isolated random reachable poses;
 - velocities and accelerations against central finite differences of the IK positions;
@@ -20,20 +20,26 @@ import warnings
 
 import numpy as np
 import pytest
-
-import pollard_pin as pp
-from pollard_pin.kinematics import taskspace as ts
-from pollard_pin.cli import main
-from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
-from pollard_pin.kinematics.pipeline import SPHERICAL
-from pollard_pin.kinematics.singularity import WRIST_MARGIN
-from pollard_pin.model.build import constraint_residual
-from pollard_pin.io.results import run_pipeline
-from pollard_pin.io.trajectory import (Trajectory, TrajectoryError, from_csv,
-                                    smooth_random_trajectory, thesis_trajectory, to_csv)
 from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
-T = importlib.import_module("pollard_pin.kinematics.closed_form")
+import pollard_pin as pp
+from pollard_pin.analytic import taskspace as ts
+from pollard_pin.cli import main
+from pollard_pin.io.results import run_pipeline
+from pollard_pin.io.trajectory import (
+    Trajectory,
+    TrajectoryError,
+    from_csv,
+    smooth_random_trajectory,
+    thesis_trajectory,
+    to_csv,
+)
+from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
+from pollard_pin.kinematics.singularity import WRIST_MARGIN
+from pollard_pin.model.build import constraint_residual
+from pollard_pin.model.names import SPHERICAL
+
+T = importlib.import_module("pollard_pin.analytic.closed_form")
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"

@@ -11,8 +11,8 @@ import pinocchio as pin
 import pytest
 
 import pollard_pin
-from pollard_pin.model.params import (ACTUATED_JOINTS, JOINT_NAMES, ParameterError,
-                                      load_params, params_from_dict, read_params_dict)
+from pollard_pin.model.names import ACTUATED, TREE_JOINTS
+from pollard_pin.model.params import ParameterError, load_params, params_from_dict, read_params_dict
 from pollard_pin.model.paths import models_dir
 from pollard_pin.model.urdf import position_limits
 
@@ -41,10 +41,8 @@ def default_run(robot):
 
 
 def test_joint_lists_agree_with_the_model(robot):
-    from pollard_pin.kinematics.closed_form import TREE_JOINTS
-
-    assert JOINT_NAMES == TREE_JOINTS == robot.joint_names
-    assert ACTUATED_JOINTS == robot.actuated
+    assert TREE_JOINTS == robot.joint_names
+    assert ACTUATED == robot.actuated
     assert set(PASSIVE) == set(robot.passive)
 
 
@@ -65,7 +63,7 @@ def test_limits_are_not_placeholders(limits):
         lo, hi, effort, _ = limits[n]
         assert -2 * math.pi < lo < hi < 2 * math.pi and hi - lo <= math.pi, n
         assert effort == 0.0, n  # no actuator
-    for n in ACTUATED_JOINTS:
+    for n in ACTUATED:
         assert limits[n][2] > 0.0, n
     # θ1716 stays on the wrist branch of the closed form (0 is the wrist singularity).
     assert limits["theta1716"][0] >= 0.0 and limits["theta1716"][1] <= math.pi
@@ -73,9 +71,9 @@ def test_limits_are_not_placeholders(limits):
 
 def test_default_trajectory_stays_inside_the_limits(robot, default_run, limits):
     ik = default_run.ik
-    assert tuple(ik.joint_names) == JOINT_NAMES
-    lo = np.array([limits[n][0] for n in JOINT_NAMES])
-    hi = np.array([limits[n][1] for n in JOINT_NAMES])
+    assert tuple(ik.joint_names) == TREE_JOINTS
+    lo = np.array([limits[n][0] for n in TREE_JOINTS])
+    hi = np.array([limits[n][1] for n in TREE_JOINTS])
     margin = math.radians(5.0)  # the widening of docs/model.md §3
     assert np.all(ik.q >= lo + margin) and np.all(ik.q <= hi - margin)
     home = robot.home()
@@ -85,7 +83,7 @@ def test_default_trajectory_stays_inside_the_limits(robot, default_run, limits):
 @pytest.mark.parametrize("group", sorted(GROUPS))
 def test_effort_and_velocity_are_twice_the_default_peaks(default_run, limits, group):
     names = GROUPS[group]
-    idx = [JOINT_NAMES.index(n) for n in names]
+    idx = [TREE_JOINTS.index(n) for n in names]
     peak_v = np.abs(default_run.ik.v[:, idx]).max()
     velocity = {limits[n][3] for n in names}
     assert len(velocity) == 1, "one rating per group"
@@ -93,7 +91,7 @@ def test_effort_and_velocity_are_twice_the_default_peaks(default_run, limits, gr
     assert FACTOR * peak_v <= velocity <= (FACTOR + 0.5) * peak_v, (group, peak_v, velocity)
     if group == "passive":
         return
-    tau = default_run.dynamics.tau[:, [ACTUATED_JOINTS.index(n) for n in names]]
+    tau = default_run.dynamics.tau[:, [ACTUATED.index(n) for n in names]]
     peak_tau = np.abs(tau).max()
     (effort,) = {limits[n][2] for n in names}
     assert FACTOR * peak_tau <= effort <= (FACTOR + 0.5) * peak_tau, (group, peak_tau, effort)
@@ -103,8 +101,8 @@ def test_effort_and_velocity_are_twice_the_default_peaks(default_run, limits, gr
 def test_the_random_test_trajectories_stay_inside_too(robot, limits, seed):
     traj = pollard_pin.smooth_random_trajectory(seed)
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
-    lo = np.array([limits[n][0] for n in JOINT_NAMES])
-    hi = np.array([limits[n][1] for n in JOINT_NAMES])
+    lo = np.array([limits[n][0] for n in TREE_JOINTS])
+    hi = np.array([limits[n][1] for n in TREE_JOINTS])
     assert np.all(ik.q > lo) and np.all(ik.q < hi)
 
 
@@ -119,12 +117,12 @@ def test_urdf_and_pinocchio_carry_the_limits(robot, limits):
                                          for k in ("lower", "upper", "effort", "velocity"))
     assert found == limits  # exact: written with repr()
     m = robot.model
-    idx = [robot.idx_q(n) for n in JOINT_NAMES]
+    idx = [robot.idx_q(n) for n in TREE_JOINTS]
     for k, attr in enumerate(("lowerPositionLimit", "upperPositionLimit")):
-        assert np.array_equal(getattr(m, attr)[idx], [limits[n][k] for n in JOINT_NAMES])
-    idx = [robot.idx_v(n) for n in JOINT_NAMES]
-    assert np.array_equal(m.effortLimit[idx], [limits[n][2] for n in JOINT_NAMES])
-    assert np.array_equal(m.velocityLimit[idx], [limits[n][3] for n in JOINT_NAMES])
+        assert np.array_equal(getattr(m, attr)[idx], [limits[n][k] for n in TREE_JOINTS])
+    idx = [robot.idx_v(n) for n in TREE_JOINTS]
+    assert np.array_equal(m.effortLimit[idx], [limits[n][2] for n in TREE_JOINTS])
+    assert np.array_equal(m.velocityLimit[idx], [limits[n][3] for n in TREE_JOINTS])
 
 
 def test_srdf_home_is_a_named_reference_configuration(robot, limits):
@@ -151,7 +149,7 @@ def test_mujoco_peer_keeps_ideal_joints_and_export_mirrors_limits(tmp_path, limi
     exported = mujoco.MjModel.from_xml_path(str(export_mjcf(tmp_path / "p.xml")))
     assert np.all(exported.jnt_limited)  # the export: the URDF's ranges, enforced
     assert not exported.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_LIMIT
-    for n in JOINT_NAMES:
+    for n in TREE_JOINTS:
         assert exported.joint(n).range.tolist() == list(limits[n][:2]), n
 
 

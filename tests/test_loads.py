@@ -111,7 +111,7 @@ def test_static_loads_are_subtree_weights_and_closure_forces(robot):
     base = [idx(n) for n in ("theta21", "theta21_1", "theta21_2")]
     assert np.abs(F[base].sum(0) - G * p.total_mass * ez).max() < EXACT
     # … and its moment about the world origin is that of the weights at the CoGs.
-    frames = pp.kinematics.closed_form.forward_frames(p, ik.q[0])
+    frames = pp.analytic.closed_form.forward_frames(p, ik.q[0])
     origin = {"theta21": "arm0", "theta21_1": "arm_1", "theta21_2": "arm_2"}
     moment = sum(M[idx(j)] + np.cross(frames[f][1], F[idx(j)]) for j, f in origin.items())
     cog = {b: frames[b][1] + frames[b][0] @ np.asarray(p.body(b).com) for b in m}
@@ -209,7 +209,7 @@ def test_streamed_run_writes_the_same_loads(robot, tmp_path):
 def test_leg_cross_moment_is_the_link_torsion(robot, case):
     """A leg link has its CoG and ball centre on its axis ℓ: the cross's moment, along
     n = u65 × u76, is ℓ·(I α + ω × I ω)_link / cos θ76 (docs/model.md §17)."""
-    from pollard_pin.kinematics.closed_form import body_kinematics
+    from pollard_pin.analytic.closed_form import body_kinematics
 
     traj, ik, _, loads = case
     kin = body_kinematics(robot.params, traj.poses, traj.d_poses, traj.dd_poses)

@@ -10,10 +10,17 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
+from pollard_pin.crosscheck.mujoco import (  # noqa: E402
+    ACTUATED,
+    JOINTS,
+    MujocoIKError,
+    build_mujoco,
+    home_configuration,
+    inverse_dynamics_mujoco,
+    inverse_kinematics_mujoco,
+    pipeline_mujoco,
+)
 from pollard_pin.model.paths import models_dir  # noqa: E402
-from pollard_pin.crosscheck.mujoco import (ACTUATED, JOINTS, MujocoIKError,  # noqa: E402
-                                     build_mujoco, home_configuration, inverse_dynamics_mujoco,
-                                     inverse_kinematics_mujoco, pipeline_mujoco)
 
 URDF = models_dir() / "pollard.urdf"
 TOL_CLOSURE = 1e-10  # m
@@ -204,10 +211,11 @@ def _potential(model, data, info, q):
 def test_static_torques_by_virtual_work(built):
     """At rest, τ_i = ∂U/∂θ_i along the closed-loop manifold (docs/model.md §8, virtual work). Home
     comes
-    from the closed-form IK (pollard_pin.kinematics.closed_form, no Pinocchio), closed by Newton
+    from the closed-form IK (pollard_pin.analytic.closed_form, no Pinocchio), closed by Newton
     in MuJoCo."""
+    from pollard_pin.analytic.closed_form import JOINTS as THESIS_JOINTS
+    from pollard_pin.analytic.closed_form import position_ik
     from pollard_pin.model.params import load_params
-    from pollard_pin.kinematics.closed_form import JOINTS as THESIS_JOINTS, position_ik
 
     model, _, info = built
     data = mujoco.MjData(model)

@@ -18,21 +18,34 @@ import re
 import numpy as np
 import pinocchio as pin
 import pytest
+from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
 import pollard_pin as pp
+from pollard_pin.analytic import closed_form as T
+from pollard_pin.analytic import taskspace as ts
 from pollard_pin.dynamics.inverse import _split_tree_torques, inverse_dynamics
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
-from pollard_pin.kinematics import closed_form as T
-from pollard_pin.kinematics import closure, jet as J
-from pollard_pin.kinematics import taskspace as ts
-from pollard_pin.kinematics.errors import (BranchFlipError, ClosureError, ClosureSingularError,
-                                           KinematicsError, KinematicsInputError,
-                                           SingularityError, UnreachablePoseError)
+from pollard_pin.kinematics import closure
+from pollard_pin.kinematics import jet as J
+from pollard_pin.kinematics.errors import (
+    BranchFlipError,
+    ClosureError,
+    ClosureSingularError,
+    KinematicsError,
+    KinematicsInputError,
+    SingularityError,
+    UnreachablePoseError,
+)
 from pollard_pin.kinematics.pipeline import MIN_SUBSTEP, _zyz, _zyz_rates
-from pollard_pin.kinematics.singularity import (BRANCH_SIGNS, SERIAL_FLOOR, SIGMA_FLOOR,
-                                                actuator_velocity_map, branch_quantities,
-                                                check_margins, solve_stack)
-from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
+from pollard_pin.kinematics.singularity import (
+    BRANCH_SIGNS,
+    SERIAL_FLOOR,
+    SIGMA_FLOOR,
+    actuator_velocity_map,
+    branch_quantities,
+    check_margins,
+    solve_stack,
+)
 
 # A pose exactly on leg 2's reach boundary (θ76_2 = 0), from the issue.
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,

@@ -1,4 +1,4 @@
-"""The thesis' analytic method (pollard_pin.kinematics.closed_form,
+"""The thesis' analytic method (pollard_pin.analytic.closed_form,
 pollard_pin.crosscheck.euler_lagrange) against independent numbers: docs/model.md §9
 home table, the numpy forward chain, finite differences and energy balance."""
 import subprocess
@@ -7,17 +7,30 @@ import sys
 import numpy as np
 import pytest
 
-from pollard_pin.model.params import load_params
-from pollard_pin.crosscheck.euler_lagrange import (energy, gravity_torques, inverse_dynamics,
-                                                   mass_matrix, three_actuator_analysis)
-from pollard_pin.kinematics.closed_form import (ACTUATED, JOINTS, UnreachableError,
-                                                WristSingularError, actuation_jacobian,
-                                                body_kinematics, closure_points,
-                                                forward_frames, forward_tool_pose,
-                                                inverse_kinematics, position_ik)
-from pollard_pin.kinematics import jet as J
-from pollard_pin.kinematics.closed_form import ACTUATED_INDEX
+from pollard_pin.analytic import jet as J
+from pollard_pin.analytic.closed_form import (
+    ACTUATED,
+    ACTUATED_INDEX,
+    JOINTS,
+    UnreachableError,
+    WristSingularError,
+    actuation_jacobian,
+    body_kinematics,
+    closure_points,
+    forward_frames,
+    forward_tool_pose,
+    inverse_kinematics,
+    position_ik,
+)
+from pollard_pin.crosscheck.euler_lagrange import (
+    energy,
+    gravity_torques,
+    inverse_dynamics,
+    mass_matrix,
+    three_actuator_analysis,
+)
 from pollard_pin.io.trajectory import sinusoid_curve, thesis_curve
+from pollard_pin.model.params import load_params
 
 
 def painting_trajectory(p, n=2001, duration=20.0, t=None):
@@ -192,7 +205,7 @@ def test_three_actuator_problem_is_ill_posed(p):
 def test_thesis_method_does_not_import_pinocchio():
     # The closed form and the Euler–Lagrange cross-check are numpy only, and so independent
     # of the Pinocchio pipeline they check.
-    code = ("import pollard_pin.crosscheck.euler_lagrange, pollard_pin.kinematics.closed_form, "
+    code = ("import pollard_pin.crosscheck.euler_lagrange, pollard_pin.analytic.closed_form, "
             "sys; assert 'pinocchio' not in sys.modules, 'pinocchio'")
     subprocess.run([sys.executable, "-c", code], check=True)
 

@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kinematics.closed_form import (ACTUATED, BODIES, _as_poses, body_states, direction_jet,
-                                      vee_skew)
-from ..kinematics.jet import Jet
+from ..analytic.closed_form import _as_poses, body_states, direction_jet, vee_skew
+from ..analytic.jet import Jet
+from ..model.names import ACTUATED, BODIES
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 

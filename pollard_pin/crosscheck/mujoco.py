@@ -35,10 +35,9 @@ from pathlib import Path
 
 import numpy as np
 
-# Tree joints in the order of pollard_pin.kinematics (IKResult.q columns), docs/model.md §3.
-JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
-          "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
-ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")  # §6
+from ..model.names import ACTUATED
+from ..model.names import TREE_JOINTS as JOINTS
+
 GRAVITY = np.array([0.0, 0.0, -9.81])  # docs/model.md §2
 MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check
 TIP = "tip"  # tool-tip frame of the URDF (docs/model.md §3: Tx(x1918) on gun)
@@ -575,7 +574,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     """
     mujoco = _mujoco()
 
-    from ..kinematics.taskspace import rotation, twist, twist_dot
+    from ..analytic.taskspace import rotation, twist, twist_dot
 
     clock = _Clock(timings)
     model, data, info = built if built is not None else _built(urdf_path)

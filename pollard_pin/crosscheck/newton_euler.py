@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kinematics.closed_form import (BODIES, TREE_JOINTS, body_kinematics, forward_frames,
-                                      position_ik)
+from ..analytic.closed_form import body_kinematics, forward_frames, position_ik
+from ..model.names import BODIES, PASSIVE, TREE_JOINTS
 from .euler_lagrange import GRAVITY
 
 # joint → (frame of its origin and axis in forward_frames, axis column, bodies of its subtree)
@@ -35,7 +35,6 @@ SUBTREES = {
     **{f"theta65_{i}": (f"cross_{i}", 1, (f"link_{i}",)) for i in (1, 2)},
     **{f"theta76_{i}": (f"link_{i}", 2, (f"link_{i}",)) for i in (1, 2)},
 }
-PASSIVE = ("theta43", "theta54", "theta65_1", "theta76_1", "theta65_2", "theta76_2")
 
 
 def _closures_on(joint: str, bodies) -> list[tuple[int, float, str]]:

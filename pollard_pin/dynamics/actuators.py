@@ -23,7 +23,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..model.params import ACTUATED_JOINTS, JOINT_NAMES, did_you_mean, read_toml
+from ..model.names import ACTUATED as ACTUATED_JOINTS, TREE_JOINTS as JOINT_NAMES
+from ..model.params import did_you_mean, read_toml
 from .averages import time_rms as rms, trapezoid_weights
 from .inverse import JointLosses, inverse_dynamics
 

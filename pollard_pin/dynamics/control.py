@@ -22,7 +22,7 @@ import pinocchio as pin
 
 from ..kinematics.closure import tool_pose
 from ..kinematics.pipeline import inverse_kinematics
-from ..kinematics.taskspace import rotation
+from ..analytic.taskspace import rotation
 from ..model.build import Robot
 from .forward import SimulationError
 from .inverse import (JointLosses, inverse_dynamics, inverse_dynamics_sample,

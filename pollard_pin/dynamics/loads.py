@@ -29,11 +29,6 @@ from ..timing import Stopwatch
 from .averages import cubic_mean
 
 _AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
-# Joints drawn together (docs/model.md §3): base chain 0, wrist, legs.
-CHAIN_JOINTS = (("chain 0", ("theta21", "theta43", "theta54")),
-                ("wrist", ("theta1615", "theta1716", "theta1817")),
-                ("leg 1", ("theta21_1", "theta65_1", "theta76_1")),
-                ("leg 2", ("theta21_2", "theta65_2", "theta76_2")))
 
 
 def _cross(a, b):
@@ -267,4 +262,4 @@ def joint_loads_rnea(robot: Robot, ik: IKResult, dyn) -> JointLoads:
                       closure_forces=lam)
 
 
-__all__ = ["JointLoads", "joint_loads", "joint_loads_rnea", "cubic_mean", "CHAIN_JOINTS"]
+__all__ = ["JointLoads", "joint_loads", "joint_loads_rnea", "cubic_mean"]

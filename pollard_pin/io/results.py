@@ -8,9 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..analytic.taskspace import TASK_NAMES
+from ..kinematics.pipeline import BATCH_CHUNK, IKResult, inverse_kinematics
+from ..model.names import SPHERICAL
 from .table import TableWriter, write_table
-from ..kinematics.pipeline import BATCH_CHUNK, SPHERICAL, IKResult, inverse_kinematics
-from ..kinematics.taskspace import TASK_NAMES
 from .trajectory import Trajectory
 
 

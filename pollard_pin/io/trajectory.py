@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..kinematics.taskspace import TASK_NAMES
+from ..analytic.taskspace import TASK_NAMES
 from ..model.params import did_you_mean
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from ..analytic.taskspace import pose_from_se3
 from ..model.build import Robot, constraint_jacobian, constraint_residual
 from .errors import ClosureError, ClosureSingularError
 from .singularity import SIGMA_FLOOR, sigma_range
-from .taskspace import pose_from_se3
 
 CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
 MAX_ITER = 50

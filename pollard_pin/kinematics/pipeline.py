@@ -8,18 +8,26 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
+from ..analytic import closed_form
+from ..analytic.taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
 from ..model.build import TIP_FRAME, Robot, constraint_jacobian
+from ..model.names import SPHERICAL
 from ..timing import Stopwatch
-from . import closed_form
-from .errors import (KinematicsError, KinematicsInputError, SingularityError,
-                     UnreachablePoseError)
-from .singularity import (SERIAL_FLOOR, SIGMA_FLOOR, SINGULARITY_MARGIN,
-                          WRIST_MARGIN, BranchQuantities, check_margins,
-                          conditioning, flip_error, floor_message, inverse_stack,
-                          same_branch)
-from .taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
+from .errors import KinematicsError, KinematicsInputError, SingularityError, UnreachablePoseError
+from .singularity import (
+    SERIAL_FLOOR,
+    SIGMA_FLOOR,
+    SINGULARITY_MARGIN,
+    WRIST_MARGIN,
+    BranchQuantities,
+    check_margins,
+    conditioning,
+    flip_error,
+    floor_message,
+    inverse_stack,
+    same_branch,
+)
 
-SPHERICAL = ("theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
 
 

@@ -15,12 +15,11 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from .paths import models_dir
+from .names import ACTUATED, PASSIVE, TREE_JOINTS
 from .params import Params, load_params
+from .paths import models_dir
 from .urdf import generate_srdf, generate_urdf
 
-ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
-PASSIVE = ("theta43", "theta54", "theta65_1", "theta76_1", "theta65_2", "theta76_2")
 TIP_FRAME = "tip"
 DEFAULT_URDF = "pollard.urdf"
 DEFAULT_SRDF = "pollard.srdf"
@@ -175,10 +174,10 @@ def build(params: Params, urdf: str, srdf: str) -> Robot:
 
 def home_joint_values(params: Params) -> dict[str, float]:
     """Tree joint values at the home pose, by the closed-form IK of docs/model.md §7."""
-    from ..kinematics.closed_form import JOINTS, position_ik
+    from ..analytic.closed_form import position_ik
 
     q = position_ik(params, np.asarray(params.home_pose)[None, :])[0]
-    return {n: float(v) for n, v in zip(JOINTS[:12], q[:12])}
+    return {n: float(v) for n, v in zip(TREE_JOINTS, q[:12])}
 
 
 def generate(params: Params) -> tuple[str, str]:

@@ -16,11 +16,11 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .names import ACTUATED, BODIES, TREE_JOINTS
 from .paths import models_dir
 
 DEFAULT_PARAMS = "pollard.toml"
 
-BODY_NAMES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link_1", "link_2")
 CHAIN0_KEYS = ("z10", "x32", "x65", "x1514", "x1918")
 LEG_KEYS = ("side", "y10", "z32", "x43", "beta54", "x87", "x1211", "z1312", "beta1413")
 LEG_ANGLES = ("beta54", "beta1413")  # given in deg
@@ -29,10 +29,6 @@ LEG_OFFSETS = ("x1211", "z1312")  # may be zero, not negative
 BODY_KEYS = ("mass", "com", "inertia")
 HOME_KEYS = ("tip", "orientation")
 BRANCH_KEYS = ("chain0", "leg1", "leg2")
-# Tree joints (docs/model.md §3, the order of pollard_pin.kinematics) and the actuated ones (§6).
-JOINT_NAMES = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
-               "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2")
-ACTUATED_JOINTS = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 LIMIT_KEYS = ("lower", "upper", "effort", "velocity")  # deg, deg, N·m, rad/s
 SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches", "limits")
 
@@ -96,10 +92,10 @@ class Params:
     x1514: float
     x1918: float
     legs: tuple[Leg, Leg]
-    bodies: tuple[tuple[str, Body], ...]  # ordered (name, Body) pairs, BODY_NAMES order
+    bodies: tuple[tuple[str, Body], ...]  # ordered (name, Body) pairs, BODIES order
     home_pose: tuple[float, ...]  # (x, y, z, psi, theta, phi), m and rad
     branches: tuple[int, int, int]  # chain0, leg1, leg2
-    limits: tuple[tuple[str, JointLimits], ...]  # ordered (joint, limits), JOINT_NAMES order
+    limits: tuple[tuple[str, JointLimits], ...]  # ordered (joint, limits), TREE_JOINTS order
     source: str = "<python>"
 
     def body(self, name: str) -> Body:
@@ -256,9 +252,9 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
         legs.append(Leg(**vals))
     if legs[0].side == legs[1].side:
         _fail("leg2.side", legs[1].side, "the two legs must stand on opposite sides (s_1 = -s_2)")
-    _check_keys("bodies", d["bodies"], BODY_NAMES)
+    _check_keys("bodies", d["bodies"], BODIES)
     bodies = []
-    for name in BODY_NAMES:
+    for name in BODIES:
         key = f"bodies.{name}"
         t = d["bodies"][name]
         _check_keys(key, t, BODY_KEYS)
@@ -273,9 +269,9 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
     ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
     _check_keys("branches", d["branches"], BRANCH_KEYS)
     branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)
-    _check_keys("limits", d["limits"], JOINT_NAMES)
-    limits = tuple((n, _joint_limits(f"limits.{n}", d["limits"][n], n in ACTUATED_JOINTS))
-                   for n in JOINT_NAMES)
+    _check_keys("limits", d["limits"], TREE_JOINTS)
+    limits = tuple((n, _joint_limits(f"limits.{n}", d["limits"][n], n in ACTUATED))
+                   for n in TREE_JOINTS)
     p = Params(**chain0, legs=tuple(legs), bodies=tuple(bodies), home_pose=tuple(tip + ori),
                branches=branches, limits=limits, source=source)
     if check_home:
@@ -286,7 +282,7 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
 def _check_home_reachable(p: Params) -> None:
     # Closed-form IK (docs/model.md §7) at the home pose; it raises with the chain and the
     # shortfall.
-    from ..kinematics.closed_form import UnreachableError, position_ik
+    from ..analytic.closed_form import UnreachableError, position_ik
 
     try:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
@@ -472,4 +468,4 @@ def replace(p: Params, overrides: Mapping[str, Any]) -> Params:
 
 
 __all__ = ["Params", "Leg", "Body", "JointLimits", "ParameterError", "load_params",
-           "params_from_dict", "read_params_dict", "replace", "BODY_NAMES", "JOINT_NAMES"]
+           "params_from_dict", "read_params_dict", "replace"]

@@ -24,7 +24,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .params import JOINT_NAMES, Params
+from .names import TREE_JOINTS
+from .params import Params
 
 # Design workspace of the position limits: ± half-widths about the home pose in (x, y, z) [m]
 # and (ψ, θ, φ) [rad] (docs/model.md §2). It holds the thesis curve (docs/model.md §9: x from
@@ -135,7 +136,7 @@ def workspace_ranges(p: Params, half_widths=WORKSPACE, samples: int = WORKSPACE_
     """(min, max) [rad] of each tree joint over a ``samples``⁶ grid of poses home ± half_widths,
     by the closed-form IK (docs/model.md §7). Unreachable and wrist-singular poses are left
     out; angles are taken within ±π of the home configuration."""
-    from ..kinematics.closed_form import UnreachableError, position_ik
+    from ..analytic.closed_form import UnreachableError, position_ik
 
     home = np.asarray(p.home_pose, dtype=float)
     axes = [np.linspace(-h, h, samples) for h in half_widths]
@@ -153,13 +154,13 @@ def workspace_ranges(p: Params, half_widths=WORKSPACE, samples: int = WORKSPACE_
 
     q = np.concatenate([q_home[None]] + solve(poses))
     q = q_home + (np.pi - np.mod(np.pi - (q - q_home), 2.0 * np.pi))  # into home ± π
-    return {n: (float(lo), float(hi)) for n, lo, hi in zip(JOINT_NAMES, q.min(0), q.max(0))}
+    return {n: (float(lo), float(hi)) for n, lo, hi in zip(TREE_JOINTS, q.min(0), q.max(0))}
 
 
 def position_limits(p: Params, **workspace) -> dict[str, tuple[float, float]]:
     """Position limits [deg] from :func:`workspace_ranges`: widened by :data:`LIMIT_MARGIN`,
     rounded outward to :data:`LIMIT_STEP`, capped by :data:`BRANCH` and to home ± 180°."""
-    from ..kinematics.closed_form import position_ik
+    from ..analytic.closed_form import position_ik
 
     home = np.degrees(position_ik(p, np.asarray(p.home_pose)[None])[0, :12])
     out, step, eps = {}, LIMIT_STEP, 1e-9  # eps: round-off at exact multiples of the step

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..model.names import ACTUATED, CHAIN_JOINTS
+
 # Figure name → file name (without .png), in the order they are written.
 FIGURES = ("chain0_joints", "wrist_joints", "leg1_joints", "leg2_joints", "spherical_joints",
            "actuators", "closure_forces", "conditioning", "tool_path")
@@ -28,7 +30,6 @@ LABELS = {  # thesis symbols
         ("theta109", "θ109_"), ("theta1110", "θ1110_"))},
 }
 LOAD_FIGURES = ("joint_loads",)  # written when the result has its joint loads
-ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 BASE, WRIST = ACTUATED[:3], ACTUATED[3:]
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 
@@ -133,7 +134,6 @@ def _closure_figure(plt, cols):
 
 def _loads_figure(plt, loads, name):
     """One row per chain (docs/model.md §17): axial force, radial force, bending moment."""
-    from ..dynamics.loads import CHAIN_JOINTS
 
     t = loads.t
     quantities = (("axial", loads.axial, "axial force [N]"),

@@ -99,8 +99,8 @@ def _loads(robot, result):
 
 def cross_check_thesis(robot, result) -> dict:
     """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
+    from ..analytic import closed_form as ik_mod
     from ..crosscheck import euler_lagrange as lagrange
-    from ..kinematics import closed_form as ik_mod
 
     traj, ik, dyn = result.trajectory, result.ik, result.dynamics
     q_th, v_th, a_th = ik_mod.inverse_kinematics(robot.params, traj.poses, traj.d_poses,

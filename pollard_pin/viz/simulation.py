@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 
 from ..dynamics.control import ControlError
-from .plots import ACTUATED, COLOURS, LABELS, _finish, _line, _pyplot
+from ..model.names import ACTUATED
+from .plots import COLOURS, LABELS, _finish, _line, _pyplot
 
 SIMULATION_FIGURES = ("simulation_tracking", "simulation_torques", "simulation_path")
 REQUIRED = ("t", "x", "y", "z", "desired_x", "desired_y", "desired_z", "tip_position_error",

@@ -5,27 +5,21 @@ numpy forward chain of docs/model.md §3 used to check it.
 Poses are (x, y, z, ψ, θ, φ) in the thesis order (docs/model.md §2): tip frame Tx(x)Ty(y)Tz(z)·R
 with
 R = Rx(θ)Ry(ψ)Rz(φ). Velocities and accelerations come from running the same closed forms on
-:class:`~pollard_pin.kinematics.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
+:class:`~pollard_pin.analytic.jet.Jet` inputs, i.e. by the chain rule, never finite differences.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from ..model.names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
 from . import jet as J
 from .jet import Jet, value
 from .taskspace import TaskInputError, check_task_array
 
-JOINTS = ("theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817",
-          "theta21_1", "theta65_1", "theta76_1", "theta21_2", "theta65_2", "theta76_2",
-          "theta98_1", "theta109_1", "theta1110_1", "theta98_2", "theta109_2", "theta1110_2")
-TREE_JOINTS = JOINTS[:12]
-SPHERICAL_JOINTS = JOINTS[12:]
-ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 ACTUATED_INDEX = tuple(JOINTS.index(n) for n in ACTUATED)
-CHAINS = ("chain 0", "leg 1", "leg 2")
 _CHAIN_OF = {**{n: "chain 0" for n in JOINTS[:3]}, **{n: "wrist" for n in JOINTS[3:6]},
              **{n: f"leg {n[-1]}" for n in JOINTS[6:12]},
-             **{n: f"spherical joint {n[-1]}" for n in SPHERICAL_JOINTS}}
+             **{n: f"spherical joint {n[-1]}" for n in SPHERICAL}}
 # Round-off tolerance of every arccos/arcsin argument (docs/model.md §7): a ratio within
 # ROUNDOFF·scale of ±1 is on the boundary and taken as ±1 exactly; beyond 1 + ROUNDOFF·scale
 # there is no solution. ``scale`` is the size of the terms the ratio was formed from, relative
@@ -403,8 +397,6 @@ def closure_points(params, q) -> np.ndarray:
 
 
 # --- body kinematics ----------------------------------------------------------------------
-
-BODIES = ("arm0", "platform", "wrist1", "wrist2", "gun", "arm_1", "arm_2", "link_1", "link_2")
 
 
 def body_states(params, pose_jet, wrist_margin: float = 0.0):
