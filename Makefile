@@ -17,6 +17,7 @@ run: $(STAMP)
 	$(VENV)/bin/pollard-pin run
 
 test: $(STAMP)
+	$(VENV)/bin/ruff check
 	$(VENV)/bin/python -m pytest -q
 
 urdf: $(STAMP)

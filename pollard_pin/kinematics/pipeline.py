@@ -11,7 +11,6 @@ import pinocchio as pin
 from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array, rotation, twist, twist_dot
 from ..model.build import TIP_FRAME, Robot, constraint_jacobian
-from ..model.names import SPHERICAL
 from ..timing import Stopwatch
 from .errors import KinematicsError, KinematicsInputError, SingularityError, UnreachablePoseError
 from .singularity import (
