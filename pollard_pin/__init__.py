@@ -20,7 +20,7 @@ _API = {
     "load_params": "model.params", "Params": "model.params", "ParameterError": "model.params",
     "solve_closure": "kinematics.closure", "forward_kinematics": "kinematics.closure",
     "tool_pose": "kinematics.closure",
-    "inverse_kinematics": "kinematics.pipeline", "IKResult": "kinematics.pipeline",
+    "inverse_kinematics": "kinematics.ik", "IKResult": "kinematics.ik",
     "ClosureError": "kinematics.errors", "KinematicsError": "kinematics.errors",
     "UnreachablePoseError": "kinematics.errors", "SingularityError": "kinematics.errors",
     "BranchFlipError": "kinematics.errors",

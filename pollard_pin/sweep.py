@@ -17,7 +17,7 @@ time
   RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
 * ``peak_force_leg1``, ``peak_force_leg2`` = max |λ_i| [N] at the spherical joints;
 * ``min_wrist_margin``, ``min_sigma_parallel``, ``min_sigma_serial``: how close the variant
-  came to the singularities (see :class:`pollard_pin.kinematics.pipeline.IKResult`);
+  came to the singularities (see :class:`pollard_pin.kinematics.ik.IKResult`);
 * per tree joint (docs/model.md §17): ``peak_axial_<j>``, ``peak_radial_<j>`` [N] and
   ``peak_bending_<j>`` [N·m], the peak bearing loads.
 

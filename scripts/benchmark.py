@@ -26,7 +26,7 @@ import numpy as np
 
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
-from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
 

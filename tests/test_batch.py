@@ -4,7 +4,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
-from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
 
 FIELDS = ("q", "v", "a", "spherical", "d_spherical", "wrist_margin", "sigma_parallel",
           "sigma_serial")
@@ -53,23 +53,24 @@ def test_compiled_K_and_drifts_equal_pinocchios(robot):
     # Jacobians, classical accelerations and data.v, sample by sample at random states.
     import pinocchio as pin
 
-    from pollard_pin.kinematics.pipeline import (KinematicFrames, _drifts, _kinematic_matrix,
-                                                 _layout, _point_drifts, _point_rows)
+    from pollard_pin.kinematics.ik_batch import layout, point_drifts, point_rows
+    from pollard_pin.kinematics.ik_common import KinematicFrames
+    from pollard_pin.kinematics.ik_newton import frame_drifts, kinematic_matrix
 
     rng = np.random.default_rng(3)
     m, d = robot.model, robot.data
     Q = rng.uniform(-np.pi, np.pi, (25, m.nq))
     V = rng.normal(0.0, 2.0, (25, m.nv))
-    lay = _layout(robot)
+    lay = layout(robot)
     assert len(lay.joints) == m.njoints - 1  # every joint's column is filled
     R, o = lay.tree.placements(Q)
-    K, pos = _point_rows(lay, R, o, m.nv)
-    drift, omega = _point_drifts(lay, R, o, V, pos)
+    K, pos = point_rows(lay, R, o, m.nv)
+    drift, omega = point_drifts(lay, R, o, V, pos)
     fr = KinematicFrames.of(robot)
     for k in range(len(Q)):
-        ref = _kinematic_matrix(m, d, robot.constraint_models, robot.constraint_datas, fr, Q[k])
+        ref = kinematic_matrix(m, d, robot.constraint_models, robot.constraint_datas, fr, Q[k])
         assert np.abs(K[k] - ref).max() <= 1e-14
-        ref_drift = _drifts(m, d, fr, Q[k], V[k])  # also runs forwardKinematics(q, v, 0)
+        ref_drift = frame_drifts(m, d, fr, Q[k], V[k])  # also runs forwardKinematics(q, v, 0)
         assert np.abs(drift[k] - ref_drift).max() <= 1e-13 * max(1.0, np.abs(ref_drift).max())
         for j, i in lay.tree.slot.items():
             w = d.oMi[j].rotation @ d.v[j].angular

@@ -152,7 +152,7 @@ def test_three_actuator_formula_is_ill_posed(robot, thesis_run):
 def test_three_way_agreement_with_modified_parameters(tmp_path):
     """Twisted U joints (β54 ≠ 0), another attachment angle, longer arm, off-axis CoG: the
     batched and per-sample IK, the thesis' Euler–Lagrange torques and MuJoCo still agree."""
-    from pollard_pin.kinematics.pipeline import inverse_kinematics_batch, inverse_kinematics_newton
+    from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
     from pollard_pin.model.build import generate
 
     params = pp.load_params(overrides={

@@ -7,7 +7,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import batched_rnea
 from pollard_pin.kinematics.kernels import block_inverse, gram_extremes
-from pollard_pin.kinematics.pipeline import _inverse, _layout, _point_rows
+from pollard_pin.kinematics.ik_batch import kinematic_inverse, layout, point_rows
 
 RNG = np.random.default_rng(20261123)
 
@@ -60,9 +60,9 @@ def test_gram_extremes_on_the_robot(robot, ik_traj):
 
 
 def _robot_K(robot, q):
-    lay = _layout(robot)
+    lay = layout(robot)
     R, o = lay.tree.placements(q)
-    return _point_rows(lay, R, o, robot.model.nv)[0], lay
+    return point_rows(lay, R, o, robot.model.nv)[0], lay
 
 
 def test_block_inverse_equals_lapack(robot, ik_traj):
@@ -70,7 +70,7 @@ def test_block_inverse_equals_lapack(robot, ik_traj):
     assert lay.blocks is not None
     top, bottom, first, second = lay.blocks
     assert np.all(K[:, bottom][:, :, second] == 0.0)  # the structure the kernel relies on
-    Ki = _inverse(K, lay)
+    Ki = kinematic_inverse(K, lay)
     ref = np.linalg.inv(K)
     assert np.abs(Ki - ref).max() <= 1e-13 * np.abs(ref).max()
     assert np.abs(Ki @ K - np.eye(12)).max() <= 1e-12

@@ -40,7 +40,7 @@ def robot():
 
 
 def _ik(robot, traj):
-    from pollard_pin.kinematics.pipeline import inverse_kinematics
+    from pollard_pin.kinematics.ik import inverse_kinematics
 
     return inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
 

@@ -21,7 +21,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..kinematics.closure import tool_pose
-from ..kinematics.pipeline import inverse_kinematics
+from ..kinematics.ik import inverse_kinematics
 from ..analytic.taskspace import rotation
 from ..model.build import Robot
 from .forward import SimulationError

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..kinematics.pipeline import inverse_kinematics
+from ..kinematics.ik import inverse_kinematics
 from ..model.build import Robot, constraint_residual
 from .inverse import inverse_dynamics_sample, reduced_mass_matrix
 

@@ -11,10 +11,10 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..kinematics.pipeline import IKResult, _cross, joint_placements, joint_velocities
 from ..kinematics.errors import SingularityError
-from ..kinematics.singularity import (SIGMA_FLOOR, actuator_velocity_map, sigma_range,
-                                      solve_stack)
+from ..kinematics.ik import IKResult
+from ..kinematics.singularity import SIGMA_FLOOR, actuator_velocity_map, sigma_range, solve_stack
+from ..kinematics.tree import cross, joint_motion
 from ..model.build import Robot, constraint_jacobian
 from ..timing import Stopwatch
 
@@ -86,21 +86,19 @@ def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
     """Kinetic and potential energy (N,) of every sample at once, as Pinocchio's
     ``computeKineticEnergy`` / ``computePotentialEnergy`` (U = −Σ m gᵀ c), from one pass over
     the model tree in numpy (docs/model.md §13): no Python loop over samples."""
-    joints = tuple(range(1, model.njoints))
-    pl = joint_placements(model, Q, joints)
+    mo = joint_motion(model, Q, V)
     n = len(Q)
     kinetic, potential = np.zeros(n), np.zeros(n)
     g = np.asarray(model.gravity.linear)
-    w, vo = joint_velocities(model, pl, joints, V)
-    for j in joints:
-        R, o = pl[j]
+    for j in range(1, model.njoints):
+        R, o = mo.R[j], mo.o[j]
         Y = model.inertias[j]
         if Y.mass <= 0.0:
             continue
         c = np.asarray(Y.lever)
         r = R[:, :, 0] * c[0] + R[:, :, 1] * c[1] + R[:, :, 2] * c[2]
-        v_c = vo[j] + _cross(w[j], r)
-        wb = np.einsum("nji,nj->ni", R, w[j])  # body axes: the inertia is constant there
+        v_c = mo.vo[j] + cross(mo.w[j], r)
+        wb = np.einsum("nji,nj->ni", R, mo.w[j])  # body axes: the inertia is constant there
         kinetic += 0.5 * (Y.mass * (v_c * v_c).sum(axis=1)
                           + ((wb @ np.asarray(Y.inertia)) * wb).sum(axis=1))
         potential -= Y.mass * ((o + r) @ g)

@@ -23,22 +23,11 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..kinematics.pipeline import IKResult
+from ..kinematics.ik import IKResult
+from ..kinematics.tree import AXES, cross, joint_motion
 from ..model.build import Robot
 from ..timing import Stopwatch
 from .averages import cubic_mean
-
-_AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
-
-
-def _cross(a, b):
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    out[..., 0] = a1 * b2 - a2 * b1
-    out[..., 1] = a2 * b0 - a0 * b2
-    out[..., 2] = a0 * b1 - a1 * b0
-    return out
 
 
 def _mv(R, x):
@@ -113,12 +102,10 @@ class _Tree:
 
     parents: tuple[int, ...]
     axes: tuple[int, ...]
-    rotations: tuple[np.ndarray | None, ...]  # fixed rotation of each joint placement, or None
-    translations: tuple[np.ndarray, ...]
+    offset: tuple[bool, ...]  # joint origin away from its parent's (not a U joint or wrist)
     masses: tuple[float, ...]
     levers: tuple[np.ndarray, ...]  # CoG in the joint frame
     inertias: tuple[np.ndarray, ...]  # about the CoG, joint frame
-    idx_v: tuple[int, ...]
     gravity: np.ndarray
     # closure i: (joint, point in its frame) for the leg side A and the platform side B
     closure_points: tuple[tuple[tuple[int, np.ndarray], tuple[int, np.ndarray]], ...]
@@ -126,84 +113,59 @@ class _Tree:
 
 def _tree(robot: Robot) -> _Tree:
     model = robot.model
-    parents, axes, rots, trans, masses, levers, inertias, idx_v = ([0], [0], [None], [None],
-                                                                    [0.0], [None], [None], [0])
+    parents, axes, offset, masses, levers, inertias = [0], [0], [False], [0.0], [None], [None]
     for j in range(1, model.njoints):
-        axis = _AXES.get(model.joints[j].shortname())
+        axis = AXES.get(model.joints[j].shortname())
         if axis is None:
             raise NotImplementedError(f"joint loads: joint {model.names[j]} is a "
                                       f"{model.joints[j].shortname()}, not RX/RY/RZ")
         M, Y = model.jointPlacements[j], model.inertias[j]
         parents.append(int(model.parents[j]))
         axes.append(axis)
-        rots.append(None if np.array_equal(M.rotation, np.eye(3)) else np.array(M.rotation))
-        trans.append(np.array(M.translation))
+        offset.append(bool(np.any(M.translation)))
         masses.append(float(Y.mass))
         levers.append(np.array(Y.lever))
         inertias.append(np.array(Y.inertia))
-        idx_v.append(int(model.joints[j].idx_v))
 
     def point(frame):
         f = model.frames[robot.frame_id(frame)]
         return int(f.parentJoint), np.array(f.placement.translation)
 
     closures = tuple((point(c.frame_a), point(c.frame_b)) for c in robot.closures)
-    return _Tree(tuple(parents), tuple(axes), tuple(rots), tuple(trans), tuple(masses),
-                 tuple(levers), tuple(inertias), tuple(idx_v), np.array(model.gravity.linear),
-                 closures)
+    return _Tree(tuple(parents), tuple(axes), tuple(offset), tuple(masses), tuple(levers),
+                 tuple(inertias), np.array(model.gravity.linear), closures)
 
 
-def _passes(tree: _Tree, Q, V, A, lam):
-    """RNEA stacked over samples (world axes). Returns force, moment about each joint origin,
-    joint axis, each (N, njoints − 1, 3)."""
+def _passes(model, tree: _Tree, Q, V, A, lam):
+    """RNEA stacked over samples (world axes): the forward pass of :func:`.tree.joint_motion`,
+    then the backward force pass. Returns force, moment about each joint origin, joint axis,
+    each (N, njoints − 1, 3)."""
     n, nj = len(Q), len(tree.parents)
     zero = np.zeros((n, 3))
-    R, o = [np.broadcast_to(np.eye(3), (n, 3, 3))], [zero]
-    w, al, acc = [zero], [zero], [zero]  # angular velocity, acceleration, origin acceleration
-    for j in range(1, nj):
-        p, ax = tree.parents[j], tree.axes[j]
-        B = R[p] if tree.rotations[j] is None else R[p] @ tree.rotations[j]
-        qj = Q[:, tree.idx_v[j], None]
-        c, s = np.cos(qj), np.sin(qj)
-        i1, i2 = (ax + 1) % 3, (ax + 2) % 3
-        Rj = np.empty((n, 3, 3))  # B · R_axis(q): mixes two columns
-        Rj[:, :, ax] = B[:, :, ax]
-        Rj[:, :, i1] = B[:, :, i1] * c + B[:, :, i2] * s
-        Rj[:, :, i2] = B[:, :, i2] * c - B[:, :, i1] * s
-        d = R[p] @ tree.translations[j]
-        u = Rj[:, :, ax]
-        wq = u * V[:, tree.idx_v[j], None]
-        R.append(Rj)
-        if tree.translations[j].any():
-            o.append(o[p] + d)
-            acc.append(acc[p] + _cross(al[p], d) + _cross(w[p], _cross(w[p], d)))
-        else:  # same origin as the parent's (U joints, the wrist)
-            o.append(o[p])
-            acc.append(acc[p])
-        w.append(w[p] + wq)
-        al.append(al[p] + _cross(w[p], wq) + u * A[:, tree.idx_v[j], None])
+    mo = joint_motion(model, Q, V, A)
+    R, o, w, al, acc = mo.R, mo.o, mo.w, mo.alpha, mo.ao
     F = [zero.copy() for _ in range(nj)]
     M = [zero.copy() for _ in range(nj)]
     for i, ends in enumerate(tree.closure_points):  # +λ on link_i (A), −λ on the platform (B)
         for (j, local), sign in zip(ends, (1.0, -1.0)):
             f = sign * lam[:, i]
             F[j] -= f
-            M[j] -= _cross(R[j] @ local, f)
+            M[j] -= cross(R[j] @ local, f)
     for j in range(nj - 1, 0, -1):
         m = tree.masses[j]
         if m > 0.0:  # massless U-joint crosses carry nothing of their own
             r = R[j] @ tree.levers[j]
-            a_c = acc[j] + _cross(al[j], r) + _cross(w[j], _cross(w[j], r))
+            a_c = acc[j] + cross(al[j], r) + cross(w[j], cross(w[j], r))
             f = m * (a_c - tree.gravity)
             Rt = np.swapaxes(R[j], -1, -2)
             wb, ab = _mv(Rt, w[j]), _mv(Rt, al[j])  # body axes: I is constant there
             Iw = wb @ tree.inertias[j]  # I symmetric: (I ω)ᵀ = ωᵀ I
             F[j] += f
-            M[j] += _mv(R[j], ab @ tree.inertias[j] + _cross(wb, Iw)) + _cross(r, f)
+            M[j] += _mv(R[j], ab @ tree.inertias[j] + cross(wb, Iw)) + cross(r, f)
         p = tree.parents[j]
         if p:
             F[p] += F[j]
-            M[p] += M[j] if o[j] is o[p] else M[j] + _cross(o[j] - o[p], F[j])
+            M[p] += M[j] + cross(o[j] - o[p], F[j]) if tree.offset[j] else M[j]
     return (np.stack(F[1:], axis=1), np.stack(M[1:], axis=1),
             np.stack([R[j][:, :, tree.axes[j]] for j in range(1, nj)], axis=1))
 
@@ -224,7 +186,7 @@ def joint_loads(robot: Robot, ik: IKResult, dyn, timings: dict | None = None) ->
     loss torque of the joint, not τ."""
     clock = Stopwatch(timings)
     lam = _closure_forces(robot, ik, dyn)
-    F, M, U = _passes(_tree(robot), ik.q, ik.v, ik.a, lam)
+    F, M, U = _passes(robot.model, _tree(robot), ik.q, ik.v, ik.a, lam)
     clock.lap("loads")
     return JointLoads(t=ik.t, joints=robot.joint_names, force=F, moment=M, axis=U,
                       closure_forces=lam)
@@ -240,7 +202,7 @@ def joint_loads_rnea(robot: Robot, ik: IKResult, dyn) -> JointLoads:
     points = [tuple((model.frames[robot.frame_id(f)].parentJoint,
                      np.array(model.frames[robot.frame_id(f)].placement.translation))
                     for f in (c.frame_a, c.frame_b)) for c in robot.closures]
-    axes = [_AXES[model.joints[j].shortname()] for j in range(1, nj)]
+    axes = [AXES[model.joints[j].shortname()] for j in range(1, nj)]
     F, M, U = (np.empty((n, nj - 1, 3)) for _ in range(3))
     for k in range(n):
         pin.forwardKinematics(model, data, ik.q[k])

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
-from ..kinematics.pipeline import BATCH_CHUNK, IKResult, inverse_kinematics
+from ..kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
 from ..model.names import SPHERICAL
 from .table import TableWriter, write_table
 from .trajectory import Trajectory

@@ -1,6 +1,7 @@
 """The kinematics layer (docs/model.md §7, §11, §12).
 
-``closed_form`` (the thesis' IK with exact jet derivatives, numpy only; ``jet``, ``taskspace``)
-· ``closure`` (loop closure by Newton, forward kinematics) · ``pipeline`` (constrained IK
-along a trajectory, batched) · ``singularity`` (conditioning and margins) · ``errors``.
-Kept import-free so that ``closed_form`` never pulls in Pinocchio."""
+``tree`` (forward recursions over the model tree: placements, velocities, accelerations;
+compiled back-end ``kernels``) · ``closure`` (loop closure by Newton, forward kinematics) ·
+``ik`` (constrained IK along a trajectory: ``ik_batch`` stacked over samples, ``ik_newton``
+sample by sample, ``ik_common`` their shared inputs and result) · ``singularity``
+(conditioning and margins) · ``errors``. The closed form lives in :mod:`pollard_pin.analytic`."""

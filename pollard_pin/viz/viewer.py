@@ -278,7 +278,7 @@ def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
 def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
                 play: bool = True, camera: bool = True) -> Scene:
     """Draw the robot, closure markers, tool path (and frames) into meshcat ``vis`` and set
-    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.pipeline.IKResult`) on it."""
+    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.ik.IKResult`) on it."""
     import meshcat.geometry as mg
     from meshcat.animation import Animation
     from pinocchio.visualize import MeshcatVisualizer

@@ -1,0 +1,38 @@
+"""Constrained inverse kinematics along a trajectory (docs/model.md §7, §11): positions,
+velocities and accelerations of all tree joints from the tool pose, batched
+(:mod:`.ik_batch`) or per sample (:mod:`.ik_newton`)."""
+from __future__ import annotations
+
+from ..model.build import Robot
+from .errors import KinematicsInputError
+from .ik_batch import BATCH_CHUNK, inverse_kinematics_batch
+from .ik_common import IK_TOL, IKResult
+from .ik_newton import inverse_kinematics_newton
+
+
+def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
+                       q_start=None, *, method: str | None = None, progress=None,
+                       **options) -> IKResult:
+    """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
+
+    ``method="batch"`` (the default without ``q_start``) stacks the work over samples (see
+    :func:`inverse_kinematics_batch`); ``method="newton"`` (the default with ``q_start``)
+    solves sample by sample (see :func:`inverse_kinematics_newton`). Both give the same result
+    to round-off. ``options``: ``tol``, ``singularity_margin``, ``wrist_margin`` (and
+    ``max_iter`` for Newton). Invalid arguments (a negative or NaN margin, empty or non-finite
+    poses, times that do not increase) raise :class:`KinematicsInputError`, a ValueError.
+    """
+    method = method or ("newton" if q_start is not None else "batch")
+    if method == "newton":
+        return inverse_kinematics_newton(robot, poses, d_poses, dd_poses, t, q_start,
+                                         progress=progress, **options)
+    if method != "batch":
+        raise KinematicsInputError(f"method must be 'batch' or 'newton', got {method!r}")
+    if q_start is not None:
+        raise KinematicsInputError("q_start applies to method='newton' only")
+    return inverse_kinematics_batch(robot, poses, d_poses, dd_poses, t, progress=progress,
+                                    **options)
+
+
+__all__ = ["inverse_kinematics", "IKResult", "IK_TOL", "BATCH_CHUNK", "inverse_kinematics_batch",
+           "inverse_kinematics_newton"]

@@ -1,0 +1,254 @@
+"""Constrained IK stacked over samples (docs/model.md §7, §11): the closed form, one Newton
+step and the velocity and acceleration systems, with no Python loop over samples."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..analytic.taskspace import rotation, twist, twist_dot
+from ..model.build import TIP_FRAME, Robot
+from ..timing import Stopwatch
+from .errors import UnreachablePoseError
+from .ik_common import (
+    IK_TOL,
+    IKResult,
+    KinematicFrames,
+    check_options,
+    closed_form_angles,
+    task_inputs,
+    zyz,
+    zyz_rates,
+)
+from .singularity import (
+    SINGULARITY_MARGIN,
+    WRIST_MARGIN,
+    check_margins,
+    conditioning,
+    inverse_stack,
+)
+from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
+
+
+# --- batched path ------------------------------------------------------------------------------
+# No Python loop over samples: joint placements, Jacobians and their time variation come from
+# passes over Pinocchio's model tree stacked over samples (docs/model.md §11), and points,
+# residuals, drifts and every 12 × 12 system are stacked over samples in numpy.
+@dataclass(frozen=True)
+class Layout:
+    closures: tuple[tuple[Point, Point], ...]
+    tip: Point
+    platform: int
+    links: tuple[int, ...]
+    spherical_offset: tuple[np.ndarray, ...]  # Rz(−β1413i), docs/model.md §4
+    joints: tuple[int, ...]  # every joint whose placement is needed, parents first
+    # K's block-triangular partition (closure rows, tool rows, tool-support columns, the
+    # others), when the tool is moved by exactly as many joints as it has rows; else None.
+    blocks: tuple[np.ndarray, ...] | None = None
+    tree: TreeArrays | None = None  # the same, as arrays for the compiled kernels
+
+
+def layout(robot: Robot) -> Layout:
+    model = robot.model
+
+    def point(frame_name):
+        f = model.frames[robot.frame_id(frame_name)]
+        local = np.array(f.placement.translation)
+        return Point(int(f.parentJoint), local, support_cols(model, f.parentJoint))
+
+    fr = KinematicFrames.of(robot)
+    tip = point(TIP_FRAME)
+    closures = tuple((point(c.frame_a), point(c.frame_b)) for c in robot.closures)
+    ends = {tip.joint, fr.platform_joint, *fr.link_joints,
+            *(p.joint for pair in closures for p in pair)}
+    joints = sorted({j for e in ends for j in model.supports[e][1:]})
+    rows = 3 * len(closures)
+    blocks = None
+    if len(tip.cols) == 6 and rows + 6 == model.nv:
+        others = np.setdiff1d(np.arange(model.nv), tip.cols)
+        blocks = (np.arange(rows), np.arange(rows, rows + 6), np.sort(tip.cols), others)
+    points = [p for pair in closures for p in pair] + [tip]
+    tree = tree_arrays(model, joints, points,
+                        [3 * i for i in range(len(closures)) for _ in range(2)] + [rows],
+                        [1.0, -1.0] * len(closures) + [1.0])
+    return Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
+                   tuple(joints), blocks, tree)
+
+
+def kinematic_inverse(K: np.ndarray, lay: Layout) -> np.ndarray:
+    """K⁻¹ of the stacked [Jc; J_tool] (NaN where singular). The tool rows involve only the
+    tool's supporting joints, so K is block-triangular (docs/model.md §11) and two inverses of
+    half the size give K⁻¹ (compiled, :func:`.kernels.block_inverse`)."""
+    if lay.blocks is None:
+        return inverse_stack(K)
+    from .kernels import block_inverse  # compiled on first use (numba): keeps start-up fast
+
+    return block_inverse(np.ascontiguousarray(K), *lay.blocks)
+
+
+def _log3(R):
+    """Batched SO(3) logarithm (vector), exact away from π."""
+    w = 0.5 * np.stack([R[:, 2, 1] - R[:, 1, 2], R[:, 0, 2] - R[:, 2, 0],
+                        R[:, 1, 0] - R[:, 0, 1]], axis=1)
+    s = np.linalg.norm(w, axis=1)
+    c = 0.5 * (np.trace(R, axis1=1, axis2=2) - 1.0)
+    th = np.arctan2(s, c)
+    scale = np.where(s > 1e-8, th / np.where(s > 1e-8, s, 1.0), 1.0 + s * s / 6.0)
+    return w * scale[:, None]
+
+
+def _residuals(R, pos, lay: Layout, P_des, R_des) -> np.ndarray:
+    """[closure p_A − p_B (6); tip position error (3); orientation error (3)], (N, 12), from
+    the placements R and point positions of :func:`point_rows`."""
+    nc = len(lay.closures)
+    res = [pos[:, 2 * i] - pos[:, 2 * i + 1] for i in range(nc)]
+    R_tip = R[lay.tree.slot[lay.tip.joint]]
+    res += [pos[:, 2 * nc] - P_des, _log3(R_tip @ np.swapaxes(R_des, 1, 2))]
+    return np.concatenate(res, axis=1)
+
+
+def point_rows(lay: Layout, R, o, nv: int):
+    """K = [Jc; J_tool] (N, 12, nv) and the points' positions (N, P, 3): point Jacobians
+    z_c × (p − o_c) summed over the joints moving each point, compiled
+    (:func:`.kernels.point_jacobians`)."""
+    from .kernels import point_jacobians  # compiled on first use (numba)
+
+    t = lay.tree
+    return point_jacobians(R, o, t.axis, t.col, t.pt_slot, t.pt_local, t.pt_support, t.pt_row,
+                           t.pt_sign, *t.tool, nv)
+
+
+def point_drifts(lay: Layout, R, o, v, pos):
+    """K̇ v (N, 12) and every body's angular velocity (S, N, 3), compiled
+    (:func:`.kernels.point_drifts`)."""
+    from .kernels import point_drifts  # compiled on first use (numba)
+
+    t = lay.tree
+    return point_drifts(R, o, t.parent, t.axis, t.col, np.ascontiguousarray(v), t.pt_slot,
+                        t.pt_row, t.pt_sign, pos, *t.tool)
+
+
+BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
+POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step is applied
+
+
+def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
+                             tol: float = IK_TOL,
+                             singularity_margin: float = SINGULARITY_MARGIN,
+                             wrist_margin: float = WRIST_MARGIN, progress=None,
+                             chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
+    """Same result as :func:`inverse_kinematics`, stacked over samples.
+
+    Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
+    step on the [closure residual; tool-pose error]; velocities and accelerations solve the
+    ``[Jc; J_tool]`` systems (one K⁻¹ per sample) with drifts from the Jacobians' time
+    variation, all evaluated on Pinocchio's model tree stacked over samples (docs/model.md
+    §11). The
+    closure residual and tool error reported are re-measured at the returned configuration.
+    ``timings`` (a dict) accumulates seconds per stage: position (closed form, Jacobians,
+    residual), velocity (the stacked solve shared with the Newton step), acceleration,
+    analysis (spherical angles, singularity measures, margin checks).
+
+    Every sample is solved on the same assembly branches (the closed form's signs), whatever
+    the sampling density. A singular stacked system fails no other sample: its samples get NaN
+    and :func:`~.singularity.check_margins` raises :class:`SingularityError` at the first
+    singular (or margin-violating) sample, naming its time, chain and σ.
+    """
+    check_options(tol, singularity_margin, wrist_margin, chunk=chunk)
+    clock = Stopwatch(timings)
+    poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
+    n = len(poses)
+    q0 = closed_form_angles(robot, poses, t, wrist_margin)
+    clock.lap("position")
+    parts = []
+    for start in range(0, n, chunk):
+        sl = slice(start, min(start + chunk, n))
+        parts.append(_batch_block(robot, q0[sl], poses[sl], d_poses[sl], dd_poses[sl], t[sl],
+                                  tol, start, clock))
+        if progress is not None:
+            progress(sl.stop, n)
+    if len(parts) == 1:
+        result = parts[0]
+    else:
+        result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
+                                 if f != "joint_names" else parts[0].joint_names)
+                             for f in IKResult.__dataclass_fields__})
+    check_margins(robot, result, singularity_margin, wrist_margin)
+    clock.lap("analysis")
+    return result
+
+
+def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, clock) -> IKResult:
+    n = len(poses)
+    model = robot.model
+    lay = layout(robot)
+    P_des, R_des = poses[:, :3], rotation(poses)
+    # Newton polish at the closed form; velocities with the same matrix (one stacked solve).
+    R, o = lay.tree.placements(q0)
+    K, pos = point_rows(lay, R, o, model.nv)
+    rhs = np.zeros((n, 12, 2))
+    rhs[:, :, 0] = _residuals(R, pos, lay, P_des, R_des)
+    clock.lap("position")
+    rhs[:, 6:, 1] = twist(poses, d_poses)
+    # One K⁻¹ per sample serves the Newton step, the velocities, the accelerations and the
+    # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
+    K_inv = kinematic_inverse(K, lay)
+    sol = K_inv @ rhs
+    v = sol[:, :, 1]
+    # The closed form is exact to round-off: apply the Newton step only where the residual is
+    # above POLISH_TOL, and re-evaluate just those samples, so K and the placements below are
+    # those of the returned configuration.
+    moved = np.flatnonzero((np.abs(rhs[:, :, 0]).max(axis=1) > POLISH_TOL)
+                           & np.isfinite(sol[:, :, 0]).all(axis=1))
+    q = q0.copy()
+    if len(moved):
+        q[moved] -= sol[moved, :, 0]
+        R_m, o_m = lay.tree.placements(q[moved])
+        R[:, moved], o[:, moved] = R_m, o_m
+        K[moved], pos[moved] = point_rows(lay, R_m, o_m, model.nv)
+        K_inv[moved] = kinematic_inverse(K[moved], lay)
+        v[moved] = matvec(K_inv[moved], rhs[moved, :, 1])
+    clock.lap("velocity")
+    # Accelerations: K a = [−closure drift; tool acceleration − tool drift].
+    singular = ~np.isfinite(v).all(axis=1)
+    if singular.any():  # keep NaN out of the drifts; those samples stay NaN
+        v = np.where(singular[:, None], 0.0, v)
+    drift, omega = point_drifts(lay, R, o, v, pos)
+    rhs_a = -drift
+    rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
+    a = matvec(K_inv, rhs_a)
+    if singular.any():
+        v[singular] = a[singular] = np.nan
+    err = np.abs(_residuals(R, pos, lay, P_des, R_des))
+    if not err.max() <= tol:
+        k = int(np.argmax(err.max(axis=1)))
+        raise UnreachablePoseError(
+            f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
+            f"(tolerance {tol:g})", sample=start + k, time=float(t[k]),
+            amount=float(err[k].max()))
+    clock.lap("acceleration")
+    sph, dsph = _spherical_batch(lay, R, omega)
+    sp, ss, sp_max, ss_max = conditioning(K, robot.actuated_v, robot.passive_v, full=True,
+                                          K_inv=K_inv)
+    result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
+                      closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
+                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
+                      sigma_parallel=sp, sigma_serial=ss, sigma_parallel_max=sp_max,
+                      sigma_serial_max=ss_max, joint_names=robot.joint_names,
+                      constraint_jacobian=K[:, :6])
+    clock.lap("analysis")
+    return result
+
+
+def _spherical_batch(lay: Layout, R, omega):
+    """ZYZ angles of R_linkᵀ R_platform Rz(−β1413i) and their rates (docs/model.md §4), (N, 6)
+    each, from the placements R and body angular velocities ω (slots first)."""
+    slot = lay.tree.slot
+    R_p, w_p = R[slot[lay.platform]], omega[slot[lay.platform]]
+    ang, rate = [], []
+    for link, C in zip(lay.links, lay.spherical_offset):
+        R_l = R[slot[link]]
+        ang.append(zyz(np.swapaxes(R_l, 1, 2) @ R_p @ C))
+        rate.append(zyz_rates(ang[-1], matvec(np.swapaxes(R_l, 1, 2),
+                                                w_p - omega[slot[link]])))
+    return np.concatenate(ang, axis=1), np.concatenate(rate, axis=1)
