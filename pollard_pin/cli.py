@@ -378,7 +378,7 @@ def cmd_size(args) -> int:
 
 def cmd_export(args) -> int:
     check_destination(args.out)
-    from .crosscheck.mujoco import export_mjcf
+    from .io.mjcf import export_mjcf
 
     robot = _robot(args)
     path = export_mjcf(args.out, urdf=robot.urdf)

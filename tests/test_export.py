@@ -1,4 +1,4 @@
-"""MJCF export (pollard_pin.crosscheck.mujoco.export_mjcf): a standalone MuJoCo file with the
+"""MJCF export (pollard_pin.io.mjcf.export_mjcf): a standalone MuJoCo file with the
 URDF's joints, masses and inertias and the two loop closures as ``connect`` equalities
 (docs/model.md §4). Along the default trajectory (docs/model.md §9) the project's IK closes its
 loops to round-off and its closed-loop inverse dynamics gives the project's torques."""
@@ -11,9 +11,14 @@ import pytest
 mujoco = pytest.importorskip("mujoco")
 
 import pollard_pin  # noqa: E402
-from pollard_pin.crosscheck.mujoco import (ACTUATED, JOINTS, build_mujoco,  # noqa: E402
-                                           export_mjcf, home_configuration,
-                                           inverse_dynamics_mujoco)
+from pollard_pin.crosscheck.mujoco import (  # noqa: E402
+    ACTUATED,
+    JOINTS,
+    build_mujoco,
+    home_configuration,
+    inverse_dynamics_mujoco,
+)
+from pollard_pin.io.mjcf import export_mjcf  # noqa: E402
 from pollard_pin.model.paths import models_dir  # noqa: E402
 
 URDF = models_dir() / "pollard.urdf"

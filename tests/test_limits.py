@@ -141,7 +141,8 @@ def test_srdf_home_is_a_named_reference_configuration(robot, limits):
 
 def test_mujoco_peer_keeps_ideal_joints_and_export_mirrors_limits(tmp_path, limits):
     mujoco = pytest.importorskip("mujoco")
-    from pollard_pin.crosscheck.mujoco import build_mujoco, export_mjcf
+    from pollard_pin.crosscheck.mujoco import build_mujoco
+    from pollard_pin.io.mjcf import export_mjcf
 
     model, _, _ = build_mujoco()  # the peer: limits off (docs/model.md §13, ideal joints)
     assert not np.any(model.jnt_limited)

@@ -338,7 +338,7 @@ def test_objectacceleration_drift_is_classical_by_finite_differences(built):
     """The drift recipe (qacc = 0, mj_rnePostConstraint, mj_objectAcceleration flg_local=0,
     gravity added back) is K̇ v: the derivative of K(q) v along q + s v (4th-order central
     differences), at random states, gravity on."""
-    from pollard_pin.crosscheck.mujoco import _drift
+    from pollard_pin.crosscheck.mujoco import site_drifts
 
     model, _, info = built
     data = mujoco.MjData(model)
@@ -360,7 +360,7 @@ def test_objectacceleration_drift_is_classical_by_finite_differences(built):
         q, v = rng.uniform(-2, 2, model.nv), rng.uniform(-3, 3, model.nv)
         fd = (K(q - 2 * h * v) @ v - 8 * K(q - h * v) @ v + 8 * K(q + h * v) @ v
               - K(q + 2 * h * v) @ v) / (12 * h)
-        got = _drift(model, data, sites, q, v, np.empty(12))
+        got = site_drifts(model, data, sites, q, v, np.empty(12))
         assert np.abs(got - fd).max() <= 1e-8 * np.abs(fd).max(), (got, fd)
         # The ω × ṗ term separates classical from spatial acceleration: it is far above the
         # tolerance, so a spatial acceleration would fail the check above.

@@ -14,9 +14,8 @@ at the URDF ``tip`` frame, Tx(x1918) on ``gun``), and exact acceleration drifts 
 ``mj_rnePostConstraint`` + ``mj_objectAcceleration``. :func:`pipeline_mujoco` chains IK and
 inverse dynamics: the complete MuJoCo peer path, timed per stage.
 
-:func:`export_mjcf` writes the same closed-loop model as a standalone MJCF file (with the URDF
-limits, motors on the actuated joints and the home keyframe); :func:`build_mujoco` and the
-functions above read such a file with ``mjcf_path=`` and check it against the URDF.
+The model itself (the URDF read without Pinocchio, the closed-loop spec, the MJCF file that
+:func:`build_mujoco` can read back with ``mjcf_path=``) comes from :mod:`pollard_pin.io.mjcf`.
 
 Modelling notes:
 - MuJoCo rejects massless moving bodies, so each massless U-joint cross (docs/model.md §5) is
@@ -30,200 +29,25 @@ Modelling notes:
 from __future__ import annotations
 
 import time
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 
-from ..model.names import ACTUATED
-from ..model.names import TREE_JOINTS as JOINTS
+from ..io.mjcf import (  # noqa: F401
+    TIP,
+    check_mjcf,
+    closed_loop_spec,
+    default_urdf,
+    home_configuration,
+    read_urdf,
+    require_mujoco,
+)
+from ..model.names import ACTUATED, TREE_JOINTS as JOINTS
 
 GRAVITY = np.array([0.0, 0.0, -9.81])  # docs/model.md §2
 MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check
-TIP = "tip"  # tool-tip frame of the URDF (docs/model.md §3: Tx(x1918) on gun)
 
 _CACHE: dict[str, tuple] = {}
-
-
-# --- URDF reading (independent of Pinocchio and of MuJoCo's parser) ---------------------------
-def _vec(el, attr, default="0 0 0") -> np.ndarray:
-    return np.array([float(x) for x in (el.get(attr) if el is not None and el.get(attr)
-                                        is not None else default).split()])
-
-
-def _rpy(rpy) -> np.ndarray:
-    """URDF fixed-axis roll-pitch-yaw: R = Rz(y) Ry(p) Rx(r)."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
-def _is_text(source) -> bool:
-    return isinstance(source, str) and source.lstrip().startswith("<")
-
-
-def read_urdf(source) -> dict:
-    """Links' inertials, joints and ``<loop_closure>`` pairs of the URDF (a path or its text)."""
-    root = ET.fromstring(source) if _is_text(source) else ET.parse(str(source)).getroot()
-    inertials = {}
-    for link in root.iter("link"):
-        el = link.find("inertial")
-        if el is None:
-            continue
-        o, i = el.find("origin"), el.find("inertia")
-        I = np.array([[float(i.get(k, 0)) for k in row] for row in
-                      (("ixx", "ixy", "ixz"), ("ixy", "iyy", "iyz"), ("ixz", "iyz", "izz"))])
-        R = _rpy(_vec(o, "rpy"))
-        inertials[link.get("name")] = dict(mass=float(el.find("mass").get("value")),
-                                           com=_vec(o, "xyz"), inertia=R @ I @ R.T)
-    joints = {}
-    for j in root.iter("joint"):
-        o = j.find("origin")
-        lim = j.find("limit")
-        joints[j.get("name")] = dict(type=j.get("type"), parent=j.find("parent").get("link"),
-                                     child=j.find("child").get("link"), xyz=_vec(o, "xyz"),
-                                     rpy=_vec(o, "rpy"), limit=None if lim is None else {
-                                         k: float(lim.get(k, 0)) for k in
-                                         ("lower", "upper", "effort", "velocity")})
-    closures = [(c.get("name"), c.get("frame_a"), c.get("frame_b"))
-                for c in root.iter("loop_closure")]
-    return dict(inertials=inertials, joints=joints, closures=closures)
-
-
-def _frame_on_moving_link(urdf: dict, frame: str) -> tuple[str, np.ndarray, np.ndarray]:
-    """(moving link, position, rotation of ``frame`` in it), walking up fixed joints."""
-    by_child = {j["child"]: j for j in urdf["joints"].values()}
-    p, R, link = np.zeros(3), np.eye(3), frame
-    while link in by_child and by_child[link]["type"] == "fixed":
-        j = by_child[link]
-        Rj = _rpy(j["rpy"])
-        p, R = j["xyz"] + Rj @ p, Rj @ R
-        link = j["parent"]
-    return link, p, R
-
-
-def _point_on_moving_link(urdf: dict, frame: str) -> tuple[str, np.ndarray]:
-    """(moving link, position of ``frame``'s origin in it), walking up fixed joints."""
-    by_child = {j["child"]: j for j in urdf["joints"].values()}
-    p = np.zeros(3)
-    link = frame
-    while link in by_child and by_child[link]["type"] == "fixed":
-        j = by_child[link]
-        p = j["xyz"] + _rpy(j["rpy"]) @ p
-        link = j["parent"]
-    return link, p
-
-
-# --- model construction -----------------------------------------------------------------------
-def _mujoco():
-    """The ``mujoco`` module, or one clear line on what to install (an optional dependency)."""
-    try:
-        import mujoco
-    except ImportError:
-        raise ImportError("the MuJoCo peer needs MuJoCo, which is not installed: "
-                          "pip install 'pollard-pin[mujoco]'") from None
-    return mujoco
-
-
-def _default_urdf() -> Path:
-    from ..model.paths import models_dir
-
-    return models_dir() / "pollard.urdf"
-
-
-def _merge_massless_crosses(spec) -> list[str]:
-    """Move each massless jointed body's hinges into its only child (see module notes)."""
-    mujoco = _mujoco()
-
-    merged = []
-    for body in list(spec.bodies):
-        if body.name == "world" or body.explicitinertial or body.mass != 0.0:
-            continue
-        joints, kids = list(body.joints), list(body.bodies)
-        if not joints:
-            continue  # static: fusestatic handles it
-        if len(kids) != 1 or np.any(kids[0].pos != 0) or np.any(kids[0].quat != [1, 0, 0, 0]):
-            raise ValueError(f"massless moving body {body.name!r} cannot be merged into a child")
-        child = kids[0]
-        specs = [dict(name=j.name, type=j.type, axis=np.array(j.axis), pos=np.array(j.pos),
-                      ref=j.ref, limited=j.limited, range=np.array(j.range),
-                      actfrclimited=j.actfrclimited, actfrcrange=np.array(j.actfrcrange))
-                 for j in joints + list(child.joints)]
-        for j in joints + list(child.joints):
-            spec.delete(j)
-        for s in specs:  # parent's hinge first: R = R_parent_joint · R_child_joint
-            if s["type"] != mujoco.mjtJoint.mjJNT_HINGE:
-                raise ValueError(f"joint {s['name']!r} is not a hinge")
-            child.add_joint(**s)
-        merged.append(body.name)
-    return merged
-
-
-def _closed_loop_spec(urdf):
-    """MjSpec of the URDF (a path or its text) with the loops closed (see module notes).
-
-    Returns ``(spec, urdf_info, merged)``: ``urdf_info`` from :func:`read_urdf`, ``merged`` the
-    crosses whose hinges moved into their child."""
-    mujoco = _mujoco()
-
-    info = read_urdf(urdf)
-    where = "URDF" if _is_text(urdf) else str(urdf)
-    if len(info["closures"]) != 2:
-        raise ValueError(f"{where}: expected 2 <loop_closure> elements (docs/model.md §4)")
-    spec = (mujoco.MjSpec.from_string(urdf) if _is_text(urdf)
-            else mujoco.MjSpec.from_file(str(urdf)))
-    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
-    spec.compiler.balanceinertia = False
-    spec.compiler.boundmass = spec.compiler.boundinertia = 0.0
-    merged = _merge_massless_crosses(spec)
-    for name, fa, fb in info["closures"]:
-        for tag, frame in (("A", fa), ("B", fb)):
-            link, pos = _point_on_moving_link(info, frame)
-            spec.body(link).add_site(name=f"{name}_{tag}_site", pos=pos)
-        spec.add_equality(name=name, type=mujoco.mjtEq.mjEQ_CONNECT,
-                          objtype=mujoco.mjtObj.mjOBJ_SITE, name1=f"{name}_A_site",
-                          name2=f"{name}_B_site")
-    if TIP in {j["child"] for j in info["joints"].values()}:  # docs/model.md §3: Tx(x1918)
-        link, pos, R = _frame_on_moving_link(info, TIP)
-        quat = np.empty(4)
-        mujoco.mju_mat2Quat(quat, R.reshape(-1))
-        spec.body(link).add_site(name=f"{TIP}_site", pos=pos, quat=quat)
-    return spec, info, merged
-
-
-def _check_mjcf(model, urdf: dict, path) -> None:
-    """The MJCF's closure sites, connect equalities and tip site are where the URDF puts them."""
-    mujoco = _mujoco()
-
-    def names(kind, n):
-        return [mujoco.mj_id2name(model, kind, i) for i in range(n)]
-
-    sites = names(mujoco.mjtObj.mjOBJ_SITE, model.nsite)
-    frames = [(f"{c}_{tag}_site", f) for c, fa, fb in urdf["closures"]
-              for tag, f in (("A", fa), ("B", fb))]
-    if TIP in {j["child"] for j in urdf["joints"].values()}:
-        frames.append((f"{TIP}_site", TIP))
-    for site, frame in frames:
-        link, pos = _point_on_moving_link(urdf, frame)
-        if site not in sites:
-            raise ValueError(f"{path}: no site {site!r} (URDF frame {frame!r})")
-        s = model.site(site)
-        body = model.body(int(s.bodyid[0])).name
-        if body != link or np.abs(s.pos - pos).max() > 1e-12:
-            raise ValueError(f"{path}: site {site!r} is on {body!r} at {s.pos.tolist()}, the "
-                             f"URDF puts frame {frame!r} on {link!r} at {pos.tolist()}")
-    eqs = names(mujoco.mjtObj.mjOBJ_EQUALITY, model.neq)
-    for c, _, _ in urdf["closures"]:
-        e = model.equality(c) if c in eqs else None
-        ok = (e is not None and e.type[0] == mujoco.mjtEq.mjEQ_CONNECT
-              and model.eq_objtype[e.id] == mujoco.mjtObj.mjOBJ_SITE
-              and [int(e.obj1id[0]), int(e.obj2id[0])]
-              == [model.site(f"{c}_A_site").id, model.site(f"{c}_B_site").id])
-        if not ok:
-            raise ValueError(f"{path}: no connect equality {c!r} between sites {c}_A_site "
-                             f"and {c}_B_site (docs/model.md §4)")
 
 
 def build_mujoco(urdf_path=None, mjcf_path=None):
@@ -238,11 +62,11 @@ def build_mujoco(urdf_path=None, mjcf_path=None):
     efc sign and the mass/inertia check against the URDF. Raises ``ValueError`` when a check
     fails (gravity, masses, inertias, joints, constraint rows).
     """
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
-    path = Path(urdf_path) if urdf_path is not None else _default_urdf()
+    path = Path(urdf_path) if urdf_path is not None else default_urdf()
     if mjcf_path is None:
-        spec, urdf, merged = _closed_loop_spec(path)
+        spec, urdf, merged = closed_loop_spec(path)
     else:
         urdf = read_urdf(path)
         spec = mujoco.MjSpec.from_file(str(mjcf_path))
@@ -262,7 +86,7 @@ def build_mujoco(urdf_path=None, mjcf_path=None):
     data = mujoco.MjData(model)
 
     if mjcf_path is not None:
-        _check_mjcf(model, urdf, mjcf_path)
+        check_mjcf(model, urdf, mjcf_path)
     if not np.array_equal(model.opt.gravity, GRAVITY):
         raise ValueError(f"MuJoCo gravity {model.opt.gravity} != docs/model.md §2 {GRAVITY}")
     for n in JOINTS:
@@ -339,59 +163,9 @@ def build_mujoco(urdf_path=None, mjcf_path=None):
     return model, data, info
 
 
-# --- MJCF export -------------------------------------------------------------------------------
-def export_mjcf(path, urdf=None, home=None) -> Path:
-    """Write the closed-loop model as a standalone MJCF file and return its path (``-``: stdout).
-
-    ``urdf``: a URDF path or its text (default: the shipped one). The file holds what
-    :func:`build_mujoco` builds: the open tree with the massless crosses merged, the same joint
-    names, masses and inertias (full precision), sites at the closure frames and at the tool tip,
-    and the two loop closures as ``connect`` equalities (docs/model.md §4). For simulation it
-    also mirrors the URDF limits (joint ranges, enforced; force ranges), drives each actuated
-    joint (docs/model.md §6) with a ``motor`` of the same name whose ``ctrlrange`` is ± its
-    effort limit, and keeps the ideal-joint assumption of docs/model.md §13 otherwise (no
-    damping, friction or contacts). ``home`` ((12,) in :data:`JOINTS` order or name → value)
-    becomes the keyframe "home"; by default the SRDF beside a URDF path gives it. Geometry is
-    primitive shapes only: the file refers to no other file.
-    """
-    mujoco = _mujoco()
-    from ..io.atomic import atomic_open
-
-    source = urdf if urdf is not None else _default_urdf()
-    if not _is_text(source):
-        source = Path(source)
-        side = source.with_suffix(".srdf")
-        if home is None and side.is_file():
-            home = home_configuration(side)
-    spec, info, _ = _closed_loop_spec(source)
-    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT  # ideal: no collisions
-    for j in spec.joints:
-        if j.name not in ACTUATED:  # URDF effort 0: no actuator, not "unlimited"
-            j.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE
-    for n in ACTUATED:
-        effort = info["joints"][n]["limit"]["effort"]
-        act = spec.add_actuator(name=n, target=n, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-        act.set_to_motor()
-        act.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
-        act.ctrlrange = [-effort, effort]
-    spec.compiler.savecompiled = False  # save the spec itself: 17 significant digits
-    model = spec.compile()
-    if home is not None:
-        values = (np.array([home[n] for n in JOINTS]) if hasattr(home, "keys")
-                  else np.asarray(home, dtype=float).reshape(12))
-        qpos = np.zeros(model.nq)
-        qpos[model.jnt_qposadr[[model.joint(n).id for n in JOINTS]]] = values
-        spec.add_key(name="home", qpos=qpos)
-    xml = spec.to_xml()
-    mujoco.MjModel.from_xml_string(xml)  # stands alone: no file next to it is needed
-    with atomic_open(path) as f:
-        f.write(xml)
-    return Path(path)
-
-
 def _efc_rows(model, data, eq_ids) -> np.ndarray:
     """(2, 3) efc row indices of the connect equalities; fails on any other active row."""
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
     if data.nefc != 3 * len(eq_ids) or np.any(data.efc_type[:data.nefc]
                                              != mujoco.mjtConstraint.mjCNSTR_EQUALITY):
@@ -404,7 +178,7 @@ def _efc_rows(model, data, eq_ids) -> np.ndarray:
     return rows
 
 
-def _built(urdf_path, mjcf_path=None):
+def cached_model(urdf_path, mjcf_path=None):
     key = tuple(str(Path(p).resolve()) if p is not None else "<default>"
                 for p in (urdf_path, mjcf_path))
     if key not in _CACHE:
@@ -426,9 +200,9 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None, mjcf_path=None)
     ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used, built from
     ``urdf_path`` or read from ``mjcf_path`` (see :func:`build_mujoco`).
     """
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
-    model, data, info = built if built is not None else _built(urdf_path, mjcf_path)
+    model, data, info = built if built is not None else cached_model(urdf_path, mjcf_path)
     q, v, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v, a))
     n = len(q)
     for label, x in (("q", q), ("v", v), ("a", a)):
@@ -478,27 +252,7 @@ class MujocoIKError(RuntimeError):
         self.sample, self.residual = sample, residual
 
 
-def home_configuration(srdf_path=None, urdf_path=None) -> np.ndarray:
-    """The SRDF's ``group_state`` "home" (12,) in :data:`JOINTS` order (docs/model.md §9).
-
-    Default file: the ``.srdf`` beside ``urdf_path`` if there is one, else models/pollard.srdf.
-    """
-    if srdf_path is None:
-        side = Path(urdf_path).with_suffix(".srdf") if urdf_path is not None else None
-        srdf_path = side if side is not None and side.is_file() else \
-            _default_urdf().with_suffix(".srdf")
-    root = ET.parse(str(srdf_path)).getroot()
-    for gs in root.iter("group_state"):
-        if gs.get("name") == "home":
-            values = {j.get("name"): float(j.get("value")) for j in gs.iter("joint")}
-            missing = [n for n in JOINTS if n not in values]
-            if missing:
-                raise ValueError(f"{srdf_path}: group_state 'home' lacks joints {missing}")
-            return np.array([values[n] for n in JOINTS])
-    raise ValueError(f"{srdf_path}: no group_state named 'home'")
-
-
-def _drift(model, data, sites, q, v, out, acc6=None):
+def site_drifts(model, data, sites, q, v, out, acc6=None):
     """K̇ v (12,) at MuJoCo-ordered ``q``, ``v`` into ``out``: [closure drifts (p̈_A − p̈_B at
     q̈ = 0) (6); tip classical acceleration at q̈ = 0 (3); ω̇ at q̈ = 0 (3)], world axes.
 
@@ -509,7 +263,7 @@ def _drift(model, data, sites, q, v, out, acc6=None):
     acceleration: it cancels in the closure differences and is added back for the tip.
     ``sites`` = (A1, B1, A2, B2, tip) site ids.
     """
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
     acc6 = np.empty(6) if acc6 is None else acc6
     sa1, sb1, sa2, sb2, tip = sites
@@ -572,12 +326,12 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     returned q) and ``iterations`` (N,) (Newton steps taken, the one past tol included).
     Raises :class:`MujocoIKError` at the first sample where Newton does not converge.
     """
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
     from ..analytic.taskspace import rotation, twist, twist_dot
 
     clock = _Clock(timings)
-    model, data, info = built if built is not None else _built(urdf_path)
+    model, data, info = built if built is not None else cached_model(urdf_path)
     tip = info.get("tip_site", -1)
     if tip < 0:
         raise ValueError(f"{info['urdf_path']}: no '{TIP}' frame for the tool tip "
@@ -699,7 +453,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
     acc6 = np.empty(6)
     sites = (sa1, sb1, sa2, sb2, tip)
     for k in range(n):
-        _drift(model, data, sites, Q[k], V[k], drift[k], acc6)
+        site_drifts(model, data, sites, Q[k], V[k], drift[k], acc6)
     rhs = -drift
     rhs[:, 6:] += twd
     A = np.linalg.solve(Ks, rhs[:, :, None])[:, :, 0]
@@ -716,7 +470,7 @@ def pipeline_mujoco(poses, d_poses=None, dd_poses=None, timings: dict | None = N
     ``closure_residual``, ``tool_error``, ``iterations``, ``tau``, ``closure_forces``, ``tree``,
     ``residual``, ``residual_vec``); ``timings`` also gets 'dynamics'. ``ik_options``:
     ``max_iter``, ``predictor``."""
-    built = built if built is not None else _built(urdf_path)
+    built = built if built is not None else cached_model(urdf_path)
     ik = inverse_kinematics_mujoco(poses, d_poses, dd_poses, q_start=q_start, built=built,
                                    tol=tol, timings=timings, **ik_options)
     clock = _Clock(timings)
@@ -725,6 +479,6 @@ def pipeline_mujoco(poses, d_poses=None, dd_poses=None, timings: dict | None = N
     return {**ik, **dyn}
 
 
-__all__ = ["JOINTS", "ACTUATED", "MujocoIKError", "build_mujoco", "export_mjcf",
+__all__ = ["JOINTS", "ACTUATED", "MujocoIKError", "build_mujoco",
            "home_configuration",
            "inverse_dynamics_mujoco", "inverse_kinematics_mujoco", "pipeline_mujoco", "read_urdf"]

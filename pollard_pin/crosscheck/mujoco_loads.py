@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .mujoco import JOINTS, _built, _mujoco, inverse_dynamics_mujoco
+from ..io.mjcf import require_mujoco
+from .mujoco import JOINTS, cached_model, inverse_dynamics_mujoco
 
 
 def joint_loads_mujoco(q, v, a, closure_forces=None, urdf_path=None, built=None) -> dict:
@@ -24,9 +25,9 @@ def joint_loads_mujoco(q, v, a, closure_forces=None, urdf_path=None, built=None)
     Returns a dict of ``force``, ``moment`` (about the joint anchor), ``axis``, each
     (N, 12, 3), world axes, and the ``closure_forces`` used.
     """
-    mujoco = _mujoco()
+    mujoco = require_mujoco()
 
-    model, data, info = built if built is not None else _built(urdf_path)
+    model, data, info = built if built is not None else cached_model(urdf_path)
     q, v, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v, a))
     n = len(q)
     if closure_forces is None:

@@ -143,7 +143,7 @@ def cross_check_mujoco(robot, result) -> dict:
         from ..crosscheck.mujoco_loads import joint_loads_mujoco
 
         mjl = joint_loads_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
-                                 mj["closure_forces"], built=peer._built(urdf))
+                                 mj["closure_forces"], built=peer.cached_model(urdf))
     act = [list(peer.ACTUATED).index(n) for n in robot.actuated]
     loads, back = _loads(robot, result), [list(peer.JOINTS).index(n) for n in ik.joint_names]
     return {"available": True,
