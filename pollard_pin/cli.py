@@ -153,7 +153,7 @@ def _load_trajectory(args, params, lazy: bool = False):
 
 def _solve(args, dynamics: bool = True, **ik_options):
     """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
-    from .io.results import run_pipeline
+    from .run import run_pipeline
 
     robot = _robot(args)
     traj = _load_trajectory(args, robot.params)
@@ -220,7 +220,7 @@ def cmd_info(args) -> int:
 
 
 def cmd_run(args) -> int:
-    from .io.results import stream_run, summary
+    from .run import stream_run, summary
 
     check_destination(args.out)
     robot = _robot(args)
@@ -446,7 +446,7 @@ def cmd_simulate(args) -> int:
 
 
 MAX_RUN_WORKERS = 4  # run: solver threads by default (each holds one window in memory)
-STREAM_WINDOW = 4096  # = pollard_pin.io.results.STREAM_CHUNK (not imported: --help stays fast)
+STREAM_WINDOW = 4096  # = pollard_pin.run.STREAM_CHUNK (not imported: --help stays fast)
 
 
 class _UsageError(ValueError):

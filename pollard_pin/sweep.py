@@ -137,7 +137,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     infeasible
     row; anything else is a bug and raises.
     """
-    from .io.results import run_pipeline
+    from .run import run_pipeline
     from .kinematics.errors import ClosureError, KinematicsError
     from .model.build import load
 

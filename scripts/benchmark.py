@@ -70,7 +70,7 @@ def pinocchio_batch(robot, traj):
 def pinocchio_threads(robot, traj, workers: int):
     """The pipeline as ``run`` drives it: windows of 4096 samples solved by ``workers`` threads
     (IK, singularity analysis, inverse dynamics with energies, output columns; no writing)."""
-    from pollard_pin.io.results import solve_windows
+    from pollard_pin.run import solve_windows
 
     def run(timings):
         for _ in solve_windows(robot, traj, workers=workers):

@@ -5,9 +5,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pollard_pin.dynamics.control import (ComputedTorque, ControlError, Gains,
-                                          MeasurementNoise, desired_trajectory,
-                                          simulate_tracking)
+from pollard_pin.dynamics.control import (
+    ComputedTorque,
+    ControlError,
+    Gains,
+    MeasurementNoise,
+    desired_trajectory,
+    simulate_tracking,
+)
 from pollard_pin.dynamics.forward import forward_dynamics
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
 from pollard_pin.dynamics.plant import Plant, PlantError, PlantErrors

@@ -5,9 +5,9 @@ import pinocchio as pin
 import pytest
 
 import pollard_pin as pp
+from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.forward import forward_dynamics, simulate, trajectory_torques
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
-from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
 

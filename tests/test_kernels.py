@@ -6,8 +6,8 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import batched_rnea
-from pollard_pin.kinematics.kernels import block_inverse, gram_extremes
 from pollard_pin.kinematics.ik_batch import kinematic_inverse, layout, point_rows
+from pollard_pin.kinematics.kernels import block_inverse, gram_extremes
 
 RNG = np.random.default_rng(20261123)
 

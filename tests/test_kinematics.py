@@ -25,7 +25,6 @@ from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.
 import pollard_pin as pp
 from pollard_pin.analytic import taskspace as ts
 from pollard_pin.cli import main
-from pollard_pin.io.results import run_pipeline
 from pollard_pin.io.trajectory import (
     Trajectory,
     TrajectoryError,
@@ -38,6 +37,7 @@ from pollard_pin.kinematics.errors import KinematicsError, SingularityError, Unr
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
 from pollard_pin.model.build import constraint_residual
 from pollard_pin.model.names import SPHERICAL
+from pollard_pin.run import run_pipeline
 
 T = importlib.import_module("pollard_pin.analytic.closed_form")
 

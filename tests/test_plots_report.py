@@ -9,7 +9,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.cli import main
-from pollard_pin.io.results import run_pipeline
+from pollard_pin.run import run_pipeline
 from pollard_pin.viz.plots import FIGURES, LOAD_FIGURES, figures
 from pollard_pin.viz.report import SIZING_FIELDS, report, to_markdown
 

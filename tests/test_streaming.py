@@ -1,4 +1,4 @@
-"""The streaming run (pollard_pin.io.results.stream_run): window by window it writes the rows of
+"""The streaming run (pollard_pin.run.stream_run): window by window it writes the rows of
 the whole-trajectory solve (to round-off: numpy's vectorised sin/cos may round the last bit
 differently at other array offsets), CSV or Parquet, with units and metadata; errors count
 samples from the trajectory's start; a failure leaves an existing output untouched."""
@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.io.results import RunStats, stream_run, summary, write_csv
 from pollard_pin.io.table import read_result, units_path
 from pollard_pin.io.trajectory import ThesisTrajectory, Trajectory, thesis_trajectory
 from pollard_pin.kinematics.errors import SingularityError
+from pollard_pin.run import RunStats, stream_run, summary, write_csv
 
 # A pose exactly on leg 2's reach boundary (tests/test_solver_edges.py): a singular sample.
 ROUND_OFF = 1e-13  # × max(1, column peak)
@@ -129,7 +129,7 @@ def test_stats_of_a_window_equal_a_direct_computation(robot):
 def test_memory_is_one_window(robot, tmp_path, monkeypatch):
     # Bounded memory: the pipeline never sees more than one window, and the lazy thesis
     # trajectory never builds the whole time grid.
-    import pollard_pin.io.results as results
+    import pollard_pin.run as results
 
     seen = []
     real = results.run_pipeline
@@ -169,7 +169,7 @@ def test_first_error_in_order_with_threads(robot, tmp_path):
 
 
 def test_worker_robots_do_not_share_pinocchio_data(robot):
-    from pollard_pin.io.results import worker_robot
+    from pollard_pin.run import worker_robot
 
     other = worker_robot(robot)
     assert other.model is robot.model and other.data is not robot.data
@@ -223,8 +223,7 @@ def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
 
 
 def test_cli_window_size_is_the_streaming_window():
-    # cli.py keeps its own copy (importing io.results would slow --help): they must agree.
-    from pollard_pin import cli
-    from pollard_pin.io import results
+    # the CLI keeps its own copy (importing pollard_pin.run would slow --help): they must agree.
+    from pollard_pin import cli, run as results
 
     assert cli.STREAM_WINDOW == results.STREAM_CHUNK

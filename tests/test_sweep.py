@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.io.results import run_pipeline
 from pollard_pin.model.names import ACTUATED
+from pollard_pin.run import run_pipeline
 from pollard_pin.sweep import (
     METRIC_COLUMNS,
     SweepError,

@@ -10,12 +10,12 @@ import urllib.request
 
 import numpy as np
 import pytest
+from browser import capture_meshcat, find_chromium
 
 import pollard_pin as pp
-from pollard_pin.viz import viewer
-from browser import capture_meshcat, find_chromium
 from pollard_pin.cli import main
-from pollard_pin.io.results import run_pipeline
+from pollard_pin.run import run_pipeline
+from pollard_pin.viz import viewer
 
 SAMPLES = 401  # thesis curve, 20 s: dense enough for the IK's branch check, quick to solve
 CHAINS = {  # chain → (geometry nodes drawn in its colour, pixel test for that colour)

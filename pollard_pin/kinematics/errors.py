@@ -30,7 +30,7 @@ class KinematicsError(RuntimeError):
     def shifted(self, offset: int) -> "KinematicsError":
         """The same error for a window of a longer trajectory that starts at sample
         ``offset``: every sample number (attribute and message) counts from the full
-        trajectory's start. Used by the streaming run (pollard_pin.io.results)."""
+        trajectory's start. Used by the streaming run (pollard_pin.run)."""
         if not offset:
             return self
 

@@ -204,7 +204,7 @@ def _path_figure(plt, cols, name):
 
 
 def figures(result) -> dict:
-    """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.io.results.RunResult` (with its
+    """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.run.RunResult` (with its
     dynamics). Close them with ``matplotlib.pyplot.close(fig)`` when done."""
     if result.dynamics is None:
         raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")

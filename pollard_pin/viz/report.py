@@ -155,7 +155,7 @@ def cross_check_mujoco(robot, result) -> dict:
 
 
 def sizing_report(robot, result, cross_check: bool = True) -> dict:
-    """The whole report for a :class:`~pollard_pin.io.results.RunResult` as a JSON-ready dict:
+    """The whole report for a :class:`~pollard_pin.run.RunResult` as a JSON-ready dict:
     ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
     ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
     if result.dynamics is None:

@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analytic.taskspace import TASK_NAMES
-from ..kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
-from ..model.names import SPHERICAL
-from .table import TableWriter, write_table
-from .trajectory import Trajectory
+from .analytic.taskspace import TASK_NAMES
+from .io.table import TableWriter, write_table
+from .io.trajectory import Trajectory
+from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
+from .model.names import SPHERICAL
 
 
 @dataclass
@@ -46,14 +46,14 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
     :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``).
     ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``)."""
-    from ..dynamics.inverse import inverse_dynamics
+    from .dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             progress=progress, **ik_options)
     dyn = inverse_dynamics(robot, ik) if dynamics or loads else None
     if not loads:
         return RunResult(traj, ik, dyn if dynamics else None)
-    from ..dynamics.loads import joint_loads
+    from .dynamics.loads import joint_loads
 
     return RunResult(traj, ik, dyn, joint_loads(robot, ik, dyn))
 
@@ -192,7 +192,7 @@ def solve_windows(robot, traj, *, chunk: int = STREAM_CHUNK, workers: int = 1, *
     from concurrent.futures import ThreadPoolExecutor
     from itertools import islice
 
-    from ..kinematics.errors import KinematicsError
+    from .kinematics.errors import KinematicsError
 
     if not (isinstance(chunk, int) and chunk >= 2):
         raise ValueError(f"chunk must be an integer >= 2, got {chunk!r}")
