@@ -179,9 +179,10 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         traj = pp.thesis_trajectory(samples=n)
         ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
         path = act_mod.path_dynamics(robot, ik)
-        steps = {"path dynamics": lambda: act_mod.path_dynamics(robot, ik),
-                 "uniform_min_duration": lambda: act_mod.uniform_min_duration(act, path),
-                 "time_optimal (TOPP-RA)": lambda: act_mod.time_optimal(act, path)}
+        # default arguments bind this size's ik and path (the loop rebinds them)
+        steps = {"path dynamics": lambda ik=ik: act_mod.path_dynamics(robot, ik),
+                 "uniform_min_duration": lambda p=path: act_mod.uniform_min_duration(act, p),
+                 "time_optimal (TOPP-RA)": lambda p=path: act_mod.time_optimal(act, p)}
         for name, fn in steps.items():
             times = []
             for _ in range(repeats):

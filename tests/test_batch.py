@@ -51,8 +51,6 @@ def test_compiled_K_and_drifts_equal_pinocchios(robot):
     # The batched path's K = [Jc; J_tool], its drifts K̇v and the bodies' angular velocities
     # (compiled kernels over the placements) against Pinocchio's constraint and frame
     # Jacobians, classical accelerations and data.v, sample by sample at random states.
-    import pinocchio as pin
-
     from pollard_pin.kinematics.ik_batch import layout, point_drifts, point_rows
     from pollard_pin.kinematics.ik_common import KinematicFrames
     from pollard_pin.kinematics.ik_newton import frame_drifts, kinematic_matrix

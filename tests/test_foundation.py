@@ -355,7 +355,7 @@ def test_modified_params_give_a_model_whose_placements_follow():
     g = spec_geometry(x32=0.34, x1514=0.11, z10=0.06)
     g["leg1"].update(beta54=math.radians(10.0), x43=0.335, x87=0.33, z1312=0.025)
     g["leg2"].update(y10=0.09, z32=0.03, x1211=0.02)
-    for name, (parent, xyz, R, axis) in spec_tree(g).items():
+    for name, (_parent, xyz, R, axis) in spec_tree(g).items():
         jid = r.joint_id(name)
         M = r.model.jointPlacements[jid]
         assert np.abs(M.translation - xyz).max() <= 1e-15, (name, M.translation, xyz)
@@ -798,7 +798,8 @@ def _check_installed(venv, cwd):
     code = textwrap.dedent("""
         import json, numpy as np, pollard_pin as pp
         a, b = pp.read_result("r.csv"), pp.read_result("loads.parquet")
-        print(json.dumps(dict(rows=[len(a), len(b)], loads=sum(c.startswith("F_") for c in b.columns),
+        print(json.dumps(dict(rows=[len(a), len(b)],
+                              loads=sum(c.startswith("F_") for c in b.columns),
                               dtau=float(np.abs(a["tau_theta21"] - b["tau_theta21"]).max()))))
     """)
     out = subprocess.run([str(venv / "bin" / "python"), "-c", code], cwd=cwd, env=env,

@@ -678,7 +678,8 @@ def test_cli_run_thesis_trajectory(robot, tmp_path, capsys):
     assert f"wrote {out} (201 rows)" in capsys.readouterr().err
     traj = thesis_trajectory(samples=201, home_pose=robot.params.home_pose)
     _check_run_output(robot, out, traj)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["thesis.csv", "thesis.units.json"]  # no temp leftovers
+    # no temp leftovers
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["thesis.csv", "thesis.units.json"]
 
 
 def test_cli_run_csv_trajectory(robot, tmp_path, capsys):
@@ -719,7 +720,8 @@ def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
     rc = main(["run", "--trajectory", str(src), "--out", str(out), "--quiet"])
     assert rc != 0
     assert not out.exists()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv", "in.units.json"]  # no temp file either
+    # no temp file either
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv", "in.units.json"]
     err = capsys.readouterr().err
     assert "error" in err and "nothing written" in err
     if kind == "unreachable":

@@ -176,7 +176,8 @@ def test_run_loads_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys):
 
 
 def test_sweep_row_has_the_peak_bearing_loads(robot):
-    from pollard_pin.sweep import LOAD_METRICS, TREE_JOINTS, evaluate_variant
+    from pollard_pin.model.names import TREE_JOINTS
+    from pollard_pin.sweep import LOAD_METRICS, evaluate_variant
 
     assert TREE_JOINTS == robot.joint_names
     spec = {"name": "base", "trajectory": {"kind": "thesis", "duration": 20.0, "samples": 201}}

@@ -224,6 +224,7 @@ def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
 
 def test_cli_window_size_is_the_streaming_window():
     # the CLI keeps its own copy (importing pollard_pin.run would slow --help): they must agree.
-    from pollard_pin import cli, run as results
+    from pollard_pin import run as results
+    from pollard_pin.cli.run import STREAM_WINDOW
 
-    assert cli.STREAM_WINDOW == results.STREAM_CHUNK
+    assert STREAM_WINDOW == results.STREAM_CHUNK

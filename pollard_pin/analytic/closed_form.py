@@ -230,7 +230,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
     return q
 
 
-def _as_poses(poses, prefix: str = "") -> np.ndarray:
+def as_poses(poses, prefix: str = "") -> np.ndarray:
     """(N, 6) float array, checked: N ≥ 1, every entry finite and within MAX_ABS_TASK (the
     error names the column, e.g. ``d_psi``, and the sample)."""
     what = {"": "poses", "d_": "pose rates", "dd_": "pose accelerations"}[prefix]
@@ -292,7 +292,7 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
     The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
     θ98 ± θ1110 is defined, and their derivatives from :func:`ik` are then not finite.
     """
-    q = _solve(params, _as_poses(poses), _check_wrist_margin(wrist_margin))
+    q = _solve(params, as_poses(poses), _check_wrist_margin(wrist_margin))
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
 
 
@@ -302,7 +302,7 @@ def inverse_kinematics(params, poses, d_poses, dd_poses, reference=None,
 
     Raises :class:`SingularPoseError` where a derivative is not finite (a pose exactly on a
     reach boundary or a wrist/joint singularity)."""
-    x = [_as_poses(a, pre) for a, pre in ((poses, ""), (d_poses, "d_"), (dd_poses, "dd_"))]
+    x = [as_poses(a, pre) for a, pre in ((poses, ""), (d_poses, "d_"), (dd_poses, "dd_"))]
     if not x[0].shape == x[1].shape == x[2].shape:
         raise TaskInputError(f"poses, rates and accelerations differ in shape: "
                              f"{[a.shape for a in x]}")
@@ -316,7 +316,7 @@ def inverse_kinematics(params, poses, d_poses, dd_poses, reference=None,
 def direction_jet(poses) -> Jet:
     """First-order pose jet: value (N, 1, 6), derivatives (N, 6, 6) along the unit vectors e_j,
     so any quantity's ``.d[:, j]`` is its partial derivative ∂/∂q_j."""
-    x = _as_poses(poses)
+    x = as_poses(poses)
     return Jet(x[:, None, :], np.broadcast_to(np.eye(6), (x.shape[0], 6, 6)), order=1)
 
 
@@ -427,7 +427,7 @@ def angular_rates(R: Jet):
 def body_kinematics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
     """name → dict(R, r, v, a, omega, alpha): world rotation, CoG position, CoG velocity and
     acceleration, angular velocity and acceleration (world frame), each (N, ...)."""
-    x = Jet(_as_poses(poses), _as_poses(d_poses, "d_"), _as_poses(dd_poses, "dd_"))
+    x = Jet(as_poses(poses), as_poses(d_poses, "d_"), as_poses(dd_poses, "dd_"))
     out = {}
     for name, (R, r) in body_states(params, x, wrist_margin)[0].items():
         w, al = angular_rates(R)

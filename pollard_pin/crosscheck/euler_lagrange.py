@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..analytic.closed_form import _as_poses, body_states, direction_jet, vee_skew
+from ..analytic.closed_form import as_poses, body_states, direction_jet, vee_skew
 from ..analytic.jet import Jet
 from ..model.names import ACTUATED, BODIES
 
@@ -31,12 +31,12 @@ def _terms(params, poses, d_poses=None, wrist_margin=0.0):
     Two jet passes: first order along e_1..e_6 (the M's, J_τ), and second order along the
     actual q̇ with q̈ = 0 (v, ω and Ṁ_v q̇, Ṁ_ω q̇).
     """
-    x = _as_poses(poses)
+    x = as_poses(poses)
     n = x.shape[0]
     unit, q = body_states(params, direction_jet(x), wrist_margin)
     moving = d_poses is not None
     if moving:
-        along, _ = body_states(params, Jet(x, _as_poses(d_poses), np.zeros_like(x)),
+        along, _ = body_states(params, Jet(x, as_poses(d_poses), np.zeros_like(x)),
                                 wrist_margin)
     D = np.zeros((n, 6, 6))
     C, Vqd, K, U = np.zeros((n, 6)), np.zeros((n, 6)), np.zeros(n), np.zeros(n)
@@ -76,7 +76,7 @@ def inverse_dynamics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0
     Returns a dict of arrays: 'tau' (N, 6) in ACTUATED order [N·m], 'D' (N, 6, 6), 'Vqd', 'C',
     'Q' (N, 6), 'J_tau' (N, 6, 6), 'qd_act' = J_τ q̇ (N, 6), 'K', 'U' (N,) energies [J].
     """
-    qd, qdd = _as_poses(d_poses), _as_poses(dd_poses)
+    qd, qdd = as_poses(d_poses), as_poses(dd_poses)
     out = _terms(params, poses, qd, wrist_margin)
     out["Q"] = np.einsum("nij,nj->ni", out["D"], qdd) + out["Vqd"] + out["C"]
     out["tau"] = _solve_T(out["J_tau"], out["Q"])
@@ -91,7 +91,7 @@ def mass_matrix(params, poses) -> np.ndarray:
 
 def energy(params, poses, d_poses):
     """(K, U) [J], each (N,): kinetic and gravitational potential energy (U = −Σ m gᵀ r_G)."""
-    t = _terms(params, poses, _as_poses(d_poses))
+    t = _terms(params, poses, as_poses(d_poses))
     return t["K"], t["U"]
 
 

@@ -447,7 +447,7 @@ def time_optimal(act: Actuators, path: PathDynamics, s_dot_start: float = 0.0,
                     "(TOPP-RA found the path uncontrollable: gravity alone may exceed a peak "
                     "torque)")
             step /= 2
-            s_dot_v = solved_at + step * (s_dot - solved_at)
+            s_dot_v = solved_at + step * (s_dot - solved_at)  # noqa: F821 (set by iteration 1)
             continue
         s_ddot, s_dot, solved_at = s_ddot_new, np.maximum(sd, 0.0), s_dot_v
         change = np.abs(s_dot - s_dot_v).max() / max(s_dot.max(), 1e-300)

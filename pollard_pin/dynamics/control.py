@@ -331,7 +331,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                       torque_limit=None, noise: MeasurementNoise | None = None, start=None,
                       baumgarte: tuple[float, float] = BAUMGARTE,
                       desired: DesiredTrajectory | None = None, curve=None,
-                      known_losses: JointLosses | None = None, progress: Callable[[int, int], None] | None = None) -> TrackingResult:
+                      known_losses: JointLosses | None = None,
+                      progress: Callable[[int, int], None] | None = None) -> TrackingResult:
     """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
     ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
 

@@ -24,7 +24,7 @@ class OutputError(OSError):
         return self.args[0] if self.args else "cannot write the output"
 
 
-def _is_special(path: Path) -> bool:
+def is_special(path: Path) -> bool:
     """An existing destination that is not a regular file (FIFO, device, socket)."""
     try:
         mode = os.stat(path).st_mode
@@ -44,7 +44,7 @@ def check_destination(path: str | Path, *, folder: bool = False) -> None:
             raise OutputError(f"{path}: names a file, but a folder is expected")
         if not folder and path.is_dir():
             raise OutputError(f"{path}: is a folder, but a file is expected")
-        target = path if folder or _is_special(path) else path.parent
+        target = path if folder or is_special(path) else path.parent
         if not os.access(target if str(target) else ".", os.W_OK):
             raise OutputError(f"{path}: permission denied")
         return
@@ -79,7 +79,7 @@ def atomic_open(path: str | Path, newline: str | None = None, binary: bool = Fal
         return
     path = Path(path)
     check_destination(path)
-    if _is_special(path):
+    if is_special(path):
         with open(path, mode, **({} if binary else {"newline": newline})) as f:
             yield f
         return

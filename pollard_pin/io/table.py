@@ -17,7 +17,7 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
-from .atomic import STDOUT, OutputError, _is_special, atomic_open, check_destination
+from .atomic import STDOUT, OutputError, is_special, atomic_open, check_destination
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
@@ -129,7 +129,7 @@ class TableWriter:
                 f.write("\n")
 
     def _sidecar(self) -> bool:
-        return str(self.path) != STDOUT and not _is_special(Path(self.path))
+        return str(self.path) != STDOUT and not is_special(Path(self.path))
 
 
 def write_table(path: str | Path, chunks: Iterable[Mapping[str, np.ndarray]] | Mapping,

@@ -319,7 +319,7 @@ def lookup(d: Mapping, key: str, value: Any = _UNSET) -> Any:
         node = node[part]
     if isinstance(node, Mapping):
         raise ParameterError(f"parameter '{key}'{shown}: names a section, not a parameter")
-    for j, i in enumerate(index):
+    for i in index:
         if not isinstance(node, list) or i >= len(node):
             raise ParameterError(f"parameter '{key}'{shown}: index [{i}] is out of range for "
                                  f"'{path[-1]}' = {node!r}")

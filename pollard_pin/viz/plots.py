@@ -34,22 +34,41 @@ BASE, WRIST = ACTUATED[:3], ACTUATED[3:]
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 
 
-def _pyplot():
-    import matplotlib
+class _Figures:
+    """pyplot's ``figure``/``subplots``/``close`` without pyplot: each figure is a
+    :class:`matplotlib.figure.Figure` on its own Agg canvas, so drawing here switches no global
+    backend and registers no figure (nothing to close; ``close`` is a no-op)."""
 
-    matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
+    @staticmethod
+    def figure(**kw):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
 
-    return plt
+        fig = Figure(**kw)
+        FigureCanvasAgg(fig)
+        return fig
+
+    def subplots(self, nrows=1, ncols=1, *, figsize=None, constrained_layout=False, **kw):
+        fig = self.figure(figsize=figsize, constrained_layout=constrained_layout)
+        return fig, fig.subplots(nrows, ncols, **kw)
+
+    @staticmethod
+    def close(fig) -> None:
+        pass
 
 
-def _line(ax, x, y, gid, **kw):
+def figure_maker() -> _Figures:
+    """The figure factory every viz module draws with (see :class:`_Figures`)."""
+    return _Figures()
+
+
+def plot_line(ax, x, y, gid, **kw):
     (ln,) = ax.plot(x, y, **kw)
     ln.set_gid(gid)
     return ln
 
 
-def _finish(ax, ylabel, title=None, legend=True):
+def finish_axes(ax, ylabel, title=None, legend=True):
     ax.set_ylabel(ylabel)
     if title:
         ax.set_title(title, fontsize=10)
@@ -67,9 +86,9 @@ def _joint_figure(plt, cols, joints, title, roles):
              ("dd_", "acceleration [deg/s²]", "Acceleration"))):
         ax = axes[row]
         for j, n in enumerate(joints):
-            _line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
+            plot_line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
                   label=f"{LABELS[n]} ({roles[j]})")
-        _finish(ax, label, f"{name}")
+        finish_axes(ax, label, f"{name}")
     axes[-1].set_xlabel("t [s]")
     fig.suptitle(title)
     fig.tight_layout()
@@ -85,10 +104,10 @@ def _spherical_figure(plt, cols):
                                                ("d_", "rate [deg/s]"))):
             ax = axes[row, i - 1]
             for j, n in enumerate(names):
-                _line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
+                plot_line(ax, t, np.degrees(cols[prefix + n]), prefix + n, color=COLOURS[j],
                       label=LABELS[n])
             kind = "angles" if row == 0 else "rates"
-            _finish(ax, label, f"Leg {i} spherical joint (ZYZ), {kind}")
+            finish_axes(ax, label, f"Leg {i} spherical joint (ZYZ), {kind}")
         axes[1, i - 1].set_xlabel("t [s]")
     fig.suptitle("Cut spherical joints: the legs' ball joints on the platform arm "
                  "(docs/model.md §4)")
@@ -105,9 +124,9 @@ def _actuator_figure(plt, cols):
         for r, (prefix, label, name) in enumerate(rows):
             ax = axes[r, c]
             for j, n in enumerate(group):
-                _line(ax, t, cols[prefix + n], prefix + n, color=COLOURS[3 * c + j],
+                plot_line(ax, t, cols[prefix + n], prefix + n, color=COLOURS[3 * c + j],
                       label=LABELS[n])
-            _finish(ax, label, f"{name}, {gname}")
+            finish_axes(ax, label, f"{name}, {gname}")
         axes[-1, c].set_xlabel("t [s]")
     fig.suptitle("Actuators (docs/model.md §6): torque, power and work along the trajectory")
     fig.tight_layout()
@@ -121,10 +140,10 @@ def _closure_figure(plt, cols):
         ax = axes[i - 1]
         comps = [cols[f"f{i}_{c}"] for c in "xyz"]
         for j, c in enumerate("xyz"):
-            _line(ax, t, comps[j], f"f{i}_{c}", color=COLOURS[j], label=f"f{i},{c}")
-        _line(ax, t, np.sqrt(sum(x * x for x in comps)), f"|f{i}|", color="k", lw=1.2,
+            plot_line(ax, t, comps[j], f"f{i}_{c}", color=COLOURS[j], label=f"f{i},{c}")
+        plot_line(ax, t, np.sqrt(sum(x * x for x in comps)), f"|f{i}|", color="k", lw=1.2,
               label=f"|f{i}|")
-        _finish(ax, "force [N]", f"Leg {i} ball joint: force of the platform on link_{i} "
+        finish_axes(ax, "force [N]", f"Leg {i} ball joint: force of the platform on link_{i} "
                                  "(world axes)")
     axes[-1].set_xlabel("t [s]")
     fig.suptitle("Closure (spherical-joint) reaction forces")
@@ -144,9 +163,9 @@ def _loads_figure(plt, loads, name):
         for c, (key, arr, ylabel) in enumerate(quantities):
             ax = axes[r, c]
             for k, joint in enumerate(joints):
-                _line(ax, t, arr[:, loads.joints.index(joint)], f"{key}_{joint}",
+                plot_line(ax, t, arr[:, loads.joints.index(joint)], f"{key}_{joint}",
                       color=COLOURS[k], label=LABELS.get(joint, joint))
-            _finish(ax, ylabel, f"{chain}: {key}", legend=c == 0)
+            finish_axes(ax, ylabel, f"{chain}: {key}", legend=c == 0)
     for ax in axes[-1]:
         ax.set_xlabel("t [s]")
     fig.suptitle(f"Joint loads ({name} trajectory): force and moment of the parent on the "
@@ -170,10 +189,10 @@ def _conditioning_figure(plt, cols):
             ("sigma_serial", "σ_min [SI]",
              "Serial conditioning: σ_min of the actuator-rate → tool-twist map",
              SINGULARITY_MARGIN))):
-        _line(ax, t, cols[col], col, color="tab:blue", label=col)
+        plot_line(ax, t, cols[col], col, color="tab:blue", label=col)
         ax.axhline(limit, color="tab:red", ls="--", lw=1, label=f"IK limit {limit:g}")
         ax.set_ylim(bottom=0)
-        _finish(ax, label, title)
+        finish_axes(ax, label, title)
     axes[-1].set_xlabel("t [s]")
     fig.suptitle("Distance to singularities along the trajectory")
     fig.tight_layout()
@@ -205,10 +224,10 @@ def _path_figure(plt, cols, name):
 
 def figures(result) -> dict:
     """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.run.RunResult` (with its
-    dynamics). Close them with ``matplotlib.pyplot.close(fig)`` when done."""
+    dynamics). They are not registered with pyplot: nothing to close."""
     if result.dynamics is None:
         raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")
-    plt = _pyplot()
+    plt = figure_maker()
     cols = result.columns()
     name = result.trajectory.name
     out = {
@@ -244,7 +263,7 @@ def save_png(fig, path, dpi: int = 100) -> Path:
         with atomic_open(path, binary=True) as f:
             fig.savefig(f, dpi=dpi, format="png")
     finally:
-        _pyplot().close(fig)
+        figure_maker().close(fig)
     return Path(path)
 
 

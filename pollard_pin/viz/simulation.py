@@ -11,7 +11,7 @@ import numpy as np
 
 from ..dynamics.control import ControlError
 from ..model.names import ACTUATED
-from .plots import COLOURS, LABELS, _finish, _line, _pyplot
+from .plots import COLOURS, LABELS, figure_maker, finish_axes, plot_line
 
 SIMULATION_FIGURES = ("simulation_tracking", "simulation_torques", "simulation_path")
 REQUIRED = ("t", "x", "y", "z", "desired_x", "desired_y", "desired_z", "tip_position_error",
@@ -71,16 +71,16 @@ def simulation_markdown(sim: dict) -> list[str]:
 def _tracking_figure(plt, cols, name):
     t = cols["t"]
     fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
-    _line(axes[0], t, 1e3 * np.asarray(cols["tip_position_error"]), "tip_position_error",
+    plot_line(axes[0], t, 1e3 * np.asarray(cols["tip_position_error"]), "tip_position_error",
           color="tab:blue", label="|p − p_d|")
-    _finish(axes[0], "[mm]", "Tool-tip position error")
-    _line(axes[1], t, np.degrees(cols["tip_orientation_error"]), "tip_orientation_error",
+    finish_axes(axes[0], "[mm]", "Tool-tip position error")
+    plot_line(axes[1], t, np.degrees(cols["tip_orientation_error"]), "tip_orientation_error",
           color="tab:orange", label="|log(R R_dᵀ)|")
-    _finish(axes[1], "[deg]", "Tool orientation error")
-    _line(axes[2], t, cols["closure_residual"], "closure_residual", color="tab:green",
+    finish_axes(axes[1], "[deg]", "Tool orientation error")
+    plot_line(axes[2], t, cols["closure_residual"], "closure_residual", color="tab:green",
           label="max |p_A − p_B|")
     axes[2].set_yscale("log")
-    _finish(axes[2], "[m]", "Loop-closure residual")
+    finish_axes(axes[2], "[m]", "Loop-closure residual")
     axes[-1].set_xlabel("t [s]")
     fig.suptitle(f"Closed-loop tracking ({name})")
     fig.tight_layout()
@@ -94,9 +94,9 @@ def _torque_figure(plt, cols, name):
         col = f"tau_{n}"
         if col in cols:
             ax = axes[0] if i < 3 else axes[1]
-            _line(ax, t, cols[col], col, color=COLOURS[i], label=LABELS.get(n, n))
-    _finish(axes[0], "τ [N·m]", "Applied actuator torques, base actuators")
-    _finish(axes[1], "τ [N·m]", "Applied actuator torques, wrist actuators")
+            plot_line(ax, t, cols[col], col, color=COLOURS[i], label=LABELS.get(n, n))
+    finish_axes(axes[0], "τ [N·m]", "Applied actuator torques, base actuators")
+    finish_axes(axes[1], "τ [N·m]", "Applied actuator torques, wrist actuators")
     axes[-1].set_xlabel("t [s]")
     fig.suptitle(f"Applied torques ({name})")
     fig.tight_layout()
@@ -107,10 +107,10 @@ def _path_figure(plt, cols, name):
     fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
     t = cols["t"]
     for ax, c in zip(axes, "xyz"):
-        _line(ax, t, cols[f"desired_{c}"], f"desired_{c}", color="tab:gray", lw=2.5,
+        plot_line(ax, t, cols[f"desired_{c}"], f"desired_{c}", color="tab:gray", lw=2.5,
               alpha=0.6, label="desired")
-        _line(ax, t, cols[c], c, color="tab:purple", lw=1, label="actual")
-        _finish(ax, f"{c} [m]")
+        plot_line(ax, t, cols[c], c, color="tab:purple", lw=1, label="actual")
+        finish_axes(ax, f"{c} [m]")
     axes[-1].set_xlabel("t [s]")
     fig.suptitle(f"Desired and actual tool path ({name})")
     fig.tight_layout()
@@ -121,7 +121,7 @@ def simulation_figures(cols: dict, name: str = "simulation") -> dict:
     """``{name: Figure}``: tracking errors and residual, applied torques, desired vs actual
     tool path."""
     check_simulation_columns(cols)
-    plt = _pyplot()
+    plt = figure_maker()
     return {"simulation_tracking": _tracking_figure(plt, cols, name),
             "simulation_torques": _torque_figure(plt, cols, name),
             "simulation_path": _path_figure(plt, cols, name)}
@@ -134,7 +134,7 @@ def write_simulation_figures(cols: dict, out_dir, dpi: int = 100,
 
     figs = simulation_figures(cols, name)
     out = make_folder(out_dir)
-    plt = _pyplot()
+    plt = figure_maker()
     paths = []
     try:
         for key, fig in figs.items():

@@ -156,9 +156,9 @@ def torque_speed_figure(sizing: Sizing):
     with its rating envelope: |τm| ≤ peak and |ωm| ≤ max speed (solid), ±continuous
     (dashed). Line gids: ``given_<actuator>``, ``time_optimal_<actuator>``,
     ``envelope_<actuator>``."""
-    from .plots import _pyplot
+    from .plots import figure_maker
 
-    plt = _pyplot()
+    plt = figure_maker()
     act = sizing.actuators
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5), constrained_layout=True)
     for j, (ax, name) in enumerate(zip(axes.ravel(), act.names)):

@@ -1,0 +1,200 @@
+"""What the commands share: argument types that reject what the API would reject (before any
+work), the model/trajectory options, loading the model and the trajectory, progress bars."""
+from __future__ import annotations
+
+import argparse
+import logging
+import math
+import sys
+import time
+import warnings
+
+from ..io.atomic import STDOUT
+
+log = logging.getLogger("pollard_pin")
+
+
+class UsageError(ValueError):
+    """A command-line value the command cannot use (one line)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (no usage block): ``pollard-pin run: error: ...``."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescriptionHelpFormatter):
+    """Every default in --help: shown by argparse, or said in the help text where the default
+    is "none given" (then the text says what happens)."""
+
+    def _get_help_string(self, action):
+        if action.default in (None, [], False, argparse.SUPPRESS):
+            return action.help
+        return super()._get_help_string(action)
+
+
+# --- argument types: each rejects what the API would reject, before any work ----------------
+def number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+    return value
+
+
+def positive(text: str) -> float:
+    value = number(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+    return value
+
+
+def nonnegative(text: str) -> float:
+    value = number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+    return value
+
+
+def count(minimum: int, maximum: int | None = None):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+        if value < minimum or (maximum is not None and value > maximum):
+            bound = f"between {minimum} and {maximum}" if maximum else f">= {minimum}"
+            raise argparse.ArgumentTypeError(f"must be {bound}, got {text}")
+        return value
+
+    return parse
+
+
+# --- shared steps ---------------------------------------------------------------------------
+def progress(label: str, enabled: bool):
+    """A tqdm bar fed by the pipeline's ``progress(done, total)`` calls; silent when not on a
+    terminal (tqdm's ``disable=None``) or with --quiet."""
+    if not enabled:
+        return None
+    from tqdm import tqdm
+
+    state = {}
+
+    def report(done: int, total: int) -> None:
+        bar = state.get("bar")
+        if bar is None:
+            bar = state["bar"] = tqdm(total=total, desc=label, unit="sample", disable=None,
+                                      leave=False, file=sys.stderr)
+        bar.update(done - bar.n)
+        if done >= total:
+            bar.close()
+
+    return report
+
+
+def params_of(args):
+    """The parameters of --params (a file, possibly partial) and --set, or None (shipped)."""
+    from ..model.params import load_params, parse_assignment
+
+    sets = dict(parse_assignment(s) for s in getattr(args, "set", None) or ())
+    if args.params is None and not sets:
+        return None
+    return load_params(args.params, overrides=sets)
+
+
+def load_robot(args):
+    from ..model.build import load
+
+    t0 = time.perf_counter()
+    robot = load(params_of(args))
+    log.info("model %s loaded in %.1f ms", robot.params.source, 1e3 * (time.perf_counter() - t0))
+    return robot
+
+
+def load_trajectory(args, params, lazy: bool = False):
+    """The chosen trajectory; ``lazy``: the thesis curve evaluated window by window (run)."""
+    from ..io.trajectory import (
+        THESIS_DURATION,
+        THESIS_SAMPLES,
+        ThesisTrajectory,
+        from_csv,
+        thesis_trajectory,
+    )
+
+    if args.trajectory == "thesis":
+        duration = THESIS_DURATION if args.duration is None else args.duration
+        samples = THESIS_SAMPLES if args.samples is None else args.samples
+        make = ThesisTrajectory if lazy else thesis_trajectory
+        return make(duration=duration, samples=samples, home_pose=params.home_pose)
+    if args.duration is not None or args.samples is not None:
+        print("note: --duration/--samples apply to the thesis trajectory only; "
+              "the CSV file's own times are used", file=sys.stderr)
+    with warnings.catch_warnings(record=True) as caught:  # said once, below, as a note
+        warnings.simplefilter("always")
+        traj = from_csv(args.trajectory)
+    for w in caught:
+        print(f"note: {w.message}", file=sys.stderr)
+    return traj
+
+
+def solve(args, dynamics: bool = True, **ik_options):
+    """Load the model and the chosen trajectory, run the pipeline (run/view/plot/report)."""
+    from ..run import run_pipeline
+
+    robot = load_robot(args)
+    traj = load_trajectory(args, robot.params)
+    log.info("trajectory %s: %d samples over %.4g s (derivatives: %s)", traj.name, len(traj),
+             traj.t[-1] - traj.t[0], traj.derivatives)
+    t0 = time.perf_counter()
+    result = run_pipeline(robot, traj, dynamics=dynamics,
+                          progress=progress("solving", len(traj) >= 500 and not args.quiet),
+                          **ik_options)
+    log.info("solved in %.3f s", time.perf_counter() - t0)
+    return robot, result
+
+
+def wrote(path, what: str = "") -> None:
+    if str(path) != STDOUT:
+        print(f"wrote {path}{what}", file=sys.stderr)
+
+
+def simulation_table(path):
+    """The columns and metadata of a ``simulate`` table (one-line error otherwise)."""
+    from ..io.table import read_result
+    from ..viz.simulation import check_simulation_columns
+
+    table = read_result(path)
+    check_simulation_columns(table.columns, str(path))
+    return table
+
+
+def command(sub, parents, name: str, help: str, run):
+    """The subparser of one command, running ``run(args)``."""
+    p = sub.add_parser(name, help=help, description=help, parents=parents,
+                       formatter_class=HelpFormatter)
+    p.set_defaults(func=run)
+    return p
+
+
+def model_args(p) -> None:
+    p.add_argument("--params", metavar="FILE.toml", default=None,
+                   help="parameter file; may list only the values that differ from the "
+                        "shipped models/pollard.toml (default: the shipped parameters)")
+    p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
+                   help="override one parameter, e.g. chain0.x32=0.35 (repeatable; "
+                        "units as in the parameter file; default: none)")
+
+
+def trajectory_args(p) -> None:
+    model_args(p)
+    p.add_argument("--trajectory", metavar="thesis|FILE.csv", default="thesis",
+                   help="the thesis painting curve or a trajectory CSV")
+    p.add_argument("--duration", type=positive, default=None, metavar="S",
+                   help="thesis trajectory duration [s] (default: 20)")
+    p.add_argument("--samples", type=count(2), default=None, metavar="N",
+                   help="thesis trajectory samples (default: 2001)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")

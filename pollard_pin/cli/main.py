@@ -1,0 +1,125 @@
+"""The pollard-pin command: a thin layer over the public API.
+
+Every command loads the model (the shipped one, or --params FILE.toml and --set KEY=VALUE),
+solves, and writes its output only when all went well. Errors are one line on standard error
+with exit status 2; outputs are checked for writability before the work starts. This module
+assembles the parser from one module per command (``add_parser(sub, parents)``,
+``run(args)``), turns the project's errors into one line, and handles signals.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import errno
+import logging
+import os
+import signal
+import sys
+import threading
+
+from .. import __version__
+from ..io.atomic import STDOUT
+from . import export, info, plot, report, run, simulate, size, sweep, urdf, view
+from .common import HelpFormatter, Parser, UsageError
+
+DESCRIPTION = """\
+Verified multibody model of the Pollard spray-painting parallel robot (Pinocchio).
+
+Solve a painting trajectory for every joint's motion and every actuator's torque, view it in
+a browser, plot it, size the actuators, and sweep the design. See docs/model.md for the model
+and its conventions.
+"""
+
+COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, export)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS,
+                        help="log what happens (-vv: debug)")
+    ap = Parser(prog="pollard-pin", description=DESCRIPTION, formatter_class=HelpFormatter)
+    ap.add_argument("--version", action="version", version=f"pollard-pin {__version__}")
+    ap.add_argument("-v", "--verbose", action="count", default=0,
+                    help="log what happens (-vv: debug)")
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                            parser_class=Parser)
+    for module in COMMANDS:
+        module.add_parser(sub, [common])
+    return ap
+
+
+def _errors() -> tuple[type[BaseException], ...]:
+    """The project's own errors: each is one line for the user, never a traceback."""
+    from ..dynamics.actuators import ActuatorError
+    from ..dynamics.control import ControlError
+    from ..dynamics.forward import SimulationError
+    from ..dynamics.plant import PlantError
+    from ..io.atomic import OutputError
+    from ..io.table import ResultFileError
+    from ..io.trajectory import TrajectoryError
+    from ..kinematics.errors import ClosureError, KinematicsError
+    from ..model.build import ModelFileError
+    from ..model.params import ParameterError
+    from ..sweep import SweepError
+
+    return (ControlError, PlantError, SimulationError,
+            ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
+            SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError)
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
+                        format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
+    errors = _errors()
+    previous = _catch_sigterm()
+    try:
+        return args.func(args)
+    except errors as exc:
+        message = " ".join(str(exc).split()) or type(exc).__name__
+        out = getattr(args, "out", None) or getattr(args, "html", None)
+        if out and out != STDOUT and args.command != "plot":
+            message += f" (nothing written to {out})"
+        print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt as exc:
+        how = "terminated" if isinstance(exc, _Terminated) else "interrupted"
+        print(f"pollard-pin {args.command}: {how}, nothing written", file=sys.stderr)
+        return 143 if isinstance(exc, _Terminated) else 130
+    except OSError as exc:
+        if not _broken_pipe(exc):
+            raise
+        # The reader of standard output or of a FIFO stopped (`run --out - | head`): stop
+        # quietly like any Unix filter, 128 + SIGPIPE, with no flush error at exit.
+        with contextlib.suppress(OSError, ValueError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM (kill, a scheduler's time limit) raised like Ctrl-C, so that the temporary
+    output files are removed; Python's default would end the process on the spot."""
+
+
+def _catch_sigterm():
+    """Turn SIGTERM into :class:`_Terminated` (main thread only); the previous handler."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+
+    def terminate(signum, frame):
+        raise _Terminated
+
+    return signal.signal(signal.SIGTERM, terminate)
+
+
+def _broken_pipe(exc: OSError) -> bool:
+    """EPIPE, from Python or from polars' writer (a plain OSError naming the Rust os error)."""
+    return (isinstance(exc, BrokenPipeError) or exc.errno == errno.EPIPE
+            or f"(os error {errno.EPIPE})" in str(exc))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,36 @@
+"""pollard-pin plot: PNG figures."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..io.atomic import check_destination
+from .common import command, count, simulation_table, solve, trajectory_args
+
+
+def run(args) -> int:
+    from ..viz.plots import write_figures
+
+    check_destination(args.out, folder=True)
+    if args.simulation:  # the simulation's figures only (docs/model.md §18)
+        from ..viz.simulation import write_simulation_figures
+
+        table = simulation_table(args.simulation)
+        name = f"{table.metadata.get('controller', 'simulation')}, {Path(args.simulation).name}"
+        for path in write_simulation_figures(table.columns, args.out, dpi=args.dpi, name=name):
+            print(f"wrote {path}")
+        return 0
+    _, result = solve(args, loads=True)  # joint-loads figure, docs/model.md §17
+    for path in write_figures(result, args.out, dpi=args.dpi):
+        print(f"wrote {path}")
+    return 0
+
+
+def add_parser(sub, parents) -> None:
+    p = command(sub, parents, "plot", "chapter-4 style PNG figures of a trajectory", run)
+    trajectory_args(p)
+    p.add_argument("--out", default="plots", metavar="FOLDER", help="output folder")
+    p.add_argument("--dpi", type=count(10, 1200), default=100, help="PNG resolution")
+    p.add_argument("--simulation", metavar="SIM.csv", default=None,
+                   help="plot this closed-loop simulation (pollard-pin simulate) instead: "
+                        "tracking errors, torques, desired vs actual path (default: plot the "
+                        "trajectory)")

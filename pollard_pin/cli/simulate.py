@@ -1,0 +1,123 @@
+"""pollard-pin simulate: closed-loop simulation."""
+from __future__ import annotations
+
+import sys
+import time
+
+from ..io.atomic import check_destination
+from .common import (
+    STDOUT,
+    UsageError,
+    command,
+    count,
+    load_robot,
+    load_trajectory,
+    nonnegative,
+    number,
+    positive,
+    progress,
+    trajectory_args,
+    wrote,
+)
+
+
+def run(args) -> int:
+    import numpy as np
+
+    from ..dynamics.control import Gains, MeasurementNoise, simulate_tracking
+    from ..dynamics.inverse import JointLosses
+    from ..dynamics.plant import PlantErrors
+    from ..io.table import write_table
+
+    check_destination(args.out)
+    gains = Gains(args.wn, args.zeta)
+    noise = (MeasurementNoise(args.noise, args.velocity_noise, args.seed)
+             if args.noise or args.velocity_noise else None)
+    if args.torque_limit is not None and len(args.torque_limit) not in (1, 6):
+        raise UsageError(f"--torque-limit takes 1 value (all actuators) or 6, got "
+                          f"{len(args.torque_limit)}")
+    robot = load_robot(args)
+    losses = known = None
+    limit = args.torque_limit
+    if args.actuators:  # motors known to the controller (docs/model.md §18, §19)
+        from ..dynamics.actuators import load_actuators
+
+        if args.armature or args.viscous or args.coulomb:
+            raise UsageError("--actuators gives the rotor inertia and friction; do not "
+                              "combine it with --armature/--viscous/--coulomb")
+        motors = load_actuators(args.actuators)
+        losses = known = motors.joint_losses(robot.joint_names)
+        if limit is None:
+            limit = motors.column("gear_ratio") * motors.column("peak_torque")
+    elif args.armature or args.viscous or args.coulomb:  # on the six actuated joints
+        per_joint = {}
+        for name, value in (("armature", args.armature), ("viscous", args.viscous),
+                            ("coulomb", args.coulomb)):
+            per_joint[name] = np.zeros(robot.model.nv)
+            per_joint[name][robot.actuated_v] = value
+        losses = JointLosses(**per_joint)
+    errors = PlantErrors(args.payload, args.mass_error, losses)
+    traj = load_trajectory(args, robot.params)
+    start = None if args.start == "path" else robot.home()
+    t0 = time.perf_counter()
+    result = simulate_tracking(
+        robot, traj, args.controller, errors, gains=gains, dt=args.dt,
+        control_period=args.control_period, torque_limit=limit, noise=noise,
+        start=start, known_losses=known,
+        progress=progress("simulating", len(traj) >= 500 and not args.quiet))
+    wall = time.perf_counter() - t0
+    meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
+            "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
+            **result.settings,
+            "summary": result.summary()}
+    rows = write_table(args.out, result.columns(), metadata=meta)
+    lines = [f"{args.controller} on {traj.name}: {len(traj)} samples over "
+             f"{traj.t[-1] - traj.t[0]:.4g} s, dt {args.dt:g} s, control period "
+             f"{args.control_period:g} s, ω {args.wn:g} rad/s, ζ {args.zeta:g}",
+             *result.summary_lines(), f"wall time {wall:.2f} s (desired trajectory included)"]
+    print("\n".join(lines), file=sys.stderr if args.out == STDOUT else sys.stdout)
+    wrote(args.out, f" ({rows} rows)")
+    return 0
+
+
+def add_parser(sub, parents) -> None:
+    p = command(sub, parents, "simulate", "closed-loop simulation: a controller tracking a "
+                "trajectory on a (perturbed) plant → CSV or Parquet", run)
+    trajectory_args(p)
+    p.add_argument("--controller", choices=("computed-torque", "pd"), default="computed-torque",
+                   help="computed-torque (nominal feedforward + inertia-scaled PD) or pd (PD + "
+                        "gravity compensation)")
+    p.add_argument("--wn", type=nonnegative, default=60.0, metavar="RAD/S",
+                   help="natural frequency ω of the actuator error dynamics")
+    p.add_argument("--zeta", type=nonnegative, default=1.0, metavar="Z",
+                   help="damping ratio ζ of the actuator error dynamics")
+    p.add_argument("--dt", type=positive, default=1e-3, metavar="S", help="RK4 step")
+    p.add_argument("--control-period", type=positive, default=1e-3, metavar="S",
+                   help="controller period (torque held in between)")
+    p.add_argument("--torque-limit", type=positive, nargs="+", default=None, metavar="N·M",
+                   help="|τ| limit: one value for all actuators or six (default: none)")
+    p.add_argument("--payload", type=nonnegative, default=0.0, metavar="KG",
+                   help="point mass at the tool tip, unknown to the controller (default: 0)")
+    p.add_argument("--mass-error", type=number, default=0.0, metavar="FRACTION",
+                   help="plant link masses and inertias × (1 + FRACTION) (default: 0, exact)")
+    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+                   help="motors and gearboxes (format of examples/actuators.toml): their "
+                        "reflected rotor inertia N²·Jm and friction act in the plant and are "
+                        "known to the controller; --torque-limit defaults to N × peak motor "
+                        "torque (default: ideal joints)")
+    p.add_argument("--armature", type=nonnegative, default=0.0, metavar="KG·M²",
+                   help="rotor inertia on each actuated joint (plant only; default: 0)")
+    p.add_argument("--viscous", type=nonnegative, default=0.0, metavar="N·M·S",
+                   help="viscous friction on each actuated joint (plant only; default: 0)")
+    p.add_argument("--coulomb", type=nonnegative, default=0.0, metavar="N·M",
+                   help="Coulomb friction on each actuated joint (plant only; default: 0)")
+    p.add_argument("--noise", type=nonnegative, default=0.0, metavar="RAD",
+                   help="standard deviation of the measured actuator angles (default: 0, exact)")
+    p.add_argument("--velocity-noise", type=nonnegative, default=0.0, metavar="RAD/S",
+                   help="standard deviation of the measured actuator rates (default: 0, exact)")
+    p.add_argument("--seed", type=count(0), default=0, help="noise seed (default: 0)")
+    p.add_argument("--start", choices=("path", "home"), default="path",
+                   help="plant start: on the path (the reference's first state) or at rest at "
+                        "home (the trajectory must then start at the home pose, at rest)")
+    p.add_argument("--out", default="sim.csv", metavar="FILE.csv|FILE.parquet",
+                   help="output table ('-': CSV on standard output)")

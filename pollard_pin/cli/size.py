@@ -1,0 +1,57 @@
+"""pollard-pin size: motors and gearboxes."""
+from __future__ import annotations
+
+import time
+
+from ..io.atomic import atomic_open, check_destination
+from .common import STDOUT, UsageError, command, log, solve, trajectory_args, wrote
+
+
+def run(args) -> int:
+    from ..dynamics.actuators import load_actuators
+    from ..io.trajectory import to_csv
+    from ..viz.sizing import actuator_sizing, to_json, to_markdown, write_torque_speed
+
+    out = args.out or STDOUT
+    if args.retime == STDOUT and out == STDOUT:
+        raise UsageError("--retime - and the report both on standard output: give --out FILE "
+                          "or --retime FILE.csv")
+    for path in (out, args.retime):
+        if path is not None:
+            check_destination(path)
+    if args.plot is not None:
+        check_destination(args.plot, folder=True)
+    actuators = load_actuators(args.actuators)
+    robot, result = solve(args)
+    t0 = time.perf_counter()
+    sized = actuator_sizing(robot, result, actuators)
+    log.info("sized in %.3f s (TOPP-RA solves: %d)", time.perf_counter() - t0,
+             sized.timing.iterations)
+    if args.retime is not None:
+        to_csv(sized.retimed, args.retime)
+        wrote(args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
+                            f"{len(sized.retimed)} rows)")
+    if args.plot is not None:
+        wrote(write_torque_speed(sized, args.plot))
+    text = to_json(sized.report) + "\n" if args.format == "json" else to_markdown(sized.report)
+    with atomic_open(out) as f:
+        f.write(text)
+    wrote(out)
+    return 0
+
+
+def add_parser(sub, parents) -> None:
+    p = command(sub, parents, "size", "motors and gearboxes: ratings check, shortest uniform and "
+                "time-optimal cycle of the path", run)
+    trajectory_args(p)
+    p.add_argument("--actuators", required=True, metavar="FILE.toml",
+                   help="one table per actuator (see examples/actuators.toml)")
+    p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
+    p.add_argument("--out", metavar="FILE", default=None,
+                   help="write the table to this file (default: standard output)")
+    p.add_argument("--retime", metavar="OUT.csv", default=None,
+                   help="write the time-optimal traversal as a trajectory CSV (replay it with "
+                        "run --trajectory OUT.csv; default: not written)")
+    p.add_argument("--plot", metavar="FOLDER", default=None,
+                   help="write FOLDER/torque_speed.png, the motors' operating points and "
+                        "ratings (default: no figure)")

@@ -1,0 +1,44 @@
+"""pollard-pin urdf: generate the URDF and SRDF."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ..io.atomic import atomic_open, check_destination
+from .common import STDOUT, UsageError, command, model_args, params_of
+
+
+def run(args) -> int:
+    from ..model.build import generate
+
+    out = Path(args.out) if args.out != STDOUT else None
+    if out is not None:
+        installed = Path(__file__).resolve().parent.parent  # the pollard_pin package
+        if installed in out.resolve().parents:
+            raise UsageError(f"--out {out}: refusing to write inside the installed package "
+                              f"({installed}); write elsewhere and load it with --params")
+        check_destination(out)
+        check_destination(out.with_suffix(".srdf"))
+    params = params_of(args)
+    if params is None:
+        from ..model.params import load_params
+
+        params = load_params()
+    urdf, srdf = generate(params)
+    if out is None:
+        sys.stdout.write(urdf)
+        return 0
+    for path, text in ((out, urdf), (out.with_suffix(".srdf"), srdf)):
+        with atomic_open(path) as f:
+            f.write(text)
+    print(f"wrote {out} and {out.with_suffix('.srdf')} from {params.source}")
+    return 0
+
+
+def add_parser(sub, parents) -> None:
+    p = command(sub, parents, "urdf",
+                "generate the URDF (and the SRDF beside it) from parameters", run)
+    model_args(p)
+    p.add_argument("--out", default="pollard.urdf", metavar="FILE.urdf",
+                   help="output URDF ('-': the URDF on standard output); the shipped "
+                        "model is regenerated with --out models/pollard.urdf")

@@ -1,0 +1,117 @@
+"""Running a sweep: serially, on a local process pool or on a Dask cluster; rows come back
+in input order and are the same whichever way they were computed."""
+from __future__ import annotations
+
+import os
+from typing import Any, Callable
+
+from .evaluate import SweepError, evaluate_variant
+from .grid import Sweep
+
+# --- running ----------------------------------------------------------------------------------
+Progress = Callable[[int, int], None]
+
+
+def _checked(name: str, future_or_fn, *args):
+    try:
+        return future_or_fn(*args)
+    except Exception as exc:  # a bug, not an infeasible design: name the variant
+        raise SweepError(f"variant {name!r} crashed: {type(exc).__name__}: {exc}") from exc
+
+
+def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
+              progress: Progress | None = None, mp_context: str | None = None) -> list[dict]:
+    """Evaluate every variant; the rows of the result table, in the sweep's variant order.
+
+    ``dask``: a scheduler address (``"tcp://host:8786"``) or a ``distributed.Client`` runs
+    the variants on that Dask cluster. Otherwise ``workers`` processes of a local pool
+    (default ``os.cpu_count()``); ``workers=1`` runs serially in this process.
+    ``progress(done, total)`` is called as variants finish.
+
+    The pool starts its workers with the multiprocessing start method ``mp_context``. The
+    default is ``"fork"`` where the platform has it and this process runs a single Python
+    thread (workers start at once, with everything imported), otherwise ``"spawn"`` (a fresh
+    interpreter: safe in a threaded parent such as a Dask client or a GUI). Under ``"spawn"``
+    or ``"forkserver"`` a script that calls this must guard its top level with
+    ``if __name__ == "__main__":``, as with any such pool.
+    """
+    specs = sweep.specs()
+    if dask is not None:
+        return _run_dask(specs, dask, progress)
+    n = len(specs)
+    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    if workers < 1:
+        raise SweepError(f"workers = {workers}: must be >= 1")
+    rows: list[dict | None] = [None] * n
+    if workers == 1 or n == 1:
+        for k, spec in enumerate(specs):
+            rows[k] = _checked(spec["name"], evaluate_variant, spec)
+            if progress is not None:
+                progress(k + 1, n)
+        return rows  # type: ignore[return-value]
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
+
+    if mp_context is None:
+        import threading
+
+        fork_ok = ("fork" in multiprocessing.get_all_start_methods()
+                   and threading.active_count() == 1)
+        mp_context = "fork" if fork_ok else "spawn"
+    ctx = multiprocessing.get_context(mp_context)
+    with ProcessPoolExecutor(max_workers=min(workers, n), mp_context=ctx) as pool:
+        futures = {pool.submit(evaluate_variant, spec): k for k, spec in enumerate(specs)}
+        try:
+            for done, fut in enumerate(as_completed(futures), start=1):
+                k = futures[fut]
+                try:
+                    rows[k] = _checked(specs[k]["name"], fut.result)
+                except SweepError as exc:
+                    if isinstance(exc.__cause__, BrokenProcessPool):
+                        raise SweepError(
+                            f"a worker process died ({exc.__cause__}); a script that runs a "
+                            "sweep on the process pool needs an `if __name__ == '__main__':` "
+                            "guard, or run it with workers=1") from exc.__cause__
+                    raise
+                if progress is not None:
+                    progress(done, n)
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+    return rows  # type: ignore[return-value]
+
+
+def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> list[dict]:
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise SweepError("a Dask scheduler needs dask.distributed: "
+                         "pip install 'pollard-pin[cluster]'") from None
+    own = not isinstance(address, Client)
+    if own:
+        try:
+            client = Client(address)
+        except (OSError, TimeoutError) as exc:
+            raise SweepError(f"cannot connect to the Dask scheduler at {address!r}: {exc}"
+                             ) from None
+    else:
+        client = address
+    try:
+        futures = client.map(evaluate_variant, specs, pure=False)
+        index = {f.key: k for k, f in enumerate(futures)}
+        rows: list[dict | None] = [None] * len(specs)
+        try:
+            for done, fut in enumerate(as_completed(futures), start=1):
+                k = index[fut.key]
+                rows[k] = _checked(specs[k]["name"], fut.result)
+                if progress is not None:
+                    progress(done, len(specs))
+        except BaseException:
+            client.cancel(futures)
+            raise
+        return rows  # type: ignore[return-value]
+    finally:
+        if own:
+            client.close()

@@ -1,0 +1,226 @@
+"""Sweep definitions: variants from a cartesian grid and explicit entries (:func:`make_sweep`)
+or a TOML grid file (:func:`load_grid`)."""
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from ..model.params import (
+    ParameterError,
+    apply_overrides,
+    params_from_dict,
+    plain_value,
+    read_params_dict,
+    read_toml,
+)
+from .evaluate import FAILURE_COLUMNS, METRIC_COLUMNS, SweepError
+
+GRID_KEYS = ("trajectory", "duration", "samples", "params", "grid", "variant")
+
+
+
+
+# --- sweep definition -------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Sweep:
+    """Variants (name, overrides) over one trajectory; build with :func:`make_sweep`."""
+
+    variants: tuple[tuple[str, dict], ...]
+    trajectory: dict  # the ``trajectory`` entry of evaluate_variant's spec
+    keys: tuple[str, ...]  # parameter columns, in order of first appearance
+    params: dict | None = None  # base thesis-unit dictionary (None: the shipped file)
+    source: str = "<python>"
+
+    def __len__(self) -> int:
+        return len(self.variants)
+
+    def specs(self) -> list[dict]:
+        """The plain-data arguments of :func:`evaluate_variant`, one per variant."""
+        return [{"name": name, "overrides": ov, "trajectory": self.trajectory,
+                 "params": self.params, "keys": list(self.keys)}
+                for name, ov in self.variants]
+
+    @property
+    def columns(self) -> list[str]:
+        return ["variant", *self.keys, *FAILURE_COLUMNS, *METRIC_COLUMNS]
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return json.dumps(plain_value(value))
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def _short_keys(keys: Sequence[str]) -> dict[str, str]:
+    """Each key without its first section (``bodies.gun.mass`` → ``gun.mass``) where that
+    stays unambiguous among ``keys``; the full key otherwise."""
+    short = {k: k.split(".", 1)[-1] for k in keys}
+    clash = {s for s in short.values() if list(short.values()).count(s) > 1}
+    return {k: (k if s in clash else s) for k, s in short.items()}
+
+
+def grid_variants(grid: Mapping[str, Sequence[Any]]) -> list[tuple[str, dict]]:
+    """The cartesian product of ``{key: [values]}`` as (name, overrides); first key slowest.
+
+    Names read ``x32=0.32 gun.mass=0.05`` (keys without their first section where unambiguous).
+    """
+    keys = list(grid)
+    label = _short_keys(keys)
+    out = []
+    for combo in itertools.product(*(grid[k] for k in keys)):
+        ov = dict(zip(keys, combo))
+        out.append((" ".join(f"{label[k]}={_fmt(v)}" for k, v in ov.items()), ov))
+    return out
+
+
+def trajectory_spec(trajectory: Any = "thesis", duration: float | None = None,
+                    samples: int | None = None) -> dict:
+    """The plain-data trajectory spec: ``"thesis"``, a CSV path or a :class:`Trajectory`.
+
+    A CSV file is read here, once, and travels as arrays, so workers need no access to it.
+    """
+    from ..io.trajectory import (
+        THESIS_DURATION,
+        THESIS_SAMPLES,
+        Trajectory,
+        from_csv,
+        thesis_trajectory,
+    )
+
+    if isinstance(trajectory, str) and trajectory == "thesis":
+        spec = {"kind": "thesis",
+                "duration": THESIS_DURATION if duration is None else duration,
+                "samples": THESIS_SAMPLES if samples is None else samples}
+        thesis_trajectory(spec["duration"], spec["samples"])  # validates (TrajectoryError)
+        return spec
+    if duration is not None or samples is not None:
+        raise SweepError("'duration' and 'samples' apply to the thesis trajectory only "
+                         f"(trajectory = {str(trajectory)!r} uses the file's own times)")
+    traj = trajectory if isinstance(trajectory, Trajectory) else from_csv(trajectory)
+    return {"kind": "arrays", "name": traj.name, "derivatives": traj.derivatives,
+            "t": np.asarray(traj.t), "poses": np.asarray(traj.poses),
+            "d_poses": np.asarray(traj.d_poses), "dd_poses": np.asarray(traj.dd_poses)}
+
+
+def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
+               variants: Iterable[tuple[str, Mapping[str, Any]] | Mapping[str, Any]] = (),
+               trajectory: Any = "thesis", duration: float | None = None,
+               samples: int | None = None, params: str | Path | Mapping | None = None,
+               source: str = "<python>") -> Sweep:
+    """Validate and build a :class:`Sweep`.
+
+    ``grid`` = {key: [values]} (cartesian product) and/or ``variants`` = [(name, overrides)]
+    or [{"name": …, key: value, …}]. Every key must name a parameter and every value must
+    have the parameter's shape and pass its rules (a :class:`SweepError` naming the variant
+    and the parameter otherwise); only whether the home pose is reachable is left to the run,
+    where it makes the variant infeasible.
+    """
+    if isinstance(params, Mapping):
+        base = copy.deepcopy(dict(params))
+    else:
+        try:
+            base = read_params_dict(params)
+        except ParameterError as exc:
+            raise SweepError(f"params: {exc}") from None
+    vlist: list[tuple[str, dict]] = []
+    if grid:
+        for key, values in grid.items():
+            if not isinstance(values, (list, tuple)):
+                raise SweepError(f"grid: '{key}' = {values!r} must be a list of values")
+            if not values:
+                raise SweepError(f"grid: '{key}' has an empty list of values")
+        vlist += grid_variants(grid)
+    for j, v in enumerate(variants):
+        if isinstance(v, Mapping):
+            v = dict(v)
+            name = v.pop("name", f"variant {j + 1}")
+            ov = v
+        else:
+            name, ov = v
+        if not isinstance(name, str) or not name:
+            raise SweepError(f"variant {j + 1}: name {name!r} must be a non-empty string")
+        vlist.append((name, dict(ov)))
+    if not vlist:
+        raise SweepError(f"{source}: the sweep has no variants: give a [grid] table and/or "
+                         "[[variant]] tables")
+    names = [n for n, _ in vlist]
+    dup = next((n for n in names if names.count(n) > 1), None)
+    if dup is not None:
+        raise SweepError(f"{source}: two variants are named {dup!r}")
+    keys: list[str] = []
+    for name, ov in vlist:
+        whole = {k for k in ov if "[" not in str(k)}
+        for key in ov:
+            root = str(key).split("[")[0]
+            if root != key and root in whole:
+                raise SweepError(f"variant {name!r}: '{key}' and '{root}' set the same "
+                                 "parameter")
+            if key not in keys:
+                keys.append(key)
+        try:
+            params_from_dict(apply_overrides(base, ov), source=name, check_home=False)
+        except ParameterError as exc:
+            raise SweepError(f"variant {name!r}: {exc}") from None
+    traj = trajectory_spec(trajectory, duration, samples)
+    return Sweep(variants=tuple(vlist), trajectory=traj, keys=tuple(keys),
+                 params=None if params is None else base, source=source)
+
+
+def _flatten(table: Mapping, prefix: str = "") -> dict:
+    """TOML tables → dotted keys: ``chain0.x32 = …`` written unquoted nests in TOML."""
+    out = {}
+    for k, v in table.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, Mapping):
+            out.update(_flatten(v, key + "."))
+        else:
+            out[key] = v
+    return out
+
+
+def load_grid(path: str | Path) -> Sweep:
+    """Read and validate a grid TOML file (format: module docstring)."""
+    path = Path(path)
+    d = read_toml(path, "grid file", SweepError)
+    unknown = [k for k in d if k not in GRID_KEYS]
+    if unknown:
+        raise SweepError(f"{path}: unknown entry '{unknown[0]}' (expected: "
+                         f"{', '.join(GRID_KEYS)}; quote dotted parameter keys inside [grid] "
+                         "or [[variant]])")
+    grid = d.get("grid", {})
+    if not isinstance(grid, Mapping):
+        raise SweepError(f"{path}: 'grid' must be a table ([grid])")
+    variants = d.get("variant", [])
+    if not isinstance(variants, list) or not all(isinstance(v, Mapping) for v in variants):
+        raise SweepError(f"{path}: 'variant' must be an array of tables ([[variant]])")
+    trajectory = d.get("trajectory", "thesis")
+    if not isinstance(trajectory, str):
+        raise SweepError(f"{path}: trajectory = {trajectory!r} must be 'thesis' or a CSV path")
+    if trajectory != "thesis":
+        trajectory = str(path.parent / trajectory)
+    params = d.get("params")
+    if params is not None:
+        if not isinstance(params, str):
+            raise SweepError(f"{path}: params = {params!r} must be a parameter file path")
+        params = path.parent / params
+    for k in ("duration", "samples"):
+        if k in d and (isinstance(d[k], bool) or not isinstance(d[k], (int, float))):
+            raise SweepError(f"{path}: {k} = {d[k]!r} must be a number")
+    from ..io.trajectory import TrajectoryError
+
+    try:
+        return make_sweep(_flatten(grid),
+                          [_flatten(v) for v in variants],
+                          trajectory=trajectory, duration=d.get("duration"),
+                          samples=d.get("samples"), params=params, source=str(path))
+    except SweepError as exc:
+        msg = str(exc)
+        raise SweepError(msg if msg.startswith(str(path)) else f"{path}: {msg}") from None
+    except (TrajectoryError, ParameterError) as exc:
+        raise SweepError(f"{path}: {exc}") from None

@@ -1,0 +1,70 @@
+"""The sweep's result table: CSV (:func:`write_csv`) and a text summary (:func:`summary`)."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ..io.atomic import atomic_open
+from ..model.names import ACTUATED
+from ..model.params import plain_value
+
+
+# --- output -----------------------------------------------------------------------------------
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)  # round-trips exactly
+    if isinstance(value, (list, tuple)):
+        return json.dumps(plain_value(value))
+    return str(value)
+
+
+def write_csv(rows: Sequence[Mapping[str, Any]], path: str | Path,
+              columns: Sequence[str] | None = None) -> None:
+    """The result table as CSV (polars, atomic write). Empty cells: not applicable or
+    infeasible; floats as their shortest exact repr, lists as JSON."""
+    import polars as pl
+
+    columns = list(columns or (rows[0].keys() if rows else ()))
+    table = pl.DataFrame({c: [None if row.get(c) is None else _cell(row.get(c)) for row in rows]
+                          for c in columns}, schema={c: pl.String for c in columns})
+    with atomic_open(path, binary=True) as f:
+        table.write_csv(f)
+
+
+def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
+    """A short text table: per variant the worst actuator torque and power, or the failure."""
+    n_ok = sum(1 for r in rows if r["feasible"])
+    lines = [f"{len(rows)} variants: {n_ok} feasible, {len(rows) - n_ok} infeasible"]
+    width = min(48, max([len("variant")] + [len(str(r["variant"])) for r in rows]))
+    lines.append(f"{'variant':{width}s}  {'max|τ| [N·m] (actuator)':>25s}  "
+                 f"{'max|P| [W]':>10s}  {'max|λ| [N]':>10s}")
+    for r in list(rows)[:max_rows]:
+        name = str(r["variant"])
+        name = name if len(name) <= width else name[:width - 1] + "…"
+        if r["feasible"]:
+            peaks = [r[f"peak_tau_{a}"] for a in ACTUATED]
+            i = int(np.argmax(peaks))
+            pmax = max(r[f"peak_power_{a}"] for a in ACTUATED)
+            fmax = max(r["peak_force_leg1"], r["peak_force_leg2"])
+            lines.append(f"{name:{width}s}  {peaks[i]:12.4g} ({ACTUATED[i]:>10s})  "
+                         f"{pmax:10.4g}  {fmax:10.4g}")
+        else:
+            where = []
+            if r["failure_sample"] is not None:
+                where.append(f"sample {r['failure_sample']}")
+            if r["failure_time"] is not None:
+                where.append(f"t = {r['failure_time']:.4g} s")
+            if r["failure_chain"]:
+                where.append(str(r["failure_chain"]))
+            lines.append(f"{name:{width}s}  INFEASIBLE: {r['failure_kind']}"
+                         + (f" ({', '.join(where)})" if where else ""))
+    if len(rows) > max_rows:
+        lines.append(f"… {len(rows) - max_rows} more in the CSV")
+    return "\n".join(lines)
