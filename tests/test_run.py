@@ -14,7 +14,7 @@ from pollard_pin.io.trajectory import ThesisTrajectory, Trajectory, thesis_traje
 from pollard_pin.kinematics.errors import SingularityError
 from pollard_pin.run import RunStats, stream_run, summary, write_csv
 
-# A pose exactly on leg 2's reach boundary (tests/test_solver_edges.py): a singular sample.
+# A pose exactly on leg 2's reach boundary (tests/kinematics/test_solver_edges.py): singular.
 ROUND_OFF = 1e-13  # × max(1, column peak)
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
                  0.1515515281768794, 0.34846838034929445, 0.04014162356854648])

@@ -98,9 +98,12 @@ def progress(label: str, enabled: bool):
 
 def params_of(args):
     """The parameters of --params (a file, possibly partial) and --set, or None (shipped)."""
-    from ..model.params import load_params, parse_assignment
+    from ..model.params import ParameterError, load_params, parse_assignment
 
-    sets = dict(parse_assignment(s) for s in getattr(args, "set", None) or ())
+    try:
+        sets = dict(parse_assignment(s) for s in getattr(args, "set", None) or ())
+    except ParameterError as exc:  # the library speaks of the override; name the flag
+        raise ParameterError(f"--set: {exc}") from None
     if args.params is None and not sets:
         return None
     return load_params(args.params, overrides=sets)

@@ -436,11 +436,11 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     """``"chain0.x32=0.35"`` or ``"home.tip=[0.5, 0, 0.2]"`` → (key, value), value as TOML."""
     key, sep, value = text.partition("=")
     if not sep or not key.strip():
-        raise ParameterError(f"--set {text!r}: expected KEY=VALUE, e.g. chain0.x32=0.35")
+        raise ParameterError(f"override {text!r}: expected KEY=VALUE, e.g. chain0.x32=0.35")
     try:
         return key.strip(), tomllib.loads(f"v = {value.strip()}")["v"]
     except tomllib.TOMLDecodeError:
-        raise ParameterError(f"--set {text!r}: the value is not a number or a list of "
+        raise ParameterError(f"override {text!r}: the value is not a number or a list of "
                              "numbers") from None
 
 

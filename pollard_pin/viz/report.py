@@ -28,11 +28,10 @@ from __future__ import annotations
 
 import json
 import math
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
+from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis
 from ..dynamics.averages import time_mean, time_rms
 
 SIZING_FIELDS = (  # key, heading, unit
@@ -76,90 +75,14 @@ def sizing(columns: dict, actuated) -> dict:
     return {"actuators": acts, "spherical_joints": joints}
 
 
-def _agreement(ours, ref) -> dict:
-    ours, ref = np.asarray(ours, dtype=float), np.asarray(ref, dtype=float)
-    diff = float(np.max(np.abs(ours - ref)))
-    scale = float(np.max(np.abs(ref)))
-    return {"max_abs_diff": diff, "reference_peak": scale,
-            "relative": diff / scale if scale > 0 else float("nan")}
-
-
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
-
-
-def _loads(robot, result):
-    """The run's joint loads (docs/model.md §17), computed here if the run did not keep them."""
-    if getattr(result, "loads", None) is not None:
-        return result.loads
-    from ..dynamics.loads import joint_loads
-
-    return joint_loads(robot, result.ik, result.dynamics)
-
-
-def cross_check_thesis(robot, result) -> dict:
-    """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
-    from ..analytic import closed_form as ik_mod
-    from ..crosscheck import euler_lagrange as lagrange
-
-    traj, ik, dyn = result.trajectory, result.ik, result.dynamics
-    q_th, v_th, a_th = ik_mod.inverse_kinematics(robot.params, traj.poses, traj.d_poses,
-                                                 traj.dd_poses)
-    cols = [ik_mod.JOINTS.index(n) for n in ik.joint_names]
-    out = {
-        "joint_position_rad": {"max_abs_diff": float(np.max(np.abs(_wrap(ik.q - q_th[:, cols]))))},
-        "joint_velocity": _agreement(ik.v, v_th[:, cols]),
-        "joint_acceleration": _agreement(ik.a, a_th[:, cols]),
-    }
-    if dyn is not None:
-        tau_th = lagrange.inverse_dynamics(robot.params, traj.poses, traj.d_poses,
-                                           traj.dd_poses)["tau"]
-        out["torque"] = _agreement(dyn.tau, tau_th)
-        from ..crosscheck import newton_euler
-
-        ne, loads = newton_euler.joint_loads(robot.params, traj.poses, traj.d_poses,
-                                             traj.dd_poses), _loads(robot, result)
-        out["joint_force"] = _agreement(loads.force, ne["force"])
-        out["joint_moment"] = _agreement(loads.moment, ne["moment"])
-    return out
-
-
-def cross_check_mujoco(robot, result) -> dict:
-    """Pinocchio vs MuJoCo: actuator torques and closure forces (skipped without MuJoCo)."""
-    try:
-        import mujoco  # noqa: F401
-    except ImportError as exc:
-        return {"available": False,
-                "reason": f"MuJoCo is not installed ({exc}); pip install mujoco to compare"}
-    from ..crosscheck import mujoco as peer
-
-    ik, dyn = result.ik, result.dynamics
-    cols = [list(ik.joint_names).index(n) for n in peer.JOINTS]
-    with tempfile.TemporaryDirectory() as tmp:
-        urdf = Path(tmp) / "pollard.urdf"
-        urdf.write_text(robot.urdf)  # the model actually used, whatever its parameters
-        mj = peer.inverse_dynamics_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
-                                          urdf_path=urdf)
-        from ..crosscheck.mujoco_loads import joint_loads_mujoco
-
-        mjl = joint_loads_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
-                                 mj["closure_forces"], built=peer.cached_model(urdf))
-    act = [list(peer.ACTUATED).index(n) for n in robot.actuated]
-    loads, back = _loads(robot, result), [list(peer.JOINTS).index(n) for n in ik.joint_names]
-    return {"available": True,
-            "torque": _agreement(dyn.tau, mj["tau"][:, act]),
-            "closure_force": _agreement(dyn.closure_forces, mj["closure_forces"]),
-            "joint_force": _agreement(loads.force, mjl["force"][:, back]),
-            "joint_moment": _agreement(loads.moment, mjl["moment"][:, back]),
-            "mujoco_closure_residual_m": float(np.max(mj["residual"]))}
-
-
 def sizing_report(robot, result, cross_check: bool = True) -> dict:
     """The whole report for a :class:`~pollard_pin.run.RunResult` as a JSON-ready dict:
     ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
     ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
     if result.dynamics is None:
         raise ValueError("the report needs the dynamics: run_pipeline(..., dynamics=True)")
+    from ..dynamics.loads import joint_loads
+
     ik, traj = result.ik, result.trajectory
     out = {
         "trajectory": {"name": traj.name, "samples": len(ik), "t0": float(ik.t[0]),
@@ -169,7 +92,7 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
         "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
                                                         "peak_time": "s"},
         "sizing": sizing(result.columns(), robot.actuated),
-        "bearings": _loads(robot, result).bearing_table(),
+        "bearings": joint_loads(robot, result.ik, result.dynamics).bearing_table(),
     }
     out["units"] |= {k: ("N·m" if k in ("peak_bending", "peak_torque") else "N")
                      for k, _ in BEARING_FIELDS} | {"peak_force": "N", "equivalent_force": "N"}

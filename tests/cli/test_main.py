@@ -15,7 +15,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.cli import main
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 PACKAGE = ROOT / "pollard_pin"
 

@@ -15,7 +15,7 @@ from pollard_pin.dynamics import actuators as A
 from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.io.table import read_result
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "actuators.toml"
 RATINGS = tomllib.loads(EXAMPLE.read_text())  # read directly, not through the loader
 NAMES = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")

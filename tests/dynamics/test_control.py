@@ -19,7 +19,7 @@ from pollard_pin.dynamics.plant import Plant, PlantError, PlantErrors
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 
 PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
-MOTORS = Path(__file__).resolve().parents[1] / "examples" / "actuators.toml"
+MOTORS = Path(__file__).resolve().parents[2] / "examples" / "actuators.toml"
 FIGURE8 = MOTORS.parent / "figure8.csv"
 
 

@@ -36,7 +36,7 @@ from pollard_pin.model.build import (
 )
 from pollard_pin.model.params import ParameterError, load_params, params_from_dict, read_params_dict
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 MODELS = REPO / "models"
 URDF_PATH = MODELS / "pollard.urdf"
 SRDF_PATH = MODELS / "pollard.srdf"

@@ -144,7 +144,7 @@ def test_spawned_pool_equals_pool(sweep, pool_rows):
 def test_example_grid_file_is_valid():
     from pathlib import Path
 
-    s = load_grid(Path(__file__).parents[1] / "examples" / "sweep.toml")
+    s = load_grid(Path(__file__).parents[2] / "examples" / "sweep.toml")
     assert len(s) == 16 and s.trajectory["samples"] == 401
 
 
