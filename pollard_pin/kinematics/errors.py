@@ -39,6 +39,9 @@ class KinematicsError(RuntimeError):
             return out + (m.group(3) + str(int(m.group(4)) + offset) if m.group(3) else "")
 
         other = copy.copy(self)
+        # Its own attributes: with tblib installed (dask.distributed does), copy.copy of an
+        # exception shares the original's __dict__.
+        other.__dict__ = dict(vars(self))
         other.detail = _SAMPLE_WORDS.sub(move, self.detail)
         other.sample = None if self.sample is None else self.sample + offset
         where = "" if other.sample is None else f"sample {other.sample}" + (
