@@ -24,12 +24,26 @@ from .common import (
 def run(args) -> int:
     import numpy as np
 
-    from ..dynamics.control import Gains, MeasurementNoise, simulate_tracking
+    from ..dynamics.control import Gains
     from ..dynamics.inverse import JointLosses
     from ..dynamics.plant import PlantErrors
+    from ..dynamics.tracking import (
+        MeasurementNoise,
+        default_step,
+        estimated_wall,
+        integration_steps,
+        simulate_tracking,
+        step_used,
+    )
     from ..io.table import write_table
 
     check_destination(args.out)
+    if args.dt is None:
+        args.dt = default_step(args.control_period)
+    elif args.dt > args.control_period:
+        raise UsageError(f"--dt {args.dt:g} s is longer than --control-period "
+                         f"{args.control_period:g} s: each control period is integrated in "
+                         "RK4 steps of at most --dt; give --dt <= --control-period")
     gains = Gains(args.wn, args.zeta)
     noise = (MeasurementNoise(args.noise, args.velocity_noise, args.seed)
              if args.noise or args.velocity_noise else None)
@@ -59,12 +73,28 @@ def run(args) -> int:
     errors = PlantErrors(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
     start = None if args.start == "path" else robot.home()
+    duration = float(traj.t[-1] - traj.t[0])
+    steps = integration_steps(duration, args.dt, args.control_period)
+    guess = estimated_wall(duration, args.dt, args.control_period)
+    if steps > STEP_BUDGET and not args.force:
+        raise UsageError(
+            f"{steps:,} RK4 steps ({duration:g} s, --control-period {args.control_period:g} s, "
+            f"--dt {args.dt:g} s) would take about {_duration(guess)}, over the budget of "
+            f"{STEP_BUDGET:,} steps: give --force to run it anyway, or a longer "
+            "--control-period or --dt")
+    bar = progress("simulating", not args.quiet)
+
+    def report(done: int, total: int) -> None:
+        if done == 1:  # the inputs passed every check: the run starts
+            print(f"simulating {duration:g} s: {steps:,} RK4 steps, about {_duration(guess)}",
+                  file=sys.stderr)
+        bar(done, total)
+
     t0 = time.perf_counter()
     result = simulate_tracking(
         robot, traj, args.controller, errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
-        start=start, known_losses=known,
-        progress=progress("simulating", len(traj) >= 500 and not args.quiet))
+        start=start, known_losses=known, progress=None if args.quiet else report)
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
@@ -72,7 +102,8 @@ def run(args) -> int:
             "summary": result.summary()}
     rows = write_table(args.out, result.columns(), metadata=meta)
     lines = [f"{args.controller} on {traj.name}: {len(traj)} samples over "
-             f"{traj.t[-1] - traj.t[0]:.4g} s, dt {args.dt:g} s, control period "
+             f"{duration:.4g} s, RK4 step {step_used(args.dt, args.control_period):g} s, "
+             "control period "
              f"{args.control_period:g} s, ω {args.wn:g} rad/s, ζ {args.zeta:g}",
              *result.summary_lines(), f"wall time {wall:.2f} s (desired trajectory included)"]
     print("\n".join(lines), file=sys.stderr if args.out == STDOUT else sys.stdout)
@@ -80,20 +111,37 @@ def run(args) -> int:
     return 0
 
 
+STEP_BUDGET = 500_000  # RK4 steps a run may take without --force (25 × the default run)
+
+
+def _duration(seconds: float) -> str:
+    """'40 s', '12 min', '3.2 h': a rough wall time for the user."""
+    if seconds < 120:
+        return f"{seconds:.2g} s"
+    return f"{seconds / 60:.3g} min" if seconds < 7200 else f"{seconds / 3600:.3g} h"
+
+
 def add_parser(sub, parents) -> None:
     p = command(sub, parents, "simulate", "closed-loop simulation: a controller tracking a "
                 "trajectory on a (perturbed) plant → CSV or Parquet", run)
     trajectory_args(p)
-    p.add_argument("--controller", choices=("computed-torque", "pd"), default="computed-torque",
-                   help="computed-torque (nominal feedforward + inertia-scaled PD) or pd (PD + "
-                        "gravity compensation)")
+    p.add_argument("--controller", choices=("computed-torque", "feedforward-pd", "pd"),
+                   default="computed-torque",
+                   help="computed-torque (the classical law at the measured state), "
+                        "feedforward-pd (reference feedforward + inertia-scaled PD) or pd (PD + "
+                        "gravity compensation); docs/model.md §18")
     p.add_argument("--wn", type=nonnegative, default=60.0, metavar="RAD/S",
                    help="natural frequency ω of the actuator error dynamics")
     p.add_argument("--zeta", type=nonnegative, default=1.0, metavar="Z",
                    help="damping ratio ζ of the actuator error dynamics")
-    p.add_argument("--dt", type=positive, default=1e-3, metavar="S", help="RK4 step")
+    p.add_argument("--dt", type=positive, default=None, metavar="S",
+                   help="longest RK4 step, at most --control-period (default: 0.001 or the "
+                        "control period, the shorter)")
     p.add_argument("--control-period", type=positive, default=1e-3, metavar="S",
-                   help="controller period (torque held in between)")
+                   help="controller period, torque held in between (default: 0.001)")
+    p.add_argument("--force", action="store_true",
+                   help=f"run even past the budget of {STEP_BUDGET:,} RK4 steps (default: "
+                        "refuse, with an estimate of the time)")
     p.add_argument("--torque-limit", type=positive, nargs="+", default=None, metavar="N·M",
                    help="|τ| limit: one value for all actuators or six (default: none)")
     p.add_argument("--payload", type=nonnegative, default=0.0, metavar="KG",

@@ -1,10 +1,13 @@
 """Closed-loop forward dynamics and replay (docs/model.md §14).
 
 ``pin.constraintDynamics`` (exact, proximal μ = 0) with Baumgarte closure stabilisation and a
-fixed-step RK4 integrator; :func:`trajectory_torques` replays a trajectory's own torques.
+fixed-step RK4 integrator; :func:`trajectory_torques` replays a trajectory's own torques. The
+caller's model is never changed: rotor inertia and Baumgarte gains go on copies
+(:func:`robot_copy`).
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,34 +30,46 @@ class SimulationResult:
     closure_residual: np.ndarray  # max |p_A − p_B| component [m]
 
 
+def robot_copy(robot: Robot, model: pin.Model | None = None,
+               baumgarte: tuple[float, float] | None = None) -> Robot:
+    """``robot`` with its own ``model`` (default: a copy of ``robot.model``), data and constraint
+    models and datas (with Baumgarte gains ``(Kp, Kd)`` if given): changing any of them leaves
+    ``robot`` as it was."""
+    model = pin.Model(robot.model) if model is None else model
+    cms = [pin.RigidConstraintModel(cm) for cm in robot.constraint_models]
+    if baumgarte is not None:
+        for cm in cms:
+            cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd = (
+                float(x) for x in baumgarte)
+    return dataclasses.replace(robot, model=model, data=model.createData(),
+                               constraint_models=cms,
+                               constraint_datas=[cm.createData() for cm in cms])
+
+
 def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
     """Joint accelerations (12,) under actuator torques ``tau_act`` (6,) with the loops closed.
 
     ``losses`` (:class:`JointLosses`) subtract friction and add the rotor inertia (armature) to
-    the mass matrix: the inverse of ``inverse_dynamics_sample(robot, q, v, a, losses)``.
+    the mass matrix: the inverse of ``inverse_dynamics_sample(robot, q, v, a, losses)``. With
+    rotor inertia the solve runs on a copy of the model (``robot.model`` is not changed).
     """
-    model, data = robot.model, robot.data
-    tau = np.zeros(model.nv)
+    tau = np.zeros(robot.model.nv)
     tau[robot.actuated_v] = tau_act
+    if losses is not None:
+        tau -= losses.torque(v, np.zeros(robot.model.nv))  # friction; armature·a is on M below
+        armature = np.broadcast_to(np.asarray(losses.armature, dtype=float), (robot.model.nv,))
+        if np.any(armature):
+            # Rotor inertia on the mass-matrix diagonal (Pinocchio's model.armature, also seen
+            # by rnea): the convention of inverse_dynamics(..., losses), on a copy.
+            robot = robot_copy(robot)
+            robot.model.armature = robot.model.armature + armature
+            settings = None
+    model, data = robot.model, robot.data
     if settings is None:  # a standalone call: constraintDynamics needs its workspace sized
         pin.initConstraintDynamics(model, data, robot.constraint_models, robot.constraint_datas)
         settings = pin.ProximalSettings(1e-14, 0.0, 1)
-    armature = None
-    if losses is not None:
-        tau -= losses.torque(v, np.zeros(model.nv))  # friction; armature·a is on M below
-        armature = np.broadcast_to(np.asarray(losses.armature, dtype=float), (model.nv,))
-    if armature is None or not np.any(armature):
-        return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
-                                      robot.constraint_datas, settings).copy()
-    # Rotor inertia on the mass-matrix diagonal (Pinocchio's model.armature, also seen by
-    # rnea), for this call only: the same convention as inverse_dynamics(..., losses).
-    saved = model.armature.copy()
-    model.armature = saved + armature
-    try:
-        return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
-                                      robot.constraint_datas, settings).copy()
-    finally:
-        model.armature = saved
+    return pin.constraintDynamics(model, data, q, v, tau, robot.constraint_models,
+                                  robot.constraint_datas, settings).copy()
 
 
 def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
@@ -62,18 +77,10 @@ def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
     """Integrate the closed-loop dynamics under ``torques(t, q, v) → (6,)`` with fixed-step RK4.
 
     Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
-    ``Kd`` default to a critically damped 20 rad/s correction.
+    ``Kd`` default to a critically damped 20 rad/s correction. They are set on the run's own
+    constraint models and data: ``robot`` is not changed (its model is shared, read only).
     """
-    saved = [(cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd)
-             for cm in robot.constraint_models]
-    try:
-        for cm in robot.constraint_models:
-            cm.m_baumgarte_parameters.Kp = float(baumgarte[0])
-            cm.m_baumgarte_parameters.Kd = float(baumgarte[1])
-        return _rk4(robot, torques, q0, v0, duration, dt)
-    finally:  # the robot's constraint models are left as they were
-        for cm, (kp, kd) in zip(robot.constraint_models, saved):
-            cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd = kp, kd
+    return _rk4(robot_copy(robot, robot.model, baumgarte), torques, q0, v0, duration, dt)
 
 
 def _rk4(robot: Robot, torques, q0, v0, duration: float, dt: float) -> SimulationResult:

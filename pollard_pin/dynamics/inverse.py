@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from ..kinematics.closure import closure_drift
 from ..kinematics.errors import SingularityError
 from ..kinematics.ik import IKResult
 from ..kinematics.singularity import SIGMA_FLOOR, actuator_velocity_map, sigma_range, solve_stack
@@ -203,6 +204,32 @@ def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
     model, data = robot.model, robot.data
     Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
     N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
+    return N.T @ _mass_matrix(model, data, q) @ N
+
+
+def _mass_matrix(model, data, q) -> np.ndarray:
     M = pin.crba(model, data, q)
-    M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
-    return N.T @ M @ N
+    return np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
+
+
+def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None):
+    """(M_red (6, 6), h_red (6,)): the closed-loop dynamics in actuator coordinates,
+    τ = M_red(q)·θ̈ + h_red(q, v), at a closed state (q, v) (docs/model.md §18).
+
+    M_red = NᵀMN; h_red = Nᵀ(M a₀ + h(q, v) + losses) with a₀ the tree acceleration at θ̈ = 0
+    on the loops (Jc a₀ = −J̇c v, a₀ = 0 on the actuators): the inverse dynamics of §13 split
+    into its part linear in θ̈ and the rest. ``losses``: friction (and rotor inertia) beyond
+    ``robot.model.armature``."""
+    model, data = robot.model, robot.data
+    ia, ip = robot.actuated_v, robot.passive_v
+    Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
+    N = actuator_velocity_map(Jc, ia, ip)
+    a0 = np.zeros(model.nv)
+    a0[ip] = -np.linalg.solve(Jc[:, ip], closure_drift(robot, q, v))
+    tree = pin.rnea(model, data, q, v, a0).copy()
+    if losses is not None:
+        tree += losses.torque(v, a0)
+    M = _mass_matrix(model, data, q)
+    if losses is not None and np.any(losses.armature):
+        M = M + np.diag(np.broadcast_to(np.asarray(losses.armature, dtype=float), (model.nv,)))
+    return N.T @ M @ N, N.T @ tree

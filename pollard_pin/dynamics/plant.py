@@ -15,6 +15,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..model.build import Robot, constraint_residual
+from .forward import robot_copy
 from .inverse import JointLosses, inverse_dynamics_sample
 
 BAUMGARTE = (400.0, 40.0)  # Kp [1/s²], Kd [1/s]: critically damped 20 rad/s (docs/model.md §14)
@@ -67,10 +68,7 @@ def perturbed_robot(robot: Robot, errors: PlantErrors) -> Robot:
     if errors.losses is not None:
         model.armature = model.armature + np.broadcast_to(
             np.asarray(errors.losses.armature, dtype=float), (model.nv,))
-    cms = [pin.RigidConstraintModel(cm) for cm in robot.constraint_models]
-    return dataclasses.replace(robot, model=model, data=model.createData(),
-                               constraint_models=cms,
-                               constraint_datas=[cm.createData() for cm in cms])
+    return robot_copy(robot, model)
 
 
 class Plant:
@@ -89,7 +87,7 @@ class Plant:
             raise PlantError(f"Baumgarte gains must be finite and >= 0, got {baumgarte}")
         self.nominal = robot
         self.robot = perturbed_robot(robot, self.errors)
-        for cm in self.robot.constraint_models:
+        for cm in self.robot.constraint_models:  # its own (perturbed_robot's copies)
             cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd = kp, kd
         losses = self.errors.losses
         self.friction = None if losses is None else dataclasses.replace(losses, armature=0.0)

@@ -76,6 +76,19 @@ def _check_regular(robot: Robot, q: np.ndarray, act: np.ndarray) -> np.ndarray:
         amount=SIGMA_FLOOR * smax - smin)
 
 
+def closure_drift(robot: Robot, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """γ_c = J̇c(q, v)·v (6,): the closures' acceleration drift, a_A⁰ − a_B⁰ per closure at
+    q̈ = 0 (classical point accelerations, world axes), so that a motion on the loops has
+    Jc·q̈ = −γ_c (docs/model.md §11)."""
+    model, data = robot.model, robot.data
+    pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
+    lwa = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    return np.concatenate([
+        pin.getFrameClassicalAcceleration(model, data, robot.frame_id(c.frame_a), lwa).linear
+        - pin.getFrameClassicalAcceleration(model, data, robot.frame_id(c.frame_b), lwa).linear
+        for c in robot.closures])
+
+
 def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
     """World placement of the ``tip`` frame."""
     pin.framesForwardKinematics(robot.model, robot.data, q)

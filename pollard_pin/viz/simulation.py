@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..dynamics.control import ControlError
+from ..dynamics.tracking import tracking_summary
 from ..model.names import ACTUATED
 from .plots import COLOURS, LABELS, figure_maker, finish_axes, plot_line
 
@@ -30,20 +31,17 @@ def check_simulation_columns(cols: dict, source: str = "the table") -> None:
 
 
 def simulation_summary(cols: dict, metadata: dict | None = None) -> dict:
-    """Max and RMS tool errors, peak |τ| per actuator, settings (JSON-ready)."""
+    """Max and time-weighted RMS tool errors, peak |τ| per actuator, settings (JSON-ready):
+    :func:`~pollard_pin.dynamics.tracking.tracking_summary` of the table."""
     check_simulation_columns(cols)
-    e, o = np.asarray(cols["tip_position_error"]), np.asarray(cols["tip_orientation_error"])
     meta = dict(metadata or {})
     summary = meta.pop("summary", {})
-    return {"samples": int(len(e)), "duration": float(cols["t"][-1] - cols["t"][0]),
-            "max_tip_position_error": float(e.max()),
-            "rms_tip_position_error": float(np.sqrt(np.mean(e ** 2))),
-            "max_tip_orientation_error": float(o.max()),
-            "rms_tip_orientation_error": float(np.sqrt(np.mean(o ** 2))),
-            "peak_torque": {c[4:]: float(np.abs(cols[c]).max())
-                            for c in cols if c.startswith("tau_")},
-            "max_closure_residual": float(np.max(cols["closure_residual"])),
-            "saturation_time": summary.get("saturation_time"),
+    t = np.asarray(cols["t"])
+    return {"samples": int(len(t)), "duration": float(t[-1] - t[0]),
+            **tracking_summary(t, cols["tip_position_error"], cols["tip_orientation_error"],
+                               {c[4:]: cols[c] for c in cols if c.startswith("tau_")},
+                               np.max(cols["closure_residual"]),
+                               summary.get("saturation_time")),
             "settings": meta}
 
 

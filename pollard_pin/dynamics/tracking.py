@@ -1,0 +1,374 @@
+"""Closed-loop simulation of a tool trajectory (docs/model.md §18): a controller of
+:mod:`.control` drives the plant (:class:`~pollard_pin.dynamics.plant.Plant`) along the
+reference.
+
+* Sensing (:func:`sensed_state`): the controller sees what the robot measures, the six actuator
+  angles and rates (with optional seeded noise); the passive joints come from forward
+  kinematics of those angles, their rates from the closed-loop velocity map.
+* :func:`simulate_tracking`: the plant integrated by fixed-step RK4 under the controller's
+  torque, held over each control period (zero-order hold), saturated per actuator. One row per
+  sample time of the input trajectory; time-weighted RMS errors (:func:`tracking_summary`).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import pinocchio as pin
+
+from ..analytic.taskspace import rotation
+from ..kinematics.closure import solve_closure, tool_pose
+from ..kinematics.singularity import actuator_velocity_map
+from ..model.build import Robot, constraint_jacobian
+from .averages import time_rms
+from .control import (
+    CONTROL_PERIOD,
+    ControlError,
+    Controller,
+    DesiredTrajectory,
+    Gains,
+    desired_trajectory,
+    make_controller,
+)
+from .forward import SimulationError
+from .inverse import JointLosses
+from .plant import BAUMGARTE, Plant, PlantErrors
+
+DT = 1e-3  # s, longest RK4 step
+# Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
+# controllers), for estimates only: measured on a 2-core machine (scripts/benchmark.py).
+STEP_SECONDS, TICK_SECONDS = 60e-6, 350e-6
+START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
+
+
+@dataclass(frozen=True)
+class MeasurementNoise:
+    """Gaussian noise on the measured actuator angles [rad] and rates [rad/s], seeded."""
+
+    position: float = 0.0
+    velocity: float = 0.0
+    seed: int | None = 0
+
+    def __post_init__(self):
+        for name, value in (("position noise", self.position),
+                            ("velocity noise", self.velocity)):
+            if not (math.isfinite(value) and value >= 0):
+                raise ControlError(f"{name} standard deviation must be >= 0, got {value}")
+
+
+def sensed_state(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
+                 q_guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(q (12,), v (12,)) from the measured actuator angles ``theta`` and rates ``dtheta`` (6,):
+    the passive joints by forward kinematics (:func:`solve_closure`, warm-started at
+    ``q_guess``, loops closed to 1e-12 m), their rates by v = N(q)·θ̇ (docs/model.md §12)."""
+    q = solve_closure(robot, theta, q_guess)
+    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                             robot.constraint_datas, q)
+    return q, actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v) @ dtheta
+
+
+def tracking_summary(t, tip_position_error, tip_orientation_error, torques: dict,
+                     max_closure_residual: float, saturation_time: float | None) -> dict:
+    """Max and time-weighted RMS (√(∫e² dt / T), docs/model.md §13) tool errors, peak |τ| per
+    actuator (``torques``: name → (N,)), saturation time and closure residual (JSON-ready)."""
+    e, o = np.asarray(tip_position_error), np.asarray(tip_orientation_error)
+    return {"max_tip_position_error": float(e.max()),
+            "rms_tip_position_error": float(time_rms(t, e)),
+            "max_tip_orientation_error": float(o.max()),
+            "rms_tip_orientation_error": float(time_rms(t, o)),
+            "peak_torque": {n: float(np.abs(x).max()) for n, x in torques.items()},
+            "saturation_time": None if saturation_time is None else float(saturation_time),
+            "max_closure_residual": float(max_closure_residual)}
+
+
+@dataclass
+class TrackingResult:
+    """A closed-loop simulation, one row per output sample (the input trajectory's times)."""
+
+    t: np.ndarray
+    q: np.ndarray  # (N, 12) plant joint positions [rad]
+    v: np.ndarray  # (N, 12) [rad/s]
+    a: np.ndarray  # (N, 12) plant accelerations under the applied torque [rad/s²]
+    tau: np.ndarray  # (N, 6) applied (held, saturated) actuator torques [N·m]
+    tip: np.ndarray  # (N, 3) tool-tip position [m]
+    tip_desired: np.ndarray  # (N, 3) [m]
+    tip_position_error: np.ndarray  # (N,) |p − p_d| [m]
+    tip_orientation_error: np.ndarray  # (N,) |log(R R_dᵀ)| [rad]
+    closure_residual: np.ndarray  # (N,) max |p_A − p_B| component [m]
+    joint_names: tuple[str, ...]
+    actuated: tuple[str, ...]
+    saturation_time: float = 0.0  # s during which at least one actuator was saturated
+    max_closure_residual: float = 0.0  # over every control tick [m]
+    steps: int = 0  # RK4 steps
+    wall: float = 0.0  # s spent integrating
+    settings: dict = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        cols = {"t": self.t}
+        cols.update({n: self.q[:, i] for i, n in enumerate(self.joint_names)})
+        cols.update({f"d_{n}": self.v[:, i] for i, n in enumerate(self.joint_names)})
+        cols.update({f"dd_{n}": self.a[:, i] for i, n in enumerate(self.joint_names)})
+        cols.update({f"tau_{n}": self.tau[:, i] for i, n in enumerate(self.actuated)})
+        cols.update({c: self.tip[:, i] for i, c in enumerate("xyz")})
+        cols.update({f"desired_{c}": self.tip_desired[:, i] for i, c in enumerate("xyz")})
+        cols.update({"tip_position_error": self.tip_position_error,
+                     "tip_orientation_error": self.tip_orientation_error,
+                     "closure_residual": self.closure_residual})
+        return cols
+
+    def summary(self) -> dict:
+        return tracking_summary(self.t, self.tip_position_error, self.tip_orientation_error,
+                                dict(zip(self.actuated, self.tau.T)),
+                                self.max_closure_residual, self.saturation_time)
+
+    def summary_lines(self) -> list[str]:
+        s = self.summary()
+        return [f"tool-tip position error: max {s['max_tip_position_error']:.3g} m, "
+                f"RMS {s['rms_tip_position_error']:.3g} m",
+                f"tool orientation error: max {s['max_tip_orientation_error']:.3g} rad, "
+                f"RMS {s['rms_tip_orientation_error']:.3g} rad",
+                "peak |τ| [N·m]: " + ", ".join(f"{n} {p:.4g}"
+                                               for n, p in s["peak_torque"].items()),
+                f"saturated {s['saturation_time']:.4g} s; max closure residual "
+                f"{s['max_closure_residual']:.3g} m",
+                f"{self.steps} RK4 steps in {self.wall:.2f} s wall"]
+
+
+def _start_state(plant: Plant, desired: DesiredTrajectory, trajectory, start):
+    """(q0, v0): the reference's start, or ``start`` = q0 (at rest) checked against the path."""
+    if start is None:
+        return desired.q[0].copy(), desired.v[0].copy()
+    q0 = np.asarray(start, dtype=float).reshape(-1)
+    if q0.shape != (plant.robot.model.nq,) or not np.all(np.isfinite(q0)):
+        raise ControlError(f"start configuration must be {plant.robot.model.nq} finite joint "
+                           f"angles, got shape {q0.shape}")
+    residual = plant.closure_residual(q0)
+    if residual > 1e-9:
+        raise ControlError(f"start configuration does not close the loops: residual "
+                           f"{residual:.3g} m (> 1e-09 m)")
+    M = tool_pose(plant.nominal, q0)
+    p_err = float(np.linalg.norm(M.translation - trajectory.poses[0, :3]))
+    o_err = float(np.linalg.norm(pin.log3(M.rotation @ rotation(trajectory.poses[0]).T)))
+    rate = float(np.abs(trajectory.d_poses[0]).max())
+    if rate > START_TOL >= max(p_err, o_err):
+        # On the path but moving: say so, rather than "off the path" at 1e-16 m.
+        raise ControlError(
+            f"trajectory starts moving (pose rate {rate:.4g} > {START_TOL:g}) but a given start "
+            "configuration is at rest: start the trajectory at rest or start on the path")
+    if p_err > START_TOL or o_err > START_TOL or rate > START_TOL:
+        raise ControlError(
+            f"trajectory starts off the path: its first pose is {p_err:.4g} m and "
+            f"{o_err:.4g} rad from the start configuration's tool pose, with rate "
+            f"{rate:.4g} (the robot starts at rest; tolerance {START_TOL:g})")
+    return q0, np.zeros(plant.robot.model.nv)
+
+
+def default_step(control_period: float) -> float:
+    """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
+    return min(DT, control_period) if control_period > 0 else DT
+
+
+def check_steps(dt: float, control_period: float) -> None:
+    """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
+    for name, value in (("time step", dt), ("control period", control_period)):
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            raise ControlError(f"{name} must be > 0 s, got {value}")
+    if dt > control_period * (1 + 1e-9):
+        raise ControlError(
+            f"time step {dt:g} s is longer than the control period {control_period:g} s: each "
+            "control period is integrated in equal RK4 steps of at most the time step, so the "
+            "step would be the period; give a time step <= the control period")
+
+
+def integration_steps(duration: float, dt: float, control_period: float) -> int:
+    """The number of RK4 steps :func:`simulate_tracking` takes over ``duration`` [s], each
+    control period in ⌈T/dt⌉ equal steps (computed without building the grid; output samples
+    off that grid add one step each)."""
+    check_steps(dt, control_period)
+    periods = math.ceil(duration / control_period - 1e-9)
+    return int(periods * math.ceil(control_period / dt - 1e-9))
+
+
+def estimated_wall(duration: float, dt: float, control_period: float) -> float:
+    """A rough wall time [s] of :func:`simulate_tracking` over ``duration`` [s] (reference and
+    output excluded), from :data:`STEP_SECONDS` and :data:`TICK_SECONDS`."""
+    ticks = math.ceil(duration / control_period - 1e-9)
+    return (integration_steps(duration, dt, control_period) * STEP_SECONDS
+            + ticks * TICK_SECONDS)
+
+
+def step_used(dt: float, control_period: float) -> float:
+    """The RK4 step [s] inside a control period: T / ⌈T/dt⌉ (≤ dt)."""
+    check_steps(dt, control_period)
+    return control_period / math.ceil(control_period / dt - 1e-9)
+
+
+def _nearest(sorted_points: np.ndarray, x: np.ndarray) -> np.ndarray:
+    j = np.clip(np.searchsorted(sorted_points, x), 1, len(sorted_points) - 1)
+    return np.where(np.abs(sorted_points[j - 1] - x) <= np.abs(sorted_points[j] - x), j - 1, j)
+
+
+def _grid(ticks: np.ndarray, samples: np.ndarray, dt: float):
+    """Integration breakpoints: each control interval split in equal steps ≤ dt, output sample
+    times inserted. Returns (points, tick flag, sample index or −1)."""
+    pts = []
+    for a, b in zip(ticks[:-1], ticks[1:]):
+        n = max(1, int(math.ceil((b - a) / dt - 1e-9)))
+        pts.append(a + (b - a) * np.arange(n) / n)
+    pts.append(ticks[-1:])
+    pts = np.concatenate(pts)
+    is_tick = np.zeros(len(pts), bool)
+    is_tick[np.searchsorted(pts, ticks)] = True
+    # Snap each sample to a breakpoint within 1e-9·dt, else insert it.
+    new = np.abs(pts[_nearest(pts, samples)] - samples) > 1e-9 * dt
+    if new.any():
+        pts = np.concatenate([pts, samples[new]])
+        is_tick = np.concatenate([is_tick, np.zeros(int(new.sum()), bool)])
+        order = np.argsort(pts, kind="stable")
+        pts, is_tick = pts[order], is_tick[order]
+    near = _nearest(pts, samples)
+    sample = np.full(len(pts), -1)
+    sample[near] = np.arange(len(samples))
+    return pts, is_tick, sample
+
+
+def _torque_limit(torque_limit) -> np.ndarray | None:
+    if torque_limit is None:
+        return None
+    if np.size(torque_limit) not in (1, 6):
+        raise ControlError(f"torque limit: give one value or 6 (one per actuator), got "
+                           f"{np.size(torque_limit)}")
+    limit = np.broadcast_to(np.asarray(torque_limit, dtype=float), (6,)).copy()
+    if not (np.all(np.isfinite(limit)) and np.all(limit > 0)):
+        raise ControlError(f"torque limits must be > 0 N·m, got {limit.tolist()}")
+    return limit
+
+
+def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "computed-torque",
+                      errors: PlantErrors | None = None, *, gains: Gains = Gains(),
+                      dt: float | None = None, control_period: float = CONTROL_PERIOD,
+                      torque_limit=None, noise: MeasurementNoise | None = None, start=None,
+                      baumgarte: tuple[float, float] = BAUMGARTE,
+                      desired: DesiredTrajectory | None = None, curve=None,
+                      known_losses: JointLosses | None = None,
+                      progress: Callable[[int, int], None] | None = None) -> TrackingResult:
+    """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
+    ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
+
+    ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
+    :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``errors``: how
+    the plant differs from ``robot`` (payload, mass error, losses). ``dt``: longest RK4 step
+    [s], at most ``control_period`` [s] (default: :data:`DT` or the period, the shorter); the
+    torque is computed at each tick and held;
+    ``torque_limit`` [N·m]: a scalar or one per actuator, |τ| clipped to it; ``noise``:
+    measurement noise on the actuator angles and rates. ``start``: None (on the path, at the
+    reference's state) or a closed configuration at rest whose tool pose is the trajectory's
+    first pose. ``desired`` reuses a :func:`desired_trajectory` computed with the same period
+    (and ``known_losses``). ``known_losses``: joint losses the built-in controllers know and
+    compensate (e.g. the motors' reflected rotor inertia and friction); the plant's are in
+    ``errors.losses``. ``progress(done, total)`` is called per output sample.
+    """
+    dt = default_step(control_period) if dt is None else dt
+    check_steps(dt, control_period)
+    limit = _torque_limit(torque_limit)
+    plant = Plant(robot, errors, baumgarte)
+    if desired is None:
+        desired = desired_trajectory(robot, trajectory, control_period, curve, known_losses)
+    label = controller if isinstance(controller, str) else type(controller).__name__
+    if isinstance(controller, str):
+        controller = make_controller(controller, robot, desired, gains, known_losses)
+    q, v = _start_state(plant, desired, trajectory, start)
+
+    samples = np.asarray(trajectory.t, dtype=float)
+    pts, is_tick, sample_of = _grid(desired.t, samples, dt)
+    n = len(samples)
+    nv = plant.robot.model.nv
+    Q, V, A = np.empty((n, nv)), np.empty((n, nv)), np.empty((n, nv))
+    TAU, RES = np.empty((n, 6)), np.empty(n)
+    ia = plant.robot.actuated_v
+    rng = np.random.default_rng(noise.seed) if noise is not None else None
+    f = plant.acceleration
+    tau = np.zeros(6)
+    guess = desired.q[0]  # the first FK's warm start: the reference's start
+    saturated_since, saturation, max_res = None, 0.0, 0.0
+    clock = time.perf_counter()
+    last = len(pts) - 1
+    for i in range(len(pts)):
+        t = pts[i]
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
+            raise SimulationError(f"simulation diverged at t = {t:.6g} s: non-finite state; "
+                                  "reduce the time step or raise the gains")
+        if is_tick[i]:
+            theta, dtheta = q[ia].copy(), v[ia].copy()
+            if rng is not None:
+                theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
+                dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
+            qm, vm = sensed_state(robot, theta, dtheta, guess)
+            guess = qm + control_period * vm  # the next tick's FK warm start
+            command = np.asarray(controller(t, qm, vm), dtype=float).reshape(-1)
+            if command.shape != (6,) or not np.all(np.isfinite(command)):
+                raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
+                                   "expected 6 finite actuator torques")
+            tau = command if limit is None else np.clip(command, -limit, limit)
+            clipped = limit is not None and bool(np.any(np.abs(command) > limit))
+            if saturated_since is not None and not clipped:
+                saturation += t - saturated_since
+                saturated_since = None
+            elif clipped and saturated_since is None:
+                saturated_since = t
+            max_res = max(max_res, plant.closure_residual(q))
+        a1 = f(q, v, tau)
+        k = sample_of[i]
+        if k >= 0:
+            Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
+            RES[k] = plant.closure_residual(q)
+            if progress is not None:
+                progress(k + 1, n)
+        if i == last:
+            break
+        h = pts[i + 1] - t
+        v2 = v + 0.5 * h * a1
+        a2 = f(q + 0.5 * h * v, v2, tau)
+        v3 = v + 0.5 * h * a2
+        a3 = f(q + 0.5 * h * v2, v3, tau)
+        v4 = v + h * a3
+        a4 = f(q + h * v3, v4, tau)
+        q = q + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
+        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
+    if saturated_since is not None:
+        saturation += pts[-1] - saturated_since
+    wall = time.perf_counter() - clock
+    max_res = max(max_res, float(RES.max()))
+
+    tip = np.empty((n, 3))
+    o_err = np.empty(n)
+    R_des = rotation(trajectory.poses)
+    for k in range(n):
+        M = tool_pose(plant.robot, Q[k])
+        tip[k] = M.translation
+        o_err[k] = np.linalg.norm(pin.log3(M.rotation @ R_des[k].T))
+    tip_des = np.asarray(trajectory.poses, dtype=float)[:, :3]
+    settings = {"controller": label,
+                "wn": gains.wn, "zeta": gains.zeta, "dt": step_used(dt, control_period),
+                "control_period": control_period,
+                "payload": plant.errors.payload, "mass_error": plant.errors.mass_error,
+                "torque_limit": None if limit is None else limit.tolist(),
+                "noise": None if noise is None else [noise.position, noise.velocity,
+                                                     noise.seed]}
+    return TrackingResult(
+        t=samples.copy(), q=Q, v=V, a=A, tau=TAU, tip=tip, tip_desired=tip_des,
+        tip_position_error=np.linalg.norm(tip - tip_des, axis=1), tip_orientation_error=o_err,
+        closure_residual=RES, joint_names=plant.robot.joint_names, actuated=robot.actuated,
+        saturation_time=saturation, max_closure_residual=max_res, steps=last, wall=wall,
+        settings=settings)
+
+
+__all__ = ["MeasurementNoise", "TrackingResult", "check_steps", "default_step", "estimated_wall",
+           "integration_steps", "sensed_state", "simulate_tracking", "step_used",
+           "tracking_summary"]

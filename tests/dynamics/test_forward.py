@@ -1,0 +1,49 @@
+"""forward_dynamics, simulate and the plant leave the caller's model alone (docs/model.md §14):
+rotor inertia and Baumgarte gains go on their own copies, never on the shared model, not even
+for the duration of a call."""
+import numpy as np
+
+from pollard_pin.dynamics.forward import forward_dynamics, simulate
+from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
+from pollard_pin.dynamics.plant import Plant, PlantErrors
+
+
+def _fields(robot) -> dict:
+    model = robot.model
+    return {"armature": np.array(model.armature),
+            "inertias": [(Y.mass, np.array(Y.lever), np.array(Y.inertia))
+                         for Y in model.inertias],
+            "gravity": np.array(model.gravity.linear),
+            "baumgarte": [(cm.m_baumgarte_parameters.Kp, cm.m_baumgarte_parameters.Kd)
+                          for cm in robot.constraint_models]}
+
+
+def _same(a: dict, b: dict) -> bool:
+    return (np.array_equal(a["armature"], b["armature"])
+            and np.array_equal(a["gravity"], b["gravity"])
+            and a["baumgarte"] == b["baumgarte"]
+            and all(m1 == m2 and np.array_equal(c1, c2) and np.array_equal(i1, i2)
+                    for (m1, c1, i1), (m2, c2, i2) in zip(a["inertias"], b["inertias"])))
+
+
+def test_shared_model_is_never_changed(robot):
+    before = _fields(robot)
+    q, v = robot.home(), np.zeros(robot.model.nv)
+    losses = JointLosses(viscous=0.01, armature=np.linspace(1e-4, 1e-3, 12))
+    a = forward_dynamics(robot, q, v, np.full(6, 0.1), losses=losses)
+    # the rotor inertia acted (on a copy): ID with the same losses returns the torque
+    assert np.abs(inverse_dynamics_sample(robot, q, v, a, losses)[0] - 0.1).max() < 1e-12
+    assert _same(before, _fields(robot))
+
+    during = []
+
+    def torques(t, q_, v_):  # looks at the shared model while simulate runs
+        during.append(_same(before, _fields(robot)))
+        return np.zeros(6)
+
+    sim = simulate(robot, torques, q, v, duration=0.01, dt=5e-3, baumgarte=(900.0, 60.0))
+    assert len(during) == 8 and all(during)
+    assert np.all(np.isfinite(sim.q))
+    Plant(robot, PlantErrors(payload=0.05, mass_error=0.2,
+                             losses=JointLosses(armature=1e-3)), baumgarte=(100.0, 20.0))
+    assert _same(before, _fields(robot))
