@@ -146,16 +146,18 @@ def loads_section(robot, n: int, repeats: int) -> None:
 
 def simulation_section(robot, repeats: int) -> None:
     """Closed-loop simulation (docs/model.md §18): 20 s of the thesis curve at dt = 1 ms (RK4)
-    and a 1 ms control period, both controllers, exact and perturbed plant."""
-    from pollard_pin.dynamics.control import desired_trajectory, simulate_tracking
+    and a 1 ms control period, the built-in controllers, exact and perturbed plant; the wall
+    per RK4 step and per control tick behind ``simulate``'s estimate (dynamics/tracking.py)."""
+    from pollard_pin.dynamics.control import CONTROLLERS, desired_trajectory
     from pollard_pin.dynamics.plant import PlantErrors
+    from pollard_pin.dynamics.tracking import simulate_tracking
 
     traj = pp.thesis_trajectory()
     t0 = time.perf_counter()
     desired = desired_trajectory(robot, traj)
     print(f"\nclosed-loop simulation, {traj.t[-1]:g} s, dt = control period = 1 ms; desired "
           f"trajectory (batched IK + ID, {len(desired.t)} ticks) {time.perf_counter() - t0:.2f} s")
-    for controller in ("computed-torque", "pd"):
+    for controller in CONTROLLERS:
         for label, errors in (("exact", None),
                               ("payload 0.05 kg + mass +10 %", PlantErrors(0.05, 0.1))):
             walls = []
@@ -163,8 +165,19 @@ def simulation_section(robot, repeats: int) -> None:
                 t0 = time.perf_counter()
                 res = simulate_tracking(robot, traj, controller, errors, desired=desired)
                 walls.append(time.perf_counter() - t0)
-            print(f"  {controller:<16s} {label:<30s} {statistics.median(walls):6.2f} s wall "
+            print(f"  {controller:<16s} {label:<30s} {min(walls):6.2f} s wall "
                   f"({res.steps} RK4 steps), max tip error {res.tip_position_error.max():.3g} m")
+    short = pp.thesis_trajectory(duration=1.0, samples=101)
+    walls = {}
+    for ratio in (1, 10):  # RK4 steps per control tick
+        times = []
+        for _ in range(max(1, repeats // 2)):
+            res = simulate_tracking(robot, short, "computed-torque", dt=1e-3 / ratio)
+            times.append(res.wall / res.steps)
+        walls[ratio] = min(times)
+    tick = (walls[1] - walls[10]) / 0.9  # wall per step = step + tick / (steps per tick)
+    print(f"  per RK4 step {1e6 * (walls[1] - tick):.0f} µs, per control tick (sensing and "
+          f"computed torque) {1e6 * tick:.0f} µs (min of {max(1, repeats // 2)})")
 
 
 def sizing_section(robot, sizes, repeats: int) -> None:

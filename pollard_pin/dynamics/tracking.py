@@ -295,7 +295,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     rng = np.random.default_rng(noise.seed) if noise is not None else None
     f = plant.acceleration
     tau = np.zeros(6)
-    guess = desired.q[0]  # the first FK's warm start: the reference's start
+    guess, v_seen = desired.q[0], desired.v[0]  # the first FK's warm start: the reference
     saturated_since, saturation, max_res = None, 0.0, 0.0
     clock = time.perf_counter()
     last = len(pts) - 1
@@ -310,7 +310,9 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
             qm, vm = sensed_state(robot, theta, dtheta, guess)
-            guess = qm + control_period * vm  # the next tick's FK warm start
+            # The next tick's FK warm start, second order: Newton then needs one step.
+            guess = qm + control_period * (1.5 * vm - 0.5 * v_seen)
+            v_seen = vm
             command = np.asarray(controller(t, qm, vm), dtype=float).reshape(-1)
             if command.shape != (6,) or not np.all(np.isfinite(command)):
                 raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
