@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 import pinocchio as pin
@@ -129,14 +129,14 @@ class TrackingResult:
 
     def summary_lines(self) -> list[str]:
         s = self.summary()
-        return [f"tool-tip position error: max {s['max_tip_position_error']:.3g} m, "
-                f"RMS {s['rms_tip_position_error']:.3g} m",
-                f"tool orientation error: max {s['max_tip_orientation_error']:.3g} rad, "
-                f"RMS {s['rms_tip_orientation_error']:.3g} rad",
+        return [(f"tool-tip position error: max {s['max_tip_position_error']:.3g} m, "
+                 f"RMS {s['rms_tip_position_error']:.3g} m"),
+                (f"tool orientation error: max {s['max_tip_orientation_error']:.3g} rad, "
+                 f"RMS {s['rms_tip_orientation_error']:.3g} rad"),
                 "peak |τ| [N·m]: " + ", ".join(f"{n} {p:.4g}"
                                                for n, p in s["peak_torque"].items()),
-                f"saturated {s['saturation_time']:.4g} s; max closure residual "
-                f"{s['max_closure_residual']:.3g} m",
+                (f"saturated {s['saturation_time']:.4g} s; max closure residual "
+                 f"{s['max_closure_residual']:.3g} m"),
                 f"{self.steps} RK4 steps in {self.wall:.2f} s wall"]
 
 

@@ -164,7 +164,7 @@ def test_noisy_encoders_move_the_passive_joints_by_kinematics(robot, seen):
     res, calls = seen["noisy"]
     ia, ip = robot.actuated_v, robot.passive_v
     k = len(res) // 2
-    t, q, v = next(c for c in calls if abs(c[0] - res.t[k]) < 1e-9)
+    _, q, v = next(c for c in calls if abs(c[0] - res.t[k]) < 1e-9)
     assert 1e-6 < np.abs(q[ia] - res.q[k, ia]).max() < 1e-3  # the noise, σ = 1e-4 rad
     assert np.abs(q[ip] - res.q[k, ip]).max() > 1e-6  # not the plant's truth
     r = constraint_residual(robot.model, robot.data, robot.constraint_models,
