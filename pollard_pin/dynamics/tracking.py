@@ -39,8 +39,8 @@ from .plant import BAUMGARTE, Plant, PlantErrors
 
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
-# controllers), for estimates only: measured on a 2-core machine (scripts/benchmark.py).
-STEP_SECONDS, TICK_SECONDS = 60e-6, 350e-6
+# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py).
+STEP_SECONDS, TICK_SECONDS = 80e-6, 400e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 
 
