@@ -251,7 +251,7 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 
 def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "computed-torque",
-                      errors: PlantErrors | None = None, *, gains: Gains = Gains(),
+                      errors: PlantErrors | None = None, *, gains: Gains | None = None,
                       dt: float | None = None, control_period: float = CONTROL_PERIOD,
                       torque_limit=None, noise: MeasurementNoise | None = None, start=None,
                       baumgarte: tuple[float, float] = BAUMGARTE,
@@ -262,7 +262,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
 
     ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
-    :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``errors``: how
+    :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``gains``: the
+    built-in controllers' (default :class:`Gains`()). ``errors``: how
     the plant differs from ``robot`` (payload, mass error, losses). ``dt``: longest RK4 step
     [s], at most ``control_period`` [s] (default: :data:`DT` or the period, the shorter); the
     torque is computed at each tick and held;
@@ -276,6 +277,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     """
     dt = default_step(control_period) if dt is None else dt
     check_steps(dt, control_period)
+    gains = Gains() if gains is None else gains
     limit = _torque_limit(torque_limit)
     plant = Plant(robot, errors, baumgarte)
     if desired is None:
