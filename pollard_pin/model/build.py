@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -88,13 +89,20 @@ class Robot:
             raise KeyError(f"no frame named {name!r}")
         return int(self.model.getFrameId(name))
 
-    @property
+    # Cached (read-only): the joint structure never changes after loading, and these are
+    # looked up on every control tick (≈ 8 µs each when rebuilt).
+    @cached_property
     def actuated_v(self) -> np.ndarray:
-        return np.array([self.idx_v(n) for n in self.actuated])
+        return self._index_array(self.actuated)
 
-    @property
+    @cached_property
     def passive_v(self) -> np.ndarray:
-        return np.array([self.idx_v(n) for n in self.passive])
+        return self._index_array(self.passive)
+
+    def _index_array(self, names: tuple[str, ...]) -> np.ndarray:
+        out = np.array([self.idx_v(n) for n in names])
+        out.setflags(write=False)
+        return out
 
     @property
     def tip_frame(self) -> int:
@@ -198,8 +206,8 @@ def load(params: Params | str | Path | None = None) -> Robot:
         urdf, srdf = (d / DEFAULT_URDF).read_text(), (d / DEFAULT_SRDF).read_text()
         if (urdf, srdf) != generate(params):  # someone edited the TOML (or the URDF) by hand
             raise ModelFileError(f"{d / DEFAULT_URDF} and {DEFAULT_SRDF} do not match "
-                                 f"{d / 'pollard.toml'}: regenerate them with "
-                                 f"`pollard-pin urdf --out {d / DEFAULT_URDF}`")
+                                 f"{d / 'pollard.toml'}: regenerate them from the parameters "
+                                 "(generate(params), or `make urdf` in a checkout)")
         return build(params, urdf, srdf)
     if not isinstance(params, Params):
         params = load_params(params)

@@ -837,5 +837,6 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
     toml = tmp_path / "pollard.toml"
     toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
     with pytest.raises(pp.ModelFileError,
-                       match=r"regenerate them with `pollard-pin urdf --out .*/pollard\.urdf`"):
+                       match=r"pollard\.urdf and pollard\.srdf do not match .*pollard\.toml: "
+                             r"regenerate them from the parameters"):
         pp.load()
