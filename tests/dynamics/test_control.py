@@ -93,7 +93,7 @@ def test_plant_obeys_its_inverse_dynamics(robot, traj, desired):
 def test_known_motors_are_compensated(robot, traj):
     """The example motors (reflected rotor inertia N²·Jm, friction) in the plant: unknown to
     the controller they stall the light wrist; known, computed torque tracks again."""
-    from pollard_pin.dynamics.actuators import load_actuators
+    from pollard_pin.dynamics.motors import load_actuators
 
     motors = load_actuators(MOTORS)
     losses = motors.joint_losses(robot.joint_names)
