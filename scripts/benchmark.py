@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import importlib.util
 import math
 import os
 import platform
@@ -182,29 +183,40 @@ def simulation_section(robot, repeats: int) -> None:
 
 def sizing_section(robot, sizes, repeats: int) -> None:
     """Motor sizing (docs/model.md §19, ``pollard-pin size``): path dynamics (3 RNEA passes),
-    the exact uniform scaling, and TOPP-RA with its viscous re-solves."""
-    from pollard_pin.dynamics import actuators as act_mod
+    the exact uniform scaling, TOPP-RA held between the samples (check points doubled until
+    the worst use halfway between them is within 1.001), and a 10,751-sample rest-to-rest
+    raster (2 ms) as the paint planner gives it."""
+    from pollard_pin.dynamics import motors, path as path_mod, timeopt
 
-    act = act_mod.load_actuators(Path(__file__).resolve().parent.parent / "examples"
-                                 / "actuators.toml")
-    print(f"\nmotor sizing (examples/actuators.toml), median of {repeats} runs [ms]")
+    root = Path(__file__).resolve().parent.parent
+    act = motors.load_actuators(root / "examples" / "actuators.toml")
+    print(f"\nmotor sizing (examples/actuators.toml), min of {repeats} runs [ms]")
+
+    def row(label, fn, n):
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            out = fn()
+            times.append(time.perf_counter() - t0)
+        extra = (f"  ({out.iterations} solves, {out.per_interval} check points per "
+                 f"interval, worst between samples {out.between:.5f}, {out.duration:.4g} s "
+                 "cycle)" if isinstance(out, timeopt.TimeOptimal) else "")
+        print(f"  {n:6d} samples  {label:<24s} {1e3 * min(times):9.1f}{extra}")
+
     for n in sizes:
         traj = pp.thesis_trajectory(samples=n)
         ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
-        path = act_mod.path_dynamics(robot, ik)
-        # default arguments bind this size's ik and path (the loop rebinds them)
-        steps = {"path dynamics": lambda ik=ik: act_mod.path_dynamics(robot, ik),
-                 "uniform_min_duration": lambda p=path: act_mod.uniform_min_duration(act, p),
-                 "time_optimal (TOPP-RA)": lambda p=path: act_mod.time_optimal(act, p)}
-        for name, fn in steps.items():
-            times = []
-            for _ in range(repeats):
-                t0 = time.perf_counter()
-                out = fn()
-                times.append(time.perf_counter() - t0)
-            extra = (f"  ({out.iterations} solves, {out.duration:.4g} s cycle)"
-                     if name.startswith("time") else "")
-            print(f"  {n:6d} samples  {name:<24s} {1e3 * statistics.median(times):9.1f}{extra}")
+        path = path_mod.path_dynamics(robot, ik)
+        row("path dynamics", lambda ik=ik: path_mod.path_dynamics(robot, ik), n)
+        row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
+        row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
+            robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses, traj.curve), n)
+    spec = importlib.util.spec_from_file_location("rasters", root / "tests" / "rasters.py")
+    rasters = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(rasters)
+    t, poses, rates, accelerations = rasters.raster()
+    row("raster time_optimal_path", lambda: timeopt.time_optimal_path(
+        robot, act, t, poses, rates, accelerations), len(t))
 
 
 def cli_run(samples: int, out: str) -> tuple[float, float, str]:

@@ -50,7 +50,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _errors() -> tuple[type[BaseException], ...]:
     """The project's own errors: each is one line for the user, never a traceback."""
-    from ..dynamics.actuators import ActuatorError
+    from ..dynamics.motors import ActuatorError
     from ..dynamics.control import ControlError
     from ..dynamics.forward import SimulationError
     from ..dynamics.plant import PlantError

@@ -54,7 +54,7 @@ def run(args) -> int:
     losses = known = None
     limit = args.torque_limit
     if args.actuators:  # motors known to the controller (docs/model.md §18, §19)
-        from ..dynamics.actuators import load_actuators
+        from ..dynamics.motors import load_actuators
 
         if args.armature or args.viscous or args.coulomb:
             raise UsageError("--actuators gives the rotor inertia and friction; do not "

@@ -1,6 +1,7 @@
 """pollard-pin size: motors and gearboxes."""
 from __future__ import annotations
 
+import sys
 import time
 
 from ..io.atomic import atomic_open, check_destination
@@ -8,9 +9,11 @@ from .common import STDOUT, UsageError, command, log, solve, trajectory_args, wr
 
 
 def run(args) -> int:
-    from ..dynamics.actuators import load_actuators
+    from ..dynamics.motors import load_actuators
+    from ..dynamics.sizing import actuator_sizing
+    from ..io.retime import retimed_trajectory
     from ..io.trajectory import to_csv
-    from ..viz.sizing import actuator_sizing, to_json, to_markdown, write_torque_speed
+    from ..viz.sizing import to_json, to_markdown, write_torque_speed
 
     out = args.out or STDOUT
     if args.retime == STDOUT and out == STDOUT:
@@ -26,17 +29,25 @@ def run(args) -> int:
     t0 = time.perf_counter()
     sized = actuator_sizing(robot, result, actuators)
     log.info("sized in %.3f s (TOPP-RA solves: %d)", time.perf_counter() - t0,
-             sized.timing.iterations)
-    if args.retime is not None:
-        to_csv(sized.retimed, args.retime)
+             sized.timing.iterations if sized.timing else 0)
+    if args.retime is not None and sized.timing is not None:
+        retimed = retimed_trajectory(result.trajectory, sized.timing)
+        to_csv(retimed, args.retime)
         wrote(args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
-                            f"{len(sized.retimed)} rows)")
+                           f"{len(retimed)} rows)")
     if args.plot is not None:
         wrote(write_torque_speed(sized, args.plot))
     text = to_json(sized.report) + "\n" if args.format == "json" else to_markdown(sized.report)
     with atomic_open(out) as f:
         f.write(text)
     wrote(out)
+    if sized.timing is None:  # the rest of the report stands; say why in one line
+        why = sized.report["time_optimal_error"]
+        if args.retime:
+            print(f"error: --retime {args.retime} not written: no time-optimal cycle: {why}",
+                  file=sys.stderr)
+            return 2
+        print(f"note: no time-optimal cycle: {why}", file=sys.stderr)
     return 0
 
 

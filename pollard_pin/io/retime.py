@@ -3,15 +3,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dynamics.actuators import TimeOptimal
-from .trajectory import Trajectory
+from ..dynamics.timeopt import TimeOptimal
+from .trajectory import Trajectory, trajectory_curve
 
 
 def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None = None
                        ) -> Trajectory:
     """``traj``'s path at its own samples with the timing s(t) of ``timing`` (computed on the
     path s = (t − t0)/T of ``traj``): exact rates p'(s)·ṡ and accelerations
-    p'(s)·s̈ + p''(s)·ṡ², with p' = T·ṗ and p'' = T²·p̈ of the original timing."""
+    p'(s)·s̈ + p''(s)·ṡ², with p' = T·ṗ and p'' = T²·p̈ of the original timing. Its ``curve``
+    is the retimed motion between the samples: s̈ constant per interval on ``traj``'s path."""
     t = np.asarray(traj.t, dtype=float)
     if len(timing.s) != len(t):
         raise ValueError(f"timing has {len(timing.s)} samples, the trajectory {len(t)}")
@@ -20,7 +21,28 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
     sd, sdd = timing.s_dot[:, None], timing.s_ddot[:, None]
     return Trajectory(timing.t.copy(), traj.poses.copy(), p_s * sd, p_s * sdd + p_ss * sd**2,
                       name=name or f"{traj.name}_time_optimal",
-                      derivatives=f"{traj.derivatives}, retimed (exact chain rule)")
+                      derivatives=f"{traj.derivatives}, retimed (exact chain rule)",
+                      curve=RetimedCurve(trajectory_curve(traj), float(t[0]), T, timing))
 
 
-__all__ = ["retimed_trajectory"]
+class RetimedCurve:
+    """The retimed motion between the samples: s̈ constant per interval of ``timing`` on the
+    path ``base(t0 + s·T)``; a ``curve(times) -> (poses, rates, accelerations)``."""
+
+    def __init__(self, base, t0: float, duration: float, timing: TimeOptimal):
+        self.base, self.t0, self.T, self.timing = base, t0, duration, timing
+
+    def __call__(self, times):
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        tim, T = self.timing, self.T
+        u = tim.interval_acceleration
+        i = np.clip(np.searchsorted(tim.t, times, side="right") - 1, 0, len(u) - 1)
+        tau = times - tim.t[i]
+        s = tim.s[i] + tim.s_dot[i] * tau + 0.5 * u[i] * tau * tau
+        s_dot = (tim.s_dot[i] + u[i] * tau)[:, None]
+        poses, rates, accelerations = self.base(self.t0 + s * T)
+        return (poses, T * rates * s_dot,
+                T * rates * u[i][:, None] + T * T * accelerations * s_dot**2)
+
+
+__all__ = ["RetimedCurve", "retimed_trajectory"]

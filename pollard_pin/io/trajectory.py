@@ -9,7 +9,9 @@ from __future__ import annotations
 import csv
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -36,15 +38,18 @@ class Trajectory:
     dd_poses: np.ndarray  # (N, 6)
     name: str = "trajectory"
     derivatives: str = "analytic"  # or "quintic spline", ...
+    # the exact path between the samples, times -> (poses, rates, accelerations); None: the
+    # quintic Hermite spline through the samples (see :func:`trajectory_curve`)
+    curve: Callable | None = None
 
     def __len__(self) -> int:
         return len(self.t)
 
-    def window(self, start: int, stop: int) -> "Trajectory":
+    def window(self, start: int, stop: int) -> Trajectory:
         """Samples ``start:stop`` as a trajectory of their own (views, no copy)."""
         return Trajectory(self.t[start:stop], self.poses[start:stop],
                           self.d_poses[start:stop], self.dd_poses[start:stop], self.name,
-                          self.derivatives)
+                          self.derivatives, self.curve)
 
     def windows(self, size: int):
         """``(start, window)`` pairs of at most ``size`` samples, in order (streaming)."""
@@ -93,7 +98,8 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
         raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
     t = np.linspace(0.0, duration, int(samples))
     return Trajectory(t, *thesis_curve(t, duration, home_pose), name="thesis",
-                      derivatives="analytic")
+                      derivatives="analytic",
+                      curve=partial(thesis_curve, duration=duration, home_pose=home_pose))
 
 
 class ThesisTrajectory:
@@ -126,12 +132,29 @@ class ThesisTrajectory:
             yield start, self.window(start, start + size)
 
 
-def _spline_derivatives(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """First and second derivatives of the quintic interpolating spline (not-a-knot ends)."""
-    from scipy.interpolate import make_interp_spline
+class _QuinticSpline:
+    """The quintic interpolating spline (not-a-knot ends) as a curve: times -> (poses,
+    rates, accelerations); a class, so that a trajectory holding it pickles."""
 
-    spl = make_interp_spline(t, y, k=5, axis=0)
-    return spl.derivative(1)(t), spl.derivative(2)(t)
+    def __init__(self, t: np.ndarray, y: np.ndarray):
+        from scipy.interpolate import make_interp_spline
+
+        self.spline = make_interp_spline(t, y, k=5, axis=0)
+
+    def __call__(self, times):
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        return self.spline(times), self.spline(times, 1), self.spline(times, 2)
+
+
+def trajectory_curve(traj: Trajectory) -> Callable:
+    """The path between the samples: the trajectory's own ``curve`` (the thesis curve, the
+    spline a CSV's derivatives came from), else the C² quintic Hermite spline through its
+    poses, rates and accelerations."""
+    from ..dynamics.path import quintic_hermite
+
+    if traj.curve is not None:
+        return traj.curve
+    return quintic_hermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)
 
 
 def from_csv(path: str | Path) -> Trajectory:
@@ -215,12 +238,15 @@ def from_csv(path: str | Path) -> Trajectory:
             raise TrajectoryError(f"{path}: derivative columns must come as a full set; "
                                   f"missing {', '.join(absent)}")
         derivs.append(np.column_stack([col[n] for n in names]) if present else None)
-    source = "file columns"
+    source, curve = "file columns", None
     if derivs[0] is None or derivs[1] is None:
         if len(t) < 6:
             raise TrajectoryError(f"{path}: {len(t)} samples are too few for the quintic spline "
                                   "that supplies missing derivatives (need >= 6)")
-        d_spl, dd_spl = _spline_derivatives(t, poses)
+        spline = _QuinticSpline(t, poses)
+        _, d_spl, dd_spl = spline(t)
+        if derivs[0] is None and derivs[1] is None:
+            curve = spline  # the path between the samples is the spline itself
         if derivs[0] is None:
             derivs[0] = d_spl
         if derivs[1] is None:
@@ -228,7 +254,8 @@ def from_csv(path: str | Path) -> Trajectory:
         source = "quintic spline"
         warnings.warn(f"{path}: no d_*/dd_* columns; derivatives taken from a quintic "
                       "interpolating spline through the samples", UserWarning, stacklevel=2)
-    return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source)
+    return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source,
+                      curve=curve)
 
 
 def to_csv(traj: Trajectory, path: str | Path) -> None:
@@ -269,7 +296,15 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
     return Trajectory(t, pose, d, dd, name=f"random{seed}", derivatives="analytic")
 
 
-__all__ = ["Trajectory", "TrajectoryError", "thesis_trajectory", "thesis_curve", "sinusoid_curve",
-           "from_csv", "to_csv",
-           "smooth_random_trajectory"]
+__all__ = [
+    "Trajectory",
+    "TrajectoryError",
+    "from_csv",
+    "sinusoid_curve",
+    "smooth_random_trajectory",
+    "thesis_curve",
+    "thesis_trajectory",
+    "to_csv",
+    "trajectory_curve",
+]
 

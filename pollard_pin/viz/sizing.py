@@ -1,110 +1,13 @@
-"""Motor and gearbox sizing of one trajectory: the table of ``pollard-pin size``, its JSON, and
-the torque–speed figure (docs/model.md §19).
-
-Per actuator, on the given trajectory and on the time-optimal traversal of the same path:
-peak and RMS motor torque and peak motor speed, each with its ratio to the rating (≤ 1
-passes). Besides: the shortest uniformly time-scaled duration, the time-optimal duration
-(TOPP-RA under the peak-torque and speed limits, rest to rest), and where the time-optimal
-cycle spends its time (which limit binds, time-weighted).
-"""
+"""The sizing of ``pollard-pin size`` as a Markdown table and JSON, and the torque–speed
+figure (docs/model.md §19; the numbers: :mod:`pollard_pin.dynamics.sizing`)."""
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
+from ..dynamics.sizing import CHECKS, Sizing
 
-from ..dynamics.actuators import (Actuators, MotorLoad, PathDynamics, TimeOptimal,
-                                  UniformScaling, motor_load, motor_load_of, path_dynamics,
-                                  time_optimal, trapezoid_weights, uniform_min_duration)
-from ..io.retime import retimed_trajectory
-from ..io.trajectory import Trajectory
-
-ACTIVE = 0.98  # a limit "binds" at a sample when used to within 2 %
-CHECKS = (  # report key, MotorLoad attribute, ratio key, heading, unit
-    ("peak_motor_torque", "peak_torque", "peak_torque", "peak |τm|", "N·m"),
-    ("rms_motor_torque", "rms_torque", "rms_torque", "RMS τm", "N·m"),
-    ("peak_motor_speed", "peak_speed", "speed", "peak |ωm|", "rad/s"),
-)
 RATING = {"peak_torque": "peak", "rms_torque": "continuous", "speed": "max speed"}
-
-
-@dataclass(frozen=True)
-class Sizing:
-    """Everything ``size`` computes; ``report`` is the JSON-ready summary."""
-
-    report: dict
-    actuators: Actuators
-    given: MotorLoad
-    optimal: MotorLoad
-    uniform: UniformScaling
-    timing: TimeOptimal
-    path: PathDynamics
-    retimed: Trajectory
-
-
-def _checks(load: MotorLoad, prefix: str = "") -> dict[str, dict[str, float]]:
-    ratios = load.ratios()
-    out = {n: {} for n in load.actuators.names}
-    for key, attr, rkey, _, _ in CHECKS:
-        values = getattr(load, attr)
-        for j, n in enumerate(load.actuators.names):
-            out[n][prefix + key] = float(values[j])
-            out[n][prefix + key + "_ratio"] = float(ratios[rkey][j])
-    return out
-
-
-def binding_shares(load: MotorLoad, active: float = ACTIVE) -> dict[str, float]:
-    """Share of the time in which each limit binds (the most-used one, if used to within
-    ``active``), keyed ``<actuator> <peak_torque|speed>``, plus ``switching`` (no limit
-    within ``active``: the samples where the discretised profile turns from one limit to
-    another). Time-weighted by the trapezoid rule; the shares sum to 1."""
-    a = load.actuators
-    use = np.concatenate([np.abs(load.torque) / a.column("peak_torque"),
-                          np.abs(load.speed) / a.column("max_speed")], axis=1)
-    labels = [f"{n} peak_torque" for n in a.names] + [f"{n} speed" for n in a.names]
-    w = trapezoid_weights(load.t)
-    best = use.argmax(axis=1)
-    bound = use.max(axis=1) >= active
-    shares = {lab: float(w[bound & (best == i)].sum()) for i, lab in enumerate(labels)}
-    shares = {k: v for k, v in shares.items() if v > 0}
-    shares["switching"] = float(w[~bound].sum())
-    return dict(sorted(shares.items(), key=lambda kv: -kv[1]))
-
-
-def actuator_sizing(robot, result, act: Actuators) -> Sizing:
-    """Size the motors of ``act`` on the pipeline result ``result`` (IK and dynamics)."""
-    ik, traj = result.ik, result.trajectory
-    given = motor_load_of(robot, act, ik, result.dynamics)
-    path = path_dynamics(robot, ik)
-    uniform = uniform_min_duration(act, path)
-    timing = time_optimal(act, path)
-    optimal = motor_load(act, timing.t, *timing.joint_motion(path))
-    checks, opt = _checks(given), _checks(optimal, "time_optimal_")
-    shares = binding_shares(optimal)
-    per = {}
-    for j, n in enumerate(act.names):
-        per[n] = {"gear_ratio": act.units[j].gear_ratio, **checks[n], **opt[n],
-                  "time_optimal_torque_limited_share": shares.get(f"{n} peak_torque", 0.0),
-                  "time_optimal_speed_limited_share": shares.get(f"{n} speed", 0.0)}
-    t = ik.t
-    report = {
-        "trajectory": {"name": traj.name, "samples": len(t), "duration": float(t[-1] - t[0]),
-                       "derivatives": traj.derivatives},
-        "actuator_file": act.source,
-        "given_within_ratings": bool(all(r <= 1.0 for row in checks.values()
-                                         for k, r in row.items() if k.endswith("_ratio"))),
-        "actuators": per,
-        "uniform_min_duration": uniform.duration,
-        "uniform_binding": {"actuator": uniform.actuator, "limit": uniform.limit},
-        "uniform_min_duration_by_limit": uniform.by_limit,
-        "time_optimal_duration": timing.duration,
-        "time_optimal_binding_shares": shares,
-        "time_optimal_start_end": "rest to rest",
-    }
-    return Sizing(report, act, given, optimal, uniform, timing, path,
-                  retimed_trajectory(traj, timing))
 
 
 def to_json(rep: dict) -> str:
@@ -128,8 +31,8 @@ def to_markdown(rep: dict) -> str:
     verdict = "within every rating" if rep["given_within_ratings"] else "**over a rating**"
     lines = [f"# Motor and gearbox sizing: {tr['name']} trajectory", "",
              f"{tr['samples']} samples over {tr['duration']:.4g} s; actuators from "
-             f"{rep['actuator_file']}. Motor side: τm = τ/N + Jm·N·q̈ + b·N·q̇ + c·sign(q̇), "
-             "ωm = N·q̇ (docs/model.md §19).", "",
+             f"{rep['actuator_file']}. Motor side: τm = τ/N + Jm·N·q̈ + b·N·q̇ + c·sign(q̇) "
+             "(±c at rest), ωm = N·q̇ (docs/model.md §19).", "",
              f"## Given trajectory: {verdict}", "", *_table(rep, ""), "",
              "## Fastest cycle along the same path", "",
              f"* uniform time scaling: **{rep['uniform_min_duration']:.4g} s** (every limit "
@@ -137,10 +40,20 @@ def to_markdown(rep: dict) -> str:
              f"{ub['limit']}; each limit alone: "
              + ", ".join(f"{k.replace('_', ' ')} {v:.4g} s"
                          for k, v in rep["uniform_min_duration_by_limit"].items()) + ")",
-             f"* time-optimal (TOPP-RA, peak torque and speed, rest to rest): "
-             f"**{rep['time_optimal_duration']:.4g} s**", "", *_table(rep, "time_optimal_"),
-             "", "Where the time-optimal cycle spends its time (binding limit, share of the "
-             "duration):", ""]
+             ]
+    if rep["time_optimal_duration"] is None:
+        lines += [f"* time-optimal (TOPP-RA): **failed**: {rep['time_optimal_error']}"]
+        return "\n".join(lines) + "\n"
+    between = rep["time_optimal_between_samples"]
+    lines += [f"* time-optimal (TOPP-RA, peak torque and speed, rest to rest): "
+              f"**{rep['time_optimal_duration']:.4g} s**; between the samples (s̈ constant "
+              f"per interval, {between['check_points_per_interval']} check points per "
+              f"interval and halfway between them, {between['intervals_tightened']} "
+              f"intervals' ratings tightened) the worst use of a peak torque or speed is "
+              f"{between['worst_utilisation']:.5f} (at s = {between['at_s']:.4g})", "",
+              *_table(rep, "time_optimal_"),
+              "", "Where the time-optimal cycle spends its time (binding limit, share of the "
+              "duration):", ""]
     for label, share in rep["time_optimal_binding_shares"].items():
         what = ("switching between limits (no limit within 2 %)" if label == "switching"
                 else f"`{label.split()[0]}` {label.split()[1].replace('_', ' ')}")
@@ -172,6 +85,8 @@ def torque_speed_figure(sizing: Sizing):
                        label="continuous (RMS)" if sign > 0 else None)
         for load, label, colour in ((sizing.given, "given", "tab:blue"),
                                     (sizing.optimal, "time_optimal", "tab:orange")):
+            if load is None:  # no time-optimal traversal
+                continue
             (ln,) = ax.plot(load.speed[:, j], load.torque[:, j], ".", ms=2, color=colour,
                             label=f"{label.replace('_', '-')} "
                                   f"({load.t[-1] - load.t[0]:.3g} s)")
@@ -195,5 +110,4 @@ def write_torque_speed(sizing: Sizing, out_dir, dpi: int = 100) -> Path:
     return save_png(torque_speed_figure(sizing), make_folder(out_dir) / "torque_speed.png", dpi)
 
 
-__all__ = ["Sizing", "actuator_sizing", "binding_shares", "to_json", "to_markdown",
-           "torque_speed_figure", "write_torque_speed"]
+__all__ = ["to_json", "to_markdown", "torque_speed_figure", "write_torque_speed"]

@@ -103,7 +103,7 @@ def test_known_motors_are_compensated(robot, traj, controller):
     """The example motors (reflected rotor inertia N²·Jm, friction) in the plant: unknown to
     the controller they leave the spray-gun roll 0.49 rad behind; known, both model-based laws
     track to a few µm again (computed-torque 2.6e-6 m, feedforward-pd 1.6e-6 m)."""
-    from pollard_pin.dynamics.actuators import load_actuators
+    from pollard_pin.dynamics.motors import load_actuators
 
     motors = load_actuators(MOTORS)
     losses = motors.joint_losses(robot.joint_names)

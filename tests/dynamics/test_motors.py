@@ -1,48 +1,20 @@
-"""Motor and gearbox sizing (docs/model.md §19): the motor model recomputed from a ``run`` CSV,
-the uniform time scaling against a brute-force scan of durations, the time-optimal traversal
-replayed through ``run``, the torque–speed figure, and bad actuator files."""
+"""Motors and gearboxes (docs/model.md §19): the motor model recomputed from a ``run`` CSV,
+breakaway friction at rest, the path's exact dynamics, the uniform time scaling against a
+brute-force scan of durations, the motors as joint losses, and bad actuator files."""
 import json
 import math
-import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
+from motor_model import EXAMPLE, NAMES, RATINGS, cli as _cli, motor as _motor, rms as _rms
 
 import pollard_pin as pp
-from pollard_pin.cli import main
-from pollard_pin.dynamics import actuators as A
+from pollard_pin.dynamics import motors as A
 from pollard_pin.dynamics.inverse import inverse_dynamics
+from pollard_pin.dynamics.path import PathDynamics, path_dynamics
 from pollard_pin.io.table import read_result
 
-ROOT = Path(__file__).resolve().parents[2]
-EXAMPLE = ROOT / "examples" / "actuators.toml"
-RATINGS = tomllib.loads(EXAMPLE.read_text())  # read directly, not through the loader
-NAMES = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
 SAMPLES = 801
-
-
-def _cli(argv, capsys):
-    try:
-        code = main(argv)
-    except SystemExit as exc:
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def _motor(cols, name):
-    """τm, ωm of one actuator from run-CSV columns, written out from the issue's formula."""
-    r = RATINGS[name]
-    n, qd, qdd = r["gear_ratio"], cols[f"d_{name}"], cols[f"dd_{name}"]
-    friction = np.array([r["coulomb"] * (1 if v > 0 else -1 if v < 0 else 0) for v in qd])
-    tau_m = (cols[f"tau_{name}"] / n + r["rotor_inertia"] * n * qdd + r["viscous"] * n * qd
-             + friction)
-    return tau_m, n * qd
-
-
-def _rms(t, y):
-    return math.sqrt(np.trapezoid(y * y, t) / (t[-1] - t[0]))
 
 
 @pytest.fixture(scope="module")
@@ -97,7 +69,7 @@ def _feasible(robot, duration, samples=SAMPLES):
 
 
 def test_uniform_min_duration_matches_a_brute_force_scan(robot, thesis, act):
-    path = A.path_dynamics(robot, thesis.ik)
+    path = path_dynamics(robot, thesis.ik)
     uni = A.uniform_min_duration(act, path)
     d = uni.duration
     assert uni.limit in A.LIMITS and uni.actuator in NAMES
@@ -113,7 +85,7 @@ def test_uniform_min_duration_matches_a_brute_force_scan(robot, thesis, act):
 
 
 def test_path_torques_are_exact_at_another_duration(robot, thesis):
-    path = A.path_dynamics(robot, thesis.ik)
+    path = path_dynamics(robot, thesis.ik)
     D = 7.3
     res = pp.run_pipeline(robot, pp.thesis_trajectory(duration=D, samples=SAMPLES))
     # uniform: ṡ = 1/D, s̈ = 0
@@ -132,7 +104,7 @@ def test_uniform_holds_at_every_longer_duration_when_feasibility_is_not_monotone
     z = np.zeros((n, 6))
     b, c, q_s = z.copy(), z.copy(), z.copy()
     b[:, 0], c[:, 0], q_s[:, 0] = 100.0, 4.5, -1.0  # β = 1, γ = 0.045, δ = b·N·q_s = −1
-    path = A.PathDynamics(np.linspace(0, 1, n), z, b, c, q_s, z, 1.0)
+    path = PathDynamics(np.linspace(0, 1, n), z, b, c, q_s, z, 1.0)
     uni = A.uniform_min_duration(act, path)
     xs = np.linspace(1e-6, 2.0, 2_000_001)
     worst = np.abs(xs * xs - xs + 0.045) / peak
@@ -140,66 +112,6 @@ def test_uniform_holds_at_every_longer_duration_when_feasibility_is_not_monotone
     x_first = xs[np.argmax(worst > 1)]
     assert 1 / uni.duration == pytest.approx(x_first, abs=2e-6)
     assert (uni.actuator, uni.limit) == ("theta21", "peak_torque")
-
-
-def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys, act):
-    retimed, replay, rep = tmp_path / "fast.csv", tmp_path / "replay.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--samples", str(SAMPLES), "--quiet", "--actuators",
-                         str(EXAMPLE), "--retime", str(retimed), "--format", "json",
-                         "--out", str(rep), "--plot", str(tmp_path / "fig")], capsys)
-    assert code == 0, err
-    assert (tmp_path / "fig" / "torque_speed.png").stat().st_size > 10_000
-    assert _cli(["run", "--trajectory", str(retimed), "--quiet", "--out", str(replay)],
-                capsys)[0] == 0
-    report = json.loads(rep.read_text())
-    cols = read_result(replay).columns
-    t = cols["t"]
-    assert t[-1] == pytest.approx(report["time_optimal_duration"], rel=1e-12)
-    assert t[-1] <= report["uniform_min_duration"]
-    assert t[-1] <= max(report["uniform_min_duration_by_limit"][k]
-                        for k in ("peak_torque", "speed"))
-    use = []
-    for name in NAMES:
-        r = RATINGS[name]
-        tau_m, w_m = _motor(cols, name)
-        use += [np.abs(tau_m) / r["peak_torque"], np.abs(w_m) / r["max_speed"]]
-        got = report["actuators"][name]
-        assert got["time_optimal_rms_motor_torque"] == pytest.approx(_rms(t, tau_m), rel=1e-9)
-    use = np.max(use, axis=0)
-    assert use.max() <= 1.01
-    assert np.all(cols[f"d_{NAMES[0]}"][[0, -1]] == 0)  # rest to rest
-    # at every interior sample a limit binds to within 2 %, except where the discretised
-    # profile turns from one limit to the next: at most two samples in a row
-    slack = np.flatnonzero(use[1:-1] < 0.98) + 1
-    runs = np.split(slack, np.flatnonzero(np.diff(slack) > 1) + 1) if len(slack) else []
-    assert all(len(run) <= 2 for run in runs), runs
-    shares = report["time_optimal_binding_shares"]
-    assert sum(shares.values()) == pytest.approx(1.0)
-    assert shares["switching"] < 0.15  # ≈ 80 switches, 2 % of the time at 2001 samples
-
-
-@pytest.mark.parametrize("viscous", [5e-5, 1e-4])
-def test_time_optimal_with_strong_viscous_friction(robot, thesis, act, viscous):
-    # b·ωm at the motors' max speed is half / all of their peak torque: the viscous term,
-    # evaluated at the frictionless profile's speed, left no traversal and the sizing
-    # claimed the path uncontrollable. Replayed through the pipeline, the limits hold.
-    from pollard_pin.viz.sizing import actuator_sizing
-
-    sticky = A.Actuators(act.names, tuple(A.Actuator(**{**u.__dict__, "viscous": viscous})
-                                          for u in act.units))
-    sized = actuator_sizing(robot, thesis, sticky)
-    cols = pp.run_pipeline(robot, sized.retimed).columns()
-    use = []
-    for name in NAMES:
-        r = {**RATINGS[name], "viscous": viscous}
-        n, qd = r["gear_ratio"], cols[f"d_{name}"]
-        tau_m = (cols[f"tau_{name}"] / n + r["rotor_inertia"] * n * cols[f"dd_{name}"]
-                 + viscous * n * qd + r["coulomb"] * np.sign(qd))
-        use.append(np.maximum(np.abs(tau_m) / r["peak_torque"], np.abs(n * qd) / r["max_speed"]))
-    use = np.max(use, axis=0)
-    assert 1.0 - 1e-9 <= use.max() <= 1.0 + 1e-9  # a limit is used, none is exceeded
-    assert cols["t"][-1] == pytest.approx(sized.timing.duration, rel=1e-12)
-    assert sized.timing.duration < sized.uniform.duration
 
 
 def test_reflected_inertia_as_joint_losses(robot, thesis, act):
@@ -225,24 +137,6 @@ def test_reflected_inertia_as_joint_losses(robot, thesis, act):
     for k in (50, 400, 700):
         a = pp.forward_dynamics(robot, ik.q[k], ik.v[k], tau_full[k], losses=full)
         np.testing.assert_allclose(a, ik.a[k], rtol=0, atol=1e-8 * np.abs(ik.a[k]).max())
-
-
-def test_torque_speed_figure_draws_points_and_envelopes(robot, thesis, act):
-    from pollard_pin.viz.sizing import actuator_sizing, to_markdown, torque_speed_figure
-
-    sized = actuator_sizing(robot, thesis, act)
-    fig = torque_speed_figure(sized)
-    lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines() if ln.get_gid()}
-    for j, name in enumerate(NAMES):
-        np.testing.assert_array_equal(lines[f"given_{name}"].get_ydata(),
-                                      sized.given.torque[:, j])
-        np.testing.assert_array_equal(lines[f"time_optimal_{name}"].get_xdata(),
-                                      sized.optimal.speed[:, j])
-        env = lines[f"envelope_{name}"]
-        assert np.abs(env.get_ydata()).max() == RATINGS[name]["peak_torque"]
-        assert np.abs(env.get_xdata()).max() == RATINGS[name]["max_speed"]
-    text = to_markdown(sized.report)
-    assert "time-optimal" in text and f"{sized.timing.duration:.4g} s" in text
 
 
 def _with(name, key, value):
@@ -305,35 +199,17 @@ def test_bad_actuator_files_give_one_line(tmp_path, capsys, text, message):
     assert not out.exists()
 
 
-def test_size_of_a_two_sample_path_is_one_line_and_writes_nothing(tmp_path, capsys):
-    # rest to rest over one interval never moves: the retimed CSV had t = inf, the JSON NaN
-    code, out, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
-                           "--format", "json", "--retime", str(tmp_path / "r.csv")], capsys)
-    assert code == 2 and out == "", (out, err)
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and "needs at least 3 samples of the path, got 2" in lines[0], err
-    assert "Traceback" not in err and not list(tmp_path.iterdir())
-
-
-def test_size_checks_destinations_before_the_work(tmp_path, capsys):
-    (tmp_path / "afile").write_text("x")
-    for extra in (["--retime", str(tmp_path / "afile" / "x.csv")],
-                  ["--plot", str(tmp_path / "afile")],
-                  ["--actuators", str(tmp_path / "none.toml")]):
-        code, _, err = _cli(["size", "--actuators", str(EXAMPLE), *extra], capsys)
-        assert code == 2 and len(err.strip().splitlines()) == 1, err
-
-
-def test_toppra_missing_gives_one_line(tmp_path):
-    import subprocess
-    import sys
-
-    code = ("import sys; sys.modules['toppra'] = None\nfrom pollard_pin.cli import main\n"
-            f"sys.exit(main(['size', '--samples', '101', '--quiet', '--actuators', "
-            f"{str(EXAMPLE)!r}, '--out', {str(tmp_path / 'never.md')!r}]))")
-    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
-                       timeout=120)
-    assert r.returncode == 2, r.stderr
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and "pip install 'toppra>=0.6.10,<0.7'" in lines[0], r.stderr
-    assert not (tmp_path / "never.md").exists()
+def test_breakaway_friction_at_rest_counts_plus_or_minus_c(act):
+    """At q̇ = 0 the Coulomb term is ±c with the sign of the rest of τm (|τm| = |rest| + c),
+    not sign(0)·c = 0; moving, it is c·sign(q̇)."""
+    c, n = act.column("coulomb"), act.column("gear_ratio")
+    tau = np.array([[0.3, -0.2, 0.0, 0.01, -0.01, 0.0]])
+    got = A.motor_torque(act, tau, np.zeros((1, 6)), np.zeros((1, 6)))
+    np.testing.assert_array_equal(got, tau / n + np.array([1, -1, 1, 1, -1, 1]) * c)
+    moving = A.motor_torque(act, tau, np.full((1, 6), -1e-9), np.zeros((1, 6)))
+    np.testing.assert_allclose(moving, tau / n - c - act.column("viscous") * n * 1e-9,
+                               rtol=0, atol=1e-18)
+    # along a path: a joint that stands or turns back counts ±c (breakaway)
+    q_s = np.array([[0.0, 1.0], [1.0, 1.0], [-1.0, 1.0], [-2.0, 1.0]])
+    np.testing.assert_array_equal(A.breakaway(q_s), [[1, 0], [1, 0], [1, 0], [0, 0]])
+    np.testing.assert_array_equal(A.breakaway(q_s, at_rest=[0, 0, 0, 1])[:, 1], [0, 0, 0, 1])

@@ -1,5 +1,5 @@
-"""Motors and gearboxes on the six actuators: ratings, the motor model, and the fastest cycle
-along a given path (docs/model.md §19).
+"""Motors and gearboxes on the six actuators: ratings, the motor model, and the shortest
+uniformly time-scaled cycle of a path (docs/model.md §19).
 
 Motor model, per actuator with gear ratio N (motor angle = N × joint angle)::
 
@@ -8,25 +8,26 @@ Motor model, per actuator with gear ratio N (motor angle = N × joint angle)::
 with τ, q̇, q̈ the joint's torque, velocity and acceleration. Limits: max |τm| ≤ peak,
 RMS(τm) ≤ continuous (trapezoid rule), max |ωm| ≤ max speed.
 
+At rest (q̇ = 0) the Coulomb term is the breakaway friction ±c, whichever loads the motor more.
 Along a path s ∈ [0, 1] the closed-loop joint torques are exactly τ = a(s)·s̈ + b(s)·ṡ² + c(s)
-(:func:`path_dynamics`); :func:`uniform_min_duration` scales time uniformly, and
-:func:`time_optimal` solves the time-optimal parameterisation with TOPP-RA (``toppra``).
+(:mod:`.path`); :func:`uniform_min_duration` scales time uniformly (the time-optimal cycle:
+:mod:`.timeopt`).
 """
 from __future__ import annotations
 
-import contextlib
-import logging
 import math
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
 from ..model.names import ACTUATED as ACTUATED_JOINTS, TREE_JOINTS as JOINT_NAMES
 from ..model.params import did_you_mean, read_toml
 from .averages import time_rms as rms, trapezoid_weights
-from .inverse import JointLosses, inverse_dynamics
+from .inverse import JointLosses
+from .path import PathDynamics
 
 KEYS = ("gear_ratio", "rotor_inertia", "viscous", "coulomb", "peak_torque",
         "continuous_torque", "max_speed")
@@ -144,10 +145,13 @@ def load_actuators(path: str | Path, names: tuple[str, ...] = ACTUATED_JOINTS) -
 
 # --- the motor model -------------------------------------------------------------------------
 def motor_torque(act: Actuators, tau, v, a) -> np.ndarray:
-    """τm = τ/N + Jm·N·q̈ + b·N·q̇ + c·sign(q̇), (..., 6) actuated-joint arrays in."""
+    """τm = τ/N + Jm·N·q̈ + b·N·q̇ + c·sign(q̇), (..., 6) actuated-joint arrays in. At rest
+    (q̇ = 0) the breakaway friction is ±c with the sign of the rest of τm: |τm| gets c added,
+    not 0 (the motor must overcome it to start, and it flips when q̇ changes sign)."""
     n, jm, b, c = (act.column(k) for k in ("gear_ratio", "rotor_inertia", "viscous", "coulomb"))
-    return (np.asarray(tau) / n + jm * n * np.asarray(a) + b * n * np.asarray(v)
-            + c * np.sign(v))
+    v = np.asarray(v)
+    rest = np.asarray(tau) / n + jm * n * np.asarray(a) + b * n * v
+    return rest + c * np.where(v != 0, np.sign(v), np.where(rest >= 0, 1.0, -1.0))
 
 
 def motor_speed(act: Actuators, v) -> np.ndarray:
@@ -203,54 +207,32 @@ def motor_load_of(robot, act: Actuators, ik, dynamics) -> MotorLoad:
     return motor_load(act, ik.t, dynamics.tau, ik.v[:, ia], ik.a[:, ia])
 
 
-# --- the path and its dynamics ---------------------------------------------------------------
-@dataclass(frozen=True)
-class PathDynamics:
-    """Closed-loop actuator torques along a path s ∈ [0, 1] (docs/model.md §19):
-    τ = a(s)·s̈ + b(s)·ṡ² + c(s), and q̇ = q_s·ṡ, q̈ = q_s·s̈ + q_ss·ṡ² for the actuated
-    joints. Arrays (n, 6) at the grid ``s`` (n,)."""
-
-    s: np.ndarray
-    a: np.ndarray
-    b: np.ndarray
-    c: np.ndarray
-    q_s: np.ndarray
-    q_ss: np.ndarray
-    duration: float  # of the trajectory the path came from, s = (t − t0) / duration
-
-
-def path_dynamics(robot, ik) -> PathDynamics:
-    """The path of an IK result, parameterised by s = (t − t0)/T ∈ [0, 1], with its exact
-    torque coefficients.
-
-    The IK is exact in the task rates, so q_s = T·q̇ and q_ss = T²·q̈ at every sample for any
-    trajectory. RNEA plus the closure split is linear in the tree torque at fixed q, so
-    c = τ(q, 0, 0) (gravity), a = τ(q, 0, q_s) − c and b = τ(q, q_s, q_ss) − c.
-    """
-    t = np.asarray(ik.t, dtype=float)
-    duration = float(t[-1] - t[0])
-    v_s, a_s = duration * ik.v, duration * duration * ik.a
-    zero = np.zeros_like(v_s)
-
-    def tau(v, a):
-        return inverse_dynamics(robot, replace(ik, v=v, a=a), energies=False).tau
-
-    c = tau(zero, zero)
-    ia = robot.actuated_v
-    return PathDynamics(s=(t - t[0]) / duration, a=tau(zero, v_s) - c, b=tau(v_s, a_s) - c,
-                        c=c, q_s=v_s[:, ia], q_ss=a_s[:, ia], duration=duration)
+def breakaway(q_s, at_rest=None, turns: bool = True) -> np.ndarray:
+    """Where Coulomb friction counts with either sign, (n, 6) bool: a joint that stands
+    (q_s = 0, or ṡ = 0 at the points ``at_rest``) or, with ``turns``, whose rate changes
+    sign before the next point or after the previous one (q̇ crosses 0 between them)."""
+    sign = np.sign(q_s)
+    out = sign == 0
+    if turns:
+        flips = sign[1:] * sign[:-1] < 0
+        out[1:] |= flips
+        out[:-1] |= flips
+    if at_rest is not None:
+        out |= np.asarray(at_rest, dtype=bool)[:, None]
+    return out
 
 
-def _motor_coefficients(act: Actuators, path: PathDynamics, at_rest=None):
-    """Motor torque along the path: τm = α·s̈ + β·ṡ² + γ + δ·ṡ (ṡ ≥ 0), each (n, 6); no
-    Coulomb term at the samples ``at_rest`` (ṡ = 0 there, sign(q̇) = 0)."""
+def motor_coefficients(act: Actuators, path: PathDynamics, at_rest=None, turns: bool = True):
+    """Motor torque along the path: τm = α·s̈ + β·ṡ² + γ + δ·ṡ ± c·k (ṡ ≥ 0), each (n, 6), with
+    k = :func:`breakaway` (Coulomb ±c where the joint stands or, with ``turns``, turns back;
+    elsewhere it is in γ with the sign of q_s). Returns (α, β, γ, δ, k)."""
     n, jm, b, c = (act.column(k) for k in ("gear_ratio", "rotor_inertia", "viscous", "coulomb"))
     alpha = path.a / n + jm * n * path.q_s
     beta = path.b / n + jm * n * path.q_ss
-    moving = np.ones(len(path.s)) if at_rest is None else ~np.asarray(at_rest)
-    gamma = path.c / n + c * np.sign(path.q_s) * moving[:, None]
+    both = breakaway(path.q_s, at_rest, turns)
+    gamma = path.c / n + c * np.sign(path.q_s) * ~both
     delta = b * n * path.q_s
-    return alpha, beta, gamma, delta
+    return alpha, beta, gamma, delta, both
 
 
 # --- uniform time scaling --------------------------------------------------------------------
@@ -286,13 +268,18 @@ def uniform_min_duration(act: Actuators, path: PathDynamics) -> UniformScaling:
     With x = 1/D, τm = β·x² + δ·x + γ and ωm = N·q_s·x at every sample: the peak limit fails
     first at the smallest positive root of β x² + δ x + γ = ±peak, the speed limit at
     max_speed / max|N q_s|, and the RMS limit at the smallest positive root of the quartic
-    Σ w_k (β x² + δ x + γ)² = continuous² (trapezoid weights w in s). Raises
-    :class:`ActuatorError` if gravity and Coulomb friction alone break a limit.
+    Σ w_k (β x² + δ x + γ)² = continuous² (trapezoid weights w in s). At the samples where a
+    joint stands, Coulomb counts as ±c (peak − c on the rest of τm; in the RMS, with the
+    static torque's sign). Raises :class:`ActuatorError` if gravity and Coulomb friction alone
+    break a limit.
     """
-    _, beta, gamma, delta = _motor_coefficients(act, path)
+    _, beta, gamma, delta, both = motor_coefficients(act, path, turns=False)
     peak, cont, wmax = (act.column(k) for k in ("peak_torque", "continuous_torque", "max_speed"))
+    coulomb = act.column("coulomb") * both
     w = trapezoid_weights(path.s)
-    static_peak, static_rms = np.abs(gamma).max(0), np.sqrt(w @ gamma**2)
+    static_peak = (np.abs(gamma) + coulomb).max(0)
+    gamma_rms = gamma + coulomb * np.where(gamma >= 0, 1.0, -1.0)
+    static_rms = np.sqrt(w @ gamma_rms**2)
     for j, name in enumerate(act.names):
         for label, value, rating in (("peak", static_peak[j], peak[j]),
                                      ("RMS", static_rms[j], cont[j])):
@@ -301,14 +288,14 @@ def uniform_min_duration(act: Actuators, path: PathDynamics) -> UniformScaling:
                     f"{name}: the static {label} motor torque (gravity and Coulomb friction) "
                     f"{value:.4g} N·m already reaches the rating {rating:.4g} N·m; no duration "
                     "meets it")
-    x_peak = np.minimum(_smallest_positive_root(beta, delta, gamma - peak),
-                        _smallest_positive_root(beta, delta, gamma + peak)).min(axis=0)
+    x_peak = np.minimum(_smallest_positive_root(beta, delta, gamma - (peak - coulomb)),
+                        _smallest_positive_root(beta, delta, gamma + (peak - coulomb))).min(0)
     speed_s = np.abs(motor_speed(act, path.q_s)).max(axis=0)
     with np.errstate(divide="ignore"):
         x_speed = np.where(speed_s > 0, wmax / speed_s, np.inf)
     x_rms = np.empty(len(act.names))
     for j in range(len(act.names)):  # Σ w (βx² + δx + γ)² − cont², highest power first
-        b_, d_, g_ = beta[:, j], delta[:, j], gamma[:, j]
+        b_, d_, g_ = beta[:, j], delta[:, j], gamma_rms[:, j]
         quartic = [w @ (b_ * b_), 2 * w @ (b_ * d_), w @ (d_ * d_ + 2 * b_ * g_),
                    2 * w @ (d_ * g_), w @ (g_ * g_) - cont[j] ** 2]
         roots = np.roots(quartic) if any(quartic[:-1]) else np.array([])
@@ -323,165 +310,21 @@ def uniform_min_duration(act: Actuators, path: PathDynamics) -> UniformScaling:
     return UniformScaling(by_limit[LIMITS[k]], act.names[j], LIMITS[k], by_limit)
 
 
-# --- time-optimal parameterisation (TOPP-RA) ---------------------------------------------------
-@dataclass(frozen=True)
-class TimeOptimal:
-    """The time-optimal traversal of a path: at the grid ``s`` (n,), times ``t``, path rate
-    ``s_dot`` and path acceleration ``s_ddot``: constant between samples, so at a sample it
-    jumps; ``s_ddot`` holds the one-sided value (before or after) that loads the motors more."""
-
-    s: np.ndarray
-    t: np.ndarray
-    s_dot: np.ndarray
-    s_ddot: np.ndarray
-    iterations: int  # TOPP-RA solves (viscous friction is re-linearised between them)
-
-    @property
-    def duration(self) -> float:
-        return float(self.t[-1] - self.t[0])
-
-    def joint_motion(self, path: PathDynamics):
-        """Actuated-joint (τ, q̇, q̈) at the grid samples, each (n, 6)."""
-        sd, sdd = self.s_dot[:, None], self.s_ddot[:, None]
-        return (path.a * sdd + path.b * sd**2 + path.c, path.q_s * sd,
-                path.q_s * sdd + path.q_ss * sd**2)
-
-
-def _toppra():
-    try:
-        import toppra
-        import toppra.algorithm
-        import toppra.constraint
-    except ImportError as exc:
-        raise ImportError(f"the time-optimal cycle needs TOPP-RA ({exc}): pip install "
-                          "'toppra>=0.6.10,<0.7' (a core dependency of pollard-pin)") from None
-    return toppra
-
-
-def _toppra_constraints(act: Actuators, path: PathDynamics, s_dot_viscous: np.ndarray,
-                        at_rest: np.ndarray):
-    toppra = _toppra()
-    DiscretizationType = toppra.constraint.DiscretizationType
-    LinearConstraint = toppra.constraint.LinearConstraint
-    canlinear_colloc_to_interpolate = toppra.constraint.canlinear_colloc_to_interpolate
-
-    alpha, beta, gamma, delta = _motor_coefficients(act, path, at_rest)
-    # viscous δ·ṡ = δ·√x, linearised in x = ṡ² about the last ṡ_v(s) (its tangent, exact at
-    # x = ṡ_v²): δ·(x + ṡ_v²)/(2 ṡ_v); δ·ṡ_v = 0 where ṡ_v = 0
-    sv = s_dot_viscous[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        beta = beta + np.where(sv > 0, delta / (2 * sv), 0.0)
-    gamma = gamma + delta * sv / 2
-    peak = act.column("peak_torque")
-    m, n = len(peak), len(path.s)
-    F = np.broadcast_to(np.vstack([np.eye(m), -np.eye(m)]), (n, 2 * m, m))
-    g = np.broadcast_to(np.concatenate([peak, peak]), (n, 2 * m))
-    speed_s = np.abs(motor_speed(act, path.q_s)) / act.column("max_speed")
-    with np.errstate(divide="ignore"):
-        x_max = np.where(speed_s.max(1) > 0, 1.0 / speed_s.max(1) ** 2, 1e12)
-    xbound = np.column_stack([np.zeros(n), np.minimum(x_max, 1e12)])
-
-    class MotorTorque(LinearConstraint):
-        def __init__(self):
-            super().__init__()
-            self.set_discretization_type(DiscretizationType.Interpolation)
-
-        def compute_constraint_params(self, _path, gridpoints, *args, **kwargs):
-            return canlinear_colloc_to_interpolate(alpha, beta, gamma, F, g, None, None,
-                                                   gridpoints)[:5] + (None, None)
-
-    class MotorSpeed(LinearConstraint):
-        def compute_constraint_params(self, _path, gridpoints, *args, **kwargs):
-            return None, None, None, None, None, None, xbound  # (…, ubound, xbound)
-
-    return [MotorTorque(), MotorSpeed()]
-
-
-@contextlib.contextmanager
-def _quiet(logger_name: str):
-    logger = logging.getLogger(logger_name)
-    level = logger.level
-    logger.setLevel(logging.ERROR)
-    try:
-        yield
-    finally:
-        logger.setLevel(level)
-
-
-def time_optimal(act: Actuators, path: PathDynamics, s_dot_start: float = 0.0,
-                 s_dot_end: float = 0.0, max_iterations: int = 50,
-                 tol: float = 1e-9) -> TimeOptimal:
-    """Shortest traversal of the path under the peak-torque and speed limits (TOPP-RA,
-    interpolation discretisation on the path's own samples; rest to rest by default).
-
-    TOPP-RA needs constraints of the form α s̈ + β ṡ² + γ; the viscous term b·N·q_s·ṡ is
-    linear in ṡ = √(ṡ²), so it enters linearised in ṡ² about the previous solution's ṡ(s)
-    (docs/model.md §19), repeated until ṡ(s) changes by less than ``tol`` (relative): the
-    limits then hold at the final profile. Not converging is an :class:`ActuatorError`.
-    """
-    toppra = _toppra()
-    s = np.asarray(path.s, dtype=float)
-    if len(s) < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
-        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
-                            f"samples of the path, got {len(s)}")
-    dummy = toppra.SplineInterpolator([0.0, 1.0], [[0.0], [1.0]])  # the grid is all it uses
-    at_rest = np.zeros(len(s), dtype=bool)
-    at_rest[[0, -1]] = s_dot_start == 0, s_dot_end == 0
-    has_viscous = bool(np.any(act.column("viscous") > 0))
-    # Viscous friction enters at ṡ_v(s): the last solution, or, where that is so fast that
-    # its viscous torque leaves no traversal, a step back towards the last ṡ_v that solved
-    # (halved until one solves); converged when the solution equals the ṡ_v it was given.
-    s_dot_v = solved_at = np.zeros(len(s))
-    step, it, change = 1.0, 0, np.inf
-    while it < max_iterations and step >= 1.0 / 64:
-        it += 1
-        constraints = _toppra_constraints(act, path, s_dot_v, at_rest)
-        solver = toppra.algorithm.TOPPRA(constraints, dummy, gridpoints=s,
-                                         solver_wrapper="seidel")
-        with _quiet("toppra"):  # its failure warnings; the error below says it in one line
-            s_ddot_new, sd, _ = solver.compute_parameterization(s_dot_start, s_dot_end)
-        if sd is None or np.any(~np.isfinite(sd)):
-            if it == 1:  # no viscous term yet: the path itself is uncontrollable
-                raise ActuatorError(
-                    "no traversal of the path meets the peak-torque and speed ratings "
-                    "(TOPP-RA found the path uncontrollable: gravity alone may exceed a peak "
-                    "torque)")
-            step /= 2
-            s_dot_v = solved_at + step * (s_dot - solved_at)  # noqa: F821 (set by iteration 1)
-            continue
-        s_ddot, s_dot, solved_at = s_ddot_new, np.maximum(sd, 0.0), s_dot_v
-        change = np.abs(s_dot - s_dot_v).max() / max(s_dot.max(), 1e-300)
-        if not has_viscous or change <= tol:
-            break
-        s_dot_v = solved_at + step * (s_dot - solved_at)
-    if has_viscous and change > tol:
-        raise ActuatorError(
-            f"the time-optimal traversal with viscous friction did not converge in {it} "
-            f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
-            "torque b·ωm at the motors' speeds is too close to their peak torque")
-    ds = np.diff(s)
-    with np.errstate(divide="ignore"):
-        dt = 2.0 * ds / (s_dot[:-1] + s_dot[1:])
-    if not np.all(np.isfinite(dt)):
-        k = int(np.argmax(~np.isfinite(dt)))
-        raise ActuatorError(f"the time-optimal traversal stops between samples {k} and "
-                            f"{k + 1} of the path (ṡ = 0 at both): no finite duration")
-    t = np.concatenate([[0.0], np.cumsum(dt)])
-    # s̈ jumps at the samples; both one-sided values are exact and within the limits. Keep
-    # the one that loads the motors more (the worse side), so that a replay checks it.
-    left = np.concatenate([s_ddot[:1], s_ddot])
-    right = np.concatenate([s_ddot, s_ddot[-1:]])
-    alpha, beta, gamma, delta = _motor_coefficients(act, path, at_rest)
-    sd = s_dot[:, None]
-    base = beta * sd**2 + gamma + delta * sd
-    peak = act.column("peak_torque")
-    worse = (np.abs(alpha * left[:, None] + base) / peak).max(1) > \
-        (np.abs(alpha * right[:, None] + base) / peak).max(1)
-    return TimeOptimal(s=s, t=t, s_dot=s_dot, s_ddot=np.where(worse, left, right),
-                       iterations=it)
-
-
-__all__ = ["Actuator", "Actuators", "ActuatorError", "KEYS", "LIMITS", "MotorLoad",
-           "PathDynamics", "TimeOptimal", "UniformScaling", "actuators_from_dict",
-           "load_actuators", "motor_load", "motor_load_of", "motor_speed", "motor_torque",
-           "path_dynamics", "rms", "time_optimal", "trapezoid_weights", "uniform_min_duration"]
+__all__ = [
+    "KEYS",
+    "LIMITS",
+    "Actuator",
+    "ActuatorError",
+    "Actuators",
+    "MotorLoad",
+    "UniformScaling",
+    "actuators_from_dict",
+    "breakaway",
+    "load_actuators",
+    "motor_coefficients",
+    "motor_load",
+    "motor_load_of",
+    "motor_speed",
+    "motor_torque",
+    "uniform_min_duration",
+]

@@ -1,0 +1,131 @@
+"""Motor and gearbox sizing of one trajectory: everything ``pollard-pin size`` reports
+(docs/model.md §19; the table and figure: :mod:`pollard_pin.viz.sizing`).
+
+Per actuator, on the given trajectory and on the time-optimal traversal of the same path:
+peak and RMS motor torque and peak motor speed, each with its ratio to the rating (≤ 1
+passes). Besides: the shortest uniformly time-scaled duration, the time-optimal duration
+(TOPP-RA under the peak-torque and speed limits, rest to rest, checked between the samples),
+and where the time-optimal cycle spends its time (which limit binds, time-weighted).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics.errors import KinematicsError
+from .averages import trapezoid_weights
+from .motors import (
+    ActuatorError,
+    Actuators,
+    MotorLoad,
+    UniformScaling,
+    motor_load,
+    motor_load_of,
+    uniform_min_duration,
+)
+from .path import PathDynamics, path_dynamics
+from .timeopt import TimeOptimal, time_optimal_path
+
+ACTIVE = 0.98  # a limit "binds" at a sample when used to within 2 %
+CHECKS = (  # report key, MotorLoad attribute, ratio key, heading, unit
+    ("peak_motor_torque", "peak_torque", "peak_torque", "peak |τm|", "N·m"),
+    ("rms_motor_torque", "rms_torque", "rms_torque", "RMS τm", "N·m"),
+    ("peak_motor_speed", "peak_speed", "speed", "peak |ωm|", "rad/s"),
+)
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """Everything ``size`` computes; ``report`` is the JSON-ready summary. Without a
+    time-optimal traversal (TOPP-RA failed: ``report['time_optimal_error']``), ``optimal``
+    and ``timing`` are None."""
+
+    report: dict
+    actuators: Actuators
+    given: MotorLoad
+    optimal: MotorLoad | None
+    uniform: UniformScaling
+    timing: TimeOptimal | None
+    path: PathDynamics
+
+
+def _checks(load: MotorLoad, prefix: str = "") -> dict[str, dict[str, float]]:
+    ratios = load.ratios()
+    out = {n: {} for n in load.actuators.names}
+    for key, attr, rkey, _, _ in CHECKS:
+        values = getattr(load, attr)
+        for j, n in enumerate(load.actuators.names):
+            out[n][prefix + key] = float(values[j])
+            out[n][prefix + key + "_ratio"] = float(ratios[rkey][j])
+    return out
+
+
+def binding_shares(load: MotorLoad, active: float = ACTIVE) -> dict[str, float]:
+    """Share of the time in which each limit binds (the most-used one, if used to within
+    ``active``), keyed ``<actuator> <peak_torque|speed>``, plus ``switching`` (no limit
+    within ``active``: the samples where the discretised profile turns from one limit to
+    another). Time-weighted by the trapezoid rule; the shares sum to 1."""
+    a = load.actuators
+    use = np.concatenate([np.abs(load.torque) / a.column("peak_torque"),
+                          np.abs(load.speed) / a.column("max_speed")], axis=1)
+    labels = [f"{n} peak_torque" for n in a.names] + [f"{n} speed" for n in a.names]
+    w = trapezoid_weights(load.t)
+    best = use.argmax(axis=1)
+    bound = use.max(axis=1) >= active
+    shares = {lab: float(w[bound & (best == i)].sum()) for i, lab in enumerate(labels)}
+    shares = {k: v for k, v in shares.items() if v > 0}
+    shares["switching"] = float(w[~bound].sum())
+    return dict(sorted(shares.items(), key=lambda kv: -kv[1]))
+
+
+def actuator_sizing(robot, result, act: Actuators) -> Sizing:
+    """Size the motors of ``act`` on the pipeline result ``result`` (IK, dynamics and the
+    trajectory, whose ``curve``, if any, is the exact path between its samples). A failing
+    time-optimal solve leaves the rest of the report and says why in
+    ``report['time_optimal_error']``."""
+    ik, traj = result.ik, result.trajectory
+    given = motor_load_of(robot, act, ik, result.dynamics)
+    path = path_dynamics(robot, ik)
+    uniform = uniform_min_duration(act, path)
+    try:
+        timing = time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
+                                   traj.dd_poses, getattr(traj, "curve", None))
+    except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
+        timing, error = None, str(exc)
+    checks = _checks(given)
+    per = {n: {"gear_ratio": act.units[j].gear_ratio, **checks[n]}
+           for j, n in enumerate(act.names)}
+    t = ik.t
+    report = {
+        "trajectory": {"name": traj.name, "samples": len(t), "duration": float(t[-1] - t[0]),
+                       "derivatives": traj.derivatives},
+        "actuator_file": act.source,
+        "given_within_ratings": bool(all(r <= 1.0 for row in checks.values()
+                                         for k, r in row.items() if k.endswith("_ratio"))),
+        "actuators": per,
+        "uniform_min_duration": uniform.duration,
+        "uniform_binding": {"actuator": uniform.actuator, "limit": uniform.limit},
+        "uniform_min_duration_by_limit": uniform.by_limit,
+        "time_optimal_start_end": "rest to rest",
+    }
+    if timing is None:
+        report.update(time_optimal_duration=None, time_optimal_error=error)
+        return Sizing(report, act, given, None, uniform, None, path)
+    optimal = motor_load(act, timing.t, *timing.joint_motion(path))
+    shares = binding_shares(optimal)
+    opt = _checks(optimal, "time_optimal_")
+    for n in act.names:
+        per[n].update(opt[n],
+                      time_optimal_torque_limited_share=shares.get(f"{n} peak_torque", 0.0),
+                      time_optimal_speed_limited_share=shares.get(f"{n} speed", 0.0))
+    report.update(time_optimal_duration=timing.duration,
+                  time_optimal_binding_shares=shares,
+                  time_optimal_between_samples={
+                      "worst_utilisation": timing.between, "at_s": timing.between_at,
+                      "check_points_per_interval": timing.per_interval,
+                      "intervals_tightened": timing.tightened})
+    return Sizing(report, act, given, optimal, uniform, timing, path)
+
+
+__all__ = ["ACTIVE", "CHECKS", "Sizing", "actuator_sizing", "binding_shares"]

@@ -1,0 +1,39 @@
+"""The motor model written out from the issue's formula, for the tests of the sizing: the
+shipped actuator file read directly (not through the loader), τm and ωm from run columns."""
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from pollard_pin.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / "examples" / "actuators.toml"
+RATINGS = tomllib.loads(EXAMPLE.read_text())
+NAMES = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+
+
+def cli(argv, capsys):
+    """(exit status, stdout, stderr) of ``pollard-pin argv``."""
+    try:
+        code = main(argv)
+    except SystemExit as exc:
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def motor(cols, name, ratings=None):
+    """τm, ωm of one actuator from run-CSV columns; at rest (q̇ = 0) the breakaway friction
+    ±c adds to the magnitude of the rest."""
+    r = (ratings or RATINGS)[name]
+    n, qd, qdd = r["gear_ratio"], cols[f"d_{name}"], cols[f"dd_{name}"]
+    rest = cols[f"tau_{name}"] / n + r["rotor_inertia"] * n * qdd + r["viscous"] * n * qd
+    friction = np.array([r["coulomb"] * (1 if v > 0 or (v == 0 and x >= 0) else -1)
+                         for v, x in zip(qd, rest)])
+    return rest + friction, n * qd
+
+
+def rms(t, y):
+    return math.sqrt(np.trapezoid(y * y, t) / (t[-1] - t[0]))
