@@ -8,6 +8,7 @@ Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints 
     python scripts/benchmark.py [--samples 2001 20001] [--repeats 5] [--no-mujoco] [--no-cli]
                                 [--big 1000001]
                                 [--no-loads] [--no-simulate] [--no-size]
+                                [--no-startup] [--startup-source DIR]
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ import platform
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -30,6 +32,7 @@ from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
+REPO = Path(__file__).resolve().parents[1]
 
 
 def machine() -> str:
@@ -260,6 +263,43 @@ def cli_section(sizes: tuple[int, int], repeats: int, big: int) -> None:
             print(f"  {big // 5} samples, CSV: {wall:.1f} s, peak resident {rss:.0f} MB")
 
 
+def fresh_install(wheel: Path, venv: Path) -> None:
+    """A new venv with ``wheel`` installed and byte-compiled, as ``pip install`` leaves it; its
+    dependencies come from this environment (after the venv's own site-packages)."""
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    site = next((venv / "lib").glob("python3*/site-packages"))
+    deps = {str(Path(m.__file__).resolve().parents[1]) for m in (np, importlib.import_module(
+        "pinocchio"))}
+    (site / "_deps.pth").write_text("\n".join(sorted(deps)) + "\n")
+    subprocess.run([sys.executable, "-m", "pip", "--python", str(venv / "bin" / "python"),
+                    "install", "-q", "--no-deps", "--no-index", str(wheel)], check=True)
+
+
+def startup_section(samples: int, repeats: int, source: Path) -> None:
+    """Cold start (the first ``run`` after installing) against a warm one (the next runs),
+    whole process, each on a fresh install of a wheel built from ``source``; best of repeats."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("PYTHONPATH", "VIRTUAL_ENV", "NUMBA_CACHE_DIR")}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", str(source),
+                        "-w", str(tmp / "dist")], check=True)
+        (wheel,) = (tmp / "dist").glob("pollard_pin-*.whl")
+        cold, warm = [], []
+        for i in range(repeats):
+            venv = tmp / f"venv{i}"
+            fresh_install(wheel, venv)
+            cmd = [str(venv / "bin" / "pollard-pin"), "run", "--samples", str(samples), "--out",
+                   str(tmp / "run.csv"), "--quiet"]
+            for times in (cold, warm, warm):
+                t0 = time.perf_counter()
+                subprocess.run(cmd, check=True, env=env, cwd=tmp, stdout=subprocess.DEVNULL)
+                times.append(time.perf_counter() - t0)
+    print(f"\nstart-up, `pollard-pin run --samples {samples}` from a fresh install of "
+          f"{source.name}, whole process, best of {repeats} installs: cold (first run) "
+          f"{min(cold):.2f} s, warm {min(warm):.2f} s, ratio {min(cold) / min(warm):.2f}")
+
+
 def mujoco_marginal(sizes: tuple[int, int], repeats: int) -> None:
     """The MuJoCo path (its own IK + closed-loop inverse dynamics) on the same job, in process."""
     try:
@@ -296,9 +336,15 @@ def main(argv=None) -> int:
     ap.add_argument("--no-simulate", action="store_true",
                     help="skip the closed-loop simulation section")
     ap.add_argument("--no-size", action="store_true", help="skip the motor-sizing section")
+    ap.add_argument("--no-startup", action="store_true",
+                    help="skip the cold/warm start section (builds a wheel, fresh installs)")
+    ap.add_argument("--startup-source", type=Path, default=REPO, metavar="DIR",
+                    help="the project checkout whose start-up is measured (default this one)")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
+    if not args.no_startup:
+        startup_section(min(args.samples), 3, args.startup_source)
     robot = pp.load()
     for n in args.samples:
         traj = pp.thesis_trajectory(samples=n)

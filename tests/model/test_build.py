@@ -698,10 +698,11 @@ def test_srdf_without_home_raises_model_file_error():
 
 # --- packaging ------------------------------------------------------------------------------
 def _copy_project(dst):
-    for name in ("pyproject.toml", "README.md"):
+    for name in ("pyproject.toml", "setup.py", "README.md"):
         if (REPO / name).exists():
             shutil.copy2(REPO / name, dst / name)
-    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
+    # no build products: the wheel compiles its own kernels (pollard_pin/kinematics/_kernels.c)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.so", "*.pyd")
     for name in ("pollard_pin", "models"):
         shutil.copytree(REPO / name, dst / name, ignore=ignore)
 
@@ -729,6 +730,9 @@ def test_wheel_ships_the_models(wheel):
         sources = {f"pollard_pin/{f.relative_to(package).as_posix()}"
                    for f in package.rglob("*.py")}
         assert sources <= names, f"modules missing from the wheel: {sorted(sources - names)}"
+        # the C kernels, compiled when the wheel was built (nothing compiles at run time)
+        assert any(re.fullmatch(r"pollard_pin/kinematics/_kernels\..*\.(so|pyd)", n)
+                   for n in names), sorted(n for n in names if "_kernels" in n)
         entry = z.read(next(n for n in names if n.endswith("entry_points.txt"))).decode()
     assert "pollard-pin = pollard_pin.cli:main" in entry
 
@@ -737,22 +741,63 @@ def _site_packages(venv):
     return next((venv / "lib").glob("python3*/site-packages"))
 
 
-def test_load_works_from_the_installed_wheel_in_a_fresh_venv(wheel, tmp_path):
-    venv = tmp_path / "venv"
+def _fresh_venv(wheel, venv):
+    """A new venv with the wheel installed (and byte-compiled, as pip does). The heavy
+    dependencies (pin, numpy, ...) come from this environment, after the venv's own
+    site-packages, so pollard_pin can only come from the wheel."""
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True,
                    timeout=120)
-    # The heavy dependencies (pin, numpy, ...) come from this environment, after the venv's
-    # own site-packages, so pollard_pin can only come from the wheel.
-    import numpy as _np  # noqa: F401
-
-    deps = [str(Path(pin.__file__).resolve().parents[1]), str(Path(_np.__file__).parents[1])]
+    deps = [str(Path(pin.__file__).resolve().parents[1]), str(Path(np.__file__).parents[1])]
     (_site_packages(venv) / "_deps.pth").write_text("\n".join(dict.fromkeys(deps)) + "\n")
     py = venv / "bin" / "python"
     out = subprocess.run([sys.executable, "-m", "pip", "--python", str(py), "install", "-q",
                           "--no-deps", "--no-index", str(wheel)],
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
-    _check_installed(venv, tmp_path)
+    return venv
+
+
+def test_load_works_from_the_installed_wheel_in_a_fresh_venv(wheel, tmp_path):
+    _check_installed(_fresh_venv(wheel, tmp_path / "venv"), tmp_path)
+
+
+def _read_only_namespace():
+    """The command prefix of a private mount namespace (``unshare -m``; ``-r`` maps an
+    unprivileged user to root in it), or None. Bind mounts made read-only there bind root too,
+    where ``chmod`` does not."""
+    for cmd in (["unshare", "-m"], ["unshare", "-r", "-m"]):
+        try:
+            ok = subprocess.run([*cmd, "sh", "-c", "mount --bind / / 2>/dev/null || exit 1; "
+                                 "mount -o remount,bind,ro / /"], capture_output=True,
+                                timeout=30).returncode == 0
+        except (OSError, subprocess.SubprocessError):
+            ok = False
+        if ok:
+            return cmd
+    return None
+
+
+def test_first_run_of_a_read_only_install_with_a_read_only_home(wheel, tmp_path):
+    """A root install run by a user: the package and HOME read-only, never run before. It must
+    neither crash (numba's `cannot cache function … no locator available` did) nor compile."""
+    prefix = _read_only_namespace()
+    if prefix is None:
+        pytest.skip("no private mount namespace here (unshare -m) to make directories read-only")
+    venv, home, work = _fresh_venv(wheel, tmp_path / "venv"), tmp_path / "home", tmp_path / "w"
+    home.mkdir()
+    work.mkdir()
+    ro = " && ".join(f"mount --bind {d} {d} && mount -o remount,bind,ro {d}" for d in
+                     (venv, home))
+    probe = f"touch {venv}/probe 2>/dev/null || touch {home}/probe 2>/dev/null"
+    script = (f"{ro} && if {probe}; then echo writable >&2; exit 9; fi && "
+              f"exec {venv}/bin/pollard-pin run --samples 201 --out run.csv")
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("PYTHONPATH", "VIRTUAL_ENV", "NUMBA_CACHE_DIR", "XDG_CACHE_HOME")}
+    out = subprocess.run([*prefix, "sh", "-c", script], cwd=work, capture_output=True,
+                         text=True, timeout=300, env={**env, "HOME": str(home)})
+    assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr
+    assert "wrote run.csv (201 rows)" in out.stderr
+    assert not any(home.iterdir()) and not (venv / "probe").exists()
 
 
 def _check_installed(venv, cwd):
