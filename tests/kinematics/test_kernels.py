@@ -105,3 +105,17 @@ def test_batched_rnea_equals_pinocchio(robot):
 def ik_traj(robot):
     traj = pp.thesis_trajectory(samples=401)
     return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+
+
+def test_kernels_take_any_layout_and_refuse_bad_indices():
+    """The C loops get C-contiguous float64 whatever is passed (a strided view, integers)
+    and check every index before reading memory: a bad one is a ValueError naming it."""
+    A = RNG.standard_normal((20, 6, 6))
+    view = np.asfortranarray(A)[::-1][::-1]  # the same values, Fortran-ordered, strided
+    assert not view.flags.c_contiguous
+    assert all(np.array_equal(a, b) for a, b in zip(gram_extremes(view), gram_extremes(A)))
+    assert np.array_equal(gram_extremes((100 * A).astype(np.int32))[1],
+                          gram_extremes(np.trunc(100 * A))[1])
+    half = np.arange(3)
+    with pytest.raises(ValueError, match=r"kernels: second\[2\] = 6 is outside \[0, 6\)"):
+        block_inverse(A, half, half + 3, half, np.array([3, 4, 6]))

@@ -765,10 +765,10 @@ def _read_only_namespace():
     """The command prefix of a private mount namespace (``unshare -m``; ``-r`` maps an
     unprivileged user to root in it), or None. Bind mounts made read-only there bind root too,
     where ``chmod`` does not."""
+    probe = "mount --bind / / && mount -o remount,bind,ro / /"
     for cmd in (["unshare", "-m"], ["unshare", "-r", "-m"]):
         try:
-            ok = subprocess.run([*cmd, "sh", "-c", "mount --bind / / 2>/dev/null || exit 1; "
-                                 "mount -o remount,bind,ro / /"], capture_output=True,
+            ok = subprocess.run([*cmd, "sh", "-c", probe], capture_output=True,
                                 timeout=30).returncode == 0
         except (OSError, subprocess.SubprocessError):
             ok = False
