@@ -5,7 +5,8 @@ STAMP := $(VENV)/.installed
 
 .PHONY: run test venv clean urdf bench
 
-$(STAMP): pyproject.toml
+# setup.py and the C kernels: an editable install compiles them once, so rebuild on change
+$(STAMP): pyproject.toml setup.py pollard_pin/kinematics/_kernels.c
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
 	$(VENV)/bin/python -m pip install --quiet -e ".[test]"
@@ -27,4 +28,4 @@ bench: $(STAMP)
 	$(VENV)/bin/python scripts/benchmark.py
 
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) build *.egg-info pollard_pin/kinematics/_kernels.*.so
