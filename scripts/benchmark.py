@@ -293,8 +293,10 @@ def startup_section(samples: int, repeats: int, source: Path) -> None:
                    str(tmp / "run.csv"), "--quiet"]
             for times in (cold, warm, warm):
                 t0 = time.perf_counter()
-                subprocess.run(cmd, check=True, env=env, cwd=tmp, stdout=subprocess.DEVNULL)
+                proc = subprocess.run(cmd, env=env, cwd=tmp, capture_output=True, text=True)
                 times.append(time.perf_counter() - t0)
+                if proc.returncode:
+                    raise SystemExit(f"{' '.join(cmd)} failed:\n{proc.stderr.strip()}")
     print(f"\nstart-up, `pollard-pin run --samples {samples}` from a fresh install of "
           f"{source.name}, whole process, best of {repeats} installs: cold (first run) "
           f"{min(cold):.2f} s, warm {min(warm):.2f} s, ratio {min(cold) / min(warm):.2f}")
