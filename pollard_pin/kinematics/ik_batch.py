@@ -9,6 +9,7 @@ import numpy as np
 from ..analytic.taskspace import rotation, twist, twist_dot
 from ..model.build import TIP_FRAME, Robot
 from ..timing import Stopwatch
+from . import kernels
 from .errors import UnreachablePoseError
 from .ik_common import (
     IK_TOL,
@@ -81,9 +82,7 @@ def kinematic_inverse(K: np.ndarray, lay: Layout) -> np.ndarray:
     half the size give K⁻¹ (compiled, :func:`.kernels.block_inverse`)."""
     if lay.blocks is None:
         return inverse_stack(K)
-    from .kernels import block_inverse  # compiled on first use (numba): keeps start-up fast
-
-    return block_inverse(np.ascontiguousarray(K), *lay.blocks)
+    return kernels.block_inverse(K, *lay.blocks)
 
 
 def _log3(R):
@@ -111,21 +110,17 @@ def point_rows(lay: Layout, R, o, nv: int):
     """K = [Jc; J_tool] (N, 12, nv) and the points' positions (N, P, 3): point Jacobians
     z_c × (p − o_c) summed over the joints moving each point, compiled
     (:func:`.kernels.point_jacobians`)."""
-    from .kernels import point_jacobians  # compiled on first use (numba)
-
     t = lay.tree
-    return point_jacobians(R, o, t.axis, t.col, t.pt_slot, t.pt_local, t.pt_support, t.pt_row,
-                           t.pt_sign, *t.tool, nv)
+    return kernels.point_jacobians(R, o, t.axis, t.col, t.pt_slot, t.pt_local, t.pt_support,
+                                   t.pt_row, t.pt_sign, *t.tool, nv)
 
 
 def point_drifts(lay: Layout, R, o, v, pos):
     """K̇ v (N, 12) and every body's angular velocity (S, N, 3), compiled
     (:func:`.kernels.point_drifts`)."""
-    from .kernels import point_drifts  # compiled on first use (numba)
-
     t = lay.tree
-    return point_drifts(R, o, t.parent, t.axis, t.col, np.ascontiguousarray(v), t.pt_slot,
-                        t.pt_row, t.pt_sign, pos, *t.tool)
+    return kernels.point_drifts(R, o, t.parent, t.axis, t.col, v, t.pt_slot, t.pt_row, t.pt_sign,
+                                pos, *t.tool)
 
 
 BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from . import kernels
 from .errors import BranchFlipError, SingularityError
 
 SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
@@ -65,9 +66,7 @@ def sigma_range(A):
     ok = np.isfinite(A).all(axis=(1, 2))
     if not ok.all():
         A = np.where(ok[:, None, None], A, 0.0)
-    from .kernels import gram_extremes  # compiled on first use (numba): keeps start-up fast
-
-    lo, hi = gram_extremes(np.ascontiguousarray(A))
+    lo, hi = kernels.gram_extremes(A)
     smin, smax = np.sqrt(np.maximum(lo, 0.0)), np.sqrt(np.maximum(hi, 0.0))
     low = ok & ~(smin > GRAM_TRUSTED * smax)
     if low.any():

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import kernels
+
 AXES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
 
 
@@ -46,11 +48,9 @@ class TreeArrays:
 
     def placements(self, Q: np.ndarray):
         """World rotations (S, N, 3, 3) and origins (S, N, 3) at configurations Q (N, nq)."""
-        from .kernels import tree_placements  # compiled on first use (numba)
-
         Q = np.ascontiguousarray(Q, dtype=float)
-        return tree_placements(np.cos(Q), np.sin(Q), self.parent[1:], self.axis[1:],
-                               self.idx_q[1:], self.rot[1:], self.trans[1:])
+        return kernels.tree_placements(np.cos(Q), np.sin(Q), self.parent[1:], self.axis[1:],
+                                       self.idx_q[1:], self.rot[1:], self.trans[1:])
 
 
 def tree_arrays(model, joints, points, rows, signs) -> TreeArrays:
