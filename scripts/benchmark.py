@@ -18,6 +18,7 @@ import importlib.util
 import math
 import os
 import platform
+import shutil
 import statistics
 import subprocess
 import sys
@@ -282,7 +283,16 @@ def startup_section(samples: int, repeats: int, source: Path) -> None:
            if k not in ("PYTHONPATH", "VIRTUAL_ENV", "NUMBA_CACHE_DIR")}
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", str(source),
+        # a copy: building in the checkout would leave (and later package) a stale build/
+        src = tmp / "src"
+        src.mkdir()
+        for name in ("pyproject.toml", "setup.py", "README.md"):
+            if (source / name).exists():
+                shutil.copy2(source / name, src / name)
+        for name in ("pollard_pin", "models"):
+            shutil.copytree(source / name, src / name,
+                            ignore=shutil.ignore_patterns("__pycache__", "*.so"))
+        subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", str(src),
                         "-w", str(tmp / "dist")], check=True)
         (wheel,) = (tmp / "dist").glob("pollard_pin-*.whl")
         cold, warm = [], []
