@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 .PHONY: run test venv clean urdf bench
 
 # setup.py and the C kernels: an editable install compiles them once, so rebuild on change
-$(STAMP): pyproject.toml setup.py pollard_pin/kinematics/_kernels.c
+$(STAMP): pyproject.toml setup.py $(wildcard csrc/*.c csrc/*.h)
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
 	$(VENV)/bin/python -m pip install --quiet -e ".[test]"

@@ -4,6 +4,9 @@ compiled at install so that nothing compiles or caches at run time (read-only in
 Needs a C compiler and Python's headers. FMA contraction off: every platform rounds alike."""
 from setuptools import Extension, setup
 
+CSRC = "csrc"  # outside the package: compiled into it, not shipped as files
+
 setup(ext_modules=[Extension("pollard_pin.kinematics._kernels",
-                             sources=["pollard_pin/kinematics/_kernels.c"],
+                             sources=[f"{CSRC}/{f}.c" for f in ("module", "linalg", "tree")],
+                             depends=[f"{CSRC}/kernels.h"],
                              extra_compile_args=["-O3", "-ffp-contract=off"])])

@@ -289,7 +289,9 @@ def startup_section(samples: int, repeats: int, source: Path) -> None:
         for name in ("pyproject.toml", "setup.py", "README.md"):
             if (source / name).exists():
                 shutil.copy2(source / name, src / name)
-        for name in ("pollard_pin", "models"):
+        for name in ("pollard_pin", "models", "csrc"):
+            if not (source / name).exists():  # (no csrc/ before the C kernels)
+                continue
             shutil.copytree(source / name, src / name,
                             ignore=shutil.ignore_patterns("__pycache__", "*.so"))
         subprocess.run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", str(src),

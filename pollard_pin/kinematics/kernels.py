@@ -1,10 +1,10 @@
 """Compiled kernels of the batched pipeline: small dense linear algebra, one loop over the
 samples of a stack, the GIL released (so the run's window threads use the cores).
 
-The loops are C (``_kernels.c`` beside this file), compiled when the package is installed: no
-compile wait at the first run, nothing cached per user, nothing written at run time. These
-functions are their typed front: they make the inputs C-contiguous float64 / int64 and allocate
-the outputs; the C side checks every size and index before it computes.
+The loops are C (the repository's ``csrc/``), compiled into ``_kernels`` when the package is
+installed: no compile wait at the first run, nothing cached per user, nothing written at run
+time. These functions are their typed front: they make the inputs C-contiguous float64 / int64
+and allocate the outputs; the C side checks every size and index before it computes.
 
 ``tree_placements``, ``point_jacobians`` and ``point_drifts`` evaluate the joint placements,
 K = [Jc; J_tool] and its drifts K̇v on Pinocchio's model tree (docs/model.md §11);

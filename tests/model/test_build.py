@@ -701,9 +701,9 @@ def _copy_project(dst):
     for name in ("pyproject.toml", "setup.py", "README.md"):
         if (REPO / name).exists():
             shutil.copy2(REPO / name, dst / name)
-    # no build products: the wheel compiles its own kernels (pollard_pin/kinematics/_kernels.c)
+    # no build products: the wheel compiles its own kernels (csrc/)
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.so", "*.pyd")
-    for name in ("pollard_pin", "models"):
+    for name in ("pollard_pin", "models", "csrc"):
         shutil.copytree(REPO / name, dst / name, ignore=ignore)
 
 
