@@ -399,7 +399,7 @@ def test_unreachable_part_of_trajectory(robot, shift, too_close):
     assert "sample 150" in msg and "t = 15" in msg and "chain 0" in msg
     assert e.amount > 0
     if not too_close:
-        assert abs(e.amount - _chain0_shortfall(robot.params, poses[150])) <= 1e-14  # achieves 1.1e-16
+        assert abs(e.amount - _chain0_shortfall(robot.params, poses[150])) <= 1e-14  # 1.1e-16
     else:
         assert "too close" in msg
 

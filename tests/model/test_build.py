@@ -209,8 +209,8 @@ def test_body_frames_tip_and_closure_frames_match_spec(robot):
 
 # --- §5 masses and inertias -----------------------------------------------------------------
 def test_total_mass_is_0_92_kg(robot):
-    assert abs(pin.computeTotalMass(robot.model) - 0.92) <= 1e-12
-    assert abs(robot.params.total_mass - 0.92) <= 1e-12
+    assert abs(pin.computeTotalMass(robot.model) - 0.92) <= 1e-14  # achieves 1.1e-16
+    assert abs(robot.params.total_mass - 0.92) <= 1e-14
 
 
 @pytest.mark.parametrize("body", list(SPEC_BODIES))
@@ -232,36 +232,39 @@ def test_universal_joint_crosses_are_massless(robot):
 def test_home_matches_spec_table(robot, q_home):
     got = robot.as_dict(q_home)
     for name, deg in HOME_DEG.items():
-        assert abs(math.degrees(got[name]) - deg) <= 1e-3, (name, math.degrees(got[name]), deg)
+        # The table has 3 decimals.
+        assert abs(math.degrees(got[name]) - deg) <= 5e-4 + 1e-12, (name, math.degrees(got[name]))
 
 
 def test_srdf_home_posture_is_the_reference_configuration(robot, q_home):
     q_ref = robot.model.referenceConfigurations["home"]
     for name, deg in HOME_DEG.items():
-        assert abs(math.degrees(q_ref[robot.idx_q(name)]) - deg) <= 1e-3, name
+        assert abs(math.degrees(q_ref[robot.idx_q(name)]) - deg) <= 5e-4 + 1e-12, name  # 3 decimals
     # The SRDF holds the closed-form solution: it already closes the loops.
     r = constraint_residual(*residual_args(robot), np.array(q_ref))
-    assert np.abs(r).max() <= 1e-12
-    assert np.abs(q_home - q_ref).max() <= 1e-9
+    assert np.abs(r).max() <= 1e-12  # achieves 5.7e-14 (12 decimals in the SRDF)
+    assert np.abs(q_home - q_ref).max() <= 5e-11  # achieves 2.7e-13
 
 
 def test_home_tip_and_closure_points(robot, q_home):
     M = tool_pose(robot, q_home)
-    assert np.abs(M.translation - HOME_TIP).max() <= 1e-9, M.translation
-    assert np.abs(M.rotation - np.eye(3)).max() <= 1e-9  # θ = ψ = φ = 0: sprays along +x
+    assert np.abs(M.translation - HOME_TIP).max() <= 1e-13, M.translation  # achieves 1.4e-16
+    assert np.abs(M.rotation - np.eye(3)).max() <= 1e-13  # θ = ψ = φ = 0: sprays along +x
     data = robot.data
     pin.framesForwardKinematics(robot.model, data, q_home)
     ref = chain_points(spec_geometry(), robot.as_dict(q_home))
-    assert np.abs(ref["tip"] - HOME_TIP).max() <= 1e-9  # the spec chain agrees
+    assert np.abs(ref["tip"] - HOME_TIP).max() <= 1e-13  # the spec chain agrees
     for i in (1, 2):
         pa = data.oMf[robot.frame_id(f"closure{i}_A")].translation
         pb = data.oMf[robot.frame_id(f"closure{i}_B")].translation
-        assert np.abs(pa - pb).max() <= 1e-12, (i, pa - pb)
+        assert np.abs(pa - pb).max() <= 1e-13, (i, pa - pb)  # achieves 3.1e-16
         # B from docs/model.md §4/§7: E + R_platform·A_i; A from the spec leg chain.
-        assert np.abs(pb - (ref["E"] + ref["R_platform"] @ SPEC_A[i])).max() <= 1e-9
-        assert np.abs(pa - ref["legs"][i][0]).max() <= 1e-9
+        # Achieves 2.8e-17 m.
+        assert np.abs(pb - (ref["E"] + ref["R_platform"] @ SPEC_A[i])).max() <= 1e-14
+
+        assert np.abs(pa - ref["legs"][i][0]).max() <= 1e-14
     r = constraint_residual(*residual_args(robot), q_home)
-    assert np.abs(r).max() <= 1e-12
+    assert np.abs(r).max() <= 1e-13
 
 
 def test_home_spherical_joint_angles(robot, q_home):
@@ -269,7 +272,7 @@ def test_home_spherical_joint_angles(robot, q_home):
     for i in (1, 2):
         R_link = ref["legs"][i][1]
         got = zyz(R_link.T @ ref["R_platform"] @ rz(-SPEC["beta1413"][i - 1]))
-        assert np.abs(got - HOME_SPHERICAL_DEG[i]).max() <= 1e-3, (i, got)
+        assert np.abs(got - HOME_SPHERICAL_DEG[i]).max() <= 5e-4 + 1e-12, (i, got)
 
 
 # --- closure Jacobian and solving -----------------------------------------------------------
@@ -289,7 +292,7 @@ def test_closure_jacobian_matches_central_differences(robot, q_home, seed):
         dq[k] = h
         Jfd[:, k] = (constraint_residual(*args, pin.integrate(robot.model, q, dq))
                      - constraint_residual(*args, pin.integrate(robot.model, q, -dq))) / (2 * h)
-    assert np.abs(J - Jfd).max() <= 1e-7
+    assert np.abs(J - Jfd).max() <= 2e-8  # achieves 1.5e-10
 
 
 def test_forward_kinematics_from_home_actuators_reproduces_home(robot, q_home):
@@ -299,11 +302,11 @@ def test_forward_kinematics_from_home_actuators_reproduces_home(robot, q_home):
     for q0 in (None, guess):
         qs, poses = forward_kinematics(robot, act, q_guess=q0)
         assert qs.shape == (1, 12) and poses.shape == (1, 6)
-        assert np.abs(qs[0] - q_home).max() <= 1e-9
-        assert np.abs(poses[0] - robot.params.home_pose).max() <= 1e-9
+        assert np.abs(qs[0] - q_home).max() <= 5e-11  # achieves 2.7e-13 (12 decimals in the SRDF)
+        assert np.abs(poses[0] - robot.params.home_pose).max() <= 2e-11  # achieves 1.2e-13
     q = solve_closure(robot, act, q_guess=guess)
-    assert np.abs(q - q_home).max() <= 1e-9
-    assert np.abs(constraint_residual(*residual_args(robot), q)).max() <= 1e-12
+    assert np.abs(q - q_home).max() <= 1e-13  # achieves 8.9e-16
+    assert np.abs(constraint_residual(*residual_args(robot), q)).max() <= 1e-14  # achieves 5.6e-17
 
 
 def test_forward_kinematics_inverts_the_closed_form_ik(robot, q_home):
@@ -315,8 +318,8 @@ def test_forward_kinematics_inverts_the_closed_form_ik(robot, q_home):
     q_ik = position_ik(robot.params, poses)
     order = [JOINTS.index(n) for n in robot.joint_names]
     qs, got = forward_kinematics(robot, q_ik[:, order][:, robot.actuated_v], q_guess=q_home)
-    assert np.abs(got - poses).max() <= 1e-9
-    assert np.abs(qs - q_ik[:, order]).max() <= 1e-9
+    assert np.abs(got - poses).max() <= 1e-13  # achieves 5.3e-16
+    assert np.abs(qs - q_ik[:, order]).max() <= 1e-13  # achieves 6.7e-16
 
 
 @pytest.mark.parametrize("leg", [1, 2])
@@ -369,10 +372,10 @@ def test_modified_params_give_a_model_whose_placements_follow():
                   - (0.37, 0.02, -0.02)).max() <= 1e-15
     # The SRDF home is re-solved for the new geometry: the tip is still at the spec home.
     q = r.home()
-    assert np.abs(tool_pose(r, q).translation - HOME_TIP).max() <= 1e-9
-    assert np.abs(constraint_residual(*residual_args(r), q)).max() <= 1e-12
+    assert np.abs(tool_pose(r, q).translation - HOME_TIP).max() <= 1e-13  # achieves 2.2e-16
+    assert np.abs(constraint_residual(*residual_args(r), q)).max() <= 1e-13
     ref = chain_points(g, r.as_dict(q))
-    assert np.abs(ref["tip"] - HOME_TIP).max() <= 1e-9
+    assert np.abs(ref["tip"] - HOME_TIP).max() <= 1e-13
     # Loading from a parameter file path takes the same route (only the source comment differs).
     strip = re.compile(r"Parameters: .*?\.toml\. ")
     assert strip.sub("", load(TOML_PATH).urdf) == strip.sub("", URDF_PATH.read_text())
@@ -611,7 +614,7 @@ def test_urdf_loads_in_yourdfpy_with_all_geometry(robot, q_home, caplog):
     assert set(u.actuated_joint_names) == set(robot.joint_names)
     u.update_cfg({n: v for n, v in robot.as_dict(q_home).items()})
     T = u.get_transform("tip", "base")
-    assert np.abs(T[:3, 3] - HOME_TIP).max() <= 1e-9
+    assert np.abs(T[:3, 3] - HOME_TIP).max() <= 1e-13  # achieves 1.7e-16
     with warnings.catch_warnings(record=True) as caught:  # the collision scene as well
         warnings.simplefilter("always")
         warnings.filterwarnings("ignore", r".*Scene\.dump\(concatenate=True\)",
@@ -657,7 +660,7 @@ def test_urdf_loads_in_mujoco_without_warnings(tmp_path, robot, q_home):
     for body, (mass, _, _) in SPEC_BODIES.items():
         assert abs(res["mass"][body] - mass) <= 1e-15, body
     assert res["ngeom"] == sum(_xml_counts("collision").values())  # visuals are discarded
-    assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-9
+    assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-13  # achieves 1.7e-16
 
 
 # --- malformed model files ------------------------------------------------------------------
@@ -818,8 +821,8 @@ def _check_installed(venv, cwd):
     site = str(_site_packages(venv).resolve())
     assert str(Path(res["file"]).resolve()).startswith(site), res["file"]
     assert str(Path(res["models"]).resolve()).startswith(site), res["models"]
-    assert res["nq"] == 12 and abs(res["mass"] - 0.92) <= 1e-12
-    assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-9
+    assert res["nq"] == 12 and abs(res["mass"] - 0.92) <= 1e-14
+    assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-13
     # Every command the README shows works from the installed package (plots included).
     short = ["--samples", "401"]
     for args, made in ((["info"], None), (["run", *short, "--out", "r.csv"], "r.csv"),
