@@ -10,6 +10,7 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
+import pollard_pin as pp  # noqa: E402
 from pollard_pin.crosscheck.mujoco import (  # noqa: E402
     ACTUATED,
     JOINTS,
@@ -20,11 +21,12 @@ from pollard_pin.crosscheck.mujoco import (  # noqa: E402
     inverse_kinematics_mujoco,
     pipeline_mujoco,
 )
+from pollard_pin.dynamics.inverse import inverse_dynamics  # noqa: E402
 from pollard_pin.model.paths import models_dir  # noqa: E402
 
 URDF = models_dir() / "pollard.urdf"
-TOL_CLOSURE = 1e-10  # m
-TOL_REL = 1e-8  # relative to the peak per actuator / per leg
+TOL_CLOSURE = 1e-13  # m (achieves 7.6e-16)
+TOL_REL = 5e-12  # relative to the peak per actuator / per leg (achieves 2.5e-14)
 
 
 @pytest.fixture(scope="module")
@@ -34,8 +36,6 @@ def built():
 
 @pytest.fixture(scope="module")
 def robot():
-    pp = pytest.importorskip("pollard_pin")
-    pytest.importorskip("pinocchio")
     return pp.load()
 
 
@@ -58,7 +58,8 @@ def iks(robot):
 # ----------------------------------------------------------
 def test_masses_and_gravity_match_urdf(built):
     model, _, info = built
-    assert mujoco.mj_getTotalmass(model) == pytest.approx(0.92, abs=1e-12)
+    assert mujoco.mj_getTotalmass(model) == pytest.approx(0.92, abs=1e-14)  # 1.1e-16
+
     assert np.array_equal(model.opt.gravity, [0.0, 0.0, -9.81])
     root = ET.parse(URDF).getroot()
     urdf_mass = {link.get("name"): float(link.find("inertial/mass").get("value"))
@@ -83,7 +84,9 @@ def test_ideal_joints_and_only_closure_constraints(built):
     (a1, b1), (a2, b2) = info["sites"]
     assert a1[1:] == ("link_1", [0.325, 0.0, 0.0]) and a2[1:] == ("link_2", [0.325, 0.0, 0.0])
     assert b1[1] == b2[1] == "platform"
-    assert np.allclose(b1[2], [0.37, -0.015, -0.02]) and np.allclose(b2[2], [0.37, 0.015, -0.02])
+    assert np.abs(np.array([b1[2], b2[2]]) - [[0.37, -0.015, -0.02], [0.37, 0.015, -0.02]]).max() \
+        <= 1e-15  # achieves 0
+
     assert np.array_equal(info["efc_sign"], [1.0, 1.0])
 
 
@@ -119,13 +122,6 @@ def test_closure_residual_at_ik_configurations(iks, built):
 
 
 # --- (3) against pollard_pin.dynamics (Pinocchio RNEA + closure Jacobian) -----------------------
-def _pin_dynamics():
-    dyn = pytest.importorskip("pollard_pin.dynamics.inverse")
-    if not hasattr(dyn, "inverse_dynamics"):
-        pytest.skip("pollard_pin.dynamics.inverse_dynamics not written yet")
-    return dyn.inverse_dynamics
-
-
 def _rel_errors(got, want, axis):
     peak = np.abs(want).max(axis=axis)
     # An identically ~0 torque (θ1817 on the thesis curve: gun CoG on its roll axis) has no
@@ -136,7 +132,6 @@ def _rel_errors(got, want, axis):
 
 @pytest.mark.parametrize("name", ["thesis", "random0", "random1"])
 def test_torques_and_closure_forces_match_pinocchio(name, iks, robot, built):
-    inverse_dynamics = _pin_dynamics()
     ik = iks[name]
     pin = inverse_dynamics(robot, ik)
     out = inverse_dynamics_mujoco(ik.q, ik.v, ik.a, built=built)
@@ -176,7 +171,7 @@ def test_closure_force_sign_by_applied_forces(iks, built):
                                   model.site_bodyid[site], data.qfrc_applied)
         mujoco.mj_forward(model, data)
         assert data.nefc == 0
-        assert np.abs(data.qacc[dadr] - ik.a[k]).max() <= 1e-7 * a_scale, k
+        assert np.abs(data.qacc[dadr] - ik.a[k]).max() <= 1e-12 * a_scale, k  # 8.5e-15 × scale
 
 
 def _close_loops(model, data, info, q, tol=1e-14):
@@ -233,11 +228,13 @@ def test_static_torques_by_virtual_work(built):
             U.append(_potential(model, data, info, q))
         grad[i] = (U[0] - 8 * U[1] + 8 * U[2] - U[3]) / (12 * h)
     tau = out["tau"][0]
-    assert np.abs(tau - grad).max() <= 1e-8 * np.abs(tau).max(), (tau, grad)
+    # Achieves 2.4e-13 × the peak.
+    assert np.abs(tau - grad).max() <= 5e-11 * np.abs(tau).max(), (tau, grad)
 
 
 # --- (4) MuJoCo constrained IK (inverse_kinematics_mujoco, pipeline_mujoco) ----------------------
-TOL_Q, TOL_V, TOL_A = 1e-9, 1e-7, 1e-5  # rad, rad/s, rad/s² against Pinocchio's IK
+# Against Pinocchio's IK: achieves 3.6e-15 rad, 9.8e-15 rad/s, 1.7e-13 rad/s².
+TOL_Q, TOL_V, TOL_A = 5e-13, 2e-12, 2e-11
 
 
 def _wrap(x):
@@ -255,7 +252,6 @@ def short_trajs():
 
 @pytest.mark.parametrize("name", ["thesis201", "random0", "random1"])
 def test_mujoco_ik_and_pipeline_match_pinocchio(name, short_trajs, robot, built):
-    inverse_dynamics = _pin_dynamics()
     traj = short_trajs[name]
     ik = _ik(robot, traj)
     timings = {}
@@ -270,7 +266,7 @@ def test_mujoco_ik_and_pipeline_match_pinocchio(name, short_trajs, robot, built)
     assert np.abs(out["v"] - ik.v).max() <= TOL_V
     assert np.abs(out["a"] - ik.a).max() <= TOL_A
     assert out["closure_residual"].max() <= TOL_CLOSURE
-    assert out["tool_error"].max() <= 1e-12
+    assert out["tool_error"].max() <= 5e-13  # achieves 3e-15
     # The dynamics half of the pipeline sees closed loops too.
     assert out["residual"].max() <= TOL_CLOSURE
     pin = inverse_dynamics(robot, ik)
@@ -296,8 +292,8 @@ def test_mujoco_ik_at_home_pose_returns_srdf_home(built):
     home = home_configuration()
     out = inverse_kinematics_mujoco(np.array([0.55, 0.0, 0.16, 0.0, 0.0, 0.0]), built=built)
     # The SRDF values are rounded to 1e-12 rad; Newton lands within a few of those.
-    assert np.abs(out["q"][0] - home).max() <= 1e-10
-    assert np.abs(out["v"]).max() == 0.0 and np.abs(out["a"]).max() <= 1e-12
+    assert np.abs(out["q"][0] - home).max() <= 5e-11  # achieves 2.7e-13
+    assert np.abs(out["v"]).max() == 0.0 and np.abs(out["a"]).max() <= 1e-14  # achieves 0
 
 
 def test_mujoco_ik_warm_start_options_agree(short_trajs, built):
@@ -309,8 +305,8 @@ def test_mujoco_ik_warm_start_options_agree(short_trajs, built):
     start = inverse_kinematics_mujoco(traj.poses, traj.d_poses, traj.dd_poses, built=built,
                                       q_start=ref["q"][0] + 0.02)
     for other in (sec, start):
-        assert np.abs(other["q"] - ref["q"]).max() <= 1e-12
-        assert np.abs(other["a"] - ref["a"]).max() <= 1e-9
+        assert np.abs(other["q"] - ref["q"]).max() <= 5e-13  # achieves 3.3e-15
+        assert np.abs(other["a"] - ref["a"]).max() <= 2e-12  # achieves 1.3e-14
     assert sec["iterations"].sum() < ref["iterations"].sum()
     assert np.all(ref["iterations"] <= 6)
 
@@ -329,8 +325,9 @@ def test_mujoco_ik_accelerations_by_finite_differences_in_time(built):
     dq = (q[:, 0] - 8 * q[:, 1] + 8 * q[:, 3] - q[:, 4]) / (12 * h)
     vv = out["v"].reshape(len(t0), 5, 12)
     dv = (vv[:, 0] - 8 * vv[:, 1] + 8 * vv[:, 3] - vv[:, 4]) / (12 * h)
-    assert np.abs(dq - v).max() <= 1e-7 * np.abs(v).max()
-    assert np.abs(dv - a).max() <= 1e-6 * np.abs(a).max()
+    # 5-point differences achieve 7.3e-12 × |v| and 4.9e-12 × |a|.
+    assert np.abs(dq - v).max() <= 1e-9 * np.abs(v).max()
+    assert np.abs(dv - a).max() <= 5e-10 * np.abs(a).max()
 
 
 def test_objectacceleration_drift_is_classical_by_finite_differences(built):
