@@ -133,12 +133,13 @@ def test_static_page_animation(html_file, ik):
     key_t, idx = viewer._key_samples(ik.t, fps)
     np.testing.assert_allclose(key_t, times / fps)
     assert np.max(np.abs(ik.t[idx] - key_t)) <= 0.5 * np.diff(ik.t).max() + 1e-12
-    np.testing.assert_allclose(tip, ik.poses[idx, :3], atol=1e-9)
+    np.testing.assert_allclose(tip, ik.poses[idx, :3], rtol=0, atol=1e-13)  # achieves 4.6e-16
     # Each closure's two spheres coincide in every key frame: the loops are closed.
     for i in (1, 2):
         _, a = _track(clips[f"{root}/visuals/closure{i}_A_marker"], "position")
         _, b = _track(clips[f"{root}/visuals/closure{i}_B_marker"], "position")
-        assert np.max(np.abs(a - b)) < 1e-9
+        assert np.max(np.abs(a - b)) < 1e-13  # achieves 5.6e-16
+
         assert np.ptp(a, axis=0).max() > 0.05  # and they move with the robot
     # Every robot shape and both frames are animated.
     shapes = [p for p in clips if "/visuals/" in p]
@@ -146,7 +147,7 @@ def test_static_page_animation(html_file, ik):
     for p in shapes + [f"{root}/frames/platform"]:
         t_p, q_p = _track(clips[p], "quaternion")
         assert len(t_p) == len(times)
-        np.testing.assert_allclose(np.linalg.norm(q_p, axis=1), 1.0, atol=1e-9)
+        np.testing.assert_allclose(np.linalg.norm(q_p, axis=1), 1.0, rtol=0, atol=1e-13)  # 6.7e-16
 
 
 def test_view_rejects_bad_fps(capsys):
