@@ -106,9 +106,20 @@ def test_module_does_not_import_pinocchio():
     subprocess.run([sys.executable, "-c", code], check=True, timeout=60)
 
 
-def test_input_shapes(built):
+def test_input_shapes(built, robot):
     out = inverse_dynamics_mujoco(np.zeros(12), np.zeros(12), np.zeros(12), built=built)
     assert out["tree"].shape == (1, 12) and out["residual"].shape == (1, 2)
+    # One sample at rest at q = 0: the open tree's torques are Pinocchio's gravity torques.
+    import pinocchio
+
+    g = pinocchio.computeGeneralizedGravity(robot.model, robot.model.createData(),
+                                            np.zeros(robot.model.nq))
+    want = g[[robot.idx_v(n) for n in JOINTS]]
+    assert np.abs(want).max() > 1.0  # N·m: a real load
+    # Achieves 2e-14 of the peak.
+    assert np.abs(out["tree"][0] - want).max() <= 2e-12 * np.abs(want).max()
+
+
     with pytest.raises(ValueError, match="expected"):
         inverse_dynamics_mujoco(np.zeros((3, 12)), np.zeros((3, 12)), np.zeros((3, 11)))
 
