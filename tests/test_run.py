@@ -186,6 +186,10 @@ def test_worker_robots_do_not_share_pinocchio_data(robot):
     ("latin1.csv", "t,x\n0,\xe9\n".encode("latin-1"), "not UTF-8 text (byte 6"),
     ("text.csv", b"t,x\n0,abc\n", "not a readable csv result table"),
     ("ragged.csv", b"t,x\n0,1,2,3\n", "not a readable csv result table"),
+    ("ab.csv", b"a,b\n", "column 'a' is not one pollard-pin writes, and no sidecar"),
+    ("ab_rows.csv", b"t,b\n0,1\n", "column 'b' is not one pollard-pin writes"),
+    ("header.csv", b"t,theta21\n", "no rows"),
+    ("text.parquet", "TEXT", "not a readable parquet result table"),
 ])
 def test_read_result_of_a_bad_file_is_one_error(tmp_path, name, content, says):
     from pollard_pin.io.table import ResultFileError
@@ -193,6 +197,11 @@ def test_read_result_of_a_bad_file_is_one_error(tmp_path, name, content, says):
     path = tmp_path / name
     if content == "DIR":
         path.mkdir()
+    elif content == "TEXT":  # Parquet with a text column
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        pq.write_table(pa.table({"t": [0.0], "theta21": ["abc"]}), path)
     elif content is not None:
         path.write_bytes(content)
     with pytest.raises(ResultFileError) as info:

@@ -30,6 +30,7 @@ from .plant import PlantErrors, perturbed_robot
 
 CONTROL_PERIOD = 1e-3  # s, zero-order hold
 WN, ZETA = 60.0, 1.0  # rad/s, 1: default error dynamics (≈ 10 Hz at a 1 kHz control rate)
+MAX_WN = 1e6  # rad/s: a time constant under 1 µs is a unit slip
 CONTROLLERS = ("computed-torque", "feedforward-pd", "pd")
 
 
@@ -58,6 +59,9 @@ class Gains:
                             ("damping ratio ζ", self.zeta)):
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ControlError(f"{name} must be a finite number >= 0, got {value}")
+        if self.wn > MAX_WN:  # ω² overflowed float64 at 1e300 (a traceback)
+            raise ControlError(f"natural frequency ω must be at most {MAX_WN:g} rad/s (a "
+                               f"time constant of 1 µs), got {self.wn}")
 
     @property
     def kp(self) -> float:

@@ -28,6 +28,7 @@ from .path import PathDynamics, path_dynamics
 from .timeopt import TimeOptimal, time_optimal_path
 
 ACTIVE = 0.98  # a limit "binds" at a sample when used to within 2 %
+MIN_TRAVEL = 1e-9  # rad: a path moving no actuator further stands still (IK noise: 1e-14)
 CHECKS = (  # report key, MotorLoad attribute, ratio key, heading, unit
     ("peak_motor_torque", "peak_torque", "peak_torque", "peak |τm|", "N·m"),
     ("rms_motor_torque", "rms_torque", "rms_torque", "RMS τm", "N·m"),
@@ -87,6 +88,10 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
     ik, traj = result.ik, result.trajectory
     given = motor_load_of(robot, act, ik, result.dynamics)
     path = path_dynamics(robot, ik)
+    travel = float(np.abs(path.q_s).max())  # bounds each actuator's travel ∫|q_s| ds
+    if not travel > MIN_TRAVEL:  # no cycle to find: every duration would do
+        raise ActuatorError(f"the path does not move the actuators (each travels at most "
+                            f"{travel:.2g} rad over its {len(ik.t)} samples)")
     uniform = uniform_min_duration(act, path)
     try:
         timing = time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,

@@ -11,13 +11,15 @@ Column units follow docs/model.md §15; :func:`column_unit` derives them from th
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable, Mapping
 
 import numpy as np
 
-from .atomic import STDOUT, OutputError, is_special, atomic_open, check_destination
+from ..kinematics.taskspace import TASK_NAMES
+from .atomic import STDOUT, OutputError, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
@@ -44,6 +46,17 @@ def column_unit(name: str) -> str:
     base = name.split("_", order)[-1] if order else name
     length = base in _TASK_LENGTHS
     return ("m" if length else "rad") + ("", "/s", "/s²")[order]
+
+
+_JOINT = r"theta\d+(?:_\d+)?"  # tree and closure joints: theta21, theta65_1, theta98_2, ...
+_KNOWN = re.compile("|".join((
+    "|".join(map(re.escape, _FIXED)), f"(?:tau|power|work)_{_JOINT}", f"[FM]_{_JOINT}_[xyz]",
+    "f[12]_[xyz]", rf"(?:d_|dd_)?(?:{'|'.join(TASK_NAMES)}|{_JOINT})")))
+
+
+def is_result_column(name: str) -> bool:
+    """Whether ``name`` is a column that pollard-pin writes (its unit comes from the name)."""
+    return _KNOWN.fullmatch(name) is not None
 
 
 def table_format(path: str | Path, fmt: str | None = None) -> str:
@@ -164,21 +177,27 @@ class ResultFileError(ValueError):
 
 def read_result(path: str | Path) -> ResultTable:
     """Read a table written by :class:`TableWriter` (``run``, ``simulate``, ``size
-    --retime``), CSV or Parquet: every column float64. A missing, unreadable or malformed file
-    (or one with text columns, such as a ``sweep`` table) raises :class:`ResultFileError`."""
+    --retime``), CSV or Parquet: every column float64. A missing, unreadable, malformed or
+    empty file, one with text columns (such as a ``sweep`` table), or a CSV whose columns no
+    command writes and that has no units sidecar raises :class:`ResultFileError`."""
     path = Path(path)
     if path.is_dir():
         raise ResultFileError(f"{path}: is a folder, not a result file")
-    if not path.is_file():
+    if not path.exists():
         raise ResultFileError(f"{path}: no such result file")
+    if not path.is_file():
+        raise ResultFileError(f"{path}: not a regular file")
     fmt = table_format(path)
     try:
-        return _read_parquet(path) if fmt == "parquet" else _read_csv(path)
+        table = _read_parquet(path) if fmt == "parquet" else _read_csv(path)
     except ResultFileError:
         raise
     except (OSError, ValueError, _polars_error()) as exc:  # pyarrow's are ValueError/OSError
         cause = " ".join(str(exc).split()) or type(exc).__name__
         raise ResultFileError(f"{path}: not a readable {fmt} result table ({cause})") from None
+    if len(table) == 0:
+        raise ResultFileError(f"{path}: no rows (no command writes an empty table)")
+    return table
 
 
 def _polars_error() -> type[Exception]:
@@ -192,7 +211,8 @@ def _read_parquet(path: Path) -> ResultTable:
 
     table = pq.read_table(path)
     meta = table.schema.metadata or {}
-    cols = {n: table.column(n).to_numpy() for n in table.column_names}
+    cols = {n: np.asarray(table.column(n).to_numpy(), dtype=np.float64)
+            for n in table.column_names}
     return ResultTable(cols, json.loads(meta.get(UNITS_KEY.encode(), b"{}")),
                        json.loads(meta.get(META_KEY.encode(), b"{}")))
 
@@ -216,5 +236,10 @@ def _read_csv(path: Path) -> ResultTable:
         extra = json.loads(side.read_text(encoding="utf-8")) if side.is_file() else {}
     except ValueError as exc:  # JSON or UTF-8
         raise ResultFileError(f"{side}: not a readable units sidecar ({exc})") from None
+    if not extra:  # no sidecar: the units come from the names, so the names must be ours
+        unknown = [c for c in cols if not is_result_column(c)]
+        if unknown:
+            raise ResultFileError(f"{path}: column {unknown[0]!r} is not one pollard-pin "
+                                  f"writes, and no sidecar {side.name} gives its unit")
     return ResultTable(cols, extra.get("units", {c: column_unit(c) for c in cols}),
                        extra.get("metadata", {}))

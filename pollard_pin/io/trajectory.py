@@ -24,6 +24,7 @@ THESIS_SAMPLES = 2001
 U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
 MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
+PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 
 
 class TrajectoryError(ValueError):
@@ -94,6 +95,9 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     """The default painting trajectory (docs/model.md §9) sampled at ``samples`` points."""
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
+    if not 2.0 * U_RANGE / duration < 1e150:  # the accelerations grow as 1/duration²
+        raise TrajectoryError(f"duration {duration} s is too short: the curve's accelerations "
+                              "overflow")
     if int(samples) != samples or samples < 2:
         raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
     t = np.linspace(0.0, duration, int(samples))
@@ -165,7 +169,9 @@ def from_csv(path: str | Path) -> Trajectory:
     """
     path = Path(path)
     try:
-        with open(path, newline="", encoding="utf-8") as f:
+        with open(path, "rb") as f:
+            magic = f.read(4)
+        with open(path, newline="", encoding="utf-8-sig") as f:  # -sig: a BOM is no column
             reader = csv.reader(f)
             rows, lines = [], []  # lines: 1-based file line of each kept row
             for r in reader:
@@ -176,9 +182,21 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: "
                               f"{exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:
+        if magic == PARQUET_MAGIC:
+            raise TrajectoryError(f"{path}: a Parquet file; trajectories are read from CSV "
+                                  "text (t,x,y,z,psi,theta,phi)") from None
         raise TrajectoryError(f"{path}: not UTF-8 text (byte {exc.start}: "
                               f"{exc.object[exc.start:exc.start + 1]!r}); save it as UTF-8 "
                               "CSV") from None
+    except csv.Error as exc:  # a field over the csv module's limit: not a trajectory
+        raise TrajectoryError(f"{path}: line {reader.line_num + 1}: not CSV ({exc})") from None
+    if magic == PARQUET_MAGIC:  # Parquet bytes that happen to decode as UTF-8
+        raise TrajectoryError(f"{path}: a Parquet file; trajectories are read from CSV text "
+                              "(t,x,y,z,psi,theta,phi)")
+    nul = next((i for i, r in enumerate(rows) if any("\0" in c for c in r)), None)
+    if nul is not None:
+        raise TrajectoryError(f"{path}: line {lines[nul]} holds NUL bytes: a binary file, "
+                              "not CSV text")
     if not rows:
         raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
     header = [h.strip() for h in rows[0]]
@@ -239,7 +257,8 @@ def from_csv(path: str | Path) -> Trajectory:
                                   f"missing {', '.join(absent)}")
         derivs.append(np.column_stack([col[n] for n in names]) if present else None)
     source, curve = "file columns", None
-    if derivs[0] is None or derivs[1] is None:
+    derivs_given = [d is not None for d in derivs]
+    if not all(derivs_given):
         if len(t) < 6:
             raise TrajectoryError(f"{path}: {len(t)} samples are too few for the quintic spline "
                                   "that supplies missing derivatives (need >= 6)")
@@ -252,7 +271,8 @@ def from_csv(path: str | Path) -> Trajectory:
         if derivs[1] is None:
             derivs[1] = dd_spl
         source = "quintic spline"
-        warnings.warn(f"{path}: no d_*/dd_* columns; derivatives taken from a quintic "
+        absent = "/".join(p + "*" for p, d in zip(("d_", "dd_"), derivs_given) if not d)
+        warnings.warn(f"{path}: no {absent} columns; derivatives taken from a quintic "
                       "interpolating spline through the samples", UserWarning, stacklevel=2)
     return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source,
                       curve=curve)

@@ -38,6 +38,11 @@ CLOSURE_A_ALPHA = 0.45
 CLOSURE_A_RADIUS = 0.016  # m
 CLOSURE_B_RADIUS = 0.006  # m
 FRAME_SCALE = 0.06  # m, length of the frame triads
+MAX_KEY_FRAMES = 100_000  # ≈ 1.5 KB each in a static page: beyond, the page is unusable
+
+
+class ViewerError(ValueError):
+    """An animation the viewer cannot build (one line: which value, why)."""
 DEFAULT_FPS = 25.0
 FLOOR_SIZE = 1.0  # m, the floor grid drawn at z = 0
 FLOOR_ORIGIN = (-0.3, -0.5)
@@ -265,6 +270,11 @@ def _floor_grid(size: float = FLOOR_SIZE, step: float = 0.1, z: float = 0.0):
 def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
     """Key-frame times (from 0, real time at ``fps``) and the nearest IK sample of each."""
     t = np.asarray(t, dtype=float) - t[0]
+    if not fps > 0:
+        raise ViewerError(f"the frame rate must be positive, got {fps} key frames/s")
+    if not t[-1] * fps < MAX_KEY_FRAMES:
+        raise ViewerError(f"{fps:g} key frames/s over {t[-1]:.4g} s make {t[-1] * fps:.3g} key "
+                          f"frames, more than {MAX_KEY_FRAMES}: lower the frame rate")
     n_keys = int(np.floor(t[-1] * fps + 1e-9)) + 1
     key_t = np.arange(n_keys) / fps
     if key_t[-1] < t[-1]:
@@ -283,8 +293,7 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
     from meshcat.animation import Animation
     from pinocchio.visualize import MeshcatVisualizer
 
-    if not fps > 0:
-        raise ValueError(f"fps must be positive, got {fps}")
+    key_t, idx = _key_samples(ik.t, fps)  # checks the frame rate before any drawing
     gm = viewer_geometry(robot)
     viz = MeshcatVisualizer(robot.model, None, gm)
     viz.initViewer(viewer=vis)
@@ -336,7 +345,6 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
     # Initial pose (what a browser shows before the animation runs), then the key frames.
     for node, T in place(0).items():
         vis[node].set_transform(T)
-    key_t, idx = _key_samples(ik.t, fps)
     anim = Animation(default_framerate=fps)
     for j, k in enumerate(idx):
         with anim.at_frame(vis, float(key_t[j] * fps)) as frame:

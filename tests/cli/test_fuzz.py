@@ -1,0 +1,499 @@
+"""Fuzzing every command with bad input (issue 20 §6): malformed numbers, NaN/inf, zero and
+negative values, huge values, wrong units, missing/unreadable/binary/empty/non-UTF-8 files,
+folders given as files, unwritable outputs, bad --set keys and values, truncated CSVs, rows of
+NaN, time that does not increase, duplicate columns, and more.
+
+Every case must give exactly one line on standard error starting ``pollard-pin``, saying the
+expected fragment, exit status 2, no traceback, and write nothing: no new file, and the
+existing output files unchanged. The commands run in this process (``main(argv)``).
+
+To add a command's cases, append ``(argv, fragment)`` pairs to ``CASES`` (or a family of your
+own concatenated to it); the files named in them live in the ``scratch`` folder below.
+"""
+from __future__ import annotations
+
+import hashlib
+import socket
+from pathlib import Path
+
+import pytest
+
+from pollard_pin.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+ACT = str(EXAMPLES / "actuators.toml")
+HEADER = "t,x,y,z,psi,theta,phi"
+PRECIOUS = b"precious: a failed command must leave this untouched\n"
+
+
+# --- the scratch folder: one small trajectory and every bad file derived from it -------------
+def _good_rows(n: int = 12) -> list[str]:
+    """The first ``n`` samples of examples/figure8.csv, poses only (12 samples, 0.22 s)."""
+    lines = (EXAMPLES / "figure8.csv").read_text().splitlines()
+    return [",".join(line.split(",")[:7]) for line in lines[1:n + 1]]
+
+
+def _files() -> dict[str, bytes | str | None]:
+    rows = _good_rows()
+    body = "\n".join(rows) + "\n"
+    good = f"{HEADER}\n{body}"
+    first = rows[0].split(",")
+
+    def with_row(i: int, cells: dict[int, str]) -> str:
+        out = [r.split(",") for r in rows]
+        for c, v in cells.items():
+            out[i][c] = v
+        return HEADER + "\n" + "\n".join(",".join(r) for r in out) + "\n"
+
+    act = (EXAMPLES / "actuators.toml").read_text()
+    sweep = "trajectory = 'good.csv'\n[grid]\n'chain0.x32' = [0.33]\n"
+    return {
+        # trajectories
+        "good.csv": good,
+        "empty.csv": "",
+        "blank.csv": "\n\n\n",
+        "comments.csv": "# nothing but a comment\n",
+        "header_only.csv": HEADER + "\n",
+        "one_row.csv": f"{HEADER}\n{rows[0]}\n",
+        "three_rows.csv": HEADER + "\n" + "\n".join(rows[:3]) + "\n",
+        "truncated.csv": good[:-25],  # the last row cut short: fewer fields
+        "cut_number.csv": good.rstrip("\n")[:-3] + "e\n",  # cut inside a number
+        "nan_row.csv": with_row(5, {1: "nan", 2: "nan"}),
+        "inf_row.csv": with_row(5, {3: "inf"}),
+        "empty_cell.csv": with_row(4, {2: ""}),
+        "text_cell.csv": with_row(4, {2: "abc"}),
+        "comma_decimal.csv": with_row(4, {2: "0,55"}),
+        "decreasing_t.csv": with_row(6, {0: "0.01"}),
+        "duplicate_t.csv": with_row(6, {0: rows[5].split(",")[0]}),
+        "duplicate_column.csv": "t,x,y,z,psi,theta,phi,x\n" + "".join(
+            f"{r},{r.split(',')[1]}\n" for r in rows),
+        "unknown_column.csv": "t,x,y,z,psi,theta,phi,speed\n" + "".join(f"{r},1\n" for r in rows),
+        "missing_column.csv": "t,x,y,z,psi,theta\n" + "".join(
+            ",".join(r.split(",")[:6]) + "\n" for r in rows),
+        "mm.csv": HEADER + "\n" + "".join(
+            ",".join([c[0], str(1e3 * float(c[1])), *c[2:]]) + "\n"
+            for c in (r.split(",") for r in rows)),
+        "deg.csv": with_row(3, {4: "30"}),
+        "partial_derivatives.csv": "t,x,y,z,psi,theta,phi,d_x\n" + "".join(
+            f"{r},0\n" for r in rows),
+        "semicolon.csv": good.replace(",", ";"),
+        "tabs.csv": good.replace(",", "\t"),
+        "nul.csv": good.encode()[:40] + b"\x00\x00\x00" + good.encode()[40:],
+        "latin1.csv": f"# Pollard m\xfcde\n{good}".encode("latin-1"),
+        "utf16.csv": good.encode("utf-16"),
+        "png.csv": b"\x89PNG\r\n\x1a\n" + bytes(range(256)),
+        "gzip.csv": b"\x1f\x8b\x08\x00" + bytes(64),
+        "long_field.csv": f"{HEADER}\n{'1' * 200_000},0,0,0,0,0,0\n",
+        "fast.csv": "t,x,y,z,psi,theta,phi,d_x,d_y,d_z,d_psi,d_theta,d_phi\n" + "".join(
+            f"{r},1e200,0,0,0,0,0\n" for r in rows),
+        "tiny_dt.csv": HEADER + "\n" + "".join(
+            ",".join([f"{1e-12 * i:g}", *r.split(",")[1:]]) + "\n" for i, r in enumerate(rows)),
+        "garbage.parquet": b"PAR1garbage",
+        "parquet.csv": b"PAR1" + bytes(32) + b"PAR1",  # Parquet bytes, a .csv name
+        "unreachable.csv": HEADER + "\n" + "".join(
+            ",".join([c[0], "2.9", *c[2:]]) + "\n" for c in (r.split(",") for r in rows)),
+        "still.csv": HEADER + "\n" + "".join(
+            f"{0.02 * i:.2f},{','.join(first[1:])}\n" for i in range(50)),
+        # simulation tables (plot/report --simulation)
+        "ab.csv": "a,b\n",
+        "ab_rows.csv": "a,b\n1,2\n3,4\n",
+        "t_only.csv": "t\n",
+        "sim_text.csv": "t,theta21\n0,abc\n",
+        # parameter files
+        "broken.toml": "[chain0\n",
+        "latin1.toml": "# m\xfcde\n[chain0]\nx32 = 0.34\n".encode("latin-1"),
+        "nul.toml": b"[chain0]\nx32 = \x00\n",
+        "huge.toml": "[chain0]\nx32 = 1e300\n",
+        "mm.toml": "[chain0]\nx32 = 330\n",
+        "nan.toml": "[chain0]\nx32 = nan\n",
+        "inf.toml": "[chain0]\nx65 = inf\n",
+        "negative_mass.toml": "[bodies.gun]\nmass = -0.05\n",
+        "zero_mass.toml": "[bodies.gun]\nmass = 0\n",
+        "string.toml": "[chain0]\nx32 = '0.33'\n",
+        "bool.toml": "[chain0]\nx32 = true\n",
+        "array.toml": "[chain0]\nx32 = [0.33]\n",
+        "unknown_section.toml": "[chain9]\nx32 = 0.33\n",
+        "unknown_key.toml": "[chain0]\nx33 = 0.33\n",
+        "short_com.toml": "[bodies.gun]\ncom = [0.0, 0.0]\n",
+        # actuator files
+        "act_missing_table.toml": act.split("[theta1817]")[0],
+        "act_unknown_table.toml": act + "\n[theta99]\ngear_ratio = 1.0\n",
+        "act_missing_key.toml": act.replace("max_speed = 500.0\n", "", 1),
+        "act_unknown_key.toml": act.replace("viscous = 1e-6", "viscous = 1e-6\nviscus = 1", 1),
+        "act_negative.toml": act.replace("gear_ratio = 100.0", "gear_ratio = -100.0", 1),
+        "act_zero.toml": act.replace("peak_torque = 0.05", "peak_torque = 0.0", 1),
+        "act_nan.toml": act.replace("rotor_inertia = 5e-6", "rotor_inertia = nan", 1),
+        "act_inf.toml": act.replace("max_speed = 500.0", "max_speed = inf", 1),
+        "act_string.toml": act.replace("coulomb = 1e-3", "coulomb = '1e-3'", 1),
+        "act_huge.toml": act.replace("gear_ratio = 100.0", "gear_ratio = 1e300", 1),
+        "act_continuous.toml": act.replace("continuous_torque = 0.02", "continuous_torque = 1",
+                                           1),
+        "act_weak.toml": act.replace("peak_torque = 0.05", "peak_torque = 1e-6", 1)
+                            .replace("continuous_torque = 0.02", "continuous_torque = 1e-6", 1),
+        # sweep grids
+        "grid_good.toml": sweep,
+        "grid_unknown.toml": "speed = 3\n" + sweep,
+        "grid_bad_key.toml": "[grid]\n'chain0.x33' = [0.33]\n",
+        "grid_bad_value.toml": "[grid]\n'chain0.x32' = ['long']\n",
+        "grid_nan.toml": "[grid]\n'chain0.x32' = [nan]\n",
+        "grid_mm.toml": "[grid]\n'chain0.x32' = [330]\n",
+        "grid_empty_list.toml": "[grid]\n'chain0.x32' = []\n",
+        "grid_scalar.toml": "[grid]\n'chain0.x32' = 0.33\n",
+        "grid_samples.toml": "samples = 0\n[grid]\n'chain0.x32' = [0.33]\n",
+        "grid_duration.toml": "duration = -1\n[grid]\n'chain0.x32' = [0.33]\n",
+        "grid_traj.toml": "trajectory = 'nope.csv'\n[grid]\n'chain0.x32' = [0.33]\n",
+        "grid_bad_traj.toml": "trajectory = 'nan_row.csv'\n[grid]\n'chain0.x32' = [0.33]\n",
+        "grid_variant.toml": "[[variant]]\nname = 'a'\n'chain0.x33' = 0.3\n",
+        "grid_variant_table.toml": "variant = 3\n",
+        "grid_params.toml": "params = 'nope.toml'\n[grid]\n'chain0.x32' = [0.33]\n",
+        # existing outputs that failures must leave untouched
+        "existing.csv": PRECIOUS, "existing.md": PRECIOUS, "existing.urdf": PRECIOUS,
+        "existing.html": PRECIOUS, "existing.xml": PRECIOUS, "existing.parquet": PRECIOUS,
+        "afile": "not a folder\n",
+        "afolder/": None,
+        "empty_folder/": None,
+    }
+
+
+@pytest.fixture(scope="module")
+def scratch(tmp_path_factory):
+    root = tmp_path_factory.mktemp("fuzz")
+    for name, content in _files().items():
+        if name.endswith("/"):
+            (root / name).mkdir()
+        elif isinstance(content, bytes):
+            (root / name).write_bytes(content)
+        else:
+            (root / name).write_text(content, encoding="utf-8")
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    rows = [[float(c) for c in r.split(",")] for r in _good_rows()]
+    pq.write_table(pa.table({n: [r[i] for r in rows] for i, n in enumerate(HEADER.split(","))}),
+                   root / "traj.parquet")  # a real Parquet trajectory
+    sock = socket.socket(socket.AF_UNIX)  # a socket: exists, cannot be opened as a file
+    sock.bind(str(root / "socket.csv"))
+    yield root
+    sock.close()
+
+
+def _state(root: Path) -> dict:
+    return {p.relative_to(root): (hashlib.sha1(p.read_bytes()).hexdigest() if p.is_file()
+                                  else p.is_dir())
+            for p in sorted(root.rglob("*")) if not p.is_socket()}
+
+
+# --- the cases ---------------------------------------------------------------------------------
+TRAJ_COMMANDS = {  # argv prefix of each command that takes --trajectory; nothing else needed
+    "run": ["run", "--out", "out.csv"],
+    "view": ["view", "--html", "out.html"],
+    "plot": ["plot", "--out", "plots"],
+    "report": ["report", "--no-cross-check", "--out", "out.md"],
+    "size": ["size", "--actuators", ACT, "--out", "out.md"],
+    "simulate": ["simulate", "--out", "out.csv"],
+}
+SIM = ["simulate", "--trajectory", "good.csv", "--out", "out.csv"]  # 0.22 s: 220 steps
+SHORT = ["--samples", "11", "--duration", "0.2"]  # a short thesis trajectory
+
+# every command, every bad trajectory file
+BAD_TRAJECTORIES = [
+    ("missing.csv", "No such file"),
+    ("afolder", "Is a directory"),
+    ("socket.csv", "cannot read trajectory file"),
+    ("empty.csv", "empty file"),
+    ("blank.csv", "empty file"),
+    ("comments.csv", "empty file"),
+    ("header_only.csv", "need at least 2 samples, found 0"),
+    ("one_row.csv", "need at least 2 samples, found 1"),
+    ("three_rows.csv", "too few for the quintic spline"),
+    ("truncated.csv", "fields, expected 7"),
+    ("cut_number.csv", "is not a number"),
+    ("nan_row.csv", "is not finite"),
+    ("inf_row.csv", "is not finite"),
+    ("empty_cell.csv", "'' is not a number"),
+    ("text_cell.csv", "'abc' is not a number"),
+    ("comma_decimal.csv", "fields, expected 7"),
+    ("decreasing_t.csv", "decreasing time"),
+    ("duplicate_t.csv", "duplicate time"),
+    ("duplicate_column.csv", "duplicate column"),
+    ("unknown_column.csv", "unknown column 'speed'"),
+    ("missing_column.csv", "missing column(s) phi"),
+    ("mm.csv", "looks like millimetres"),
+    ("deg.csv", "looks like degrees"),
+    ("partial_derivatives.csv", "must come as a full set"),
+    ("semicolon.csv", "unknown column"),
+    ("tabs.csv", "unknown column"),
+    ("nul.csv", "NUL"),
+    ("latin1.csv", "not UTF-8 text"),
+    ("utf16.csv", "not UTF-8 text"),
+    ("png.csv", "not UTF-8 text"),
+    ("gzip.csv", "not UTF-8 text"),
+    ("long_field.csv", "not CSV (field larger than field limit"),
+    ("fast.csv", "absurd"),
+    ("tiny_dt.csv", "time step too small"),
+    ("", "Is a directory"),
+    ("garbage.parquet", "Parquet"),
+    ("parquet.csv", "Parquet"),
+    ("traj.parquet", "Parquet"),
+]
+CASES = [([*prefix, "--trajectory", name], says)
+         for prefix in TRAJ_COMMANDS.values() for name, says in BAD_TRAJECTORIES]
+
+# numbers: every numeric option, every way a number can be wrong
+POSITIVE = [("0", "must be positive"), ("-1", "must be positive"), ("nan", "finite"),
+            ("inf", "finite"), ("-inf", "finite"), ("abc", "not a number"),
+            ("", "not a number"), ("1e999", "finite"), ("0x10", "not a number"),
+            ("1,5", "not a number")]
+NONNEGATIVE = [("-1", "must be >= 0"), ("-1e-300", "must be >= 0"), ("nan", "finite"),
+               ("inf", "finite"), ("abc", "not a number"), ("", "not a number")]
+FINITE = [("nan", "finite"), ("inf", "finite"), ("abc", "not a number")]
+OPTIONS = [  # (argv prefix, option, bad values)
+    (["run", "--out", "out.csv"], "--duration", POSITIVE),
+    (["run", "--out", "out.csv"], "--wrist-margin", NONNEGATIVE),
+    (["run", "--out", "out.csv"], "--singularity-margin", NONNEGATIVE),
+    (["view", *SHORT, "--html", "out.html"], "--fps", POSITIVE),
+    (SIM, "--wn", NONNEGATIVE),
+    (SIM, "--zeta", NONNEGATIVE),
+    (SIM, "--torque-limit", POSITIVE[:7]),
+    (SIM, "--payload", NONNEGATIVE),
+    (SIM, "--mass-error", FINITE),
+    (SIM, "--armature", NONNEGATIVE[:4]),
+    (SIM, "--viscous", NONNEGATIVE[:4]),
+    (SIM, "--coulomb", NONNEGATIVE[:4]),
+    (SIM, "--noise", NONNEGATIVE[:4]),
+    (SIM, "--velocity-noise", NONNEGATIVE[:4]),
+    (SIM, "--dt", FINITE),  # parsing only; the step's meaning: helper control
+    (SIM, "--control-period", FINITE),
+]
+CASES += [([*prefix, option, value], says)
+          for prefix, option, values in OPTIONS for value, says in values]
+COUNTS = [("0", None), ("-3", None), ("2.5", "not an integer"), ("abc", "not an integer"),
+          ("", "not an integer"), ("nan", "not an integer"), ("1e3", "not an integer")]
+CASES += [([*prefix, option, value], says or "must be")
+          for prefix, option, low in ((["run", "--out", "out.csv"], "--samples", 2),
+                                      (["view", "--html", "out.html"], "--samples", 2),
+                                      (["run", "--out", "out.csv"], "--workers", 1),
+                                      (["sweep", "--grid", "grid_good.toml"], "--workers", 1),
+                                      (["plot", "--out", "plots"], "--dpi", 10),
+                                      (SIM, "--seed", 0))
+          for value, says in COUNTS if not (value == "0" and low == 0)]
+
+# huge and absurd values that parse
+CASES += [
+    (["view", "--samples", "10000000000", "--html", "out.html"], "samples"),
+    (["plot", "--samples", "10000000000", "--out", "plots"], "samples"),
+    (["simulate", "--samples", "10000000000"], "samples"),
+    (["run", "--workers", "65", "--out", "out.csv"], "must be between 1 and 64"),
+    (["plot", "--dpi", "100000", "--out", "plots"], "must be between 10 and 1200"),
+    (["run", "--duration", "1e-300", *SHORT[:2], "--out", "out.csv"], "duration"),
+    (["view", *SHORT, "--fps", "1e300", "--html", "out.html"], "fps"),
+    ([*SIM, "--mass-error", "-1"], "mass"),
+    ([*SIM, "--mass-error", "-2.5"], "mass"),
+    ([*SIM, "--torque-limit", "1", "2"], "one value for all actuators or six"),
+    ([*SIM, "--wn", "1e300"], "must be at most 1e+06 rad/s"),
+    ([*SIM, "--payload", "1e300"], "diverged"),
+]
+
+# model parameters: files and --set, on the commands that load the model
+BAD_PARAMS = [
+    ("missing.toml", "does not exist"),
+    ("afolder", "cannot be read"),
+    ("socket.csv", "cannot be read"),
+    ("empty.csv", "not valid TOML"),  # fine as TOML? an empty file is a valid partial file
+    ("broken.toml", "is not valid TOML"),
+    ("latin1.toml", "is not UTF-8 text"),
+    ("nul.toml", "is not valid TOML"),
+    ("png.csv", "is not UTF-8 text"),
+    ("huge.toml", "must be at most 10 m"),
+    ("mm.toml", "must be at most 10 m"),
+    ("nan.toml", "finite"),
+    ("inf.toml", "finite"),
+    ("negative_mass.toml", "must be > 0"),
+    ("zero_mass.toml", "must be > 0"),
+    ("string.toml", "must be a number"),
+    ("bool.toml", "must be a number"),
+    ("array.toml", "must be a number"),
+    ("unknown_section.toml", "chain9"),
+    ("unknown_key.toml", "x33"),
+    ("short_com.toml", "com"),
+]
+del BAD_PARAMS[3]  # an empty parameter file is a valid partial file: the shipped model
+MODEL_COMMANDS = [["urdf", "--out", "out.urdf"], ["info"], ["export", "--out", "out.xml"],
+                  ["run", *SHORT, "--out", "out.csv"]]
+CASES += [([*prefix, "--params", name], says)
+          for prefix in MODEL_COMMANDS[:2] for name, says in BAD_PARAMS]
+CASES += [([*prefix, "--params", name], says)
+          for prefix in MODEL_COMMANDS[2:] for name, says in BAD_PARAMS[::4]]
+BAD_SETS = [
+    ("chain0.x32", "expected KEY=VALUE"),
+    ("=0.3", "expected KEY=VALUE"),
+    ("chain0.x32=", "not a number"),
+    ("chain0.x32=abc", "not a number"),
+    ("chain0.x32=0,33", "not a number"),
+    ("chain0.x32=nan", "finite"),
+    ("chain0.x32=inf", "finite"),
+    ("chain0.x32=-0.33", "must be"),
+    ("chain0.x32=0", "must be"),
+    ("chain0.x32=330", "must be at most 10 m"),
+    ("chain0.x32=1e400", "finite"),
+    ("chain0.x32=true", "must be a number"),
+    ("chain0.x32=[0.33]", "must be a number"),
+    ("chain0.x33=0.33", "names no parameter"),
+    ("chain9.x32=0.33", "names no parameter"),
+    ("bodies.gun.mass=-1", "must be > 0"),
+    ("bodies.gun.mass=0", "must be > 0"),
+    ("bodies.gun.com[7]=0", "com"),
+    ("bodies.gun.com[x]=0", "com"),
+    ("bodies.gun.com=[0, 0]", "com"),
+    ("home.tip=[2.9, 0, 0.16]", "home"),
+    ("leg1.side=2", "side"),
+    ("chain0.x32 = 0.33 = 1", "not a number"),
+    ("chain0..x32=0.33", "not a dotted parameter key"),
+]
+CASES += [([*prefix, "--set", text], says)
+          for prefix in MODEL_COMMANDS for text, says in BAD_SETS[:: 1 if prefix[0] == "urdf"
+                                                                   else 3]]
+
+# actuator files (size; simulate --actuators)
+BAD_ACTUATORS = [
+    ("missing.toml", "does not exist"),
+    ("afolder", "cannot be read"),
+    ("empty.csv", "missing table"),
+    ("broken.toml", "is not valid TOML"),
+    ("latin1.toml", "is not UTF-8 text"),
+    ("act_missing_table.toml", "missing table(s) [theta1817]"),
+    ("act_unknown_table.toml", "[theta99] is not an actuator"),
+    ("act_missing_key.toml", "max_speed' is missing"),
+    ("act_unknown_key.toml", "unknown key"),
+    ("act_negative.toml", "must be > 0"),
+    ("act_zero.toml", "must be > 0"),
+    ("act_nan.toml", "must be finite"),
+    ("act_inf.toml", "must be finite"),
+    ("act_string.toml", "must be a number"),
+    ("act_huge.toml", "must be between"),
+    ("act_continuous.toml", "exceeds"),
+]
+CASES += [(["size", *SHORT, "--out", "out.md", "--actuators", name], says)
+          for name, says in BAD_ACTUATORS]
+CASES += [([*SIM, "--actuators", name], says) for name, says in BAD_ACTUATORS[::3]]
+
+# sweep grids
+CASES += [(["sweep", "--out", "out.csv", "--workers", "1", "--grid", name], says) for name, says in [
+    ("missing.toml", "does not exist"),
+    ("afolder", "cannot be read"),
+    ("broken.toml", "not valid TOML"),
+    ("latin1.toml", "not UTF-8 text"),
+    ("png.csv", "not UTF-8 text"),
+    ("empty.csv", "variant"),
+    ("grid_unknown.toml", "unknown entry 'speed'"),
+    ("grid_bad_key.toml", "x33"),
+    ("grid_bad_value.toml", "long"),
+    ("grid_nan.toml", "finite"),
+    ("grid_mm.toml", "must be at most 10 m"),
+    ("grid_empty_list.toml", "empty"),
+    ("grid_scalar.toml", "list"),
+    ("grid_samples.toml", "samples"),
+    ("grid_duration.toml", "duration"),
+    ("grid_traj.toml", "nope.csv"),
+    ("grid_bad_traj.toml", "is not finite"),
+    ("grid_variant.toml", "x33"),
+    ("grid_variant_table.toml", "'variant' must be an array of tables"),
+    ("grid_params.toml", "nope.toml"),
+]]
+
+# result tables given to plot/report --simulation
+BAD_SIMULATIONS = [
+    ("missing.csv", "no such result file"),
+    ("afolder", "is a folder"),
+    ("empty.csv", "not a readable csv result table"),
+    ("ab.csv", "ab.csv"),
+    ("ab_rows.csv", "ab_rows.csv"),
+    ("t_only.csv", "t_only.csv"),
+    ("sim_text.csv", "not a readable csv result table"),
+    ("latin1.csv", "not UTF-8 text"),
+    ("garbage.parquet", "not a readable parquet result table"),
+    ("good.csv", "good.csv"),  # a trajectory, not a simulation
+    ("socket.csv", "socket.csv"),
+]
+CASES += [([*prefix, "--simulation", name], says)
+          for prefix in (["plot", "--out", "plots"], ["report", *SHORT, "--out", "out.md"])
+          for name, says in BAD_SIMULATIONS]
+
+# outputs that cannot be written, and existing ones a failure must not touch
+CASES += [
+    (["run", *SHORT, "--out", ""], "is a folder"),
+    (["urdf", "--out", "afile/x.urdf"], "afile is a file, not a folder"),
+    (["urdf", "--out", "afolder"], "is a folder"),
+    (["urdf", "--out", "/proc/pollard.urdf"], "/proc/pollard.urdf"),
+    (["urdf", "--out", "existing.urdf", "--set", "chain0.x32=nan"], "finite"),
+    (["export", "--out", "afolder"], "is a folder"),
+    (["export", "--out", "/proc/pollard.xml"], "/proc/pollard.xml"),
+    (["export", "--out", "existing.xml", "--params", "broken.toml"], "not valid TOML"),
+    (["export", "--format", "urdf"], "invalid choice"),
+    (["run", *SHORT, "--out", "afile/run.csv"], "not a folder"),
+    (["run", *SHORT, "--out", "afolder"], "is a folder"),
+    (["run", *SHORT, "--out", "/proc/run.csv"], "/proc/run.csv"),
+    (["run", *SHORT, "--out", "/proc/run.parquet"], "/proc/run.parquet"),
+    (["run", "--out", "existing.csv", "--trajectory", "nan_row.csv"], "is not finite"),
+    (["run", "--out", "existing.parquet", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["run", "--out", "existing.csv", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["view", *SHORT, "--html", "afolder"], "is a folder"),
+    (["view", *SHORT, "--html", "/proc/v.html"], "/proc/v.html"),
+    (["view", "--html", "existing.html", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["plot", *SHORT, "--out", "afile"], "names a file"),
+    (["plot", *SHORT, "--out", "afile/p"], "not a folder"),
+    (["plot", "--out", "plots", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["report", *SHORT, "--out", "afolder"], "is a folder"),
+    (["report", *SHORT, "--out", "/proc/r.md"], "/proc/r.md"),
+    (["report", "--out", "existing.md", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["size", *SHORT, "--actuators", ACT, "--out", "afolder"], "is a folder"),
+    (["size", *SHORT, "--actuators", ACT, "--retime", "afolder"], "is a folder"),
+    (["size", *SHORT, "--actuators", ACT, "--retime", "afile/r.csv"], "not a folder"),
+    (["size", *SHORT, "--actuators", ACT, "--plot", "afile"], "names a file"),
+    (["size", *SHORT, "--actuators", ACT, "--retime", "-"], "standard output"),
+    (["size", *SHORT, "--actuators", ACT, "--out", "/proc/s.md"], "/proc/s.md"),
+    (["size", "--actuators", ACT, "--out", "existing.md", "--trajectory", "still.csv"],
+     "the path does not move the actuators"),
+    (["size", "--actuators", ACT, "--trajectory", "still.csv"],
+     "the path does not move the actuators"),
+    (["size", "--actuators", "act_weak.toml", "--out", "existing.md", *SHORT], "rating"),
+    (["size", *SHORT, "--out", "out.md"], "required"),
+    ([*SIM, "--out", "afolder"], "is a folder"),
+    ([*SIM, "--out", "afile/s.csv"], "not a folder"),
+    ([*SIM, "--out", "/proc/s.csv"], "/proc/s.csv"),
+    (["simulate", "--out", "existing.csv", "--trajectory", "unreachable.csv"], "cannot reach"),
+    ([*SIM, "--controller", "lqr"], "invalid choice"),
+    ([*SIM, "--start", "middle"], "invalid choice"),
+    (["sweep", "--grid", "grid_good.toml", "--out", "afolder"], "is a folder"),
+    (["sweep", "--grid", "grid_good.toml", "--out", "/proc/s.csv"], "/proc/s.csv"),
+    (["sweep", "--out", "out.csv"], "required"),
+    (["report", *SHORT, "--format", "html"], "invalid choice"),
+    (["run", "--frobnicate"], "unrecognized arguments"),
+    (["run", "--out"], "expected one argument"),
+    (["info", "extra"], "unrecognized arguments"),
+    (["paint"], "invalid choice"),
+]
+IDS = [" ".join(argv) for argv, _ in CASES]
+
+
+@pytest.mark.parametrize("argv, says", CASES, ids=IDS)
+def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch, capsys, argv,
+                                                            says):
+    monkeypatch.chdir(scratch)
+    before = _state(scratch)
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse
+        code = exc.code
+    out, err = capsys.readouterr()
+    lines = err.strip().splitlines()
+    assert code == 2, (code, out[-300:], err[-2000:])
+    assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
+    assert says in lines[0] and "Traceback" not in err, lines[0]
+    assert _state(scratch) == before  # nothing written, nothing changed
+    assert not any(Path(p).exists() for p in ("/proc/pollard.urdf",))
+
+
+def test_the_fuzz_has_at_least_200_cases():
+    assert len(CASES) >= 200 and len(set(IDS)) == len(IDS)
