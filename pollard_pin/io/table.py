@@ -230,6 +230,11 @@ def _read_csv(path: Path) -> ResultTable:
         raise ResultFileError(f"{path}: not UTF-8 text (byte {exc.start}: "
                               f"{head[exc.start:exc.start + 1]!r})") from None
     frame = pl.read_csv(path, infer_schema_length=0)  # strings first: float64 for every column
+    for n in frame.columns:  # an empty cell or a short row: never written, a damaged file
+        if frame[n].null_count():
+            k = int(frame[n].is_null().arg_true()[0])
+            raise ResultFileError(f"{path}: line {k + 2}, column {n!r}: no value (a truncated "
+                                  "or edited file)")
     cols = {n: frame[n].cast(pl.Float64).to_numpy() for n in frame.columns}
     side = units_path(path)
     try:

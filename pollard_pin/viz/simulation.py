@@ -28,6 +28,17 @@ def check_simulation_columns(cols: dict, source: str = "the table") -> None:
                            f"simulate): missing column(s) {', '.join(missing or ['tau_*'])}")
     if len(cols["t"]) < 2:
         raise ControlError(f"{source}: a simulation table needs at least 2 rows")
+    for name, col in cols.items():  # simulate never writes these: an edited or damaged table
+        bad = ~np.isfinite(col)
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise ControlError(f"{source}: sample {k}, column {name!r}: {col[k]} is not finite")
+    t = np.asarray(cols["t"])
+    back = np.diff(t) <= 0
+    if back.any():
+        k = int(np.argmax(back)) + 1
+        raise ControlError(f"{source}: sample {k}: time {float(t[k])!r} s does not follow "
+                           f"{float(t[k - 1])!r} s (times must increase strictly)")
 
 
 def simulation_summary(cols: dict, metadata: dict | None = None) -> dict:

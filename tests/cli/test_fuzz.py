@@ -12,7 +12,9 @@ own concatenated to it); the files named in them live in the ``scratch`` folder 
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
+import io
 import socket
 from pathlib import Path
 
@@ -172,10 +174,41 @@ def scratch(tmp_path_factory):
     rows = [[float(c) for c in r.split(",")] for r in _good_rows()]
     pq.write_table(pa.table({n: [r[i] for r in rows] for i, n in enumerate(HEADER.split(","))}),
                    root / "traj.parquet")  # a real Parquet trajectory
+    _simulation_files(root)
     sock = socket.socket(socket.AF_UNIX)  # a socket: exists, cannot be opened as a file
     sock.bind(str(root / "socket.csv"))
     yield root
     sock.close()
+
+
+def _simulation_files(root: Path) -> None:
+    """A real simulation and run table of good.csv, and damaged copies of the simulation."""
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        for argv in (["simulate", "--out", "sim.csv"], ["simulate", "--out", "sim.parquet"],
+                     ["run", "--out", "run.csv"]):
+            assert main([*argv[:2], str(root / argv[2]), "--trajectory",
+                         str(root / "good.csv")]) == 0
+    header, *rows = (root / "sim.csv").read_text().splitlines()
+
+    def write(name, lines):
+        (root / name).write_text("\n".join(lines) + "\n")
+
+    def cell(r, c, value):
+        out = [line.split(",") for line in rows]
+        out[r][c] = value
+        return [",".join(line) for line in out]
+
+    write("sim_header.csv", [header])
+    write("sim_one.csv", [header, rows[0]])
+    write("sim_nan.csv", [header, *cell(3, 0, "NaN")])
+    write("sim_inf.csv", [header, *cell(5, 7, "-inf")])
+    write("sim_empty_cell.csv", [header, *cell(5, 7, "")])
+    write("sim_text.csv", [header, *cell(5, 7, "abc")])
+    write("sim_swap.csv", [header, *rows[:3], rows[4], rows[3], *rows[5:]])
+    write("sim_repeat.csv", [header, *rows[:4], rows[3], *rows[4:]])
+    write("sim_truncated.csv", [header, *rows[:-1], rows[-1][:20]])
+    write("sim_duplicate.csv", [header + ",t", *(r + ",0" for r in rows)])
+    (root / "sim_parquet.csv").write_bytes((root / "sim.parquet").read_bytes())
 
 
 def _state(root: Path) -> dict:
@@ -413,7 +446,19 @@ BAD_SIMULATIONS = [
     ("sim_text.csv", "not a readable csv result table"),
     ("latin1.csv", "not UTF-8 text"),
     ("garbage.parquet", "not a readable parquet result table"),
-    ("good.csv", "good.csv"),  # a trajectory, not a simulation
+    ("good.csv", "not a simulation table"),  # a trajectory
+    ("run.csv", "not a simulation table"),
+    ("sim_header.csv", "no rows"),
+    ("sim_one.csv", "needs at least 2 rows"),
+    ("sim_nan.csv", "sample 3, column 't': nan is not finite"),
+    ("sim_inf.csv", "is not finite"),
+    ("sim_empty_cell.csv", "line 7, column 'theta21_1': no value"),
+    ("sim_text.csv", "not a readable csv result table"),
+    ("sim_swap.csv", "does not follow"),
+    ("sim_repeat.csv", "does not follow"),
+    ("sim_truncated.csv", "line 13, column 'theta43': no value"),
+    ("sim_duplicate.csv", "duplicate"),
+    ("sim_parquet.csv", "not UTF-8 text"),
     ("socket.csv", "socket.csv"),
 ]
 CASES += [([*prefix, "--simulation", name], says)
