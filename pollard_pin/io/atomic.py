@@ -44,17 +44,34 @@ def check_destination(path: str | Path, *, folder: bool = False) -> None:
             raise OutputError(f"{path}: names a file, but a folder is expected")
         if not folder and path.is_dir():
             raise OutputError(f"{path}: is a folder, but a file is expected")
-        target = path if folder or is_special(path) else path.parent
-        if not os.access(target if str(target) else ".", os.W_OK):
-            raise OutputError(f"{path}: permission denied")
+        if is_special(path):
+            if not os.access(path, os.W_OK):
+                raise OutputError(f"{path}: permission denied")
+            return
+        why = _cannot_create_in(path if folder else path.parent)
+        if why:
+            raise OutputError(f"{path}: cannot write it: {why}")
         return
     parent = path.parent
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
     if not parent.is_dir():
         raise OutputError(f"{path}: cannot create it, {parent} is a file, not a folder")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise OutputError(f"{path}: cannot create it, permission denied in {parent}")
+    why = _cannot_create_in(parent)
+    if why:
+        raise OutputError(f"{path}: cannot create it in {parent}: {why}")
+
+
+def _cannot_create_in(folder: Path) -> str | None:
+    """Why no file can be created in ``folder``, or None. A real attempt (a temporary file,
+    removed at once): access() says yes to root on read-only and pseudo file systems."""
+    try:
+        fd, tmp = tempfile.mkstemp(dir=folder if str(folder) else ".", prefix=".pollard-pin-")
+    except OSError as exc:
+        return exc.strerror or str(exc)
+    os.close(fd)
+    os.unlink(tmp)
+    return None
 
 
 def make_folder(path: str | Path) -> Path:

@@ -11,14 +11,14 @@ Column units follow docs/model.md §15; :func:`column_unit` derives them from th
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable, Mapping
 
 import numpy as np
 
-from ..kinematics.taskspace import TASK_NAMES
+from ..analytic.taskspace import TASK_NAMES
+from ..model.names import JOINTS
 from .atomic import STDOUT, OutputError, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
@@ -48,15 +48,16 @@ def column_unit(name: str) -> str:
     return ("m" if length else "rad") + ("", "/s", "/s²")[order]
 
 
-_JOINT = r"theta\d+(?:_\d+)?"  # tree and closure joints: theta21, theta65_1, theta98_2, ...
-_KNOWN = re.compile("|".join((
-    "|".join(map(re.escape, _FIXED)), f"(?:tau|power|work)_{_JOINT}", f"[FM]_{_JOINT}_[xyz]",
-    "f[12]_[xyz]", rf"(?:d_|dd_)?(?:{'|'.join(TASK_NAMES)}|{_JOINT})")))
+_RATES = ("", "d_", "dd_")
+_KNOWN = frozenset((*_FIXED, *(f"f{i}_{a}" for i in (1, 2) for a in "xyz"),
+                    *(r + n for r in _RATES for n in (*TASK_NAMES, *JOINTS)),
+                    *(f"{p}{j}" for p in ("tau_", "power_", "work_") for j in JOINTS),
+                    *(f"{p}{j}_{a}" for p in ("F_", "M_") for j in JOINTS for a in "xyz")))
 
 
 def is_result_column(name: str) -> bool:
     """Whether ``name`` is a column that pollard-pin writes (its unit comes from the name)."""
-    return _KNOWN.fullmatch(name) is not None
+    return name in _KNOWN
 
 
 def table_format(path: str | Path, fmt: str | None = None) -> str:

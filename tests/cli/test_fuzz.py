@@ -203,7 +203,7 @@ def _simulation_files(root: Path) -> None:
     write("sim_nan.csv", [header, *cell(3, 0, "NaN")])
     write("sim_inf.csv", [header, *cell(5, 7, "-inf")])
     write("sim_empty_cell.csv", [header, *cell(5, 7, "")])
-    write("sim_text.csv", [header, *cell(5, 7, "abc")])
+    write("sim_text_cell.csv", [header, *cell(5, 7, "abc")])
     write("sim_swap.csv", [header, *rows[:3], rows[4], rows[3], *rows[5:]])
     write("sim_repeat.csv", [header, *rows[:4], rows[3], *rows[4:]])
     write("sim_truncated.csv", [header, *rows[:-1], rows[-1][:20]])
@@ -453,7 +453,7 @@ BAD_SIMULATIONS = [
     ("sim_nan.csv", "sample 3, column 't': nan is not finite"),
     ("sim_inf.csv", "is not finite"),
     ("sim_empty_cell.csv", "line 7, column 'theta21_1': no value"),
-    ("sim_text.csv", "not a readable csv result table"),
+    ("sim_text_cell.csv", "not a readable csv result table"),
     ("sim_swap.csv", "does not follow"),
     ("sim_repeat.csv", "does not follow"),
     ("sim_truncated.csv", "line 13, column 'theta43': no value"),
