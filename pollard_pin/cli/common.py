@@ -3,8 +3,10 @@ work), the model/trajectory options, loading the model and the trajectory, progr
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
 import math
+import re
 import sys
 import time
 import warnings
@@ -18,8 +20,17 @@ class UsageError(ValueError):
     """A command-line value the command cannot use (one line)."""
 
 
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.I)
+
+
 class Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage block): ``pollard-pin run: error: ...``."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # "-1e-3" and "-inf" are values, so that their own check speaks, not "expected one
+        # argument" (argparse's own pattern knows only -1 and -.5)
+        self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message}\n")
@@ -58,6 +69,13 @@ def nonnegative(text: str) -> float:
     if value < 0:
         raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
     return value
+
+
+def name(text: str) -> str:
+    """A file or folder name: not empty (an empty name would mean the current folder)."""
+    if not text:
+        raise argparse.ArgumentTypeError("an empty name; give a file or folder name")
+    return text
 
 
 def count(minimum: int, maximum: int | None = None):
@@ -134,14 +152,27 @@ def load_trajectory(args, params, lazy: bool = False):
         make = ThesisTrajectory if lazy else thesis_trajectory
         return make(duration=duration, samples=samples, home_pose=params.home_pose)
     if args.duration is not None or args.samples is not None:
-        print("note: --duration/--samples apply to the thesis trajectory only; "
-              "the CSV file's own times are used", file=sys.stderr)
-    with warnings.catch_warnings(record=True) as caught:  # said once, below, as a note
+        args.notes.append("--duration/--samples apply to the thesis trajectory only; the CSV "
+                          "file's own times are used")
+    with warnings_as_notes(args):
+        return from_csv(args.trajectory)
+
+
+@contextlib.contextmanager
+def warnings_as_notes(args):
+    """The library's warnings become notes, said once the command has succeeded (an error is
+    then the only line)."""
+    with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        traj = from_csv(args.trajectory)
-    for w in caught:
-        print(f"note: {w.message}", file=sys.stderr)
-    return traj
+        yield
+    args.notes.extend(str(w.message) for w in caught)
+
+
+def say_notes(args) -> None:
+    """Print the notes gathered so far, each once, in order."""
+    for note in dict.fromkeys(args.notes):
+        print(f"note: {note}", file=sys.stderr)
+    args.notes.clear()
 
 
 def solve(args, dynamics: bool = True, **ik_options):
@@ -184,7 +215,7 @@ def command(sub, parents, name: str, help: str, run):
 
 
 def model_args(p) -> None:
-    p.add_argument("--params", metavar="FILE.toml", default=None,
+    p.add_argument("--params", type=name, metavar="FILE.toml", default=None,
                    help="parameter file; may list only the values that differ from the "
                         "shipped models/pollard.toml (default: the shipped parameters)")
     p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
@@ -194,7 +225,7 @@ def model_args(p) -> None:
 
 def trajectory_args(p) -> None:
     model_args(p)
-    p.add_argument("--trajectory", metavar="thesis|FILE.csv", default="thesis",
+    p.add_argument("--trajectory", type=name, metavar="thesis|FILE.csv", default="thesis",
                    help="the thesis painting curve or a trajectory CSV")
     p.add_argument("--duration", type=positive, default=None, metavar="S",
                    help="thesis trajectory duration [s] (default: 20)")

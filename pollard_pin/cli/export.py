@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from ..io.atomic import check_destination
-from .common import command, load_robot, model_args, wrote
+from .common import command, load_robot, model_args, name, wrote
 
 
 def run(args) -> int:
@@ -20,5 +20,5 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "export", "write the model for another engine (MuJoCo MJCF)", run)
     model_args(p)
     p.add_argument("--format", choices=("mjcf",), default="mjcf", help="output format")
-    p.add_argument("--out", default="pollard.xml", metavar="FILE",
+    p.add_argument("--out", type=name, default="pollard.xml", metavar="FILE",
                    help="output file ('-': standard output)")

@@ -20,7 +20,7 @@ import threading
 from .. import __version__
 from ..io.atomic import STDOUT
 from . import export, info, plot, report, run, simulate, size, sweep, urdf, view
-from .common import HelpFormatter, Parser, UsageError
+from .common import HelpFormatter, Parser, UsageError, say_notes
 
 DESCRIPTION = """\
 Verified multibody model of the Pollard spray-painting parallel robot (Pinocchio).
@@ -64,7 +64,8 @@ def _errors() -> tuple[type[BaseException], ...]:
 
     return (ControlError, PlantError, SimulationError,
             ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
-            SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError)
+            SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError,
+            MemoryError)
 
 
 def main(argv=None) -> int:
@@ -73,10 +74,15 @@ def main(argv=None) -> int:
                         format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
     errors = _errors()
     previous = _catch_sigterm()
+    args.notes = []  # said after the work: on an error, the error is the only line
     try:
-        return args.func(args)
+        code = args.func(args)
+        say_notes(args)
+        return code
     except errors as exc:
         message = " ".join(str(exc).split()) or type(exc).__name__
+        if isinstance(exc, MemoryError):
+            message = f"not enough memory ({message}): fewer samples?"
         out = getattr(args, "out", None) or getattr(args, "html", None)
         if out and out != STDOUT and args.command != "plot":
             message += f" (nothing written to {out})"

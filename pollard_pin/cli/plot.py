@@ -4,7 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..io.atomic import check_destination
-from .common import command, count, simulation_table, solve, trajectory_args
+from .common import command, count, name, simulation_table, solve, trajectory_args
 
 
 def run(args) -> int:
@@ -28,9 +28,9 @@ def run(args) -> int:
 def add_parser(sub, parents) -> None:
     p = command(sub, parents, "plot", "chapter-4 style PNG figures of a trajectory", run)
     trajectory_args(p)
-    p.add_argument("--out", default="plots", metavar="FOLDER", help="output folder")
+    p.add_argument("--out", type=name, default="plots", metavar="FOLDER", help="output folder")
     p.add_argument("--dpi", type=count(10, 1200), default=100, help="PNG resolution")
-    p.add_argument("--simulation", metavar="SIM.csv", default=None,
+    p.add_argument("--simulation", type=name, metavar="SIM.csv", default=None,
                    help="plot this closed-loop simulation (pollard-pin simulate) instead: "
                         "tracking errors, torques, desired vs actual path (default: plot the "
                         "trajectory)")

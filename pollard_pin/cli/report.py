@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from ..io.atomic import atomic_open, check_destination
-from .common import STDOUT, command, simulation_table, solve, trajectory_args, wrote
+from .common import STDOUT, command, name, simulation_table, solve, trajectory_args, wrote
 
 
 def run(args) -> int:
@@ -28,10 +28,10 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "report", "actuator sizing table and engine cross-checks", run)
     trajectory_args(p)
     p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
-    p.add_argument("--out", metavar="FILE", default=None,
+    p.add_argument("--out", type=name, metavar="FILE", default=None,
                    help="write to this file (default: standard output)")
     p.add_argument("--no-cross-check", action="store_true",
                    help="sizing only: skip the thesis and MuJoCo comparisons")
-    p.add_argument("--simulation", metavar="SIM.csv", default=None,
+    p.add_argument("--simulation", type=name, metavar="SIM.csv", default=None,
                    help="add this closed-loop simulation's tracking errors and torques "
                         "(pollard-pin simulate; default: none)")

@@ -13,6 +13,7 @@ from .common import (
     load_robot,
     load_trajectory,
     log,
+    name,
     nonnegative,
     progress,
     trajectory_args,
@@ -70,7 +71,7 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "run",
                 "solve a trajectory: kinematics and dynamics → CSV or Parquet", run)
     trajectory_args(p)
-    p.add_argument("--out", default="run.csv", metavar="FILE.csv|FILE.parquet",
+    p.add_argument("--out", type=name, default="run.csv", metavar="FILE.csv|FILE.parquet",
                    help="output table: CSV with a NAME.units.json sidecar, or Parquet (zstd, "
                         "units and metadata inside) for a .parquet name; '-': CSV on standard "
                         "output")

@@ -12,6 +12,7 @@ from .common import (
     count,
     load_robot,
     load_trajectory,
+    name,
     nonnegative,
     number,
     positive,
@@ -148,7 +149,7 @@ def add_parser(sub, parents) -> None:
                    help="point mass at the tool tip, unknown to the controller (default: 0)")
     p.add_argument("--mass-error", type=number, default=0.0, metavar="FRACTION",
                    help="plant link masses and inertias × (1 + FRACTION) (default: 0, exact)")
-    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+    p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motors and gearboxes (format of examples/actuators.toml): their "
                         "reflected rotor inertia N²·Jm and friction act in the plant and are "
                         "known to the controller; --torque-limit defaults to N × peak motor "
@@ -167,5 +168,5 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--start", choices=("path", "home"), default="path",
                    help="plant start: on the path (the reference's first state) or at rest at "
                         "home (the trajectory must then start at the home pose, at rest)")
-    p.add_argument("--out", default="sim.csv", metavar="FILE.csv|FILE.parquet",
+    p.add_argument("--out", type=name, default="sim.csv", metavar="FILE.csv|FILE.parquet",
                    help="output table ('-': CSV on standard output)")

@@ -5,7 +5,7 @@ import sys
 import time
 
 from ..io.atomic import atomic_open, check_destination
-from .common import STDOUT, UsageError, command, log, solve, trajectory_args, wrote
+from .common import STDOUT, UsageError, command, log, name, solve, trajectory_args, wrote
 
 
 def run(args) -> int:
@@ -55,14 +55,14 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "size", "motors and gearboxes: ratings check, shortest uniform and "
                 "time-optimal cycle of the path", run)
     trajectory_args(p)
-    p.add_argument("--actuators", required=True, metavar="FILE.toml",
+    p.add_argument("--actuators", type=name, required=True, metavar="FILE.toml",
                    help="one table per actuator (see examples/actuators.toml)")
     p.add_argument("--format", choices=("md", "json"), default="md", help="output format")
-    p.add_argument("--out", metavar="FILE", default=None,
+    p.add_argument("--out", type=name, metavar="FILE", default=None,
                    help="write the table to this file (default: standard output)")
-    p.add_argument("--retime", metavar="OUT.csv", default=None,
+    p.add_argument("--retime", type=name, metavar="OUT.csv", default=None,
                    help="write the time-optimal traversal as a trajectory CSV (replay it with "
                         "run --trajectory OUT.csv; default: not written)")
-    p.add_argument("--plot", metavar="FOLDER", default=None,
+    p.add_argument("--plot", type=name, metavar="FOLDER", default=None,
                    help="write FOLDER/torque_speed.png, the motors' operating points and "
                         "ratings (default: no figure)")

@@ -6,21 +6,23 @@ import sys
 import time
 
 from ..io.atomic import check_destination
-from .common import STDOUT, command, count, progress, wrote
+from .common import STDOUT, command, count, name, progress, warnings_as_notes, wrote
 
 
 def run(args) -> int:
     from ..sweep import load_grid, run_sweep, summary, write_csv
 
     check_destination(args.out)
-    sweep = load_grid(args.grid)
+    with warnings_as_notes(args):  # a trajectory CSV without derivatives
+        sweep = load_grid(args.grid)
     where = (f"Dask cluster {args.dask}" if args.dask else
              "this process" if args.workers == 1 else
              f"{args.workers or os.cpu_count()} local processes")
     print(f"{sweep.source}: {len(sweep)} variants on {where}", file=sys.stderr)
     t0 = time.perf_counter()
-    rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
-                     progress=progress("sweep", not args.quiet))
+    with warnings_as_notes(args):
+        rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
+                         progress=progress("sweep", not args.quiet))
     wall = time.perf_counter() - t0
     write_csv(rows, args.out, sweep.columns)
     print(summary(rows), file=sys.stderr if args.out == STDOUT else sys.stdout)
@@ -31,9 +33,9 @@ def run(args) -> int:
 def add_parser(sub, parents) -> None:
     p = command(sub, parents, "sweep",
                 "design sweep: parameter variants over a trajectory → CSV", run)
-    p.add_argument("--grid", required=True, metavar="FILE.toml",
+    p.add_argument("--grid", type=name, required=True, metavar="FILE.toml",
                    help="grid file (see examples/sweep.toml)")
-    p.add_argument("--out", default="sweep.csv", metavar="FILE.csv",
+    p.add_argument("--out", type=name, default="sweep.csv", metavar="FILE.csv",
                    help="output CSV ('-': standard output)")
     p.add_argument("--workers", type=count(1), default=None,
                    help="local processes (1 = serial; default: all cores)")

@@ -5,7 +5,7 @@ import sys
 from pathlib import Path
 
 from ..io.atomic import atomic_open, check_destination
-from .common import STDOUT, UsageError, command, model_args, params_of
+from .common import STDOUT, UsageError, command, model_args, name, params_of
 
 
 def run(args) -> int:
@@ -39,6 +39,6 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "urdf",
                 "generate the URDF (and the SRDF beside it) from parameters", run)
     model_args(p)
-    p.add_argument("--out", default="pollard.urdf", metavar="FILE.urdf",
+    p.add_argument("--out", type=name, default="pollard.urdf", metavar="FILE.urdf",
                    help="output URDF ('-': the URDF on standard output); the shipped "
                         "model is regenerated with --out models/pollard.urdf")

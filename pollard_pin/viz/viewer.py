@@ -267,14 +267,21 @@ def _floor_grid(size: float = FLOOR_SIZE, step: float = 0.1, z: float = 0.0):
     return mg.LineSegments(mg.PointsGeometry(pts), mg.LineBasicMaterial(color=0xB0B0B0))
 
 
-def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
-    """Key-frame times (from 0, real time at ``fps``) and the nearest IK sample of each."""
-    t = np.asarray(t, dtype=float) - t[0]
+def check_frame_rate(t: np.ndarray, fps: float) -> None:
+    """Raise :class:`ViewerError` unless ``fps`` key frames per second over the times ``t``
+    [s] make a positive number of at most :data:`MAX_KEY_FRAMES` key frames."""
+    span = float(t[-1] - t[0])
     if not fps > 0:
         raise ViewerError(f"the frame rate must be positive, got {fps} key frames/s")
-    if not t[-1] * fps < MAX_KEY_FRAMES:
-        raise ViewerError(f"{fps:g} key frames/s over {t[-1]:.4g} s make {t[-1] * fps:.3g} key "
+    if not span * fps < MAX_KEY_FRAMES:
+        raise ViewerError(f"{fps:g} key frames/s over {span:.4g} s make {span * fps:.3g} key "
                           f"frames, more than {MAX_KEY_FRAMES}: lower the frame rate")
+
+
+def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
+    """Key-frame times (from 0, real time at ``fps``) and the nearest IK sample of each."""
+    check_frame_rate(t, fps)
+    t = np.asarray(t, dtype=float) - t[0]
     n_keys = int(np.floor(t[-1] * fps + 1e-9)) + 1
     key_t = np.arange(n_keys) / fps
     if key_t[-1] < t[-1]:

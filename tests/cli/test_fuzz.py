@@ -265,7 +265,7 @@ BAD_TRAJECTORIES = [
     ("long_field.csv", "not CSV (field larger than field limit"),
     ("fast.csv", "absurd"),
     ("tiny_dt.csv", "time step too small"),
-    ("", "Is a directory"),
+    ("", "an empty name"),
     ("garbage.parquet", "Parquet"),
     ("parquet.csv", "Parquet"),
     ("traj.parquet", "Parquet"),
@@ -314,16 +314,17 @@ CASES += [([*prefix, option, value], says or "must be")
 
 # huge and absurd values that parse
 CASES += [
-    (["view", "--samples", "10000000000", "--html", "out.html"], "samples"),
-    (["plot", "--samples", "10000000000", "--out", "plots"], "samples"),
-    (["simulate", "--samples", "10000000000"], "samples"),
+    (["view", "--samples", "10000000000", "--html", "out.html"], "not enough memory"),
+    (["plot", "--samples", "10000000000", "--out", "plots"], "not enough memory"),
+    (["simulate", "--samples", "10000000000"], "not enough memory"),
     (["run", "--workers", "65", "--out", "out.csv"], "must be between 1 and 64"),
     (["plot", "--dpi", "100000", "--out", "plots"], "must be between 10 and 1200"),
     (["run", "--duration", "1e-300", *SHORT[:2], "--out", "out.csv"], "duration"),
-    (["view", *SHORT, "--fps", "1e300", "--html", "out.html"], "fps"),
+    (["view", *SHORT, "--fps", "1e300", "--html", "out.html"], "--fps 1e+300: 1e+300 key frames/s"),
+    (["view", *SHORT, "--fps", "1e6", "--html", "out.html"], "more than 100000: lower"),
     ([*SIM, "--mass-error", "-1"], "mass"),
     ([*SIM, "--mass-error", "-2.5"], "mass"),
-    ([*SIM, "--torque-limit", "1", "2"], "one value for all actuators or six"),
+    ([*SIM, "--torque-limit", "1", "2"], "takes 1 value (all actuators) or 6, got 2"),
     ([*SIM, "--wn", "1e300"], "must be at most 1e+06 rad/s"),
     ([*SIM, "--payload", "1e300"], "diverged"),
 ]
@@ -412,7 +413,8 @@ CASES += [(["size", *SHORT, "--out", "out.md", "--actuators", name], says)
 CASES += [([*SIM, "--actuators", name], says) for name, says in BAD_ACTUATORS[::3]]
 
 # sweep grids
-CASES += [(["sweep", "--out", "out.csv", "--workers", "1", "--grid", name], says) for name, says in [
+SWEEP = ["sweep", "--out", "out.csv", "--workers", "1", "--grid"]
+CASES += [([*SWEEP, name], says) for name, says in [
     ("missing.toml", "does not exist"),
     ("afolder", "cannot be read"),
     ("broken.toml", "not valid TOML"),
@@ -467,7 +469,20 @@ CASES += [([*prefix, "--simulation", name], says)
 
 # outputs that cannot be written, and existing ones a failure must not touch
 CASES += [
-    (["run", *SHORT, "--out", ""], "is a folder"),
+    (["run", *SHORT, "--out", ""], "an empty name"),
+    (["view", *SHORT, "--html", ""], "an empty name"),
+    (["info", "--params", ""], "an empty name"),
+    (["size", *SHORT, "--actuators", ""], "an empty name"),
+    (["sweep", "--grid", ""], "an empty name"),
+    (["plot", "--simulation", "", "--out", "plots"], "an empty name"),
+    (["run", "--out", "-", "--trajectory", "nan_row.csv"], "is not finite"),
+    (["run", "--out", "-", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["simulate", "--out", "-", "--trajectory", "unreachable.csv"], "cannot reach"),
+    (["urdf", "--out", "-", "--set", "chain0.x32=nan"], "finite"),
+    (["export", "--out", "-", "--set", "chain0.x32=abc"], "not a number"),
+    (["report", *SHORT, "--out", "-", "--simulation", "sim_nan.csv"], "is not finite"),
+    (["size", "--actuators", ACT, "--out", "-", "--trajectory", "still.csv"],
+     "the path does not move the actuators"),
     (["urdf", "--out", "afile/x.urdf"], "afile is a file, not a folder"),
     (["urdf", "--out", "afolder"], "is a folder"),
     (["urdf", "--out", "/proc/pollard.urdf"], "/proc/pollard.urdf"),
@@ -534,6 +549,7 @@ def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch
     out, err = capsys.readouterr()
     lines = err.strip().splitlines()
     assert code == 2, (code, out[-300:], err[-2000:])
+    assert out == "", out[:300]  # nothing half-written on standard output either
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0] and "Traceback" not in err, lines[0]
     assert _state(scratch) == before  # nothing written, nothing changed
@@ -542,3 +558,30 @@ def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch
 
 def test_the_fuzz_has_at_least_200_cases():
     assert len(CASES) >= 200 and len(set(IDS)) == len(IDS)
+
+
+# --- what must still work ------------------------------------------------------------------------
+@pytest.mark.parametrize("name, content", [
+    ("bom.csv", "\ufeff" + _files()["good.csv"]),  # Excel's "CSV UTF-8" starts with a BOM
+    ("crlf.csv", _files()["good.csv"].replace("\n", "\r\n")),
+])
+def test_a_bom_or_crlf_trajectory_runs_and_its_note_follows_the_work(tmp_path, monkeypatch,
+                                                                     capsys, name, content):
+    monkeypatch.chdir(tmp_path)
+    Path(name).write_text(content, encoding="utf-8", newline="")
+    assert main(["run", "--trajectory", name, "--out", "out.csv"]) == 0
+    out, err = capsys.readouterr()
+    assert "wrote out.csv (12 rows)" in err
+    # the spline note is said once, after the work (an error would have been the only line)
+    assert err.strip().splitlines()[-1] == (f"note: {name}: no d_*/dd_* columns; derivatives "
+                                            "taken from a quintic interpolating spline through "
+                                            "the samples")
+
+
+def test_negative_values_with_an_exponent_are_values_not_options(tmp_path, monkeypatch, capsys):
+    # argparse took "-1e-2" for an option: "expected one argument"
+    monkeypatch.chdir(tmp_path)
+    Path("good.csv").write_text(_files()["good.csv"])
+    assert main(["simulate", "--trajectory", "good.csv", "--mass-error", "-1e-2",
+                 "--out", "sim.csv"]) == 0
+    assert "wrote sim.csv" in capsys.readouterr().err
