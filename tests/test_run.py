@@ -189,6 +189,7 @@ def test_worker_robots_do_not_share_pinocchio_data(robot):
     ("ab.csv", b"a,b\n", "column 'a' is not one pollard-pin writes, and no sidecar"),
     ("ab_rows.csv", b"t,b\n0,1\n", "column 'b' is not one pollard-pin writes"),
     ("header.csv", b"t,theta21\n", "no rows"),
+    ("twice.csv", b"t,t\n0,1\n", "duplicate column 't'"),
     ("text.parquet", "TEXT", "not a readable parquet result table"),
 ])
 def test_read_result_of_a_bad_file_is_one_error(tmp_path, name, content, says):

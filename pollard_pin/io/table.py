@@ -230,6 +230,10 @@ def _read_csv(path: Path) -> ResultTable:
     except UnicodeDecodeError as exc:
         raise ResultFileError(f"{path}: not UTF-8 text (byte {exc.start}: "
                               f"{head[exc.start:exc.start + 1]!r})") from None
+    header = head.split(b"\n", 1)[0].decode("utf-8", "replace").strip().split(",")
+    twice = [n for i, n in enumerate(header) if n in header[:i]]
+    if twice:  # polars would rename the second one
+        raise ResultFileError(f"{path}: duplicate column {twice[0]!r}")
     frame = pl.read_csv(path, infer_schema_length=0)  # strings first: float64 for every column
     for n in frame.columns:  # an empty cell or a short row: never written, a damaged file
         if frame[n].null_count():

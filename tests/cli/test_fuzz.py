@@ -459,7 +459,7 @@ BAD_SIMULATIONS = [
     ("sim_swap.csv", "does not follow"),
     ("sim_repeat.csv", "does not follow"),
     ("sim_truncated.csv", "line 13, column 'theta43': no value"),
-    ("sim_duplicate.csv", "duplicate"),
+    ("sim_duplicate.csv", "duplicate column 't'"),
     ("sim_parquet.csv", "not UTF-8 text"),
     ("socket.csv", "socket.csv"),
 ]
