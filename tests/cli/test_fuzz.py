@@ -533,7 +533,7 @@ CASES += [
     (["run", "--frobnicate"], "unrecognized arguments"),
     (["run", "--out"], "expected one argument"),
     (["info", "extra"], "unrecognized arguments"),
-    (["paint"], "invalid choice"),
+    (["frobnicate"], "invalid choice"),
 ]
 IDS = [" ".join(argv) for argv, _ in CASES]
 

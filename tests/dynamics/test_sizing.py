@@ -36,3 +36,14 @@ def test_size_checks_destinations_before_the_work(tmp_path, capsys, extra):
     extra = [x.format(d=tmp_path) for x in extra]
     code, _, err = _cli(["size", "--actuators", str(EXAMPLE), *extra], capsys)
     assert code == 2 and len(err.strip().splitlines()) == 1, err
+
+
+def test_a_path_that_does_not_move_the_actuators_is_refused(robot):
+    # A constant pose sampled 50 times (rates zero here, round-off ≈ 1e-14 rad per unit of
+    # path from a spline): the sizing printed a "shortest cycle" of 6e-7 s instead of refusing.
+    t = np.linspace(0.0, 0.98, 50)
+    pose = np.tile(robot.params.home_pose, (50, 1))
+    still = pp.Trajectory(t, pose, np.zeros_like(pose), np.zeros_like(pose), name="still")
+    with pytest.raises(M.ActuatorError, match=r"^the path does not move the actuators \(each "
+                                              r"travels at most .* rad over its 50 samples\)$"):
+        actuator_sizing(robot, pp.run_pipeline(robot, still), M.load_actuators(EXAMPLE))
