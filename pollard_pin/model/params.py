@@ -283,9 +283,13 @@ def _check_home_reachable(p: Params) -> None:
     # Closed-form IK (docs/model.md §7) at the home pose; it raises with the chain and the
     # shortfall.
     from ..analytic.closed_form import UnreachableError, position_ik
+    from ..analytic.taskspace import TaskInputError
 
     try:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
+    except TaskInputError as exc:  # e.g. an absurd angle (a traceback before)
+        raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation): "
+                             f"{exc.detail}") from None
     except UnreachableError as exc:
         raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation) "
                              "is unreachable with these parameters: "

@@ -77,6 +77,8 @@ def _files() -> dict[str, bytes | str | None]:
             ",".join([c[0], str(1e3 * float(c[1])), *c[2:]]) + "\n"
             for c in (r.split(",") for r in rows)),
         "deg.csv": with_row(3, {4: "30"}),
+        "no_t.csv": "x,y,z,psi,theta,phi\n" + "".join(r.split(",", 1)[1] + "\n" for r in rows),
+        "trailing_comma.csv": HEADER + "\n" + "".join(r + ",\n" for r in rows),
         "partial_derivatives.csv": "t,x,y,z,psi,theta,phi,d_x\n" + "".join(
             f"{r},0\n" for r in rows),
         "semicolon.csv": good.replace(",", ";"),
@@ -254,6 +256,8 @@ BAD_TRAJECTORIES = [
     ("missing_column.csv", "missing column(s) phi"),
     ("mm.csv", "looks like millimetres"),
     ("deg.csv", "looks like degrees"),
+    ("no_t.csv", "missing column(s) t"),
+    ("trailing_comma.csv", "row 2 has 8 fields, expected 7"),
     ("partial_derivatives.csv", "must come as a full set"),
     ("semicolon.csv", "unknown column"),
     ("tabs.csv", "unknown column"),
@@ -385,6 +389,15 @@ BAD_SETS = [
     ("leg1.side=2", "side"),
     ("chain0.x32 = 0.33 = 1", "not a number"),
     ("chain0..x32=0.33", "not a dotted parameter key"),
+    ("home.orientation=[0, 0, 1e9]", "phi = 1.74533e+07 is absurd"),
+    ("home.tip=[0.55, 0, 9]", "is unreachable"),
+    ("leg1.x87=0.01", "is unreachable"),
+    ("bodies.gun.inertia=[[1, 0, 0], [0, 1, 0], [0, 0, -1]]", "positive definite"),
+    ("bodies.gun.inertia=[[1, 2, 0], [0, 1, 0], [0, 0, 1]]", "symmetric"),
+    ("bodies.gun.inertia=[[1, 0, 0], [0, 1, 0], [0, 0, 5]]", "triangle inequality"),
+    ("bodies.gun.com=[nan, 0, 0]", "must be finite"),
+    ("limits.theta21.lower=10", "must be greater than"),
+    ("branches.chain0=7", "must be -1 or +1"),
 ]
 CASES += [([*prefix, "--set", text], says)
           for prefix in MODEL_COMMANDS for text, says in BAD_SETS[:: 1 if prefix[0] == "urdf"
