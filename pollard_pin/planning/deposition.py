@@ -1,0 +1,104 @@
+"""Spray deposition: the film a moving gun leaves on a surface (docs/model.md §20).
+
+Point source at the tool tip p, spray axis a = R·e_x. For a surface point s with unit normal
+n (towards the gun), d = s − p, h = d·a, ρ = |d − h a|, σ(h) = sigma·h/standoff,
+cos α = h/|d|, cos i = max(0, −d·n)/|d|; the film grows at
+
+    dT/dt = flow / (2π σ(h)²) · exp(−ρ² / (2 σ(h)²)) · cos i / cos α        (h > 0)
+
+and the film is its time integral over the path (the gun sprays throughout). The integral is
+the trapezoid rule over the path's samples: for a spot crossing a point at constant speed its
+error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson summation, Δx the gun's travel per step), so
+Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9; :func:`film` also returns the difference
+from the rule on every second sample, an a-posteriori bound on the error.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+# Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
+BLOCK_ELEMENTS = 1_000_000
+
+
+@dataclass(frozen=True)
+class Gun:
+    """The spray gun (SI): ``standoff`` [m] nozzle to surface along the axis where the spot
+    has spread ``sigma`` [m]; ``flow`` [m³/s] of film volume deposited."""
+
+    standoff: float
+    sigma: float
+    flow: float
+
+
+def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
+    """dT/dt [m/s] for gun tips ``p`` (T, 3) spraying along unit axes ``a`` (T, 3) at surface
+    points ``s`` (P, 3) of unit normals ``n`` ((P, 3) or (3,), towards the gun): (T, P).
+
+    Every pairwise quantity is a product of small matrices (h = s·a − p·a, …); coordinates
+    should be centred near the scene (the caller's origin) to keep |d|² − h² exact enough.
+    """
+    p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
+    n = np.asarray(n, dtype=float)
+    h = s @ a.T - np.einsum("ij,ij->i", p, a)[None, :]  # (P, T)
+    d2 = (np.einsum("ij,ij->i", s, s)[:, None] + np.einsum("ij,ij->i", p, p)[None, :]
+          - 2.0 * s @ p.T)
+    if n.ndim == 1:
+        dn = (s @ n)[:, None] - (p @ n)[None, :]
+    else:
+        dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
+    k = gun.sigma / gun.standoff  # σ(h) = k·h
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        sh2 = (k * h) ** 2
+        rho2 = np.maximum(d2 - h * h, 0.0)
+        # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
+        rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
+                * np.maximum(-dn, 0.0) / h)
+    return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0).T
+
+
+def trapezoid_weights(t) -> np.ndarray:
+    """Weights w with Σ w f(t) the trapezoid rule over the samples ``t``."""
+    t = np.asarray(t, dtype=float)
+    w = np.zeros_like(t)
+    dt = np.diff(t)
+    w[:-1] += 0.5 * dt
+    w[1:] += 0.5 * dt
+    return w
+
+
+@dataclass(frozen=True)
+class Film:
+    """Film thickness [m] at each surface point, and the trapezoid rule's error estimate
+    |T − T₂| (T₂: the rule on every second sample, whose error is ≥ 4× larger) [m]."""
+
+    thickness: np.ndarray
+    error_estimate: np.ndarray
+
+
+def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
+    """Film at surface points ``s`` (P, 3), normals ``n``, after the gun passes through the
+    tips ``p`` (T, 3) with axes ``a`` (T, 3) at times ``t`` (T,): trapezoid rule in time,
+    vectorised in blocks of samples. ``origin`` (3,): subtracted from every position first
+    (default: the mean of ``s``), for the accuracy of the matrix products."""
+    t = np.asarray(t, dtype=float)
+    p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
+    o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
+    p, s = p - o, s - o
+    w = trapezoid_weights(t)
+    w2 = trapezoid_weights(t[::2]) if len(t) % 2 else None  # odd count: the end is a sample
+    total, coarse = np.zeros(len(s)), np.zeros(len(s))
+    block = max(2, BLOCK_ELEMENTS // max(len(s), 1)) // 2 * 2  # even: keeps [::2] aligned
+    for start in range(0, len(t), block):
+        sl = slice(start, start + block)
+        r = deposition_rate(gun, p[sl], a[sl], s, n)
+        total += w[sl] @ r
+        if w2 is not None:
+            coarse += w2[start // 2:(start + block) // 2] @ r[::2]
+    err = np.abs(total - coarse) if w2 is not None else np.full(len(s), np.nan)
+    return Film(total, err)
+
+
+__all__ = ["Film", "Gun", "deposition_rate", "film", "trapezoid_weights"]

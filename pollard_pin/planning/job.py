@@ -1,0 +1,161 @@
+"""The paint job file (TOML, SI units; ``examples/paint.toml``), read and checked.
+
+Every rule broken is one :class:`JobError` line naming the key, its value and the rule.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..model.params import did_you_mean, read_toml
+
+# Required and optional keys per table, in file order.
+REQUIRED = {"panel": ("center", "normal", "width", "height"),
+            "gun": ("standoff", "sigma", "flow"),
+            "job": ("thickness",)}
+OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "coats",
+                                             "actuators")}
+DIRECTIONS = ("horizontal", "vertical")
+# A length beyond this is a unit slip (mm for m): the robot reaches ~0.5 m.
+MAX_LENGTH = 10.0
+
+
+class JobError(ValueError):
+    """A paint job breaks a rule (one line: the file, the key, the value, the rule)."""
+
+
+@dataclass(frozen=True)
+class PaintJob:
+    """A checked paint job, SI units. ``normal`` is unit length; optional entries are None
+    when the file leaves them to the planner."""
+
+    center: tuple[float, float, float]
+    normal: tuple[float, float, float]
+    width: float
+    height: float
+    standoff: float
+    sigma: float
+    flow: float
+    thickness: float
+    spacing: float | None = None
+    speed: float | None = None
+    direction: str = "horizontal"
+    coats: int | None = None
+    actuators: str | None = None  # a path, relative to the job file's folder
+    source: str = "<python>"
+
+    def to_dict(self) -> dict:
+        """The job as the file would say it (None entries left out)."""
+        d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        return {"panel": {k: d[k] for k in REQUIRED["panel"]},
+                "gun": {k: d[k] for k in REQUIRED["gun"]},
+                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d}}
+
+
+def _fail(source: str, key: str, value: Any, rule: str):
+    raise JobError(f"{source}: '{key}' = {value!r}: {rule}")
+
+
+def _number(source: str, key: str, value: Any, length: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(source, key, value, "must be a number")
+    if not math.isfinite(value):
+        _fail(source, key, value, "must be finite")
+    if length and abs(value) > MAX_LENGTH:
+        _fail(source, key, value, f"must be at most {MAX_LENGTH:g} m in size (SI units: "
+                                  "metres, not mm)")
+    return float(value)
+
+
+def _positive(source: str, key: str, value: Any, length: bool = False) -> float:
+    v = _number(source, key, value, length)
+    if v <= 0:
+        _fail(source, key, value, "must be > 0")
+    return v
+
+
+def _vector(source: str, key: str, value: Any) -> tuple[float, float, float]:
+    if not isinstance(value, list) or len(value) != 3:
+        _fail(source, key, value, "must be a list of 3 numbers [x, y, z]")
+    return tuple(_number(source, f"{key}[{i}]", v, length=True) for i, v in enumerate(value))
+
+
+def _check_table(source: str, d: Mapping, name: str) -> Mapping:
+    if name not in d:
+        raise JobError(f"{source}: missing table [{name}] (a job has [panel], [gun] and "
+                       "[job])")
+    table = d[name]
+    if not isinstance(table, Mapping):
+        _fail(source, name, table, f"must be a table [{name}]")
+    allowed = REQUIRED[name] + OPTIONAL[name]
+    for k in table:
+        if k not in allowed:
+            _fail(source, f"{name}.{k}", table[k],
+                  f"unknown key{did_you_mean(k, allowed)}; [{name}] takes "
+                  f"{', '.join(allowed)}")
+    for k in REQUIRED[name]:
+        if k not in table:
+            raise JobError(f"{source}: '{name}.{k}' is missing ([{name}] needs "
+                           f"{', '.join(REQUIRED[name])})")
+    return table
+
+
+def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
+    """Validate a parsed job file."""
+    if not isinstance(d, Mapping):
+        raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
+    for name in d:
+        if name not in REQUIRED:
+            raise JobError(f"{source}: [{name}] is not a table of a paint job"
+                           f"{did_you_mean(name, REQUIRED)}; expected [panel], [gun], [job]")
+    panel, gun, job = (_check_table(source, d, name) for name in REQUIRED)
+    center = _vector(source, "panel.center", panel["center"])
+    normal = _vector(source, "panel.normal", panel["normal"])
+    length = float(np.linalg.norm(normal))
+    if not length > 1e-12:
+        _fail(source, "panel.normal", panel["normal"], "has zero length; give the direction "
+                                                       "from the panel towards the robot")
+    normal = tuple(float(c) / length for c in normal)
+    if abs(normal[2]) > 1.0 - 1e-9:
+        _fail(source, "panel.normal", panel["normal"],
+              "is vertical: the panel's height runs along world z projected onto the panel, "
+              "which a horizontal panel does not define")
+    values = {k: _positive(source, f"panel.{k}", panel[k], length=True)
+              for k in ("width", "height")}
+    values.update({k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
+                   for k in REQUIRED["gun"]})
+    values["thickness"] = _positive(source, "job.thickness", job["thickness"], length=True)
+    for k in ("spacing", "speed"):
+        if k in job:
+            values[k] = _positive(source, f"job.{k}", job[k], length=k == "spacing")
+    if "direction" in job and job["direction"] not in DIRECTIONS:
+        _fail(source, "job.direction", job["direction"],
+              f"must be {' or '.join(repr(x) for x in DIRECTIONS)}"
+              f"{did_you_mean(str(job['direction']), DIRECTIONS)}")
+    if "coats" in job:
+        c = job["coats"]
+        if isinstance(c, bool) or not isinstance(c, int) or c < 1:
+            _fail(source, "job.coats", c, "must be a whole number >= 1")
+        values["coats"] = int(c)
+    if "actuators" in job and not (isinstance(job["actuators"], str) and job["actuators"]):
+        _fail(source, "job.actuators", job["actuators"], "must be a file name (a string)")
+    return PaintJob(center=center, normal=normal, direction=job.get("direction", "horizontal"),
+                    actuators=job.get("actuators"), source=source, **values)
+
+
+def load_job(path: str | Path) -> PaintJob:
+    """Read and check a paint job file (format: ``examples/paint.toml``). A relative
+    ``job.actuators`` is taken relative to the job file's folder."""
+    job = job_from_dict(read_toml(path, "paint job file", JobError), str(path))
+    if job.actuators is not None and not Path(job.actuators).is_absolute():
+        from dataclasses import replace
+
+        job = replace(job, actuators=str(Path(path).parent / job.actuators))
+    return job
+
+
+__all__ = ["DIRECTIONS", "JobError", "PaintJob", "job_from_dict", "load_job"]

@@ -1,0 +1,273 @@
+"""Plan a paint job: passes, speed, coats, the fastest turnarounds the motors allow, the
+trajectory, and the film it leaves (docs/model.md §21).
+
+1. Spacing: the widest whose interior ripple is ≤ PROFILE_TOLERANCE/2 (or the job's); the
+   fewest passes whose cross profile stays within PROFILE_TOLERANCE up to the edges.
+2. Speed: film = flow/(speed·spacing) per coat. The fastest constant pass speed the motors
+   allow (every pass, peak torque and speed derated to UTILISATION) caps it; beyond it the
+   job takes more coats.
+3. Turnarounds and ramps: each the shortest of its family (raster.py) whose motors stay within
+   UTILISATION of peak torque and speed (vectorised bisection, TURN_SAMPLES per piece).
+4. The whole trajectory is checked like ``run`` (reach, margins, joint limits) and against the
+   motors at CHECK_REFINE× its sampling, then the film is integrated over the panel.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..dynamics.actuators import ActuatorError, Actuators, path_dynamics, uniform_min_duration
+from ..io.trajectory import Trajectory
+from ..kinematics.taskspace import rotation
+from .deposition import Film, Gun, film
+from .job import PaintJob
+from .raster import (SPOT_RADIUS, PanelFrame, Segments, panel_frame, pass_offsets,
+                     raster_segments, ripple_spacing, task_motion)
+from .reach import PlanError, ReachError, fastest, motion
+
+UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples
+TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
+CHECK_REFINE = 4  # the final motor check samples the path this many times more densely
+MAX_STEP = 0.002  # s: the trajectory's largest time step
+STEP_SIGMA = 0.25  # the gun moves at most this many σ per step (film integration, §20)
+MAX_COATS = 100
+
+
+@dataclass(frozen=True)
+class PaintPlan:
+    job: PaintJob
+    frame: PanelFrame
+    segments: Segments
+    trajectory: Trajectory
+    offsets: np.ndarray  # pass positions across the passes [m]
+    spacing: float
+    speed: float  # pass speed [m/s]
+    coats: int
+    half_length: float  # passes run at constant speed over |U| ≤ half_length
+    max_speed: float  # the fastest pass speed the motors allow [m/s]
+    ratios: dict  # per motor: peak_torque, rms_torque, speed (each over its rating)
+    notes: tuple[str, ...] = ()
+    horizontal: bool = True
+    timings: dict = field(default_factory=dict)
+
+    @property
+    def cycle_time(self) -> float:
+        return self.segments.total
+
+    @property
+    def passes(self) -> int:
+        return len(self.offsets) * self.coats
+
+    @property
+    def lower_bound(self) -> float:
+        """Painting-only lower bound [s]: panel area × target / flow."""
+        j = self.job
+        return j.width * j.height * j.thickness / j.flow
+
+
+def derated(act: Actuators, factor: float) -> Actuators:
+    """The actuators with peak torque and max speed scaled by ``factor``."""
+    units = tuple(replace(u, peak_torque=u.peak_torque * factor,
+                          max_speed=u.max_speed * factor) for u in act.units)
+    return replace(act, units=units)
+
+
+def gun_of(job: PaintJob) -> Gun:
+    return Gun(job.standoff, job.sigma, job.flow)
+
+
+def _sample_pieces(seg: Segments, pieces: np.ndarray, n: int):
+    x = np.linspace(0.0, 1.0, n)
+    t = (seg.start[pieces, None] + seg.duration[pieces, None] * x[None, :]).ravel()
+    # keep every sample inside its own piece (searchsorted picks the later at a boundary)
+    t = np.minimum(t, np.repeat(seg.start[pieces] + seg.duration[pieces] * (1 - 1e-12), n))
+    return t
+
+
+def _task(plan_frame, job, seg: Segments, t, horizontal):
+    return task_motion(plan_frame, job.standoff, *seg.evaluate(t), horizontal=horizontal)
+
+
+def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offsets,
+                   half_length: float, horizontal: bool) -> float:
+    """The fastest constant speed [m/s] at which every pass keeps each motor within
+    UTILISATION of its peak torque and speed (uniform time scaling of the passes, §19)."""
+    n = 64
+    U = np.linspace(-half_length, half_length, n)
+    length = 2 * half_length
+    U_all = np.tile(U, len(offsets))
+    V_all = np.repeat(offsets, n)
+    one = np.ones_like(U_all)
+    poses, d, dd = task_motion(frame, job.standoff, U_all, V_all, one, 0 * one, 0 * one,
+                               0 * one, horizontal)
+    # passes laid end to end at 1 m/s (a gap of one step between them): t is arc length
+    t = (np.tile(U + half_length, len(offsets))
+         + np.repeat(np.arange(len(offsets)) * (length + length / n), n))
+    mot = motion(robot, act, poses, d, dd)  # reach and limits, with their messages
+    ik = replace(mot.ik, t=t)
+    try:
+        scaling = uniform_min_duration(derated(act, UTILISATION), path_dynamics(robot, ik))
+    except ActuatorError as exc:
+        raise PlanError(f"the motors cannot hold the gun on the passes: {exc}") from None
+    binding = max(scaling.by_limit["peak_torque"], scaling.by_limit["speed"])
+    return math.inf if binding == 0 else float(t[-1] - t[0]) / binding
+
+
+def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
+    """The fastest raster program for the job that the motors and the workspace allow."""
+    import time
+
+    clock = {"start": time.perf_counter()}
+    frame = panel_frame(job)
+    horizontal = job.direction == "horizontal"
+    length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
+    half_length = length / 2 + SPOT_RADIUS * job.sigma
+    notes = []
+    coats = job.coats or 1
+    if job.spacing is not None:
+        spacing = job.spacing
+    elif job.speed is not None:
+        spacing = job.flow * coats / (job.thickness * job.speed)
+    else:
+        spacing = ripple_spacing(job.sigma)
+    try:
+        offsets = pass_offsets(extent, spacing, job.sigma)
+    except ValueError as exc:
+        raise PlanError(str(exc)) from None
+    try:
+        vmax = max_pass_speed(robot, act, frame, job, offsets, half_length, horizontal)
+    except ReachError as exc:
+        raise _reach_error(exc, "on a pass", frame, job, horizontal) from None
+    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    per_coat = job.flow / (vmax * spacing)
+    if speed > vmax:
+        if job.speed is not None or job.coats is not None:
+            raise PlanError(f"the pass speed {speed:.4g} m/s exceeds the {vmax:.4g} m/s the "
+                            f"motors allow; the thinnest film per coat at spacing "
+                            f"{spacing * 1e3:.4g} mm is {per_coat * 1e6:.4g} µm")
+        coats = math.ceil(job.thickness / per_coat)
+        if coats > MAX_COATS:
+            raise PlanError(f"the target {job.thickness * 1e6:.4g} µm needs {coats} coats "
+                            f"(at most {per_coat * 1e6:.4g} µm per coat)")
+        speed = job.flow * coats / (job.thickness * spacing)
+        notes.append(f"the target film needs a gun speed of {speed / coats:.4g} m/s; the motors "
+                     f"allow {vmax:.4g} m/s, so the thinnest film per coat is "
+                     f"{per_coat * 1e6:.4g} µm: planning {coats} coats at {speed:.4g} m/s")
+    film_per_coat = job.flow / (speed * spacing)
+    if abs(film_per_coat * coats / job.thickness - 1) > 1e-6:
+        raise PlanError(f"speed {speed:.4g} m/s and spacing {spacing * 1e3:.4g} mm give "
+                        f"{film_per_coat * 1e6:.4g} µm per coat, and {coats} coat(s) make "
+                        f"{film_per_coat * coats * 1e6:.4g} µm, not the target "
+                        f"{job.thickness * 1e6:.4g} µm")
+    clock["layout"] = time.perf_counter()
+    seg = _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats,
+                            horizontal)
+    clock["turns"] = time.perf_counter()
+    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
+    n = int(math.ceil(seg.total / dt)) + 1
+    t = np.linspace(0.0, seg.total, n)
+    poses, d, dd = _task(frame, job, seg, t, horizontal)
+    traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic")
+    tf = np.linspace(0.0, seg.total, CHECK_REFINE * (n - 1) + 1)
+    try:
+        fine = motion(robot, act, *_task(frame, job, seg, tf, horizontal))
+    except ReachError as exc:
+        where = seg.kind[int(np.searchsorted(seg.start, tf[exc.sample], "right") - 1)]
+        raise _reach_error(exc, f"in a {where}", frame, job, horizontal,
+                           fine_poses=_task(frame, job, seg, tf, horizontal)[0]) from None
+    from ..dynamics.averages import time_rms
+
+    ia = robot.actuated_v
+    from ..dynamics.actuators import motor_torque
+
+    tm = motor_torque(act, fine.tau, fine.ik.v[:, ia], fine.ik.a[:, ia])
+    ratios = {"peak_torque": fine.torque_ratio.max(0),
+              "rms_torque": time_rms(tf, tm) / act.column("continuous_torque"),
+              "speed": fine.speed_ratio.max(0)}
+    clock["check"] = time.perf_counter()
+    return PaintPlan(job, frame, seg, traj, offsets, spacing, speed, coats, half_length, vmax,
+                     ratios, tuple(notes), horizontal,
+                     {"layout": clock["layout"] - clock["start"],
+                      "turnarounds": clock["turns"] - clock["layout"],
+                      "check": clock["check"] - clock["turns"]})
+
+
+def _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats,
+                      horizontal) -> Segments:
+    """Every turnaround and ramp at the shortest duration within UTILISATION (bisection)."""
+    seg = raster_segments(offsets, half_length, speed, 1.0, (1.0, 1.0), coats)
+    pieces = np.array([i for i, k in enumerate(seg.kind) if k != "pass"])
+
+    def build(tau):
+        return raster_segments(offsets, half_length, speed, tau[1:-1], (tau[0], tau[-1]),
+                               coats)
+
+    def evaluate(tau):
+        s = build(tau)
+        t = _sample_pieces(s, pieces, TURN_SAMPLES)
+        try:
+            m = motion(robot, act, *_task(frame, job, s, t, horizontal))
+        except ReachError as exc:
+            k = exc.sample // TURN_SAMPLES
+            what = "ramp" if k in (0, len(pieces) - 1) else "turnaround"
+            poses = _task(frame, job, s, t, horizontal)[0]
+            raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job,
+                               horizontal, fine_poses=poses) from None
+        return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
+
+    guess = np.full(len(pieces), 4 * speed / 10.0)  # reversing at ~10 m/s²
+    return build(fastest(evaluate, guess, UTILISATION))
+
+
+def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob,
+                 horizontal: bool, fine_poses=None) -> PlanError:
+    msg = str(exc)
+    if fine_poses is not None:
+        p = fine_poses[exc.sample, :3] - frame.c - job.standoff * frame.n
+        u, v = p @ frame.u, p @ frame.v
+        xyz = fine_poses[exc.sample, :3]
+        msg = (f"the path leaves the workspace {where} at panel (u, v) = ({u * 1e3:.0f}, "
+               f"{v * 1e3:.0f}) mm, tool tip ({xyz[0]:.3f}, {xyz[1]:.3f}, {xyz[2]:.3f}) m: "
+               f"{msg}")
+    else:
+        msg = f"the path leaves the workspace {where}: {msg}"
+    return ReachError(msg, exc.sample)
+
+
+def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
+    """The regular grid over the panel, edges included, spacing ≤ ``resolution`` (default
+    σ/3): (U (nu,), V (nv,), world points (nv, nu, 3))."""
+    frame = plan_or_frame.frame if isinstance(plan_or_frame, PaintPlan) else plan_or_frame
+    res = job.sigma / 3 if resolution is None else resolution
+    U = np.linspace(-job.width / 2, job.width / 2, int(math.ceil(job.width / res - 1e-9)) + 1)
+    V = np.linspace(-job.height / 2, job.height / 2,
+                    int(math.ceil(job.height / res - 1e-9)) + 1)
+    UU, VV = np.meshgrid(U, V)
+    return U, V, frame.world(UU, VV)
+
+
+def plan_film(plan: PaintPlan, resolution: float | None = None):
+    """(U, V, points (nv, nu, 3), Film over the flattened grid) of the planned path."""
+    U, V, pts = film_grid(plan, plan.job, resolution)
+    tr = plan.trajectory
+    axes = rotation(tr.poses)[:, :, 0]
+    f: Film = film(gun_of(plan.job), tr.t, tr.poses[:, :3], axes, pts.reshape(-1, 3),
+                   plan.frame.n, origin=plan.frame.c)
+    return U, V, pts, f
+
+
+def film_stats(thickness: np.ndarray, target: float) -> dict:
+    """``mean, min, max, std`` [m], ``uniformity`` (min/max) and ``within_10pct`` (the share
+    of grid points within ±10 % of the target)."""
+    th = np.asarray(thickness, dtype=float).ravel()
+    return {"mean": float(th.mean()), "min": float(th.min()), "max": float(th.max()),
+            "std": float(th.std()), "uniformity": float(th.min() / th.max()),
+            "within_10pct": float(np.mean(np.abs(th / target - 1) <= 0.10)),
+            "deviation_min": float(th.min() / target - 1),
+            "deviation_max": float(th.max() / target - 1)}
+
+
+__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "film_grid", "film_stats",
+           "gun_of", "max_pass_speed", "plan_film", "plan_paint"]

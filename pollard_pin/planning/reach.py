@@ -1,0 +1,115 @@
+"""Reach and motors along candidate tool motions: the rules of ``run`` (closed-form IK on the
+configured branches, wrist and singularity margins) plus the joint limits of the parameter
+file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..dynamics.actuators import Actuators, motor_speed, motor_torque
+from ..io.trajectory import Trajectory
+from ..kinematics.errors import KinematicsError
+from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+
+
+class PlanError(ValueError):
+    """No paint program meets the job: one line saying why, where, and what would fit."""
+
+
+class ReachError(PlanError):
+    """A tool pose the path needs is out of reach; ``sample`` indexes the poses checked."""
+
+    def __init__(self, message: str, sample: int):
+        super().__init__(message)
+        self.sample = sample
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Joint motion and motor load of a batch of tool poses (not necessarily one path)."""
+
+    ik: object  # IKResult
+    tau: np.ndarray  # (N, 6) actuator torques
+    torque_ratio: np.ndarray  # (N, 6) |τm| / peak torque
+    speed_ratio: np.ndarray  # (N, 6) |ωm| / max speed
+
+    @property
+    def utilisation(self) -> np.ndarray:
+        return np.maximum(self.torque_ratio, self.speed_ratio)
+
+
+def joint_limit_violation(robot, q: np.ndarray):
+    """The first (sample, joint, angle, lower, upper) [rad] with a tree joint outside its
+    limits (an angle may be 2π off the interval's own numbers), or None."""
+    names = robot.joint_names
+    lower = np.array([robot.params.joint_limits(n).lower for n in names])
+    upper = np.array([robot.params.joint_limits(n).upper for n in names])
+    off = np.mod(q - lower, 2 * math.pi) > (upper - lower) + 1e-12
+    if not off.any():
+        return None
+    k, j = (int(i) for i in np.argwhere(off)[0])
+    return k, names[j], float(q[k, j]), float(lower[j]), float(upper[j])
+
+
+def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
+           wrist_margin: float = WRIST_MARGIN,
+           singularity_margin: float = SINGULARITY_MARGIN) -> Motion:
+    """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
+    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
+    joint leaves its limits."""
+    from ..dynamics.inverse import inverse_dynamics
+    from ..kinematics.pipeline import inverse_kinematics
+
+    n = len(poses)
+    try:
+        ik = inverse_kinematics(robot, poses, d_poses, dd_poses, np.arange(n, dtype=float),
+                                wrist_margin=wrist_margin,
+                                singularity_margin=singularity_margin)
+    except KinematicsError as exc:
+        raise ReachError(exc.detail, 0 if exc.sample is None else int(exc.sample)) from None
+    bad = joint_limit_violation(robot, ik.q)
+    if bad is not None:
+        k, name, val, lo, hi = bad
+        raise ReachError(f"joint {name} at {math.degrees(val):.1f}° is outside its limits "
+                         f"[{math.degrees(lo):g}°, {math.degrees(hi):g}°]", k)
+    tau = inverse_dynamics(robot, ik, energies=False).tau
+    ia = robot.actuated_v
+    v, a = ik.v[:, ia], ik.a[:, ia]
+    # at rest (q̇ = 0) the motor must break Coulomb friction away: count ±c, not sign(0) = 0
+    tm = np.abs(motor_torque(act, tau, v, a)) + act.column("coulomb") * (v == 0)
+    return Motion(ik, tau, tm / act.column("peak_torque"),
+                  np.abs(motor_speed(act, v)) / act.column("max_speed"))
+
+
+def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings: int = 12):
+    """Smallest durations τ (one per piece, vectorised bisection) with
+    ``evaluate(τ)`` (per-piece peak utilisation) ≤ ``target``; ``guess`` (P,) starts the
+    bracket, doubled until feasible. Utilisation must fall as τ grows (acceleration-bound
+    pieces); raises :class:`PlanError` if a piece is not feasible at any tried duration."""
+    hi = np.array(guess, dtype=float)
+    lo = np.zeros_like(hi)
+    for _ in range(max_doublings):
+        ok = evaluate(hi) <= target
+        if ok.all():
+            break
+        lo = np.where(ok, lo, hi)
+        hi = np.where(ok, hi, 2 * hi)
+    else:
+        raise PlanError(f"no turnaround or ramp of up to {hi.max():.3g} s keeps every motor "
+                        f"within {100 * target:.0f} % of its ratings: the pass speed itself "
+                        "is too much for them")
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        ok = evaluate(mid) <= target
+        lo, hi = np.where(ok, lo, mid), np.where(ok, mid, hi)
+    return hi
+
+
+def trajectory_motion(robot, act: Actuators, traj: Trajectory, **margins) -> Motion:
+    return motion(robot, act, traj.poses, traj.d_poses, traj.dd_poses, **margins)
+
+
+__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion",
+           "trajectory_motion"]
