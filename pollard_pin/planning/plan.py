@@ -32,7 +32,6 @@ TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
 CHECK_REFINE = 4  # the final motor check samples the path this many times more densely
 MAX_STEP = 0.002  # s: the trajectory's largest time step
 STEP_SIGMA = 0.25  # the gun moves at most this many σ per step (film integration, §20)
-MAX_COATS = 100
 
 
 @dataclass(frozen=True)
@@ -116,7 +115,44 @@ def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offs
 
 
 def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
-    """The fastest raster program for the job that the motors and the workspace allow."""
+    """The fastest raster program for the job that the motors and the workspace allow.
+
+    A path out of reach raises :class:`PlanError` naming where it leaves the workspace and
+    the largest panel of the same centre and proportions that fits (:func:`largest_panel`).
+    """
+    try:
+        return _plan(robot, job, act)
+    except ReachError as exc:
+        scale = largest_panel(robot, job, act)
+        if scale == 0:
+            fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
+                    f"{tuple(round(c, 4) for c in job.center)} fits")
+        else:
+            fits = (f"the largest panel that fits at standoff {job.standoff:g} m, same centre "
+                    f"and proportions, is {scale * job.width:.3f} × {scale * job.height:.3f} "
+                    f"m (within {100 * 2 ** -LARGEST_STEPS:.1f} %)")
+        raise PlanError(f"{exc}; {fits}") from None
+
+
+LARGEST_STEPS = 6  # bisection steps of the largest panel that fits
+
+
+def largest_panel(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
+    """The largest scale s ∈ [0, 1) (to 2^-steps) of the job's panel, same centre, for
+    which the whole program plans (reach, margins, limits, motors), by bisection; 0 if none
+    of the tried scales does."""
+    lo, hi = 0.0, 1.0
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        try:
+            _plan(robot, replace(job, width=mid * job.width, height=mid * job.height), act)
+            lo = mid
+        except (ReachError, PlanError):
+            hi = mid
+    return lo
+
+
+def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     import time
 
     clock = {"start": time.perf_counter()}
@@ -139,22 +175,19 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     try:
         vmax = max_pass_speed(robot, act, frame, job, offsets, half_length, horizontal)
     except ReachError as exc:
-        raise _reach_error(exc, "on a pass", frame, job, horizontal) from None
+        raise _reach_error(exc, "on a pass", frame, job) from None
     speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    per_coat = job.flow / (vmax * spacing)
     if speed > vmax:
-        if job.speed is not None or job.coats is not None:
-            raise PlanError(f"the pass speed {speed:.4g} m/s exceeds the {vmax:.4g} m/s the "
-                            f"motors allow; the thinnest film per coat at spacing "
-                            f"{spacing * 1e3:.4g} mm is {per_coat * 1e6:.4g} µm")
-        coats = math.ceil(job.thickness / per_coat)
-        if coats > MAX_COATS:
-            raise PlanError(f"the target {job.thickness * 1e6:.4g} µm needs {coats} coats "
-                            f"(at most {per_coat * 1e6:.4g} µm per coat)")
-        speed = job.flow * coats / (job.thickness * spacing)
-        notes.append(f"the target film needs a gun speed of {speed / coats:.4g} m/s; the motors "
-                     f"allow {vmax:.4g} m/s, so the thinnest film per coat is "
-                     f"{per_coat * 1e6:.4g} µm: planning {coats} coats at {speed:.4g} m/s")
+        # Film per coat = flow/(speed·spacing): the motors' fastest pass sets the thinnest
+        # coat; more coats only make each one thinner still.
+        per_coat = job.flow / (vmax * spacing)
+        most = math.floor(job.thickness / per_coat * (1 + 1e-9))
+        hint = (f"; at most {most} coat(s) of this target" if most >= 1 else
+                f"; a target below that cannot be painted at spacing {spacing * 1e3:.4g} mm")
+        raise PlanError(f"the target needs a gun speed of {speed:.4g} m/s ({coats} coat(s) of "
+                        f"{job.thickness / coats * 1e6:.4g} µm at spacing {spacing * 1e3:.4g} "
+                        f"mm) but the motors allow {vmax:.4g} m/s: the thinnest film per coat "
+                        f"is {per_coat * 1e6:.4g} µm{hint}")
     film_per_coat = job.flow / (speed * spacing)
     if abs(film_per_coat * coats / job.thickness - 1) > 1e-6:
         raise PlanError(f"speed {speed:.4g} m/s and spacing {spacing * 1e3:.4g} mm give "
@@ -175,8 +208,7 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
         fine = motion(robot, act, *_task(frame, job, seg, tf, horizontal))
     except ReachError as exc:
         where = seg.kind[int(np.searchsorted(seg.start, tf[exc.sample], "right") - 1)]
-        raise _reach_error(exc, f"in a {where}", frame, job, horizontal,
-                           fine_poses=_task(frame, job, seg, tf, horizontal)[0]) from None
+        raise _reach_error(exc, f"in a {where}", frame, job) from None
     from ..dynamics.averages import time_rms
 
     ia = robot.actuated_v
@@ -212,28 +244,22 @@ def _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats
         except ReachError as exc:
             k = exc.sample // TURN_SAMPLES
             what = "ramp" if k in (0, len(pieces) - 1) else "turnaround"
-            poses = _task(frame, job, s, t, horizontal)[0]
-            raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job,
-                               horizontal, fine_poses=poses) from None
+            raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job) from None
         return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
 
     guess = np.full(len(pieces), 4 * speed / 10.0)  # reversing at ~10 m/s²
     return build(fastest(evaluate, guess, UTILISATION))
 
 
-def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob,
-                 horizontal: bool, fine_poses=None) -> PlanError:
-    msg = str(exc)
-    if fine_poses is not None:
-        p = fine_poses[exc.sample, :3] - frame.c - job.standoff * frame.n
-        u, v = p @ frame.u, p @ frame.v
-        xyz = fine_poses[exc.sample, :3]
-        msg = (f"the path leaves the workspace {where} at panel (u, v) = ({u * 1e3:.0f}, "
-               f"{v * 1e3:.0f}) mm, tool tip ({xyz[0]:.3f}, {xyz[1]:.3f}, {xyz[2]:.3f}) m: "
-               f"{msg}")
-    else:
-        msg = f"the path leaves the workspace {where}: {msg}"
-    return ReachError(msg, exc.sample)
+def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) -> ReachError:
+    """The error with where the path leaves the workspace: panel (u, v) and tool tip."""
+    msg = f"the path leaves the workspace {where}"
+    if exc.pose is not None:
+        xyz = np.asarray(exc.pose[:3])
+        p = xyz - frame.c - job.standoff * frame.n
+        msg += (f" at panel (u, v) = ({p @ frame.u * 1e3:.0f}, {p @ frame.v * 1e3:.0f}) mm, "
+                f"tool tip ({xyz[0]:.3f}, {xyz[1]:.3f}, {xyz[2]:.3f}) m")
+    return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
 def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):

@@ -4,6 +4,7 @@ file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,11 +20,12 @@ class PlanError(ValueError):
 
 
 class ReachError(PlanError):
-    """A tool pose the path needs is out of reach; ``sample`` indexes the poses checked."""
+    """A tool pose the path needs is out of reach: ``sample`` indexes the poses checked,
+    ``pose`` (6,) is that pose."""
 
-    def __init__(self, message: str, sample: int):
+    def __init__(self, message: str, sample: int, pose=None):
         super().__init__(message)
-        self.sample = sample
+        self.sample, self.pose = sample, pose
 
 
 @dataclass(frozen=True)
@@ -68,12 +70,14 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
                                 wrist_margin=wrist_margin,
                                 singularity_margin=singularity_margin)
     except KinematicsError as exc:
-        raise ReachError(exc.detail, 0 if exc.sample is None else int(exc.sample)) from None
+        k = 0 if exc.sample is None else int(exc.sample)
+        detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
+        raise ReachError(detail, k, np.asarray(poses)[k]) from None
     bad = joint_limit_violation(robot, ik.q)
     if bad is not None:
         k, name, val, lo, hi = bad
         raise ReachError(f"joint {name} at {math.degrees(val):.1f}° is outside its limits "
-                         f"[{math.degrees(lo):g}°, {math.degrees(hi):g}°]", k)
+                         f"[{math.degrees(lo):g}°, {math.degrees(hi):g}°]", k, np.asarray(poses)[k])
     tau = inverse_dynamics(robot, ik, energies=False).tau
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
