@@ -1,0 +1,102 @@
+"""The paint job file: the shipped example reads back, and each bad value is one line."""
+import math
+from pathlib import Path
+
+import pytest
+
+from pollard_pin.planning.job import JobError, job_from_dict, load_job
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "paint.toml"
+
+
+def _good() -> dict:
+    return {"panel": {"center": [0.70, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0],
+                      "width": 0.26, "height": 0.12},
+            "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7},
+            "job": {"thickness": 25e-6}}
+
+
+def test_example_reads_as_the_issue_gives_it():
+    job = load_job(EXAMPLE)
+    assert job.center == (0.70, 0.0, 0.16) and job.normal == (-1.0, 0.0, 0.0)
+    assert (job.width, job.height, job.standoff, job.sigma, job.flow, job.thickness) == \
+        (0.26, 0.12, 0.15, 0.010, 1.5e-7, 25e-6)
+    assert job.direction == "horizontal" and job.coats is None and job.speed is None
+
+
+def test_normal_is_normalised_and_a_yaw_is_fine():
+    d = _good()
+    d["panel"]["normal"] = [-3.0, -4.0, 0.0]
+    job = job_from_dict(d)
+    assert job.normal == pytest.approx((-0.6, -0.8, 0.0), abs=1e-15)
+
+
+def _set(path: str, value):
+    d = _good()
+    table, key = path.split(".")
+    if value is _DELETE:
+        del d[table][key]
+    else:
+        d[table][key] = value
+    return d
+
+
+_DELETE = object()
+
+
+@pytest.mark.parametrize("path, value, words", [
+    ("panel.widht", 0.2, ["'panel.widht'", "unknown key", "did you mean 'width'"]),
+    ("job.thicknes", 1e-5, ["unknown key", "did you mean 'thickness'"]),
+    ("panel.width", _DELETE, ["'panel.width' is missing"]),
+    ("gun.flow", _DELETE, ["'gun.flow' is missing"]),
+    ("gun.sigma", math.nan, ["'gun.sigma'", "must be finite"]),
+    ("gun.flow", math.inf, ["'gun.flow'", "must be finite"]),
+    ("panel.height", 0.0, ["'panel.height'", "must be > 0"]),
+    ("gun.standoff", -0.15, ["must be > 0"]),
+    ("job.thickness", 0, ["must be > 0"]),
+    ("job.speed", -1.0, ["'job.speed'", "must be > 0"]),
+    ("job.spacing", 0.0, ["'job.spacing'", "must be > 0"]),
+    ("panel.normal", [0.0, 0.0, 0.0], ["'panel.normal'", "zero length"]),
+    ("panel.normal", [0.0, 0.0, -1.0], ["'panel.normal'", "vertical"]),
+    ("panel.normal", [1.0, 0.0], ["list of 3 numbers"]),
+    ("panel.center", [0.7, "a", 0.1], ["'panel.center[1]'", "must be a number"]),
+    ("panel.width", 260.0, ["metres, not mm"]),
+    ("gun.sigma", True, ["must be a number"]),
+    ("job.direction", "horizontl", ["did you mean 'horizontal'"]),
+    ("job.coats", 0, ["'job.coats'", "whole number >= 1"]),
+    ("job.coats", 1.5, ["whole number"]),
+    ("job.actuators", 3, ["file name"]),
+])
+def test_each_bad_value_is_one_line(path, value, words):
+    with pytest.raises(JobError) as info:
+        job_from_dict(_set(path, value), "job.toml")
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith("job.toml: ")
+    for w in words:
+        assert w in msg
+
+
+def test_missing_and_unknown_tables():
+    d = _good()
+    del d["gun"]
+    with pytest.raises(JobError, match=r"missing table \[gun\]"):
+        job_from_dict(d)
+    d = _good()
+    d["guns"] = {}
+    with pytest.raises(JobError, match="did you mean 'gun'"):
+        job_from_dict(d)
+
+
+def test_file_errors_are_one_line(tmp_path):
+    with pytest.raises(JobError, match="does not exist"):
+        load_job(tmp_path / "none.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[panel\nwidth = 1\n")
+    with pytest.raises(JobError, match="not valid TOML"):
+        load_job(bad)
+
+
+def test_actuators_path_is_relative_to_the_job(tmp_path):
+    text = EXAMPLE.read_text().replace("# optional:", 'actuators = "motors.toml"\n# optional:')
+    (tmp_path / "job.toml").write_text(text)
+    assert load_job(tmp_path / "job.toml").actuators == str(tmp_path / "motors.toml")
