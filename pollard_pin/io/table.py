@@ -28,7 +28,9 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "sigma_serial": "mixed (m, 1)", "kinetic_energy": "J", "potential_energy": "J",
           # closed-loop simulation, docs/model.md §18
           "tip_position_error": "m", "tip_orientation_error": "rad", "desired_x": "m",
-          "desired_y": "m", "desired_z": "m"}
+          "desired_y": "m", "desired_z": "m",
+          # paint film map, docs/model.md §21
+          "u": "m", "v": "m", "thickness": "m"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 

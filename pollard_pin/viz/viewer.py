@@ -292,10 +292,31 @@ def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
     return key_t, idx
 
 
+def film_panel(vis, points, values, lo: float, hi: float, node: str = f"{ROOT}/paint"):
+    """Draw a surface grid ``points`` (nv, nu, 3) [m] as triangles coloured by ``values``
+    (nv, nu) from blue (``lo``) through white to red (``hi``): the painted film."""
+    import meshcat.geometry as mg
+
+    nv, nu = np.shape(values)
+    x = np.clip((np.asarray(values, float) - lo) / (hi - lo), 0.0, 1.0).ravel()
+    # blue (0.13, 0.4, 0.67) → white → red (0.7, 0.09, 0.17), as matplotlib's RdBu_r ends
+    blue, red, white = np.array([0.13, 0.4, 0.67]), np.array([0.7, 0.09, 0.17]), np.ones(3)
+    w = np.abs(2 * x - 1)[:, None]
+    colour = (1 - w) * white + w * np.where((x < 0.5)[:, None], blue, red)
+    k = np.arange(nv * nu).reshape(nv, nu)
+    a, b, c, d = k[:-1, :-1].ravel(), k[:-1, 1:].ravel(), k[1:, 1:].ravel(), k[1:, :-1].ravel()
+    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    vis[node].set_object(mg.TriangularMeshGeometry(np.reshape(points, (-1, 3)), faces,
+                                                   color=colour),
+                         mg.MeshBasicMaterial(vertexColors=True, side=2))
+    return node
+
+
 def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
-                play: bool = True, camera: bool = True) -> Scene:
+                play: bool = True, camera: bool = True, overlay=None) -> Scene:
     """Draw the robot, closure markers, tool path (and frames) into meshcat ``vis`` and set
-    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.ik.IKResult`) on it."""
+    the animation of ``ik`` (an :class:`~pollard_pin.kinematics.ik.IKResult`) on it.
+    ``overlay``: a callable(vis) drawing more (e.g. :func:`film_panel`)."""
     import meshcat.geometry as mg
     from meshcat.animation import Animation
     from pinocchio.visualize import MeshcatVisualizer
@@ -329,6 +350,8 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
     vis[path_node].set_object(mg.Line(mg.PointsGeometry(pts),
                                       mg.LineBasicMaterial(color=PATH_COLOUR, linewidth=2)))
 
+    if overlay is not None:
+        overlay(vis)
     frame_nodes = {}
     if frames:
         for name in ("tip", "platform"):
@@ -363,13 +386,13 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
 
 
 def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
-                title: str | None = None) -> str:
+                title: str | None = None, overlay=None) -> str:
     """The scene of :func:`build_scene` as a self-contained HTML page (no server needed)."""
     meshcat = _meshcat()
 
     window = OfflineWindow()
     vis = meshcat.Visualizer(window=window)
-    build_scene(vis, robot, ik, frames=frames, fps=fps)
+    build_scene(vis, robot, ik, frames=frames, fps=fps, overlay=overlay)
     return window.get_scene(title or "Pollard robot (MeshCat)")
 
 
@@ -383,7 +406,7 @@ def write_html(path, robot, ik, **kwargs) -> Path:
 
 
 def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.stdout,
-          ready=None) -> None:
+          ready=None, overlay=None) -> None:
     """Start MeshCat's server on localhost, draw the scene and serve until interrupted
     (Ctrl-C or SIGTERM); the server process is stopped on the way out."""
     from contextlib import redirect_stdout
@@ -401,7 +424,7 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
     except ValueError:
         previous = None
     try:
-        scene = build_scene(vis, robot, ik, frames=frames, fps=fps)
+        scene = build_scene(vis, robot, ik, frames=frames, fps=fps, overlay=overlay)
         print(f"MeshCat viewer: {window.web_url}", file=out)
         print(f"(zmq {window.zmq_url}; {len(scene.geometry_nodes)} shapes, "
               f"{scene.duration:.3g} s animation at {scene.fps:g} key frames/s; "
