@@ -18,13 +18,26 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..dynamics.actuators import ActuatorError, Actuators, path_dynamics, uniform_min_duration
+from ..dynamics.actuators import (
+    ActuatorError,
+    Actuators,
+    path_dynamics,
+    uniform_min_duration,
+)
 from ..io.trajectory import Trajectory
 from ..kinematics.taskspace import rotation
 from .deposition import Film, Gun, film
 from .job import PaintJob
-from .raster import (SPOT_RADIUS, PanelFrame, Segments, panel_frame, pass_offsets,
-                     raster_segments, ripple_spacing, task_motion)
+from .raster import (
+    SPOT_RADIUS,
+    PanelFrame,
+    Segments,
+    panel_frame,
+    pass_offsets,
+    raster_segments,
+    ripple_spacing,
+    task_motion,
+)
 from .reach import PlanError, ReachError, fastest, motion
 
 UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples

@@ -9,8 +9,9 @@ import numpy as np
 BAND = 0.02  # the colour scale spans the target ± this share (the issue's ±2 %)
 
 
-def thickness_figure(U, V, thickness, target: float, path_uv=None, width: float = None,
-                     height: float = None, title: str = "Film thickness"):
+def thickness_figure(U, V, thickness, target: float, path_uv=None,
+                     width: float | None = None, height: float | None = None,
+                     title: str = "Film thickness"):
     """Heat map of ``thickness`` (nv, nu) [m] on the panel grid ``U`` (nu,), ``V`` (nv,) [m],
     coloured over target ± BAND, with ``path_uv`` (2, N) [m] (the tool tip in panel
     coordinates) drawn over it, clipped to a margin around the panel. Artist gids:

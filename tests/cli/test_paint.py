@@ -91,7 +91,7 @@ def test_view_paint_overlay(painted, tmp_path, capsys):
     from pollard_pin.viz import viewer
 
     html = tmp_path / "v.html"
-    code, out, err = _run(["view", "--paint", painted, "--html", html, "--fps", "5"], capsys)
+    code, _, err = _run(["view", "--paint", painted, "--html", html, "--fps", "5"], capsys)
     assert code == 0, err
     cmds = viewer.page_commands(html.read_text())
     paint = [c for c in cmds if c.get("type") == "set_object"
@@ -121,7 +121,7 @@ def test_bad_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
     job = tmp_path / "job.toml"
     job.write_text(edit(JOB.read_text()))
     out = tmp_path / "out"
-    code, stdout, err = _run(["paint", "--job", job, "--out", out], capsys)
+    code, _, err = _run(["paint", "--job", job, "--out", out], capsys)
     assert code == 2
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: ")
