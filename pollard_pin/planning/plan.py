@@ -38,7 +38,7 @@ from .raster import (
     ripple_spacing,
     task_motion,
 )
-from .reach import PlanError, ReachError, fastest, motion
+from .motion import PlanError, ReachError, fastest, motion
 
 UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples
 TURN_SAMPLES = 48  # per turnaround/ramp in the duration search

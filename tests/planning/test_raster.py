@@ -18,7 +18,7 @@ from pollard_pin.planning.raster import (
     pass_offsets,
     ripple_spacing,
 )
-from pollard_pin.planning.reach import PlanError
+from pollard_pin.planning.motion import PlanError
 
 ROOT = Path(__file__).resolve().parents[2]
 NAIVE_CYCLE = 17.3  # s: the constant-speed raster with slow semicircle turns
