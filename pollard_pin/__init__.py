@@ -6,6 +6,8 @@ Public API (imported lazily: ``pollard_pin.analytic.closed_form`` and
     robot = pollard_pin.load()                       # model, data, closures, geometry
     traj = pollard_pin.thesis_trajectory()           # docs/model.md §9 painting curve
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    plan = pollard_pin.plan_paint(robot, pollard_pin.load_job("examples/paint.toml"),
+                                  pollard_pin.load_actuators("examples/actuators.toml"))
 """
 from __future__ import annotations
 
@@ -43,6 +45,10 @@ _API = {
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
+    "load_job": "planning.job", "PaintJob": "planning.job", "JobError": "planning.job",
+    "plan_paint": "planning.plan", "plan_film": "planning.plan", "PaintPlan": "planning.plan",
+    "paint_report": "planning.plan", "PlanError": "planning.motion", "Gun": "planning.deposition",
+    "deposition_rate": "planning.deposition", "film": "planning.deposition",
 }
 
 __all__ = sorted(_API)
