@@ -223,6 +223,27 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         robot, act, t, poses, rates, accelerations), len(t))
 
 
+def paint_section(robot, repeats: int) -> None:
+    """Paint planning (docs/model.md §21) of examples/paint.toml and its film map; the issue's
+    budget is 10 s for both."""
+    from pollard_pin.planning.plan import plan_film
+
+    root = Path(__file__).resolve().parent.parent / "examples"
+    act = pp.load_actuators(root / "actuators.toml")
+    job = pp.load_job(root / "paint.toml")
+    plans, films = [], []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        plan = pp.plan_paint(robot, job, act)
+        t1 = time.perf_counter()
+        _, _, pts, f = plan_film(plan)
+        plans.append(t1 - t0)
+        films.append(time.perf_counter() - t1)
+    print(f"\npaint planning (examples/paint.toml), best of {repeats} runs [s]")
+    print(f"  plan {min(plans):.2f}, film map {min(films):.2f} ({pts.shape[0] * pts.shape[1]} "
+          f"points × {len(plan.trajectory)} samples); cycle {plan.cycle_time:.3f} s")
+
+
 def cli_run(samples: int, out: str) -> tuple[float, float, str]:
     """``pollard-pin run`` as a user runs it: (wall seconds, peak resident MB, its output)."""
     exe = Path(sys.executable).with_name("pollard-pin")
@@ -354,6 +375,7 @@ def main(argv=None) -> int:
                     help="skip the cold/warm start section (builds a wheel, fresh installs)")
     ap.add_argument("--startup-source", type=Path, default=REPO, metavar="DIR",
                     help="the project checkout whose start-up is measured (default this one)")
+    ap.add_argument("--no-paint", action="store_true", help="skip the paint-planning section")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
@@ -403,6 +425,8 @@ def main(argv=None) -> int:
         simulation_section(robot, args.repeats)
     if not args.no_size:
         sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
+    if not args.no_paint:
+        paint_section(robot, 3)
     if not args.no_cli:
         sizes = (min(args.samples), max(args.samples))
         if sizes[0] == sizes[1]:
