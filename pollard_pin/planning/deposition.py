@@ -72,7 +72,8 @@ def trapezoid_weights(t) -> np.ndarray:
 @dataclass(frozen=True)
 class Film:
     """Film thickness [m] at each surface point, and the trapezoid rule's error estimate
-    |T − T₂| (T₂: the rule on every second sample, whose error is ≥ 4× larger) [m]."""
+    |T − T₂| (T₂: the rule on every second sample and the last, whose error is ≥ 4× larger)
+    [m]."""
 
     thickness: np.ndarray
     error_estimate: np.ndarray
@@ -88,16 +89,18 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
     p, s = p - o, s - o
     w = trapezoid_weights(t)
-    w2 = trapezoid_weights(t[::2]) if len(t) % 2 else None  # odd count: the end is a sample
+    # the coarse rule: every second sample, and the last one
+    coarse_idx = np.unique(np.r_[np.arange(0, len(t), 2), len(t) - 1])
+    w2 = np.zeros_like(w)
+    w2[coarse_idx] = trapezoid_weights(t[coarse_idx])
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
-    block = max(2, BLOCK_ELEMENTS // max(len(s), 1)) // 2 * 2  # even: keeps [::2] aligned
+    block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
     for start in range(0, len(t), block):
         sl = slice(start, start + block)
         r = deposition_rate(gun, p[sl], a[sl], s, n)
         total += w[sl] @ r
-        if w2 is not None:
-            coarse += w2[start // 2:(start + block) // 2] @ r[::2]
-    err = np.abs(total - coarse) if w2 is not None else np.full(len(s), np.nan)
+        coarse += w2[sl] @ r
+    err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
     return Film(total, err)
 
 

@@ -26,7 +26,7 @@ from .job import PaintJob
 
 SPOT_RADIUS = 4.0  # σ: the spot's reach (issue 22): constant speed while within it of the panel
 PROFILE_TOLERANCE = 0.01  # largest relative film deviation the pass layout allows
-TURN_SHAPE = 2  # m of the turnaround's U acceleration −c·(1 − (2x − 1)^(2m)) (see _turn_u)
+TURN_SHAPE = 1  # m of the turnaround's U acceleration −c·(1 − (2x − 1)^(2m)) (see _turn_u)
 DEGREE = 7  # coefficients per segment polynomial (degree 6)
 
 
