@@ -34,7 +34,8 @@ class Motion:
 
     ik: object  # IKResult
     tau: np.ndarray  # (N, 6) actuator torques
-    torque_ratio: np.ndarray  # (N, 6) |τm| / peak torque
+    torque: np.ndarray  # (N, 6) motor torques τm (§19)
+    torque_ratio: np.ndarray  # (N, 6) |τm| / peak torque, with breakaway ±c at rest
     speed_ratio: np.ndarray  # (N, 6) |ωm| / max speed
 
     @property
@@ -82,8 +83,9 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
     # at rest (q̇ = 0) the motor must break Coulomb friction away: count ±c, not sign(0) = 0
-    tm = np.abs(motor_torque(act, tau, v, a)) + act.column("coulomb") * (v == 0)
-    return Motion(ik, tau, tm / act.column("peak_torque"),
+    tm = motor_torque(act, tau, v, a)
+    breakaway = np.abs(tm) + act.column("coulomb") * (v == 0)
+    return Motion(ik, tau, tm, breakaway / act.column("peak_torque"),
                   np.abs(motor_speed(act, v)) / act.column("max_speed"))
 
 

@@ -4,8 +4,8 @@ trajectory, and the film it leaves (docs/model.md §21).
 1. Spacing: the widest whose interior ripple is ≤ PROFILE_TOLERANCE/2 (or the job's); the
    fewest passes whose cross profile stays within PROFILE_TOLERANCE up to the edges.
 2. Speed: film = flow/(speed·spacing) per coat. The fastest constant pass speed the motors
-   allow (every pass, peak torque and speed derated to UTILISATION) caps it; beyond it the
-   job takes more coats.
+   allow (every pass, peak torque and speed derated to UTILISATION) caps it: a target that
+   needs more is refused, naming the thinnest film per coat.
 3. Turnarounds and ramps: each the shortest of its family (raster.py) whose motors stay within
    UTILISATION of peak torque and speed (vectorised bisection, TURN_SAMPLES per piece).
 4. The whole trajectory is checked like ``run`` (reach, margins, joint limits) and against the
@@ -14,6 +14,7 @@ trajectory, and the film it leaves (docs/model.md §21).
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -24,6 +25,7 @@ from ..dynamics.actuators import (
     path_dynamics,
     uniform_min_duration,
 )
+from ..dynamics.averages import time_rms
 from ..io.trajectory import Trajectory
 from ..kinematics.taskspace import rotation
 from .deposition import Film, Gun, film
@@ -60,7 +62,6 @@ class PaintPlan:
     half_length: float  # passes run at constant speed over |U| ≤ half_length
     max_speed: float  # the fastest pass speed the motors allow [m/s]
     ratios: dict  # per motor: peak_torque, rms_torque, speed (each over its rating)
-    notes: tuple[str, ...] = ()
     horizontal: bool = True
     timings: dict = field(default_factory=dict)
 
@@ -166,14 +167,11 @@ def largest_panel(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STE
 
 
 def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
-    import time
-
     clock = {"start": time.perf_counter()}
     frame = panel_frame(job)
     horizontal = job.direction == "horizontal"
     length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
     half_length = length / 2 + SPOT_RADIUS * job.sigma
-    notes = []
     coats = job.coats or 1
     if job.spacing is not None:
         spacing = job.spacing
@@ -222,18 +220,12 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     except ReachError as exc:
         where = seg.kind[int(np.searchsorted(seg.start, tf[exc.sample], "right") - 1)]
         raise _reach_error(exc, f"in a {where}", frame, job) from None
-    from ..dynamics.averages import time_rms
-
-    ia = robot.actuated_v
-    from ..dynamics.actuators import motor_torque
-
-    tm = motor_torque(act, fine.tau, fine.ik.v[:, ia], fine.ik.a[:, ia])
     ratios = {"peak_torque": fine.torque_ratio.max(0),
-              "rms_torque": time_rms(tf, tm) / act.column("continuous_torque"),
+              "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
     clock["check"] = time.perf_counter()
     return PaintPlan(job, frame, seg, traj, offsets, spacing, speed, coats, half_length, vmax,
-                     ratios, tuple(notes), horizontal,
+                     ratios, horizontal,
                      {"layout": clock["layout"] - clock["start"],
                       "turnarounds": clock["turns"] - clock["layout"],
                       "check": clock["check"] - clock["turns"]})
