@@ -152,26 +152,38 @@ LARGEST_STEPS = 6  # bisection steps of the largest panel that fits
 
 
 def largest_panel(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
-    """The largest scale s ∈ [0, 1) (to 2^-steps) of the job's panel, same centre, for
-    which the whole program plans (reach, margins, limits, motors), by bisection; 0 if none
-    of the tried scales does."""
+    """The largest scale s ∈ [0, 1) (to 2^-steps) of the job's panel, same centre, whose
+    raster stays in reach (``run``'s rules and the joint limits), by bisection; 0 if none of
+    the tried scales does. Each try samples the whole raster at the job's speed with every
+    turnaround and ramp at the duration search's first guess (longer than the motors need,
+    so it reaches further out than the final path)."""
     lo, hi = 0.0, 1.0
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
+        scaled = replace(job, width=mid * job.width, height=mid * job.height)
         try:
-            _plan(robot, replace(job, width=mid * job.width, height=mid * job.height), act)
+            frame, offsets, half_length, speed, coats, _ = _layout(scaled)
+            tau = _first_guess(speed)
+            seg = raster_segments(offsets, half_length, speed, tau, (tau, tau), coats)
+            t = np.arange(0.0, seg.total, min(MAX_STEP, STEP_SIGMA * job.sigma / speed))
+            motion(robot, act, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
             lo = mid
-        except (ReachError, PlanError):
+        except PlanError:
             hi = mid
     return lo
 
 
-def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
-    clock = {"start": time.perf_counter()}
+def _first_guess(speed: float) -> float:
+    """The duration search's first turnaround/ramp duration [s]: reversing at ~10 m/s²."""
+    return 4 * speed / 10.0
+
+
+def _layout(job: PaintJob):
+    """(frame, pass offsets, half pass length, speed, coats, spacing) of the job, before the motors
+    have their say (the job's speed, or the one its film needs)."""
     frame = panel_frame(job)
     horizontal = job.direction == "horizontal"
     length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
-    half_length = length / 2 + SPOT_RADIUS * job.sigma
     coats = job.coats or 1
     if job.spacing is not None:
         spacing = job.spacing
@@ -183,11 +195,18 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
         offsets = pass_offsets(extent, spacing, job.sigma)
     except ValueError as exc:
         raise PlanError(str(exc)) from None
+    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    return frame, offsets, length / 2 + SPOT_RADIUS * job.sigma, speed, coats, spacing
+
+
+def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
+    clock = {"start": time.perf_counter()}
+    frame, offsets, half_length, speed, coats, spacing = _layout(job)
+    horizontal = job.direction == "horizontal"
     try:
         vmax = max_pass_speed(robot, act, frame, job, offsets, half_length, horizontal)
     except ReachError as exc:
         raise _reach_error(exc, "on a pass", frame, job) from None
-    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
     if speed > vmax:
         # Film per coat = flow/(speed·spacing): the motors' fastest pass sets the thinnest
         # coat; more coats only make each one thinner still.
@@ -252,7 +271,7 @@ def _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats
             raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job) from None
         return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
 
-    guess = np.full(len(pieces), 4 * speed / 10.0)  # reversing at ~10 m/s²
+    guess = np.full(len(pieces), _first_guess(speed))
     return build(fastest(evaluate, guess, UTILISATION))
 
 

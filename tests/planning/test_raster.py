@@ -1,6 +1,7 @@
 """The raster planner (docs/model.md §21): the example's plan against independent checks,
 and one test per way a job can fail."""
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -173,6 +174,12 @@ def test_out_of_reach_names_where_and_what_fits(robot, job, act):
     for w in ("leaves the workspace", "panel (u, v) = (", "cannot reach",
               "the largest panel that fits at standoff 0.15 m"):
         assert w in msg
+    # the panel it names plans, and one 5 % larger does not
+    w, h = (float(x) for x in re.search(r"is ([\d.]+) × ([\d.]+) m", msg).groups())
+    assert w / h == pytest.approx(0.6 / job.height, rel=0.02)
+    plan_paint(robot, replace(job, width=w, height=h), act)
+    with pytest.raises(PlanError):
+        plan_paint(robot, replace(job, width=1.05 * w, height=1.05 * h), act)
 
 
 def test_too_thin_a_film(robot, job, act):
