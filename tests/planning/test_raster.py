@@ -213,3 +213,26 @@ def test_coats_split_the_film(robot, job, act):
     p = plan_paint(robot, replace(job, coats=2, thickness=50e-6), act)
     assert p.coats == 2 and p.passes == 2 * len(p.offsets)
     assert p.speed == pytest.approx(job.flow * 2 / (50e-6 * p.spacing), rel=1e-12)
+
+
+def test_film_integration_converged(plan, film, job):
+    """The film of the written samples against the same path integrated at 4× the sampling
+    (exact segment positions): the planner's 2 ms steps are converged far below the issue's
+    0.1 % of the target (achieved 5e-11 relative); the a-posteriori estimate (achieved 1.4e-9
+    of the target) bounds it."""
+    from pollard_pin.planning.deposition import film as integrate
+    from pollard_pin.planning.plan import gun_of
+    from pollard_pin.planning.raster import task_motion
+
+    U, V, pts, f = film
+    pick = np.r_[0:len(U) * len(V):37, len(U) * len(V) - 1]  # a spread of points, a corner
+    s = pts.reshape(-1, 3)[pick]
+    seg = plan.segments
+    t = np.linspace(0, seg.total, 4 * (len(plan.trajectory) - 1) + 1)
+    poses = task_motion(plan.frame, job.standoff, *seg.evaluate(t))[0]
+    axes = np.tile(-plan.frame.n, (len(t), 1))
+    fine = integrate(gun_of(job), t, poses[:, :3], axes, s, plan.frame.n, origin=plan.frame.c)
+    rel = np.abs(f.thickness[pick] / fine.thickness - 1).max()
+    assert rel < 5e-9
+    assert f.error_estimate.max() < 1.4e-7 * job.thickness
+    assert f.error_estimate.max() > rel * f.thickness.min()
