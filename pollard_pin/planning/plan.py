@@ -27,7 +27,7 @@ from ..dynamics.actuators import (
 )
 from ..dynamics.averages import time_rms
 from ..io.trajectory import Trajectory
-from ..kinematics.taskspace import rotation
+from ..analytic.taskspace import rotation
 from .deposition import Film, Gun, film
 from .job import PaintJob
 from .raster import (

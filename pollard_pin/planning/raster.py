@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import Polynomial
 
-from ..kinematics.taskspace import angles_from_rotation
+from ..analytic.taskspace import angles_from_rotation
 from .job import PaintJob
 
 SPOT_RADIUS = 4.0  # σ: the spot's reach (issue 22): constant speed while within it of the panel
