@@ -19,6 +19,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..analytic.taskspace import rotation
 from ..dynamics.actuators import (
     ActuatorError,
     Actuators,
@@ -27,9 +28,9 @@ from ..dynamics.actuators import (
 )
 from ..dynamics.averages import time_rms
 from ..io.trajectory import Trajectory
-from ..analytic.taskspace import rotation
 from .deposition import Film, Gun, film
 from .job import PaintJob
+from .motion import PlanError, ReachError, fastest, motion
 from .raster import (
     SPOT_RADIUS,
     PanelFrame,
@@ -40,7 +41,6 @@ from .raster import (
     ripple_spacing,
     task_motion,
 )
-from .motion import PlanError, ReachError, fastest, motion
 
 UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples
 TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
