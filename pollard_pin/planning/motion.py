@@ -63,7 +63,7 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
     accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
     joint leaves its limits."""
     from ..dynamics.inverse import inverse_dynamics
-    from ..kinematics.pipeline import inverse_kinematics
+    from ..kinematics.ik import inverse_kinematics
 
     n = len(poses)
     try:

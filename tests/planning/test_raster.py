@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 from pollard_pin.dynamics.actuators import load_actuators, motor_load_of
-from pollard_pin.io.results import run_pipeline
 from pollard_pin.planning.job import load_job
 from pollard_pin.planning.motion import PlanError
 from pollard_pin.planning.plan import film_stats, plan_film, plan_paint
@@ -20,6 +19,7 @@ from pollard_pin.planning.raster import (
     pass_offsets,
     ripple_spacing,
 )
+from pollard_pin.run import run_pipeline
 
 ROOT = Path(__file__).resolve().parents[2]
 NAIVE_CYCLE = 17.3  # s: the constant-speed raster with slow semicircle turns
