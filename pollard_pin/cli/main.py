@@ -19,18 +19,18 @@ import threading
 
 from .. import __version__
 from ..io.atomic import STDOUT
-from . import export, info, plot, report, run, simulate, size, sweep, urdf, view
+from . import export, info, paint, plot, report, run, simulate, size, sweep, urdf, view
 from .common import HelpFormatter, Parser, UsageError, say_notes
 
 DESCRIPTION = """\
 Verified multibody model of the Pollard spray-painting parallel robot (Pinocchio).
 
 Solve a painting trajectory for every joint's motion and every actuator's torque, view it in
-a browser, plot it, size the actuators, and sweep the design. See docs/model.md for the model
-and its conventions.
+a browser, plot it, size the actuators, sweep the design, and plan how to paint a panel. See
+docs/model.md for the model and its conventions.
 """
 
-COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, export)
+COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, export)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -60,9 +60,11 @@ def _errors() -> tuple[type[BaseException], ...]:
     from ..kinematics.errors import ClosureError, KinematicsError
     from ..model.build import ModelFileError
     from ..model.params import ParameterError
+    from ..planning.job import JobError
+    from ..planning.motion import PlanError
     from ..sweep import SweepError
 
-    return (ControlError, PlantError, SimulationError,
+    return (JobError, PlanError, ControlError, PlantError, SimulationError,
             ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
             SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError,
             MemoryError)

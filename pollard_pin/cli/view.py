@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from ..io.atomic import check_destination
 from .common import STDOUT, UsageError, command, name, positive, say_notes, solve, trajectory_args
@@ -12,20 +13,29 @@ def run(args) -> int:
 
     if args.html:
         check_destination(args.html)
+    overlay = None
+    if args.paint is not None:
+        from .paint import paint_overlay
+
+        if args.trajectory != "thesis":
+            raise UsageError("--paint DIR shows DIR/path.csv: give no --trajectory with it")
+        args.trajectory = str(Path(args.paint) / "path.csv")
+        overlay = paint_overlay(Path(args.paint))
     robot, result = solve(args, dynamics=False)
     try:
         viewer.check_frame_rate(result.ik.t, args.fps)
     except viewer.ViewerError as exc:
         raise UsageError(f"--fps {args.fps:g}: {exc}") from None
     if args.html:
-        path = viewer.write_html(args.html, robot, result.ik, frames=args.frames, fps=args.fps)
+        path = viewer.write_html(args.html, robot, result.ik, frames=args.frames, fps=args.fps,
+                                 overlay=overlay)
         if args.html != STDOUT:
             print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB, {len(result.ik)} samples,"
                   f" {result.ik.t[-1] - result.ik.t[0]:.4g} s): open it in a browser, no server "
                   "needed; Open Controls → Animations to play and scrub", file=sys.stderr)
         return 0
     say_notes(args)  # serving lasts until interrupted
-    viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps)
+    viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps, overlay=overlay)
     return 0
 
 
@@ -36,5 +46,9 @@ def add_parser(sub, parents) -> None:
                    help="write a self-contained static page instead of serving (default: "
                         "serve on localhost)")
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
+    p.add_argument("--paint", metavar="DIR", default=None,
+                   help="show a paint output folder (pollard-pin paint --out DIR): the robot "
+                        "running DIR/path.csv and the panel coloured by film thickness "
+                        "(default: no panel)")
     p.add_argument("--fps", type=positive, default=25.0,
                    help="animation key frames per second of trajectory time")
