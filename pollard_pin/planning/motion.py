@@ -82,9 +82,12 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
     tau = inverse_dynamics(robot, ik, energies=False).tau
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
-    # at rest (q̇ = 0) the motor must break Coulomb friction away: count ±c, not sign(0) = 0
     tm = motor_torque(act, tau, v, a)
-    breakaway = np.abs(tm) + act.column("coulomb") * (v == 0)
+    # At rest (q̇ = 0) the motor must break Coulomb friction away in either direction: the
+    # motor model just off rest on both sides (q̇ = ±1e-300: viscous 0, Coulomb ±c).
+    rest = v == 0
+    sides = [np.abs(motor_torque(act, tau, np.where(rest, e, v), a)) for e in (1e-300, -1e-300)]
+    breakaway = np.maximum(np.abs(tm), np.maximum(*sides))
     return Motion(ik, tau, tm, breakaway / act.column("peak_torque"),
                   np.abs(motor_speed(act, v)) / act.column("max_speed"))
 

@@ -236,3 +236,19 @@ def test_film_integration_converged(plan, film, job):
     assert rel < 5e-9
     assert f.error_estimate.max() < 1.4e-7 * job.thickness
     assert f.error_estimate.max() > rel * f.thickness.min()
+
+
+def test_breakaway_counted_at_rest(robot, plan, act):
+    """At the rest-to-rest ends every motor must overcome Coulomb friction in either
+    direction: utilisation (|τ/N + Jm·N·q̈| + c)/peak there, not sign(0) = 0 (exact)."""
+    from pollard_pin.planning.motion import motion
+
+    tr = plan.trajectory
+    ends = [0, len(tr) - 1]
+    m = motion(robot, act, tr.poses[ends], tr.d_poses[ends], tr.dd_poses[ends])
+    ia = robot.actuated_v
+    assert np.all(m.ik.v[:, ia] == 0)
+    n, jm, c = (act.column(k) for k in ("gear_ratio", "rotor_inertia", "coulomb"))
+    rest = m.tau / n + jm * n * m.ik.a[:, ia]
+    expected = (np.abs(rest) + c) / act.column("peak_torque")
+    assert m.torque_ratio == pytest.approx(expected, rel=1e-14)
