@@ -17,7 +17,7 @@ MAX_FILM_POINTS = 2_000_000  # film grid points: ~0.3 s per 3,000 points × 5,00
 def _actuators(args, job):
     """--actuators, else the job's ``actuators``, else the package default (the ratings of
     examples/actuators.toml, shipped as models/actuators.toml)."""
-    from ..dynamics.actuators import load_actuators
+    from ..dynamics.motors import load_actuators
     from ..model.paths import models_dir
 
     return load_actuators(args.actuators or job.actuators or models_dir() / "actuators.toml")

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..dynamics.actuators import Actuators, motor_speed, motor_torque
+from ..dynamics.motors import Actuators, motor_speed, motor_torque
 from ..io.trajectory import Trajectory
 from ..kinematics.errors import KinematicsError
 from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN

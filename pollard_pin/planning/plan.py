@@ -20,13 +20,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..analytic.taskspace import rotation
-from ..dynamics.actuators import (
-    ActuatorError,
-    Actuators,
-    path_dynamics,
-    uniform_min_duration,
-)
 from ..dynamics.averages import time_rms
+from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
+from ..dynamics.path import path_dynamics
 from ..io.trajectory import Trajectory
 from .deposition import Film, Gun, film
 from .job import PaintJob
@@ -238,7 +234,8 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     n = int(math.ceil(seg.total / dt)) + 1
     t = np.linspace(0.0, seg.total, n)
     poses, d, dd = _task(frame, job, seg, t, horizontal)
-    traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic")
+    traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic",
+                      curve=lambda times: _task(frame, job, seg, times, horizontal))
     tf = np.linspace(0.0, seg.total, CHECK_REFINE * (n - 1) + 1)
     try:
         fine = motion(robot, act, *_task(frame, job, seg, tf, horizontal))

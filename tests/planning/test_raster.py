@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pollard_pin.dynamics.actuators import load_actuators, motor_load_of
+from pollard_pin.dynamics.motors import load_actuators, motor_load_of
 from pollard_pin.planning.job import load_job
 from pollard_pin.planning.motion import PlanError
 from pollard_pin.planning.plan import film_stats, plan_film, plan_paint
