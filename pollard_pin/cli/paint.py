@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..io.atomic import atomic_open, check_destination, make_folder
-from .common import UsageError, command, load_robot, model_args, positive
+from .common import UsageError, command, load_robot, model_args, name, positive
 
 MAX_FILM_POINTS = 2_000_000  # film grid points: ~0.3 s per 3,000 points × 5,000 samples
 
@@ -127,12 +127,12 @@ def add_parser(sub, parents) -> None:
     p = command(sub, parents, "paint", "plan a raster spray program over a panel: path, film "
                 "map, motors (docs/model.md §20–§21)", run)
     model_args(p)
-    p.add_argument("--job", required=True, metavar="JOB.toml",
+    p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml)")
-    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+    p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
-    p.add_argument("--out", default="paint", metavar="DIR",
+    p.add_argument("--out", type=name, default="paint", metavar="DIR",
                    help="output folder: path.csv, thickness.csv|parquet, paint.json, "
                         "thickness.png")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",

@@ -46,7 +46,7 @@ def add_parser(sub, parents) -> None:
                    help="write a self-contained static page instead of serving (default: "
                         "serve on localhost)")
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
-    p.add_argument("--paint", metavar="DIR", default=None,
+    p.add_argument("--paint", type=name, metavar="DIR", default=None,
                    help="show a paint output folder (pollard-pin paint --out DIR): the robot "
                         "running DIR/path.csv and the panel coloured by film thickness "
                         "(default: no panel)")
