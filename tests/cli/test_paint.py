@@ -138,3 +138,10 @@ def test_bad_options(tmp_path, capsys):
     assert code == 2 and "does not exist" in err
     code, _, err = _run(["view", "--paint", tmp_path, "--html", tmp_path / "v.html"], capsys)
     assert code == 2 and "not a paint output folder" in err
+
+
+def test_default_actuators_are_the_example_ratings():
+    """The package default (models/actuators.toml) is a copy of examples/actuators.toml."""
+    from pollard_pin.model.paths import models_dir
+
+    assert (models_dir() / "actuators.toml").read_bytes() == ACT.read_bytes()
