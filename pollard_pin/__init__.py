@@ -43,6 +43,8 @@ _API = {
     "ActuatorError": "dynamics.motors", "actuator_sizing": "dynamics.sizing",
     "time_optimal_path": "dynamics.timeopt", "TimeOptimal": "dynamics.timeopt",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
+    "workspace": "planning.workspace", "largest_panel": "planning.workspace",
+    "WorkspaceMap": "planning.workspace", "WorkspaceError": "planning.workspace",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
     "load_job": "planning.job", "PaintJob": "planning.job", "JobError": "planning.job",

@@ -8,7 +8,7 @@ Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints 
     python scripts/benchmark.py [--samples 2001 20001] [--repeats 5] [--no-mujoco] [--no-cli]
                                 [--big 1000001]
                                 [--no-loads] [--no-simulate] [--no-size]
-                                [--no-startup] [--startup-source DIR]
+                                [--no-startup] [--startup-source DIR] [--no-workspace]
 """
 from __future__ import annotations
 
@@ -244,6 +244,28 @@ def paint_section(robot, repeats: int) -> None:
           f"points × {len(plan.trajectory)} samples); cycle {plan.cycle_time:.3f} s")
 
 
+def workspace_section(robot, repeats: int) -> None:
+    """Workspace maps (docs/model.md §22): a 250,000-point plane at x = 0.55 over the default
+    bounds (mostly outside the reach, as a user maps it), and one of the same size over the
+    reachable box (mostly reachable: the full per-point work). Best of ``repeats``."""
+    from pollard_pin.planning.workspace import workspace
+
+    workspace(robot, "x=0.55", resolution=0.02)  # warm-up: imports, compiled kernels
+    cases = {"default bounds (500 × 500)": {"resolution": 0.00326},
+             "reachable box (675 × 372)": {"resolution": 0.00089,
+                                           "bounds": {"y": (-0.3, 0.3), "z": (-0.05, 0.28)}}}
+    print(f"\nworkspace map, plane x = 0.55, best of {repeats} [µs/point]")
+    for label, kw in cases.items():
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            ws = workspace(robot, "x=0.55", **kw)
+            times.append(time.perf_counter() - t0)
+        n = ws.grid.size
+        print(f"  {label:<28s} {n:7d} points, {ws.summary['reachable_points']:7d} reachable "
+              f"{1e6 * min(times) / n:8.2f}")
+
+
 def cli_run(samples: int, out: str) -> tuple[float, float, str]:
     """``pollard-pin run`` as a user runs it: (wall seconds, peak resident MB, its output)."""
     exe = Path(sys.executable).with_name("pollard-pin")
@@ -376,6 +398,7 @@ def main(argv=None) -> int:
     ap.add_argument("--startup-source", type=Path, default=REPO, metavar="DIR",
                     help="the project checkout whose start-up is measured (default this one)")
     ap.add_argument("--no-paint", action="store_true", help="skip the paint-planning section")
+    ap.add_argument("--no-workspace", action="store_true", help="skip the workspace-map section")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
@@ -427,6 +450,8 @@ def main(argv=None) -> int:
         sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
     if not args.no_paint:
         paint_section(robot, 3)
+    if not args.no_workspace:
+        workspace_section(robot, args.repeats)
     if not args.no_cli:
         sizes = (min(args.samples), max(args.samples))
         if sizes[0] == sizes[1]:

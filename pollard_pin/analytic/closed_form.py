@@ -111,12 +111,14 @@ def _unit(c, scale=1.0):
     return (Jet._make(cv, c.d, c.dd) if isinstance(c, Jet) else cv), beyond
 
 
-def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
+def _circle_angle(A, B, C, branch, chain, rho, off, r, L, failures=None):
     """Solve C + A cos t + B sin t = 0: t = atan2(B, A) + branch·acos(−C/√(A²+B²)) (docs/model.md
     §7).
 
     rho, off: in-plane / out-of-plane distance of the target from the circle the elbow
     describes (radius r); L is the second link. Used for the tolerance and the shortfall.
+    With a ``failures`` dict, no error: the samples without a solution get NaN and
+    ``failures[chain]`` their mask.
     """
     Rn = J.sqrt(A * A + B * B)
     Rv, rh, of = value(Rn), value(rho), value(off)
@@ -126,6 +128,9 @@ def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
         c = -C / Rn
     ratio = value(c)
     c, bad = _unit(c, scale)
+    if failures is not None:
+        failures[chain] = bad
+        return J.atan2(B, A) + branch * J.acos(np.where(bad, np.nan, c))
     if bad.any():
         rows = _per_sample(bad)
         idx = np.unravel_index(np.argmax(bad), bad.shape)  # C order: first bad sample
@@ -148,12 +153,14 @@ def _circle_angle(A, B, C, branch, chain, rho, off, r, L):
     return J.atan2(B, A) + branch * J.acos(c)
 
 
-def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
+def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None, failures=None):
     """Closed-form angles (docs/model.md §7) as a name → angle dict; pose is an (..., 6) array or
     jet.
     The six spherical-joint angles are skipped unless ``spherical``. If ``frames`` is a dict,
     it receives the world (R, origin) of the 9 moving bodies (as :func:`forward_frames`, but
-    reusing the rotations already built here).
+    reusing the rotations already built here). If ``failures`` is a dict, nothing raises: it
+    receives each chain's mask of samples without a solution (whose angles are NaN), and the
+    wrist margin is not checked.
 
     Rotation products use J.rot / J.rot_left (two-column mixes) for speed.
     """
@@ -167,7 +174,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
     A, B = -2.0 * p.x32 * dx, 2.0 * p.x32 * dz
     C = dx * dx + dy * dy + dz * dz + (p.x32 ** 2 - L ** 2)
     q = {"theta21": _circle_angle(A, B, C, p.branches[0], "chain 0",
-                                  J.sqrt(dx * dx + dz * dz), dy, p.x32, L)}
+                                  J.sqrt(dx * dx + dz * dz), dy, p.x32, L, failures)}
     E = J.stack([p.x32 * J.cos(q["theta21"]), 0.0, p.z10 - p.x32 * J.sin(q["theta21"])])
     u = (P15 - E) / L
     a = J.atan2(-u[..., 2], u[..., 0])  # θ21 + θ43
@@ -180,7 +187,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
     c1716 = _unit(M[..., 0, 0])[0]
     s1716 = np.sqrt(1.0 - value(c1716) ** 2)
     bad = s1716 <= wrist_margin
-    if bad.any():
+    if failures is None and bad.any():
         rows = _per_sample(bad)
         k = int(np.argmax(rows))
         raise WristSingularError(k, float(s1716[k].min()), float(wrist_margin), int(rows.sum()))
@@ -203,7 +210,7 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None):
         A, B = -2.0 * leg.x43 * px, -2.0 * leg.x43 * py
         C = px * px + py * py + pz * pz + (leg.x43 ** 2 - leg.x87 ** 2)
         t21 = _circle_angle(A, B, C, p.branches[i + 1], CHAINS[i + 1],
-                            J.sqrt(px * px + py * py), pz, leg.x43, leg.x87)
+                            J.sqrt(px * px + py * py), pz, leg.x43, leg.x87, failures)
         elbow = J.stack([leg.x43 * J.cos(t21), c[1] + leg.x43 * J.sin(t21), c[2]])
         Ra = J.Rz(t21)
         Rc = J.rot(Ra, 0, np.asarray(leg.beta54))
@@ -294,6 +301,17 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
     """
     q = _solve(params, as_poses(poses), _check_wrist_margin(wrist_margin))
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)
+
+
+def position_ik_masked(params, poses) -> tuple[np.ndarray, dict]:
+    """Closed-form angles (N, 18) in :data:`JOINTS` order, as :func:`position_ik` but without
+    raising: NaN where a chain has no solution, and {chain: (N,) mask of those samples}
+    (a leg's mask includes the samples where chain 0 already failed). The angles are those of
+    the closed form (not unwrapped along the samples); the wrist margin is not checked."""
+    failures = {}
+    with np.errstate(invalid="ignore"):
+        q = _solve(params, as_poses(poses), 0.0, failures=failures)
+    return np.stack([q[n] for n in JOINTS], axis=-1), failures
 
 
 def inverse_kinematics(params, poses, d_poses, dd_poses, reference=None,

@@ -19,7 +19,7 @@ import threading
 
 from .. import __version__
 from ..io.atomic import STDOUT
-from . import export, info, paint, plot, report, run, simulate, size, sweep, urdf, view
+from . import export, info, paint, plot, report, run, simulate, size, sweep, urdf, view, workspace
 from .common import HelpFormatter, Parser, UsageError, say_notes
 
 DESCRIPTION = """\
@@ -30,7 +30,8 @@ a browser, plot it, size the actuators, sweep the design, and plan how to paint 
 docs/model.md for the model and its conventions.
 """
 
-COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, export)
+COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, export,
+            workspace)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -62,12 +63,13 @@ def _errors() -> tuple[type[BaseException], ...]:
     from ..model.params import ParameterError
     from ..planning.job import JobError
     from ..planning.motion import PlanError
+    from ..planning.workspace import WorkspaceError
     from ..sweep import SweepError
 
     return (JobError, PlanError, ControlError, PlantError, SimulationError,
             ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
             SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError,
-            MemoryError)
+            MemoryError, WorkspaceError)
 
 
 def main(argv=None) -> int:

@@ -21,6 +21,17 @@ def run(args) -> int:
             raise UsageError("--paint DIR shows DIR/path.csv: give no --trajectory with it")
         args.trajectory = str(Path(args.paint) / "path.csv")
         overlay = paint_overlay(Path(args.paint))
+    if args.workspace is not None:  # read before solving: a bad folder fails at once
+        from ..viz.viewer import point_cloud
+        from ..viz.workspace import workspace_cloud
+
+        cloud = workspace_cloud(args.workspace)
+        paint = overlay
+
+        def overlay(vis, paint=paint):
+            if paint is not None:
+                paint(vis)
+            point_cloud(vis, *cloud)
     robot, result = solve(args, dynamics=False)
     try:
         viewer.check_frame_rate(result.ik.t, args.fps)
@@ -50,5 +61,8 @@ def add_parser(sub, parents) -> None:
                    help="show a paint output folder (pollard-pin paint --out DIR): the robot "
                         "running DIR/path.csv and the panel coloured by film thickness "
                         "(default: no panel)")
+    p.add_argument("--workspace", metavar="DIR", default=None,
+                   help="also draw the reachable points of a workspace map written by "
+                        "pollard-pin workspace --out DIR (default: none)")
     p.add_argument("--fps", type=positive, default=25.0,
                    help="animation key frames per second of trajectory time")

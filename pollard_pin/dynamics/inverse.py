@@ -134,7 +134,7 @@ def _parallel_singular(robot: Robot, Jc, k: int, sp=None, sp_max=None, t=None, w
         time=None if t is None else float(np.atleast_1d(t)[k]))
 
 
-def _split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray, t=None):
+def split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray, t=None):
     """Solve tau_tree = Sᵀτ + Jcᵀλ (stacked (..., 6, nv), (..., nv)) for τ and λ.
 
     The passive rows alone give Jc_pᵀλ = tau_p (6 × 6); the actuated rows then give τ. Where
@@ -161,7 +161,7 @@ def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = 
     sp, sp_max = (float(x) for x in sigma_range(Jc[:, robot.passive_v]))
     if not sp >= SIGMA_FLOOR * sp_max:
         raise _parallel_singular(robot, Jc, 0, sp, sp_max)
-    tau, lam = _split_tree_torques(robot, Jc, tau_tree)
+    tau, lam = split_tree_torques(robot, Jc, tau_tree)
     return tau, lam.reshape(2, 3), tau_tree
 
 
@@ -192,7 +192,7 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     if len(low):
         k = int(low[0])
         raise _parallel_singular(robot, Jc, k, float(sp[k]), float(sp_max[k]), ik.t)
-    tau, lam = _split_tree_torques(robot, Jc, tree, ik.t)
+    tau, lam = split_tree_torques(robot, Jc, tree, ik.t)
     clock.lap("dynamics")
     return DynamicsResult(t=ik.t, tau=tau, closure_forces=lam.reshape(n, 2, 3),
                           tau_tree=tree, actuator_velocity=V[:, robot.actuated_v], kinetic=K,

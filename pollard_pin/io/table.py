@@ -30,7 +30,10 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "tip_position_error": "m", "tip_orientation_error": "rad", "desired_x": "m",
           "desired_y": "m", "desired_z": "m",
           # paint film map, docs/model.md §21
-          "u": "m", "v": "m", "thickness": "m"}
+          "u": "m", "v": "m", "thickness": "m",
+          # workspace maps, docs/model.md §22
+          "reachable": "1", "reason": "code (workspace.json reason_codes)",
+          "conditioning": "1", "payload_capacity": "kg"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 

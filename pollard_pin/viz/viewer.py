@@ -48,6 +48,7 @@ FLOOR_SIZE = 1.0  # m, the floor grid drawn at z = 0
 FLOOR_ORIGIN = (-0.3, -0.5)
 FLOOR_Z = -0.05  # m, just below the legs' lowest point
 BACKGROUND = (0.96, 0.96, 0.96)
+CLOUD_POINT_SIZE = 0.004  # m, a workspace map's reachable points
 # Camera: orbit centre (world) and camera offset from it (world axes), chosen to frame the
 # robot and the painting curve in front of it.
 CAMERA_TARGET = (0.34, -0.03, 0.08)
@@ -309,6 +310,17 @@ def film_panel(vis, points, values, lo: float, hi: float, node: str = f"{ROOT}/p
     vis[node].set_object(mg.TriangularMeshGeometry(np.reshape(points, (-1, 3)), faces,
                                                    color=colour),
                          mg.MeshBasicMaterial(vertexColors=True, side=2))
+    return node
+
+
+def point_cloud(vis, points, colours, node: str = f"{ROOT}/workspace"):
+    """Draw ``points`` (n, 3) [m] as a point cloud coloured per point by ``colours`` (n, 3)
+    in [0, 1] (a workspace map's reachable points, :func:`.workspace.workspace_cloud`)."""
+    import meshcat.geometry as mg
+
+    pos, col = (np.asarray(a, dtype=np.float32).T for a in (points, colours))
+    vis[node].set_object(mg.Points(mg.PointsGeometry(pos, color=col),
+                                   mg.PointsMaterial(size=CLOUD_POINT_SIZE)))  # per-vertex
     return node
 
 

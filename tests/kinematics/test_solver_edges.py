@@ -23,7 +23,7 @@ from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T, jet as J, taskspace as ts
 from pollard_pin.crosscheck import euler_lagrange as lagrange
-from pollard_pin.dynamics.inverse import _split_tree_torques, inverse_dynamics
+from pollard_pin.dynamics.inverse import inverse_dynamics, split_tree_torques
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 from pollard_pin.kinematics import closure
 from pollard_pin.kinematics.errors import (
@@ -180,11 +180,11 @@ def test_split_tree_torques_names_the_singular_sample(robot):
     Jc[1][:, p[4]] = 0.0  # a passive joint the closures do not see
     tree = np.ones((3, robot.model.nv))
     with pytest.raises(SingularityError) as ei:
-        _split_tree_torques(robot, Jc, tree, t=np.array([0.0, 0.5, 1.0]))
+        split_tree_torques(robot, Jc, tree, t=np.array([0.0, 0.5, 1.0]))
     e = ei.value
     assert (e.sample, e.time, e.chain) == (1, 0.5, "parallel")
     assert e.sigma == pytest.approx(0.0, abs=1e-15)  # exactly singular: σ is round-off (5e-18)
-    tau, lam = _split_tree_torques(robot, Jc[[0, 2]], tree[[0, 2]])
+    tau, lam = split_tree_torques(robot, Jc[[0, 2]], tree[[0, 2]])
     # Independent: Sᵀτ + Jcᵀλ reproduces the tree torques.
     S = np.zeros((6, robot.model.nv))
     S[np.arange(6), robot.actuated_v] = 1.0

@@ -1,0 +1,193 @@
+"""``pollard-pin workspace``: where the tool reaches at a fixed orientation, how well-conditioned
+and how strong it is there (docs/model.md §22). Writes DIR/workspace.csv (or .parquet),
+DIR/workspace.json and, for a plane, DIR/workspace.png; nothing when anything fails."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from .common import (
+    UsageError,
+    command,
+    count,
+    load_robot,
+    model_args,
+    nonnegative,
+    positive,
+    progress,
+    wrote,
+)
+
+HELP = "map where the tool reaches at a fixed orientation (plane or volume)"
+DEFAULT_PLANE = "x=0.55"
+
+
+def add_parser(sub, parents) -> None:
+    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+
+    p = command(sub, parents, "workspace", HELP, run)
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--plane", metavar="AXIS=VALUE", default=None,
+                       help=f"map a plane grid, e.g. x=0.55 [m] (default: {DEFAULT_PLANE})")
+    where.add_argument("--volume", action="store_true",
+                       help="map a box instead (streamed: bounded memory; no figure)")
+    p.add_argument("--orientation", metavar="PSI,THETA,PHI", default="0,0,0",
+                   help="fixed tool orientation (ψ, θ, φ) [deg] (docs/model.md §2); 0,0,0 "
+                        "sprays along +x at a vertical wall")
+    p.add_argument("--resolution", type=positive, default=0.005, metavar="M",
+                   help="grid spacing [m]")
+    p.add_argument("--bounds", metavar="AXIS=LO:HI[,AXIS=LO:HI]", default=None,
+                   help="grid bounds [m] of some axes, e.g. y=-0.3:0.3,z=-0.1:0.3 (default: "
+                        "the whole reach with a margin)")
+    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+                   help="actuator file: adds each point's payload capacity (default: none)")
+    model_args(p)
+    p.add_argument("--wrist-margin", type=nonnegative, default=WRIST_MARGIN,
+                   help="smallest |sin θ1716| allowed")
+    p.add_argument("--singularity-margin", type=nonnegative,
+                   default=SINGULARITY_MARGIN,
+                   help="smallest σ_parallel and σ_serial allowed")
+    p.add_argument("--out", default="workspace", metavar="DIR", help="output folder")
+    p.add_argument("--format", choices=("csv", "parquet"), default="csv",
+                   help="table format")
+    p.add_argument("--dpi", type=count(10, 1200), default=100, help="PNG resolution")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def parse_orientation(text: str) -> tuple[float, float, float]:
+    """"PSI,THETA,PHI" in degrees → radians."""
+    parts = text.split(",")
+    try:
+        vals = [float(x) for x in parts]
+    except ValueError:
+        vals = []
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise UsageError(f"--orientation {text!r}: expected three finite numbers "
+                                "PSI,THETA,PHI in degrees, e.g. 0,0,0")
+    return tuple(math.radians(v) for v in vals)
+
+
+def parse_bounds(text: str | None) -> dict | None:
+    """"y=-0.3:0.3,z=-0.1:0.3" → {"y": (-0.3, 0.3), "z": (-0.1, 0.3)}."""
+    if text is None:
+        return None
+    out = {}
+    for item in text.split(","):
+        axis, sep, rng = item.partition("=")
+        lo, colon, hi = rng.partition(":")
+        try:
+            pair = (float(lo), float(hi))
+        except ValueError:
+            pair = None
+        axis = axis.strip().lower()
+        if not (sep and colon and pair) or axis not in ("x", "y", "z"):
+            raise UsageError(f"--bounds {text!r}: expected AXIS=LOW:HIGH items "
+                                    "separated by commas, e.g. y=-0.3:0.3,z=-0.1:0.3 [m]")
+        if axis in out:
+            raise UsageError(f"--bounds {text!r}: {axis} is given twice")
+        out[axis] = pair
+    return out
+
+
+def run(args) -> int:
+    from ..io.atomic import OutputError, atomic_open, check_destination
+    from ..io.table import TableWriter, write_table
+    from ..planning.workspace import WorkspaceError, parse_plane, workspace
+
+    orientation = parse_orientation(args.orientation)
+    bounds = parse_bounds(args.bounds)
+    plane = None if args.volume else (args.plane or DEFAULT_PLANE)
+    if plane is not None:
+        try:
+            parse_plane(plane)
+        except WorkspaceError as exc:
+            raise UsageError(f"--plane: {exc}") from None
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise OutputError(f"--out {out}: exists and is not a folder")
+    paths = {"table": out / f"workspace.{args.format}", "json": out / "workspace.json",
+             "png": out / "workspace.png"}
+    if plane is None:
+        del paths["png"]
+    for path in paths.values():
+        check_destination(path)
+    robot = load_robot(args)
+    act = None
+    if args.actuators is not None:
+        from ..dynamics.motors import load_actuators
+
+        act = load_actuators(args.actuators)
+    options = dict(orientation=orientation, resolution=args.resolution, bounds=bounds,
+                   actuators=act, wrist_margin=args.wrist_margin,
+                   singularity_margin=args.singularity_margin,
+                   progress=progress("mapping", not args.quiet))
+    metadata = {"command": "workspace", "parameters_source": str(robot.params.source),
+                "parameters": robot.params.to_toml_dict(),
+                "options": {"plane": plane, "volume": args.volume,
+                            "orientation_deg": args.orientation, "bounds": args.bounds,
+                            "resolution": args.resolution, "actuators": args.actuators}}
+    created = not out.exists()
+    if plane is not None:
+        ws = workspace(robot, plane, **options)  # everything computed before anything written
+        out.mkdir(parents=True, exist_ok=True)
+        write_table(paths["table"], ws.columns, metadata, args.format)
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        try:
+            with TableWriter(paths["table"], metadata, args.format) as writer:
+                ws = workspace(robot, volume=True, sink=writer.write, **options)
+        except BaseException:
+            if created:
+                _remove_empty(out)
+            raise
+    ws.summary["metadata"].update(metadata)
+    with atomic_open(paths["json"]) as f:
+        json.dump(ws.summary, f, indent=1, ensure_ascii=False)
+        f.write("\n")
+    if plane is not None:
+        from ..viz.workspace import write_workspace_png
+
+        write_workspace_png(ws, paths["png"], args.dpi)
+    print(summary_text(ws))
+    for path in paths.values():
+        wrote(path)
+    return 0
+
+
+def _remove_empty(folder: Path) -> None:
+    try:
+        folder.rmdir()
+    except OSError:
+        pass
+
+
+def summary_text(ws) -> str:
+    s = ws.summary
+    deg = ", ".join(f"{math.degrees(a):g}" for a in ws.orientation)
+    g = s["grid"]
+    lines = [f"grid {' × '.join(map(str, g['shape']))} ({g['points']:,} points, step "
+             f"{g['step']:g} m) at (ψ, θ, φ) = ({deg})°, "
+             f"{s['metadata']['us_per_point']:.2f} µs/point"]
+    if "area" in s:
+        lines.append(f"area {s['area']:.5g} m² ({s['reachable_points']:,} reachable points)")
+    else:
+        lines.append(f"volume {s['volume']:.5g} m³ ({s['reachable_points']:,} reachable "
+                     "points)")
+    lo, hi = s["bounding_box"]["low"], s["bounding_box"]["high"]
+    lines.append("reachable box " + ", ".join(f"{a} ∈ [{lo[i]:.4g}, {hi[i]:.4g}]"
+                                              for i, a in enumerate("xyz")) + " m")
+    rect = s.get("largest_rectangle")
+    if rect:
+        c = rect["centre"]
+        lines.append(f"largest rectangle {rect['size'][0]:.4g} × {rect['size'][1]:.4g} m "
+                     f"({'–'.join(rect['axes'])}), centre ({c[0]:.4g}, {c[1]:.4g}, "
+                     f"{c[2]:.4g}) m")
+    lines.append(f"global conditioning index {s['global_conditioning_index']:.4g}")
+    if "payload_capacity" in s:
+        p = s["payload_capacity"]
+        lines.append(f"payload capacity {p['min']:.4g} to {p['max']:.4g} kg over the "
+                     "reachable points")
+    lines.append("points by reason: " + ", ".join(f"{r} {c:,}"
+                                                  for r, c in s["reason_counts"].items()))
+    return "\n".join(lines)

@@ -1,0 +1,449 @@
+"""Constant-orientation workspace and dexterity maps (docs/model.md §22): which tool positions
+of a plane or a box the robot reaches at a fixed tool orientation, under the rules of ``run``,
+how well-conditioned and how strong it is there, and the largest reachable panel of a plane.
+
+    ws = pollard_pin.workspace(robot, plane="x=0.55")       # or volume=True
+    ws.summary["area"], ws.rectangle, ws.columns["conditioning"]
+
+Points are evaluated in chunks, stacked (:func:`.reach.evaluate`); in volume mode the chunks
+can stream to a ``sink`` so that memory stays bounded.
+"""
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..analytic.taskspace import rotation
+from .reach import REASONS, ReachOptions, evaluate, length_scale
+from .rectangle import largest_rectangle
+
+AXES = ("x", "y", "z")
+CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
+# A plane map is kept in memory (its columns, for the table, the figure and the rectangle):
+# about BYTES_PER_POINT each, within MEMORY_BUDGET. A volume streams, but its point count is
+# capped (MAX_VOLUME_POINTS: about an hour at 15 µs per point, some 30 GB of CSV).
+BYTES_PER_POINT = 200
+MEMORY_BUDGET = 2 * 1024 ** 3
+MAX_VOLUME_POINTS = 200_000_000
+COORD_DECIMALS = 10  # grid coordinates rounded to 0.1 nm [m]
+BOUND_MARGIN_CELLS = 2  # default bounds: the reach sphere widened by this many cells
+COARSE_CELLS = 40  # points per axis of the coarse volume that finds the reachable box
+
+
+class WorkspaceError(ValueError):
+    """A workspace request that cannot be mapped (one line: which value, why)."""
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A regular grid: ``origin`` (3,) [m], ``step`` [m], ``axes`` (indices of the varying
+    coordinates among x, y, z) and ``shape`` (points along each, C order: the last varies
+    fastest). A plane fixes the other coordinate at origin's value."""
+
+    origin: tuple[float, float, float]
+    step: float
+    axes: tuple[int, ...]
+    shape: tuple[int, ...]
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    @property
+    def cell(self) -> float:
+        """Area (plane) or volume of one cell [m² or m³]."""
+        return self.step ** len(self.axes)
+
+    def coordinates(self, axis: int) -> np.ndarray:
+        """The grid values along varying axis ``axis`` (index into ``axes``)."""
+        a = self.axes[axis]
+        return self.origin[a] + self.step * np.arange(self.shape[axis])
+
+    def points(self, flat: np.ndarray) -> np.ndarray:
+        """(n, 3) positions of the points with flat indices ``flat`` (C order)."""
+        pts = np.tile(np.asarray(self.origin, dtype=float), (len(flat), 1))
+        for i, k in zip(self.axes, np.unravel_index(flat, self.shape)):
+            pts[:, i] += self.step * k
+        return np.round(pts, COORD_DECIMALS)  # 0.1 nm: no 0.30000000000000004 in the outputs
+
+    def as_dict(self) -> dict:
+        fixed = [a for a in range(3) if a not in self.axes]
+        return {"axes": [AXES[a] for a in self.axes], "shape": list(self.shape),
+                "step": self.step, "points": self.size,
+                "start": [self.origin[a] for a in self.axes],
+                "stop": [self.origin[a] + self.step * (n - 1)
+                         for a, n in zip(self.axes, self.shape)],
+                **({"plane": {AXES[fixed[0]]: self.origin[fixed[0]]}} if fixed else {})}
+
+
+@dataclass(frozen=True)
+class Rectangle:
+    """The largest axis-aligned rectangle of reachable points of a plane map: ``axes`` (its two
+    coordinates), ``size`` [m] along them (points × step: each point stands for its cell),
+    ``centre`` (x, y, z) [m], ``points`` along each axis, and its corner points ``low`` and
+    ``high`` (x, y, z) [m]."""
+
+    axes: tuple[str, str]
+    size: tuple[float, float]
+    centre: tuple[float, float, float]
+    points: tuple[int, int]
+    low: tuple[float, float, float]
+    high: tuple[float, float, float]
+
+    @property
+    def area(self) -> float:
+        return self.size[0] * self.size[1]
+
+    def as_dict(self) -> dict:
+        return {"axes": list(self.axes), "size": list(self.size), "area": self.area,
+                "centre": list(self.centre), "points": list(self.points),
+                "low": list(self.low), "high": list(self.high)}
+
+
+@dataclass
+class WorkspaceMap:
+    """A workspace map: its grid, tool orientation (ψ, θ, φ) [rad], the per-point columns
+    (None for a streamed volume), the largest reachable rectangle (plane mode) and the
+    summary written to ``workspace.json`` (docs/model.md §22)."""
+
+    grid: Grid
+    orientation: tuple[float, float, float]
+    columns: dict | None
+    summary: dict
+    rectangle: Rectangle | None = None
+    reasons: tuple[str, ...] = field(default=REASONS)
+
+    def image(self, name: str) -> np.ndarray:
+        """A column as a 2-D array over the plane grid (shape ``grid.shape``)."""
+        return np.asarray(self.columns[name]).reshape(self.grid.shape)
+
+    @property
+    def smallest_margin(self) -> np.ndarray:
+        """Per point, min(|sin θ1716|, σ_parallel, σ_serial): the figure's colour."""
+        c = self.columns
+        return np.fmin(np.fmin(c["wrist_margin"], c["sigma_parallel"]), c["sigma_serial"])
+
+
+# --- inputs -------------------------------------------------------------------------------------
+def parse_plane(plane) -> tuple[int, float]:
+    """"x=0.55" or ("x", 0.55) → (axis index, value [m])."""
+    if isinstance(plane, str):
+        axis, sep, value = plane.partition("=")
+        if not sep:
+            raise WorkspaceError(f"plane {plane!r}: expected AXIS=VALUE, e.g. x=0.55")
+    else:
+        try:
+            axis, value = plane
+        except (TypeError, ValueError):
+            raise WorkspaceError(f"plane {plane!r}: expected AXIS=VALUE, e.g. x=0.55") from None
+    axis = str(axis).strip().lower()
+    if axis not in AXES:
+        raise WorkspaceError(f"plane {plane!r}: the axis must be x, y or z, got {axis!r}")
+    return AXES.index(axis), _finite(value, f"plane {axis}", "m")
+
+
+def _finite(value, what: str, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise WorkspaceError(f"{what} = {value!r} is not a number [{unit}]") from None
+    if not math.isfinite(v) or abs(v) > 1e3:
+        raise WorkspaceError(f"{what} = {value!r} must be a finite number within ±1000 {unit}")
+    return v
+
+
+def check_orientation(orientation) -> tuple[float, float, float]:
+    """(ψ, θ, φ) [rad], three finite numbers."""
+    try:
+        vals = [float(v) for v in orientation]
+    except (TypeError, ValueError):
+        raise WorkspaceError(f"orientation {orientation!r}: expected three numbers "
+                             "(psi, theta, phi) [rad]") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
+                             "(psi, theta, phi) [rad]")
+    return tuple(vals)
+
+
+def check_bounds(bounds) -> dict:
+    """{axis: (low, high)} [m] with low < high, axes among x, y, z."""
+    if bounds is None:
+        return {}
+    if not isinstance(bounds, Mapping):
+        raise WorkspaceError(f"bounds {bounds!r}: expected {{axis: (low, high)}} in m")
+    out = {}
+    for axis, pair in bounds.items():
+        a = str(axis).strip().lower()
+        if a not in AXES:
+            raise WorkspaceError(f"bounds: axis {axis!r} must be x, y or z")
+        try:
+            lo, hi = pair
+        except (TypeError, ValueError):
+            raise WorkspaceError(f"bounds of {a}: expected (low, high) in m, got "
+                                 f"{pair!r}") from None
+        lo, hi = _finite(lo, f"lower bound of {a}", "m"), _finite(hi, f"upper bound of {a}", "m")
+        if not lo < hi:
+            raise WorkspaceError(f"bounds of {a}: the lower bound {lo:g} m must be below the "
+                                 f"upper bound {hi:g} m")
+        out[a] = (lo, hi)
+    return out
+
+
+def reach_sphere(params, orientation) -> tuple[np.ndarray, float]:
+    """(centre (3,), radius) [m] of a ball holding every reachable tip position at this
+    orientation: the wrist centre lies within x32 + (x65 + x1514) of chain 0's base joint
+    (0, 0, z10), and the tip x1918 beyond it along the spray axis R·e_x (docs/model.md §2)."""
+    R = rotation(np.array([0.0, 0.0, 0.0, *orientation]))
+    centre = np.array([0.0, 0.0, params.z10]) + params.x1918 * R[:, 0]
+    return centre, params.x32 + params.x65 + params.x1514
+
+
+def make_grid(params, orientation, resolution, plane=None, bounds=None) -> Grid:
+    """The grid of a plane (``(axis, value)``) or, with ``plane`` None, of a box: ``bounds``
+    where given, else the reach sphere widened by BOUND_MARGIN_CELLS cells, snapped outward
+    to multiples of the resolution (so that finer grids of step h/k contain the coarser)."""
+    h = _finite(resolution, "resolution", "m")
+    if not h > 0:
+        raise WorkspaceError(f"resolution = {resolution!r} m must be > 0")
+    bounds = check_bounds(bounds)
+    centre, radius = reach_sphere(params, orientation)
+    axes = tuple(a for a in range(3) if plane is None or a != plane[0])
+    origin = [0.0, 0.0, 0.0]
+    shape = []
+    if plane is not None:
+        origin[plane[0]] = plane[1]
+        if AXES[plane[0]] in bounds:
+            raise WorkspaceError(f"bounds: the plane fixes {AXES[plane[0]]} = {plane[1]:g} m; "
+                                 "give bounds for the other two axes only")
+    for a in axes:
+        if AXES[a] in bounds:
+            lo, hi = bounds[AXES[a]]
+        else:
+            pad = radius + BOUND_MARGIN_CELLS * h
+            lo = math.floor((centre[a] - pad) / h) * h
+            hi = math.ceil((centre[a] + pad) / h) * h
+        n = math.floor((hi - lo) / h * (1 + 1e-12)) + 1
+        origin[a] = lo
+        shape.append(n)
+    grid = Grid(tuple(origin), h, axes, tuple(shape))
+    limit = MAX_VOLUME_POINTS if plane is None else MEMORY_BUDGET // BYTES_PER_POINT
+    if grid.size > limit:
+        need = (f"{grid.size * BYTES_PER_POINT / 2 ** 30:.3g} GiB of memory (budget "
+                f"{MEMORY_BUDGET / 2 ** 30:.3g} GiB)" if plane is not None else
+                f"about {grid.size * 15e-6 / 3600:.3g} h and {grid.size * 150 / 1e9:.3g} GB of "
+                f"CSV (limit {MAX_VOLUME_POINTS:.3g} points)")
+        coarser = h * (grid.size / limit) ** (1.0 / len(axes))
+        raise WorkspaceError(
+            f"resolution = {h:g} m gives a grid of {grid.size:,} points "
+            f"({' × '.join(map(str, shape))}), which would need {need}; use a resolution of "
+            f"at least {coarser:.3g} m or narrower bounds")
+    return grid
+
+
+# --- the map ------------------------------------------------------------------------------------
+class _Summary:
+    """Running totals over the chunks: reachable count, bounding box, conditioning sum,
+    reason counts (bounded memory)."""
+
+    def __init__(self):
+        self.reachable = 0
+        self.low = np.full(3, np.inf)
+        self.high = np.full(3, -np.inf)
+        self.conditioning = 0.0
+        self.counts = np.zeros(len(REASONS), dtype=np.int64)
+        self.payload = [np.inf, -np.inf]
+
+    def add(self, pts: np.ndarray, cols: dict) -> None:
+        ok = cols["reason"] == 0
+        self.counts += np.bincount(cols["reason"], minlength=len(REASONS))
+        if ok.any():
+            self.reachable += int(ok.sum())
+            self.low = np.minimum(self.low, pts[ok].min(axis=0))
+            self.high = np.maximum(self.high, pts[ok].max(axis=0))
+            self.conditioning += float(cols["conditioning"][ok].sum())
+            if "payload_capacity" in cols:
+                cap = cols["payload_capacity"][ok]
+                self.payload = [min(self.payload[0], float(cap.min())),
+                                max(self.payload[1], float(cap.max()))]
+
+
+def workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 0.0, 0.0),
+              resolution: float = 0.005, bounds=None, actuators=None,
+              wrist_margin: float | None = None, singularity_margin: float | None = None,
+              length_scale: float | None = None, sink: Callable[[dict], None] | None = None,
+              keep: bool | None = None, chunk: int = CHUNK, progress=None) -> WorkspaceMap:
+    """Map where the tool reaches at a fixed orientation (docs/model.md §22).
+
+    ``plane``: "x=0.55" (or ("x", 0.55)) for a plane grid, or ``volume=True`` for a box.
+    ``orientation`` (ψ, θ, φ) [rad]; ``resolution`` [m]; ``bounds`` {axis: (low, high)} [m]
+    (default: the whole reach with a margin); ``actuators`` (:class:`Actuators`) adds the
+    payload capacity; margins default to ``run``'s. ``sink(columns)`` receives every chunk's
+    columns (x, y, z, psi, theta, phi, reachable, reason, …) in grid order; ``keep`` (default:
+    plane mode) keeps them in ``columns``. Raises :class:`WorkspaceError` for bad values, a
+    grid over budget, or a plane or bounds with no reachable point (naming the reachable
+    bounding box)."""
+    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+
+    if (plane is None) == (not volume):
+        raise WorkspaceError("give either a plane (e.g. x=0.55) or volume=True")
+    t0 = time.perf_counter()
+    orient = check_orientation(orientation)
+    plane_ = None if volume else parse_plane(plane)
+    opts = ReachOptions(WRIST_MARGIN if wrist_margin is None else _margin(
+                            wrist_margin, "wrist_margin", 1.0),
+                        SINGULARITY_MARGIN if singularity_margin is None else _margin(
+                            singularity_margin, "singularity_margin", math.inf),
+                        None if length_scale is None else _positive(length_scale,
+                                                                    "length_scale"),
+                        actuators)
+    params = robot.params
+    if plane_ is not None:
+        centre, radius = reach_sphere(params, orient)
+        a, v = plane_
+        if abs(v - centre[a]) > radius:
+            raise _missed(robot, orient, opts, f"plane {AXES[a]} = {v:g} m misses the robot "
+                          f"(its reach at this orientation is {AXES[a]} ∈ "
+                          f"[{centre[a] - radius:.3g}, {centre[a] + radius:.3g}] m at most)")
+    grid = make_grid(params, orient, resolution, plane_, bounds)
+    keep = plane_ is not None if keep is None else keep
+    totals = _Summary()
+    kept = []
+    for start in range(0, grid.size, chunk):
+        flat = np.arange(start, min(start + chunk, grid.size))
+        pts = grid.points(flat)
+        poses = np.concatenate([pts, np.broadcast_to(orient, (len(pts), 3))], axis=1)
+        cols = {name: poses[:, i] for i, name in enumerate(("x", "y", "z", "psi", "theta",
+                                                            "phi"))}
+        cols.update(evaluate(robot, poses, opts))
+        totals.add(pts, cols)
+        if sink is not None:
+            sink(cols)
+        if keep:
+            kept.append(cols)
+        if progress is not None:
+            progress(int(flat[-1]) + 1, grid.size)
+    if totals.reachable == 0:
+        where = (f"plane {AXES[plane_[0]]} = {plane_[1]:g} m" if plane_ is not None
+                 else "the volume")
+        raise _missed(robot, orient, opts, f"no point of {where} is reachable within the "
+                      f"bounds {_bounds_text(grid)}")
+    columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
+    rect = None
+    if plane_ is not None and columns is not None:
+        rect = _rectangle(grid, columns["reason"].reshape(grid.shape) == 0)
+    summary = _summary(robot, grid, orient, opts, totals, rect, time.perf_counter() - t0)
+    return WorkspaceMap(grid, orient, columns, summary, rect)
+
+
+def _margin(value, name, high) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = math.nan
+    if not 0.0 <= v <= high or math.isinf(v):
+        rule = "in [0, 1]" if high == 1.0 else ">= 0 and finite"
+        raise WorkspaceError(f"{name} = {value!r} must be a number {rule}")
+    return v
+
+
+def _positive(value, name) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = math.nan
+    if not (v > 0 and math.isfinite(v)):
+        raise WorkspaceError(f"{name} = {value!r} must be a finite number > 0 [m]")
+    return v
+
+
+def _bounds_text(grid: Grid) -> str:
+    d = grid.as_dict()
+    return ", ".join(f"{a} ∈ [{lo:.4g}, {hi:.4g}] m"
+                     for a, lo, hi in zip(d["axes"], d["start"], d["stop"]))
+
+
+def reachable_box(robot, orientation, options: ReachOptions | None = None,
+                  cells: int = COARSE_CELLS):
+    """(low (3,), high (3,), step) [m]: the bounding box of the reachable points of a coarse
+    volume grid (``cells`` points across the reach sphere), or None if none is reachable.
+    The true box may exceed it by up to one step."""
+    options = ReachOptions() if options is None else options
+    _, radius = reach_sphere(robot.params, orientation)
+    h = 2.0 * radius / (cells - 1)
+    grid = make_grid(robot.params, orientation, h)
+    totals = _Summary()
+    for start in range(0, grid.size, CHUNK):
+        pts = grid.points(np.arange(start, min(start + CHUNK, grid.size)))
+        poses = np.concatenate([pts, np.broadcast_to(orientation, (len(pts), 3))], axis=1)
+        totals.add(pts, evaluate(robot, poses, options))
+    return None if totals.reachable == 0 else (totals.low, totals.high, h)
+
+
+def _missed(robot, orient, opts, what: str) -> WorkspaceError:
+    box = reachable_box(robot, orient, ReachOptions(opts.wrist_margin, opts.singularity_margin))
+    if box is None:
+        return WorkspaceError(f"{what}; no tool position at all is reachable at orientation "
+                              f"(psi, theta, phi) = {_deg(orient)} deg")
+    lo, hi, h = box
+    span = ", ".join(f"{a} ∈ [{lo[i]:.3f}, {hi[i]:.3f}]" for i, a in enumerate(AXES))
+    return WorkspaceError(f"{what}; at orientation (psi, theta, phi) = {_deg(orient)} deg the "
+                          f"reachable region spans {span} m (±{h:.2g} m)")
+
+
+def _deg(orient) -> str:
+    return "(" + ", ".join(f"{math.degrees(a):.4g}" for a in orient) + ")"
+
+
+def _rectangle(grid: Grid, mask: np.ndarray) -> Rectangle | None:
+    found = largest_rectangle(mask)
+    if found is None:
+        return None
+    r0, r1, c0, c1 = found
+    lo = grid.points(np.array([np.ravel_multi_index((r0, c0), grid.shape)]))[0]
+    hi = grid.points(np.array([np.ravel_multi_index((r1 - 1, c1 - 1), grid.shape)]))[0]
+    names = tuple(AXES[a] for a in grid.axes)
+    size = (round((r1 - r0) * grid.step, COORD_DECIMALS), round((c1 - c0) * grid.step,
+                                                                COORD_DECIMALS))
+    return Rectangle(names, size, tuple(np.round(0.5 * (lo + hi), COORD_DECIMALS).tolist()),
+                     (r1 - r0, c1 - c0), tuple(lo.tolist()), tuple(hi.tolist()))
+
+
+def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
+    plane = len(grid.axes) == 2
+    measure = "area" if plane else "volume"
+    out = {"grid": grid.as_dict(),
+           measure: totals.reachable * grid.cell,
+           "reachable_points": totals.reachable,
+           "bounding_box": {"low": totals.low.tolist(), "high": totals.high.tolist()},
+           "global_conditioning_index": totals.conditioning / totals.reachable,
+           "reason_counts": {r: int(c) for r, c in zip(REASONS, totals.counts) if c},
+           "reason_codes": {str(i): r for i, r in enumerate(REASONS)}}
+    if plane:
+        out["largest_rectangle"] = None if rect is None else rect.as_dict()
+    if opts.actuators is not None:
+        out["payload_capacity"] = {"min": totals.payload[0], "max": totals.payload[1],
+                                   "over": "reachable points", "unit": "kg"}
+    from .. import __version__
+
+    out["metadata"] = {
+        "pollard_pin": __version__, "params": robot.params.source,
+        "orientation": {"psi": orient[0], "theta": orient[1], "phi": orient[2], "unit": "rad"},
+        "orientation_deg": [math.degrees(a) for a in orient],
+        "wrist_margin": opts.wrist_margin, "singularity_margin": opts.singularity_margin,
+        "length_scale": length_scale(robot.params, opts),
+        "actuators": None if opts.actuators is None else opts.actuators.source,
+        "wall_seconds": wall, "us_per_point": 1e6 * wall / grid.size}
+    return out
+
+
+def largest_panel(robot, plane, *, orientation=(0.0, 0.0, 0.0), resolution: float = 0.005,
+                  bounds=None, **options) -> Rectangle | None:
+    """The largest axis-aligned rectangle of reachable tool positions in a plane (e.g.
+    "x=0.55": the panel surface minus the standoff) at this orientation — the biggest panel
+    the robot can sweep there (docs/model.md §22). ``options`` as :func:`workspace`."""
+    return workspace(robot, plane, orientation=orientation, resolution=resolution,
+                     bounds=bounds, **options).rectangle

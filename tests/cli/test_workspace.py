@@ -1,0 +1,117 @@
+"""``pollard-pin workspace`` and ``view --workspace`` as users meet them: the files, their
+agreement with the library, and one-line errors (exit 2) with nothing written."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.cli import main
+from pollard_pin.io.table import read_result
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+COARSE = ["--resolution", "0.02", "--quiet"]
+
+
+def _run(argv, capsys):
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("fmt", ["csv", "parquet"])
+def test_plane_files_match_the_library(robot, tmp_path, capsys, fmt):
+    out = tmp_path / "ws"
+    code, text, err = _run(["workspace", "--plane", "x=0.55", "--out", str(out), "--format",
+                            fmt, *COARSE], capsys)
+    assert code == 0, err
+    ws = pp.workspace(robot, "x=0.55", resolution=0.02)
+    table = read_result(out / f"workspace.{fmt}")
+    for name, col in ws.columns.items():
+        np.testing.assert_array_equal(table[name], np.asarray(col, dtype=float), err_msg=name)
+    assert table.units["reason"].startswith("code") and table.units["x"] == "m"
+    summary = json.loads((out / "workspace.json").read_text())
+    assert summary["area"] == ws.summary["area"]
+    assert summary["largest_rectangle"] == ws.rectangle.as_dict()
+    assert summary["reason_codes"]["0"] == "reachable"
+    assert (out / "workspace.png").stat().st_size > 10_000
+    assert f"area {ws.summary['area']:.5g} m²" in text
+    assert "largest rectangle" in text and "global conditioning index" in text
+
+
+def test_orientation_in_degrees_and_actuators(robot, tmp_path, capsys):
+    out = tmp_path / "ws"
+    code, text, err = _run(["workspace", "--out", str(out), "--orientation", "0,10,0",
+                            "--bounds", "y=-0.3:0.3,z=-0.1:0.3", "--actuators",
+                            str(ROOT / "examples" / "actuators.toml"), *COARSE], capsys)
+    assert code == 0, err
+    table = read_result(out / "workspace.csv")
+    np.testing.assert_allclose(table["theta"], np.radians(10.0), rtol=1e-15)
+    assert table["y"].min() == -0.3 and table["z"].max() == pytest.approx(0.3)
+    ok = table["reachable"] == 1
+    assert np.isfinite(table["payload_capacity"][ok]).all()
+    assert "payload capacity" in text
+
+
+def test_volume_streams(robot, tmp_path, capsys):
+    out = tmp_path / "vol"
+    code, text, err = _run(["workspace", "--volume", "--resolution", "0.05", "--quiet",
+                            "--out", str(out)], capsys)
+    assert code == 0, err
+    summary = json.loads((out / "workspace.json").read_text())
+    table = read_result(out / "workspace.csv")
+    assert len(table) == summary["grid"]["points"]
+    assert summary["volume"] == pytest.approx(table["reachable"].sum() * 0.05 ** 3)
+    assert not (out / "workspace.png").exists()
+
+
+BAD = [
+    (["--plane", "x=3"], ["misses the robot", "reachable region spans"]),
+    (["--plane", "x=0.55", "--bounds", "y=1:2"], ["no point", "reachable region spans"]),
+    (["--resolution", "0"], ["--resolution", "positive"]),
+    (["--resolution", "-0.01"], ["--resolution"]),
+    (["--resolution", "1e-5"], ["would need", "at least"]),
+    (["--volume", "--resolution", "0.001"], ["would need", "at least"]),
+    (["--orientation", "1,2"], ["--orientation", "three"]),
+    (["--orientation", "a,b,c"], ["--orientation"]),
+    (["--bounds", "y=0.3"], ["--bounds", "AXIS=LOW:HIGH"]),
+    (["--bounds", "y=0.3:-0.3"], ["below the upper bound"]),
+    (["--bounds", "x=0:1"], ["other two axes"]),
+    (["--plane", "q=1"], ["--plane", "x, y or z"]),
+    (["--plane", "x0.5"], ["--plane", "AXIS=VALUE"]),
+    (["--plane", "x=0.5", "--volume"], ["not allowed"]),
+    (["--actuators", "missing.toml"], ["missing.toml"])]
+
+
+@pytest.mark.parametrize("extra, words", BAD)
+def test_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, monkeypatch, extra,
+                                                    words):
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(["workspace", "--out", "ws", "--quiet", *extra], capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    for w in words:
+        assert w in lines[0], lines[0]
+    assert not (tmp_path / "ws").exists()
+
+
+def test_view_draws_the_reachable_cloud(tmp_path, capsys):
+    out = tmp_path / "ws"
+    assert _run(["workspace", "--out", str(out), *COARSE], capsys)[0] == 0
+    html = tmp_path / "view.html"
+    code, _, err = _run(["view", "--samples", "51", "--quiet", "--html", str(html),
+                         "--workspace", str(out)], capsys)
+    assert code == 0, err
+    from pollard_pin.viz.viewer import page_commands
+
+    cloud = [c for c in page_commands(html.read_text()) if c.get("path", "").endswith(
+        "/workspace")]
+    assert len(cloud) == 1
+    code, _, err = _run(["view", "--samples", "51", "--quiet", "--html", str(html),
+                         "--workspace", str(tmp_path)], capsys)
+    assert code == 2 and "no workspace.csv" in err
