@@ -12,6 +12,7 @@ import numpy as np
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
 from ..io.trajectory import Trajectory
 from ..kinematics.errors import KinematicsError
+from ..kinematics.limits import limit_violations
 from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
 
@@ -45,15 +46,14 @@ class Motion:
 
 def joint_limit_violation(robot, q: np.ndarray):
     """The first (sample, joint, angle, lower, upper) [rad] with a tree joint outside its
-    limits (an angle may be 2π off the interval's own numbers), or None."""
+    limits (the rule of kinematics.limits: an angle may be 2π off), or None."""
     names = robot.joint_names
-    lower = np.array([robot.params.joint_limits(n).lower for n in names])
-    upper = np.array([robot.params.joint_limits(n).upper for n in names])
-    off = np.mod(q - lower, 2 * math.pi) > (upper - lower) + 1e-12
-    if not off.any():
+    side, _ = limit_violations(robot.params, q, names)
+    if not side.any():
         return None
-    k, j = (int(i) for i in np.argwhere(off)[0])
-    return k, names[j], float(q[k, j]), float(lower[j]), float(upper[j])
+    k, j = (int(i) for i in np.argwhere(side)[0])
+    lim = robot.params.joint_limits(names[j])
+    return k, names[j], float(q[k, j]), float(lim.lower), float(lim.upper)
 
 
 def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
