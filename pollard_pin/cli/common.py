@@ -71,6 +71,14 @@ def nonnegative(text: str) -> float:
     return value
 
 
+def fraction(text: str) -> float:
+    """A number in [0, 1] (e.g. a margin on |sin θ|)."""
+    value = nonnegative(text)
+    if value > 1:
+        raise argparse.ArgumentTypeError(f"must be at most 1, got {text}")
+    return value
+
+
 def name(text: str) -> str:
     """A file or folder name: not empty (an empty name would mean the current folder)."""
     if not text:

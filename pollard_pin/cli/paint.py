@@ -29,13 +29,17 @@ def run(args) -> int:
     from ..io.table import write_table
     from ..io.trajectory import to_csv
     from ..planning.job import load_job
-    from ..planning.plan import paint_report, plan_film, plan_paint
+    from ..planning.motion import PlanError
+    from ..planning.plan import film_resolution, paint_report, plan_film, plan_paint
     from ..viz.paint import write_thickness_png
 
     out = Path(args.out)
     check_destination(out, folder=True)
     job = load_job(args.job)
-    res = args.resolution if args.resolution is not None else job.sigma / 3
+    try:
+        res = film_resolution(job, args.resolution)
+    except PlanError as exc:
+        raise UsageError(f"--resolution: {exc}") from None
     points = (math.ceil(job.width / res) + 1) * (math.ceil(job.height / res) + 1)
     if points > MAX_FILM_POINTS:
         raise UsageError(f"--resolution {res:g} m makes {points} film points on the "
@@ -109,6 +113,11 @@ def paint_overlay(folder: Path):
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise ResultFileError(f"{folder / 'paint.json'}: not a paint report ({exc})") from None
+    counts_ok = all(type(n) is int and n >= 1 for n in (nu, nv))
+    if not (counts_ok and type(target) in (int, float) and 0 < target < math.inf):
+        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = {nu!r}, "
+                              f"nv = {nv!r}, target = {target!r}: expected point counts >= 1 "
+                              "and a film thickness > 0 [m])")
     table = read_result(found[0])
     try:
         pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
@@ -116,6 +125,10 @@ def paint_overlay(folder: Path):
     except (KeyError, ValueError) as exc:
         raise ResultFileError(f"{found[0]}: not the film of paint.json's {nu} × {nv} grid "
                               f"({exc})") from None
+    for what, values in (("x, y, z", pts), ("thickness", th)):
+        if not np.isfinite(values).all():
+            k = int(np.argwhere(~np.isfinite(values).reshape(nv * nu, -1))[0][0])
+            raise ResultFileError(f"{found[0]}: row {k + 1}: {what} not finite")
 
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
@@ -138,4 +151,4 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="thickness table format")
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
-                   help="film grid spacing [m] (default: σ/3)")
+                   help="film grid spacing [m], at most σ (default: σ/3)")

@@ -10,6 +10,7 @@ from .common import (
     STDOUT,
     command,
     count,
+    fraction,
     load_robot,
     load_trajectory,
     log,
@@ -75,7 +76,7 @@ def add_parser(sub, parents) -> None:
                    help="output table: CSV with a NAME.units.json sidecar, or Parquet (zstd, "
                         "units and metadata inside) for a .parquet name; '-': CSV on standard "
                         "output")
-    p.add_argument("--wrist-margin", type=nonnegative, default=WRIST_MARGIN,
+    p.add_argument("--wrist-margin", type=fraction, default=WRIST_MARGIN,
                    help="fail where |sin θ1716| drops below this")
     p.add_argument("--singularity-margin", type=nonnegative, default=SINGULARITY_MARGIN,
                    help="fail where the parallel or serial σ_min drops below this")

@@ -61,7 +61,7 @@ def add_parser(sub, parents) -> None:
                    help="show a paint output folder (pollard-pin paint --out DIR): the robot "
                         "running DIR/path.csv and the panel coloured by film thickness "
                         "(default: no panel)")
-    p.add_argument("--workspace", metavar="DIR", default=None,
+    p.add_argument("--workspace", type=name, metavar="DIR", default=None,
                    help="also draw the reachable points of a workspace map written by "
                         "pollard-pin workspace --out DIR (default: none)")
     p.add_argument("--fps", type=positive, default=25.0,

@@ -11,8 +11,10 @@ from .common import (
     UsageError,
     command,
     count,
+    fraction,
     load_robot,
     model_args,
+    name,
     nonnegative,
     positive,
     progress,
@@ -40,15 +42,16 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--bounds", metavar="AXIS=LO:HI[,AXIS=LO:HI]", default=None,
                    help="grid bounds [m] of some axes, e.g. y=-0.3:0.3,z=-0.1:0.3 (default: "
                         "the whole reach with a margin)")
-    p.add_argument("--actuators", metavar="FILE.toml", default=None,
+    p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="actuator file: adds each point's payload capacity (default: none)")
     model_args(p)
-    p.add_argument("--wrist-margin", type=nonnegative, default=WRIST_MARGIN,
+    p.add_argument("--wrist-margin", type=fraction, default=WRIST_MARGIN,
                    help="smallest |sin θ1716| allowed")
     p.add_argument("--singularity-margin", type=nonnegative,
                    default=SINGULARITY_MARGIN,
                    help="smallest σ_parallel and σ_serial allowed")
-    p.add_argument("--out", default="workspace", metavar="DIR", help="output folder")
+    p.add_argument("--out", type=name, default="workspace", metavar="DIR",
+                   help="output folder")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="table format")
     p.add_argument("--dpi", type=count(10, 1200), default=100, help="PNG resolution")
@@ -56,7 +59,9 @@ def add_parser(sub, parents) -> None:
 
 
 def parse_orientation(text: str) -> tuple[float, float, float]:
-    """"PSI,THETA,PHI" in degrees → radians."""
+    """"PSI,THETA,PHI" in degrees → radians, checked as the library checks them."""
+    from ..planning.workspace import WorkspaceError, check_orientation
+
     parts = text.split(",")
     try:
         vals = [float(x) for x in parts]
@@ -64,12 +69,18 @@ def parse_orientation(text: str) -> tuple[float, float, float]:
         vals = []
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         raise UsageError(f"--orientation {text!r}: expected three finite numbers "
-                                "PSI,THETA,PHI in degrees, e.g. 0,0,0")
-    return tuple(math.radians(v) for v in vals)
+                         "PSI,THETA,PHI in degrees, e.g. 0,0,0")
+    try:
+        return check_orientation([math.radians(v) for v in vals])
+    except WorkspaceError as exc:
+        raise UsageError(f"--orientation {text!r}: {exc}") from None
 
 
 def parse_bounds(text: str | None) -> dict | None:
-    """"y=-0.3:0.3,z=-0.1:0.3" → {"y": (-0.3, 0.3), "z": (-0.1, 0.3)}."""
+    """"y=-0.3:0.3,z=-0.1:0.3" → {"y": (-0.3, 0.3), "z": (-0.1, 0.3)}, checked as the library
+    checks them."""
+    from ..planning.workspace import WorkspaceError, check_bounds
+
     if text is None:
         return None
     out = {}
@@ -83,11 +94,14 @@ def parse_bounds(text: str | None) -> dict | None:
         axis = axis.strip().lower()
         if not (sep and colon and pair) or axis not in ("x", "y", "z"):
             raise UsageError(f"--bounds {text!r}: expected AXIS=LOW:HIGH items "
-                                    "separated by commas, e.g. y=-0.3:0.3,z=-0.1:0.3 [m]")
+                             "separated by commas, e.g. y=-0.3:0.3,z=-0.1:0.3 [m]")
         if axis in out:
             raise UsageError(f"--bounds {text!r}: {axis} is given twice")
         out[axis] = pair
-    return out
+    try:
+        return check_bounds(out)
+    except WorkspaceError as exc:
+        raise UsageError(f"--bounds {text!r}: {exc}") from None
 
 
 def run(args) -> int:
@@ -97,7 +111,7 @@ def run(args) -> int:
 
     orientation = parse_orientation(args.orientation)
     bounds = parse_bounds(args.bounds)
-    plane = None if args.volume else (args.plane or DEFAULT_PLANE)
+    plane = None if args.volume else DEFAULT_PLANE if args.plane is None else args.plane
     if plane is not None:
         try:
             parse_plane(plane)

@@ -14,6 +14,7 @@ trajectory, and the film it leaves (docs/model.md §21).
 from __future__ import annotations
 
 import math
+import numbers
 import time
 from dataclasses import dataclass, field, replace
 
@@ -289,11 +290,22 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
+def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
+    """The film grid spacing [m]: ``resolution`` (default σ/3), which must be > 0 and at most
+    σ: a coarser grid cannot show the ripple between passes (some 2σ apart, docs/model.md §21)."""
+    res = job.sigma / 3 if resolution is None else resolution
+    if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= job.sigma):
+        raise PlanError(f"film grid spacing {res!r} m must be > 0 and at most the spray spot's "
+                        f"σ = {job.sigma:g} m (a coarser grid cannot show the film between "
+                        "passes)")
+    return float(res)
+
+
 def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
     """The regular grid over the panel, edges included, spacing ≤ ``resolution`` (default
-    σ/3): (U (nu,), V (nv,), world points (nv, nu, 3))."""
+    σ/3, at most σ: :func:`film_resolution`): (U (nu,), V (nv,), world points (nv, nu, 3))."""
     frame = plan_or_frame.frame if isinstance(plan_or_frame, PaintPlan) else plan_or_frame
-    res = job.sigma / 3 if resolution is None else resolution
+    res = film_resolution(job, resolution)
     U = np.linspace(-job.width / 2, job.width / 2, int(math.ceil(job.width / res - 1e-9)) + 1)
     V = np.linspace(-job.height / 2, job.height / 2,
                     int(math.ceil(job.height / res - 1e-9)) + 1)
@@ -322,8 +334,9 @@ def film_stats(thickness: np.ndarray, target: float) -> dict:
             "deviation_max": float(th.max() / target - 1)}
 
 
-__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "film_grid", "film_stats",
-           "gun_of", "max_pass_speed", "plan_film", "plan_paint"]
+__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "film_grid",
+           "film_resolution", "film_stats", "gun_of", "max_pass_speed", "plan_film",
+           "plan_paint"]
 
 
 def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:

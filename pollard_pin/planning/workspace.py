@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..analytic.taskspace import rotation
+from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
 from .reach import REASONS, ReachOptions, evaluate, length_scale
 from .rectangle import largest_rectangle
 
@@ -143,16 +143,18 @@ def parse_plane(plane) -> tuple[int, float]:
     axis = str(axis).strip().lower()
     if axis not in AXES:
         raise WorkspaceError(f"plane {plane!r}: the axis must be x, y or z, got {axis!r}")
-    return AXES.index(axis), _finite(value, f"plane {axis}", "m")
+    # any finite value: one far off misses the robot, and that error names the reachable box
+    return AXES.index(axis), _finite(value, f"plane {axis}", "m", math.inf)
 
 
-def _finite(value, what: str, unit: str) -> float:
+def _finite(value, what: str, unit: str, limit: float = 1e3) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
         raise WorkspaceError(f"{what} = {value!r} is not a number [{unit}]") from None
-    if not math.isfinite(v) or abs(v) > 1e3:
-        raise WorkspaceError(f"{what} = {value!r} must be a finite number within ±1000 {unit}")
+    if not math.isfinite(v) or abs(v) > limit:
+        within = f" within ±{limit:g} {unit}" if math.isfinite(limit) else f" [{unit}]"
+        raise WorkspaceError(f"{what} = {value!r} must be a finite number{within}")
     return v
 
 
@@ -166,6 +168,10 @@ def check_orientation(orientation) -> tuple[float, float, float]:
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
                              "(psi, theta, phi) [rad]")
+    for name, v in zip(TASK_NAMES[3:], vals):
+        if abs(v) > MAX_ABS_TASK:  # the poses' own rule (analytic.taskspace)
+            raise WorkspaceError(f"orientation {name} = {v:.6g} rad is absurd: |{name}| > "
+                                 f"{MAX_ABS_TASK:g} rad (a unit or data error?)")
     return tuple(vals)
 
 

@@ -106,6 +106,10 @@ def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
     from ..io.table import ResultFileError, read_result
 
     folder = Path(folder)
+    if not folder.is_dir():
+        raise ResultFileError(f"{folder}: " + ("is a file, not a folder" if folder.exists() else
+                                               "no such folder") + " (write a workspace map "
+                              "with pollard-pin workspace --out FOLDER)")
     found = [folder / f"workspace.{ext}" for ext in ("parquet", "csv")
              if (folder / f"workspace.{ext}").is_file()]
     if not found:
@@ -118,5 +122,10 @@ def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
     ok = table["reachable"] == 1
     pts = np.stack([table[c][ok] for c in ("x", "y", "z")], axis=1)
     index = table["conditioning"][ok]
+    bad = ~np.isfinite(np.column_stack([pts, index])).all(axis=1)
+    if bad.any():  # a reachable point has a position and an index: a damaged table
+        row = int(np.flatnonzero(ok)[np.argmax(bad)]) + 1
+        raise ResultFileError(f"{found[0]}: row {row}: a reachable point with a non-finite "
+                              "x, y, z or conditioning")
     top = float(index.max()) if len(index) else 1.0
     return pts, colormaps["viridis"](index / (top or 1.0))[:, :3]

@@ -151,6 +151,9 @@ def _files() -> dict[str, bytes | str | None]:
         "grid_variant.toml": "[[variant]]\nname = 'a'\n'chain0.x33' = 0.3\n",
         "grid_variant_table.toml": "variant = 3\n",
         "grid_params.toml": "params = 'nope.toml'\n[grid]\n'chain0.x32' = [0.33]\n",
+        # paint jobs, and damaged workspace and paint output folders (view --workspace/--paint)
+        **_jobs(),
+        **_output_folders(good, with_row(5, {1: "nan"})),
         # existing outputs that failures must leave untouched
         "existing.csv": PRECIOUS, "existing.md": PRECIOUS, "existing.urdf": PRECIOUS,
         "existing.html": PRECIOUS, "existing.xml": PRECIOUS, "existing.parquet": PRECIOUS,
@@ -160,12 +163,113 @@ def _files() -> dict[str, bytes | str | None]:
     }
 
 
+def _jobs() -> dict[str, bytes | str]:
+    """examples/paint.toml and every bad job derived from it (job_*.toml)."""
+    job = (EXAMPLES / "paint.toml").read_text()
+
+    def sub(old: str, new: str) -> str:
+        assert old in job, old
+        return job.replace(old, new, 1)
+
+    normal = "normal = [-1.0, 0.0, 0.0]"
+    return {
+        "job_good.toml": job,
+        "job_unknown_key.toml": sub("width = 0.26", "width = 0.26\ncolour = 'red'"),
+        "job_unknown_table.toml": job + "\n[robot]\nspeed = 1\n",
+        "job_top_level_key.toml": "units = 'SI'\n" + job,
+        "job_missing_key.toml": sub("flow = 1.5e-7", ""),
+        "job_missing_table.toml": job.split("[job]")[0],
+        "job_table_not_table.toml": "job = 3\n" + job.split("[job]")[0],
+        "job_nan.toml": sub("sigma = 0.010", "sigma = nan"),
+        "job_inf.toml": sub("center = [0.70, 0.0, 0.16]", "center = [inf, 0.0, 0.16]"),
+        "job_zero_width.toml": sub("width = 0.26", "width = 0"),
+        "job_negative_height.toml": sub("height = 0.12", "height = -0.12"),
+        "job_negative_standoff.toml": sub("standoff = 0.15", "standoff = -0.15"),
+        "job_zero_flow.toml": sub("flow = 1.5e-7", "flow = 0.0"),
+        "job_zero_thickness.toml": sub("thickness = 25e-6", "thickness = 0"),
+        "job_zero_normal.toml": sub(normal, "normal = [0.0, 0.0, 0.0]"),
+        "job_tiny_normal.toml": sub(normal, "normal = [1e-300, 0.0, 0.0]"),
+        "job_vertical_normal.toml": sub(normal, "normal = [0.0, 0.0, -2.0]"),
+        "job_normal_2.toml": sub(normal, "normal = [-1.0, 0.0]"),
+        "job_normal_4.toml": sub(normal, "normal = [-1.0, 0.0, 0.0, 0.0]"),
+        "job_normal_string.toml": sub(normal, "normal = 'towards the robot'"),
+        "job_normal_text_entry.toml": sub(normal, "normal = [-1.0, 0.0, '0']"),
+        "job_normal_nested.toml": sub(normal, "normal = [[-1.0], [0.0], [0.0]]"),
+        "job_string_number.toml": sub("width = 0.26", "width = '0.26'"),
+        "job_bool.toml": sub("height = 0.12", "height = true"),
+        "job_date.toml": sub("standoff = 0.15", "standoff = 1979-05-27"),
+        "job_mm.toml": sub("width = 0.26", "width = 260"),
+        "job_huge_center.toml": sub("center = [0.70, 0.0, 0.16]", "center = [700, 0, 160]"),
+        "job_direction.toml": job + "direction = 'diagonal'\n",
+        "job_coats_zero.toml": job + "coats = 0\n",
+        "job_coats_float.toml": job + "coats = 1.5\n",
+        "job_spacing.toml": job + "spacing = -0.005\n",
+        "job_speed.toml": job + "speed = 0\n",
+        "job_wide_spacing.toml": job + "spacing = 0.2\n",
+        "job_actuators_missing.toml": job + "actuators = 'nope.toml'\n",
+        "job_actuators_number.toml": job + "actuators = 3\n",
+        "job_actuators_empty.toml": job + "actuators = ''\n",
+        "job_actuators_bad.toml": job + "actuators = 'act_nan.toml'\n",
+        "job_duplicate.toml": sub("width = 0.26", "width = 0.26\nwidth = 0.3"),
+        "job_latin1.toml": "# Pollard m\xfcde\n".encode("latin-1") + job.encode(),
+        "job_nul.toml": job.encode().replace(b"0.26", b"0.2\x006"),
+        "job_out_of_reach.toml": sub("center = [0.70, 0.0, 0.16]", "center = [2.0, 0.0, 0.16]"),
+        "job_too_big.toml": sub("width = 0.26", "width = 2.6"),
+        "job_thin.toml": sub("thickness = 25e-6", "thickness = 1e-9"),
+        "job_thin_coats.toml": job + "coats = 40\n",
+        "job_fast.toml": job + "speed = 50.0\n",
+    }
+
+
+def _output_folders(path_csv: str, nan_csv: str) -> dict[str, bytes | str | None]:
+    """Folders of the kind ``workspace`` and ``paint`` write, each broken in one way."""
+    ws_header = "x,y,z,psi,theta,phi,reachable,reason,conditioning\n"
+    ws_row = "0.55,0,0.16,0,0,0,1,0,0.3\n"
+    film = "x,y,z,u,v,thickness\n" + "".join(
+        f"0.55,{u},{v},{u},{v},2.5e-05\n" for v in (0, 0.1) for u in (0, 0.1))
+    report = '{"grid": {"nu": 2, "nv": 2, "resolution": 0.1}, "target": 2.5e-05}\n'
+
+    def paint(name: str, path: str = path_csv, table: str | bytes = film,
+              json: str | bytes = report) -> dict:
+        return {f"{name}/path.csv": path, f"{name}/thickness.csv": table,
+                f"{name}/paint.json": json}
+
+    return {
+        "ws_empty/": None,
+        "ws_header/workspace.csv": ws_header,
+        "ws_wrong/workspace.csv": "a,b\n1,2\n",
+        "ws_binary/workspace.csv": b"\x89PNG\r\n\x1a\n" + bytes(range(256)),
+        "ws_garbage/workspace.parquet": b"PAR1garbage",
+        "ws_text/workspace.csv": ws_header + ws_row.replace("0.3", "abc"),
+        "ws_nan/workspace.csv": ws_header + ws_row.replace("0.55", "nan"),
+        "ws_folder/workspace.csv/": None,
+        "paint_empty/": None,
+        **paint("paint_no_json", json=None),
+        **paint("paint_bad_json", json="{"),
+        **paint("paint_list_json", json="[]"),
+        **paint("paint_binary_json", json=b"\x89PNG\r\n\x1a\n"),
+        **paint("paint_no_grid", json='{"target": 2.5e-05}'),
+        **paint("paint_text_grid", json=report.replace("2,", '"two",')),
+        **paint("paint_mismatch", table=film + "0.55,0,0,0,0,2.5e-05\n"),
+        **paint("paint_no_thickness", table=film.replace("thickness", "film")),
+        **paint("paint_text_table", table=film.replace("2.5e-05", "abc")),
+        **paint("paint_nan_table", table=film.replace("2.5e-05", "nan").replace(
+            "nan", "2.5e-05", 2)),
+        **paint("paint_binary_table", table=b"\x89PNG\r\n\x1a\n" + bytes(range(256))),
+        **paint("paint_bad_path", path=nan_csv),
+        **paint("paint_empty_path", path=""),
+    }
+
+
 @pytest.fixture(scope="module")
 def scratch(tmp_path_factory):
     root = tmp_path_factory.mktemp("fuzz")
     for name, content in _files().items():
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
         if name.endswith("/"):
             (root / name).mkdir()
+        elif content is None:  # a file left out of its folder
+            continue
         elif isinstance(content, bytes):
             (root / name).write_bytes(content)
         else:
@@ -326,6 +430,7 @@ CASES += [
     (["run", "--duration", "1e-300", *SHORT[:2], "--out", "out.csv"], "duration"),
     (["view", *SHORT, "--fps", "1e300", "--html", "out.html"], "--fps 1e+300: 1e+300 key frames/s"),
     (["view", *SHORT, "--fps", "1e6", "--html", "out.html"], "more than 100000: lower"),
+    (["run", *SHORT, "--wrist-margin", "2", "--out", "out.csv"], "must be at most 1, got 2"),
     ([*SIM, "--mass-error", "-1"], "mass"),
     ([*SIM, "--mass-error", "-2.5"], "mass"),
     ([*SIM, "--torque-limit", "1", "2"], "takes 1 value (all actuators) or 6, got 2"),
@@ -548,6 +653,211 @@ CASES += [
     (["info", "extra"], "unrecognized arguments"),
     (["frobnicate"], "invalid choice"),
 ]
+
+# workspace: every case fails before the map is computed (the misses: one coarse look for the
+# reachable box, ~0.3 s)
+WS = ["workspace", "--quiet", "--out", "ws"]
+REACHABLE_BOX = "reachable region spans x ∈ [0.328, 0.697], y ∈ [-0.287, 0.287]"
+CASES += [([*WS, *extra], says) for extra, says in [
+    (["--plane", "x"], "--plane: plane 'x': expected AXIS=VALUE"),
+    (["--plane", "x="], "plane x = '' is not a number [m]"),
+    (["--plane", "w=0.5"], "the axis must be x, y or z, got 'w'"),
+    (["--plane", "=0.5"], "the axis must be x, y or z, got ''"),
+    (["--plane", ""], "plane '': expected AXIS=VALUE"),
+    (["--plane", "x=abc"], "plane x = 'abc' is not a number"),
+    (["--plane", "x=0.5=1"], "is not a number"),
+    (["--plane", "x=0,55"], "is not a number"),
+    (["--plane", "x=nan"], "must be a finite number"),
+    (["--plane", "x=inf"], "must be a finite number"),
+    (["--plane", "x=1e9"], f"plane x = 1e+09 m misses the robot (its reach at this "
+                           f"orientation is x ∈ [-0.74, 0.86] m at most); at orientation "
+                           f"(psi, theta, phi) = (0, 0, 0) deg the {REACHABLE_BOX}"),
+    (["--plane", "z=-5"], "misses the robot"),
+    (["--plane", "x=0.55", "--bounds", "y=5:6,z=5:6"], "no point of plane x = 0.55 m is "
+                                                       "reachable within the bounds y ∈ [5, 6] "
+                                                       "m, z ∈ [5, 6] m; at orientation"),
+    (["--plane", "x=0.5", "--volume"], "not allowed with argument --plane"),
+    (["--resolution", "0"], "must be positive"),
+    (["--resolution", "-1"], "must be positive"),
+    (["--resolution", "nan"], "finite"),
+    (["--resolution", "inf"], "finite"),
+    (["--resolution", "abc"], "not a number"),
+    (["--resolution", "1e-9"], "resolution = 1e-09 m gives a grid of 2,560,000,016,000,000,025 "
+                               "points (1600000005 × 1600000005), which would need 4.77e+11 "
+                               "GiB of memory (budget 2 GiB); use a resolution of at least "
+                               "0.000488 m"),
+    (["--resolution", "1e-4", "--volume"], "would need about 1.71e+04 h"),
+    (["--orientation", "0,0"], "expected three finite numbers PSI,THETA,PHI in degrees"),
+    (["--orientation", "0,0,0,0"], "expected three finite numbers"),
+    (["--orientation", "0,0,nan"], "expected three finite numbers"),
+    (["--orientation", "0,inf,0"], "expected three finite numbers"),
+    (["--orientation", "a,b,c"], "expected three finite numbers"),
+    (["--orientation", ""], "expected three finite numbers"),
+    (["--orientation", "0;0;0"], "expected three finite numbers"),
+    (["--orientation", "0,0,1e300"], "phi = 1.74533e+298 rad is absurd"),
+    (["--bounds", "y"], "expected AXIS=LOW:HIGH items"),
+    (["--bounds", "y=1"], "expected AXIS=LOW:HIGH items"),
+    (["--bounds", ""], "expected AXIS=LOW:HIGH items"),
+    (["--bounds", "w=0:1"], "expected AXIS=LOW:HIGH items"),
+    (["--bounds", "y=a:b"], "expected AXIS=LOW:HIGH items"),
+    (["--bounds", "y=1:0"], "--bounds 'y=1:0': bounds of y: the lower bound 1 m must be below "
+                            "the upper bound 0 m"),
+    (["--bounds", "y=0:0"], "must be below the upper bound"),
+    (["--bounds", "y=nan:1"], "lower bound of y = nan must be a finite number"),
+    (["--bounds", "y=-1e9:1e9"], "within ±1000 m"),
+    (["--bounds", "y=0:1,y=0:1"], "y is given twice"),
+    (["--bounds", "x=0:1"], "the plane fixes x = 0.55 m; give bounds for the other two axes"),
+    (["--volume", "--bounds", "x=-1e3:1e3"], "would need about"),
+    (["--wrist-margin", "-1"], "must be >= 0"),
+    (["--wrist-margin", "2"], "--wrist-margin: must be at most 1"),
+    (["--wrist-margin", "nan"], "finite"),
+    (["--singularity-margin", "-1"], "must be >= 0"),
+    (["--singularity-margin", "inf"], "finite"),
+    (["--singularity-margin", "1e300"], "no tool position at all is reachable"),
+    (["--dpi", "0"], "must be between 10 and 1200"),
+    (["--format", "xlsx"], "invalid choice"),
+    (["--format", ""], "invalid choice"),
+    (["--out", ""], "an empty name"),
+    (["--out", "afile"], "--out afile: exists and is not a folder"),
+    (["--out", "existing.csv"], "exists and is not a folder"),
+    (["--out", "afile/ws"], "afile is a file, not a folder"),
+    (["--out", "/proc/ws"], "/proc/ws"),
+    (["--out", "afolder", "--plane", "x=9"], "misses the robot"),  # an existing folder
+    (["--out", "empty_folder", "--volume", "--resolution", "1e-9"], "would need"),
+    *((["--actuators", name], says) for name, says in BAD_ACTUATORS[::2]),
+    (["--actuators", ""], "an empty name"),
+    *((["--params", name], says) for name, says in BAD_PARAMS[::5]),
+    *((["--set", text], says) for text, says in BAD_SETS[::6]),
+    (["extra"], "unrecognized arguments"),
+]]
+
+# paint: bad job files fail as they are read; the plans that fail, within 0.3 s
+PAINT = ["paint", "--out", "p", "--job"]
+CASES += [([*PAINT, name], says) for name, says in [
+    ("missing.toml", "paint job file 'missing.toml' does not exist"),
+    ("afolder", "paint job file 'afolder' cannot be read"),
+    ("socket.csv", "cannot be read"),
+    ("empty.csv", "empty.csv: missing table [panel]"),
+    ("blank.csv", "missing table [panel]"),
+    ("broken.toml", "is not valid TOML"),
+    ("good.csv", "is not valid TOML"),
+    ("png.csv", "is not UTF-8 text"),
+    ("gzip.csv", "is not UTF-8 text"),
+    ("job_latin1.toml", "is not UTF-8 text (byte 11"),
+    ("job_nul.toml", "is not valid TOML"),
+    ("job_duplicate.toml", "is not valid TOML"),
+    ("job_unknown_key.toml", "'panel.colour' = 'red': unknown key; [panel] takes center, "
+                             "normal, width, height"),
+    ("job_unknown_table.toml", "[robot] is not a table of a paint job"),
+    ("job_top_level_key.toml", "[units] is not a table of a paint job"),
+    ("job_missing_key.toml", "'gun.flow' is missing ([gun] needs standoff, sigma, flow)"),
+    ("job_missing_table.toml", "missing table [job]"),
+    ("job_table_not_table.toml", "'job' = 3: must be a table [job]"),
+    ("job_nan.toml", "'gun.sigma' = nan: must be finite"),
+    ("job_inf.toml", "'panel.center[0]' = inf: must be finite"),
+    ("job_zero_width.toml", "'panel.width' = 0: must be > 0"),
+    ("job_negative_height.toml", "'panel.height' = -0.12: must be > 0"),
+    ("job_negative_standoff.toml", "'gun.standoff' = -0.15: must be > 0"),
+    ("job_zero_flow.toml", "'gun.flow' = 0.0: must be > 0"),
+    ("job_zero_thickness.toml", "'job.thickness' = 0: must be > 0"),
+    ("job_zero_normal.toml", "'panel.normal' = [0.0, 0.0, 0.0]: has zero length"),
+    ("job_tiny_normal.toml", "has zero length"),
+    ("job_vertical_normal.toml", "'panel.normal' = [0.0, 0.0, -2.0]: is vertical"),
+    ("job_normal_2.toml", "'panel.normal' = [-1.0, 0.0]: must be a list of 3 numbers"),
+    ("job_normal_4.toml", "must be a list of 3 numbers"),
+    ("job_normal_string.toml", "must be a list of 3 numbers"),
+    ("job_normal_text_entry.toml", "'panel.normal[2]' = '0': must be a number"),
+    ("job_normal_nested.toml", "'panel.normal[0]' = [-1.0]: must be a number"),
+    ("job_string_number.toml", "'panel.width' = '0.26': must be a number"),
+    ("job_bool.toml", "'panel.height' = True: must be a number"),
+    ("job_date.toml", "'gun.standoff' = datetime.date(1979, 5, 27): must be a number"),
+    ("job_mm.toml", "'panel.width' = 260: must be at most 10 m"),
+    ("job_huge_center.toml", "'panel.center[0]' = 700: must be at most 10 m"),
+    ("job_direction.toml", "'job.direction' = 'diagonal': must be 'horizontal' or 'vertical'"),
+    ("job_coats_zero.toml", "'job.coats' = 0: must be a whole number >= 1"),
+    ("job_coats_float.toml", "'job.coats' = 1.5: must be a whole number >= 1"),
+    ("job_spacing.toml", "'job.spacing' = -0.005: must be > 0"),
+    ("job_speed.toml", "'job.speed' = 0: must be > 0"),
+    ("job_wide_spacing.toml", "spacing 0.2 m is too wide for σ = 0.01 m"),
+    ("job_actuators_missing.toml", "actuator file 'nope.toml' does not exist"),
+    ("job_actuators_number.toml", "'job.actuators' = 3: must be a file name"),
+    ("job_actuators_empty.toml", "'job.actuators' = '': must be a file name"),
+    ("job_actuators_bad.toml", "act_nan.toml: 'theta21.rotor_inertia' = nan: must be finite"),
+    ("job_out_of_reach.toml", "the path leaves the workspace on a pass at panel (u, v) = "
+                              "(-170, -73) mm, tool tip (1.850, -0.170, 0.087) m"),
+    ("job_too_big.toml", "the largest panel that fits at standoff 0.15 m, same centre and "
+                         "proportions, is 0.447 × 0.021 m"),
+    ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
+                      "spacing 18.15 mm) but the motors allow 1.825 m/s"),
+    ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
+    ("", "an empty name"),
+]]
+GOOD_JOB = [*PAINT, "job_good.toml"]
+CASES += [([*GOOD_JOB, *extra], says) for extra, says in [
+    (["--resolution", "0"], "must be positive"),
+    (["--resolution", "-1"], "must be positive"),
+    (["--resolution", "nan"], "finite"),
+    (["--resolution", "abc"], "not a number"),
+    (["--resolution", "1e-6"], "--resolution 1e-06 m makes 31200500002 film points"),
+    (["--resolution", "0.011"], "--resolution: film grid spacing 0.011 m must be > 0 and at "
+                                "most the spray spot's σ = 0.01 m"),
+    (["--resolution", "1e300"], "at most the spray spot's σ"),
+    (["--format", "xlsx"], "invalid choice"),
+    (["--format", "csv", "--format", "png"], "invalid choice"),
+    *((["--actuators", name], says) for name, says in BAD_ACTUATORS[::2]),
+    (["--actuators", ""], "an empty name"),
+    (["--actuators", "act_weak.toml"], "the motors cannot hold the gun on the passes: theta21"),
+    (["--out", "afile"], "afile: names a file, but a folder is expected"),
+    (["--out", "existing.csv"], "names a file, but a folder is expected"),
+    (["--out", "afile/p"], "afile is a file, not a folder"),
+    (["--out", "/proc/p"], "/proc/p"),
+    (["--out", ""], "an empty name"),
+    (["--params", "broken.toml"], "is not valid TOML"),
+    (["--params", "nan.toml"], "finite"),
+    (["--set", "chain0.x32=nan"], "finite"),
+    (["--set", "chain0.x33=0.3"], "names no parameter"),
+    (["--set", "leg1.x87=0.01"], "is unreachable"),
+]]
+CASES += [(["paint", "--out", "p"], "the following arguments are required: --job")]
+
+# view of a workspace or paint folder that is missing, empty or damaged: read before solving
+VIEW_WS = ["view", *SHORT, "--html", "out.html", "--workspace"]
+CASES += [([*VIEW_WS, name], says) for name, says in [
+    ("nope", "nope: no such folder"),
+    ("afile", "afile: is a file, not a folder"),
+    ("", "an empty name"),
+    ("ws_empty", "ws_empty: no workspace.csv or workspace.parquet"),
+    ("ws_folder", "no workspace.csv or workspace.parquet"),
+    ("ws_header", "ws_header/workspace.csv: no rows"),
+    ("ws_wrong", "column 'a' is not one pollard-pin writes"),
+    ("ws_binary", "not UTF-8 text"),
+    ("ws_garbage", "not a readable parquet result table"),
+    ("ws_text", "not a readable csv result table"),
+    ("ws_nan", "ws_nan/workspace.csv: row 1: a reachable point with a non-finite"),
+]]
+VIEW_PAINT = ["view", "--html", "out.html", "--paint"]
+CASES += [([*VIEW_PAINT, name], says) for name, says in [
+    ("nope", "--paint nope: not a paint output folder"),
+    ("afile", "not a paint output folder"),
+    ("", "an empty name"),
+    ("paint_empty", "not a paint output folder"),
+    ("paint_no_json", "not a paint output folder"),
+    ("paint_bad_json", "paint_bad_json/paint.json: not a paint report"),
+    ("paint_list_json", "not a paint report"),
+    ("paint_binary_json", "not a paint report"),
+    ("paint_no_grid", "not a paint report"),
+    ("paint_text_grid", "not a paint report (grid nu = 'two'"),
+    ("paint_mismatch", "not the film of paint.json's 2 × 2 grid"),
+    ("paint_no_thickness", "column 'film' is not one pollard-pin writes"),
+    ("paint_text_table", "not a readable csv result table"),
+    ("paint_nan_table", "paint_nan_table/thickness.csv: row 3: thickness not finite"),
+    ("paint_binary_table", "not UTF-8 text"),
+    ("paint_bad_path", "paint_bad_path/path.csv: row 7, column 'x': value 'nan' is not "
+                       "finite"),
+    ("paint_empty_path", "paint_empty_path/path.csv: empty file"),
+]]
+CASES += [([*VIEW_PAINT, "paint_bad_path", "--trajectory", "good.csv"],
+           "--paint DIR shows DIR/path.csv: give no --trajectory with it")]
 IDS = [" ".join(argv) for argv, _ in CASES]
 
 
@@ -572,6 +882,8 @@ def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch
 
 def test_the_fuzz_has_at_least_200_cases():
     assert len(CASES) >= 200 and len(set(IDS)) == len(IDS)
+    per_command = {c: sum(argv[0] == c for argv, _ in CASES) for c in ("workspace", "paint")}
+    assert min(per_command.values()) >= 60, per_command  # issue 20 §6
 
 
 # --- what must still work ------------------------------------------------------------------------

@@ -11,7 +11,7 @@ import pytest
 from pollard_pin.dynamics.motors import load_actuators, motor_load_of
 from pollard_pin.planning.job import load_job
 from pollard_pin.planning.motion import PlanError
-from pollard_pin.planning.plan import film_stats, plan_film, plan_paint
+from pollard_pin.planning.plan import film_resolution, film_stats, plan_film, plan_paint
 from pollard_pin.planning.raster import (
     SPOT_RADIUS,
     _turn_u,
@@ -207,6 +207,17 @@ def test_motors_too_weak_to_hold_the_gun(robot, job, act):
                                     for u in act.units))
     with pytest.raises(PlanError, match="cannot hold the gun"):
         plan_paint(robot, job, weak)
+
+
+@pytest.mark.parametrize("resolution", [0.0, -1.0, math.nan, math.inf, 0.0101, "0.005"])
+def test_a_film_grid_coarser_than_the_spot_or_not_a_spacing(job, resolution):
+    # coarser than σ, the grid would miss the ripple between passes (some 2σ apart)
+    with pytest.raises(PlanError, match="must be > 0 and at most the spray spot's σ = 0.01 m"):
+        film_resolution(job, resolution)
+
+
+def test_film_resolution_default_and_limit(job):
+    assert film_resolution(job) == job.sigma / 3 and film_resolution(job, job.sigma) == job.sigma
 
 
 def test_coats_split_the_film(robot, job, act):
