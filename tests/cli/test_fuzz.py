@@ -15,7 +15,9 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import io
+import os
 import socket
+import stat
 from pathlib import Path
 
 import pytest
@@ -318,9 +320,18 @@ def _simulation_files(root: Path) -> None:
 
 
 def _state(root: Path) -> dict:
-    return {p.relative_to(root): (hashlib.sha1(p.read_bytes()).hexdigest() if p.is_file()
-                                  else p.is_dir())
-            for p in sorted(root.rglob("*")) if not p.is_socket()}
+    """Every folder, and every regular file's digest, under ``root`` (os.walk: twice as fast
+    as pathlib's rglob, which the 800 cases felt)."""
+    out = {}
+    for folder, dirs, files in os.walk(root):
+        rel = os.path.relpath(folder, root)
+        out.update((os.path.join(rel, d), True) for d in dirs)
+        for f in files:
+            path = os.path.join(folder, f)
+            if stat.S_ISREG(os.stat(path).st_mode):  # not the socket
+                with open(path, "rb") as fh:
+                    out[os.path.join(rel, f)] = hashlib.sha1(fh.read()).digest()
+    return out
 
 
 # --- the cases ---------------------------------------------------------------------------------
