@@ -141,7 +141,7 @@ def run(args) -> int:
                 "options": {"plane": plane, "volume": args.volume,
                             "orientation_deg": args.orientation, "bounds": args.bounds,
                             "resolution": args.resolution, "actuators": args.actuators}}
-    created = not out.exists()
+    created = [p for p in (out, *out.parents) if not p.exists()]  # deepest first
     if plane is not None:
         ws = workspace(robot, plane, **options)  # everything computed before anything written
         out.mkdir(parents=True, exist_ok=True)
@@ -152,8 +152,7 @@ def run(args) -> int:
             with TableWriter(paths["table"], metadata, args.format) as writer:
                 ws = workspace(robot, volume=True, sink=writer.write, **options)
         except BaseException:
-            if created:
-                _remove_empty(out)
+            _remove_empty(created)
             raise
     ws.summary["metadata"].update(metadata)
     with atomic_open(paths["json"]) as f:
@@ -169,11 +168,13 @@ def run(args) -> int:
     return 0
 
 
-def _remove_empty(folder: Path) -> None:
-    try:
-        folder.rmdir()
-    except OSError:
-        pass
+def _remove_empty(folders) -> None:
+    """Remove the folders this command created (deepest first), as long as they are empty."""
+    for folder in folders:
+        try:
+            folder.rmdir()
+        except OSError:
+            return
 
 
 def summary_text(ws) -> str:

@@ -245,6 +245,8 @@ def _output_folders(path_csv: str, nan_csv: str) -> dict[str, bytes | str | None
         "ws_text/workspace.csv": ws_header + ws_row.replace("0.3", "abc"),
         "ws_nan/workspace.csv": ws_header + ws_row.replace("0.55", "nan"),
         "ws_folder/workspace.csv/": None,
+        "ws_precious/workspace.csv": PRECIOUS, "ws_precious/workspace.json": PRECIOUS,
+        "ws_precious/workspace.png": PRECIOUS, "ws_precious/workspace.parquet": PRECIOUS,
         "paint_empty/": None,
         **paint("paint_no_json", json=None),
         **paint("paint_bad_json", json="{"),
@@ -668,6 +670,7 @@ CASES += [
 # workspace: every case fails before the map is computed (the misses: one coarse look for the
 # reachable box, ~0.3 s)
 WS = ["workspace", "--quiet", "--out", "ws"]
+VOLUME_MISS = ["--volume", "--resolution", "0.5", "--bounds", "x=5:6,y=5:6,z=5:6"]
 REACHABLE_BOX = "reachable region spans x ∈ [0.328, 0.697], y ∈ [-0.287, 0.287]"
 CASES += [([*WS, *extra], says) for extra, says in [
     (["--plane", "x"], "--plane: plane 'x': expected AXIS=VALUE"),
@@ -735,6 +738,10 @@ CASES += [([*WS, *extra], says) for extra, says in [
     (["--out", "/proc/ws"], "/proc/ws"),
     (["--out", "afolder", "--plane", "x=9"], "misses the robot"),  # an existing folder
     (["--out", "empty_folder", "--volume", "--resolution", "1e-9"], "would need"),
+    # a streamed volume fails after its folder is made: new folders go, old files stay
+    *(([*VOLUME_MISS, "--out", out, *fmt], "no point of the volume is reachable")
+      for out in ("new/deep/ws", "ws_precious") for fmt in ([], ["--format", "parquet"])),
+    (["--plane", "x=0.55", "--bounds", "y=5:6,z=5:6", "--out", "ws_precious"], "no point"),
     *((["--actuators", name], says) for name, says in BAD_ACTUATORS[::2]),
     (["--actuators", ""], "an empty name"),
     *((["--params", name], says) for name, says in BAD_PARAMS[::5]),
