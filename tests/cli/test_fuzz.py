@@ -262,6 +262,10 @@ def _output_folders(path_csv: str, nan_csv: str) -> dict[str, bytes | str | None
         **paint("paint_binary_table", table=b"\x89PNG\r\n\x1a\n" + bytes(range(256))),
         **paint("paint_bad_path", path=nan_csv),
         **paint("paint_empty_path", path=""),
+        **paint("paint_precious", path=PRECIOUS, table=PRECIOUS, json=PRECIOUS),
+        "paint_precious/thickness.png": PRECIOUS, "paint_precious/thickness.parquet": PRECIOUS,
+        **paint("paint_garbage_parquet", table=None),
+        "paint_garbage_parquet/thickness.parquet": b"PAR1garbage",
     }
 
 
@@ -830,6 +834,8 @@ CASES += [([*GOOD_JOB, *extra], says) for extra, says in [
     (["--out", "afile/p"], "afile is a file, not a folder"),
     (["--out", "/proc/p"], "/proc/p"),
     (["--out", ""], "an empty name"),
+    (["--out", "paint_precious", "--format", "parquet", "--actuators", "act_weak.toml"],
+     "cannot hold the gun"),
     (["--params", "broken.toml"], "is not valid TOML"),
     (["--params", "nan.toml"], "finite"),
     (["--set", "chain0.x32=nan"], "finite"),
@@ -870,6 +876,8 @@ CASES += [([*VIEW_PAINT, name], says) for name, says in [
     ("paint_text_table", "not a readable csv result table"),
     ("paint_nan_table", "paint_nan_table/thickness.csv: row 3: thickness not finite"),
     ("paint_binary_table", "not UTF-8 text"),
+    ("paint_garbage_parquet", "not a readable parquet result table"),
+    ("paint_precious", "paint_precious/paint.json: not a paint report"),
     ("paint_bad_path", "paint_bad_path/path.csv: row 7, column 'x': value 'nan' is not "
                        "finite"),
     ("paint_empty_path", "paint_empty_path/path.csv: empty file"),
