@@ -51,6 +51,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _errors() -> tuple[type[BaseException], ...]:
     """The project's own errors: each is one line for the user, never a traceback."""
+    from ..analytic.taskspace import TaskInputError
     from ..dynamics.motors import ActuatorError
     from ..dynamics.control import ControlError
     from ..dynamics.forward import SimulationError
@@ -69,7 +70,7 @@ def _errors() -> tuple[type[BaseException], ...]:
     return (JobError, PlanError, ControlError, PlantError, SimulationError,
             ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
             SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError,
-            MemoryError, WorkspaceError)
+            MemoryError, WorkspaceError, TaskInputError)
 
 
 def main(argv=None) -> int:

@@ -13,21 +13,13 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.cli import main
+from cli_run import run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 PACKAGE = ROOT / "pollard_pin"
 
 
-def _run(argv, capsys):
-    """(exit code, stdout, stderr) of ``pollard-pin argv`` in this process."""
-    try:
-        code = main(argv)
-    except SystemExit as exc:  # argparse
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.fixture
@@ -96,7 +88,7 @@ BAD = [  # (argv, what the one error line must say)
 def test_bad_values_give_one_line_exit_2_and_write_nothing(files, capsys, argv, says):
     before = sorted(p.relative_to(files) for p in files.rglob("*"))
     shipped = {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
-    code, out, err = _run(argv, capsys)
+    code, out, err = run_cli(argv, capsys)
     assert code == 2, (code, out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err
@@ -109,7 +101,7 @@ def test_bad_values_give_one_line_exit_2_and_write_nothing(files, capsys, argv, 
 def test_failed_run_leaves_an_existing_output_untouched(files, capsys):
     out = files / "run.csv"
     out.write_text("precious\n")
-    code, _, err = _run(["run", *SHORT, "--params", "huge.toml", "--out", str(out)], capsys)
+    code, _, err = run_cli(["run", *SHORT, "--params", "huge.toml", "--out", str(out)], capsys)
     assert code == 2 and "nothing written to" in err
     assert out.read_text() == "precious\n"
 
@@ -125,7 +117,7 @@ def test_run_writes_into_a_fifo_and_leaves_it_a_fifo(files, capsys):
 
     th = threading.Thread(target=reader)
     th.start()
-    code, out, err = _run(["run", *SHORT, "--out", str(fifo)], capsys)
+    code, out, err = run_cli(["run", *SHORT, "--out", str(fifo)], capsys)
     if code != 0:  # unblock the reader
         with open(fifo, "w"):
             pass
@@ -138,7 +130,7 @@ def test_run_writes_into_a_fifo_and_leaves_it_a_fifo(files, capsys):
 
 
 def test_run_out_dash_writes_the_csv_to_stdout(files, capsys):
-    code, out, err = _run(["run", *SHORT, "--out", "-"], capsys)
+    code, out, err = run_cli(["run", *SHORT, "--out", "-"], capsys)
     assert code == 0, err
     rows = out.strip().splitlines()
     assert rows[0].startswith("t,x,y,z,") and len(rows) == 402  # the summary is on stderr
@@ -180,20 +172,20 @@ def test_terminated_run_removes_its_temporary_file(tmp_path):
 
 def test_urdf_default_writes_here_and_never_the_shipped_files(files, capsys):
     shipped = {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
-    code, out, err = _run(["urdf", "--set", "chain0.x32=0.34"], capsys)
+    code, out, err = run_cli(["urdf", "--set", "chain0.x32=0.34"], capsys)
     assert code == 0, err
     assert shipped == {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
     urdf = (files / "pollard.urdf").read_text()
     assert (files / "pollard.srdf").exists()
     assert urdf == pp.load(pp.load_params(overrides={"chain0.x32": 0.34})).urdf
-    code, out, _ = _run(["urdf", "--out", "-"], capsys)
+    code, out, _ = run_cli(["urdf", "--out", "-"], capsys)
     assert code == 0 and out == (ROOT / "models" / "pollard.urdf").read_text()
 
 
 def test_set_and_partial_params_file_give_the_same_model(files, capsys):
     (files / "mine.toml").write_text("[bodies.gun]\nmass = 0.05\n")
-    code, a, _ = _run(["info", "--params", "mine.toml"], capsys)
-    code2, b, _ = _run(["info", "--set", "bodies.gun.mass=0.05"], capsys)
+    code, a, _ = run_cli(["info", "--params", "mine.toml"], capsys)
+    code2, b, _ = run_cli(["info", "--set", "bodies.gun.mass=0.05"], capsys)
     assert code == code2 == 0
     assert a == b and "total mass 0.9350 kg" in a and "gun       0.050 kg" in a
 
@@ -201,7 +193,7 @@ def test_set_and_partial_params_file_give_the_same_model(files, capsys):
 def test_help_shows_every_default_and_no_markup(capsys):
     from pollard_pin.cli import build_parser
 
-    code, out, _ = _run(["--help"], capsys)
+    code, out, _ = run_cli(["--help"], capsys)
     assert code == 0 and "``" not in out and ":func:" not in out and ":class:" not in out
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     assert set(sub.choices) >= {"run", "plot", "report", "view", "sweep", "urdf", "info",
@@ -214,12 +206,12 @@ def test_help_shows_every_default_and_no_markup(capsys):
             help_text = " ".join(parser._get_formatter()._expand_help(action).split())
             shown = ("(default: " in help_text or "; default: " in help_text)
             assert shown and help_text in text, f"{cmd} {action.option_strings}: {help_text}"
-    code, out, _ = _run(["run", "--help"], capsys)
+    code, out, _ = run_cli(["run", "--help"], capsys)
     assert "(default: run.csv)" in " ".join(out.split())
 
 
 def test_version_and_verbose(capsys):
-    code, out, _ = _run(["--version"], capsys)
+    code, out, _ = run_cli(["--version"], capsys)
     assert code == 0 and out.strip() == f"pollard-pin {pp.__version__}"
     r = subprocess.run([sys.executable, "-m", "pollard_pin.cli", "info", "-v"],
                        capture_output=True, text=True, timeout=120)
@@ -254,7 +246,7 @@ def test_example_trajectories_run_and_agree(robot, capsys, tmp_path):
     results = {}
     for name in ("figure8", "figure8_poses"):
         out = tmp_path / f"{name}_run.csv"
-        code, _, err = _run(["run", "--trajectory", str(EXAMPLES / f"{name}.csv"), "--out",
+        code, _, err = run_cli(["run", "--trajectory", str(EXAMPLES / f"{name}.csv"), "--out",
                              str(out), "--quiet"], capsys)
         assert code == 0, err
         results[name] = np.genfromtxt(out, delimiter=",", names=True)

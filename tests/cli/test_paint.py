@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cli_run import run_cli
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import from_csv
@@ -15,13 +16,6 @@ JOB = ROOT / "examples" / "paint.toml"
 ACT = ROOT / "examples" / "actuators.toml"
 
 
-def _run(argv, capsys):
-    try:
-        code = main([str(a) for a in argv])
-    except SystemExit as exc:  # argparse
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.fixture(scope="module")
@@ -57,10 +51,10 @@ def test_plan_run_size_film(painted, capsys, tmp_path):
     the film map stays within ±2 % of the target."""
     traj = from_csv(painted / "path.csv")
     assert traj.derivatives == "file columns"
-    code, out, err = _run(["run", "--trajectory", painted / "path.csv", "--out",
+    code, out, err = run_cli(["run", "--trajectory", painted / "path.csv", "--out",
                            tmp_path / "run.csv", "--quiet"], capsys)
     assert code == 0, err
-    code, out, err = _run(["size", "--trajectory", painted / "path.csv", "--actuators", ACT,
+    code, out, err = run_cli(["size", "--trajectory", painted / "path.csv", "--actuators", ACT,
                            "--format", "json", "--quiet"], capsys)
     assert code == 0, err
     sized = json.loads(out)
@@ -77,7 +71,7 @@ def test_plan_run_size_film(painted, capsys, tmp_path):
 
 
 def test_summary_lines(tmp_path, capsys):
-    code, out, err = _run(["paint", "--job", JOB, "--out", tmp_path / "p", "--format",
+    code, out, err = run_cli(["paint", "--job", JOB, "--out", tmp_path / "p", "--format",
                            "parquet", "--resolution", "0.005"], capsys)
     assert code == 0, err
     lines = out.strip().splitlines()
@@ -91,7 +85,7 @@ def test_view_paint_overlay(painted, tmp_path, capsys):
     from pollard_pin.viz import viewer
 
     html = tmp_path / "v.html"
-    code, _, err = _run(["view", "--paint", painted, "--html", html, "--fps", "5"], capsys)
+    code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "5"], capsys)
     assert code == 0, err
     cmds = viewer.page_commands(html.read_text())
     paint = [c for c in cmds if c.get("type") == "set_object"
@@ -121,7 +115,7 @@ def test_bad_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
     job = tmp_path / "job.toml"
     job.write_text(edit(JOB.read_text()))
     out = tmp_path / "out"
-    code, _, err = _run(["paint", "--job", job, "--out", out], capsys)
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
     assert code == 2
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: ")
@@ -130,13 +124,13 @@ def test_bad_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
 
 
 def test_bad_options(tmp_path, capsys):
-    code, _, err = _run(["paint", "--job", JOB, "--out", tmp_path / "o", "--resolution",
+    code, _, err = run_cli(["paint", "--job", JOB, "--out", tmp_path / "o", "--resolution",
                          "1e-6"], capsys)
     assert code == 2 and "coarser resolution" in err and not (tmp_path / "o").exists()
-    code, _, err = _run(["paint", "--job", tmp_path / "none.toml", "--out", tmp_path / "o"],
+    code, _, err = run_cli(["paint", "--job", tmp_path / "none.toml", "--out", tmp_path / "o"],
                         capsys)
     assert code == 2 and "does not exist" in err
-    code, _, err = _run(["view", "--paint", tmp_path, "--html", tmp_path / "v.html"], capsys)
+    code, _, err = run_cli(["view", "--paint", tmp_path, "--html", tmp_path / "v.html"], capsys)
     assert code == 2 and "not a paint output folder" in err
 
 

@@ -7,26 +7,19 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.cli import main
+from cli_run import run_cli
 from pollard_pin.io.table import read_result
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 COARSE = ["--resolution", "0.02", "--quiet"]
 
 
-def _run(argv, capsys):
-    try:
-        code = main(argv)
-    except SystemExit as exc:  # argparse
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])
 def test_plane_files_match_the_library(robot, tmp_path, capsys, fmt):
     out = tmp_path / "ws"
-    code, text, err = _run(["workspace", "--plane", "x=0.55", "--out", str(out), "--format",
+    code, text, err = run_cli(["workspace", "--plane", "x=0.55", "--out", str(out), "--format",
                             fmt, *COARSE], capsys)
     assert code == 0, err
     ws = pp.workspace(robot, "x=0.55", resolution=0.02)
@@ -45,7 +38,7 @@ def test_plane_files_match_the_library(robot, tmp_path, capsys, fmt):
 
 def test_orientation_in_degrees_and_actuators(robot, tmp_path, capsys):
     out = tmp_path / "ws"
-    code, text, err = _run(["workspace", "--out", str(out), "--orientation", "0,10,0",
+    code, text, err = run_cli(["workspace", "--out", str(out), "--orientation", "0,10,0",
                             "--bounds", "y=-0.3:0.3,z=-0.1:0.3", "--actuators",
                             str(ROOT / "examples" / "actuators.toml"), *COARSE], capsys)
     assert code == 0, err
@@ -59,7 +52,7 @@ def test_orientation_in_degrees_and_actuators(robot, tmp_path, capsys):
 
 def test_volume_streams(robot, tmp_path, capsys):
     out = tmp_path / "vol"
-    code, text, err = _run(["workspace", "--volume", "--resolution", "0.05", "--quiet",
+    code, text, err = run_cli(["workspace", "--volume", "--resolution", "0.05", "--quiet",
                             "--out", str(out)], capsys)
     assert code == 0, err
     summary = json.loads((out / "workspace.json").read_text())
@@ -91,7 +84,7 @@ BAD = [
 def test_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, monkeypatch, extra,
                                                     words):
     monkeypatch.chdir(tmp_path)
-    code, out, err = _run(["workspace", "--out", "ws", "--quiet", *extra], capsys)
+    code, out, err = run_cli(["workspace", "--out", "ws", "--quiet", *extra], capsys)
     assert code == 2
     lines = err.strip().splitlines()
     assert len(lines) == 1, err
@@ -102,9 +95,9 @@ def test_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, monkeypatch
 
 def test_view_draws_the_reachable_cloud(tmp_path, capsys):
     out = tmp_path / "ws"
-    assert _run(["workspace", "--out", str(out), *COARSE], capsys)[0] == 0
+    assert run_cli(["workspace", "--out", str(out), *COARSE], capsys)[0] == 0
     html = tmp_path / "view.html"
-    code, _, err = _run(["view", "--samples", "51", "--quiet", "--html", str(html),
+    code, _, err = run_cli(["view", "--samples", "51", "--quiet", "--html", str(html),
                          "--workspace", str(out)], capsys)
     assert code == 0, err
     from pollard_pin.viz.viewer import page_commands
@@ -112,6 +105,6 @@ def test_view_draws_the_reachable_cloud(tmp_path, capsys):
     cloud = [c for c in page_commands(html.read_text()) if c.get("path", "").endswith(
         "/workspace")]
     assert len(cloud) == 1
-    code, _, err = _run(["view", "--samples", "51", "--quiet", "--html", str(html),
+    code, _, err = run_cli(["view", "--samples", "51", "--quiet", "--html", str(html),
                          "--workspace", str(tmp_path)], capsys)
     assert code == 2 and "no workspace.csv" in err
