@@ -6,6 +6,7 @@ on ``link_i`` at the ball joint, world axes [N] (docs/model.md §4).
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -115,10 +116,25 @@ def batched_rnea(model, Q: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarr
     n = len(Q)
     tau = np.empty((model.nv, n), order="F")
     if n:
-        pool = pin.ModelPool(model, RNEA_THREADS)
-        pin.rneaInParallel(RNEA_THREADS, pool, np.asfortranarray(Q.T), np.asfortranarray(V.T),
+        threads = rnea_threads()
+        pool = pin.ModelPool(model, threads)
+        pin.rneaInParallel(threads, pool, np.asfortranarray(Q.T), np.asfortranarray(V.T),
                            np.asfortranarray(A.T), tau)
     return tau.T
+
+
+# GNU OpenMP cannot start a thread team in a process forked after its parent ran one: the
+# child hangs in libgomp (seen in the sweep's forked workers after a `run` in the parent).
+# One thread needs no team, so a forked child runs the RNEA on one thread.
+_TEAM_PID = []  # the process that started an OpenMP team (its first call), if any
+
+
+def rnea_threads() -> int:
+    """OpenMP threads :func:`batched_rnea` may use in this process: RNEA_THREADS, or 1 in a
+    child forked after its parent started a team."""
+    if not _TEAM_PID:
+        _TEAM_PID.append(os.getpid())
+    return RNEA_THREADS if _TEAM_PID[0] == os.getpid() else 1
 
 
 def _parallel_singular(robot: Robot, Jc, k: int, sp=None, sp_max=None, t=None, why=""):

@@ -42,6 +42,7 @@ DT = 1e-3  # s, longest RK4 step
 # controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py).
 STEP_SECONDS, TICK_SECONDS = 80e-6, 400e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
+DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
 
 
 @dataclass(frozen=True)
@@ -303,9 +304,17 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     last = len(pts) - 1
     for i in range(len(pts)):
         t = pts[i]
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))):
-            raise SimulationError(f"simulation diverged at t = {t:.6g} s: non-finite state; "
-                                  "reduce the time step or raise the gains")
+        # Non-finite, or spun through thousands of turns: the loop closure would fail first
+        # and hide the cause.
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))
+                and np.abs(q).max() < DIVERGED_ANGLE):
+            # A sampled PD is stable only for ω·T well below 1 (torque held for T).
+            wt = gains.wn * control_period
+            hint = (f"the gains are too high for the control period (ω·T = {wt:.3g}; "
+                    "keep it below about 0.5)" if wt > 0.5 else
+                    "reduce the time step or raise the gains")
+            raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
+                                  f"beyond {DIVERGED_ANGLE:g} rad; {hint}")
         if is_tick[i]:
             theta, dtheta = q[ia].copy(), v[ia].copy()
             if rng is not None:

@@ -196,8 +196,11 @@ def _layout(job: PaintJob):
         spacing = ripple_spacing(job.sigma)
     try:
         offsets = pass_offsets(extent, spacing, job.sigma)
-    except ValueError as exc:
-        raise PlanError(str(exc)) from None
+    except ValueError as exc:  # name the job entries the spacing came from
+        origin = ("job.spacing" if job.spacing is not None else
+                  "job.speed" + (" and job.coats" if job.coats else "")
+                  if job.speed is not None else "the ripple rule")
+        raise PlanError(f"{job.source}: {origin}: {exc}") from None
     speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
     return frame, offsets, length / 2 + SPOT_RADIUS * job.sigma, speed, coats, spacing
 

@@ -454,6 +454,7 @@ CASES += [
     ([*SIM, "--wn", "1e300"], "must be at most 1e+06 rad/s"),
     # a run that starts says so (progress, silenced by --quiet); then its failure is one line
     ([*SIM, "--quiet", "--payload", "1e300"], "diverged"),
+    ([*SIM, "--quiet", "--wn", "1e4"], "the gains are too high for the control period (ω·T = 10"),
 ]
 
 # model parameters: files and --set, on the commands that load the model

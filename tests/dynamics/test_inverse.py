@@ -1,5 +1,7 @@
 """Closed-loop dynamics (issue 4): Pinocchio vs the thesis' Euler–Lagrange method, energy
 balance, forward-dynamics round trip and replay, statics by virtual work."""
+import os
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -185,3 +187,31 @@ def test_three_way_agreement_with_modified_parameters(tmp_path):
     assert np.abs(mj["closure_forces"] - dyn.closure_forces).max() <= \
         2e-13 * np.abs(dyn.closure_forces).max()
 
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs os.fork")
+def test_batched_rnea_in_a_child_forked_after_the_parent_ran_it(robot):
+    """A forked child (the sweep's process pool) gets the parent's torques bit for bit, and
+    does not hang in libgomp: the old code's child waited forever once the parent had run
+    the OpenMP team."""
+    import time
+
+    from pollard_pin.dynamics.inverse import batched_rnea
+
+    rng = np.random.default_rng(7)
+    Q, V, A = (rng.normal(size=(40, robot.model.nv)) for _ in range(3))
+    ref = batched_rnea(robot.model, Q, V, A)  # the parent starts its OpenMP team
+    pid = os.fork()
+    if pid == 0:  # child: exit status 0 only when the torques are identical
+        os._exit(0 if np.array_equal(batched_rnea(robot.model, Q, V, A), ref) else 1)
+    deadline = time.monotonic() + 60.0
+    while time.monotonic() < deadline:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(pid, 9)
+        os.waitpid(pid, 0)
+        pytest.fail("the forked child hung in the batched RNEA (OpenMP after fork)")
+    assert os.waitstatus_to_exitcode(status) == 0

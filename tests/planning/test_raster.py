@@ -193,8 +193,11 @@ def test_too_fast_a_speed(robot, job, act):
 
 
 def test_too_wide_a_spacing(robot, job, act):
-    with pytest.raises(PlanError, match="too wide"):
+    with pytest.raises(PlanError, match=r"job\.spacing: spacing 0\.04 m is too wide"):
         plan_paint(robot, replace(job, spacing=0.04), act)
+    # A speed that implies too wide a spacing names the speed (flow/(thickness·speed) = 0.2 m).
+    with pytest.raises(PlanError, match=r"job\.speed: spacing 0\.2 m is too wide"):
+        plan_paint(robot, replace(job, speed=job.flow / (job.thickness * 0.2)), act)
 
 
 def test_inconsistent_speed_spacing_coats(robot, job, act):
