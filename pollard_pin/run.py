@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .analytic.taskspace import TASK_NAMES
+from .dynamics.averages import time_mean, time_rms
 from .io.table import TableWriter, write_table
 from .io.trajectory import Trajectory
 from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
@@ -288,3 +289,28 @@ def summary(result: RunResult | RunStats) -> str:
     else:
         stats = result
     return "\n".join(stats.lines())
+
+
+def run_sizing(columns: dict, actuated) -> dict:
+    """Sizing figures (peaks, time-weighted RMS, energy) from run columns
+    (:meth:`RunResult.columns` or a ``run`` CSV read back)."""
+    t = np.asarray(columns["t"], dtype=float)
+    acts = {}
+    for n in actuated:
+        tau, qd = np.asarray(columns[f"tau_{n}"]), np.asarray(columns[f"d_{n}"])
+        p = np.asarray(columns[f"power_{n}"])
+        acts[n] = {
+            "peak_torque": float(np.max(np.abs(tau))),
+            "rms_torque": float(time_rms(t, tau)),
+            "peak_speed": float(np.max(np.abs(qd))),
+            "peak_power": float(np.max(np.abs(p))),
+            "energy": float((t[-1] - t[0]) * time_mean(t, np.abs(p))),
+            "net_work": float(np.asarray(columns[f"work_{n}"])[-1]),
+        }
+    joints = {}
+    for i in (1, 2):  # the two spherical joints (closures), docs/model.md §8
+        f = np.sqrt(sum(np.square(np.asarray(columns[f"f{i}_{c}"])) for c in "xyz"))
+        k = int(np.argmax(f))
+        joints[f"spherical_{i}"] = {"peak_force": float(f[k]), "peak_time": float(t[k]),
+                                    "rms_force": float(time_rms(t, f))}
+    return {"actuators": acts, "spherical_joints": joints}

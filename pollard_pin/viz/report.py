@@ -29,10 +29,9 @@ from __future__ import annotations
 import json
 import math
 
-import numpy as np
 
 from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis
-from ..dynamics.averages import time_mean, time_rms
+from ..run import run_sizing
 
 SIZING_FIELDS = (  # key, heading, unit
     ("peak_torque", "peak |τ|", "N·m"),
@@ -51,30 +50,6 @@ BEARING_FIELDS = (  # key, heading (docs/model.md §17); torque in N·m, forces 
 )
 
 
-def sizing(columns: dict, actuated) -> dict:
-    """Sizing figures from run columns (:meth:`RunResult.columns` or a ``run`` CSV read back)."""
-    t = np.asarray(columns["t"], dtype=float)
-    acts = {}
-    for n in actuated:
-        tau, qd = np.asarray(columns[f"tau_{n}"]), np.asarray(columns[f"d_{n}"])
-        p = np.asarray(columns[f"power_{n}"])
-        acts[n] = {
-            "peak_torque": float(np.max(np.abs(tau))),
-            "rms_torque": float(time_rms(t, tau)),
-            "peak_speed": float(np.max(np.abs(qd))),
-            "peak_power": float(np.max(np.abs(p))),
-            "energy": float((t[-1] - t[0]) * time_mean(t, np.abs(p))),
-            "net_work": float(np.asarray(columns[f"work_{n}"])[-1]),
-        }
-    joints = {}
-    for i in (1, 2):
-        f = np.sqrt(sum(np.square(np.asarray(columns[f"f{i}_{c}"])) for c in "xyz"))
-        k = int(np.argmax(f))
-        joints[f"spherical_{i}"] = {"peak_force": float(f[k]), "peak_time": float(t[k]),
-                                    "rms_force": float(time_rms(t, f))}
-    return {"actuators": acts, "spherical_joints": joints}
-
-
 def sizing_report(robot, result, cross_check: bool = True) -> dict:
     """The whole report for a :class:`~pollard_pin.run.RunResult` as a JSON-ready dict:
     ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
@@ -91,7 +66,7 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
                   "total_mass": float(robot.params.total_mass)},
         "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
                                                         "peak_time": "s"},
-        "sizing": sizing(result.columns(), robot.actuated),
+        "sizing": run_sizing(result.columns(), robot.actuated),
         "bearings": joint_loads(robot, result.ik, result.dynamics).bearing_table(),
     }
     out["units"] |= {k: ("N·m" if k in ("peak_bending", "peak_torque") else "N")
