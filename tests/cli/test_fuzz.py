@@ -22,6 +22,7 @@ from pathlib import Path
 
 import pytest
 
+from cli_run import run_cli
 from pollard_pin.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -892,19 +893,15 @@ IDS = [" ".join(argv) for argv, _ in CASES]
 def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch, capsys, argv,
                                                             says):
     monkeypatch.chdir(scratch)
-    before = _state(scratch)
-    try:
-        code = main(argv)
-    except SystemExit as exc:  # argparse
-        code = exc.code
-    out, err = capsys.readouterr()
+    before, beside = _state(scratch), sorted(os.listdir(scratch.parent))
+    code, out, err = run_cli(argv, capsys)
     lines = err.strip().splitlines()
     assert code == 2, (code, out[-300:], err[-2000:])
     assert out == "", out[:300]  # nothing half-written on standard output either
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0] and "Traceback" not in err, lines[0]
     assert _state(scratch) == before  # nothing written, nothing changed
-    assert not any(Path(p).exists() for p in ("/proc/pollard.urdf",))
+    assert sorted(os.listdir(scratch.parent)) == beside  # nor beside the scratch folder
 
 
 def test_the_fuzz_has_at_least_200_cases():

@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cli_run import run_cli
 from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, desired_trajectory
 from pollard_pin.dynamics.forward import forward_dynamics
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
@@ -270,14 +271,9 @@ def short_csv(tmp_path_factory):
 ])
 def test_cli_bad_inputs_one_line_exit_2_nothing_written(short_csv, tmp_path, capsys, argv,
                                                         says):
-    from pollard_pin.cli import main
-
     out = tmp_path / "sim.csv"
-    try:
-        code = main(["simulate", "--trajectory", str(short_csv), "--out", str(out), *argv])
-    except SystemExit as exc:  # argparse's own one-line errors
-        code = exc.code
-    err = capsys.readouterr().err.strip()
+    code, _, err = run_cli(["simulate", "--trajectory", short_csv, "--out", out, *argv], capsys)
+    err = err.strip()
     assert code == 2 and says in err and len(err.splitlines()) == 1, err
     assert not out.exists() and not list(tmp_path.iterdir())
 
