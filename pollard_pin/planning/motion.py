@@ -10,7 +10,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
-from ..io.trajectory import Trajectory
 from ..kinematics.errors import KinematicsError
 from ..kinematics.limits import limit_violations
 from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
@@ -82,13 +81,8 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
     tau = inverse_dynamics(robot, ik, energies=False).tau
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
-    tm = motor_torque(act, tau, v, a)
-    # At rest (q̇ = 0) the motor must break Coulomb friction away in either direction: the
-    # motor model just off rest on both sides (q̇ = ±1e-300: viscous 0, Coulomb ±c).
-    rest = v == 0
-    sides = [np.abs(motor_torque(act, tau, np.where(rest, e, v), a)) for e in (1e-300, -1e-300)]
-    breakaway = np.maximum(np.abs(tm), np.maximum(*sides))
-    return Motion(ik, tau, tm, breakaway / act.column("peak_torque"),
+    tm = motor_torque(act, tau, v, a)  # at rest |τm| already carries the breakaway c
+    return Motion(ik, tau, tm, np.abs(tm) / act.column("peak_torque"),
                   np.abs(motor_speed(act, v)) / act.column("max_speed"))
 
 
@@ -116,9 +110,4 @@ def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings:
     return hi
 
 
-def trajectory_motion(robot, act: Actuators, traj: Trajectory, **margins) -> Motion:
-    return motion(robot, act, traj.poses, traj.d_poses, traj.dd_poses, **margins)
-
-
-__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion",
-           "trajectory_motion"]
+__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion"]

@@ -201,13 +201,6 @@ def _linear(x: float) -> np.ndarray:
     return c
 
 
-def turn_excursion(speed: float, duration: float, shape: int = TURN_SHAPE) -> float:
-    """How far a turnaround runs beyond its pass's end [m]: speed·duration·max f."""
-    f = _turn_u(shape)
-    x = np.linspace(0, 1, 201)
-    return float(speed * duration * f(x).max())
-
-
 def task_motion(frame: PanelFrame, standoff: float, U, V, dU, dV, ddU, ddV,
                 horizontal: bool = True):
     """Tool poses, rates, accelerations (N, 6) of panel-coordinate motion: the tip at the
@@ -226,5 +219,4 @@ def task_motion(frame: PanelFrame, standoff: float, U, V, dU, dV, ddU, ddV,
 
 
 __all__ = ["PROFILE_TOLERANCE", "PanelFrame", "SPOT_RADIUS", "Segments", "cross_profile",
-           "panel_frame", "pass_offsets", "raster_segments", "ripple_spacing", "task_motion",
-           "turn_excursion"]
+           "panel_frame", "pass_offsets", "raster_segments", "ripple_spacing", "task_motion"]

@@ -89,12 +89,9 @@ def _rgba(hex_colour: str) -> tuple:
 
 def write_workspace_png(ws, path, dpi: int = 100) -> Path:
     """Write :func:`workspace_figure` to ``path`` (PNG), atomically."""
-    from ..io.atomic import atomic_open
+    from .plots import save_png
 
-    fig = workspace_figure(ws)
-    with atomic_open(path, binary=True) as f:
-        fig.savefig(f, dpi=dpi, format="png")
-    return Path(path)
+    return save_png(workspace_figure(ws), path, dpi)
 
 
 def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
