@@ -20,7 +20,7 @@ def _wrap(a):
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
-def _loads(robot, result):
+def result_loads(robot, result):
     """The run's joint loads (docs/model.md §17), computed here if the run did not keep them."""
     if getattr(result, "loads", None) is not None:
         return result.loads
@@ -50,7 +50,7 @@ def cross_check_thesis(robot, result) -> dict:
         from . import newton_euler
 
         ne, loads = newton_euler.joint_loads(robot.params, traj.poses, traj.d_poses,
-                                             traj.dd_poses), _loads(robot, result)
+                                             traj.dd_poses), result_loads(robot, result)
         out["joint_force"] = agreement(loads.force, ne["force"])
         out["joint_moment"] = agreement(loads.moment, ne["moment"])
     return out
@@ -77,7 +77,7 @@ def cross_check_mujoco(robot, result) -> dict:
         mjl = joint_loads_mujoco(ik.q[:, cols], ik.v[:, cols], ik.a[:, cols],
                                  mj["closure_forces"], built=peer.cached_model(urdf))
     act = [list(peer.ACTUATED).index(n) for n in robot.actuated]
-    loads, back = _loads(robot, result), [list(peer.JOINTS).index(n) for n in ik.joint_names]
+    loads, back = result_loads(robot, result), [list(peer.JOINTS).index(n) for n in ik.joint_names]
     return {"available": True,
             "torque": agreement(dyn.tau, mj["tau"][:, act]),
             "closure_force": agreement(dyn.closure_forces, mj["closure_forces"]),

@@ -28,9 +28,9 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 
-
-from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis
+from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis, result_loads
 from ..run import run_sizing
 
 SIZING_FIELDS = (  # key, heading, unit
@@ -56,9 +56,8 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
     ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
     if result.dynamics is None:
         raise ValueError("the report needs the dynamics: run_pipeline(..., dynamics=True)")
-    from ..dynamics.loads import joint_loads
-
     ik, traj = result.ik, result.trajectory
+    loads = result_loads(robot, result)  # once, for the bearings and both cross-checks
     out = {
         "trajectory": {"name": traj.name, "samples": len(ik), "t0": float(ik.t[0]),
                        "duration": float(ik.t[-1] - ik.t[0]), "derivatives": traj.derivatives},
@@ -67,11 +66,12 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
         "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
                                                         "peak_time": "s"},
         "sizing": run_sizing(result.columns(), robot.actuated),
-        "bearings": joint_loads(robot, result.ik, result.dynamics).bearing_table(),
+        "bearings": loads.bearing_table(),
     }
     out["units"] |= {k: ("N·m" if k in ("peak_bending", "peak_torque") else "N")
                      for k, _ in BEARING_FIELDS} | {"peak_force": "N", "equivalent_force": "N"}
     if cross_check:
+        result = replace(result, loads=loads)
         out["cross_check"] = {"thesis": cross_check_thesis(robot, result),
                               "mujoco": cross_check_mujoco(robot, result)}
     return out
