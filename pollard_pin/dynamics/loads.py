@@ -24,14 +24,10 @@ import numpy as np
 import pinocchio as pin
 
 from ..kinematics.ik import IKResult
-from ..kinematics.tree import AXES, cross, joint_motion
+from ..kinematics.tree import AXES, cross, joint_motion, matvec
 from ..model.build import Robot
 from ..timing import Stopwatch
 from .averages import cubic_mean
-
-
-def _mv(R, x):
-    return (R @ x[..., None])[..., 0]
 
 
 @dataclass
@@ -158,10 +154,10 @@ def _passes(model, tree: _Tree, Q, V, A, lam):
             a_c = acc[j] + cross(al[j], r) + cross(w[j], cross(w[j], r))
             f = m * (a_c - tree.gravity)
             Rt = np.swapaxes(R[j], -1, -2)
-            wb, ab = _mv(Rt, w[j]), _mv(Rt, al[j])  # body axes: I is constant there
+            wb, ab = matvec(Rt, w[j]), matvec(Rt, al[j])  # body axes: I is constant there
             Iw = wb @ tree.inertias[j]  # I symmetric: (I ω)ᵀ = ωᵀ I
             F[j] += f
-            M[j] += _mv(R[j], ab @ tree.inertias[j] + cross(wb, Iw)) + cross(r, f)
+            M[j] += matvec(R[j], ab @ tree.inertias[j] + cross(wb, Iw)) + cross(r, f)
         p = tree.parents[j]
         if p:
             F[p] += F[j]

@@ -108,8 +108,6 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
         return _failure(row, exc)
     except np.linalg.LinAlgError as exc:
         return _failure(row, exc)
-    if result.dynamics is None:
-        raise SweepError("pollard_pin.dynamics.inverse is not available: cannot compute torques")
     dyn, ik = result.dynamics, result.ik
     if tuple(dyn.actuated) != ACTUATED:
         raise SweepError(f"actuator order {dyn.actuated} is not docs/model.md §6 order {ACTUATED}")

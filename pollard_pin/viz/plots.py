@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.names import ACTUATED, CHAIN_JOINTS
+from ..model.names import ACTUATED, CHAIN_JOINTS, SPHERICAL
 
 # Figure name → file name (without .png), in the order they are written.
 FIGURES = ("chain0_joints", "wrist_joints", "leg1_joints", "leg2_joints", "spherical_joints",
@@ -99,7 +99,7 @@ def _spherical_figure(plt, cols):
     t = cols["t"]
     fig, axes = plt.subplots(2, 2, figsize=(10, 6), sharex=True)
     for i in (1, 2):
-        names = [f"theta98_{i}", f"theta109_{i}", f"theta1110_{i}"]
+        names = SPHERICAL[3 * (i - 1):3 * i]
         for row, (prefix, label) in enumerate((("", "angle [deg]"),
                                                ("d_", "rate [deg/s]"))):
             ax = axes[row, i - 1]
@@ -229,18 +229,18 @@ def figures(result) -> dict:
         raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")
     plt = figure_maker()
     cols = result.columns()
-    name = result.trajectory.name
+    name, chains = result.trajectory.name, dict(CHAIN_JOINTS)
     out = {
         "chain0_joints": _joint_figure(
-            plt, cols, ("theta21", "theta43", "theta54"),
+            plt, cols, chains["chain 0"],
             f"Chain 0 joints ({name} trajectory)", ("actuated", "U joint", "U joint")),
         "wrist_joints": _joint_figure(
-            plt, cols, ("theta1615", "theta1716", "theta1817"),
+            plt, cols, chains["wrist"],
             f"Wrist joints, chain 0 ({name} trajectory)", ("actuated",) * 3),
     }
     for i in (1, 2):
         out[f"leg{i}_joints"] = _joint_figure(
-            plt, cols, (f"theta21_{i}", f"theta65_{i}", f"theta76_{i}"),
+            plt, cols, chains[f"leg {i}"],
             f"Leg {i} joints, chain {i} ({name} trajectory)",
             ("actuated", "U joint", "U joint"))
     out["spherical_joints"] = _spherical_figure(plt, cols)
