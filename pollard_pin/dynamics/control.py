@@ -10,7 +10,6 @@
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Protocol
@@ -148,8 +147,8 @@ class ComputedTorque:
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):
-        self.robot, self.desired, self.gains = _known(robot, losses), desired, gains
-        self.friction = _friction(losses)
+        # reduced_dynamics takes the losses whole (rotor inertia too): no model copy needed
+        self.robot, self.desired, self.gains, self.losses = robot, desired, gains, losses
         self._ia = robot.actuated_v
         acc = desired.a[:, self._ia]
         self._acc = acc.copy()
@@ -159,7 +158,7 @@ class ComputedTorque:
         d, g, ia = self.desired, self.gains, self._ia
         k = d.index(t)
         e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        M, h = reduced_dynamics(self.robot, q, v, self.friction)
+        M, h = reduced_dynamics(self.robot, q, v, self.losses)
         return M @ (self._acc[k] + g.kp * e + g.kd * ed) + h
 
 
@@ -209,11 +208,6 @@ def _known(robot: Robot, losses: JointLosses | None) -> Robot:
     if losses is None or not np.any(losses.armature):
         return robot
     return perturbed_robot(robot, PlantErrors(losses=losses))
-
-
-def _friction(losses: JointLosses | None) -> JointLosses | None:
-    """The friction of ``losses`` (its rotor inertia is in :func:`_known`'s model)."""
-    return None if losses is None else dataclasses.replace(losses, armature=0.0)
 
 
 def make_controller(name: str, robot: Robot, desired: DesiredTrajectory,
