@@ -67,7 +67,7 @@ def _fmt_mb(mb: float | None) -> str:
 
 
 def add_parser(sub, parents) -> None:
-    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+    from ..kinematics.margins import SINGULARITY_MARGIN, WRIST_MARGIN
 
     p = command(sub, parents, "run",
                 "solve a trajectory: kinematics and dynamics → CSV or Parquet", run)

@@ -26,7 +26,7 @@ DEFAULT_PLANE = "x=0.55"
 
 
 def add_parser(sub, parents) -> None:
-    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+    from ..kinematics.margins import SINGULARITY_MARGIN, WRIST_MARGIN
 
     p = command(sub, parents, "workspace", HELP, run)
     where = p.add_mutually_exclusive_group()

@@ -9,9 +9,7 @@ import numpy as np
 
 from . import kernels
 from .errors import BranchFlipError, SingularityError
-
-SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
-WRIST_MARGIN = 0.05  # default smallest |sin θ1716| allowed (≈ 2.9°)
+from .margins import SINGULARITY_MARGIN, WRIST_MARGIN  # noqa: F401  (the defaults, re-exported)
 
 # Numerical floors, relative to σ_max of the same matrix; they apply whatever the margins
 # (even 0), so an exactly or numerically singular sample is always rejected (docs/model.md §12).
