@@ -315,6 +315,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                     "reduce the time step or raise the gains")
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
                                   f"beyond {DIVERGED_ANGLE:g} rad; {hint}")
+        res = None  # the plant's loop residual at this point, once computed
         if is_tick[i]:
             theta, dtheta = q[ia].copy(), v[ia].copy()
             if rng is not None:
@@ -335,12 +336,13 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 saturated_since = None
             elif clipped and saturated_since is None:
                 saturated_since = t
-            max_res = max(max_res, plant.closure_residual(q))
+            res = plant.closure_residual(q)
+            max_res = max(max_res, res)
         a1 = f(q, v, tau)
         k = sample_of[i]
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
-            RES[k] = plant.closure_residual(q)
+            RES[k] = plant.closure_residual(q) if res is None else res  # once per point
             if progress is not None:
                 progress(k + 1, n)
         if i == last:
