@@ -190,9 +190,13 @@ class MotorLoad:
 
     def utilisation(self) -> np.ndarray:
         """Per sample and actuator, the larger of |τm|/peak and |ωm|/max speed, (N, 6)."""
-        a = self.actuators
-        return np.maximum(np.abs(self.torque) / a.column("peak_torque"),
-                          np.abs(self.speed) / a.column("max_speed"))
+        return utilisation(self.actuators, self.torque, self.speed)
+
+
+def utilisation(act: Actuators, torque, speed) -> np.ndarray:
+    """The larger of |τm|/peak torque and |ωm|/max speed, per actuator (last axis)."""
+    return np.maximum(np.abs(torque) / act.column("peak_torque"),
+                      np.abs(speed) / act.column("max_speed"))
 
 
 def motor_load(act: Actuators, t, tau, v, a) -> MotorLoad:
@@ -327,4 +331,5 @@ __all__ = [
     "motor_speed",
     "motor_torque",
     "uniform_min_duration",
+    "utilisation",
 ]

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
+from .motors import utilisation as motor_utilisation
 from .path import PathDynamics, path_dynamics_at, quintic_hermite
 
 PER_INTERVAL = 4  # check points per interval to start with
@@ -281,8 +282,7 @@ def utilisation(act: Actuators, path: PathDynamics, s_ddot, s_dot, at_rest=None,
     sdd, sd = np.asarray(s_ddot)[:, None], np.asarray(s_dot)[:, None]
     torque = np.abs(alpha * sdd + beta * sd**2 + gamma + delta * sd) \
         + act.column("coulomb") * both
-    speed = np.abs(motor_speed(act, path.q_s * sd))
-    return np.maximum(torque / act.column("peak_torque"), speed / act.column("max_speed"))
+    return motor_utilisation(act, torque, motor_speed(act, path.q_s * sd))
 
 
 def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -383,9 +383,8 @@ def _dense_use(act, dense: PathDynamics, timing: TimeOptimal, m: int, rest) -> n
     sd = np.sqrt(np.maximum(x, 0.0))[..., None]
     torque = np.abs(alpha[idx] * u[:, None, None] + beta[idx] * sd**2 + gamma[idx]
                     + delta[idx] * sd) + act.column("coulomb") * both[idx]
-    speed = np.abs(motor_speed(act, dense.q_s[idx] * sd))
-    use = np.maximum(torque / act.column("peak_torque"),
-                     speed / act.column("max_speed")).max(2)  # (n − 1, m + 1)
+    use = motor_utilisation(act, torque,
+                            motor_speed(act, dense.q_s[idx] * sd)).max(2)  # (n − 1, m + 1)
     out = np.zeros(len(dense.s))
     np.maximum.at(out, idx.ravel(), use.ravel())
     return out
