@@ -8,7 +8,8 @@ Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints 
     python scripts/benchmark.py [--samples 2001 20001] [--repeats 5] [--no-mujoco] [--no-cli]
                                 [--big 1000001]
                                 [--no-loads] [--no-simulate] [--no-size]
-                                [--no-startup] [--startup-source DIR] [--no-workspace]
+                                [--no-startup] [--startup-source DIR] [--no-paint]
+                                [--no-workspace]
 """
 from __future__ import annotations
 
@@ -192,8 +193,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     raster (2 ms) as the paint planner gives it."""
     from pollard_pin.dynamics import motors, path as path_mod, timeopt
 
-    root = Path(__file__).resolve().parent.parent
-    act = motors.load_actuators(root / "examples" / "actuators.toml")
+    act = motors.load_actuators(REPO / "examples" / "actuators.toml")
     print(f"\nmotor sizing (examples/actuators.toml), min of {repeats} runs [ms]")
 
     def row(label, fn, n):
@@ -215,7 +215,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
         row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
             robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses, traj.curve), n)
-    spec = importlib.util.spec_from_file_location("rasters", root / "tests" / "rasters.py")
+    spec = importlib.util.spec_from_file_location("rasters", REPO / "tests" / "rasters.py")
     rasters = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(rasters)
     t, poses, rates, accelerations = rasters.raster()
@@ -228,9 +228,9 @@ def paint_section(robot, repeats: int) -> None:
     budget is 10 s for both."""
     from pollard_pin.planning.plan import plan_film
 
-    root = Path(__file__).resolve().parent.parent / "examples"
-    act = pp.load_actuators(root / "actuators.toml")
-    job = pp.load_job(root / "paint.toml")
+    examples = REPO / "examples"
+    act = pp.load_actuators(examples / "actuators.toml")
+    job = pp.load_job(examples / "paint.toml")
     plans, films = [], []
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -285,8 +285,6 @@ def cli_run(samples: int, out: str) -> tuple[float, float, str]:
 
 def cli_section(sizes: tuple[int, int], repeats: int, big: int) -> None:
     """Whole-process marginal cost per sample of ``run`` (best of repeats), CSV and Parquet."""
-    import tempfile
-
     small, large = sizes
     print(f"\n`pollard-pin run`, whole process (start, imports, model, solve, write), best of "
           f"{repeats}; marginal = (T({large}) − T({small})) / {large - small}")

@@ -870,9 +870,6 @@ def test_pip_install_with_dependencies_in_a_fresh_venv(wheel, tmp_path):
 
 
 def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypatch):
-    pp = pollard_pin
-    import shutil
-
     import pollard_pin.model.build as model_mod
     import pollard_pin.model.params as params_mod
     from pollard_pin.model.paths import models_dir
@@ -881,10 +878,10 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
         shutil.copy(models_dir() / f, tmp_path / f)
     monkeypatch.setattr(model_mod, "models_dir", lambda: tmp_path)
     monkeypatch.setattr(params_mod, "models_dir", lambda: tmp_path)
-    assert pp.load().params.body("gun").mass == 0.035  # the copy is consistent
+    assert pollard_pin.load().params.body("gun").mass == 0.035  # the copy is consistent
     toml = tmp_path / "pollard.toml"
     toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
-    with pytest.raises(pp.ModelFileError,
+    with pytest.raises(pollard_pin.ModelFileError,
                        match=r"pollard\.urdf and pollard\.srdf do not match .*pollard\.toml: "
                              r"regenerate them from the parameters"):
-        pp.load()
+        pollard_pin.load()
