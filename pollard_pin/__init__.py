@@ -43,14 +43,14 @@ _API = {
     "ActuatorError": "dynamics.motors", "actuator_sizing": "dynamics.sizing",
     "time_optimal_path": "dynamics.timeopt", "TimeOptimal": "dynamics.timeopt",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
-    "workspace": "planning.workspace", "largest_panel": "planning.workspace",
-    "WorkspaceMap": "planning.workspace", "WorkspaceError": "planning.workspace",
+    "map_workspace": "workspace.grid", "largest_panel": "workspace.grid",
+    "WorkspaceMap": "workspace.grid", "WorkspaceError": "workspace.grid",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
-    "load_job": "planning.job", "PaintJob": "planning.job", "JobError": "planning.job",
-    "plan_paint": "planning.plan", "plan_film": "planning.plan", "PaintPlan": "planning.plan",
-    "paint_report": "planning.plan", "PlanError": "planning.motion", "Gun": "planning.deposition",
-    "deposition_rate": "planning.deposition", "film": "planning.deposition",
+    "load_job": "paint.job", "PaintJob": "paint.job", "JobError": "paint.job",
+    "plan_paint": "paint.plan", "plan_film": "paint.plan", "PaintPlan": "paint.plan",
+    "paint_report": "paint.plan", "PlanError": "paint.motion", "Gun": "paint.deposition",
+    "deposition_rate": "paint.deposition", "film": "paint.deposition",
 }
 
 __all__ = sorted(_API)

@@ -191,7 +191,8 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     the exact uniform scaling, TOPP-RA held between the samples (check points doubled until
     the worst use halfway between them is within 1.001), and a 10,751-sample rest-to-rest
     raster (2 ms) as the paint planner gives it."""
-    from pollard_pin.dynamics import motors, path as path_mod, timeopt
+    from pollard_pin.dynamics import motors, timeopt
+    from pollard_pin.dynamics import path as path_mod
 
     act = motors.load_actuators(REPO / "examples" / "actuators.toml")
     print(f"\nmotor sizing (examples/actuators.toml), min of {repeats} runs [ms]")
@@ -226,7 +227,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
 def paint_section(robot, repeats: int) -> None:
     """Paint planning (docs/model.md §21) of examples/paint.toml and its film map; the issue's
     budget is 10 s for both."""
-    from pollard_pin.planning.plan import plan_film
+    from pollard_pin.paint.plan import plan_film
 
     examples = REPO / "examples"
     act = pp.load_actuators(examples / "actuators.toml")
@@ -248,9 +249,9 @@ def workspace_section(robot, repeats: int) -> None:
     """Workspace maps (docs/model.md §22): a 250,000-point plane at x = 0.55 over the default
     bounds (mostly outside the reach, as a user maps it), and one of the same size over the
     reachable box (mostly reachable: the full per-point work). Best of ``repeats``."""
-    from pollard_pin.planning.workspace import workspace
+    from pollard_pin.workspace.grid import map_workspace
 
-    workspace(robot, "x=0.55", resolution=0.02)  # warm-up: imports, compiled kernels
+    map_workspace(robot, "x=0.55", resolution=0.02)  # warm-up: imports, compiled kernels
     cases = {"default bounds (500 × 500)": {"resolution": 0.00326},
              "reachable box (675 × 372)": {"resolution": 0.00089,
                                            "bounds": {"y": (-0.3, 0.3), "z": (-0.05, 0.28)}}}
@@ -259,7 +260,7 @@ def workspace_section(robot, repeats: int) -> None:
         times = []
         for _ in range(repeats):
             t0 = time.perf_counter()
-            ws = workspace(robot, "x=0.55", **kw)
+            ws = map_workspace(robot, "x=0.55", **kw)
             times.append(time.perf_counter() - t0)
         n = ws.grid.size
         print(f"  {label:<28s} {n:7d} points, {ws.summary['reachable_points']:7d} reachable "

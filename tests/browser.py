@@ -57,7 +57,7 @@ class Page:
         self._loop = asyncio.new_event_loop()
 
     # --- process -------------------------------------------------------------------------
-    def __enter__(self) -> "Page":
+    def __enter__(self) -> Page:
         self._proc = subprocess.Popen(
             [self.executable, *FLAGS, f"--user-data-dir={self._profile}",
              f"--window-size={self.width},{self.height}", "--remote-debugging-port=0",

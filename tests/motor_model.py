@@ -5,7 +5,6 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
-
 from cli_run import run_cli as cli  # noqa: F401  (the sizing tests' CLI runner)
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -1,7 +1,8 @@
 """Special tool poses shared by the kinematics tests, from the closed form's own frames."""
 import numpy as np
 
-from pollard_pin.analytic import closed_form as T, taskspace as ts
+from pollard_pin.analytic import closed_form as T
+from pollard_pin.analytic import taskspace as ts
 
 
 def wrist_singular_pose(params):

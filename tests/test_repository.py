@@ -59,10 +59,12 @@ def test_citations_point_into_the_model_document():
 # joint vocabulary and the numpy-only analytic leaves (jets, task-space conventions, the closed
 # form) sit under the model, which uses the closed form for its home posture (docs/model.md §9).
 RANKS = [
-    ("pollard_pin.timing", 0), ("pollard_pin.model.names", 0), ("pollard_pin.analytic.jet", 0),
+    ("pollard_pin.timing", 0), ("pollard_pin.errors", 0), ("pollard_pin.model.names", 0),
+    ("pollard_pin.analytic.jet", 0),
     ("pollard_pin.analytic.taskspace", 0), ("pollard_pin.analytic", 1),
     ("pollard_pin.model", 2), ("pollard_pin.kinematics", 3), ("pollard_pin.dynamics", 4),
-    ("pollard_pin.io", 5), ("pollard_pin.planning", 6), ("pollard_pin.crosscheck", 6),
+    ("pollard_pin.io", 5), ("pollard_pin.workspace", 6), ("pollard_pin.paint", 6),
+    ("pollard_pin.crosscheck", 6),
     ("pollard_pin.run", 7), ("pollard_pin.viz", 8), ("pollard_pin.sweep", 9),
     ("pollard_pin.cli", 10), ("pollard_pin", 11),
 ]

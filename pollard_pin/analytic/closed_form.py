@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
 from ..model.names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
 from . import jet as J
 from .jet import Jet, value
@@ -31,7 +32,7 @@ _TARGETS = {"chain 0": "the wrist centre", "leg 1": "its attachment point",
             "leg 2": "its attachment point"}
 
 
-class UnreachableError(ValueError):
+class UnreachableError(InputError):
     """The closed form of docs/model.md §7 has no solution (``kind == "unreachable"``) or the wrist
     is
     singular (``kind == "singular"``, subclass :class:`WristSingularError`).

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
+
 TASK_NAMES = ("x", "y", "z", "psi", "theta", "phi")
 # Largest |component| accepted (m, rad, and per s, per s²): a robot of ~1 m never needs more,
 # and squares of larger values lose every digit of the closed form's C = |d|² + r² − L²
@@ -15,7 +17,7 @@ MAX_ABS_TASK = 1e6
 _UNITS = {"": ("m", "rad"), "d_": ("m/s", "rad/s"), "dd_": ("m/s²", "rad/s²")}
 
 
-class TaskInputError(ValueError):
+class TaskInputError(InputError):
     """An invalid task-space input (numpy-only layer; the pipeline re-raises it as
     :class:`~pollard_pin.kinematics.errors.KinematicsInputError` with the sample's time).
     ``column`` names the entry (e.g. ``"d_psi"``, ``"wrist_margin"``), ``sample`` its row."""

@@ -11,12 +11,13 @@ import sys
 import time
 import warnings
 
+from ..errors import InputError
 from ..io.atomic import STDOUT
 
 log = logging.getLogger("pollard_pin")
 
 
-class UsageError(ValueError):
+class UsageError(InputError):
     """A command-line value the command cannot use (one line)."""
 
 

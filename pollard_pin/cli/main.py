@@ -20,7 +20,7 @@ import threading
 from .. import __version__
 from ..io.atomic import STDOUT
 from . import export, info, paint, plot, report, run, simulate, size, sweep, urdf, view, workspace
-from .common import HelpFormatter, Parser, UsageError, say_notes
+from .common import HelpFormatter, Parser, say_notes
 
 DESCRIPTION = """\
 Verified multibody model of the Pollard spray-painting parallel robot (Pinocchio).
@@ -50,27 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _errors() -> tuple[type[BaseException], ...]:
-    """The project's own errors: each is one line for the user, never a traceback."""
-    from ..analytic.taskspace import TaskInputError
-    from ..dynamics.motors import ActuatorError
-    from ..dynamics.control import ControlError
-    from ..dynamics.forward import SimulationError
-    from ..dynamics.plant import PlantError
-    from ..io.atomic import OutputError
-    from ..io.table import ResultFileError
-    from ..io.trajectory import TrajectoryError
-    from ..kinematics.errors import ClosureError, KinematicsError
-    from ..model.build import ModelFileError
-    from ..model.params import ParameterError
-    from ..planning.job import JobError
-    from ..planning.motion import PlanError
-    from ..planning.workspace import WorkspaceError
-    from ..sweep import SweepError
+    """The project's own errors (one root), a missing optional dependency and memory: each is
+    one line for the user, never a traceback."""
+    from ..errors import PollardError
 
-    return (JobError, PlanError, ControlError, PlantError, SimulationError,
-            ParameterError, TrajectoryError, KinematicsError, ClosureError, ModelFileError,
-            SweepError, OutputError, UsageError, ImportError, ActuatorError, ResultFileError,
-            MemoryError, WorkspaceError, TaskInputError)
+    return (PollardError, ImportError, MemoryError)
 
 
 def main(argv=None) -> int:

@@ -28,9 +28,9 @@ def run(args) -> int:
 
     from ..io.table import write_table
     from ..io.trajectory import to_csv
-    from ..planning.job import load_job
-    from ..planning.motion import PlanError
-    from ..planning.plan import film_resolution, paint_report, plan_film, plan_paint
+    from ..paint.job import load_job
+    from ..paint.motion import PlanError
+    from ..paint.plan import film_resolution, paint_report, plan_film, plan_paint
     from ..viz.paint import write_thickness_png
 
     out = Path(args.out)

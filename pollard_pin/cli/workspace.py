@@ -60,7 +60,7 @@ def add_parser(sub, parents) -> None:
 
 def parse_orientation(text: str) -> tuple[float, float, float]:
     """"PSI,THETA,PHI" in degrees → radians, checked as the library checks them."""
-    from ..planning.workspace import WorkspaceError, check_orientation
+    from ..workspace.grid import WorkspaceError, check_orientation
 
     parts = text.split(",")
     try:
@@ -79,7 +79,7 @@ def parse_orientation(text: str) -> tuple[float, float, float]:
 def parse_bounds(text: str | None) -> dict | None:
     """"y=-0.3:0.3,z=-0.1:0.3" → {"y": (-0.3, 0.3), "z": (-0.1, 0.3)}, checked as the library
     checks them."""
-    from ..planning.workspace import WorkspaceError, check_bounds
+    from ..workspace.grid import WorkspaceError, check_bounds
 
     if text is None:
         return None
@@ -107,7 +107,7 @@ def parse_bounds(text: str | None) -> dict | None:
 def run(args) -> int:
     from ..io.atomic import OutputError, atomic_open, check_destination
     from ..io.table import TableWriter, write_table
-    from ..planning.workspace import WorkspaceError, parse_plane, workspace
+    from ..workspace.grid import WorkspaceError, map_workspace, parse_plane
 
     orientation = parse_orientation(args.orientation)
     bounds = parse_bounds(args.bounds)
@@ -143,14 +143,14 @@ def run(args) -> int:
                             "resolution": args.resolution, "actuators": args.actuators}}
     created = [p for p in (out, *out.parents) if not p.exists()]  # deepest first
     if plane is not None:
-        ws = workspace(robot, plane, **options)  # everything computed before anything written
+        ws = map_workspace(robot, plane, **options)  # everything computed before anything written
         out.mkdir(parents=True, exist_ok=True)
         write_table(paths["table"], ws.columns, metadata, args.format)
     else:
         out.mkdir(parents=True, exist_ok=True)
         try:
             with TableWriter(paths["table"], metadata, args.format) as writer:
-                ws = workspace(robot, volume=True, sink=writer.write, **options)
+                ws = map_workspace(robot, volume=True, sink=writer.write, **options)
         except BaseException:
             _remove_empty(created)
             raise

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+
 def agreement(ours, ref) -> dict:
     ours, ref = np.asarray(ours, dtype=float), np.asarray(ref, dtype=float)
     diff = float(np.max(np.abs(ours - ref)))

@@ -33,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import SolveError
 from ..io.mjcf import (  # noqa: F401
     TIP,
     check_mjcf,
@@ -42,7 +43,8 @@ from ..io.mjcf import (  # noqa: F401
     read_urdf,
     require_mujoco,
 )
-from ..model.names import ACTUATED, TREE_JOINTS as JOINTS
+from ..model.names import ACTUATED
+from ..model.names import TREE_JOINTS as JOINTS
 
 GRAVITY = np.array([0.0, 0.0, -9.81])  # docs/model.md §2
 MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check
@@ -244,7 +246,7 @@ IK_MAX_ITER = 30
 IK_MAX_STEP = 0.5  # rad, largest joint change of one Newton step (damping far from the solution)
 
 
-class MujocoIKError(RuntimeError):
+class MujocoIKError(SolveError):
     """Newton did not converge at ``sample``; ``residual`` is the largest error reached."""
 
     def __init__(self, message: str, sample: int | None = None, residual: float | None = None):

@@ -16,6 +16,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ..errors import InputError
 from ..kinematics.ik import inverse_kinematics
 from ..model.build import Robot
 from .inverse import (
@@ -33,7 +34,7 @@ MAX_WN = 1e6  # rad/s: a time constant under 1 µs is a unit slip
 CONTROLLERS = ("computed-torque", "feedforward-pd", "pd")
 
 
-class ControlError(ValueError):
+class ControlError(InputError):
     """A simulation input the controller or integrator cannot use (one line)."""
 
 

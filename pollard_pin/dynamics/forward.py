@@ -13,12 +13,13 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from ..errors import SolveError
 from ..kinematics.ik import inverse_kinematics
 from ..model.build import Robot, constraint_residual
 from .inverse import inverse_dynamics_sample, reduced_mass_matrix
 
 
-class SimulationError(RuntimeError):
+class SimulationError(SolveError):
     """The integration produced a non-finite state."""
 
 

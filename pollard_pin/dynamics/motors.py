@@ -23,9 +23,12 @@ from typing import Any
 
 import numpy as np
 
-from ..model.names import ACTUATED as ACTUATED_JOINTS, TREE_JOINTS as JOINT_NAMES
+from ..errors import InputError
+from ..model.names import ACTUATED as ACTUATED_JOINTS
+from ..model.names import TREE_JOINTS as JOINT_NAMES
 from ..model.params import did_you_mean, read_toml
-from .averages import time_rms as rms, trapezoid_weights
+from .averages import time_rms as rms
+from .averages import trapezoid_weights
 from .inverse import JointLosses
 from .path import PathDynamics
 
@@ -39,7 +42,7 @@ UNITS = dict(zip(KEYS, ("", " kg·m²", " N·m·s/rad", " N·m", " N·m", " N·m
 LIMITS = ("peak_torque", "rms_torque", "speed")  # the three checks, in report order
 
 
-class ActuatorError(ValueError):
+class ActuatorError(InputError):
     """An actuator file breaks a rule, or no duration meets the ratings (one line)."""
 
 

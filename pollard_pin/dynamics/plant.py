@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from ..errors import InputError
 from ..model.build import Robot, constraint_residual
 from .forward import robot_copy
 from .inverse import JointLosses, inverse_dynamics_sample
@@ -21,7 +22,7 @@ from .inverse import JointLosses, inverse_dynamics_sample
 BAUMGARTE = (400.0, 40.0)  # Kp [1/s²], Kd [1/s]: critically damped 20 rad/s (docs/model.md §14)
 
 
-class PlantError(ValueError):
+class PlantError(InputError):
     """A plant parameter the simulation cannot use (one line: which, what value)."""
 
 

@@ -14,14 +14,13 @@ import sys
 import tempfile
 from pathlib import Path
 
+from ..errors import DestinationError
+
 STDOUT = "-"
 
 
-class OutputError(OSError):
+class OutputError(DestinationError):
     """An output destination cannot be written (one line: which path, why)."""
-
-    def __str__(self) -> str:
-        return self.args[0] if self.args else "cannot write the output"
 
 
 def is_special(path: Path) -> bool:

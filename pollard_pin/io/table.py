@@ -11,13 +11,14 @@ Column units follow docs/model.md §15; :func:`column_unit` derives them from th
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Mapping
 
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..errors import InputError
 from ..model.names import JOINTS
 from .atomic import STDOUT, OutputError, atomic_open, check_destination, is_special
 
@@ -95,7 +96,7 @@ class TableWriter:
         self.rows = 0
         self._ctx = self._file = self._parquet = None
 
-    def __enter__(self) -> "TableWriter":
+    def __enter__(self) -> TableWriter:
         if self.fmt == "csv":  # imported here, so that write() times only the writing
             import polars  # noqa: F401
 
@@ -177,7 +178,7 @@ class ResultTable:
         return len(next(iter(self.columns.values()))) if self.columns else 0
 
 
-class ResultFileError(ValueError):
+class ResultFileError(InputError):
     """A result table that cannot be read back (one line: which file, why)."""
 
 

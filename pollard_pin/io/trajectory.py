@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..errors import InputError
 from ..model.params import did_you_mean
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
@@ -27,7 +28,7 @@ MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degre
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 
 
-class TrajectoryError(ValueError):
+class TrajectoryError(InputError):
     """A trajectory (file) is malformed; the message names the row and column."""
 
 

@@ -4,10 +4,12 @@ from __future__ import annotations
 import copy
 import re
 
+from ..errors import SolveError
+
 _SAMPLE_WORDS = re.compile(r"\b(samples? )(\d+)(?:( and )(\d+))?")
 
 
-class ClosureError(RuntimeError):
+class ClosureError(SolveError):
     """The loops cannot be closed for the given actuator angles."""
 
     def __init__(self, message: str, leg: int | None = None, residual: float | None = None):
@@ -16,7 +18,7 @@ class ClosureError(RuntimeError):
         self.residual = residual
 
 
-class KinematicsError(RuntimeError):
+class KinematicsError(SolveError):
     """IK failed at a sample: ``chain``, ``sample``, ``time``, ``amount`` say where, how far."""
 
     def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
@@ -27,7 +29,7 @@ class KinematicsError(RuntimeError):
         self.detail = message  # the message without the sample/time prefix
         self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
 
-    def shifted(self, offset: int) -> "KinematicsError":
+    def shifted(self, offset: int) -> KinematicsError:
         """The same error for a window of a longer trajectory that starts at sample
         ``offset``: every sample number (attribute and message) counts from the full
         trajectory's start. Used by the streaming run (pollard_pin.run)."""

@@ -61,7 +61,7 @@ class KinematicFrames:
     wrist_q: int
 
     @classmethod
-    def of(cls, robot: Robot) -> "KinematicFrames":
+    def of(cls, robot: Robot) -> KinematicFrames:
         def rz(a):
             c, s = np.cos(a), np.sin(a)
             return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from ..errors import InputError
 from .names import ACTUATED, PASSIVE, TREE_JOINTS
 from .params import Params, load_params
 from .paths import models_dir
@@ -26,7 +27,7 @@ DEFAULT_URDF = "pollard.urdf"
 DEFAULT_SRDF = "pollard.srdf"
 
 
-class ModelFileError(ValueError):
+class ModelFileError(InputError):
     """The URDF/SRDF is malformed or does not describe the Pollard tree."""
 
 

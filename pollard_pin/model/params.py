@@ -10,12 +10,14 @@ import copy
 import math
 import re
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
+from ..errors import InputError
 from .names import ACTUATED, BODIES, TREE_JOINTS
 from .paths import models_dir
 
@@ -33,7 +35,7 @@ LIMIT_KEYS = ("lower", "upper", "effort", "velocity")  # deg, deg, N·m, rad/s
 SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches", "limits")
 
 
-class ParameterError(ValueError):
+class ParameterError(InputError):
     """A parameter file or override breaks a rule; the message names key, value and rule."""
 
 

@@ -3,7 +3,8 @@ in input order and are the same whichever way they were computed."""
 from __future__ import annotations
 
 import os
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from .evaluate import SweepError, evaluate_variant
 from .grid import Sweep

@@ -2,11 +2,13 @@
 function of plain data returning one flat row (the columns of the package docstring)."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
 from ..dynamics.averages import time_rms
+from ..errors import InputError
 from ..model.names import ACTUATED, TREE_JOINTS
 from ..model.params import (
     ParameterError,
@@ -27,7 +29,7 @@ METRIC_COLUMNS = (tuple(f"{m}_{a}" for m in ("peak_tau", "rms_tau", "peak_power"
 LOAD_METRICS = ("peak_axial", "peak_radial", "peak_bending")
 METRIC_COLUMNS += tuple(f"{m}_{j}" for m in LOAD_METRICS for j in TREE_JOINTS)
 
-class SweepError(ValueError):
+class SweepError(InputError):
     """A grid file or sweep definition is invalid, or a variant crashed unexpectedly."""
 
 

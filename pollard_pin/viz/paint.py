@@ -1,5 +1,5 @@
 """The paint figure: the film over the panel as a heat map, with the gun's path drawn over it.
-It draws what :mod:`pollard_pin.planning` computed; nothing here computes."""
+It draws what :mod:`pollard_pin.paint` computed; nothing here computes."""
 from __future__ import annotations
 
 from pathlib import Path

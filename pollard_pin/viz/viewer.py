@@ -31,6 +31,8 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from ..errors import InputError
+
 ROOT = "pollard"  # scene node of everything this module draws
 PATH_COLOUR = 0xD0208C  # tool path (magenta)
 CLOSURE_B_COLOUR = (0.85, 0.05, 0.05, 1.0)  # platform side of the ball joint
@@ -41,7 +43,7 @@ FRAME_SCALE = 0.06  # m, length of the frame triads
 MAX_KEY_FRAMES = 100_000  # ≈ 1.5 KB each in a static page: beyond, the page is unusable
 
 
-class ViewerError(ValueError):
+class ViewerError(InputError):
     """An animation the viewer cannot build (one line: which value, why)."""
 DEFAULT_FPS = 25.0
 FLOOR_SIZE = 1.0  # m, the floor grid drawn at z = 0

@@ -1,6 +1,6 @@
 """The plane workspace map as a figure (docs/model.md §22): reachable points coloured by their
 smallest margin min(|sin θ1716|, σ_parallel, σ_serial), unreachable points by their reason,
-and the largest reachable rectangle outlined. It draws a :class:`~..planning.workspace.
+and the largest reachable rectangle outlined. It draws a :class:`~..workspace.grid.
 WorkspaceMap`; it computes nothing. Matplotlib's object API (no pyplot, no backend switch)."""
 from __future__ import annotations
 
@@ -19,7 +19,8 @@ def workspace_figure(ws):
     ``rectangle``, ``reason_<code>`` (legend patches)."""
     from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
-    from matplotlib.patches import Patch, Rectangle as Box
+    from matplotlib.patches import Patch
+    from matplotlib.patches import Rectangle as Box
 
     grid = ws.grid
     if len(grid.axes) != 2:

@@ -21,8 +21,8 @@ import stat
 from pathlib import Path
 
 import pytest
-
 from cli_run import run_cli
+
 from pollard_pin.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]

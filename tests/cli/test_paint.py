@@ -5,8 +5,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from cli_run import run_cli
+
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import from_csv

@@ -219,7 +219,8 @@ def test_static_torques_by_virtual_work(built):
     comes
     from the closed-form IK (pollard_pin.analytic.closed_form, no Pinocchio), closed by Newton
     in MuJoCo."""
-    from pollard_pin.analytic.closed_form import JOINTS as THESIS_JOINTS, position_ik
+    from pollard_pin.analytic.closed_form import JOINTS as THESIS_JOINTS
+    from pollard_pin.analytic.closed_form import position_ik
     from pollard_pin.model.params import load_params
 
     model, _, info = built

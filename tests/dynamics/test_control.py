@@ -5,8 +5,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from cli_run import run_cli
+
 from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, desired_trajectory
 from pollard_pin.dynamics.forward import forward_dynamics
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample

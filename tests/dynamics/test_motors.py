@@ -6,7 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, cli as _cli, motor as _motor, rms as _rms
+from motor_model import EXAMPLE, NAMES, RATINGS
+from motor_model import cli as _cli
+from motor_model import motor as _motor
+from motor_model import rms as _rms
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as A

@@ -2,7 +2,8 @@
 before the work (docs/model.md §19)."""
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, cli as _cli
+from motor_model import EXAMPLE, NAMES, RATINGS
+from motor_model import cli as _cli
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M

@@ -9,11 +9,15 @@ from functools import partial
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, ROOT, cli as _cli, motor as _motor, rms as _rms
+from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
+from motor_model import cli as _cli
+from motor_model import motor as _motor
+from motor_model import rms as _rms
 from rasters import raster
 
 import pollard_pin as pp
-from pollard_pin.dynamics import motors as M, timeopt as TO
+from pollard_pin.dynamics import motors as M
+from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.dynamics.path import PathDynamics, path_dynamics, quintic_hermite
 from pollard_pin.io.retime import retimed_trajectory
 from pollard_pin.io.table import read_result

@@ -21,7 +21,9 @@ import pytest
 from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
 import pollard_pin as pp
-from pollard_pin.analytic import closed_form as T, jet as J, taskspace as ts
+from pollard_pin.analytic import closed_form as T
+from pollard_pin.analytic import jet as J
+from pollard_pin.analytic import taskspace as ts
 from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.inverse import inverse_dynamics, split_tree_torques
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory

@@ -653,7 +653,7 @@ def test_urdf_loads_in_mujoco_without_warnings(tmp_path, robot, q_home):
     assert res["warnings"] == [0] * len(res["warnings"]), res["warnings"]
     assert res["njnt"] == res["nv"] == 12
     assert res["joints"] == sorted(robot.joint_names)
-    assert res["types"] == [int(3)]  # mjJNT_HINGE
+    assert res["types"] == [3]  # mjJNT_HINGE
     # The URDF inertials come through unchanged. (Under MuJoCo's default inertiafromgeom="auto"
     # the massless crosses get a mass from their collision spheres; pollard_pin.mujoco_peer
     # turns that off and merges the crosses.)

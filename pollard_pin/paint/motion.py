@@ -10,12 +10,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
+from ..errors import InputError
 from ..kinematics.errors import KinematicsError
 from ..kinematics.limits import limit_violations
 from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
 
 
-class PlanError(ValueError):
+class PlanError(InputError):
     """No paint program meets the job: one line saying why, where, and what would fit."""
 
 

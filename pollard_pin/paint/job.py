@@ -5,12 +5,14 @@ Every rule broken is one :class:`JobError` line naming the key, its value and th
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
+from ..errors import InputError
 from ..model.params import did_you_mean, read_toml
 
 # Required and optional keys per table, in file order.
@@ -24,7 +26,7 @@ DIRECTIONS = ("horizontal", "vertical")
 MAX_LENGTH = 10.0
 
 
-class JobError(ValueError):
+class JobError(InputError):
     """A paint job breaks a rule (one line: the file, the key, the value, the rule)."""
 
 

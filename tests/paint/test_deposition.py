@@ -7,7 +7,7 @@ import pytest
 from scipy.special import erf, ndtri
 from scipy.stats import qmc
 
-from pollard_pin.planning.deposition import Gun, deposition_rate, film
+from pollard_pin.paint.deposition import Gun, deposition_rate, film
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
 

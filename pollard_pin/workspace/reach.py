@@ -10,8 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic import closed_form
-from ..dynamics.motors import Actuators
 from ..dynamics.inverse import batched_rnea, split_tree_torques
+from ..dynamics.motors import Actuators
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
 from ..kinematics.singularity import (

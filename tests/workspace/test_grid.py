@@ -14,8 +14,8 @@ from poses import wrist_singular_pose  # tests/poses.py
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form
-from pollard_pin.dynamics.motors import load_actuators, motor_torque
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample
+from pollard_pin.dynamics.motors import load_actuators, motor_torque
 from pollard_pin.dynamics.plant import PlantErrors, perturbed_robot
 from pollard_pin.kinematics.errors import KinematicsError
 from pollard_pin.kinematics.limits import limit_violations
@@ -23,9 +23,9 @@ from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
 from pollard_pin.model.names import TREE_JOINTS
 from pollard_pin.model.params import load_params
-from pollard_pin.planning.reach import REASONS, ReachOptions, evaluate
-from pollard_pin.planning.rectangle import largest_rectangle
-from pollard_pin.planning.workspace import WorkspaceError, largest_panel, workspace
+from pollard_pin.workspace.grid import WorkspaceError, largest_panel, map_workspace
+from pollard_pin.workspace.reach import REASONS, ReachOptions, evaluate
+from pollard_pin.workspace.rectangle import largest_rectangle
 
 ACTUATORS = __file__.rsplit("/tests/", 1)[0] + "/examples/actuators.toml"
 
@@ -126,7 +126,7 @@ def test_reasons_on_constructed_points(robot):
 
 def test_leg_reasons_agree_with_the_closed_form(wide):
     """Points the map puts out of a leg's reach: the raising closed form names that leg."""
-    ws = workspace(wide, "x=0.55", resolution=0.02)
+    ws = map_workspace(wide, "x=0.55", resolution=0.02)
     c = ws.columns
     for chain in ("leg 1", "leg 2"):
         idx = np.flatnonzero(c["reason"] == REASONS.index(f"{chain} out of reach"))
@@ -167,7 +167,7 @@ def test_area_converges_on_finer_grids(robot):
     (seen: 0.0051, 0.0018, 0.0004, 0.0003 m² at h = 20, 10, 5, 2.5 mm)."""
     bounds = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
     steps = (0.02, 0.01, 0.005, 0.0025)
-    areas = {h: workspace(robot, "x=0.55", resolution=h, bounds=bounds).summary["area"]
+    areas = {h: map_workspace(robot, "x=0.55", resolution=h, bounds=bounds).summary["area"]
              for h in steps + (0.00125,)}
     errs = [abs(areas[h] - areas[0.00125]) for h in steps]
     perimeter = 2 * (0.6 + 0.34)  # m, of the region (its bounding box)
@@ -181,14 +181,14 @@ def test_volume_streams_and_equals_the_stacked_planes(robot):
     the plane maps' areas times the step (the grids coincide point for point)."""
     h = 0.04
     chunks = []
-    vol = workspace(robot, volume=True, resolution=h, sink=chunks.append, chunk=5000)
+    vol = map_workspace(robot, volume=True, resolution=h, sink=chunks.append, chunk=5000)
     assert vol.columns is None and len(chunks) > 1
     assert sum(len(c["x"]) for c in chunks) == vol.grid.size
     xs = vol.grid.coordinates(0)
     total = 0.0
     for x in xs:
         try:
-            ws = workspace(robot, ("x", float(x)), resolution=h)
+            ws = map_workspace(robot, ("x", float(x)), resolution=h)
         except WorkspaceError:
             continue  # plane with no reachable point
         total += ws.summary["area"] * h
@@ -200,7 +200,7 @@ def test_default_bounds_hold_the_whole_reach(wide, orientation):
     """With every joint limit a full turn (the largest reach), the reachable points of a
     default volume grid stay at least two cells inside its bounds: nothing is cut off."""
     h = 0.04
-    vol = workspace(wide, volume=True, resolution=h, orientation=orientation)
+    vol = map_workspace(wide, volume=True, resolution=h, orientation=orientation)
     g = vol.grid.as_dict()
     lo, hi = (np.asarray(vol.summary["bounding_box"][k]) for k in ("low", "high"))
     assert (lo >= np.asarray(g["start"]) + 2 * h - 1e-9).all()
@@ -257,7 +257,7 @@ def per_point_serial_map(robot, q):
 
 def test_conditioning_and_payload_per_point(robot):
     act = load_actuators(ACTUATORS)
-    ws = workspace(robot, "x=0.55", resolution=0.03, actuators=act)
+    ws = map_workspace(robot, "x=0.55", resolution=0.03, actuators=act)
     c = ws.columns
     idx = np.flatnonzero(c["reachable"] == 1)
     assert len(idx) > 20
@@ -306,7 +306,7 @@ def test_conditioning_and_payload_per_point(robot):
     ({}, ["either a plane"])])
 def test_bad_input(robot, kw, words):
     with pytest.raises(WorkspaceError) as err:
-        workspace(robot, **kw)
+        map_workspace(robot, **kw)
     msg = str(err.value)
     assert "\n" not in msg
     for w in words:

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from pollard_pin.planning.job import JobError, job_from_dict, load_job
+from pollard_pin.paint.job import JobError, job_from_dict, load_job
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "paint.toml"
 

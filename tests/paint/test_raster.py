@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from pollard_pin.dynamics.motors import load_actuators, motor_load_of
-from pollard_pin.planning.job import load_job
-from pollard_pin.planning.motion import PlanError
-from pollard_pin.planning.plan import film_resolution, film_stats, plan_film, plan_paint
-from pollard_pin.planning.raster import (
+from pollard_pin.paint.job import load_job
+from pollard_pin.paint.motion import PlanError
+from pollard_pin.paint.plan import film_resolution, film_stats, plan_film, plan_paint
+from pollard_pin.paint.raster import (
     SPOT_RADIUS,
     _turn_u,
     cross_profile,
@@ -234,9 +234,9 @@ def test_film_integration_converged(plan, film, job):
     (exact segment positions): the planner's 2 ms steps are converged far below the issue's
     0.1 % of the target (achieved 5e-11 relative); the a-posteriori estimate (achieved 1.4e-9
     of the target) bounds it."""
-    from pollard_pin.planning.deposition import film as integrate
-    from pollard_pin.planning.plan import gun_of
-    from pollard_pin.planning.raster import task_motion
+    from pollard_pin.paint.deposition import film as integrate
+    from pollard_pin.paint.plan import gun_of
+    from pollard_pin.paint.raster import task_motion
 
     U, V, pts, f = film
     pick = np.r_[0:len(U) * len(V):37, len(U) * len(V) - 1]  # a spread of points, a corner
@@ -255,7 +255,7 @@ def test_film_integration_converged(plan, film, job):
 def test_breakaway_counted_at_rest(robot, plan, act):
     """At the rest-to-rest ends every motor must overcome Coulomb friction in either
     direction: utilisation (|τ/N + Jm·N·q̈| + c)/peak there, not sign(0) = 0 (exact)."""
-    from pollard_pin.planning.motion import motion
+    from pollard_pin.paint.motion import motion
 
     tr = plan.trajectory
     ends = [0, len(tr) - 1]

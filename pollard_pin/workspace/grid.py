@@ -2,7 +2,7 @@
 of a plane or a box the robot reaches at a fixed tool orientation, under the rules of ``run``,
 how well-conditioned and how strong it is there, and the largest reachable panel of a plane.
 
-    ws = pollard_pin.workspace(robot, plane="x=0.55")       # or volume=True
+    ws = pollard_pin.map_workspace(robot, plane="x=0.55")       # or volume=True
     ws.summary["area"], ws.rectangle, ws.columns["conditioning"]
 
 Points are evaluated in chunks, stacked (:func:`.reach.evaluate`); in volume mode the chunks
@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
+from ..errors import InputError
 from .reach import REASONS, ReachOptions, evaluate, length_scale
 from .rectangle import largest_rectangle
 
@@ -34,7 +35,7 @@ BOUND_MARGIN_CELLS = 2  # default bounds: the reach sphere widened by this many 
 COARSE_CELLS = 40  # points per axis of the coarse volume that finds the reachable box
 
 
-class WorkspaceError(ValueError):
+class WorkspaceError(InputError):
     """A workspace request that cannot be mapped (one line: which value, why)."""
 
 
@@ -277,7 +278,7 @@ class _Summary:
                                 max(self.payload[1], float(cap.max()))]
 
 
-def workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 0.0, 0.0),
+def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 0.0, 0.0),
               resolution: float = 0.005, bounds=None, actuators=None,
               wrist_margin: float | None = None, singularity_margin: float | None = None,
               length_scale: float | None = None, sink: Callable[[dict], None] | None = None,
@@ -451,5 +452,5 @@ def largest_panel(robot, plane, *, orientation=(0.0, 0.0, 0.0), resolution: floa
     """The largest axis-aligned rectangle of reachable tool positions in a plane (e.g.
     "x=0.55": the panel surface minus the standoff) at this orientation — the biggest panel
     the robot can sweep there (docs/model.md §22). ``options`` as :func:`workspace`."""
-    return workspace(robot, plane, orientation=orientation, resolution=resolution,
+    return map_workspace(robot, plane, orientation=orientation, resolution=resolution,
                      bounds=bounds, **options).rectangle
