@@ -48,8 +48,8 @@ _API = {
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
     "load_job": "paint.job", "PaintJob": "paint.job", "JobError": "paint.job",
-    "plan_paint": "paint.plan", "plan_film": "paint.plan", "PaintPlan": "paint.plan",
-    "paint_report": "paint.plan", "PlanError": "paint.motion", "Gun": "paint.deposition",
+    "plan_paint": "paint.plan", "plan_film": "paint.film", "PaintPlan": "paint.plan",
+    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.deposition",
     "deposition_rate": "paint.deposition", "film": "paint.deposition",
 }
 

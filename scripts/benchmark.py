@@ -227,7 +227,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
 def paint_section(robot, repeats: int) -> None:
     """Paint planning (docs/model.md §21) of examples/paint.toml and its film map; the issue's
     budget is 10 s for both."""
-    from pollard_pin.paint.plan import plan_film
+    from pollard_pin.paint.film import plan_film
 
     examples = REPO / "examples"
     act = pp.load_actuators(examples / "actuators.toml")

@@ -28,9 +28,11 @@ def run(args) -> int:
 
     from ..io.table import write_table
     from ..io.trajectory import to_csv
+    from ..paint.errors import PlanError
+    from ..paint.film import film_resolution, plan_film
     from ..paint.job import load_job
-    from ..paint.motion import PlanError
-    from ..paint.plan import film_resolution, paint_report, plan_film, plan_paint
+    from ..paint.plan import plan_paint
+    from ..paint.report import paint_report
     from ..viz.paint import write_thickness_png
 
     out = Path(args.out)

@@ -10,23 +10,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
-from ..errors import InputError
 from ..kinematics.errors import KinematicsError
 from ..kinematics.limits import limit_violations
 from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
-
-
-class PlanError(InputError):
-    """No paint program meets the job: one line saying why, where, and what would fit."""
-
-
-class ReachError(PlanError):
-    """A tool pose the path needs is out of reach: ``sample`` indexes the poses checked,
-    ``pose`` (6,) is that pose."""
-
-    def __init__(self, message: str, sample: int, pose=None):
-        super().__init__(message)
-        self.sample, self.pose = sample, pose
+from .errors import PlanError, ReachError
 
 
 @dataclass(frozen=True)

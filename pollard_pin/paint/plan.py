@@ -1,5 +1,6 @@
 """Plan a paint job: passes, speed, coats, the fastest turnarounds the motors allow, the
-trajectory, and the film it leaves (docs/model.md §21).
+trajectory, (docs/model.md §21). The film it leaves is
+:mod:`.film`, the numbers of ``paint.json`` :mod:`.report`.
 
 1. Spacing: the widest whose interior ripple is ≤ PROFILE_TOLERANCE/2 (or the job's); the
    fewest passes whose cross profile stays within PROFILE_TOLERANCE up to the edges.
@@ -14,20 +15,19 @@ trajectory, and the film it leaves (docs/model.md §21).
 from __future__ import annotations
 
 import math
-import numbers
 import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..analytic.taskspace import rotation
 from ..dynamics.averages import time_rms
 from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ..dynamics.path import path_dynamics
 from ..io.trajectory import Trajectory
-from .deposition import Film, Gun, film
+from .deposition import Gun
+from .errors import PlanError, ReachError
 from .job import PaintJob
-from .motion import PlanError, ReachError, fastest, motion
+from .motion import fastest, motion
 from .raster import (
     SPOT_RADIUS,
     PanelFrame,
@@ -135,12 +135,12 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     """The fastest raster program for the job that the motors and the workspace allow.
 
     A path out of reach raises :class:`PlanError` naming where it leaves the workspace and
-    the largest panel of the same centre and proportions that fits (:func:`largest_panel`).
+    the largest panel of the same centre and proportions that fits (:func:`largest_scale`).
     """
     try:
         return _plan(robot, job, act)
     except ReachError as exc:
-        scale = largest_panel(robot, job, act)
+        scale = largest_scale(robot, job, act)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
                     f"{tuple(round(c, 4) for c in job.center)} fits")
@@ -154,7 +154,7 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
 LARGEST_STEPS = 6  # bisection steps of the largest panel that fits
 
 
-def largest_panel(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
+def largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
     """The largest scale s ∈ [0, 1) (to 2^-steps) of the job's panel, same centre, whose
     raster stays in reach (``run``'s rules and the joint limits), by bisection; 0 if none of
     the tried scales does. Each try samples the whole raster at the job's speed with every
@@ -293,86 +293,5 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
-def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
-    """The film grid spacing [m]: ``resolution`` (default σ/3), which must be > 0 and at most
-    σ: a coarser grid cannot show the ripple between passes (some 2σ apart, docs/model.md §21)."""
-    res = job.sigma / 3 if resolution is None else resolution
-    if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= job.sigma):
-        raise PlanError(f"film grid spacing {res!r} m must be > 0 and at most the spray spot's "
-                        f"σ = {job.sigma:g} m (a coarser grid cannot show the film between "
-                        "passes)")
-    return float(res)
-
-
-def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
-    """The regular grid over the panel, edges included, spacing ≤ ``resolution`` (default
-    σ/3, at most σ: :func:`film_resolution`): (U (nu,), V (nv,), world points (nv, nu, 3))."""
-    frame = plan_or_frame.frame if isinstance(plan_or_frame, PaintPlan) else plan_or_frame
-    res = film_resolution(job, resolution)
-    U = np.linspace(-job.width / 2, job.width / 2, int(math.ceil(job.width / res - 1e-9)) + 1)
-    V = np.linspace(-job.height / 2, job.height / 2,
-                    int(math.ceil(job.height / res - 1e-9)) + 1)
-    UU, VV = np.meshgrid(U, V)
-    return U, V, frame.world(UU, VV)
-
-
-def plan_film(plan: PaintPlan, resolution: float | None = None):
-    """(U, V, points (nv, nu, 3), Film over the flattened grid) of the planned path."""
-    U, V, pts = film_grid(plan, plan.job, resolution)
-    tr = plan.trajectory
-    axes = rotation(tr.poses)[:, :, 0]
-    f: Film = film(gun_of(plan.job), tr.t, tr.poses[:, :3], axes, pts.reshape(-1, 3),
-                   plan.frame.n, origin=plan.frame.c)
-    return U, V, pts, f
-
-
-def film_stats(thickness: np.ndarray, target: float) -> dict:
-    """``mean, min, max, std`` [m], ``uniformity`` (min/max) and ``within_10pct`` (the share
-    of grid points within ±10 % of the target)."""
-    th = np.asarray(thickness, dtype=float).ravel()
-    return {"mean": float(th.mean()), "min": float(th.min()), "max": float(th.max()),
-            "std": float(th.std()), "uniformity": float(th.min() / th.max()),
-            "within_10pct": float(np.mean(np.abs(th / target - 1) <= 0.10)),
-            "deviation_min": float(th.min() / target - 1),
-            "deviation_max": float(th.max() / target - 1)}
-
-
-__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "film_grid",
-           "film_resolution", "film_stats", "gun_of", "max_pass_speed", "plan_film",
-           "plan_paint"]
-
-
-def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
-    """The numbers of ``paint.json``: the job, film statistics [m], timing and layout, and
-    each motor's peak utilisation (checked at CHECK_REFINE× the path's sampling)."""
-    j = plan.job
-    tr = plan.trajectory
-    swept = 2 * plan.half_length * len(plan.offsets) * plan.spacing * plan.coats
-    steps = np.linalg.norm(np.diff(tr.poses[:, :3], axis=0), axis=1)
-    return {
-        "job": j.to_dict(),
-        "thickness": film_stats(f.thickness, j.thickness),
-        "target": j.thickness,
-        "cycle_time": plan.cycle_time,
-        "lower_bound": plan.lower_bound,
-        "swept_lower_bound": swept * j.thickness / j.flow / plan.coats,
-        "passes": plan.passes,
-        "spacing": plan.spacing,
-        "speed": plan.speed,
-        "coats": plan.coats,
-        "max_pass_speed": plan.max_speed,
-        "direction": j.direction,
-        "turnarounds": [float(d) for d, k in zip(plan.segments.duration, plan.segments.kind)
-                        if k == "turn"],
-        "samples": len(tr),
-        "motors": {name: {lim: float(plan.ratios[lim][i]) for lim in plan.ratios}
-                   for i, name in enumerate(act.names)},
-        "motors_source": act.source,
-        "integration": {"rule": "trapezoid over the path samples",
-                        "time_step": float(tr.t[1] - tr.t[0]),
-                        "largest_step_over_sigma": float(steps.max() / j.sigma),
-                        "error_estimate_max": float(np.nanmax(f.error_estimate))},
-    }
-
-
-__all__ += ["paint_report"]
+__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "gun_of",
+           "largest_scale", "max_pass_speed", "plan_paint"]

@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 from pollard_pin.dynamics.motors import load_actuators, motor_load_of
+from pollard_pin.paint.errors import PlanError
+from pollard_pin.paint.film import film_resolution, film_stats, plan_film
 from pollard_pin.paint.job import load_job
-from pollard_pin.paint.motion import PlanError
-from pollard_pin.paint.plan import film_resolution, film_stats, plan_film, plan_paint
+from pollard_pin.paint.plan import plan_paint
 from pollard_pin.paint.raster import (
     SPOT_RADIUS,
     _turn_u,

@@ -1,0 +1,58 @@
+"""The film a planned path leaves on its panel: the grid, the integration and the statistics
+(docs/model.md §20–21)."""
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+from ..analytic.taskspace import rotation
+from .deposition import Film, film
+from .errors import PlanError
+from .job import PaintJob
+from .plan import PaintPlan, gun_of
+
+
+def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
+    """The film grid spacing [m]: ``resolution`` (default σ/3), which must be > 0 and at most
+    σ: a coarser grid cannot show the ripple between passes (some 2σ apart, docs/model.md §21)."""
+    res = job.sigma / 3 if resolution is None else resolution
+    if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= job.sigma):
+        raise PlanError(f"film grid spacing {res!r} m must be > 0 and at most the spray spot's "
+                        f"σ = {job.sigma:g} m (a coarser grid cannot show the film between "
+                        "passes)")
+    return float(res)
+
+
+def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
+    """The regular grid over the panel, edges included, spacing ≤ ``resolution`` (default
+    σ/3, at most σ: :func:`film_resolution`): (U (nu,), V (nv,), world points (nv, nu, 3))."""
+    frame = plan_or_frame.frame if isinstance(plan_or_frame, PaintPlan) else plan_or_frame
+    res = film_resolution(job, resolution)
+    U = np.linspace(-job.width / 2, job.width / 2, int(math.ceil(job.width / res - 1e-9)) + 1)
+    V = np.linspace(-job.height / 2, job.height / 2,
+                    int(math.ceil(job.height / res - 1e-9)) + 1)
+    UU, VV = np.meshgrid(U, V)
+    return U, V, frame.world(UU, VV)
+
+
+def plan_film(plan: PaintPlan, resolution: float | None = None):
+    """(U, V, points (nv, nu, 3), Film over the flattened grid) of the planned path."""
+    U, V, pts = film_grid(plan, plan.job, resolution)
+    tr = plan.trajectory
+    axes = rotation(tr.poses)[:, :, 0]
+    f: Film = film(gun_of(plan.job), tr.t, tr.poses[:, :3], axes, pts.reshape(-1, 3),
+                   plan.frame.n, origin=plan.frame.c)
+    return U, V, pts, f
+
+
+def film_stats(thickness: np.ndarray, target: float) -> dict:
+    """``mean, min, max, std`` [m], ``uniformity`` (min/max) and ``within_10pct`` (the share
+    of grid points within ±10 % of the target)."""
+    th = np.asarray(thickness, dtype=float).ravel()
+    return {"mean": float(th.mean()), "min": float(th.min()), "max": float(th.max()),
+            "std": float(th.std()), "uniformity": float(th.min() / th.max()),
+            "within_10pct": float(np.mean(np.abs(th / target - 1) <= 0.10)),
+            "deviation_min": float(th.min() / target - 1),
+            "deviation_max": float(th.max() / target - 1)}
