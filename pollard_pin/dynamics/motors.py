@@ -48,7 +48,7 @@ class ActuatorError(InputError):
 
 @dataclass(frozen=True)
 class Actuator:
-    """One motor and gearbox, motor-side SI units (issue 15 file format)."""
+    """One motor and gearbox, motor-side SI units (the actuator file of docs/model.md §19)."""
 
     gear_ratio: float  # N: motor angle = N × joint angle
     rotor_inertia: float  # Jm [kg·m²]

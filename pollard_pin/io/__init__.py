@@ -1,2 +1,3 @@
-"""Data in and out: ``trajectory`` (the painting curve, trajectory CSVs), ``results`` (the run
-pipeline and its CSV), ``atomic`` (writes that never leave a half-written file)."""
+"""Data in and out: ``trajectory`` (trajectory CSVs), ``table`` (result tables, CSV or
+Parquet), ``atomic`` (writes that never leave a half-written file), ``mjcf`` (the MuJoCo
+model), ``retime`` (a retimed trajectory's file)."""

@@ -10,7 +10,7 @@ polynomial segments in time, so positions, rates and accelerations are exact:
   the spacing (a quintic smoothstep), outside the panel;
 - ramp out: from v to rest.
 
-:mod:`.timing` picks each turnaround's duration from the motors; this module only builds and
+:mod:`.plan` picks each turnaround's duration from the motors; this module only builds and
 evaluates the path.
 """
 from __future__ import annotations
@@ -24,7 +24,8 @@ from numpy.polynomial import Polynomial
 from ..analytic.taskspace import angles_from_rotation
 from .job import PaintJob
 
-SPOT_RADIUS = 4.0  # σ: the spot's reach (issue 22): constant speed while within it of the panel
+# σ: the spot's reach (docs/model.md §21): constant speed while within it of the panel
+SPOT_RADIUS = 4.0
 PROFILE_TOLERANCE = 0.01  # largest relative film deviation the pass layout allows
 TURN_SHAPE = 1  # m of the turnaround's U acceleration −c·(1 − (2x − 1)^(2m)) (see _turn_u)
 DEGREE = 7  # coefficients per segment polynomial (degree 6)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-BAND = 0.02  # the colour scale spans the target ± this share (the issue's ±2 %)
+BAND = 0.02  # the colour scale spans the target ± this share (±2 %, the planner's aim)
 
 
 def thickness_figure(U, V, thickness, target: float, path_uv=None,

@@ -1,4 +1,4 @@
-"""Fuzzing every command with bad input (issue 20 §6): malformed numbers, NaN/inf, zero and
+"""Fuzzing every command with bad input: malformed numbers, NaN/inf, zero and
 negative values, huge values, wrong units, missing/unreadable/binary/empty/non-UTF-8 files,
 folders given as files, unwritable outputs, bad --set keys and values, truncated CSVs, rows of
 NaN, time that does not increase, duplicate columns, and more.
@@ -907,7 +907,7 @@ def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch
 def test_the_fuzz_has_at_least_200_cases():
     assert len(CASES) >= 200 and len(set(IDS)) == len(IDS)
     per_command = {c: sum(argv[0] == c for argv, _ in CASES) for c in ("workspace", "paint")}
-    assert min(per_command.values()) >= 60, per_command  # issue 20 §6
+    assert min(per_command.values()) >= 60, per_command
 
 
 # --- what must still work ------------------------------------------------------------------------

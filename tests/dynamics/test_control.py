@@ -264,7 +264,7 @@ def short_csv(tmp_path_factory):
     (["--mass-error", "-2"], "mass error must be a fraction > -1"),
     (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
     (["--start", "home"], "trajectory starts off the path"),
-    # figure8 starts at home's tool pose but moving: not "off the path" (QA, issue 14)
+    # figure8 starts at home's tool pose but moving: not "off the path"
     (["--start", "home", "--trajectory", str(FIGURE8)], "trajectory starts moving"),
     (["--actuators", str(MOTORS), "--armature", "1"], "do not combine"),
     (["--actuators", "missing.toml"], "does not exist"),

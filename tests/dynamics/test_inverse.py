@@ -1,4 +1,4 @@
-"""Closed-loop dynamics (issue 4): Pinocchio vs the thesis' Euler–Lagrange method, energy
+"""Closed-loop dynamics: Pinocchio vs the thesis' Euler–Lagrange method, energy
 balance, forward-dynamics round trip and replay, statics by virtual work."""
 import os
 

@@ -14,7 +14,7 @@ from pollard_pin.dynamics.loads import cubic_mean, joint_loads, joint_loads_rnea
 from pollard_pin.io.table import column_unit
 
 G = 9.81
-# Relative to the peak force / moment over the trajectory (issue 13); the three engines and
+# Relative to the peak force / moment over the trajectory; the three engines and
 # the closed-form free body achieve 1.9e-15.
 AGREE = 2e-13
 EXACT = 1e-13  # identities that hold to round-off (achieve 1.1e-15)

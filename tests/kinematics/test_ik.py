@@ -1,4 +1,4 @@
-"""Issue 3: constrained kinematics along trajectories, checked against independent numbers.
+"""Constrained kinematics along trajectories, checked against independent numbers.
 
 - Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of
 docs/model.md §7

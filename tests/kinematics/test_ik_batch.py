@@ -1,4 +1,4 @@
-"""The batched pipeline (issue 6) equals the sample-by-sample one to 1e-12."""
+"""The batched pipeline equals the sample-by-sample one to 1e-12."""
 import numpy as np
 import pytest
 

@@ -1,4 +1,4 @@
-"""Issue 2: the foundation — parameters, URDF/SRDF, the Pinocchio model with its two loop
+"""The foundation — parameters, URDF/SRDF, the Pinocchio model with its two loop
 closures, and closure solving — checked against the numbers of docs/model.md §3–§5 and §9.
 
 The expected values below are typed in from docs/model.md (§3–§5, §9), not read from the package,
