@@ -10,9 +10,11 @@ import numpy as np
 
 from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
+from ..checks import real
 from ..model.build import Robot
 from .errors import KinematicsInputError, SingularityError, UnreachablePoseError
-from .singularity import SERIAL_FLOOR, floor_message
+from .margins import SERIAL_FLOOR, Margins, as_margins
+from .singularity import floor_message
 
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
 
@@ -154,41 +156,44 @@ def task_inputs(poses, d_poses, dd_poses, t):
     return (*arrays, t)
 
 
-def check_options(tol, singularity_margin, wrist_margin, **counts) -> None:
-    """Reject a non-finite, negative (or, for wrist_margin, > 1) margin, a tolerance that is not
-    a positive number and counts below 1, before any work (:class:`KinematicsInputError`)."""
-    rules = (("singularity_margin", singularity_margin, 0.0, np.inf, "a finite number >= 0"),
-             ("wrist_margin", wrist_margin, 0.0, 1.0,
-              "a number in [0, 1] (the smallest |sin θ1716| allowed)"),
-             ("tol", tol, np.finfo(float).tiny, np.inf, "a finite number > 0"))
-    for name, value, lo, hi, rule in rules:
-        try:
-            x = float(value)
-        except (TypeError, ValueError):
-            x = np.nan
-        if not (lo <= x <= hi and np.isfinite(x)):
-            raise KinematicsInputError(f"{name} = {value!r}: must be {rule}", chain=name)
+def check_options(tol, margins, **counts) -> Margins:
+    """The margins (a :class:`Margins`, validated when it was made; None: the defaults), after
+    rejecting a tolerance that is not a positive number and counts below 1, before any work
+    (:class:`KinematicsInputError`)."""
+    real(tol, "tol", 0.0, above=True,
+         error=lambda msg: KinematicsInputError(msg, chain="tol"))
     for name, value in counts.items():
         if not (isinstance(value, (int, np.integer)) and value >= 1):
             raise KinematicsInputError(f"{name} = {value!r}: must be an integer >= 1",
                                        chain=name)
+    return as_margins(margins)
 
 
-def closed_form_angles(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
-    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours."""
+def _wrist_error(k, tk, sin1716, margins: Margins) -> SingularityError:
+    limit = float(margins.limits()["wrist"])
+    return SingularityError(
+        floor_message("wrist |sin θ1716| =", sin1716, margins.wrist, limit, SERIAL_FLOOR)
+        + " (near the wrist singularity: spray axis parallel to the platform arm)",
+        sample=k, time=tk, chain="wrist", sigma=sin1716, amount=limit - sin1716)
+
+
+def closed_form_angles(robot: Robot, poses, t, margins: Margins) -> np.ndarray:
+    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours;
+    the wrist judged by the margin rule (:meth:`Margins.violations`) on |sin θ1716|, as the
+    IK's own check and the workspace map judge it."""
     try:
-        # The wrist's numerical floor applies even with margin 0 (docs/model.md §12).
-        limit = max(wrist_margin, SERIAL_FLOOR)
-        return closed_form.position_ik(robot.params, poses, wrist_margin=limit)[:, :12]
+        # The closed form itself refuses only an exactly singular wrist (|sin θ1716| = 0).
+        q = closed_form.position_ik(robot.params, poses)[:, :12]
     except closed_form.UnreachableError as exc:
         k, tk = exc.sample, float(t[exc.sample])
         if exc.kind == "singular" and exc.chain == "wrist":
-            raise SingularityError(
-                floor_message("wrist |sin θ1716| =", exc.ratio, wrist_margin, limit,
-                              SERIAL_FLOOR)
-                + " (near the wrist singularity: spray axis parallel to the platform arm)",
-                sample=k, time=tk, chain="wrist", sigma=exc.ratio,
-                amount=limit - exc.ratio) from None
+            raise _wrist_error(k, tk, exc.ratio, margins) from None
         msg = str(exc).replace(f" at sample {exc.sample}", "")  # the prefix says where
         cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
         raise cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall) from None
+    wrist = np.abs(np.sin(q[:, robot.idx_q("theta1716")]))
+    bad = np.flatnonzero(margins.violations(wrist=wrist)["wrist"])
+    if len(bad):
+        k = int(bad[0])
+        raise _wrist_error(k, float(t[k]), float(wrist[k]), margins)
+    return q
