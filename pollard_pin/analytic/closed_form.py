@@ -287,8 +287,10 @@ def make_continuous(q: np.ndarray, reference=None) -> np.ndarray:
     """Shift sample 0 by 2πk into (−π, π] (or nearest ``reference``), then unwrap along axis 0."""
     q = np.asarray(q, dtype=float)
     ref = np.zeros(q.shape[1]) if reference is None else np.asarray(reference, dtype=float)
-    shift = ref + _wrap(q[0] - ref) - q[0]
-    return np.unwrap(q + shift, axis=0)
+    # Whole turns: an angle already in place is left bit for bit, so every caller of the
+    # closed form sees the same |sin θ1716| (the margin rule, docs/model.md §12).
+    turns = np.round((ref + _wrap(q[0] - ref) - q[0]) / (2.0 * np.pi))
+    return np.unwrap(q + 2.0 * np.pi * turns, axis=0)
 
 
 def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.ndarray:

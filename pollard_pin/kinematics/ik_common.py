@@ -12,7 +12,12 @@ from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
 from ..checks import real
 from ..model.build import Robot
-from .errors import KinematicsInputError, SingularityError, UnreachablePoseError
+from .errors import (
+    KinematicsError,
+    KinematicsInputError,
+    SingularityError,
+    UnreachablePoseError,
+)
 from .margins import SERIAL_FLOOR, Margins, as_margins
 from .singularity import floor_message
 
@@ -177,23 +182,34 @@ def _wrist_error(k, tk, sin1716, margins: Margins) -> SingularityError:
         sample=k, time=tk, chain="wrist", sigma=sin1716, amount=limit - sin1716)
 
 
-def closed_form_angles(robot: Robot, poses, t, margins: Margins) -> np.ndarray:
-    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours;
-    the wrist judged by the margin rule (:meth:`Margins.violations`) on |sin θ1716|, as the
-    IK's own check and the workspace map judge it."""
+def closed_form_angles(robot: Robot, poses, t, margins: Margins | None) -> np.ndarray:
+    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours, in
+    the closed form's order: chain 0 out of reach, then the wrist, judged by the margin rule
+    (:meth:`Margins.violations`; not judged for None) on |sin θ1716| of these very angles as
+    the workspace map judges it, then the legs; each at its first sample."""
+    q18, failed = closed_form.position_ik_masked(robot.params, poses)
+    if failed["chain 0"].any():
+        raise _closed_form_error(robot, poses, t)
+    if margins is not None:
+        wrist = np.abs(np.sin(q18[:, closed_form.JOINTS.index("theta1716")]))
+        bad = margins.violations(wrist=wrist)["wrist"]
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise _wrist_error(k, float(t[k]), float(wrist[k]), margins)
+    if any(f.any() for f in failed.values()):
+        raise _closed_form_error(robot, poses, t)
+    return closed_form.make_continuous(q18[:, :12])
+
+
+def _closed_form_error(robot: Robot, poses, t) -> KinematicsError:
+    """The closed form's own error (it names the chain and the shortfall) as ours."""
     try:
-        # The closed form itself refuses only an exactly singular wrist (|sin θ1716| = 0).
-        q = closed_form.position_ik(robot.params, poses)[:, :12]
+        closed_form.position_ik(robot.params, poses)
     except closed_form.UnreachableError as exc:
         k, tk = exc.sample, float(t[exc.sample])
-        if exc.kind == "singular" and exc.chain == "wrist":
-            raise _wrist_error(k, tk, exc.ratio, margins) from None
+        if exc.kind == "singular" and exc.chain == "wrist":  # |sin θ1716| exactly 0
+            return _wrist_error(k, tk, exc.ratio, Margins(0.0, 0.0))
         msg = str(exc).replace(f" at sample {exc.sample}", "")  # the prefix says where
         cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
-        raise cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall) from None
-    wrist = np.abs(np.sin(q[:, robot.idx_q("theta1716")]))
-    bad = np.flatnonzero(margins.violations(wrist=wrist)["wrist"])
-    if len(bad):
-        k = int(bad[0])
-        raise _wrist_error(k, float(t[k]), float(wrist[k]), margins)
-    return q
+        return cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall)
+    return UnreachablePoseError("the closed form has no solution")  # not reached: it raised

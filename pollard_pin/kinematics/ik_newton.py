@@ -178,7 +178,8 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
     stats = np.empty((n, 7))
     if q_start is None:  # docs/model.md §9 branches, through the closed form at the first pose
-        q = closed_form_angles(robot, poses[:1], t[:1], margins)[0]
+        # a start only: the margins judge the solution Newton reports (_stop, check_margins)
+        q = closed_form_angles(robot, poses[:1], t[:1], None)[0]
     else:
         q = _start_configuration(robot, q_start)
 
