@@ -14,7 +14,7 @@ from ..dynamics.inverse import batched_rnea, split_tree_torques
 from ..dynamics.motors import Actuators
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
-from ..kinematics.margins import CHECKS, SIGMA_FLOOR, Margins
+from ..kinematics.margins import CHECKS, Margins
 from ..kinematics.singularity import conditioning, sigma_range
 from ..model.names import CHAINS, JOINTS, TREE_JOINTS
 
@@ -29,6 +29,7 @@ REASONS = (("reachable",)
 _REACH = 1  # first reach code
 _LIMIT = _REACH + len(CHAINS)  # first joint-limit code
 _MARGIN = _LIMIT + 2 * len(TREE_JOINTS)  # wrist, parallel, serial, spherical 1, 2
+FLOORS_ONLY = Margins(0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -95,7 +96,8 @@ def evaluate(robot, poses: np.ndarray, options: ReachOptions = ReachOptions()) -
     out = {"reachable": (reason == 0).astype(float), "reason": reason, **out}
     if options.actuators is not None:
         cap = nan.copy()
-        ok = np.isfinite(sp) & (sp >= SIGMA_FLOOR * sp_max)  # Jc_p invertible: torques exist
+        # Jc_p invertible (the parallel floor alone): torques exist
+        ok = ~FLOORS_ONLY.violations(parallel=sp, parallel_max=sp_max)["parallel"]
         cap[solved[ok]] = payload_capacity(robot, options.actuators, qs[ok], K[ok])
         out["payload_capacity"] = cap
     return out
