@@ -59,27 +59,28 @@ class Margins:
     def limits(self, parallel_max=1.0, serial_max=1.0) -> dict:
         """{check: limit} (:data:`CHECKS`): each margin raised to its numerical floor, the σ
         floors relative to the map's σ_max (scalars or arrays)."""
+        return {c: self._limit(c, parallel_max, serial_max) for c in CHECKS}
+
+    def _limit(self, check, parallel_max, serial_max):
         import numpy as np
 
-        scale = {"parallel": np.asarray(parallel_max), "serial": np.asarray(serial_max)}
-        return {c: np.maximum(self.margin(c), FLOORS[c] * scale.get(c, 1.0)) for c in CHECKS}
+        scale = {"parallel": parallel_max, "serial": serial_max}.get(check, 1.0)
+        return np.maximum(self.margin(check), FLOORS[check] * np.asarray(scale, dtype=float))
 
     def violations(self, *, wrist=None, parallel=None, serial=None, parallel_max=1.0,
                    serial_max=1.0, spherical=None) -> dict:
         """THE margin rule (docs/model.md §12), vectorised: {check: boolean mask} for the
         values given — ``wrist`` |sin θ1716|, ``parallel`` and ``serial`` σ_min (their σ_max
         scale the floors), ``spherical`` the pair of |sin θ109_i| arrays. A value violates
-        its check when it is below the limit of :meth:`limits` or NaN; a value EQUAL to the
+        its check when it is below its limit (:meth:`limits`) or NaN; a value EQUAL to the
         limit passes (value ≥ limit is the test)."""
         import numpy as np
 
-        lim = self.limits(parallel_max, serial_max)
         given = {"wrist": wrist, "parallel": parallel, "serial": serial}
         if spherical is not None:
             given["spherical joint 1"], given["spherical joint 2"] = spherical
-        with np.errstate(invalid="ignore"):
-            return {c: ~(np.asarray(v, dtype=float) >= lim[c])
-                    for c, v in given.items() if v is not None}
+        return {c: ~(np.asarray(v, dtype=float) >= self._limit(c, parallel_max, serial_max))
+                for c, v in given.items() if v is not None}
 
     def as_dict(self) -> dict:
         """The margins under their option names (run's and workspace's metadata)."""
