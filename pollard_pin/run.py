@@ -13,6 +13,7 @@ from .dynamics.averages import time_mean, time_rms
 from .io.table import TableWriter, write_table
 from .io.trajectory import Trajectory
 from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
+from .kinematics.margins import Margins
 from .model.names import SPHERICAL
 
 
@@ -43,14 +44,15 @@ class RunResult:
 
 
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
-                 loads: bool = False, **ik_options) -> RunResult:
-    """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
-    :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``).
+                 loads: bool = False, *, margins: Margins | None = None,
+                 method: str | None = None) -> RunResult:
+    """IK (and inverse dynamics) along a trajectory: ``margins`` (:class:`Margins`, default
+    its defaults) and ``method`` go to :func:`~pollard_pin.kinematics.inverse_kinematics`.
     ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``)."""
     from .dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
-                            progress=progress, **ik_options)
+                            progress=progress, margins=margins, method=method)
     dyn = inverse_dynamics(robot, ik) if dynamics or loads else None
     if not loads:
         return RunResult(traj, ik, dyn if dynamics else None)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import real
 from ..errors import InputError
 from ..model.names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
 from . import jet as J
@@ -64,14 +65,15 @@ class UnreachableError(InputError):
 
 
 class WristSingularError(UnreachableError):
-    """θ1716 at (or within ``wrist_margin`` of) 0 or π: the XZX wrist loses a DOF (docs/model.md
-    §3)."""
+    """θ1716 at 0 or π, or |sin θ1716| below ``wrist_margin`` (docs/model.md §12): the XZX
+    wrist loses a DOF (docs/model.md §3)."""
 
     kind = "singular"
 
     def __init__(self, sample: int, sin1716: float, margin: float, count: int = 1):
-        msg = (f"wrist is singular at sample {sample}: |sin θ1716| = {sin1716:.6g} "
-               f"<= wrist_margin = {margin:.6g} (spray axis parallel to the platform arm)")
+        below = "is 0" if sin1716 == 0.0 else f"< wrist_margin = {margin:.6g}"
+        msg = (f"wrist is singular at sample {sample}: |sin θ1716| = {sin1716:.6g} {below} "
+               "(spray axis parallel to the platform arm)")
         if count > 1:
             msg += f"; {count} samples fail in all"
         super().__init__("wrist", sample, margin - sin1716, sin1716, count=count, message=msg)
@@ -187,7 +189,8 @@ def _solve(p, pose, wrist_margin=0.0, spherical=True, frames=None, failures=None
     M = J.rot_left(2, -q["theta54"], J.rot_left(1, -a, R))
     c1716 = _unit(M[..., 0, 0])[0]
     s1716 = np.sqrt(1.0 - value(c1716) ** 2)
-    bad = s1716 <= wrist_margin
+    # The margin rule of docs/model.md §12 (equal passes), and an exactly singular wrist never.
+    bad = (s1716 < wrist_margin) | (s1716 == 0.0)
     if failures is None and bad.any():
         rows = _per_sample(bad)
         k = int(np.argmax(rows))
@@ -255,14 +258,9 @@ def as_poses(poses, prefix: str = "") -> np.ndarray:
 
 
 def _check_wrist_margin(wrist_margin) -> float:
-    try:
-        m = float(wrist_margin)
-    except (TypeError, ValueError):
-        m = np.nan
-    if not 0.0 <= m <= 1.0:  # NaN fails too
-        raise TaskInputError(f"wrist_margin = {wrist_margin!r} must be a number in [0, 1] "
-                             "(the smallest |sin θ1716| allowed)", column="wrist_margin")
-    return m
+    return real(wrist_margin, "wrist_margin", 0.0, 1.0,
+                why=" (the smallest |sin θ1716| allowed, in [0, 1])",
+                error=lambda msg: TaskInputError(msg, column="wrist_margin"))
 
 
 def _check_rates(q: Jet, names) -> None:
@@ -289,8 +287,10 @@ def make_continuous(q: np.ndarray, reference=None) -> np.ndarray:
     """Shift sample 0 by 2πk into (−π, π] (or nearest ``reference``), then unwrap along axis 0."""
     q = np.asarray(q, dtype=float)
     ref = np.zeros(q.shape[1]) if reference is None else np.asarray(reference, dtype=float)
-    shift = ref + _wrap(q[0] - ref) - q[0]
-    return np.unwrap(q + shift, axis=0)
+    # Whole turns: an angle already in place is left bit for bit, so every caller of the
+    # closed form sees the same |sin θ1716| (the margin rule, docs/model.md §12).
+    turns = np.round((ref + _wrap(q[0] - ref) - q[0]) / (2.0 * np.pi))
+    return np.unwrap(q + 2.0 * np.pi * turns, axis=0)
 
 
 def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.ndarray:

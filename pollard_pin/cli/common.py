@@ -215,6 +215,28 @@ def simulation_table(path):
     return table
 
 
+def margin_args(p) -> None:
+    """--wrist-margin and --singularity-margin (docs/model.md §12), for :func:`margins_of`."""
+    from ..kinematics.margins import SINGULARITY_MARGIN, WRIST_MARGIN
+
+    p.add_argument("--wrist-margin", type=fraction, default=WRIST_MARGIN,
+                   help="smallest |sin θ1716| allowed: a pose below it fails (equal passes)")
+    p.add_argument("--singularity-margin", type=nonnegative, default=SINGULARITY_MARGIN,
+                   help="smallest parallel and serial σ_min allowed: a pose below it fails "
+                        "(equal passes)")
+
+
+def margins_of(args):
+    """The :class:`~pollard_pin.kinematics.margins.Margins` of the flags, built once."""
+    from ..kinematics.margins import MarginError, Margins
+
+    try:
+        return Margins(args.wrist_margin, args.singularity_margin)
+    except MarginError as exc:  # the library speaks of the value; name the flag
+        flag = "--wrist-margin" if str(exc).startswith("wrist") else "--singularity-margin"
+        raise UsageError(f"{flag}: {exc}") from None
+
+
 def command(sub, parents, name: str, help: str, run):
     """The subparser of one command, running ``run(args)``."""
     p = sub.add_parser(name, help=help, description=help, parents=parents,

@@ -10,12 +10,12 @@ from .common import (
     STDOUT,
     command,
     count,
-    fraction,
     load_robot,
     load_trajectory,
     log,
+    margin_args,
+    margins_of,
     name,
-    nonnegative,
     progress,
     trajectory_args,
     wrote,
@@ -29,6 +29,7 @@ def run(args) -> int:
     from ..run import stream_run, summary
 
     check_destination(args.out)
+    margins = margins_of(args)
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)
     n = len(traj)
@@ -38,17 +39,14 @@ def run(args) -> int:
                 "parameters": robot.params.to_toml_dict(),
                 "trajectory": {"name": traj.name, "source": args.trajectory, "samples": n,
                                "derivatives": traj.derivatives},
-                "options": {"wrist_margin": args.wrist_margin,
-                            "singularity_margin": args.singularity_margin,
-                            "loads": args.loads}}
+                "options": {**margins.as_dict(), "loads": args.loads}}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
                                   -(-n // (STREAM_WINDOW - 1)))  # no idle threads
     stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
                        workers=workers,
                        progress=progress("solving", n >= 500 and not args.quiet),
-                       wrist_margin=args.wrist_margin,
-                       singularity_margin=args.singularity_margin, loads=args.loads)
+                       margins=margins, loads=args.loads)
     wall, write = timings["wall"], timings["write"]
     text = summary(stats) + (
         f"\nsolved and written in {wall:.3f} s ({1e6 * wall / n:.2f} µs/sample, the first "
@@ -67,8 +65,6 @@ def _fmt_mb(mb: float | None) -> str:
 
 
 def add_parser(sub, parents) -> None:
-    from ..kinematics.margins import SINGULARITY_MARGIN, WRIST_MARGIN
-
     p = command(sub, parents, "run",
                 "solve a trajectory: kinematics and dynamics → CSV or Parquet", run)
     trajectory_args(p)
@@ -76,10 +72,7 @@ def add_parser(sub, parents) -> None:
                    help="output table: CSV with a NAME.units.json sidecar, or Parquet (zstd, "
                         "units and metadata inside) for a .parquet name; '-': CSV on standard "
                         "output")
-    p.add_argument("--wrist-margin", type=fraction, default=WRIST_MARGIN,
-                   help="fail where |sin θ1716| drops below this")
-    p.add_argument("--singularity-margin", type=nonnegative, default=SINGULARITY_MARGIN,
-                   help="fail where the parallel or serial σ_min drops below this")
+    margin_args(p)
     p.add_argument("--loads", action="store_true",
                    help="also write the load of every tree joint: F_<joint>_x/y/z [N] and "
                         "M_<joint>_x/y/z [N·m], world axes (docs/model.md §17)")

@@ -11,11 +11,11 @@ from .common import (
     UsageError,
     command,
     count,
-    fraction,
     load_robot,
+    margin_args,
+    margins_of,
     model_args,
     name,
-    nonnegative,
     positive,
     progress,
     wrote,
@@ -26,8 +26,6 @@ DEFAULT_PLANE = "x=0.55"
 
 
 def add_parser(sub, parents) -> None:
-    from ..kinematics.margins import SINGULARITY_MARGIN, WRIST_MARGIN
-
     p = command(sub, parents, "workspace", HELP, run)
     where = p.add_mutually_exclusive_group()
     where.add_argument("--plane", metavar="AXIS=VALUE", default=None,
@@ -45,11 +43,7 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="actuator file: adds each point's payload capacity (default: none)")
     model_args(p)
-    p.add_argument("--wrist-margin", type=fraction, default=WRIST_MARGIN,
-                   help="smallest |sin θ1716| allowed")
-    p.add_argument("--singularity-margin", type=nonnegative,
-                   default=SINGULARITY_MARGIN,
-                   help="smallest σ_parallel and σ_serial allowed")
+    margin_args(p)
     p.add_argument("--out", type=name, default="workspace", metavar="DIR",
                    help="output folder")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
@@ -110,6 +104,7 @@ def run(args) -> int:
     from ..workspace.grid import WorkspaceError, map_workspace, parse_plane
 
     orientation = parse_orientation(args.orientation)
+    margins = margins_of(args)
     bounds = parse_bounds(args.bounds)
     plane = None if args.volume else DEFAULT_PLANE if args.plane is None else args.plane
     if plane is not None:
@@ -133,8 +128,7 @@ def run(args) -> int:
 
         act = load_actuators(args.actuators)
     options = dict(orientation=orientation, resolution=args.resolution, bounds=bounds,
-                   actuators=act, wrist_margin=args.wrist_margin,
-                   singularity_margin=args.singularity_margin,
+                   actuators=act, margins=margins,
                    progress=progress("mapping", not args.quiet))
     metadata = {"command": "workspace", "parameters_source": str(robot.params.source),
                 "parameters": robot.params.to_toml_dict(),

@@ -55,8 +55,9 @@ class KinematicsError(SolveError):
 class KinematicsInputError(KinematicsError, ValueError):
     """An argument is invalid before any kinematics runs: empty or mis-shaped arrays, a
     non-finite or absurd pose component (``chain`` names the column, e.g. ``"d_psi"``),
-    times that do not increase, a negative or NaN margin. Both a :class:`KinematicsError`
-    (sample and time when known) and a :class:`ValueError`."""
+    times that do not increase, a tolerance that is not > 0 (a bad margin is a
+    :class:`~.margins.MarginError` when the :class:`~.margins.Margins` is made). Both a
+    :class:`KinematicsError` (sample and time when known) and a :class:`ValueError`."""
 
 
 class UnreachablePoseError(KinematicsError):

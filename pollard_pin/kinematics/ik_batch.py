@@ -21,13 +21,8 @@ from .ik_common import (
     zyz,
     zyz_rates,
 )
-from .singularity import (
-    SINGULARITY_MARGIN,
-    WRIST_MARGIN,
-    check_margins,
-    conditioning,
-    inverse_stack,
-)
+from .margins import Margins
+from .singularity import check_margins, conditioning, inverse_stack
 from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
 
 
@@ -128,9 +123,8 @@ POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step 
 
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
-                             tol: float = IK_TOL,
-                             singularity_margin: float = SINGULARITY_MARGIN,
-                             wrist_margin: float = WRIST_MARGIN, progress=None,
+                             tol: float = IK_TOL, margins: Margins | None = None,
+                             progress=None,
                              chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples.
 
@@ -149,11 +143,11 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     and :func:`~.singularity.check_margins` raises :class:`SingularityError` at the first
     singular (or margin-violating) sample, naming its time, chain and σ.
     """
-    check_options(tol, singularity_margin, wrist_margin, chunk=chunk)
+    margins = check_options(tol, margins, chunk=chunk)
     clock = Stopwatch(timings)
     poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
-    q0 = closed_form_angles(robot, poses, t, wrist_margin)
+    q0 = closed_form_angles(robot, poses, t, margins)
     clock.lap("position")
     parts = []
     for start in range(0, n, chunk):
@@ -168,7 +162,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
         result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
                                  if f != "joint_names" else parts[0].joint_names)
                              for f in IKResult.__dataclass_fields__})
-    check_margins(robot, result, singularity_margin, wrist_margin)
+    check_margins(robot, result, margins)
     clock.lap("analysis")
     return result
 

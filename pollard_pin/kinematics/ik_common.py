@@ -10,9 +10,16 @@ import numpy as np
 
 from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
+from ..checks import real
 from ..model.build import Robot
-from .errors import KinematicsInputError, SingularityError, UnreachablePoseError
-from .singularity import SERIAL_FLOOR, floor_message
+from .errors import (
+    KinematicsError,
+    KinematicsInputError,
+    SingularityError,
+    UnreachablePoseError,
+)
+from .margins import SERIAL_FLOOR, Margins, as_margins
+from .singularity import floor_message
 
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
 
@@ -154,41 +161,55 @@ def task_inputs(poses, d_poses, dd_poses, t):
     return (*arrays, t)
 
 
-def check_options(tol, singularity_margin, wrist_margin, **counts) -> None:
-    """Reject a non-finite, negative (or, for wrist_margin, > 1) margin, a tolerance that is not
-    a positive number and counts below 1, before any work (:class:`KinematicsInputError`)."""
-    rules = (("singularity_margin", singularity_margin, 0.0, np.inf, "a finite number >= 0"),
-             ("wrist_margin", wrist_margin, 0.0, 1.0,
-              "a number in [0, 1] (the smallest |sin θ1716| allowed)"),
-             ("tol", tol, np.finfo(float).tiny, np.inf, "a finite number > 0"))
-    for name, value, lo, hi, rule in rules:
-        try:
-            x = float(value)
-        except (TypeError, ValueError):
-            x = np.nan
-        if not (lo <= x <= hi and np.isfinite(x)):
-            raise KinematicsInputError(f"{name} = {value!r}: must be {rule}", chain=name)
+def check_options(tol, margins, **counts) -> Margins:
+    """The margins (a :class:`Margins`, validated when it was made; None: the defaults), after
+    rejecting a tolerance that is not a positive number and counts below 1, before any work
+    (:class:`KinematicsInputError`)."""
+    real(tol, "tol", 0.0, above=True,
+         error=lambda msg: KinematicsInputError(msg, chain="tol"))
     for name, value in counts.items():
         if not (isinstance(value, (int, np.integer)) and value >= 1):
             raise KinematicsInputError(f"{name} = {value!r}: must be an integer >= 1",
                                        chain=name)
+    return as_margins(margins)
 
 
-def closed_form_angles(robot: Robot, poses, t, wrist_margin=0.0) -> np.ndarray:
-    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours."""
+def _wrist_error(k, tk, sin1716, margins: Margins) -> SingularityError:
+    limit = float(margins.limits()["wrist"])
+    return SingularityError(
+        floor_message("wrist |sin θ1716| =", sin1716, margins.wrist, limit, SERIAL_FLOOR)
+        + " (near the wrist singularity: spray axis parallel to the platform arm)",
+        sample=k, time=tk, chain="wrist", sigma=sin1716, amount=limit - sin1716)
+
+
+def closed_form_angles(robot: Robot, poses, t, margins: Margins | None) -> np.ndarray:
+    """Closed-form tree angles (N, 12) on docs/model.md §9 branches, errors mapped to ours, in
+    the closed form's order: chain 0 out of reach, then the wrist, judged by the margin rule
+    (:meth:`Margins.violations`; not judged for None) on |sin θ1716| of these very angles as
+    the workspace map judges it, then the legs; each at its first sample."""
+    q18, failed = closed_form.position_ik_masked(robot.params, poses)
+    if failed["chain 0"].any():
+        raise _closed_form_error(robot, poses, t)
+    if margins is not None:
+        wrist = np.abs(np.sin(q18[:, closed_form.JOINTS.index("theta1716")]))
+        bad = margins.violations(wrist=wrist)["wrist"]
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise _wrist_error(k, float(t[k]), float(wrist[k]), margins)
+    if any(f.any() for f in failed.values()):
+        raise _closed_form_error(robot, poses, t)
+    return closed_form.make_continuous(q18[:, :12])
+
+
+def _closed_form_error(robot: Robot, poses, t) -> KinematicsError:
+    """The closed form's own error (it names the chain and the shortfall) as ours."""
     try:
-        # The wrist's numerical floor applies even with margin 0 (docs/model.md §12).
-        limit = max(wrist_margin, SERIAL_FLOOR)
-        return closed_form.position_ik(robot.params, poses, wrist_margin=limit)[:, :12]
+        closed_form.position_ik(robot.params, poses)
     except closed_form.UnreachableError as exc:
         k, tk = exc.sample, float(t[exc.sample])
-        if exc.kind == "singular" and exc.chain == "wrist":
-            raise SingularityError(
-                floor_message("wrist |sin θ1716| =", exc.ratio, wrist_margin, limit,
-                              SERIAL_FLOOR)
-                + " (near the wrist singularity: spray axis parallel to the platform arm)",
-                sample=k, time=tk, chain="wrist", sigma=exc.ratio,
-                amount=limit - exc.ratio) from None
+        if exc.kind == "singular" and exc.chain == "wrist":  # |sin θ1716| exactly 0
+            return _wrist_error(k, tk, exc.ratio, Margins(0.0, 0.0))
         msg = str(exc).replace(f" at sample {exc.sample}", "")  # the prefix says where
         cls = SingularityError if exc.kind == "singular" else UnreachablePoseError
-        raise cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall) from None
+        return cls(msg, sample=k, time=tk, chain=exc.chain, amount=exc.shortfall)
+    return UnreachablePoseError("the closed form has no solution")  # not reached: it raised

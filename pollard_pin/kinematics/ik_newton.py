@@ -20,11 +20,8 @@ from .ik_common import (
     zyz,
     zyz_rates,
 )
+from .margins import Margins
 from .singularity import (
-    SERIAL_FLOOR,
-    SIGMA_FLOOR,
-    SINGULARITY_MARGIN,
-    WRIST_MARGIN,
     BranchQuantities,
     check_margins,
     conditioning,
@@ -120,10 +117,10 @@ def _follow(solve, signs_of, q0, pose_a, pose_b, ref):
     return q, e, True, None
 
 
-def _diagnose(robot: Robot, pose, k, tk, e, wrist_margin):
+def _diagnose(robot: Robot, pose, k, tk, e, margins: Margins):
     """Why Newton failed at sample k: the closed form names the chain and the shortfall."""
     try:
-        closed_form_angles(robot, np.asarray(pose)[None, :], np.array([tk]), wrist_margin)
+        closed_form_angles(robot, np.asarray(pose)[None, :], np.array([tk]), margins)
     except KinematicsError as exc:
         extra = {"sigma": exc.sigma} if isinstance(exc, SingularityError) else {}
         return type(exc)(exc.detail, sample=k, time=tk, chain=exc.chain, amount=exc.amount,
@@ -143,18 +140,17 @@ def _start_configuration(robot: Robot, q_start) -> np.ndarray:
     return q.copy()
 
 
-def _stop(stats_row, singularity_margin, wrist_margin) -> bool:
+def _stop(stats_row, margins: Margins) -> bool:
     """A margin or numerical floor is crossed at this sample (check_margins names it)."""
     _, _, wrist, sp, ss, sp_max, ss_max = stats_row
-    return not (wrist >= max(wrist_margin, SERIAL_FLOOR)
-                and sp >= max(singularity_margin, SIGMA_FLOOR * sp_max)
-                and ss >= max(singularity_margin, SERIAL_FLOOR * ss_max))
+    bad = margins.violations(wrist=wrist, parallel=sp, serial=ss, parallel_max=sp_max,
+                             serial_max=ss_max)
+    return any(bool(b) for b in bad.values())
 
 
 def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                               q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
-                              singularity_margin: float = SINGULARITY_MARGIN,
-                              wrist_margin: float = WRIST_MARGIN, progress=None) -> IKResult:
+                              margins: Margins | None = None, progress=None) -> IKResult:
     """Sample-by-sample constrained IK.
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
@@ -169,7 +165,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
     """
-    check_options(tol, singularity_margin, wrist_margin, max_iter=max_iter)
+    margins = check_options(tol, margins, max_iter=max_iter)
     model, data = robot.model, robot.data
     cms, cds = robot.constraint_models, robot.constraint_datas
     fr = KinematicFrames.of(robot)
@@ -182,7 +178,8 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     sph, dsph = np.empty((n, 6)), np.empty((n, 6))
     stats = np.empty((n, 7))
     if q_start is None:  # docs/model.md §9 branches, through the closed form at the first pose
-        q = closed_form_angles(robot, poses[:1], t[:1], wrist_margin)[0]
+        # a start only: the margins judge the solution Newton reports (_stop, check_margins)
+        q = closed_form_angles(robot, poses[:1], t[:1], None)[0]
     else:
         q = _start_configuration(robot, q_start)
 
@@ -215,7 +212,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
                                      near=float(t[k - 1] + s_ * dt))
                 signs = branch.signs_list(q)
         if not ok:
-            raise _diagnose(robot, poses[k], k, t[k], e, wrist_margin)
+            raise _diagnose(robot, poses[k], k, t[k], e, margins)
         # The reference keeps the last non-zero sign (a zero is a boundary: no information).
         ref = signs if ref is None else [s if s else r for s, r in zip(signs, ref)]
         K = kinematic_matrix(model, data, cms, cds, fr, q)
@@ -235,7 +232,7 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
         out["q"][k], out["v"][k], out["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
-        if (_stop(stats[k], singularity_margin, wrist_margin)
+        if (_stop(stats[k], margins)
                 or not math.isfinite(float(v.sum() + a.sum()))):  # NaN or inf anywhere
             n = k + 1  # stop here: the check below raises at the first offending sample
             break
@@ -245,5 +242,5 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
                       wrist_margin=stats[:n, 2], sigma_parallel=stats[:n, 3],
                       sigma_serial=stats[:n, 4], joint_names=robot.joint_names,
                       sigma_parallel_max=stats[:n, 5], sigma_serial_max=stats[:n, 6])
-    check_margins(robot, result, singularity_margin, wrist_margin)
+    check_margins(robot, result, margins)
     return result

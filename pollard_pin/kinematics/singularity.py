@@ -9,17 +9,16 @@ import numpy as np
 
 from . import kernels
 from .errors import BranchFlipError, SingularityError
-from .margins import SINGULARITY_MARGIN, WRIST_MARGIN  # noqa: F401  (the defaults, re-exported)
+from .margins import (  # noqa: F401  (re-exported: the defaults, floors and the rule's home)
+    CHECKS,
+    FLOORS,
+    SERIAL_FLOOR,
+    SIGMA_FLOOR,
+    SINGULARITY_MARGIN,
+    WRIST_MARGIN,
+    Margins,
+)
 
-# Numerical floors, relative to σ_max of the same matrix; they apply whatever the margins
-# (even 0), so an exactly or numerically singular sample is always rejected (docs/model.md §12).
-# A solve with condition κ = σ_max/σ_min loses log10 κ digits: SIGMA_FLOOR keeps its relative
-# error ≲ κ ε ≈ 2e-6. A serial singularity is a fold of the IK (an arccos at ±1): there the
-# positions themselves move by ≈ ε/σ, so rates err by ≈ ε/σ² (measured on a leg's reach
-# boundary: 1-ulp pose changes move the joint rates by ≈ 0.6 ε/σ²); the same 2e-6 budget
-# needs σ ≥ √SIGMA_FLOOR = 1e-5 there (and for |sin θ1716|, the wrist's own fold).
-SIGMA_FLOOR = 1e-10  # parallel map, spherical-joint ZYZ rates, the dynamics' Jc_pᵀ split
-SERIAL_FLOOR = 1e-5  # serial map and |sin θ1716|
 # σ_min from the Gram matrix's eigenvalues errs by ≈ 3 ε (σ_max/σ_min)² relatively: below this
 # ratio (error ≳ 1e-7) it is recomputed by SVD.
 GRAM_TRUSTED = 1e-4
@@ -254,6 +253,16 @@ def _first_flip(robot, q):
     return best
 
 
+# How check_margins names each check of CHECKS: the quantity, and why it matters.
+_LABELS = {"wrist": ("wrist |sin θ1716| =", " (spray axis nearly parallel to the platform arm)"),
+           "parallel": ("parallel (passive-joint constraint Jacobian) smallest singular value",
+                        ""),
+           "serial": ("serial (actuator-rate to tool-twist map) smallest singular value", ""),
+           **{f"spherical joint {i}": (f"|sin θ109_{i}| =",
+                                       f" (θ98_{i}, θ1110_{i} and their rates are undefined "
+                                       "there)") for i in (1, 2)}}
+
+
 def floor_message(label, v, margin, limit, floor) -> str:
     """'<label> v is below the margin m', or, when the floor (``limit``) is the larger, that v
     is at round-off level."""
@@ -264,36 +273,36 @@ def floor_message(label, v, margin, limit, floor) -> str:
             "docs/model.md §12)")
 
 
-def check_margins(robot, r, singularity_margin, wrist_margin):
-    """Raise at the first sample closer to a singularity than the margins or the numerical
-    floors (SIGMA_FLOOR, SERIAL_FLOOR: even with margins 0), with non-finite results, or
-    whose assembly-branch signs differ from the previous sample's (a real branch flip)."""
+def check_margins(robot, r, margins: Margins):
+    """Raise at the first sample that violates :meth:`Margins.violations` (the margins raised
+    to the numerical floors SIGMA_FLOOR, SERIAL_FLOOR: even with margins 0), with non-finite
+    results, or whose assembly-branch signs differ from the previous sample's (a real branch
+    flip)."""
     n = len(r)
-    one = np.ones(n)
-    sp_max = one if getattr(r, "sigma_parallel_max", None) is None else r.sigma_parallel_max
-    ss_max = one if getattr(r, "sigma_serial_max", None) is None else r.sigma_serial_max
-    checks = [(r.wrist_margin, wrist_margin, SERIAL_FLOOR * one, SERIAL_FLOOR, "wrist",
-               "wrist |sin θ1716| =", " (spray axis nearly parallel to the platform arm)"),
-              (r.sigma_parallel, singularity_margin, SIGMA_FLOOR * sp_max, SIGMA_FLOOR,
-               "parallel", "parallel (passive-joint constraint Jacobian) smallest singular "
-               "value", ""),
-              (r.sigma_serial, singularity_margin, SERIAL_FLOOR * ss_max, SERIAL_FLOOR,
-               "serial", "serial (actuator-rate to tool-twist map) smallest singular value",
-               "")]
-    for i in (1, 2):  # the cut spherical joints' ZYZ angles: rates undefined at sin θ109 = 0
-        checks.append((np.abs(np.sin(r.spherical[:, 3 * i - 2])), 0.0, SIGMA_FLOOR * one,
-                       SIGMA_FLOOR, f"spherical joint {i}", f"|sin θ109_{i}| =",
-                       f" (θ98_{i}, θ1110_{i} and their rates are undefined there)"))
+    sp_max = getattr(r, "sigma_parallel_max", None)
+    ss_max = getattr(r, "sigma_serial_max", None)
+    sp_max, ss_max = (np.ones(n) if m is None else m for m in (sp_max, ss_max))
+    values = {"wrist": r.wrist_margin, "parallel": r.sigma_parallel,
+              "serial": r.sigma_serial}
+    # The cut spherical joints' ZYZ angles: rates undefined at sin θ109 = 0.
+    sph = [np.abs(np.sin(r.spherical[:, 3 * i - 2])) for i in (1, 2)]
+    values["spherical joint 1"], values["spherical joint 2"] = sph
+    bad = margins.violations(wrist=values["wrist"], parallel=values["parallel"],
+                             serial=values["serial"], parallel_max=sp_max,
+                             serial_max=ss_max, spherical=sph)
+    limits = margins.limits(sp_max, ss_max)
     first = None
-    for values, margin, floor_abs, floor, chain, label, why in checks:
-        limit = np.maximum(margin, floor_abs)
-        bad = np.flatnonzero(~(values >= limit))  # NaN fails too
-        if len(bad) and (first is None or bad[0] < first[0]):
-            k = int(bad[0])
-            v, lim = float(values[k]), float(limit[k])
+    for check in CHECKS:
+        k = np.flatnonzero(bad[check])
+        if len(k) and (first is None or k[0] < first[0]):
+            k = int(k[0])
+            v = float(values[check][k])
+            lim = float(np.broadcast_to(limits[check], (n,))[k])
+            label, why = _LABELS[check]
             first = (k, SingularityError(
-                floor_message(label, v, margin, lim, floor) + why, sigma=v, sample=k,
-                time=float(r.t[k]), chain=chain,
+                floor_message(label, v, margins.margin(check), lim, FLOORS[check]) + why,
+                sigma=v,
+                sample=k, time=float(r.t[k]), chain=check,
                 amount=lim - v if np.isfinite(v) else None))
     finite = np.ones(n, bool)
     for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):

@@ -32,7 +32,7 @@ from .params import Params
 # −36 mm to 0, y ± 189 mm, z ± 100 mm) with 2–3 cm to spare, and spray-gun tilts.
 WORKSPACE = (0.06, 0.22, 0.12, math.radians(20.0), math.radians(20.0), math.radians(30.0))
 WORKSPACE_SAMPLES = 5  # grid points per axis: 5⁶ = 15,625 poses
-WORKSPACE_WRIST_MARGIN = 0.05  # |sin θ1716| at or below: singular, left out (kinematics default)
+WORKSPACE_WRIST_MARGIN = 0.05  # |sin θ1716| below: singular, left out (kinematics default)
 LIMIT_MARGIN = 5.0  # deg each side: the grid's spacing (7⁶ grid, 2·10⁵ random poses: inside)
 LIMIT_STEP = 5.0  # deg, rounding outward
 # Caps in deg: θ1716 stays on the closed form's wrist branch (acos: 0–180°, 0 is singular);

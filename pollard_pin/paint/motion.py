@@ -12,7 +12,7 @@ import numpy as np
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
 from ..kinematics.errors import KinematicsError
 from ..kinematics.limits import limit_violations
-from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
+from ..kinematics.margins import Margins
 from .errors import PlanError, ReachError
 
 
@@ -44,19 +44,17 @@ def joint_limit_violation(robot, q: np.ndarray):
 
 
 def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
-           wrist_margin: float = WRIST_MARGIN,
-           singularity_margin: float = SINGULARITY_MARGIN) -> Motion:
+           margins: Margins | None = None) -> Motion:
     """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
-    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
-    joint leaves its limits."""
+    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail (the
+    same ``margins``, default ``run``'s) or a joint leaves its limits."""
     from ..dynamics.inverse import inverse_dynamics
     from ..kinematics.ik import inverse_kinematics
 
     n = len(poses)
     try:
         ik = inverse_kinematics(robot, poses, d_poses, dd_poses, np.arange(n, dtype=float),
-                                wrist_margin=wrist_margin,
-                                singularity_margin=singularity_margin)
+                                margins=margins)
     except KinematicsError as exc:
         k = 0 if exc.sample is None else int(exc.sample)
         detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch

@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
+from ..checks import real
 from ..errors import InputError
+from ..kinematics.margins import Margins, as_margins
 from .reach import REASONS, ReachOptions, evaluate, length_scale
 from .rectangle import largest_rectangle
 
@@ -280,32 +282,28 @@ class _Summary:
 
 def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 0.0, 0.0),
               resolution: float = 0.005, bounds=None, actuators=None,
-              wrist_margin: float | None = None, singularity_margin: float | None = None,
-              length_scale: float | None = None, sink: Callable[[dict], None] | None = None,
+              margins: Margins | None = None, length_scale: float | None = None,
+              sink: Callable[[dict], None] | None = None,
               keep: bool | None = None, chunk: int = CHUNK, progress=None) -> WorkspaceMap:
     """Map where the tool reaches at a fixed orientation (docs/model.md §22).
 
     ``plane``: "x=0.55" (or ("x", 0.55)) for a plane grid, or ``volume=True`` for a box.
     ``orientation`` (ψ, θ, φ) [rad]; ``resolution`` [m]; ``bounds`` {axis: (low, high)} [m]
     (default: the whole reach with a margin); ``actuators`` (:class:`Actuators`) adds the
-    payload capacity; margins default to ``run``'s. ``sink(columns)`` receives every chunk's
-    columns (x, y, z, psi, theta, phi, reachable, reason, …) in grid order; ``keep`` (default:
-    plane mode) keeps them in ``columns``. Raises :class:`WorkspaceError` for bad values, a
-    grid over budget, or a plane or bounds with no reachable point (naming the reachable
-    bounding box)."""
-    from ..kinematics.singularity import SINGULARITY_MARGIN, WRIST_MARGIN
-
+    payload capacity; ``margins`` (:class:`Margins`) default to ``run``'s. ``sink(columns)``
+    receives every chunk's columns (x, y, z, psi, theta, phi, reachable, reason, …) in grid
+    order; ``keep`` (default: plane mode) keeps them in ``columns``. Raises
+    :class:`WorkspaceError` for bad values, a grid over budget, or a plane or bounds with no
+    reachable point (naming the reachable bounding box)."""
     if (plane is None) == (not volume):
         raise WorkspaceError("give either a plane (e.g. x=0.55) or volume=True")
     t0 = time.perf_counter()
     orient = check_orientation(orientation)
     plane_ = None if volume else parse_plane(plane)
-    opts = ReachOptions(WRIST_MARGIN if wrist_margin is None else _margin(
-                            wrist_margin, "wrist_margin", 1.0),
-                        SINGULARITY_MARGIN if singularity_margin is None else _margin(
-                            singularity_margin, "singularity_margin", math.inf),
-                        None if length_scale is None else _positive(length_scale,
-                                                                    "length_scale"),
+    opts = ReachOptions(as_margins(margins),
+                        None if length_scale is None else real(
+                            length_scale, "length_scale", 0.0, above=True, why=" [m]",
+                            error=WorkspaceError),
                         actuators)
     params = robot.params
     if plane_ is not None:
@@ -346,27 +344,6 @@ def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 
     return WorkspaceMap(grid, orient, columns, summary, rect)
 
 
-def _margin(value, name, high) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    if not 0.0 <= v <= high or math.isinf(v):
-        rule = "in [0, 1]" if high == 1.0 else ">= 0 and finite"
-        raise WorkspaceError(f"{name} = {value!r} must be a number {rule}")
-    return v
-
-
-def _positive(value, name) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    if not (v > 0 and math.isfinite(v)):
-        raise WorkspaceError(f"{name} = {value!r} must be a finite number > 0 [m]")
-    return v
-
-
 def _bounds_text(grid: Grid) -> str:
     d = grid.as_dict()
     return ", ".join(f"{a} ∈ [{lo:.4g}, {hi:.4g}] m"
@@ -391,7 +368,7 @@ def reachable_box(robot, orientation, options: ReachOptions | None = None,
 
 
 def _missed(robot, orient, opts, what: str) -> WorkspaceError:
-    box = reachable_box(robot, orient, ReachOptions(opts.wrist_margin, opts.singularity_margin))
+    box = reachable_box(robot, orient, ReachOptions(opts.margins))
     if box is None:
         return WorkspaceError(f"{what}; no tool position at all is reachable at orientation "
                               f"(psi, theta, phi) = {_deg(orient)} deg")
@@ -440,7 +417,7 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
         "pollard_pin": __version__, "params": robot.params.source,
         "orientation": {"psi": orient[0], "theta": orient[1], "phi": orient[2], "unit": "rad"},
         "orientation_deg": [math.degrees(a) for a in orient],
-        "wrist_margin": opts.wrist_margin, "singularity_margin": opts.singularity_margin,
+        **opts.margins.as_dict(),
         "length_scale": length_scale(robot.params, opts),
         "actuators": None if opts.actuators is None else opts.actuators.source,
         "wall_seconds": wall, "us_per_point": 1e6 * wall / grid.size}

@@ -14,14 +14,8 @@ from ..dynamics.inverse import batched_rnea, split_tree_torques
 from ..dynamics.motors import Actuators
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
-from ..kinematics.singularity import (
-    SERIAL_FLOOR,
-    SIGMA_FLOOR,
-    SINGULARITY_MARGIN,
-    WRIST_MARGIN,
-    conditioning,
-    sigma_range,
-)
+from ..kinematics.margins import CHECKS, Margins
+from ..kinematics.singularity import conditioning, sigma_range
 from ..model.names import CHAINS, JOINTS, TREE_JOINTS
 
 # Reason codes (the ``reason`` column): 0 reachable, then in the order they are checked; a
@@ -35,16 +29,17 @@ REASONS = (("reachable",)
 _REACH = 1  # first reach code
 _LIMIT = _REACH + len(CHAINS)  # first joint-limit code
 _MARGIN = _LIMIT + 2 * len(TREE_JOINTS)  # wrist, parallel, serial, spherical 1, 2
+FLOORS_ONLY = Margins(0.0, 0.0)
 
 
 @dataclass(frozen=True)
 class ReachOptions:
-    """The rules of docs/model.md §22: margins as in ``run`` (§12), the conditioning index's
-    length scale [m] (None: the platform arm from its U joint to the tip, x65 + x1514 +
-    x1918) and, optionally, the actuators for the payload capacity."""
+    """The rules of docs/model.md §22: the margins, judged as ``run`` judges them (§12,
+    :meth:`Margins.violations`), the conditioning index's length scale [m] (None: the
+    platform arm from its U joint to the tip, x65 + x1514 + x1918) and, optionally, the
+    actuators for the payload capacity."""
 
-    wrist_margin: float = WRIST_MARGIN
-    singularity_margin: float = SINGULARITY_MARGIN
+    margins: Margins = Margins()
     length_scale: float | None = None
     actuators: Actuators | None = None
 
@@ -88,15 +83,11 @@ def evaluate(robot, poses: np.ndarray, options: ReachOptions = ReachOptions()) -
                                           K_inv=K_inv)
     sph = [np.abs(np.sin(q18[solved, JOINTS.index(f"theta109_{i}")]))
            for i in (1, 2)]
-    # The limits of run: the closed form's wrist check (≤ fails), check_margins (< or NaN
-    # fails), each margin raised to its numerical floor (docs/model.md §12).
-    with np.errstate(invalid="ignore"):
-        checks = (wrist <= max(options.wrist_margin, SERIAL_FLOOR),
-                  ~(sp >= np.maximum(options.singularity_margin, SIGMA_FLOOR * sp_max)),
-                  ~(ss >= np.maximum(options.singularity_margin, SERIAL_FLOOR * ss_max)),
-                  ~(sph[0] >= SIGMA_FLOOR), ~(sph[1] >= SIGMA_FLOOR))
-    for k, bad in enumerate(checks):
-        sub[(sub == 0) & bad] = _MARGIN + k
+    # run's rule, margins raised to their numerical floors (docs/model.md §12).
+    bad = options.margins.violations(wrist=wrist, parallel=sp, serial=ss, parallel_max=sp_max,
+                                     serial_max=ss_max, spherical=sph)
+    for k, check in enumerate(CHECKS):
+        sub[(sub == 0) & bad[check]] = _MARGIN + k
     reason[solved] = sub
     out["wrist_margin"][solved], out["sigma_parallel"][solved] = wrist, sp
     out["sigma_serial"][solved] = ss
@@ -105,7 +96,8 @@ def evaluate(robot, poses: np.ndarray, options: ReachOptions = ReachOptions()) -
     out = {"reachable": (reason == 0).astype(float), "reason": reason, **out}
     if options.actuators is not None:
         cap = nan.copy()
-        ok = np.isfinite(sp) & (sp >= SIGMA_FLOOR * sp_max)  # Jc_p invertible: torques exist
+        # Jc_p invertible (the parallel floor alone): torques exist
+        ok = ~FLOORS_ONLY.violations(parallel=sp, parallel_max=sp_max)["parallel"]
         cap[solved[ok]] = payload_capacity(robot, options.actuators, qs[ok], K[ok])
         out["payload_capacity"] = cap
     return out

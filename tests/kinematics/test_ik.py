@@ -453,7 +453,7 @@ def test_wrist_margin_above_trajectory_minimum(robot, runs):
     margin = 0.5 * (sin1716.min() + sin1716.max())
     first = int(np.argmax(sin1716 < margin))
     with pytest.raises(SingularityError) as ei:
-        solve(robot, traj, wrist_margin=margin)
+        solve(robot, traj, margins=pp.Margins(wrist=margin))
     e = ei.value
     assert (e.sample, e.chain) == (first, "wrist") and e.time == traj.t[first]
     assert f"sample {first}" in str(e) and "wrist" in str(e)
@@ -485,7 +485,7 @@ def test_parallel_and_serial_singularity_margins(robot, which):
     margin = next(m for m in grid if (_first_violation(base, m) or (0, ""))[1] == which)
     k, chain = _first_violation(base, margin)
     with pytest.raises(SingularityError) as ei:
-        solve(robot, traj, singularity_margin=margin)
+        solve(robot, traj, margins=pp.Margins(singularity=margin))
     e = ei.value
     assert (e.sample, e.chain, e.time) == (k, chain, traj.t[k])
     assert which in str(e) and f"sample {k}" in str(e)

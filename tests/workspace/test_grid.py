@@ -19,6 +19,7 @@ from pollard_pin.dynamics.motors import load_actuators, motor_torque
 from pollard_pin.dynamics.plant import PlantErrors, perturbed_robot
 from pollard_pin.kinematics.errors import KinematicsError
 from pollard_pin.kinematics.limits import limit_violations
+from pollard_pin.kinematics.margins import Margins
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
 from pollard_pin.model.names import TREE_JOINTS
@@ -109,8 +110,9 @@ def test_a_path_through_the_map_solves_and_leaves_at_a_joint_limit(robot):
 
 
 # --- each reason on a constructed point -------------------------------------------------------
-def reason_at(robot, pose, **kw):
-    return REASONS[int(evaluate(robot, np.atleast_2d(pose), ReachOptions(**kw))["reason"][0])]
+def reason_at(robot, pose, **margins):
+    opts = ReachOptions(Margins(**margins))
+    return REASONS[int(evaluate(robot, np.atleast_2d(pose), opts)["reason"][0])]
 
 
 def test_reasons_on_constructed_points(robot):
@@ -118,9 +120,9 @@ def test_reasons_on_constructed_points(robot):
     assert reason_at(robot, home) == "reachable"
     assert reason_at(robot, home + [2.0, 0, 0, 0, 0, 0]) == "chain 0 out of reach"
     # σ at home: parallel 0.165, serial 0.130 (docs/model.md §12)
-    assert reason_at(robot, home, singularity_margin=0.15) == "serial margin"
-    assert reason_at(robot, home, singularity_margin=0.2) == "parallel margin"
-    assert reason_at(robot, home, wrist_margin=0.5) == "wrist margin"  # |sin θ1716| = 0.452
+    assert reason_at(robot, home, singularity=0.15) == "serial margin"
+    assert reason_at(robot, home, singularity=0.2) == "parallel margin"
+    assert reason_at(robot, home, wrist=0.5) == "wrist margin"  # |sin θ1716| = 0.452
     assert reason_at(robot, wrist_singular_pose(robot.params)) == "wrist margin"
 
 
@@ -302,7 +304,7 @@ def test_conditioning_and_payload_per_point(robot):
     ({"plane": "x=0.55", "bounds": {"y": (0.3, -0.3)}}, ["below the upper bound"]),
     ({"plane": "x=0.55", "bounds": {"x": (0, 1)}}, ["other two axes"]),
     ({"plane": "x=0.55", "bounds": {"y": (1.0, 2.0)}}, ["no point", "reachable region"]),
-    ({"plane": "x=0.55", "wrist_margin": 2}, ["wrist_margin"]),
+    ({"plane": "x=0.55", "length_scale": -1}, ["length_scale = -1: must be > 0 [m]"]),
     ({}, ["either a plane"])])
 def test_bad_input(robot, kw, words):
     with pytest.raises(WorkspaceError) as err:
