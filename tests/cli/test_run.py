@@ -1,6 +1,7 @@
 """``pollard-pin run`` (cli/run.py): its CSV against the pipeline and the IK column by
-column, CSV trajectories with and without derivative columns, and failures that write
-nothing."""
+column, CSV trajectories with and without derivative columns, Parquet, ``--loads``, and
+failures that write nothing."""
+import json
 import warnings
 
 import numpy as np
@@ -8,7 +9,9 @@ import pytest
 from ik_runs import solve, wrap
 from poses import wrist_singular_pose  # tests/poses.py
 
+import pollard_pin as pp
 from pollard_pin.cli import main
+from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import (
     Trajectory,
     from_csv,
@@ -21,6 +24,7 @@ from pollard_pin.run import run_pipeline
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"
+ROUND_OFF = 1e-13  # × max(1, column peak): a streamed run against the whole solve
 
 
 def write_poses_csv(path, t, poses):
@@ -139,3 +143,36 @@ def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
         assert "row 41" in err
     else:
         assert "wrist" in err and "sample 0" in err
+
+
+def test_cli_run_parquet_and_times(tmp_path, capsys):
+    from pollard_pin.cli import main
+
+    out = tmp_path / "r.parquet"
+    assert main(["run", "--samples", "301", "--out", str(out), "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "solved and written in " in text and "writing " in text and "µs/sample" in text
+    got = read_result(out)
+    assert len(got) == 301 and got.metadata["trajectory"]["samples"] == 301
+    assert got.metadata["parameters"]["chain0"]["x32"] == 0.33
+    ref = pp.run_pipeline(pp.load(), thesis_trajectory(samples=301)).columns()
+    for name, col in ref.items():
+        assert np.abs(got[name] - col).max() <= ROUND_OFF * max(1.0, np.abs(col).max()), name
+
+
+def test_run_loads_writes_the_columns_and_units(tmp_path, capsys):
+    out = tmp_path / "run.csv"
+    assert main(["run", "--samples", "41", "--loads", "--quiet", "--out", str(out)]) == 0
+    header = out.read_text().splitlines()[0].split(",")
+    assert len(header) == 85 + 72 and "M_theta1817_z" in header
+    units = json.loads((tmp_path / "run.units.json").read_text())["units"]
+    assert units["F_theta21_x"] == "N" and units["M_theta76_2_y"] == "N·m"
+
+
+def test_run_loads_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "run.csv"
+    code = main(["run", "--loads", "--samples", "41", "--quiet", "--set", "chain0.x32=-1",
+                 "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "x32" in err
+    assert not out.exists()
