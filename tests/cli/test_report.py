@@ -19,6 +19,16 @@ def test_out_is_what_it_prints(tmp_path, capsys):
     assert json.loads(js)["trajectory"]["samples"] == 41
 
 
+def test_json_is_the_librarys_report(robot, capsys):
+    from pollard_pin.io.trajectory import thesis_trajectory
+    from pollard_pin.run import run_pipeline
+    from pollard_pin.viz.report import report, to_json
+
+    code, js, _ = run_cli(["report", *SHORT, "--format", "json"], capsys)
+    rep = report(robot, run_pipeline(robot, thesis_trajectory(samples=41)), cross_check=False)
+    assert code == 0 and json.loads(js) == json.loads(to_json(rep))
+
+
 def test_not_a_simulation_table_is_one_line_and_writes_nothing(tmp_path, capsys):
     table = tmp_path / "run.csv"
     assert run_cli(["run", "--samples", "41", "--quiet", "--out", table], capsys)[0] == 0

@@ -1,7 +1,6 @@
-"""The sizing report and cross-checks (viz/report.py): its numbers are the ``run`` CSV's,
-recomputed here with the trapezoid rule; the engines agree; Markdown carries the same numbers;
-without MuJoCo it says so."""
-import csv
+"""The sizing report and cross-checks (viz/report.py): its numbers are the run's columns (what
+``run`` writes), recomputed here with the trapezoid rule; the engines agree; Markdown carries
+the same numbers; without MuJoCo it says so. (The command: tests/cli/test_report.py.)"""
 import json
 import sys
 
@@ -9,21 +8,12 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.cli import main
 from pollard_pin.run import run_pipeline
-from pollard_pin.viz.report import SIZING_FIELDS, report, to_markdown
+from pollard_pin.viz.report import SIZING_FIELDS, report, to_json, to_markdown
 
 SAMPLES = 401
-ARGS = ["--samples", str(SAMPLES), "--quiet"]
 # typed in (docs/model.md §6), not imported: the report's order is checked against it
 ACTUATED = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    data = np.array(rows[1:], dtype=float)
-    return {h: data[:, i] for i, h in enumerate(rows[0])}
 
 
 @pytest.fixture(scope="module")
@@ -32,20 +22,23 @@ def result(robot):
 
 
 @pytest.fixture(scope="module")
-def run_csv(tmp_path_factory):
-    """The ``run`` command's CSV for the same trajectory."""
-    path = tmp_path_factory.mktemp("run") / "run.csv"
-    assert main(["run", *ARGS, "--out", str(path)]) == 0
-    return read_csv(path)
+def run_csv(result):
+    """The columns ``run`` writes for the same trajectory."""
+    return result.columns()
+
+
+@pytest.fixture(scope="module")
+def full(robot, result):
+    """The report with its cross-checks, through JSON as the CLI writes it."""
+    return json.loads(to_json(report(robot, result)))
 
 
 def _trapz(y, t):
     return float(np.sum((y[1:] + y[:-1]) * np.diff(t)) / 2)
 
 
-def test_report_numbers_equal_the_run_csv(run_csv, capsys):
-    assert main(["report", *ARGS, "--format", "json"]) == 0
-    rep = json.loads(capsys.readouterr().out)
+def test_report_numbers_equal_the_run_csv(run_csv, full):
+    rep = full
     t = run_csv["t"]
     T = t[-1] - t[0]
     assert rep["trajectory"]["samples"] == len(t) == SAMPLES
@@ -80,9 +73,8 @@ def test_report_numbers_equal_the_run_csv(run_csv, capsys):
     assert acts["theta21"]["peak_torque"] == pytest.approx(1.2120663, abs=1e-7)
 
 
-def test_report_cross_checks_agree(run_csv, capsys):
-    assert main(["report", *ARGS, "--format", "json"]) == 0
-    cc = json.loads(capsys.readouterr().out)["cross_check"]
+def test_report_cross_checks_agree(full):
+    cc = full["cross_check"]
     th = cc["thesis"]
     # Achieved: 2.7e-15 rad, 5.6e-15 relative, MuJoCo 2.1e-15 relative.
     assert th["joint_position_rad"]["max_abs_diff"] < 5e-13
@@ -109,9 +101,8 @@ def test_report_without_mujoco_says_so(robot, result, monkeypatch):
     assert "actuator torques, thesis Euler–Lagrange" in md
 
 
-def test_report_markdown_table(robot, result, capsys):
-    assert main(["report", *ARGS]) == 0
-    md = capsys.readouterr().out
+def test_report_markdown_table(robot, result):
+    md = to_markdown(report(robot, result))
     rep = report(robot, result, cross_check=False)
     lines = md.splitlines()
     assert lines[0].startswith("# Actuator sizing report")
