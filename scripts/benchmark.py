@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.util
 import math
 import os
 import platform
@@ -193,6 +192,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     raster (2 ms) as the paint planner gives it."""
     from pollard_pin.dynamics import motors, timeopt
     from pollard_pin.dynamics import path as path_mod
+    from pollard_pin.paint.raster import PanelFrame, raster_motion, raster_segments
 
     act = motors.load_actuators(REPO / "examples" / "actuators.toml")
     print(f"\nmotor sizing (examples/actuators.toml), min of {repeats} runs [ms]")
@@ -216,10 +216,13 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
         row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
             robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses, traj.curve), n)
-    spec = importlib.util.spec_from_file_location("rasters", REPO / "tests" / "rasters.py")
-    rasters = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(rasters)
-    t, poses, rates, accelerations = rasters.raster()
+    # the paint planner's raster: 12 passes 0.26 m long, 0.12 m apart in all, at 0.2 m/s in
+    # the plane x = 0.55 m, 0.4 s turnarounds, 0.75 s ramps
+    frame = PanelFrame(np.array([0.55, 0.0, 0.16]), np.array([-1.0, 0.0, 0.0]),
+                       np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), 0.26, 0.12)
+    seg = raster_segments(np.linspace(-0.06, 0.06, 12), 0.13, 0.2, 0.4, (0.75, 0.75))
+    t = np.linspace(0.0, seg.total, round(seg.total / 2e-3) + 1)
+    poses, rates, accelerations = raster_motion(frame, 0.0, seg, t)
     row("raster time_optimal_path", lambda: timeopt.time_optimal_path(
         robot, act, t, poses, rates, accelerations), len(t))
 

@@ -57,7 +57,6 @@ def test_summary_is_the_whole_runs(robot, tmp_path):
     assert np.abs(a - b).max() <= 1e-14
 
 
-
 def test_parquet_round_trip_units_and_metadata(robot, whole, tmp_path):
     path = tmp_path / "s.parquet"
     meta = {"trajectory": {"name": "thesis", "samples": 1201}, "pollard_pin": pp.__version__}
@@ -106,18 +105,6 @@ def test_errors_count_samples_from_the_start(robot, tmp_path, k, workers):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
 
 
-def test_shifted_moves_every_sample_number():
-    from pollard_pin.kinematics.errors import BranchFlipError
-
-    e = BranchFlipError("assembly branch flip between samples 3 and 4: sin θ1716 changed sign",
-                        sample=4, time=0.5, chain="wrist", amount=0.1)
-    s = e.shifted(1000)
-    assert type(s) is BranchFlipError and (s.sample, s.time, s.chain) == (1004, 0.5, "wrist")
-    assert str(s) == ("sample 1004 (t = 0.5 s): assembly branch flip between samples 1003 and "
-                      "1004: sin θ1716 changed sign")
-    assert e.sample == 4 and e.shifted(0) is e  # the original is left alone
-
-
 def test_stats_of_a_window_equal_a_direct_computation(robot):
     r = pp.run_pipeline(robot, thesis_trajectory(samples=301))
     st = RunStats("thesis", "analytic")
@@ -141,21 +128,6 @@ def test_memory_is_one_window(robot, tmp_path, monkeypatch):
     stats = stream_run(robot, traj, tmp_path / "s.parquet", chunk=1000)
     assert stats.samples == 5001 and max(seen) == 1000 and sum(seen) == 5001 + len(seen) - 1
     assert not hasattr(traj, "t")
-
-
-def test_cli_run_parquet_and_times(tmp_path, capsys):
-    from pollard_pin.cli import main
-
-    out = tmp_path / "r.parquet"
-    assert main(["run", "--samples", "301", "--out", str(out), "--quiet"]) == 0
-    text = capsys.readouterr().out
-    assert "solved and written in " in text and "writing " in text and "µs/sample" in text
-    got = read_result(out)
-    assert len(got) == 301 and got.metadata["trajectory"]["samples"] == 301
-    assert got.metadata["parameters"]["chain0"]["x32"] == 0.33
-    ref = pp.run_pipeline(pp.load(), thesis_trajectory(samples=301)).columns()
-    for name, col in ref.items():
-        assert np.abs(got[name] - col).max() <= ROUND_OFF * max(1.0, np.abs(col).max()), name
 
 
 def test_first_error_in_order_with_threads(robot, tmp_path):

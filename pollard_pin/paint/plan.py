@@ -34,6 +34,7 @@ from .raster import (
     Segments,
     panel_frame,
     pass_offsets,
+    raster_motion,
     raster_segments,
     ripple_spacing,
     task_motion,
@@ -97,13 +98,7 @@ def _sample_pieces(seg: Segments, pieces: np.ndarray, n: int):
 
 
 def _task(plan_frame, job, seg: Segments, t, horizontal):
-    """Tool poses, rates, accelerations of the raster at times ``t``; at its two ends (rest)
-    rates and accelerations are exactly 0, not the polynomials' round-off."""
-    poses, d, dd = task_motion(plan_frame, job.standoff, *seg.evaluate(t),
-                               horizontal=horizontal)
-    ends = (np.asarray(t) <= 0.0) | (np.asarray(t) >= seg.total)
-    d[ends], dd[ends] = 0.0, 0.0
-    return poses, d, dd
+    return raster_motion(plan_frame, job.standoff, seg, t, horizontal)
 
 
 def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offsets,

@@ -219,5 +219,17 @@ def task_motion(frame: PanelFrame, standoff: float, U, V, dU, dV, ddU, ddV,
     return poses, d, dd
 
 
+def raster_motion(frame: PanelFrame, standoff: float, seg: Segments, t,
+                  horizontal: bool = True):
+    """Tool poses, rates, accelerations (N, 6) of the raster ``seg`` at times ``t``
+    (:func:`task_motion`); at its two ends (rest) rates and accelerations are exactly 0, not
+    the polynomials' round-off."""
+    poses, d, dd = task_motion(frame, standoff, *seg.evaluate(t), horizontal=horizontal)
+    ends = (np.asarray(t) <= 0.0) | (np.asarray(t) >= seg.total)
+    d[ends], dd[ends] = 0.0, 0.0
+    return poses, d, dd
+
+
 __all__ = ["PROFILE_TOLERANCE", "PanelFrame", "SPOT_RADIUS", "Segments", "cross_profile",
-           "panel_frame", "pass_offsets", "raster_segments", "ripple_spacing", "task_motion"]
+           "panel_frame", "pass_offsets", "raster_motion", "raster_segments", "ripple_spacing",
+           "task_motion"]

@@ -1,11 +1,10 @@
 """Closed-loop simulation (docs/model.md §18): tracking, the plant against its own inverse
-dynamics and against MuJoCo, energy conservation to RK4's order, and the CLI's bad inputs.
-(The control laws, sensing and the plant's physics: tests/dynamics/.)"""
+dynamics and against MuJoCo, energy conservation to RK4's order, bad API inputs. (The
+command, ``pollard-pin simulate``: tests/cli/test_simulate.py.)"""
 from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import run_cli
 
 from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, desired_trajectory
 from pollard_pin.dynamics.forward import forward_dynamics
@@ -16,7 +15,6 @@ from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 
 PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
 MOTORS = Path(__file__).resolve().parents[2] / "examples" / "actuators.toml"
-FIGURE8 = MOTORS.parent / "figure8.csv"
 
 
 def _head(seconds: float, step: float = 0.01) -> Trajectory:
@@ -242,77 +240,3 @@ def test_bad_api_inputs(robot, traj, desired, kwargs, says):
         simulate_tracking(robot, traj, desired=desired, **kwargs)
     with pytest.raises(PlantError, match="fraction > -1"):
         PlantErrors(mass_error=-1.5)
-
-
-@pytest.fixture(scope="module")
-def short_csv(tmp_path_factory):
-    from pollard_pin.io.trajectory import to_csv
-
-    path = tmp_path_factory.mktemp("sim") / "head.csv"
-    to_csv(_head(0.5), path)
-    return path
-
-
-@pytest.mark.parametrize("argv, says", [
-    (["--controller", "lqr"], "invalid choice: 'lqr'"),
-    (["--wn", "-3"], "must be >= 0, got -3"),
-    (["--dt", "0"], "must be positive, got 0"),
-    (["--dt", "100"], "--dt 100 s is longer than --control-period 0.001 s"),
-    (["--control-period", "5e-7"], "1,000,000 RK4 steps (0.5 s, --control-period 5e-07 s, "
-                                   "--dt 5e-07 s) would take about"),
-    (["--dt", "1e-7"], "over the budget of 500,000 steps: give --force"),
-    (["--mass-error", "-2"], "mass error must be a fraction > -1"),
-    (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
-    (["--start", "home"], "trajectory starts off the path"),
-    # figure8 starts at home's tool pose but moving: not "off the path"
-    (["--start", "home", "--trajectory", str(FIGURE8)], "trajectory starts moving"),
-    (["--actuators", str(MOTORS), "--armature", "1"], "do not combine"),
-    (["--actuators", "missing.toml"], "does not exist"),
-])
-def test_cli_bad_inputs_one_line_exit_2_nothing_written(short_csv, tmp_path, capsys, argv,
-                                                        says):
-    out = tmp_path / "sim.csv"
-    code, _, err = run_cli(["simulate", "--trajectory", short_csv, "--out", out, *argv], capsys)
-    err = err.strip()
-    assert code == 2 and says in err and len(err.splitlines()) == 1, err
-    assert not out.exists() and not list(tmp_path.iterdir())
-
-
-def test_cli_simulate_writes_the_columns(short_csv, tmp_path, capsys):
-    from pollard_pin.cli import main
-    from pollard_pin.io.table import read_result
-
-    out = tmp_path / "sim.csv"
-    assert main(["simulate", "--trajectory", str(short_csv), "--payload", "0.05",
-                 "--mass-error", "0.1", "--out", str(out)]) == 0
-    table = read_result(out)
-    for name in ("t", "theta21", "d_theta43", "dd_theta76_2", "tau_theta1817",
-                 "tip_position_error", "tip_orientation_error", "closure_residual"):
-        assert name in table.columns
-    assert table.units["tip_position_error"] == "m"
-    assert len(table) == 51
-    summary = table.metadata["summary"]
-    assert summary["max_tip_position_error"] == pytest.approx(
-        table["tip_position_error"].max(), rel=1e-12)
-    assert "tool-tip position error" in capsys.readouterr().out
-
-
-def test_plot_and_report_show_a_simulation(short_csv, tmp_path, capsys):
-    from pollard_pin.cli import main
-
-    sim = tmp_path / "sim.csv"
-    assert main(["simulate", "--trajectory", str(short_csv), "--controller", "pd",
-                 "--out", str(sim)]) == 0
-    assert main(["plot", "--simulation", str(sim), "--out", str(tmp_path / "plots")]) == 0
-    assert sorted(p.name for p in (tmp_path / "plots").iterdir()) == [
-        "simulation_path.png", "simulation_torques.png", "simulation_tracking.png"]
-    md = tmp_path / "report.md"
-    assert main(["report", "--trajectory", str(short_csv), "--no-cross-check",
-                 "--simulation", str(sim), "--out", str(md)]) == 0
-    text = md.read_text()
-    assert "## Closed-loop simulation" in text and "controller pd" in text
-    capsys.readouterr()
-    # Not a simulation table: one line, exit 2.
-    assert main(["plot", "--simulation", str(short_csv), "--out", str(tmp_path / "p2")]) == 2
-    err = capsys.readouterr().err.strip()
-    assert "not a simulation table" in err and len(err.splitlines()) == 1

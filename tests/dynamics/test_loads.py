@@ -2,15 +2,13 @@
 free bodies with the closed-form kinematics (numpy only), against MuJoCo's ``cfrc_int``, and
 exact identities: axis moment = joint torque, equal wrenches across a massless cross, and a
 static case counted by hand."""
-import json
 
 import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.cli import main
 from pollard_pin.crosscheck import newton_euler
-from pollard_pin.dynamics.loads import cubic_mean, joint_loads, joint_loads_rnea
+from pollard_pin.dynamics.loads import joint_loads, joint_loads_rnea
 from pollard_pin.io.table import column_unit
 
 G = 9.81
@@ -147,36 +145,6 @@ def test_columns_units_and_bearing_table(robot, case):
                        (loads.moment ** 2).sum(-1), rtol=1e-12, atol=1e-24)
 
 
-def test_cubic_mean_is_time_weighted():
-    t = np.array([0.0, 1.0, 1.5, 3.0])
-    x = np.full(4, -2.0)
-    assert cubic_mean(t, x) == pytest.approx(2.0, rel=1e-15)
-    t = np.linspace(0.0, 1.0, 20001)  # ∫₀¹ t³ dt = 1/4
-    assert cubic_mean(t, t) == pytest.approx(0.25 ** (1 / 3), rel=1e-8)
-    # 1 N for 1 s then 2 N for 3 s (a step resolved by a short ramp): ((1 + 24) / 4)^(1/3)
-    t = np.array([0.0, 1.0, 1.0 + 1e-9, 4.0])
-    assert cubic_mean(t, np.array([1.0, 1.0, 2.0, 2.0])) == pytest.approx(
-        (25 / 4) ** (1 / 3), rel=1e-8)
-
-
-def test_run_loads_writes_the_columns_and_units(tmp_path, capsys):
-    out = tmp_path / "run.csv"
-    assert main(["run", "--samples", "41", "--loads", "--quiet", "--out", str(out)]) == 0
-    header = out.read_text().splitlines()[0].split(",")
-    assert len(header) == 85 + 72 and "M_theta1817_z" in header
-    units = json.loads((tmp_path / "run.units.json").read_text())["units"]
-    assert units["F_theta21_x"] == "N" and units["M_theta76_2_y"] == "N·m"
-
-
-def test_run_loads_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys):
-    out = tmp_path / "run.csv"
-    code = main(["run", "--loads", "--samples", "41", "--quiet", "--set", "chain0.x32=-1",
-                 "--out", str(out)])
-    err = capsys.readouterr().err
-    assert code == 2 and len(err.strip().splitlines()) == 1 and "x32" in err
-    assert not out.exists()
-
-
 def test_sweep_row_has_the_peak_bearing_loads(robot):
     from pollard_pin.model.names import TREE_JOINTS
     from pollard_pin.sweep import LOAD_METRICS, evaluate_variant
@@ -227,7 +195,6 @@ def test_leg_cross_moment_is_the_link_torsion(robot, case):
         expected = (np.einsum("ni,ni->n", R[:, :, 0], h) / np.cos(ik.q[:, j]))[:, None] * n
         # The torsion is small (7e-6 N·m): round-off of the whole moment (achieves 4.4e-16).
         assert np.abs(loads.moment[:, j] - expected).max() < 1e-13 * np.abs(loads.moment).max()
-
 
 
 def test_report_has_the_bearing_table_and_the_three_way_agreement(robot):

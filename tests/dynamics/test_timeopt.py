@@ -13,7 +13,6 @@ from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
 from motor_model import cli as _cli
 from motor_model import motor as _motor
 from motor_model import rms as _rms
-from rasters import raster
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
@@ -22,6 +21,7 @@ from pollard_pin.dynamics.path import PathDynamics, path_dynamics, quintic_hermi
 from pollard_pin.io.retime import retimed_trajectory
 from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import thesis_curve
+from pollard_pin.paint.raster import PanelFrame, raster_motion, raster_segments
 
 
 def _figure_eight():
@@ -145,13 +145,25 @@ def test_coulomb_counts_at_the_rest_ends():
     assert moving.max() <= 1.0
 
 
+def _raster(width, height, passes, turn, ramp, speed=0.2, dt=2e-3):
+    """The paint planner's rest-to-rest raster (paint/raster.py) in the plane x = 0.55 m
+    around the home tip, gun orientation (0, 0, 0), sampled every ``dt``."""
+    frame = PanelFrame(np.array([0.55, 0.0, 0.16]), np.array([-1.0, 0.0, 0.0]),
+                       np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), width, height)
+    offsets = (np.arange(passes) - (passes - 1) / 2) * height / (passes - 1)
+    seg = raster_segments(offsets, width / 2, speed, turn, (ramp, ramp))
+    t = np.linspace(0.0, seg.total, round(seg.total / dt) + 1)
+    return (t, *raster_motion(frame, 0.0, seg, t))
+
+
 def test_long_raster_at_rest_ends_solves(robot, act):
     """A rest-to-rest raster sampled every 2 ms starts and ends with q' ≈ 0 (the path
     parameter creeps): TOPP-RA's rows there have coefficients ~1e-8 N·m, below its Seidel
     solver's absolute 1e-10 on their products, and it called the path uncontrollable (the
     old message blamed gravity; it fails so on the code before the fix, checked). Scaled rows
     solve it, and it holds between samples."""
-    t, poses, rates, accelerations = raster(passes=2, width=0.06, turn=0.3, ramp=0.4)
+    t, poses, rates, accelerations = _raster(width=0.06, height=0.12, passes=2, turn=0.3,
+                                              ramp=0.4)
     assert len(t) == 851 and np.all(rates[[0, -1]] == 0)
     given = pp.run_pipeline(robot, pp.Trajectory(t, poses, rates, accelerations))
     assert max(r.max() for r in M.motor_load_of(robot, act, given.ik,

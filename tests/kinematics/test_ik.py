@@ -1,32 +1,27 @@
-"""Constrained kinematics along trajectories, checked against independent numbers.
+"""Constrained kinematics along trajectories (kinematics/ik.py), checked against independent
+numbers.
 
 - Pinocchio IK (Newton on the closures + tool pose) against the thesis' closed form of
-docs/model.md §7
-  (``pollard_pin.analytic.closed_form``, numpy only, exact jet derivatives), on the default
-  trajectory,
-  smooth random trajectories and isolated random reachable poses;
+  docs/model.md §7 (``pollard_pin.analytic.closed_form``, numpy only, exact jet derivatives),
+  on the default trajectory, smooth random trajectories and isolated random reachable poses;
 - velocities and accelerations against central finite differences of the IK positions;
-- forward kinematics (Pinocchio closure solve and the numpy chain of docs/model.md §3) back to the
-poses;
-- loop-closure residuals, recomputed with Pinocchio and with the numpy chain;
-- task-space rotation, Euler-angle round trip and twist maps against elementary rotations and
-  finite differences of R(t);
-- every error path of the IK, the CSV reader and ``pollard-pin run``.
+- every error path of the IK and of the CSV reader.
+
+Forward kinematics and closures: tests/kinematics/test_closure.py; task-space conventions:
+tests/analytic/test_taskspace.py; ``pollard-pin run``: tests/cli/test_run.py.
 """
-import importlib
 import math
 import re
 import warnings
 
 import numpy as np
 import pytest
+from ik_runs import RUN_NAMES, solve, wrap
 from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
 
 import pollard_pin as pp
-from pollard_pin.analytic import taskspace as ts
-from pollard_pin.cli import main
+from pollard_pin.analytic import closed_form as T
 from pollard_pin.io.trajectory import (
-    Trajectory,
     TrajectoryError,
     from_csv,
     smooth_random_trajectory,
@@ -35,27 +30,14 @@ from pollard_pin.io.trajectory import (
 )
 from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
-from pollard_pin.model.build import constraint_residual
 from pollard_pin.model.names import SPHERICAL
-from pollard_pin.run import run_pipeline
-
-T = importlib.import_module("pollard_pin.analytic.closed_form")
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"
-SEEDS = (1, 2, 3)
 
 # Pinocchio IK against the closed form: it achieves 3.6e-15 rad, 2.1e-14 rad/s, 2.5e-13 rad/s²
 # (thesis curve, random curves and poses); the tolerances are about 100× that.
 POS_TOL, VEL_TOL, ACC_TOL = 5e-13, 5e-12, 5e-11  # rad, rad/s, rad/s²
-FK_TOL = 1e-10  # m and rad: Pinocchio's forward-kinematics Newton (achieves 2.4e-12)
-ROUND_OFF = 1e-13  # m and rad: closed-form chains and the IK's own residuals (achieve 1.1e-15)
-CLOSURE_TOL = 1e-13  # m (achieves 7.6e-16)
-
-
-def wrap(a):
-    """Angles into (−π, π]."""
-    return np.pi - np.mod(np.pi - np.asarray(a), 2.0 * np.pi)
 
 
 def Rx(a):
@@ -73,14 +55,6 @@ def Rz(a):
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def vee(W):
-    return np.array([W[2, 1], W[0, 2], W[1, 0]])
-
-
-def solve(robot, traj, **kw):
-    return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, **kw)
-
-
 def thesis_reference(robot, poses, d_poses, dd_poses):
     """Closed-form (q, qd, qdd) split into tree joints (robot.joint_names order) and the six
     spherical angles (SPHERICAL order)."""
@@ -89,11 +63,6 @@ def thesis_reference(robot, poses, d_poses, dd_poses):
     sph = [T.JOINTS.index(n) for n in SPHERICAL]
     return {"q": q[:, tree], "v": qd[:, tree], "a": qdd[:, tree],
             "sph": q[:, sph], "dsph": qd[:, sph]}
-
-
-def to_joints_order(robot, q_tree):
-    """Pinocchio tree configuration (N, 12) → thesis JOINTS order (first 12)."""
-    return q_tree[:, [robot.joint_names.index(n) for n in T.JOINTS[:12]]]
 
 
 def write_text(path, header, rows):
@@ -105,31 +74,6 @@ def write_poses_csv(path, t, poses):
     np.savetxt(path, np.column_stack([t, poses]), delimiter=",", header=HEADER, comments="",
                fmt="%.17g")
     return path
-
-
-def read_out(path):
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return dict(zip(header, data.T)), header
-
-
-# --- shared runs -----------------------------------------------------------------------------
-@pytest.fixture(scope="module")
-def runs(robot):
-    """name → (trajectory, IKResult): the full default trajectory (2001 samples, docs/model.md §9)
-    and
-    three smooth random trajectories."""
-    out = {}
-    traj = thesis_trajectory()
-    out["thesis"] = (traj, solve(robot, traj))
-    for seed in SEEDS:
-        traj = smooth_random_trajectory(seed, samples=401)
-        out[f"random{seed}"] = (traj, solve(robot, traj))
-    return out
-
-
-RUN_NAMES = ["thesis"] + [f"random{s}" for s in SEEDS]
 
 
 # --- Pinocchio IK vs the thesis closed form -----------------------------------------------------
@@ -239,40 +183,6 @@ def test_rates_match_central_differences_of_positions(runs, name):
             assert np.all(eav <= 4.0 * tol_a + 1e-5)
 
 
-# --- forward kinematics and closures -------------------------------------------------------------
-@pytest.mark.parametrize("name", RUN_NAMES)
-def test_forward_kinematics_reproduces_input_poses(robot, runs, name):
-    traj, ik = runs[name]
-    step = 4 if name == "thesis" else 2  # subsample: FK warm-starts from the previous sample
-    act = ik.q[::step, robot.actuated_v]
-    qs, poses = pp.forward_kinematics(robot, act)
-    want = traj.poses[::step]
-    assert np.abs(poses[:, :3] - want[:, :3]).max() <= FK_TOL
-    assert np.abs(wrap(poses[:, 3:] - want[:, 3:])).max() <= FK_TOL
-    assert np.abs(wrap(qs - ik.q[::step])).max() <= 5e-10  # achieves 3.4e-12
-    # The numpy forward chain of docs/model.md §3 (no Pinocchio) from all IK tree angles.
-    fk = T.forward_tool_pose(robot.params, to_joints_order(robot, ik.q))
-    assert np.abs(fk[:, :3] - traj.poses[:, :3]).max() <= ROUND_OFF
-    assert np.abs(wrap(fk[:, 3:] - traj.poses[:, 3:])).max() <= ROUND_OFF
-
-
-@pytest.mark.parametrize("name", RUN_NAMES)
-def test_closure_residual_along_trajectory(robot, runs, name):
-    traj, ik = runs[name]
-    assert ik.closure_residual.shape == (len(traj),)
-    assert ik.closure_residual.max() <= CLOSURE_TOL
-    assert ik.tool_error.max() <= ROUND_OFF
-    m, d = robot.model, robot.data
-    res = np.array([constraint_residual(m, d, robot.constraint_models, robot.constraint_datas, q)
-                    for q in ik.q[::2]])
-    assert res.shape == (len(ik.q[::2]), 6)
-    assert np.abs(res).max() <= CLOSURE_TOL
-    # Independently with the numpy chain of docs/model.md §3/§4: link ball centre vs attachment
-    # point.
-    cp = T.closure_points(robot.params, to_joints_order(robot, ik.q))
-    assert np.linalg.norm(cp[..., 0, :] - cp[..., 1, :], axis=-1).max() <= CLOSURE_TOL
-
-
 def test_ik_diagnostics_are_reported_per_sample(runs):
     traj, ik = runs["thesis"]
     q1716 = ik.q[:, list(ik.joint_names).index("theta1716")]
@@ -285,81 +195,6 @@ def test_ik_diagnostics_are_reported_per_sample(runs):
     # Smallest singular values along it: 0.084757 and 0.073214.
     assert ik.sigma_parallel.min() == pytest.approx(0.084757, abs=1e-6)
     assert ik.sigma_serial.min() == pytest.approx(0.073214, abs=1e-6)
-
-
-# --- task space -----------------------------------------------------------------------------------
-def test_rotation_is_rx_theta_ry_psi_rz_phi():
-    rng = np.random.default_rng(5)
-    poses = np.column_stack([rng.normal(size=(50, 3)), rng.uniform(-np.pi, np.pi, (50, 3))])
-    R = ts.rotation(poses)
-    assert R.shape == (50, 3, 3)
-    for p, Rk in zip(poses, R):
-        psi, th, phi = p[3:]
-        assert np.abs(Rk - Rx(th) @ Ry(psi) @ Rz(phi)).max() <= 1e-15
-    # Batched leading dimensions.
-    assert np.array_equal(ts.rotation(poses.reshape(5, 10, 6)), R.reshape(5, 10, 3, 3))
-    # se3_from_pose / pose_from_se3.
-    M = ts.se3_from_pose(poses[0])
-    assert np.abs(M.rotation - R[0]).max() <= 1e-15 and np.allclose(M.translation, poses[0, :3])
-
-
-def test_angles_from_rotation_round_trip():
-    rng = np.random.default_rng(6)
-    n = 200
-    ang = np.column_stack([rng.uniform(-np.pi / 2 + 1e-3, np.pi / 2 - 1e-3, n),
-                           rng.uniform(-np.pi, np.pi, n), rng.uniform(-np.pi, np.pi, n)])
-    poses = np.column_stack([np.zeros((n, 3)), ang])
-    back = ts.angles_from_rotation(ts.rotation(poses))
-    assert np.abs(wrap(back - ang)).max() <= 1e-14  # achieves 0
-    assert np.all(np.abs(back[:, 0]) <= np.pi / 2)
-    # Arbitrary rotations (QR of random matrices, det +1): R → angles → R.
-    Q = np.linalg.qr(rng.normal(size=(n, 3, 3)))[0]
-    Q *= np.sign(np.linalg.det(Q))[:, None, None]
-    R2 = ts.rotation(np.column_stack([np.zeros((n, 3)), ts.angles_from_rotation(Q)]))
-    assert np.abs(R2 - Q).max() <= 5e-13  # achieves 2.1e-15
-    # pose_from_se3 inverts se3_from_pose.
-    p = np.concatenate([[0.1, -0.2, 0.3], ang[0]])
-    assert np.abs(wrap(ts.pose_from_se3(ts.se3_from_pose(p)) - p)).max() <= 1e-14  # achieves 0
-
-
-def _pose_curve(t):
-    """A smooth pose curve with large angles, and its exact first/second derivatives."""
-    a = np.array([0.1, -0.2, 0.05, 0.6, -0.9, 1.3])
-    w = np.array([1.1, 0.7, 1.9, 1.3, 0.8, 1.7])
-    c = np.array([0.5, 0.0, 0.2, 0.3, 0.4, -0.5])
-    t = np.atleast_1d(t)[:, None]
-    return c + a * np.sin(w * t + c), a * w * np.cos(w * t + c), -a * w**2 * np.sin(w * t + c)
-
-
-def test_twist_is_rdot_rt_and_twist_dot_its_derivative():
-    h = 1e-5
-    t = np.linspace(0.0, 5.0, 23)
-    p, pd, pdd = _pose_curve(t)
-    tw, twd = ts.twist(p, pd), ts.twist_dot(p, pd, pdd)
-    Rp, Rm, R = (ts.rotation(_pose_curve(t + s)[0]) for s in (h, -h, 0.0))
-    omegas = []
-    for k in range(len(t)):
-        W = (Rp[k] - Rm[k]) / (2 * h) @ R[k].T  # ω̂ = Ṙ Rᵀ
-        assert np.abs(W + W.T).max() <= 1e-8  # skew
-        omegas.append(vee(W))
-    omegas = np.array(omegas)
-    assert np.abs(omegas).max() > 0.5
-    assert np.abs(tw[:, 3:] - omegas).max() <= 1e-8
-    assert np.array_equal(tw[:, :3], pd[:, :3])
-    # ω̇ and the point acceleration by central differences of the twist along the curve.
-    twp, twm = (ts.twist(*_pose_curve(t + s)[:2]) for s in (h, -h))
-    assert np.abs(twd - (twp - twm) / (2 * h)).max() <= 5e-8  # achieves 3.5e-10
-    assert np.array_equal(twd[:, :3], pdd[:, :3])
-    # euler_rates inverts twist.
-    assert np.abs(ts.euler_rates(p, tw) - pd).max() <= 1e-13  # achieves 4.4e-16
-
-
-def test_rate_matrix_dot_matches_finite_difference():
-    h = 1e-6
-    t = np.linspace(0.0, 3.0, 11)
-    p, pd, _ = _pose_curve(t)
-    fd = (ts.rate_matrix(_pose_curve(t + h)[0]) - ts.rate_matrix(_pose_curve(t - h)[0])) / (2 * h)
-    assert np.abs(ts.rate_matrix_dot(p, pd) - fd).max() <= 1e-8
 
 
 # --- error paths ----------------------------------------------------------------------------------
@@ -642,109 +477,3 @@ def test_csv_partial_derivative_columns_rejected(tmp_path):
     np.savetxt(path, arr, delimiter=",", header=",".join(cols), comments="", fmt="%.17g")
     with pytest.raises(TrajectoryError, match="d_z"):
         from_csv(path)
-
-
-# --- pollard-pin run ----------------------------------------------------------------------------
-def _expected_columns(robot):
-    tree = list(robot.joint_names)
-    assert tree[0] == "theta21" and tree[-1] == "theta76_2"
-    sph = [f"{a}_{i}" for i in (1, 2) for a in ("theta98", "theta109", "theta1110")]
-    return (["t", *TASK, *tree, *sph], [f"d_{n}" for n in tree], [f"dd_{n}" for n in tree],
-            ["wrist_margin", "sigma_parallel", "sigma_serial"])
-
-
-def _check_run_output(robot, out, traj):
-    cols, header = read_out(out)
-    first, d, dd, diag = _expected_columns(robot)
-    assert header[:len(first)] == first
-    for name in d + dd + diag:
-        assert name in cols, name
-    assert len(cols["t"]) == len(traj)
-    ik = solve(robot, traj)
-    assert np.array_equal(cols["t"], traj.t)
-    for i, n in enumerate(TASK):
-        assert np.array_equal(cols[n], traj.poses[:, i])
-    # The file round-trips the floats, so the columns are the IK's own to round-off (achieve 0).
-    def same(col, want, angle=False):
-        err = wrap(col - want) if angle else col - want
-        return np.abs(err).max() <= 1e-14 * max(1.0, np.abs(want).max())
-
-    for i, n in enumerate(robot.joint_names):
-        assert same(cols[n], ik.q[:, i], angle=True), n
-        assert same(cols[f"d_{n}"], ik.v[:, i]), n
-        assert same(cols[f"dd_{n}"], ik.a[:, i]), n
-    for i, n in enumerate(SPHERICAL):
-        assert same(cols[n], ik.spherical[:, i], angle=True), n
-        assert same(cols[f"d_{n}"], ik.d_spherical[:, i]), n
-
-    for n in diag:
-        assert np.allclose(cols[n], getattr(ik, n), rtol=1e-14, atol=0), n
-    # Exactly what the pipeline computes (%.17g round-trips doubles).
-    ref = run_pipeline(robot, traj).columns()
-    assert list(ref) == header
-    for n in header:
-        assert np.array_equal(cols[n], ref[n]), n
-    return cols
-
-
-def test_cli_run_thesis_trajectory(robot, tmp_path, capsys):
-    out = tmp_path / "thesis.csv"
-    rc = main(["run", "--samples", "201", "--out", str(out), "--quiet"])
-    assert rc == 0
-    assert f"wrote {out} (201 rows)" in capsys.readouterr().err
-    traj = thesis_trajectory(samples=201, home_pose=robot.params.home_pose)
-    _check_run_output(robot, out, traj)
-    # no temp leftovers
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["thesis.csv", "thesis.units.json"]
-
-
-def test_cli_run_csv_trajectory(robot, tmp_path, capsys):
-    src = tmp_path / "traj.csv"
-    traj = smooth_random_trajectory(5, samples=151)
-    to_csv(traj, src)
-    out = tmp_path / "run.csv"
-    assert main(["run", "--trajectory", str(src), "--out", str(out), "--quiet"]) == 0
-    _check_run_output(robot, out, from_csv(src))
-    capsys.readouterr()
-    # Without derivative columns the run still works and says where the derivatives came from.
-    bare = write_poses_csv(tmp_path / "bare.csv", traj.t, traj.poses)
-    out2 = tmp_path / "run2.csv"
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # the CLI says it once, as a note, not as a warning
-        assert main(["run", "--trajectory", str(bare), "--out", str(out2), "--quiet"]) == 0
-    err = capsys.readouterr().err
-    # Notes come after the work (an error would be the only line), once.
-    notes = [ln for ln in err.splitlines() if ln.startswith("note: ")]
-    assert err.count("spline") == 1 and notes[0].startswith(f"note: {bare}: no d_*/dd_*"), err
-    with pytest.warns(UserWarning):
-        _check_run_output(robot, out2, from_csv(bare))
-
-
-@pytest.mark.parametrize("kind", ["unreachable", "malformed", "singular"])
-def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
-    traj = smooth_random_trajectory(5, samples=101)
-    poses = traj.poses.copy()
-    if kind == "unreachable":
-        poses[60:, 0] += 1.0
-    elif kind == "singular":
-        poses[:] = wrist_singular_pose(robot.params)
-    src = tmp_path / "in.csv"
-    to_csv(Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses), src)
-    if kind == "malformed":
-        lines = src.read_text().splitlines()
-        lines[40] = lines[40].replace(",", ",abc", 1)
-        src.write_text("\n".join(lines) + "\n")
-    out = tmp_path / "out.csv"
-    rc = main(["run", "--trajectory", str(src), "--out", str(out), "--quiet"])
-    assert rc != 0
-    assert not out.exists()
-    # no temp file either
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv", "in.units.json"]
-    err = capsys.readouterr().err
-    assert "error" in err and "nothing written" in err
-    if kind == "unreachable":
-        assert "sample 60" in err and "chain 0" in err
-    elif kind == "malformed":
-        assert "row 41" in err
-    else:
-        assert "wrist" in err and "sample 0" in err

@@ -31,7 +31,6 @@ from pollard_pin.model.build import (
     build,
     constraint_jacobian,
     constraint_residual,
-    generate,
     load,
 )
 from pollard_pin.model.params import ParameterError, load_params, params_from_dict, read_params_dict
@@ -530,11 +529,6 @@ def test_parameter_file_missing_and_defaults(tmp_path):
 
 
 # --- URDF / SRDF files ----------------------------------------------------------------------
-def test_committed_urdf_and_srdf_are_generated():
-    urdf, srdf = generate(load_params())
-    assert urdf == URDF_PATH.read_text(), "stale: run `make urdf`"
-    assert srdf == SRDF_PATH.read_text(), "stale: run `make urdf`"
-    assert generate(load_params()) == (urdf, srdf)  # deterministic
 
 
 def test_cli_urdf_writes_the_same_text(tmp_path):
@@ -569,25 +563,6 @@ def _run_clean(tmp_path, code):
     assert out.returncode == 0, out.stderr
     assert out.stderr == "", out.stderr
     return out.stdout
-
-
-def test_urdf_loads_in_pinocchio_without_warnings(tmp_path):
-    stdout = _run_clean(tmp_path, f"""
-        import json, pinocchio as pin, pollard_pin
-        urdf, srdf = {str(URDF_PATH)!r}, {str(SRDF_PATH)!r}
-        m = pin.buildModelFromUrdf(urdf)
-        vis = pin.buildGeomFromUrdf(m, urdf, pin.GeometryType.VISUAL)
-        col = pin.buildGeomFromUrdf(m, urdf, pin.GeometryType.COLLISION)
-        pin.loadReferenceConfigurations(m, srdf, False)
-        r = pollard_pin.load()
-        print(json.dumps(dict(nq=m.nq, vis=vis.ngeoms, col=col.ngeoms,
-                              home=list(m.referenceConfigurations["home"]),
-                              rvis=r.visual_model.ngeoms, rcol=r.collision_model.ngeoms)))
-    """)
-    res = json.loads(stdout)
-    assert res["nq"] == 12 and len(res["home"]) == 12
-    assert res["vis"] == res["rvis"] == sum(_xml_counts("visual").values())
-    assert res["col"] == res["rcol"] == sum(_xml_counts("collision").values())
 
 
 def test_urdf_loads_in_yourdfpy_with_all_geometry(robot, q_home, caplog):

@@ -1,0 +1,71 @@
+"""What every command shares (cli/common.py): argument types that reject what the API would,
+one-line parser errors, negative numbers as values, --set naming its flag, notes said once."""
+import argparse
+import math
+import types
+
+import pytest
+
+from pollard_pin.cli import common as C
+from pollard_pin.errors import InputError
+from pollard_pin.model.params import ParameterError
+
+
+@pytest.mark.parametrize("parse, text, value", [
+    (C.number, "-1e-3", -1e-3), (C.positive, "2.5", 2.5), (C.nonnegative, "0", 0.0),
+    (C.fraction, "1", 1.0), (C.count(2), "2", 2), (C.count(1, 3), "3", 3), (C.name, "a", "a"),
+])
+def test_types_accept(parse, text, value):
+    assert parse(text) == value
+
+
+@pytest.mark.parametrize("parse, text, says", [
+    (C.number, "abc", "not a number: 'abc'"), (C.number, "nan", "finite"),
+    (C.number, "-inf", "finite"), (C.positive, "0", "must be positive, got 0"),
+    (C.nonnegative, "-1e-9", "must be >= 0, got -1e-9"), (C.fraction, "1.5", "at most 1"),
+    (C.count(2), "1", "must be >= 2, got 1"), (C.count(1, 3), "4", "between 1 and 3"),
+    (C.count(1), "2.0", "not an integer: '2.0'"), (C.name, "", "an empty name"),
+])
+def test_types_reject_in_one_line(parse, text, says):
+    with pytest.raises(argparse.ArgumentTypeError) as info:
+        parse(text)
+    assert says in str(info.value) and "\n" not in str(info.value)
+
+
+def test_parser_takes_negative_numbers_as_values_and_errs_in_one_line(capsys):
+    p = C.Parser(prog="pollard-pin x")
+    p.add_argument("--margin", type=C.fraction)
+    p.add_argument("--wn", type=C.nonnegative)
+    with pytest.raises(SystemExit) as info:
+        p.parse_args(["--wn", "-1e-3"])  # a value, so its own check speaks
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert err == "pollard-pin x: error: argument --wn: must be >= 0, got -1e-3\n"
+    assert C.NEGATIVE_NUMBER.match("-inf") and C.NEGATIVE_NUMBER.match("-.5e+3")
+    assert not C.NEGATIVE_NUMBER.match("-x") and not C.NEGATIVE_NUMBER.match("--set")
+    assert math.isclose(p.parse_args(["--margin", "0.5"]).margin, 0.5)
+
+
+def test_usage_error_is_an_input_error():
+    assert issubclass(C.UsageError, InputError)
+
+
+def test_set_errors_name_the_flag_and_no_set_is_the_shipped_model():
+    args = types.SimpleNamespace(params=None, set=["chain0.x32"])
+    with pytest.raises(ParameterError, match=r"^--set: "):
+        C.params_of(args)
+    assert C.params_of(types.SimpleNamespace(params=None, set=[])) is None
+    p = C.params_of(types.SimpleNamespace(params=None, set=["chain0.x32=0.34"]))
+    assert p.x32 == 0.34
+
+
+def test_notes_are_said_once_in_order(capsys):
+    import warnings
+
+    args = types.SimpleNamespace(notes=[])
+    with C.warnings_as_notes(args):
+        warnings.warn("second", stacklevel=1)
+        warnings.warn("first", stacklevel=1)
+        warnings.warn("second", stacklevel=1)
+    C.say_notes(args)
+    assert capsys.readouterr().err == "note: second\nnote: first\n" and args.notes == []

@@ -1,0 +1,85 @@
+"""What both IK solvers share (kinematics/ik_common.py): ZYZ angles and rates against
+rotations written out here and finite differences, and the input and option checks."""
+import math
+
+import numpy as np
+import pytest
+
+from pollard_pin.kinematics.errors import KinematicsInputError
+from pollard_pin.kinematics.ik_common import check_options, task_inputs, zyz, zyz_rates
+
+
+def Ry(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def Rz(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def zyz_matrix(a, b, c):
+    return Rz(a) @ Ry(b) @ Rz(c)
+
+
+def test_zyz_round_trip():
+    rng = np.random.default_rng(1)
+    ang = np.column_stack([rng.uniform(-np.pi, np.pi, 100), rng.uniform(1e-3, np.pi - 1e-3, 100),
+                           rng.uniform(-np.pi, np.pi, 100)])
+    M = np.array([zyz_matrix(*x) for x in ang])
+    assert np.abs(zyz(M) - ang).max() < 1e-12  # achieved 2e-15
+    # b near 0 is accurate (atan2, not arccos): b = 1e-9 comes back to round-off
+    assert zyz(zyz_matrix(0.3, 1e-9, -0.2)[None])[0, 1] == pytest.approx(1e-9, rel=1e-6)
+
+
+def test_zyz_rates_from_finite_differences():
+    """(ȧ, ḃ, ċ) from w with Ṁ Mᵀ = ŵ, M(t) by central differences (h = 1e-6; achieved
+    4e-10), one sample (scalar path) and batched."""
+    def ang(t):
+        return np.array([0.4 + 0.7 * t, 1.1 - 0.3 * t**2, -0.5 + 0.9 * np.sin(t)])
+
+    def rates(t):
+        return np.array([0.7, -0.6 * t, 0.9 * np.cos(t)])
+
+    h, ts = 1e-6, np.linspace(0.0, 1.5, 7)
+    ws = []
+    for t in ts:
+        W = (zyz_matrix(*ang(t + h)) - zyz_matrix(*ang(t - h))) / (2 * h) \
+            @ zyz_matrix(*ang(t)).T
+        ws.append([W[2, 1], W[0, 2], W[1, 0]])
+        assert np.abs(zyz_rates(ang(t), np.array(ws[-1])) - rates(t)).max() < 5e-8
+    batched = zyz_rates(np.array([ang(t) for t in ts]), np.array(ws))
+    assert np.abs(batched - np.array([rates(t) for t in ts])).max() < 5e-8
+
+
+def test_task_inputs_fill_zeros_and_default_times():
+    p, d, dd, t = task_inputs(np.ones((3, 6)), None, None, None)
+    assert not d.any() and not dd.any() and np.array_equal(t, [0.0, 1.0, 2.0])
+
+
+@pytest.mark.parametrize("args, says", [
+    ((np.ones((0, 6)), None, None, None), "no samples"),
+    ((np.ones((3, 5)), None, None, None), "expected (3, 6)"),
+    ((np.ones((3, 6)), np.ones((2, 6)), None, None), "pose rate array has shape (2, 6)"),
+    ((np.ones((3, 6)), None, None, [0.0, 1.0, 1.0]), "times are not increasing"),
+    ((np.ones((3, 6)), None, None, [0.0, 1.0, 1.0 + 1e-12]), "time step too small"),
+    ((np.ones((3, 6)), None, None, [0.0, np.nan, 2.0]), "is not a finite number"),
+])
+def test_task_inputs_reject(args, says):
+    with pytest.raises(KinematicsInputError) as info:
+        task_inputs(*args)
+    assert says in str(info.value)
+
+
+@pytest.mark.parametrize("kw, name", [
+    ({"tol": 0.0}, "tol"), ({"tol": "x"}, "tol"), ({"singularity_margin": -1e-3}, "singularity"),
+    ({"wrist_margin": 1.5}, "wrist_margin"), ({"wrist_margin": math.nan}, "wrist_margin"),
+    ({"max_iter": 0}, "max_iter"), ({"max_iter": 2.0}, "max_iter"),
+])
+def test_check_options_names_the_option(kw, name):
+    opts = {"tol": 1e-12, "singularity_margin": 0.0, "wrist_margin": 0.1}
+    counts = {"max_iter": kw.pop("max_iter")} if "max_iter" in kw else {}
+    with pytest.raises(KinematicsInputError) as info:
+        check_options(**{**opts, **kw}, **counts)
+    assert info.value.chain.startswith(name)

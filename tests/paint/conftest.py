@@ -1,0 +1,31 @@
+"""The example job, motors and plan, planned once for every paint test (package scope)."""
+from pathlib import Path
+
+import pytest
+
+from pollard_pin.dynamics.motors import load_actuators
+from pollard_pin.paint.film import plan_film
+from pollard_pin.paint.job import load_job
+from pollard_pin.paint.plan import plan_paint
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="package")
+def act():
+    return load_actuators(ROOT / "examples" / "actuators.toml")
+
+
+@pytest.fixture(scope="package")
+def job():
+    return load_job(ROOT / "examples" / "paint.toml")
+
+
+@pytest.fixture(scope="package")
+def plan(robot, job, act):
+    return plan_paint(robot, job, act)
+
+
+@pytest.fixture(scope="package")
+def film(plan):
+    return plan_film(plan)

@@ -1,0 +1,28 @@
+"""Where a sweep runs (sweep/backends.py): serially, on a forked or spawned process pool, on a
+Dask cluster, the rows are the same and in input order."""
+from pollard_pin.sweep import run_sweep, write_csv
+
+
+def test_serial_equals_pool(sweep, pool_rows):
+    assert run_sweep(sweep, workers=1) == pool_rows
+
+
+def test_spawned_pool_equals_pool(sweep, pool_rows):
+    # the start method used in a threaded parent: workers import everything afresh
+    assert run_sweep(sweep, workers=2, mp_context="spawn") == pool_rows
+
+
+def test_dask_local_cluster_gives_the_pool_table(sweep, pool_rows, tmp_path):
+    from distributed import Client, LocalCluster
+
+    # processes=True: real worker processes (spawned by dask's nannies), as on a cluster.
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster:
+        rows = run_sweep(sweep, dask=cluster.scheduler_address)  # by address, as the CLI does
+        with Client(cluster) as client:
+            rows_client = run_sweep(sweep, dask=client)
+    assert rows == pool_rows
+    assert rows_client == pool_rows
+    write_csv(pool_rows, tmp_path / "pool.csv", sweep.columns)
+    write_csv(rows, tmp_path / "dask.csv", sweep.columns)
+    assert (tmp_path / "pool.csv").read_bytes() == (tmp_path / "dask.csv").read_bytes()

@@ -1,0 +1,21 @@
+"""Task-space curves about the home pose shared by the closed-form and Euler–Lagrange tests:
+(t, poses, rates, accelerations) at any times."""
+import numpy as np
+
+from pollard_pin.io.trajectory import sinusoid_curve, thesis_curve
+
+
+def painting_trajectory(p, n=2001, duration=20.0, t=None):
+    """(t, poses, rates, accelerations) of docs/model.md §9 curve; ``t`` may be any times."""
+    t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
+    return (t, *thesis_curve(t, duration, p.home_pose))
+
+
+def sinusoid_trajectory(p, n=401, duration=4.0, t=None):
+    """All six task coordinates moving about home (sinusoid_curve defaults)."""
+    t = np.linspace(0.0, duration, n) if t is None else np.asarray(t, dtype=float)
+    return (t, *sinusoid_curve(t, p.home_pose))
+
+
+TRAJECTORIES = [painting_trajectory, sinusoid_trajectory]
+T_PROBE = np.array([0.37, 1.9, 3.3, 7.1, 12.6, 19.4])  # inside both trajectories' useful spans
