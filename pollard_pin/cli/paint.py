@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from .. import __version__
-from ..io.atomic import atomic_open, check_destination, make_folder
+from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
 from .common import UsageError, command, load_robot, model_args, name, positive
 
 MAX_FILM_POINTS = 2_000_000  # film grid points: ~0.3 s per 3,000 points × 5,000 samples
@@ -26,7 +26,7 @@ def _actuators(args, job):
 def run(args) -> int:
     import numpy as np
 
-    from ..io.table import write_table
+    from ..io.table import FORMATS, table_files, write_table
     from ..io.trajectory import to_csv
     from ..paint.job import load_job
     from ..paint.motion import PlanError
@@ -34,7 +34,11 @@ def run(args) -> int:
     from ..viz.paint import write_thickness_png
 
     out = Path(args.out)
-    check_destination(out, folder=True)
+    name = out / f"thickness.{args.format}"
+    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
+                  out / "paint.json", out / "thickness.png", folders=(out,))
+    stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
+             for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
     try:
         res = film_resolution(job, args.resolution)
@@ -61,16 +65,16 @@ def run(args) -> int:
     flat = pts.reshape(-1, 3)
     table = {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "u": UU.ravel(),
              "v": VV.ravel(), "thickness": film.thickness}
-    # everything is computed: now write
-    make_folder(out)
-    to_csv(tr, out / "path.csv")
-    name = out / f"thickness.{args.format}"
-    write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
-    with atomic_open(out / "paint.json") as f:
-        f.write(json.dumps(rep, indent=2) + "\n")
-    write_thickness_png(out / "thickness.png", U, V, film.thickness.reshape(len(V), len(U)),
-                        job.thickness, np.array([rel @ fr.u, rel @ fr.v]), job.width,
-                        job.height)
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(tr, out / "path.csv")
+        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
+        with atomic_open(out / "paint.json") as f:
+            f.write(json.dumps(rep, indent=2) + "\n")
+        write_thickness_png(out / "thickness.png", U, V,
+                            film.thickness.reshape(len(V), len(U)), job.thickness,
+                            np.array([rel @ fr.u, rel @ fr.v]), job.width, job.height)
+        remove_stale(*stale)
     print("\n".join(summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, paint.json, thickness.png", file=sys.stderr)
     return 0

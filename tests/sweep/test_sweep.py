@@ -16,7 +16,7 @@ from pollard_pin.sweep import (
     load_grid,
     make_sweep,
     run_sweep,
-    write_csv,
+    write_sweep_table,
 )
 
 SAMPLES = 201  # the fewest the thesis curve needs without tripping the branch-jump check
@@ -161,8 +161,8 @@ def test_dask_local_cluster_gives_the_pool_table(sweep, pool_rows, tmp_path):
             rows_client = run_sweep(sweep, dask=client)
     assert rows == pool_rows
     assert rows_client == pool_rows
-    write_csv(pool_rows, tmp_path / "pool.csv", sweep.columns)
-    write_csv(rows, tmp_path / "dask.csv", sweep.columns)
+    write_sweep_table(pool_rows, tmp_path / "pool.csv", sweep.columns)
+    write_sweep_table(rows, tmp_path / "dask.csv", sweep.columns)
     assert (tmp_path / "pool.csv").read_bytes() == (tmp_path / "dask.csv").read_bytes()
 
 
