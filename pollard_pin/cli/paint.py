@@ -106,12 +106,15 @@ def paint_overlay(folder: Path):
 
     from ..io.table import ResultFileError, read_result
     from ..viz.paint import BAND
-    from ..viz.viewer import film_panel
+    from ..viz.viewer import ViewerError, check_scene_points, film_panel
 
     found = [p for p in (folder / "thickness.csv", folder / "thickness.parquet") if p.is_file()]
     if not (folder / "path.csv").is_file() or not found or not (folder / "paint.json").is_file():
         raise UsageError(f"--paint {folder}: not a paint output folder (expected path.csv, "
                          "thickness.csv or .parquet and paint.json from pollard-pin paint)")
+    if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
+        raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
+                         "two different films perhaps: remove the one not meant")
     try:
         report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
@@ -133,6 +136,14 @@ def paint_overlay(folder: Path):
         if not np.isfinite(values).all():
             k = int(np.argwhere(~np.isfinite(values).reshape(nv * nu, -1))[0][0])
             raise ResultFileError(f"{found[0]}: row {k + 1}: {what} not finite")
+    if (th < 0).any():
+        k = int(np.argmax(th.ravel() < 0))
+        raise ResultFileError(f"{found[0]}: row {k + 1}: thickness = {th.ravel()[k]:.4g} m, "
+                              "below 0 (a film is at least 0 m thick)")
+    try:
+        check_scene_points(pts, str(found[0]))
+    except ViewerError as exc:
+        raise ResultFileError(str(exc)) from None
 
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
