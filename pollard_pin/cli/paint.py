@@ -112,9 +112,6 @@ def paint_overlay(folder: Path):
     if not (folder / "path.csv").is_file() or not found or not (folder / "paint.json").is_file():
         raise UsageError(f"--paint {folder}: not a paint output folder (expected path.csv, "
                          "thickness.csv or .parquet and paint.json from pollard-pin paint)")
-    if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
-        raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
-                         "two different films perhaps: remove the one not meant")
     try:
         report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
@@ -125,6 +122,9 @@ def paint_overlay(folder: Path):
         raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = {nu!r}, "
                               f"nv = {nv!r}, target = {target!r}: expected point counts >= 1 "
                               "and a film thickness > 0 [m])")
+    if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
+        raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
+                         "two different films perhaps: remove the one not meant")
     table = read_result(found[0])
     try:
         pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
