@@ -314,6 +314,21 @@ def test_a_link_to_a_file_is_written_through(tmp_path, monkeypatch, capsys):
     assert Path("link.srdf").is_file()
 
 
+def test_a_urdf_to_a_device_writes_no_srdf_beside_it(tmp_path, monkeypatch, capsys):
+    # the old code created /dev/null.srdf (a regular file among the devices, as root)
+    monkeypatch.chdir(tmp_path)
+    os.mkfifo("pipe.urdf")
+    reader = os.open("pipe.urdf", os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        code, out, err = run_cli(["urdf", "--out", "pipe.urdf"], capsys)
+        assert code == 0, err
+        assert os.read(reader, 5) == b"<?xml"
+    finally:
+        os.close(reader)
+    assert sorted(os.listdir(tmp_path)) == ["pipe.urdf"]
+    assert "no SRDF beside a device or FIFO" in out
+
+
 # --- text on a terminal that cannot show θ, µ, σ --------------------------------------------
 def _cli(args, cwd, **env):
     return subprocess.run([sys.executable, "-m", "pollard_pin.cli", *args], cwd=cwd,
