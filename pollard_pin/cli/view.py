@@ -65,4 +65,4 @@ def add_parser(sub, parents) -> None:
                    help="also draw the reachable points of a workspace map written by "
                         "pollard-pin workspace --out DIR (default: none)")
     p.add_argument("--fps", type=positive, default=25.0,
-                   help="animation key frames per second of trajectory time")
+                   help="animation key frames per second of trajectory time (at least 1)")
