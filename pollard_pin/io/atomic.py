@@ -102,12 +102,15 @@ def check_destination(path: str | Path, *, folder: bool = False) -> None:
 
 def check_outputs(*files: str | Path | None, folders: tuple = ()) -> None:
     """Check every output of one command before the work (``None``: not written): each can be
-    written, and no two name the same file (one would overwrite the other)."""
+    written, and no two name the same file (one would overwrite the other; a character device
+    such as ``/dev/null`` may take several)."""
     seen: dict = {}
     for path, folder in [(d, True) for d in folders if d is not None] + \
                         [(f, False) for f in files if f is not None]:
         check_destination(path, folder=folder)
         key = _identity(path)
+        if key is None:
+            continue
         if key in seen:
             same = (f"{path}" if str(path) == str(seen[key]) else f"{seen[key]} and {path}")
             raise OutputError(f"{same}: named by two outputs, one would overwrite the other: "
@@ -120,9 +123,9 @@ def _identity(path: str | Path):
         return STDOUT
     try:
         st = os.stat(path)
-        return (st.st_dev, st.st_ino)
     except OSError:
         return os.path.realpath(path)
+    return None if stat.S_ISCHR(st.st_mode) else (st.st_dev, st.st_ino)
 
 
 def _cannot_create_in(folder: Path) -> str | None:
