@@ -38,7 +38,7 @@ _API = {
     "Trajectory": "io.trajectory", "thesis_trajectory": "io.trajectory",
     "from_csv": "io.trajectory", "to_csv": "io.trajectory", "TrajectoryError": "io.trajectory",
     "smooth_random_trajectory": "io.trajectory",
-    "run_pipeline": "run", "write_csv": "run", "RunResult": "run",
+    "run_pipeline": "run", "write_run_table": "run", "RunResult": "run",
     "stream_run": "run", "read_result": "io.table", "ThesisTrajectory": "io.trajectory",
     "load_actuators": "dynamics.motors", "Actuators": "dynamics.motors",
     "ActuatorError": "dynamics.motors", "actuator_sizing": "dynamics.sizing",

@@ -61,7 +61,7 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     return RunResult(traj, ik, dyn, joint_loads(robot, ik, dyn))
 
 
-def write_csv(result: RunResult, path: str | Path, metadata: dict | None = None) -> None:
+def write_run_table(result: RunResult, path: str | Path, metadata: dict | None = None) -> None:
     """Write the result's columns (CSV, or Parquet for ``*.parquet``) through
     :mod:`pollard_pin.io.table`, atomically: a failed run never leaves a half-written file."""
     write_table(path, result.columns(), metadata)
@@ -258,7 +258,7 @@ def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK, work
     """Solve ``traj`` (a :class:`Trajectory` or :class:`ThesisTrajectory`) window by window and
     write each window's columns to ``path`` as it is done; memory stays that of a few windows.
 
-    The same rows as ``write_csv(run_pipeline(robot, traj, **options), path)`` (see
+    The same rows as ``write_run_table(run_pipeline(robot, traj, **options), path)`` (see
     :func:`solve_windows`; ``workers`` threads solve while this thread writes). Errors count
     samples from the trajectory's start; the file appears only if every window is solved
     (atomic). ``options`` go to :func:`run_pipeline`; ``timings`` gets ``wall`` (solving and

@@ -41,7 +41,7 @@ def main():
     print(f"{args.csv}: {len(traj)} samples, derivatives from a {traj.derivatives}")
     robot = pp.load()
     result = pp.run_pipeline(robot, traj)
-    pp.write_csv(result, args.out)
+    pp.write_run_table(result, args.out)
     tau = result.dynamics.tau
     print(f"wrote {args.out}; peak |tau| {abs(tau).max(axis=0).round(4).tolist()} N·m "
           f"(order {', '.join(robot.actuated)})")

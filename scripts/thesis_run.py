@@ -20,7 +20,7 @@ def main():
     robot = pp.load()  # models/pollard.urdf + pollard.srdf, docs/model.md §5 parameters
     traj = pp.thesis_trajectory(duration=20.0, samples=args.samples)
     result = pp.run_pipeline(robot, traj)  # constrained IK, then RNEA + closure forces
-    pp.write_csv(result, args.out)
+    pp.write_run_table(result, args.out)
     print(f"wrote {len(traj)} rows to {args.out}")
 
     dyn = result.dynamics

@@ -200,7 +200,7 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 # take each out once its file is in):
 MIRROR_PENDING = {
     "pollard_pin/cli/plot.py", "pollard_pin/cli/size.py", "pollard_pin/cli/urdf.py",
-    "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py", "pollard_pin/io/atomic.py",
+    "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py",
     "pollard_pin/io/table.py", "pollard_pin/io/trajectory.py",
     "pollard_pin/kinematics/singularity.py",
     "pollard_pin/sweep/grid.py", "pollard_pin/workspace/reach.py",
@@ -210,7 +210,7 @@ MIRROR_PENDING = {
 UNMIRRORED_TESTS = {
     "tests/test_repository.py",  # the repository as a whole
     "tests/test_scripts.py",  # scripts/
-    "tests/cli/test_fuzz.py",  # the CLI fuzz suite: every command's bad input
+    # the CLI fuzz suite, every command's bad input: tests/cli/test_fuzz*.py (by class)
     "tests/kinematics/test_solver_edges.py",  # edge cases across ik_*, singularity, closure
     "tests/sweep/test_sweep.py",  # grid files (sweep/grid.py; owned by a parallel change)
 }
@@ -240,7 +240,8 @@ def test_every_module_has_its_mirror_test_file():
 def test_every_test_file_mirrors_a_module():
     mirrors = {_mirror(m) for m in _package_modules()}
     stray = [str(t.relative_to(ROOT)) for t in sorted((ROOT / "tests").rglob("test_*.py"))
-             if t not in mirrors and str(t.relative_to(ROOT)) not in UNMIRRORED_TESTS]
+             if t not in mirrors and str(t.relative_to(ROOT)) not in UNMIRRORED_TESTS
+             and not (t.parent.name == "cli" and t.name.startswith("test_fuzz"))]
     assert not stray, "test files that mirror no module:\n" + "\n".join(stray)
     # and the mirror rule is the one the check above uses
     assert _mirror(PACKAGE / "paint" / "plan.py") == ROOT / "tests" / "paint" / "test_plan.py"

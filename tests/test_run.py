@@ -12,7 +12,7 @@ import pollard_pin as pp
 from pollard_pin.io.table import read_result, units_path
 from pollard_pin.io.trajectory import ThesisTrajectory, Trajectory, thesis_trajectory
 from pollard_pin.kinematics.errors import SingularityError
-from pollard_pin.run import RunStats, stream_run, summary, write_csv
+from pollard_pin.run import RunStats, stream_run, summary, write_run_table
 
 # A pose exactly on leg 2's reach boundary (tests/kinematics/test_solver_edges.py): singular.
 ROUND_OFF = 1e-13  # × max(1, column peak)
@@ -23,7 +23,7 @@ EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
 @pytest.fixture(scope="module")
 def whole(robot, tmp_path_factory):
     path = tmp_path_factory.mktemp("whole") / "whole.csv"
-    write_csv(pp.run_pipeline(robot, thesis_trajectory(samples=1201)), path)
+    write_run_table(pp.run_pipeline(robot, thesis_trajectory(samples=1201)), path)
     return read_result(path)
 
 

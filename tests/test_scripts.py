@@ -1,5 +1,6 @@
 """The example scripts run and use the public API only."""
 import ast
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -20,8 +21,10 @@ PUBLIC = {"pollard_pin", "pollard_pin.viz.report", "pollard_pin.viz.viewer",
 @pytest.mark.parametrize("name", sorted(EXAMPLES))
 def test_example_script_runs(name, tmp_path):
     args, expect, files = EXAMPLES[name]
+    # the package beside the scripts, not whichever checkout is installed
+    env = {**os.environ, "PYTHONPATH": str(SCRIPTS.parent)}
     r = subprocess.run([sys.executable, str(SCRIPTS / name), *args], cwd=tmp_path,
-                       capture_output=True, text=True, timeout=120)
+                       capture_output=True, text=True, timeout=120, env=env)
     assert r.returncode == 0, r.stderr
     assert expect in r.stdout
     for f in files:

@@ -1,12 +1,12 @@
 """pollard-pin export: the model for another engine (MJCF)."""
 from __future__ import annotations
 
-from ..io.atomic import check_destination
+from ..io.atomic import check_outputs
 from .common import command, load_robot, model_args, name, wrote
 
 
 def run(args) -> int:
-    check_destination(args.out)
+    check_outputs(args.out)
     from ..io.mjcf import export_mjcf
 
     robot = load_robot(args)

@@ -58,6 +58,7 @@ def _errors() -> tuple[type[BaseException], ...]:
 
 
 def main(argv=None) -> int:
+    _survive_any_encoding()
     args = build_parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
                         format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
@@ -73,7 +74,7 @@ def main(argv=None) -> int:
         if isinstance(exc, MemoryError):
             message = f"not enough memory ({message}): fewer samples?"
         out = getattr(args, "out", None) or getattr(args, "html", None)
-        if out and out != STDOUT and args.command != "plot":
+        if out and out != STDOUT:
             message += f" (nothing written to {out})"
         print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
         return 2
@@ -92,6 +93,20 @@ def main(argv=None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _survive_any_encoding() -> None:
+    """The text the commands print (θ, µ, σ, ±, →) on a terminal or pipe whose encoding lacks
+    them (PYTHONIOENCODING=ascii, a Latin-1 locale): written as backslash escapes, never a
+    crash after the work. Files are UTF-8 whatever the locale (io.atomic)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            "θµσ±→×–²∈…".encode(stream.encoding or "ascii")
+        except (UnicodeEncodeError, LookupError):
+            with contextlib.suppress(AttributeError, ValueError):
+                stream.reconfigure(errors="backslashreplace")
+        except AttributeError:  # no encoding: not a text stream we can fix
+            pass
 
 
 class _Terminated(KeyboardInterrupt):

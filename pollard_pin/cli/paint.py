@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from .. import __version__
-from ..io.atomic import atomic_open, check_destination, make_folder
+from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
 from .common import UsageError, command, load_robot, model_args, name, positive
 
 MAX_FILM_POINTS = 2_000_000  # film grid points: ~0.3 s per 3,000 points × 5,000 samples
@@ -26,7 +26,7 @@ def _actuators(args, job):
 def run(args) -> int:
     import numpy as np
 
-    from ..io.table import write_table
+    from ..io.table import FORMATS, table_files, write_table
     from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
@@ -36,7 +36,11 @@ def run(args) -> int:
     from ..viz.paint import write_thickness_png
 
     out = Path(args.out)
-    check_destination(out, folder=True)
+    name = out / f"thickness.{args.format}"
+    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
+                  out / "paint.json", out / "thickness.png", folders=(out,))
+    stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
+             for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
     try:
         res = film_resolution(job, args.resolution)
@@ -63,16 +67,16 @@ def run(args) -> int:
     flat = pts.reshape(-1, 3)
     table = {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "u": UU.ravel(),
              "v": VV.ravel(), "thickness": film.thickness}
-    # everything is computed: now write
-    make_folder(out)
-    to_csv(tr, out / "path.csv")
-    name = out / f"thickness.{args.format}"
-    write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
-    with atomic_open(out / "paint.json") as f:
-        f.write(json.dumps(rep, indent=2) + "\n")
-    write_thickness_png(out / "thickness.png", U, V, film.thickness.reshape(len(V), len(U)),
-                        job.thickness, np.array([rel @ fr.u, rel @ fr.v]), job.width,
-                        job.height)
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(tr, out / "path.csv")
+        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
+        with atomic_open(out / "paint.json") as f:
+            f.write(json.dumps(rep, indent=2) + "\n")
+        write_thickness_png(out / "thickness.png", U, V,
+                            film.thickness.reshape(len(V), len(U)), job.thickness,
+                            np.array([rel @ fr.u, rel @ fr.v]), job.width, job.height)
+        remove_stale(*stale)
     print("\n".join(summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, paint.json, thickness.png", file=sys.stderr)
     return 0
@@ -104,7 +108,7 @@ def paint_overlay(folder: Path):
 
     from ..io.table import ResultFileError, read_result
     from ..viz.paint import BAND
-    from ..viz.viewer import film_panel
+    from ..viz.viewer import ViewerError, check_scene_points, film_panel
 
     found = [p for p in (folder / "thickness.csv", folder / "thickness.parquet") if p.is_file()]
     if not (folder / "path.csv").is_file() or not found or not (folder / "paint.json").is_file():
@@ -120,6 +124,9 @@ def paint_overlay(folder: Path):
         raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = {nu!r}, "
                               f"nv = {nv!r}, target = {target!r}: expected point counts >= 1 "
                               "and a film thickness > 0 [m])")
+    if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
+        raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
+                         "two different films perhaps: remove the one not meant")
     table = read_result(found[0])
     try:
         pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
@@ -131,6 +138,14 @@ def paint_overlay(folder: Path):
         if not np.isfinite(values).all():
             k = int(np.argwhere(~np.isfinite(values).reshape(nv * nu, -1))[0][0])
             raise ResultFileError(f"{found[0]}: row {k + 1}: {what} not finite")
+    if (th < 0).any():
+        k = int(np.argmax(th.ravel() < 0))
+        raise ResultFileError(f"{found[0]}: row {k + 1}: thickness = {th.ravel()[k]:.4g} m, "
+                              "below 0 (a film is at least 0 m thick)")
+    try:
+        check_scene_points(pts, str(found[0]))
+    except ViewerError as exc:
+        raise ResultFileError(str(exc)) from None
 
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))

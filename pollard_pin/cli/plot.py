@@ -3,24 +3,26 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..io.atomic import check_destination
+from ..io.atomic import all_or_nothing, check_outputs
 from .common import command, count, name, simulation_table, solve, trajectory_args
 
 
 def run(args) -> int:
-    from ..viz.plots import write_figures
+    from ..viz.plots import FIGURES, LOAD_FIGURES, write_figures
+    from ..viz.simulation import SIMULATION_FIGURES, write_simulation_figures
 
-    check_destination(args.out, folder=True)
+    names = SIMULATION_FIGURES if args.simulation else FIGURES + LOAD_FIGURES
+    check_outputs(*(Path(args.out) / f"{n}.png" for n in names), folders=(args.out,))
     if args.simulation:  # the simulation's figures only (docs/model.md §18)
-        from ..viz.simulation import write_simulation_figures
-
         table = simulation_table(args.simulation)
         name = f"{table.metadata.get('controller', 'simulation')}, {Path(args.simulation).name}"
-        for path in write_simulation_figures(table.columns, args.out, dpi=args.dpi, name=name):
-            print(f"wrote {path}")
-        return 0
-    _, result = solve(args, loads=True)  # joint-loads figure, docs/model.md §17
-    for path in write_figures(result, args.out, dpi=args.dpi):
+        with all_or_nothing():  # every figure or none
+            paths = write_simulation_figures(table.columns, args.out, dpi=args.dpi, name=name)
+    else:
+        _, result = solve(args, loads=True)  # joint-loads figure, docs/model.md §17
+        with all_or_nothing():
+            paths = write_figures(result, args.out, dpi=args.dpi)
+    for path in paths:
         print(f"wrote {path}")
     return 0
 

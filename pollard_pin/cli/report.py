@@ -1,7 +1,7 @@
 """pollard-pin report: sizing table and engine cross-checks."""
 from __future__ import annotations
 
-from ..io.atomic import atomic_open, check_destination
+from ..io.atomic import atomic_open, check_outputs
 from .common import STDOUT, command, name, simulation_table, solve, trajectory_args, wrote
 
 
@@ -9,7 +9,7 @@ def run(args) -> int:
     from ..viz.report import report, to_json, to_markdown
 
     out = args.out or STDOUT
-    check_destination(out)
+    check_outputs(out)
     table = simulation_table(args.simulation) if args.simulation else None
     robot, result = solve(args)
     rep = report(robot, result, cross_check=not args.no_cross_check)

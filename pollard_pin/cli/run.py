@@ -5,7 +5,7 @@ import os
 import sys
 
 from .. import __version__
-from ..io.atomic import check_destination
+from ..io.atomic import check_outputs
 from .common import (
     STDOUT,
     command,
@@ -26,9 +26,10 @@ STREAM_WINDOW = 4096  # = pollard_pin.run.STREAM_CHUNK (not imported: --help sta
 
 
 def run(args) -> int:
+    from ..io.table import table_files
     from ..run import stream_run, summary
 
-    check_destination(args.out)
+    check_outputs(*table_files(args.out))  # the table and its units sidecar
     margins = margins_of(args)
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)

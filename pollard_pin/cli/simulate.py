@@ -4,7 +4,7 @@ from __future__ import annotations
 import sys
 import time
 
-from ..io.atomic import check_destination
+from ..io.atomic import check_outputs
 from .common import (
     STDOUT,
     UsageError,
@@ -36,9 +36,9 @@ def run(args) -> int:
         simulate_tracking,
         step_used,
     )
-    from ..io.table import write_table
+    from ..io.table import table_files, write_table
 
-    check_destination(args.out)
+    check_outputs(*table_files(args.out))  # the table and its units sidecar
     if args.dt is None:
         args.dt = default_step(args.control_period)
     elif args.dt > args.control_period:

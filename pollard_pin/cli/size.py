@@ -3,8 +3,9 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
-from ..io.atomic import atomic_open, check_destination
+from ..io.atomic import all_or_nothing, atomic_open, check_outputs
 from .common import STDOUT, UsageError, command, log, name, solve, trajectory_args, wrote
 
 
@@ -12,6 +13,7 @@ def run(args) -> int:
     from ..dynamics.motors import load_actuators
     from ..dynamics.sizing import actuator_sizing
     from ..io.retime import retimed_trajectory
+    from ..io.table import table_files
     from ..io.trajectory import to_csv
     from ..viz.sizing import to_json, to_markdown, write_torque_speed
 
@@ -19,28 +21,30 @@ def run(args) -> int:
     if args.retime == STDOUT and out == STDOUT:
         raise UsageError("--retime - and the report both on standard output: give --out FILE "
                           "or --retime FILE.csv")
-    for path in (out, args.retime):
-        if path is not None:
-            check_destination(path)
-    if args.plot is not None:
-        check_destination(args.plot, folder=True)
+    retime = table_files(args.retime, "csv") if args.retime is not None else ()
+    figure = Path(args.plot) / "torque_speed.png" if args.plot is not None else None
+    check_outputs(*retime, figure, out, folders=(args.plot,))
     actuators = load_actuators(args.actuators)
     robot, result = solve(args)
     t0 = time.perf_counter()
     sized = actuator_sizing(robot, result, actuators)
     log.info("sized in %.3f s (TOPP-RA solves: %d)", time.perf_counter() - t0,
              sized.timing.iterations if sized.timing else 0)
-    if args.retime is not None and sized.timing is not None:
-        retimed = retimed_trajectory(result.trajectory, sized.timing)
-        to_csv(retimed, args.retime)
-        wrote(args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
-                           f"{len(retimed)} rows)")
-    if args.plot is not None:
-        wrote(write_torque_speed(sized, args.plot))
     text = to_json(sized.report) + "\n" if args.format == "json" else to_markdown(sized.report)
-    with atomic_open(out) as f:
-        f.write(text)
-    wrote(out)
+    written = []
+    with all_or_nothing():  # every output or none; the report last (it may be a device)
+        if args.retime is not None and sized.timing is not None:
+            retimed = retimed_trajectory(result.trajectory, sized.timing)
+            to_csv(retimed, args.retime)
+            written.append((args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
+                                         f"{len(retimed)} rows)"))
+        if args.plot is not None:
+            written.append((write_torque_speed(sized, args.plot), ""))
+        with atomic_open(out) as f:
+            f.write(text)
+        written.append((out, ""))
+    for path, what in written:
+        wrote(path, what)
     if sized.timing is None:  # the rest of the report stands; say why in one line
         why = sized.report["time_optimal_error"]
         if args.retime:

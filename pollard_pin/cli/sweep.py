@@ -5,14 +5,14 @@ import os
 import sys
 import time
 
-from ..io.atomic import check_destination
+from ..io.atomic import check_outputs
 from .common import STDOUT, command, count, name, progress, warnings_as_notes, wrote
 
 
 def run(args) -> int:
-    from ..sweep import load_grid, run_sweep, summary, write_csv
+    from ..sweep import load_grid, run_sweep, summary, write_sweep_table
 
-    check_destination(args.out)
+    check_outputs(args.out)
     with warnings_as_notes(args):  # a trajectory CSV without derivatives
         sweep = load_grid(args.grid)
     where = (f"Dask cluster {args.dask}" if args.dask else
@@ -24,7 +24,7 @@ def run(args) -> int:
         rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
                          progress=progress("sweep", not args.quiet))
     wall = time.perf_counter() - t0
-    write_csv(rows, args.out, sweep.columns)
+    write_sweep_table(rows, args.out, sweep.columns)
     print(summary(rows), file=sys.stderr if args.out == STDOUT else sys.stdout)
     wrote(args.out, f" ({len(rows)} rows, wall time {wall:.2f} s)")
     return 0

@@ -4,7 +4,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..io.atomic import check_destination
+from ..io.atomic import check_outputs
 from .common import STDOUT, UsageError, command, name, positive, say_notes, solve, trajectory_args
 
 
@@ -12,7 +12,7 @@ def run(args) -> int:
     from ..viz import viewer
 
     if args.html:
-        check_destination(args.html)
+        check_outputs(args.html)
     overlay = None
     if args.paint is not None:
         from .paint import paint_overlay
@@ -65,4 +65,4 @@ def add_parser(sub, parents) -> None:
                    help="also draw the reachable points of a workspace map written by "
                         "pollard-pin workspace --out DIR (default: none)")
     p.add_argument("--fps", type=positive, default=25.0,
-                   help="animation key frames per second of trajectory time")
+                   help="animation key frames per second of trajectory time (at least 1)")

@@ -99,8 +99,15 @@ def parse_bounds(text: str | None) -> dict | None:
 
 
 def run(args) -> int:
-    from ..io.atomic import OutputError, atomic_open, check_destination
-    from ..io.table import TableWriter, write_table
+    from ..io.atomic import (
+        OutputError,
+        all_or_nothing,
+        atomic_open,
+        check_outputs,
+        make_folder,
+        remove_stale,
+    )
+    from ..io.table import FORMATS, TableWriter, table_files, write_table
     from ..workspace.grid import WorkspaceError, map_workspace, parse_plane
 
     orientation = parse_orientation(args.orientation)
@@ -117,10 +124,14 @@ def run(args) -> int:
         raise OutputError(f"--out {out}: exists and is not a folder")
     paths = {"table": out / f"workspace.{args.format}", "json": out / "workspace.json",
              "png": out / "workspace.png"}
+    # an earlier map's outputs that this one does not replace: removed with the writing, so
+    # that view --workspace never finds two tables
+    stale = [f for fmt in FORMATS if fmt != args.format
+             for f in table_files(out / f"workspace.{fmt}", fmt)]
     if plane is None:
-        del paths["png"]
-    for path in paths.values():
-        check_destination(path)
+        stale.append(paths.pop("png"))
+    check_outputs(*table_files(paths["table"], args.format), *list(paths.values())[1:],
+                  folders=(out,))
     robot = load_robot(args)
     act = None
     if args.actuators is not None:
@@ -135,40 +146,28 @@ def run(args) -> int:
                 "options": {"plane": plane, "volume": args.volume,
                             "orientation_deg": args.orientation, "bounds": args.bounds,
                             "resolution": args.resolution, "actuators": args.actuators}}
-    created = [p for p in (out, *out.parents) if not p.exists()]  # deepest first
-    if plane is not None:
-        ws = map_workspace(robot, plane, **options)  # everything computed before anything written
-        out.mkdir(parents=True, exist_ok=True)
-        write_table(paths["table"], ws.columns, metadata, args.format)
-    else:
-        out.mkdir(parents=True, exist_ok=True)
-        try:
+    if plane is not None:  # everything computed before anything written
+        ws = map_workspace(robot, plane, **options)
+    with all_or_nothing():  # every output or none; a folder made for a failed map goes
+        make_folder(out)
+        if plane is not None:
+            write_table(paths["table"], ws.columns, metadata, args.format)
+        else:  # streamed: the table is written while the map is computed
             with TableWriter(paths["table"], metadata, args.format) as writer:
                 ws = map_workspace(robot, volume=True, sink=writer.write, **options)
-        except BaseException:
-            _remove_empty(created)
-            raise
-    ws.summary["metadata"].update(metadata)
-    with atomic_open(paths["json"]) as f:
-        json.dump(ws.summary, f, indent=1, ensure_ascii=False)
-        f.write("\n")
-    if plane is not None:
-        from ..viz.workspace import write_workspace_png
+        ws.summary["metadata"].update(metadata)
+        with atomic_open(paths["json"]) as f:
+            json.dump(ws.summary, f, indent=1, ensure_ascii=False)
+            f.write("\n")
+        if plane is not None:
+            from ..viz.workspace import write_workspace_png
 
-        write_workspace_png(ws, paths["png"], args.dpi)
+            write_workspace_png(ws, paths["png"], args.dpi)
+        remove_stale(*stale)
     print(summary_text(ws))
     for path in paths.values():
         wrote(path)
     return 0
-
-
-def _remove_empty(folders) -> None:
-    """Remove the folders this command created (deepest first), as long as they are empty."""
-    for folder in folders:
-        try:
-            folder.rmdir()
-        except OSError:
-            return
 
 
 def summary_text(ws) -> str:

@@ -20,7 +20,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..model.names import JOINTS
-from .atomic import STDOUT, OutputError, atomic_open, check_destination, is_special
+from .atomic import STDOUT, OutputError, all_or_nothing, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
@@ -81,11 +81,20 @@ def units_path(path: str | Path) -> Path:
     return path.with_name(path.stem + ".units.json")
 
 
+def table_files(path: str | Path, fmt: str | None = None) -> tuple:
+    """Every file a table at ``path`` is written to: the table, and for a CSV file its units
+    sidecar (none for standard output, a FIFO or a device). Check them all before the work."""
+    if table_format(path, fmt) == "csv" and str(path) != STDOUT and not is_special(Path(path)):
+        return (path, units_path(path))
+    return (path,)
+
+
 class TableWriter:
     """Write a table in chunks of columns (``write({name: array})``), atomically.
 
     The column names are fixed by the first chunk; ``metadata`` (JSON-ready) is stored with the
-    units. Use as a context manager: the file appears only if the block completes.
+    units. Use as a context manager: the file (and its sidecar) appears only if the block
+    completes (one :func:`~.atomic.all_or_nothing` block, joined to the caller's if any).
     """
 
     def __init__(self, path: str | Path, metadata: Mapping | None = None,
@@ -104,8 +113,14 @@ class TableWriter:
                 check_destination(units_path(self.path))
         else:
             import pyarrow.parquet  # noqa: F401
-        self._ctx = atomic_open(self.path, binary=True)
-        self._file = self._ctx.__enter__()
+        self._outputs = all_or_nothing()  # the table and its sidecar: both or neither
+        self._outputs.__enter__()
+        try:
+            self._ctx = atomic_open(self.path, binary=True)
+            self._file = self._ctx.__enter__()
+        except BaseException as error:
+            self._outputs.__exit__(type(error), error, error.__traceback__)
+            raise
         return self
 
     def write(self, chunk: Mapping[str, np.ndarray]) -> None:
@@ -138,15 +153,20 @@ class TableWriter:
 
     def __exit__(self, kind, exc, tb) -> None:
         try:
-            if self._parquet is not None:
-                self._parquet.close()
-        finally:
-            self._ctx.__exit__(kind, exc, tb)
-        if kind is None and self.fmt == "csv" and self._sidecar():
-            with atomic_open(units_path(self.path)) as f:
-                json.dump({"units": self.units(), "metadata": self.metadata}, f, indent=1,
-                          ensure_ascii=False)
-                f.write("\n")
+            try:
+                if self._parquet is not None:
+                    self._parquet.close()
+            finally:
+                self._ctx.__exit__(kind, exc, tb)
+            if kind is None and self.fmt == "csv" and self._sidecar():
+                with atomic_open(units_path(self.path)) as f:
+                    json.dump({"units": self.units(), "metadata": self.metadata}, f,
+                              indent=1, ensure_ascii=False)
+                    f.write("\n")
+        except BaseException as error:
+            self._outputs.__exit__(type(error), error, error.__traceback__)
+            raise
+        self._outputs.__exit__(kind, exc, tb)
 
     def _sidecar(self) -> bool:
         return str(self.path) != STDOUT and not is_special(Path(self.path))

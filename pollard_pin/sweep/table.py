@@ -1,4 +1,4 @@
-"""The sweep's result table: CSV (:func:`write_csv`) and a text summary (:func:`summary`)."""
+"""The sweep's result table as CSV (:func:`write_sweep_table`) and a text summary."""
 from __future__ import annotations
 
 import json
@@ -26,7 +26,7 @@ def _cell(value: Any) -> str:
     return str(value)
 
 
-def write_csv(rows: Sequence[Mapping[str, Any]], path: str | Path,
+def write_sweep_table(rows: Sequence[Mapping[str, Any]], path: str | Path,
               columns: Sequence[str] | None = None) -> None:
     """The result table as CSV (polars, atomic write). Empty cells: not applicable or
     infeasible; floats as their shortest exact repr, lists as JSON."""

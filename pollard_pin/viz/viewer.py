@@ -41,6 +41,8 @@ CLOSURE_A_RADIUS = 0.016  # m
 CLOSURE_B_RADIUS = 0.006  # m
 FRAME_SCALE = 0.06  # m, length of the frame triads
 MAX_KEY_FRAMES = 100_000  # ≈ 1.5 KB each in a static page: beyond, the page is unusable
+MIN_FPS = 1.0  # key frames/s: fewer make the animation straight jumps between far-off poses
+MAX_SCENE = 1e3  # m: a point read back farther from the base is a damaged file (reach < 1 m)
 
 
 class ViewerError(InputError):
@@ -276,9 +278,28 @@ def check_frame_rate(t: np.ndarray, fps: float) -> None:
     span = float(t[-1] - t[0])
     if not fps > 0:
         raise ViewerError(f"the frame rate must be positive, got {fps} key frames/s")
+    if fps < MIN_FPS:
+        raise ViewerError(f"{fps:.4g} key frames/s is below the least of {MIN_FPS:g}: the "
+                          "animation would jump straight between poses "
+                          f"{1 / fps:.4g} s apart; raise the frame rate")
     if not span * fps < MAX_KEY_FRAMES:
         raise ViewerError(f"{fps:g} key frames/s over {span:.4g} s make {span * fps:.3g} key "
                           f"frames, more than {MAX_KEY_FRAMES}: lower the frame rate")
+
+
+def check_scene_points(points, where: str, rows=None) -> None:
+    """Raise :class:`ViewerError` if a point (n, 3) [m] read back for the scene lies beyond
+    ±:data:`MAX_SCENE` of the base: ``where`` names the file, ``rows`` (n,) the table row of
+    each point (default 1 … n)."""
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    far = ~(np.abs(points).max(axis=1) <= MAX_SCENE)
+    if far.any():
+        k = int(np.argmax(far))
+        row = k + 1 if rows is None else int(rows[k])
+        x, y, z = points[k]
+        raise ViewerError(f"{where}: row {row}: point ({x:.4g}, {y:.4g}, {z:.4g}) m is beyond "
+                          f"±{MAX_SCENE:g} m of the robot base (its reach is under 1 m): a "
+                          "damaged file?")
 
 
 def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:

@@ -102,6 +102,7 @@ def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
     from matplotlib import colormaps
 
     from ..io.table import ResultFileError, read_result
+    from .viewer import ViewerError, check_scene_points
 
     folder = Path(folder)
     if not folder.is_dir():
@@ -113,11 +114,20 @@ def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
     if not found:
         raise ResultFileError(f"{folder}: no workspace.csv or workspace.parquet (write one with "
                               "pollard-pin workspace --out FOLDER)")
+    if len(found) > 1:  # pollard-pin workspace never leaves both: which map is meant?
+        raise ResultFileError(f"{folder}: holds both workspace.csv and workspace.parquet, two "
+                              "different maps perhaps: remove the one not meant")
     table = read_result(found[0])
     missing = [c for c in ("x", "y", "z", "reachable", "conditioning") if c not in table.columns]
     if missing:
         raise ResultFileError(f"{found[0]}: not a workspace table (no column {missing[0]!r})")
-    ok = table["reachable"] == 1
+    flag = table["reachable"]
+    odd = (flag != 0) & (flag != 1)
+    if odd.any():
+        k = int(np.argmax(odd))
+        raise ResultFileError(f"{found[0]}: row {k + 1}: reachable = {flag[k]:.4g}, expected 0 "
+                              "or 1")
+    ok = flag == 1
     pts = np.stack([table[c][ok] for c in ("x", "y", "z")], axis=1)
     index = table["conditioning"][ok]
     bad = ~np.isfinite(np.column_stack([pts, index])).all(axis=1)
@@ -125,5 +135,15 @@ def workspace_cloud(folder) -> tuple[np.ndarray, np.ndarray]:
         row = int(np.flatnonzero(ok)[np.argmax(bad)]) + 1
         raise ResultFileError(f"{found[0]}: row {row}: a reachable point with a non-finite "
                               "x, y, z or conditioning")
+    rows = np.flatnonzero(ok) + 1
+    out = (index < 0) | (index > 1)
+    if out.any():  # σ_min/σ_max-like: between 0 and 1 (docs/model.md §22)
+        k = int(np.argmax(out))
+        raise ResultFileError(f"{found[0]}: row {rows[k]}: conditioning = {index[k]:.4g}, "
+                              "expected a local conditioning index in [0, 1]")
+    try:
+        check_scene_points(pts, str(found[0]), rows)
+    except ViewerError as exc:
+        raise ResultFileError(str(exc)) from None
     top = float(index.max()) if len(index) else 1.0
     return pts, colormaps["viridis"](index / (top or 1.0))[:, :3]

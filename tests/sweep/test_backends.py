@@ -1,6 +1,6 @@
 """Where a sweep runs (sweep/backends.py): serially, on a forked or spawned process pool, on a
 Dask cluster, the rows are the same and in input order."""
-from pollard_pin.sweep import run_sweep, write_csv
+from pollard_pin.sweep import run_sweep, write_sweep_table
 
 
 def test_serial_equals_pool(sweep, pool_rows):
@@ -23,6 +23,6 @@ def test_dask_local_cluster_gives_the_pool_table(sweep, pool_rows, tmp_path):
             rows_client = run_sweep(sweep, dask=client)
     assert rows == pool_rows
     assert rows_client == pool_rows
-    write_csv(pool_rows, tmp_path / "pool.csv", sweep.columns)
-    write_csv(rows, tmp_path / "dask.csv", sweep.columns)
+    write_sweep_table(pool_rows, tmp_path / "pool.csv", sweep.columns)
+    write_sweep_table(rows, tmp_path / "dask.csv", sweep.columns)
     assert (tmp_path / "pool.csv").read_bytes() == (tmp_path / "dask.csv").read_bytes()

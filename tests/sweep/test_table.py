@@ -5,14 +5,14 @@ import csv
 import json
 
 from pollard_pin.model.names import ACTUATED
-from pollard_pin.sweep import summary, write_csv
+from pollard_pin.sweep import summary, write_sweep_table
 
 
 def test_csv_cells_round_trip(tmp_path):
     rows = [{"variant": "a", "x": 0.1 + 0.2, "ok": True, "com": [0.045, 0.0, 0.0], "n": None},
             {"variant": "b, with a comma", "x": 1e-300, "ok": False, "com": None, "n": 3}]
     path = tmp_path / "t.csv"
-    write_csv(rows, path, ["variant", "x", "ok", "com", "n"])
+    write_sweep_table(rows, path, ["variant", "x", "ok", "com", "n"])
     got = list(csv.DictReader(path.open(newline="")))
     assert [r["variant"] for r in got] == ["a", "b, with a comma"]
     assert [float(r["x"]) for r in got] == [0.1 + 0.2, 1e-300]  # exact
