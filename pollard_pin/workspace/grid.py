@@ -220,35 +220,42 @@ def make_grid(params, orientation, resolution, plane=None, bounds=None) -> Grid:
     centre, radius = reach_sphere(params, orientation)
     axes = tuple(a for a in range(3) if plane is None or a != plane[0])
     origin = [0.0, 0.0, 0.0]
-    shape = []
     if plane is not None:
         origin[plane[0]] = plane[1]
         if AXES[plane[0]] in bounds:
             raise WorkspaceError(f"bounds: the plane fixes {AXES[plane[0]]} = {plane[1]:g} m; "
                                  "give bounds for the other two axes only")
+    spans, cells = [], []
     for a in axes:
         if AXES[a] in bounds:
             lo, hi = bounds[AXES[a]]
         else:
             pad = radius + BOUND_MARGIN_CELLS * h
-            lo = math.floor((centre[a] - pad) / h) * h
-            hi = math.ceil((centre[a] + pad) / h) * h
-        n = math.floor((hi - lo) / h * (1 + 1e-12)) + 1
+            lo, hi = centre[a] - pad, centre[a] + pad
+        spans.append(hi - lo)
+        # The budget first, in floats: 1e-300 m asks for 1e300 points per axis (no integer).
+        with np.errstate(over="ignore"):
+            if AXES[a] not in bounds:  # snapped outward to multiples of the resolution
+                lo = float(np.floor(lo / h)) * h
+                hi = float(np.ceil(hi / h)) * h
+            cells.append(float(np.floor((hi - lo) / h * (1 + 1e-12))) + 1)
         origin[a] = lo
-        shape.append(n)
-    grid = Grid(tuple(origin), h, axes, tuple(shape))
+    size = math.prod(cells)
     limit = MAX_VOLUME_POINTS if plane is None else MEMORY_BUDGET // BYTES_PER_POINT
-    if grid.size > limit:
-        need = (f"{grid.size * BYTES_PER_POINT / 2 ** 30:.3g} GiB of memory (budget "
+    if not size <= limit:
+        need = (f"{size * BYTES_PER_POINT / 2 ** 30:.3g} GiB of memory (budget "
                 f"{MEMORY_BUDGET / 2 ** 30:.3g} GiB)" if plane is not None else
-                f"about {grid.size * 15e-6 / 3600:.3g} h and {grid.size * 150 / 1e9:.3g} GB of "
+                f"about {size * 15e-6 / 3600:.3g} h and {size * 150 / 1e9:.3g} GB of "
                 f"CSV (limit {MAX_VOLUME_POINTS:.3g} points)")
-        coarser = h * (grid.size / limit) ** (1.0 / len(axes))
+        coarser = 1.05 * (math.prod(spans) / limit) ** (1.0 / len(axes))
+        if not math.isfinite(size):
+            need = "more than any machine has"
         raise WorkspaceError(
-            f"resolution = {h:g} m gives a grid of {grid.size:,} points "
-            f"({' × '.join(map(str, shape))}), which would need {need}; use a resolution of "
-            f"at least {coarser:.3g} m or narrower bounds")
-    return grid
+            f"resolution = {h:.4g} m gives a grid of {min(size, 1e308):.4g} points (budget "
+            f"{limit:.4g}), which would need {need}; use a resolution of at least "
+            f"{coarser:.3g} m or narrower bounds")
+    shape = [int(c) for c in cells]
+    return Grid(tuple(origin), h, axes, tuple(shape))
 
 
 # --- the map ------------------------------------------------------------------------------------
