@@ -224,7 +224,7 @@ def _path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace) -> 
 def _check_samples(n: float, duration: float, speed: float, job: PaintJob) -> None:
     if n > MAX_PATH_SAMPLES:
         fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
-               "a thinner film per coat, fewer coats, more flow or a smaller panel")
+               "a thinner film, more flow or a smaller panel")
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
                           f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
                           f"{fix}")
