@@ -32,7 +32,7 @@ def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
     if points > MAX_FILM_POINTS:
         raise PlanError(f"film grid spacing {res:.4g} m makes {points:.4g} film points on the "
                         f"{job.width:g} × {job.height:g} m panel, budget {MAX_FILM_POINTS:.3g}: "
-                        "a coarser grid")
+                        "a coarser resolution")
     return res
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
 from ..errors import InputError
 from .reach import REASONS, ReachOptions, evaluate, length_scale
-from .rectangle import largest_rectangle
+from .rectangle import boundary_points, edge_samples, largest_rectangle
 
 AXES = ("x", "y", "z")
 CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
@@ -33,6 +33,10 @@ MAX_VOLUME_POINTS = 200_000_000
 COORD_DECIMALS = 10  # grid coordinates rounded to 0.1 nm [m]
 BOUND_MARGIN_CELLS = 2  # default bounds: the reach sphere widened by this many cells
 COARSE_CELLS = 40  # points per axis of the coarse volume that finds the reachable box
+# The largest rectangle's edges are re-checked at this many samples per grid step; a failing
+# sample removes its grid neighbours and the search runs again, at most EDGE_ROUNDS times.
+EDGE_REFINE = 4
+EDGE_ROUNDS = 16
 
 
 class WorkspaceError(InputError):
@@ -84,9 +88,10 @@ class Grid:
 @dataclass(frozen=True)
 class Rectangle:
     """The largest axis-aligned rectangle of reachable points of a plane map: ``axes`` (its two
-    coordinates), ``size`` [m] along them (points × step: each point stands for its cell),
-    ``centre`` (x, y, z) [m], ``points`` along each axis, and its corner points ``low`` and
-    ``high`` (x, y, z) [m]."""
+    coordinates), ``size`` [m] along them ((points − 1) × step: from corner point to corner
+    point, every edge re-checked at EDGE_REFINE× the grid's sampling), ``centre`` (x, y, z)
+    [m], ``points`` along each axis, and its corner points ``low`` and ``high`` (x, y, z) [m],
+    reachable (docs/model.md §22)."""
 
     axes: tuple[str, str]
     size: tuple[float, float]
@@ -348,8 +353,12 @@ def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 
     columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
     rect = None
     if plane_ is not None and columns is not None:
-        rect = _rectangle(grid, columns["reason"].reshape(grid.shape) == 0)
-    summary = _summary(robot, grid, orient, opts, totals, rect, time.perf_counter() - t0)
+        rect = _rectangle(robot, grid, columns["reason"].reshape(grid.shape) == 0, orient,
+                          opts)
+    boundary = (None if plane_ is None or columns is None else
+                boundary_points(columns["reason"].reshape(grid.shape) == 0))
+    summary = _summary(robot, grid, orient, opts, totals, rect, time.perf_counter() - t0,
+                       boundary)
     return WorkspaceMap(grid, orient, columns, summary, rect)
 
 
@@ -412,25 +421,51 @@ def _deg(orient) -> str:
     return "(" + ", ".join(f"{math.degrees(a):.4g}" for a in orient) + ")"
 
 
-def _rectangle(grid: Grid, mask: np.ndarray) -> Rectangle | None:
-    found = largest_rectangle(mask)
-    if found is None:
+def _rectangle(robot, grid: Grid, mask: np.ndarray, orient, opts) -> Rectangle | None:
+    """The largest rectangle of reachable points whose four edges, sampled EDGE_REFINE times
+    per step between its corner points, are reachable too (docs/model.md §22)."""
+    mask = mask.copy()
+    for _ in range(EDGE_ROUNDS):
+        found = largest_rectangle(mask)
+        if found is None:
+            return None
+        r0, r1, c0, c1 = found
+        rc = edge_samples(r0, r1 - 1, c0, c1 - 1, EDGE_REFINE)
+        pts = _plane_points(grid, rc)
+        poses = np.concatenate([pts, np.broadcast_to(orient, (len(pts), 3))], axis=1)
+        bad = rc[evaluate(robot, poses, ReachOptions(opts.wrist_margin,
+                                                     opts.singularity_margin))["reason"] != 0]
+        if not len(bad):
+            break
+        for r, c in bad:  # the grid points on either side of a failing edge sample
+            mask[math.floor(r):math.ceil(r) + 1, math.floor(c):math.ceil(c) + 1] = False
+    else:
         return None
-    r0, r1, c0, c1 = found
     lo = grid.points(np.array([np.ravel_multi_index((r0, c0), grid.shape)]))[0]
     hi = grid.points(np.array([np.ravel_multi_index((r1 - 1, c1 - 1), grid.shape)]))[0]
     names = tuple(AXES[a] for a in grid.axes)
-    size = (round((r1 - r0) * grid.step, COORD_DECIMALS), round((c1 - c0) * grid.step,
-                                                                COORD_DECIMALS))
+    size = (round((r1 - r0 - 1) * grid.step, COORD_DECIMALS),
+            round((c1 - c0 - 1) * grid.step, COORD_DECIMALS))
     return Rectangle(names, size, tuple(np.round(0.5 * (lo + hi), COORD_DECIMALS).tolist()),
                      (r1 - r0, c1 - c0), tuple(lo.tolist()), tuple(hi.tolist()))
 
 
-def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
+def _plane_points(grid: Grid, rc: np.ndarray) -> np.ndarray:
+    """(n, 3) positions of fractional grid indices (n, 2) of a plane grid."""
+    pts = np.tile(np.asarray(grid.origin, dtype=float), (len(rc), 1))
+    for k, a in enumerate(grid.axes):
+        pts[:, a] += grid.step * rc[:, k]
+    return pts
+
+
+def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
+             boundary: int | None = None) -> dict:
     plane = len(grid.axes) == 2
     measure = "area" if plane else "volume"
     out = {"grid": grid.as_dict(),
            measure: totals.reachable * grid.cell,
+           **({} if boundary is None else {"area_bound": boundary * grid.cell,
+                                           "boundary_points": boundary}),
            "reachable_points": totals.reachable,
            "bounding_box": {"low": totals.low.tolist(), "high": totals.high.tolist()},
            "global_conditioning_index": totals.conditioning / totals.reachable,
@@ -456,8 +491,10 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
 
 def largest_panel(robot, plane, *, orientation=(0.0, 0.0, 0.0), resolution: float = 0.005,
                   bounds=None, **options) -> Rectangle | None:
-    """The largest axis-aligned rectangle of reachable tool positions in a plane (e.g.
-    "x=0.55": the panel surface minus the standoff) at this orientation — the biggest panel
-    the robot can sweep there (docs/model.md §22). ``options`` as :func:`workspace`."""
+    """The largest axis-aligned rectangle (a :class:`Rectangle`, corner to corner through
+    reachable grid points) of reachable tool positions in a plane (e.g. "x=0.55": the panel
+    surface minus the standoff) at this orientation — the biggest panel the robot can sweep
+    there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's own
+    search, a float scale of a job's panel, is :func:`pollard_pin.paint.plan.largest_scale`."""
     return map_workspace(robot, plane, orientation=orientation, resolution=resolution,
                      bounds=bounds, **options).rectangle
