@@ -11,8 +11,6 @@ from .. import __version__
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
 from .common import UsageError, command, load_robot, model_args, name, positive
 
-MAX_FILM_POINTS = 2_000_000  # film grid points: ~0.3 s per 3,000 points × 5,000 samples
-
 
 def _actuators(args, job):
     """--actuators, else the job's ``actuators``, else the package default (the ratings of
@@ -46,11 +44,6 @@ def run(args) -> int:
         res = film_resolution(job, args.resolution)
     except PlanError as exc:
         raise UsageError(f"--resolution: {exc}") from None
-    points = (math.ceil(job.width / res) + 1) * (math.ceil(job.height / res) + 1)
-    if points > MAX_FILM_POINTS:
-        raise UsageError(f"--resolution {res:g} m makes {points} film points on the "
-                         f"{job.width:g} × {job.height:g} m panel, more than "
-                         f"{MAX_FILM_POINTS}: give a coarser resolution")
     act = _actuators(args, job)
     robot = load_robot(args)
     t0 = time.perf_counter()

@@ -178,7 +178,9 @@ def summary_text(ws) -> str:
              f"{g['step']:g} m) at (ψ, θ, φ) = ({deg})°, "
              f"{s['metadata']['us_per_point']:.2f} µs/point"]
     if "area" in s:
-        lines.append(f"area {s['area']:.5g} m² ({s['reachable_points']:,} reachable points)")
+        bound = (f" ± {s['area_bound']:.2g}" if "area_bound" in s else "")
+        lines.append(f"area {s['area']:.5g}{bound} m² ({s['reachable_points']:,} reachable "
+                     f"points{', ± their boundary cells' if bound else ''})")
     else:
         lines.append(f"volume {s['volume']:.5g} m³ ({s['reachable_points']:,} reachable "
                      "points)")

@@ -18,6 +18,7 @@ import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
+from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
@@ -25,6 +26,11 @@ THESIS_SAMPLES = 2001
 U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
 MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
+# Sample budgets of the thesis trajectory, checked before anything is allocated: solved whole
+# (view, plot, report, size, simulate, sweep) a sample costs ≈ 3 KB; streamed window by window
+# (run) it costs ≈ 11 µs and 30-300 bytes of output (README: a million samples in 11 s).
+MAX_SAMPLES = 1_000_000  # ≈ 3 GB solved
+MAX_STREAMED_SAMPLES = 100_000_000  # ≈ 20 min and 3-30 GB of output
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 
 
@@ -91,6 +97,22 @@ def thesis_curve(t, duration: float = THESIS_DURATION,
     return poses, d, dd
 
 
+def check_samples(samples, budget: int, how: str = "") -> None:
+    """An integer sample count >= 2 within ``budget`` (checked before anything is allocated)."""
+    whole = isinstance(samples, (int, np.integer)) and not isinstance(samples, bool) or (
+        isinstance(samples, float) and math.isfinite(samples) and samples.is_integer())
+    if not whole or samples < 2:
+        raise TrajectoryError(f"samples must be an integer >= 2, got {samples!r}")
+    if samples > budget:
+        raise TrajectoryError(f"{count_text(samples)} samples are over the{how} budget of "
+                              f"{budget:.4g}: use fewer samples")
+
+
+def count_text(n) -> str:
+    """A count, however large, as a short number (no 700-digit integers in messages)."""
+    return f"{n:.4g}" if n < 1e300 else "more than 1e300"
+
+
 def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
                       home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
     """The default painting trajectory (docs/model.md §9) sampled at ``samples`` points."""
@@ -99,8 +121,7 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     if not 2.0 * U_RANGE / duration < 1e150:  # the accelerations grow as 1/duration²
         raise TrajectoryError(f"duration {duration} s is too short: the curve's accelerations "
                               "overflow")
-    if int(samples) != samples or samples < 2:
-        raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
+    check_samples(samples, MAX_SAMPLES)
     t = np.linspace(0.0, duration, int(samples))
     return Trajectory(t, *thesis_curve(t, duration, home_pose), name="thesis",
                       derivatives="analytic",
@@ -115,8 +136,7 @@ class ThesisTrajectory:
     def __init__(self, duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
                  home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)):
         thesis_trajectory(duration, 2, home_pose)  # the same argument checks
-        if int(samples) != samples or samples < 2:
-            raise TrajectoryError(f"samples must be an integer >= 2, got {samples}")
+        check_samples(samples, MAX_STREAMED_SAMPLES, " streamed")
         self.duration, self.samples = float(duration), int(samples)
         self.home_pose = tuple(float(x) for x in home_pose)
         self.name, self.derivatives = "thesis", "analytic"
@@ -238,6 +258,13 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': {kind} time "
                               f"{float(t[r + 1])!r} after {float(t[r])!r} (times must "
                               "increase strictly)")
+    small = dt < MIN_TIME_STEP  # the solver's rule (ik_common); the spline would overflow
+    if np.any(small):
+        r = int(np.argmax(small))
+        raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': time step too small: "
+                              f"{float(t[r + 1])!r} after {float(t[r])!r} is "
+                              f"{float(dt[r]):.3g} s, below {MIN_TIME_STEP:g} s (times in "
+                              "seconds?)")
     poses = np.column_stack([col[n] for n in TASK_NAMES])
     for c, name in enumerate(TASK_NAMES):
         limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \

@@ -15,3 +15,7 @@ class ReachError(PlanError):
     def __init__(self, message: str, sample: int, pose=None):
         super().__init__(message)
         self.sample, self.pose = sample, pose
+
+
+class BudgetError(PlanError):
+    """A plan over its stated budget (samples, passes): one line with what it would need."""

@@ -24,6 +24,9 @@ OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "co
 DIRECTIONS = ("horizontal", "vertical")
 # A length beyond this is a unit slip (mm for m): the robot reaches ~0.5 m.
 MAX_LENGTH = 10.0
+# The smallest panel side, in spray spots σ: below it the film is the spot's own profile and
+# "within ±10 %" says nothing about the panel (docs/model.md §21).
+MIN_PANEL_SIGMAS = 1.0
 
 
 class JobError(InputError):
@@ -130,6 +133,11 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
               for k in ("width", "height")}
     values.update({k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
                    for k in REQUIRED["gun"]})
+    for k in ("width", "height"):
+        if values[k] < MIN_PANEL_SIGMAS * values["sigma"]:
+            _fail(source, f"panel.{k}", panel[k], f"is smaller than the spray spot (σ = "
+                  f"{values['sigma']:.4g} m): a panel must be at least "
+                  f"{MIN_PANEL_SIGMAS:g} σ wide and high")
     values["thickness"] = _positive(source, "job.thickness", job["thickness"], length=True)
     for k in ("spacing", "speed"):
         if k in job:
@@ -160,4 +168,5 @@ def load_job(path: str | Path) -> PaintJob:
     return job
 
 
-__all__ = ["DIRECTIONS", "JobError", "PaintJob", "job_from_dict", "load_job"]
+__all__ = ["DIRECTIONS", "JobError", "MIN_PANEL_SIGMAS", "PaintJob", "job_from_dict",
+           "load_job"]

@@ -43,12 +43,11 @@ def joint_limit_violation(robot, q: np.ndarray):
     return k, names[j], float(q[k, j]), float(lim.lower), float(lim.upper)
 
 
-def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
-           margins: Margins | None = None) -> Motion:
-    """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
-    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail (the
-    same ``margins``, default ``run``'s) or a joint leaves its limits."""
-    from ..dynamics.inverse import inverse_dynamics
+def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None = None):
+    """The reach check alone (no dynamics, where the motors are not the question): IK of the
+    tool poses (N, 6) under ``run``'s rules and ``margins`` (default ``run``'s), and the joint
+    limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
+    fails."""
     from ..kinematics.ik import inverse_kinematics
 
     n = len(poses)
@@ -64,6 +63,17 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
         k, name, val, lo, hi = bad
         raise ReachError(f"joint {name} at {math.degrees(val):.1f}° is outside its limits "
                          f"[{math.degrees(lo):g}°, {math.degrees(hi):g}°]", k, np.asarray(poses)[k])
+    return ik
+
+
+def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
+           margins: Margins | None = None) -> Motion:
+    """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
+    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
+    joint leaves its limits (:func:`reach`)."""
+    from ..dynamics.inverse import inverse_dynamics
+
+    ik = reach(robot, poses, d_poses, dd_poses, margins=margins)
     tau = inverse_dynamics(robot, ik, energies=False).tau
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
@@ -96,4 +106,5 @@ def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings:
     return hi
 
 
-__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion"]
+__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion",
+           "reach"]

@@ -25,9 +25,9 @@ from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ..dynamics.path import path_dynamics
 from ..io.trajectory import Trajectory
 from .deposition import Gun
-from .errors import PlanError, ReachError
-from .job import PaintJob
-from .motion import fastest, motion
+from .errors import BudgetError, PlanError, ReachError
+from .job import MIN_PANEL_SIGMAS, PaintJob
+from .motion import fastest, motion, reach
 from .raster import (
     SPOT_RADIUS,
     PanelFrame,
@@ -45,6 +45,11 @@ TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
 CHECK_REFINE = 4  # the final motor check samples the path this many times more densely
 MAX_STEP = 0.002  # s: the trajectory's largest time step
 STEP_SIGMA = 0.25  # the gun moves at most this many σ per step (film integration, §20)
+# Budgets, checked before anything is built: the path's samples (the final motor check
+# solves CHECK_REFINE× as many at ≈ 3.3 KB and 20 µs each: ≈ 3.3 GB and 20 s) and the passes
+# over all coats (the layout's cross-profile grid grows with their square).
+MAX_PATH_SAMPLES = 250_000
+MAX_PASSES = 1000
 
 
 @dataclass(frozen=True)
@@ -116,8 +121,8 @@ def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offs
     # passes laid end to end at 1 m/s (a gap of one step between them): t is arc length
     t = (np.tile(U + half_length, len(offsets))
          + np.repeat(np.arange(len(offsets)) * (length + length / n), n))
-    mot = motion(robot, act, poses, d, dd)  # reach and limits, with their messages
-    ik = replace(mot.ik, t=t)
+    # reach and limits, with their messages; the motors' question is path_dynamics' below
+    ik = replace(reach(robot, poses, d, dd), t=t)
     try:
         scaling = uniform_min_duration(derated(act, UTILISATION), path_dynamics(robot, ik))
     except ActuatorError as exc:
@@ -130,31 +135,60 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     """The fastest raster program for the job that the motors and the workspace allow.
 
     A path out of reach raises :class:`PlanError` naming where it leaves the workspace and
-    the largest panel of the same centre and proportions that fits (:func:`largest_scale`).
+    the largest panel of the same centre and proportions that was planned in full
+    (:func:`largest_scale`: a float scale, not :func:`pollard_pin.workspace.grid.largest_panel`'s
+    rectangle).
     """
     try:
         return _plan(robot, job, act)
     except ReachError as exc:
-        scale = largest_scale(robot, job, act)
+        scale, within = _largest_scale(robot, job, act)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
                     f"{tuple(round(c, 4) for c in job.center)} fits")
         else:
             fits = (f"the largest panel that fits at standoff {job.standoff:g} m, same centre "
                     f"and proportions, is {scale * job.width:.3f} × {scale * job.height:.3f} "
-                    f"m (within {100 * 2 ** -LARGEST_STEPS:.1f} %)")
+                    f"m (planned in full; within {100 * within:.1f} %)")
         raise PlanError(f"{exc}; {fits}") from None
 
 
-LARGEST_STEPS = 6  # bisection steps of the largest panel that fits
+LARGEST_STEPS = 6  # bisection steps of the largest panel whose crude raster stays in reach
+# ... then planned in full, stepping down by STEP_DOWN until one plans, at most this often
+LARGEST_TRIES = 12
+STEP_DOWN = 0.95
 
 
 def largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
-    """The largest scale s ∈ [0, 1) (to 2^-steps) of the job's panel, same centre, whose
-    raster stays in reach (``run``'s rules and the joint limits), by bisection; 0 if none of
-    the tried scales does. Each try samples the whole raster at the job's speed with every
-    turnaround and ramp at the duration search's first guess (longer than the motors need,
-    so it reaches further out than the final path)."""
+    """The largest scale s ∈ [0, 1) of the job's panel, same centre and proportions, that
+    :func:`plan_paint` plans (a float; :func:`pollard_pin.workspace.grid.largest_panel` is the
+    workspace's rectangle): a bisection (to 2^-steps) over a crude raster checked for reach
+    only, then the candidate planned in full and stepped down by STEP_DOWN until one plans
+    (at most LARGEST_TRIES plans); 0 if none does."""
+    return _largest_scale(robot, job, act, steps)[0]
+
+
+def _largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS):
+    """(scale, relative accuracy) of :func:`largest_scale`; (0, 0) if no scale plans."""
+    scale = _reach_scale(robot, job, steps)
+    for k in range(LARGEST_TRIES if scale > 0 else 0):
+        scaled = replace(job, width=scale * job.width, height=scale * job.height)
+        if min(scaled.width, scaled.height) < MIN_PANEL_SIGMAS * job.sigma:
+            break  # the job's own rule (job.py): a smaller panel is refused
+        try:
+            _plan(robot, scaled, act)
+        except PlanError:
+            scale *= STEP_DOWN
+            continue
+        # the bisection's bracket, or the step from the last scale that did not plan
+        return scale, (2.0 ** -steps if k == 0 else 1 / STEP_DOWN - 1)
+    return 0.0, 0.0
+
+
+def _reach_scale(robot, job: PaintJob, steps: int) -> float:
+    """The bisection of :func:`largest_scale`: each try samples the whole raster at the job's
+    speed with every turnaround and ramp at the duration search's first guess, reach only
+    (IK, margins, joint limits: :func:`.motion.reach`, no dynamics)."""
     lo, hi = 0.0, 1.0
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
@@ -163,12 +197,32 @@ def largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STE
             frame, offsets, half_length, speed, coats, _ = _layout(scaled)
             tau = _first_guess(speed)
             seg = raster_segments(offsets, half_length, speed, tau, (tau, tau), coats)
-            t = np.arange(0.0, seg.total, min(MAX_STEP, STEP_SIGMA * job.sigma / speed))
-            motion(robot, act, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
+            t = _path_times(seg, scaled, speed, np.arange)
+            reach(robot, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
             lo = mid
+        except BudgetError:
+            raise
         except PlanError:
             hi = mid
     return lo
+
+
+def _path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace) -> np.ndarray:
+    """The path's sample times: steps of at most MAX_STEP and STEP_SIGMA·σ of gun travel,
+    within MAX_PATH_SAMPLES (checked before they are made)."""
+    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
+    n = math.ceil(seg.total / dt) + 1
+    _check_samples(n, seg.total, speed, job)
+    return np.arange(0.0, seg.total, dt) if how is np.arange else np.linspace(0.0, seg.total, n)
+
+
+def _check_samples(n: float, duration: float, speed: float, job: PaintJob) -> None:
+    if n > MAX_PATH_SAMPLES:
+        fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
+               "a thinner film, more flow or a smaller panel")
+        raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
+                          f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
+                          f"{fix}")
 
 
 def _first_guess(speed: float) -> float:
@@ -189,6 +243,18 @@ def _layout(job: PaintJob):
         spacing = job.flow * coats / (job.thickness * job.speed)
     else:
         spacing = ripple_spacing(job.sigma)
+    # pass_offsets' count, give or take the edges
+    passes = (extent / spacing + 1) * coats if spacing > 0 else math.inf
+    if passes > MAX_PASSES:
+        raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
+                          f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {MAX_PASSES}: "
+                          "a wider spacing, fewer coats or a smaller panel")
+    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    half_length = length / 2 + SPOT_RADIUS * job.sigma
+    # the passes alone, before any turnaround: their samples bound the path's from below
+    passing = passes * 2 * half_length / speed if speed > 0 else math.inf
+    _check_samples(passing / min(MAX_STEP, STEP_SIGMA * job.sigma / speed) if speed > 0 else
+                   math.inf, passing, speed, job)
     try:
         offsets = pass_offsets(extent, spacing, job.sigma)
     except ValueError as exc:  # name the job entries the spacing came from
@@ -196,8 +262,7 @@ def _layout(job: PaintJob):
                   "job.speed" + (" and job.coats" if job.coats else "")
                   if job.speed is not None else "the ripple rule")
         raise PlanError(f"{job.source}: {origin}: {exc}") from None
-    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    return frame, offsets, length / 2 + SPOT_RADIUS * job.sigma, speed, coats, spacing
+    return frame, offsets, half_length, speed, coats, spacing
 
 
 def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
@@ -229,9 +294,8 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     seg = _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats,
                             horizontal)
     clock["turns"] = time.perf_counter()
-    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
-    n = int(math.ceil(seg.total / dt)) + 1
-    t = np.linspace(0.0, seg.total, n)
+    t = _path_times(seg, job, speed)
+    n = len(t)
     poses, d, dd = _task(frame, job, seg, t, horizontal)
     traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic",
                       curve=lambda times: _task(frame, job, seg, times, horizontal))
@@ -288,5 +352,5 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
-__all__ = ["CHECK_REFINE", "PaintPlan", "UTILISATION", "derated", "gun_of",
-           "largest_scale", "max_pass_speed", "plan_paint"]
+__all__ = ["CHECK_REFINE", "MAX_PASSES", "MAX_PATH_SAMPLES", "PaintPlan", "UTILISATION",
+           "derated", "gun_of", "largest_scale", "max_pass_speed", "plan_paint"]

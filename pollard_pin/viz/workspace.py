@@ -58,7 +58,7 @@ def workspace_figure(ws):
     rect = ws.rectangle
     if rect is not None:
         lo = [rect.low[a] for a in grid.axes]
-        box = Box((lo[0] - h / 2, lo[1] - h / 2), rect.size[0], rect.size[1], fill=False,
+        box = Box((lo[0], lo[1]), rect.size[0], rect.size[1], fill=False,  # corner points
                   edgecolor="crimson", lw=2,
                   label=f"largest rectangle {rect.size[0]:.3g} × {rect.size[1]:.3g} m")
         box.set_gid("rectangle")

@@ -22,7 +22,7 @@ from ..checks import real
 from ..errors import InputError
 from ..kinematics.margins import Margins, as_margins
 from .reach import REASONS, ReachOptions, evaluate, length_scale
-from .rectangle import largest_rectangle
+from .rectangle import boundary_points, edge_samples, largest_rectangle
 
 AXES = ("x", "y", "z")
 CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
@@ -35,6 +35,10 @@ MAX_VOLUME_POINTS = 200_000_000
 COORD_DECIMALS = 10  # grid coordinates rounded to 0.1 nm [m]
 BOUND_MARGIN_CELLS = 2  # default bounds: the reach sphere widened by this many cells
 COARSE_CELLS = 40  # points per axis of the coarse volume that finds the reachable box
+# The largest rectangle's edges are re-checked at this many samples per grid step; a failing
+# sample removes its grid neighbours and the search runs again, at most EDGE_ROUNDS times.
+EDGE_REFINE = 4
+EDGE_ROUNDS = 16
 
 
 class WorkspaceError(InputError):
@@ -86,9 +90,10 @@ class Grid:
 @dataclass(frozen=True)
 class Rectangle:
     """The largest axis-aligned rectangle of reachable points of a plane map: ``axes`` (its two
-    coordinates), ``size`` [m] along them (points × step: each point stands for its cell),
-    ``centre`` (x, y, z) [m], ``points`` along each axis, and its corner points ``low`` and
-    ``high`` (x, y, z) [m]."""
+    coordinates), ``size`` [m] along them ((points − 1) × step: from corner point to corner
+    point, every edge re-checked at EDGE_REFINE× the grid's sampling), ``centre`` (x, y, z)
+    [m], ``points`` along each axis, and its corner points ``low`` and ``high`` (x, y, z) [m],
+    reachable (docs/model.md §22)."""
 
     axes: tuple[str, str]
     size: tuple[float, float]
@@ -222,35 +227,42 @@ def make_grid(params, orientation, resolution, plane=None, bounds=None) -> Grid:
     centre, radius = reach_sphere(params, orientation)
     axes = tuple(a for a in range(3) if plane is None or a != plane[0])
     origin = [0.0, 0.0, 0.0]
-    shape = []
     if plane is not None:
         origin[plane[0]] = plane[1]
         if AXES[plane[0]] in bounds:
             raise WorkspaceError(f"bounds: the plane fixes {AXES[plane[0]]} = {plane[1]:g} m; "
                                  "give bounds for the other two axes only")
+    spans, cells = [], []
     for a in axes:
         if AXES[a] in bounds:
             lo, hi = bounds[AXES[a]]
         else:
             pad = radius + BOUND_MARGIN_CELLS * h
-            lo = math.floor((centre[a] - pad) / h) * h
-            hi = math.ceil((centre[a] + pad) / h) * h
-        n = math.floor((hi - lo) / h * (1 + 1e-12)) + 1
+            lo, hi = centre[a] - pad, centre[a] + pad
+        spans.append(hi - lo)
+        # The budget first, in floats: 1e-300 m asks for 1e300 points per axis (no integer).
+        with np.errstate(over="ignore"):
+            if AXES[a] not in bounds:  # snapped outward to multiples of the resolution
+                lo = float(np.floor(lo / h)) * h
+                hi = float(np.ceil(hi / h)) * h
+            cells.append(float(np.floor((hi - lo) / h * (1 + 1e-12))) + 1)
         origin[a] = lo
-        shape.append(n)
-    grid = Grid(tuple(origin), h, axes, tuple(shape))
+    size = math.prod(cells)
     limit = MAX_VOLUME_POINTS if plane is None else MEMORY_BUDGET // BYTES_PER_POINT
-    if grid.size > limit:
-        need = (f"{grid.size * BYTES_PER_POINT / 2 ** 30:.3g} GiB of memory (budget "
+    if not size <= limit:
+        need = (f"{size * BYTES_PER_POINT / 2 ** 30:.3g} GiB of memory (budget "
                 f"{MEMORY_BUDGET / 2 ** 30:.3g} GiB)" if plane is not None else
-                f"about {grid.size * 15e-6 / 3600:.3g} h and {grid.size * 150 / 1e9:.3g} GB of "
+                f"about {size * 15e-6 / 3600:.3g} h and {size * 150 / 1e9:.3g} GB of "
                 f"CSV (limit {MAX_VOLUME_POINTS:.3g} points)")
-        coarser = h * (grid.size / limit) ** (1.0 / len(axes))
+        coarser = 1.05 * (math.prod(spans) / limit) ** (1.0 / len(axes))
+        if not math.isfinite(size):
+            need = "more than any machine has"
         raise WorkspaceError(
-            f"resolution = {h:g} m gives a grid of {grid.size:,} points "
-            f"({' × '.join(map(str, shape))}), which would need {need}; use a resolution of "
-            f"at least {coarser:.3g} m or narrower bounds")
-    return grid
+            f"resolution = {h:.4g} m gives a grid of {min(size, 1e308):.4g} points (budget "
+            f"{limit:.4g}), which would need {need}; use a resolution of at least "
+            f"{coarser:.3g} m or narrower bounds")
+    shape = [int(c) for c in cells]
+    return Grid(tuple(origin), h, axes, tuple(shape))
 
 
 # --- the map ------------------------------------------------------------------------------------
@@ -339,8 +351,12 @@ def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 
     columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
     rect = None
     if plane_ is not None and columns is not None:
-        rect = _rectangle(grid, columns["reason"].reshape(grid.shape) == 0)
-    summary = _summary(robot, grid, orient, opts, totals, rect, time.perf_counter() - t0)
+        rect = _rectangle(robot, grid, columns["reason"].reshape(grid.shape) == 0, orient,
+                          opts)
+    boundary = (None if plane_ is None or columns is None else
+                boundary_points(columns["reason"].reshape(grid.shape) == 0))
+    summary = _summary(robot, grid, orient, opts, totals, rect, time.perf_counter() - t0,
+                       boundary)
     return WorkspaceMap(grid, orient, columns, summary, rect)
 
 
@@ -382,25 +398,50 @@ def _deg(orient) -> str:
     return "(" + ", ".join(f"{math.degrees(a):.4g}" for a in orient) + ")"
 
 
-def _rectangle(grid: Grid, mask: np.ndarray) -> Rectangle | None:
-    found = largest_rectangle(mask)
-    if found is None:
+def _rectangle(robot, grid: Grid, mask: np.ndarray, orient, opts) -> Rectangle | None:
+    """The largest rectangle of reachable points whose four edges, sampled EDGE_REFINE times
+    per step between its corner points, are reachable too (docs/model.md §22)."""
+    mask = mask.copy()
+    for _ in range(EDGE_ROUNDS):
+        found = largest_rectangle(mask)
+        if found is None:
+            return None
+        r0, r1, c0, c1 = found
+        rc = edge_samples(r0, r1 - 1, c0, c1 - 1, EDGE_REFINE)
+        pts = _plane_points(grid, rc)
+        poses = np.concatenate([pts, np.broadcast_to(orient, (len(pts), 3))], axis=1)
+        bad = rc[evaluate(robot, poses, ReachOptions(opts.margins))["reason"] != 0]
+        if not len(bad):
+            break
+        for r, c in bad:  # the grid points on either side of a failing edge sample
+            mask[math.floor(r):math.ceil(r) + 1, math.floor(c):math.ceil(c) + 1] = False
+    else:
         return None
-    r0, r1, c0, c1 = found
     lo = grid.points(np.array([np.ravel_multi_index((r0, c0), grid.shape)]))[0]
     hi = grid.points(np.array([np.ravel_multi_index((r1 - 1, c1 - 1), grid.shape)]))[0]
     names = tuple(AXES[a] for a in grid.axes)
-    size = (round((r1 - r0) * grid.step, COORD_DECIMALS), round((c1 - c0) * grid.step,
-                                                                COORD_DECIMALS))
+    size = (round((r1 - r0 - 1) * grid.step, COORD_DECIMALS),
+            round((c1 - c0 - 1) * grid.step, COORD_DECIMALS))
     return Rectangle(names, size, tuple(np.round(0.5 * (lo + hi), COORD_DECIMALS).tolist()),
                      (r1 - r0, c1 - c0), tuple(lo.tolist()), tuple(hi.tolist()))
 
 
-def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
+def _plane_points(grid: Grid, rc: np.ndarray) -> np.ndarray:
+    """(n, 3) positions of fractional grid indices (n, 2) of a plane grid."""
+    pts = np.tile(np.asarray(grid.origin, dtype=float), (len(rc), 1))
+    for k, a in enumerate(grid.axes):
+        pts[:, a] += grid.step * rc[:, k]
+    return pts
+
+
+def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
+             boundary: int | None = None) -> dict:
     plane = len(grid.axes) == 2
     measure = "area" if plane else "volume"
     out = {"grid": grid.as_dict(),
            measure: totals.reachable * grid.cell,
+           **({} if boundary is None else {"area_bound": boundary * grid.cell,
+                                           "boundary_points": boundary}),
            "reachable_points": totals.reachable,
            "bounding_box": {"low": totals.low.tolist(), "high": totals.high.tolist()},
            "global_conditioning_index": totals.conditioning / totals.reachable,
@@ -426,8 +467,10 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall) -> dict:
 
 def largest_panel(robot, plane, *, orientation=(0.0, 0.0, 0.0), resolution: float = 0.005,
                   bounds=None, **options) -> Rectangle | None:
-    """The largest axis-aligned rectangle of reachable tool positions in a plane (e.g.
-    "x=0.55": the panel surface minus the standoff) at this orientation — the biggest panel
-    the robot can sweep there (docs/model.md §22). ``options`` as :func:`workspace`."""
+    """The largest axis-aligned rectangle (a :class:`Rectangle`, corner to corner through
+    reachable grid points) of reachable tool positions in a plane (e.g. "x=0.55": the panel
+    surface minus the standoff) at this orientation — the biggest panel the robot can sweep
+    there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's own
+    search, a float scale of a job's panel, is :func:`pollard_pin.paint.plan.largest_scale`."""
     return map_workspace(robot, plane, orientation=orientation, resolution=resolution,
                      bounds=bounds, **options).rectangle

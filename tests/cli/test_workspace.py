@@ -32,7 +32,7 @@ def test_plane_files_match_the_library(robot, tmp_path, capsys, fmt):
     assert summary["largest_rectangle"] == ws.rectangle.as_dict()
     assert summary["reason_codes"]["0"] == "reachable"
     assert (out / "workspace.png").stat().st_size > 10_000
-    assert f"area {ws.summary['area']:.5g} m²" in text
+    assert f"area {ws.summary['area']:.5g} ± {ws.summary['area_bound']:.2g} m²" in text
     assert "largest rectangle" in text and "global conditioning index" in text
 
 

@@ -1,12 +1,18 @@
 """The film a plan leaves (paint/film.py, docs/model.md §20–21): its grid, its statistics
 against the target and the spacing rule, and its integration against a finer one."""
 import math
+from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from pollard_pin.dynamics.motors import load_actuators
+from pollard_pin.paint import film as film_module
 from pollard_pin.paint.errors import PlanError
-from pollard_pin.paint.film import film_resolution, film_stats
+from pollard_pin.paint.film import film_resolution, film_stats, plan_film
+from pollard_pin.paint.job import load_job
+from pollard_pin.paint.plan import plan_paint
 
 
 def test_film_within_two_percent_edges_included(plan, film, job):
@@ -65,3 +71,23 @@ def test_film_integration_converged(plan, film, job):
     assert rel < 5e-9
     assert f.error_estimate.max() < 1.4e-7 * job.thickness
     assert f.error_estimate.max() > rel * f.thickness.min()
+
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_film_grid_budget_is_checked_in_floats():
+    job = load_job(EXAMPLES / "paint.toml")
+    assert film_resolution(job) == pytest.approx(job.sigma / 3)
+    for res, says in ((1e-6, r"makes 3.12e\+10 film points"), (1e-300, "makes inf film points")):
+        with pytest.raises(PlanError, match=says):
+            film_resolution(job, res)  # was a 600-digit count in the CLI, no check in here
+
+
+def test_film_pairs_budget(robot, monkeypatch):
+    job = load_job(EXAMPLES / "paint.toml")
+    job = replace(job, width=0.1, height=0.05)
+    plan = plan_paint(robot, job, load_actuators(EXAMPLES / "actuators.toml"))
+    monkeypatch.setattr(film_module, "MAX_FILM_PAIRS", 1e5)
+    with pytest.raises(PlanError, match="point × sample pairs"):
+        plan_film(plan)

@@ -85,3 +85,19 @@ def test_make_sweep_api():
     assert [n for n, _ in s.variants] == ["base", "x32"] and s.keys == ("chain0.x32",)
     with pytest.raises(SweepError, match="'duration' and 'samples' apply to the thesis"):
         make_sweep(variants=[("a", {})], trajectory=pp.thesis_trajectory(samples=11), samples=5)
+
+
+def test_a_sweep_over_its_budget_is_refused_before_the_grid_is_built():
+    # 10^6 variants: the product was built and the duplicate-name check was quadratic
+    # (nothing in 120 s); now one line at once, before any variant exists
+    from pollard_pin.sweep.grid import MAX_VARIANTS
+
+    grid = {"chain0.x32": [0.30 + 1e-5 * i for i in range(1000)],
+            "bodies.gun.mass": [0.04 + 1e-5 * i for i in range(1000)]}
+    with pytest.raises(SweepError, match=r"1e\+06 variants \(1000 × 1000\), budget 1e\+04"):
+        make_sweep(grid, samples=SAMPLES)
+    many = [(f"v{i}", {}) for i in range(MAX_VARIANTS + 1)]
+    with pytest.raises(SweepError, match="more than 1e\\+04 variants"):
+        make_sweep(variants=many, samples=SAMPLES)
+    with pytest.raises(SweepError, match="two variants are named 'v3'"):
+        make_sweep(variants=[*many[:50], ("v3", {})], samples=SAMPLES)

@@ -12,10 +12,11 @@ def test_figure_draws_the_rectangle_and_the_reasons(robot):
     ax = fig.axes[0]
     box = [p for p in ax.patches if p.get_gid() == "rectangle"]
     assert len(box) == 1
-    h = ws.grid.step
-    np.testing.assert_allclose(box[0].get_xy(), (ws.rectangle.low[1] - h / 2,
-                                                 ws.rectangle.low[2] - h / 2), atol=1e-12)
-    np.testing.assert_allclose((box[0].get_width(), box[0].get_height()), ws.rectangle.size)
+    # corner point to corner point: the rectangle's corners are reachable grid points
+    np.testing.assert_allclose(box[0].get_xy(), ws.rectangle.low[1:], atol=1e-12)
+    np.testing.assert_allclose(np.add(box[0].get_xy(), (box[0].get_width(),
+                                                        box[0].get_height())),
+                               ws.rectangle.high[1:], atol=1e-12)
     image = [im for im in ax.images if im.get_gid() == "margin"]
     assert image and image[0].get_array().shape[:2] == ws.grid.shape[::-1]
     legend = fig.legends[0]
