@@ -7,9 +7,11 @@ gun (−d·n > 0) and ρ < SPOT_SIGMAS·σ(h). Outside it the rate is below exp(
 = 3.7e-6 of the spot's centre at that distance, and the pair counts as visible (shadows
 there change the film by less than that share).
 
-The ray starts at the point moved OFFSET × the part's size along the point's outward
-normal (off its own face, well above Embree's float32 resolution: 1e-5 of a 0.3 m part is
-3 µm, against a float32 step of 6e-8 m at 0.7 m) and runs to the nozzle; the first face it
+The ray starts at the point moved off its own face along the point's outward normal, by
+OFFSET_M or OFFSET × the part's size if larger: well above Embree's float32 resolution (a
+float32 step is 6e-8 m at 0.7 m) and trimesh's numpy intersector, which counts hits up to
+1e-6 m behind a ray's origin; 10 µm is nothing beside the spray's millimetres. The ray runs
+to the nozzle; the first face it
 meets, if any, shades the pair when it lies closer than the nozzle. The first hit comes from
 ``Part.mesh.ray`` (Embree through the optional ``embreex`` package when installed, else
 trimesh's numpy intersector) or any object with trimesh's ``intersects_first``.
@@ -25,6 +27,7 @@ from .mesh import Part
 
 SPOT_SIGMAS = 5.0
 OFFSET = 1e-5  # of the part's size (the largest side of its bounding box)
+OFFSET_M = 1e-5  # m, at least
 RAY_BLOCK = 500_000  # rays per intersector call (~100 MB of temporaries)
 
 
@@ -45,13 +48,18 @@ def spot_mask(gun: Gun, p, a, s, n, origin=None) -> np.ndarray:
     return (h > 0) & (dn < 0) & (d2 - h * h < (k * h) ** 2)
 
 
+def offset(part: Part) -> float:
+    """How far [m] a ray's origin is moved off its point along the normal."""
+    return max(OFFSET_M, OFFSET * part.size)
+
+
 def visible(part: Part, p, s, n, intersector=None) -> np.ndarray:
     """(K,) True where the segment from nozzle p (K, 3) to point s (K, 3) of outward normal
-    n (K, 3) crosses no face of ``part`` (the point moved OFFSET × size along n first)."""
+    n (K, 3) crosses no face of ``part`` (the point moved :func:`offset` along n first)."""
     p, s, n = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s, n))
     ray = part.mesh.ray if intersector is None else intersector
     out = np.ones(len(s), dtype=bool)
-    eps = OFFSET * part.size
+    eps = offset(part)
     tri0, fn = part.vertices[part.faces[:, 0]], part.normals
     for start in range(0, len(s), RAY_BLOCK):
         sl = slice(start, start + RAY_BLOCK)
@@ -108,4 +116,5 @@ def occlusion(part: Part, gun: Gun, p, a, s, n, intersector=None, origin=None) -
     return Occlusion(np.concatenate(ti), np.concatenate(pi), np.concatenate(vis))
 
 
-__all__ = ["OFFSET", "Occlusion", "SPOT_SIGMAS", "occlusion", "spot_mask", "visible"]
+__all__ = ["OFFSET", "OFFSET_M", "Occlusion", "SPOT_SIGMAS", "occlusion", "offset",
+           "spot_mask", "visible"]
