@@ -12,9 +12,12 @@ OFFSET_M or OFFSET × the part's size if larger: well above Embree's float32 res
 float32 step is 6e-8 m at 0.7 m) and trimesh's numpy intersector, which counts hits up to
 1e-6 m behind a ray's origin; 10 µm is nothing beside the spray's millimetres. The ray runs
 to the nozzle; the first face it
-meets, if any, shades the pair when it lies closer than the nozzle. The first hit comes from
-``Part.mesh.ray`` (Embree through the optional ``embreex`` package when installed, else
-trimesh's numpy intersector) or any object with trimesh's ``intersects_first``.
+meets, if any, shades the pair when it lies closer than the nozzle. A face met within
+2 × the offset is grazed (a point at the foot of a wall lies in the wall's plane) and the ray
+goes on past it: into a closed part's material, where it meets the inside of another face.
+The first hit comes from ``Part.mesh.ray`` (Embree through the optional ``embreex``
+package when installed, else trimesh's numpy intersector) or any object with trimesh's
+``intersects_first``.
 """
 from __future__ import annotations
 
@@ -28,6 +31,7 @@ from .mesh import Part
 SPOT_SIGMAS = 5.0
 OFFSET = 1e-5  # of the part's size (the largest side of its bounding box)
 OFFSET_M = 1e-5  # m, at least
+GRAZES = 4  # a ray restarts past at most this many grazed faces (corners where walls meet)
 RAY_BLOCK = 500_000  # rays per intersector call (~100 MB of temporaries)
 
 
@@ -60,27 +64,40 @@ def visible(part: Part, p, s, n, intersector=None) -> np.ndarray:
     ray = part.mesh.ray if intersector is None else intersector
     out = np.ones(len(s), dtype=bool)
     eps = offset(part)
-    tri0, fn = part.vertices[part.faces[:, 0]], part.normals
     for start in range(0, len(s), RAY_BLOCK):
         sl = slice(start, start + RAY_BLOCK)
         o = s[sl] + eps * n[sl]
         d = p[sl] - o
         length = np.linalg.norm(d, axis=1)
-        u = d / length[:, None]
-        first = np.asarray(ray.intersects_first(o, u))
+        out[sl] = ~_shaded(part, ray, o, d / length[:, None], length, eps)
+    return out
+
+
+def _shaded(part: Part, ray, o, u, length, eps) -> np.ndarray:
+    """Rays o + λu, 0 < λ < length: does one meet a face? A face met within 2·eps of where
+    the ray starts is grazed, not crossed (a point at the foot of a wall lies in the wall's
+    plane): the ray starts again eps beyond it, up to GRAZES times (then it counts as
+    shaded)."""
+    tri0, fn = part.vertices[part.faces[:, 0]], part.normals
+    shaded = np.zeros(len(o), dtype=bool)
+    todo, done = np.arange(len(o)), np.zeros(len(o))  # rays to cast, distance travelled
+    for _ in range(GRAZES + 1):
+        if not len(todo):
+            return shaded
+        oo = o[todo] + done[todo, None] * u[todo]
+        first = np.asarray(ray.intersects_first(oo, u[todo]))
         hit = first >= 0
-        if not hit.any():
-            continue
-        f = first[hit]
+        f, k = first[hit], todo[hit]
         # the distance to the face's plane along the ray (exact, float64)
         with np.errstate(divide="ignore", invalid="ignore"):
-            dist = (np.einsum("ij,ij->i", fn[f], tri0[f] - o[hit])
-                    / np.einsum("ij,ij->i", fn[f], u[hit]))
-        shaded = ~(dist >= length[hit])  # a ray along a face's plane (nan) counts as shaded
-        block = out[sl]
-        block[np.flatnonzero(hit)[shaded]] = False
-        out[sl] = block
-    return out
+            dist = (np.einsum("ij,ij->i", fn[f], tri0[f] - oo[hit])
+                    / np.einsum("ij,ij->i", fn[f], u[k]))
+        graze = ~(dist >= 2 * eps)  # nan: a ray in a face's plane grazes it too
+        shaded[k[~graze & (dist < length[k] - done[k])]] = True
+        todo = k[graze]
+        done[todo] += np.maximum(np.nan_to_num(dist[graze]), 0.0) + eps
+    shaded[todo] = True
+    return shaded
 
 
 @dataclass(frozen=True)

@@ -113,8 +113,8 @@ def ribbed_plate(width: float = 0.24, height: float = 0.10, rib_height: float = 
     left = np.linspace(-width / 2, y1, int(math.ceil((y1 + width / 2) / step)) + 1)
     right = np.linspace(y2, width / 2, int(math.ceil((width / 2 - y2) / step)) + 1)
     top = FRONT_X - rib_height
-    front = np.vstack([np.column_stack([np.full(len(left), FRONT_X), left]),
-                       [[top, y1], [top, y2]],
+    rib = [[top, y1], [top, y2]] if rib_height > 0 else np.zeros((0, 2))  # 0: a flat plate
+    front = np.vstack([np.column_stack([np.full(len(left), FRONT_X), left]), rib,
                        np.column_stack([np.full(len(right), FRONT_X), right])])
     return extrude(front, _offset(front, THICKNESS), height, int(math.ceil(height / step)))
 
