@@ -179,6 +179,10 @@ def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
             loaded = trimesh.load(str(path), file_type=ext, force="mesh", process=False)
+            if len(getattr(loaded, "faces", ())):
+                # one vertex per position (an STL repeats each corner per face), so that a
+                # closed part is seen to be closed
+                loaded.merge_vertices(merge_tex=True, merge_norm=True)
     except Exception as exc:  # any reader failure is the file's fault
         raise MeshError(f"{src}: not a readable {ext.upper()} mesh "
                         f"({str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__})"

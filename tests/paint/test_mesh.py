@@ -54,10 +54,9 @@ def test_units_position_and_rotation(tmp_path, rib):
     part = load_part(path, units="mm", position=pos, rotation=rot, facing=(-1, 0, 0))
     # R = Rx(rx)·Ry(ry)·Rz(rz) (docs/model.md §2) is scipy's intrinsic "XYZ"
     R = Rotation.from_euler("XYZ", rot, degrees=True).as_matrix()
-    ref = trimesh.load(path, process=False).vertices * 1e-3 @ R.T + pos
-    assert np.abs(part.vertices - ref).max() < 1e-12
-    n_ref = np.cross(ref[part.faces[:, 1]] - ref[part.faces[:, 0]],
-                     ref[part.faces[:, 2]] - ref[part.faces[:, 0]])
+    ref = trimesh.load(path, process=False).triangles * 1e-3 @ R.T + pos
+    assert np.abs(part.vertices[part.faces] - ref).max() < 1e-12
+    n_ref = np.cross(ref[:, 1] - ref[:, 0], ref[:, 2] - ref[:, 0])
     n_ref /= np.linalg.norm(n_ref, axis=1)[:, None]
     assert np.abs(part.normals - n_ref).max() < 1e-12
 
@@ -67,6 +66,10 @@ def test_an_inside_out_closed_mesh_is_turned_over(tmp_path, rib):
     assert inverted.volume < 0
     part = make_part(inverted.vertices, inverted.faces)
     assert np.abs(part.normals - rib.face_normals).max() < 1e-12
+    inverted.export(tmp_path / "inverted.stl")  # STL: a corner per face, merged on reading
+    part = load_part(tmp_path / "inverted.stl")
+    assert part.mesh.is_watertight
+    assert np.abs(part.normals - rib.face_normals).max() < 1e-5
     sheet = make_part(rib.vertices, rib.faces[:1, ::-1], facing=-rib.face_normals[0])
     assert np.allclose(sheet.normals[0], -rib.face_normals[0])  # an open sheet: as given
 
@@ -121,3 +124,23 @@ def test_face_budget(tmp_path, monkeypatch, rib):
     monkeypatch.setattr(mesh_module, "MAX_FACES", 10)
     with pytest.raises(MeshError, match=rf"{len(rib.faces)} faces, more than the 10"):
         make_part(rib.vertices, rib.faces)
+
+
+PARTS = Path(__file__).resolve().parents[2] / "examples" / "parts"
+
+
+def test_the_example_parts_load_and_are_what_make_parts_writes(tmp_path):
+    import runpy
+
+    runpy.run_path(str(PARTS / "make_parts.py"), run_name="make_parts")["main"](
+        ["--out-dir", str(tmp_path)])
+    for name in ("curved_panel.stl", "bent_plate.ply", "ribbed_plate.obj"):
+        part = load_part(PARTS / name)
+        fresh = load_part(tmp_path / name)
+        assert np.array_equal(part.faces, fresh.faces)
+        assert np.abs(part.vertices - fresh.vertices).max() < 1e-6  # STL stores float32
+        assert 1000 < len(part.faces) < 5000 and part.mesh.is_watertight
+        # in front of the robot: the painted front 0.24 × 0.10 m near x = 0.70, facing −x
+        front = part.vertices[np.unique(part.faces[part.painted])]
+        assert np.abs(front.mean(axis=0) - [0.69, 0.0, 0.16]).max() < 0.02
+        assert 0.0235 < part.painted_area < 0.025
