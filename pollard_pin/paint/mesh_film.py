@@ -12,7 +12,7 @@ import numpy as np
 from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate, trapezoid_weights
 from .film_points import SurfacePoints
 from .mesh import MeshError, Part
-from .occlusion import spot_mask, visible
+from .occlusion import in_spot, visible
 
 
 @dataclass(frozen=True)
@@ -90,7 +90,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             continue
         ps, as_ = p[sl][live], a[sl][live]
         r = deposition_rate(gun, ps - o, as_, s - o, n)
-        ti, pi = np.nonzero(spot_mask(gun, ps, as_, s, n, o))
+        ti, pi = np.nonzero(in_spot(gun, r))
         if len(ti):
             vis = visible(part, ps[ti], s[pi], n[pi], intersector)
             r[ti[~vis], pi[~vis]] = 0.0

@@ -2,54 +2,45 @@
 (docs/model.md §20), so a point receives paint from a gun position only if the segment from
 the nozzle to it crosses no face of the part.
 
-Only pairs (gun sample, point) inside the spray spot are tested: h > 0, the point facing the
-gun (−d·n > 0) and ρ < SPOT_SIGMAS·σ(h). Outside it the rate is below exp(−SPOT_SIGMAS²/2)
-= 3.7e-6 of the spot's centre at that distance, and the pair counts as visible (shadows
-there change the film by less than that share).
+Only pairs (gun sample, point) inside the spray spot are tested: those whose deposition
+rate exceeds RATE_FLOOR = exp(−SPOT_SIGMAS²/2) = 3.7e-6 of the spot's centre at the standoff,
+flow/(2πσ²) (for a point at the standoff facing the gun: ρ < 5σ). Every other pair counts
+as visible: a shadow there changes the film by less than that share of the spot's rate.
 
 The ray starts at the point moved off its own face along the point's outward normal, by
 OFFSET_M or OFFSET × the part's size if larger: well above Embree's float32 resolution (a
 float32 step is 6e-8 m at 0.7 m) and trimesh's numpy intersector, which counts hits up to
 1e-6 m behind a ray's origin; 10 µm is nothing beside the spray's millimetres. The ray runs
-to the nozzle; the first face it
-meets, if any, shades the pair when it lies closer than the nozzle. A face met within
-2 × the offset is grazed (a point at the foot of a wall lies in the wall's plane) and the ray
-goes on past it: into a closed part's material, where it meets the inside of another face.
+to the nozzle; the first face it meets, if any, shades the pair when it lies closer than the
+nozzle. A face met within 2 × the offset is grazed (a point at the foot of a wall lies in the
+wall's plane) and the ray goes on past it: into a closed part's material, where it meets the
+inside of another face.
 The first hit comes from ``Part.mesh.ray`` (Embree through the optional ``embreex``
 package when installed, else trimesh's numpy intersector) or any object with trimesh's
 ``intersects_first``.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .deposition import BLOCK_ELEMENTS, Gun
+from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate
 from .mesh import Part
 
 SPOT_SIGMAS = 5.0
+RATE_FLOOR = math.exp(-SPOT_SIGMAS ** 2 / 2)
 OFFSET = 1e-5  # of the part's size (the largest side of its bounding box)
 OFFSET_M = 1e-5  # m, at least
 GRAZES = 4  # a ray restarts past at most this many grazed faces (corners where walls meet)
 RAY_BLOCK = 500_000  # rays per intersector call (~100 MB of temporaries)
 
 
-def spot_mask(gun: Gun, p, a, s, n, origin=None) -> np.ndarray:
-    """(T, P) True where point s (P, 3) of outward normal n ((P, 3) or (3,)) lies in the
-    spray spot of the gun at tip p (T, 3) with axis a (T, 3): h > 0, −d·n > 0 and
-    ρ < SPOT_SIGMAS·σ(h). Matrix products as in deposition_rate, positions taken relative
-    to ``origin`` (default: the points' mean)."""
-    p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
-    o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
-    p, s = p - o, s - o
-    n = np.broadcast_to(np.asarray(n, dtype=float), s.shape)
-    h = a @ s.T - np.einsum("ij,ij->i", p, a)[:, None]  # (T, P)
-    d2 = (np.einsum("ij,ij->i", s, s)[None, :] + np.einsum("ij,ij->i", p, p)[:, None]
-          - 2.0 * p @ s.T)
-    dn = np.einsum("ij,ij->i", s, n)[None, :] - p @ n.T
-    k = SPOT_SIGMAS * gun.sigma / gun.standoff
-    return (h > 0) & (dn < 0) & (d2 - h * h < (k * h) ** 2)
+def in_spot(gun: Gun, rate) -> np.ndarray:
+    """True where a deposition ``rate`` [m/s] (any shape) is above RATE_FLOOR of the spot's
+    centre at the standoff: the pairs worth a ray."""
+    return np.asarray(rate) > RATE_FLOOR * gun.flow / (2.0 * math.pi * gun.sigma ** 2)
 
 
 def offset(part: Part) -> float:
@@ -116,14 +107,16 @@ class Occlusion:
 
 def occlusion(part: Part, gun: Gun, p, a, s, n, intersector=None, origin=None) -> Occlusion:
     """Every pair (gun sample of p (T, 3), a (T, 3); point s (P, 3), n) inside the spray spot
-    (:func:`spot_mask`) and its visibility (:func:`visible`), in blocks of samples."""
+    (:func:`in_spot`) and its visibility (:func:`visible`), in blocks of samples; positions
+    taken relative to ``origin`` for the rate (default: the points' mean)."""
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
     n = np.broadcast_to(np.asarray(n, dtype=float), s.shape)
+    o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
     ti, pi, vis = [], [], []
     for start in range(0, len(p), block):
         sl = slice(start, start + block)
-        t_k, p_k = np.nonzero(spot_mask(gun, p[sl], a[sl], s, n, origin))
+        t_k, p_k = np.nonzero(in_spot(gun, deposition_rate(gun, p[sl] - o, a[sl], s - o, n)))
         ti.append(t_k + start)
         pi.append(p_k)
         vis.append(visible(part, p[sl][t_k], s[p_k], n[p_k], intersector))
@@ -133,5 +126,5 @@ def occlusion(part: Part, gun: Gun, p, a, s, n, intersector=None, origin=None) -
     return Occlusion(np.concatenate(ti), np.concatenate(pi), np.concatenate(vis))
 
 
-__all__ = ["OFFSET", "OFFSET_M", "Occlusion", "SPOT_SIGMAS", "occlusion", "offset",
-           "spot_mask", "visible"]
+__all__ = ["OFFSET", "OFFSET_M", "Occlusion", "RATE_FLOOR", "SPOT_SIGMAS", "in_spot",
+           "occlusion", "offset", "visible"]

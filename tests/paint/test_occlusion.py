@@ -9,9 +9,10 @@ from trimesh.ray.ray_triangle import RayMeshIntersector
 from pollard_pin.paint import shapes
 from pollard_pin.paint.deposition import Gun
 from pollard_pin.paint.mesh import make_part
-from pollard_pin.paint.occlusion import SPOT_SIGMAS, occlusion, offset, spot_mask
+from pollard_pin.paint.occlusion import SPOT_SIGMAS, occlusion, offset
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
+X0, ZC = shapes.FRONT_X, shapes.CENTRE_Z
 
 
 @pytest.fixture(scope="module")
@@ -49,18 +50,14 @@ def _segment_blocked(o, e, tri):
     return blocked
 
 
-def test_spot_mask_pair_by_pair(rib_part):
-    m = rib_part.mesh
-    s, fi = trimesh.sample.sample_surface(m, 300, seed=np.random.default_rng(3))
-    n = rib_part.normals[fi]
-    p, a = _gun_pass(tilt_deg=12.0)
-    mask = spot_mask(GUN, p, a, s, n)
-    d = s[None] - p[:, None]
-    h = np.einsum("tpx,tx->tp", d, a)
-    rho = np.linalg.norm(d - h[..., None] * a[:, None], axis=2)
-    want = (h > 0) & (np.einsum("tpx,px->tp", d, n) < 0) & \
-        (rho < SPOT_SIGMAS * GUN.sigma * h / GUN.standoff)
-    assert np.array_equal(mask, want) and 0 < mask.sum() < mask.size
+def test_spot_pairs_are_the_spot(rib_part):
+    """For a point at the standoff facing the gun, the pairs tested are those within 5σ of
+    the spray axis, and only those."""
+    y = np.linspace(-0.06, 0.06, 240)  # no point on the spot's edge
+    s = np.column_stack([np.full(len(y), X0), y, np.full(len(y), ZC)])
+    p, a = _gun_pass(z=ZC, y0=0.0, y1=0.0)
+    occ = occlusion(rib_part, GUN, p, a, s, [-1.0, 0.0, 0.0])
+    assert sorted(occ.point) == list(np.flatnonzero(np.abs(y) < SPOT_SIGMAS * GUN.sigma))
 
 
 @pytest.mark.parametrize("engine", ["default", "numpy"])
