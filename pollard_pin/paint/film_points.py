@@ -28,7 +28,7 @@ SIGMA_FRACTION = 1.0 / 3.0
 MAX_POINTS = 5_000_000  # ~0.5 GB of arrays: a finer request is a unit slip
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
 class SurfacePoints:
     """Film points (P, 3) [m] with unit outward ``normals`` (P, 3), ``areas`` (P,) [m²] and
     ``faces`` (P,) the index of a part's face each lies on; ``covered`` the indices of the
@@ -105,7 +105,10 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
     key = np.column_stack([np.round(pts / 1e-10), np.round(nrm / 1e-9)]).astype(np.int64)
     _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     merged = np.bincount(inverse.ravel(), weights=area, minlength=len(first))
-    return SurfacePoints(pts[first], nrm[first], merged, face[first], idx, float(resolution))
+    arrays = [pts[first], nrm[first], merged, face[first], idx]
+    for a in arrays:
+        a.flags.writeable = False
+    return SurfacePoints(*arrays, float(resolution))
 
 
 __all__ = ["MAX_POINTS", "SIGMA_FRACTION", "SurfacePoints", "lattice", "surface_points"]

@@ -51,7 +51,7 @@ def _frozen(x, dtype=float) -> np.ndarray:
     return a
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
 class Part:
     """A part in the world frame [m]: ``vertices`` (V, 3), ``faces`` (F, 3) indices wound
     counter-clockwise seen from outside, unit outward ``normals`` (F, 3), ``areas`` (F,)

@@ -15,7 +15,7 @@ from .mesh import MeshError, Part
 from .occlusion import in_spot, visible
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
 class MeshFilm:
     """Film ``thickness`` (P,) [m] at the points and the trapezoid rule's error estimate
     |T − T₂| (P,) [m] (as :class:`.deposition.Film`); ``pairs`` (sample, point) inside the

@@ -91,7 +91,7 @@ def _shaded(part: Part, ray, o, u, length, eps) -> np.ndarray:
     return shaded
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
 class Occlusion:
     """The pairs inside the spray spot, ``sample`` (K,) and ``point`` (K,) indices, and
     whether the point sees the nozzle, ``visible`` (K,)."""

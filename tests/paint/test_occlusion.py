@@ -1,6 +1,11 @@
 """Shadows: the spray-spot pairs and their visibility against a brute-force segment–triangle
 test (Möller–Trumbore over every face, float64), with Embree and with trimesh's numpy
 intersector."""
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
@@ -8,7 +13,9 @@ from trimesh.ray.ray_triangle import RayMeshIntersector
 
 from pollard_pin.paint import shapes
 from pollard_pin.paint.deposition import Gun
+from pollard_pin.paint.film_points import surface_points
 from pollard_pin.paint.mesh import make_part
+from pollard_pin.paint.mesh_film import mesh_film
 from pollard_pin.paint.occlusion import SPOT_SIGMAS, occlusion, offset
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
@@ -89,3 +96,42 @@ def test_a_flat_part_shades_nothing():
     p, a = _gun_pass(z=0.15)
     occ = occlusion(part, GUN, p, a, s, [-1.0, 0.0, 0.0])
     assert len(occ.visible) > 1000 and occ.visible.all()
+
+
+def test_without_embree_the_numpy_intersector_gives_the_same_film():
+    """embreex hidden: Part.mesh.ray is trimesh's numpy intersector, and the film on the
+    ribbed example part is the same as with Embree (here: bit for bit)."""
+    code = (
+        "import sys; sys.modules['embreex'] = None\n"
+        "import numpy as np, trimesh\n"
+        "from pollard_pin.paint import shapes\n"
+        "from pollard_pin.paint.deposition import Gun\n"
+        "from pollard_pin.paint.film_points import surface_points\n"
+        "from pollard_pin.paint.mesh import make_part\n"
+        "from pollard_pin.paint.mesh_film import mesh_film\n"
+        "m = shapes.ribbed_plate(width=0.08, height=0.04, step=0.01)\n"
+        "part = make_part(m.vertices, m.faces)\n"
+        "print(type(part.mesh.ray).__module__)\n"
+        "y = np.arange(-0.05, 0.05, 0.0025)\n"
+        "p = np.column_stack([np.full(len(y), 0.55), y, np.full(len(y), 0.16)])\n"
+        "a = np.tile([1.0, 0, 0], (len(y), 1))\n"
+        "f = mesh_film(Gun(0.15, 0.01, 1.5e-7), np.arange(len(y)) * 0.01, p, a,\n"
+        "              surface_points(part, 0.004), part)\n"
+        "np.save(sys.argv[1], f.thickness); print(f.shaded)\n")
+    root = Path(__file__).resolve().parents[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "film.npy"
+        r = subprocess.run([sys.executable, "-c", code, str(out)], cwd=root,
+                           capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stderr
+        module, shaded = r.stdout.split()
+        slow = np.load(out)
+    assert module == "trimesh.ray.ray_triangle" and int(shaded) > 0
+    m = shapes.ribbed_plate(width=0.08, height=0.04, step=0.01)
+    part = make_part(m.vertices, m.faces)
+    assert type(part.mesh.ray).__module__ == "trimesh.ray.ray_pyembree"
+    y = np.arange(-0.05, 0.05, 0.0025)
+    p = np.column_stack([np.full(len(y), 0.55), y, np.full(len(y), 0.16)])
+    fast = mesh_film(GUN, np.arange(len(y)) * 0.01, p, np.tile([1.0, 0, 0], (len(y), 1)),
+                     surface_points(part, 0.004), part)
+    assert np.array_equal(fast.thickness, slow)
