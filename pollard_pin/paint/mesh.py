@@ -7,8 +7,8 @@ the other way throughout and is turned over once; an open sheet is taken as give
 zero area (below 1e-12 of the part's size squared) are dropped: they receive no paint.
 
 Ray queries (:mod:`.occlusion`) go through ``Part.mesh.ray``: Embree (the optional
-``embreex`` package) when installed, else trimesh's own numpy intersector, the same verdicts
-up to Embree's float32 arithmetic, only slower.
+``embreex`` package, ``pip install 'pollard-pin[embree]'``) when installed, else trimesh's
+own numpy intersector: the same verdicts (up to Embree's float32 arithmetic), only slower.
 """
 from __future__ import annotations
 
