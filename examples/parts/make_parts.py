@@ -1,0 +1,49 @@
+"""Write the three example parts to paint, as meshes in world coordinates [m].
+
+    .venv/bin/python examples/parts/make_parts.py [--out-dir examples/parts]
+
+Each stands where ``examples/paint.toml``'s panel does: its painted front near x = 0.70 m,
+centred at y = 0, z = 0.16 m, facing the robot (−x), 0.24 × 0.10 m, a 2 mm sheet:
+
+* ``curved_panel.stl`` (binary STL): a cylinder section of radius 0.4 m (axis vertical),
+  convex towards the robot, its apex at x = 0.70 m; the gun turns by up to ±17° of yaw to
+  stay normal to it;
+* ``bent_plate.ply`` (binary PLY): a plate whose right half is bent 30° towards the robot
+  over a concave fillet of radius 30 mm (tighter than the 0.15 m standoff: a gun normal to
+  the surface would fold back over the fillet);
+* ``ribbed_plate.obj`` (OBJ): a flat plate with a vertical rib 15 mm high and 6 mm wide
+  down its middle, whose walls shade the plate beside them.
+
+Read one with ``pollard_pin.paint.mesh.load_part("examples/parts/curved_panel.stl")``.
+"""
+import argparse
+from pathlib import Path
+
+from pollard_pin.paint import shapes
+
+PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24, height=0.10),
+         "bent_plate.ply": lambda: shapes.bent_plate(flat=0.12, wing=0.11, angle_deg=30.0,
+                                                      fillet=0.030, height=0.10),
+         "ribbed_plate.obj": lambda: shapes.ribbed_plate(width=0.24, height=0.10,
+                                                         rib_height=0.015, rib_width=0.006,
+                                                         step=0.01)}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out-dir", type=Path, default=Path(__file__).resolve().parent)
+    args = ap.parse_args(argv)
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    for name, make in PARTS.items():
+        mesh = make()
+        path = args.out_dir / name
+        mesh.export(path)
+        lo, hi = mesh.bounds
+        print(f"wrote {path}: {len(mesh.faces)} faces, x {lo[0]:.3f}..{hi[0]:.3f}, "
+              f"y {lo[1]:.3f}..{hi[1]:.3f}, z {lo[2]:.3f}..{hi[2]:.3f} m, "
+              f"closed {mesh.is_watertight}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

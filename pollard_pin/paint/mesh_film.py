@@ -1,0 +1,106 @@
+"""The film a gun path leaves on a part's mesh (docs/model.md §20): the deposition rate at
+each film point with its own normal, zero where the part shades the point from the nozzle
+(:mod:`.occlusion`), times the gun's trigger, integrated by the trapezoid rule in time
+(as :func:`.deposition.film`, in blocks of samples of bounded memory).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate, trapezoid_weights
+from .film_points import SurfacePoints
+from .mesh import MeshError, Part
+from .occlusion import in_spot, visible
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class MeshFilm:
+    """Film ``thickness`` (P,) [m] at the points and the trapezoid rule's error estimate
+    |T − T₂| (P,) [m] (as :class:`.deposition.Film`); ``pairs`` (sample, point) inside the
+    spray spot tested for shade and ``shaded`` of them; ``sprayed`` = ∫ flow·spray dt [m³];
+    ``landed`` = Σ thickness × area [m³] over the points."""
+
+    thickness: np.ndarray
+    error_estimate: np.ndarray
+    pairs: int
+    shaded: int
+    sprayed: float
+    landed: float
+    whole_part: bool  # the points cover every face of the part
+
+    @property
+    def transfer_efficiency(self) -> float | None:
+        """Volume landing on the part over volume sprayed (None unless the points cover
+        every face: film points made with faces="all")."""
+        if not self.whole_part or self.sprayed <= 0:
+            return None
+        return self.landed / self.sprayed
+
+
+def _coarse_weights(t: np.ndarray) -> np.ndarray:
+    """The trapezoid weights on every second sample and the last (deposition.film's error
+    estimate)."""
+    idx = np.unique(np.r_[np.arange(0, len(t), 2), len(t) - 1])
+    w = np.zeros_like(t)
+    w[idx] = trapezoid_weights(t[idx])
+    return w
+
+
+def _spray(spray, n: int) -> np.ndarray:
+    if spray is None:
+        return np.ones(n)
+    s = np.asarray(spray, dtype=float)
+    if s.shape != (n,):
+        raise MeshError(f"spray has shape {s.shape}, expected ({n},): one trigger fraction "
+                        "per time sample")
+    bad = ~(np.isfinite(s) & (s >= 0) & (s <= 1))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise MeshError(f"spray[{k}] = {s[k]:.4g} must lie in [0, 1] (the fraction of the "
+                        "flow the trigger lets through)")
+    return s
+
+
+def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
+              origin=None, intersector=None) -> MeshFilm:
+    """Film at ``points`` (their own positions and normals) after the gun passes through the
+    tips ``p`` (T, 3) with axes ``a`` (T, 3) at times ``t`` (T,), spraying ``spray`` (T,) ×
+    flow (the trigger, in [0, 1]; None: 1 throughout). Pairs inside the spray spot whose
+    segment to the nozzle crosses the part get nothing (:mod:`.occlusion`). ``origin`` (3,):
+    subtracted from every position for the rate's matrix products (default: the points'
+    mean); ``intersector``: the ray engine (default ``part.mesh.ray``)."""
+    t = np.asarray(t, dtype=float)
+    p, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a))
+    if not (p.shape == a.shape == (len(t), 3)):
+        raise MeshError(f"gun positions {p.shape} and axes {a.shape} must both be "
+                        f"({len(t)}, 3), one per time sample")
+    trig = _spray(spray, len(t))
+    s, n = points.points, points.normals
+    o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
+    w, w2 = trapezoid_weights(t) * trig, _coarse_weights(t) * trig
+    total, coarse = np.zeros(len(s)), np.zeros(len(s))
+    pairs = shaded = 0
+    block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
+    for start in range(0, len(t), block):
+        sl = slice(start, start + block)
+        live = np.flatnonzero(trig[sl] > 0)  # a closed trigger deposits nothing: skip it
+        if not len(live):
+            continue
+        ps, as_ = p[sl][live], a[sl][live]
+        r = deposition_rate(gun, ps - o, as_, s - o, n)
+        ti, pi = np.nonzero(in_spot(gun, r))
+        if len(ti):
+            vis = visible(part, ps[ti], s[pi], n[pi], intersector)
+            r[ti[~vis], pi[~vis]] = 0.0
+            pairs, shaded = pairs + len(ti), shaded + int((~vis).sum())
+        total += w[sl][live] @ r
+        coarse += w2[sl][live] @ r
+    err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
+    whole = np.array_equal(np.unique(points.covered), np.arange(len(part.faces)))
+    return MeshFilm(total, err, pairs, shaded, float(gun.flow * w.sum()),
+                    float(total @ points.areas), bool(whole))
+
+
+__all__ = ["MeshFilm", "mesh_film"]
