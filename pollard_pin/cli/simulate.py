@@ -27,7 +27,7 @@ def run(args) -> int:
 
     from ..dynamics.control import Gains
     from ..dynamics.inverse import JointLosses
-    from ..dynamics.plant import PlantErrors
+    from ..dynamics.plant import ModelMismatch
     from ..dynamics.tracking import (
         MeasurementNoise,
         default_step,
@@ -71,7 +71,7 @@ def run(args) -> int:
             per_joint[name] = np.zeros(robot.model.nv)
             per_joint[name][robot.actuated_v] = value
         losses = JointLosses(**per_joint)
-    errors = PlantErrors(args.payload, args.mass_error, losses)
+    errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
     start = None if args.start == "path" else robot.home()
     duration = float(traj.t[-1] - traj.t[0])

@@ -26,7 +26,7 @@ from .inverse import (
     reduced_dynamics,
     reduced_mass_matrix,
 )
-from .plant import PlantErrors, perturbed_robot
+from .plant import ModelMismatch, perturbed_robot
 
 CONTROL_PERIOD = 1e-3  # s, zero-order hold
 WN, ZETA = 60.0, 1.0  # rad/s, 1: default error dynamics (≈ 10 Hz at a 1 kHz control rate)
@@ -208,7 +208,7 @@ def _known(robot: Robot, losses: JointLosses | None) -> Robot:
     """``robot`` with the rotor inertia of ``losses`` in its ``model.armature`` (a copy)."""
     if losses is None or not np.any(losses.armature):
         return robot
-    return perturbed_robot(robot, PlantErrors(losses=losses))
+    return perturbed_robot(robot, ModelMismatch(losses=losses))
 
 
 def make_controller(name: str, robot: Robot, desired: DesiredTrajectory,

@@ -35,7 +35,7 @@ from .control import (
 )
 from .forward import SimulationError
 from .inverse import JointLosses
-from .plant import BAUMGARTE, Plant, PlantErrors
+from .plant import BAUMGARTE, ModelMismatch, Plant
 
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
@@ -252,7 +252,7 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 
 def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "computed-torque",
-                      errors: PlantErrors | None = None, *, gains: Gains | None = None,
+                      errors: ModelMismatch | None = None, *, gains: Gains | None = None,
                       dt: float | None = None, control_period: float = CONTROL_PERIOD,
                       torque_limit=None, noise: MeasurementNoise | None = None, start=None,
                       baumgarte: tuple[float, float] = BAUMGARTE,
