@@ -389,7 +389,7 @@ BAD_TRAJECTORIES = [
     ("png.csv", "not UTF-8 text"),
     ("gzip.csv", "not UTF-8 text"),
     ("long_field.csv", "not CSV (field larger than field limit"),
-    ("fast.csv", "absurd"),
+    ("fast.csv", "column d_x disagrees with the positions"),
     ("tiny_dt.csv", "time step too small"),
     ("", "an empty name"),
     ("garbage.parquet", "Parquet"),
