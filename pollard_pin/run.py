@@ -13,6 +13,7 @@ from .dynamics.averages import time_mean, time_rms
 from .io.table import TableWriter, write_table
 from .io.trajectory import Trajectory
 from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
+from .kinematics.limits import check_joint_limits
 from .model.names import SPHERICAL
 
 
@@ -43,14 +44,18 @@ class RunResult:
 
 
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
-                 loads: bool = False, **ik_options) -> RunResult:
+                 loads: bool = False, joint_limits: bool = True, **ik_options) -> RunResult:
     """IK (and inverse dynamics) along a trajectory. ``ik_options`` go to
     :func:`~pollard_pin.kinematics.inverse_kinematics` (margins, ``tol``, ``method``).
-    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``)."""
+    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``).
+    ``joint_limits``: refuse a sample with a joint outside its limits (the reach rule of
+    ``workspace`` and ``paint``, kinematics.limits); False waives them."""
     from .dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             progress=progress, **ik_options)
+    if joint_limits:
+        check_joint_limits(robot, ik.q, ik.t)
     dyn = inverse_dynamics(robot, ik) if dynamics or loads else None
     if not loads:
         return RunResult(traj, ik, dyn if dynamics else None)

@@ -72,6 +72,8 @@ def main(argv=None) -> int:
         message = " ".join(str(exc).split()) or type(exc).__name__
         if isinstance(exc, MemoryError):
             message = f"not enough memory ({message}): fewer samples?"
+        if _is_limit_error(exc) and hasattr(args, "ignore_limits"):
+            message += " (--ignore-limits waives the joint limits)"
         out = getattr(args, "out", None) or getattr(args, "html", None)
         if out and out != STDOUT and args.command != "plot":
             message += f" (nothing written to {out})"
@@ -92,6 +94,12 @@ def main(argv=None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _is_limit_error(exc: BaseException) -> bool:
+    from ..kinematics.errors import JointLimitError
+
+    return isinstance(exc, JointLimitError)
 
 
 class _Terminated(KeyboardInterrupt):

@@ -40,7 +40,7 @@ def run(args) -> int:
                                "derivatives": traj.derivatives},
                 "options": {"wrist_margin": args.wrist_margin,
                             "singularity_margin": args.singularity_margin,
-                            "loads": args.loads}}
+                            "loads": args.loads, "joint_limits": not args.ignore_limits}}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
                                   -(-n // (STREAM_WINDOW - 1)))  # no idle threads
@@ -48,7 +48,8 @@ def run(args) -> int:
                        workers=workers,
                        progress=progress("solving", n >= 500 and not args.quiet),
                        wrist_margin=args.wrist_margin,
-                       singularity_margin=args.singularity_margin, loads=args.loads)
+                       singularity_margin=args.singularity_margin, loads=args.loads,
+                       joint_limits=not args.ignore_limits)
     wall, write = timings["wall"], timings["write"]
     text = summary(stats) + (
         f"\nsolved and written in {wall:.3f} s ({1e6 * wall / n:.2f} µs/sample, the first "

@@ -95,7 +95,8 @@ def run(args) -> int:
     result = simulate_tracking(
         robot, traj, args.controller, errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
-        start=start, known_losses=known, progress=None if args.quiet else report)
+        start=start, known_losses=known, joint_limits=not args.ignore_limits,
+        progress=None if args.quiet else report)
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
