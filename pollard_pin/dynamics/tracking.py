@@ -244,8 +244,18 @@ def _grid(ticks: np.ndarray, samples: np.ndarray, dt: float):
     return pts, is_tick, sample
 
 
+def _unstable_hint(gains: Gains, control_period: float) -> str:
+    """What to change when the plant runs away while the torque is not saturated."""
+    # A sampled PD is stable only for ω·T well below 1 (torque held for T).
+    wt = gains.wn * control_period
+    return (f"the gains are too high for the control period (ω·T = {wt:.3g}; keep it below "
+            "about 0.5)" if wt > 0.5 else
+            "the controller does not hold the path: reduce the time step, check the gains and "
+            "the model mismatch")
+
+
 def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_limits: bool,
-                 tolerance: float, saturated_since: float | None) -> None:
+                 tolerance: float, hint: str) -> None:
     """Stop where the plant is no longer the robot: loops open beyond ``tolerance`` [m], or
     (``joint_limits``) a joint outside its limits."""
     why = None
@@ -260,11 +270,6 @@ def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_l
             why = "the plant left its joint limits: " + violation_text(
                 plant.robot.params, names[j], float(q[j]), excess)
     if why is not None:
-        hint = ("the torque has been saturated since t = "
-                f"{saturated_since:.6g} s: raise the torque limit or slow the trajectory"
-                if saturated_since is not None else
-                "the controller does not hold the path: check the gains, the control period "
-                "and the model mismatch")
         raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint}")
 
 
@@ -345,13 +350,9 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         # and hide the cause.
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))
                 and np.abs(q).max() < DIVERGED_ANGLE):
-            # A sampled PD is stable only for ω·T well below 1 (torque held for T).
-            wt = gains.wn * control_period
-            hint = (f"the gains are too high for the control period (ω·T = {wt:.3g}; "
-                    "keep it below about 0.5)" if wt > 0.5 else
-                    "reduce the time step or raise the gains")
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
-                                  f"beyond {DIVERGED_ANGLE:g} rad; {hint}")
+                                  f"beyond {DIVERGED_ANGLE:g} rad; "
+                                  f"{_unstable_hint(gains, control_period)}")
         res = None  # the plant's loop residual at this point, once computed
         if is_tick[i]:
             theta, dtheta = q[ia].copy(), v[ia].copy()
@@ -375,7 +376,11 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 saturated_since = t
             res = plant.closure_residual(q)
             max_res = max(max_res, res)
-            _check_plant(plant, q, res, t, joint_limits, loop_tolerance, saturated_since)
+            _check_plant(plant, q, res, t, joint_limits, loop_tolerance,
+                         "the torque has been saturated since t = "
+                         f"{saturated_since:.6g} s: raise the torque limit or slow the "
+                         "trajectory" if saturated_since is not None else
+                         _unstable_hint(gains, control_period))
         a1 = f(q, v, tau)
         k = sample_of[i]
         if k >= 0:
