@@ -26,11 +26,15 @@ U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
 MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
-# Given d_*/dd_* columns must agree with the positions: the RMS over the samples of (Δq −
-# the trapezoid of the derivative over each step) / step, relative to the RMS of Δq / step
-# (the motion's scale), at most this. Exact derivatives of a curve sampled at >= 3 samples
-# per period give < 0.5; wrong units (deg/s: x57), zeros or a sign flip give >= 1.
+# Given d_* columns must agree with the positions: the largest gap between q(t) − q(t0) and
+# the running trapezoid integral of q̇, relative to the largest excursion |q(t) − q(t0)| (the
+# motion's scale), at most this. Exact rates give < 0.05; wrong units (deg/s: ×57), zeros
+# (1) or a flipped sign (2) are refused.
 DERIVATIVE_TOLERANCE = 0.5
+# The same for dd_* against d_*, looser: a time-optimal retiming's s̈ jumps at every sample
+# and a file holds one side of each jump (up to 2.2 seen); deg/s² (×57) is refused, and so is
+# an all-zero dd_* column whose rates change.
+ACCELERATION_TOLERANCE = 10.0
 
 
 class TrajectoryError(InputError):
@@ -301,16 +305,14 @@ def check_angle_wraps(path, t: np.ndarray, poses: np.ndarray, lines) -> None:
             "consecutive samples differ by less than π rad")
 
 
-def _mismatch(step: np.ndarray, integral: np.ndarray, h: np.ndarray) -> np.ndarray:
-    """Per column: RMS of (step − integral)/h over RMS of step/h, each column's scale floored
-    at 1e-2 of its group's (lengths, angles) largest, so a nearly still column is not judged
-    by its own round-off."""
+def _mismatch(step: np.ndarray, integral: np.ndarray) -> np.ndarray:
+    """Per column: max |Σ (integral − step)| over the running sums, over max |Σ step| (the
+    excursion), each column's scale floored at 1e-2 of its group's (lengths, angles) largest,
+    so a nearly still column is not judged by its own round-off. Running sums: one-sided
+    values at jumps (a retiming's s̈) err by turns and cancel."""
     with np.errstate(all="ignore"):  # absurd columns (1e200) give inf: refused, no warning
-        a, b = step / h, integral / h
-        big = max(float(np.abs(a).max()), 1e-300)
-        a, b = a / big, b / big  # no overflow in the squares
-        scale = np.sqrt(np.mean(a * a, axis=0))
-        err = np.sqrt(np.mean((a - b) ** 2, axis=0))
+        scale = np.abs(np.cumsum(step, axis=0)).max(axis=0)
+        err = np.abs(np.cumsum(integral - step, axis=0)).max(axis=0)
     for g in (slice(0, 3), slice(3, 6)):
         scale[g] = np.maximum(scale[g], max(1e-2 * scale[g].max(), 1e-300))
     return np.where(np.isfinite(err), err / scale, np.inf)
@@ -319,25 +321,33 @@ def _mismatch(step: np.ndarray, integral: np.ndarray, h: np.ndarray) -> np.ndarr
 def check_derivatives(path, t: np.ndarray, poses: np.ndarray, d: np.ndarray, dd: np.ndarray,
                       given_d: bool = True, given_dd: bool = True) -> None:
     """Refuse given (``given_d``, ``given_dd``) ``d_*``/``dd_*`` columns that do not integrate
-    to the positions (rates) within :data:`DERIVATIVE_TOLERANCE` of the motion's scale: wrong
-    units, zeros, another curve's derivatives. Each step is checked with the trapezoid rule
-    (Euler–Maclaurin corrected with the accelerations)."""
+    to the positions (rates) within :data:`DERIVATIVE_TOLERANCE`
+    (:data:`ACCELERATION_TOLERANCE`) of the motion's scale: wrong units, zeros, another
+    curve's derivatives. The running trapezoid rule (for the rates Euler–Maclaurin corrected
+    with the accelerations)."""
     h = np.diff(t)[:, None]
     checks = []
     if given_d:
         integral = 0.5 * h * (d[1:] + d[:-1]) + h * h / 12.0 * (dd[:-1] - dd[1:])
-        checks.append(("d_", np.diff(poses, axis=0), integral, "positions"))
+        checks.append(("d_", np.diff(poses, axis=0), integral, "positions",
+                       DERIVATIVE_TOLERANCE))
     if given_dd:
-        checks.append(("dd_", np.diff(d, axis=0), 0.5 * h * (dd[1:] + dd[:-1]), "d_* rates"))
-    for prefix, step, integral, against in checks:
-        rel = _mismatch(step, integral, h)
+        still = ~np.any(dd, axis=0) & np.any(np.diff(d, axis=0), axis=0)
+        if np.any(still):
+            raise TrajectoryError(f"{path}: column dd_{TASK_NAMES[int(np.argmax(still))]} is "
+                                  "all zero while its rate changes: missing accelerations? "
+                                  "(leave the dd_* columns out to have them from a spline)")
+        checks.append(("dd_", np.diff(d, axis=0), 0.5 * h * (dd[1:] + dd[:-1]), "d_* rates",
+                       ACCELERATION_TOLERANCE))
+    for prefix, step, integral, against, tolerance in checks:
+        rel = _mismatch(step, integral)
         c = int(np.argmax(rel))
-        if rel[c] > DERIVATIVE_TOLERANCE:
+        if rel[c] > tolerance:
             unit = ("m/s" if c < 3 else "rad/s") + ("²" if prefix == "dd_" else "")
             raise TrajectoryError(
                 f"{path}: column {prefix}{TASK_NAMES[c]!s} disagrees with the {against} by "
-                f"{rel[c]:.3g}× the motion's scale (RMS over the samples; tolerance "
-                f"{DERIVATIVE_TOLERANCE:g}): wrong units (expected {unit}), zeros or another "
+                f"{rel[c]:.3g}× the motion's scale (its running integral vs the excursion; "
+                f"tolerance {tolerance:g}): wrong units (expected {unit}), zeros or another "
                 "curve's derivatives?")
 
 
