@@ -235,19 +235,19 @@ def test_a_saturated_robot_that_falls_out_of_its_limits_stops(robot):
 
 
 def test_loops_that_open_beyond_the_tolerance_stop_the_run(robot):
-    """Limits waived, the saturated fall goes on until Baumgarte no longer holds the loops: the
-    run stops at LOOP_TOLERANCE; the same run unchecked does reach a residual above it, while a
-    tracked run stays 100× below it (1.0e-11 m)."""
+    """The thesis curve squeezed into 1 s: at 4 ms RK4 steps the loops open to 3.6e-4 m, and
+    the run stops at LOOP_TOLERANCE; at 0.5 ms they hold to 7.5e-8 m, 100× below it."""
     from pollard_pin.dynamics.forward import SimulationError
     from pollard_pin.dynamics.tracking import LOOP_TOLERANCE
 
-    traj = _head(2.0)
-    tracked = simulate_tracking(robot, traj, "feedforward-pd", control_period=5e-3)
-    assert tracked.max_closure_residual <= LOOP_TOLERANCE / 50
-    desired = desired_trajectory(robot, traj, 5e-3)
-    kw = dict(control_period=5e-3, torque_limit=0.5, desired=desired, joint_limits=False)
+    traj = thesis_trajectory(duration=1.0, samples=51)
+    desired = desired_trajectory(robot, traj, 4e-3)
+    kw = dict(control_period=4e-3, desired=desired)
     with pytest.raises(SimulationError, match=r"the plant's loops opened to .* m \(loop "
-                                              r"tolerance 1e-09 m"):
-        simulate_tracking(robot, traj, "feedforward-pd", **kw)
-    free = simulate_tracking(robot, traj, "feedforward-pd", loop_tolerance=np.inf, **kw)
+                                              r"tolerance 1e-05 m.*reduce the time step"):
+        simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, **kw)
+    free = simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, loop_tolerance=np.inf,
+                             **kw)
     assert np.abs(free.closure_residual).max() > LOOP_TOLERANCE
+    fine = simulate_tracking(robot, traj, "feedforward-pd", dt=5e-4, **kw)
+    assert fine.max_closure_residual <= LOOP_TOLERANCE / 100
