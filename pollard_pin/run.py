@@ -13,6 +13,7 @@ from .dynamics.averages import time_mean, time_rms
 from .io.table import TableWriter, write_table
 from .io.trajectory import Trajectory
 from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
+from .kinematics.limits import check_joint_limits
 from .kinematics.margins import Margins
 from .model.names import SPHERICAL
 
@@ -45,14 +46,18 @@ class RunResult:
 
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
                  loads: bool = False, *, margins: Margins | None = None,
-                 method: str | None = None) -> RunResult:
+                 method: str | None = None, joint_limits: bool = True) -> RunResult:
     """IK (and inverse dynamics) along a trajectory: ``margins`` (:class:`Margins`, default
     its defaults) and ``method`` go to :func:`~pollard_pin.kinematics.inverse_kinematics`.
-    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``)."""
+    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``).
+    ``joint_limits``: refuse a sample with a joint outside its limits (the reach rule of
+    ``workspace`` and ``paint``, kinematics.limits); False waives them."""
     from .dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             progress=progress, margins=margins, method=method)
+    if joint_limits:
+        check_joint_limits(robot, ik.q, ik.t)
     dyn = inverse_dynamics(robot, ik) if dynamics or loads else None
     if not loads:
         return RunResult(traj, ik, dyn if dynamics else None)

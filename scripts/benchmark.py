@@ -154,7 +154,7 @@ def simulation_section(robot, repeats: int) -> None:
     and a 1 ms control period, the built-in controllers, exact and perturbed plant; the wall
     per RK4 step and per control tick behind ``simulate``'s estimate (dynamics/tracking.py)."""
     from pollard_pin.dynamics.control import CONTROLLERS, desired_trajectory
-    from pollard_pin.dynamics.plant import PlantErrors
+    from pollard_pin.dynamics.plant import ModelMismatch
     from pollard_pin.dynamics.tracking import simulate_tracking
 
     traj = pp.thesis_trajectory()
@@ -164,7 +164,7 @@ def simulation_section(robot, repeats: int) -> None:
           f"trajectory (batched IK + ID, {len(desired.t)} ticks) {time.perf_counter() - t0:.2f} s")
     for controller in CONTROLLERS:
         for label, errors in (("exact", None),
-                              ("payload 0.05 kg + mass +10 %", PlantErrors(0.05, 0.1))):
+                              ("payload 0.05 kg + mass +10 %", ModelMismatch(0.05, 0.1))):
             walls = []
             for _ in range(max(1, repeats // 2)):
                 t0 = time.perf_counter()

@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 import pollard_pin as pp
-from pollard_pin.dynamics.forward import simulate, trajectory_torques
+from pollard_pin.dynamics.forward import replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample, reduced_mass_matrix
 from pollard_pin.io.trajectory import THESIS_DURATION, thesis_curve
 
@@ -79,7 +79,7 @@ def main(argv=None) -> int:
 
     horizon = min(args.open_loop_horizon, args.duration)
     t0 = time.perf_counter()
-    sim = simulate(robot, trajectory_torques(robot, curve, q0), q0, v0, horizon, args.dt)
+    sim = replay_open_loop(robot, trajectory_torques(robot, curve, q0), q0, v0, horizon, args.dt)
     d = drift(robot, sim, curve)
     over = np.flatnonzero(~(d <= 1e-3))
     when = f"passes 1 mm at t = {sim.t[over[0]]:.2f} s" if len(over) else "stays below 1 mm"
@@ -89,7 +89,7 @@ def main(argv=None) -> int:
 
     t0 = time.perf_counter()
     fn = trajectory_torques(robot, curve, q0, bandwidth=args.bandwidth)
-    sim = simulate(robot, fn, q0, v0, args.duration, args.dt)
+    sim = replay_open_loop(robot, fn, q0, v0, args.duration, args.dt)
     d = drift(robot, sim, curve)
     print(f"with PD (bandwidth {args.bandwidth:g} rad/s) around the feedforward, "
           f"{args.duration:g} s: max tool-tip drift {np.nanmax(d):.3g} m, max closure residual "

@@ -195,7 +195,7 @@ def solve(args, dynamics: bool = True, **ik_options):
     t0 = time.perf_counter()
     result = run_pipeline(robot, traj, dynamics=dynamics,
                           progress=progress("solving", len(traj) >= 500 and not args.quiet),
-                          **ik_options)
+                          joint_limits=not args.ignore_limits, **ik_options)
     log.info("solved in %.3f s", time.perf_counter() - t0)
     return robot, result
 
@@ -263,3 +263,6 @@ def trajectory_args(p) -> None:
     p.add_argument("--samples", type=count(2), default=None, metavar="N",
                    help="thesis trajectory samples (default: 2001)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--ignore-limits", action="store_true",
+                   help="solve poses with joints outside the parameter file's [limits] "
+                        "(default: refuse them, like workspace and paint)")

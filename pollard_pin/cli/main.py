@@ -73,6 +73,8 @@ def main(argv=None) -> int:
         message = " ".join(str(exc).split()) or type(exc).__name__
         if isinstance(exc, MemoryError):
             message = f"not enough memory ({message}): fewer samples?"
+        if _is_limit_error(exc) and hasattr(args, "ignore_limits"):
+            message += " (--ignore-limits waives the joint limits)"
         out = getattr(args, "out", None) or getattr(args, "html", None)
         if out and out != STDOUT:
             message += f" (nothing written to {out})"
@@ -107,6 +109,12 @@ def _survive_any_encoding() -> None:
                 stream.reconfigure(errors="backslashreplace")
         except AttributeError:  # no encoding: not a text stream we can fix
             pass
+
+
+def _is_limit_error(exc: BaseException) -> bool:
+    from ..kinematics.errors import JointLimitError
+
+    return isinstance(exc, JointLimitError)
 
 
 class _Terminated(KeyboardInterrupt):

@@ -79,6 +79,7 @@ def summary_lines(rep: dict, names) -> list[str]:
     """The report-style lines ``paint`` prints."""
     th, target = rep["thickness"], rep["target"]
     motors = ", ".join(f"{n} {100 * rep['motors'][n]['peak_torque']:.0f}/"
+                       f"{100 * rep['motors'][n]['rms_torque']:.0f}/"
                        f"{100 * rep['motors'][n]['speed']:.0f}" for n in names)
     return [
         f"passes {rep['passes']} ({rep['direction']}), spacing {rep['spacing'] * 1e3:.2f} mm, "
@@ -88,7 +89,7 @@ def summary_lines(rep: dict, names) -> list[str]:
         f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
         f"(target {target * 1e6:.4g} µm: {100 * th['deviation_min']:+.2f} % / "
         f"{100 * th['deviation_max']:+.2f} %), {100 * th['within_10pct']:.0f} % within ±10 %",
-        f"motor peak torque/speed use [%]: {motors}",
+        f"motor peak torque/RMS torque/speed use [%]: {motors}",
         f"planned in {rep['timings']['plan']:.2f} s, film map in {rep['timings']['film']:.2f} s "
         f"({rep['grid']['nu']} × {rep['grid']['nv']} points, {rep['samples']} path samples)",
     ]

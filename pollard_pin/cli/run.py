@@ -40,14 +40,16 @@ def run(args) -> int:
                 "parameters": robot.params.to_toml_dict(),
                 "trajectory": {"name": traj.name, "source": args.trajectory, "samples": n,
                                "derivatives": traj.derivatives},
-                "options": {**margins.as_dict(), "loads": args.loads}}
+                "options": {**margins.as_dict(), "loads": args.loads,
+                            "joint_limits": not args.ignore_limits}}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
                                   -(-n // (STREAM_WINDOW - 1)))  # no idle threads
     stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
                        workers=workers,
                        progress=progress("solving", n >= 500 and not args.quiet),
-                       margins=margins, loads=args.loads)
+                       margins=margins, loads=args.loads,
+                       joint_limits=not args.ignore_limits)
     wall, write = timings["wall"], timings["write"]
     text = summary(stats) + (
         f"\nsolved and written in {wall:.3f} s ({1e6 * wall / n:.2f} µs/sample, the first "

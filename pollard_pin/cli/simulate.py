@@ -27,7 +27,7 @@ def run(args) -> int:
 
     from ..dynamics.control import Gains
     from ..dynamics.inverse import JointLosses
-    from ..dynamics.plant import PlantErrors
+    from ..dynamics.plant import ModelMismatch
     from ..dynamics.tracking import (
         MeasurementNoise,
         default_step,
@@ -71,7 +71,7 @@ def run(args) -> int:
             per_joint[name] = np.zeros(robot.model.nv)
             per_joint[name][robot.actuated_v] = value
         losses = JointLosses(**per_joint)
-    errors = PlantErrors(args.payload, args.mass_error, losses)
+    errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
     start = None if args.start == "path" else robot.home()
     duration = float(traj.t[-1] - traj.t[0])
@@ -95,7 +95,8 @@ def run(args) -> int:
     result = simulate_tracking(
         robot, traj, args.controller, errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
-        start=start, known_losses=known, progress=None if args.quiet else report)
+        start=start, known_losses=known, joint_limits=not args.ignore_limits,
+        progress=None if args.quiet else report)
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,

@@ -17,7 +17,9 @@ from typing import Protocol
 import numpy as np
 
 from ..errors import InputError
+from ..kinematics.errors import JointLimitError
 from ..kinematics.ik import inverse_kinematics
+from ..kinematics.limits import check_joint_limits
 from ..model.build import Robot
 from .inverse import (
     JointLosses,
@@ -26,7 +28,7 @@ from .inverse import (
     reduced_dynamics,
     reduced_mass_matrix,
 )
-from .plant import PlantErrors, perturbed_robot
+from .plant import ModelMismatch, perturbed_robot
 
 CONTROL_PERIOD = 1e-3  # s, zero-order hold
 WN, ZETA = 60.0, 1.0  # rad/s, 1: default error dynamics (≈ 10 Hz at a 1 kHz control rate)
@@ -113,13 +115,15 @@ def control_ticks(t0: float, t1: float, period: float) -> np.ndarray:
 
 
 def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD, curve=None,
-                       losses: JointLosses | None = None, **ik_options) -> DesiredTrajectory:
+                       losses: JointLosses | None = None, joint_limits: bool = True,
+                       **ik_options) -> DesiredTrajectory:
     """The reference of ``trajectory`` (times, poses and their rates and accelerations) at the
     control ticks, by the batched IK and inverse dynamics of ``robot`` (the nominal model),
     with the joint ``losses`` the controller knows (rotor inertia, friction; default none).
 
     ``curve(t) → (poses, rates, accelerations)`` evaluates the tool path between samples
-    (default: the quintic Hermite interpolant of the samples).
+    (default: the quintic Hermite interpolant of the samples). ``joint_limits``: refuse a tick
+    with a joint outside its limits (kinematics.limits, the rule of every command).
     """
     if not (math.isfinite(period) and period > 0):
         raise ControlError(f"control period must be > 0 s, got {period}")
@@ -129,6 +133,13 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     ticks = control_ticks(float(t[0]), float(t[-1]), period)
     poses, d, dd = (curve or _hermite(trajectory))(ticks)
     ik = inverse_kinematics(robot, poses, d, dd, ticks, **ik_options)
+    if joint_limits:
+        try:
+            check_joint_limits(robot, ik.q, ticks)
+        except JointLimitError as exc:  # a tick is no sample of the file: say the time
+            raise JointLimitError(f"the reference at t = {exc.time:.6g} s (control tick "
+                                  f"{exc.sample}): {exc.detail}", chain=exc.chain,
+                                  amount=exc.amount) from None
     tau = inverse_dynamics(robot, ik, losses, energies=False).tau
     held = tau.copy()
     held[:-1] = 0.5 * (tau[:-1] + tau[1:])
@@ -208,7 +219,7 @@ def _known(robot: Robot, losses: JointLosses | None) -> Robot:
     """``robot`` with the rotor inertia of ``losses`` in its ``model.armature`` (a copy)."""
     if losses is None or not np.any(losses.armature):
         return robot
-    return perturbed_robot(robot, PlantErrors(losses=losses))
+    return perturbed_robot(robot, ModelMismatch(losses=losses))
 
 
 def make_controller(name: str, robot: Robot, desired: DesiredTrajectory,

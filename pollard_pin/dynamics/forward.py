@@ -73,9 +73,11 @@ def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) ->
                                   robot.constraint_datas, settings).copy()
 
 
-def simulate(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
-             baumgarte: tuple[float, float] = (400.0, 40.0)) -> SimulationResult:
-    """Integrate the closed-loop dynamics under ``torques(t, q, v) → (6,)`` with fixed-step RK4.
+def replay_open_loop(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
+                     baumgarte: tuple[float, float] = (400.0, 40.0)) -> SimulationResult:
+    """Open-loop replay: integrate the loop-closed dynamics under given ``torques(t, q, v) → (6,)``
+    with fixed-step RK4 (no controller; the ``simulate`` command's closed-loop tracking is
+    ``simulate_tracking``, dynamics/tracking.py).
 
     Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
     ``Kd`` default to a critically damped 20 rad/s correction. They are set on the run's own
@@ -124,7 +126,7 @@ def trajectory_torques(robot: Robot, curve, q_start=None, bandwidth: float | Non
     """``(t, q, v) → τ (6,)``: IK + inverse dynamics of ``curve(t) → (pose, rate, acc)``.
 
     Evaluated exactly at every integrator stage (no interpolation), warm-started from the
-    previous call, so :func:`simulate` can replay a trajectory's own torques. With
+    previous call, so :func:`replay_open_loop` can replay a trajectory's own torques. With
     ``bandwidth`` ω [rad/s], a critically damped PD ``M_red (ω² e + 2ω ė)`` on the actuator
     errors is added to this feedforward; ``torques.state["feedback"]`` records its peak
     |torque|. Open loop (``None``) the replay is gravity-unstable over long horizons.

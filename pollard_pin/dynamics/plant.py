@@ -27,7 +27,7 @@ class PlantError(InputError):
 
 
 @dataclass(frozen=True)
-class PlantErrors:
+class ModelMismatch:
     """How the plant differs from the controller's (nominal) model.
 
     ``payload`` [kg]: a point mass at the tool tip (``tip`` frame origin). ``mass_error``: every
@@ -53,7 +53,7 @@ class PlantErrors:
                     raise PlantError(f"joint {name} must be finite and >= 0, got {value}")
 
 
-def perturbed_robot(robot: Robot, errors: PlantErrors) -> Robot:
+def perturbed_robot(robot: Robot, errors: ModelMismatch) -> Robot:
     """A copy of ``robot`` with its own model, data and constraint data, perturbed by
     ``errors`` (mass error, payload, armature in ``model.armature``). ``robot`` is untouched."""
     model = pin.Model(robot.model)
@@ -80,9 +80,9 @@ class Plant:
     Coulomb part of the losses, applied as −(viscous·v + coulomb·tanh(v/v_s)).
     """
 
-    def __init__(self, robot: Robot, errors: PlantErrors | None = None,
+    def __init__(self, robot: Robot, errors: ModelMismatch | None = None,
                  baumgarte: tuple[float, float] = BAUMGARTE):
-        self.errors = errors or PlantErrors()
+        self.errors = errors or ModelMismatch()
         kp, kd = (float(x) for x in baumgarte)
         if not (kp >= 0 and kd >= 0 and math.isfinite(kp) and math.isfinite(kd)):
             raise PlantError(f"Baumgarte gains must be finite and >= 0, got {baumgarte}")

@@ -117,7 +117,8 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
     if timing is None:
         report.update(time_optimal_duration=None, time_optimal_error=error)
         return Sizing(report, act, given, None, uniform, None, path)
-    optimal = motor_load(act, timing.t, *timing.joint_motion(path))
+    optimal = motor_load(act, timing.t, *timing.joint_motion(
+        path if timing.path is None else timing.path))
     shares = binding_shares(optimal)
     opt = _checks(optimal, "time_optimal_")
     for n in act.names:

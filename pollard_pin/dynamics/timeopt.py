@@ -19,7 +19,7 @@ import numpy as np
 
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
 from .motors import utilisation as motor_utilisation
-from .path import PathDynamics, path_dynamics_at, quintic_hermite
+from .path import PathDynamics, arc_length_path, path_dynamics_at, quintic_hermite
 
 PER_INTERVAL = 4  # check points per interval to start with
 TARGET = 1.001  # worst verified utilisation between samples accepted (the promise: 1.002)
@@ -48,6 +48,12 @@ class TimeOptimal:
     between: float = float("nan")
     between_at: float = float("nan")
     tightened: int = 0  # intervals whose ratings were tightened to hold halfway
+    # the path the grid lies on (time_optimal_path): its dynamics at the grid, and
+    # ``curve(t0 + s·span) -> (poses, rates, accelerations)``, rates per unit of that parameter
+    path: PathDynamics | None = None
+    curve: object = None
+    t0: float = 0.0
+    span: float = 1.0
 
     @property
     def duration(self) -> float:
@@ -314,11 +320,31 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     tightened by their overshoot when it is below ``TIGHTEN_BELOW`` (up to
     ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
+
+    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of as
+    many points as samples, evenly spaced along it: the answer does not depend on how the
+    samples are timed (a path whose samples come to rest, such as a retimed one, is degenerate
+    in its own time: dp/ds = 0 there, so "rest to rest" would hold it still twice). A path that
+    stops inside (or whose bends are too tight for as many grid points as samples: TOPP-RA
+    fails there) keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
+    at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
     """
     t = np.asarray(t, dtype=float)
     curve = curve or quintic_hermite(t, poses, d_poses, dd_poses)
+    arc = arc_length_path(curve, t)
+    options = (per_interval, target, s_dot_start, s_dot_end)
+    if arc is not None:
+        try:
+            return _solve(robot, act, arc, 0.0, arc.length, arc.grid(len(t)), *options)
+        except ActuatorError:  # e.g. too few samples for its bends: the samples' parameter
+            pass
     t0, T = float(t[0]), float(t[-1] - t[0])
-    grid = (t - t0) / T
+    return _solve(robot, act, curve, t0, T, (t - t0) / T, *options)
+
+
+def _solve(robot, act, curve, t0: float, T: float, grid, per_interval: int, target: float,
+           s_dot_start: float, s_dot_end: float) -> TimeOptimal:
+    """:func:`time_optimal_path` on the path ``curve(t0 + s·T)``, TOPP-RA's grid ``grid``."""
     m = int(per_interval)
     if m < 1:
         raise ValueError(f"per_interval must be >= 1, got {per_interval}")
@@ -349,7 +375,8 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
         dense, m, guess = both, 2 * m, motion_at(timing, both.s)[1]
         half, tight, rounds = None, np.ones(len(grid) - 1), 0
     return TimeOptimal(timing.s, timing.t, timing.s_dot, timing.s_ddot, iterations, m,
-                       float(use[worst]), float(both.s[worst]), int(np.sum(tight < 1)))
+                       float(use[worst]), float(both.s[worst]), int(np.sum(tight < 1)),
+                       dense.take(slice(None, None, m)), curve, t0, T)
 
 
 def _points(grid, m: int, offset: float) -> np.ndarray:

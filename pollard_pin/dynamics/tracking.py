@@ -21,6 +21,7 @@ import pinocchio as pin
 
 from ..analytic.taskspace import rotation
 from ..kinematics.closure import solve_closure, tool_pose
+from ..kinematics.limits import first_violation, violation_text
 from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot, constraint_jacobian
 from .averages import time_rms
@@ -35,7 +36,7 @@ from .control import (
 )
 from .forward import SimulationError
 from .inverse import JointLosses
-from .plant import BAUMGARTE, Plant, PlantErrors
+from .plant import BAUMGARTE, ModelMismatch, Plant
 
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
@@ -43,6 +44,11 @@ DT = 1e-3  # s, longest RK4 step
 STEP_SECONDS, TICK_SECONDS = 80e-6, 400e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
+# m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick
+# that a simulation may reach; beyond it the RK4 step is too long for the motion and the
+# loops no longer hold (docs/model.md §18). Seen: 1e-13–1e-11 m at normal speeds, 1.4e-6 m
+# for the thesis curve in 1 s at 1 ms steps (2e-5 m at 2 ms).
+LOOP_TOLERANCE = 1e-5
 
 
 @dataclass(frozen=True)
@@ -239,6 +245,35 @@ def _grid(ticks: np.ndarray, samples: np.ndarray, dt: float):
     return pts, is_tick, sample
 
 
+def _unstable_hint(gains: Gains, control_period: float) -> str:
+    """What to change when the plant runs away while the torque is not saturated."""
+    # A sampled PD is stable only for ω·T well below 1 (torque held for T).
+    wt = gains.wn * control_period
+    return (f"the gains are too high for the control period (ω·T = {wt:.3g}; keep it below "
+            "about 0.5)" if wt > 0.5 else
+            "the controller does not hold the path: reduce the time step, check the gains and "
+            "the model mismatch")
+
+
+def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_limits: bool,
+                 tolerance: float, hint: str) -> None:
+    """Stop where the plant is no longer the robot: loops open beyond ``tolerance`` [m], or
+    (``joint_limits``) a joint outside its limits."""
+    why = None
+    if residual > tolerance:
+        why = (f"the plant's loops opened to {residual:.3g} m (loop tolerance "
+               f"{tolerance:g} m, docs/model.md §18)")
+    elif joint_limits:
+        names = plant.robot.joint_names
+        bad = first_violation(plant.robot.params, q, names)
+        if bad is not None:
+            _, j, excess = bad
+            why = "the plant left its joint limits: " + violation_text(
+                plant.robot.params, names[j], float(q[j]), excess)
+    if why is not None:
+        raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint}")
+
+
 def _torque_limit(torque_limit) -> np.ndarray | None:
     if torque_limit is None:
         return None
@@ -252,12 +287,13 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 
 def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "computed-torque",
-                      errors: PlantErrors | None = None, *, gains: Gains | None = None,
+                      errors: ModelMismatch | None = None, *, gains: Gains | None = None,
                       dt: float | None = None, control_period: float = CONTROL_PERIOD,
                       torque_limit=None, noise: MeasurementNoise | None = None, start=None,
                       baumgarte: tuple[float, float] = BAUMGARTE,
                       desired: DesiredTrajectory | None = None, curve=None,
-                      known_losses: JointLosses | None = None,
+                      known_losses: JointLosses | None = None, joint_limits: bool = True,
+                      loop_tolerance: float = LOOP_TOLERANCE,
                       progress: Callable[[int, int], None] | None = None) -> TrackingResult:
     """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
     ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
@@ -275,6 +311,12 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     (and ``known_losses``). ``known_losses``: joint losses the built-in controllers know and
     compensate (e.g. the motors' reflected rotor inertia and friction); the plant's are in
     ``errors.losses``. ``progress(done, total)`` is called per output sample.
+
+    The run stops with :class:`SimulationError` when, at a control tick, the plant's loops open
+    beyond ``loop_tolerance`` [m] (default :data:`LOOP_TOLERANCE`) or (``joint_limits``, the
+    default) a joint leaves its limits: past either the motion is not the robot's (e.g.
+    saturated torques let it fall). With ``joint_limits`` the reference must keep the limits
+    too (:func:`desired_trajectory`).
     """
     dt = default_step(control_period) if dt is None else dt
     check_steps(dt, control_period)
@@ -282,7 +324,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     limit = _torque_limit(torque_limit)
     plant = Plant(robot, errors, baumgarte)
     if desired is None:
-        desired = desired_trajectory(robot, trajectory, control_period, curve, known_losses)
+        desired = desired_trajectory(robot, trajectory, control_period, curve, known_losses,
+                                     joint_limits=joint_limits)
     label = controller if isinstance(controller, str) else type(controller).__name__
     if isinstance(controller, str):
         controller = make_controller(controller, robot, desired, gains, known_losses)
@@ -308,13 +351,9 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         # and hide the cause.
         if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))
                 and np.abs(q).max() < DIVERGED_ANGLE):
-            # A sampled PD is stable only for ω·T well below 1 (torque held for T).
-            wt = gains.wn * control_period
-            hint = (f"the gains are too high for the control period (ω·T = {wt:.3g}; "
-                    "keep it below about 0.5)" if wt > 0.5 else
-                    "reduce the time step or raise the gains")
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
-                                  f"beyond {DIVERGED_ANGLE:g} rad; {hint}")
+                                  f"beyond {DIVERGED_ANGLE:g} rad; "
+                                  f"{_unstable_hint(gains, control_period)}")
         res = None  # the plant's loop residual at this point, once computed
         if is_tick[i]:
             theta, dtheta = q[ia].copy(), v[ia].copy()
@@ -338,6 +377,11 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 saturated_since = t
             res = plant.closure_residual(q)
             max_res = max(max_res, res)
+            _check_plant(plant, q, res, t, joint_limits, loop_tolerance,
+                         "the torque has been saturated since t = "
+                         f"{saturated_since:.6g} s: raise the torque limit or slow the "
+                         "trajectory" if saturated_since is not None else
+                         _unstable_hint(gains, control_period))
         a1 = f(q, v, tau)
         k = sample_of[i]
         if k >= 0:
@@ -384,6 +428,6 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         settings=settings)
 
 
-__all__ = ["MeasurementNoise", "TrackingResult", "check_steps", "default_step", "estimated_wall",
-           "integration_steps", "sensed_state", "simulate_tracking", "step_used",
+__all__ = ["LOOP_TOLERANCE", "MeasurementNoise", "TrackingResult", "check_steps", "default_step",
+           "estimated_wall", "integration_steps", "sensed_state", "simulate_tracking", "step_used",
            "tracking_summary"]

@@ -32,6 +32,15 @@ MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degre
 MAX_SAMPLES = 1_000_000  # ≈ 3 GB solved
 MAX_STREAMED_SAMPLES = 100_000_000  # ≈ 20 min and 3-30 GB of output
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
+# Given d_* columns must agree with the positions: the largest gap between q(t) − q(t0) and
+# the running trapezoid integral of q̇, relative to the largest excursion |q(t) − q(t0)| (the
+# motion's scale), at most this. Exact rates give < 0.05; wrong units (deg/s: ×57), zeros
+# (1) or a flipped sign (2) are refused.
+DERIVATIVE_TOLERANCE = 0.5
+# The same for dd_* against d_*, looser: a time-optimal retiming's s̈ jumps at every sample
+# and a file holds one side of each jump (up to 2.2 seen); deg/s² (×57) is refused, and so is
+# an all-zero dd_* column whose rates change.
+ACCELERATION_TOLERANCE = 10.0
 
 
 class TrajectoryError(InputError):
@@ -275,6 +284,7 @@ def from_csv(path: str | Path) -> Trajectory:
             raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {name!r}: "
                                   f"{float(poses[r, c])!r} looks like {unit}; "
                                   f"|value| > {limit:.4g}")
+    check_angle_wraps(path, t, poses, lines)
     derivs = []
     for prefix in ("d_", "dd_"):
         names = [prefix + n for n in TASK_NAMES]
@@ -302,8 +312,70 @@ def from_csv(path: str | Path) -> Trajectory:
         absent = "/".join(p + "*" for p, d in zip(("d_", "dd_"), derivs_given) if not d)
         warnings.warn(f"{path}: no {absent} columns; derivatives taken from a quintic "
                       "interpolating spline through the samples", UserWarning, stacklevel=2)
+    check_derivatives(path, t, poses, derivs[0], derivs[1], *derivs_given)
     return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source,
                       curve=curve)
+
+
+def check_angle_wraps(path, t: np.ndarray, poses: np.ndarray, lines) -> None:
+    """Refuse an angle that jumps by more than π between consecutive samples: a wrap at ±π
+    (the robot's angles never turn half a revolution in one step), which a spline or the given
+    rates would read as a spin of ~2π per step."""
+    jumps = np.abs(np.diff(poses[:, 3:], axis=0))
+    if np.any(jumps > math.pi):
+        r, c = np.unravel_index(int(np.argmax(jumps > math.pi)), jumps.shape)
+        name = TASK_NAMES[3 + c]
+        raise TrajectoryError(
+            f"{path}: row {lines[r + 2]}, column {name!r}: jumps by "
+            f"{poses[r + 1, 3 + c] - poses[r, 3 + c]:.4g} rad from the previous sample "
+            f"(t = {t[r]:.6g} -> {t[r + 1]:.6g} s): an angle wrap at ±π? unwrap the angles so "
+            "consecutive samples differ by less than π rad")
+
+
+def _mismatch(step: np.ndarray, integral: np.ndarray) -> np.ndarray:
+    """Per column: max |Σ (integral − step)| over the running sums, over max |Σ step| (the
+    excursion), each column's scale floored at 1e-2 of its group's (lengths, angles) largest,
+    so a nearly still column is not judged by its own round-off. Running sums: one-sided
+    values at jumps (a retiming's s̈) err by turns and cancel."""
+    with np.errstate(all="ignore"):  # absurd columns (1e200) give inf: refused, no warning
+        scale = np.abs(np.cumsum(step, axis=0)).max(axis=0)
+        err = np.abs(np.cumsum(integral - step, axis=0)).max(axis=0)
+    for g in (slice(0, 3), slice(3, 6)):
+        scale[g] = np.maximum(scale[g], max(1e-2 * scale[g].max(), 1e-300))
+    return np.where(np.isfinite(err), err / scale, np.inf)
+
+
+def check_derivatives(path, t: np.ndarray, poses: np.ndarray, d: np.ndarray, dd: np.ndarray,
+                      given_d: bool = True, given_dd: bool = True) -> None:
+    """Refuse given (``given_d``, ``given_dd``) ``d_*``/``dd_*`` columns that do not integrate
+    to the positions (rates) within :data:`DERIVATIVE_TOLERANCE`
+    (:data:`ACCELERATION_TOLERANCE`) of the motion's scale: wrong units, zeros, another
+    curve's derivatives. The running trapezoid rule (for the rates Euler–Maclaurin corrected
+    with the accelerations)."""
+    h = np.diff(t)[:, None]
+    checks = []
+    if given_d:
+        integral = 0.5 * h * (d[1:] + d[:-1]) + h * h / 12.0 * (dd[:-1] - dd[1:])
+        checks.append(("d_", np.diff(poses, axis=0), integral, "positions",
+                       DERIVATIVE_TOLERANCE))
+    if given_dd:
+        still = ~np.any(dd, axis=0) & np.any(np.diff(d, axis=0), axis=0)
+        if np.any(still):
+            raise TrajectoryError(f"{path}: column dd_{TASK_NAMES[int(np.argmax(still))]} is "
+                                  "all zero while its rate changes: missing accelerations? "
+                                  "(leave the dd_* columns out to have them from a spline)")
+        checks.append(("dd_", np.diff(d, axis=0), 0.5 * h * (dd[1:] + dd[:-1]), "d_* rates",
+                       ACCELERATION_TOLERANCE))
+    for prefix, step, integral, against, tolerance in checks:
+        rel = _mismatch(step, integral)
+        c = int(np.argmax(rel))
+        if rel[c] > tolerance:
+            unit = ("m/s" if c < 3 else "rad/s") + ("²" if prefix == "dd_" else "")
+            raise TrajectoryError(
+                f"{path}: column {prefix}{TASK_NAMES[c]!s} disagrees with the {against} by "
+                f"{rel[c]:.3g}× the motion's scale (its running integral vs the excursion; "
+                f"tolerance {tolerance:g}): wrong units (expected {unit}), zeros or another "
+                "curve's derivatives?")
 
 
 def to_csv(traj: Trajectory, path: str | Path) -> None:
@@ -347,6 +419,8 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
 __all__ = [
     "Trajectory",
     "TrajectoryError",
+    "check_angle_wraps",
+    "check_derivatives",
     "from_csv",
     "sinusoid_curve",
     "smooth_random_trajectory",

@@ -60,6 +60,11 @@ class KinematicsInputError(KinematicsError, ValueError):
     :class:`KinematicsError` (sample and time when known) and a :class:`ValueError`."""
 
 
+class JointLimitError(KinematicsError):
+    """A joint leaves its limits (the ``[limits]`` of the parameter file): ``chain`` names the
+    joint, ``amount`` [rad] how far outside."""
+
+
 class UnreachablePoseError(KinematicsError):
     """A chain cannot reach the requested tool pose."""
 

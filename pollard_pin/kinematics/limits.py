@@ -3,7 +3,11 @@ stacks of configurations: an angle is inside when it, or the angle 2πk away fro
 [lower, upper] (docs/model.md §22)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from .errors import JointLimitError
 
 TWO_PI = 2.0 * np.pi
 
@@ -23,3 +27,36 @@ def limit_violations(params, q, names) -> tuple[np.ndarray, np.ndarray]:
         outside = (over > 0.0) & (hi - lo < TWO_PI)
         side = np.where(outside, np.where(over <= under, 1, -1), 0).astype(np.int8)
     return side, np.where(outside, np.minimum(over, under), 0.0)
+
+
+def first_violation(params, q, names):
+    """The first (sample, joint index, excess [rad]) of a stack q (N, J) outside the limits of
+    the joints ``names`` (the rule of :func:`limit_violations`), or None."""
+    side, excess = limit_violations(params, np.atleast_2d(q), names)
+    if not side.any():
+        return None
+    k, j = (int(i) for i in np.argwhere(side)[0])
+    return k, j, float(excess[k, j])
+
+
+def violation_text(params, name: str, angle: float, excess: float) -> str:
+    """'joint theta54 at 41.3° is outside its limits [-40°, 40°] by 1.3°'."""
+    lim = params.joint_limits(name)
+    return (f"joint {name} at {math.degrees(angle):.4g}° is outside its limits "
+            f"[{math.degrees(lim.lower):g}°, {math.degrees(lim.upper):g}°] by "
+            f"{math.degrees(excess):.3g}°")
+
+
+def check_joint_limits(robot, q, t=None) -> None:
+    """Raise :class:`JointLimitError` at the first sample of q (N, 12) where a tree joint is
+    outside its limits: the reach rule of every command (``workspace`` and ``paint`` map and
+    plan with it; ``run``, ``size`` and ``simulate`` refuse a path that breaks it)."""
+    names = robot.joint_names
+    bad = first_violation(robot.params, q, names)
+    if bad is None:
+        return
+    k, j, excess = bad
+    raise JointLimitError(violation_text(robot.params, names[j], float(np.atleast_2d(q)[k, j]),
+                                         excess),
+                          sample=k, time=None if t is None else float(t[k]), chain=names[j],
+                          amount=excess)

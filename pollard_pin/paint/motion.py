@@ -3,7 +3,6 @@ configured branches, wrist and singularity margins) plus the joint limits of the
 file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 
@@ -11,7 +10,7 @@ import numpy as np
 
 from ..dynamics.motors import Actuators, motor_speed, motor_torque
 from ..kinematics.errors import KinematicsError
-from ..kinematics.limits import limit_violations
+from ..kinematics.limits import check_joint_limits
 from ..kinematics.margins import Margins
 from .errors import PlanError, ReachError
 
@@ -31,18 +30,6 @@ class Motion:
         return np.maximum(self.torque_ratio, self.speed_ratio)
 
 
-def joint_limit_violation(robot, q: np.ndarray):
-    """The first (sample, joint, angle, lower, upper) [rad] with a tree joint outside its
-    limits (the rule of kinematics.limits: an angle may be 2π off), or None."""
-    names = robot.joint_names
-    side, _ = limit_violations(robot.params, q, names)
-    if not side.any():
-        return None
-    k, j = (int(i) for i in np.argwhere(side)[0])
-    lim = robot.params.joint_limits(names[j])
-    return k, names[j], float(q[k, j]), float(lim.lower), float(lim.upper)
-
-
 def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None = None):
     """The reach check alone (no dynamics, where the motors are not the question): IK of the
     tool poses (N, 6) under ``run``'s rules and ``margins`` (default ``run``'s), and the joint
@@ -58,11 +45,10 @@ def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None 
         k = 0 if exc.sample is None else int(exc.sample)
         detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
         raise ReachError(detail, k, np.asarray(poses)[k]) from None
-    bad = joint_limit_violation(robot, ik.q)
-    if bad is not None:
-        k, name, val, lo, hi = bad
-        raise ReachError(f"joint {name} at {math.degrees(val):.1f}° is outside its limits "
-                         f"[{math.degrees(lo):g}°, {math.degrees(hi):g}°]", k, np.asarray(poses)[k])
+    try:
+        check_joint_limits(robot, ik.q)
+    except KinematicsError as exc:
+        raise ReachError(exc.detail, exc.sample, np.asarray(poses)[exc.sample]) from None
     return ik
 
 
@@ -106,5 +92,3 @@ def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings:
     return hi
 
 
-__all__ = ["Motion", "PlanError", "ReachError", "fastest", "joint_limit_violation", "motion",
-           "reach"]

@@ -8,7 +8,11 @@ trajectory, (docs/model.md §21). The film it leaves is
    allow (every pass, peak torque and speed derated to UTILISATION) caps it: a target that
    needs more is refused, naming the thinnest film per coat.
 3. Turnarounds and ramps: each the shortest of its family (raster.py) whose motors stay within
-   UTILISATION of peak torque and speed (vectorised bisection, TURN_SAMPLES per piece).
+   UTILISATION of peak torque and speed (vectorised bisection, TURN_SAMPLES per piece). The
+   cycle repeats on a line, so each motor's RMS torque over it (``size``'s definition,
+   dynamics/averages.py) must also stay within UTILISATION of its continuous rating: if it
+   does not, every turnaround and ramp is lengthened by one common factor (bisection) until
+   it does, or the job is refused naming the motor and its RMS use.
 4. The whole trajectory is checked like ``run`` (reach, margins, joint limits) and against the
    motors at CHECK_REFINE× its sampling, then the film is integrated over the panel.
 """
@@ -293,6 +297,8 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     clock["layout"] = time.perf_counter()
     seg = _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats,
                             horizontal)
+    seg = _within_rms(robot, act, frame, job, seg, offsets, half_length, speed, coats,
+                      horizontal)
     clock["turns"] = time.perf_counter()
     t = _path_times(seg, job, speed)
     n = len(t)
@@ -308,6 +314,8 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
+    if ratios["rms_torque"].max() > 1.0:  # the search's samples missed it: say so, never pass
+        raise PlanError(_rms_text(act, ratios["rms_torque"], "the planned cycle"))
     clock["check"] = time.perf_counter()
     return PaintPlan(job, frame, seg, traj, offsets, spacing, speed, coats, half_length, vmax,
                      ratios, horizontal,
@@ -339,6 +347,70 @@ def _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats
 
     guess = np.full(len(pieces), _first_guess(speed))
     return build(fastest(evaluate, guess, UTILISATION))
+
+
+RMS_DOUBLINGS = 6  # turnarounds and ramps at most 2^6 × their fastest for the RMS rating
+
+
+def _rms_text(act: Actuators, use: np.ndarray, what: str) -> str:
+    j = int(np.argmax(use))
+    return (f"motor {act.names[j]} runs at {100 * use[j]:.4g} % of its continuous (RMS) torque "
+            f"over {what} (docs/model.md §19): the cycle repeats, so it would overheat")
+
+
+def _within_rms(robot, act, frame, job, seg: Segments, offsets, half_length, speed, coats,
+                horizontal) -> Segments:
+    """``seg`` with every turnaround and ramp × k, the smallest k ≥ 1 (doubling, then
+    bisection) at which each motor's RMS torque over the cycle, sqrt(∫τm² dt / T), is within
+    UTILISATION of its continuous rating. The passes do not change with k: their ∫τm² is
+    computed once; the pieces' by the trapezoid rule on TURN_SAMPLES each."""
+    pieces = np.array([i for i, k in enumerate(seg.kind) if k != "pass"])
+    passes = np.array([i for i, k in enumerate(seg.kind) if k == "pass"])
+    base = seg.duration[pieces]
+    cont = act.column("continuous_torque")
+    w = np.full(TURN_SAMPLES, 1.0 / (TURN_SAMPLES - 1))
+    w[[0, -1]] *= 0.5  # trapezoid weights on [0, 1]
+
+    def square_integral(s: Segments, idx) -> np.ndarray:  # per motor ∫τm² dt over pieces idx
+        t = _sample_pieces(s, idx, TURN_SAMPLES)
+        tm = motion(robot, act, *_task(frame, job, s, t, horizontal)).torque
+        per = np.einsum("s,psj->pj", w, tm.reshape(len(idx), TURN_SAMPLES, -1) ** 2)
+        return (per * s.duration[idx, None]).sum(axis=0)
+
+    def build(k: float) -> Segments:
+        tau = k * base
+        return raster_segments(offsets, half_length, speed, tau[1:-1], (tau[0], tau[-1]),
+                               coats)
+
+    on_passes = square_integral(seg, passes)
+
+    def use(k: float) -> np.ndarray:
+        s = build(k)
+        return np.sqrt((on_passes + square_integral(s, pieces)) / s.total) / cont
+
+    u = use(1.0)
+    if u.max() <= UTILISATION:
+        return seg
+    advice = ("; paint fewer coats or a slower pass (job.speed with more coats), or choose "
+              "stronger motors")
+    lo, hi = 1.0, 2.0
+    for _ in range(RMS_DOUBLINGS):
+        try:
+            u_hi = use(hi)
+        except ReachError:  # a longer turnaround reaches further out (raster.py)
+            raise PlanError(_rms_text(act, u, f"the cycle with turnarounds and ramps {lo:g}× "
+                                              "their fastest") + "; longer ones leave the "
+                            "workspace" + advice) from None
+        if u_hi.max() <= UTILISATION:
+            break
+        lo, hi, u = hi, 2 * hi, u_hi
+    else:
+        raise PlanError(_rms_text(act, u, f"the cycle even with turnarounds and ramps "
+                                          f"{lo:g}× their fastest") + advice)
+    for _ in range(8):  # to 2^-8 of the bracket: between lo and hi every turnaround is in reach
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if use(mid).max() <= UTILISATION else (mid, hi)
+    return build(hi)
 
 
 def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) -> ReachError:

@@ -389,7 +389,7 @@ BAD_TRAJECTORIES = [
     ("png.csv", "not UTF-8 text"),
     ("gzip.csv", "not UTF-8 text"),
     ("long_field.csv", "not CSV (field larger than field limit"),
-    ("fast.csv", "absurd"),
+    ("fast.csv", "column d_x disagrees with the positions"),
     ("tiny_dt.csv", "time step too small"),
     ("", "an empty name"),
     ("garbage.parquet", "Parquet"),
@@ -456,6 +456,9 @@ CASES += [
     # a run that starts says so (progress, silenced by --quiet); then its failure is one line
     ([*SIM, "--quiet", "--payload", "1e300"], "diverged"),
     ([*SIM, "--quiet", "--wn", "1e4"], "the gains are too high for the control period (ω·T = 10"),
+    # saturated, the robot falls: stopped where it leaves its joint limits (docs/model.md §18)
+    (["simulate", "--trajectory", str(EXAMPLES / "figure8.csv"), "--out", "out.csv", "--quiet",
+      "--torque-limit", "0.5"], "the plant left its joint limits: joint theta43"),
 ]
 
 # model parameters: files and --set, on the commands that load the model

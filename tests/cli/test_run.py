@@ -119,12 +119,18 @@ def test_cli_run_csv_trajectory(robot, tmp_path, capsys):
 def test_cli_run_failure_writes_nothing(robot, tmp_path, capsys, kind):
     traj = smooth_random_trajectory(5, samples=101)
     poses = traj.poses.copy()
+    d, dd = traj.d_poses, traj.dd_poses
     if kind == "unreachable":
         poses[60:, 0] += 1.0
     elif kind == "singular":
         poses[:] = wrist_singular_pose(robot.params)
+        d, dd = np.zeros_like(d), np.zeros_like(dd)  # still: rates that match the poses
     src = tmp_path / "in.csv"
-    to_csv(Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses), src)
+    to_csv(Trajectory(traj.t, poses, d, dd), src)
+    if kind == "unreachable":  # a jump has no rates: poses only (from_csv checks given ones)
+        lines = src.read_text().splitlines()
+        src.write_text("".join(",".join(r.split(",")[:7]) + "\n" for r in lines
+                               if not r.startswith("#")))
     if kind == "malformed":
         lines = src.read_text().splitlines()
         lines[40] = lines[40].replace(",", ",abc", 1)

@@ -9,11 +9,11 @@ import pytest
 from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, desired_trajectory
 from pollard_pin.dynamics.forward import forward_dynamics
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
-from pollard_pin.dynamics.plant import Plant, PlantError, PlantErrors
+from pollard_pin.dynamics.plant import ModelMismatch, Plant, PlantError
 from pollard_pin.dynamics.tracking import MeasurementNoise, simulate_tracking
 from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 
-PERTURBED = PlantErrors(payload=0.05, mass_error=0.1)
+PERTURBED = ModelMismatch(payload=0.05, mass_error=0.1)
 MOTORS = Path(__file__).resolve().parents[2] / "examples" / "actuators.toml"
 
 
@@ -83,7 +83,7 @@ def test_plant_obeys_its_inverse_dynamics(robot, traj, desired):
     returns the applied torque: 2.9e-15 relative (asserted 3e-13)."""
     losses = JointLosses(viscous=np.full(12, 2e-3), coulomb=np.full(12, 1e-3),
                          armature=np.full(12, 1e-4))
-    errors = PlantErrors(payload=0.05, mass_error=0.1, losses=losses)
+    errors = ModelMismatch(payload=0.05, mass_error=0.1, losses=losses)
     res = simulate_tracking(robot, traj, "computed-torque", errors, desired=desired)
     plant = Plant(robot, errors)
     worst = 0.0
@@ -106,12 +106,12 @@ def test_known_motors_are_compensated(robot, traj, controller):
 
     motors = load_actuators(MOTORS)
     losses = motors.joint_losses(robot.joint_names)
-    blind, known = (simulate_tracking(robot, traj, controller, PlantErrors(losses=losses),
+    blind, known = (simulate_tracking(robot, traj, controller, ModelMismatch(losses=losses),
                                       known_losses=k) for k in (None, losses))
     assert known.tip_position_error.max() <= 3.5e-6
     assert known.tip_orientation_error.max() <= 4e-5  # 3.3e-05 (ct), 7.8e-06 (ff)
     assert blind.tip_orientation_error.max() > 0.4  # 0.487 rad
-    plant = Plant(robot, PlantErrors(losses=losses))
+    plant = Plant(robot, ModelMismatch(losses=losses))
     k = len(known) // 2
     tau = plant.actuator_torque(known.q[k], known.v[k], known.a[k])
     assert np.abs(tau - known.tau[k]).max() <= 2e-14 * np.abs(known.tau[k]).max()  # 1.8e-16
@@ -175,7 +175,9 @@ def test_energy_is_conserved_to_fourth_order(robot):
 
     drift = []
     for dt in (5e-3, 2.5e-3, 1.25e-3):
-        res = simulate_tracking(robot, traj, off, dt=dt, control_period=0.01)
+        # a free fall at coarse steps opens the loops to 1.2e-8 m at dt = 5 ms: allowed here
+        res = simulate_tracking(robot, traj, off, dt=dt, control_period=0.01,
+                                loop_tolerance=1e-6)
         e = np.array([plant.energy(q, v) for q, v in zip(res.q, res.v)])
         drift.append(np.abs(e - e[0]).max())
     rates = [drift[0] / drift[1], drift[1] / drift[2]]
@@ -191,10 +193,12 @@ def test_zero_order_hold_saturation_and_user_controller(robot, traj, desired):
         calls.append(t)
         return inner(t, q, v)
 
-    res = simulate_tracking(robot, traj, mine, control_period=5e-3, torque_limit=0.8,
+    # 1.1 N·m (peak reference 1.2): saturated 0.48 s, the robot kept within its joint limits
+    # (at 0.8 N·m it falls out of them: tests/dynamics/test_tracking.py)
+    res = simulate_tracking(robot, traj, mine, control_period=5e-3, torque_limit=1.1,
                             desired=desired_trajectory(robot, traj, 5e-3))
     assert np.allclose(np.diff(calls), 5e-3)
-    assert np.abs(res.tau).max() <= 0.8 + 1e-15
+    assert np.abs(res.tau).max() <= 1.1 + 1e-15
     assert res.saturation_time > 0
     assert len(res) == len(traj) and np.array_equal(res.t, traj.t)
 
@@ -239,4 +243,4 @@ def test_bad_api_inputs(robot, traj, desired, kwargs, says):
     with pytest.raises(ControlError, match=says):
         simulate_tracking(robot, traj, desired=desired, **kwargs)
     with pytest.raises(PlantError, match="fraction > -1"):
-        PlantErrors(mass_error=-1.5)
+        ModelMismatch(mass_error=-1.5)

@@ -1,11 +1,11 @@
-"""forward_dynamics, simulate and the plant leave the caller's model alone (docs/model.md §14):
-rotor inertia and Baumgarte gains go on their own copies, never on the shared model, not even
-for the duration of a call."""
+"""forward_dynamics, replay_open_loop and the plant leave the caller's model alone
+(docs/model.md §14): rotor inertia and Baumgarte gains go on their own copies, never on the
+shared model, not even for the duration of a call."""
 import numpy as np
 
-from pollard_pin.dynamics.forward import forward_dynamics, simulate
+from pollard_pin.dynamics.forward import forward_dynamics, replay_open_loop
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
-from pollard_pin.dynamics.plant import Plant, PlantErrors
+from pollard_pin.dynamics.plant import ModelMismatch, Plant
 
 
 def _fields(robot) -> dict:
@@ -37,13 +37,24 @@ def test_shared_model_is_never_changed(robot):
 
     during = []
 
-    def torques(t, q_, v_):  # looks at the shared model while simulate runs
+    def torques(t, q_, v_):  # looks at the shared model while replay_open_loop runs
         during.append(_same(before, _fields(robot)))
         return np.zeros(6)
 
-    sim = simulate(robot, torques, q, v, duration=0.01, dt=5e-3, baumgarte=(900.0, 60.0))
+    sim = replay_open_loop(robot, torques, q, v, duration=0.01, dt=5e-3, baumgarte=(900.0, 60.0))
     assert len(during) == 8 and all(during)
     assert np.all(np.isfinite(sim.q))
-    Plant(robot, PlantErrors(payload=0.05, mass_error=0.2,
-                             losses=JointLosses(armature=1e-3)), baumgarte=(100.0, 20.0))
+    Plant(robot, ModelMismatch(payload=0.05, mass_error=0.2,
+                               losses=JointLosses(armature=1e-3)), baumgarte=(100.0, 20.0))
     assert _same(before, _fields(robot))
+
+
+def test_api_names_say_what_they_do():
+    """The open-loop replay is not called ``simulate`` (the closed-loop command's name), and the
+    plant's model mismatch is not one letter away from its error class."""
+    import pollard_pin as pp
+    from pollard_pin.dynamics import plant
+
+    assert pp.replay_open_loop is replay_open_loop
+    assert "simulate" not in pp.__all__ and not hasattr(plant, "PlantErrors")
+    assert pp.ModelMismatch is ModelMismatch

@@ -8,7 +8,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.crosscheck import euler_lagrange as lagrange
-from pollard_pin.dynamics.forward import forward_dynamics, simulate, trajectory_torques
+from pollard_pin.dynamics.forward import forward_dynamics, replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
 from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
@@ -85,7 +85,7 @@ def test_replay_reproduces_trajectory(robot):
         return thesis_curve(t, 20.0, home)
 
     ik0 = pp.inverse_kinematics(robot, *curve(np.array([0.0])), np.array([0.0]))
-    sim = simulate(robot, trajectory_torques(robot, curve, ik0.q[0]), ik0.q[0], ik0.v[0],
+    sim = replay_open_loop(robot, trajectory_torques(robot, curve, ik0.q[0]), ik0.q[0], ik0.v[0],
                    duration=0.5, dt=1e-3)
     ref = curve(sim.t)[0]
     drift = max(np.linalg.norm(pp.tool_pose(robot, q).translation - ref[k, :3])

@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample, reduced_dynamics
-from pollard_pin.dynamics.plant import Plant, PlantErrors
+from pollard_pin.dynamics.plant import ModelMismatch, Plant
 from pollard_pin.io.trajectory import thesis_trajectory
 from pollard_pin.kinematics.closure import closure_drift
 from pollard_pin.kinematics.singularity import actuator_velocity_map
@@ -38,7 +38,7 @@ def test_payload_static_torque_is_the_weight_at_the_tip(robot, ik):
     work of its weight; g = (0, 0, −9.81) m/s²): 5.2e-15 relative (asserted 5e-13)."""
     m = 0.05
     zero = np.zeros(robot.model.nv)
-    loaded, bare = Plant(robot, PlantErrors(payload=m)), Plant(robot)
+    loaded, bare = Plant(robot, ModelMismatch(payload=m)), Plant(robot)
     g = np.asarray(robot.model.gravity.linear)
     worst = 0.0
     for q in ik.q[::20]:
@@ -53,7 +53,7 @@ def test_mass_error_scales_the_torque_by_one_plus_e(robot, ik, e):
     """Every link's mass and inertia × (1 + e) scale the inverse dynamics, linear in them, by
     exactly 1 + e along the moving thesis curve: 1.1e-15 relative (asserted 1e-13). A payload
     does not scale that way (the check can fail)."""
-    scaled, bare = Plant(robot, PlantErrors(mass_error=e)), Plant(robot)
+    scaled, bare = Plant(robot, ModelMismatch(mass_error=e)), Plant(robot)
     worst = 0.0
     for q, v, a in zip(ik.q[::20], ik.v[::20], ik.a[::20]):
         tau = bare.actuator_torque(q, v, a)
@@ -62,7 +62,7 @@ def test_mass_error_scales_the_torque_by_one_plus_e(robot, ik, e):
     assert worst <= 1e-13
     q, v, a = ik.q[100], ik.v[100], ik.a[100]
     tau = bare.actuator_torque(q, v, a)
-    payload = Plant(robot, PlantErrors(payload=0.1 * robot.params.total_mass))
+    payload = Plant(robot, ModelMismatch(payload=0.1 * robot.params.total_mass))
     assert np.abs(payload.actuator_torque(q, v, a) - 1.1 * tau).max() > 1e-3 * np.abs(tau).max()
 
 

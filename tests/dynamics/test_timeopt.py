@@ -39,7 +39,11 @@ def act():
 
 def _dense(curve, t0, T, timing, theta, in_s=False):
     """The retimed motion at the fractions ``theta`` of every interval's duration (``in_s``:
-    of its length in s), rebuilt on ``curve`` with s̈ constant per interval."""
+    of its length in s), rebuilt on ``curve`` with s̈ constant per interval; on the timing's
+    own path when it has one (time_optimal_path: the arc-length spline of ``curve``, within
+    1e-9 of it)."""
+    if timing.curve is not None:
+        curve, t0, T = timing.curve, timing.t0, timing.span
     s, sd = timing.s, timing.s_dot
     ds = np.diff(s)
     u = (sd[1:] ** 2 - sd[:-1] ** 2) / (2 * ds)  # constant per interval
@@ -88,21 +92,22 @@ def test_thesis_curve_holds_between_samples(robot, act, samples):
     # 40 points per interval, evenly in s (seen: 1.00103 at 201 samples, 1.00094 at 801)
     fine = _replay(robot, curve, 0.0, 20.0, timing, (np.arange(40) + 0.5) / 40, in_s=True)
     assert fine.max() <= 1.002
-    # the replay at the very points the solver verified gives its number (seen: 2e-15)
+    # the replay at the very points the solver verified gives its number (seen: 5e-13 on the
+    # arc-length spline, whose bends reach a curvature of 3.4e3 per unit length)
     m = timing.per_interval
     at = _replay(robot, curve, 0.0, 20.0, timing, np.arange(2 * m) / (2 * m), in_s=True)
-    assert at.max() == pytest.approx(timing.between, abs=1e-13)
+    assert at.max() == pytest.approx(timing.between, abs=5e-11)
     # limits imposed at the samples only (TOPP-RA's interpolation scheme) break between
     # them: seen 1.39 at 201 samples, 1.03 at 801
     old = TO.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses,
                                curve, per_interval=1, target=np.inf)
     assert _replay(robot, curve, 0.0, 20.0, old, THETA).max() > 1.02
-    # the retimed trajectory's own curve is that motion (seen: 1e-11 relative, the time
-    # within the interval rounded differently)
+    # the retimed trajectory's own curve is that motion (seen: 1.2e-9 relative, the time
+    # within the interval rounded differently, on the arc-length spline's tight bends)
     dense = _dense(curve, 0.0, 20.0, timing, THETA)
     retimed = pickle.loads(pickle.dumps(retimed_trajectory(traj, timing)))  # it travels
     for got, want in zip(retimed.curve(dense.t), (dense.poses, dense.d_poses, dense.dd_poses)):
-        np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-13)
+        np.testing.assert_allclose(got, want, rtol=1e-7, atol=1e-9 * np.abs(want).max())
 
 
 def test_figure8_csv_holds_between_samples(robot, act):
@@ -206,8 +211,9 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
         got = report["actuators"][name]
         assert got["time_optimal_rms_motor_torque"] == pytest.approx(_rms(t, tau_m), rel=1e-9)
     use = np.max(use, axis=0)
-    # at the samples the limits hold to round-off (seen: 1 + 2e-15)
-    assert use.max() <= 1 + 1e-12
+    # at the samples the limits hold to TOPP-RA's absolute 1e-8 on ṡ² (seen: 1 + 2.6e-6 where
+    # the arc-length path is slowest in a bend, ṡ² = 1.7e-4)
+    assert use.max() <= 1 + 1e-4
     between = report["time_optimal_between_samples"]
     assert use.max() <= between["worst_utilisation"] + 1e-12 <= TO.TARGET + 1e-12
     assert np.all(cols[f"d_{NAMES[0]}"][[0, -1]] == 0)  # rest to rest
@@ -276,3 +282,27 @@ def test_a_path_that_does_not_move_has_no_time_optimal_cycle(robot, act):
     zero = np.zeros_like(poses)
     with pytest.raises(M.ActuatorError, match="the path does not move the actuators"):
         pp.time_optimal_path(robot, act, t, poses, zero, zero)
+
+
+def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, tmp_path):
+    """size on figure8.csv, then on its own retimed output (written and read back, verified
+    within ratings at its samples): the same path, so the same shortest cycle, to TOPP-RA's
+    own gap (seen 0.01 %; 0.5717 s then 0.6238 s, 9 %, when the samples' times were the path
+    parameter: a retimed file comes to rest in its own time, dp/ds = 0 at its ends). The gap
+    itself: within 2 % of the same solve on 3× the samples (seen 0.8 %)."""
+    from pollard_pin.dynamics.sizing import actuator_sizing
+
+    traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
+    first = actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
+    pp.to_csv(retimed_trajectory(traj, first.timing), tmp_path / "fast.csv")
+    fast = pp.from_csv(tmp_path / "fast.csv")
+    assert fast.t[-1] == pytest.approx(first.timing.duration, rel=1e-12)
+    again = actuator_sizing(robot, pp.run_pipeline(robot, fast), act)
+    given = [again.report["actuators"][n][f"{k}_ratio"] for n in NAMES
+             for k in ("peak_motor_torque", "peak_motor_speed")]
+    assert max(given) <= 1 + 1e-4  # the retimed file is within the peak ratings
+    assert again.timing.duration == pytest.approx(first.timing.duration, rel=0.01)
+    t = np.linspace(0.0, 6.0, 3 * (len(traj.t) - 1) + 1)
+    fine = pp.time_optimal_path(robot, act, t, *quintic_hermite(
+        traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t))
+    assert first.timing.duration == pytest.approx(fine.duration, rel=0.02)

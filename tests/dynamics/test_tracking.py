@@ -199,3 +199,55 @@ def test_steps_are_counted_and_checked(robot):
         check_steps(100.0, 1e-3)
     with pytest.raises(ControlError, match="control period must be > 0 s"):
         check_steps(1e-3, float("nan"))
+
+
+def _outside(robot, q) -> float:
+    """Largest excess [deg] of a tree joint beyond its [limits], by direct comparison in degrees
+    (the stacks here stay within a turn of home: no 2π wrap to consider)."""
+    worst = 0.0
+    for j, name in enumerate(robot.joint_names):
+        lim = robot.params.joint_limits(name)
+        deg = np.degrees(q[:, j])
+        worst = max(worst, float(np.max(np.maximum(np.degrees(lim.lower) - deg,
+                                                   deg - np.degrees(lim.upper)))))
+    return worst
+
+
+def test_a_saturated_robot_that_falls_out_of_its_limits_stops(robot):
+    """At 0.8 N·m (the reference needs 1.2) the robot sags off the path and out of its joint
+    limits: the run stops, naming the joint, the time and since when it is saturated. Waived,
+    the same run completes and its rows do leave the limits (checked in degrees, independently
+    of kinematics.limits)."""
+    from pollard_pin.dynamics.forward import SimulationError
+
+    traj = _head(2.0)
+    desired = desired_trajectory(robot, traj, 5e-3)
+    with pytest.raises(SimulationError, match=r"stopped at t = 1\.\d+ s: the plant left its "
+                                              r"joint limits: joint theta\w+ at .* by .*°; the "
+                                              r"torque has been saturated since t = 0\.6"):
+        simulate_tracking(robot, traj, "feedforward-pd", control_period=5e-3,
+                          torque_limit=0.8, desired=desired)
+    free = simulate_tracking(robot, traj, "feedforward-pd", control_period=5e-3,
+                             torque_limit=0.8, desired=desired, joint_limits=False,
+                             loop_tolerance=np.inf)
+    assert _outside(robot, free.q) > 0.1  # 0.3° at the stop, further later
+    assert free.saturation_time > 0.5
+
+
+def test_loops_that_open_beyond_the_tolerance_stop_the_run(robot):
+    """The thesis curve squeezed into 1 s: at 4 ms RK4 steps the loops open to 3.6e-4 m, and
+    the run stops at LOOP_TOLERANCE; at 0.5 ms they hold to 7.5e-8 m, 100× below it."""
+    from pollard_pin.dynamics.forward import SimulationError
+    from pollard_pin.dynamics.tracking import LOOP_TOLERANCE
+
+    traj = thesis_trajectory(duration=1.0, samples=51)
+    desired = desired_trajectory(robot, traj, 4e-3)
+    kw = dict(control_period=4e-3, desired=desired)
+    with pytest.raises(SimulationError, match=r"the plant's loops opened to .* m \(loop "
+                                              r"tolerance 1e-05 m.*reduce the time step"):
+        simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, **kw)
+    free = simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, loop_tolerance=np.inf,
+                             **kw)
+    assert np.abs(free.closure_residual).max() > LOOP_TOLERANCE
+    fine = simulate_tracking(robot, traj, "feedforward-pd", dt=5e-4, **kw)
+    assert fine.max_closure_residual <= LOOP_TOLERANCE / 100

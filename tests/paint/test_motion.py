@@ -42,20 +42,28 @@ def test_fastest_refuses_a_piece_no_duration_fixes():
         fastest(lambda t: np.array([0.5, 1.2]) + 0 * t, np.ones(2), 0.97)
 
 
-def test_joint_limit_violation_names_the_first(robot, plan, act):
-    """A joint pushed past its upper limit is named with its first sample and its limits; an
-    angle 2π off a legal one is legal (kinematics.limits' rule)."""
-    from pollard_pin.paint.motion import joint_limit_violation, motion
+def test_reach_names_the_first_joint_beyond_its_limits(robot, plan, act, monkeypatch):
+    """A joint pushed past its upper limit is named with its first sample, its angle and how
+    far off (kinematics.limits, the one rule); an angle 2π off a legal one is legal."""
+    import pollard_pin.paint.motion as motion_module
+    from pollard_pin.kinematics.limits import check_joint_limits
+    from pollard_pin.paint.errors import ReachError
+    from pollard_pin.paint.motion import motion, reach
 
     tr = plan.trajectory
     pick = np.linspace(0, len(tr) - 1, 8).astype(int)
-    q = motion(robot, act, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick]).ik.q
-    assert joint_limit_violation(robot, q) is None
-    assert joint_limit_violation(robot, q + 2 * np.pi) is None
+    ik = motion(robot, act, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick]).ik
+    check_joint_limits(robot, ik.q)
+    check_joint_limits(robot, ik.q + 2 * np.pi)
     j = 0
     lim = robot.params.joint_limits(robot.joint_names[j])
-    bad = q.copy()
+    bad = ik.q.copy()
     bad[3:, j] = lim.upper + 0.01
-    k, name, val, lo, hi = joint_limit_violation(robot, bad)
-    assert (k, name, lo, hi) == (3, robot.joint_names[j], lim.lower, lim.upper)
-    assert val == lim.upper + 0.01
+
+    def pushed(robot_, q, t=None):  # the IK's angles, one joint pushed 0.01 rad too far
+        return check_joint_limits(robot_, bad, t)
+
+    monkeypatch.setattr(motion_module, "check_joint_limits", pushed)
+    with pytest.raises(ReachError, match=rf"joint {robot.joint_names[j]} at .* by 0\.573°") as e:
+        reach(robot, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick])
+    assert e.value.sample == 3

@@ -16,7 +16,7 @@ import pollard_pin as pp
 from pollard_pin.analytic import closed_form
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample
 from pollard_pin.dynamics.motors import load_actuators, motor_torque
-from pollard_pin.dynamics.plant import PlantErrors, perturbed_robot
+from pollard_pin.dynamics.plant import ModelMismatch, perturbed_robot
 from pollard_pin.kinematics.errors import KinematicsError
 from pollard_pin.kinematics.limits import limit_violations
 from pollard_pin.kinematics.margins import Margins
@@ -330,7 +330,7 @@ def test_conditioning_and_payload_per_point(robot):
         assert 0 < cap < np.inf
 
         def utilisation(m, q=q):
-            heavy = perturbed_robot(robot, PlantErrors(payload=m))
+            heavy = perturbed_robot(robot, ModelMismatch(payload=m))
             tau = inverse_dynamics_sample(heavy, q, np.zeros(12), np.zeros(12))[0]
             zero = np.zeros(6)  # at rest: the motor model counts Coulomb as breakaway ±c
             return np.max(np.abs(motor_torque(act, tau, zero, zero)) / act.column("peak_torque"))

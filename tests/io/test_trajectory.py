@@ -1,0 +1,111 @@
+"""from_csv checks the derivative columns it is given against the positions, and refuses angle
+wraps (docs: README, trajectory format)."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.io.trajectory import (
+    DERIVATIVE_TOLERANCE,
+    Trajectory,
+    TrajectoryError,
+    from_csv,
+    to_csv,
+)
+
+FIGURE8 = Path(__file__).resolve().parents[2] / "examples" / "figure8.csv"
+
+
+def _write(path, traj: Trajectory, columns=("", "d_", "dd_")):
+    names = ["t"] + [p + n for p in columns for n in ("x", "y", "z", "psi", "theta", "phi")]
+    arrays = {"": traj.poses, "d_": traj.d_poses, "dd_": traj.dd_poses}
+    data = np.column_stack([traj.t] + [arrays[p] for p in columns])
+    path.write_text(",".join(names) + "\n"
+                    + "".join(",".join(repr(float(v)) for v in row) + "\n" for row in data))
+    return path
+
+
+def _rms_rel(a, b):  # an independent number: RMS of the column difference over the column's
+    return np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean(b ** 2))
+
+
+@pytest.fixture(scope="module")
+def figure8():
+    return from_csv(FIGURE8)
+
+
+def test_rates_in_degrees_are_refused(tmp_path, figure8):
+    d, dd = figure8.d_poses.copy(), figure8.dd_poses.copy()
+    d[:, 3], dd[:, 3] = np.degrees(d[:, 3]), np.degrees(dd[:, 3])
+    bad = _write(tmp_path / "deg.csv", Trajectory(figure8.t, figure8.poses, d, dd))
+    with pytest.raises(TrajectoryError, match=r"column d_psi disagrees with the positions by "
+                                              r"5\d\.\d× .*expected rad/s"):
+        from_csv(bad)
+    # dd alone in degrees is caught by the rates it should integrate to
+    bad = _write(tmp_path / "deg2.csv",
+                 Trajectory(figure8.t, figure8.poses, figure8.d_poses, dd))
+    with pytest.raises(TrajectoryError, match=r"column dd_psi disagrees with the d_\* rates"):
+        from_csv(bad)
+
+
+def test_zero_derivatives_are_refused(tmp_path, figure8):
+    zero = np.zeros_like(figure8.d_poses)
+    bad = _write(tmp_path / "zero.csv", Trajectory(figure8.t, figure8.poses, zero, zero))
+    with pytest.raises(TrajectoryError, match=r"column d_y disagrees with the positions by 1×"):
+        from_csv(bad)
+    bad = _write(tmp_path / "zero_dd.csv",
+                 Trajectory(figure8.t, figure8.poses, figure8.d_poses, zero))
+    with pytest.raises(TrajectoryError, match="column dd_y is all zero while its rate changes"):
+        from_csv(bad)
+    bad = _write(tmp_path / "zero_d.csv", Trajectory(figure8.t, figure8.poses, zero, zero),
+                 columns=("", "d_"))  # d_* alone: checked with the spline's accelerations
+    with pytest.raises(TrajectoryError, match="column d_y disagrees"), pytest.warns(UserWarning):
+        from_csv(bad)
+
+
+@pytest.mark.parametrize("samples", [41, 401])
+def test_exact_derivatives_pass(tmp_path, samples):
+    """Exact derivatives of a smooth curve pass, even sparsely sampled; the achieved mismatch
+    is far below the tolerance. Reference: the analytic rates vs central differences."""
+    traj = pp.smooth_random_trajectory(samples=samples)
+    got = from_csv(_write(tmp_path / "exact.csv", traj))
+    assert np.array_equal(got.d_poses, traj.d_poses)
+    fd = np.gradient(traj.poses, traj.t, axis=0)[1:-1]
+    assert _rms_rel(fd, traj.d_poses[1:-1]) < DERIVATIVE_TOLERANCE / 10  # 1.6e-3 at 41
+
+
+def test_retimed_and_thesis_files_pass(tmp_path, robot):
+    """The files the package writes itself (exact thesis derivatives, a TOPP-RA retiming with
+    its piecewise-constant s̈) are accepted."""
+    from pollard_pin.dynamics.sizing import actuator_sizing
+    from pollard_pin.io.retime import retimed_trajectory
+
+    to_csv(pp.thesis_trajectory(samples=201), tmp_path / "thesis.csv")
+    assert from_csv(tmp_path / "thesis.csv").derivatives == "file columns"
+    traj = from_csv(FIGURE8)
+    sized = actuator_sizing(robot, pp.run_pipeline(robot, traj),
+                            pp.load_actuators(FIGURE8.parent / "actuators.toml"))
+    to_csv(retimed_trajectory(traj, sized.timing), tmp_path / "retimed.csv")
+    assert from_csv(tmp_path / "retimed.csv").derivatives == "file columns"
+
+
+def test_angle_wrap_is_refused(tmp_path, figure8):
+    poses = figure8.poses.copy()
+    poses[:, 5] = 3.0 + 0.2 * np.sin(np.linspace(0.0, 6.0, len(poses)))
+    wrapped = (poses[:, 5] + math.pi) % (2 * math.pi) - math.pi
+    assert np.abs(np.diff(wrapped)).max() > 6  # the file really holds a wrap
+    poses[:, 5] = wrapped
+    bad = _write(tmp_path / "wrap.csv", Trajectory(figure8.t, poses, poses, poses),
+                 columns=("",))
+    first = int(np.argmax(np.abs(np.diff(wrapped)) > math.pi))
+    with pytest.raises(TrajectoryError, match=rf"row {first + 3}, column 'phi': jumps by "
+                                              r"-6\.2\d rad .*angle wrap"):
+        from_csv(bad)
+    # unwrapped, the same motion is accepted (and spins at its true, small rate)
+    poses[:, 5] = np.unwrap(wrapped)
+    with pytest.warns(UserWarning, match="quintic interpolating spline"):
+        ok = from_csv(_write(tmp_path / "unwrapped.csv",
+                             Trajectory(figure8.t, poses, poses, poses), columns=("",)))
+    assert np.abs(ok.d_poses[:, 5]).max() < 1.0  # 0.2·6/6 s ≈ 0.2 rad/s, vs 460 wrapped
