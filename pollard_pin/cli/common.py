@@ -13,6 +13,7 @@ import warnings
 
 from ..errors import InputError
 from ..io.atomic import STDOUT
+from ..model.values import parse_float, parse_int, shorten
 
 log = logging.getLogger("pollard_pin")
 
@@ -21,7 +22,10 @@ class UsageError(InputError):
     """A command-line value the command cannot use (one line)."""
 
 
-NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.I)
+# a value, not an option: "-" then a digit, ".digit", inf or nan (no option is named so):
+# "-1e-3", "-inf", the comma lists "-10,0,0" and "-0.1,0.2", and typos such as "-1x", which
+# the option's own check then names
+NEGATIVE_NUMBER = re.compile(r"^-(\.?\d|inf(inity)?\b|nan\b)", re.I)
 
 
 class Parser(argparse.ArgumentParser):
@@ -29,8 +33,8 @@ class Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        # "-1e-3" and "-inf" are values, so that their own check speaks, not "expected one
-        # argument" (argparse's own pattern knows only -1 and -.5)
+        # "-1e-3", "-inf" and "-10,0,0" are values, so that their own check speaks, not
+        # "expected one argument" (argparse's own pattern knows only -1 and -.5)
         self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str):
@@ -50,25 +54,26 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescript
 # --- argument types: each rejects what the API would reject, before any work ----------------
 def number(text: str) -> float:
     try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+        value = parse_float(text)
+    except ValueError as exc:
+        why = "" if "float" in str(exc) else f" ({exc})"  # float()'s own: no news
+        raise argparse.ArgumentTypeError(f"not a number: {shorten(text)}{why}") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {shorten(text)}")
     return value
 
 
 def positive(text: str) -> float:
     value = number(text)
     if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+        raise argparse.ArgumentTypeError(f"must be positive, got {value:.4g}")
     return value
 
 
 def nonnegative(text: str) -> float:
     value = number(text)
     if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {value:.4g}")
     return value
 
 
@@ -76,7 +81,7 @@ def fraction(text: str) -> float:
     """A number in [0, 1] (e.g. a margin on |sin θ|)."""
     value = nonnegative(text)
     if value > 1:
-        raise argparse.ArgumentTypeError(f"must be at most 1, got {text}")
+        raise argparse.ArgumentTypeError(f"must be at most 1, got {value:.4g}")
     return value
 
 
@@ -90,9 +95,9 @@ def name(text: str) -> str:
 def count(minimum: int, maximum: int | None = None):
     def parse(text: str) -> int:
         try:
-            value = int(text)
+            value = parse_int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+            raise argparse.ArgumentTypeError(f"not an integer: {shorten(text)}") from None
         if value < minimum or (maximum is not None and value > maximum):
             bound = f"between {minimum} and {maximum}" if maximum else f">= {minimum}"
             raise argparse.ArgumentTypeError(f"must be {bound}, got {text}")

@@ -70,8 +70,9 @@ def main(argv=None) -> int:
         return code
     except errors as exc:
         message = " ".join(str(exc).split()) or type(exc).__name__
-        if isinstance(exc, MemoryError):
-            message = f"not enough memory ({message}): fewer samples?"
+        if isinstance(exc, MemoryError):  # the hint only where there is a --samples to lower
+            hint = ": fewer samples?" if hasattr(args, "samples") else ""
+            message = f"not enough memory ({message}){hint}"
         out = getattr(args, "out", None) or getattr(args, "html", None)
         if out and out != STDOUT and args.command != "plot":
             message += f" (nothing written to {out})"

@@ -20,6 +20,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..model.names import JOINTS
+from ..model.values import clip, open_regular
 from .atomic import STDOUT, OutputError, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
@@ -200,7 +201,7 @@ def read_result(path: str | Path) -> ResultTable:
     except ResultFileError:
         raise
     except (OSError, ValueError, _polars_error()) as exc:  # pyarrow's are ValueError/OSError
-        cause = " ".join(str(exc).split()) or type(exc).__name__
+        cause = clip(exc) or type(exc).__name__
         raise ResultFileError(f"{path}: not a readable {fmt} result table ({cause})") from None
     if len(table) == 0:
         raise ResultFileError(f"{path}: no rows (no command writes an empty table)")
@@ -229,7 +230,7 @@ def _read_csv(path: Path) -> ResultTable:
 
     import polars as pl
 
-    with open(path, "rb") as f:  # polars reads a bad header lossily: check it is UTF-8
+    with open_regular(path) as f:  # polars reads a bad header lossily: check it is UTF-8
         head = f.read(1 << 16)
     try:
         codecs.getincrementaldecoder("utf-8")().decode(head, final=False)

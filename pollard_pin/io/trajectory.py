@@ -19,6 +19,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..model.params import did_you_mean
+from ..model.values import open_regular, parse_float, shorten
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
@@ -170,9 +171,10 @@ def from_csv(path: str | Path) -> Trajectory:
     """
     path = Path(path)
     try:
-        with open(path, "rb") as f:
+        with open_regular(path, "rb") as f:  # not a FIFO: it would block forever
             magic = f.read(4)
-        with open(path, newline="", encoding="utf-8-sig") as f:  # -sig: a BOM is no column
+        # -sig: a BOM is no column
+        with open_regular(path, "r", newline="", encoding="utf-8-sig") as f:
             reader = csv.reader(f)
             rows, lines = [], []  # lines: 1-based file line of each kept row
             for r in reader:
@@ -180,7 +182,7 @@ def from_csv(path: str | Path) -> Trajectory:
                     rows.append(r)
                     lines.append(reader.line_num)
     except OSError as exc:
-        raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: "
+        raise TrajectoryError(f"cannot read trajectory file {shorten(str(path))}: "
                               f"{exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:
         if magic == PARQUET_MAGIC:
@@ -205,10 +207,10 @@ def from_csv(path: str | Path) -> Trajectory:
     allowed = base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
     for h in header:
         if h not in allowed:
-            raise TrajectoryError(f"{path}: unknown column {h!r}{did_you_mean(h, allowed)}; "
+            raise TrajectoryError(f"{path}: unknown column {shorten(h)}{did_you_mean(h, allowed)}; "
                                   f"expected {', '.join(base)} and optional d_*, dd_*")
     if len(set(header)) != len(header):
-        raise TrajectoryError(f"{path}: duplicate column names in header {header}")
+        raise TrajectoryError(f"{path}: duplicate column names in header {shorten(header)}")
     missing = [c for c in base if c not in header]
     if missing:
         raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")
@@ -220,13 +222,14 @@ def from_csv(path: str | Path) -> Trajectory:
                                   f"expected {len(header)}")
         for c, cell in enumerate(row):
             try:
-                data[r, c] = float(cell)
-            except ValueError:
+                data[r, c] = parse_float(cell)
+            except ValueError as exc:
+                why = "" if "float" in str(exc) else f" ({exc})"  # float()'s own: no news
                 raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
-                                      f"{cell!r} is not a number") from None
+                                      f"{shorten(cell)} is not a number{why}") from None
             if not math.isfinite(data[r, c]):
                 raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
-                                      f"value {cell!r} is not finite")
+                                      f"value {shorten(cell)} is not finite")
     if len(data) < 2:
         raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
     col = {h: data[:, i] for i, h in enumerate(header)}
