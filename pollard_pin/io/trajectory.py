@@ -19,7 +19,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..model.params import did_you_mean
-from ..model.values import open_regular, parse_float, shorten
+from ..model.values import open_regular, parse_float, shorten, shown_path
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
@@ -182,7 +182,7 @@ def from_csv(path: str | Path) -> Trajectory:
                     rows.append(r)
                     lines.append(reader.line_num)
     except OSError as exc:
-        raise TrajectoryError(f"cannot read trajectory file {shorten(str(path))}: "
+        raise TrajectoryError(f"cannot read trajectory file {shown_path(path)}: "
                               f"{exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:
         if magic == PARQUET_MAGIC:

@@ -207,8 +207,8 @@ def _joint_limits(key: str, t: Any, actuated: bool) -> JointLimits:
     """One ``limits.<joint>`` table (deg, deg, N·m, rad/s) → :class:`JointLimits` (SI)."""
     _check_keys(key, t, LIMIT_KEYS)
     # each bound is checked on its own first, so that the message names the bad one
-    lower, upper = (_number(f"{key}.{k}", t[k], limit=360.0, limit_rule="must be within "
-                            "±360 deg (a revolute joint's position)") for k in ("lower", "upper"))
+    lower, upper = (_number(f"{key}.{k}", t[k], limit=720.0, limit_rule="must be within "
+                            "±720 deg (two turns)") for k in ("lower", "upper"))
     if not lower < upper:
         _fail(f"{key}.upper", t["upper"], f"must be greater than {key}.lower = {lower:.4g} deg")
     if upper - lower > 360.0:  # a revolute joint's range; wider is a placeholder

@@ -29,14 +29,24 @@ def shorten(value: Any, width: int = SHOWN) -> str:
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**16:
         try:
             return f"{float(value):.4g}"
-        except OverflowError:  # beyond float: its size in digits (str() may refuse it)
-            digits = int(value.bit_length() * math.log10(2)) + 1
-            return f"{'-' if value < 0 else ''}~1e+{digits - 1} (a {digits}-digit integer)"
+        except OverflowError:  # beyond float: :.4g by hand (str() may refuse the integer)
+            n, digits = abs(value), int((abs(value).bit_length() - 1) * math.log10(2))
+            while 10**digits <= n:
+                digits += 1
+            lead = n // 10 ** (digits - 4) / 1000  # the first four digits, d.ddd
+            return f"{'-' if value < 0 else ''}{lead:.4g}e+{digits - 1} (a {digits}-digit integer)"
     try:
         text = repr(value)
     except (ValueError, RecursionError):  # a huge integer or deep nesting inside
         return f"<{type(value).__name__}>"
     return text if len(text) <= width else text[:width - 1] + "…"
+
+
+def shown_path(path: str | Path) -> str:
+    """A path quoted for a message: whole up to 160 characters, else its start and its end
+    (the file name stays)."""
+    text = repr(str(path))
+    return text if len(text) <= 160 else f"{text[:40]}…{text[-119:]}"
 
 
 def clip(text: str, width: int = 120) -> str:
@@ -75,7 +85,7 @@ def read_bytes(path: str | Path, what: str, error: type[Exception],
                limit: int | None = None) -> bytes:
     """The bytes of the regular file ``path`` (at most ``limit``); a missing, unreadable,
     special or too large file raises ``error`` naming ``what`` (e.g. "parameter file")."""
-    shown = shorten(str(path))
+    shown = shown_path(path)
     try:
         with open_regular(path) as f:
             data = f.read(-1 if limit is None else limit + 1)
@@ -93,7 +103,7 @@ def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
     non-UTF-8, malformed or absurdly nested file raises ``error`` with one line naming
     ``what`` (e.g. "parameter file") and the cause."""
     data = read_bytes(path, what, error, MAX_TOML_BYTES)
-    where = f"{what} {shorten(str(path))}"
+    where = f"{what} {shown_path(path)}"
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -208,4 +218,5 @@ def parse_int(text: str) -> int:
 
 
 __all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "clip", "fail", "integer", "loads_toml", "number",
-           "open_regular", "parse_float", "parse_int", "read_bytes", "read_toml", "shorten"]
+           "open_regular", "parse_float", "parse_int", "read_bytes", "read_toml", "shorten",
+           "shown_path"]

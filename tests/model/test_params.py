@@ -162,9 +162,10 @@ def test_mujoco_peer_keeps_ideal_joints_and_export_mirrors_limits(tmp_path, limi
      r"^parameter 'limits\.theta21\.upper' = -110\.0: must be greater than"),
     # the bound that is off is named (the upper one was blamed for a lower -1e300)
     (lambda d: d["limits"]["theta21"].update(lower=-400.0),
-     r"^parameter 'limits\.theta21\.lower' = -400\.0: must be within ±360 deg"),
+     r"^parameter 'limits\.theta21\.lower' = -400, 'limits\.theta21\.upper' = -35: the "
+     r"range 365 deg exceeds one turn \(360\)$"),
     (lambda d: d["limits"]["theta21"].update(lower=-1e300),
-     r"^parameter 'limits\.theta21\.lower' = -1e\+300: must be within ±360 deg"),
+     r"^parameter 'limits\.theta21\.lower' = -1e\+300: must be within ±720 deg"),
     (lambda d: d["limits"]["theta1615"].update(lower=-100.0),
      r"^parameter 'limits\.theta1615\.lower' = -100, 'limits\.theta1615\.upper' = 270: "
      r"the range 370 deg exceeds one turn"),
