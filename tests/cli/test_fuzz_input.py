@@ -69,6 +69,12 @@ def _files() -> dict[str, str]:
         "g_fifo_params.toml": f"params = 'fifo.toml'\n{grid}",
         "g_underscore_trajectory.toml": f"trajectory = 't_underscore.csv'\n{grid}",
         "j_fifo_actuators.toml": job + "actuators = 'fifo.toml'\n",
+        # result tables and their units sidecars (plot/report --simulation, view --workspace)
+        "sim_deep.csv": "t,theta21\n0,1\n1,2\n", "sim_deep.units.json": DEEP,
+        "sim_list.csv": "t,theta21\n0,1\n1,2\n", "sim_list.units.json": "[1]",
+        "sim_long_column.csv": f"t,{'x' * 100_000}\n0,1\n1,2\n",
+        "ws_deep/workspace.csv": "x,y,z,reachable,conditioning\n0.55,0,0.16,1,0.3\n",
+        "ws_deep/workspace.units.json": DEEP,
     }
     for name, report in (("paint_deep", '{"grid": {"nu": ' + DEEP + ', "nv": 2}, '
                                         '"target": 2.5e-05}'),
@@ -219,6 +225,16 @@ CASES += [
     (["plot", "--out", "plots", "--simulation", "fifo.csv"], "not a regular file"),
     (["report", *SHORT, "--out", "out.md", "--simulation", "fifo.csv"], "not a regular file"),
     (["view", *SHORT, "--html", "out.html", "--workspace", "ws_fifo"], "no workspace.csv"),
+    (["view", *SHORT, "--html", "out.html", "--workspace", "ws_deep"],
+     "ws_deep/workspace.units.json: not a readable units sidecar (maximum recursion depth"),
+    *(([*prefix, "--simulation", name], says) for prefix in (["plot", "--out", "plots"],
+                                                              ["report", *SHORT, "--out", "out.md"])
+      for name, says in [
+          ("sim_deep.csv", "sim_deep.units.json: not a readable units sidecar (maximum "
+                           "recursion depth exceeded"),
+          ("sim_list.csv", "sim_list.units.json: not a readable units sidecar (expected a JSON "
+                           "object)"),
+          ("sim_long_column.csv", f"column '{'x' * 58}… is not one pollard-pin writes")]),
     (["view", "--html", "out.html", "--paint", "paint_deep"],
      "paint_deep/paint.json: not a paint report (maximum recursion depth exceeded"),
     (["view", "--html", "out.html", "--paint", "paint_big"],
