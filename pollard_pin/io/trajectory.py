@@ -26,6 +26,7 @@ THESIS_SAMPLES = 2001
 U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
 MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
+MAX_TIME = 1e6  # s: a time beyond this (11.6 days) is a unit slip, and its squares overflow
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 
 
@@ -234,6 +235,11 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
     col = {h: data[:, i] for i, h in enumerate(header)}
     t = col["t"]
+    big = np.abs(t) > MAX_TIME
+    if np.any(big):
+        r = int(np.argmax(big))
+        raise TrajectoryError(f"{path}: row {lines[r + 1]}, column 't': {float(t[r]):.4g} s is "
+                              f"beyond ±{MAX_TIME:g} s (seconds, not ms?)")
     dt = np.diff(t)
     if np.any(dt <= 0):
         r = int(np.argmax(dt <= 0))
@@ -241,6 +247,13 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': {kind} time "
                               f"{float(t[r + 1])!r} after {float(t[r])!r} (times must "
                               "increase strictly)")
+    from ..kinematics.ik_common import MIN_TIME_STEP  # the solver's rule, before the spline
+
+    if np.any(dt < MIN_TIME_STEP):
+        r = int(np.argmax(dt < MIN_TIME_STEP))
+        raise TrajectoryError(f"{path}: row {lines[r + 2]}, column 't': time step too small "
+                              f"({float(dt[r]):.3g} s after t = {float(t[r]):.17g} s; below "
+                              f"{MIN_TIME_STEP:g} s)")
     poses = np.column_stack([col[n] for n in TASK_NAMES])
     for c, name in enumerate(TASK_NAMES):
         limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \

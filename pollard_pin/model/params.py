@@ -163,6 +163,10 @@ def _number(key: str, value: Any, **rules) -> float:
 
 MAX_LENGTH = 10.0  # m: a longer link is a unit slip (mm?) and overflows the closed form
 _LENGTH_RULE = f"must be at most {MAX_LENGTH:g} m (lengths are in metres, not mm)"
+# A body heavier (a larger inertia) is a unit slip, and the dynamics' squares overflow: the
+# heaviest body is 0.19 kg; 1000 kg at 10 m gives 1e11 kg·mm².
+MAX_MASS, MAX_INERTIA = 1e3, 1e11
+_TIP_RULE = f"must be within ±{MAX_LENGTH:g} m (metres, not mm)"
 
 
 def _positive(key: str, value: Any, limit: float | None = None) -> float:
@@ -179,17 +183,18 @@ def _sign(key: str, value: Any) -> int:
     return int(value)
 
 
-def _vector(key: str, value: Any, n: int) -> list[float]:
+def _vector(key: str, value: Any, n: int, **rules) -> list[float]:
     if not isinstance(value, (list, tuple)) or len(value) != n:
         _fail(key, value, f"must be a list of {n} numbers")
-    return [_number(f"{key}[{j}]", v) for j, v in enumerate(value)]
+    return [_number(f"{key}[{j}]", v, **rules) for j, v in enumerate(value)]
 
 
 def _inertia(key: str, value: Any) -> tuple[tuple[float, ...], ...]:
     """kg·mm² in, kg·m² out; a physical rigid-body inertia or ParameterError."""
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         _fail(key, value, "must be a 3x3 matrix (list of 3 rows)")
-    rows = [_vector(f"{key}[{r}]", row, 3) for r, row in enumerate(value)]
+    rows = [_vector(f"{key}[{r}]", row, 3, limit=MAX_INERTIA, limit_rule=f"must be within "
+                    f"±{MAX_INERTIA:g} kg·mm² (kg·mm², not g·mm²)") for r, row in enumerate(value)]
     m = np.array(rows)
     scale = max(np.abs(m).max(), 1e-300)
     if np.abs(m - m.T).max() > 1e-9 * scale:
@@ -251,14 +256,14 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
         key = f"bodies.{name}"
         t = d["bodies"][name]
         _check_keys(key, t, BODY_KEYS)
-        bodies.append((name, Body(mass=_positive(f"{key}.mass", t["mass"]),
-                                  com=tuple(_vector(f"{key}.com", t["com"], 3)),
+        mass = _number(f"{key}.mass", t["mass"], positive=True, limit=MAX_MASS,
+                       limit_rule=f"must be at most {MAX_MASS:g} kg (masses are in kg, not g)")
+        bodies.append((name, Body(mass=mass,
+                                  com=tuple(_vector(f"{key}.com", t["com"], 3, limit=MAX_LENGTH,
+                                                    limit_rule=_TIP_RULE)),
                                   inertia=_inertia(f"{key}.inertia", t["inertia"]))))
     _check_keys("home", d["home"], HOME_KEYS)
-    tip = _vector("home.tip", d["home"]["tip"], 3)
-    for j, x in enumerate(tip):
-        if abs(x) > MAX_LENGTH:
-            _fail(f"home.tip[{j}]", x, f"must be within ±{MAX_LENGTH:g} m (metres, not mm)")
+    tip = _vector("home.tip", d["home"]["tip"], 3, limit=MAX_LENGTH, limit_rule=_TIP_RULE)
     ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
     _check_keys("branches", d["branches"], BRANCH_KEYS)
     branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)

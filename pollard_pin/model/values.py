@@ -39,7 +39,10 @@ def shorten(value: Any, width: int = SHOWN) -> str:
         text = repr(value)
     except (ValueError, RecursionError):  # a huge integer or deep nesting inside
         return f"<{type(value).__name__}>"
-    return text if len(text) <= width else text[:width - 1] + "…"
+    if len(text) <= width:
+        return text
+    end = text[-1] if text[-1] in "'\")]}" else ""  # a cut list still reads as a list
+    return text[:width - 1 - len(end)] + "…" + end
 
 
 def shown_path(path: str | Path) -> str:

@@ -45,6 +45,12 @@ def _files() -> dict[str, str]:
         "t_underscore.csv": cell("0.0_2"),
         "t_fullwidth.csv": cell("０.０２"),
         "t_huge_cell.csv": cell("1" * 100_000),
+        # times in ms and more: the spline's squares overflowed (a RuntimeWarning line)
+        "t_big_time.csv": HEADER + "\n" + "".join(
+            f"{1e200 * (i + 1):g},{r.split(',', 1)[1]}\n" for i, r in enumerate(rows)),
+        # subnormal steps: scipy's spline raised a ValueError (a traceback)
+        "t_subnormal_dt.csv": HEADER + "\n" + "".join(
+            f"{5e-324 * i!r},{r.split(',', 1)[1]}\n" for i, r in enumerate(rows)),
         "p_big.toml": f"[chain0]\nx32 = {B400}\n",
         "p_negative_big.toml": f"[bodies.gun]\ncom = [0, -{B400}, 0]\n",
         "p_digits.toml": f"[chain0]\nx32 = {B5000}\n",
@@ -157,8 +163,13 @@ BAD_SETS = [
     ("chain0.x32=0.33\nchain0.x65=3", "a control character '\\n': one KEY=VALUE per override"),
     ("chain0.x32=0.33\rx", "a control character '\\r'"),
     ("home.tip=[0.5_5, 0, 0.16]", "digit separators"),
-    (f"{'x' * 5000}=1", f"parameter '{'x' * 58}… = 1: override names no parameter"),
+    (f"{'x' * 5000}=1", f"parameter '{'x' * 57}…' = 1: override names no parameter"),
     ("limits.theta21.lower=-1e300", "'limits.theta21.lower' = -1e+300: must be within ±720 deg"),
+    # absurd bodies: the dynamics' squares overflowed (a RuntimeWarning line, or a pass)
+    ("bodies.gun.mass=1e300", "'bodies.gun.mass' = 1e+300: must be at most 1000 kg"),
+    ("bodies.gun.com=[1e300, 0, 0]", "'bodies.gun.com[0]' = 1e+300: must be within ±10 m"),
+    ("bodies.gun.inertia=[[1e300, 0, 0], [0, 1e300, 0], [0, 0, 1e300]]",
+     "'bodies.gun.inertia[0][0]' = 1e+300: must be within ±1e+11 kg·mm²"),
     ("limits.theta21.upper=1e300", "'limits.theta21.upper' = 1e+300: must be within ±720 deg"),
     ("limits.theta21.lower=-300", "'limits.theta21.lower' = -300, 'limits.theta21.upper' = "
                                   "-35: the range 265"),
@@ -218,6 +229,9 @@ CASES += [([*prefix, "--trajectory", name], says) for prefix in TRAJ for name, s
                          "are not accepted)"),
     ("t_fullwidth.csv", "row 3, column 't': '０.０２' is not a number ('０' is not an ASCII"),
     ("t_huge_cell.csv", "row 3, column 't': value '1111111111"),
+    ("t_big_time.csv", "row 2, column 't': 1e+200 s is beyond ±1e+06 s (seconds, not ms?)"),
+    ("t_subnormal_dt.csv", "row 3, column 't': time step too small (4.94e-324 s after t = 0 "
+                           "s; below 1e-09 s)"),
 ]]
 
 # result tables and folders that view, plot and report read
@@ -234,7 +248,7 @@ CASES += [
                            "recursion depth exceeded"),
           ("sim_list.csv", "sim_list.units.json: not a readable units sidecar (expected a JSON "
                            "object)"),
-          ("sim_long_column.csv", f"column '{'x' * 58}… is not one pollard-pin writes")]),
+          ("sim_long_column.csv", f"column '{'x' * 57}…' is not one pollard-pin writes")]),
     (["view", "--html", "out.html", "--paint", "paint_deep"],
      "paint_deep/paint.json: not a paint report (maximum recursion depth exceeded"),
     (["view", "--html", "out.html", "--paint", "paint_big"],
@@ -257,7 +271,7 @@ CASES += [([*prefix, option, value], says) for prefix, option, value, says in [
      "argument --samples: not an integer: '1_1'"),
     (["run", "--out", "out.csv", "--duration", "0.2"], "--samples", "１１", "not an integer"),
     (["run", "--out", "out.csv", "--duration", "0.2"], "--samples", B5000,
-     f"not an integer: '{'1' * 58}…"),
+     f"not an integer: '{'1' * 57}…'"),
     (["run", "--out", "out.csv", "--samples", "11"], "--duration", B5000,
      "argument --duration: must be a finite number, got '111"),
     (["workspace", "--quiet", "--out", "ws"], "--orientation", "-10,0,1e300",
