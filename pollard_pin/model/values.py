@@ -141,7 +141,8 @@ def _check_tree(data: dict, where: str, error: type[Exception], ints: bool) -> N
     while stack:
         node, key, depth = stack.pop()
         if depth > MAX_DEPTH:
-            raise error(f"{where}: '{key}' nests arrays or tables more than {MAX_DEPTH} deep")
+            raise error(f"{where}: {shorten(key.split('[')[0])} nests arrays or tables more "
+                        f"than {MAX_DEPTH} deep")
         if isinstance(node, dict):
             stack.extend((v, f"{key}.{k}" if key else str(k), depth + 1) for k, v in node.items())
         elif isinstance(node, list):

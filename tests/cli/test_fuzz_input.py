@@ -147,7 +147,8 @@ BAD_PARAMS = [
     ("p_negative_big.toml", "'bodies.gun.com[1]' = -1.111e+399"),
     ("p_digits.toml", DIGITS),
     ("p_deep.toml", NESTED),
-    ("p_deep40.toml", "'chain0.x32[0][0][0][0]"),
+    ("p_deep40.toml", "parameter file 'p_deep40.toml': 'chain0.x32' nests arrays or tables "
+                      "more than 32 deep"),
     ("fifo.toml", f"parameter file 'fifo.toml' cannot be read: {FIFO}"),
 ]
 CASES = [([*prefix, "--params", name], says)
@@ -234,6 +235,14 @@ CASES += [([*prefix, "--trajectory", name], says) for prefix in TRAJ for name, s
                            "s; below 1e-09 s)"),
 ]]
 
+# a device never ends: read whole, it filled the memory
+if os.path.exists("/dev/zero"):
+    CASES += [(["info", "--params", "/dev/zero"], "cannot be read: not a regular file (a device)"),
+              (["run", "--out", "out.csv", "--trajectory", "/dev/zero"], "(a device)"),
+              ([*PAINT, "/dev/zero"], "(a device)"),
+              ([*SWEEP, "/dev/zero"], "(a device)"),
+              (["size", *SHORT, "--out", "out.md", "--actuators", "/dev/zero"], "(a device)")]
+
 # result tables and folders that view, plot and report read
 CASES += [
     (["plot", "--out", "plots", "--simulation", "fifo.csv"], "not a regular file"),
@@ -308,7 +317,7 @@ def test_hostile_input_gives_one_short_line_exit_2_and_writes_nothing(scratch, m
     assert out == "", out[:300]
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0], lines[0]
-    assert len(lines[0]) <= 300 and "Warning" not in err, lines[0]
+    assert len(lines[0]) <= 250 and "Warning" not in err, lines[0]
     assert _listing(scratch) == before
 
 

@@ -81,9 +81,8 @@ def test_an_over_large_toml_file_is_refused(tmp_path):
 
 @pytest.mark.parametrize("text, says", [
     ("a = " + "[" * 3000 + "]" * 3000, f"nested more than {MAX_DEPTH} deep"),  # RecursionError
-    ("a = " + "[" * 40 + "]" * 40, f"'a[0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0]"
-                                   f"[0][0][0][0][0][0][0][0][0][0][0][0][0]' nests arrays or "
-                                   f"tables more than {MAX_DEPTH} deep"),
+    ("a = " + "[" * 40 + "]" * 40, f"f.toml: 'a' nests arrays or tables more than {MAX_DEPTH} "
+                                   "deep"),
     ("a = " + "1" * 5000, "an integer of more than 4300 digits"),  # ValueError in tomllib
     ("[t]\na = " + "9" * 400, "'t.a' = 9.999e+399 (a 400-digit integer): must be within the float"),
     ("a = [1, -" + "9" * 400 + "]", "'a[1]' = -9.999e+399 (a 400-digit integer)"),
