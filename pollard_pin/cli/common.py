@@ -11,8 +11,10 @@ import sys
 import time
 import warnings
 
+from ..checks import problem
 from ..errors import InputError
 from ..io.atomic import STDOUT
+from ..model.values import parse_float, parse_int, shorten
 
 log = logging.getLogger("pollard_pin")
 
@@ -21,7 +23,10 @@ class UsageError(InputError):
     """A command-line value the command cannot use (one line)."""
 
 
-NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.I)
+# a value, not an option: "-" then a digit, ".digit", inf or nan (no option is named so):
+# "-1e-3", "-inf", the comma lists "-10,0,0" and "-0.1,0.2", and typos such as "-1x", which
+# the option's own check then names
+NEGATIVE_NUMBER = re.compile(r"^-(\.?\d|inf(inity)?\b|nan\b)", re.I)
 
 
 class Parser(argparse.ArgumentParser):
@@ -29,8 +34,8 @@ class Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        # "-1e-3" and "-inf" are values, so that their own check speaks, not "expected one
-        # argument" (argparse's own pattern knows only -1 and -.5)
+        # "-1e-3", "-inf" and "-10,0,0" are values, so that their own check speaks, not
+        # "expected one argument" (argparse's own pattern knows only -1 and -.5)
         self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str):
@@ -50,34 +55,36 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter, argparse.RawDescript
 # --- argument types: each rejects what the API would reject, before any work ----------------
 def number(text: str) -> float:
     try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+        value = parse_float(text)
+    except ValueError as exc:
+        why = "" if "float" in str(exc) else f" ({exc})"  # float()'s own: no news
+        raise argparse.ArgumentTypeError(f"not a number: {shorten(text)}{why}") from None
+    return _ruled(value, text)
+
+
+def _ruled(value: float, text: str, low: float = -math.inf, high: float = math.inf,
+           above: bool = False) -> float:
+    """``value`` under the one value rule (:func:`pollard_pin.checks.problem`)."""
+    wrong = problem(value, low, high, above)
+    if wrong is not None:
+        # as typed if short; else the value, or the text shortened if it overflowed
+        shown = (text.strip() if len(text) <= 30 else
+                 f"{value:.4g}" if math.isfinite(value) else shorten(text))
+        raise argparse.ArgumentTypeError(f"{wrong}, got {shown}")
     return value
 
 
 def positive(text: str) -> float:
-    value = number(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
-    return value
+    return _ruled(number(text), text, 0.0, above=True)
 
 
 def nonnegative(text: str) -> float:
-    value = number(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
-    return value
+    return _ruled(number(text), text, 0.0)
 
 
 def fraction(text: str) -> float:
     """A number in [0, 1] (e.g. a margin on |sin θ|)."""
-    value = nonnegative(text)
-    if value > 1:
-        raise argparse.ArgumentTypeError(f"must be at most 1, got {text}")
-    return value
+    return _ruled(number(text), text, 0.0, 1.0)
 
 
 def name(text: str) -> str:
@@ -89,10 +96,14 @@ def name(text: str) -> str:
 
 def count(minimum: int, maximum: int | None = None):
     def parse(text: str) -> int:
+        digits = text.strip().lstrip("+")
+        if digits.isascii() and digits.isdigit() and len(digits) > 30:
+            bound = f"between {minimum} and {maximum}" if maximum else f"a sane count >= {minimum}"
+            raise argparse.ArgumentTypeError(f"must be {bound}, got a {len(digits)}-digit number")
         try:
-            value = int(text)
+            value = parse_int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+            raise argparse.ArgumentTypeError(f"not an integer: {shorten(text)}") from None
         if value < minimum or (maximum is not None and value > maximum):
             bound = f"between {minimum} and {maximum}" if maximum else f">= {minimum}"
             raise argparse.ArgumentTypeError(f"must be {bound}, got {text}")

@@ -71,8 +71,9 @@ def main(argv=None) -> int:
         return code
     except errors as exc:
         message = " ".join(str(exc).split()) or type(exc).__name__
-        if isinstance(exc, MemoryError):
-            message = f"not enough memory ({message}): fewer samples?"
+        if isinstance(exc, MemoryError):  # the hint only where there is a --samples to lower
+            hint = ": fewer samples?" if hasattr(args, "samples") else ""
+            message = f"not enough memory ({message}){hint}"
         if _is_limit_error(exc) and hasattr(args, "ignore_limits"):
             message += " (--ignore-limits waives the joint limits)"
         out = getattr(args, "out", None) or getattr(args, "html", None)

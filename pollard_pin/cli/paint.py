@@ -101,6 +101,7 @@ def paint_overlay(folder: Path):
     import numpy as np
 
     from ..io.table import ResultFileError, read_result
+    from ..model.values import clip, shorten
     from ..viz.paint import BAND
     from ..viz.viewer import ViewerError, check_scene_points, film_panel
 
@@ -111,13 +112,14 @@ def paint_overlay(folder: Path):
     try:
         report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report ({exc})") from None
+    except (OSError, ValueError, KeyError, TypeError, RecursionError) as exc:  # deep nesting
+        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report "
+                              f"({clip(exc, 100)})") from None
     counts_ok = all(type(n) is int and n >= 1 for n in (nu, nv))
     if not (counts_ok and type(target) in (int, float) and 0 < target < math.inf):
-        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = {nu!r}, "
-                              f"nv = {nv!r}, target = {target!r}: expected point counts >= 1 "
-                              "and a film thickness > 0 [m])")
+        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = "
+                              f"{shorten(nu)}, nv = {shorten(nv)}, target = {shorten(target)}: "
+                              "expected point counts >= 1 and a film thickness > 0 [m])")
     if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
         raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
                          "two different films perhaps: remove the one not meant")
@@ -125,9 +127,9 @@ def paint_overlay(folder: Path):
     try:
         pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
         th = table["thickness"].reshape(nv, nu)
-    except (KeyError, ValueError) as exc:
-        raise ResultFileError(f"{found[0]}: not the film of paint.json's {nu} × {nv} grid "
-                              f"({exc})") from None
+    except (KeyError, ValueError, OverflowError) as exc:
+        raise ResultFileError(f"{found[0]}: not the film of paint.json's {shorten(nu)} × "
+                              f"{shorten(nv)} grid ({clip(exc, 100)})") from None
     for what, values in (("x, y, z", pts), ("thickness", th)):
         if not np.isfinite(values).all():
             k = int(np.argwhere(~np.isfinite(values).reshape(nv * nu, -1))[0][0])

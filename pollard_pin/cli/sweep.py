@@ -13,6 +13,10 @@ def run(args) -> int:
     from ..sweep import load_grid, run_sweep, summary, write_sweep_table
 
     check_outputs(args.out)
+    if args.dask:  # the extra, before the banner: a missing one is then the only line
+        from ..sweep.backends import require_distributed
+
+        require_distributed()
     with warnings_as_notes(args):  # a trajectory CSV without derivatives
         sweep = load_grid(args.grid)
     where = (f"Dask cluster {args.dask}" if args.dask else

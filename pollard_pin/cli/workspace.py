@@ -7,6 +7,7 @@ import json
 import math
 from pathlib import Path
 
+from ..model.values import parse_float
 from .common import (
     UsageError,
     command,
@@ -58,7 +59,7 @@ def parse_orientation(text: str) -> tuple[float, float, float]:
 
     parts = text.split(",")
     try:
-        vals = [float(x) for x in parts]
+        vals = [parse_float(x) for x in parts]
     except ValueError:
         vals = []
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
@@ -82,7 +83,7 @@ def parse_bounds(text: str | None) -> dict | None:
         axis, sep, rng = item.partition("=")
         lo, colon, hi = rng.partition(":")
         try:
-            pair = (float(lo), float(hi))
+            pair = (parse_float(lo), parse_float(hi))
         except ValueError:
             pair = None
         axis = axis.strip().lower()

@@ -15,7 +15,6 @@ Along a path s ∈ [0, 1] the closed-loop joint torques are exactly τ = a(s)·s
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,7 +25,8 @@ import numpy as np
 from ..errors import InputError
 from ..model.names import ACTUATED as ACTUATED_JOINTS
 from ..model.names import TREE_JOINTS as JOINT_NAMES
-from ..model.params import did_you_mean, read_toml
+from ..model.params import did_you_mean
+from ..model.values import fail, number, read_toml
 from .averages import time_rms as rms
 from .averages import trapezoid_weights
 from .inverse import JointLosses
@@ -88,7 +88,7 @@ class Actuators:
 
 # --- the actuator file -----------------------------------------------------------------------
 def _fail(where: str, key: str, value: Any, rule: str):
-    raise ActuatorError(f"{where}: '{key}' = {value!r}: {rule}")
+    fail(ActuatorError, f"{where}: ", key, value, rule)
 
 
 def actuators_from_dict(d: Mapping, source: str = "<python>",
@@ -120,22 +120,17 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
                   f"unknown key{did_you_mean(unknown[0], KEYS)}; expected {', '.join(KEYS)}")
         values = {}
         for k in KEYS:
-            v, key = table[k], f"{name}.{k}"
-            if isinstance(v, bool) or not isinstance(v, (int, float)):
-                _fail(source, key, v, "must be a number")
-            if not math.isfinite(v):
-                _fail(source, key, v, "must be finite")
-            if k in _POSITIVE and v <= 0:
-                _fail(source, key, v, "must be > 0")
-            if v < 0:
-                _fail(source, key, v, "must be >= 0")
-            if (k in _POSITIVE and v < MIN_POSITIVE) or v > MAX_VALUE:
-                low = f"between {MIN_POSITIVE:g} and" if k in _POSITIVE else "at most"
-                _fail(source, key, v, f"must be {low} {MAX_VALUE:g}{UNITS[k]} (motor side)")
-            values[k] = float(v)
+            low = f"between {MIN_POSITIVE:g} and" if k in _POSITIVE else "at most"
+            v = number(table[k], f"{name}.{k}", ActuatorError, f"{source}: ",
+                       positive=k in _POSITIVE, nonnegative=True, limit=MAX_VALUE,
+                       limit_rule=f"must be {low} {MAX_VALUE:g}{UNITS[k]} (motor side)")
+            if k in _POSITIVE and v < MIN_POSITIVE:
+                _fail(source, f"{name}.{k}", table[k], f"must be {low} {MAX_VALUE:g}{UNITS[k]} "
+                                                       "(motor side)")
+            values[k] = v
         if values["continuous_torque"] > values["peak_torque"]:
             _fail(source, f"{name}.continuous_torque", table["continuous_torque"],
-                  f"exceeds {name}.peak_torque = {table['peak_torque']!r}")
+                  f"exceeds {name}.peak_torque = {values['peak_torque']:.4g}")
         units.append(Actuator(**values))
     return Actuators(tuple(names), tuple(units), source)
 

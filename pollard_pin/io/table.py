@@ -20,6 +20,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..model.names import JOINTS
+from ..model.values import clip, open_regular, shorten
 from .atomic import STDOUT, OutputError, all_or_nothing, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
@@ -219,8 +220,8 @@ def read_result(path: str | Path) -> ResultTable:
         table = _read_parquet(path) if fmt == "parquet" else _read_csv(path)
     except ResultFileError:
         raise
-    except (OSError, ValueError, _polars_error()) as exc:  # pyarrow's are ValueError/OSError
-        cause = " ".join(str(exc).split()) or type(exc).__name__
+    except (OSError, ValueError, RecursionError, _polars_error()) as exc:  # pyarrow: the first 2
+        cause = clip(exc) or type(exc).__name__
         raise ResultFileError(f"{path}: not a readable {fmt} result table ({cause})") from None
     if len(table) == 0:
         raise ResultFileError(f"{path}: no rows (no command writes an empty table)")
@@ -249,7 +250,7 @@ def _read_csv(path: Path) -> ResultTable:
 
     import polars as pl
 
-    with open(path, "rb") as f:  # polars reads a bad header lossily: check it is UTF-8
+    with open_regular(path) as f:  # polars reads a bad header lossily: check it is UTF-8
         head = f.read(1 << 16)
     try:
         codecs.getincrementaldecoder("utf-8")().decode(head, final=False)
@@ -259,23 +260,25 @@ def _read_csv(path: Path) -> ResultTable:
     header = head.split(b"\n", 1)[0].decode("utf-8", "replace").strip().split(",")
     twice = [n for i, n in enumerate(header) if n in header[:i]]
     if twice:  # polars would rename the second one
-        raise ResultFileError(f"{path}: duplicate column {twice[0]!r}")
+        raise ResultFileError(f"{path}: duplicate column {shorten(twice[0])}")
     frame = pl.read_csv(path, infer_schema_length=0)  # strings first: float64 for every column
     for n in frame.columns:  # an empty cell or a short row: never written, a damaged file
         if frame[n].null_count():
             k = int(frame[n].is_null().arg_true()[0])
-            raise ResultFileError(f"{path}: line {k + 2}, column {n!r}: no value (a truncated "
-                                  "or edited file)")
+            raise ResultFileError(f"{path}: line {k + 2}, column {shorten(n)}: no value (a "
+                                  "truncated or edited file)")
     cols = {n: frame[n].cast(pl.Float64).to_numpy() for n in frame.columns}
     side = units_path(path)
     try:
         extra = json.loads(side.read_text(encoding="utf-8")) if side.is_file() else {}
-    except ValueError as exc:  # JSON or UTF-8
-        raise ResultFileError(f"{side}: not a readable units sidecar ({exc})") from None
+    except (ValueError, RecursionError) as exc:  # JSON, UTF-8, or nested too deep
+        raise ResultFileError(f"{side}: not a readable units sidecar ({clip(exc)})") from None
+    if not isinstance(extra, dict):
+        raise ResultFileError(f"{side}: not a readable units sidecar (expected a JSON object)")
     if not extra:  # no sidecar: the units come from the names, so the names must be ours
         unknown = [c for c in cols if not is_result_column(c)]
         if unknown:
-            raise ResultFileError(f"{path}: column {unknown[0]!r} is not one pollard-pin "
+            raise ResultFileError(f"{path}: column {shorten(unknown[0])} is not one pollard-pin "
                                   f"writes, and no sidecar {side.name} gives its unit")
     return ResultTable(cols, extra.get("units", {c: column_unit(c) for c in cols}),
                        extra.get("metadata", {}))

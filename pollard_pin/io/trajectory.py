@@ -20,6 +20,7 @@ from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
+from ..model.values import open_regular, parse_float, shorten, shown_path
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
@@ -31,6 +32,7 @@ MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degre
 # (run) it costs ≈ 11 µs and 30-300 bytes of output (README: a million samples in 11 s).
 MAX_SAMPLES = 1_000_000  # ≈ 3 GB solved
 MAX_STREAMED_SAMPLES = 100_000_000  # ≈ 20 min and 3-30 GB of output
+MAX_TIME = 1e6  # s: a time beyond this (11.6 days) is a unit slip, and its squares overflow
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 # Given d_* columns must agree with the positions: the largest gap between q(t) − q(t0) and
 # the running trapezoid integral of q̇, relative to the largest excursion |q(t) − q(t0)| (the
@@ -199,9 +201,10 @@ def from_csv(path: str | Path) -> Trajectory:
     """
     path = Path(path)
     try:
-        with open(path, "rb") as f:
+        with open_regular(path, "rb") as f:  # not a FIFO: it would block forever
             magic = f.read(4)
-        with open(path, newline="", encoding="utf-8-sig") as f:  # -sig: a BOM is no column
+        # -sig: a BOM is no column
+        with open_regular(path, "r", newline="", encoding="utf-8-sig") as f:
             reader = csv.reader(f)
             rows, lines = [], []  # lines: 1-based file line of each kept row
             for r in reader:
@@ -209,7 +212,7 @@ def from_csv(path: str | Path) -> Trajectory:
                     rows.append(r)
                     lines.append(reader.line_num)
     except OSError as exc:
-        raise TrajectoryError(f"cannot read trajectory file {str(path)!r}: "
+        raise TrajectoryError(f"cannot read trajectory file {shown_path(path)}: "
                               f"{exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:
         if magic == PARQUET_MAGIC:
@@ -234,10 +237,10 @@ def from_csv(path: str | Path) -> Trajectory:
     allowed = base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
     for h in header:
         if h not in allowed:
-            raise TrajectoryError(f"{path}: unknown column {h!r}{did_you_mean(h, allowed)}; "
+            raise TrajectoryError(f"{path}: unknown column {shorten(h)}{did_you_mean(h, allowed)}; "
                                   f"expected {', '.join(base)} and optional d_*, dd_*")
     if len(set(header)) != len(header):
-        raise TrajectoryError(f"{path}: duplicate column names in header {header}")
+        raise TrajectoryError(f"{path}: duplicate column names in header {shorten(header)}")
     missing = [c for c in base if c not in header]
     if missing:
         raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")
@@ -249,17 +252,23 @@ def from_csv(path: str | Path) -> Trajectory:
                                   f"expected {len(header)}")
         for c, cell in enumerate(row):
             try:
-                data[r, c] = float(cell)
-            except ValueError:
+                data[r, c] = parse_float(cell)
+            except ValueError as exc:
+                why = "" if "float" in str(exc) else f" ({exc})"  # float()'s own: no news
                 raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
-                                      f"{cell!r} is not a number") from None
+                                      f"{shorten(cell)} is not a number{why}") from None
             if not math.isfinite(data[r, c]):
                 raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
-                                      f"value {cell!r} is not finite")
+                                      f"value {shorten(cell)} is not finite")
     if len(data) < 2:
         raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
     col = {h: data[:, i] for i, h in enumerate(header)}
     t = col["t"]
+    big = np.abs(t) > MAX_TIME
+    if np.any(big):
+        r = int(np.argmax(big))
+        raise TrajectoryError(f"{path}: row {lines[r + 1]}, column 't': {float(t[r]):.4g} s is "
+                              f"beyond ±{MAX_TIME:g} s (seconds, not ms?)")
     dt = np.diff(t)
     if np.any(dt <= 0):
         r = int(np.argmax(dt <= 0))

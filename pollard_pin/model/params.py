@@ -9,7 +9,6 @@ from __future__ import annotations
 import copy
 import math
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,6 +19,7 @@ import numpy as np
 from ..errors import InputError
 from .names import ACTUATED, BODIES, TREE_JOINTS
 from .paths import models_dir
+from .values import fail, loads_toml, number, read_toml, shorten
 
 DEFAULT_PARAMS = "pollard.toml"
 
@@ -141,7 +141,7 @@ class Params:
 
 
 def _fail(key: str, value: Any, rule: str) -> None:
-    raise ParameterError(f"parameter '{key}' = {plain_value(value)!r}: {rule}")
+    fail(ParameterError, "parameter ", key, plain_value(value), rule)
 
 
 def _check_keys(key: str, table: Any, expected: tuple[str, ...]) -> None:
@@ -157,33 +157,24 @@ def _check_keys(key: str, table: Any, expected: tuple[str, ...]) -> None:
               f"unknown key (expected keys: {', '.join(expected)})")
 
 
-def _number(key: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        _fail(key, value, "must be a number")
-    if not math.isfinite(value):
-        _fail(key, value, "must be finite")
-    return float(value)
+def _number(key: str, value: Any, **rules) -> float:
+    return number(plain_value(value), key, ParameterError, "parameter ", **rules)
 
 
 MAX_LENGTH = 10.0  # m: a longer link is a unit slip (mm?) and overflows the closed form
+_LENGTH_RULE = f"must be at most {MAX_LENGTH:g} m (lengths are in metres, not mm)"
+# A body heavier (a larger inertia) is a unit slip, and the dynamics' squares overflow: the
+# heaviest body is 0.19 kg; 1000 kg at 10 m gives 1e11 kg·mm².
+MAX_MASS, MAX_INERTIA = 1e3, 1e11
+_TIP_RULE = f"must be within ±{MAX_LENGTH:g} m (metres, not mm)"
 
 
 def _positive(key: str, value: Any, limit: float | None = None) -> float:
-    v = _number(key, value)
-    if v <= 0.0:
-        _fail(key, value, "must be > 0")
-    if limit is not None and v > limit:
-        _fail(key, value, f"must be at most {limit:g} m (lengths are in metres, not mm)")
-    return v
+    return _number(key, value, positive=True, limit=limit, limit_rule=_LENGTH_RULE)
 
 
 def _nonnegative(key: str, value: Any, limit: float | None = None) -> float:
-    v = _number(key, value)
-    if v < 0.0:
-        _fail(key, value, "must be >= 0")
-    if limit is not None and v > limit:
-        _fail(key, value, f"must be at most {limit:g} m (lengths are in metres, not mm)")
-    return v
+    return _number(key, value, nonnegative=True, limit=limit, limit_rule=_LENGTH_RULE)
 
 
 def _sign(key: str, value: Any) -> int:
@@ -192,17 +183,18 @@ def _sign(key: str, value: Any) -> int:
     return int(value)
 
 
-def _vector(key: str, value: Any, n: int) -> list[float]:
+def _vector(key: str, value: Any, n: int, **rules) -> list[float]:
     if not isinstance(value, (list, tuple)) or len(value) != n:
         _fail(key, value, f"must be a list of {n} numbers")
-    return [_number(f"{key}[{j}]", v) for j, v in enumerate(value)]
+    return [_number(f"{key}[{j}]", v, **rules) for j, v in enumerate(value)]
 
 
 def _inertia(key: str, value: Any) -> tuple[tuple[float, ...], ...]:
     """kg·mm² in, kg·m² out; a physical rigid-body inertia or ParameterError."""
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         _fail(key, value, "must be a 3x3 matrix (list of 3 rows)")
-    rows = [_vector(f"{key}[{r}]", row, 3) for r, row in enumerate(value)]
+    rows = [_vector(f"{key}[{r}]", row, 3, limit=MAX_INERTIA, limit_rule=f"must be within "
+                    f"±{MAX_INERTIA:g} kg·mm² (kg·mm², not g·mm²)") for r, row in enumerate(value)]
     m = np.array(rows)
     scale = max(np.abs(m).max(), 1e-300)
     if np.abs(m - m.T).max() > 1e-9 * scale:
@@ -219,11 +211,15 @@ def _inertia(key: str, value: Any) -> tuple[tuple[float, ...], ...]:
 def _joint_limits(key: str, t: Any, actuated: bool) -> JointLimits:
     """One ``limits.<joint>`` table (deg, deg, N·m, rad/s) → :class:`JointLimits` (SI)."""
     _check_keys(key, t, LIMIT_KEYS)
-    lower, upper = (_number(f"{key}.{k}", t[k]) for k in ("lower", "upper"))
+    # each bound is checked on its own first, so that the message names the bad one
+    lower, upper = (_number(f"{key}.{k}", t[k], limit=720.0, limit_rule="must be within "
+                            "±720 deg (two turns)") for k in ("lower", "upper"))
     if not lower < upper:
-        _fail(f"{key}.upper", t["upper"], f"must be greater than {key}.lower = {lower:g} deg")
+        _fail(f"{key}.upper", t["upper"], f"must be greater than {key}.lower = {lower:.4g} deg")
     if upper - lower > 360.0:  # a revolute joint's range; wider is a placeholder
-        _fail(f"{key}.upper", t["upper"], f"range {upper - lower:g} deg exceeds one turn (360)")
+        raise ParameterError(f"parameter '{key}.lower' = {lower:.4g}, '{key}.upper' = "
+                             f"{upper:.4g}: the range {upper - lower:.4g} deg exceeds one turn "
+                             "(360)")
     effort = _number(f"{key}.effort", t["effort"])
     if actuated and effort <= 0.0:
         _fail(f"{key}.effort", t["effort"], "must be > 0 N·m (an actuated joint)")
@@ -260,14 +256,14 @@ def params_from_dict(d: Mapping[str, Any], source: str = "<dict>",
         key = f"bodies.{name}"
         t = d["bodies"][name]
         _check_keys(key, t, BODY_KEYS)
-        bodies.append((name, Body(mass=_positive(f"{key}.mass", t["mass"]),
-                                  com=tuple(_vector(f"{key}.com", t["com"], 3)),
+        mass = _number(f"{key}.mass", t["mass"], positive=True, limit=MAX_MASS,
+                       limit_rule=f"must be at most {MAX_MASS:g} kg (masses are in kg, not g)")
+        bodies.append((name, Body(mass=mass,
+                                  com=tuple(_vector(f"{key}.com", t["com"], 3, limit=MAX_LENGTH,
+                                                    limit_rule=_TIP_RULE)),
                                   inertia=_inertia(f"{key}.inertia", t["inertia"]))))
     _check_keys("home", d["home"], HOME_KEYS)
-    tip = _vector("home.tip", d["home"]["tip"], 3)
-    for j, x in enumerate(tip):
-        if abs(x) > MAX_LENGTH:
-            _fail(f"home.tip[{j}]", x, f"must be within ±{MAX_LENGTH:g} m (metres, not mm)")
+    tip = _vector("home.tip", d["home"]["tip"], 3, limit=MAX_LENGTH, limit_rule=_TIP_RULE)
     ori = [math.radians(a) for a in _vector("home.orientation", d["home"]["orientation"], 3)]
     _check_keys("branches", d["branches"], BRANCH_KEYS)
     branches = tuple(_sign(f"branches.{k}", d["branches"][k]) for k in BRANCH_KEYS)
@@ -287,13 +283,14 @@ def _check_home_reachable(p: Params) -> None:
     from ..analytic.closed_form import UnreachableError, position_ik
     from ..analytic.taskspace import TaskInputError
 
+    pose = "[" + ", ".join(f"{x:.4g}" for x in p.home_pose) + "]"
     try:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
     except TaskInputError as exc:  # e.g. an absurd angle (a traceback before)
-        raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation): "
+        raise ParameterError(f"home pose {pose} (home.tip, home.orientation): "
                              f"{exc.detail}") from None
     except UnreachableError as exc:
-        raise ParameterError(f"home pose {list(p.home_pose)} (home.tip, home.orientation) "
+        raise ParameterError(f"home pose {pose} (home.tip, home.orientation) "
                              "is unreachable with these parameters: "
                              f"{str(exc).replace(' at sample 0', '')}") from None
 
@@ -306,7 +303,7 @@ def _split_key(key: str) -> tuple[list[str], list[int]]:
     """``"bodies.gun.inertia[1][2]"`` → (["bodies", "gun", "inertia"], [1, 2])."""
     m = _KEY_RE.match(key) if isinstance(key, str) else None
     if m is None:
-        raise ParameterError(f"parameter '{key}': not a dotted parameter key "
+        raise ParameterError(f"parameter {shorten(key)}: not a dotted parameter key "
                              "(like 'chain0.x32' or 'home.tip[2]')")
     return m.group(1).split("."), [int(i) for i in re.findall(r"\[(\d+)\]", m.group(2))]
 
@@ -314,21 +311,21 @@ def _split_key(key: str) -> tuple[list[str], list[int]]:
 def lookup(d: Mapping, key: str, value: Any = _UNSET) -> Any:
     """The value at ``key`` in a thesis-unit parameter dictionary (ParameterError if none);
     ``value``, if given, is the override being applied (shown in the message)."""
-    shown = "" if value is _UNSET else f" = {plain_value(value)!r}"
+    shown = "" if value is _UNSET else f" = {shorten(plain_value(value))}"
     path, index = _split_key(key)
     node: Any = d
     for j, part in enumerate(path):
         if not isinstance(node, Mapping) or part not in node:
             what = "unknown key" if j == len(path) - 1 else "unknown section"
-            raise ParameterError(f"parameter '{key}'{shown}: override names no parameter "
-                                 f"({what})")
+            raise ParameterError(f"parameter {shorten(key)}{shown}: override names no "
+                                 f"parameter ({what})")
         node = node[part]
     if isinstance(node, Mapping):
-        raise ParameterError(f"parameter '{key}'{shown}: names a section, not a parameter")
+        raise ParameterError(f"parameter {shorten(key)}{shown}: names a section, not a parameter")
     for i in index:
         if not isinstance(node, list) or i >= len(node):
-            raise ParameterError(f"parameter '{key}'{shown}: index [{i}] is out of range for "
-                                 f"'{path[-1]}' = {node!r}")
+            raise ParameterError(f"parameter {shorten(key)}{shown}: index [{i}] is out of range "
+                                 f"for '{path[-1]}' = {shorten(node)}")
         node = node[i]
     return node
 
@@ -374,7 +371,7 @@ def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
             want = ("a number" if shape == () else
                     f"a list of {shape[0]} numbers" if len(shape) == 1 else
                     f"a {'x'.join(map(str, shape))} matrix (list of {shape[0]} rows)")
-            raise ParameterError(f"parameter '{key}' = {value!r}: must be {want}")
+            raise ParameterError(f"parameter {shorten(key)} = {shorten(value)}: must be {want}")
         path, index = _split_key(key)
         node: Any = out
         for part in path[:-1]:
@@ -395,24 +392,6 @@ def did_you_mean(word: str, choices) -> str:
 
     close = difflib.get_close_matches(word, list(choices), n=1)
     return f" (did you mean {close[0]!r}?)" if close else ""
-
-
-def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
-    """The TOML file ``path`` as a dictionary; a missing, unreadable, non-UTF-8 or malformed
-    file raises ``error`` with one line naming ``what`` (e.g. "parameter file") and the cause."""
-    try:
-        data = Path(path).read_bytes()
-    except FileNotFoundError:
-        raise error(f"{what} {str(path)!r} does not exist") from None
-    except OSError as exc:
-        raise error(f"{what} {str(path)!r} cannot be read: {exc.strerror}") from None
-    try:
-        return tomllib.loads(data.decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise error(f"{what} {str(path)!r} is not UTF-8 text (byte "
-                    f"{exc.start}: {data[exc.start:exc.start + 1]!r})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise error(f"{what} {str(path)!r} is not valid TOML: {exc}") from None
 
 
 def read_params_dict(path: str | Path | None = None) -> dict:
@@ -439,14 +418,26 @@ def merge_partial(base: Mapping, partial: Mapping, prefix: str = "") -> dict:
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
-    """``"chain0.x32=0.35"`` or ``"home.tip=[0.5, 0, 0.2]"`` → (key, value), value as TOML."""
+    """``"chain0.x32=0.35"`` or ``"home.tip=[0.5, 0, 0.2]"`` → (key, value), value as TOML
+    (one line, ASCII, no ``_`` digit separators)."""
     key, sep, value = text.partition("=")
+    where = f"override {shorten(text)}"
     if not sep or not key.strip():
-        raise ParameterError(f"override {text!r}: expected KEY=VALUE, e.g. chain0.x32=0.35")
+        raise ParameterError(f"{where}: expected KEY=VALUE, e.g. chain0.x32=0.35")
+    bad = next((c for c in value if not c.isprintable() or not c.isascii() or c == "_"), None)
+    if bad is not None:  # TOML would read a newline as a second key and drop it
+        why = ("'_' digit separators are not accepted" if bad == "_" else
+               f"{bad!r} is not an ASCII character" if bad.isprintable() else
+               f"the value holds a control character {bad!r}: one KEY=VALUE per override")
+        raise ParameterError(f"{where}: {why}")
     try:
-        return key.strip(), tomllib.loads(f"v = {value.strip()}")["v"]
-    except tomllib.TOMLDecodeError:
-        raise ParameterError(f"override {text!r}: the value is not a number or a list of "
+        # a huge integer goes on to the parameter's own check, which names its key
+        return key.strip(), loads_toml(f"v = {value.strip()}", where, ParameterError,
+                                       ints=False)["v"]
+    except ParameterError as exc:
+        if "not valid TOML" not in str(exc):
+            raise
+        raise ParameterError(f"{where}: the value is not a number or a list of "
                              "numbers") from None
 
 

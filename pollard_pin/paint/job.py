@@ -4,7 +4,6 @@ Every rule broken is one :class:`JobError` line naming the key, its value and th
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -13,7 +12,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..model.params import did_you_mean, read_toml
+from ..model.params import did_you_mean
+from ..model.values import fail, integer, number, read_toml
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
@@ -62,25 +62,20 @@ class PaintJob:
 
 
 def _fail(source: str, key: str, value: Any, rule: str):
-    raise JobError(f"{source}: '{key}' = {value!r}: {rule}")
+    fail(JobError, f"{source}: ", key, value, rule)
 
 
-def _number(source: str, key: str, value: Any, length: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        _fail(source, key, value, "must be a number")
-    if not math.isfinite(value):
-        _fail(source, key, value, "must be finite")
-    if length and abs(value) > MAX_LENGTH:
-        _fail(source, key, value, f"must be at most {MAX_LENGTH:g} m in size (SI units: "
-                                  "metres, not mm)")
-    return float(value)
+_LENGTH_RULE = f"must be at most {MAX_LENGTH:g} m in size (SI units: metres, not mm)"
+
+
+def _number(source: str, key: str, value: Any, length: bool = False,
+            positive: bool = False) -> float:
+    return number(value, key, JobError, f"{source}: ", positive=positive,
+                  limit=MAX_LENGTH if length else None, limit_rule=_LENGTH_RULE)
 
 
 def _positive(source: str, key: str, value: Any, length: bool = False) -> float:
-    v = _number(source, key, value, length)
-    if v <= 0:
-        _fail(source, key, value, "must be > 0")
-    return v
+    return _number(source, key, value, length, positive=True)
 
 
 def _vector(source: str, key: str, value: Any) -> tuple[float, float, float]:
@@ -147,12 +142,10 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
               f"must be {' or '.join(repr(x) for x in DIRECTIONS)}"
               f"{did_you_mean(str(job['direction']), DIRECTIONS)}")
     if "coats" in job:
-        c = job["coats"]
-        if isinstance(c, bool) or not isinstance(c, int) or c < 1:
-            _fail(source, "job.coats", c, "must be a whole number >= 1")
-        values["coats"] = int(c)
-    if "actuators" in job and not (isinstance(job["actuators"], str) and job["actuators"]):
-        _fail(source, "job.actuators", job["actuators"], "must be a file name (a string)")
+        values["coats"] = integer(job["coats"], "job.coats", JobError, f"{source}: ")
+    a = job.get("actuators")
+    if "actuators" in job and not (isinstance(a, str) and a and "\0" not in a):
+        _fail(source, "job.actuators", a, "must be a file name (a string, no NUL)")
     return PaintJob(center=center, normal=normal, direction=job.get("direction", "horizontal"),
                     actuators=job.get("actuators"), source=source, **values)
 

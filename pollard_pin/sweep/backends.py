@@ -84,12 +84,20 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     return rows  # type: ignore[return-value]
 
 
-def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> list[dict]:
+def require_distributed():
+    """The ``distributed`` module, or SweepError: a Dask scheduler needs the extra (checked
+    before anything is said or done)."""
     try:
-        from distributed import Client, as_completed
+        import distributed
     except ImportError:
         raise SweepError("a Dask scheduler needs dask.distributed: "
                          "pip install 'pollard-pin[cluster]'") from None
+    return distributed
+
+
+def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> list[dict]:
+    distributed = require_distributed()
+    Client, as_completed = distributed.Client, distributed.as_completed
     own = not isinstance(address, Client)
     if own:
         try:

@@ -19,8 +19,8 @@ from ..model.params import (
     params_from_dict,
     plain_value,
     read_params_dict,
-    read_toml,
 )
+from ..model.values import number, read_toml, shorten
 from .evaluate import FAILURE_COLUMNS, METRIC_COLUMNS, SweepError
 
 GRID_KEYS = ("trajectory", "duration", "samples", "params", "grid", "variant")
@@ -60,6 +60,8 @@ class Sweep:
 def _fmt(value: Any) -> str:
     if isinstance(value, (list, tuple, np.ndarray)):
         return json.dumps(plain_value(value))
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**16:
+        return shorten(value)
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
@@ -141,7 +143,7 @@ def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
     if grid:
         for key, values in grid.items():
             if not isinstance(values, (list, tuple)):
-                raise SweepError(f"grid: '{key}' = {values!r} must be a list of values")
+                raise SweepError(f"grid: '{key}' = {shorten(values)} must be a list of values")
             if not values:
                 raise SweepError(f"grid: '{key}' has an empty list of values")
         size = math.prod(len(v) for v in grid.values())
@@ -183,7 +185,7 @@ def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
         try:
             params_from_dict(apply_overrides(base, ov), source=name, check_home=False)
         except ParameterError as exc:
-            raise SweepError(f"variant {name!r}: {exc}") from None
+            raise SweepError(f"variant {shorten(name)}: {exc}") from None
     traj = trajectory_spec(trajectory, duration, samples)
     return Sweep(variants=tuple(vlist), trajectory=traj, keys=tuple(keys),
                  params=None if params is None else base, source=source)
@@ -218,17 +220,18 @@ def load_grid(path: str | Path) -> Sweep:
         raise SweepError(f"{path}: 'variant' must be an array of tables ([[variant]])")
     trajectory = d.get("trajectory", "thesis")
     if not isinstance(trajectory, str):
-        raise SweepError(f"{path}: trajectory = {trajectory!r} must be 'thesis' or a CSV path")
+        raise SweepError(f"{path}: trajectory = {shorten(trajectory)} must be 'thesis' or a "
+                         "CSV path")
     if trajectory != "thesis":
         trajectory = str(path.parent / trajectory)
     params = d.get("params")
     if params is not None:
         if not isinstance(params, str):
-            raise SweepError(f"{path}: params = {params!r} must be a parameter file path")
+            raise SweepError(f"{path}: params = {shorten(params)} must be a parameter file path")
         params = path.parent / params
     for k in ("duration", "samples"):
-        if k in d and (isinstance(d[k], bool) or not isinstance(d[k], (int, float))):
-            raise SweepError(f"{path}: {k} = {d[k]!r} must be a number")
+        if k in d:
+            number(d[k], k, SweepError, f"{path}: ")
     from ..io.trajectory import TrajectoryError
 
     try:

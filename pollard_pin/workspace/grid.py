@@ -21,6 +21,7 @@ from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
 from ..checks import real
 from ..errors import InputError
 from ..kinematics.margins import Margins, as_margins
+from ..model.values import parse_float, shorten
 from .reach import REASONS, ReachOptions, evaluate, length_scale
 from .rectangle import boundary_points, edge_samples, largest_rectangle
 
@@ -156,13 +157,13 @@ def parse_plane(plane) -> tuple[int, float]:
 
 
 def _finite(value, what: str, unit: str, limit: float = 1e3) -> float:
-    try:
-        v = float(value)
+    try:  # text as the user typed it: no "0.5_5", no full-width digits
+        v = parse_float(value) if isinstance(value, str) else float(value)
     except (TypeError, ValueError):
-        raise WorkspaceError(f"{what} = {value!r} is not a number [{unit}]") from None
+        raise WorkspaceError(f"{what} = {shorten(value)} is not a number [{unit}]") from None
     if not math.isfinite(v) or abs(v) > limit:
         within = f" within ±{limit:g} {unit}" if math.isfinite(limit) else f" [{unit}]"
-        raise WorkspaceError(f"{what} = {value!r} must be a finite number{within}")
+        raise WorkspaceError(f"{what} = {shorten(value)} must be a finite number{within}")
     return v
 
 

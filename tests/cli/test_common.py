@@ -21,7 +21,7 @@ def test_types_accept(parse, text, value):
 
 @pytest.mark.parametrize("parse, text, says", [
     (C.number, "abc", "not a number: 'abc'"), (C.number, "nan", "finite"),
-    (C.number, "-inf", "finite"), (C.positive, "0", "must be positive, got 0"),
+    (C.number, "-inf", "finite"), (C.positive, "0", "must be > 0, got 0"),
     (C.nonnegative, "-1e-9", "must be >= 0, got -1e-9"), (C.fraction, "1.5", "at most 1"),
     (C.count(2), "1", "must be >= 2, got 1"), (C.count(1, 3), "4", "between 1 and 3"),
     (C.count(1), "2.0", "not an integer: '2.0'"), (C.name, "", "an empty name"),

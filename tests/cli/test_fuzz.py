@@ -400,7 +400,7 @@ CASES = [([*prefix, "--trajectory", name], says)
          for prefix in TRAJ_COMMANDS.values() for name, says in BAD_TRAJECTORIES]
 
 # numbers: every numeric option, every way a number can be wrong
-POSITIVE = [("0", "must be positive"), ("-1", "must be positive"), ("nan", "finite"),
+POSITIVE = [("0", "must be > 0"), ("-1", "must be > 0"), ("nan", "finite"),
             ("inf", "finite"), ("-inf", "finite"), ("abc", "not a number"),
             ("", "not a number"), ("1e999", "finite"), ("0x10", "not a number"),
             ("1,5", "not a number")]
@@ -522,7 +522,7 @@ BAD_SETS = [
     ("bodies.gun.inertia=[[1, 0, 0], [0, 1, 0], [0, 0, -1]]", "positive definite"),
     ("bodies.gun.inertia=[[1, 2, 0], [0, 1, 0], [0, 0, 1]]", "symmetric"),
     ("bodies.gun.inertia=[[1, 0, 0], [0, 1, 0], [0, 0, 5]]", "triangle inequality"),
-    ("bodies.gun.com=[nan, 0, 0]", "must be finite"),
+    ("bodies.gun.com=[nan, 0, 0]", "must be a finite number"),
     ("limits.theta21.lower=10", "must be greater than"),
     ("branches.chain0=7", "must be -1 or +1"),
 ]
@@ -543,8 +543,8 @@ BAD_ACTUATORS = [
     ("act_unknown_key.toml", "unknown key"),
     ("act_negative.toml", "must be > 0"),
     ("act_zero.toml", "must be > 0"),
-    ("act_nan.toml", "must be finite"),
-    ("act_inf.toml", "must be finite"),
+    ("act_nan.toml", "must be a finite number"),
+    ("act_inf.toml", "must be a finite number"),
     ("act_string.toml", "must be a number"),
     ("act_huge.toml", "must be between"),
     ("act_continuous.toml", "exceeds"),
@@ -700,8 +700,8 @@ CASES += [([*WS, *extra], says) for extra, says in [
                                                        "reachable within the bounds y ∈ [5, 6] "
                                                        "m, z ∈ [5, 6] m; at orientation"),
     (["--plane", "x=0.5", "--volume"], "not allowed with argument --plane"),
-    (["--resolution", "0"], "must be positive"),
-    (["--resolution", "-1"], "must be positive"),
+    (["--resolution", "0"], "must be > 0"),
+    (["--resolution", "-1"], "must be > 0"),
     (["--resolution", "nan"], "finite"),
     (["--resolution", "inf"], "finite"),
     (["--resolution", "abc"], "not a number"),
@@ -779,8 +779,8 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_missing_key.toml", "'gun.flow' is missing ([gun] needs standoff, sigma, flow)"),
     ("job_missing_table.toml", "missing table [job]"),
     ("job_table_not_table.toml", "'job' = 3: must be a table [job]"),
-    ("job_nan.toml", "'gun.sigma' = nan: must be finite"),
-    ("job_inf.toml", "'panel.center[0]' = inf: must be finite"),
+    ("job_nan.toml", "'gun.sigma' = nan: must be a finite number"),
+    ("job_inf.toml", "'panel.center[0]' = inf: must be a finite number"),
     ("job_zero_width.toml", "'panel.width' = 0: must be > 0"),
     ("job_negative_height.toml", "'panel.height' = -0.12: must be > 0"),
     ("job_negative_standoff.toml", "'gun.standoff' = -0.15: must be > 0"),
@@ -808,7 +808,8 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_actuators_missing.toml", "actuator file 'nope.toml' does not exist"),
     ("job_actuators_number.toml", "'job.actuators' = 3: must be a file name"),
     ("job_actuators_empty.toml", "'job.actuators' = '': must be a file name"),
-    ("job_actuators_bad.toml", "act_nan.toml: 'theta21.rotor_inertia' = nan: must be finite"),
+    ("job_actuators_bad.toml",
+     "act_nan.toml: 'theta21.rotor_inertia' = nan: must be a finite number"),
     ("job_out_of_reach.toml", "the path leaves the workspace on a pass at panel (u, v) = "
                               "(-170, -73) mm, tool tip (1.850, -0.170, 0.087) m"),
     ("job_too_big.toml", "the largest panel that fits at standoff 0.15 m, same centre and "
@@ -820,8 +821,8 @@ CASES += [([*PAINT, name], says) for name, says in [
 ]]
 GOOD_JOB = [*PAINT, "job_good.toml"]
 CASES += [([*GOOD_JOB, *extra], says) for extra, says in [
-    (["--resolution", "0"], "must be positive"),
-    (["--resolution", "-1"], "must be positive"),
+    (["--resolution", "0"], "must be > 0"),
+    (["--resolution", "-1"], "must be > 0"),
     (["--resolution", "nan"], "finite"),
     (["--resolution", "abc"], "not a number"),
     (["--resolution", "1e-6"], "--resolution: film grid spacing 1e-06 m makes 3.12e+10 film "

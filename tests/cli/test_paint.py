@@ -102,7 +102,7 @@ def test_view_paint_overlay(painted, tmp_path, capsys):
 
 @pytest.mark.parametrize("edit, words", [
     (lambda t: t.replace("width = 0.26", "widht = 0.26"), "did you mean 'width'"),
-    (lambda t: t.replace("sigma = 0.010", "sigma = nan"), "must be finite"),
+    (lambda t: t.replace("sigma = 0.010", "sigma = nan"), "must be a finite number"),
     (lambda t: t.replace("flow = 1.5e-7", "flow = -1.5e-7"), "must be > 0"),
     (lambda t: t.replace("normal = [-1.0, 0.0, 0.0]", "normal = [0.0, 0.0, 0.0]"),
      "zero length"),

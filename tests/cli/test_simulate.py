@@ -32,7 +32,7 @@ def short_csv(tmp_path_factory):
 @pytest.mark.parametrize("argv, says", [
     (["--controller", "lqr"], "invalid choice: 'lqr'"),
     (["--wn", "-3"], "must be >= 0, got -3"),
-    (["--dt", "0"], "must be positive, got 0"),
+    (["--dt", "0"], "must be > 0, got 0"),
     (["--dt", "100"], "--dt 100 s is longer than --control-period 0.001 s"),
     (["--control-period", "5e-7"], "1,000,000 RK4 steps (0.5 s, --control-period 5e-07 s, "
                                    "--dt 5e-07 s) would take about"),

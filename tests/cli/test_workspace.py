@@ -65,7 +65,7 @@ def test_volume_streams(robot, tmp_path, capsys):
 BAD = [
     (["--plane", "x=3"], ["misses the robot", "reachable region spans"]),
     (["--plane", "x=0.55", "--bounds", "y=1:2"], ["no point", "reachable region spans"]),
-    (["--resolution", "0"], ["--resolution", "positive"]),
+    (["--resolution", "0"], ["--resolution", "must be > 0"]),
     (["--resolution", "-0.01"], ["--resolution"]),
     (["--resolution", "1e-5"], ["would need", "at least"]),
     (["--volume", "--resolution", "0.001"], ["would need", "at least"]),

@@ -171,7 +171,7 @@ BAD = [  # (file text, what the one line must name)
     (_toml(_with("theta21", "max_speed", "fast")), "must be a number"),
     (_toml(_with("theta21", "coulomb", True)), "must be a number"),
     (_toml(_with("theta21", "rotor_inertia", math.nan)), "'theta21.rotor_inertia' = nan: "
-     "must be finite"),
+     "must be a finite number"),
     (_toml(_with("theta21", "continuous_torque", 0.08)), "exceeds theta21.peak_torque"),
     # magnitudes that overflowed the motor model (traceback) or gave an infinite cycle
     (_toml(_with("theta21", "gear_ratio", 1e300)), "'theta21.gear_ratio' = 1e+300: must be "

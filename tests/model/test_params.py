@@ -160,8 +160,15 @@ def test_mujoco_peer_keeps_ideal_joints_and_export_mirrors_limits(tmp_path, limi
      r"^parameter 'limits\.theta43\.velocity' = None: missing key"),
     (lambda d: d["limits"]["theta21"].update(upper=-110.0),
      r"^parameter 'limits\.theta21\.upper' = -110\.0: must be greater than"),
+    # the bound that is off is named (the upper one was blamed for a lower -1e300)
     (lambda d: d["limits"]["theta21"].update(lower=-400.0),
-     r"^parameter 'limits\.theta21\.upper' = -35\.0: range 365 deg exceeds one turn"),
+     r"^parameter 'limits\.theta21\.lower' = -400, 'limits\.theta21\.upper' = -35: the "
+     r"range 365 deg exceeds one turn \(360\)$"),
+    (lambda d: d["limits"]["theta21"].update(lower=-1e300),
+     r"^parameter 'limits\.theta21\.lower' = -1e\+300: must be within ±720 deg"),
+    (lambda d: d["limits"]["theta1615"].update(lower=-100.0),
+     r"^parameter 'limits\.theta1615\.lower' = -100, 'limits\.theta1615\.upper' = 270: "
+     r"the range 370 deg exceeds one turn"),
     (lambda d: d["limits"]["theta54"].update(effort=1.0),
      r"^parameter 'limits\.theta54\.effort' = 1\.0: must be 0 \(a passive joint"),
     (lambda d: d["limits"]["theta21_1"].update(effort=0.0),
@@ -169,7 +176,7 @@ def test_mujoco_peer_keeps_ideal_joints_and_export_mirrors_limits(tmp_path, limi
     (lambda d: d["limits"]["theta1716"].update(velocity=-1.0),
      r"^parameter 'limits\.theta1716\.velocity' = -1\.0: must be > 0$"),
     (lambda d: d["limits"]["theta1716"].update(velocity=float("inf")),
-     r"^parameter 'limits\.theta1716\.velocity' = inf: must be finite$"),
+     r"^parameter 'limits\.theta1716\.velocity' = inf: must be a finite number$"),
 ])
 def test_limit_rules(edit, pattern):
     d = read_params_dict()

@@ -1,0 +1,225 @@
+"""One home for reading what the user gives: input files opened safely, TOML parsed within
+limits, numbers checked, and values shown short in messages.
+
+Every reader of the package (parameter, actuator, paint job and grid files, trajectory CSVs,
+result tables, command-line numbers) uses these, so that a FIFO, a 5,000-digit integer,
+arrays nested 3,000 deep, ``0.5_5`` or full-width digits get the same one-line answer
+everywhere. Each function raises the caller's error class (an
+:class:`~pollard_pin.errors.InputError`).
+"""
+from __future__ import annotations
+
+import errno
+import math
+import os
+import stat
+import sys
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from ..checks import problem
+
+MAX_DEPTH = 32  # nested arrays/tables: a parameter file needs 3 (an inertia matrix)
+MAX_TOML_BYTES = 1 << 20  # 1 MiB: the shipped parameter file is ~5 kB
+SHOWN = 60  # characters of a value shown in a message
+
+
+def shorten(value: Any, width: int = SHOWN) -> str:
+    """``repr(value)`` cut to ``width`` characters; an integer beyond 16 digits as ``:.4g``
+    (never a 700-digit number echoed back)."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**16:
+        try:
+            return f"{float(value):.4g}"
+        except OverflowError:  # beyond float: :.4g by hand (str() may refuse the integer)
+            n, digits = abs(value), int((abs(value).bit_length() - 1) * math.log10(2))
+            while 10**digits <= n:
+                digits += 1
+            lead = n // 10 ** (digits - 4) / 1000  # the first four digits, d.ddd
+            return f"{'-' if value < 0 else ''}{lead:.4g}e+{digits - 1} (a {digits}-digit integer)"
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):  # a huge integer or deep nesting inside
+        return f"<{type(value).__name__}>"
+    if len(text) <= width:
+        return text
+    end = text[-1] if text[-1] in "'\")]}" else ""  # a cut list still reads as a list
+    return text[:width - 1 - len(end)] + "…" + end
+
+
+def shown_path(path: str | Path) -> str:
+    """A path quoted for a message: whole up to 160 characters, else its start and its end
+    (the file name stays)."""
+    text = repr(str(path))
+    return text if len(text) <= 160 else f"{text[:40]}…{text[-119:]}"
+
+
+def clip(text: str, width: int = 120) -> str:
+    """``text`` on one line, cut to ``width`` characters (a library's own message, a path)."""
+    text = " ".join(str(text).split())
+    return text if len(text) <= width else text[:width - 1] + "…"
+
+
+# --- files ------------------------------------------------------------------------------------
+def open_regular(path: str | Path, mode: str = "rb", **kwargs):
+    """``open(path, mode)`` for reading that refuses what is not a regular file (a FIFO with
+    no writer would block forever, a device never ends) with an :class:`OSError` whose
+    ``strerror`` says so; a NUL in the name is an OSError too, not a ValueError."""
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except ValueError:  # "embedded null byte"
+        raise OSError(errno.EINVAL, "the name holds a NUL character", str(path)) from None
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(path))
+        if not stat.S_ISREG(st.st_mode):
+            kind = ("a FIFO" if stat.S_ISFIFO(st.st_mode) else
+                    "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode) else
+                    "a socket" if stat.S_ISSOCK(st.st_mode) else "special")
+            raise OSError(errno.EINVAL, f"not a regular file ({kind})", str(path))
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        return open(fd, mode, **kwargs)
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def read_bytes(path: str | Path, what: str, error: type[Exception],
+               limit: int | None = None) -> bytes:
+    """The bytes of the regular file ``path`` (at most ``limit``); a missing, unreadable,
+    special or too large file raises ``error`` naming ``what`` (e.g. "parameter file")."""
+    shown = shown_path(path)
+    try:
+        with open_regular(path) as f:
+            data = f.read(-1 if limit is None else limit + 1)
+    except FileNotFoundError:
+        raise error(f"{what} {shown} does not exist") from None
+    except OSError as exc:
+        raise error(f"{what} {shown} cannot be read: {exc.strerror or exc}") from None
+    if limit is not None and len(data) > limit:
+        raise error(f"{what} {shown} is over {limit / 2**20:.4g} MiB: not a {what}")
+    return data
+
+
+def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
+    """The TOML file ``path`` as a dictionary; a missing, unreadable, special, over-large,
+    non-UTF-8, malformed or absurdly nested file raises ``error`` with one line naming
+    ``what`` (e.g. "parameter file") and the cause."""
+    data = read_bytes(path, what, error, MAX_TOML_BYTES)
+    where = f"{what} {shown_path(path)}"
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise error(f"{where} is not UTF-8 text (byte {exc.start}: "
+                    f"{data[exc.start:exc.start + 1]!r})") from None
+    return loads_toml(text, where, error)
+
+
+def loads_toml(text: str, where: str, error: type[Exception], ints: bool = True) -> dict:
+    """``tomllib.loads`` within limits: nesting deeper than :data:`MAX_DEPTH`, an integer
+    beyond Python's digit limit or (``ints``) beyond the float range raise ``error`` (one
+    line)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise error(f"{where} is not valid TOML: {exc}") from None
+    except RecursionError:
+        data = None
+    except ValueError:  # int(): more digits than sys.get_int_max_str_digits()
+        limit = sys.get_int_max_str_digits() if hasattr(sys, "get_int_max_str_digits") else 0
+        raise error(f"{where}: an integer of more than {limit} digits; numbers are at most "
+                    "about 1.8e308") from None
+    if data is None:
+        raise error(f"{where}: arrays or tables nested more than {MAX_DEPTH} deep")
+    _check_tree(data, where, error, ints)
+    return data
+
+
+def _check_tree(data: dict, where: str, error: type[Exception], ints: bool) -> None:
+    """Depth and integer range of a parsed TOML tree, iteratively (no recursion to blow)."""
+    stack: list[tuple[Any, str, int]] = [(data, "", 0)]
+    while stack:
+        node, key, depth = stack.pop()
+        if depth > MAX_DEPTH:
+            raise error(f"{where}: {shorten(key.split('[')[0])} nests arrays or tables more "
+                        f"than {MAX_DEPTH} deep")
+        if isinstance(node, dict):
+            stack.extend((v, f"{key}.{k}" if key else str(k), depth + 1) for k, v in node.items())
+        elif isinstance(node, list):
+            stack.extend((v, f"{key}[{i}]", depth + 1) for i, v in enumerate(node))
+        elif ints and isinstance(node, int) and not isinstance(node, bool) \
+                and not _fits_float(node):
+            raise error(f"{where}: '{key}' = {shorten(node)}: must be within the float range "
+                        "(about ±1.8e308)")
+
+
+def _fits_float(value: int) -> bool:
+    try:
+        float(value)
+    except OverflowError:
+        return False
+    return True
+
+
+# --- numbers ----------------------------------------------------------------------------------
+def number(value: Any, key: str, error: type[Exception], prefix: str = "", *,
+           positive: bool = False, nonnegative: bool = False, limit: float | None = None,
+           limit_rule: str | None = None) -> float:
+    """``value`` as a float, or ``error``: ``{prefix}'{key}' = {value}: {rule}``.
+
+    Rules, in order: a number (not a bool), finite (an integer beyond float too), > 0 if
+    ``positive``, >= 0 if ``nonnegative``, ``|value| <= limit`` (``limit_rule`` says it)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        fail(error, prefix, key, value, "must be a number")
+    try:
+        v = float(value)
+    except OverflowError:
+        fail(error, prefix, key, value, "must be within the float range (about ±1.8e308)")
+    wrong = problem(v, 0.0 if positive or nonnegative else -math.inf, above=positive)
+    if wrong is not None:  # the one rule: checks.problem
+        fail(error, prefix, key, value, wrong)
+    if limit is not None and abs(v) > limit:
+        fail(error, prefix, key, value, limit_rule or f"must be within ±{limit:g}")
+    return v
+
+
+def integer(value: Any, key: str, error: type[Exception], prefix: str = "",
+            minimum: int = 1) -> int:
+    """A whole number ``>= minimum`` (not a bool, not a float), or ``error``."""
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        fail(error, prefix, key, value, f"must be a whole number >= {minimum}")
+    return int(value)
+
+
+def fail(error: type[Exception], prefix: str, key: str, value: Any, rule: str):
+    """Raise ``error("{prefix}'{key}' = {short value}: {rule}")``."""
+    raise error(f"{prefix}'{key}' = {shorten(value)}: {rule}")
+
+
+def parse_float(text: str) -> float:
+    """A number written as text (a CSV cell, a command-line value): Python's ``float`` syntax
+    without what it also takes but a user never means: ``_`` digit separators (``0.5_5``) and
+    non-ASCII digits (full-width ``０.５５``). ValueError says why."""
+    value = float(text)
+    if "_" in text:
+        raise ValueError("'_' digit separators are not accepted")
+    if not text.isascii():
+        char = next(c for c in text if not c.isascii())
+        raise ValueError(f"{char!r} is not an ASCII digit")
+    return value
+
+
+def parse_int(text: str) -> int:
+    """A whole number written as text: ASCII digits, optional sign, at most 30 digits."""
+    body = text.strip()
+    digits = body[1:] if body.startswith(("+", "-")) else body
+    if not (digits.isascii() and digits.isdigit() and len(digits) <= 30):
+        raise ValueError("not an integer")
+    return int(body)
+
+
+__all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "clip", "fail", "integer", "loads_toml", "number",
+           "open_regular", "parse_float", "parse_int", "read_bytes", "read_toml", "shorten",
+           "shown_path"]
