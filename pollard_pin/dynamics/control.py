@@ -19,6 +19,7 @@ import numpy as np
 from ..errors import InputError
 from ..kinematics.ik import inverse_kinematics
 from ..model.build import Robot
+from ..paths.trajectory import trajectory_curve
 from .inverse import (
     JointLosses,
     inverse_dynamics,
@@ -91,17 +92,6 @@ class DesiredTrajectory:
         return min(max(k, 0), len(self.t) - 1)
 
 
-def _hermite(trajectory):
-    """``curve(t) → (poses, rates, accelerations)``: the quintic Hermite interpolant of the
-    trajectory's samples (positions, rates and accelerations matched at every sample)."""
-    from scipy.interpolate import BPoly
-
-    y = np.stack([trajectory.poses, trajectory.d_poses, trajectory.dd_poses], axis=1)
-    spline = BPoly.from_derivatives(trajectory.t, y)
-    d1, d2 = spline.derivative(1), spline.derivative(2)
-    return lambda t: (spline(t), d1(t), d2(t))
-
-
 def control_ticks(t0: float, t1: float, period: float) -> np.ndarray:
     """t0, t0 + T, … strictly before t1, then t1."""
     n = int(math.floor((t1 - t0) / period + 1e-9))
@@ -119,7 +109,8 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     with the joint ``losses`` the controller knows (rotor inertia, friction; default none).
 
     ``curve(t) → (poses, rates, accelerations)`` evaluates the tool path between samples
-    (default: the quintic Hermite interpolant of the samples).
+    (default: the trajectory's own ``curve``, else the quintic Hermite spline through its
+    samples, :func:`~pollard_pin.paths.trajectory.trajectory_curve`).
     """
     if not (math.isfinite(period) and period > 0):
         raise ControlError(f"control period must be > 0 s, got {period}")
@@ -127,7 +118,7 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     if len(t) < 2:
         raise ControlError("the trajectory needs at least 2 samples to be simulated")
     ticks = control_ticks(float(t[0]), float(t[-1]), period)
-    poses, d, dd = (curve or _hermite(trajectory))(ticks)
+    poses, d, dd = (curve or trajectory_curve(trajectory))(ticks)
     ik = inverse_kinematics(robot, poses, d, dd, ticks, **ik_options)
     tau = inverse_dynamics(robot, ik, losses, energies=False).tau
     held = tau.copy()

@@ -260,7 +260,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                       known_losses: JointLosses | None = None,
                       progress: Callable[[int, int], None] | None = None) -> TrackingResult:
     """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
-    ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
+    ``dd_poses``, e.g. :class:`~pollard_pin.paths.trajectory.Trajectory`; its ``curve``, if
+    any, is the path between the samples the reference follows).
 
     ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
     :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``gains``: the

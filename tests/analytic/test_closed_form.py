@@ -29,8 +29,8 @@ from pollard_pin.crosscheck.euler_lagrange import (
     mass_matrix,
     three_actuator_analysis,
 )
-from pollard_pin.io.trajectory import sinusoid_curve, thesis_curve
 from pollard_pin.model.params import load_params
+from pollard_pin.paths.curves import sinusoid_curve, thesis_curve
 
 
 def painting_trajectory(p, n=2001, duration=20.0, t=None):

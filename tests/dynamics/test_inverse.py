@@ -10,7 +10,7 @@ import pollard_pin as pp
 from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.forward import forward_dynamics, simulate, trajectory_torques
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
-from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
 
 @pytest.fixture(scope="module")

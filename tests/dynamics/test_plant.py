@@ -8,10 +8,10 @@ import pytest
 
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample, reduced_dynamics
 from pollard_pin.dynamics.plant import Plant, PlantErrors
-from pollard_pin.io.trajectory import thesis_trajectory
 from pollard_pin.kinematics.closure import closure_drift
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
+from pollard_pin.paths.curves import thesis_trajectory
 
 
 @pytest.fixture(scope="module")

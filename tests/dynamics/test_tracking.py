@@ -21,10 +21,11 @@ from pollard_pin.dynamics.tracking import (
     simulate_tracking,
     step_used,
 )
-from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 from pollard_pin.kinematics.closure import solve_closure
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
+from pollard_pin.paths.curves import thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 
 OFFSET = np.array([0.005, -0.004, 0.003, 0.02, -0.01, 0.02])  # m, rad: a pose step
 

@@ -25,18 +25,13 @@ from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.
 import pollard_pin as pp
 from pollard_pin.analytic import taskspace as ts
 from pollard_pin.cli import main
-from pollard_pin.io.trajectory import (
-    Trajectory,
-    TrajectoryError,
-    from_csv,
-    smooth_random_trajectory,
-    thesis_trajectory,
-    to_csv,
-)
+from pollard_pin.io.trajectory import from_csv, to_csv
 from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
 from pollard_pin.model.build import constraint_residual
 from pollard_pin.model.names import SPHERICAL
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory, TrajectoryError
 from pollard_pin.run import run_pipeline
 
 T = importlib.import_module("pollard_pin.analytic.closed_form")
