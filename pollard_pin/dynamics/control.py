@@ -42,7 +42,9 @@ class ControlError(InputError):
 class Controller(Protocol):
     """``controller(t, q, v) → τ``: actuator torques (6,) [N·m], docs/model.md §6 order, from the
     time [s] and the measured tree state q, v (12,): the actuator angles and rates as sensed
-    (with their noise), the passive joints by forward kinematics from them."""
+    (with their noise), the passive joints by forward kinematics from them. (The built-in ones
+    also take the constraint Jacobian ``Jc`` and velocity map ``N`` at q that sensing built,
+    so as not to build them again.)"""
 
     def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray: ...
 
@@ -145,13 +147,14 @@ class ComputedTorque:
         acc = desired.a[:, self._ia]
         self._acc = acc.copy()
         self._acc[:-1] = 0.5 * (acc[:-1] + acc[1:])
+        self._kp, self._kd = gains.kp, gains.kd
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        d, g, ia = self.desired, self.gains, self._ia
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
+        d, ia = self.desired, self._ia
         k = d.index(t)
         e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        M, h = reduced_dynamics(self.robot, q, v, self.losses)
-        return M @ (self._acc[k] + g.kp * e + g.kd * ed) + h
+        M, h = reduced_dynamics(self.robot, q, v, self.losses, Jc, N)
+        return M @ (self._acc[k] + self._kp * e + self._kd * ed) + h
 
 
 class FeedforwardPD:
@@ -167,11 +170,11 @@ class FeedforwardPD:
         self.robot, self.desired, self.gains = _known(robot, losses), desired, gains
         self._ia = robot.actuated_v
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
         d, g, ia = self.desired, self.gains, self._ia
         k = d.index(t)
         e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        return d.tau[k] + reduced_mass_matrix(self.robot, q) @ (g.kp * e + g.kd * ed)
+        return d.tau[k] + reduced_mass_matrix(self.robot, q, N) @ (g.kp * e + g.kd * ed)
 
 
 class PDGravity:
@@ -188,10 +191,10 @@ class PDGravity:
         self.kp, self.kd = gains.kp * m0, gains.kd * m0
         self._zero = np.zeros(robot.model.nv)
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
         d, ia = self.desired, self._ia
         k = d.index(t)
-        gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero)[0]
+        gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero, Jc=Jc)[0]
         return gravity + self.kp @ (d.q[k, ia] - q[ia]) + self.kd @ (d.v[k, ia] - v[ia])
 
 

@@ -20,16 +20,19 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import rotation
-from ..kinematics.closure import solve_closure, tool_pose
+from ..kinematics.closure import close_loops, tool_pose
 from ..kinematics.singularity import actuator_velocity_map
-from ..model.build import Robot, constraint_jacobian
+from ..model.build import Robot
 from .averages import time_rms
 from .control import (
     CONTROL_PERIOD,
+    ComputedTorque,
     ControlError,
     Controller,
     DesiredTrajectory,
+    FeedforwardPD,
     Gains,
+    PDGravity,
     desired_trajectory,
     make_controller,
 )
@@ -65,10 +68,16 @@ def sensed_state(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
     """(q (12,), v (12,)) from the measured actuator angles ``theta`` and rates ``dtheta`` (6,):
     the passive joints by forward kinematics (:func:`solve_closure`, warm-started at
     ``q_guess``, loops closed to 1e-12 m), their rates by v = N(q)·θ̇ (docs/model.md §12)."""
-    q = solve_closure(robot, theta, q_guess)
-    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
-                             robot.constraint_datas, q)
-    return q, actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v) @ dtheta
+    return sensed_kinematics(robot, theta, dtheta, q_guess)[:2]
+
+
+def sensed_kinematics(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
+                      q_guess: np.ndarray | None = None):
+    """(q, v, Jc, N): :func:`sensed_state` with the constraint Jacobian Jc (6 × 12) and the
+    velocity map N (12 × 6) at q that it built, for the controller to reuse."""
+    q, Jc = close_loops(robot, theta, q_guess)
+    N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
+    return q, N @ dtheta, Jc, N
 
 
 def tracking_summary(t, tip_position_error, tip_orientation_error, torques: dict,
@@ -287,6 +296,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     label = controller if isinstance(controller, str) else type(controller).__name__
     if isinstance(controller, str):
         controller = make_controller(controller, robot, desired, gains, known_losses)
+    builtin = isinstance(controller, (ComputedTorque, FeedforwardPD, PDGravity))
     q, v = _start_state(plant, desired, trajectory, start)
 
     samples = np.asarray(trajectory.t, dtype=float)
@@ -307,8 +317,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         t = pts[i]
         # Non-finite, or spun through thousands of turns: the loop closure would fail first
         # and hide the cause.
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))
-                and np.abs(q).max() < DIVERGED_ANGLE):
+        # (NaN fails both comparisons; one reduction each, this runs every step)
+        if not (np.abs(q).max() < DIVERGED_ANGLE and np.abs(v).max() < math.inf):
             # A sampled PD is stable only for ω·T well below 1 (torque held for T).
             wt = gains.wn * control_period
             hint = (f"the gains are too high for the control period (ω·T = {wt:.3g}; "
@@ -316,17 +326,17 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                     "reduce the time step or raise the gains")
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
                                   f"beyond {DIVERGED_ANGLE:g} rad; {hint}")
-        res = None  # the plant's loop residual at this point, once computed
         if is_tick[i]:
-            theta, dtheta = q[ia].copy(), v[ia].copy()
+            theta, dtheta = q[ia], v[ia]  # copies (an index array)
             if rng is not None:
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            qm, vm = sensed_state(robot, theta, dtheta, guess)
+            qm, vm, Jc, N = sensed_kinematics(robot, theta, dtheta, guess)
             # The next tick's FK warm start, second order: Newton then needs one step.
             guess = qm + control_period * (1.5 * vm - 0.5 * v_seen)
             v_seen = vm
-            command = np.asarray(controller(t, qm, vm), dtype=float).reshape(-1)
+            command = controller(t, qm, vm, Jc, N) if builtin else controller(t, qm, vm)
+            command = np.asarray(command, dtype=float).reshape(-1)
             if command.shape != (6,) or not np.all(np.isfinite(command)):
                 raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
                                    "expected 6 finite actuator torques")
@@ -337,13 +347,15 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 saturated_since = None
             elif clipped and saturated_since is None:
                 saturated_since = t
-            res = plant.closure_residual(q)
-            max_res = max(max_res, res)
         a1 = f(q, v, tau)
         k = sample_of[i]
+        if is_tick[i] or k >= 0:  # the loop residual at q, where f just placed the closures
+            res = plant.last_closure_residual()
+            if is_tick[i]:
+                max_res = max(max_res, res)
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
-            RES[k] = plant.closure_residual(q) if res is None else res  # once per point
+            RES[k] = res
             if progress is not None:
                 progress(k + 1, n)
         if i == last:
@@ -386,5 +398,5 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
 
 
 __all__ = ["MeasurementNoise", "TrackingResult", "check_steps", "default_step", "estimated_wall",
-           "integration_steps", "sensed_state", "simulate_tracking", "step_used",
-           "tracking_summary"]
+           "integration_steps", "sensed_kinematics", "sensed_state", "simulate_tracking",
+           "step_used", "tracking_summary"]
