@@ -24,7 +24,7 @@ from .inverse import (
     JointLosses,
     inverse_dynamics,
     inverse_dynamics_sample,
-    reduced_dynamics,
+    reduced_inverse_dynamics,
     reduced_mass_matrix,
 )
 from .plant import PlantErrors, perturbed_robot
@@ -148,13 +148,14 @@ class ComputedTorque:
         self._acc = acc.copy()
         self._acc[:-1] = 0.5 * (acc[:-1] + acc[1:])
         self._kp, self._kd = gains.kp, gains.kd
+        self._q, self._v = desired.q[:, self._ia], desired.v[:, self._ia]
 
     def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
-        d, ia = self.desired, self._ia
-        k = d.index(t)
-        e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        M, h = reduced_dynamics(self.robot, q, v, self.losses, Jc, N)
-        return M @ (self._acc[k] + self._kp * e + self._kd * ed) + h
+        ia = self._ia
+        k = self.desired.index(t)
+        u = self._acc[k] + self._kp * (self._q[k] - q[ia]) + self._kd * (self._v[k] - v[ia])
+        # M_red·u + h_red by one RNEA at θ̈ = u (reduced_inverse_dynamics)
+        return reduced_inverse_dynamics(self.robot, q, v, u, self.losses, Jc, N)
 
 
 class FeedforwardPD:

@@ -261,14 +261,7 @@ def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None, Jc=N
     ``robot.model.armature``. ``Jc`` (6 × 12) and ``N`` (12 × 6) at ``q``: the constraint
     Jacobian and velocity map if already at hand (sensing computes them)."""
     model, data = robot.model, robot.data
-    ia, ip = robot.actuated_v, robot.passive_v
-    if Jc is None:
-        Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas,
-                                 q)
-    if N is None:
-        N = actuator_velocity_map(Jc, ia, ip)
-    a0 = np.zeros(model.nv)
-    a0[ip] = -solve_small(Jc[:, ip], closure_drift(robot, q, v))
+    Jc, N, a0 = _closed_loop(robot, q, v, Jc, N)
     tree = pin.rnea(model, data, q, v, a0).copy()
     if losses is not None:
         tree += losses.torque(v, a0)
@@ -276,3 +269,32 @@ def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None, Jc=N
     if losses is not None and np.any(losses.armature):
         M = M + np.diag(np.broadcast_to(np.asarray(losses.armature, dtype=float), (model.nv,)))
     return N.T @ M @ N, N.T @ tree
+
+
+def reduced_inverse_dynamics(robot: Robot, q, v, u, losses: JointLosses | None = None,
+                             Jc=None, N=None) -> np.ndarray:
+    """τ = M_red(q)·u + h_red(q, v) (6,) of :func:`reduced_dynamics` without forming M_red:
+    one RNEA at the tree acceleration a = N·u + a₀ (on the loops, θ̈ = u), projected by Nᵀ
+    (Jc·N = 0 drops the closure forces; docs/model.md §13, §18). ``Jc``, ``N`` at ``q`` if at
+    hand."""
+    model, data = robot.model, robot.data
+    _, N, a0 = _closed_loop(robot, q, v, Jc, N)
+    a = N @ u + a0
+    if losses is None:
+        return N.T @ pin.rnea(model, data, q, v, a)
+    return N.T @ (pin.rnea(model, data, q, v, a) + losses.torque(v, a))
+
+
+def _closed_loop(robot: Robot, q, v, Jc=None, N=None):
+    """(Jc, N, a₀) at a closed state: the constraint Jacobian and velocity map (those given,
+    else built) and the tree acceleration at θ̈ = 0 on the loops (Jc a₀ = −J̇c v, a₀ = 0 on the
+    actuators)."""
+    ia, ip = robot.actuated_v, robot.passive_v
+    if Jc is None:
+        Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                                 robot.constraint_datas, q)
+    if N is None:
+        N = actuator_velocity_map(Jc, ia, ip)
+    a0 = np.zeros(robot.model.nv)
+    a0[ip] = -solve_small(Jc[:, ip], closure_drift(robot, q, v))
+    return Jc, N, a0

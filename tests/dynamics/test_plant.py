@@ -99,3 +99,14 @@ def test_closure_drift_matches_the_batched_ik(robot, ik):
         fd = max(fd, np.abs(central - gamma).max() / np.abs(gamma).max())
     assert worst <= 1e-12
     assert fd <= 3e-8
+
+
+def test_last_closure_residual_is_the_residual_at_the_last_state(robot):
+    """Read where constraintDynamics placed the closures, it is closure_residual at that q,
+    bit for bit (the loop saves a kinematics pass per tick)."""
+    plant = Plant(robot, PlantErrors(payload=0.05, mass_error=0.1))
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        q = robot.home() + rng.normal(0.0, 0.05, robot.model.nq)
+        plant.acceleration(q, rng.normal(size=robot.model.nv), rng.normal(size=6))
+        assert plant.last_closure_residual() == plant.closure_residual(q)

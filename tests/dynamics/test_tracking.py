@@ -200,3 +200,28 @@ def test_steps_are_counted_and_checked(robot):
         check_steps(100.0, 1e-3)
     with pytest.raises(ControlError, match="control period must be > 0 s"):
         check_steps(1e-3, float("nan"))
+
+
+def test_sensing_hands_its_jacobian_and_velocity_map_to_the_controllers(robot):
+    """sensed_kinematics' Jc and N are those built afresh at its q (bit for bit), and every
+    built-in controller gives the same torque with them as building its own (what a tick
+    saves: Jc and N built once, not two and three times)."""
+    from pollard_pin.dynamics.control import make_controller
+    from pollard_pin.dynamics.tracking import sensed_kinematics
+
+    traj = _head(0.05)
+    desired = desired_trajectory(robot, traj)
+    ia, ip = robot.actuated_v, robot.passive_v
+    k = 20
+    theta = desired.q[k, ia] + 1e-4
+    q, v, Jc, N = sensed_kinematics(robot, theta, desired.v[k, ia], desired.q[k])
+    q2, v2 = sensed_state(robot, theta, desired.v[k, ia], desired.q[k])
+    np.testing.assert_array_equal(q, q2)
+    np.testing.assert_array_equal(v, v2)
+    J = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                            robot.constraint_datas, q)
+    np.testing.assert_array_equal(Jc, J)
+    np.testing.assert_array_equal(N, actuator_velocity_map(J, ia, ip))
+    for name in ("computed-torque", "feedforward-pd", "pd"):
+        c = make_controller(name, robot, desired)
+        np.testing.assert_array_equal(c(desired.t[k], q, v, Jc, N), c(desired.t[k], q, v))
