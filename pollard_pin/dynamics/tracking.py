@@ -42,8 +42,9 @@ from .plant import BAUMGARTE, Plant, PlantErrors
 
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
-# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py).
-STEP_SECONDS, TICK_SECONDS = 80e-6, 400e-6
+# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
+# 80 µs and 400 µs before a tick built Jc and N once and the constraints were Pinocchio vectors).
+STEP_SECONDS, TICK_SECONDS = 40e-6, 140e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
 
