@@ -11,11 +11,11 @@ import numpy as np
 from .analytic.taskspace import TASK_NAMES
 from .dynamics.averages import time_mean, time_rms
 from .io.table import TableWriter, write_table
-from .io.trajectory import Trajectory
 from .kinematics.ik import BATCH_CHUNK, IKResult, inverse_kinematics
 from .kinematics.limits import check_joint_limits
 from .kinematics.margins import Margins
 from .model.names import SPHERICAL
+from .paths.trajectory import Trajectory
 
 
 @dataclass

@@ -22,7 +22,7 @@ import numpy as np
 import pollard_pin as pp
 from pollard_pin.dynamics.forward import replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample, reduced_mass_matrix
-from pollard_pin.io.trajectory import THESIS_DURATION, thesis_curve
+from pollard_pin.paths.curves import THESIS_DURATION, thesis_curve
 
 
 def gravity_instability(robot) -> np.ndarray:

@@ -4,7 +4,7 @@ import numpy as np
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T
-from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_trajectory
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 
 SEEDS = (1, 2, 3)
 RUN_NAMES = ["thesis"] + [f"random{s}" for s in SEEDS]

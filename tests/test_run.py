@@ -10,8 +10,9 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.io.table import read_result, units_path
-from pollard_pin.io.trajectory import ThesisTrajectory, Trajectory, thesis_trajectory
 from pollard_pin.kinematics.errors import SingularityError
+from pollard_pin.paths.curves import ThesisTrajectory, thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 from pollard_pin.run import RunStats, stream_run, summary, write_run_table
 
 # A pose exactly on leg 2's reach boundary (tests/kinematics/test_solver_edges.py): singular.

@@ -2,7 +2,7 @@
 (t, poses, rates, accelerations) at any times."""
 import numpy as np
 
-from pollard_pin.io.trajectory import sinusoid_curve, thesis_curve
+from pollard_pin.paths.curves import sinusoid_curve, thesis_curve
 
 
 def painting_trajectory(p, n=2001, duration=20.0, t=None):

@@ -158,13 +158,8 @@ def load_robot(args):
 
 def load_trajectory(args, params, lazy: bool = False):
     """The chosen trajectory; ``lazy``: the thesis curve evaluated window by window (run)."""
-    from ..io.trajectory import (
-        THESIS_DURATION,
-        THESIS_SAMPLES,
-        ThesisTrajectory,
-        from_csv,
-        thesis_trajectory,
-    )
+    from ..io.trajectory import from_csv
+    from ..paths.curves import THESIS_DURATION, THESIS_SAMPLES, ThesisTrajectory, thesis_trajectory
 
     if args.trajectory == "thesis":
         duration = THESIS_DURATION if args.duration is None else args.duration

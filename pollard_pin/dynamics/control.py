@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass
 from typing import Protocol
@@ -21,11 +22,12 @@ from ..kinematics.errors import JointLimitError
 from ..kinematics.ik import inverse_kinematics
 from ..kinematics.limits import check_joint_limits
 from ..model.build import Robot
+from ..paths.trajectory import trajectory_curve
 from .inverse import (
     JointLosses,
     inverse_dynamics,
     inverse_dynamics_sample,
-    reduced_dynamics,
+    reduced_inverse_dynamics,
     reduced_mass_matrix,
 )
 from .plant import ModelMismatch, perturbed_robot
@@ -43,7 +45,9 @@ class ControlError(InputError):
 class Controller(Protocol):
     """``controller(t, q, v) → τ``: actuator torques (6,) [N·m], docs/model.md §6 order, from the
     time [s] and the measured tree state q, v (12,): the actuator angles and rates as sensed
-    (with their noise), the passive joints by forward kinematics from them."""
+    (with their noise), the passive joints by forward kinematics from them. (The built-in ones
+    also take the constraint Jacobian ``Jc`` and velocity map ``N`` at q that sensing built,
+    so as not to build them again.)"""
 
     def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray: ...
 
@@ -89,19 +93,11 @@ class DesiredTrajectory:
 
     def index(self, t: float) -> int:
         """The last tick at or before ``t``."""
-        k = int(np.searchsorted(self.t, t + 1e-9 * (self.t[1] - self.t[0]), side="right")) - 1
-        return min(max(k, 0), len(self.t) - 1)
-
-
-def _hermite(trajectory):
-    """``curve(t) → (poses, rates, accelerations)``: the quintic Hermite interpolant of the
-    trajectory's samples (positions, rates and accelerations matched at every sample)."""
-    from scipy.interpolate import BPoly
-
-    y = np.stack([trajectory.poses, trajectory.d_poses, trajectory.dd_poses], axis=1)
-    spline = BPoly.from_derivatives(trajectory.t, y)
-    d1, d2 = spline.derivative(1), spline.derivative(2)
-    return lambda t: (spline(t), d1(t), d2(t))
+        ticks = self.__dict__.get("_ticks")
+        if ticks is None:  # the ticks as Python floats, once: bisect on them is ≈ 5× faster
+            ticks = self.__dict__["_ticks"] = self.t.tolist()
+        k = bisect.bisect_right(ticks, t + 1e-9 * (ticks[1] - ticks[0])) - 1
+        return min(max(k, 0), len(ticks) - 1)
 
 
 def control_ticks(t0: float, t1: float, period: float) -> np.ndarray:
@@ -122,8 +118,9 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     with the joint ``losses`` the controller knows (rotor inertia, friction; default none).
 
     ``curve(t) → (poses, rates, accelerations)`` evaluates the tool path between samples
-    (default: the quintic Hermite interpolant of the samples). ``joint_limits``: refuse a tick
-    with a joint outside its limits (kinematics.limits, the rule of every command).
+    (default: the trajectory's own ``curve``, else the quintic Hermite spline through its
+    samples, :func:`~pollard_pin.paths.trajectory.trajectory_curve`). ``joint_limits``: refuse a
+    tick with a joint outside its limits (kinematics.limits, the rule of every command).
     """
     if not (math.isfinite(period) and period > 0):
         raise ControlError(f"control period must be > 0 s, got {period}")
@@ -131,7 +128,7 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     if len(t) < 2:
         raise ControlError("the trajectory needs at least 2 samples to be simulated")
     ticks = control_ticks(float(t[0]), float(t[-1]), period)
-    poses, d, dd = (curve or _hermite(trajectory))(ticks)
+    poses, d, dd = (curve or trajectory_curve(trajectory))(ticks)
     ik = inverse_kinematics(robot, poses, d, dd, ticks, **ik_options)
     if joint_limits:
         try:
@@ -165,13 +162,15 @@ class ComputedTorque:
         acc = desired.a[:, self._ia]
         self._acc = acc.copy()
         self._acc[:-1] = 0.5 * (acc[:-1] + acc[1:])
+        self._kp, self._kd = gains.kp, gains.kd
+        self._q, self._v = desired.q[:, self._ia], desired.v[:, self._ia]
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        d, g, ia = self.desired, self.gains, self._ia
-        k = d.index(t)
-        e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        M, h = reduced_dynamics(self.robot, q, v, self.losses)
-        return M @ (self._acc[k] + g.kp * e + g.kd * ed) + h
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
+        ia = self._ia
+        k = self.desired.index(t)
+        u = self._acc[k] + self._kp * (self._q[k] - q[ia]) + self._kd * (self._v[k] - v[ia])
+        # M_red·u + h_red by one RNEA at θ̈ = u (reduced_inverse_dynamics)
+        return reduced_inverse_dynamics(self.robot, q, v, u, self.losses, Jc, N)
 
 
 class FeedforwardPD:
@@ -187,11 +186,11 @@ class FeedforwardPD:
         self.robot, self.desired, self.gains = _known(robot, losses), desired, gains
         self._ia = robot.actuated_v
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
         d, g, ia = self.desired, self.gains, self._ia
         k = d.index(t)
         e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
-        return d.tau[k] + reduced_mass_matrix(self.robot, q) @ (g.kp * e + g.kd * ed)
+        return d.tau[k] + reduced_mass_matrix(self.robot, q, N) @ (g.kp * e + g.kd * ed)
 
 
 class PDGravity:
@@ -208,10 +207,10 @@ class PDGravity:
         self.kp, self.kd = gains.kp * m0, gains.kd * m0
         self._zero = np.zeros(robot.model.nv)
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
         d, ia = self.desired, self._ia
         k = d.index(t)
-        gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero)[0]
+        gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero, Jc=Jc)[0]
         return gravity + self.kp @ (d.q[k, ia] - q[ia]) + self.kd @ (d.v[k, ia] - v[ia])
 
 

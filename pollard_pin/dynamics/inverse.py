@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 import pinocchio as pin
@@ -15,7 +16,13 @@ import pinocchio as pin
 from ..kinematics.closure import closure_drift
 from ..kinematics.errors import SingularityError
 from ..kinematics.ik import IKResult
-from ..kinematics.singularity import SIGMA_FLOOR, actuator_velocity_map, sigma_range, solve_stack
+from ..kinematics.singularity import (
+    SIGMA_FLOOR,
+    actuator_velocity_map,
+    sigma_range,
+    solve_small,
+    solve_stack,
+)
 from ..kinematics.tree import cross, joint_motion
 from ..model.build import Robot, constraint_jacobian
 from ..timing import Stopwatch
@@ -167,13 +174,17 @@ def split_tree_torques(robot: Robot, Jc: np.ndarray, tau_tree: np.ndarray, t=Non
     return tau, lam[..., 0]
 
 
-def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = None):
-    """(τ (6,), λ (2, 3), tau_tree (12,)) at one state."""
+def inverse_dynamics_sample(robot: Robot, q, v, a, losses: JointLosses | None = None,
+                            Jc=None):
+    """(τ (6,), λ (2, 3), tau_tree (12,)) at one state; ``Jc``: the constraint Jacobian at
+    ``q`` if already at hand."""
     model, data = robot.model, robot.data
     tau_tree = pin.rnea(model, data, q, v, a).copy()
     if losses is not None:
         tau_tree += losses.torque(v, a)
-    Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
+    if Jc is None:
+        Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas,
+                                 q)
     sp, sp_max = (float(x) for x in sigma_range(Jc[:, robot.passive_v]))
     if not sp >= SIGMA_FLOOR * sp_max:
         raise _parallel_singular(robot, Jc, 0, sp, sp_max)
@@ -215,33 +226,42 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
                           potential=U, actuated=robot.actuated)
 
 
-def reduced_mass_matrix(robot: Robot, q) -> np.ndarray:
-    """Closed-loop inertia seen by the actuators, Nᵀ M N with v = N q̇_act (6 × 6)."""
+def reduced_mass_matrix(robot: Robot, q, N=None) -> np.ndarray:
+    """Closed-loop inertia seen by the actuators, Nᵀ M N with v = N q̇_act (6 × 6); ``N`` at
+    ``q`` if already at hand (:func:`~pollard_pin.kinematics.singularity.
+    actuator_velocity_map`)."""
     model, data = robot.model, robot.data
-    Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
-    N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
+    if N is None:
+        Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas,
+                                 q)
+        N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
     return N.T @ _mass_matrix(model, data, q) @ N
 
 
 def _mass_matrix(model, data, q) -> np.ndarray:
-    M = pin.crba(model, data, q)
-    return np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle only
+    M = np.array(pin.crba(model, data, q))
+    lower = _lower(model.nv)
+    M[lower] = M.T[lower]  # crba fills the upper triangle only
+    return M
 
 
-def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None):
+@cache
+def _lower(n: int):
+    """Indices of the strict lower triangle of n × n (np.tril_indices costs ≈ 10 µs)."""
+    return np.tril_indices(n, -1)
+
+
+def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None, Jc=None, N=None):
     """(M_red (6, 6), h_red (6,)): the closed-loop dynamics in actuator coordinates,
     τ = M_red(q)·θ̈ + h_red(q, v), at a closed state (q, v) (docs/model.md §18).
 
     M_red = NᵀMN; h_red = Nᵀ(M a₀ + h(q, v) + losses) with a₀ the tree acceleration at θ̈ = 0
     on the loops (Jc a₀ = −J̇c v, a₀ = 0 on the actuators): the inverse dynamics of §13 split
     into its part linear in θ̈ and the rest. ``losses``: friction (and rotor inertia) beyond
-    ``robot.model.armature``."""
+    ``robot.model.armature``. ``Jc`` (6 × 12) and ``N`` (12 × 6) at ``q``: the constraint
+    Jacobian and velocity map if already at hand (sensing computes them)."""
     model, data = robot.model, robot.data
-    ia, ip = robot.actuated_v, robot.passive_v
-    Jc = constraint_jacobian(model, data, robot.constraint_models, robot.constraint_datas, q)
-    N = actuator_velocity_map(Jc, ia, ip)
-    a0 = np.zeros(model.nv)
-    a0[ip] = -np.linalg.solve(Jc[:, ip], closure_drift(robot, q, v))
+    Jc, N, a0 = _closed_loop(robot, q, v, Jc, N)
     tree = pin.rnea(model, data, q, v, a0).copy()
     if losses is not None:
         tree += losses.torque(v, a0)
@@ -249,3 +269,32 @@ def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None):
     if losses is not None and np.any(losses.armature):
         M = M + np.diag(np.broadcast_to(np.asarray(losses.armature, dtype=float), (model.nv,)))
     return N.T @ M @ N, N.T @ tree
+
+
+def reduced_inverse_dynamics(robot: Robot, q, v, u, losses: JointLosses | None = None,
+                             Jc=None, N=None) -> np.ndarray:
+    """τ = M_red(q)·u + h_red(q, v) (6,) of :func:`reduced_dynamics` without forming M_red:
+    one RNEA at the tree acceleration a = N·u + a₀ (on the loops, θ̈ = u), projected by Nᵀ
+    (Jc·N = 0 drops the closure forces; docs/model.md §13, §18). ``Jc``, ``N`` at ``q`` if at
+    hand."""
+    model, data = robot.model, robot.data
+    _, N, a0 = _closed_loop(robot, q, v, Jc, N)
+    a = N @ u + a0
+    if losses is None:
+        return N.T @ pin.rnea(model, data, q, v, a)
+    return N.T @ (pin.rnea(model, data, q, v, a) + losses.torque(v, a))
+
+
+def _closed_loop(robot: Robot, q, v, Jc=None, N=None):
+    """(Jc, N, a₀) at a closed state: the constraint Jacobian and velocity map (those given,
+    else built) and the tree acceleration at θ̈ = 0 on the loops (Jc a₀ = −J̇c v, a₀ = 0 on the
+    actuators)."""
+    ia, ip = robot.actuated_v, robot.passive_v
+    if Jc is None:
+        Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                                 robot.constraint_datas, q)
+    if N is None:
+        N = actuator_velocity_map(Jc, ia, ip)
+    a0 = np.zeros(robot.model.nv)
+    a0[ip] = -solve_small(Jc[:, ip], closure_drift(robot, q, v))
+    return Jc, N, a0

@@ -4,8 +4,9 @@
 A trajectory p(t), t ∈ [t0, t0 + T], is the path p(s), s = (t − t0)/T ∈ [0, 1]. Along any
 timing s(t) the actuator torques are exactly τ = a(s)·s̈ + b(s)·ṡ² + c(s)
 (:func:`path_dynamics`). Between the samples the path is a ``curve(t) -> (poses, rates,
-accelerations)``: the analytic curve when there is one, else :func:`quintic_hermite` through
-the samples' poses, rates and accelerations (:func:`path_dynamics_at` evaluates it anywhere).
+accelerations)``: the analytic curve when there is one, else the quintic Hermite spline
+through the samples' poses, rates and accelerations (:mod:`pollard_pin.paths.splines`;
+:func:`path_dynamics_at` evaluates it anywhere).
 """
 from __future__ import annotations
 
@@ -59,39 +60,6 @@ def path_dynamics(robot, ik, t0: float | None = None,
     ia = robot.actuated_v
     return PathDynamics(s=(t - t0) / duration, a=tau(zero, v_s) - c, b=tau(v_s, a_s) - c,
                         c=c, q_s=v_s[:, ia], q_ss=a_s[:, ia], duration=duration)
-
-
-class QuinticHermite:
-    """The C² quintic Hermite spline through samples' poses, rates and accelerations, a
-    ``curve(times) -> (poses, rates, accelerations)``, each (N, 6): exact at the samples
-    (a class, not a closure, so that a trajectory holding it pickles)."""
-
-    def __init__(self, t, poses, d_poses, dd_poses):
-        t = np.asarray(t, dtype=float)
-        p0, v0, a0 = (np.asarray(x, dtype=float)[:-1] for x in (poses, d_poses, dd_poses))
-        p1, v1, a1 = (np.asarray(x, dtype=float)[1:] for x in (poses, d_poses, dd_poses))
-        h = np.diff(t)[:, None]
-        dp, hv0, hv1, ha0, ha1 = p1 - p0, h * v0, h * v1, h * h * a0, h * h * a1
-        # p(τ) = Σ c_k τ^k on each interval, τ = (t − t_i)/h_i ∈ [0, 1]
-        self.t, self.h = t, h
-        self.coef = np.stack([p0, hv0, ha0 / 2,
-                              10 * dp - 6 * hv0 - 4 * hv1 - (3 * ha0 - ha1) / 2,
-                              -15 * dp + 8 * hv0 + 7 * hv1 + (3 * ha0 - 2 * ha1) / 2,
-                              6 * dp - 3 * (hv0 + hv1) - (ha0 - ha1) / 2])  # (6, n − 1, 6)
-
-    def __call__(self, times):
-        times = np.atleast_1d(np.asarray(times, dtype=float))
-        t, powers = self.t, np.arange(6)[:, None, None]
-        i = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)
-        tau = ((times - t[i]) / self.h[i, 0])[None, :, None]
-        c, h = self.coef[:, i], self.h[i]
-        pos = (c * tau ** powers).sum(0)
-        rate = (c[1:] * powers[1:] * tau ** (powers[1:] - 1)).sum(0) / h
-        acc = (c[2:] * (powers[2:] * (powers[2:] - 1)) * tau ** (powers[2:] - 2)).sum(0) / h**2
-        return pos, rate, acc
-
-
-quintic_hermite = QuinticHermite
 
 
 def path_dynamics_at(robot, curve, t0: float, duration: float, s) -> PathDynamics:
@@ -158,5 +126,5 @@ def arc_length_path(curve, t) -> ArcLengthPath | None:
     return ArcLengthPath(np.concatenate([[0.0], np.cumsum(chord)]), poses, scale)
 
 
-__all__ = ["ArcLengthPath", "PathDynamics", "QuinticHermite", "arc_length_path",
-           "path_dynamics", "path_dynamics_at", "quintic_hermite"]
+__all__ = ["ArcLengthPath", "PathDynamics", "arc_length_path", "path_dynamics",
+           "path_dynamics_at"]

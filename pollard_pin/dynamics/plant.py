@@ -98,16 +98,16 @@ class Plant:
         r = self.robot
         pin.initConstraintDynamics(r.model, r.data, r.constraint_models, r.constraint_datas)
         self._settings = pin.ProximalSettings(1e-14, 0.0, 1)
-        self._ia = r.actuated_v
+        self._ia, self._passive = r.actuated_v, r.passive_v
         self._tau = np.zeros(r.model.nv)
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau_act: np.ndarray) -> np.ndarray:
         """Tree joint accelerations (12,) under actuator torques ``tau_act`` (6,)."""
         r = self.robot
         tau = self._tau
-        tau[:] = 0.0
-        tau[self._ia] = tau_act
+        tau[self._ia] = tau_act  # the passive entries stay 0 unless friction is added
         if self.friction is not None:
+            tau[self._passive] = 0.0
             tau -= self.friction.torque(v, 0.0)
         return pin.constraintDynamics(r.model, r.data, q, v, tau, r.constraint_models,
                                       r.constraint_datas, self._settings).copy()
@@ -121,6 +121,12 @@ class Plant:
         r = self.robot
         return float(np.abs(constraint_residual(r.model, r.data, r.constraint_models,
                                                 r.constraint_datas, q)).max())
+
+    def last_closure_residual(self) -> float:
+        """:meth:`closure_residual` at the q of the last :meth:`acceleration`, without a
+        kinematics pass: ``constraintDynamics`` placed the closures there (same bits)."""
+        return float(np.abs(np.concatenate([cd.oMc1.translation - cd.oMc2.translation
+                                            for _, cd in self.robot.constraint_pairs])).max())
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
         """Kinetic (rotor inertia included) plus gravity potential energy [J]."""

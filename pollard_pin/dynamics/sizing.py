@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics.errors import KinematicsError
+from ..paths.trajectory import trajectory_curve
 from .averages import trapezoid_weights
 from .motors import (
     ActuatorError,
@@ -95,7 +96,7 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
     uniform = uniform_min_duration(act, path)
     try:
         timing = time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                   traj.dd_poses, getattr(traj, "curve", None))
+                                   traj.dd_poses, trajectory_curve(traj))
     except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
         timing, error = None, str(exc)
     checks = _checks(given)

@@ -17,9 +17,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..paths import const_accel
+from ..paths.splines import quintic_hermite
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
 from .motors import utilisation as motor_utilisation
-from .path import PathDynamics, arc_length_path, path_dynamics_at, quintic_hermite
+from .path import PathDynamics, arc_length_path, path_dynamics_at
 
 PER_INTERVAL = 4  # check points per interval to start with
 TARGET = 1.001  # worst verified utilisation between samples accepted (the promise: 1.002)
@@ -62,7 +64,7 @@ class TimeOptimal:
     @property
     def interval_acceleration(self) -> np.ndarray:
         """s̈ of each interval, (n − 1,): (ṡ_{i+1}² − ṡ_i²) / (2 Δs_i)."""
-        return (self.s_dot[1:] ** 2 - self.s_dot[:-1] ** 2) / (2.0 * np.diff(self.s))
+        return const_accel.interval_acceleration(self.s, self.s_dot)
 
     def joint_motion(self, path: PathDynamics):
         """Actuated-joint (τ, q̇, q̈) at the grid samples, each (n, 6)."""
@@ -229,8 +231,7 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
             s_dot_v = solved_at + step * (aim - solved_at)
             continue
         s_dot = np.maximum(sd, 0.0)
-        u = (s_dot[1:] ** 2 - s_dot[:-1] ** 2) / (2.0 * np.diff(s))
-        x = s_dot[:-1, None] ** 2 + 2.0 * theta * np.diff(s)[:, None] * u[:, None]
+        x = const_accel.rate_squared(s, s_dot, theta)
         dense_s_dot = np.empty(len(path.s))
         dense_s_dot[idx] = np.sqrt(np.maximum(x, 0.0))
         solved_at = s_dot_v
@@ -261,15 +262,13 @@ def _uncontrollable(K, s) -> str:
 
 def _timing(act, path: PathDynamics, s_dot, at_rest, iterations, m) -> TimeOptimal:
     s = path.s
-    ds = np.diff(s)
-    with np.errstate(divide="ignore"):
-        dt = 2.0 * ds / (s_dot[:-1] + s_dot[1:])
+    dt = const_accel.interval_durations(s, s_dot)
     if not np.all(np.isfinite(dt)):
         k = int(np.argmax(~np.isfinite(dt)))
         raise ActuatorError(f"the time-optimal traversal stops between samples {k} and "
                             f"{k + 1} of the path (ṡ = 0 at both): no finite duration")
     t = np.concatenate([[0.0], np.cumsum(dt)])
-    u = (s_dot[1:] ** 2 - s_dot[:-1] ** 2) / (2.0 * ds)
+    u = const_accel.interval_acceleration(s, s_dot)
     # s̈ jumps at the samples; both one-sided values are exact and within the limits. Keep
     # the one that loads the motors more (the worse side), so that a replay checks it.
     left, right = np.concatenate([u[:1], u]), np.concatenate([u, u[-1:]])
@@ -294,16 +293,7 @@ def utilisation(act: Actuators, path: PathDynamics, s_ddot, s_dot, at_rest=None,
 def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, ṡ, s̈) of the traversal at any points ``s`` ∈ [0, 1] (s̈ constant per interval;
     at a sample, the interval that starts there)."""
-    s = np.asarray(s, dtype=float)
-    grid = timing.s
-    i = np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2)
-    u = timing.interval_acceleration[i]
-    x = np.maximum(timing.s_dot[i] ** 2 + 2.0 * u * (s - grid[i]), 0.0)
-    sd = np.sqrt(x)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tau = np.where(sd + timing.s_dot[i] > 0,
-                       2.0 * (s - grid[i]) / (sd + timing.s_dot[i]), 0.0)
-    return timing.t[i] + tau, sd, u
+    return const_accel.at_path(timing.t, timing.s, timing.s_dot, s)
 
 
 def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=None, *,
@@ -314,8 +304,9 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     :class:`TimeOptimal` out (``t``: the retimed times of the samples, ``s_dot``, ``s_ddot``).
 
     ``curve(times) -> (poses, rates, accelerations)`` is the exact path between the samples
-    (default: :func:`~.path.quintic_hermite` through them). The limits are imposed at
-    ``per_interval`` + 1 check points per interval, then checked halfway between them; while
+    (default: the quintic Hermite spline through them, :mod:`pollard_pin.paths.splines`). The
+    limits are imposed at ``per_interval`` + 1 check points per interval, then checked halfway
+    between them; while
     the worst utilisation found exceeds ``target``, the offending intervals' ratings are
     tightened by their overshoot when it is below ``TIGHTEN_BELOW`` (up to
     ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
@@ -403,7 +394,7 @@ def _dense_use(act, dense: PathDynamics, timing: TimeOptimal, m: int, rest) -> n
     grid, s_dot = timing.s, timing.s_dot
     idx, theta = _layout(grid, m)
     u = timing.interval_acceleration
-    x = s_dot[:-1, None] ** 2 + 2.0 * theta * np.diff(grid)[:, None] * u[:, None]
+    x = const_accel.rate_squared(grid, s_dot, theta, u)
     at_rest = np.zeros(len(dense.s), dtype=bool)
     at_rest[[0, -1]] = rest
     alpha, beta, gamma, delta, both = motor_coefficients(act, dense, at_rest)

@@ -15,22 +15,26 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import rotation
-from ..kinematics.closure import solve_closure, tool_pose
+from ..kinematics.closure import close_loops, tool_pose
 from ..kinematics.limits import first_violation, violation_text
 from ..kinematics.singularity import actuator_velocity_map
-from ..model.build import Robot, constraint_jacobian
+from ..model.build import Robot
 from .averages import time_rms
 from .control import (
     CONTROL_PERIOD,
+    ComputedTorque,
     ControlError,
     Controller,
     DesiredTrajectory,
+    FeedforwardPD,
     Gains,
+    PDGravity,
     desired_trajectory,
     make_controller,
 )
@@ -40,8 +44,9 @@ from .plant import BAUMGARTE, ModelMismatch, Plant
 
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
-# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py).
-STEP_SECONDS, TICK_SECONDS = 80e-6, 400e-6
+# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
+# 80 µs and 400 µs before a tick built Jc and N once and the constraints were Pinocchio vectors).
+STEP_SECONDS, TICK_SECONDS = 40e-6, 140e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
 # m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick
@@ -71,10 +76,16 @@ def sensed_state(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
     """(q (12,), v (12,)) from the measured actuator angles ``theta`` and rates ``dtheta`` (6,):
     the passive joints by forward kinematics (:func:`solve_closure`, warm-started at
     ``q_guess``, loops closed to 1e-12 m), their rates by v = N(q)·θ̇ (docs/model.md §12)."""
-    q = solve_closure(robot, theta, q_guess)
-    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
-                             robot.constraint_datas, q)
-    return q, actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v) @ dtheta
+    return sensed_kinematics(robot, theta, dtheta, q_guess)[:2]
+
+
+def sensed_kinematics(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
+                      q_guess: np.ndarray | None = None):
+    """(q, v, Jc, N): :func:`sensed_state` with the constraint Jacobian Jc (6 × 12) and the
+    velocity map N (12 × 6) at q that it built, for the controller to reuse."""
+    q, Jc = close_loops(robot, theta, q_guess)
+    N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
+    return q, N @ dtheta, Jc, N
 
 
 def tracking_summary(t, tip_position_error, tip_orientation_error, torques: dict,
@@ -255,10 +266,19 @@ def _unstable_hint(gains: Gains, control_period: float) -> str:
             "the model mismatch")
 
 
+def _stop_hint(saturated_since: float | None, gains: Gains, control_period: float) -> str:
+    """What to change when the plant leaves its limits or loop tolerance."""
+    if saturated_since is not None:
+        return (f"the torque has been saturated since t = {saturated_since:.6g} s: raise the "
+                "torque limit or slow the trajectory")
+    return _unstable_hint(gains, control_period)
+
+
 def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_limits: bool,
-                 tolerance: float, hint: str) -> None:
+                 tolerance: float, hint: Callable[[], str]) -> None:
     """Stop where the plant is no longer the robot: loops open beyond ``tolerance`` [m], or
-    (``joint_limits``) a joint outside its limits."""
+    (``joint_limits``) a joint outside its limits. ``hint()`` says what to change (built only
+    on failure: this runs every tick)."""
     why = None
     if residual > tolerance:
         why = (f"the plant's loops opened to {residual:.3g} m (loop tolerance "
@@ -271,7 +291,7 @@ def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_l
             why = "the plant left its joint limits: " + violation_text(
                 plant.robot.params, names[j], float(q[j]), excess)
     if why is not None:
-        raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint}")
+        raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint()}")
 
 
 def _torque_limit(torque_limit) -> np.ndarray | None:
@@ -296,7 +316,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                       loop_tolerance: float = LOOP_TOLERANCE,
                       progress: Callable[[int, int], None] | None = None) -> TrackingResult:
     """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
-    ``dd_poses``, e.g. :class:`~pollard_pin.io.trajectory.Trajectory`).
+    ``dd_poses``, e.g. :class:`~pollard_pin.paths.trajectory.Trajectory`; its ``curve``, if
+    any, is the path between the samples the reference follows).
 
     ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
     :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``gains``: the
@@ -329,10 +350,12 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     label = controller if isinstance(controller, str) else type(controller).__name__
     if isinstance(controller, str):
         controller = make_controller(controller, robot, desired, gains, known_losses)
+    builtin = isinstance(controller, (ComputedTorque, FeedforwardPD, PDGravity))
     q, v = _start_state(plant, desired, trajectory, start)
 
     samples = np.asarray(trajectory.t, dtype=float)
-    pts, is_tick, sample_of = _grid(desired.t, samples, dt)
+    # as Python scalars: the loop reads three per step (numpy scalars cost more, same bits)
+    pts, is_tick, sample_of = (x.tolist() for x in _grid(desired.t, samples, dt))
     n = len(samples)
     nv = plant.robot.model.nv
     Q, V, A = np.empty((n, nv)), np.empty((n, nv)), np.empty((n, nv))
@@ -349,23 +372,24 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         t = pts[i]
         # Non-finite, or spun through thousands of turns: the loop closure would fail first
         # and hide the cause.
-        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v))
-                and np.abs(q).max() < DIVERGED_ANGLE):
+        # (NaN fails both comparisons; one reduction each, this runs every step)
+        if not (np.abs(q).max() < DIVERGED_ANGLE and np.abs(v).max() < math.inf):
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
                                   f"beyond {DIVERGED_ANGLE:g} rad; "
                                   f"{_unstable_hint(gains, control_period)}")
-        res = None  # the plant's loop residual at this point, once computed
         if is_tick[i]:
-            theta, dtheta = q[ia].copy(), v[ia].copy()
+            theta, dtheta = q[ia], v[ia]  # copies (an index array)
             if rng is not None:
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            qm, vm = sensed_state(robot, theta, dtheta, guess)
+            qm, vm, Jc, N = sensed_kinematics(robot, theta, dtheta, guess)
             # The next tick's FK warm start, second order: Newton then needs one step.
             guess = qm + control_period * (1.5 * vm - 0.5 * v_seen)
             v_seen = vm
-            command = np.asarray(controller(t, qm, vm), dtype=float).reshape(-1)
-            if command.shape != (6,) or not np.all(np.isfinite(command)):
+            command = controller(t, qm, vm, Jc, N) if builtin else controller(t, qm, vm)
+            command = np.asarray(command, dtype=float).reshape(-1)
+            if command.shape != (6,) or not math.isfinite(command.sum()) and not np.all(
+                    np.isfinite(command)):  # (a finite sum: all finite, one reduction)
                 raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
                                    "expected 6 finite actuator torques")
             tau = command if limit is None else np.clip(command, -limit, limit)
@@ -375,18 +399,17 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 saturated_since = None
             elif clipped and saturated_since is None:
                 saturated_since = t
-            res = plant.closure_residual(q)
-            max_res = max(max_res, res)
-            _check_plant(plant, q, res, t, joint_limits, loop_tolerance,
-                         "the torque has been saturated since t = "
-                         f"{saturated_since:.6g} s: raise the torque limit or slow the "
-                         "trajectory" if saturated_since is not None else
-                         _unstable_hint(gains, control_period))
         a1 = f(q, v, tau)
         k = sample_of[i]
+        if is_tick[i] or k >= 0:  # the loop residual at q, where f just placed the closures
+            res = plant.last_closure_residual()
+            if is_tick[i]:
+                max_res = max(max_res, res)
+                _check_plant(plant, q, res, t, joint_limits, loop_tolerance,
+                             partial(_stop_hint, saturated_since, gains, control_period))
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
-            RES[k] = plant.closure_residual(q) if res is None else res  # once per point
+            RES[k] = res
             if progress is not None:
                 progress(k + 1, n)
         if i == last:
@@ -429,5 +452,5 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
 
 
 __all__ = ["LOOP_TOLERANCE", "MeasurementNoise", "TrackingResult", "check_steps", "default_step",
-           "estimated_wall", "integration_steps", "sensed_state", "simulate_tracking", "step_used",
-           "tracking_summary"]
+           "estimated_wall", "integration_steps", "sensed_kinematics", "sensed_state",
+           "simulate_tracking", "step_used", "tracking_summary"]

@@ -4,7 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..dynamics.timeopt import TimeOptimal
-from .trajectory import Trajectory, trajectory_curve
+from ..paths.const_accel import RetimedCurve
+from ..paths.trajectory import Trajectory, trajectory_curve
 
 
 def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None = None
@@ -34,24 +35,4 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
                       curve=RetimedCurve(trajectory_curve(traj), float(t[0]), T, timing))
 
 
-class RetimedCurve:
-    """The retimed motion between the samples: s̈ constant per interval of ``timing`` on the
-    path ``base(t0 + s·T)``; a ``curve(times) -> (poses, rates, accelerations)``."""
-
-    def __init__(self, base, t0: float, duration: float, timing: TimeOptimal):
-        self.base, self.t0, self.T, self.timing = base, t0, duration, timing
-
-    def __call__(self, times):
-        times = np.atleast_1d(np.asarray(times, dtype=float))
-        tim, T = self.timing, self.T
-        u = tim.interval_acceleration
-        i = np.clip(np.searchsorted(tim.t, times, side="right") - 1, 0, len(u) - 1)
-        tau = times - tim.t[i]
-        s = tim.s[i] + tim.s_dot[i] * tau + 0.5 * u[i] * tau * tau
-        s_dot = (tim.s_dot[i] + u[i] * tau)[:, None]
-        poses, rates, accelerations = self.base(self.t0 + s * T)
-        return (poses, T * rates * s_dot,
-                T * rates * u[i][:, None] + T * T * accelerations * s_dot**2)
-
-
-__all__ = ["RetimedCurve", "retimed_trajectory"]
+__all__ = ["retimed_trajectory"]

@@ -6,9 +6,9 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import pose_from_se3
-from ..model.build import Robot, constraint_jacobian, constraint_residual
+from ..model.build import Robot, constraint_residual_jacobian
 from .errors import ClosureError, ClosureSingularError
-from .singularity import SIGMA_FLOOR, sigma_range
+from .singularity import SIGMA_FLOOR, sigma_range, solve_small
 
 CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
 MAX_ITER = 50
@@ -20,7 +20,17 @@ def _leg_residuals(r: np.ndarray) -> np.ndarray:
 
 def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
                   tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER) -> np.ndarray:
-    """Full configuration (12,) with the six actuator angles fixed and the loops closed.
+    """Full configuration (12,) with the six actuator angles fixed and the loops closed
+    (:func:`close_loops` without the Jacobian)."""
+    return close_loops(robot, actuated, q_guess, tol, max_iter)[0]
+
+
+def close_loops(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
+                tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """(q (12,), Jc (6 × 12) at q): the full configuration with the six actuator angles fixed
+    and the loops closed, and the constraint Jacobian there (computed anyway: Newton's last
+    pass), for the velocity map and the dynamics at q.
 
     Newton on the passive angles with the constraint Jacobian, warm-started at ``q_guess``
     (default: the home posture). Raises :class:`ClosureError` naming the leg and the residual
@@ -28,8 +38,6 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
     a :class:`SingularityError`, chain "parallel", with σ) when the loops close on a parallel
     singularity, where the passive angles are not locally unique (docs/model.md §12).
     """
-    model, data = robot.model, robot.data
-    cms, cds = robot.constraint_models, robot.constraint_datas
     act = np.asarray(actuated, dtype=float).reshape(-1)
     if act.shape != (6,) or not np.all(np.isfinite(act)):
         raise ValueError(f"actuator angles must be 6 finite numbers "
@@ -40,15 +48,17 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
                          f"{np.asarray(q_guess).tolist()}")
     ia, ip = robot.actuated_v, robot.passive_v
     q[ia] = act
-    r = constraint_residual(model, data, cms, cds, q)
+    r, Jc = constraint_residual_jacobian(robot, q)
     for _ in range(max_iter):
         if np.abs(r).max() <= tol:
-            return _check_regular(robot, q, act)
-        Jp = constraint_jacobian(model, data, cms, cds, q)[:, ip]
-        step = np.linalg.lstsq(Jp, r, rcond=None)[0]  # least squares: survives singular Jp
+            return _check_regular(robot, q, act, Jc[:, ip]), Jc
+        try:
+            step = solve_small(Jc[:, ip], r)
+        except np.linalg.LinAlgError:  # exactly singular Jp: least squares survives it
+            step = np.linalg.lstsq(Jc[:, ip], r, rcond=None)[0]
         # Damped step: never move a passive angle by more than 0.5 rad at once.
         q[ip] -= step * min(1.0, 0.5 / max(np.abs(step).max(), 1e-300))
-        r = constraint_residual(model, data, cms, cds, q)
+        r, Jc = constraint_residual_jacobian(robot, q)
     legs = _leg_residuals(r)
     leg = int(np.argmax(legs)) + 1
     angles = dict(zip(robot.actuated, act.round(6).tolist()))
@@ -59,11 +69,10 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
         f"attachment point", leg=leg, residual=float(legs.max()))
 
 
-def _check_regular(robot: Robot, q: np.ndarray, act: np.ndarray) -> np.ndarray:
-    """q, unless Jc_p is singular there (σ_min < SIGMA_FLOOR σ_max): the loops then close on a
-    parallel singularity and the passive angles are not locally unique."""
-    Jp = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
-                             robot.constraint_datas, q)[:, robot.passive_v]
+def _check_regular(robot: Robot, q: np.ndarray, act: np.ndarray, Jp: np.ndarray
+                   ) -> np.ndarray:
+    """q, unless Jc_p (``Jp``, at q) is singular there (σ_min < SIGMA_FLOOR σ_max): the loops
+    then close on a parallel singularity and the passive angles are not locally unique."""
     smin, smax = (float(x) for x in sigma_range(Jp))
     if smin >= SIGMA_FLOOR * smax:
         return q
@@ -84,9 +93,9 @@ def closure_drift(robot: Robot, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
     lwa = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
     return np.concatenate([
-        pin.getFrameClassicalAcceleration(model, data, robot.frame_id(c.frame_a), lwa).linear
-        - pin.getFrameClassicalAcceleration(model, data, robot.frame_id(c.frame_b), lwa).linear
-        for c in robot.closures])
+        pin.getFrameClassicalAcceleration(model, data, a, lwa).linear
+        - pin.getFrameClassicalAcceleration(model, data, b, lwa).linear
+        for a, b in robot.closure_frame_ids])
 
 
 def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:

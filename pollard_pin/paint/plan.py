@@ -27,7 +27,7 @@ import numpy as np
 from ..dynamics.averages import time_rms
 from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ..dynamics.path import path_dynamics
-from ..io.trajectory import Trajectory
+from ..paths.trajectory import Trajectory
 from .deposition import Gun
 from .errors import BudgetError, PlanError, ReachError
 from .job import MIN_PANEL_SIGMAS, PaintJob

@@ -35,7 +35,8 @@ class SweepError(InputError):
 
 # --- the per-variant function (pure, picklable) -----------------------------------------------
 def _trajectory(spec: Mapping, home_pose):
-    from ..io.trajectory import Trajectory, thesis_trajectory
+    from ..paths.curves import thesis_trajectory
+    from ..paths.trajectory import Trajectory
 
     if spec["kind"] == "thesis":
         return thesis_trajectory(duration=spec["duration"], samples=spec["samples"],

@@ -96,13 +96,9 @@ def trajectory_spec(trajectory: Any = "thesis", duration: float | None = None,
 
     A CSV file is read here, once, and travels as arrays, so workers need no access to it.
     """
-    from ..io.trajectory import (
-        THESIS_DURATION,
-        THESIS_SAMPLES,
-        Trajectory,
-        from_csv,
-        thesis_trajectory,
-    )
+    from ..io.trajectory import from_csv
+    from ..paths.curves import THESIS_DURATION, THESIS_SAMPLES, thesis_trajectory
+    from ..paths.trajectory import Trajectory
 
     if isinstance(trajectory, str) and trajectory == "thesis":
         spec = {"kind": "thesis",
@@ -232,7 +228,7 @@ def load_grid(path: str | Path) -> Sweep:
     for k in ("duration", "samples"):
         if k in d:
             number(d[k], k, SweepError, f"{path}: ")
-    from ..io.trajectory import TrajectoryError
+    from ..paths.trajectory import TrajectoryError
 
     try:
         return make_sweep(_flatten(grid),

@@ -20,7 +20,7 @@ def test_out_is_what_it_prints(tmp_path, capsys):
 
 
 def test_json_is_the_librarys_report(robot, capsys):
-    from pollard_pin.io.trajectory import thesis_trajectory
+    from pollard_pin.paths.curves import thesis_trajectory
     from pollard_pin.run import run_pipeline
     from pollard_pin.viz.report import report, to_json
 

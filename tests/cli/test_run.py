@@ -12,14 +12,10 @@ from poses import wrist_singular_pose  # tests/poses.py
 import pollard_pin as pp
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
-from pollard_pin.io.trajectory import (
-    Trajectory,
-    from_csv,
-    smooth_random_trajectory,
-    thesis_trajectory,
-    to_csv,
-)
+from pollard_pin.io.trajectory import from_csv, to_csv
 from pollard_pin.model.names import SPHERICAL
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 from pollard_pin.run import run_pipeline
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")

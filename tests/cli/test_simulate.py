@@ -5,7 +5,8 @@ from pathlib import Path
 import pytest
 from cli_run import run_cli
 
-from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
+from pollard_pin.paths.curves import thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 MOTORS = EXAMPLES / "actuators.toml"

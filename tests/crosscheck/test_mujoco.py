@@ -47,7 +47,7 @@ def _ik(robot, traj):
 
 @pytest.fixture(scope="module")
 def iks(robot):
-    from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_trajectory
+    from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 
     return {"thesis": _ik(robot, thesis_trajectory()),
             "random0": _ik(robot, smooth_random_trajectory(0)),
@@ -255,7 +255,7 @@ def _wrap(x):
 
 @pytest.fixture(scope="module")
 def short_trajs():
-    from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_trajectory
+    from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 
     return {"thesis201": thesis_trajectory(samples=201),
             "random0": smooth_random_trajectory(0, samples=101),
@@ -326,7 +326,7 @@ def test_mujoco_ik_warm_start_options_agree(short_trajs, built):
 def test_mujoco_ik_accelerations_by_finite_differences_in_time(built):
     """Pinocchio-free: v and a are the time derivatives of the IK positions along the thesis
     curve (exact poses at t ± h from pollard_pin.trajectory.thesis_curve)."""
-    from pollard_pin.io.trajectory import thesis_curve
+    from pollard_pin.paths.curves import thesis_curve
 
     h = 1e-4
     t0 = np.linspace(0.3, 19.7, 7)

@@ -5,7 +5,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.crosscheck.newton_euler import joint_loads
-from pollard_pin.io.trajectory import smooth_random_trajectory
+from pollard_pin.paths.curves import smooth_random_trajectory
 
 AGREE = 2e-13  # relative to the peak force / moment (the engines agree to ~2e-15)
 

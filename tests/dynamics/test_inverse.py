@@ -10,7 +10,7 @@ import pollard_pin as pp
 from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.forward import forward_dynamics, replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
-from pollard_pin.io.trajectory import smooth_random_trajectory, thesis_curve, thesis_trajectory
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
 
 @pytest.fixture(scope="module")
@@ -215,3 +215,28 @@ def test_batched_rnea_in_a_child_forked_after_the_parent_ran_it(robot):
         os.waitpid(pid, 0)
         pytest.fail("the forked child hung in the batched RNEA (OpenMP after fork)")
     assert os.waitstatus_to_exitcode(status) == 0
+
+
+def test_reduced_inverse_dynamics_is_m_red_u_plus_h_red(robot):
+    """One RNEA at a = N·u + a₀, projected by Nᵀ, is M_red·u + h_red (seen 7e-16 N·m), and
+    it is the closed-loop inverse dynamics (§13: the actuated torques of the [Sᵀ Jcᵀ] split of
+    the tree torques at that a, seen 1e-15), losses and model armature included."""
+    from pollard_pin.dynamics.inverse import reduced_dynamics, reduced_inverse_dynamics
+    from pollard_pin.kinematics.ik import inverse_kinematics
+
+    traj = thesis_trajectory(samples=21)
+    ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    rng = np.random.default_rng(5)
+    losses = JointLosses(viscous=0.3, coulomb=0.1, armature=0.02)
+    for k in (0, 7, 13):
+        q, v, u = ik.q[k], ik.v[k], rng.normal(size=6)
+        for known in (None, losses):
+            M, h = reduced_dynamics(robot, q, v, known)
+            tau = reduced_inverse_dynamics(robot, q, v, u, known)
+            np.testing.assert_allclose(tau, M @ u + h, rtol=0, atol=1e-13)
+    # at the IK's own state and acceleration: the §13 inverse dynamics
+    ia = robot.actuated_v
+    for k in (3, 11):
+        tau = reduced_inverse_dynamics(robot, ik.q[k], ik.v[k], ik.a[k, ia])
+        want = inverse_dynamics_sample(robot, ik.q[k], ik.v[k], ik.a[k])[0]
+        np.testing.assert_allclose(tau, want, rtol=0, atol=1e-12)

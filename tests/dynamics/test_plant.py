@@ -8,10 +8,10 @@ import pytest
 
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample, reduced_dynamics
 from pollard_pin.dynamics.plant import ModelMismatch, Plant
-from pollard_pin.io.trajectory import thesis_trajectory
 from pollard_pin.kinematics.closure import closure_drift
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
+from pollard_pin.paths.curves import thesis_trajectory
 
 
 @pytest.fixture(scope="module")
@@ -99,3 +99,14 @@ def test_closure_drift_matches_the_batched_ik(robot, ik):
         fd = max(fd, np.abs(central - gamma).max() / np.abs(gamma).max())
     assert worst <= 1e-12
     assert fd <= 3e-8
+
+
+def test_last_closure_residual_is_the_residual_at_the_last_state(robot):
+    """Read where constraintDynamics placed the closures, it is closure_residual at that q,
+    bit for bit (the loop saves a kinematics pass per tick)."""
+    plant = Plant(robot, ModelMismatch(payload=0.05, mass_error=0.1))
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        q = robot.home() + rng.normal(0.0, 0.05, robot.model.nq)
+        plant.acceleration(q, rng.normal(size=robot.model.nv), rng.normal(size=6))
+        assert plant.last_closure_residual() == plant.closure_residual(q)

@@ -17,11 +17,12 @@ from motor_model import rms as _rms
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics import timeopt as TO
-from pollard_pin.dynamics.path import PathDynamics, path_dynamics, quintic_hermite
+from pollard_pin.dynamics.path import PathDynamics, path_dynamics
 from pollard_pin.io.retime import retimed_trajectory
 from pollard_pin.io.table import read_result
-from pollard_pin.io.trajectory import thesis_curve
 from pollard_pin.paint.raster import PanelFrame, raster_motion, raster_segments
+from pollard_pin.paths.curves import thesis_curve
+from pollard_pin.paths.splines import quintic_hermite
 
 
 def _figure_eight():

@@ -21,10 +21,11 @@ from pollard_pin.dynamics.tracking import (
     simulate_tracking,
     step_used,
 )
-from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 from pollard_pin.kinematics.closure import solve_closure
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
+from pollard_pin.paths.curves import thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 
 OFFSET = np.array([0.005, -0.004, 0.003, 0.02, -0.01, 0.02])  # m, rad: a pose step
 
@@ -251,3 +252,28 @@ def test_loops_that_open_beyond_the_tolerance_stop_the_run(robot):
     assert np.abs(free.closure_residual).max() > LOOP_TOLERANCE
     fine = simulate_tracking(robot, traj, "feedforward-pd", dt=5e-4, **kw)
     assert fine.max_closure_residual <= LOOP_TOLERANCE / 100
+
+
+def test_sensing_hands_its_jacobian_and_velocity_map_to_the_controllers(robot):
+    """sensed_kinematics' Jc and N are those built afresh at its q (bit for bit), and every
+    built-in controller gives the same torque with them as building its own (what a tick
+    saves: Jc and N built once, not two and three times)."""
+    from pollard_pin.dynamics.control import make_controller
+    from pollard_pin.dynamics.tracking import sensed_kinematics
+
+    traj = _head(0.05)
+    desired = desired_trajectory(robot, traj)
+    ia, ip = robot.actuated_v, robot.passive_v
+    k = 20
+    theta = desired.q[k, ia] + 1e-4
+    q, v, Jc, N = sensed_kinematics(robot, theta, desired.v[k, ia], desired.q[k])
+    q2, v2 = sensed_state(robot, theta, desired.v[k, ia], desired.q[k])
+    np.testing.assert_array_equal(q, q2)
+    np.testing.assert_array_equal(v, v2)
+    J = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                            robot.constraint_datas, q)
+    np.testing.assert_array_equal(Jc, J)
+    np.testing.assert_array_equal(N, actuator_velocity_map(J, ia, ip))
+    for name in ("computed-torque", "feedforward-pd", "pd"):
+        c = make_controller(name, robot, desired)
+        np.testing.assert_array_equal(c(desired.t[k], q, v, Jc, N), c(desired.t[k], q, v))

@@ -6,7 +6,7 @@ import pytest
 
 from pollard_pin.dynamics.timeopt import TimeOptimal
 from pollard_pin.io.retime import retimed_trajectory
-from pollard_pin.io.trajectory import thesis_trajectory
+from pollard_pin.paths.curves import thesis_trajectory
 
 D = 7.0  # s: the new duration
 

@@ -7,13 +7,8 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.io.trajectory import (
-    DERIVATIVE_TOLERANCE,
-    Trajectory,
-    TrajectoryError,
-    from_csv,
-    to_csv,
-)
+from pollard_pin.io.trajectory import DERIVATIVE_TOLERANCE, from_csv, to_csv
+from pollard_pin.paths.trajectory import Trajectory, TrajectoryError
 
 FIGURE8 = Path(__file__).resolve().parents[2] / "examples" / "figure8.csv"
 

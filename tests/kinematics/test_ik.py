@@ -21,16 +21,12 @@ from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T
-from pollard_pin.io.trajectory import (
-    TrajectoryError,
-    from_csv,
-    smooth_random_trajectory,
-    thesis_trajectory,
-    to_csv,
-)
+from pollard_pin.io.trajectory import from_csv, to_csv
 from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
 from pollard_pin.model.names import SPHERICAL
+from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
+from pollard_pin.paths.trajectory import TrajectoryError
 
 TASK = ("x", "y", "z", "psi", "theta", "phi")
 HEADER = "t,x,y,z,psi,theta,phi"

@@ -3,9 +3,9 @@ the closed form of docs/model.md §7."""
 import numpy as np
 
 from pollard_pin.analytic import closed_form as T
-from pollard_pin.io.trajectory import smooth_random_trajectory
 from pollard_pin.kinematics.ik_batch import inverse_kinematics_batch
 from pollard_pin.kinematics.ik_newton import inverse_kinematics_newton
+from pollard_pin.paths.curves import smooth_random_trajectory
 
 
 def wrap(a):

@@ -27,7 +27,6 @@ from pollard_pin.analytic import taskspace as ts
 from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.inverse import inverse_dynamics, split_tree_torques
 from pollard_pin.errors import InputError
-from pollard_pin.io.trajectory import Trajectory, thesis_trajectory
 from pollard_pin.kinematics import closure
 from pollard_pin.kinematics.errors import (
     BranchFlipError,
@@ -50,6 +49,8 @@ from pollard_pin.kinematics.singularity import (
     check_margins,
     solve_stack,
 )
+from pollard_pin.paths.curves import thesis_trajectory
+from pollard_pin.paths.trajectory import Trajectory
 
 # A pose exactly on leg 2's reach boundary (θ76_2 = 0), from the issue.
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,

@@ -860,3 +860,23 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
                        match=r"pollard\.urdf and pollard\.srdf do not match .*pollard\.toml: "
                              r"regenerate them from the parameters"):
         pollard_pin.load()
+
+
+def test_residual_and_jacobian_in_one_pass_and_the_constraint_vectors(robot):
+    """constraint_residual_jacobian gives constraint_residual and constraint_jacobian bit for
+    bit from one kinematics pass; the constraints live in Pinocchio's own vectors (a Python
+    list is copied on every call), and robot_copy's lists become vectors too."""
+    from pollard_pin.dynamics.forward import robot_copy
+    from pollard_pin.model.build import constraint_residual_jacobian
+
+    rng = np.random.default_rng(4)
+    for _ in range(5):
+        q = robot.home() + rng.normal(0.0, 0.3, robot.model.nq)
+        r, J = constraint_residual_jacobian(robot, q)
+        args = (robot.model, robot.data, robot.constraint_models, robot.constraint_datas, q)
+        np.testing.assert_array_equal(r, constraint_residual(*args))
+        np.testing.assert_array_equal(J, constraint_jacobian(*args))
+    for r in (robot, robot_copy(robot)):
+        assert isinstance(r.constraint_models, pin.StdVec_RigidConstraintModel)
+        assert isinstance(r.constraint_datas, pin.StdVec_RigidConstraintData)
+        assert len(r.constraint_pairs) == 2

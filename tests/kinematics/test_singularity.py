@@ -1,0 +1,52 @@
+"""Small dense linear algebra of pollard_pin.kinematics.singularity on one matrix (a control
+tick's): LAPACK called directly, against numpy."""
+import numpy as np
+import pytest
+
+from pollard_pin.kinematics.singularity import (
+    actuator_velocity_map,
+    sigma_range,
+    solve_small,
+    solve_stack,
+)
+
+
+def test_solve_small_is_numpys_solve_and_fails_as_it_does():
+    rng = np.random.default_rng(1)
+    A = rng.normal(size=(6, 6))
+    for B in (rng.normal(size=6), rng.normal(size=(6, 7))):
+        np.testing.assert_allclose(solve_small(A, B), np.linalg.solve(A, B), rtol=1e-13,
+                                   atol=1e-13)  # seen: the same bits
+    A[:, 2] = 0.0
+    with pytest.raises(np.linalg.LinAlgError):
+        solve_small(A, B)
+
+
+def test_one_matrix_sigma_range_is_the_svds():
+    """One matrix goes to LAPACK's SVD directly: numpy's values (seen: the same bits)."""
+    rng = np.random.default_rng(2)
+    for last in (0.5, 1e-6):
+        A = rng.normal(size=(6, 6)) @ np.diag([1, 1, 1, 1, 1, last])
+        s = np.linalg.svd(A, compute_uv=False)
+        smin, smax = sigma_range(A)
+        assert smin == pytest.approx(s[-1], rel=1e-12)
+        assert smax == pytest.approx(s[0], rel=1e-13)
+    assert all(np.isnan(x) for x in sigma_range(np.full((6, 6), np.nan)))
+
+
+def test_velocity_map_of_one_matrix_is_the_stacks():
+    """The single-matrix path (one dgesv) gives the stacked path's N; a singular Jc_p still
+    raises."""
+    rng = np.random.default_rng(3)
+    Jc = rng.normal(size=(6, 12))
+    ia, ip = np.array([0, 6, 9, 3, 4, 5]), np.array([1, 2, 7, 8, 10, 11])
+    N = actuator_velocity_map(Jc, ia, ip)
+    stacked = actuator_velocity_map(Jc[None], ia, ip)[0]
+    np.testing.assert_allclose(N, stacked, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(N[ip], -solve_stack(Jc[:, ip], Jc[:, ia])[0], rtol=0,
+                               atol=1e-12)
+    np.testing.assert_array_equal(N[ia], np.eye(6))
+    np.testing.assert_allclose(Jc @ N, 0.0, atol=1e-12)
+    Jc[:, ip[0]] = 0.0
+    with pytest.raises(Exception, match="singular"):
+        actuator_velocity_map(Jc, ia, ip)

@@ -1,0 +1,35 @@
+"""The trajectory type and its curve (pollard_pin.paths.trajectory)."""
+import pickle
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from pollard_pin.paths.curves import thesis_curve, thesis_trajectory
+from pollard_pin.paths.splines import QuinticHermite
+from pollard_pin.paths.trajectory import Trajectory, TrajectoryError, trajectory_curve
+
+
+def test_shapes_are_checked_and_windows_are_views():
+    t = np.linspace(0.0, 1.0, 5)
+    with pytest.raises(TrajectoryError, match=r"d_poses has shape \(4, 6\), expected \(5, 6\)"):
+        Trajectory(t, np.zeros((5, 6)), np.zeros((4, 6)), np.zeros((5, 6)))
+    traj = thesis_trajectory(samples=11)
+    w = traj.window(3, 7)
+    assert len(w) == 4 and w.curve is traj.curve and np.shares_memory(w.poses, traj.poses)
+    assert [s for s, _ in traj.windows(4)] == [0, 4, 8]
+
+
+def test_the_curve_is_the_trajectorys_own_else_the_hermite_through_its_samples():
+    """The thesis trajectory's curve is the analytic curve (bit for bit); without one, the
+    quintic Hermite through the samples, exact at them; either pickles."""
+    traj = thesis_trajectory(samples=201)
+    t = np.linspace(0.0, 20.0, 333)
+    for got, want in zip(pickle.loads(pickle.dumps(trajectory_curve(traj)))(t),
+                         thesis_curve(t)):
+        np.testing.assert_array_equal(got, want)
+    bare = replace(traj, curve=None)
+    curve = pickle.loads(pickle.dumps(trajectory_curve(bare)))
+    assert isinstance(curve, QuinticHermite)
+    for got, want in zip(curve(traj.t), (traj.poses, traj.d_poses, traj.dd_poses)):
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
