@@ -22,7 +22,7 @@ import pinocchio as pin
 
 from ..analytic.taskspace import rotation
 from ..kinematics.closure import close_loops, tool_pose
-from ..kinematics.limits import first_violation, violation_text
+from ..kinematics.limits import first_violation, limit_bounds, violation_text
 from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot
 from .averages import time_rms
@@ -274,18 +274,19 @@ def _stop_hint(saturated_since: float | None, gains: Gains, control_period: floa
     return _unstable_hint(gains, control_period)
 
 
-def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_limits: bool,
+def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_limits,
                  tolerance: float, hint: Callable[[], str]) -> None:
     """Stop where the plant is no longer the robot: loops open beyond ``tolerance`` [m], or
-    (``joint_limits``) a joint outside its limits. ``hint()`` says what to change (built only
-    on failure: this runs every tick)."""
+    (``joint_limits``: the joint names and their :func:`limit_bounds`, or None) a joint
+    outside its limits. ``hint()`` says what to change (built only on failure: this runs every
+    tick)."""
     why = None
     if residual > tolerance:
         why = (f"the plant's loops opened to {residual:.3g} m (loop tolerance "
                f"{tolerance:g} m, docs/model.md §18)")
-    elif joint_limits:
-        names = plant.robot.joint_names
-        bad = first_violation(plant.robot.params, q, names)
+    elif joint_limits is not None:
+        names, bounds = joint_limits
+        bad = first_violation(plant.robot.params, q, names, bounds)
         if bad is not None:
             _, j, excess = bad
             why = "the plant left its joint limits: " + violation_text(
@@ -366,6 +367,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     tau = np.zeros(6)
     guess, v_seen = desired.q[0], desired.v[0]  # the first FK's warm start: the reference
     saturated_since, saturation, max_res = None, 0.0, 0.0
+    names = plant.robot.joint_names
+    limits = (names, limit_bounds(plant.robot.params, names)) if joint_limits else None
     clock = time.perf_counter()
     last = len(pts) - 1
     for i in range(len(pts)):
@@ -405,7 +408,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
             res = plant.last_closure_residual()
             if is_tick[i]:
                 max_res = max(max_res, res)
-                _check_plant(plant, q, res, t, joint_limits, loop_tolerance,
+                _check_plant(plant, q, res, t, limits, loop_tolerance,
                              partial(_stop_hint, saturated_since, gains, control_period))
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau

@@ -2,6 +2,8 @@
 by Newton on the cut spherical joints' residual (docs/model.md §4)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pinocchio as pin
 
@@ -39,11 +41,12 @@ def close_loops(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None =
     singularity, where the passive angles are not locally unique (docs/model.md §12).
     """
     act = np.asarray(actuated, dtype=float).reshape(-1)
-    if act.shape != (6,) or not np.all(np.isfinite(act)):
+    # a finite sum means every entry is finite (one reduction: this runs every control tick)
+    if act.shape != (6,) or not math.isfinite(act.sum()):
         raise ValueError(f"actuator angles must be 6 finite numbers "
                          f"({', '.join(robot.actuated)}), got {act.tolist()}")
     q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
-    if q.shape != (robot.model.nq,) or not np.all(np.isfinite(q)):
+    if q.shape != (robot.model.nq,) or not math.isfinite(q.sum()):
         raise ValueError(f"q_guess must be {robot.model.nq} finite joint angles, got "
                          f"{np.asarray(q_guess).tolist()}")
     ia, ip = robot.actuated_v, robot.passive_v

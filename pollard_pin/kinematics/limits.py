@@ -12,14 +12,20 @@ from .errors import JointLimitError
 TWO_PI = 2.0 * np.pi
 
 
-def limit_violations(params, q, names) -> tuple[np.ndarray, np.ndarray]:
+def limit_bounds(params, names) -> tuple[np.ndarray, np.ndarray]:
+    """(lower, upper) [rad], each (J,), of the joints ``names``: built once where a loop checks
+    many configurations (:func:`limit_violations` takes them)."""
+    lim = [params.joint_limits(n) for n in names]
+    return np.array([x.lower for x in lim]), np.array([x.upper for x in lim])
+
+
+def limit_violations(params, q, names, bounds=None) -> tuple[np.ndarray, np.ndarray]:
     """(side, excess), each (..., J) for the joints ``names`` (columns of q in that order):
     side 0 inside its limits (or NaN), −1 below the lower limit, +1 above the upper one — the
-    nearer of the two, angles taken modulo 2π — and excess [rad] ≥ 0 the distance to it."""
+    nearer of the two, angles taken modulo 2π — and excess [rad] ≥ 0 the distance to it.
+    ``bounds``: :func:`limit_bounds` of the same joints, if already built."""
     q = np.asarray(q, dtype=float)
-    lim = [params.joint_limits(n) for n in names]
-    lo = np.array([x.lower for x in lim])
-    hi = np.array([x.upper for x in lim])
+    lo, hi = limit_bounds(params, names) if bounds is None else bounds
     with np.errstate(invalid="ignore"):
         shifted = lo + np.mod(q - lo, TWO_PI)  # in [lo, lo + 2π)
         over = shifted - hi  # > 0: outside, above hi by this much ...
@@ -29,10 +35,13 @@ def limit_violations(params, q, names) -> tuple[np.ndarray, np.ndarray]:
     return side, np.where(outside, np.minimum(over, under), 0.0)
 
 
-def first_violation(params, q, names):
+def first_violation(params, q, names, bounds=None):
     """The first (sample, joint index, excess [rad]) of a stack q (N, J) outside the limits of
     the joints ``names`` (the rule of :func:`limit_violations`), or None."""
-    side, excess = limit_violations(params, np.atleast_2d(q), names)
+    q = np.atleast_2d(q)
+    if bounds is not None and np.all((bounds[0] <= q) & (q <= bounds[1])):
+        return None  # inside as they stand: no turn to consider (a loop's fast path)
+    side, excess = limit_violations(params, q, names, bounds)
     if not side.any():
         return None
     k, j = (int(i) for i in np.argwhere(side)[0])
