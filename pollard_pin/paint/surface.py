@@ -190,16 +190,24 @@ def _extended(sec, across, along, extension: float, step: float):
 
 
 def _gun(s, surf, nrm, standoff: float, w: float):
-    """(tip, axis) of the pass with S and N averaged over a Gaussian of std ``w`` [m]."""
-    sd = w / (s[1] - s[0])
-    S = gaussian_filter1d(surf, sd, axis=0, mode="nearest")
-    N = gaussian_filter1d(nrm, sd, axis=0, mode="nearest")
+    """(tip, axis) of the pass with S and N averaged over a Gaussian of std ``w`` [m]; the
+    points run on straight (the normals constant) for 4w past both ends first, so that the
+    average does not pull the ends back."""
+    step = s[1] - s[0]
+    m = int(math.ceil(4 * w / step))
+    ramp = np.arange(1, m + 1)[:, None] * step
+    t0 = (surf[1] - surf[0]) / step
+    t1 = (surf[-1] - surf[-2]) / step
+    padded = np.concatenate([surf[0] - ramp[::-1] * t0, surf, surf[-1] + ramp * t1])
+    S = gaussian_filter1d(padded, w / step, axis=0, mode="nearest")[m:m + len(s)]
+    N = gaussian_filter1d(nrm, w / step, axis=0, mode="nearest")
     N /= np.linalg.norm(N, axis=1, keepdims=True)
     return S + standoff * N, -N
 
 
 def _follows(s, surf, tip) -> bool:
-    """The tip advances between FORWARD and STRETCH × the surface arc everywhere."""
+    """The tip advances between FORWARD and STRETCH × the surface arc everywhere, along the
+    (averaged) surface ``surf``."""
     ds = np.diff(s)[:, None]
     dt, dS = np.diff(tip, axis=0) / ds, np.diff(surf, axis=0) / ds
     dS /= np.maximum(np.linalg.norm(dS, axis=1, keepdims=True), 1e-12)
@@ -218,10 +226,12 @@ def pass_speed(job, spacing: float) -> float:
     return job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
 
 
-def surface_layout(part: Part, job, step: float = SAMPLE_STEP) -> SurfaceLayout:
+def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
+                   min_smoothing: float = 0.0) -> SurfaceLayout:
     """The passes over the painted faces of ``part`` for ``job`` (standoff, sigma, spacing,
-    direction): see the module notes. Raises :class:`PlanError` if no smoothing in SMOOTHING
-    lets the gun follow the surface."""
+    direction): see the module notes; the smoothing at least ``min_smoothing`` [m] (the
+    planner asks for more where the motors cannot follow). Raises :class:`PlanError` if no
+    smoothing in SMOOTHING lets the gun follow the surface."""
     frame = surface_frame(part, job.direction)
     mesh, normals = _painted_mesh(part)
     spacing = pass_spacing(job)
@@ -254,9 +264,9 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP) -> SurfaceLayout:
     if sum(len(r[0]) for r in raw) > MAX_SAMPLES:
         raise PlanError(f"{part.source}: the passes need more than {MAX_SAMPLES} samples at "
                         f"{step:.3g} m")
-    for width in SMOOTHING:
+    for width in (w for w in SMOOTHING if w >= min_smoothing):
         guns = [_gun(s, surf, nrm, job.standoff, width) for s, surf, nrm, _, _ in raw]
-        if all(_follows(r[0], r[1], g[0]) for r, g in zip(raw, guns)):
+        if all(_follows(r[0], g[0] + job.standoff * g[1], g[0]) for r, g in zip(raw, guns)):
             break
     else:
         raise PlanError(f"{part.source}: the surface turns faster than a gun at "

@@ -35,7 +35,7 @@ from .mesh import Part, load_part
 from .mesh_film import MeshFilm, mesh_film
 from .motion import fastest, motion
 from .plan import CHECK_REFINE, MAX_PATH_SAMPLES, MAX_STEP, STEP_SIGMA, TURN_SAMPLES, UTILISATION
-from .surface import SurfaceLayout, pass_speed, surface_layout
+from .surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
 
 
 def gun_of(job):
@@ -193,6 +193,37 @@ def _pass_poses(layout: SurfaceLayout):
     return out
 
 
+def _pass_pieces(layout: SurfaceLayout, v: float, coats: int) -> list:
+    """The passes of every coat in serpentine order (a coat runs back over the last)."""
+    poses = _pass_poses(layout)
+    order = []
+    for c in range(coats):
+        order += list(range(len(poses)) if c % 2 == 0 else range(len(poses) - 1, -1, -1))
+    return [PassPiece(layout.passes[k].s, poses[k], v, i % 2 == 0, k)
+            for i, k in enumerate(order)]
+
+
+def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
+    """The motors' peak utilisation over one coat's passes (at their samples)."""
+    ev = [p.evaluate(np.linspace(0, p.duration, len(layout.passes[p.index].s)))
+          for p in pieces]
+    poses, d, dd = (np.concatenate([e[i] for e in ev]) for i in range(3))
+    try:
+        m = motion(robot, act, poses, d, dd)
+    except ReachError as exc:
+        lengths = np.cumsum([len(layout.passes[p.index].s) for p in pieces])
+        k = int(np.searchsorted(lengths, exc.sample, side="right"))
+        p = layout.passes[pieces[k].index]
+        tip = np.asarray(exc.pose[:3])
+        j = int(np.argmin(np.linalg.norm(p.tip - tip, axis=1)))
+        x = p.surface[j]
+        raise ReachError(f"the path leaves the workspace on pass {pieces[k].index + 1} of "
+                         f"{len(layout.passes)} over the part at ({x[0]:.3f}, {x[1]:.3f}, "
+                         f"{x[2]:.3f}) m, tool tip ({tip[0]:.3f}, {tip[1]:.3f}, "
+                         f"{tip[2]:.3f}) m: {exc}", exc.sample, exc.pose) from None
+    return float(m.utilisation.max())
+
+
 def _build(passes, taus) -> Program:
     """Ramp, pass, turn, pass, ..., ramp with the given turn/ramp durations (P + 1,)."""
     pieces = [ramp("ramp", passes[0].state(False), taus[0], True)]
@@ -224,20 +255,25 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
     clock = [time.perf_counter()]
     part = load_job_part(job) if part is None else part
-    layout = surface_layout(part, job)
-    v = pass_speed(job, layout.spacing)
+    v = pass_speed(job, pass_spacing(job))
     coats = job.coats or 1
-    poses = _pass_poses(layout)
-    forward = []
-    order = []
-    for c in range(coats):
-        ks = range(len(poses)) if c % 2 == 0 else range(len(poses) - 1, -1, -1)
-        for k in ks:
-            order.append(k)
-            forward.append(len(forward) % 2 == 0)
-    pieces = [PassPiece(layout.passes[k].s, poses[k], v, f, k) for k, f in zip(order, forward)]
-    tip_rate = max(float(np.abs(p.d1(p.spline.t[3:-3])[:, :3]).max()) for p in pieces[:1])
-    tip_rate = max(tip_rate, 1.0) * math.sqrt(3)
+    smoothing = 0.0
+    while True:  # the least smoothing whose passes the motors follow at speed v
+        layout = surface_layout(part, job, min_smoothing=smoothing)
+        pieces = _pass_pieces(layout, v, coats)
+        use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
+        if use <= UTILISATION:
+            break
+        wider = [w for w in SMOOTHING if w > layout.smoothing]
+        if not wider:
+            raise PlanError(f"{part.source}: the motors need {use:.3g}× their peak torque or "
+                            f"speed on the passes at {v:.4g} m/s even with the gun's normal "
+                            f"averaged over {layout.smoothing:g} m: a thinner coat (more "
+                            "coats), a smaller standoff or a gentler part")
+        smoothing = wider[0]
+    # the gun's tip moves up to tip_rate × the spot's speed (a convex part's stretch)
+    tip_rate = max(1.0, max(float(np.linalg.norm(p.d1(p.spline.t[5:-5])[:, :3], axis=1).max())
+                            for p in pieces[:len(layout.passes)]))
     dt = min(MAX_STEP, STEP_SIGMA * job.sigma / (v * tip_rate))
     swept = sum(p.duration for p in pieces)
     if swept / dt > MAX_PATH_SAMPLES:
