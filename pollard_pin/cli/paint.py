@@ -28,7 +28,7 @@ def run(args) -> int:
     from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
-    from ..paint.job import load_job
+    from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
     from ..paint.report import paint_report
     from ..viz.paint import write_thickness_png
@@ -40,6 +40,8 @@ def run(args) -> int:
     stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
              for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
+    if isinstance(job, PartJob):
+        return _run_part(args, job, out)
     try:
         res = film_resolution(job, args.resolution)
     except PlanError as exc:
@@ -73,6 +75,87 @@ def run(args) -> int:
     print("\n".join(summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, paint.json, thickness.png", file=sys.stderr)
     return 0
+
+
+def _run_part(args, job, out: Path) -> int:
+    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply."""
+    from ..io.ply import write_film_ply
+    from ..io.table import FORMATS, table_files, write_table
+    from ..io.trajectory import to_csv
+    from ..paint.errors import PlanError
+    from ..paint.film_mesh import refined_mesh
+    from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
+    from ..paint.surface_report import surface_report
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours, write_part_png
+
+    name = out / f"thickness.{args.format}"
+    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
+                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
+    stale = [f for fmt in FORMATS if fmt != args.format
+             for f in table_files(out / f"thickness.{fmt}", fmt)]
+    try:
+        res = part_resolution(job, args.resolution)
+    except PlanError as exc:
+        raise UsageError(f"--resolution: {exc}") from None
+    act = _actuators(args, job)
+    part = load_job_part(job)
+    robot = load_robot(args)
+    t0 = time.perf_counter()
+    plan = plan_surface(robot, job, act, part)
+    t1 = time.perf_counter()
+    pts, film, painted, efficiency = surface_film(plan, res)
+    t2 = time.perf_counter()
+    rep = surface_report(plan, pts, film, painted, efficiency, act)
+    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
+               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
+                                                           job.thickness * (1 + PLY_BAND)]},
+               pollard_pin=__version__)
+    used, triangles = refined_mesh(part, pts)
+    P, N, th = pts.points[painted], pts.normals[painted], film.thickness[painted]
+    table = {"x": P[:, 0], "y": P[:, 1], "z": P[:, 2], "nx": N[:, 0], "ny": N[:, 1],
+             "nz": N[:, 2], "area": pts.areas[painted], "thickness": th}
+    lay = plan.layout
+    tracks = [p.tip + job.standoff * p.axis for p in lay.passes]
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(plan.trajectory, out / "path.csv", spray=plan.spray)
+        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
+        with atomic_open(out / "paint.json") as f:
+            f.write(json.dumps(rep, indent=2) + "\n")
+        write_film_ply(out / "film.ply", pts.points[used], triangles, film.thickness[used],
+                       film_colours(film.thickness[used], job.thickness))
+        write_part_png(out / "thickness.png", P, th, job.thickness, lay.frame.along,
+                       lay.frame.across, tracks)
+        remove_stale(*stale)
+    print("\n".join(part_summary_lines(rep, act.names)))
+    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
+          file=sys.stderr)
+    return 0
+
+
+def part_summary_lines(rep: dict, names) -> list[str]:
+    """The lines ``paint`` prints for a part."""
+    th, target = rep["thickness"], rep["target"]
+    motors = ", ".join(f"{n} {100 * rep['motors'][n]['peak_torque']:.0f}/"
+                       f"{100 * rep['motors'][n]['speed']:.0f}/"
+                       f"{100 * rep['motors'][n]['rms_torque']:.0f}" for n in names)
+    return [
+        f"passes {rep['passes']} ({rep['direction']}), spacing on the surface "
+        f"{rep['spacing'] * 1e3:.2f} mm, spot speed {rep['speed']:.4g} m/s (tip "
+        f"{rep['tip_speed_range'][0]:.3g}–{rep['tip_speed_range'][1]:.3g}), coats "
+        f"{rep['coats']}, normal averaged over {rep['normal_smoothing'] * 1e3:.3g} mm",
+        f"cycle {rep['cycle_time']:.3f} s; painting-only lower bound {rep['lower_bound']:.3f} s "
+        "(painted area × target / flow)",
+        f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
+        f"(target {target * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area within "
+        f"±5 %, {100 * th['within_10pct']:.2f} % within ±10 %",
+        f"largest incidence {rep['largest_incidence_deg']:.3g}°, transfer efficiency "
+        f"{100 * rep['transfer_efficiency']:.1f} %",
+        f"motor peak torque/speed/RMS use [%]: {motors}",
+        f"planned in {rep['timings']['plan']:.2f} s, film in {rep['timings']['film']:.2f} s "
+        f"({rep['film_points']['painted']} painted film points, {rep['samples']} path "
+        "samples)",
+    ]
 
 
 def summary_lines(rep: dict, names) -> list[str]:

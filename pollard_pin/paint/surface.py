@@ -1,4 +1,4 @@
-"""Spray passes on a part's painted surface (docs/model.md §22): where the gun goes, not yet
+"""Spray passes on a part's painted surface (docs/model.md §23): where the gun goes, not yet
 when (:mod:`.surface_plan` times it against the motors).
 
 Frame. n = the part's ``facing`` (towards the robot), v = world z projected off n, u = n × v
@@ -10,8 +10,10 @@ painted face within max_angle < 90° of n, the section is a graph over e_p: at e
 point nearest the robot (largest ·n) is kept, and e_p is sampled every SAMPLE_STEP. The arc
 length along it, ds = |e_s × N| / |(e_s × N)·e_p| de_p (N the face normal), counts surface
 only: a wall hidden along e_p (a rib's side) adds no length, a hole is crossed as if flat.
-The pass runs on past both ends by SPOT_RADIUS σ along the end tangent (its film reaches the
-edge in full; the turnarounds lie beyond, off the part).
+The pass runs on past both ends by EXTENSION σ along the end tangent: the film a pass leaves
+on an edge then lacks Φ(−3) = 0.13 % of a pass run on for ever (the panel's SPOT_RADIUS = 4σ
+takes 1 cm more of reach at each end: the curved example's corners lie at the edge of it);
+the turnarounds lie beyond, off the part.
 
 Spacing on the surface. The levels are chosen by the arc length w of the section across
 the passes (the plane e_p·x through the painted faces' centroid): level_k = e_s(w_k) with
@@ -42,7 +44,7 @@ from scipy.ndimage import gaussian_filter1d
 
 from .errors import PlanError
 from .mesh import Part
-from .raster import SPOT_RADIUS, pass_offsets, ripple_spacing
+from .raster import pass_offsets, ripple_spacing
 
 SAMPLE_STEP = 1e-3  # m of surface between pass samples (σ/10 for the example gun)
 # m: the Gaussian averages of the normal tried along a pass, smallest first (a faceted mesh
@@ -50,6 +52,7 @@ SAMPLE_STEP = 1e-3  # m of surface between pass samples (σ/10 for the example g
 SMOOTHING = (0.004, 0.006, 0.01, 0.015, 0.02, 0.03, 0.04, 0.05, 0.06, 0.08)
 FORWARD = 0.25  # the tip advances at least this fraction of the surface arc ...
 STRETCH = 3.0  # ... and at most this multiple of it
+EXTENSION = 3.0  # σ: the passes run on this far past the painted faces' edges
 MAX_SAMPLES = 200_000  # pass samples over all passes (each a small spline knot)
 
 
@@ -250,7 +253,7 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
     # arc w → the plane coordinate (beyond the ends: slope 1)
     levels = np.interp(offsets, w, c) + np.clip(offsets - extent, 0, None) \
         + np.clip(offsets, None, 0)
-    extension = SPOT_RADIUS * job.sigma
+    extension = EXTENSION * job.sigma
     lo, hi = c[0] + 1e-6, c[-1] - 1e-6
     raw = []
     for level in levels:
@@ -284,6 +287,6 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
     return SurfaceLayout(frame, tuple(passes), spacing, width, worst, extension, extent)
 
 
-__all__ = ["FORWARD", "SAMPLE_STEP", "SMOOTHING", "STRETCH", "SurfaceFrame", "SurfaceLayout",
-           "SurfacePass", "pass_spacing", "pass_speed", "section", "surface_frame",
-           "surface_layout"]
+__all__ = ["EXTENSION", "FORWARD", "SAMPLE_STEP", "SMOOTHING", "STRETCH", "SurfaceFrame",
+           "SurfaceLayout", "SurfacePass", "pass_spacing", "pass_speed", "section",
+           "surface_frame", "surface_layout"]

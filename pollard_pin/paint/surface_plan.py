@@ -1,4 +1,4 @@
-"""Plan a paint job over a part's mesh (docs/model.md §22): the passes of :mod:`.surface`
+"""Plan a paint job over a part's mesh (docs/model.md §23): the passes of :mod:`.surface`
 timed into one C² rest-to-rest program the robot and its motors can run, and its film.
 
 Pieces, each a polynomial in time or a polynomial of one, so positions, rates and
@@ -8,7 +8,7 @@ accelerations are exact at any time (the trajectory's ``curve``):
   s through the pass samples, run at ṡ = ±v: rate P'(s)·ṡ, acceleration P''(s)·v²;
 - turnaround, ramp: the quintic in time matching pose, rate and acceleration at both ends
   (from rest, or to rest: a ramp starts v·τ/2 before its pass, as the panel's); the
-  turnarounds lie off the part (the passes run SPOT_RADIUS σ past its edges) with the gun
+  turnarounds lie off the part (the passes run EXTENSION σ past its edges) with the gun
   closed (``spray`` 0), the passes open (1).
 
 Each turnaround and ramp is the shortest whose motors stay within UTILISATION of peak torque
@@ -330,6 +330,17 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
                         "check": clock[3] - clock[2]})
 
 
+def part_resolution(job, resolution: float | None = None) -> float:
+    """The film point spacing [m]: ``resolution`` (default σ/3), > 0 and at most σ (a coarser
+    one cannot show the film between passes, some 2σ apart: docs/model.md §21)."""
+    res = job.sigma / 3 if resolution is None else resolution
+    if isinstance(res, bool) or not (isinstance(res, (int, float)) and 0 < res <= job.sigma):
+        raise PlanError(f"film point spacing {res!r} m must be > 0 and at most the spray "
+                        f"spot's σ = {job.sigma:g} m (a coarser one cannot show the film "
+                        "between passes)")
+    return float(res)
+
+
 def live_faces(part: Part, tips) -> np.ndarray:
     """Faces (F,) bool that some gun tip lies in front of: a point s on a face of normal n
     gets nothing from a tip p with (p − s)·n ≤ 0 (the rate's cos i, docs/model.md §20), and
@@ -375,4 +386,4 @@ def film_stats(thickness, areas, target: float) -> dict:
 
 
 __all__ = ["PassPiece", "Program", "Quintic", "SurfacePlan", "film_stats", "gun_frame",
-           "live_faces", "load_job_part", "plan_surface", "surface_film"]
+           "live_faces", "load_job_part", "part_resolution", "plan_surface", "surface_film"]
