@@ -246,6 +246,11 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
                         "centroid across the passes")
     c, _, _, _, w = cross
     extent = float(w[-1])
+    span = np.ptp(part.vertices[part.faces[part.painted]].reshape(-1, 3) @ frame.along)
+    if min(extent, span) < job.sigma:  # the job's rule for panels (MIN_PANEL_SIGMAS)
+        raise PlanError(f"{part.source}: the painted faces span {span:.4g} × {extent:.4g} m, "
+                        f"less than the spray spot (σ = {job.sigma:.4g} m): a mesh in metres "
+                        "read as millimetres (part.units)?")
     try:
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:
