@@ -255,20 +255,27 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:
         raise PlanError(f"{job.source}: {exc}") from None
-    # arc w → the plane coordinate (beyond the ends: slope 1)
-    levels = np.interp(offsets, w, c) + np.clip(offsets - extent, 0, None) \
-        + np.clip(offsets, None, 0)
+    # arc w → the plane coordinate; a pass beyond an edge: the section at the edge moved on
+    # along the surface's tangent across the passes there
+    S_cross = cross[1]
+    t_lo = S_cross[0] - S_cross[1]
+    t_hi = S_cross[-1] - S_cross[-2]
+    t_lo, t_hi = t_lo / np.linalg.norm(t_lo), t_hi / np.linalg.norm(t_hi)
     extension = EXTENSION * job.sigma
     lo, hi = c[0] + 1e-6, c[-1] - 1e-6
     raw = []
-    for level in levels:
-        at = float(np.clip(level, lo, hi))
+    for off in offsets:
+        at = float(np.clip(np.interp(off, w, c), lo, hi))
+        gap = off - float(np.interp(at, c, w))  # the arc left beyond a clipped plane
+        beyond = (gap * t_hi if at == hi and gap > 0 else -gap * t_lo if at == lo and gap < 0
+                  else np.zeros(3))
         sec = section(mesh, normals, frame.n, frame.along, frame.across, at, step)
         if sec is None:
             raise PlanError(f"{part.source}: the pass plane at {at:.4g} m across misses the "
                             "painted faces (a part in pieces?)")
         s, surf, nrm, on = _extended(sec, frame.across, frame.along, extension, step)
-        raw.append((s, surf + (level - at) * frame.across, nrm, on, float(level)))
+        level = at + float(beyond @ frame.across)
+        raw.append((s, surf + beyond, nrm, on, level))
     if sum(len(r[0]) for r in raw) > MAX_SAMPLES:
         raise PlanError(f"{part.source}: the passes need more than {MAX_SAMPLES} samples at "
                         f"{step:.3g} m")
