@@ -379,8 +379,8 @@ def film_stats(thickness, areas, target: float) -> dict:
     dev = np.abs(th / target - 1)
     return {"mean": mean, "min": float(th.min()), "max": float(th.max()),
             "std": float(math.sqrt(max(w @ (th - mean) ** 2, 0.0))),
-            "within_5pct": float(w[dev <= 0.05].sum()),
-            "within_10pct": float(w[dev <= 0.10].sum()),
+            "within_5pct": min(1.0, float(w[dev <= 0.05].sum())),
+            "within_10pct": min(1.0, float(w[dev <= 0.10].sum())),
             "deviation_min": float(th.min() / target - 1),
             "deviation_max": float(th.max() / target - 1)}
 
