@@ -192,6 +192,8 @@ def paint_overlay(folder: Path):
                          "thickness.csv or .parquet and paint.json from pollard-pin paint)")
     try:
         report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
+        if isinstance(report, dict) and "part" in report.get("job", {}):
+            return _part_overlay(folder, report)
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise ResultFileError(f"{folder / 'paint.json'}: not a paint report ({exc})") from None
@@ -225,6 +227,31 @@ def paint_overlay(folder: Path):
 
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
+
+    return draw
+
+
+def _part_overlay(folder: Path, report: dict):
+    """The film of a part's ``paint`` folder (film.ply) as a viewer overlay."""
+    from ..io.ply import read_film_ply
+    from ..io.table import ResultFileError
+    from ..viz.paint import BAND
+    from ..viz.viewer import ViewerError, check_scene_points, film_mesh
+
+    target = report.get("target")
+    if not (type(target) in (int, float) and 0 < target < math.inf):
+        raise ResultFileError(f"{folder / 'paint.json'}: target = {target!r}: expected a film "
+                              "thickness > 0 [m]")
+    if not (folder / "film.ply").is_file():
+        raise UsageError(f"--paint {folder}: a part's paint folder without film.ply")
+    v, f, th = read_film_ply(folder / "film.ply")
+    try:
+        check_scene_points(v, str(folder / "film.ply"))
+    except ViewerError as exc:
+        raise ResultFileError(str(exc)) from None
+
+    def draw(vis):
+        film_mesh(vis, v, f, th, target * (1 - BAND), target * (1 + BAND))
 
     return draw
 

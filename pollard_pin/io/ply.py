@@ -24,4 +24,25 @@ def write_film_ply(path: str | Path, vertices, faces, thickness, colours) -> Non
         f.write(data)
 
 
-__all__ = ["write_film_ply"]
+def read_film_ply(path: str | Path):
+    """(vertices (V, 3) [m], faces (M, 3), thickness (V,) [m]) of a ``film.ply``; a file that
+    is not one is a :class:`~pollard_pin.io.table.ResultFileError` line."""
+    import trimesh
+
+    from .table import ResultFileError
+
+    try:
+        mesh = trimesh.load(str(path), file_type="ply", process=False, force="mesh")
+        th = np.asarray(mesh.metadata["_ply_raw"]["vertex"]["data"]["thickness"], float)
+    except Exception as exc:  # any reader failure is the file's fault
+        why = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
+        raise ResultFileError(f"{path}: not a film PLY with a per-vertex thickness ({why})"
+                              ) from None
+    v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
+    if len(f) == 0 or len(th) != len(v) or not (np.isfinite(v).all() and np.isfinite(th).all()):
+        raise ResultFileError(f"{path}: not a film PLY (no faces, or non-finite vertices or "
+                              "thickness)")
+    return v, f, th
+
+
+__all__ = ["read_film_ply", "write_film_ply"]

@@ -240,3 +240,23 @@ def test_part_in_mm_read_as_m_says_so(tmp_path, capsys):
     code, _, err = run_cli(["paint", "--job", job, "--out", tmp_path / "out"], capsys)
     assert code == 2 and "1000x too large: units = 'mm'?" in err, err
     assert len(err.strip().splitlines()) == 1 and not (tmp_path / "out").exists()
+
+
+def test_view_part_overlay(part_painted, tmp_path, capsys):
+    """view --paint of a part's folder draws film.ply's triangles, coloured by the film."""
+    from pollard_pin.viz.viewer import page_commands
+
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", part_painted, "--html", html], capsys)
+    assert code == 0, err
+    cmds = page_commands(html.read_text())
+    paint = [c for c in cmds if c.get("path", "").endswith("/paint")]
+    assert paint and "color" in paint[0]["object"]["geometries"][0]["data"]["attributes"]
+    # a broken film.ply is one line
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    for name in ("path.csv", "path.units.json", "thickness.csv", "paint.json"):
+        (broken / name).write_bytes((part_painted / name).read_bytes())
+    (broken / "film.ply").write_bytes(b"ply\nformat ascii 1.0\nend_header\n")
+    code, _, err = run_cli(["view", "--paint", broken, "--html", tmp_path / "w.html"], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "not a film PLY" in err, err

@@ -23,3 +23,19 @@ def test_ply_round_trip(tmp_path):
     assert np.array_equal(raw["thickness"], th)  # float64: exact
     assert np.array_equal(back.visual.vertex_colors, rgba)
     assert not list(tmp_path.glob("*.tmp*"))
+
+
+def test_read_film_ply(tmp_path):
+    import pytest
+
+    from pollard_pin.io.ply import read_film_ply
+    from pollard_pin.io.table import ResultFileError
+
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+    write_film_ply(tmp_path / "f.ply", v, [[0, 1, 2]], [1e-6, 2e-6, 3e-6],
+                   np.full((3, 4), 255, dtype=np.uint8))
+    vv, ff, th = read_film_ply(tmp_path / "f.ply")
+    assert np.array_equal(th, [1e-6, 2e-6, 3e-6]) and ff.tolist() == [[0, 1, 2]]
+    (tmp_path / "g.ply").write_bytes(b"not a ply at all")
+    with pytest.raises(ResultFileError, match="not a film PLY"):
+        read_film_ply(tmp_path / "g.ply")
