@@ -218,10 +218,29 @@ def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
         j = int(np.argmin(np.linalg.norm(p.tip - tip, axis=1)))
         x = p.surface[j]
         raise ReachError(f"the path leaves the workspace on pass {pieces[k].index + 1} of "
-                         f"{len(layout.passes)} over the part at ({x[0]:.3f}, {x[1]:.3f}, "
-                         f"{x[2]:.3f}) m, tool tip ({tip[0]:.3f}, {tip[1]:.3f}, "
-                         f"{tip[2]:.3f}) m: {exc}", exc.sample, exc.pose) from None
+                         f"{len(layout.passes)} at part point ({x[0]:.3f}, {x[1]:.3f}, "
+                         f"{x[2]:.3f}) m, tip ({tip[0]:.3f}, {tip[1]:.3f}, "
+                         f"{tip[2]:.3f}) m: {exc}; {_reachable(robot, layout, pieces, poses)}",
+                         exc.sample, exc.pose) from None
     return float(m.utilisation.max())
+
+
+def _reachable(robot, layout: SurfaceLayout, pieces, poses) -> str:
+    """Which of the part the gun reaches on the passes: the share of the on-part pass
+    samples whose pose passes ``run``'s rules (docs/model.md §22's workspace test) and the
+    box of their surface points."""
+    from ..workspace.reach import evaluate
+
+    ok = evaluate(robot, poses)["reachable"] > 0
+    on = np.concatenate([layout.passes[p.index].on_part for p in pieces])
+    surf = np.concatenate([layout.passes[p.index].surface for p in pieces])
+    good = ok & on
+    if not good.any():
+        return "no point of the painted faces is within reach with the gun normal to it"
+    lo, hi = surf[good].min(axis=0), surf[good].max(axis=0)
+    return (f"reachable: {100 * good.sum() / max(on.sum(), 1):.0f} % of the passes, "
+            f"x {lo[0]:.3f}..{hi[0]:.3f}, y {lo[1]:.3f}..{hi[1]:.3f}, "
+            f"z {lo[2]:.3f}..{hi[2]:.3f} m")
 
 
 def _build(passes, taus) -> Program:

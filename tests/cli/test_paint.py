@@ -208,7 +208,9 @@ def test_part_path_runs(part_painted, capsys, tmp_path):
     (lambda t: t.replace("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")
      .replace("max_angle = 45.0", "max_angle = 10.0"), None, "no face has its outward normal"),
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"), None,
-     "leaves the workspace on pass"),
+     "no point of the painted faces is within reach"),
+    (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.0, 0.25, 0.0]"), None,
+     "reachable: 6"),
     (lambda t: t.replace('units = "m"', 'units = "mm"'), None, "read as millimetres"),
     (lambda t: t.replace('mesh = ', 'mesch = '), None, "did you mean 'mesh'"),
 ])
