@@ -1,4 +1,5 @@
-"""pollard-pin paint: plan a raster spray program over a panel (docs/model.md §20–§21)."""
+"""pollard-pin paint: plan a raster spray program over a panel (docs/model.md §20–§21) or
+over a part's mesh (§23)."""
 from __future__ import annotations
 
 import json
@@ -257,18 +258,20 @@ def _part_overlay(folder: Path, report: dict):
 
 
 def add_parser(sub, parents) -> None:
-    p = command(sub, parents, "paint", "plan a raster spray program over a panel: path, film "
-                "map, motors (docs/model.md §20–§21)", run)
+    p = command(sub, parents, "paint", "plan a spray program over a panel or a part's mesh: "
+                "path, film map, motors (docs/model.md §20–§21, §23)", run)
     model_args(p)
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
-                   help="the paint job (see examples/paint.toml)")
+                   help="the paint job (see examples/paint.toml; a part's mesh: "
+                        "examples/parts/*.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
     p.add_argument("--out", type=name, default="paint", metavar="DIR",
                    help="output folder: path.csv, thickness.csv|parquet, paint.json, "
-                        "thickness.png")
+                        "thickness.png (and film.ply for a part)")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="thickness table format")
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
-                   help="film grid spacing [m], at most σ (default: σ/3)")
+                   help="film grid (a part: film point) spacing [m], at most σ (default: "
+                        "σ/3)")
