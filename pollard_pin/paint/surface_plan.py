@@ -34,14 +34,16 @@ from .film_points import surface_points
 from .mesh import Part, load_part
 from .mesh_film import MeshFilm, mesh_film
 from .motion import fastest, motion
-from .plan import CHECK_REFINE, MAX_PATH_SAMPLES, MAX_STEP, STEP_SIGMA, TURN_SAMPLES, UTILISATION
+from .plan import (
+    CHECK_REFINE,
+    MAX_PATH_SAMPLES,
+    MAX_STEP,
+    STEP_SIGMA,
+    TURN_SAMPLES,
+    UTILISATION,
+    gun_of,  # the job's standoff, sigma and flow: a panel's or a part's
+)
 from .surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
-
-
-def gun_of(job):
-    from .deposition import Gun
-
-    return Gun(job.standoff, job.sigma, job.flow)
 
 
 def load_job_part(job) -> Part:

@@ -12,11 +12,11 @@ from pollard_pin.paint.film_points import SurfacePoints
 from pollard_pin.paint.job import PartJob, load_job
 from pollard_pin.paint.mesh import panel_part
 from pollard_pin.paint.mesh_film import mesh_film
+from pollard_pin.paint.plan import gun_of
 from pollard_pin.paint.surface_plan import (
     Quintic,
     film_stats,
     gun_frame,
-    gun_of,
     plan_surface,
     surface_film,
 )
