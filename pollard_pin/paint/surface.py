@@ -218,6 +218,30 @@ def _follows(s, surf, tip) -> bool:
     return bool(forward.min() >= FORWARD and np.linalg.norm(dt, axis=1).max() <= STRETCH)
 
 
+def footprint(s, surf, tip, axis, across) -> np.ndarray:
+    """The surface arc (K,) at which each sample's spray axis meets the pass (the spot's
+    centre), where the averaged gun looks off the normal foot S; ``s`` itself where that is
+    not strictly increasing (the pass is then timed by its foot)."""
+    b = np.cross(across, axis)  # in the pass plane, across the axis
+    b /= np.linalg.norm(b, axis=1, keepdims=True)
+    b *= np.sign(np.einsum("ij,ij->i", b, np.gradient(surf, axis=0)))[:, None]
+    # e[i, j]: sample j's side of sample i's axis (negative before it, positive after)
+    e = np.einsum("jx,ix->ij", surf, b) - np.einsum("ix,ix->i", tip, b)[:, None]
+    crossing = (e[:, :-1] <= 0) & (e[:, 1:] > 0)
+    hit = crossing.any(axis=1)
+    if hit.sum() < 2:
+        return s
+    rows = np.flatnonzero(hit)
+    j = np.argmax(crossing[rows], axis=1)
+    f = -e[rows, j] / (e[rows, j + 1] - e[rows, j])
+    # the axis off either end (the run-on's last sample): the neighbours' offset from s
+    shift = np.interp(np.arange(len(s)), rows, s[j] + f * (s[j + 1] - s[j]) - s[rows])
+    q = s + shift
+    if not (np.diff(q) > 0.2 * np.diff(s)).all():
+        return s
+    return q
+
+
 def pass_spacing(job) -> float:
     """The spacing on the surface: the job's, else the widest of ripple ≤ tolerance/2."""
     return job.spacing if job.spacing is not None else ripple_spacing(job.sigma)
@@ -289,6 +313,7 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
                         f"over {SMOOTHING[-1]:g} m: a smaller standoff or a gentler part")
     passes, worst = [], 0.0
     for (s, surf, nrm, on, level), (tip, axis) in zip(raw, guns):
+        s = footprint(s, surf, tip, axis, frame.across)
         cosi = np.clip(-np.einsum("ij,ij->i", axis[on], nrm[on]), -1, 1)
         if len(cosi):
             worst = max(worst, math.degrees(math.acos(cosi.min())))

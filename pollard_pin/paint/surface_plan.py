@@ -29,6 +29,7 @@ from ..analytic.taskspace import angles_from_rotation, rotation
 from ..dynamics.averages import time_rms
 from ..dynamics.motors import Actuators
 from ..io.trajectory import Trajectory
+from .deposition import BLOCK_ELEMENTS
 from .errors import BudgetError, PlanError, ReachError
 from .film_points import surface_points
 from .mesh import Part, load_part
@@ -368,8 +369,9 @@ def live_faces(part: Part, tips) -> np.ndarray:
     s·n is the same over a flat face, so a face with max_p p·n ≤ v₀·n gets exactly 0."""
     level = np.einsum("ij,ij->i", part.vertices[part.faces[:, 0]], part.normals)
     ahead = np.full(len(part.faces), -np.inf)
-    for start in range(0, len(tips), 2048):  # (block × F) products, bounded memory
-        ahead = np.maximum(ahead, (tips[start:start + 2048] @ part.normals.T).max(axis=0))
+    block = max(1, BLOCK_ELEMENTS // len(part.faces))  # (block × F) products: ~8 MB each
+    for start in range(0, len(tips), block):
+        ahead = np.maximum(ahead, (tips[start:start + block] @ part.normals.T).max(axis=0))
     return ahead > level
 
 
