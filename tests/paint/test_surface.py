@@ -92,3 +92,26 @@ def test_part_smaller_than_the_spot_names_the_units():
     small = plate(width=0.24e-3, height=0.10e-3)
     with pytest.raises(PlanError, match="read as millimetres"):
         surface_layout(small, JOB)
+
+
+def test_passes_are_timed_by_the_spots_footprint():
+    """Where the averaged gun looks off the normal (the fillet), a pass's arc parameter is
+    where its spray axis meets the surface: that point lies on the axis line; on a flat plate
+    the footprint is the normal's foot."""
+    mesh = shapes.bent_plate(flat=0.12, wing=0.11, angle_deg=30.0, fillet=0.030, height=0.10)
+    part = make_part(mesh.vertices, mesh.faces, max_angle=45.0)
+    lay = surface_layout(part, JOB)
+    p = lay.passes[3]
+    assert (np.diff(p.s) > 0).all()
+    # the foot arc of each sample: uniform, 1 mm apart; the footprint's arc differs
+    foot = np.linspace(0.0, p.s[-1] - p.s[0], len(p.s))
+    assert np.abs((p.s - p.s[0]) - foot).max() > 2e-4  # measured 0.43 mm
+    inner = slice(20, -20)
+    spot = np.column_stack([np.interp(p.s[inner], p.s[0] + foot, p.surface[:, k])
+                            for k in range(3)])
+    d = spot - p.tip[inner]
+    off_axis = np.linalg.norm(d - np.einsum("ij,ij->i", d, p.axis[inner])[:, None]
+                              * p.axis[inner], axis=1)
+    assert off_axis.max() < 1e-4  # the polyline between 1 mm samples
+    flat = surface_layout(plate(), JOB).passes[2]
+    assert np.abs(np.diff(flat.s) - np.diff(flat.s).mean()).max() < 5e-8  # measured 4.4e-10
