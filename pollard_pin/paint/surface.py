@@ -29,9 +29,11 @@ renormalised), the smallest w of SMOOTHING for which the tip moves forwards at l
 × the surface arc and at most STRETCH × it, on every pass. The largest angle between the
 spray axis and a painted point's −N (the incidence) is reported.
 
-Speed. The surface arc s runs at a constant rate ṡ = v on every pass, so the spot crosses
-every pass at the same surface speed wherever the tip is stretched by convexity or
-shortened by concavity, and film = flow/(v·spacing) with the spacing on the surface.
+Speed. A pass's parameter s is the surface arc of the spot's footprint (where the averaged
+spray axis meets the pass: :func:`footprint`; the normal's foot where the gun is normal), run
+at a constant rate ṡ = v, so the spot crosses every pass at the same surface speed wherever
+the tip is stretched by convexity, shortened by concavity or tilted off the normal, and
+film = flow/(v·spacing) with the spacing on the surface.
 """
 from __future__ import annotations
 
