@@ -1,4 +1,5 @@
-"""pollard-pin paint: plan a raster spray program over a panel (docs/model.md §20–§21)."""
+"""pollard-pin paint: plan a raster spray program over a panel (docs/model.md §20–§21) or
+over a part's mesh (§23)."""
 from __future__ import annotations
 
 import json
@@ -28,7 +29,7 @@ def run(args) -> int:
     from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
-    from ..paint.job import load_job
+    from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
     from ..paint.report import paint_report
     from ..viz.paint import write_thickness_png
@@ -40,6 +41,8 @@ def run(args) -> int:
     stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
              for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
+    if isinstance(job, PartJob):
+        return _run_part(args, job, out)
     try:
         res = film_resolution(job, args.resolution)
     except PlanError as exc:
@@ -73,6 +76,87 @@ def run(args) -> int:
     print("\n".join(summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, paint.json, thickness.png", file=sys.stderr)
     return 0
+
+
+def _run_part(args, job, out: Path) -> int:
+    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply."""
+    from ..io.ply import write_film_ply
+    from ..io.table import FORMATS, table_files, write_table
+    from ..io.trajectory import to_csv
+    from ..paint.errors import PlanError
+    from ..paint.film_mesh import refined_mesh
+    from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
+    from ..paint.surface_report import surface_report
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours, write_part_png
+
+    name = out / f"thickness.{args.format}"
+    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
+                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
+    stale = [f for fmt in FORMATS if fmt != args.format
+             for f in table_files(out / f"thickness.{fmt}", fmt)]
+    try:
+        res = part_resolution(job, args.resolution)
+    except PlanError as exc:
+        raise UsageError(f"--resolution: {exc}") from None
+    act = _actuators(args, job)
+    part = load_job_part(job)
+    robot = load_robot(args)
+    t0 = time.perf_counter()
+    plan = plan_surface(robot, job, act, part)
+    t1 = time.perf_counter()
+    pts, film, painted, efficiency = surface_film(plan, res)
+    t2 = time.perf_counter()
+    rep = surface_report(plan, pts, film, painted, efficiency, act)
+    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
+               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
+                                                           job.thickness * (1 + PLY_BAND)]},
+               pollard_pin=__version__)
+    used, triangles = refined_mesh(part, pts)
+    P, N, th = pts.points[painted], pts.normals[painted], film.thickness[painted]
+    table = {"x": P[:, 0], "y": P[:, 1], "z": P[:, 2], "nx": N[:, 0], "ny": N[:, 1],
+             "nz": N[:, 2], "area": pts.areas[painted], "thickness": th}
+    lay = plan.layout
+    tracks = [p.tip + job.standoff * p.axis for p in lay.passes]
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(plan.trajectory, out / "path.csv", spray=plan.spray)
+        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
+        with atomic_open(out / "paint.json") as f:
+            f.write(json.dumps(rep, indent=2) + "\n")
+        write_film_ply(out / "film.ply", pts.points[used], triangles, film.thickness[used],
+                       film_colours(film.thickness[used], job.thickness))
+        write_part_png(out / "thickness.png", P, th, job.thickness, lay.frame.along,
+                       lay.frame.across, tracks)
+        remove_stale(*stale)
+    print("\n".join(part_summary_lines(rep, act.names)))
+    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
+          file=sys.stderr)
+    return 0
+
+
+def part_summary_lines(rep: dict, names) -> list[str]:
+    """The lines ``paint`` prints for a part."""
+    th, target = rep["thickness"], rep["target"]
+    motors = ", ".join(f"{n} {100 * rep['motors'][n]['peak_torque']:.0f}/"
+                       f"{100 * rep['motors'][n]['speed']:.0f}/"
+                       f"{100 * rep['motors'][n]['rms_torque']:.0f}" for n in names)
+    return [
+        f"passes {rep['passes']} ({rep['direction']}), spacing on the surface "
+        f"{rep['spacing'] * 1e3:.2f} mm, spot speed {rep['speed']:.4g} m/s (tip "
+        f"{rep['tip_speed_range'][0]:.3g}–{rep['tip_speed_range'][1]:.3g}), coats "
+        f"{rep['coats']}, normal averaged over {rep['normal_smoothing'] * 1e3:.3g} mm",
+        f"cycle {rep['cycle_time']:.3f} s; painting-only lower bound {rep['lower_bound']:.3f} s "
+        "(painted area × target / flow)",
+        f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
+        f"(target {target * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area within "
+        f"±5 %, {100 * th['within_10pct']:.2f} % within ±10 %",
+        f"largest incidence {rep['largest_incidence_deg']:.3g}°, transfer efficiency "
+        f"{100 * rep['transfer_efficiency']:.1f} %",
+        f"motor peak torque/speed/RMS use [%]: {motors}",
+        f"planned in {rep['timings']['plan']:.2f} s, film in {rep['timings']['film']:.2f} s "
+        f"({rep['film_points']['painted']} painted film points, {rep['samples']} path "
+        "samples)",
+    ]
 
 
 def summary_lines(rep: dict, names) -> list[str]:
@@ -111,6 +195,8 @@ def paint_overlay(folder: Path):
                          "thickness.csv or .parquet and paint.json from pollard-pin paint)")
     try:
         report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
+        if isinstance(report, dict) and "part" in report.get("job", {}):
+            return _part_overlay(folder, report)
         nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
     except (OSError, ValueError, KeyError, TypeError, RecursionError) as exc:  # deep nesting
         raise ResultFileError(f"{folder / 'paint.json'}: not a paint report "
@@ -149,19 +235,46 @@ def paint_overlay(folder: Path):
     return draw
 
 
+def _part_overlay(folder: Path, report: dict):
+    """The film of a part's ``paint`` folder (film.ply) as a viewer overlay."""
+    from ..io.ply import read_film_ply
+    from ..io.table import ResultFileError
+    from ..viz.paint import BAND
+    from ..viz.viewer import ViewerError, check_scene_points, film_mesh
+
+    target = report.get("target")
+    if not (type(target) in (int, float) and 0 < target < math.inf):
+        raise ResultFileError(f"{folder / 'paint.json'}: target = {target!r}: expected a film "
+                              "thickness > 0 [m]")
+    if not (folder / "film.ply").is_file():
+        raise UsageError(f"--paint {folder}: a part's paint folder without film.ply")
+    v, f, th = read_film_ply(folder / "film.ply")
+    try:
+        check_scene_points(v, str(folder / "film.ply"))
+    except ViewerError as exc:
+        raise ResultFileError(str(exc)) from None
+
+    def draw(vis):
+        film_mesh(vis, v, f, th, target * (1 - BAND), target * (1 + BAND))
+
+    return draw
+
+
 def add_parser(sub, parents) -> None:
-    p = command(sub, parents, "paint", "plan a raster spray program over a panel: path, film "
-                "map, motors (docs/model.md §20–§21)", run)
+    p = command(sub, parents, "paint", "plan a spray program over a panel or a part's mesh: "
+                "path, film map, motors (docs/model.md §20–§21, §23)", run)
     model_args(p)
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
-                   help="the paint job (see examples/paint.toml)")
+                   help="the paint job (see examples/paint.toml; a part's mesh: "
+                        "examples/parts/*.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
     p.add_argument("--out", type=name, default="paint", metavar="DIR",
                    help="output folder: path.csv, thickness.csv|parquet, paint.json, "
-                        "thickness.png")
+                        "thickness.png (and film.ply for a part)")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="thickness table format")
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
-                   help="film grid spacing [m], at most σ (default: σ/3)")
+                   help="film grid (a part: film point) spacing [m], at most σ (default: "
+                        "σ/3)")

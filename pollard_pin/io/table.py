@@ -33,6 +33,8 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "desired_y": "m", "desired_z": "m",
           # paint film map, docs/model.md §21
           "u": "m", "v": "m", "thickness": "m",
+          # paint on a part's mesh: the trigger, film point normals and area shares
+          "spray": "1", "nx": "1", "ny": "1", "nz": "1", "area": "m²",
           # workspace maps, docs/model.md §22
           "reachable": "1", "reason": "code (workspace.json reason_codes)",
           "conditioning": "1", "payload_capacity": "kg"}

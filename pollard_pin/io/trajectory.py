@@ -30,6 +30,8 @@ DERIVATIVE_TOLERANCE = 0.5
 # and a file holds one side of each jump (up to 2.2 seen); deg/s² (×57) is refused, and so is
 # an all-zero dd_* column whose rates change.
 ACCELERATION_TOLERANCE = 10.0
+# The paint gun's trigger: the fraction of its flow sprayed, in [0, 1] (absent: 1 throughout).
+SPRAY = "spray"
 
 
 def from_csv(path: str | Path) -> Trajectory:
@@ -73,11 +75,12 @@ def from_csv(path: str | Path) -> Trajectory:
         raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
     header = [h.strip() for h in rows[0]]
     base = ("t",) + TASK_NAMES
-    allowed = base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
+    allowed = (base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
+               + (SPRAY,))
     for h in header:
         if h not in allowed:
             raise TrajectoryError(f"{path}: unknown column {shorten(h)}{did_you_mean(h, allowed)}; "
-                                  f"expected {', '.join(base)} and optional d_*, dd_*")
+                                  f"expected {', '.join(base)} and optional d_*, dd_*, {SPRAY}")
     if len(set(header)) != len(header):
         raise TrajectoryError(f"{path}: duplicate column names in header {shorten(header)}")
     missing = [c for c in base if c not in header]
@@ -102,6 +105,13 @@ def from_csv(path: str | Path) -> Trajectory:
     if len(data) < 2:
         raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
     col = {h: data[:, i] for i, h in enumerate(header)}
+    if SPRAY in col:  # the gun's trigger (paint): the motion does not depend on it
+        bad = (col[SPRAY] < 0) | (col[SPRAY] > 1)
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {SPRAY!r}: "
+                                  f"{float(col[SPRAY][r])!r} is outside [0, 1] (the fraction "
+                                  "of the gun's flow)")
     t = col["t"]
     big = np.abs(t) > MAX_TIME
     if np.any(big):
@@ -226,14 +236,17 @@ def check_derivatives(path, t: np.ndarray, poses: np.ndarray, d: np.ndarray, dd:
                 "curve's derivatives?")
 
 
-def to_csv(traj: Trajectory, path: str | Path) -> None:
+def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     """Write the trajectory in the ``run`` input format (``t``, poses, ``d_*``, ``dd_*``; every
-    float64 exact) through :mod:`pollard_pin.io.table`, atomically, units in the sidecar."""
+    float64 exact) through :mod:`pollard_pin.io.table`, atomically, units in the sidecar;
+    ``spray`` (N,): the gun's trigger in [0, 1] as a last column (absent: on throughout)."""
     from .table import write_table
 
     cols = {"t": traj.t}
     for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
+    if spray is not None:
+        cols[SPRAY] = np.asarray(spray, dtype=float)
     write_table(path, cols, {"trajectory": traj.name, "derivatives": traj.derivatives},
                 fmt="csv")
 

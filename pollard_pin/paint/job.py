@@ -21,6 +21,9 @@ REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "job": ("thickness",)}
 OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "coats",
                                              "actuators")}
+# A part's mesh instead of a panel (paint/mesh.py reads and places it): [part] replaces [panel].
+PART_REQUIRED = ("mesh", "position")
+PART_OPTIONAL = ("units", "rotation", "facing", "max_angle")
 DIRECTIONS = ("horizontal", "vertical")
 # A length beyond this is a unit slip (mm for m): the robot reaches ~0.5 m.
 MAX_LENGTH = 10.0
@@ -61,6 +64,69 @@ class PaintJob:
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d}}
 
 
+@dataclass(frozen=True)
+class PartJob:
+    """A checked paint job over a part's mesh (``[part]``), SI units: ``mesh`` the file (a
+    path, relative to the job file's folder once loaded), its length ``units`` ('m' or 'mm',
+    checked by :func:`.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
+    (:func:`.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
+    robot) and ``max_angle`` [deg] (None: the default)."""
+
+    mesh: str
+    position: tuple[float, float, float]
+    standoff: float
+    sigma: float
+    flow: float
+    thickness: float
+    units: str = "m"
+    rotation: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    facing: tuple[float, float, float] | None = None
+    max_angle: float | None = None
+    spacing: float | None = None
+    speed: float | None = None
+    direction: str = "horizontal"
+    coats: int | None = None
+    actuators: str | None = None
+    source: str = "<python>"
+
+    def to_dict(self) -> dict:
+        """The job as the file would say it (None entries left out)."""
+        d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
+                "gun": {k: d[k] for k in REQUIRED["gun"]},
+                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d}}
+
+
+def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
+    """Validate a parsed job file with a [part] table (the mesh itself is read by
+    :func:`.mesh.load_part`, which checks the units, facing and max_angle)."""
+    part, gun, job = (_check_table(source, d, name) for name in ("part", "gun", "job"))
+    mesh = part["mesh"]
+    if not (isinstance(mesh, str) and mesh.strip()):
+        _fail(source, "part.mesh", mesh, "must be a mesh file name (STL, OBJ or PLY)")
+    values: dict[str, Any] = {"mesh": mesh,
+                              "position": _vector(source, "part.position", part["position"])}
+    if "units" in part:
+        if not isinstance(part["units"], str):
+            _fail(source, "part.units", part["units"], "must be 'm' or 'mm'")
+        values["units"] = part["units"]
+    if "rotation" in part:
+        r = part["rotation"]
+        if not isinstance(r, list) or len(r) != 3:
+            _fail(source, "part.rotation", r, "must be a list of 3 angles [rx, ry, rz] in "
+                                              "degrees")
+        values["rotation"] = tuple(_number(source, f"part.rotation[{i}]", v)
+                                   for i, v in enumerate(r))
+    if "facing" in part:
+        values["facing"] = _vector(source, "part.facing", part["facing"])
+    if "max_angle" in part:
+        values["max_angle"] = _number(source, "part.max_angle", part["max_angle"])
+    values.update(_gun_values(source, gun))
+    values.update(_job_values(source, job))
+    return PartJob(direction=job.get("direction", "horizontal"), actuators=job.get("actuators"),
+                   source=source, **values)
+
+
 def _fail(source: str, key: str, value: Any, rule: str):
     fail(JobError, f"{source}: ", key, value, rule)
 
@@ -86,21 +152,22 @@ def _vector(source: str, key: str, value: Any) -> tuple[float, float, float]:
 
 def _check_table(source: str, d: Mapping, name: str) -> Mapping:
     if name not in d:
-        raise JobError(f"{source}: missing table [{name}] (a job has [panel], [gun] and "
-                       "[job])")
+        raise JobError(f"{source}: missing table [{name}] (a job has [panel] or [part], [gun] "
+                       "and [job])")
     table = d[name]
     if not isinstance(table, Mapping):
         _fail(source, name, table, f"must be a table [{name}]")
-    allowed = REQUIRED[name] + OPTIONAL[name]
+    required = PART_REQUIRED if name == "part" else REQUIRED[name]
+    allowed = required + (PART_OPTIONAL if name == "part" else OPTIONAL[name])
     for k in table:
         if k not in allowed:
             _fail(source, f"{name}.{k}", table[k],
                   f"unknown key{did_you_mean(k, allowed)}; [{name}] takes "
                   f"{', '.join(allowed)}")
-    for k in REQUIRED[name]:
+    for k in required:
         if k not in table:
             raise JobError(f"{source}: '{name}.{k}' is missing ([{name}] needs "
-                           f"{', '.join(REQUIRED[name])})")
+                           f"{', '.join(required)})")
     return table
 
 
@@ -108,10 +175,16 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
     """Validate a parsed job file."""
     if not isinstance(d, Mapping):
         raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
+    tables = (*REQUIRED, "part")
     for name in d:
-        if name not in REQUIRED:
+        if name not in tables:
             raise JobError(f"{source}: [{name}] is not a table of a paint job"
-                           f"{did_you_mean(name, REQUIRED)}; expected [panel], [gun], [job]")
+                           f"{did_you_mean(name, tables)}; expected [panel] or [part], [gun], "
+                           "[job]")
+    if "part" in d:
+        if "panel" in d:
+            raise JobError(f"{source}: a job paints a [panel] or a [part], not both")
+        return part_job_from_dict(d, source)
     panel, gun, job = (_check_table(source, d, name) for name in REQUIRED)
     center = _vector(source, "panel.center", panel["center"])
     normal = _vector(source, "panel.normal", panel["normal"])
@@ -126,13 +199,26 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
               "which a horizontal panel does not define")
     values = {k: _positive(source, f"panel.{k}", panel[k], length=True)
               for k in ("width", "height")}
-    values.update({k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
-                   for k in REQUIRED["gun"]})
+    values.update(_gun_values(source, gun))
     for k in ("width", "height"):
         if values[k] < MIN_PANEL_SIGMAS * values["sigma"]:
             _fail(source, f"panel.{k}", panel[k], f"is smaller than the spray spot (σ = "
                   f"{values['sigma']:.4g} m): a panel must be at least "
                   f"{MIN_PANEL_SIGMAS:g} σ wide and high")
+    values.update(_job_values(source, job))
+    return PaintJob(center=center, normal=normal, direction=job.get("direction", "horizontal"),
+                    actuators=job.get("actuators"), source=source, **values)
+
+
+def _gun_values(source: str, gun: Mapping) -> dict:
+    return {k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
+            for k in REQUIRED["gun"]}
+
+
+def _job_values(source: str, job: Mapping) -> dict:
+    """The [job] table's numbers (thickness, spacing, speed, coats), its direction and
+    actuators checked."""
+    values = {}
     values["thickness"] = _positive(source, "job.thickness", job["thickness"], length=True)
     for k in ("spacing", "speed"):
         if k in job:
@@ -146,20 +232,22 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
     a = job.get("actuators")
     if "actuators" in job and not (isinstance(a, str) and a and "\0" not in a):
         _fail(source, "job.actuators", a, "must be a file name (a string, no NUL)")
-    return PaintJob(center=center, normal=normal, direction=job.get("direction", "horizontal"),
-                    actuators=job.get("actuators"), source=source, **values)
+    return values
 
 
-def load_job(path: str | Path) -> PaintJob:
-    """Read and check a paint job file (format: ``examples/paint.toml``). A relative
-    ``job.actuators`` is taken relative to the job file's folder."""
+def load_job(path: str | Path) -> PaintJob | PartJob:
+    """Read and check a paint job file (format: ``examples/paint.toml``, or
+    ``examples/parts/*.toml`` with a [part]). A relative ``job.actuators`` or ``part.mesh`` is
+    taken relative to the job file's folder."""
+    from dataclasses import replace
+
     job = job_from_dict(read_toml(path, "paint job file", JobError), str(path))
     if job.actuators is not None and not Path(job.actuators).is_absolute():
-        from dataclasses import replace
-
         job = replace(job, actuators=str(Path(path).parent / job.actuators))
+    if isinstance(job, PartJob) and not Path(job.mesh).is_absolute():
+        job = replace(job, mesh=str(Path(path).parent / job.mesh))
     return job
 
 
-__all__ = ["DIRECTIONS", "JobError", "MIN_PANEL_SIGMAS", "PaintJob", "job_from_dict",
-           "load_job"]
+__all__ = ["DIRECTIONS", "JobError", "MIN_PANEL_SIGMAS", "PaintJob", "PartJob", "job_from_dict",
+           "load_job", "part_job_from_dict"]

@@ -319,19 +319,26 @@ def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
 def film_panel(vis, points, values, lo: float, hi: float, node: str = f"{ROOT}/paint"):
     """Draw a surface grid ``points`` (nv, nu, 3) [m] as triangles coloured by ``values``
     (nv, nu) from blue (``lo``) through white to red (``hi``): the painted film."""
+    nv, nu = np.shape(values)
+    k = np.arange(nv * nu).reshape(nv, nu)
+    a, b, c, d = k[:-1, :-1].ravel(), k[:-1, 1:].ravel(), k[1:, 1:].ravel(), k[1:, :-1].ravel()
+    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    return film_mesh(vis, np.reshape(points, (-1, 3)), faces, np.ravel(values), lo, hi, node)
+
+
+def film_mesh(vis, vertices, faces, values, lo: float, hi: float,
+              node: str = f"{ROOT}/paint"):
+    """Draw triangles ``faces`` (M, 3) over ``vertices`` (V, 3) [m] coloured per vertex by
+    ``values`` (V,) from blue (``lo``) through white to red (``hi``): a film on a part."""
     import meshcat.geometry as mg
 
-    nv, nu = np.shape(values)
     x = np.clip((np.asarray(values, float) - lo) / (hi - lo), 0.0, 1.0).ravel()
     # blue (0.13, 0.4, 0.67) → white → red (0.7, 0.09, 0.17), as matplotlib's RdBu_r ends
     blue, red, white = np.array([0.13, 0.4, 0.67]), np.array([0.7, 0.09, 0.17]), np.ones(3)
     w = np.abs(2 * x - 1)[:, None]
     colour = (1 - w) * white + w * np.where((x < 0.5)[:, None], blue, red)
-    k = np.arange(nv * nu).reshape(nv, nu)
-    a, b, c, d = k[:-1, :-1].ravel(), k[:-1, 1:].ravel(), k[1:, 1:].ravel(), k[1:, :-1].ravel()
-    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
-    vis[node].set_object(mg.TriangularMeshGeometry(np.reshape(points, (-1, 3)), faces,
-                                                   color=colour),
+    vis[node].set_object(mg.TriangularMeshGeometry(np.asarray(vertices, float),
+                                                   np.asarray(faces), color=colour),
                          mg.MeshBasicMaterial(vertexColors=True, side=2))
     return node
 

@@ -156,6 +156,7 @@ def _files() -> dict[str, bytes | str | None]:
         "grid_params.toml": "params = 'nope.toml'\n[grid]\n'chain0.x32' = [0.33]\n",
         # paint jobs, and damaged workspace and paint output folders (view --workspace/--paint)
         **_jobs(),
+        **_parts(),
         **_output_folders(good, with_row(5, {1: "nan"})),
         # existing outputs that failures must leave untouched
         "existing.csv": PRECIOUS, "existing.md": PRECIOUS, "existing.urdf": PRECIOUS,
@@ -163,6 +164,47 @@ def _files() -> dict[str, bytes | str | None]:
         "afile": "not a folder\n",
         "afolder/": None,
         "empty_folder/": None,
+    }
+
+
+def _parts() -> dict[str, bytes | str]:
+    """A [part] job over a copy of examples/parts/curved_panel.stl, broken meshes, and bad
+    part jobs (part_*.toml)."""
+    job = (EXAMPLES / "parts" / "curved_panel.toml").read_text()
+
+    def sub(old: str, new: str, text: str = job) -> str:
+        assert old in text, old
+        return text.replace(old, new, 1)
+
+    def mesh(name: str) -> str:
+        return sub('"curved_panel.stl"', f'"{name}"')
+
+    square = "v 0.7 -0.1 0.1\nv 0.7 0.1 0.1\nv 0.7 0.1 0.2\n"
+    return {
+        "curved_panel.stl": (EXAMPLES / "parts" / "curved_panel.stl").read_bytes(),
+        "mesh_broken.stl": b"solid part\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n",
+        "mesh_empty.obj": "v 0 0 0\nv 1 0 0\n",
+        "mesh_nan.obj": square.replace("0.2", "nan") + "f 1 3 2\n",
+        "mesh_flat.obj": "v 0.7 0 0.1\nv 0.7 0 0.2\nv 0.7 0 0.3\nf 1 2 3\n",
+        "mesh_png.stl": b"\x89PNG\r\n\x1a\n" + bytes(range(256)),
+        "part_missing_mesh.toml": mesh("nope.stl"),
+        "part_broken.toml": mesh("mesh_broken.stl"),
+        "part_empty.toml": mesh("mesh_empty.obj"),
+        "part_nan.toml": mesh("mesh_nan.obj"),
+        "part_degenerate.toml": mesh("mesh_flat.obj"),
+        "part_png.toml": mesh("mesh_png.stl"),
+        "part_format.toml": mesh("part.step"),
+        "part_facing.toml": sub("max_angle = 45.0", "max_angle = 10.0",
+                                sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")),
+        "part_units.toml": sub('units = "m"', 'units = "cm"'),
+        "part_mm_as_m.toml": sub('units = "m"', 'units = "mm"'),
+        "part_and_panel.toml": job + "[panel]\ncenter = [0.7, 0, 0.16]\n",
+        "part_no_mesh.toml": sub('mesh = "curved_panel.stl"', ""),
+        "part_mesh_number.toml": sub('mesh = "curved_panel.stl"', "mesh = 3"),
+        "part_rotation.toml": sub("rotation = [0.0, 0.0, 0.0]", "rotation = [0.0, 'x', 0.0]"),
+        "part_max_angle.toml": sub("max_angle = 45.0", "max_angle = 200.0"),
+        "part_zero_facing.toml": sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 0.0, 0.0]"),
+        "part_far.toml": sub("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"),
     }
 
 
@@ -817,6 +859,23 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
                       "spacing 18.15 mm) but the motors allow 1.825 m/s"),
     ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
+    ("part_missing_mesh.toml", "nope.stl: no such file"),
+    ("part_broken.toml", "mesh_broken.stl: no triangles in the file"),
+    ("part_empty.toml", "mesh_empty.obj: no triangles"),
+    ("part_nan.toml", "is not finite"),
+    ("part_degenerate.toml", "faces have zero area"),
+    ("part_png.toml", "mesh_png.stl: no triangles in the file (is it a triangle mesh in STL"),
+    ("part_format.toml", "format '.step' is not a mesh this reads"),
+    ("part_facing.toml", "no face has its outward normal within 10°"),
+    ("part_units.toml", "units = 'cm' must be 'm' or 'mm'"),
+    ("part_mm_as_m.toml", "read as millimetres (part.units)?"),
+    ("part_and_panel.toml", "a job paints a [panel] or a [part], not both"),
+    ("part_no_mesh.toml", "'part.mesh' is missing"),
+    ("part_mesh_number.toml", "'part.mesh' = 3: must be a mesh file name"),
+    ("part_rotation.toml", "'part.rotation[1]' = 'x': must be a number"),
+    ("part_max_angle.toml", "max_angle = 200° must be in (0, 180]"),
+    ("part_zero_facing.toml", "has zero length"),
+    ("part_far.toml", "no point of the painted faces is within reach"),
     ("", "an empty name"),
 ]]
 GOOD_JOB = [*PAINT, "job_good.toml"]

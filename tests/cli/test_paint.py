@@ -139,3 +139,126 @@ def test_default_actuators_are_the_example_ratings():
     from pollard_pin.model.paths import models_dir
 
     assert (models_dir() / "actuators.toml").read_bytes() == ACT.read_bytes()
+
+
+# --- a part's mesh ([part] jobs) ---------------------------------------------------------------
+PART_JOB = ROOT / "examples" / "parts" / "curved_panel.toml"
+
+
+@pytest.fixture(scope="module")
+def part_painted(tmp_path_factory):
+    out = tmp_path_factory.mktemp("paint_part") / "out"
+    assert main(["paint", "--job", str(PART_JOB), "--out", str(out)]) == 0
+    return out
+
+
+def test_part_outputs(part_painted):
+    import trimesh
+
+    names = {p.name for p in part_painted.iterdir()}
+    assert {"path.csv", "thickness.csv", "film.ply", "paint.json", "thickness.png"} <= names
+    rep = json.loads((part_painted / "paint.json").read_text())
+    th = rep["thickness"]
+    assert set(th) >= {"mean", "min", "max", "std", "within_5pct", "within_10pct"}
+    assert th["within_5pct"] >= 0.99 and th["within_10pct"] == 1.0
+    for key in ("largest_incidence_deg", "transfer_efficiency", "cycle_time", "lower_bound",
+                "passes", "tip_speed_range", "coats", "motors"):
+        assert key in rep
+    assert 0 < rep["transfer_efficiency"] < 1
+    assert rep["cycle_time"] > rep["lower_bound"] > 0
+    for use in rep["motors"].values():
+        assert max(use["peak_torque"], use["speed"], use["rms_torque"]) <= 1.0
+    table = read_result(part_painted / "thickness.csv")
+    assert list(table.columns) == ["x", "y", "z", "nx", "ny", "nz", "area", "thickness"]
+    assert table.units["area"] == "m²" and table.units["nx"] == "1"
+    # the area shares add up to the painted area
+    assert abs(table["area"].sum() / rep["part"]["painted_area"] - 1) < 1e-9
+    n = np.column_stack([table["nx"], table["ny"], table["nz"]])
+    assert np.abs(np.linalg.norm(n, axis=1) - 1).max() < 1e-12
+    # film.ply: a valid PLY that trimesh reads back, with the per-vertex thickness
+    ply = trimesh.load(part_painted / "film.ply", process=False)
+    raw = ply.metadata["_ply_raw"]["vertex"]["data"]
+    assert "thickness" in raw.dtype.names and len(raw) == len(ply.vertices)
+    assert abs(ply.area / rep["part"]["painted_area"] - 1) < 1e-6
+    assert raw["thickness"].min() == pytest.approx(th["min"], rel=1e-12)
+    assert ply.visual.vertex_colors.shape == (len(ply.vertices), 4)
+
+
+def test_part_path_runs(part_painted, capsys, tmp_path):
+    """path.csv carries the trigger (0 or 1, on during the passes) and `run` and `size` take
+    it: the reach and the motors hold."""
+    table = read_result(part_painted / "path.csv")
+    spray = table["spray"]
+    assert set(np.unique(spray)) == {0.0, 1.0} and spray[0] == 0 and spray[-1] == 0
+    code, out, err = run_cli(["run", "--trajectory", part_painted / "path.csv", "--out",
+                              tmp_path / "run.csv", "--quiet"], capsys)
+    assert code == 0, err
+    code, out, err = run_cli(["size", "--trajectory", part_painted / "path.csv", "--actuators",
+                              ACT, "--format", "json", "--quiet"], capsys)
+    assert code == 0, err
+
+
+@pytest.mark.parametrize("edit, mesh, words", [
+    (lambda t: t.replace('"curved_panel.stl"', '"broken.stl"'), b"solid nothing here\n",
+     "broken.stl"),
+    (lambda t: t.replace('"curved_panel.stl"', '"empty.obj"'), b"v 0 0 0\nv 1 0 0\n",
+     "no triangles"),
+    (lambda t: t.replace('"curved_panel.stl"', '"part.step"'), b"ISO-10303-21;\n",
+     "not a mesh this reads"),
+    (lambda t: t.replace("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")
+     .replace("max_angle = 45.0", "max_angle = 10.0"), None, "no face has its outward normal"),
+    (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"), None,
+     "no point of the painted faces is within reach"),
+    (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.0, 0.25, 0.0]"), None,
+     "reachable: 6"),
+    (lambda t: t.replace('units = "m"', 'units = "mm"'), None, "read as millimetres"),
+    (lambda t: t.replace('mesh = ', 'mesch = '), None, "did you mean 'mesh'"),
+])
+def test_bad_part_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, mesh, words):
+    import shutil
+
+    shutil.copy(PART_JOB.parent / "curved_panel.stl", tmp_path / "curved_panel.stl")
+    for name in ("broken.stl", "empty.obj", "part.step"):
+        (tmp_path / name).write_bytes(mesh or b"")
+    job = tmp_path / "job.toml"
+    job.write_text(edit(PART_JOB.read_text()))
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: ")
+    assert words in lines[0], lines[0]
+    assert not out.exists()
+
+
+def test_part_in_mm_read_as_m_says_so(tmp_path, capsys):
+    import trimesh
+
+    mesh = trimesh.load(PART_JOB.parent / "curved_panel.stl", process=False)
+    mesh.apply_scale(1000.0)
+    mesh.export(tmp_path / "curved_panel.stl")
+    job = tmp_path / "job.toml"
+    job.write_text(PART_JOB.read_text())
+    code, _, err = run_cli(["paint", "--job", job, "--out", tmp_path / "out"], capsys)
+    assert code == 2 and "1000x too large: units = 'mm'?" in err, err
+    assert len(err.strip().splitlines()) == 1 and not (tmp_path / "out").exists()
+
+
+def test_view_part_overlay(part_painted, tmp_path, capsys):
+    """view --paint of a part's folder draws film.ply's triangles, coloured by the film."""
+    from pollard_pin.viz.viewer import page_commands
+
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", part_painted, "--html", html], capsys)
+    assert code == 0, err
+    cmds = page_commands(html.read_text())
+    paint = [c for c in cmds if c.get("path", "").endswith("/paint")]
+    assert paint and "color" in paint[0]["object"]["geometries"][0]["data"]["attributes"]
+    # a broken film.ply is one line
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    for name in ("path.csv", "path.units.json", "thickness.csv", "paint.json"):
+        (broken / name).write_bytes((part_painted / name).read_bytes())
+    (broken / "film.ply").write_bytes(b"ply\nformat ascii 1.0\nend_header\n")
+    code, _, err = run_cli(["view", "--paint", broken, "--html", tmp_path / "w.html"], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "not a film PLY" in err, err

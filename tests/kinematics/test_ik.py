@@ -473,3 +473,15 @@ def test_csv_partial_derivative_columns_rejected(tmp_path):
     np.savetxt(path, arr, delimiter=",", header=",".join(cols), comments="", fmt="%.17g")
     with pytest.raises(TrajectoryError, match="d_z"):
         from_csv(path)
+
+
+def test_csv_spray_column_is_read_and_range_checked(tmp_path):
+    """paint's trigger column: accepted in [0, 1] (the motion ignores it), refused outside."""
+    rows = [r + ["1" if i % 2 else "0"] for i, r in enumerate(_good_rows())]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # no derivative columns: the spline
+        traj = from_csv(write_text(tmp_path / "ok.csv", HEADER + ",spray", rows))
+    assert len(traj) == len(rows)
+    with pytest.raises(TrajectoryError, match=r"row 4, column 'spray'.*outside \[0, 1\]"):
+        from_csv(write_text(tmp_path / "bad.csv", HEADER + ",spray",
+                            _edit(rows, 2, 7, "1.5")))

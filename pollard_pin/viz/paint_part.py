@@ -1,0 +1,66 @@
+"""The film on a part (``paint`` of a [part] job): the film points projected on the passes'
+plane (along, across the passes: the part seen from the robot) coloured by thickness, the
+passes' spot tracks drawn over them; and the film's vertex colours for ``film.ply``. It draws
+what :mod:`pollard_pin.paint` computed; nothing here computes."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .paint import BAND
+
+# film.ply's vertex colours: matplotlib's "RdBu_r" over the target ± PLY_BAND (blue thin,
+# white on target, red thick), clipped beyond it.
+PLY_CMAP = "RdBu_r"
+PLY_BAND = 0.10
+
+
+def film_colours(thickness, target: float, band: float = PLY_BAND) -> np.ndarray:
+    """RGBA bytes (P, 4) of ``thickness`` [m]: PLY_CMAP over target × (1 ± band)."""
+    from matplotlib import colormaps
+
+    x = (np.asarray(thickness, float) / target - (1 - band)) / (2 * band)
+    return (colormaps[PLY_CMAP](np.clip(x, 0, 1)) * 255).round().astype(np.uint8)
+
+
+def part_figure(points, thickness, target: float, along, across, tracks=(),
+                title: str = "Film thickness on the part"):
+    """Scatter of the film ``points`` (P, 3) [m] projected on the unit ``along`` and
+    ``across`` axes, coloured by ``thickness`` [m] over target ± BAND, with ``tracks`` (each
+    (K, 3) [m], the spray spot's centre along a pass) drawn over them. Artist gids: ``film``,
+    ``passes``."""
+    from matplotlib.figure import Figure
+
+    pts = np.asarray(points, float)
+    x, y = pts @ along * 1e3, pts @ across * 1e3
+    t0 = target * 1e6
+    fig = Figure(figsize=(9, 5.2), constrained_layout=True)
+    ax = fig.add_subplot()
+    sc = ax.scatter(x, y, c=np.asarray(thickness) * 1e6, s=4, cmap="RdBu_r",
+                    vmin=t0 * (1 - BAND), vmax=t0 * (1 + BAND), linewidths=0)
+    sc.set_gid("film")
+    cb = fig.colorbar(sc, ax=ax, extend="both")
+    cb.set_label(f"film thickness [µm] (target {t0:.4g} ± {100 * BAND:g} %)")
+    for k, tr in enumerate(tracks):
+        tr = np.asarray(tr, float)
+        (ln,) = ax.plot(tr @ along * 1e3, tr @ across * 1e3, color="0.25", lw=0.7, alpha=0.8,
+                        label="passes (spot centre)" if k == 0 else None)
+        ln.set_gid("passes")
+    if len(tracks):
+        ax.legend(loc="upper right", fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("along the passes [mm]")
+    ax.set_ylabel("across the passes [mm]")
+    ax.set_title(title)
+    return fig
+
+
+def write_part_png(path, *args, dpi: int = 100, **kwargs) -> Path:
+    """:func:`part_figure` written to ``path`` as PNG, atomically."""
+    from .plots import save_png
+
+    return save_png(part_figure(*args, **kwargs), path, dpi)
+
+
+__all__ = ["PLY_BAND", "PLY_CMAP", "film_colours", "part_figure", "write_part_png"]
