@@ -12,6 +12,7 @@ own numpy intersector: the same verdicts (up to Embree's float32 arithmetic), on
 """
 from __future__ import annotations
 
+import io
 import math
 import warnings
 from dataclasses import dataclass
@@ -22,6 +23,7 @@ import trimesh
 
 from ..analytic.taskspace import rotation as tool_rotation
 from ..errors import InputError
+from ..model.values import read_bytes
 from .job import PaintJob
 from .raster import panel_frame
 
@@ -30,6 +32,8 @@ UNITS = {"m": 1.0, "mm": 1e-3}
 # Faces beyond this make the film (≥ 3 points a face) and the shadows slow for no gain: the
 # film grid is ~σ/3 = 3 mm, so a 0.3 m part needs ~1e4 faces, a 1 m² part ~1e5.
 MAX_FACES = 200_000
+# bytes of a mesh file: an ASCII STL of MAX_FACES triangles takes about 50 MB
+MAX_MESH_BYTES = 128 * 2**20
 # A part larger than this is a unit slip: the robot reaches ~0.5 m (mm read as m).
 MAX_EXTENT = 5.0
 # Faces whose outward normal lies within this of ``facing`` are painted, unless told: the
@@ -172,13 +176,14 @@ def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0
     ext = path.suffix.lower().lstrip(".")
     if ext not in FORMATS:
         raise MeshError(f"{src}: format '.{ext}' is not a mesh this reads (STL, OBJ or PLY)")
-    if not path.is_file():
-        raise MeshError(f"{src}: no such file")
+    # the one reading rule: a regular file (a FIFO would block), within a size budget
+    data = read_bytes(path, "mesh file", MeshError, MAX_MESH_BYTES)
     R, p = placement(position, rotation, src)
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            loaded = trimesh.load(str(path), file_type=ext, force="mesh", process=False)
+            loaded = trimesh.load(io.BytesIO(data), file_type=ext, force="mesh",
+                                  process=False)
             if len(getattr(loaded, "faces", ())):
                 # one vertex per position (an STL repeats each corner per face), so that a
                 # closed part is seen to be closed

@@ -859,7 +859,7 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
                       "spacing 18.15 mm) but the motors allow 1.825 m/s"),
     ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
-    ("part_missing_mesh.toml", "nope.stl: no such file"),
+    ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
     ("part_broken.toml", "mesh_broken.stl: no triangles in the file"),
     ("part_empty.toml", "mesh_empty.obj: no triangles"),
     ("part_nan.toml", "is not finite"),

@@ -94,7 +94,7 @@ TRI = "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"  # normal +x: faces away from the r
 
 
 @pytest.mark.parametrize("name, text, kwargs, fragment", [
-    ("none.stl", None, {}, "no such file"),
+    ("none.stl", None, {}, "does not exist"),
     ("part.step", "x", {}, "format '.step' is not a mesh"),
     ("junk.stl", "hello\n", {}, "no triangles in the file"),
     ("junk.ply", "hello\n", {}, "not a readable PLY mesh"),
@@ -118,6 +118,16 @@ def test_bad_meshes_are_one_line(tmp_path, name, text, kwargs, fragment):
     msg = str(exc.value)
     assert isinstance(exc.value, InputError)
     assert fragment in msg and "\n" not in msg and len(msg) < 250, msg
+
+
+def test_a_fifo_is_refused_not_waited_on(tmp_path):
+    """A FIFO with no writer as the mesh: one line at once (a plain open would block)."""
+    import os
+
+    fifo = tmp_path / "part.stl"
+    os.mkfifo(fifo)
+    with pytest.raises(MeshError, match=r"cannot be read: not a regular file \(a FIFO\)"):
+        load_part(fifo)
 
 
 def test_face_budget(tmp_path, monkeypatch, rib):
