@@ -134,12 +134,18 @@ def _run_part(args, job, out: Path) -> int:
     return 0
 
 
+def motor_use_line(rep: dict, names) -> str:
+    """Each motor's use of its ratings, one order for panels and parts: peak torque, RMS
+    (continuous) torque, speed."""
+    use = rep["motors"]
+    return "motor peak torque/RMS torque/speed use [%]: " + ", ".join(
+        f"{n} {100 * use[n]['peak_torque']:.0f}/{100 * use[n]['rms_torque']:.0f}/"
+        f"{100 * use[n]['speed']:.0f}" for n in names)
+
+
 def part_summary_lines(rep: dict, names) -> list[str]:
     """The lines ``paint`` prints for a part."""
     th, target = rep["thickness"], rep["target"]
-    motors = ", ".join(f"{n} {100 * rep['motors'][n]['peak_torque']:.0f}/"
-                       f"{100 * rep['motors'][n]['speed']:.0f}/"
-                       f"{100 * rep['motors'][n]['rms_torque']:.0f}" for n in names)
     return [
         f"passes {rep['passes']} ({rep['direction']}), spacing on the surface "
         f"{rep['spacing'] * 1e3:.2f} mm, spot speed {rep['speed']:.4g} m/s (tip "
@@ -152,7 +158,7 @@ def part_summary_lines(rep: dict, names) -> list[str]:
         f"±5 %, {100 * th['within_10pct']:.2f} % within ±10 %",
         f"largest incidence {rep['largest_incidence_deg']:.3g}°, transfer efficiency "
         f"{100 * rep['transfer_efficiency']:.1f} %",
-        f"motor peak torque/speed/RMS use [%]: {motors}",
+        motor_use_line(rep, names),
         f"planned in {rep['timings']['plan']:.2f} s, film in {rep['timings']['film']:.2f} s "
         f"({rep['film_points']['painted']} painted film points, {rep['samples']} path "
         "samples)",
@@ -162,9 +168,6 @@ def part_summary_lines(rep: dict, names) -> list[str]:
 def summary_lines(rep: dict, names) -> list[str]:
     """The report-style lines ``paint`` prints."""
     th, target = rep["thickness"], rep["target"]
-    motors = ", ".join(f"{n} {100 * rep['motors'][n]['peak_torque']:.0f}/"
-                       f"{100 * rep['motors'][n]['rms_torque']:.0f}/"
-                       f"{100 * rep['motors'][n]['speed']:.0f}" for n in names)
     return [
         f"passes {rep['passes']} ({rep['direction']}), spacing {rep['spacing'] * 1e3:.2f} mm, "
         f"speed {rep['speed']:.4g} m/s, coats {rep['coats']}",
@@ -173,7 +176,7 @@ def summary_lines(rep: dict, names) -> list[str]:
         f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
         f"(target {target * 1e6:.4g} µm: {100 * th['deviation_min']:+.2f} % / "
         f"{100 * th['deviation_max']:+.2f} %), {100 * th['within_10pct']:.0f} % within ±10 %",
-        f"motor peak torque/RMS torque/speed use [%]: {motors}",
+        motor_use_line(rep, names),
         f"planned in {rep['timings']['plan']:.2f} s, film map in {rep['timings']['film']:.2f} s "
         f"({rep['grid']['nu']} × {rep['grid']['nv']} points, {rep['samples']} path samples)",
     ]
