@@ -202,7 +202,7 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 MIRROR_PENDING = {
     "pollard_pin/cli/plot.py", "pollard_pin/cli/size.py", "pollard_pin/cli/urdf.py",
     "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py",
-    "pollard_pin/io/table.py", "pollard_pin/sweep/grid.py", "pollard_pin/workspace/reach.py",
+    "pollard_pin/sweep/grid.py", "pollard_pin/workspace/reach.py",
     "pollard_pin/workspace/rectangle.py",
 }
 # Test files that mirror no single module, on purpose.
