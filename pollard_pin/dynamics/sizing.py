@@ -1,5 +1,5 @@
 """Motor and gearbox sizing of one trajectory: everything ``pollard-pin size`` reports
-(docs/model.md §19; the table and figure: :mod:`pollard_pin.viz.sizing`).
+(docs/model.md §19; the table and figure: :mod:`pollard_pin.viz.torque_speed`).
 
 Per actuator, on the given trajectory and on the time-optimal traversal of the same path:
 peak and RMS motor torque and peak motor speed, each with its ratio to the rating (≤ 1

@@ -2,8 +2,8 @@
 table), :mod:`.stream` (window by window, in threads), :mod:`.stats` (summary and duty
 figures)."""
 from .pipeline import RunResult, run_pipeline, write_run_table
-from .stats import RunStats, run_sizing, summary
+from .stats import RunStats, duty_figures, summary
 from .stream import STREAM_CHUNK, solve_windows, stream_run, worker_robot
 
-__all__ = ["STREAM_CHUNK", "RunResult", "RunStats", "run_pipeline", "run_sizing",
+__all__ = ["STREAM_CHUNK", "RunResult", "RunStats", "duty_figures", "run_pipeline",
            "solve_windows", "stream_run", "summary", "worker_robot", "write_run_table"]

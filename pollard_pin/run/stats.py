@@ -109,9 +109,10 @@ def summary(result: RunResult | RunStats) -> str:
     return "\n".join(stats.lines())
 
 
-def run_sizing(columns: dict, actuated) -> dict:
-    """Sizing figures (peaks, time-weighted RMS, energy) from run columns
-    (:meth:`RunResult.columns` or a ``run`` CSV read back)."""
+def duty_figures(columns: dict, actuated) -> dict:
+    """The duty of each actuator (peak and time-weighted RMS torque, peak speed and power,
+    energy, net work) and of each spherical joint (peak and RMS force) from run columns
+    (:meth:`RunResult.columns` or a ``run`` CSV read back): the ``report``'s sizing table."""
     t = np.asarray(columns["t"], dtype=float)
     acts = {}
     for n in actuated:

@@ -1,6 +1,6 @@
 """The motor sizing (dynamics/sizing.py, docs/model.md §19): ``pollard-pin size`` checks its
 destinations before the work, and a path that does not move the actuators is refused. (Its
-figure and table: tests/viz/test_sizing.py.)"""
+figure and table: tests/viz/test_torque_speed.py.)"""
 import numpy as np
 import pytest
 from motor_model import EXAMPLE

@@ -7,7 +7,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.paths.curves import thesis_trajectory
-from pollard_pin.run import RunStats, run_sizing, stream_run, summary
+from pollard_pin.run import RunStats, duty_figures, stream_run, summary
 
 
 def test_summary_is_the_whole_runs(robot, tmp_path):
@@ -33,10 +33,10 @@ def test_stats_of_a_window_equal_a_direct_computation(robot):
     assert st.sigma_serial == r.ik.sigma_serial.min()
 
 
-def test_sizing_figures_are_a_trapezoid_recount(robot):
+def test_duty_figures_are_a_trapezoid_recount(robot):
     # Each figure recomputed from the columns by numpy's trapezoid rule (the peaks by max).
     cols = pp.run_pipeline(robot, thesis_trajectory(samples=101)).columns()
-    got = run_sizing(cols, robot.actuated)
+    got = duty_figures(cols, robot.actuated)
     t = cols["t"]
     T = t[-1] - t[0]
     assert list(got["actuators"]) == list(robot.actuated)
