@@ -202,8 +202,6 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 MIRROR_PENDING = {
     "pollard_pin/cli/plot.py", "pollard_pin/cli/size.py", "pollard_pin/cli/urdf.py",
     "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py",
-    "pollard_pin/sweep/grid.py", "pollard_pin/workspace/reach.py",
-    "pollard_pin/workspace/rectangle.py",
 }
 # Test files that mirror no single module, on purpose.
 UNMIRRORED_TESTS = {
@@ -211,7 +209,6 @@ UNMIRRORED_TESTS = {
     "tests/test_scripts.py",  # scripts/
     # the CLI fuzz suite, every command's bad input: tests/cli/test_fuzz*.py (by class)
     "tests/kinematics/test_solver_edges.py",  # edge cases across ik_*, singularity, closure
-    "tests/sweep/test_sweep.py",  # grid files (sweep/grid.py; owned by a parallel change)
 }
 
 
