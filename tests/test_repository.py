@@ -197,12 +197,6 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 # --- tests mirror the package ---------------------------------------------------------------
 # tests/<layer>/test_<module>.py for pollard_pin/<layer>/<module>.py (top level:
 # tests/test_<module>.py), one to one; CLI tests under tests/cli/.
-# Modules whose mirror file is being written by a parallel change (owned by a parallel change;
-# take each out once its file is in):
-MIRROR_PENDING = {
-    "pollard_pin/cli/plot.py", "pollard_pin/cli/size.py", "pollard_pin/cli/urdf.py",
-    "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py",
-}
 # Test files that mirror no single module, on purpose.
 UNMIRRORED_TESTS = {
     "tests/test_repository.py",  # the repository as a whole
@@ -224,13 +218,8 @@ def _package_modules():
 
 def test_every_module_has_its_mirror_test_file():
     missing = [f"{m.relative_to(ROOT)} -> {_mirror(m).relative_to(ROOT)}"
-               for m in _package_modules()
-               if not _mirror(m).is_file() and str(m.relative_to(ROOT)) not in MIRROR_PENDING]
+               for m in _package_modules() if not _mirror(m).is_file()]
     assert not missing, "modules without their mirror test file:\n" + "\n".join(missing)
-    # an entry whose file has come in leaves the list (one that no longer exists may stay
-    # until the parallel change lands: it checks nothing)
-    done = [m for m in sorted(MIRROR_PENDING) if _mirror(ROOT / m).is_file()]
-    assert not done, f"mirrored now, take them out of MIRROR_PENDING: {done}"
 
 
 def test_every_test_file_mirrors_a_module():
