@@ -197,21 +197,12 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 # --- tests mirror the package ---------------------------------------------------------------
 # tests/<layer>/test_<module>.py for pollard_pin/<layer>/<module>.py (top level:
 # tests/test_<module>.py), one to one; CLI tests under tests/cli/.
-# Modules whose mirror file is being written by a parallel change (owned by a parallel change;
-# take each out once its file is in):
-MIRROR_PENDING = {
-    "pollard_pin/cli/plot.py", "pollard_pin/cli/size.py", "pollard_pin/cli/urdf.py",
-    "pollard_pin/cli/view.py", "pollard_pin/dynamics/path.py",
-    "pollard_pin/io/table.py", "pollard_pin/sweep/grid.py", "pollard_pin/workspace/reach.py",
-    "pollard_pin/workspace/rectangle.py",
-}
 # Test files that mirror no single module, on purpose.
 UNMIRRORED_TESTS = {
     "tests/test_repository.py",  # the repository as a whole
     "tests/test_scripts.py",  # scripts/
     # the CLI fuzz suite, every command's bad input: tests/cli/test_fuzz*.py (by class)
     "tests/kinematics/test_solver_edges.py",  # edge cases across ik_*, singularity, closure
-    "tests/sweep/test_sweep.py",  # grid files (sweep/grid.py; owned by a parallel change)
 }
 
 
@@ -227,13 +218,8 @@ def _package_modules():
 
 def test_every_module_has_its_mirror_test_file():
     missing = [f"{m.relative_to(ROOT)} -> {_mirror(m).relative_to(ROOT)}"
-               for m in _package_modules()
-               if not _mirror(m).is_file() and str(m.relative_to(ROOT)) not in MIRROR_PENDING]
+               for m in _package_modules() if not _mirror(m).is_file()]
     assert not missing, "modules without their mirror test file:\n" + "\n".join(missing)
-    # an entry whose file has come in leaves the list (one that no longer exists may stay
-    # until the parallel change lands: it checks nothing)
-    done = [m for m in sorted(MIRROR_PENDING) if _mirror(ROOT / m).is_file()]
-    assert not done, f"mirrored now, take them out of MIRROR_PENDING: {done}"
 
 
 def test_every_test_file_mirrors_a_module():

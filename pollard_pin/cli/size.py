@@ -15,7 +15,7 @@ def run(args) -> int:
     from ..io.retime import retimed_trajectory
     from ..io.table import table_files
     from ..io.trajectory import to_csv
-    from ..viz.sizing import to_json, to_markdown, write_torque_speed
+    from ..viz.torque_speed import to_json, to_markdown, write_torque_speed
 
     out = args.out or STDOUT
     if args.retime == STDOUT and out == STDOUT:

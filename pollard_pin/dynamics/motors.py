@@ -27,8 +27,8 @@ from ..model.names import ACTUATED as ACTUATED_JOINTS
 from ..model.names import TREE_JOINTS as JOINT_NAMES
 from ..model.params import did_you_mean
 from ..model.values import fail, number, read_toml
+from .averages import mean_weights
 from .averages import time_rms as rms
-from .averages import trapezoid_weights
 from .inverse import JointLosses
 from .path import PathDynamics
 
@@ -278,7 +278,7 @@ def uniform_min_duration(act: Actuators, path: PathDynamics) -> UniformScaling:
     _, beta, gamma, delta, both = motor_coefficients(act, path, turns=False)
     peak, cont, wmax = (act.column(k) for k in ("peak_torque", "continuous_torque", "max_speed"))
     coulomb = act.column("coulomb") * both
-    w = trapezoid_weights(path.s)
+    w = mean_weights(path.s)
     static_peak = (np.abs(gamma) + coulomb).max(0)
     gamma_rms = gamma + coulomb * np.where(gamma >= 0, 1.0, -1.0)
     static_rms = np.sqrt(w @ gamma_rms**2)

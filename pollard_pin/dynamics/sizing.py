@@ -1,5 +1,5 @@
 """Motor and gearbox sizing of one trajectory: everything ``pollard-pin size`` reports
-(docs/model.md §19; the table and figure: :mod:`pollard_pin.viz.sizing`).
+(docs/model.md §19; the table and figure: :mod:`pollard_pin.viz.torque_speed`).
 
 Per actuator, on the given trajectory and on the time-optimal traversal of the same path:
 peak and RMS motor torque and peak motor speed, each with its ratio to the rating (≤ 1
@@ -15,7 +15,7 @@ import numpy as np
 
 from ..kinematics.errors import KinematicsError
 from ..paths.trajectory import trajectory_curve
-from .averages import trapezoid_weights
+from .averages import mean_weights
 from .motors import (
     ActuatorError,
     Actuators,
@@ -72,7 +72,7 @@ def binding_shares(load: MotorLoad, active: float = ACTIVE) -> dict[str, float]:
     use = np.concatenate([np.abs(load.torque) / a.column("peak_torque"),
                           np.abs(load.speed) / a.column("max_speed")], axis=1)
     labels = [f"{n} peak_torque" for n in a.names] + [f"{n} speed" for n in a.names]
-    w = trapezoid_weights(load.t)
+    w = mean_weights(load.t)
     best = use.argmax(axis=1)
     bound = use.max(axis=1) >= active
     shares = {lab: float(w[bound & (best == i)].sum()) for i, lab in enumerate(labels)}

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..dynamics.averages import trapezoid_weights
+
 # Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
 BLOCK_ELEMENTS = 1_000_000
 
@@ -59,13 +61,13 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0).T
 
 
-def trapezoid_weights(t) -> np.ndarray:
-    """Weights w with Σ w f(t) the trapezoid rule over the samples ``t``."""
+def coarse_weights(t) -> np.ndarray:
+    """The trapezoid weights (∫ f dt) on every second sample and the last, zero elsewhere: the
+    coarse rule whose difference from the full one is the film's error estimate."""
     t = np.asarray(t, dtype=float)
+    idx = np.unique(np.r_[np.arange(0, len(t), 2), len(t) - 1])
     w = np.zeros_like(t)
-    dt = np.diff(t)
-    w[:-1] += 0.5 * dt
-    w[1:] += 0.5 * dt
+    w[idx] = trapezoid_weights(t[idx])
     return w
 
 
@@ -88,11 +90,7 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
     p, s = p - o, s - o
-    w = trapezoid_weights(t)
-    # the coarse rule: every second sample, and the last one
-    coarse_idx = np.unique(np.r_[np.arange(0, len(t), 2), len(t) - 1])
-    w2 = np.zeros_like(w)
-    w2[coarse_idx] = trapezoid_weights(t[coarse_idx])
+    w, w2 = trapezoid_weights(t), coarse_weights(t)
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
     for start in range(0, len(t), block):
@@ -104,4 +102,4 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     return Film(total, err)
 
 
-__all__ = ["Film", "Gun", "deposition_rate", "film", "trapezoid_weights"]
+__all__ = ["Film", "Gun", "coarse_weights", "deposition_rate", "film"]

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate, trapezoid_weights
+from ..dynamics.averages import trapezoid_weights
+from .deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate
 from .film_points import SurfacePoints
 from .mesh import MeshError, Part
 from .occlusion import in_spot, visible
@@ -37,15 +38,6 @@ class MeshFilm:
         if not self.whole_part or self.sprayed <= 0:
             return None
         return self.landed / self.sprayed
-
-
-def _coarse_weights(t: np.ndarray) -> np.ndarray:
-    """The trapezoid weights on every second sample and the last (deposition.film's error
-    estimate)."""
-    idx = np.unique(np.r_[np.arange(0, len(t), 2), len(t) - 1])
-    w = np.zeros_like(t)
-    w[idx] = trapezoid_weights(t[idx])
-    return w
 
 
 def _spray(spray, n: int) -> np.ndarray:
@@ -79,7 +71,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     trig = _spray(spray, len(t))
     s, n = points.points, points.normals
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
-    w, w2 = trapezoid_weights(t) * trig, _coarse_weights(t) * trig
+    w, w2 = trapezoid_weights(t) * trig, coarse_weights(t) * trig
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
     pairs = shaded = 0
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))

@@ -31,7 +31,7 @@ import math
 from dataclasses import replace
 
 from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis, result_loads
-from ..run import run_sizing
+from ..run import duty_figures
 
 SIZING_FIELDS = (  # key, heading, unit
     ("peak_torque", "peak |τ|", "N·m"),
@@ -65,7 +65,7 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
                   "total_mass": float(robot.params.total_mass)},
         "units": {k: u for k, _, u in SIZING_FIELDS} | {"peak_force": "N", "rms_force": "N",
                                                         "peak_time": "s"},
-        "sizing": run_sizing(result.columns(), robot.actuated),
+        "sizing": duty_figures(result.columns(), robot.actuated),
         "bearings": loads.bearing_table(),
     }
     out["units"] |= {k: ("N·m" if k in ("peak_bending", "peak_torque") else "N")

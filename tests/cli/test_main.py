@@ -170,18 +170,6 @@ def test_terminated_run_removes_its_temporary_file(tmp_path):
     assert sorted(tmp_path.iterdir()) == [out] and out.read_text() == "precious\n"
 
 
-def test_urdf_default_writes_here_and_never_the_shipped_files(files, capsys):
-    shipped = {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
-    code, out, err = run_cli(["urdf", "--set", "chain0.x32=0.34"], capsys)
-    assert code == 0, err
-    assert shipped == {p: p.stat().st_mtime_ns for p in (ROOT / "models").iterdir()}
-    urdf = (files / "pollard.urdf").read_text()
-    assert (files / "pollard.srdf").exists()
-    assert urdf == pp.load(pp.load_params(overrides={"chain0.x32": 0.34})).urdf
-    code, out, _ = run_cli(["urdf", "--out", "-"], capsys)
-    assert code == 0 and out == (ROOT / "models" / "pollard.urdf").read_text()
-
-
 def test_set_and_partial_params_file_give_the_same_model(files, capsys):
     (files / "mine.toml").write_text("[bodies.gun]\nmass = 0.05\n")
     code, a, _ = run_cli(["info", "--params", "mine.toml"], capsys)

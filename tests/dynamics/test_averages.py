@@ -1,18 +1,46 @@
-"""Time averages over samples (dynamics/averages.py): the trapezoid weights against exact
-integrals, uneven steps, and the degenerate cases."""
+"""Time integrals and averages over samples (dynamics/averages.py): the trapezoid and mean
+weights against numpy's trapezoid rule and exact integrals, uneven steps, and the degenerate
+cases."""
 import numpy as np
 import pytest
 
-from pollard_pin.dynamics.averages import cubic_mean, time_mean, time_rms, trapezoid_weights
+from pollard_pin.dynamics.averages import (
+    cubic_mean,
+    mean_weights,
+    time_mean,
+    time_rms,
+    trapezoid_weights,
+)
 
 
 def test_weights_integrate_a_line_exactly_on_uneven_steps():
     t = np.array([0.0, 0.1, 0.5, 0.55, 2.0])
-    w = trapezoid_weights(t)
+    w = mean_weights(t)
     assert w.sum() == pytest.approx(1.0, rel=1e-15)
     # ∫₀² (3 + 2t) dt / 2 = (6 + 4) / 2 = 5: the trapezoid rule is exact for lines
     assert w @ (3 + 2 * t) == pytest.approx(5.0, rel=1e-15)
     assert w == pytest.approx([0.025, 0.125, 0.1125, 0.375, 0.3625], rel=1e-14)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_integral_and_mean_weights_against_numpys_trapezoid(seed):
+    # Uneven steps over a duration ≠ 1 (so that ∫ and ∫/T differ), several columns at once.
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(rng.uniform(0.01, 0.7, 40)) - 0.3
+    f = rng.normal(size=(40, 3))
+    T = t[-1] - t[0]
+    want = np.trapezoid(f, t, axis=0)
+    # achieves ≈ 1e-16 relative to the column's scale
+    scale = np.trapezoid(np.abs(f), t, axis=0)
+    assert np.abs(trapezoid_weights(t) @ f - want).max() <= 1e-13 * scale.max()
+    assert np.abs(mean_weights(t) @ f - want / T).max() <= 1e-13 * scale.max() / T
+    assert trapezoid_weights(t).sum() == pytest.approx(T, rel=1e-14)
+
+
+def test_integral_weights_of_one_sample_are_zero_and_mean_weights_the_plain_mean():
+    assert trapezoid_weights([0.3]).tolist() == [0.0]
+    assert trapezoid_weights([1.0, 1.0]).tolist() == [0.0, 0.0]
+    assert mean_weights([1.0, 1.0]).tolist() == [0.5, 0.5]
 
 
 def test_mean_and_rms_converge_to_the_integrals():

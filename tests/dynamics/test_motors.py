@@ -1,13 +1,11 @@
-"""Motors and gearboxes (docs/model.md §19): the motor model recomputed from a ``run`` CSV,
-breakaway friction at rest, the path's exact dynamics, the uniform time scaling against a
-brute-force scan of durations, the motors as joint losses, and bad actuator files."""
-import json
-import math
+"""Motors and gearboxes (docs/model.md §19): breakaway friction at rest, the uniform time
+scaling against a brute-force scan of durations, and the motors as joint losses. (The motor
+model against a ``run`` CSV and bad actuator files, through ``size``: tests/cli/test_size.py;
+the path's exact dynamics: tests/dynamics/test_path.py.)"""
 
 import numpy as np
 import pytest
 from motor_model import EXAMPLE, NAMES, RATINGS
-from motor_model import cli as _cli
 from motor_model import motor as _motor
 from motor_model import rms as _rms
 
@@ -15,7 +13,6 @@ import pollard_pin as pp
 from pollard_pin.dynamics import motors as A
 from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.dynamics.path import PathDynamics, path_dynamics
-from pollard_pin.io.table import read_result
 
 SAMPLES = 801
 
@@ -28,33 +25,6 @@ def thesis(robot):
 @pytest.fixture(scope="module")
 def act():
     return A.load_actuators(EXAMPLE)
-
-
-def test_motor_quantities_match_a_run_csv(tmp_path, capsys):
-    run_csv, rep = tmp_path / "run.csv", tmp_path / "size.json"
-    common = ["--samples", str(SAMPLES), "--quiet"]
-    assert _cli(["run", *common, "--out", str(run_csv)], capsys)[0] == 0
-    code, _, err = _cli(["size", *common, "--actuators", str(EXAMPLE), "--format", "json",
-                         "--out", str(rep)], capsys)
-    assert code == 0, err
-    cols = read_result(run_csv).columns
-    report = json.loads(rep.read_text())
-    t = cols["t"]
-    for name in NAMES:
-        tau_m, w_m = _motor(cols, name)
-        r, got = RATINGS[name], report["actuators"][name]
-        for key, value, rating in (("peak_motor_torque", np.abs(tau_m).max(), r["peak_torque"]),
-                                   ("rms_motor_torque", _rms(t, tau_m),
-                                    r["continuous_torque"]),
-                                   ("peak_motor_speed", np.abs(w_m).max(), r["max_speed"])):
-            assert got[key] == pytest.approx(value, rel=1e-12, abs=1e-15), (name, key)
-            assert got[key + "_ratio"] == pytest.approx(value / rating, rel=1e-12, abs=1e-15)
-    # the shipped example: the 20 s thesis cycle passes with margin, a limit binds when fast
-    assert report["given_within_ratings"]
-    ratios = [a[k] for a in report["actuators"].values() for k in a
-              if k.endswith("_ratio") and not k.startswith(("time_optimal", "gear"))]
-    assert max(ratios) < 0.6
-    assert report["time_optimal_duration"] < report["uniform_min_duration"] < 20.0
 
 
 def _feasible(robot, duration, samples=SAMPLES):
@@ -85,15 +55,6 @@ def test_uniform_min_duration_matches_a_brute_force_scan(robot, thesis, act):
     assert all(_feasible(robot, D) > 1.0 for D in below)
     # each limit alone: the binding one gives D, the others no more
     assert uni.by_limit[uni.limit] == d and max(uni.by_limit.values()) == d
-
-
-def test_path_torques_are_exact_at_another_duration(robot, thesis):
-    path = path_dynamics(robot, thesis.ik)
-    D = 7.3
-    res = pp.run_pipeline(robot, pp.thesis_trajectory(duration=D, samples=SAMPLES))
-    # uniform: ṡ = 1/D, s̈ = 0
-    np.testing.assert_allclose(res.dynamics.tau, path.b / D**2 + path.c, rtol=0, atol=1e-12)
-    np.testing.assert_allclose(res.ik.v[:, robot.actuated_v], path.q_s / D, atol=1e-12)
 
 
 def test_uniform_holds_at_every_longer_duration_when_feasibility_is_not_monotone():
@@ -140,66 +101,6 @@ def test_reflected_inertia_as_joint_losses(robot, thesis, act):
     for k in (50, 400, 700):
         a = pp.forward_dynamics(robot, ik.q[k], ik.v[k], tau_full[k], losses=full)
         np.testing.assert_allclose(a, ik.a[k], rtol=0, atol=1e-8 * np.abs(ik.a[k]).max())
-
-
-def _with(name, key, value):
-    d = {n: dict(RATINGS[n]) for n in NAMES}
-    if value is None:
-        del d[name][key]
-    else:
-        d[name][key] = value
-    return d
-
-
-def _toml(d):
-    def val(v):
-        if isinstance(v, bool):
-            return str(v).lower()
-        if isinstance(v, float) and math.isnan(v):
-            return "nan"
-        return repr(v) if not isinstance(v, str) else f'"{v}"'
-    return "\n".join(f"[{n}]\n" + "\n".join(f"{k} = {val(v)}" for k, v in t.items())
-                     for n, t in d.items()) + "\n"
-
-
-BAD = [  # (file text, what the one line must name)
-    (_toml(_with("theta21", "gear_ratio", None)), "'theta21.gear_ratio' is missing"),
-    (_toml(_with("theta21_1", "peak_torqe", 0.05)), "'theta21_1.peak_torqe'"),
-    (_toml(_with("theta21", "gear_ratio", 0.0)), "'theta21.gear_ratio' = 0.0: must be > 0"),
-    (_toml(_with("theta1716", "peak_torque", -0.05)), "must be > 0"),
-    (_toml(_with("theta1716", "viscous", -1e-6)), "'theta1716.viscous' = -1e-06: must be >= 0"),
-    (_toml(_with("theta21", "max_speed", "fast")), "must be a number"),
-    (_toml(_with("theta21", "coulomb", True)), "must be a number"),
-    (_toml(_with("theta21", "rotor_inertia", math.nan)), "'theta21.rotor_inertia' = nan: "
-     "must be a finite number"),
-    (_toml(_with("theta21", "continuous_torque", 0.08)), "exceeds theta21.peak_torque"),
-    # magnitudes that overflowed the motor model (traceback) or gave an infinite cycle
-    (_toml(_with("theta21", "gear_ratio", 1e300)), "'theta21.gear_ratio' = 1e+300: must be "
-     "between 1e-06 and 1e+06"),
-    (_toml(_with("theta21", "rotor_inertia", 1e300)), "must be at most 1e+06 kg·m²"),
-    (_toml(_with("theta21", "max_speed", 1e-300)), "'theta21.max_speed' = 1e-300: must be "
-     "between 1e-06 and 1e+06 rad/s"),
-    (_toml({**{n: RATINGS[n] for n in NAMES}, "theta22": RATINGS["theta21"]}),
-     "[theta22] is not an actuator (did you mean"),
-    (_toml({n: RATINGS[n] for n in NAMES[:-1]}), "missing table(s) [theta1817]"),
-    ("[theta21\n", "is not valid TOML"),
-    (_toml(_with("theta21", "peak_torque", 0.006)).replace("continuous_torque = 0.02",
-                                                          "continuous_torque = 0.005"),
-     "theta21: the static peak motor torque (gravity and Coulomb friction) 0.009231 N·m "
-     "already reaches the rating 0.006 N·m"),
-]
-
-
-@pytest.mark.parametrize("text,message", BAD)
-def test_bad_actuator_files_give_one_line(tmp_path, capsys, text, message):
-    bad = tmp_path / "bad.toml"
-    bad.write_text(text)
-    out = tmp_path / "never.md"
-    code, _, err = _cli(["size", "--actuators", str(bad), "--out", str(out)], capsys)
-    assert code == 2
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and message in lines[0], err
-    assert not out.exists()
 
 
 def test_breakaway_friction_at_rest_counts_plus_or_minus_c(act):

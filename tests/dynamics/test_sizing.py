@@ -1,23 +1,13 @@
-"""The motor sizing (dynamics/sizing.py, docs/model.md §19): ``pollard-pin size`` checks its
-destinations before the work, and a path that does not move the actuators is refused. (Its
-figure and table: tests/viz/test_sizing.py.)"""
+"""The motor sizing (dynamics/sizing.py, docs/model.md §19): a path that does not move the
+actuators is refused. (Its figure and table: tests/viz/test_torque_speed.py; the command:
+tests/cli/test_size.py.)"""
 import numpy as np
 import pytest
 from motor_model import EXAMPLE
-from motor_model import cli as _cli
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics.sizing import actuator_sizing
-
-
-@pytest.mark.parametrize("extra", [["--retime", "{d}/afile/x.csv"], ["--plot", "{d}/afile"],
-                                   ["--actuators", "{d}/none.toml"]])
-def test_size_checks_destinations_before_the_work(tmp_path, capsys, extra):
-    (tmp_path / "afile").write_text("x")
-    extra = [x.format(d=tmp_path) for x in extra]
-    code, _, err = _cli(["size", "--actuators", str(EXAMPLE), *extra], capsys)
-    assert code == 2 and len(err.strip().splitlines()) == 1, err
 
 
 def test_a_path_that_does_not_move_the_actuators_is_refused(robot):

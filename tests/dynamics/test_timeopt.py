@@ -2,24 +2,19 @@
 between the samples (s̈ constant per interval, as TOPP-RA defines it) on the exact path and
 replaying it through the pipeline, with the motor model written out here."""
 import importlib.util
-import json
 import pickle
-import sys
 from functools import partial
 
 import numpy as np
 import pytest
 from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
-from motor_model import cli as _cli
 from motor_model import motor as _motor
-from motor_model import rms as _rms
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.dynamics.path import PathDynamics, path_dynamics
 from pollard_pin.io.retime import retimed_trajectory
-from pollard_pin.io.table import read_result
 from pollard_pin.paint.raster import PanelFrame, raster_motion, raster_segments
 from pollard_pin.paths.curves import thesis_curve
 from pollard_pin.paths.splines import quintic_hermite
@@ -190,39 +185,6 @@ def test_long_raster_at_rest_ends_solves(robot, act):
         TO._rows = rows
 
 
-def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys):
-    retimed, replay, rep = tmp_path / "fast.csv", tmp_path / "replay.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--samples", "801", "--quiet", "--actuators",
-                         str(EXAMPLE), "--retime", str(retimed), "--format", "json",
-                         "--out", str(rep), "--plot", str(tmp_path / "fig")], capsys)
-    assert code == 0, err
-    assert (tmp_path / "fig" / "torque_speed.png").stat().st_size > 10_000
-    assert _cli(["run", "--trajectory", str(retimed), "--quiet", "--out", str(replay)],
-                capsys)[0] == 0
-    report = json.loads(rep.read_text())
-    cols = read_result(replay).columns
-    t = cols["t"]
-    assert t[-1] == pytest.approx(report["time_optimal_duration"], rel=1e-12)
-    assert t[-1] <= report["uniform_min_duration"]
-    use = []
-    for name in NAMES:
-        r = RATINGS[name]
-        tau_m, w_m = _motor(cols, name)
-        use += [np.abs(tau_m) / r["peak_torque"], np.abs(w_m) / r["max_speed"]]
-        got = report["actuators"][name]
-        assert got["time_optimal_rms_motor_torque"] == pytest.approx(_rms(t, tau_m), rel=1e-9)
-    use = np.max(use, axis=0)
-    # at the samples the limits hold to TOPP-RA's absolute 1e-8 on ṡ² (seen: 1 + 2.6e-6 where
-    # the arc-length path is slowest in a bend, ṡ² = 1.7e-4)
-    assert use.max() <= 1 + 1e-4
-    between = report["time_optimal_between_samples"]
-    assert use.max() <= between["worst_utilisation"] + 1e-12 <= TO.TARGET + 1e-12
-    assert np.all(cols[f"d_{NAMES[0]}"][[0, -1]] == 0)  # rest to rest
-    shares = report["time_optimal_binding_shares"]
-    assert sum(shares.values()) == pytest.approx(1.0)
-    assert shares["switching"] < 0.15
-
-
 @pytest.mark.parametrize("viscous", [5e-5, 1e-4])
 def test_time_optimal_with_strong_viscous_friction(robot, act, viscous):
     # b·ωm at the motors' max speed is half / all of their peak torque: the viscous term,
@@ -240,41 +202,6 @@ def test_time_optimal_with_strong_viscous_friction(robot, act, viscous):
     uniform = M.uniform_min_duration(sticky, path_dynamics(
         robot, pp.run_pipeline(robot, traj).ik))
     assert timing.duration < uniform.duration
-
-
-def test_size_reports_when_the_time_optimal_cycle_fails(tmp_path, capsys):
-    """Rest to rest over one interval never moves: TOPP-RA has no answer, the given
-    trajectory's ratios and the uniform scaling are still reported, the failure in one line."""
-    out, retime = tmp_path / "r.json", tmp_path / "r.csv"
-    code, _, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
-                         "--format", "json", "--out", str(out)], capsys)
-    assert code == 0, err
-    lines = err.strip().splitlines()
-    assert len(lines) == 2 and "needs at least 3 samples of the path, got 2" in lines[1], err
-    report = json.loads(out.read_text())
-    assert report["time_optimal_duration"] is None
-    assert "needs at least 3 samples" in report["time_optimal_error"]
-    assert report["uniform_min_duration"] > 0
-    assert report["actuators"]["theta21"]["peak_motor_torque_ratio"] > 0
-    code, text, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
-                            "--retime", str(retime)], capsys)
-    assert code == 2 and "uniform time scaling" in text and "**failed**" in text
-    assert "Traceback" not in err and not retime.exists()
-    assert len(err.strip().splitlines()) == 1 and "not written" in err
-
-
-def test_toppra_missing_gives_one_line(tmp_path):
-    import subprocess
-
-    code = ("import sys; sys.modules['toppra'] = None\nfrom pollard_pin.cli import main\n"
-            f"sys.exit(main(['size', '--samples', '101', '--quiet', '--actuators', "
-            f"{str(EXAMPLE)!r}, '--out', {str(tmp_path / 'never.md')!r}]))")
-    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
-                       timeout=120)
-    assert r.returncode == 2, r.stderr
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and "pip install 'toppra>=0.6.10,<0.7'" in lines[0], r.stderr
-    assert not (tmp_path / "never.md").exists()
 
 
 def test_a_path_that_does_not_move_has_no_time_optimal_cycle(robot, act):

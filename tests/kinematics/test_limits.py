@@ -121,3 +121,13 @@ def test_home_is_inside_and_nan_is_not_a_violation(robot):
     assert not side.any() and not excess.any()
     side, _ = limit_violations(robot.params, np.full_like(q, np.nan), robot.joint_names)
     assert not side.any()
+
+
+def test_limit_violations_modulo_two_pi():
+    params = pp.load_params()
+    lim = params.joint_limits("theta21")  # [−105°, −35°]
+    q = np.radians([[-70.0], [-70.0 + 360.0], [-30.0], [-110.0], [-70.0 - 720.0], [np.nan]])
+    side, excess = limit_violations(params, q, ("theta21",))
+    assert side[:, 0].tolist() == [0, 0, 1, -1, 0, 0]
+    np.testing.assert_allclose(excess[:, 0], np.radians([0, 0, 5, 5, 0, 0]), atol=1e-12)
+    assert lim.lower < lim.upper

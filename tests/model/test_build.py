@@ -531,24 +531,6 @@ def test_parameter_file_missing_and_defaults(tmp_path):
 # --- URDF / SRDF files ----------------------------------------------------------------------
 
 
-def test_cli_urdf_writes_the_same_text(tmp_path):
-    exe = Path(sys.executable).with_name("pollard-pin")
-    cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "pollard_pin.cli"]
-    out = subprocess.run(cmd + ["urdf", "--out", "tmp/x.urdf"], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=60)
-    assert out.returncode == 0, out.stderr
-    assert (tmp_path / "tmp/x.urdf").read_text() == URDF_PATH.read_text()
-    assert (tmp_path / "tmp/x.srdf").read_text() == SRDF_PATH.read_text()
-    bad = tmp_path / "bad.toml"
-    bad.write_text("[chain0\n")
-    out = subprocess.run(cmd + ["urdf", "--params", str(bad), "--out", "y.urdf"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=60)
-    assert out.returncode == 2
-    assert out.stderr.startswith("pollard-pin urdf: error: parameter file") and \
-        "is not valid TOML" in out.stderr, out.stderr
-    assert not (tmp_path / "y.urdf").exists()
-
-
 def _xml_counts(tag):
     root = ET.parse(URDF_PATH).getroot()
     return {link.get("name"): len(link.findall(tag)) for link in root.findall("link")}

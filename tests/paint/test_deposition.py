@@ -7,7 +7,7 @@ import pytest
 from scipy.special import erf, ndtri
 from scipy.stats import qmc
 
-from pollard_pin.paint.deposition import Gun, deposition_rate, film
+from pollard_pin.paint.deposition import Gun, coarse_weights, deposition_rate, film
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
 
@@ -121,3 +121,15 @@ def test_behind_the_nozzle_and_grazing_get_nothing():
     # on the axis at the standoff: flow / (2π σ²)
     r = deposition_rate(GUN, p, a, s, np.array([0.0, 0.0, 1.0]))[0, 1]
     assert r == pytest.approx(GUN.flow / (2 * math.pi * GUN.sigma ** 2), rel=1e-14)
+
+
+@pytest.mark.parametrize("n", [2, 3, 8, 9])
+def test_coarse_weights_are_the_rule_on_every_second_sample_and_the_last(n):
+    # numpy's trapezoid rule on the kept samples, written out: even and odd counts.
+    t = np.cumsum(np.linspace(0.1, 0.5, n)) ** 1.5
+    f = np.cos(3 * t) + 2
+    kept = sorted(set(range(0, n, 2)) | {n - 1})
+    w = coarse_weights(t)
+    assert np.flatnonzero(w).tolist() == kept
+    # achieves ≈ 1e-16 relative
+    assert w @ f == pytest.approx(np.trapezoid(f[kept], t[kept]), rel=1e-13)

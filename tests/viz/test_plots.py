@@ -1,5 +1,5 @@
-"""The figures (viz/plots.py) and ``plot``: they carry the run's arrays. (The report:
-tests/viz/test_report.py.)"""
+"""The figures (viz/plots.py): they carry the run's arrays. (The command:
+tests/cli/test_plot.py; the report: tests/viz/test_report.py.)"""
 import csv
 from pathlib import Path
 
@@ -9,7 +9,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.cli import main
 from pollard_pin.run import run_pipeline
-from pollard_pin.viz.plots import FIGURES, LOAD_FIGURES, figures
+from pollard_pin.viz.plots import FIGURES, figures
 
 SAMPLES = 401
 ARGS = ["--samples", str(SAMPLES), "--quiet"]
@@ -42,23 +42,6 @@ def run_csv(tmp_path_factory):
 
 
 # --- plots ---------------------------------------------------------------------------------
-def test_plot_command_writes_every_figure(tmp_path, capsys):
-    from PIL import Image
-
-    out = tmp_path / "figs"
-    assert main(["plot", *ARGS, "--out", str(out), "--dpi", "50"]) == 0
-    written = sorted(p.name for p in out.iterdir())
-    assert written == sorted(f"{n}.png" for n in FIGURES + LOAD_FIGURES)
-    for name in FIGURES:
-        path = out / f"{name}.png"
-        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-        with Image.open(path) as im:
-            assert im.width >= 300 and im.height >= 250
-            px = np.asarray(im.convert("L"))
-        assert px.std() > 5, f"{name}.png looks blank"
-    assert str(out / "actuators.png") in capsys.readouterr().out
-
-
 def test_a_failed_figure_leaves_the_existing_png(result, tmp_path, monkeypatch):
     # savefig wrote straight into the PNG: a failure half-way left a truncated figure
     import matplotlib.figure

@@ -1,5 +1,6 @@
-"""The sizing of ``pollard-pin size`` as a Markdown table and JSON, and the torque–speed
-figure (docs/model.md §19; the numbers: :mod:`pollard_pin.dynamics.sizing`)."""
+"""The torque–speed figure of ``pollard-pin size`` (motor points against the rating
+envelopes), and its sizing as a Markdown table and JSON (docs/model.md §19; the numbers:
+:mod:`pollard_pin.dynamics.sizing`)."""
 from __future__ import annotations
 
 import json

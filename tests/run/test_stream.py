@@ -1,5 +1,5 @@
-"""The streaming run (pollard_pin.run.stream_run): window by window it writes the rows of
-the whole-trajectory solve (to round-off: numpy's vectorised sin/cos may round the last bit
+"""The streaming run (run/stream.py): window by window it writes the rows of the
+whole-trajectory solve (to round-off: numpy's vectorised sin/cos may round the last bit
 differently at other array offsets), CSV or Parquet, with units and metadata; errors count
 samples from the trajectory's start; a failure leaves an existing output untouched."""
 import json
@@ -13,7 +13,7 @@ from pollard_pin.io.table import read_result, units_path
 from pollard_pin.kinematics.errors import SingularityError
 from pollard_pin.paths.curves import ThesisTrajectory, thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
-from pollard_pin.run import RunStats, stream_run, summary, write_run_table
+from pollard_pin.run import stream_run, write_run_table
 
 # A pose exactly on leg 2's reach boundary (tests/kinematics/test_solver_edges.py): singular.
 ROUND_OFF = 1e-13  # × max(1, column peak)
@@ -43,19 +43,6 @@ def _same(got, ref):
     for name, col in ref.columns.items():  # work carried across windows too
         scale = max(1.0, np.abs(col).max())
         assert np.abs(got[name] - col).max() <= ROUND_OFF * scale, name
-
-
-def test_summary_is_the_whole_runs(robot, tmp_path):
-    traj = thesis_trajectory(samples=801)
-    stats = stream_run(robot, traj, tmp_path / "s.csv", chunk=128)
-    whole = summary(pp.run_pipeline(robot, traj))
-    number = re.compile(r"-?\d+\.?\d*(?:e[+-]?\d+)?")
-    same_words = re.compile(r"\s+")
-    assert [same_words.sub(" ", number.sub("#", x)) for x in (summary(stats), whole)] == \
-        [same_words.sub(" ", number.sub("#", whole))] * 2  # the same lines
-    a, b = (np.array([float(x) for x in number.findall(s)]) for s in (summary(stats), whole))
-    # And the same figures (θ1817's τ is round-off): achieves 1.1e-16.
-    assert np.abs(a - b).max() <= 1e-14
 
 
 def test_parquet_round_trip_units_and_metadata(robot, whole, tmp_path):
@@ -106,20 +93,10 @@ def test_errors_count_samples_from_the_start(robot, tmp_path, k, workers):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
 
 
-def test_stats_of_a_window_equal_a_direct_computation(robot):
-    r = pp.run_pipeline(robot, thesis_trajectory(samples=301))
-    st = RunStats("thesis", "analytic")
-    st.add(r.ik, r.columns())
-    assert st.peak["tau_theta21"] == np.abs(r.dynamics.tau[:, 0]).max()
-    f = np.linalg.norm(r.dynamics.closure_forces, axis=2).max(0)
-    assert st.closure_force == [f[0], f[1]]
-    assert st.sigma_serial == r.ik.sigma_serial.min()
-
-
 def test_memory_is_one_window(robot, tmp_path, monkeypatch):
     # Bounded memory: the pipeline never sees more than one window, and the lazy thesis
     # trajectory never builds the whole time grid.
-    import pollard_pin.run as results
+    import pollard_pin.run.stream as results
 
     seen = []
     real = results.run_pipeline
@@ -144,54 +121,11 @@ def test_first_error_in_order_with_threads(robot, tmp_path):
 
 
 def test_worker_robots_do_not_share_pinocchio_data(robot):
-    from pollard_pin.run import worker_robot
+    from pollard_pin.run.stream import worker_robot
 
     other = worker_robot(robot)
     assert other.model is robot.model and other.data is not robot.data
     assert all(a is not b for a, b in zip(other.constraint_datas, robot.constraint_datas))
-
-
-@pytest.mark.parametrize("name, content, says", [
-    ("missing.csv", None, "no such result file"),
-    ("folder.csv", "DIR", "is a folder"),
-    ("garbage.parquet", b"not parquet at all", "not a readable parquet result table"),
-    ("empty.csv", b"", "not a readable csv result table"),
-    ("latin1.csv", "t,x\n0,\xe9\n".encode("latin-1"), "not UTF-8 text (byte 6"),
-    ("text.csv", b"t,x\n0,abc\n", "not a readable csv result table"),
-    ("ragged.csv", b"t,x\n0,1,2,3\n", "not a readable csv result table"),
-    ("ab.csv", b"a,b\n", "column 'a' is not one pollard-pin writes, and no sidecar"),
-    ("ab_rows.csv", b"t,b\n0,1\n", "column 'b' is not one pollard-pin writes"),
-    ("header.csv", b"t,theta21\n", "no rows"),
-    ("twice.csv", b"t,t\n0,1\n", "duplicate column 't'"),
-    ("text.parquet", "TEXT", "not a readable parquet result table"),
-])
-def test_read_result_of_a_bad_file_is_one_error(tmp_path, name, content, says):
-    from pollard_pin.io.table import ResultFileError
-
-    path = tmp_path / name
-    if content == "DIR":
-        path.mkdir()
-    elif content == "TEXT":  # Parquet with a text column
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-
-        pq.write_table(pa.table({"t": [0.0], "theta21": ["abc"]}), path)
-    elif content is not None:
-        path.write_bytes(content)
-    with pytest.raises(ResultFileError) as info:
-        read_result(path)
-    assert str(info.value).startswith(f"{path}: ") and says in str(info.value)
-    assert "\n" not in str(info.value)
-
-
-def test_read_result_names_a_broken_sidecar(robot, tmp_path):
-    from pollard_pin.io.table import ResultFileError
-
-    path = tmp_path / "r.csv"
-    stream_run(robot, ThesisTrajectory(samples=5), path)
-    units_path(path).write_text("{broken")
-    with pytest.raises(ResultFileError, match=r"r\.units\.json: not a readable units sidecar"):
-        read_result(path)
 
 
 def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
@@ -209,7 +143,7 @@ def test_unwritable_sidecar_leaves_the_table_untouched(robot, tmp_path):
 
 def test_cli_window_size_is_the_streaming_window():
     # the CLI keeps its own copy (importing pollard_pin.run would slow --help): they must agree.
-    from pollard_pin import run as results
     from pollard_pin.cli.run import STREAM_WINDOW
+    from pollard_pin.run import stream as results
 
     assert STREAM_WINDOW == results.STREAM_CHUNK

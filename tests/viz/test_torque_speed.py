@@ -1,12 +1,12 @@
-"""The sizing's figure and table (viz/sizing.py): each plotted line is the sizing's own array,
-the envelopes are the ratings, the Markdown names the cycle and its check."""
+"""The torque–speed figure and the sizing table (viz/torque_speed.py): each plotted line is the
+sizing's own array, the envelopes are the ratings, the Markdown names the cycle and its check."""
 import numpy as np
 from motor_model import EXAMPLE, NAMES, RATINGS
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics.sizing import actuator_sizing
-from pollard_pin.viz.sizing import to_markdown, torque_speed_figure
+from pollard_pin.viz.torque_speed import to_markdown, torque_speed_figure
 
 
 def test_torque_speed_figure_draws_points_and_envelopes(robot):

@@ -1,4 +1,4 @@
-"""Design sweeps (pollard_pin.sweep): grid files and the sweep API that makes them. (Rows:
+"""Sweep grids (sweep/grid.py): grid files and the sweep API that makes them. (Rows:
 tests/sweep/test_evaluate.py; where they run: test_backends.py; the table: test_table.py.)"""
 import numpy as np
 import pytest

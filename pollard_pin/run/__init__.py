@@ -1,0 +1,9 @@
+"""Run a trajectory through the pipeline: :mod:`.pipeline` (the whole-trajectory solve and its
+table), :mod:`.stream` (window by window, in threads), :mod:`.stats` (summary and duty
+figures)."""
+from .pipeline import RunResult, run_pipeline, write_run_table
+from .stats import RunStats, duty_figures, summary
+from .stream import STREAM_CHUNK, solve_windows, stream_run, worker_robot
+
+__all__ = ["STREAM_CHUNK", "RunResult", "RunStats", "duty_figures", "run_pipeline",
+           "solve_windows", "stream_run", "summary", "worker_robot", "write_run_table"]

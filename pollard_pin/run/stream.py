@@ -1,0 +1,144 @@
+"""Streaming: solve and write a trajectory window by window (docs/model.md §15), in
+overlapping windows, optionally in worker threads, each with its own Pinocchio data."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..io.table import TableWriter
+from ..kinematics.ik import BATCH_CHUNK
+from ..paths.trajectory import Trajectory
+from .pipeline import run_pipeline
+from .stats import RunStats
+
+STREAM_CHUNK = BATCH_CHUNK  # samples per solve (overlap included): bounded memory
+
+
+def _overlapping_windows(traj, size: int):
+    """(start, window, skip): windows of ``size`` new samples; each after the first starts with
+    the previous window's last sample (skip = 1), so that the pipeline sees every pair of
+    consecutive samples (branch flips) and the cumulative work carries on."""
+    last = None
+    for start, win in traj.windows(size):
+        if last is None:
+            yield start, win, 0
+        else:
+            yield start, Trajectory(*(np.concatenate([a, b]) for a, b in zip(
+                (last.t, last.poses, last.d_poses, last.dd_poses),
+                (win.t, win.poses, win.d_poses, win.dd_poses))), win.name, win.derivatives), 1
+        last = win.window(len(win) - 1, len(win))
+
+
+def worker_robot(robot):
+    """The same model with its own Pinocchio data (one per thread: ``Data`` is a workspace)."""
+    import dataclasses
+
+    return dataclasses.replace(robot, data=robot.model.createData(),
+                               constraint_datas=[cm.createData()
+                                                 for cm in robot.constraint_models])
+
+
+def solve_windows(robot, traj, *, chunk: int = STREAM_CHUNK, workers: int = 1, **options):
+    """Yield ``(start, result, columns)`` for the windows of ``traj`` in order: ``result`` the
+    :class:`RunResult` of the window (overlap sample included), ``columns`` its output columns
+    without the overlap sample, cumulative work carried across windows.
+
+    ``workers`` > 1 solves that many windows at once in threads, each with its own Pinocchio
+    data (numpy and LAPACK release the GIL, so this uses the cores); at most ``workers + 1``
+    windows are in flight, so memory stays bounded. An error is raised at its window, in order,
+    with sample numbers counted from the trajectory's start."""
+    import threading
+    from collections import deque
+    from concurrent.futures import ThreadPoolExecutor
+    from itertools import islice
+
+    from ..kinematics.errors import KinematicsError
+
+    if not (isinstance(chunk, int) and chunk >= 2):
+        raise ValueError(f"chunk must be an integer >= 2, got {chunk!r}")
+    if not (isinstance(workers, int) and workers >= 1):
+        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    local = threading.local()
+
+    def solve(item):
+        start, win, skip = item
+        if workers > 1 and not hasattr(local, "robot"):
+            local.robot = worker_robot(robot)
+        try:
+            result = run_pipeline(getattr(local, "robot", robot), win, **options)
+        except KinematicsError as exc:
+            raise exc.shifted(start - skip) from None
+        cols = result.columns()
+        return start, result, {k: v[skip:] for k, v in cols.items()} if skip else cols
+
+    # windows of chunk − 1 new samples: with the overlap sample, one IK block each
+    items = _overlapping_windows(traj, chunk - 1)
+    work = None
+    with ThreadPoolExecutor(workers) if workers > 1 else _Inline() as pool:
+        pending = deque(pool.submit(solve, item) for item in islice(items, workers + 1))
+        while pending:
+            start, result, cols = pending.popleft().result()
+            nxt = next(items, None)
+            if nxt is not None:
+                pending.append(pool.submit(solve, nxt))
+            if work:
+                for k, w in work.items():
+                    cols[k] = cols[k] + w
+            work = {k: v[-1] for k, v in cols.items() if k.startswith("work_")}
+            yield start, result, cols
+
+
+class _Inline:
+    """A pool of no threads: ``submit`` runs at once (``workers=1``, the plain loop)."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return None
+
+    @staticmethod
+    def submit(fn, *args):
+        from concurrent.futures import Future
+
+        future = Future()
+        try:
+            future.set_result(fn(*args))
+        except BaseException as exc:  # re-raised by .result(), in order
+            future.set_exception(exc)
+        return future
+
+
+def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK, workers: int = 1,
+               metadata: dict | None = None, fmt: str | None = None, progress=None,
+               timings: dict | None = None, **options) -> RunStats:
+    """Solve ``traj`` (a :class:`Trajectory` or :class:`ThesisTrajectory`) window by window and
+    write each window's columns to ``path`` as it is done; memory stays that of a few windows.
+
+    The same rows as ``write_run_table(run_pipeline(robot, traj, **options), path)`` (see
+    :func:`solve_windows`; ``workers`` threads solve while this thread writes). Errors count
+    samples from the trajectory's start; the file appears only if every window is solved
+    (atomic). ``options`` go to :func:`run_pipeline`; ``timings`` gets ``wall`` (solving and
+    writing) and ``write`` (this thread's writing, overlapped with the solving) seconds.
+    """
+    timings = {} if timings is None else timings
+    stats = RunStats(traj.name, traj.derivatives)
+    n = len(traj)
+    write = 0.0
+    with TableWriter(path, metadata, fmt) as writer:  # imports its library: not timed
+        t0 = time.perf_counter()
+        for start, result, cols in solve_windows(robot, traj, chunk=chunk, workers=workers,
+                                                 **options):
+            stats.add(result.ik, cols)
+            t1 = time.perf_counter()
+            writer.write(cols)
+            write += time.perf_counter() - t1
+            if progress is not None:
+                progress(min(start + chunk - 1, n), n)
+    timings["wall"] = timings.get("wall", 0.0) + time.perf_counter() - t0
+    timings["write"] = timings.get("write", 0.0) + write
+    return stats
+
+

@@ -1,0 +1,184 @@
+"""``pollard-pin size`` (cli/size.py, docs/model.md §19): its motor figures are those of a
+``run`` CSV through the motor model written out here, the time-optimal cycle it writes replays
+within the ratings, it reports a failed cycle and still the rest, a missing toppra or a bad
+actuator file is one line, and it checks every destination before the work. (The numbers:
+tests/dynamics/test_sizing.py, test_motors.py, test_timeopt.py.)"""
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
+from motor_model import cli as _cli
+from motor_model import motor as _motor
+from motor_model import rms as _rms
+
+from pollard_pin.dynamics import timeopt as TO
+from pollard_pin.io.table import read_result
+
+SAMPLES = 801
+
+
+@pytest.mark.parametrize("extra", [["--retime", "{d}/afile/x.csv"], ["--plot", "{d}/afile"],
+                                   ["--actuators", "{d}/none.toml"]])
+def test_size_checks_destinations_before_the_work(tmp_path, capsys, extra):
+    (tmp_path / "afile").write_text("x")
+    extra = [x.format(d=tmp_path) for x in extra]
+    code, _, err = _cli(["size", "--actuators", str(EXAMPLE), *extra], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+
+
+def test_motor_quantities_match_a_run_csv(tmp_path, capsys):
+    run_csv, rep = tmp_path / "run.csv", tmp_path / "size.json"
+    common = ["--samples", str(SAMPLES), "--quiet"]
+    assert _cli(["run", *common, "--out", str(run_csv)], capsys)[0] == 0
+    code, _, err = _cli(["size", *common, "--actuators", str(EXAMPLE), "--format", "json",
+                         "--out", str(rep)], capsys)
+    assert code == 0, err
+    cols = read_result(run_csv).columns
+    report = json.loads(rep.read_text())
+    t = cols["t"]
+    for name in NAMES:
+        tau_m, w_m = _motor(cols, name)
+        r, got = RATINGS[name], report["actuators"][name]
+        for key, value, rating in (("peak_motor_torque", np.abs(tau_m).max(), r["peak_torque"]),
+                                   ("rms_motor_torque", _rms(t, tau_m),
+                                    r["continuous_torque"]),
+                                   ("peak_motor_speed", np.abs(w_m).max(), r["max_speed"])):
+            assert got[key] == pytest.approx(value, rel=1e-12, abs=1e-15), (name, key)
+            assert got[key + "_ratio"] == pytest.approx(value / rating, rel=1e-12, abs=1e-15)
+    # the shipped example: the 20 s thesis cycle passes with margin, a limit binds when fast
+    assert report["given_within_ratings"]
+    ratios = [a[k] for a in report["actuators"].values() for k in a
+              if k.endswith("_ratio") and not k.startswith(("time_optimal", "gear"))]
+    assert max(ratios) < 0.6
+    assert report["time_optimal_duration"] < report["uniform_min_duration"] < 20.0
+
+
+def _with(name, key, value):
+    d = {n: dict(RATINGS[n]) for n in NAMES}
+    if value is None:
+        del d[name][key]
+    else:
+        d[name][key] = value
+    return d
+
+
+def _toml(d):
+    def val(v):
+        if isinstance(v, bool):
+            return str(v).lower()
+        if isinstance(v, float) and math.isnan(v):
+            return "nan"
+        return repr(v) if not isinstance(v, str) else f'"{v}"'
+    return "\n".join(f"[{n}]\n" + "\n".join(f"{k} = {val(v)}" for k, v in t.items())
+                     for n, t in d.items()) + "\n"
+
+
+BAD = [  # (file text, what the one line must name)
+    (_toml(_with("theta21", "gear_ratio", None)), "'theta21.gear_ratio' is missing"),
+    (_toml(_with("theta21_1", "peak_torqe", 0.05)), "'theta21_1.peak_torqe'"),
+    (_toml(_with("theta21", "gear_ratio", 0.0)), "'theta21.gear_ratio' = 0.0: must be > 0"),
+    (_toml(_with("theta1716", "peak_torque", -0.05)), "must be > 0"),
+    (_toml(_with("theta1716", "viscous", -1e-6)), "'theta1716.viscous' = -1e-06: must be >= 0"),
+    (_toml(_with("theta21", "max_speed", "fast")), "must be a number"),
+    (_toml(_with("theta21", "coulomb", True)), "must be a number"),
+    (_toml(_with("theta21", "rotor_inertia", math.nan)), "'theta21.rotor_inertia' = nan: "
+     "must be a finite number"),
+    (_toml(_with("theta21", "continuous_torque", 0.08)), "exceeds theta21.peak_torque"),
+    # magnitudes that overflowed the motor model (traceback) or gave an infinite cycle
+    (_toml(_with("theta21", "gear_ratio", 1e300)), "'theta21.gear_ratio' = 1e+300: must be "
+     "between 1e-06 and 1e+06"),
+    (_toml(_with("theta21", "rotor_inertia", 1e300)), "must be at most 1e+06 kg·m²"),
+    (_toml(_with("theta21", "max_speed", 1e-300)), "'theta21.max_speed' = 1e-300: must be "
+     "between 1e-06 and 1e+06 rad/s"),
+    (_toml({**{n: RATINGS[n] for n in NAMES}, "theta22": RATINGS["theta21"]}),
+     "[theta22] is not an actuator (did you mean"),
+    (_toml({n: RATINGS[n] for n in NAMES[:-1]}), "missing table(s) [theta1817]"),
+    ("[theta21\n", "is not valid TOML"),
+    (_toml(_with("theta21", "peak_torque", 0.006)).replace("continuous_torque = 0.02",
+                                                          "continuous_torque = 0.005"),
+     "theta21: the static peak motor torque (gravity and Coulomb friction) 0.009231 N·m "
+     "already reaches the rating 0.006 N·m"),
+]
+
+
+@pytest.mark.parametrize("text,message", BAD)
+def test_bad_actuator_files_give_one_line(tmp_path, capsys, text, message):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
+    out = tmp_path / "never.md"
+    code, _, err = _cli(["size", "--actuators", str(bad), "--out", str(out)], capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0], err
+    assert not out.exists()
+
+
+def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys):
+    retimed, replay, rep = tmp_path / "fast.csv", tmp_path / "replay.csv", tmp_path / "r.json"
+    code, _, err = _cli(["size", "--samples", "801", "--quiet", "--actuators",
+                         str(EXAMPLE), "--retime", str(retimed), "--format", "json",
+                         "--out", str(rep), "--plot", str(tmp_path / "fig")], capsys)
+    assert code == 0, err
+    assert (tmp_path / "fig" / "torque_speed.png").stat().st_size > 10_000
+    assert _cli(["run", "--trajectory", str(retimed), "--quiet", "--out", str(replay)],
+                capsys)[0] == 0
+    report = json.loads(rep.read_text())
+    cols = read_result(replay).columns
+    t = cols["t"]
+    assert t[-1] == pytest.approx(report["time_optimal_duration"], rel=1e-12)
+    assert t[-1] <= report["uniform_min_duration"]
+    use = []
+    for name in NAMES:
+        r = RATINGS[name]
+        tau_m, w_m = _motor(cols, name)
+        use += [np.abs(tau_m) / r["peak_torque"], np.abs(w_m) / r["max_speed"]]
+        got = report["actuators"][name]
+        assert got["time_optimal_rms_motor_torque"] == pytest.approx(_rms(t, tau_m), rel=1e-9)
+    use = np.max(use, axis=0)
+    # at the samples the limits hold to TOPP-RA's absolute 1e-8 on ṡ² (seen: 1 + 2.6e-6 where
+    # the arc-length path is slowest in a bend, ṡ² = 1.7e-4)
+    assert use.max() <= 1 + 1e-4
+    between = report["time_optimal_between_samples"]
+    assert use.max() <= between["worst_utilisation"] + 1e-12 <= TO.TARGET + 1e-12
+    assert np.all(cols[f"d_{NAMES[0]}"][[0, -1]] == 0)  # rest to rest
+    shares = report["time_optimal_binding_shares"]
+    assert sum(shares.values()) == pytest.approx(1.0)
+    assert shares["switching"] < 0.15
+
+
+def test_size_reports_when_the_time_optimal_cycle_fails(tmp_path, capsys):
+    """Rest to rest over one interval never moves: TOPP-RA has no answer, the given
+    trajectory's ratios and the uniform scaling are still reported, the failure in one line."""
+    out, retime = tmp_path / "r.json", tmp_path / "r.csv"
+    code, _, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
+                         "--format", "json", "--out", str(out)], capsys)
+    assert code == 0, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 2 and "needs at least 3 samples of the path, got 2" in lines[1], err
+    report = json.loads(out.read_text())
+    assert report["time_optimal_duration"] is None
+    assert "needs at least 3 samples" in report["time_optimal_error"]
+    assert report["uniform_min_duration"] > 0
+    assert report["actuators"]["theta21"]["peak_motor_torque_ratio"] > 0
+    code, text, err = _cli(["size", "--actuators", str(EXAMPLE), "--samples", "2", "--quiet",
+                            "--retime", str(retime)], capsys)
+    assert code == 2 and "uniform time scaling" in text and "**failed**" in text
+    assert "Traceback" not in err and not retime.exists()
+    assert len(err.strip().splitlines()) == 1 and "not written" in err
+
+
+def test_toppra_missing_gives_one_line(tmp_path):
+
+    code = ("import sys; sys.modules['toppra'] = None\nfrom pollard_pin.cli import main\n"
+            f"sys.exit(main(['size', '--samples', '101', '--quiet', '--actuators', "
+            f"{str(EXAMPLE)!r}, '--out', {str(tmp_path / 'never.md')!r}]))")
+    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "pip install 'toppra>=0.6.10,<0.7'" in lines[0], r.stderr
+    assert not (tmp_path / "never.md").exists()
