@@ -68,6 +68,8 @@ def main(argv=None) -> int:
     try:
         code = args.func(args)
         say_notes(args)
+        if not _flushed_stdout(args.command):
+            return 2
         return code
     except errors as exc:
         message = " ".join(str(exc).split()) or type(exc).__name__
@@ -86,6 +88,11 @@ def main(argv=None) -> int:
         print(f"pollard-pin {args.command}: {how}, nothing written", file=sys.stderr)
         return 143 if isinstance(exc, _Terminated) else 130
     except OSError as exc:
+        if exc.errno in _FULL and not _broken_pipe(exc):
+            # the outputs' own write errors are OutputErrors (above): this is the text the
+            # command prints, to a full or failing standard output
+            _stdout_failed(args.command, exc)
+            return 2
         if not _broken_pipe(exc):
             raise
         # The reader of standard output or of a FIFO stopped (`run --out - | head`): stop
@@ -96,6 +103,33 @@ def main(argv=None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _flushed_stdout(command: str) -> bool:
+    """Flush what the command printed (a summary is held in the buffer until now when standard
+    output is a file): a full or failing destination is one line, not an 'Exception ignored'
+    at exit. A closed pipe stays a broken pipe (141)."""
+    try:
+        sys.stdout.flush()
+    except OSError as exc:
+        if _broken_pipe(exc):
+            raise
+        _stdout_failed(command, exc)
+        return False
+    return True
+
+
+# errno of a destination that is full or failing (not a closed reader: that is EPIPE)
+_FULL = {errno.ENOSPC, errno.EIO, errno.EDQUOT, errno.EFBIG}
+
+
+def _stdout_failed(command: str, exc: OSError) -> None:
+    """One line for standard output that cannot take the command's text; no second failure
+    when Python flushes it at exit."""
+    print(f"pollard-pin {command}: error: cannot write to standard output: "
+          f"{exc.strerror or exc}", file=sys.stderr)
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
 
 
 def _survive_any_encoding() -> None:

@@ -242,3 +242,15 @@ def test_example_trajectories_run_and_agree(robot, capsys, tmp_path):
     for col, tol in (("theta21_1", 1e-8), ("d_theta21_1", 1e-6), ("tau_theta21", 1e-5),
                      ("tau_theta21_2", 1e-5)):
         assert np.abs(a[col] - b[col]).max() <= tol * max(1.0, np.abs(a[col]).max()), col
+
+
+def test_a_full_standard_output_is_one_line_not_a_traceback():
+    """`info > /dev/full`: the text cannot be printed; one line on stderr, exit 2, and no
+    'Exception ignored' from Python's flush at exit (it gave an ENOSPC traceback)."""
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([sys.executable, "-m", "pollard_pin.cli", "info"], stdout=full,
+                              stderr=subprocess.PIPE, text=True, timeout=120)
+    err = done.stderr.strip()
+    assert done.returncode == 2, err
+    assert err == ("pollard-pin info: error: cannot write to standard output: No space left "
+                   "on device")
