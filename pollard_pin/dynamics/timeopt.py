@@ -201,9 +201,7 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
     s = np.asarray(path.s, dtype=float)[::m]
     if (len(path.s) - 1) % m or len(s) < 2:
         raise ValueError(f"a path of {len(path.s)} points is not (n − 1)·{m} + 1 points")
-    if len(s) < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
-        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
-                            f"samples of the path, got {len(s)}")
+    _check_count(len(s), s_dot_start, s_dot_end)
     if not np.any(path.q_s):
         raise ActuatorError("the path does not move the actuators (their rates along it are 0 "
                             "at every point): no time-optimal cycle")
@@ -251,6 +249,12 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
             f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
             "torque b·ωm at the motors' speeds is too close to their peak torque")
     return _timing(act, path.take(slice(None, None, m)), s_dot, at_rest[::m], it, m)
+
+
+def _check_count(n: int, s_dot_start: float, s_dot_end: float) -> None:
+    if n < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
+        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
+                            f"samples of the path, got {n}")
 
 
 def _uncontrollable(K, s) -> str:
@@ -327,6 +331,8 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     """
     t = np.asarray(t, dtype=float)
     curve = curve or quintic_hermite(t, poses, d_poses, dd_poses)
+    # kept from the grid on the samples (a 2-sample path, rest to rest, is refused: tested)
+    _check_count(len(t), s_dot_start, s_dot_end)
     arc = arc_length_path(curve, t)
     options = (per_interval, target, s_dot_start, s_dot_end)
     if arc is not None:
