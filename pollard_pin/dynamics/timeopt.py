@@ -321,12 +321,12 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
 
-    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of as
-    many points as samples, evenly spaced along it: the answer does not depend on how the
-    samples are timed (a path whose samples come to rest, such as a retimed one, is degenerate
-    in its own time: dp/ds = 0 there, so "rest to rest" would hold it still twice). A path that
-    stops inside (or whose bends are too tight for as many grid points as samples: TOPP-RA
-    fails there) keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
+    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of
+    GRID_DENSITY points per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends
+    neither on how the samples are timed nor on how many there are (a path whose samples come
+    to rest, such as a retimed one, is degenerate in its own time: dp/ds = 0 there, so "rest
+    to rest" would hold it still twice). A path that stops inside (or on which TOPP-RA fails)
+    keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
     at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
     """
     t = np.asarray(t, dtype=float)
