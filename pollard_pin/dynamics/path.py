@@ -72,7 +72,8 @@ def path_dynamics_at(robot, curve, t0: float, duration: float, s) -> PathDynamic
     return replace(path_dynamics(robot, ik, t0, duration), s=s)
 
 
-ARC_POINTS = 8  # points per sample interval from which the arc-length path is built
+ARC_POINTS = 8  # points per sample interval from which the arc-length path is built, and
+ARC_KNOTS = 6400  # at least this many in all (201 samples × 8 cut the thesis curve's bends)
 STOP = 1e-6  # an interior point this slow (relative to the fastest) is a stop on the path
 
 
@@ -90,14 +91,16 @@ class ArcLengthPath:
         self.length = float(sigma[-1])
         self.knots, self.scale = sigma, scale
         self.spline = make_interp_spline(sigma, poses, k=5, axis=0)
+        kappa = np.sqrt(((self.spline(sigma, 2) / scale) ** 2).sum(axis=1))
+        w = np.sqrt(1.0 + kappa)
+        self._tau = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(sigma))])
+        self.extent = float(self._tau[-1])  # ∫√(1 + κ) dσ: the grid's measure of the path
 
     def grid(self, n: int) -> np.ndarray:
         """``n`` points σ/length ∈ [0, 1], evenly spaced in ∫√(1 + κ) dσ, κ = |d²p/dσ²| the
         curvature (lengths normalised): a bend of radius r is crossed at most at √(a·r), so
         it gets √(1/r) more of the grid than a straight stretch of the same length."""
-        kappa = np.sqrt(((self.spline(self.knots, 2) / self.scale) ** 2).sum(axis=1))
-        w = np.sqrt(1.0 + kappa)
-        tau = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(self.knots))])
+        tau = self._tau
         grid = np.interp(np.linspace(0.0, tau[-1], n), tau, self.knots) / self.length
         grid[0], grid[-1] = 0.0, 1.0
         return grid
@@ -111,7 +114,8 @@ def arc_length_path(curve, t) -> ArcLengthPath | None:
     """:class:`ArcLengthPath` of ``curve`` over the times ``t`` (n,), or None where arc length
     is no parameter: the path stands still, or stops inside (a cusp: it may turn back)."""
     t = np.asarray(t, dtype=float)
-    theta = np.arange(ARC_POINTS) / ARC_POINTS
+    per = max(ARC_POINTS, -(-ARC_KNOTS // max(len(t) - 1, 1)))
+    theta = np.arange(per) / per
     dense = np.append((t[:-1, None] + theta * np.diff(t)[:, None]).ravel(), t[-1])
     poses, rates, accelerations = curve(dense)
     scale = np.ones(6)

@@ -29,6 +29,11 @@ MAX_PER_INTERVAL = 64
 TIGHTEN_BELOW = 1.01  # a smaller overshoot halfway is met by tightening its interval's limits
 TIGHTEN_ROUNDS = 3
 X_CAP = 1e8  # ṡ² bound where nothing else bounds it (TOPP-RA's Seidel clips at 1e8)
+# The arc-length grid: GRID_DENSITY points per unit of ∫√(1 + κ) dσ (ArcLengthPath.extent),
+# within [MIN_GRID, MAX_GRID]; a property of the path, not of its samples. TOPP-RA's error on
+# arc length is O(1/n), ≈ 8× larger than on the thesis curve's own time (docs/model.md §19).
+GRID_DENSITY = 240
+MIN_GRID, MAX_GRID = 201, 20001
 MARGIN = 1e-6  # limits imposed this much tighter: TOPP-RA's absolute 1e-8 on ṡ² (seen 3e-7)
 
 
@@ -196,9 +201,7 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
     s = np.asarray(path.s, dtype=float)[::m]
     if (len(path.s) - 1) % m or len(s) < 2:
         raise ValueError(f"a path of {len(path.s)} points is not (n − 1)·{m} + 1 points")
-    if len(s) < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
-        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
-                            f"samples of the path, got {len(s)}")
+    _check_count(len(s), s_dot_start, s_dot_end)
     if not np.any(path.q_s):
         raise ActuatorError("the path does not move the actuators (their rates along it are 0 "
                             "at every point): no time-optimal cycle")
@@ -246,6 +249,12 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
             f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
             "torque b·ωm at the motors' speeds is too close to their peak torque")
     return _timing(act, path.take(slice(None, None, m)), s_dot, at_rest[::m], it, m)
+
+
+def _check_count(n: int, s_dot_start: float, s_dot_end: float) -> None:
+    if n < 3 and s_dot_start == 0 and s_dot_end == 0:  # one interval: ṡ = 0 all along
+        raise ActuatorError(f"the time-optimal traversal, rest to rest, needs at least 3 "
+                            f"samples of the path, got {n}")
 
 
 def _uncontrollable(K, s) -> str:
@@ -312,21 +321,24 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
 
-    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of as
-    many points as samples, evenly spaced along it: the answer does not depend on how the
-    samples are timed (a path whose samples come to rest, such as a retimed one, is degenerate
-    in its own time: dp/ds = 0 there, so "rest to rest" would hold it still twice). A path that
-    stops inside (or whose bends are too tight for as many grid points as samples: TOPP-RA
-    fails there) keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
+    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of
+    GRID_DENSITY points per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends
+    neither on how the samples are timed nor on how many there are (a path whose samples come
+    to rest, such as a retimed one, is degenerate in its own time: dp/ds = 0 there, so "rest
+    to rest" would hold it still twice). A path that stops inside (or on which TOPP-RA fails)
+    keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
     at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
     """
     t = np.asarray(t, dtype=float)
     curve = curve or quintic_hermite(t, poses, d_poses, dd_poses)
+    # kept from the grid on the samples (a 2-sample path, rest to rest, is refused: tested)
+    _check_count(len(t), s_dot_start, s_dot_end)
     arc = arc_length_path(curve, t)
     options = (per_interval, target, s_dot_start, s_dot_end)
     if arc is not None:
         try:
-            return _solve(robot, act, arc, 0.0, arc.length, arc.grid(len(t)), *options)
+            n = int(np.clip(np.ceil(GRID_DENSITY * arc.extent) + 1, MIN_GRID, MAX_GRID))
+            return _solve(robot, act, arc, 0.0, arc.length, arc.grid(n), *options)
         except ActuatorError:  # e.g. too few samples for its bends: the samples' parameter
             pass
     t0, T = float(t[0]), float(t[-1] - t[0])

@@ -85,7 +85,7 @@ def test_thesis_curve_holds_between_samples(robot, act, samples):
     # within 1.002 between the samples, and a limit is used (no slack bought with it)
     assert use.max() <= 1.002 and use.max() >= 0.999, use.max()
     assert timing.between <= TO.TARGET
-    # 40 points per interval, evenly in s (seen: 1.00103 at 201 samples, 1.00094 at 801)
+    # 40 points per interval, evenly in s (seen: 1.00109 at 201 and 801 samples, one grid)
     fine = _replay(robot, curve, 0.0, 20.0, timing, (np.arange(40) + 0.5) / 40, in_s=True)
     assert fine.max() <= 1.002
     # the replay at the very points the solver verified gives its number (seen: 5e-13 on the
@@ -215,9 +215,10 @@ def test_a_path_that_does_not_move_has_no_time_optimal_cycle(robot, act):
 def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, tmp_path):
     """size on figure8.csv, then on its own retimed output (written and read back, verified
     within ratings at its samples): the same path, so the same shortest cycle, to TOPP-RA's
-    own gap (seen 0.01 %; 0.5717 s then 0.6238 s, 9 %, when the samples' times were the path
-    parameter: a retimed file comes to rest in its own time, dp/ds = 0 at its ends). The gap
-    itself: within 2 % of the same solve on 3× the samples (seen 0.8 %)."""
+    own gap (seen 0.5711 s both, < 0.01 %; 0.5717 s then 0.6238 s, 9 %, when the samples' times
+    were the path parameter: a retimed file comes to rest in its own time, dp/ds = 0 at its
+    ends). 3× the samples: the same grid on arc length (it was as many points as samples, seen
+    0.8 % apart then); the grid's own convergence is tested on the thesis curve below."""
     from pollard_pin.dynamics.sizing import actuator_sizing
 
     traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
@@ -234,3 +235,26 @@ def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, t
     fine = pp.time_optimal_path(robot, act, t, *quintic_hermite(
         traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t))
     assert first.timing.duration == pytest.approx(fine.duration, rel=0.02)
+
+
+def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, monkeypatch):
+    """TOPP-RA's grid on arc length is a property of the path (docs/model.md §19): the thesis
+    curve gives one cycle at 201 and 801 samples, and the default grid is within 1 % of 4× its
+    points (seen 7.6750 s against 7.6430 s, 0.42 %). With as many grid points as samples, 801
+    samples gave 8.040 s against 7.719 s on 4× the grid (4.2 %), and 201 samples 7.925 s."""
+    curve = partial(thesis_curve, duration=20.0)
+
+    def cycle(samples):
+        traj = pp.thesis_trajectory(samples=samples)
+        return TO.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
+                                    traj.dd_poses, curve).duration
+
+    default = cycle(801)
+    gap = abs(cycle(201) / default - 1)
+    assert gap <= 1e-3, gap
+    # 4× the grid: its density (and 4× the samples, which was the grid before)
+    monkeypatch.setattr(TO, "GRID_DENSITY", 4 * getattr(TO, "GRID_DENSITY", 1), raising=False)
+    monkeypatch.setattr(TO, "MAX_GRID", 10**6, raising=False)
+    fine = cycle(3201)
+    assert fine <= default * (1 + 1e-4), (fine, default)  # converges from above
+    assert default <= fine * 1.01, (default, fine)
