@@ -41,6 +41,10 @@ def run(args) -> int:
     stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
              for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
+    if job.line is not None or args.max_line_speed:  # a moving line (docs/model.md §24)
+        from .paint_line import run_line
+
+        return run_line(args, job, out, _actuators(args, job), stale)
     if isinstance(job, PartJob):
         return _run_part(args, job, out)
     try:
@@ -275,3 +279,7 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
                    help="film grid (a part: film point) spacing [m], at most σ (default: "
                         "σ/3)")
+    p.add_argument("--max-line-speed", action="store_true",
+                   help="a job with [line]: plan at the fastest line speed that paints the "
+                        "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
+                        "§24)")
