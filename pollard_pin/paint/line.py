@@ -279,8 +279,10 @@ def plan_line(robot, job: PaintJob, act: Actuators, speed: float | None = None) 
 
     try:
         seg = build(fastest(evaluate, np.full(n_pieces, guess), UTILISATION))
-    except PlanError as exc:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s: {exc}", True) from None
+    except PlanError:
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s the motors cannot follow the "
+                             f"passes ({pass_speed:.4g} m/s on the part) with the line's "
+                             "speed added", True) from None
     shift = choose_shift(robot, frame, job_x, seg, horizontal, speed, e)
     delay = float(shift) / speed
     parts = (frame, job_x, seg, horizontal, speed, e)
