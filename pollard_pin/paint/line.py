@@ -297,16 +297,25 @@ def plan_line(robot, job: PaintJob, act: Actuators, speed: float | None = None) 
         fine = motion(robot, act, *world_motion(parts, times, tf)[:3])
     except ReachError as exc:
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the path leaves the workspace at "
-                             f"t = {tf[exc.sample]:.3f} s: {exc}", True) from None
+                             f"t = {tf[exc.sample]:.3f} s: {exc}",
+                             _drift_along(parts, seg) > 0) from None
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
     worst = max(float(ratios["peak_torque"].max()), float(ratios["speed"].max()))
     if worst > 1.0:
         raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {100 * worst:.0f} % "
-                             "of its peak torque or speed", True)
+                             "of its peak torque or speed", _drift_along(parts, seg) > 0)
     return LinePlan(job_x, frame, seg, horizontal, e, speed, times, traj, spray, offsets,
                     spacing, pass_speed, ratios, {"plan": time.perf_counter() - clock})
+
+
+def _drift_along(parts, seg: Segments) -> float:
+    """The program's world drift along the line [m], s·T − (relative travel): a failure at a
+    positive drift is one of too fast a line, at a negative one of too slow (§24)."""
+    frame, job, _, horizontal, speed, e = parts
+    along = _drift(frame, job, seg, horizontal, speed, e, np.array([0.0, seg.total]))[:, :3] @ e
+    return float(along[1] - along[0])
 
 
 def _mid_along(frame, job, seg, horizontal, speed, e) -> float:
@@ -338,15 +347,25 @@ def max_line_speed(robot, job: PaintJob, act: Actuators,
     drift matches the part's length, doubled until it fails, then bisected."""
     s = job.line.speed
     best = None
-    for _ in range(SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
+    slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
+    for _ in range(2 * SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
         try:
             best = (s, plan_line(robot, job, act, s))
             break
         except LineSpeedError as exc:
-            s = 0.5 * s if exc.too_fast else 2 * s
+            if exc.too_fast:
+                fast = s
+            else:
+                slow = s
+        if fast < math.inf and slow > 0:
+            if fast - slow <= resolution * slow:
+                break
+            s = 0.5 * (slow + fast)
+        else:
+            s = 2 * s if fast == math.inf else 0.5 * s
     if best is None:
-        raise PlanError(f"{job.source}: no line speed paints the panel (tried down to "
-                        f"{s:.4g} m/s)")
+        raise PlanError(f"{job.source}: no line speed paints the panel (too slow at "
+                        f"{slow:.4g} m/s, too fast at {fast:.4g} m/s)")
     lo, plan = best
     hi = None
     for _ in range(SPEED_TRIES):

@@ -168,3 +168,14 @@ def test_fastest_plans_and_five_percent_more_is_refused(robot, line_job, act):
     assert line_table(plan)["upper_bound"] > fastest_speed
     with pytest.raises(LineSpeedError):
         plan_line(robot, line_job, act, 1.05 * fastest_speed)
+
+
+def test_too_slow_and_too_fast_are_told_apart(robot, line_job, act):
+    """A failure's side is the drift's sign (a slow line fails on the motors too, at the
+    reach's edge), which --max-line-speed's bracketing needs."""
+    with pytest.raises(LineSpeedError) as slow:
+        plan_line(robot, line_job, act, 0.02)  # 104 % of a motor's peak: the reach's edge
+    assert not slow.value.too_fast
+    with pytest.raises(LineSpeedError) as fast:
+        plan_line(robot, line_job, act, 0.06)
+    assert fast.value.too_fast
