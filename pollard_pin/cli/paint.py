@@ -233,6 +233,10 @@ def paint_overlay(folder: Path):
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
 
+    if "line" in report:  # the panel rides the line with the path (docs/model.md §24)
+        from .paint_line import riding
+
+        draw.moving = riding(report["line"], folder)
     return draw
 
 

@@ -92,3 +92,32 @@ def line_summary_lines(rep: dict, names) -> list[str]:
         f"planned in {rep['timings']['plan']:.2f} s, film map in {rep['timings']['film']:.2f} s "
         f"({rep['grid']['nu']} × {rep['grid']['nv']} points, {rep['samples']} path samples)",
     ]
+
+
+def riding(line, folder: Path) -> dict:
+    """The viewer's moving nodes of a line's paint folder: the film panel carried by the line
+    (translation speed·t·direction at path time t, docs/model.md §24)."""
+    import math
+
+    import numpy as np
+
+    from ..io.table import ResultFileError
+    from ..viz.viewer import ROOT
+
+    try:
+        speed, e = line["speed"], line["direction"]
+        ok = (type(speed) in (int, float) and 0 <= speed < math.inf and len(e) == 3
+              and all(type(c) in (int, float) and math.isfinite(c) for c in e))
+    except (KeyError, TypeError):
+        ok = False
+    if not ok:
+        raise ResultFileError(f"{folder / 'paint.json'}: line = {line!r}: expected speed >= 0 "
+                              "[m/s] and a direction [x, y, z]")
+    e = np.asarray(e, dtype=float)
+
+    def place(t: float) -> np.ndarray:
+        T = np.eye(4)
+        T[:3, 3] = speed * t * e
+        return T
+
+    return {f"{ROOT}/paint": place}

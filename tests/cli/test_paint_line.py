@@ -94,3 +94,24 @@ def test_max_line_speed_needs_a_line(tmp_path, capsys):
                             "--max-line-speed"], capsys)
     assert code == 2 and "no [line] table" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
+
+
+def test_view_shows_the_part_riding(painted, tmp_path, capsys):
+    """The film panel's node is animated along the line: at key frame time t it is shifted
+    by speed·t·direction."""
+    from pollard_pin.viz.viewer import page_commands
+
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "1"], capsys)
+    assert code == 0, err
+    anim = [c for c in page_commands(html.read_text()) if c.get("type") == "set_animation"]
+    assert len(anim) == 1
+    tracks = [a for a in anim[0]["animations"] if a["path"].endswith("pollard/paint")]
+    assert len(tracks) == 1
+    (track,) = [t for t in tracks[0]["clip"]["tracks"] if t["name"] == ".position"]
+    times = np.array([k["time"] for k in track["keys"]], float)  # frames at 1 fps: seconds
+    values = np.array([k["value"] for k in track["keys"]], float)
+    speed = json.loads((painted / "paint.json").read_text())["line"]["speed"]
+    assert len(times) > 10
+    assert np.abs(values[:, 1] - speed * times).max() < 1e-4
+    assert np.abs(values[:, [0, 2]]).max() < 1e-9
