@@ -1,15 +1,10 @@
-"""A panel on a moving line (docs/model.md §24): the [line] table, the frames, the film in the
-part's frame, the delay, the fastest speed."""
+"""A panel on a moving line (docs/model.md §24): the frames, the phases, the pass order, the
+delay, the fastest speed (fixtures line_job, line_plan: tests/paint/conftest.py)."""
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.model.params import read_toml
-from pollard_pin.paint.deposition import film
-from pollard_pin.paint.job import JobError, job_from_dict, load_job
 from pollard_pin.paint.line import (
     CATCH,
     LineSpeedError,
@@ -19,55 +14,7 @@ from pollard_pin.paint.line import (
     relative_motion,
     world_motion,
 )
-from pollard_pin.paint.line_job import MAX_LINE_SPEED
-from pollard_pin.paint.line_report import line_film, line_table
-from pollard_pin.paint.plan import gun_of
-
-ROOT = Path(__file__).resolve().parents[2]
-LINE = ROOT / "examples" / "line.toml"
-
-
-@pytest.fixture(scope="module")
-def line_job():
-    return load_job(LINE)
-
-
-@pytest.fixture(scope="module")
-def line_plan(robot, line_job, act):
-    return plan_line(robot, line_job, act)
-
-
-def _raw():
-    return read_toml(LINE, "paint job file", JobError)
-
-
-@pytest.mark.parametrize("line, words", [
-    ({"speed": 0.03, "direction": [0.0, 0.0, 0.0]}, "zero length"),
-    ({"speed": 0.0, "direction": [0.0, 1.0, 0.0]}, "must be > 0"),
-    ({"speed": -0.1, "direction": [0.0, 1.0, 0.0]}, "must be > 0"),
-    ({"speed": 30.0, "direction": [0.0, 1.0, 0.0]}, f"at most {MAX_LINE_SPEED:g} m/s"),
-    ({"speed": float("inf"), "direction": [0.0, 1.0, 0.0]}, "finite"),
-    ({"speed": 0.03, "direction": [0.0, 1.0]}, "3 finite numbers"),
-    ({"speed": 0.03}, "'line.direction' is missing"),
-    ({"speed": 0.03, "direction": [0.0, 1.0, 0.0], "pitch": 1}, "unknown key"),
-])
-def test_bad_line_tables(line, words):
-    d = _raw()
-    d["line"] = line
-    with pytest.raises(JobError, match="line") as info:
-        job_from_dict(d, "j.toml")
-    assert words in str(info.value) and "\n" not in str(info.value)
-
-
-def test_line_table_read(line_job):
-    d = _raw()
-    d["line"] = {"speed": 0.02, "direction": [0.0, 3.0, 4.0]}
-    job = job_from_dict(d, "j.toml")
-    assert job.line.direction == (0.0, 0.6, 0.8) and job.line.speed == 0.02
-    assert job.to_dict()["line"] == {"speed": 0.02, "direction": [0.0, 0.6, 0.8]}
-    assert line_job.line.speed == 0.03 and line_job.line.direction == (0.0, 1.0, 0.0)
-    del d["line"]
-    assert job_from_dict(d, "j.toml").line is None
+from pollard_pin.paint.line_report import line_table
 
 
 def test_world_is_relative_plus_the_line(line_plan):
@@ -117,38 +64,6 @@ def test_leading_end_first_and_passes_across(line_plan, line_job):
     assert not p.horizontal
     assert p.offsets[0] > 0 > p.offsets[-1]
     assert np.all(np.diff(p.offsets) < 0)
-
-
-def test_film_in_the_parts_frame(line_plan):
-    """Moving the part and the gun by the same motion gives the film of the relative motion
-    over a still part (docs/model.md §24), to 1e-12."""
-    p = line_plan
-    U, V, pts, f = line_film(p, p.job.sigma)
-    tr = p.trajectory
-    on = p.spray > 0
-    rel, _, _ = relative_motion(p.frame, p.job, p.segments, p.horizontal,
-                                tr.t[on] - p.times.delay)
-    still = film(gun_of(p.job), tr.t[on] - p.times.delay, rel[:, :3],
-                 rotation(rel)[:, :, 0], pts.reshape(-1, 3), p.frame.n, origin=p.frame.c)
-    assert np.abs(f.thickness - still.thickness).max() <= 1e-12 * p.job.thickness
-    # and the film is the target's: ≥ 99 % within ±5 %, all within ±10 %
-    dev = np.abs(f.thickness / p.job.thickness - 1)
-    assert np.mean(dev <= 0.05) >= 0.99 and dev.max() <= 0.10
-
-
-def test_line_table_numbers(line_plan):
-    t = line_table(line_plan)
-    assert t["cycle"] == pytest.approx(line_plan.trajectory.t[-1])
-    assert t["min_pitch"] == pytest.approx(line_plan.speed * t["cycle"], rel=1e-15)
-    assert t["parts_per_hour"] == pytest.approx(3600 / t["cycle"], rel=1e-15)
-    j = line_plan.job
-    assert t["upper_bound"] == pytest.approx((0.9 + t["window_length"]) / (
-        0.9 * 0.1 * j.thickness / j.flow), rel=1e-12)
-    # the window: the world interval the sprayed tips span along the line
-    on = line_plan.spray > 0
-    y = line_plan.trajectory.poses[on, 1]
-    assert t["window"] == [y.min(), y.max()]
-    assert line_plan.speed < t["upper_bound"]
 
 
 def test_motors_and_reach_on_the_world_path(line_plan):
