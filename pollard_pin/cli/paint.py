@@ -271,7 +271,8 @@ def add_parser(sub, parents) -> None:
     model_args(p)
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml; a part's mesh: "
-                        "examples/parts/*.toml)")
+                        "examples/parts/*.toml; a panel on a moving line: "
+                        "examples/line.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
