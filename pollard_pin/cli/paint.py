@@ -41,6 +41,10 @@ def run(args) -> int:
     stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
              for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
+    if job.line is not None or args.max_line_speed:  # a moving line (docs/model.md §24)
+        from .paint_line import run_line
+
+        return run_line(args, job, out, _actuators(args, job), stale)
     if isinstance(job, PartJob):
         return _run_part(args, job, out)
     try:
@@ -235,6 +239,10 @@ def paint_overlay(folder: Path):
     def draw(vis):
         film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
 
+    if "line" in report:  # the panel rides the line with the path (docs/model.md §24)
+        from .paint_line import riding
+
+        draw.moving = riding(report["line"], folder)
     return draw
 
 
@@ -269,7 +277,8 @@ def add_parser(sub, parents) -> None:
     model_args(p)
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml; a part's mesh: "
-                        "examples/parts/*.toml)")
+                        "examples/parts/*.toml; a panel on a moving line: "
+                        "examples/line.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
@@ -281,3 +290,7 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
                    help="film grid (a part: film point) spacing [m], at most σ (default: "
                         "σ/3)")
+    p.add_argument("--max-line-speed", action="store_true",
+                   help="a job with [line]: plan at the fastest line speed that paints the "
+                        "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
+                        "§24)")

@@ -14,6 +14,7 @@ import numpy as np
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
+from .line_job import Line, line_from_table
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
@@ -55,13 +56,15 @@ class PaintJob:
     coats: int | None = None
     actuators: str | None = None  # a path, relative to the job file's folder
     source: str = "<python>"
+    line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
         return {"panel": {k: d[k] for k in REQUIRED["panel"]},
                 "gun": {k: d[k] for k in REQUIRED["gun"]},
-                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d}}
+                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
+                **({"line": self.line.to_dict()} if self.line is not None else {})}
 
 
 @dataclass(frozen=True)
@@ -88,13 +91,15 @@ class PartJob:
     coats: int | None = None
     actuators: str | None = None
     source: str = "<python>"
+    line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
                 "gun": {k: d[k] for k in REQUIRED["gun"]},
-                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d}}
+                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
+                **({"line": self.line.to_dict()} if self.line is not None else {})}
 
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
@@ -175,12 +180,18 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
     """Validate a parsed job file."""
     if not isinstance(d, Mapping):
         raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
-    tables = (*REQUIRED, "part")
+    tables = (*REQUIRED, "part", "line")
     for name in d:
         if name not in tables:
             raise JobError(f"{source}: [{name}] is not a table of a paint job"
                            f"{did_you_mean(name, tables)}; expected [panel] or [part], [gun], "
                            "[job]")
+    if "line" in d:  # the conveyor (docs/model.md §24), checked in line_job.py
+        from dataclasses import replace
+
+        line = line_from_table(source, d["line"], JobError)
+        return replace(job_from_dict({k: v for k, v in d.items() if k != "line"}, source),
+                       line=line)
     if "part" in d:
         if "panel" in d:
             raise JobError(f"{source}: a job paints a [panel] or a [part], not both")

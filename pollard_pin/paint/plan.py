@@ -425,4 +425,11 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
 
 
 __all__ = ["CHECK_REFINE", "MAX_PASSES", "MAX_PATH_SAMPLES", "PaintPlan", "UTILISATION",
-           "derated", "gun_of", "largest_scale", "max_pass_speed", "plan_paint"]
+           "derated", "gun_of", "largest_scale", "max_pass_speed", "panel_layout",
+           "plan_paint"]
+
+
+def panel_layout(job: PaintJob):
+    """(frame, pass offsets, half pass length, speed, coats, spacing) of the job before the
+    motors have their say: the raster's layout, shared with the moving line (paint/line.py)."""
+    return _layout(job)

@@ -358,7 +358,9 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
                 play: bool = True, camera: bool = True, overlay=None) -> Scene:
     """Draw the robot, closure markers, tool path (and frames) into meshcat ``vis`` and set
     the animation of ``ik`` (an :class:`~pollard_pin.kinematics.ik.IKResult`) on it.
-    ``overlay``: a callable(vis) drawing more (e.g. :func:`film_panel`)."""
+    ``overlay``: a callable(vis) drawing more (e.g. :func:`film_panel`); its optional
+    attribute ``moving`` {node: callable(t) -> 4×4} moves those nodes with the animation (a
+    part riding a line, docs/model.md §24)."""
     import meshcat.geometry as mg
     from meshcat.animation import Animation
     from pinocchio.visualize import MeshcatVisualizer
@@ -403,6 +405,7 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
 
     geom_nodes = {g.name: viz.getViewerNodeName(g, pin.GeometryType.VISUAL)
                   for g in gm.geometryObjects}
+    moving = getattr(overlay, "moving", None) or {}
 
     def place(k: int) -> dict[str, np.ndarray]:
         pin.forwardKinematics(model, data, ik.q[k])
@@ -412,6 +415,7 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
         if frame_ids:
             pin.updateFramePlacements(model, data)
             out.update({frame_nodes[n]: data.oMf[f].homogeneous for n, f in frame_ids.items()})
+        out.update({node: f(float(ik.t[k])) for node, f in moving.items()})
         return out
 
     # Initial pose (what a browser shows before the animation runs), then the key frames.

@@ -263,6 +263,13 @@ def _jobs() -> dict[str, bytes | str]:
         "job_thin.toml": sub("thickness = 25e-6", "thickness = 1e-9"),
         "job_thin_coats.toml": job + "coats = 40\n",
         "job_fast.toml": job + "speed = 50.0\n",
+        # a moving line (docs/model.md §24)
+        "job_line_zero.toml": job + "[line]\nspeed = 0.03\ndirection = [0.0, 0.0, 0.0]\n",
+        "job_line_still.toml": job + "[line]\nspeed = 0\ndirection = [0.0, 1.0, 0.0]\n",
+        "job_line_absurd.toml": job + "[line]\nspeed = 30\ndirection = [0.0, 1.0, 0.0]\n",
+        "job_line_text.toml": job + "[line]\nspeed = 'fast'\ndirection = [0.0, 1.0, 0.0]\n",
+        "job_line_key.toml": job + "[line]\nspeed = 0.03\ndirection = [0, 1, 0]\npitch = 1\n",
+        "job_line_table.toml": "line = 3\n" + job,
     }
 
 
@@ -859,6 +866,12 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
                       "spacing 18.15 mm) but the motors allow 1.825 m/s"),
     ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
+    ("job_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
+    ("job_line_still.toml", "'line.speed' = 0: must be > 0"),
+    ("job_line_absurd.toml", "'line.speed' = 30: must be at most 2 m/s"),
+    ("job_line_text.toml", "'line.speed' = 'fast': must be a number"),
+    ("job_line_key.toml", "'line.pitch' = 1: unknown key"),
+    ("job_line_table.toml", "'line' = 3: must be a table [line]"),
     ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
     ("part_broken.toml", "mesh_broken.stl: no triangles in the file"),
     ("part_empty.toml", "mesh_empty.obj: no triangles"),

@@ -29,3 +29,16 @@ def plan(robot, job, act):
 @pytest.fixture(scope="package")
 def film(plan):
     return plan_film(plan)
+
+
+@pytest.fixture(scope="package")
+def line_job():
+    """examples/line.toml: a strip longer than the reach on a line (docs/model.md §24)."""
+    return load_job(ROOT / "examples" / "line.toml")
+
+
+@pytest.fixture(scope="package")
+def line_plan(robot, line_job, act):
+    from pollard_pin.paint.line import plan_line
+
+    return plan_line(robot, line_job, act)

@@ -1,0 +1,117 @@
+"""`pollard-pin paint` of a job with [line] (docs/model.md §24): outputs, run and size on the
+world path, bad inputs one line with nothing written."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_run import run_cli
+
+from pollard_pin.cli import main
+from pollard_pin.io.table import read_result
+from pollard_pin.io.trajectory import from_csv
+
+ROOT = Path(__file__).resolve().parents[2]
+JOB = ROOT / "examples" / "line.toml"
+ACT = ROOT / "examples" / "actuators.toml"
+
+
+@pytest.fixture(scope="module")
+def painted(tmp_path_factory):
+    out = tmp_path_factory.mktemp("line") / "out"
+    assert main(["paint", "--job", str(JOB), "--out", str(out), "--resolution", "0.005"]) == 0
+    return out
+
+
+def test_outputs(painted):
+    assert {"path.csv", "thickness.csv", "paint.json", "thickness.png"} <= {
+        p.name for p in painted.iterdir()}
+    rep = json.loads((painted / "paint.json").read_text())
+    line = rep["line"]
+    for key in ("speed", "direction", "start_delay", "window", "travel", "cycle", "min_pitch",
+                "parts_per_hour", "upper_bound"):
+        assert key in line, key
+    assert rep["job"]["line"] == {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}
+    assert line["min_pitch"] == pytest.approx(0.03 * line["cycle"])
+    assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
+    table = read_result(painted / "thickness.csv")
+    # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
+    assert abs(table["y"].mean() + 0.75) < 1e-12 and np.abs(table["x"] - 0.70).max() < 1e-15
+    assert "t = 0 pose" in (painted / "thickness.units.json").read_text()
+
+
+def test_run_and_size_take_the_world_path(painted, capsys, tmp_path):
+    traj = from_csv(painted / "path.csv")
+    rep = json.loads((painted / "paint.json").read_text())
+    assert traj.t[-1] == pytest.approx(rep["line"]["cycle"])
+    code, _, err = run_cli(["run", "--trajectory", painted / "path.csv", "--out",
+                            tmp_path / "run.csv", "--quiet"], capsys)
+    assert code == 0, err
+    code, out, err = run_cli(["size", "--trajectory", painted / "path.csv", "--actuators", ACT,
+                              "--format", "json", "--quiet"], capsys)
+    assert code == 0, err
+    sized = json.loads(out)
+    assert sized["given_within_ratings"] is True
+    for name, m in rep["motors"].items():
+        given = sized["actuators"][name]
+        assert given["peak_motor_torque_ratio"] <= 1.0 and given["peak_motor_speed_ratio"] <= 1
+        assert m["peak_torque"] >= given["peak_motor_torque_ratio"] - 1e-12, name
+
+
+def test_view_paint_of_a_line(painted, tmp_path, capsys):
+    """The viewer takes the folder (the film drawn at the part's t = 0 pose)."""
+    code, _, err = run_cli(["view", "--paint", painted, "--html", tmp_path / "v.html"], capsys)
+    assert code == 0, err
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda t: t.replace("direction = [0.0, 1.0, 0.0]", "direction = [0.0, 0.0, 0.0]"),
+     "zero length"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = 0.0 "), "must be > 0"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = 30.0 "), "must be at most 2 m/s"),
+    (lambda t: t.replace("center = [0.70, -0.75, 0.16]", "center = [0.70, 2.5, 0.16]"),
+     "never comes within reach"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = 0.05 "),
+     "the fastest line speed that paints it is"),
+])
+def test_bad_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
+    job = tmp_path / "job.toml"
+    text = edit(JOB.read_text())
+    assert text != JOB.read_text()
+    job.write_text(text)
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: "), err
+    assert words in lines[0]
+    assert not out.exists()
+
+
+def test_max_line_speed_needs_a_line(tmp_path, capsys):
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", ROOT / "examples" / "paint.toml", "--out", out,
+                            "--max-line-speed"], capsys)
+    assert code == 2 and "no [line] table" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_view_shows_the_part_riding(painted, tmp_path, capsys):
+    """The film panel's node is animated along the line: at key frame time t it is shifted
+    by speed·t·direction."""
+    from pollard_pin.viz.viewer import page_commands
+
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "1"], capsys)
+    assert code == 0, err
+    anim = [c for c in page_commands(html.read_text()) if c.get("type") == "set_animation"]
+    assert len(anim) == 1
+    tracks = [a for a in anim[0]["animations"] if a["path"].endswith("pollard/paint")]
+    assert len(tracks) == 1
+    (track,) = [t for t in tracks[0]["clip"]["tracks"] if t["name"] == ".position"]
+    times = np.array([k["time"] for k in track["keys"]], float)  # frames at 1 fps: seconds
+    values = np.array([k["value"] for k in track["keys"]], float)
+    speed = json.loads((painted / "paint.json").read_text())["line"]["speed"]
+    assert len(times) > 10
+    assert np.abs(values[:, 1] - speed * times).max() < 1e-4
+    assert np.abs(values[:, [0, 2]]).max() < 1e-9
