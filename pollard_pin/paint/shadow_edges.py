@@ -7,8 +7,9 @@ gun's tip and axis interpolated linearly between the two samples, as the trigger
 lit part of the step is integrated by 3-point Gauss–Legendre. The trapezoid chain of lit steps
 that ends at the step's lit sample t_j then misses its Euler–Maclaurin end term: it is added,
 ∓h²/12·f′(t_j), with f′ from the rate at t_j and the two samples beyond it on the chain's side
-(a 3-point derivative). What remains per switch: the bisection's f·Δt·2^−DEPTH and the end
-term's O(h⁴) (estimated by the 3-point minus the 2-point derivative's term).
+(the derivative of the interpolant through SLOPE_POINTS samples). What remains per switch:
+the bisection's f·Δt·2^−DEPTH and the end term's error (estimated by the same term from one
+sample fewer).
 """
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ from .mesh import Part
 from .occlusion import visible
 
 DEPTH = 12  # halvings of a time step: the switch to 2.4e-4 of it
+SLOPE_POINTS = 5  # samples for f′ at the chain's end: error ∝ h⁴
 _GAUSS_X = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
 _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 9.0
 
@@ -32,19 +34,33 @@ def _at(p, a, trig, k, lam):
     return pos, ax, trig[k] + lam * (trig[k + 1] - trig[k])
 
 
-def _slope(t, f, j, side):
-    """df/dt at t_j from f at samples j, j + side, j + 2·side (3-point; 2-point where the
-    third is missing): (3-point, 2-point)."""
-    x0, x1 = t[j], t[j + side]
-    has3 = (j + 2 * side >= 0) & (j + 2 * side < len(t))
-    x2 = t[np.clip(j + 2 * side, 0, len(t) - 1)]
+def _derivative(x, f):
+    """d/dx at x[0] of the polynomial through (x[m], f[m]), m < M (lists of arrays)."""
+    out = np.zeros_like(f[0])
     with np.errstate(divide="ignore", invalid="ignore"):
-        two = (f[1] - f[0]) / (x1 - x0)
-        three = (f[0] * (2 * x0 - x1 - x2) / ((x0 - x1) * (x0 - x2))
-                 + f[1] * (x0 - x2) / ((x1 - x0) * (x1 - x2))
-                 + f[2] * (x0 - x1) / ((x2 - x0) * (x2 - x1)))
-    three, two = np.nan_to_num(three), np.nan_to_num(two)
-    return np.where(has3, three, two), two
+        for i in range(len(x)):
+            if i == 0:
+                w = sum(1.0 / (x[0] - x[k]) for k in range(1, len(x)))
+            else:
+                w = 1.0 / (x[i] - x[0])
+                for k in range(1, len(x)):
+                    if k != i:
+                        w = w * (x[0] - x[k]) / (x[i] - x[k])
+            out = out + w * f[i]
+    return np.nan_to_num(out)
+
+
+def _slope(t, f, j, side):
+    """df/dt at t_j from f (list, SLOPE_POINTS arrays) at samples j + m·side: the derivative
+    of the interpolant through as many as lie inside, and through one fewer (its error
+    estimate)."""
+    x = [t[np.clip(j + m * side, 0, len(t) - 1)] for m in range(SLOPE_POINTS)]
+    inside = sum(((j + m * side >= 0) & (j + m * side < len(t))).astype(int)
+                 for m in range(SLOPE_POINTS))
+    d = [np.zeros(len(j))] + [_derivative(x[:m], f[:m]) for m in range(2, SLOPE_POINTS + 1)]
+    best = np.choose(np.clip(inside - 1, 0, SLOPE_POINTS - 1), d)
+    less = np.choose(np.clip(inside - 2, 0, SLOPE_POINTS - 1), d)
+    return best, less
 
 
 def shadow_edges(gun: Gun, t, p, a, trig, s, n, part: Part, shaded_sample, shaded_point,
@@ -92,11 +108,10 @@ def shadow_edges(gun: Gun, t, p, a, trig, s, n, part: Part, shaded_sample, shade
     side = np.where(left, -1, 1)
     chain = lit(j + side, q)
     fs = [fj]
-    for m in (1, 2):
+    for m in range(1, SLOPE_POINTS):
         i = np.clip(j + m * side, 0, T - 1)
         fs.append(trig[i] * pair_rate(gun, p[i], a[i], sq, nq))
-    jj = np.where(chain, j, np.clip(j, 1, T - 2))  # keep indices valid where unused
-    d3, d2 = _slope(t, fs, jj, side)
+    d3, d2 = _slope(t, fs, j, side)
     h = np.abs(t[np.clip(j + side, 0, T - 1)] - t[j])
     end = np.where(chain, side * h ** 2 / 12.0 * d3, 0.0)
     residual = (np.abs(fj) * np.abs(dt) * 2.0 ** -DEPTH
