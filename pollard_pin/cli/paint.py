@@ -25,19 +25,22 @@ def _actuators(args, job):
 def run(args) -> int:
     import numpy as np
 
+    from ..io.ply import write_film_ply
     from ..io.table import FORMATS, table_files, write_table
     from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
+    from ..paint.film_mesh import grid_mesh
     from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
     from ..paint.report import paint_report
     from ..viz.paint import write_thickness_png
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours
 
     out = Path(args.out)
     name = out / f"thickness.{args.format}"
     check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
-                  out / "paint.json", out / "thickness.png", folders=(out,))
+                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
     stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
              for f in table_files(out / f"thickness.{fmt}", fmt)]
     job = load_job(args.job)
@@ -60,7 +63,10 @@ def run(args) -> int:
     t2 = time.perf_counter()
     rep = paint_report(plan, film, act)
     rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               grid={"nu": len(U), "nv": len(V), "resolution": res}, pollard_pin=__version__)
+               grid={"nu": len(U), "nv": len(V), "resolution": res},
+               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
+                                                           job.thickness * (1 + PLY_BAND)]},
+               pollard_pin=__version__)
     tr, fr = plan.trajectory, plan.frame
     rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
     UU, VV = np.meshgrid(U, V)
@@ -69,16 +75,19 @@ def run(args) -> int:
              "v": VV.ravel(), "thickness": film.thickness}
     with all_or_nothing():  # everything is computed: now write every output, or none
         make_folder(out)
-        to_csv(tr, out / "path.csv")
+        to_csv(tr, out / "path.csv", spray=np.ones(len(tr.t)))  # a panel: on throughout
         write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
         with atomic_open(out / "paint.json") as f:
             f.write(json.dumps(rep, indent=2) + "\n")
+        write_film_ply(out / "film.ply", flat, grid_mesh(pts, fr.n), film.thickness,
+                       film_colours(film.thickness, job.thickness))
         write_thickness_png(out / "thickness.png", U, V,
                             film.thickness.reshape(len(V), len(U)), job.thickness,
                             np.array([rel @ fr.u, rel @ fr.v]), job.width, job.height)
         remove_stale(*stale)
     print("\n".join(summary_lines(rep, act.names)))
-    print(f"wrote {out}/path.csv, {name.name}, paint.json, thickness.png", file=sys.stderr)
+    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
+          file=sys.stderr)
     return 0
 
 

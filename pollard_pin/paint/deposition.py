@@ -51,6 +51,20 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
         dn = (s @ n)[:, None] - (p @ n)[None, :]
     else:
         dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
+    return _rate(gun, h, d2, dn).T
+
+
+def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
+    """dT/dt [m/s] pair by pair: gun tips ``p`` (K, 3), axes ``a`` (K, 3), points ``s``
+    (K, 3), normals ``n`` (K, 3): (K,), the rate of :func:`deposition_rate` for each pair."""
+    p, a, s, n = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s, n))
+    d = s - p
+    return _rate(gun, np.einsum("ij,ij->i", d, a), np.einsum("ij,ij->i", d, d),
+                 np.einsum("ij,ij->i", d, n))
+
+
+def _rate(gun: Gun, h, d2, dn) -> np.ndarray:
+    """The rate from h = d·a, d2 = |d|², dn = d·n (any one shape)."""
     k = gun.sigma / gun.standoff  # σ(h) = k·h
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         sh2 = (k * h) ** 2
@@ -58,7 +72,7 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
         # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
         rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
                 * np.maximum(-dn, 0.0) / h)
-    return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0).T
+    return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0)
 
 
 def coarse_weights(t) -> np.ndarray:
@@ -102,4 +116,4 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     return Film(total, err)
 
 
-__all__ = ["Film", "Gun", "coarse_weights", "deposition_rate", "film"]
+__all__ = ["Film", "Gun", "coarse_weights", "deposition_rate", "film", "pair_rate"]

@@ -60,4 +60,23 @@ def refined_mesh(part: Part, points: SurfacePoints, faces=None):
     return used, compact.reshape(-1, 3)
 
 
-__all__ = ["refined_mesh"]
+
+def grid_mesh(points, normal):
+    """Triangles (2(nv−1)(nu−1), 3) over a film grid ``points`` (nv, nu, 3), row-major
+    vertex indices, each cell cut in two and wound counter-clockwise about the surface's
+    outward ``normal`` (3,): a flat panel's film mesh (``film.ply``)."""
+    pts = np.asarray(points, dtype=float)
+    nv, nu = pts.shape[:2]
+    i, j = np.meshgrid(np.arange(nv - 1), np.arange(nu - 1), indexing="ij")
+    a = (i * nu + j).ravel()
+    b, c, d = a + 1, a + nu + 1, a + nu
+    tris = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    flat = pts.reshape(-1, 3)
+    p = flat[tris]
+    cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    flip = cross @ np.asarray(normal, dtype=float) < 0
+    tris[flip] = tris[flip][:, ::-1]
+    return tris
+
+
+__all__ = ["grid_mesh", "refined_mesh"]

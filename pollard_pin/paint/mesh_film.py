@@ -1,7 +1,8 @@
 """The film a gun path leaves on a part's mesh (docs/model.md §20): the deposition rate at
 each film point with its own normal, zero where the part shades the point from the nozzle
 (:mod:`.occlusion`), times the gun's trigger, integrated by the trapezoid rule in time
-(as :func:`.deposition.film`, in blocks of samples of bounded memory).
+(as :func:`.deposition.film`, in blocks of samples of bounded memory), with the steps where
+a point's shade switches integrated apart (:mod:`.shadow_edges`).
 """
 from __future__ import annotations
 
@@ -14,12 +15,15 @@ from .deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate
 from .film_points import SurfacePoints
 from .mesh import MeshError, Part
 from .occlusion import in_spot, visible
+from .shadow_edges import shadow_edges
 
 
 @dataclass(frozen=True, eq=False)  # arrays: compared by identity
 class MeshFilm:
-    """Film ``thickness`` (P,) [m] at the points and the trapezoid rule's error estimate
-    |T − T₂| (P,) [m] (as :class:`.deposition.Film`); ``pairs`` (sample, point) inside the
+    """Film ``thickness`` (P,) [m] at the points and its error estimate (P,) [m]: the
+    trapezoid rule's |T − T₂| (as :class:`.deposition.Film`), at points whose shade switches
+    that of the unshaded rate plus the shadow edges' bound (:mod:`.shadow_edges`);
+    ``switches`` (point, step) pairs integrated apart; ``pairs`` (sample, point) inside the
     spray spot tested for shade and ``shaded`` of them; ``sprayed`` = ∫ flow·spray dt [m³];
     ``landed`` = Σ thickness × area [m³] over the points."""
 
@@ -30,6 +34,7 @@ class MeshFilm:
     sprayed: float
     landed: float
     whole_part: bool  # the points cover every face of the part
+    switches: int = 0
 
     @property
     def transfer_efficiency(self) -> float | None:
@@ -73,6 +78,8 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
     w, w2 = trapezoid_weights(t) * trig, coarse_weights(t) * trig
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
+    smooth, smooth2 = np.zeros(len(s)), np.zeros(len(s))  # the rule on the unshaded rate
+    dark_t, dark_p = [], []  # the shaded pairs
     pairs = shaded = 0
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
     for start in range(0, len(t), block):
@@ -83,16 +90,30 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
         ps, as_ = p[sl][live], a[sl][live]
         r = deposition_rate(gun, ps - o, as_, s - o, n)
         ti, pi = np.nonzero(in_spot(gun, r))
+        smooth += w[sl][live] @ r
+        smooth2 += w2[sl][live] @ r
         if len(ti):
             vis = visible(part, ps[ti], s[pi], n[pi], intersector)
             r[ti[~vis], pi[~vis]] = 0.0
+            dark_t.append(start + live[ti[~vis]])
+            dark_p.append(pi[~vis])
             pairs, shaded = pairs + len(ti), shaded + int((~vis).sum())
         total += w[sl][live] @ r
         coarse += w2[sl][live] @ r
     err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
+    if dark_t:
+        fix, bound, switches = shadow_edges(gun, t, p, a, trig, s, n, part,
+                                            np.concatenate(dark_t), np.concatenate(dark_p),
+                                            intersector)
+        total += fix
+        edge = bound > 0
+        if len(t) > 2:
+            err = np.where(edge, np.abs(smooth - smooth2) + bound, err)
+    else:
+        switches = 0
     whole = np.array_equal(np.unique(points.covered), np.arange(len(part.faces)))
     return MeshFilm(total, err, pairs, shaded, float(gun.flow * w.sum()),
-                    float(total @ points.areas), bool(whole))
+                    float(total @ points.areas), bool(whole), switches)
 
 
 __all__ = ["MeshFilm", "mesh_film"]

@@ -41,8 +41,10 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
         "motors_source": act.source,
         "film_points": {"painted": int(np.count_nonzero(painted)), "total": len(points),
                         "resolution": points.resolution},
-        "shadows": {"pairs_tested": film.pairs, "shaded": film.shaded},
-        "integration": {"rule": "trapezoid over the path samples",
+        "shadows": {"pairs_tested": film.pairs, "shaded": film.shaded,
+                    "edges_integrated_apart": film.switches},
+        "integration": {"rule": "trapezoid over the path samples; shadow edges by bisection "
+                                "and Gauss with the end term (docs/model.md §23)",
                         "time_step": float(tr.t[1] - tr.t[0]),
                         "largest_step_over_sigma": float(steps.max() / j.sigma),
                         "error_estimate_max": float(np.nanmax(film.error_estimate))},

@@ -46,6 +46,31 @@ def test_outputs(painted):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_panel_film_ply_and_spray(painted):
+    """A [panel] job has a part's outputs too: path.csv with the trigger (on throughout) and
+    film.ply, the film grid's cells as triangles wound about the panel's outward normal
+    (−1, 0, 0), its thickness property the table's."""
+    import trimesh
+
+    from pollard_pin.io.ply import read_film_ply
+
+    assert (read_result(painted / "path.csv")["spray"] == 1.0).all()
+    rep = json.loads((painted / "paint.json").read_text())
+    nu, nv = rep["grid"]["nu"], rep["grid"]["nv"]
+    table = read_result(painted / "thickness.csv")
+    v, f, th = read_film_ply(painted / "film.ply")
+    assert len(v) == nu * nv and len(f) == 2 * (nu - 1) * (nv - 1)
+    assert np.array_equal(th, table["thickness"])
+    # float32 positions (io/ply.py): to 6e-8 m at 0.7 m
+    assert np.abs(v - np.column_stack([table["x"], table["y"], table["z"]])).max() < 1e-7
+    ply = trimesh.load(painted / "film.ply", process=False)
+    assert ply.visual.vertex_colors.shape == (len(v), 4)
+    assert (ply.face_normals @ [-1.0, 0.0, 0.0] > 1 - 1e-9).all()
+    span = np.ptp(table["y"]) * np.ptp(table["z"])  # the grid's rectangle
+    assert abs(ply.area / span - 1) < 1e-6
+    assert rep["film_ply"]["colour_map"]
+
+
 def test_plan_run_size_film(painted, capsys, tmp_path):
     """The written path: run solves it, size confirms every motor within its ratings, and
     the film map stays within ±2 % of the target."""

@@ -133,3 +133,22 @@ def test_coarse_weights_are_the_rule_on_every_second_sample_and_the_last(n):
     assert np.flatnonzero(w).tolist() == kept
     # achieves ≈ 1e-16 relative
     assert w @ f == pytest.approx(np.trapezoid(f[kept], t[kept]), rel=1e-13)
+
+
+def test_pair_rate_is_the_matrix_rate_pair_by_pair():
+    """pair_rate(p_k, a_k, s_k, n_k) = deposition_rate's (k, k) entry (achieved 1e-15
+    relative; asserted 1e-12), zero behind the nozzle."""
+    from pollard_pin.paint.deposition import pair_rate
+
+    rng = np.random.default_rng(3)
+    gun = Gun(standoff=0.15, sigma=0.01, flow=1e-7)
+    s = rng.normal(scale=0.01, size=(40, 3))
+    n = np.tile([-1.0, 0.0, 0.0], (40, 1))
+    p = s + np.array([-0.15, 0.0, 0.0]) + rng.normal(scale=0.01, size=(40, 3))
+    a = rng.normal(scale=0.1, size=(40, 3)) + [1.0, 0.0, 0.0]
+    a /= np.linalg.norm(a, axis=1)[:, None]
+    a[:3] *= -1  # spraying away from the points
+    full = np.diagonal(deposition_rate(gun, p, a, s, n))
+    got = pair_rate(gun, p, a, s, n)
+    assert (got[:3] == 0).all() and (got[3:] > 0).all()
+    assert np.abs(got - full).max() < 1e-12 * full.max()

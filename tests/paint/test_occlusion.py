@@ -100,7 +100,10 @@ def test_a_flat_part_shades_nothing():
 
 def test_without_embree_the_numpy_intersector_gives_the_same_film():
     """embreex hidden: Part.mesh.ray is trimesh's numpy intersector, and the film on the
-    ribbed example part is the same as with Embree (here: bit for bit)."""
+    ribbed example part is the same as with Embree: to 1e-3 of its largest value (achieved
+    4.6e-4, at the foot of the rib's wall: the shadow's edge there is the gun crossing the
+    wall's plane, and the rays bisecting it graze the wall, which Embree's float32 resolves
+    to ~1e-7 m; docs/model.md §23). The shaded pairs at the samples are the same."""
     code = (
         "import sys; sys.modules['embreex'] = None\n"
         "import numpy as np, trimesh\n"
@@ -134,4 +137,5 @@ def test_without_embree_the_numpy_intersector_gives_the_same_film():
     p = np.column_stack([np.full(len(y), 0.55), y, np.full(len(y), 0.16)])
     fast = mesh_film(GUN, np.arange(len(y)) * 0.01, p, np.tile([1.0, 0, 0], (len(y), 1)),
                      surface_points(part, 0.004), part)
-    assert np.array_equal(fast.thickness, slow)
+    assert fast.shaded == int(shaded)
+    assert np.abs(fast.thickness - slow).max() < 1e-3 * slow.max()
