@@ -250,6 +250,42 @@ def paint_section(robot, repeats: int) -> None:
           f"points × {len(plan.trajectory)} samples); cycle {plan.cycle_time:.3f} s")
 
 
+def parts_section(robot, big_faces: int = 200_000) -> None:
+    """Painting parts' meshes (docs/model.md §23): plan and film of each shipped example
+    (budget 15 s each), and the film of a curved panel tessellated into about ``big_faces``
+    triangles (budget 60 s, bounded memory). One run each: they take seconds."""
+    import resource
+
+    from pollard_pin.paint.mesh import make_part
+    from pollard_pin.paint.shapes import curved_panel
+    from pollard_pin.paint.surface_plan import load_job_part, plan_surface, surface_film
+
+    act = pp.load_actuators(REPO / "examples" / "actuators.toml")
+    print("\npainting parts (examples/parts/*.toml), one run each [s]")
+    for path in sorted((REPO / "examples" / "parts").glob("*.toml")):
+        job = pp.load_job(path)
+        part = load_job_part(job)
+        t0 = time.perf_counter()
+        plan = plan_surface(robot, job, act, part)
+        t1 = time.perf_counter()
+        pts, _, _, _ = surface_film(plan)
+        t2 = time.perf_counter()
+        print(f"  {path.name:<20s} {len(part.faces):7d} faces: plan {t1 - t0:5.2f}, film "
+              f"{t2 - t1:5.2f} ({len(pts.points)} points × {len(plan.trajectory)} samples)")
+    job = pp.load_job(REPO / "examples" / "parts" / "curved_panel.toml")
+    # 4 faces per grid cell of the extruded sheet (front and back): the step for big_faces
+    step = math.sqrt(4 * 0.24 * 0.10 / big_faces)
+    mesh = curved_panel(step=step)
+    part = make_part(mesh.vertices, mesh.faces, job.facing, job.max_angle or 45.0)
+    plan = plan_surface(robot, job, act, part)
+    t0 = time.perf_counter()
+    pts, _, _, _ = surface_film(plan)
+    t1 = time.perf_counter()
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"  curved panel, {len(part.faces)} faces: film {t1 - t0:.1f} s ({len(pts.points)} "
+          f"points × {len(plan.trajectory)} samples), peak memory of this process {peak:.0f} MB")
+
+
 def workspace_section(robot, repeats: int) -> None:
     """Workspace maps (docs/model.md §22): a 250,000-point plane at x = 0.55 over the default
     bounds (mostly outside the reach, as a user maps it), and one of the same size over the
@@ -454,6 +490,7 @@ def main(argv=None) -> int:
         sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
     if not args.no_paint:
         paint_section(robot, 3)
+        parts_section(robot)
     if not args.no_workspace:
         workspace_section(robot, args.repeats)
     if not args.no_cli:
