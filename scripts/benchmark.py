@@ -250,10 +250,10 @@ def paint_section(robot, repeats: int) -> None:
           f"points × {len(plan.trajectory)} samples); cycle {plan.cycle_time:.3f} s")
 
 
-def parts_section(robot, big_faces: int = 200_000) -> None:
+def parts_section(robot, big_faces: int = 195_000) -> None:
     """Painting parts' meshes (docs/model.md §23): plan and film of each shipped example
     (budget 15 s each), and the film of a curved panel tessellated into about ``big_faces``
-    triangles (budget 60 s, bounded memory). One run each: they take seconds."""
+    triangles (the face budget is 200,000; the time budget 60 s, memory bounded). One run each."""
     import resource
 
     from pollard_pin.paint.mesh import make_part

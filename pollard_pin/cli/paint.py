@@ -25,6 +25,7 @@ def _actuators(args, job):
 def run(args) -> int:
     import numpy as np
 
+    from ..dynamics.averages import trapezoid_weights
     from ..io.ply import write_film_ply
     from ..io.table import FORMATS, table_files, write_table
     from ..io.trajectory import to_csv
@@ -71,8 +72,13 @@ def run(args) -> int:
     rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
     UU, VV = np.meshgrid(U, V)
     flat = pts.reshape(-1, 3)
-    table = {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "u": UU.ravel(),
-             "v": VV.ravel(), "thickness": film.thickness}
+    # the part's columns (a panel is the two-triangle part): the unit normal towards the gun
+    # and each grid point's share of the area (trapezoid weights, summing to width × height)
+    area = np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()
+    n = np.broadcast_to(fr.n, flat.shape)
+    table = {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "nx": n[:, 0], "ny": n[:, 1],
+             "nz": n[:, 2], "area": area, "u": UU.ravel(), "v": VV.ravel(),
+             "thickness": film.thickness}
     with all_or_nothing():  # everything is computed: now write every output, or none
         make_folder(out)
         to_csv(tr, out / "path.csv", spray=np.ones(len(tr.t)))  # a panel: on throughout

@@ -36,7 +36,8 @@ def test_outputs(painted):
                                      "within_10pct"}
     assert rep["job"]["gun"] == {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7}
     table = read_result(painted / "thickness.csv")
-    assert list(table.columns) == ["x", "y", "z", "u", "v", "thickness"]
+    assert list(table.columns) == ["x", "y", "z", "nx", "ny", "nz", "area", "u", "v",
+                                   "thickness"]
     assert table.units["thickness"] == "m" and table.units["u"] == "m"
     assert len(table) == rep["grid"]["nu"] * rep["grid"]["nv"]
     assert table["thickness"].min() == rep["thickness"]["min"]
@@ -69,6 +70,24 @@ def test_panel_film_ply_and_spray(painted):
     span = np.ptp(table["y"]) * np.ptp(table["z"])  # the grid's rectangle
     assert abs(ply.area / span - 1) < 1e-6
     assert rep["film_ply"]["colour_map"]
+
+
+def test_panel_thickness_table_has_the_parts_columns(painted):
+    """thickness.csv of a panel carries a part's columns: the unit normal towards the robot
+    and each point's share of the area, which sum to the panel's width × height (0.26 × 0.12
+    m; achieved to round-off, asserted 1e-12) and weight the film as the trapezoid rule does
+    (the area-weighted mean against an independent np.trapezoid over the grid, 1e-12)."""
+    rep = json.loads((painted / "paint.json").read_text())
+    nu, nv = rep["grid"]["nu"], rep["grid"]["nv"]
+    table = read_result(painted / "thickness.csv")
+    n = np.column_stack([table["nx"], table["ny"], table["nz"]])
+    assert np.abs(n - [-1.0, 0.0, 0.0]).max() == 0.0
+    area = np.asarray(table["area"])
+    assert abs(area.sum() / (0.26 * 0.12) - 1) < 1e-12
+    U, V = np.asarray(table["u"])[:nu], np.asarray(table["v"])[::nu]
+    th = np.asarray(table["thickness"]).reshape(nv, nu)
+    brute = np.trapezoid(np.trapezoid(th, U, axis=1), V) / (0.26 * 0.12)
+    assert abs(area @ np.asarray(table["thickness"]) / area.sum() / brute - 1) < 1e-12
 
 
 def test_plan_run_size_film(painted, capsys, tmp_path):
