@@ -11,6 +11,7 @@ from pathlib import Path
 from .. import __version__
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
 from .common import UsageError, command, load_robot, model_args, name, positive
+from .paint_files import motor_use_line, write_panel_outputs
 
 
 def _actuators(args, job):
@@ -25,18 +26,13 @@ def _actuators(args, job):
 def run(args) -> int:
     import numpy as np
 
-    from ..dynamics.averages import trapezoid_weights
-    from ..io.ply import write_film_ply
-    from ..io.table import FORMATS, table_files, write_table
-    from ..io.trajectory import to_csv
+    from ..io.table import FORMATS, table_files
     from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
-    from ..paint.film_mesh import grid_mesh
     from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
     from ..paint.report import paint_report
-    from ..viz.paint import write_thickness_png
-    from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP
 
     out = Path(args.out)
     name = out / f"thickness.{args.format}"
@@ -70,27 +66,10 @@ def run(args) -> int:
                pollard_pin=__version__)
     tr, fr = plan.trajectory, plan.frame
     rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
-    UU, VV = np.meshgrid(U, V)
-    flat = pts.reshape(-1, 3)
-    # the part's columns (a panel is the two-triangle part): the unit normal towards the gun
-    # and each grid point's share of the area (trapezoid weights, summing to width × height)
-    area = np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()
-    n = np.broadcast_to(fr.n, flat.shape)
-    table = {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "nx": n[:, 0], "ny": n[:, 1],
-             "nz": n[:, 2], "area": area, "u": UU.ravel(), "v": VV.ravel(),
-             "thickness": film.thickness}
-    with all_or_nothing():  # everything is computed: now write every output, or none
-        make_folder(out)
-        to_csv(tr, out / "path.csv", spray=np.ones(len(tr.t)))  # a panel: on throughout
-        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
-        with atomic_open(out / "paint.json") as f:
-            f.write(json.dumps(rep, indent=2) + "\n")
-        write_film_ply(out / "film.ply", flat, grid_mesh(pts, fr.n), film.thickness,
-                       film_colours(film.thickness, job.thickness))
-        write_thickness_png(out / "thickness.png", U, V,
-                            film.thickness.reshape(len(V), len(U)), job.thickness,
-                            np.array([rel @ fr.u, rel @ fr.v]), job.width, job.height)
-        remove_stale(*stale)
+    name = write_panel_outputs(out, args.format, tr, np.ones(len(tr.t)), U, V, pts,
+                               film.thickness, fr, job, rep,
+                               {"command": "paint", "job": rep["job"]},
+                               np.array([rel @ fr.u, rel @ fr.v]), stale)
     print("\n".join(summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
           file=sys.stderr)
@@ -151,15 +130,6 @@ def _run_part(args, job, out: Path) -> int:
     print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
           file=sys.stderr)
     return 0
-
-
-def motor_use_line(rep: dict, names) -> str:
-    """Each motor's use of its ratings, one order for panels and parts: peak torque, RMS
-    (continuous) torque, speed."""
-    use = rep["motors"]
-    return "motor peak torque/RMS torque/speed use [%]: " + ", ".join(
-        f"{n} {100 * use[n]['peak_torque']:.0f}/{100 * use[n]['rms_torque']:.0f}/"
-        f"{100 * use[n]['speed']:.0f}" for n in names)
 
 
 def part_summary_lines(rep: dict, names) -> list[str]:

@@ -24,7 +24,7 @@ def painted(tmp_path_factory):
 
 
 def test_outputs(painted):
-    assert {"path.csv", "thickness.csv", "paint.json", "thickness.png"} <= {
+    assert {"path.csv", "thickness.csv", "film.ply", "paint.json", "thickness.png"} <= {
         p.name for p in painted.iterdir()}
     rep = json.loads((painted / "paint.json").read_text())
     line = rep["line"]
@@ -38,6 +38,12 @@ def test_outputs(painted):
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
     assert abs(table["y"].mean() + 0.75) < 1e-12 and np.abs(table["x"] - 0.70).max() < 1e-15
     assert "t = 0 pose" in (painted / "thickness.units.json").read_text()
+    # film.ply: the same film on the same points (float32 positions: 6e-8 m at 0.75 m)
+    from pollard_pin.io.ply import read_film_ply
+
+    v, _, th = read_film_ply(painted / "film.ply")
+    assert np.array_equal(th, table["thickness"])
+    assert np.abs(v - np.column_stack([table["x"], table["y"], table["z"]])).max() < 1e-7
 
 
 def test_run_and_size_take_the_world_path(painted, capsys, tmp_path):
