@@ -46,7 +46,7 @@ def run(args) -> int:
 
         return run_line(args, job, out, _actuators(args, job), stale)
     if isinstance(job, PartJob):
-        return _run_part(args, job, out)
+        return _run_part(args, job, out, stale)
     try:
         res = film_resolution(job, args.resolution)
     except PlanError as exc:
@@ -76,10 +76,11 @@ def run(args) -> int:
     return 0
 
 
-def _run_part(args, job, out: Path) -> int:
-    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply."""
+def _run_part(args, job, out: Path, stale) -> int:
+    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
+    (the outputs checked and ``stale`` found by :func:`run`)."""
     from ..io.ply import write_film_ply
-    from ..io.table import FORMATS, table_files, write_table
+    from ..io.table import write_table
     from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
     from ..paint.film_mesh import refined_mesh
@@ -88,10 +89,6 @@ def _run_part(args, job, out: Path) -> int:
     from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours, write_part_png
 
     name = out / f"thickness.{args.format}"
-    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
-                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
-    stale = [f for fmt in FORMATS if fmt != args.format
-             for f in table_files(out / f"thickness.{fmt}", fmt)]
     try:
         res = part_resolution(job, args.resolution)
     except PlanError as exc:

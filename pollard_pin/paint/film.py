@@ -18,16 +18,23 @@ MAX_FILM_POINTS = 2_000_000
 MAX_FILM_PAIRS = 5e9
 
 
-def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
-    """The film grid spacing [m]: ``resolution`` (default σ/3), which must be > 0 and at most
-    σ: a coarser grid cannot show the ripple between passes (some 2σ apart, docs/model.md §21);
-    and the grid it makes within MAX_FILM_POINTS."""
-    res = job.sigma / 3 if resolution is None else resolution
-    if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= job.sigma):
-        raise PlanError(f"film grid spacing {res!r} m must be > 0 and at most the spray spot's "
-                        f"σ = {job.sigma:g} m (a coarser grid cannot show the film between "
+def film_spacing(sigma: float, resolution: float | None = None,
+                 what: str = "film grid spacing") -> float:
+    """The spacing [m] of the points a film is computed at, panel grid or part points:
+    ``resolution`` (default σ/3), which must be > 0 and at most σ: coarser points cannot show
+    the ripple between passes (some 2σ apart, docs/model.md §21)."""
+    res = sigma / 3 if resolution is None else resolution
+    if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= sigma):
+        raise PlanError(f"{what} {res!r} m must be > 0 and at most the spray spot's "
+                        f"σ = {sigma:g} m (a coarser one cannot show the film between "
                         "passes)")
-    res = float(res)
+    return float(res)
+
+
+def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
+    """The panel's film grid spacing [m] (:func:`film_spacing`), and the grid it makes within
+    MAX_FILM_POINTS."""
+    res = film_spacing(job.sigma, resolution)
     points = _axis_points(job.width, res) * _axis_points(job.height, res)
     if points > MAX_FILM_POINTS:
         raise PlanError(f"film grid spacing {res:.4g} m makes {points:.4g} film points on the "

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import InputError
-from ..model.values import number
+from ..model.values import fail, number
 
 # A conveyor faster than this is a unit slip (mm/s for m/s): paint lines run at cm/s.
 MAX_LINE_SPEED = 2.0  # m/s
@@ -26,29 +26,29 @@ class Line:
 
 
 def line_from_table(source: str, table: Any, error=InputError) -> Line:
-    """Check a parsed [line] table (one ``error`` line per broken rule)."""
-    def fail(key, value, rule):
-        raise error(f"{source}: 'line.{key}' = {value!r}: {rule}")
-
+    """Check a parsed [line] table (one ``error`` line per broken rule, the values shown
+    short: model.values.fail)."""
+    prefix = f"{source}: "
     if not isinstance(table, Mapping):
-        raise error(f"{source}: 'line' = {table!r}: must be a table [line]")
+        fail(error, prefix, "line", table, "must be a table [line]")
     for k in table:
         if k not in LINE_KEYS:
-            fail(k, table[k], f"unknown key; [line] takes {', '.join(LINE_KEYS)}")
+            fail(error, prefix, f"line.{k}", table[k],
+                 f"unknown key; [line] takes {', '.join(LINE_KEYS)}")
     for k in LINE_KEYS:
         if k not in table:
             raise error(f"{source}: 'line.{k}' is missing ([line] needs speed [m/s] and "
                         "direction [x, y, z])")
-    prefix = f"{source}: "
     s = number(table["speed"], "line.speed", error, prefix, positive=True, limit=MAX_LINE_SPEED,
                limit_rule=f"must be at most {MAX_LINE_SPEED:g} m/s (SI units: m/s, not mm/s)")
     d = table["direction"]
     if not isinstance(d, list) or len(d) != 3:
-        fail("direction", d, "must be a list of 3 numbers [x, y, z]")
+        fail(error, prefix, "line.direction", d, "must be a list of 3 numbers [x, y, z]")
     d = [number(c, f"line.direction[{i}]", error, prefix) for i, c in enumerate(d)]
     norm = math.sqrt(sum(float(c) ** 2 for c in d))
     if not norm > 1e-12:
-        fail("direction", d, "has zero length; give the part's direction of travel")
+        fail(error, prefix, "line.direction", d,
+             "has zero length; give the part's direction of travel")
     return Line(float(s), tuple(float(c) / norm for c in d))
 
 

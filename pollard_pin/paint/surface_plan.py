@@ -31,6 +31,7 @@ from ..dynamics.motors import Actuators
 from ..paths.trajectory import Trajectory
 from .deposition import BLOCK_ELEMENTS
 from .errors import BudgetError, PlanError, ReachError
+from .film import film_spacing
 from .film_points import surface_points
 from .mesh import Part, load_part
 from .mesh_film import MeshFilm, mesh_film
@@ -353,14 +354,8 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
 
 
 def part_resolution(job, resolution: float | None = None) -> float:
-    """The film point spacing [m]: ``resolution`` (default σ/3), > 0 and at most σ (a coarser
-    one cannot show the film between passes, some 2σ apart: docs/model.md §21)."""
-    res = job.sigma / 3 if resolution is None else resolution
-    if isinstance(res, bool) or not (isinstance(res, (int, float)) and 0 < res <= job.sigma):
-        raise PlanError(f"film point spacing {res!r} m must be > 0 and at most the spray "
-                        f"spot's σ = {job.sigma:g} m (a coarser one cannot show the film "
-                        "between passes)")
-    return float(res)
+    """The film point spacing [m] on a part: the rule of :func:`.film.film_spacing`."""
+    return film_spacing(job.sigma, resolution, "film point spacing")
 
 
 def live_faces(part: Part, tips) -> np.ndarray:

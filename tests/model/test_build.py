@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
+from clean_run import run_clean
 
 import pollard_pin
 from pollard_pin.kinematics.closure import forward_kinematics, solve_closure, tool_pose
@@ -536,17 +537,6 @@ def _xml_counts(tag):
     return {link.get("name"): len(link.findall(tag)) for link in root.findall("link")}
 
 
-def _run_clean(tmp_path, code):
-    """Run ``code`` in a fresh interpreter; return its stdout after checking it was silent on
-    stderr (fd level: C++ and Python warnings alike)."""
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONWARNINGS"}
-    out = subprocess.run([sys.executable, "-W", "always", "-c", textwrap.dedent(code)],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)
-    assert out.returncode == 0, out.stderr
-    assert out.stderr == "", out.stderr
-    return out.stdout
-
-
 def test_urdf_loads_in_yourdfpy_with_all_geometry(robot, q_home, caplog):
     import yourdfpy
 
@@ -586,7 +576,7 @@ def test_urdf_loads_in_yourdfpy_with_all_geometry(robot, q_home, caplog):
 
 def test_urdf_loads_in_mujoco_without_warnings(tmp_path, robot, q_home):
     qd = robot.as_dict(q_home)
-    stdout = _run_clean(tmp_path, f"""
+    stdout = run_clean(tmp_path, f"""
         import json, mujoco, numpy as np
         spec = mujoco.MjSpec.from_file({str(URDF_PATH)!r})
         m = spec.compile()

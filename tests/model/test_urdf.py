@@ -2,12 +2,10 @@
 the generator's output, and Pinocchio reads them without a warning, every geometry included.
 (yourdfpy and MuJoCo reading them against the spec numbers: tests/model/test_build.py.)"""
 import json
-import os
-import subprocess
-import sys
-import textwrap
 import xml.etree.ElementTree as ET
 from pathlib import Path
+
+from clean_run import run_clean
 
 from pollard_pin.model.build import generate
 from pollard_pin.model.params import load_params
@@ -29,19 +27,8 @@ def _xml_counts(tag):
     return {link.get("name"): len(link.findall(tag)) for link in root.findall("link")}
 
 
-def _run_clean(tmp_path, code):
-    """Run ``code`` in a fresh interpreter; return its stdout after checking it was silent on
-    stderr (fd level: C++ and Python warnings alike)."""
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONWARNINGS"}
-    out = subprocess.run([sys.executable, "-W", "always", "-c", textwrap.dedent(code)],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)
-    assert out.returncode == 0, out.stderr
-    assert out.stderr == "", out.stderr
-    return out.stdout
-
-
 def test_urdf_loads_in_pinocchio_without_warnings(tmp_path):
-    stdout = _run_clean(tmp_path, f"""
+    stdout = run_clean(tmp_path, f"""
         import json, pinocchio as pin, pollard_pin
         urdf, srdf = {str(URDF_PATH)!r}, {str(SRDF_PATH)!r}
         m = pin.buildModelFromUrdf(urdf)
