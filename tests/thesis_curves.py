@@ -19,3 +19,14 @@ def sinusoid_trajectory(p, n=401, duration=4.0, t=None):
 
 TRAJECTORIES = [painting_trajectory, sinusoid_trajectory]
 T_PROBE = np.array([0.37, 1.9, 3.3, 7.1, 12.6, 19.4])  # inside both trajectories' useful spans
+
+
+def thesis_head(seconds: float, step: float = 0.01):
+    """The first ``seconds`` of the thesis trajectory (20 s), sampled every ``step``."""
+    from pollard_pin.paths.curves import thesis_trajectory
+    from pollard_pin.paths.trajectory import Trajectory
+
+    full = thesis_trajectory(samples=int(round(20.0 / step)) + 1)
+    n = int(round(seconds / step)) + 1
+    return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
+                      name="thesis head")

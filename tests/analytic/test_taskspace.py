@@ -1,9 +1,10 @@
 """Task-space conventions (analytic/taskspace.py) checked numerically: the rotation is
-Rx(θ)·Ry(ψ)·Rz(φ) of elementary rotations written out here, the Euler angles round-trip, the
-twist is Ṙ·Rᵀ of finite differences of R(t) and its derivative that of the twist."""
-import math
+Rx(θ)·Ry(ψ)·Rz(φ) of elementary rotations written out (tests/rotations.py), the Euler angles
+round-trip, the twist is Ṙ·Rᵀ of finite differences of R(t) and its derivative that of the
+twist."""
 
 import numpy as np
+from rotations import Rx, Ry, Rz
 
 from pollard_pin.analytic import taskspace as ts
 
@@ -11,21 +12,6 @@ from pollard_pin.analytic import taskspace as ts
 def wrap(a):
     """Angles into (−π, π]."""
     return np.pi - np.mod(np.pi - np.asarray(a), 2.0 * np.pi)
-
-
-def Rx(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def Ry(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def Rz(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def vee(W):

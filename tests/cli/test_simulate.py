@@ -4,21 +4,11 @@ from pathlib import Path
 
 import pytest
 from cli_run import run_cli
-
-from pollard_pin.paths.curves import thesis_trajectory
-from pollard_pin.paths.trajectory import Trajectory
+from thesis_curves import thesis_head
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 MOTORS = EXAMPLES / "actuators.toml"
 FIGURE8 = EXAMPLES / "figure8.csv"
-
-
-def _head(seconds: float, step: float = 0.01) -> Trajectory:
-    """The first ``seconds`` of the thesis trajectory (20 s), sampled every ``step``."""
-    full = thesis_trajectory(samples=int(round(20.0 / step)) + 1)
-    n = int(round(seconds / step)) + 1
-    return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
-                      name="thesis head")
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +16,7 @@ def short_csv(tmp_path_factory):
     from pollard_pin.io.trajectory import to_csv
 
     path = tmp_path_factory.mktemp("sim") / "head.csv"
-    to_csv(_head(0.5), path)
+    to_csv(thesis_head(0.5), path)
     return path
 
 

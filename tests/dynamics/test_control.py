@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from thesis_curves import thesis_head
 
 from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, desired_trajectory
 from pollard_pin.dynamics.forward import forward_dynamics
@@ -12,23 +13,14 @@ from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
 from pollard_pin.dynamics.plant import ModelMismatch, Plant, PlantError
 from pollard_pin.dynamics.tracking import MeasurementNoise, simulate_tracking
 from pollard_pin.paths.curves import thesis_trajectory
-from pollard_pin.paths.trajectory import Trajectory
 
 PERTURBED = ModelMismatch(payload=0.05, mass_error=0.1)
 MOTORS = Path(__file__).resolve().parents[2] / "examples" / "actuators.toml"
 
 
-def _head(seconds: float, step: float = 0.01) -> Trajectory:
-    """The first ``seconds`` of the thesis trajectory (20 s), sampled every ``step``."""
-    full = thesis_trajectory(samples=int(round(20.0 / step)) + 1)
-    n = int(round(seconds / step)) + 1
-    return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
-                      name="thesis head")
-
-
 @pytest.fixture(scope="module")
 def traj():
-    return _head(2.0)
+    return thesis_head(2.0)
 
 
 @pytest.fixture(scope="module")
@@ -168,7 +160,7 @@ def test_mujoco_peer_forward_dynamics_agrees(robot, runs):
 
 def test_energy_is_conserved_to_fourth_order(robot):
     """Controller off, no friction: the energy drift falls ~16× per halving of dt (RK4)."""
-    traj = _head(0.3)
+    traj = thesis_head(0.3)
     plant = Plant(robot)
 
     def off(t, q, v):

@@ -4,6 +4,7 @@ designed ones up to the zero-order hold, the controller sees actuator encoders a
 kinematics, tracking RMS is time-weighted, and the step checks of the integrator."""
 import numpy as np
 import pytest
+from thesis_curves import thesis_head
 
 from pollard_pin.dynamics.control import (
     ComputedTorque,
@@ -28,13 +29,6 @@ from pollard_pin.paths.curves import thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
 
 OFFSET = np.array([0.005, -0.004, 0.003, 0.02, -0.01, 0.02])  # m, rad: a pose step
-
-
-def _head(seconds: float, step: float = 0.01) -> Trajectory:
-    full = thesis_trajectory(samples=int(round(20.0 / step)) + 1)
-    n = int(round(seconds / step)) + 1
-    return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
-                      name="thesis head")
 
 
 def _rest(pose, seconds: float = 0.2, step: float = 1e-3) -> Trajectory:
@@ -110,7 +104,7 @@ def test_error_dynamics_are_the_designed_ones(robot):
 @pytest.fixture(scope="module")
 def seen(robot):
     """What a controller is given at every tick (t, q, v), with and without noise."""
-    traj = _head(0.3)
+    traj = thesis_head(0.3)
     desired = desired_trajectory(robot, traj)
     out = {}
     for label, noise in (("exact", None), ("noisy", MeasurementNoise(1e-4, 1e-2, 3))):
@@ -178,7 +172,7 @@ def test_noisy_encoders_move_the_passive_joints_by_kinematics(robot, seen):
 def test_tracking_rms_is_time_weighted(robot):
     """Uneven output samples: the summary's RMS is √(∫e² dt / T) by the trapezoid rule (a
     quadrature written out here), not the plain mean over rows."""
-    traj = _head(0.3)
+    traj = thesis_head(0.3)
     keep = np.r_[0:10, 10:31:5]  # 10 ms samples, then 50 ms
     uneven = Trajectory(traj.t[keep], traj.poses[keep], traj.d_poses[keep],
                         traj.dd_poses[keep], name="uneven")
@@ -191,7 +185,7 @@ def test_tracking_rms_is_time_weighted(robot):
 
 
 def test_steps_are_counted_and_checked(robot):
-    res = simulate_tracking(robot, _head(0.1), "pd", dt=4e-4, control_period=1e-3)
+    res = simulate_tracking(robot, thesis_head(0.1), "pd", dt=4e-4, control_period=1e-3)
     assert res.steps == integration_steps(0.1, 4e-4, 1e-3) == 300
     assert step_used(4e-4, 1e-3) == pytest.approx(1e-3 / 3, rel=1e-15)
     assert res.settings["dt"] == step_used(4e-4, 1e-3)
@@ -221,7 +215,7 @@ def test_a_saturated_robot_that_falls_out_of_its_limits_stops(robot):
     of kinematics.limits)."""
     from pollard_pin.dynamics.forward import SimulationError
 
-    traj = _head(2.0)
+    traj = thesis_head(2.0)
     desired = desired_trajectory(robot, traj, 5e-3)
     with pytest.raises(SimulationError, match=r"stopped at t = 1\.\d+ s: the plant left its "
                                               r"joint limits: joint theta\w+ at .* by .*°; the "
@@ -261,7 +255,7 @@ def test_sensing_hands_its_jacobian_and_velocity_map_to_the_controllers(robot):
     from pollard_pin.dynamics.control import make_controller
     from pollard_pin.dynamics.tracking import sensed_kinematics
 
-    traj = _head(0.05)
+    traj = thesis_head(0.05)
     desired = desired_trajectory(robot, traj)
     ia, ip = robot.actuated_v, robot.passive_v
     k = 20

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from ik_runs import RUN_NAMES, solve, wrap
 from poses import path_to_wrist_singularity, wrist_singular_pose  # tests/poses.py
+from rotations import Rx, Ry, Rz
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T
@@ -34,21 +35,6 @@ HEADER = "t,x,y,z,psi,theta,phi"
 # Pinocchio IK against the closed form: it achieves 3.6e-15 rad, 2.1e-14 rad/s, 2.5e-13 rad/s²
 # (thesis curve, random curves and poses); the tolerances are about 100× that.
 POS_TOL, VEL_TOL, ACC_TOL = 5e-13, 5e-12, 5e-11  # rad, rad/s, rad/s²
-
-
-def Rx(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def Ry(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def Rz(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def thesis_reference(robot, poses, d_poses, dd_poses):

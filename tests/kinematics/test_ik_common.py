@@ -1,22 +1,14 @@
 """What both IK solvers share (kinematics/ik_common.py): ZYZ angles and rates against
-rotations written out here and finite differences, and the input and option checks."""
+rotations written out (tests/rotations.py) and finite differences, and the input and option
+checks."""
 import math
 
 import numpy as np
 import pytest
+from rotations import Ry, Rz
 
 from pollard_pin.kinematics.errors import KinematicsInputError
 from pollard_pin.kinematics.ik_common import check_options, task_inputs, zyz, zyz_rates
-
-
-def Ry(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def Rz(a):
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def zyz_matrix(a, b, c):
