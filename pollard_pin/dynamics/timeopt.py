@@ -18,10 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..paths import const_accel
+from ..paths.arc_length import arc_length_path
 from ..paths.splines import quintic_hermite
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
 from .motors import utilisation as motor_utilisation
-from .path import PathDynamics, arc_length_path, path_dynamics_at
+from .path import PathDynamics, path_dynamics_at
 
 PER_INTERVAL = 4  # check points per interval to start with
 TARGET = 1.001  # worst verified utilisation between samples accepted (the promise: 1.002)
@@ -321,7 +322,7 @@ def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=
     ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
 
-    The path is traversed by its arc length (:func:`~.path.arc_length_path`), on a grid of
+    The path is traversed by its arc length (:func:`~.arc_length_path`), on a grid of
     GRID_DENSITY points per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends
     neither on how the samples are timed nor on how many there are (a path whose samples come
     to rest, such as a retimed one, is degenerate in its own time: dp/ds = 0 there, so "rest
