@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import errno
 import hashlib
+import io
 import os
 import subprocess
 import sys
@@ -16,11 +17,19 @@ from pathlib import Path
 import pytest
 from cli_run import run_cli
 
+from pollard_pin.cli import main
+
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 ACT = str(EXAMPLES / "actuators.toml")
 JOB = str(EXAMPLES / "paint.toml")
+# the same job on a 5 × 3 cm panel (small.toml): 4 passes, planned in a quarter of the time
+SMALL_JOB = (EXAMPLES / "paint.toml").read_text().replace("width = 0.26", "width = 0.05", 1) \
+    .replace("height = 0.12", "height = 0.03", 1)
 SHORT = ["--samples", "11", "--duration", "0.2"]
+# size on a short path: its time-optimal grid follows the path's length, not the samples
+# (the thesis curve, even at 11 samples, took 1.5 s before a write failed)
+SIZE = ["size", "--trajectory", "good.csv", "--actuators", ACT]
 PRECIOUS = b"precious: a failed command must leave this untouched\n"
 FULL = "/dev/full: cannot write: no space left on device"
 HAS_FULL = os.path.exists("/dev/full")
@@ -109,8 +118,8 @@ def _file_commands(out: str) -> dict:
     """Every command writing one file, writing it to ``out``."""
     return {
         "run": ["run", *SHORT, "--out", out],
-        "size": ["size", *SHORT, "--actuators", ACT, "--out", out],
-        "size-retime": ["size", *SHORT, "--actuators", ACT, "--out", "s.md", "--retime", out],
+        "size": [*SIZE, "--out", out],
+        "size-retime": [*SIZE, "--out", "s.md", "--retime", out],
         "simulate": ["simulate", "--quiet", "--trajectory", "good.csv", "--out", out],
         "sweep": ["sweep", "--workers", "1", "--quiet", "--grid", "grid.toml", "--out", out],
         "report": ["report", *SHORT, "--no-cross-check", "--out", out],
@@ -125,7 +134,7 @@ def _folder_commands(out: str) -> dict:
         "paint": ["paint", "--job", JOB, "--resolution", "0.01", "--out", out],
         "workspace": ["workspace", "--quiet", "--resolution", "0.05", "--out", out],
         "plot": ["plot", *SHORT, "--out", out],
-        "size-plot": ["size", *SHORT, "--actuators", ACT, "--out", "s.md", "--plot", out],
+        "size-plot": [*SIZE, "--out", "s.md", "--plot", out],
     }
 
 
@@ -133,8 +142,8 @@ CASES = []
 # 1. a full device: one line naming it and why (each command did its work, then a traceback)
 if HAS_FULL:
     CASES += [(argv, FULL) for argv in _file_commands("/dev/full").values()]
-    CASES += [(["size", *SHORT, "--actuators", ACT, "--retime", "R.csv", "--out", "/dev/full"],
-               FULL)]  # the retimed trajectory was written, then the report failed
+    # the retimed trajectory was written, then the report failed
+    CASES += [([*SIZE, "--retime", "R.csv", "--out", "/dev/full"], FULL)]
 # 2. links that lead nowhere: refused before any work, the link left alone
 for out, says in (("dang.out", "dang.out: a dangling symbolic link (to nowhere/x)"),
                   ("loop.out", "loop.out: a symbolic link loop")):
@@ -152,13 +161,10 @@ CASES += [
      "ws/workspace.png: is a folder"),
     (["run", *SHORT, "--out", "r.csv"], "r.units.json: is a folder"),
     (["simulate", "--trajectory", "good.csv", "--out", "sim.csv"], "sim.units.json: is a folder"),
-    (["size", *SHORT, "--actuators", ACT, "--out", "s.md", "--plot", "pp"],
-     "pp/torque_speed.png: is a folder"),
-    (["size", *SHORT, "--actuators", ACT, "--out", "s.md", "--retime", "r.csv"],
-     "r.units.json: is a folder"),
+    ([*SIZE, "--out", "s.md", "--plot", "pp"], "pp/torque_speed.png: is a folder"),
+    ([*SIZE, "--out", "s.md", "--retime", "r.csv"], "r.units.json: is a folder"),
 ]
 # 5. two outputs naming one file: one would overwrite the other
-SIZE = ["size", *SHORT, "--actuators", ACT]
 CASES += [(argv, "named by two outputs") for argv in [
     [*SIZE, "--out", "X.csv", "--retime", "X.csv"],
     [*SIZE, "--out", "./X.csv", "--retime", "X.csv"],
@@ -217,7 +223,8 @@ def _no_space(*args, **kwargs):
 
 
 @pytest.mark.parametrize("argv, module, writer, says", [
-    (["paint", "--job", JOB, "--resolution", "0.01", "--out", "out"], "pollard_pin.viz.paint",
+    (["paint", "--job", "small.toml", "--resolution", "0.01", "--out", "out"],
+     "pollard_pin.viz.paint",
      "thickness_figure", "thickness.png: cannot write: no space left on device"),
     (["workspace", "--quiet", "--resolution", "0.05", "--out", "out"],
      "pollard_pin.viz.workspace", "workspace_figure", "workspace.png: cannot write"),
@@ -230,6 +237,7 @@ def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, mo
                                                                     writer, says):
     # the figure (urdf: the SRDF) is written last; the files before it were left new
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "small.toml").write_text(SMALL_JOB)
     (tmp_path / "out").mkdir()
     for name in ("path.csv", "thickness.csv", "paint.json", "workspace.csv", "workspace.json",
                  "chain0_joints.png", "m.urdf"):
@@ -275,11 +283,12 @@ def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, mo
 # --- stale outputs of the other format ----------------------------------------------------------
 @pytest.mark.parametrize("argv, stem", [
     (["workspace", "--quiet", "--resolution", "0.05"], "workspace"),
-    (["paint", "--job", JOB, "--resolution", "0.01"], "thickness"),
+    (["paint", "--job", "small.toml", "--resolution", "0.01"], "thickness"),
 ])
 def test_a_second_run_in_the_other_format_replaces_the_first(tmp_path, monkeypatch, capsys,
                                                              argv, stem):
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "small.toml").write_text(SMALL_JOB)
     for fmt, gone in (("parquet", ("csv", "units.json")), ("csv", ("parquet",))):
         code, _, err = run_cli([*argv, "--out", "D", "--format", fmt], capsys)
         assert code == 0, err
@@ -336,18 +345,50 @@ def _cli(args, cwd, **env):
                           capture_output=True, timeout=300)
 
 
-@pytest.mark.parametrize("argv", [
-    ["paint", "--job", JOB, "--resolution", "0.01", "--out", "p"],
-    ["run", *SHORT, "--out", "r.csv"],
-    ["size", *SHORT, "--actuators", ACT],
-    ["sweep", "--help"],
+def _on_an_ascii_terminal(argv, monkeypatch) -> tuple[int, bytes, bytes]:
+    """(exit code, standard output, standard error) of ``pollard-pin argv`` run in this
+    process with both streams strict ASCII text, as Python makes them under
+    PYTHONIOENCODING=ascii (a fresh interpreter costs a second of imports per case)."""
+    out, err = (io.TextIOWrapper(io.BytesIO(), encoding="ascii", errors="strict")
+                for _ in range(2))
+    with monkeypatch.context() as m:
+        m.setattr(sys, "stdout", out)
+        m.setattr(sys, "stderr", err)
+        try:
+            code = main([str(a) for a in argv])
+        except SystemExit as exc:  # --help
+            code = exc.code
+        out.flush()
+        err.flush()
+    return code, out.buffer.getvalue(), err.buffer.getvalue()
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["paint", "--job", "small.toml", "--resolution", "0.01", "--out", "p"],
+     rb" \xb5m (target 25 \xb5m"),
+    (["run", *SHORT, "--out", "r.csv"], rb"\u03c3_min parallel"),
+    # the report is UTF-8 like any file the commands write (io.atomic): no escapes
+    ([*SIZE], "τm = τ/N".encode()),
+    (["sweep", "--help"], rb"trajectory \u2192 CSV"),
 ])
-def test_an_ascii_terminal_gets_escapes_not_a_crash(tmp_path, argv):
-    done = _cli(argv, tmp_path, PYTHONIOENCODING="ascii")
-    assert done.returncode == 0 and b"Traceback" not in done.stderr, done.stderr[-2000:]
-    assert b"\\" in done.stdout + done.stderr  # θ, µ, … as backslash escapes
+def test_an_ascii_terminal_gets_escapes_not_a_crash(tmp_path, monkeypatch, argv, says):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "small.toml").write_text(SMALL_JOB)
+    (tmp_path / "good.csv").write_text(_good())
+    code, out, err = _on_an_ascii_terminal(argv, monkeypatch)
+    assert code == 0 and b"Traceback" not in err, err[-2000:]
+    assert says in out + err, (out + err)[-2000:]  # θ, µ, … as backslash escapes
     if argv[0] == "paint":  # the files are written whatever the terminal
         assert (tmp_path / "p" / "thickness.png").is_file()
+
+
+def test_an_ascii_terminal_gets_escapes_in_a_fresh_interpreter(tmp_path):
+    # end to end: the streams Python itself opens for PYTHONIOENCODING=ascii, and their
+    # flush at exit
+    done = _cli(["run", *SHORT, "--out", "r.csv"], tmp_path, PYTHONIOENCODING="ascii")
+    assert done.returncode == 0 and b"Traceback" not in done.stderr, done.stderr[-2000:]
+    assert rb"\u03c3_min parallel" in done.stdout, done.stdout[-2000:]
+    assert (tmp_path / "r.csv").is_file()
 
 
 @pytest.mark.skipif(not HAS_FULL, reason="no /dev/full")
