@@ -21,7 +21,7 @@ import stat
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli
+from cli_run import one_parser, run_cli
 
 from pollard_pin.cli import main
 
@@ -344,6 +344,12 @@ def scratch(tmp_path_factory):
     yield root
     sock.close()
 
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _one_parser():
+    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
+        yield
 
 def _simulation_files(root: Path) -> None:
     """A real simulation and run table of good.csv, and damaged copies of the simulation."""

@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli
+from cli_run import one_parser, run_cli
 
 from pollard_pin.cli import main
 
@@ -95,6 +95,12 @@ def scratch(tmp_path_factory):
         os.symlink(target, root / name)
     return root
 
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _one_parser():
+    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
+        yield
 
 def _state(root: Path) -> dict:
     """Every folder, link (its target) and file (its digest) under ``root``."""

@@ -9,7 +9,7 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli
+from cli_run import one_parser, run_cli
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 ACT = str(EXAMPLES / "actuators.toml")
@@ -56,6 +56,12 @@ def sized(tmp_path_factory):
         (root / name).write_text(content)
     return root
 
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _one_parser():
+    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
+        yield
 
 def _state(root: Path) -> dict:
     """Every file's digest under ``root`` (as test_fuzz.py)."""
