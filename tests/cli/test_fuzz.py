@@ -345,11 +345,11 @@ def scratch(tmp_path_factory):
     sock.close()
 
 
-
 @pytest.fixture(scope="module", autouse=True)
 def _one_parser():
     with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
         yield
+
 
 def _simulation_files(root: Path) -> None:
     """A real simulation and run table of good.csv, and damaged copies of the simulation."""

@@ -111,11 +111,11 @@ def scratch(tmp_path_factory):
     thread.join()
 
 
-
 @pytest.fixture(scope="module", autouse=True)
 def _one_parser():
     with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
         yield
+
 
 def _unblock(fifos, stop: threading.Event) -> None:
     waited = {f: 0.0 for f in fifos}

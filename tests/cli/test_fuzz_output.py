@@ -3,7 +3,7 @@ and looping links, an output that fails half-way through a command's outputs, tw
 naming one file, and the folders ``view`` reads back. Each case must give exactly one line on
 standard error, exit status 2, no traceback, and write nothing (the scratch folder unchanged,
 links included). Then: stale outputs of the other format, a link written through, and text
-output on an ASCII terminal (subprocesses)."""
+output on an ASCII terminal (in this process, and once in a fresh interpreter)."""
 from __future__ import annotations
 
 import errno
@@ -96,11 +96,11 @@ def scratch(tmp_path_factory):
     return root
 
 
-
 @pytest.fixture(scope="module", autouse=True)
 def _one_parser():
     with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
         yield
+
 
 def _state(root: Path) -> dict:
     """Every folder, link (its target) and file (its digest) under ``root``."""

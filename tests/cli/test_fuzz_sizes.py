@@ -57,11 +57,11 @@ def sized(tmp_path_factory):
     return root
 
 
-
 @pytest.fixture(scope="module", autouse=True)
 def _one_parser():
     with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
         yield
+
 
 def _state(root: Path) -> dict:
     """Every file's digest under ``root`` (as test_fuzz.py)."""
