@@ -236,17 +236,17 @@ def _no_space(*args, **kwargs):
      "pollard_pin.viz.workspace", "workspace_figure", "workspace.png: cannot write"),
     (["plot", *SHORT, "--out", "out"], "pollard_pin.viz.plots", "_loads_figure",
      "joint_loads.png: cannot write"),
-    (["urdf", "--out", "out/m.urdf"], None, None, "m.srdf: cannot write"),
+    (["urdf", "--out", "out/m.urdf"], None, None, "m.urdf: cannot write"),
 ])
 def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, monkeypatch,
                                                                     capsys, argv, module,
                                                                     writer, says):
-    # the figure (urdf: the SRDF) is written last; the files before it were left new
+    # the figure (urdf: the URDF, after its SRDF) is written last; the files before it were left new
     monkeypatch.chdir(tmp_path)
     (tmp_path / "small.toml").write_text(SMALL_JOB)
     (tmp_path / "out").mkdir()
     for name in ("path.csv", "thickness.csv", "paint.json", "workspace.csv", "workspace.json",
-                 "chain0_joints.png", "m.urdf"):
+                 "chain0_joints.png", "m.urdf", "m.srdf"):
         (tmp_path / "out" / name).write_bytes(PRECIOUS)
     before = _state(tmp_path)
 
@@ -276,14 +276,14 @@ def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, mo
     else:
         real = atomic.atomic_open
 
-        def srdf_fails(path, *args, **kwargs):
-            if str(path).endswith(".srdf"):
+        def urdf_fails(path, *args, **kwargs):  # the URDF is written after the SRDF
+            if str(path).endswith(".urdf"):
                 return real("/dev/full", *args, **kwargs) if HAS_FULL else _no_space()
             return real(path, *args, **kwargs)
 
         if not HAS_FULL:
             pytest.skip("no /dev/full")
-        monkeypatch.setattr("pollard_pin.cli.urdf.atomic_open", srdf_fails)
+        monkeypatch.setattr("pollard_pin.cli.urdf.atomic_open", urdf_fails)
     code, out, err = run_cli(argv, capsys)
     lines = err.strip().splitlines()
     assert code == 2 and len(lines) == 1 and "Traceback" not in err, err[-2000:]
