@@ -23,6 +23,7 @@ import pinocchio as pin
 from ..analytic.taskspace import rotation
 from ..kinematics.closure import close_loops, tool_pose
 from ..kinematics.limits import first_violation, limit_bounds, violation_text
+from ..kinematics.sensing import LoopSensor
 from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot
 from .averages import time_rms
@@ -364,6 +365,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     ia = plant.robot.actuated_v
     rng = np.random.default_rng(noise.seed) if noise is not None else None
     f = plant.acceleration
+    sense = LoopSensor(robot)  # sensed_kinematics, compiled (one call per tick)
     tau = np.zeros(6)
     guess, v_seen = desired.q[0], desired.v[0]  # the first FK's warm start: the reference
     saturated_since, saturation, max_res = None, 0.0, 0.0
@@ -385,11 +387,11 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
             if rng is not None:
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            qm, vm, Jc, N = sensed_kinematics(robot, theta, dtheta, guess)
+            qm, vm, Jc, N, a0 = sense(theta, dtheta, guess)
             # The next tick's FK warm start, second order: Newton then needs one step.
             guess = qm + control_period * (1.5 * vm - 0.5 * v_seen)
             v_seen = vm
-            command = controller(t, qm, vm, Jc, N) if builtin else controller(t, qm, vm)
+            command = controller(t, qm, vm, Jc, N, a0) if builtin else controller(t, qm, vm)
             command = np.asarray(command, dtype=float).reshape(-1)
             if command.shape != (6,) or not math.isfinite(command.sum()) and not np.all(
                     np.isfinite(command)):  # (a finite sum: all finite, one reduction)
