@@ -5,7 +5,7 @@ Needs a C compiler and Python's headers. FMA contraction off: every platform rou
 from setuptools import Extension, setup
 
 CSRC = "csrc"  # outside the package: compiled into it, not shipped as files
-SOURCES = ("module", "linalg", "tree", "sense")
+SOURCES = ("module", "linalg", "tree", "sense", "rk4")
 
 setup(ext_modules=[Extension("pollard_pin.kinematics._kernels",
                              sources=[f"{CSRC}/{f}.c" for f in SOURCES],

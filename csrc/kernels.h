@@ -4,7 +4,8 @@
  * the mathematics (docs/model.md §11–§12); this code checks sizes and indices, then computes.
  *
  * module.c: the argument checks and the module; linalg.c: Gram extremes and the block inverse;
- * tree.c: placements, point Jacobians and drifts; sense.c: a control tick's closed-loop state. Every function takes buffers (read-only "y*",
+ * tree.c: placements, point Jacobians and drifts; sense.c: a control tick's closed-loop state;
+ * rk4.c: a simulation's RK4 step around a Python callable. Every function takes buffers (read-only "y*",
  * written "w*") and their dimensions. */
 #ifndef POLLARD_KERNELS_H
 #define POLLARD_KERNELS_H
@@ -26,6 +27,7 @@ PyObject *pk_tree_placements(PyObject *self, PyObject *args);
 PyObject *pk_point_jacobians(PyObject *self, PyObject *args);
 PyObject *pk_point_drifts(PyObject *self, PyObject *args);
 PyObject *pk_closed_state(PyObject *self, PyObject *args);
+PyObject *pk_rk4_step(PyObject *self, PyObject *args);
 
 /* the loops behind them, for one another (one sample: n = 1) */
 void gram_extremes_loop(const double *A, idx n, idx m, idx k, double *lo, double *hi,

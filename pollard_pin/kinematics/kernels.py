@@ -144,3 +144,16 @@ class ClosedState:
         steps = _c.closed_state(*self._head, _f64(theta), _f64(dtheta), _f64(guess),
                                 float(tol), int(max_iter), q, v, Jc, N, a0, lohi)
         return steps, q, v, Jc, N, a0, lohi
+
+
+def rk4_step(f, q, v, a1, h: float, stage_q, stage_v):
+    """(q, v) after one classical RK4 step of length ``h`` of q̈ = f(q, q̇) from (q, v) with
+    a1 = f(q, v) already at hand: the stages' arithmetic compiled, bit for bit numpy's
+    v + (h/2)·a1, …, q + (h/6)·(v + 2v₂ + 2v₃ + v₄) (docs/model.md §18). ``f`` is called
+    with ``stage_q``, ``stage_v`` (float64 (n,) arrays it may not keep: overwritten by the
+    next stage) and must return n float64 values."""
+    q, v = _f64(q), _f64(v)
+    n = len(q)
+    q_out, v_out = np.empty(n), np.empty(n)
+    _c.rk4_step(f, q, v, _f64(a1), float(h), n, stage_q, stage_v, q_out, v_out)
+    return q_out, v_out
