@@ -162,7 +162,9 @@ class ComputedTorque:
         acc = desired.a[:, self._ia]
         self._acc = acc.copy()
         self._acc[:-1] = 0.5 * (acc[:-1] + acc[1:])
-        self._kp, self._kd = gains.kp, gains.kd
+        # the gains as arrays: numpy multiplies two arrays faster than a Python float and an
+        # array (same bits; this runs every control tick)
+        self._kp, self._kd = np.full(len(self._ia), gains.kp), np.full(len(self._ia), gains.kd)
         self._q, self._v = desired.q[:, self._ia], desired.v[:, self._ia]
 
     def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None,

@@ -47,8 +47,9 @@ from .plant import BAUMGARTE, ModelMismatch, Plant
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
 # controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
-# 80 µs and 400 µs before a tick built Jc and N once and the constraints were Pinocchio vectors).
-STEP_SECONDS, TICK_SECONDS = 40e-6, 140e-6
+# 24–34 µs and 31–62 µs as the other load varied; 40 µs and 140 µs before sensing and RK4's
+# stages were compiled, 80 µs and 400 µs before a tick built Jc and N once).
+STEP_SECONDS, TICK_SECONDS = 30e-6, 45e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
 # m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick

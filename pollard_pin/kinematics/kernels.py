@@ -8,7 +8,11 @@ and allocate the outputs; the C side checks every size and index before it compu
 
 ``tree_placements``, ``point_jacobians`` and ``point_drifts`` evaluate the joint placements,
 K = [Jc; J_tool] and its drifts K̇v on Pinocchio's model tree (docs/model.md §11);
-``block_inverse`` inverts K through its block-triangular structure (§11).
+``block_inverse`` inverts K through its block-triangular structure (§11). For the closed-loop
+simulation (§18), :class:`ClosedState` finds a control tick's state from the measured actuator
+angles in one call and :func:`rk4_step` does RK4's stage arithmetic around the plant's
+dynamics: one sample each, where numpy's fixed cost per call would dominate (these two keep
+the GIL: a few µs of work).
 ``gram_extremes(A)`` gives λ_min and λ_max of AᵀA for every matrix of a stack (§12): the Gram
 matrix, its Householder reduction to a symmetric tridiagonal T (the first step of LAPACK's
 ``dsyevd``), then Laguerre's iteration on det(T − λI), evaluated with its first two
