@@ -4,7 +4,9 @@ reference.
 
 * Sensing (:func:`sensed_state`): the controller sees what the robot measures, the six actuator
   angles and rates (with optional seeded noise); the passive joints come from forward
-  kinematics of those angles, their rates from the closed-loop velocity map.
+  kinematics of those angles, their rates from the closed-loop velocity map. The loop senses
+  by one compiled call per tick (:class:`~pollard_pin.kinematics.sensing.LoopSensor`, the
+  same to round-off, Pinocchio's path where it is not sure).
 * :func:`simulate_tracking`: the plant integrated by fixed-step RK4 under the controller's
   torque, held over each control period (zero-order hold), saturated per actuator. One row per
   sample time of the input trajectory; time-weighted RMS errors (:func:`tracking_summary`).
@@ -422,7 +424,8 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
             res = plant.last_closure_residual()
             if tick:
                 max_res = max(max_res, res)
-                # strictly inside the limits (the common case) needs no turn counting
+                # (q − lo)(hi − q) > 0 for every joint: strictly inside its limits (the common
+                # case); at a bound, outside or NaN, the exact rule (turns counted) decides
                 if res > loop_tolerance or lo is not None and not min(
                         ((q - lo) * (hi - q)).tolist()) > 0.0:
                     _check_plant(plant, q, res, t, limits, loop_tolerance,
