@@ -5,8 +5,9 @@ Needs a C compiler and Python's headers. FMA contraction off: every platform rou
 from setuptools import Extension, setup
 
 CSRC = "csrc"  # outside the package: compiled into it, not shipped as files
+SOURCES = ("module", "linalg", "tree", "sense", "rk4")
 
 setup(ext_modules=[Extension("pollard_pin.kinematics._kernels",
-                             sources=[f"{CSRC}/{f}.c" for f in ("module", "linalg", "tree")],
+                             sources=[f"{CSRC}/{f}.c" for f in SOURCES],
                              depends=[f"{CSRC}/kernels.h"],
                              extra_compile_args=["-O3", "-ffp-contract=off"])])

@@ -4,7 +4,8 @@
  * the mathematics (docs/model.md §11–§12); this code checks sizes and indices, then computes.
  *
  * module.c: the argument checks and the module; linalg.c: Gram extremes and the block inverse;
- * tree.c: placements, point Jacobians and drifts. Every function takes buffers (read-only "y*",
+ * tree.c: placements, point Jacobians and drifts; sense.c: a control tick's closed-loop state;
+ * rk4.c: a simulation's RK4 step around a Python callable. Every function takes buffers (read-only "y*",
  * written "w*") and their dimensions. */
 #ifndef POLLARD_KERNELS_H
 #define POLLARD_KERNELS_H
@@ -25,5 +26,25 @@ PyObject *pk_block_inverse(PyObject *self, PyObject *args);
 PyObject *pk_tree_placements(PyObject *self, PyObject *args);
 PyObject *pk_point_jacobians(PyObject *self, PyObject *args);
 PyObject *pk_point_drifts(PyObject *self, PyObject *args);
+PyObject *pk_closed_state(PyObject *self, PyObject *args);
+PyObject *pk_rk4_step(PyObject *self, PyObject *args);
+
+/* the loops behind them, for one another (one sample: n = 1) */
+void gram_extremes_loop(const double *A, idx n, idx m, idx k, double *lo, double *hi,
+                        double *work);
+void tree_placements_loop(const double *C, const double *S, idx n, idx nq,
+                          const int64_t *parent, const int64_t *axis, const int64_t *idx_q,
+                          const double *M_rot, const double *M_trans, idx J, double *R,
+                          double *o);
+void point_jacobians_loop(const double *R, const double *o, idx S, idx n, const int64_t *axis,
+                          const int64_t *col, const int64_t *pt_slot, const double *pt_local,
+                          const int64_t *pt_support, idx depth, const int64_t *pt_row,
+                          const double *pt_sign, idx P, idx ang_point, idx ang_row, idx nv,
+                          double *K, double *pos);
+void point_drifts_loop(const double *R, const double *o, idx S, idx n, const int64_t *parent,
+                       const int64_t *axis, const int64_t *col, const double *V, idx nv,
+                       const int64_t *pt_slot, const int64_t *pt_row, const double *pt_sign,
+                       const double *pos, idx P, idx ang_point, idx ang_row, double *drift,
+                       double *omega, double *work);
 
 #endif

@@ -126,7 +126,7 @@ static idx below(const double *d, const double *e2, idx k, double x)
     return count;
 }
 
-static void gram_extremes_loop(const double *A, idx n, idx m, idx k, double *lo, double *hi,
+void gram_extremes_loop(const double *A, idx n, idx m, idx k, double *lo, double *hi,
                                double *work)
 {
     idx k1 = k > 1 ? k - 1 : 1;

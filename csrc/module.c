@@ -45,6 +45,12 @@ static PyMethodDef methods[] = {
     {"point_drifts", pk_point_drifts, METH_VARARGS,
      "R, o, S, n, parent, axis, col, V, nv, pt_slot, pt_row, pt_sign, pos, P, ang_point, "
      "ang_row, drift, omega"},
+    {"closed_state", pk_closed_state, METH_VARARGS,
+     "parent, axis, idx_q, col, M_rot, M_trans, pt_slot, pt_local, pt_support, pt_row, "
+     "pt_sign, ia, ip, S, P, depth, ang_point, ang_row, nq, nv, m, theta, dtheta, guess, tol, "
+     "max_iter, q, v, Jc, N, a0, lohi -> Newton steps (>= 0) or -1 / -2 / -3"},
+    {"rk4_step", pk_rk4_step, METH_VARARGS,
+     "f, q, v, a1, h, n, stage_q, stage_v, q_out, v_out"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -6,7 +6,7 @@
 #include <string.h>
 
 /* --- tree placements (docs/model.md §11) ------------------------------------------------- */
-static void tree_placements_loop(const double *C, const double *S, idx n, idx nq,
+void tree_placements_loop(const double *C, const double *S, idx n, idx nq,
                                  const int64_t *parent, const int64_t *axis,
                                  const int64_t *idx_q, const double *M_rot,
                                  const double *M_trans, idx J, double *R, double *o)
@@ -77,7 +77,7 @@ PyObject *pk_tree_placements(PyObject *self, PyObject *args)
 }
 
 /* --- point Jacobians (docs/model.md §11) ------------------------------------------------- */
-static void point_jacobians_loop(const double *R, const double *o, idx S, idx n,
+void point_jacobians_loop(const double *R, const double *o, idx S, idx n,
                                  const int64_t *axis, const int64_t *col, const int64_t *pt_slot,
                                  const double *pt_local, const int64_t *pt_support, idx depth,
                                  const int64_t *pt_row, const double *pt_sign, idx P,
@@ -154,7 +154,7 @@ static inline void cross3(const double *a, const double *b, double *out)
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-static void point_drifts_loop(const double *R, const double *o, idx S, idx n,
+void point_drifts_loop(const double *R, const double *o, idx S, idx n,
                               const int64_t *parent, const int64_t *axis, const int64_t *col,
                               const double *V, idx nv, const int64_t *pt_slot,
                               const int64_t *pt_row, const double *pt_sign, const double *pos,

@@ -46,8 +46,8 @@ class Controller(Protocol):
     """``controller(t, q, v) → τ``: actuator torques (6,) [N·m], docs/model.md §6 order, from the
     time [s] and the measured tree state q, v (12,): the actuator angles and rates as sensed
     (with their noise), the passive joints by forward kinematics from them. (The built-in ones
-    also take the constraint Jacobian ``Jc`` and velocity map ``N`` at q that sensing built,
-    so as not to build them again.)"""
+    also take the constraint Jacobian ``Jc``, velocity map ``N`` and the loops' a₀ at q, v
+    that sensing built, so as not to build them again.)"""
 
     def __call__(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray: ...
 
@@ -162,15 +162,18 @@ class ComputedTorque:
         acc = desired.a[:, self._ia]
         self._acc = acc.copy()
         self._acc[:-1] = 0.5 * (acc[:-1] + acc[1:])
-        self._kp, self._kd = gains.kp, gains.kd
+        # the gains as arrays: numpy multiplies two arrays faster than a Python float and an
+        # array (same bits; this runs every control tick)
+        self._kp, self._kd = np.full(len(self._ia), gains.kp), np.full(len(self._ia), gains.kd)
         self._q, self._v = desired.q[:, self._ia], desired.v[:, self._ia]
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None,
+                 a0=None) -> np.ndarray:
         ia = self._ia
         k = self.desired.index(t)
         u = self._acc[k] + self._kp * (self._q[k] - q[ia]) + self._kd * (self._v[k] - v[ia])
         # M_red·u + h_red by one RNEA at θ̈ = u (reduced_inverse_dynamics)
-        return reduced_inverse_dynamics(self.robot, q, v, u, self.losses, Jc, N)
+        return reduced_inverse_dynamics(self.robot, q, v, u, self.losses, Jc, N, a0)
 
 
 class FeedforwardPD:
@@ -186,7 +189,8 @@ class FeedforwardPD:
         self.robot, self.desired, self.gains = _known(robot, losses), desired, gains
         self._ia = robot.actuated_v
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None,
+                 a0=None) -> np.ndarray:
         d, g, ia = self.desired, self.gains, self._ia
         k = d.index(t)
         e, ed = d.q[k, ia] - q[ia], d.v[k, ia] - v[ia]
@@ -207,7 +211,8 @@ class PDGravity:
         self.kp, self.kd = gains.kp * m0, gains.kd * m0
         self._zero = np.zeros(robot.model.nv)
 
-    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None) -> np.ndarray:
+    def __call__(self, t: float, q: np.ndarray, v: np.ndarray, Jc=None, N=None,
+                 a0=None) -> np.ndarray:
         d, ia = self.desired, self._ia
         k = d.index(t)
         gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero, Jc=Jc)[0]

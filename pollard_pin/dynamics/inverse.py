@@ -272,13 +272,14 @@ def reduced_dynamics(robot: Robot, q, v, losses: JointLosses | None = None, Jc=N
 
 
 def reduced_inverse_dynamics(robot: Robot, q, v, u, losses: JointLosses | None = None,
-                             Jc=None, N=None) -> np.ndarray:
+                             Jc=None, N=None, a0=None) -> np.ndarray:
     """τ = M_red(q)·u + h_red(q, v) (6,) of :func:`reduced_dynamics` without forming M_red:
     one RNEA at the tree acceleration a = N·u + a₀ (on the loops, θ̈ = u), projected by Nᵀ
-    (Jc·N = 0 drops the closure forces; docs/model.md §13, §18). ``Jc``, ``N`` at ``q`` if at
-    hand."""
+    (Jc·N = 0 drops the closure forces; docs/model.md §13, §18). ``Jc``, ``N`` at ``q`` and
+    ``a0`` at (q, v) if at hand (:class:`~pollard_pin.kinematics.sensing.LoopSensor`)."""
     model, data = robot.model, robot.data
-    _, N, a0 = _closed_loop(robot, q, v, Jc, N)
+    if N is None or a0 is None:
+        _, N, a0 = _closed_loop(robot, q, v, Jc, N)
     a = N @ u + a0
     if losses is None:
         return N.T @ pin.rnea(model, data, q, v, a)

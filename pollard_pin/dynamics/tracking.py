@@ -4,7 +4,9 @@ reference.
 
 * Sensing (:func:`sensed_state`): the controller sees what the robot measures, the six actuator
   angles and rates (with optional seeded noise); the passive joints come from forward
-  kinematics of those angles, their rates from the closed-loop velocity map.
+  kinematics of those angles, their rates from the closed-loop velocity map. The loop senses
+  by one compiled call per tick (:class:`~pollard_pin.kinematics.sensing.LoopSensor`, the
+  same to round-off, Pinocchio's path where it is not sure).
 * :func:`simulate_tracking`: the plant integrated by fixed-step RK4 under the controller's
   torque, held over each control period (zero-order hold), saturated per actuator. One row per
   sample time of the input trajectory; time-weighted RMS errors (:func:`tracking_summary`).
@@ -22,7 +24,9 @@ import pinocchio as pin
 
 from ..analytic.taskspace import rotation
 from ..kinematics.closure import close_loops, tool_pose
+from ..kinematics.kernels import rk4_step
 from ..kinematics.limits import first_violation, limit_bounds, violation_text
+from ..kinematics.sensing import LoopSensor
 from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot
 from .averages import time_rms
@@ -45,8 +49,9 @@ from .plant import BAUMGARTE, ModelMismatch, Plant
 DT = 1e-3  # s, longest RK4 step
 # Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
 # controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
-# 80 µs and 400 µs before a tick built Jc and N once and the constraints were Pinocchio vectors).
-STEP_SECONDS, TICK_SECONDS = 40e-6, 140e-6
+# 24–34 µs and 31–62 µs as the other load varied; 40 µs and 140 µs before sensing and RK4's
+# stages were compiled, 80 µs and 400 µs before a tick built Jc and N once).
+STEP_SECONDS, TICK_SECONDS = 30e-6, 45e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
 # m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick
@@ -363,53 +368,68 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
     TAU, RES = np.empty((n, 6)), np.empty(n)
     ia = plant.robot.actuated_v
     rng = np.random.default_rng(noise.seed) if noise is not None else None
-    f = plant.acceleration
+    sense = LoopSensor(robot)  # sensed_kinematics, compiled (one call per tick)
+    f = plant.held(np.zeros(6))
     tau = np.zeros(6)
     guess, v_seen = desired.q[0], desired.v[0]  # the first FK's warm start: the reference
     saturated_since, saturation, max_res = None, 0.0, 0.0
     names = plant.robot.joint_names
     limits = (names, limit_bounds(plant.robot.params, names)) if joint_limits else None
+    lo, hi = limits[1] if joint_limits else (None, None)
+    # Small-vector arithmetic in the loop (docs/model.md §18): numpy's fixed cost dominates,
+    # so each form below is the cheapest of the same bits: RK4's stages compiled
+    # (kernels.rk4_step), an array of equal coefficients for a Python float (≈ 0.4 µs against
+    # 0.7), dot products and Python's min over a list for reductions (≈ 0.5 µs against 1.5).
+    stage_q, stage_v = np.empty(nv), np.empty(nv)
+    P, C15, C05 = (np.full(nv, x) for x in (control_period, 1.5, 0.5))
     clock = time.perf_counter()
     last = len(pts) - 1
     for i in range(len(pts)):
         t = pts[i]
         # Non-finite, or spun through thousands of turns: the loop closure would fail first
-        # and hide the cause.
-        # (NaN fails both comparisons; one reduction each, this runs every step)
-        if not (np.abs(q).max() < DIVERGED_ANGLE and np.abs(v).max() < math.inf):
+        # and hide the cause. (NaN fails every comparison; q·q < Θ² bounds every |q_j| < Θ,
+        # the exact test decides when it fails.)
+        if not (q.dot(q) < DIVERGED_ANGLE ** 2 and v.dot(v) < math.inf) and not (
+                np.abs(q).max() < DIVERGED_ANGLE and np.abs(v).max() < math.inf):
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
                                   f"beyond {DIVERGED_ANGLE:g} rad; "
                                   f"{_unstable_hint(gains, control_period)}")
-        if is_tick[i]:
+        tick = is_tick[i]
+        if tick:
             theta, dtheta = q[ia], v[ia]  # copies (an index array)
             if rng is not None:
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            qm, vm, Jc, N = sensed_kinematics(robot, theta, dtheta, guess)
+            qm, vm, Jc, N, a0 = sense(theta, dtheta, guess)
             # The next tick's FK warm start, second order: Newton then needs one step.
-            guess = qm + control_period * (1.5 * vm - 0.5 * v_seen)
+            guess = qm + P * (C15 * vm - C05 * v_seen)
             v_seen = vm
-            command = controller(t, qm, vm, Jc, N) if builtin else controller(t, qm, vm)
+            command = controller(t, qm, vm, Jc, N, a0) if builtin else controller(t, qm, vm)
             command = np.asarray(command, dtype=float).reshape(-1)
-            if command.shape != (6,) or not math.isfinite(command.sum()) and not np.all(
-                    np.isfinite(command)):  # (a finite sum: all finite, one reduction)
+            if command.shape != (6,) or not math.isfinite(sum(command.tolist())) and not np.all(
+                    np.isfinite(command)):  # (a finite sum: all finite, the common case)
                 raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
                                    "expected 6 finite actuator torques")
             tau = command if limit is None else np.clip(command, -limit, limit)
+            f = plant.held(tau)
             clipped = limit is not None and bool(np.any(np.abs(command) > limit))
             if saturated_since is not None and not clipped:
                 saturation += t - saturated_since
                 saturated_since = None
             elif clipped and saturated_since is None:
                 saturated_since = t
-        a1 = f(q, v, tau)
+        a1 = f(q, v)
         k = sample_of[i]
-        if is_tick[i] or k >= 0:  # the loop residual at q, where f just placed the closures
+        if tick or k >= 0:  # the loop residual at q, where f just placed the closures
             res = plant.last_closure_residual()
-            if is_tick[i]:
+            if tick:
                 max_res = max(max_res, res)
-                _check_plant(plant, q, res, t, limits, loop_tolerance,
-                             partial(_stop_hint, saturated_since, gains, control_period))
+                # (q − lo)(hi − q) > 0 for every joint: strictly inside its limits (the common
+                # case); at a bound, outside or NaN, the exact rule (turns counted) decides
+                if res > loop_tolerance or lo is not None and not min(
+                        ((q - lo) * (hi - q)).tolist()) > 0.0:
+                    _check_plant(plant, q, res, t, limits, loop_tolerance,
+                                 partial(_stop_hint, saturated_since, gains, control_period))
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
             RES[k] = res
@@ -417,15 +437,7 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 progress(k + 1, n)
         if i == last:
             break
-        h = pts[i + 1] - t
-        v2 = v + 0.5 * h * a1
-        a2 = f(q + 0.5 * h * v, v2, tau)
-        v3 = v + 0.5 * h * a2
-        a3 = f(q + 0.5 * h * v2, v3, tau)
-        v4 = v + h * a3
-        a4 = f(q + h * v3, v4, tau)
-        q = q + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
-        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
+        q, v = rk4_step(f, q, v, a1, pts[i + 1] - t, stage_q, stage_v)
     if saturated_since is not None:
         saturation += pts[-1] - saturated_since
     wall = time.perf_counter() - clock

@@ -8,7 +8,11 @@ and allocate the outputs; the C side checks every size and index before it compu
 
 ``tree_placements``, ``point_jacobians`` and ``point_drifts`` evaluate the joint placements,
 K = [Jc; J_tool] and its drifts K̇v on Pinocchio's model tree (docs/model.md §11);
-``block_inverse`` inverts K through its block-triangular structure (§11).
+``block_inverse`` inverts K through its block-triangular structure (§11). For the closed-loop
+simulation (§18), :class:`ClosedState` finds a control tick's state from the measured actuator
+angles in one call and :func:`rk4_step` does RK4's stage arithmetic around the plant's
+dynamics: one sample each, where numpy's fixed cost per call would dominate (these two keep
+the GIL: a few µs of work).
 ``gram_extremes(A)`` gives λ_min and λ_max of AᵀA for every matrix of a stack (§12): the Gram
 matrix, its Householder reduction to a symmetric tridiagonal T (the first step of LAPACK's
 ``dsyevd``), then Laguerre's iteration on det(T − λI), evaluated with its first two
@@ -112,3 +116,48 @@ def point_drifts(R, o, parent, axis, col, V, pt_slot, pt_row, pt_sign, pos, ang_
                     _i64(pt_slot), _i64(pt_row), _f64(pt_sign), _f64(pos), P, ang_point,
                     ang_row, drift, omega)
     return drift, omega
+
+
+class ClosedState:
+    """A control tick's closed-loop state for one tree layout (arrays of
+    :class:`~.tree.TreeArrays`; closure points first, their rows the first ``len(ia)`` of K),
+    compiled: ``(steps, q, v, Jc, N, a0, lohi) = kernel(theta, dtheta, guess, tol, max_iter)``.
+
+    Newton on the passive angles ``ip`` with the actuated ones ``ia`` at ``theta``, from
+    ``guess`` (the steps of :func:`~.closure.close_loops`: stop at max |r| ≤ tol, at most
+    ``max_iter`` steps, none moving an angle by more than 0.5 rad), then at the solution
+    Jc = K[:m], N (v = N θ̇: N[ia] = I, N[ip] = −Jc_p⁻¹ Jc_a), v = N·dtheta, a₀ (Jc a₀ = −J̇c v,
+    a₀[ia] = 0) and λ_min, λ_max of Jc_pᵀJc_p (``lohi``, as :func:`gram_extremes`).
+    ``steps`` < 0 where the state was not found: −1 no convergence (or not finite), −2 / −3
+    Jc_p exactly singular on the way / at the solution (docs/model.md §4, §11, §12)."""
+
+    def __init__(self, tree, ia, ip, nq: int, nv: int):
+        ang_point, ang_row = tree.tool
+        self.nq, self.nv, self.m = nq, nv, len(ia)
+        self._head = (_i64(tree.parent), _i64(tree.axis), _i64(tree.idx_q), _i64(tree.col),
+                      _f64(tree.rot), _f64(tree.trans), _i64(tree.pt_slot),
+                      _f64(tree.pt_local), _i64(tree.pt_support), _i64(tree.pt_row),
+                      _f64(tree.pt_sign), _i64(ia), _i64(ip), len(tree.parent),
+                      len(tree.pt_slot), tree.pt_support.shape[1], ang_point, ang_row, nq, nv,
+                      len(ia))
+
+    def __call__(self, theta, dtheta, guess, tol: float, max_iter: int):
+        nv, m = self.nv, self.m
+        q, v, a0 = np.empty(self.nq), np.empty(nv), np.empty(nv)
+        Jc, N, lohi = np.empty((m, nv)), np.empty((nv, m)), np.empty(2)
+        steps = _c.closed_state(*self._head, _f64(theta), _f64(dtheta), _f64(guess),
+                                float(tol), int(max_iter), q, v, Jc, N, a0, lohi)
+        return steps, q, v, Jc, N, a0, lohi
+
+
+def rk4_step(f, q, v, a1, h: float, stage_q, stage_v):
+    """(q, v) after one classical RK4 step of length ``h`` of q̈ = f(q, q̇) from (q, v) with
+    a1 = f(q, v) already at hand: the stages' arithmetic compiled, bit for bit numpy's
+    v + (h/2)·a1, …, q + (h/6)·(v + 2v₂ + 2v₃ + v₄) (docs/model.md §18). ``f`` is called
+    with ``stage_q``, ``stage_v`` (float64 (n,) arrays it may not keep: overwritten by the
+    next stage) and must return n float64 values."""
+    q, v = _f64(q), _f64(v)
+    n = len(q)
+    q_out, v_out = np.empty(n), np.empty(n)
+    _c.rk4_step(f, q, v, _f64(a1), float(h), n, stage_q, stage_v, q_out, v_out)
+    return q_out, v_out

@@ -110,3 +110,22 @@ def test_last_closure_residual_is_the_residual_at_the_last_state(robot):
         q = robot.home() + rng.normal(0.0, 0.05, robot.model.nq)
         plant.acceleration(q, rng.normal(size=robot.model.nv), rng.normal(size=6))
         assert plant.last_closure_residual() == plant.closure_residual(q)
+
+
+@pytest.mark.parametrize("losses", [None, JointLosses(viscous=0.01, coulomb=0.02)])
+def test_held_torque_dynamics_are_the_acceleration_bit_for_bit(robot, losses):
+    """plant.held(τ) — the tree torque of a control period built once for its RK4 stages —
+    gives acceleration(q, v, τ) to the bit, friction or not, and keeps the τ it was given
+    (a later tick's torque does not leak into it)."""
+    plant = Plant(robot, ModelMismatch(payload=0.05, mass_error=0.1, losses=losses))
+    rng = np.random.default_rng(3)
+    tau = rng.normal(size=6)
+    f = plant.held(tau)
+    other = plant.held(rng.normal(size=6))
+    for _ in range(5):
+        q = robot.home() + rng.normal(0.0, 0.05, robot.model.nq)
+        v = rng.normal(size=robot.model.nv)
+        a = f(q, v)
+        np.testing.assert_array_equal(a, plant.acceleration(q, v, tau))
+        assert not np.array_equal(other(q, v), a)
+        np.testing.assert_array_equal(f(q, v), a)  # a copy: the next call does not move it

@@ -271,3 +271,31 @@ def test_sensing_hands_its_jacobian_and_velocity_map_to_the_controllers(robot):
     for name in ("computed-torque", "feedforward-pd", "pd"):
         c = make_controller(name, robot, desired)
         np.testing.assert_array_equal(c(desired.t[k], q, v, Jc, N), c(desired.t[k], q, v))
+
+
+def test_compiled_sensing_tracks_as_pinocchio_sensing(robot, monkeypatch):
+    """The simulation senses by one compiled call per tick (kinematics/sensing.py); with
+    Pinocchio's sensing instead (close_loops, the velocity map, the drift: the reference path)
+    every output column agrees to round-off, and so does the controller's torque with the
+    sensed a₀ and without it."""
+    from pollard_pin.dynamics.plant import ModelMismatch
+    from pollard_pin.kinematics.sensing import LoopSensor, reference_state
+
+    traj = thesis_head(0.05)
+    desired = desired_trajectory(robot, traj)
+    kw = dict(errors=ModelMismatch(0.05, 0.1), desired=desired,
+              noise=MeasurementNoise(1e-5, 1e-4, 3))
+    fast = simulate_tracking(robot, traj, "computed-torque", **kw).columns()
+    ia = robot.actuated_v
+    theta, dtheta = desired.q[20, ia] + 1e-4, desired.v[20, ia] - 0.1
+    q, v, Jc, N, a0 = LoopSensor(robot)(theta, dtheta, desired.q[20])
+    c, t = ComputedTorque(robot, desired), desired.t[20]
+    # achieved 7e-16 N·m (torques ≈ 1 N·m); twice a₀ would change it by 0.17 N·m
+    np.testing.assert_allclose(c(t, q, v, Jc, N, a0), c(t, q, v), rtol=0, atol=1e-13)
+    monkeypatch.setattr(LoopSensor, "__call__",
+                        lambda self, th, dth, g=None: reference_state(self.robot, th, dth, g))
+    ref = simulate_tracking(robot, traj, "computed-torque", **kw).columns()
+    # achieved, relative to the column's largest entry (or 1): 3e-13 for dd_theta1817 (the
+    # nearly massless last wrist joint), ≤ 2e-14 for the others
+    for name, col in ref.items():
+        assert np.abs(fast[name] - col).max() <= 3e-11 * max(np.abs(col).max(), 1.0), name

@@ -119,3 +119,43 @@ def test_kernels_take_any_layout_and_refuse_bad_indices():
     half = np.arange(3)
     with pytest.raises(ValueError, match=r"kernels: second\[2\] = 6 is outside \[0, 6\)"):
         block_inverse(A, half, half + 3, half, np.array([3, 4, 6]))
+
+
+def test_rk4_step_is_numpys_rk4_to_the_bit():
+    """kernels.rk4_step: the stages' arithmetic compiled, each operation numpy's in the same
+    order (no FMA), so the step equals the numpy expression exactly; errors of the stage
+    function come through."""
+    from pollard_pin.kinematics.kernels import rk4_step
+
+    rng = np.random.default_rng(7)
+    W = rng.normal(size=(12, 12))
+
+    def f(q, v):  # any nonlinear field
+        return np.sin(W @ q) - 0.3 * v * np.abs(v)
+
+    q, v = rng.normal(size=12), rng.normal(size=12)
+    for h in (1e-3, 0.1, 1.0 / 3.0):
+        a1 = f(q, v)
+        v2 = v + 0.5 * h * a1
+        a2 = f(q + 0.5 * h * v, v2)
+        v3 = v + 0.5 * h * a2
+        a3 = f(q + 0.5 * h * v2, v3)
+        v4 = v + h * a3
+        a4 = f(q + h * v3, v4)
+        want = (q + h / 6.0 * (v + 2 * v2 + 2 * v3 + v4),
+                v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4))
+        got = rk4_step(f, q, v, a1, h, np.empty(12), np.empty(12))
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])
+
+    def fails(q, v):
+        raise ZeroDivisionError("stage failed")
+
+    with pytest.raises(ZeroDivisionError, match="stage failed"):
+        rk4_step(fails, q, v, v, 1e-3, np.empty(12), np.empty(12))
+    with pytest.raises(ValueError, match="returned no 12 float64 values"):
+        rk4_step(lambda q, v: q[:6], q, v, v, 1e-3, np.empty(12), np.empty(12))
+    for wrong in (np.float32, np.int64):  # 96 bytes each, not float64
+        with pytest.raises(ValueError, match="returned no 12 float64 values"):
+            rk4_step(lambda q, v, w=wrong: np.zeros(96 // np.dtype(w).itemsize, w), q, v, v,
+                     1e-3, np.empty(12), np.empty(12))
