@@ -137,14 +137,14 @@ def world_motion(rel: Relative, speed: float, e, times: LineTimes, t):
     d[slow, :3] = (speed * (1 - SMOOTHSTEP(x)))[:, None] * e
     dd[slow, :3] = (-speed / CATCH * SMOOTHSTEP.deriv()(x))[:, None] * e
     back = t > E + CATCH
-    if back.any():
-        a = r1[0, :3] + speed * (E + CATCH / 2) * e
-        b = r0[0, :3] + hold * e
+    if back.any():  # the whole pose, angles too: a part's gun turns between its passes
+        a, b = r1[0].copy(), r0[0].copy()
+        a[:3] += speed * (E + CATCH / 2) * e
+        b[:3] += hold * e
         x = np.clip((t[back] - E - CATCH) / times.back, 0.0, 1.0)
-        poses[back] = r0[0]
-        poses[back, :3] = a + SMOOTHSTEP(x)[:, None] * (b - a)
-        d[back, :3] = (SMOOTHSTEP.deriv()(x) / times.back)[:, None] * (b - a)
-        dd[back, :3] = (SMOOTHSTEP.deriv(2)(x) / times.back ** 2)[:, None] * (b - a)
+        poses[back] = a + SMOOTHSTEP(x)[:, None] * (b - a)
+        d[back] = (SMOOTHSTEP.deriv()(x) / times.back)[:, None] * (b - a)
+        dd[back] = (SMOOTHSTEP.deriv(2)(x) / times.back ** 2)[:, None] * (b - a)
     return poses, d, dd, spray
 
 
