@@ -174,7 +174,8 @@ def test_part_run_and_size_take_the_world_path(part_painted, capsys, tmp_path):
         assert m["peak_torque"] >= given["peak_motor_torque_ratio"] - 1e-12, name
 
 
-def test_view_shows_the_part_riding(part_painted, tmp_path, capsys):
+def test_view_shows_the_mesh_riding(part_painted, tmp_path, capsys):
+    """A part's film.ply node rides the line as the panel's does."""
     from pollard_pin.viz.viewer import page_commands
 
     html = tmp_path / "v.html"
