@@ -264,8 +264,9 @@ def plan_world(robot, act: Actuators, build, guess, speed: float, e, dt: float,
     try:
         rel = build(fastest(evaluate, np.asarray(guess, float), UTILISATION))
     except PlanError:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s the motors cannot follow {passes} "
-                             "with the line's speed added", True) from None
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
+                             f"{passes} keeps the world path in reach and the motors within "
+                             "their ratings with the line's speed added", True) from None
     delay = choose_shift(robot, rel, speed, e, where) / speed
     back = _return_time(robot, act, rel, speed, e, delay)
     times = LineTimes(delay, delay + rel.total, back)
