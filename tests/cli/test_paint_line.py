@@ -38,6 +38,7 @@ def test_outputs(painted):
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
     assert abs(table["y"].mean() + 0.75) < 1e-12 and np.abs(table["x"] - 0.70).max() < 1e-15
     assert "t = 0 pose" in (painted / "thickness.units.json").read_text()
+    assert b"comment film: the part at its t = 0 pose" in (painted / "film.ply").read_bytes()
     # film.ply: the same film on the same points (float32 positions: 6e-8 m at 0.75 m)
     from pollard_pin.io.ply import read_film_ply
 
