@@ -11,7 +11,12 @@ from pathlib import Path
 from .. import __version__
 from ..io.atomic import check_outputs
 from .common import UsageError, command, load_robot, model_args, name, positive
-from .paint_files import motor_use_line, part_summary_lines, write_panel_outputs, write_part_outputs
+from .paint_files import (
+    motor_use_line,
+    part_summary_lines,
+    write_panel_outputs,
+    write_part_outputs,
+)
 
 
 def _actuators(args, job):

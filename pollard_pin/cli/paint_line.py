@@ -8,7 +8,12 @@ from pathlib import Path
 
 from .. import __version__
 from .common import UsageError, load_robot
-from .paint_files import motor_use_line, part_summary_lines, write_panel_outputs, write_part_outputs
+from .paint_files import (
+    motor_use_line,
+    part_summary_lines,
+    write_panel_outputs,
+    write_part_outputs,
+)
 
 FRAME = "the part at its t = 0 pose, world coordinates"
 
