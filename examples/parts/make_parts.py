@@ -1,4 +1,4 @@
-"""Write the three example parts to paint, as meshes in world coordinates [m].
+"""Write the example parts to paint, as meshes in world coordinates [m].
 
     .venv/bin/python examples/parts/make_parts.py [--out-dir examples/parts]
 
@@ -14,6 +14,12 @@ centred at y = 0, z = 0.16 m, facing the robot (−x), 0.24 × 0.10 m, a 2 mm sh
 * ``ribbed_plate.obj`` (OBJ): a flat plate with a vertical rib 15 mm high and 6 mm wide
   down its middle, whose walls shade the plate beside them.
 
+and for a conveyor (``examples/line_part.toml``, docs/model.md §24):
+
+* ``long_strip.stl`` (binary STL): a strip 0.90 m long (along y, longer than the reach) and
+  0.10 m high, a cylinder section of radius 3 m convex towards the robot: the gun yaws by up
+  to ±8.6° from one end to the other.
+
 Read one with ``pollard_pin.paint.mesh.load_part("examples/parts/curved_panel.stl")``.
 """
 import argparse
@@ -26,7 +32,9 @@ PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24,
                                                       fillet=0.030, height=0.10),
          "ribbed_plate.obj": lambda: shapes.ribbed_plate(width=0.24, height=0.10,
                                                          rib_height=0.015, rib_width=0.006,
-                                                         step=0.01)}
+                                                         step=0.01),
+         "long_strip.stl": lambda: shapes.curved_panel(radius=3.0, width=0.90, height=0.10,
+                                                     step=0.01)}
 
 
 def main(argv=None) -> int:

@@ -9,9 +9,14 @@ import time
 from pathlib import Path
 
 from .. import __version__
-from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
+from ..io.atomic import check_outputs
 from .common import UsageError, command, load_robot, model_args, name, positive
-from .paint_files import motor_use_line, write_panel_outputs
+from .paint_files import (
+    motor_use_line,
+    part_summary_lines,
+    write_panel_outputs,
+    write_part_outputs,
+)
 
 
 def _actuators(args, job):
@@ -79,16 +84,11 @@ def run(args) -> int:
 def _run_part(args, job, out: Path, stale) -> int:
     """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
     (the outputs checked and ``stale`` found by :func:`run`)."""
-    from ..io.ply import write_film_ply
-    from ..io.table import write_table
-    from ..io.trajectory import to_csv
     from ..paint.errors import PlanError
-    from ..paint.film_mesh import refined_mesh
     from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
     from ..paint.surface_report import surface_report
-    from ..viz.paint_part import PLY_BAND, PLY_CMAP, film_colours, write_part_png
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP
 
-    name = out / f"thickness.{args.format}"
     try:
         res = part_resolution(job, args.resolution)
     except PlanError as exc:
@@ -106,49 +106,12 @@ def _run_part(args, job, out: Path, stale) -> int:
                film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
                                                            job.thickness * (1 + PLY_BAND)]},
                pollard_pin=__version__)
-    used, triangles = refined_mesh(part, pts)
-    P, N, th = pts.points[painted], pts.normals[painted], film.thickness[painted]
-    table = {"x": P[:, 0], "y": P[:, 1], "z": P[:, 2], "nx": N[:, 0], "ny": N[:, 1],
-             "nz": N[:, 2], "area": pts.areas[painted], "thickness": th}
-    lay = plan.layout
-    tracks = [p.tip + job.standoff * p.axis for p in lay.passes]
-    with all_or_nothing():  # everything is computed: now write every output, or none
-        make_folder(out)
-        to_csv(plan.trajectory, out / "path.csv", spray=plan.spray)
-        write_table(name, table, {"command": "paint", "job": rep["job"]}, fmt=args.format)
-        with atomic_open(out / "paint.json") as f:
-            f.write(json.dumps(rep, indent=2) + "\n")
-        write_film_ply(out / "film.ply", pts.points[used], triangles, film.thickness[used],
-                       film_colours(film.thickness[used], job.thickness))
-        write_part_png(out / "thickness.png", P, th, job.thickness, lay.frame.along,
-                       lay.frame.across, tracks)
-        remove_stale(*stale)
+    name = write_part_outputs(out, args.format, plan, pts, film, painted, rep,
+                              {"command": "paint", "job": rep["job"]}, stale)
     print("\n".join(part_summary_lines(rep, act.names)))
     print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
           file=sys.stderr)
     return 0
-
-
-def part_summary_lines(rep: dict, names) -> list[str]:
-    """The lines ``paint`` prints for a part."""
-    th, target = rep["thickness"], rep["target"]
-    return [
-        f"passes {rep['passes']} ({rep['direction']}), spacing on the surface "
-        f"{rep['spacing'] * 1e3:.2f} mm, spot speed {rep['speed']:.4g} m/s (tip "
-        f"{rep['tip_speed_range'][0]:.3g}–{rep['tip_speed_range'][1]:.3g}), coats "
-        f"{rep['coats']}, normal averaged over {rep['normal_smoothing'] * 1e3:.3g} mm",
-        f"cycle {rep['cycle_time']:.3f} s; painting-only lower bound {rep['lower_bound']:.3f} s "
-        "(painted area × target / flow)",
-        f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
-        f"(target {target * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area within "
-        f"±5 %, {100 * th['within_10pct']:.2f} % within ±10 %",
-        f"largest incidence {rep['largest_incidence_deg']:.3g}°, transfer efficiency "
-        f"{100 * rep['transfer_efficiency']:.1f} %",
-        motor_use_line(rep, names),
-        f"planned in {rep['timings']['plan']:.2f} s, film in {rep['timings']['film']:.2f} s "
-        f"({rep['film_points']['painted']} painted film points, {rep['samples']} path "
-        "samples)",
-    ]
 
 
 def summary_lines(rep: dict, names) -> list[str]:
@@ -250,6 +213,10 @@ def _part_overlay(folder: Path, report: dict):
     def draw(vis):
         film_mesh(vis, v, f, th, target * (1 - BAND), target * (1 + BAND))
 
+    if "line" in report:  # the part rides the line with the path (docs/model.md §24)
+        from .paint_line import riding
+
+        draw.moving = riding(report["line"], folder)
     return draw
 
 
@@ -260,7 +227,7 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml; a part's mesh: "
                         "examples/parts/*.toml; a panel on a moving line: "
-                        "examples/line.toml)")
+                        "examples/line.toml, a part: examples/line_part.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")

@@ -1,4 +1,5 @@
-"""pollard-pin paint of a job with a [line]: the panel rides a conveyor (docs/model.md §24)."""
+"""pollard-pin paint of a job with a [line]: the panel or part rides a conveyor
+(docs/model.md §24)."""
 from __future__ import annotations
 
 import sys
@@ -7,11 +8,18 @@ from pathlib import Path
 
 from .. import __version__
 from .common import UsageError, load_robot
-from .paint_files import motor_use_line, write_panel_outputs
+from .paint_files import (
+    motor_use_line,
+    part_summary_lines,
+    write_panel_outputs,
+    write_part_outputs,
+)
+
+FRAME = "the part at its t = 0 pose, world coordinates"
 
 
 def run_line(args, job, out: Path, actuators, stale) -> int:
-    """``paint`` of a panel on the line at the job's speed, or at the fastest with
+    """``paint`` of a panel or part on the line at the job's speed, or at the fastest with
     ``--max-line-speed``. ``actuators``: the motor ratings (cli/paint.py's rule)."""
     import numpy as np
 
@@ -24,8 +32,7 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
     if job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     if isinstance(job, PartJob):
-        raise UsageError(f"{job.source}: a [part] on a [line] is not planned yet; give the "
-                         "strip as a [panel]")
+        return _run_line_part(args, job, out, actuators, stale)
     try:
         res = film_resolution(job, args.resolution)
     except PlanError as exc:
@@ -46,18 +53,58 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
     rel = part_frame_positions(plan)[plan.spray > 0] - fr.c - j.standoff * fr.n
     name = write_panel_outputs(out, args.format, plan.trajectory, plan.spray, U, V, pts,
                                film.thickness, fr, j, rep,
-                               {"command": "paint", "job": rep["job"],
-                                "frame": "the part at its t = 0 pose, world coordinates"},
-                               np.array([rel @ fr.u, rel @ fr.v]), stale)
+                               {"command": "paint", "job": rep["job"], "frame": FRAME},
+                               np.array([rel @ fr.u, rel @ fr.v]), stale, f"film: {FRAME}")
     print("\n".join(line_summary_lines(rep, actuators.names)))
     print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
           file=sys.stderr)
     return 0
 
 
-def line_summary_lines(rep: dict, names) -> list[str]:
-    """The lines ``paint`` prints for a panel on the line."""
-    th, ln = rep["thickness"], rep["line"]
+def _run_line_part(args, job, out: Path, actuators, stale) -> int:
+    """``paint`` of a [part] on the line (the surface planner's passes, docs/model.md §23)."""
+    from dataclasses import replace
+
+    from ..paint.errors import PlanError
+    from ..paint.line import max_line_speed, plan_line_job
+    from ..paint.line_report import line_part_report
+    from ..paint.surface_plan import part_resolution, surface_film
+    from ..viz.paint_part import PLY_BAND, PLY_CMAP
+
+    try:
+        res = part_resolution(job, args.resolution)
+    except PlanError as exc:
+        raise UsageError(f"--resolution: {exc}") from None
+    robot = load_robot(args)
+    t0 = time.perf_counter()
+    if args.max_line_speed:
+        _, plan = max_line_speed(robot, job, actuators)
+    else:
+        plan = plan_line_job(robot, job, actuators)
+    t1 = time.perf_counter()
+    seen = plan.in_part_frame()
+    pts, film, painted, efficiency = surface_film(seen, res)
+    t2 = time.perf_counter()
+    rep = line_part_report(plan, pts, film, painted, efficiency, actuators)
+    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
+               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
+                                                           job.thickness * (1 + PLY_BAND)]},
+               pollard_pin=__version__)
+    rep["line"]["searched"] = bool(args.max_line_speed)
+    # the world path and its trigger; the film on the part at its t = 0 pose
+    world = replace(seen, trajectory=plan.trajectory)
+    name = write_part_outputs(out, args.format, world, pts, film, painted, rep,
+                              {"command": "paint", "job": rep["job"], "frame": FRAME}, stale,
+                              f"film: {FRAME}")
+    print("\n".join(line_lines(rep) + part_summary_lines(rep, actuators.names)))
+    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
+          file=sys.stderr)
+    return 0
+
+
+def line_lines(rep: dict) -> list[str]:
+    """The two lines ``paint`` prints of the line (a panel's or a part's)."""
+    ln = rep["line"]
     return [
         f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
         f"upper bound {ln['upper_bound']:.4g} m/s (part length + window over area × target / "
@@ -65,6 +112,13 @@ def line_summary_lines(rep: dict, names) -> list[str]:
         f"start delay {ln['start_delay']:.3f} s, window {ln['window'][0]:.3f}–"
         f"{ln['window'][1]:.3f} m along the line, cycle {ln['cycle']:.3f} s, pitch "
         f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour",
+    ]
+
+
+def line_summary_lines(rep: dict, names) -> list[str]:
+    """The lines ``paint`` prints for a panel on the line."""
+    th = rep["thickness"]
+    return line_lines(rep) + [
         f"passes {rep['passes']} ({rep['direction']}), spacing {rep['spacing'] * 1e3:.2f} mm, "
         f"gun speed {rep['speed']:.4g} m/s relative to the part",
         f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
@@ -77,8 +131,8 @@ def line_summary_lines(rep: dict, names) -> list[str]:
 
 
 def riding(line, folder: Path) -> dict:
-    """The viewer's moving nodes of a line's paint folder: the film panel carried by the line
-    (translation speed·t·direction at path time t, docs/model.md §24)."""
+    """The viewer's moving nodes of a line's paint folder: the film (a panel's or a part's)
+    carried by the line (translation speed·t·direction at path time t, docs/model.md §24)."""
     import math
 
     import numpy as np

@@ -9,9 +9,11 @@ from pathlib import Path
 import numpy as np
 
 
-def write_film_ply(path: str | Path, vertices, faces, thickness, colours) -> None:
+def write_film_ply(path: str | Path, vertices, faces, thickness, colours,
+                   comment: str | None = None) -> None:
     """Write the mesh ``vertices`` (V, 3) [m], ``faces`` (M, 3) with per-vertex ``thickness``
-    (V,) [m] and ``colours`` (V, 4) RGBA bytes to ``path``."""
+    (V,) [m] and ``colours`` (V, 4) RGBA bytes to ``path``; ``comment`` (one line) goes in
+    the header after the format line (a PLY ``comment``)."""
     import trimesh
 
     from .atomic import atomic_open
@@ -20,6 +22,10 @@ def write_film_ply(path: str | Path, vertices, faces, thickness, colours) -> Non
     mesh.visual.vertex_colors = np.asarray(colours, dtype=np.uint8)
     mesh.vertex_attributes["thickness"] = np.asarray(thickness, dtype=np.float64)
     data = mesh.export(file_type="ply", encoding="binary")
+    if comment:
+        k = data.index(b"\n", data.index(b"\nformat ") + 1) + 1
+        line = " ".join(str(comment).split()).encode("ascii", "replace")
+        data = data[:k] + b"comment " + line + b"\n" + data[k:]
     with atomic_open(path, binary=True) as f:
         f.write(data)
 

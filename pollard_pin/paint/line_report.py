@@ -1,8 +1,9 @@
-"""The film of a panel on the line and the numbers of its ``paint.json`` (docs/model.md §24).
+"""The film of a panel or a part on the line and the numbers of its ``paint.json``
+(docs/model.md §24).
 
 The film is integrated in the part's frame: the gun's world positions minus the line's
-displacement, over the samples where the gun sprays; the grid is the panel at its t = 0 pose,
-in world coordinates.
+displacement, over the samples where the gun sprays; the grid (a part: its film points) is
+the part at its t = 0 pose, in world coordinates.
 """
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from ..dynamics.motors import Actuators
 from .deposition import Film, film
 from .errors import PlanError
 from .film import MAX_FILM_PAIRS, film_grid, film_stats
-from .line import LinePlan, part_length
+from .line import LinePlan
 from .plan import gun_of
 
 
@@ -38,15 +39,15 @@ def line_film(plan: LinePlan, resolution: float | None = None):
     return U, V, pts, f
 
 
-def line_table(plan: LinePlan) -> dict:
-    """The ``line`` table of paint.json (docs/model.md §24)."""
+def line_table(plan) -> dict:
+    """The ``line`` table of paint.json (docs/model.md §24) of a panel's or a part's plan on
+    the line (its ``length`` along the line and painted ``area``)."""
     j, tr = plan.job, plan.trajectory
     on = plan.spray > 0
     along = tr.poses[on, :3] @ plan.direction
     window = [float(along.min()), float(along.max())]
     cycle = float(tr.t[-1])
-    length = part_length(j, plan.frame, plan.direction)
-    area = j.width * j.height
+    length, area = plan.length, plan.area
     return {"speed": plan.speed, "direction": [float(c) for c in plan.direction],
             "start_delay": plan.times.delay, "program": [plan.times.delay, plan.times.end],
             "window": window, "window_length": window[1] - window[0],
@@ -54,8 +55,8 @@ def line_table(plan: LinePlan) -> dict:
             "min_pitch": plan.speed * cycle, "parts_per_hour": 3600.0 / cycle,
             "part_length": length,
             "upper_bound": (length + window[1] - window[0]) / (area * j.thickness / j.flow),
-            "frames": "thickness table and grid: the part at its t = 0 pose, world "
-                      "coordinates; path.csv: the world path"}
+            "frames": "thickness table, grid and film.ply: the part at its t = 0 pose, "
+                      "world coordinates; path.csv: the world path"}
 
 
 def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
@@ -89,4 +90,20 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
     }
 
 
-__all__ = ["line_film", "line_report", "line_table", "part_frame_positions"]
+def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators) -> dict:
+    """The numbers of ``paint.json`` for a part on the line (``plan`` a
+    :class:`.line_part.LinePartPlan`, ``points``, ``f``, ``painted``, ``efficiency`` its film
+    from :func:`.surface_plan.surface_film` of ``plan.in_part_frame()``): the still part's
+    report (§23) of the motion relative to the part, with the cycle and the line table."""
+    from .surface_report import surface_report
+
+    rep = surface_report(plan.in_part_frame(), points, f, painted, efficiency, act)
+    rep["cycle_time"] = float(plan.trajectory.t[-1])
+    rep["program_time"] = plan.program.total
+    rep["line"] = line_table(plan)
+    rep["integration"]["rule"] += ", in the part's frame"
+    return rep
+
+
+__all__ = ["line_film", "line_part_report", "line_report", "line_table",
+           "part_frame_positions"]

@@ -197,7 +197,7 @@ def _pass_poses(layout: SurfaceLayout):
     return out
 
 
-def _pass_pieces(layout: SurfaceLayout, v: float, coats: int) -> list:
+def pass_pieces(layout: SurfaceLayout, v: float, coats: int) -> list:
     """The passes of every coat in serpentine order (a coat runs back over the last)."""
     poses = _pass_poses(layout)
     order = []
@@ -247,7 +247,7 @@ def _reachable(robot, layout: SurfaceLayout, pieces, poses) -> str:
             f"z {lo[2]:.3f}..{hi[2]:.3f} m")
 
 
-def _build(passes, taus) -> Program:
+def build_program(passes, taus) -> Program:
     """Ramp, pass, turn, pass, ..., ramp with the given turn/ramp durations (P + 1,)."""
     pieces = [ramp("ramp", passes[0].state(False), taus[0], True)]
     for k, p in enumerate(passes):
@@ -257,6 +257,21 @@ def _build(passes, taus) -> Program:
                                   taus[k + 1]))
     pieces.append(ramp("ramp", passes[-1].state(True), taus[-1], False))
     return Program(tuple(pieces))
+
+
+def time_step(job, pieces, v: float) -> float:
+    """The path's time step [s]: STEP_SIGMA σ of the tip's travel, the tip moving up to
+    tip_rate × the spot's speed ``v`` (a convex part's stretch); the passes alone within the
+    sample budget."""
+    tip_rate = max(1.0, max(float(np.linalg.norm(p.d1(p.spline.t[5:-5])[:, :3], axis=1).max())
+                            for p in pieces if p.kind == "pass"))
+    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / (v * tip_rate))
+    swept = sum(p.duration for p in pieces)
+    if swept / dt > MAX_PATH_SAMPLES:
+        raise BudgetError(f"{job.source}: the passes alone need {swept / dt:.3g} samples "
+                          f"({swept:.4g} s at {v:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
+                          "a thinner film, more flow or fewer coats")
+    return dt
 
 
 def _where(program: Program, layout: SurfaceLayout, t: float, pose) -> str:
@@ -283,7 +298,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     smoothing = 0.0
     while True:  # the least smoothing whose passes the motors follow at speed v
         layout = surface_layout(part, job, min_smoothing=smoothing)
-        pieces = _pass_pieces(layout, v, coats)
+        pieces = pass_pieces(layout, v, coats)
         use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
         if use <= UTILISATION:
             break
@@ -294,19 +309,11 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
                             f"averaged over {layout.smoothing:g} m: a thinner coat (more "
                             "coats), a smaller standoff or a gentler part")
         smoothing = wider[0]
-    # the gun's tip moves up to tip_rate × the spot's speed (a convex part's stretch)
-    tip_rate = max(1.0, max(float(np.linalg.norm(p.d1(p.spline.t[5:-5])[:, :3], axis=1).max())
-                            for p in pieces[:len(layout.passes)]))
-    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / (v * tip_rate))
-    swept = sum(p.duration for p in pieces)
-    if swept / dt > MAX_PATH_SAMPLES:
-        raise BudgetError(f"{job.source}: the passes alone need {swept / dt:.3g} samples "
-                          f"({swept:.4g} s at {v:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
-                          "a thinner film, more flow or fewer coats")
+    dt = time_step(job, pieces, v)
     clock.append(time.perf_counter())
 
     def evaluate(taus):
-        prog = _build(pieces, taus)
+        prog = build_program(pieces, taus)
         sel = [i for i, p in enumerate(prog.pieces) if p.kind != "pass"]
         start = prog.start
         x = np.linspace(0.0, 1.0 - 1e-12, TURN_SAMPLES)
@@ -321,7 +328,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
         return m.utilisation.reshape(len(sel), TURN_SAMPLES, -1).max(axis=(1, 2))
 
     taus = fastest(evaluate, np.full(len(pieces) + 1, 4 * v / 10.0), UTILISATION)
-    program = _build(pieces, taus)
+    program = build_program(pieces, taus)
     clock.append(time.perf_counter())
     n = math.ceil(program.total / dt) + 1
     if n > MAX_PATH_SAMPLES:
@@ -403,5 +410,6 @@ def film_stats(thickness, areas, target: float) -> dict:
             "deviation_max": float(th.max() / target - 1)}
 
 
-__all__ = ["PassPiece", "Program", "Quintic", "SurfacePlan", "film_stats", "gun_frame",
-           "live_faces", "load_job_part", "part_resolution", "plan_surface", "surface_film"]
+__all__ = ["PassPiece", "Program", "Quintic", "SurfacePlan", "build_program", "film_stats",
+           "gun_frame", "live_faces", "load_job_part", "part_resolution", "pass_pieces",
+           "plan_surface", "surface_film", "time_step"]

@@ -180,6 +180,7 @@ def _parts() -> dict[str, bytes | str]:
         return sub('"curved_panel.stl"', f'"{name}"')
 
     square = "v 0.7 -0.1 0.1\nv 0.7 0.1 0.1\nv 0.7 0.1 0.2\n"
+    line = "[line]\nspeed = 0.03\ndirection = [0.0, 1.0, 0.0]\n"
     return {
         "curved_panel.stl": (EXAMPLES / "parts" / "curved_panel.stl").read_bytes(),
         "mesh_broken.stl": b"solid part\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n",
@@ -205,6 +206,12 @@ def _parts() -> dict[str, bytes | str]:
         "part_max_angle.toml": sub("max_angle = 45.0", "max_angle = 200.0"),
         "part_zero_facing.toml": sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 0.0, 0.0]"),
         "part_far.toml": sub("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"),
+        # a part on a moving line (docs/model.md §24)
+        "part_line.toml": job + line,
+        "part_line_zero.toml": job + line.replace("[0.0, 1.0, 0.0]", "[0.0, 0.0, 0.0]"),
+        "part_line_coats.toml": job + "coats = 2\n" + line,
+        "part_line_past.toml": sub("position = [0.0, 0.0, 0.0]",
+                                   "position = [0.0, 2.5, 0.0]") + line,
     }
 
 
@@ -911,8 +918,14 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_max_angle.toml", "max_angle = 200° must be in (0, 180]"),
     ("part_zero_facing.toml", "has zero length"),
     ("part_far.toml", "no point of the painted faces is within reach"),
+    ("part_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
+    ("part_line_coats.toml", "job.coats = 2: a part on the line is painted in one coat"),
+    ("part_line_past.toml", "the part never comes within reach: the gun's track at the part's "
+                            "centre runs through (0.556, 2.500, 0.160) m along (0, 1, 0)"),
     ("", "an empty name"),
 ]]
+CASES += [([*PAINT, "part_line.toml", "--resolution", "0.011"],
+           "--resolution: film point spacing 0.011 m must be > 0 and at most")]
 GOOD_JOB = [*PAINT, "job_good.toml"]
 CASES += [([*GOOD_JOB, *extra], says) for extra, says in [
     (["--resolution", "0"], "must be > 0"),

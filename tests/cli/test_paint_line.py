@@ -38,6 +38,7 @@ def test_outputs(painted):
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
     assert abs(table["y"].mean() + 0.75) < 1e-12 and np.abs(table["x"] - 0.70).max() < 1e-15
     assert "t = 0 pose" in (painted / "thickness.units.json").read_text()
+    assert b"comment film: the part at its t = 0 pose" in (painted / "film.ply").read_bytes()
     # film.ply: the same film on the same points (float32 positions: 6e-8 m at 0.75 m)
     from pollard_pin.io.ply import read_film_ply
 
@@ -121,3 +122,89 @@ def test_view_shows_the_part_riding(painted, tmp_path, capsys):
     assert len(times) > 10
     assert np.abs(values[:, 1] - speed * times).max() < 1e-4
     assert np.abs(values[:, [0, 2]]).max() < 1e-9
+
+
+# A [part] on the line: a small strip (tests/line_parts.py), a coarse film.
+
+@pytest.fixture(scope="module")
+def part_painted(tmp_path_factory):
+    from line_parts import write_line_part
+
+    folder = tmp_path_factory.mktemp("line_part")
+    out = folder / "out"
+    job = write_line_part(folder)
+    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007"]) == 0
+    return out
+
+
+def test_part_outputs(part_painted):
+    assert {"path.csv", "thickness.csv", "film.ply", "paint.json", "thickness.png"} <= {
+        p.name for p in part_painted.iterdir()}
+    rep = json.loads((part_painted / "paint.json").read_text())
+    line = rep["line"]
+    for key in ("speed", "direction", "start_delay", "window", "travel", "cycle", "min_pitch",
+                "parts_per_hour", "upper_bound"):
+        assert key in line, key
+    assert rep["job"]["line"] == {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}
+    assert "part" in rep["job"] and rep["direction"] == "vertical"
+    assert line["min_pitch"] == pytest.approx(0.03 * line["cycle"])
+    assert line["upper_bound"] == pytest.approx((line["part_length"] + line["window_length"])
+                                                / (rep["lower_bound"]), rel=1e-12)
+    assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
+    table = read_result(part_painted / "thickness.csv")
+    # the part at its t = 0 pose, world coordinates: a 0.30 m strip centred at y = −0.45
+    assert abs(0.5 * (table["y"].min() + table["y"].max()) + 0.45) < 1e-3
+    assert "t = 0 pose" in (part_painted / "thickness.units.json").read_text()
+    assert b"comment film: the part at its t = 0 pose" in (part_painted / "film.ply").read_bytes()
+    traj = from_csv(part_painted / "path.csv")
+    assert traj.t[-1] == pytest.approx(line["cycle"])
+
+
+def test_part_run_and_size_take_the_world_path(part_painted, capsys, tmp_path):
+    code, _, err = run_cli(["run", "--trajectory", part_painted / "path.csv", "--out",
+                            tmp_path / "run.csv", "--quiet"], capsys)
+    assert code == 0, err
+    code, out, err = run_cli(["size", "--trajectory", part_painted / "path.csv", "--actuators",
+                              ACT, "--format", "json", "--quiet"], capsys)
+    assert code == 0, err
+    sized = json.loads(out)
+    assert sized["given_within_ratings"] is True
+    rep = json.loads((part_painted / "paint.json").read_text())
+    for name, m in rep["motors"].items():
+        given = sized["actuators"][name]
+        assert m["peak_torque"] >= given["peak_motor_torque_ratio"] - 1e-12, name
+
+
+def test_view_shows_the_mesh_riding(part_painted, tmp_path, capsys):
+    """A part's film.ply node rides the line as the panel's does."""
+    from pollard_pin.viz.viewer import page_commands
+
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", part_painted, "--html", html, "--fps", "1"],
+                           capsys)
+    assert code == 0, err
+    anim = [c for c in page_commands(html.read_text()) if c.get("type") == "set_animation"]
+    tracks = [a for a in anim[0]["animations"] if a["path"].endswith("pollard/paint")]
+    assert len(tracks) == 1
+    (track,) = [t for t in tracks[0]["clip"]["tracks"] if t["name"] == ".position"]
+    times = np.array([k["time"] for k in track["keys"]], float)
+    values = np.array([k["value"] for k in track["keys"]], float)
+    assert len(times) > 10 and np.abs(values[:, 1] - 0.03 * times).max() < 1e-4
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"position": (0.0, 2.5, 0.0)}, "never comes within reach: the gun's track at the part's "
+                                    "centre runs through"),
+    ({"speed": 0.2}, "the fastest line speed that paints it is"),
+])
+def test_bad_part_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, kwargs, words):
+    from line_parts import write_line_part
+
+    job = write_line_part(tmp_path, **kwargs)
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: "), err
+    assert words in lines[0]
+    assert not out.exists()

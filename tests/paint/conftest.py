@@ -2,6 +2,7 @@
 from pathlib import Path
 
 import pytest
+from line_parts import write_line_part
 
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.paint.film import plan_film
@@ -42,3 +43,17 @@ def line_plan(robot, line_job, act):
     from pollard_pin.paint.line import plan_line
 
     return plan_line(robot, line_job, act)
+
+
+
+@pytest.fixture(scope="package")
+def line_part_job(tmp_path_factory):
+    """A [part] on a [line] (docs/model.md §24): :func:`write_line_part`."""
+    return load_job(write_line_part(tmp_path_factory.mktemp("line_part")))
+
+
+@pytest.fixture(scope="package")
+def line_part_plan(robot, line_part_job, act):
+    from pollard_pin.paint.line import plan_line
+
+    return plan_line(robot, line_part_job, act)

@@ -43,11 +43,11 @@ def test_world_path_is_smooth_and_returns(line_plan):
     """C¹ across the phases (finite differences of the positions match the rates), at rest
     at both ends, back at the start pose: the cycle."""
     p = line_plan
-    parts = (p.frame, p.job, p.segments, p.horizontal, p.speed, p.direction)
     T = p.times
     for tk in (T.delay - CATCH, T.delay, T.end, T.end + CATCH):
         h = 1e-6
-        pm, dm, _, _ = world_motion(parts, T, np.array([tk - h, tk, tk + h]))
+        pm, dm, _, _ = world_motion(p.relative, p.speed, p.direction, T,
+                                    np.array([tk - h, tk, tk + h]))
         fd = (pm[2, :3] - pm[0, :3]) / (2 * h)
         assert np.abs(fd - dm[1, :3]).max() < 1e-4 * (1 + p.speed), tk
         assert np.abs(dm[2] - dm[0]).max() < 1e-3, tk
