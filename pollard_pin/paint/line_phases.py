@@ -264,9 +264,12 @@ def plan_world(robot, act: Actuators, build, guess, speed: float, e, dt: float,
     try:
         rel = build(fastest(evaluate, np.asarray(guess, float), UTILISATION))
     except PlanError:
+        # too fast or too slow by the drift's sign, as every other failure here: the
+        # turnarounds fail on the reach where the program drifts out of it (§24)
         raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
                              f"{passes} keeps the world path in reach and the motors within "
-                             "their ratings with the line's speed added", True) from None
+                             "their ratings with the line's speed added",
+                             _drift_along(rel, speed, e) > 0) from None
     delay = choose_shift(robot, rel, speed, e, where) / speed
     back = _return_time(robot, act, rel, speed, e, delay)
     times = LineTimes(delay, delay + rel.total, back)

@@ -1,6 +1,8 @@
 """A part's mesh on a moving line (docs/model.md §24): the surface planner's passes as the
 relative program, the world path, the film in the part's frame, the fastest speed
 (fixtures line_part_job, line_part_plan: tests/paint/conftest.py)."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 from line_parts import write_line_part
@@ -114,3 +116,14 @@ def test_fastest_plans_and_five_percent_more_is_refused(robot, act, tmp_path):
     assert line_table(plan)["upper_bound"] > fastest
     with pytest.raises(LineSpeedError):
         plan_line(robot, job, act, 1.05 * fastest)
+
+
+@pytest.mark.parametrize("speed, too_fast", [(0.025, False), (0.04, True)])
+def test_a_turnaround_failure_says_which_side(robot, act, speed, too_fast):
+    # the example's strip: below its fastest speed (0.038 m/s) the turnarounds leave the reach
+    # because the program drifts too little; counted as "too fast", a search from 0.2 m/s
+    # bracketed [0.0219, 0.0221] and found no speed at all
+    job = load_job(Path(__file__).resolve().parents[2] / "examples" / "line_part.toml")
+    with pytest.raises(LineSpeedError, match="no ramp or turnaround") as info:
+        plan_line(robot, job, act, speed)
+    assert info.value.too_fast is too_fast
