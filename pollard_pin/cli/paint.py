@@ -37,7 +37,7 @@ def run(args) -> int:
     from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
     from ..paint.report import paint_report
-    from ..viz.paint_part import PLY_BAND, PLY_CMAP
+    from ..viz.paint_part import ply_colours
 
     out = Path(args.out)
     name = out / f"thickness.{args.format}"
@@ -66,8 +66,7 @@ def run(args) -> int:
     rep = paint_report(plan, film, act)
     rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
                grid={"nu": len(U), "nv": len(V), "resolution": res},
-               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
-                                                           job.thickness * (1 + PLY_BAND)]},
+               film_ply=ply_colours(job.thickness),
                pollard_pin=__version__)
     tr, fr = plan.trajectory, plan.frame
     rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
@@ -87,7 +86,7 @@ def _run_part(args, job, out: Path, stale) -> int:
     from ..paint.errors import PlanError
     from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
     from ..paint.surface_report import surface_report
-    from ..viz.paint_part import PLY_BAND, PLY_CMAP
+    from ..viz.paint_part import ply_colours
 
     try:
         res = part_resolution(job, args.resolution)
@@ -103,8 +102,7 @@ def _run_part(args, job, out: Path, stale) -> int:
     t2 = time.perf_counter()
     rep = surface_report(plan, pts, film, painted, efficiency, act)
     rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
-                                                           job.thickness * (1 + PLY_BAND)]},
+               film_ply=ply_colours(job.thickness),
                pollard_pin=__version__)
     name = write_part_outputs(out, args.format, plan, pts, film, painted, rep,
                               {"command": "paint", "job": rep["job"]}, stale)

@@ -23,31 +23,21 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
     ``--max-line-speed``. ``actuators``: the motor ratings (cli/paint.py's rule)."""
     import numpy as np
 
-    from ..paint.errors import PlanError
     from ..paint.film import film_resolution
     from ..paint.job import PartJob
-    from ..paint.line import max_line_speed, plan_line_job
     from ..paint.line_report import line_film, line_report, part_frame_positions
+    from ..viz.paint_part import ply_colours
 
     if job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     if isinstance(job, PartJob):
         return _run_line_part(args, job, out, actuators, stale)
-    try:
-        res = film_resolution(job, args.resolution)
-    except PlanError as exc:
-        raise UsageError(f"--resolution: {exc}") from None
-    robot = load_robot(args)
+    res, plan, planning = _planned(args, job, actuators, film_resolution)
     t0 = time.perf_counter()
-    if args.max_line_speed:
-        _, plan = max_line_speed(robot, job, actuators)
-    else:
-        plan = plan_line_job(robot, job, actuators)
-    t1 = time.perf_counter()
     U, V, pts, film = line_film(plan, res)
-    t2 = time.perf_counter()
     rep = line_report(plan, film, actuators, {"nu": len(U), "nv": len(V), "resolution": res})
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1}, pollard_pin=__version__)
+    rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
+               film_ply=ply_colours(job.thickness), pollard_pin=__version__)
     rep["line"]["searched"] = bool(args.max_line_speed)
     fr, j = plan.frame, plan.job
     rel = part_frame_positions(plan)[plan.spray > 0] - fr.c - j.standoff * fr.n
@@ -61,18 +51,14 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
     return 0
 
 
-def _run_line_part(args, job, out: Path, actuators, stale) -> int:
-    """``paint`` of a [part] on the line (the surface planner's passes, docs/model.md §23)."""
-    from dataclasses import replace
-
+def _planned(args, job, actuators, resolution_of):
+    """The film resolution (``resolution_of(job, --resolution)``), the plan at the job's
+    speed or at the fastest (--max-line-speed), and the planning time [s]."""
     from ..paint.errors import PlanError
     from ..paint.line import max_line_speed, plan_line_job
-    from ..paint.line_report import line_part_report
-    from ..paint.surface_plan import part_resolution, surface_film
-    from ..viz.paint_part import PLY_BAND, PLY_CMAP
 
     try:
-        res = part_resolution(job, args.resolution)
+        res = resolution_of(job, args.resolution)
     except PlanError as exc:
         raise UsageError(f"--resolution: {exc}") from None
     robot = load_robot(args)
@@ -81,15 +67,24 @@ def _run_line_part(args, job, out: Path, actuators, stale) -> int:
         _, plan = max_line_speed(robot, job, actuators)
     else:
         plan = plan_line_job(robot, job, actuators)
-    t1 = time.perf_counter()
+    return res, plan, time.perf_counter() - t0
+
+
+def _run_line_part(args, job, out: Path, actuators, stale) -> int:
+    """``paint`` of a [part] on the line (the surface planner's passes, docs/model.md §23)."""
+    from dataclasses import replace
+
+    from ..paint.line_report import line_part_report
+    from ..paint.surface_plan import part_resolution, surface_film
+    from ..viz.paint_part import ply_colours
+
+    res, plan, planning = _planned(args, job, actuators, part_resolution)
+    t0 = time.perf_counter()
     seen = plan.in_part_frame()
     pts, film, painted, efficiency = surface_film(seen, res)
-    t2 = time.perf_counter()
     rep = line_part_report(plan, pts, film, painted, efficiency, actuators)
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               film_ply={"colour_map": PLY_CMAP, "range": [job.thickness * (1 - PLY_BAND),
-                                                           job.thickness * (1 + PLY_BAND)]},
-               pollard_pin=__version__)
+    rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
+               film_ply=ply_colours(job.thickness), pollard_pin=__version__)
     rep["line"]["searched"] = bool(args.max_line_speed)
     # the world path and its trigger; the film on the part at its t = 0 pose
     world = replace(seen, trajectory=plan.trajectory)

@@ -16,6 +16,11 @@ PLY_CMAP = "RdBu_r"
 PLY_BAND = 0.10
 
 
+def ply_colours(target: float) -> dict:
+    """What film.ply's colours mean, for paint.json: the colour map and the range [m]."""
+    return {"colour_map": PLY_CMAP, "range": [target * (1 - PLY_BAND), target * (1 + PLY_BAND)]}
+
+
 def film_colours(thickness, target: float, band: float = PLY_BAND) -> np.ndarray:
     """RGBA bytes (P, 4) of ``thickness`` [m]: PLY_CMAP over target × (1 ± band)."""
     from matplotlib import colormaps

@@ -45,6 +45,8 @@ def test_outputs(painted):
     v, _, th = read_film_ply(painted / "film.ply")
     assert np.array_equal(th, table["thickness"])
     assert np.abs(v - np.column_stack([table["x"], table["y"], table["z"]])).max() < 1e-7
+    # paint.json says what film.ply's colours mean, as a still job's does: target ± 10 %
+    assert rep["film_ply"]["range"] == pytest.approx([0.9 * 25e-6, 1.1 * 25e-6], rel=1e-12)
 
 
 def test_run_and_size_take_the_world_path(painted, capsys, tmp_path):
