@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..dynamics.averages import trapezoid_weights
-from .deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate
+from .deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate, near_spot
 from .film_points import SurfacePoints
 from .mesh import MeshError, Part
 from .occlusion import in_spot, visible
@@ -88,18 +88,20 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
         if not len(live):
             continue
         ps, as_ = p[sl][live], a[sl][live]
-        r = deposition_rate(gun, ps - o, as_, s - o, n)
-        ti, pi = np.nonzero(in_spot(gun, r))
-        smooth += w[sl][live] @ r
-        smooth2 += w2[sl][live] @ r
+        k = near_spot(gun, ps, as_, s)  # the rest get < 3e-18 of the spot's rate (§20)
+        r = deposition_rate(gun, ps - o, as_, s[k] - o, n[k])
+        ti, ri = np.nonzero(in_spot(gun, r))
+        pi = k[ri]
+        smooth[k] += w[sl][live] @ r
+        smooth2[k] += w2[sl][live] @ r
         if len(ti):
             vis = visible(part, ps[ti], s[pi], n[pi], intersector)
-            r[ti[~vis], pi[~vis]] = 0.0
+            r[ti[~vis], ri[~vis]] = 0.0
             dark_t.append(start + live[ti[~vis]])
             dark_p.append(pi[~vis])
             pairs, shaded = pairs + len(ti), shaded + int((~vis).sum())
-        total += w[sl][live] @ r
-        coarse += w2[sl][live] @ r
+        total[k] += w[sl][live] @ r
+        coarse[k] += w2[sl][live] @ r
     err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
     if dark_t:
         fix, bound, switches = shadow_edges(gun, t, p, a, trig, s, n, part,
