@@ -24,6 +24,7 @@ import pinocchio as pin
 
 from ..analytic.taskspace import rotation
 from ..kinematics.closure import close_loops, tool_pose
+from ..kinematics.errors import ClosureError, SingularityError
 from ..kinematics.kernels import rk4_step
 from ..kinematics.limits import first_violation, limit_bounds, violation_text
 from ..kinematics.sensing import LoopSensor
@@ -400,7 +401,15 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
             if rng is not None:
                 theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
                 dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            qm, vm, Jc, N, a0 = sense(theta, dtheta, guess)
+            try:
+                qm, vm, Jc, N, a0 = sense(theta, dtheta, guess)
+            except ClosureError as exc:  # the plant ran away between ticks, or the noise
+                what = ("close the loops only on a parallel singularity"
+                        if isinstance(exc, SingularityError) or exc.residual is None else
+                        f"close no loop (leg {exc.leg} is {exc.residual * 1e3:.4g} mm off)")
+                raise SimulationError(f"simulation stopped at t = {t:.6g} s: the sensed "
+                                      f"actuator angles {what}; "
+                                      f"{_unstable_hint(gains, control_period)}") from None
             # The next tick's FK warm start, second order: Newton then needs one step.
             guess = qm + P * (C15 * vm - C05 * v_seen)
             v_seen = vm

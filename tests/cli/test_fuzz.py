@@ -534,6 +534,9 @@ CASES += [
     # a run that starts says so (progress, silenced by --quiet); then its failure is one line
     ([*SIM, "--quiet", "--payload", "1e300"], "diverged"),
     ([*SIM, "--quiet", "--wn", "1e4"], "the gains are too high for the control period (ω·T = 10"),
+    # the plant runs away within a tick: the encoders' angles close no loop
+    (["simulate", "--duration", "2", "--quiet", "--wn", "1e6", "--out", "out.csv"],
+     "the sensed actuator angles close no loop (leg"),
     # saturated, the robot falls: stopped where it leaves its joint limits (docs/model.md §18)
     (["simulate", "--trajectory", str(EXAMPLES / "figure8.csv"), "--out", "out.csv", "--quiet",
       "--torque-limit", "0.5"], "the plant left its joint limits: joint theta43"),
