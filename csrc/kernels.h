@@ -11,6 +11,7 @@
 #define POLLARD_KERNELS_H
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <math.h>
 #include <stdint.h>
 
 typedef Py_ssize_t idx;
@@ -19,6 +20,18 @@ typedef Py_ssize_t idx;
 int pk_check_len(const Py_buffer *b, idx count, const char *what);
 int pk_check_range(const Py_buffer *b, idx lo, idx hi, const char *what);
 void pk_release(Py_buffer *bufs, int count);
+
+/* Partial pivoting's row: the r in [c, rows) with the largest |A[r][c]| (the first on ties,
+ * as LAPACK's idamax) of a row-major A with row stride w; that |value| in *best. */
+static inline idx pk_pivot(const double *A, idx w, idx c, idx rows, double *best)
+{
+    idx p = c;
+    *best = fabs(A[c * w + c]);
+    for (idx r = c + 1; r < rows; r++)
+        if (fabs(A[r * w + c]) > *best)
+            p = r, *best = fabs(A[r * w + c]);
+    return p;
+}
 
 /* the kernels (linalg.c, tree.c) */
 PyObject *pk_gram_extremes(PyObject *self, PyObject *args);

@@ -205,11 +205,8 @@ static int invert(const double *M, idx k, double *out, double *work)
             work[i * w + k + j] = i == j ? 1.0 : 0.0;
         }
     for (idx c = 0; c < k; c++) {
-        idx pivot = c;
-        double best = fabs(work[c * w + c]);
-        for (idx r = c + 1; r < k; r++)
-            if (fabs(work[r * w + c]) > best)
-                pivot = r, best = fabs(work[r * w + c]);
+        double best;
+        idx pivot = pk_pivot(work, w, c, k, &best);
         if (best == 0.0)
             return 0;
         if (pivot != c)

@@ -14,11 +14,8 @@
 static int lu_factor(double *A, idx k, idx *piv)
 {
     for (idx c = 0; c < k; c++) {
-        idx p = c;
-        double best = fabs(A[c * k + c]);
-        for (idx r = c + 1; r < k; r++)
-            if (fabs(A[r * k + c]) > best)
-                p = r, best = fabs(A[r * k + c]);
+        double best;
+        idx p = pk_pivot(A, k, c, k, &best);
         piv[c] = p;
         if (best == 0.0)
             return 0;
