@@ -23,16 +23,23 @@ def painted(tmp_path_factory):
     return out
 
 
-def test_outputs(painted):
+def _line_outputs(folder) -> dict:
+    """paint.json of a line job at 0.03 m/s along +y, its files and line table checked."""
     assert {"path.csv", "thickness.csv", "film.ply", "paint.json", "thickness.png"} <= {
-        p.name for p in painted.iterdir()}
-    rep = json.loads((painted / "paint.json").read_text())
+        p.name for p in folder.iterdir()}
+    rep = json.loads((folder / "paint.json").read_text())
     line = rep["line"]
     for key in ("speed", "direction", "start_delay", "window", "travel", "cycle", "min_pitch",
                 "parts_per_hour", "upper_bound"):
         assert key in line, key
     assert rep["job"]["line"] == {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}
     assert line["min_pitch"] == pytest.approx(0.03 * line["cycle"])
+    assert line["parts_per_hour"] == pytest.approx(3600 / line["cycle"], rel=1e-12)
+    return rep
+
+
+def test_outputs(painted):
+    rep = _line_outputs(painted)
     assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
     table = read_result(painted / "thickness.csv")
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
@@ -140,16 +147,9 @@ def part_painted(tmp_path_factory):
 
 
 def test_part_outputs(part_painted):
-    assert {"path.csv", "thickness.csv", "film.ply", "paint.json", "thickness.png"} <= {
-        p.name for p in part_painted.iterdir()}
-    rep = json.loads((part_painted / "paint.json").read_text())
+    rep = _line_outputs(part_painted)
     line = rep["line"]
-    for key in ("speed", "direction", "start_delay", "window", "travel", "cycle", "min_pitch",
-                "parts_per_hour", "upper_bound"):
-        assert key in line, key
-    assert rep["job"]["line"] == {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}
     assert "part" in rep["job"] and rep["direction"] == "vertical"
-    assert line["min_pitch"] == pytest.approx(0.03 * line["cycle"])
     assert line["upper_bound"] == pytest.approx((line["part_length"] + line["window_length"])
                                                 / (rep["lower_bound"]), rel=1e-12)
     assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
