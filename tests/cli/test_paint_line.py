@@ -80,6 +80,17 @@ def test_view_paint_of_a_line(painted, tmp_path, capsys):
     assert code == 0, err
 
 
+def _refused(job, tmp_path, capsys, words: str) -> None:
+    """paint of ``job`` is one line on stderr with ``words``, exit 2, and writes nothing."""
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: "), err
+    assert words in lines[0]
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("edit, words", [
     (lambda t: t.replace("direction = [0.0, 1.0, 0.0]", "direction = [0.0, 0.0, 0.0]"),
      "zero length"),
@@ -95,13 +106,7 @@ def test_bad_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, wo
     text = edit(JOB.read_text())
     assert text != JOB.read_text()
     job.write_text(text)
-    out = tmp_path / "out"
-    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
-    assert code == 2
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: "), err
-    assert words in lines[0]
-    assert not out.exists()
+    _refused(job, tmp_path, capsys, words)
 
 
 def test_max_line_speed_needs_a_line(tmp_path, capsys):
@@ -203,10 +208,4 @@ def test_bad_part_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, kwa
     from line_parts import write_line_part
 
     job = write_line_part(tmp_path, **kwargs)
-    out = tmp_path / "out"
-    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
-    assert code == 2
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("pollard-pin paint: error: "), err
-    assert words in lines[0]
-    assert not out.exists()
+    _refused(job, tmp_path, capsys, words)
