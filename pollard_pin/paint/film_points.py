@@ -84,11 +84,15 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
         idx = np.flatnonzero(sel) if sel.dtype == bool else np.unique(sel.astype(int))
     tri = part.vertices[part.faces[idx]]  # (F, 3, 3)
     edges = np.linalg.norm(tri - np.roll(tri, -1, axis=1), axis=2).max(axis=1)
-    n = np.maximum(1, np.ceil(edges / resolution - 1e-9)).astype(int)
-    total = int(((n + 1) * (n + 2) // 2).sum())
-    if total > MAX_POINTS:
-        raise MeshError(f"{part.source}: {total} film points at resolution "
-                        f"{resolution:.4g} m, more than {MAX_POINTS}: coarsen the resolution")
+    # counted in floats first: at a resolution of 1e-300 the subdivisions overflow an int
+    with np.errstate(over="ignore"):  # inf points: refused below
+        n = np.maximum(1.0, np.ceil(edges / resolution - 1e-9))
+        total = float(((n + 1) * (n + 2) / 2).sum())
+    if not total <= MAX_POINTS:
+        raise MeshError(f"{part.source}: {total:.4g} film points at resolution "
+                        f"{resolution:.4g} m, more than {MAX_POINTS:.4g}: coarsen the "
+                        "resolution")
+    n = n.astype(int)
     pts, nrm, area, face = [], [], [], []
     for m in np.unique(n):
         sel = n == m

@@ -90,6 +90,9 @@ CASES = [
     ([*PAINT, "job_good.toml", "--resolution", "1e-300"],
      "--resolution: film grid spacing 1e-300 m makes inf film points on the 0.26 × 0.12 m "
      "panel, budget 2e+06"),
+    # a part's film points: the subdivisions overflowed an int and the part got no points
+    *(([*PAINT, str(EXAMPLES / job), "--resolution", r], "film points at resolution")
+      for job in ("parts/curved_panel.toml", "line_part.toml") for r in ("1e-9", "1e-300")),
     ([*PAINT, "size_thick.toml"], "the path needs 1.57e+07 samples (3.131e+04 s at a gun speed "
                                   "of 8.264e-05 m/s), budget 2.5e+05: a thinner film"),
     ([*PAINT, "size_flow.toml"], "the path needs 5.87e+296 samples"),

@@ -2,6 +2,7 @@
 further than the resolution allows from one, and the lattice integrates linear functions
 exactly."""
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -91,3 +92,8 @@ def test_resolution_and_size_rules(monkeypatch):
     monkeypatch.setattr(fp_module, "MAX_POINTS", 100)
     with pytest.raises(MeshError, match="film points at resolution 0.001 m, more than 100"):
         surface_points(part, 0.001)
+    # subdivisions past an int64: counted in floats, refused, not wrapped round to a few
+    with warnings.catch_warnings():  # and no RuntimeWarning on the way
+        warnings.simplefilter("error")
+        with pytest.raises(MeshError, match="inf film points at resolution 1e-300 m"):
+            surface_points(part, 1e-300)
