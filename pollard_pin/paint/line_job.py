@@ -45,7 +45,7 @@ def line_from_table(source: str, table: Any, error=InputError) -> Line:
     if not isinstance(d, list) or len(d) != 3:
         fail(error, prefix, "line.direction", d, "must be a list of 3 numbers [x, y, z]")
     d = [number(c, f"line.direction[{i}]", error, prefix) for i, c in enumerate(d)]
-    norm = math.sqrt(sum(float(c) ** 2 for c in d))
+    norm = math.hypot(*d)  # no overflow at 1e300
     if not norm > 1e-12:
         fail(error, prefix, "line.direction", d,
              "has zero length; give the part's direction of travel")

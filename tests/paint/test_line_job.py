@@ -40,6 +40,8 @@ def test_line_table_read(line_job):
     assert job.line.direction == (0.0, 0.6, 0.8) and job.line.speed == 0.02
     assert job.to_dict()["line"] == {"speed": 0.02, "direction": [0.0, 0.6, 0.8]}
     assert line_job.line.speed == 0.03 and line_job.line.direction == (0.0, 1.0, 0.0)
+    d["line"] = {"speed": 0.02, "direction": [0.0, 3e300, 4e300]}  # |d|² overflows
+    assert job_from_dict(d, "j.toml").line.direction == pytest.approx((0.0, 0.6, 0.8), abs=1e-15)
     del d["line"]
     assert job_from_dict(d, "j.toml").line is None
 
