@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
+import pinocchio as pin
 
 from ..errors import InputError
 from ..kinematics.errors import JointLimitError
@@ -215,7 +216,11 @@ class PDGravity:
                  a0=None) -> np.ndarray:
         d, ia = self.desired, self._ia
         k = d.index(t)
-        gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero, Jc=Jc)[0]
+        if N is None:
+            gravity = inverse_dynamics_sample(self.robot, q, self._zero, self._zero, Jc=Jc)[0]
+        else:  # sensed on the loops: τ = Nᵀ g_tree (Jc·N = 0 drops the closures, §13)
+            model, data = self.robot.model, self.robot.data
+            gravity = N.T @ pin.computeGeneralizedGravity(model, data, q)
         return gravity + self.kp @ (d.q[k, ia] - q[ia]) + self.kd @ (d.v[k, ia] - v[ia])
 
 
