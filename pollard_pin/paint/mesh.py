@@ -16,6 +16,7 @@ import io
 import math
 import warnings
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -76,7 +77,7 @@ class Part:
     def painted_area(self) -> float:
         return float(self.areas[self.painted].sum())
 
-    @property
+    @cached_property  # asked by every block of the film's ray tests
     def size(self) -> float:
         """The largest side of the bounding box [m]."""
         return float(np.ptp(self.vertices, axis=0).max())

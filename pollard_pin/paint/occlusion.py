@@ -69,7 +69,7 @@ def _shaded(part: Part, ray, o, u, length, eps) -> np.ndarray:
     the ray starts is grazed, not crossed (a point at the foot of a wall lies in the wall's
     plane): the ray starts again eps beyond it, up to GRAZES times (then it counts as
     shaded)."""
-    tri0, fn = part.vertices[part.faces[:, 0]], part.normals
+    fn = part.normals
     shaded = np.zeros(len(o), dtype=bool)
     todo, done = np.arange(len(o)), np.zeros(len(o))  # rays to cast, distance travelled
     for _ in range(GRAZES + 1):
@@ -81,7 +81,7 @@ def _shaded(part: Part, ray, o, u, length, eps) -> np.ndarray:
         f, k = first[hit], todo[hit]
         # the distance to the face's plane along the ray (exact, float64)
         with np.errstate(divide="ignore", invalid="ignore"):
-            dist = (np.einsum("ij,ij->i", fn[f], tri0[f] - oo[hit])
+            dist = (np.einsum("ij,ij->i", fn[f], part.vertices[part.faces[f, 0]] - oo[hit])
                     / np.einsum("ij,ij->i", fn[f], u[k]))
         graze = ~(dist >= 2 * eps)  # nan: a ray in a face's plane grazes it too
         shaded[k[~graze & (dist < length[k] - done[k])]] = True
