@@ -18,6 +18,20 @@ def run_cli(argv, capsys):
     return code, out, err
 
 
+def run_and_size(path, actuators, capsys, tmp_path) -> dict:
+    """`run` then `size --format json` of the trajectory ``path`` (a paint job's path.csv),
+    each exit 0; `size`'s report."""
+    import json
+
+    code, _, err = run_cli(["run", "--trajectory", path, "--out", tmp_path / "run.csv",
+                            "--quiet"], capsys)
+    assert code == 0, err
+    code, out, err = run_cli(["size", "--trajectory", path, "--actuators", actuators,
+                              "--format", "json", "--quiet"], capsys)
+    assert code == 0, err
+    return json.loads(out)
+
+
 @contextlib.contextmanager
 def one_parser():
     """``main`` parses with one parser, built here, instead of one per call: building it (12

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import run_cli
+from cli_run import run_and_size, run_cli
 
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
@@ -234,12 +234,7 @@ def test_part_path_runs(part_painted, capsys, tmp_path):
     table = read_result(part_painted / "path.csv")
     spray = table["spray"]
     assert set(np.unique(spray)) == {0.0, 1.0} and spray[0] == 0 and spray[-1] == 0
-    code, out, err = run_cli(["run", "--trajectory", part_painted / "path.csv", "--out",
-                              tmp_path / "run.csv", "--quiet"], capsys)
-    assert code == 0, err
-    code, out, err = run_cli(["size", "--trajectory", part_painted / "path.csv", "--actuators",
-                              ACT, "--format", "json", "--quiet"], capsys)
-    assert code == 0, err
+    assert run_and_size(part_painted / "path.csv", ACT, capsys, tmp_path)["given_within_ratings"]
 
 
 @pytest.mark.parametrize("edit, mesh, words", [

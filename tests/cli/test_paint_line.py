@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import run_cli
+from cli_run import run_and_size, run_cli
 
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
@@ -60,13 +60,7 @@ def test_run_and_size_take_the_world_path(painted, capsys, tmp_path):
     traj = from_csv(painted / "path.csv")
     rep = json.loads((painted / "paint.json").read_text())
     assert traj.t[-1] == pytest.approx(rep["line"]["cycle"])
-    code, _, err = run_cli(["run", "--trajectory", painted / "path.csv", "--out",
-                            tmp_path / "run.csv", "--quiet"], capsys)
-    assert code == 0, err
-    code, out, err = run_cli(["size", "--trajectory", painted / "path.csv", "--actuators", ACT,
-                              "--format", "json", "--quiet"], capsys)
-    assert code == 0, err
-    sized = json.loads(out)
+    sized = run_and_size(painted / "path.csv", ACT, capsys, tmp_path)
     assert sized["given_within_ratings"] is True
     for name, m in rep["motors"].items():
         given = sized["actuators"][name]
@@ -168,13 +162,7 @@ def test_part_outputs(part_painted):
 
 
 def test_part_run_and_size_take_the_world_path(part_painted, capsys, tmp_path):
-    code, _, err = run_cli(["run", "--trajectory", part_painted / "path.csv", "--out",
-                            tmp_path / "run.csv", "--quiet"], capsys)
-    assert code == 0, err
-    code, out, err = run_cli(["size", "--trajectory", part_painted / "path.csv", "--actuators",
-                              ACT, "--format", "json", "--quiet"], capsys)
-    assert code == 0, err
-    sized = json.loads(out)
+    sized = run_and_size(part_painted / "path.csv", ACT, capsys, tmp_path)
     assert sized["given_within_ratings"] is True
     rep = json.loads((part_painted / "paint.json").read_text())
     for name, m in rep["motors"].items():
