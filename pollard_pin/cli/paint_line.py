@@ -127,24 +127,19 @@ def line_summary_lines(rep: dict, names) -> list[str]:
 
 def riding(line, folder: Path) -> dict:
     """The viewer's moving nodes of a line's paint folder: the film (a panel's or a part's)
-    carried by the line (translation speed·t·direction at path time t, docs/model.md §24)."""
-    import math
+    carried by the line (translation speed·t·direction at path time t, docs/model.md §24),
+    the line read by the job's rule (paint.line_job: 0 < speed ≤ 2 m/s, a direction)."""
+    from collections.abc import Mapping
 
     import numpy as np
 
     from ..io.table import ResultFileError
+    from ..paint.line_job import LINE_KEYS, line_from_table
     from ..viz.viewer import ROOT
 
-    try:
-        speed, e = line["speed"], line["direction"]
-        ok = (type(speed) in (int, float) and 0 <= speed < math.inf and len(e) == 3
-              and all(type(c) in (int, float) and math.isfinite(c) for c in e))
-    except (KeyError, TypeError):
-        ok = False
-    if not ok:
-        raise ResultFileError(f"{folder / 'paint.json'}: line = {line!r}: expected speed >= 0 "
-                              "[m/s] and a direction [x, y, z]")
-    e = np.asarray(e, dtype=float)
+    table = {k: line[k] for k in LINE_KEYS if k in line} if isinstance(line, Mapping) else line
+    conveyor = line_from_table(str(folder / "paint.json"), table, ResultFileError)
+    speed, e = conveyor.speed, np.asarray(conveyor.direction)
 
     def place(t: float) -> np.ndarray:
         T = np.eye(4)

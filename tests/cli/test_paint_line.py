@@ -132,6 +132,26 @@ def test_view_shows_the_part_riding(painted, tmp_path, capsys):
     assert np.abs(values[:, [0, 2]]).max() < 1e-9
 
 
+
+@pytest.mark.parametrize("speed, direction, words", [
+    (1e308, [0.0, 1e308, 0.0], "'line.speed' = 1e+308: must be at most 2 m/s"),  # drew inf
+    (0.03, [0.0, 0.0, 0.0], "has zero length"),
+    (True, [0.0, 1.0, 0.0], "'line.speed' = True: must be a number"),
+])
+def test_view_refuses_a_tampered_line(painted, tmp_path, capsys, speed, direction, words):
+    """view reads paint.json's line by the job's own rule (paint.line_job)."""
+    import shutil
+
+    folder = tmp_path / "p"
+    shutil.copytree(painted, folder)
+    rep = json.loads((folder / "paint.json").read_text())
+    rep["line"].update(speed=speed, direction=direction)
+    (folder / "paint.json").write_text(json.dumps(rep))
+    html = tmp_path / "v.html"
+    code, _, err = run_cli(["view", "--paint", folder, "--html", html], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and words in err, err
+    assert not html.exists()
+
 # A [part] on the line: a small strip (tests/line_parts.py), a coarse film.
 
 @pytest.fixture(scope="module")
