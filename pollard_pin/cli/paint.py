@@ -84,6 +84,7 @@ def _run_part(args, job, out: Path, stale) -> int:
     """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
     (the outputs checked and ``stale`` found by :func:`run`)."""
     from ..paint.errors import PlanError
+    from ..paint.film_points import check_film_points
     from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
     from ..paint.surface_report import surface_report
     from ..viz.paint_part import ply_colours
@@ -94,6 +95,7 @@ def _run_part(args, job, out: Path, stale) -> int:
         raise UsageError(f"--resolution: {exc}") from None
     act = _actuators(args, job)
     part = load_job_part(job)
+    check_film_points(part, res)  # before planning: the budget of the film's points
     robot = load_robot(args)
     t0 = time.perf_counter()
     plan = plan_surface(robot, job, act, part)

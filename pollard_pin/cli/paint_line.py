@@ -74,11 +74,17 @@ def _run_line_part(args, job, out: Path, actuators, stale) -> int:
     """``paint`` of a [part] on the line (the surface planner's passes, docs/model.md §23)."""
     from dataclasses import replace
 
+    from ..paint.film_points import check_film_points
     from ..paint.line_report import line_part_report
-    from ..paint.surface_plan import part_resolution, surface_film
+    from ..paint.surface_plan import load_job_part, part_resolution, surface_film
     from ..viz.paint_part import ply_colours
 
-    res, plan, planning = _planned(args, job, actuators, part_resolution)
+    def resolution_of(job, resolution):  # the film's budget checked before planning
+        res = part_resolution(job, resolution)
+        check_film_points(load_job_part(job), res)
+        return res
+
+    res, plan, planning = _planned(args, job, actuators, resolution_of)
     t0 = time.perf_counter()
     seen = plan.in_part_frame()
     pts, film, painted, efficiency = surface_film(seen, res)

@@ -62,6 +62,28 @@ def lattice(n: int) -> tuple[np.ndarray, np.ndarray]:
     return bary, share
 
 
+def _subdivisions(part: Part, tri, resolution: float) -> np.ndarray:
+    """Each face's lattice subdivisions (F,) as floats, or :class:`MeshError` when their
+    points exceed MAX_POINTS."""
+    edges = np.linalg.norm(tri - np.roll(tri, -1, axis=1), axis=2).max(axis=1)
+    # counted in floats: at a resolution of 1e-300 the subdivisions overflow an int
+    with np.errstate(over="ignore"):  # inf points: refused below
+        n = np.maximum(1.0, np.ceil(edges / resolution - 1e-9))
+        total = float(((n + 1) * (n + 2) / 2).sum())
+    if not total <= MAX_POINTS:
+        raise MeshError(f"{part.source}: {total:.4g} film points at resolution "
+                        f"{resolution:.4g} m, more than {MAX_POINTS:.4g}: coarsen the "
+                        "resolution")
+    return n
+
+
+def check_film_points(part: Part, resolution: float) -> None:
+    """:class:`MeshError` if the painted faces alone need more than MAX_POINTS film points
+    at ``resolution`` [m]: the budget checked before a plan is made (the film also takes the
+    faces the gun faces, known after it)."""
+    _subdivisions(part, part.vertices[part.faces[part.painted]], resolution)
+
+
 def surface_points(part: Part, resolution: float | None = None, sigma: float | None = None,
                    faces="painted") -> SurfacePoints:
     """Film points on ``part`` no further apart than ``resolution`` [m] (default
@@ -83,16 +105,7 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
         sel = np.asarray(faces)
         idx = np.flatnonzero(sel) if sel.dtype == bool else np.unique(sel.astype(int))
     tri = part.vertices[part.faces[idx]]  # (F, 3, 3)
-    edges = np.linalg.norm(tri - np.roll(tri, -1, axis=1), axis=2).max(axis=1)
-    # counted in floats first: at a resolution of 1e-300 the subdivisions overflow an int
-    with np.errstate(over="ignore"):  # inf points: refused below
-        n = np.maximum(1.0, np.ceil(edges / resolution - 1e-9))
-        total = float(((n + 1) * (n + 2) / 2).sum())
-    if not total <= MAX_POINTS:
-        raise MeshError(f"{part.source}: {total:.4g} film points at resolution "
-                        f"{resolution:.4g} m, more than {MAX_POINTS:.4g}: coarsen the "
-                        "resolution")
-    n = n.astype(int)
+    n = _subdivisions(part, tri, resolution).astype(int)
     pts, nrm, area, face = [], [], [], []
     for m in np.unique(n):
         sel = n == m
@@ -115,4 +128,5 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
     return SurfacePoints(*arrays, float(resolution))
 
 
-__all__ = ["MAX_POINTS", "SIGMA_FRACTION", "SurfacePoints", "lattice", "surface_points"]
+__all__ = ["MAX_POINTS", "SIGMA_FRACTION", "SurfacePoints", "check_film_points", "lattice",
+           "surface_points"]

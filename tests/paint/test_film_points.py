@@ -97,3 +97,24 @@ def test_resolution_and_size_rules(monkeypatch):
         warnings.simplefilter("error")
         with pytest.raises(MeshError, match="inf film points at resolution 1e-300 m"):
             surface_points(part, 1e-300)
+
+
+def test_the_budget_checked_before_planning_is_the_painted_points(part, monkeypatch):
+    """check_film_points (run before a plan) refuses exactly when building the painted
+    faces' points would: the same count, at the threshold and on both sides of it."""
+    def refuses(fn) -> bool:
+        try:
+            fn()
+        except MeshError:
+            return True
+        return False
+
+    monkeypatch.setattr(fp_module, "MAX_POINTS", 1)
+    with pytest.raises(MeshError) as info:
+        surface_points(part, 0.004, faces="painted")
+    count = int(float(str(info.value).split(": ")[1].split(" film")[0]))  # e.g. 1.152e+04
+    for budget in (count // 2, count - 100, count + 100, 2 * count):
+        monkeypatch.setattr(fp_module, "MAX_POINTS", budget)
+        built = refuses(lambda: surface_points(part, 0.004, faces="painted"))
+        assert refuses(lambda: fp_module.check_film_points(part, 0.004)) == built
+        assert built == (budget < count - 50)
