@@ -1,7 +1,11 @@
-"""Run ``pollard-pin ARGV`` in this process for the CLI tests (tests/ is on the path)."""
+"""Run ``pollard-pin ARGV`` in this process for the CLI tests (tests/ is on the path), and
+the fuzz suites' "nothing written" snapshot."""
 import argparse
 import contextlib
+import hashlib
 import importlib
+import os
+import stat
 
 import pytest
 
@@ -55,3 +59,44 @@ def _defaults(parser: argparse.ArgumentParser) -> dict:
             for sub in action.choices.values():
                 out.update(_defaults(sub))
     return out
+
+
+def tree_state(root, prefix: str = "") -> dict:
+    """Every entry under ``root`` (os.scandir: the fuzz suites' 1,300 snapshots felt os.walk's
+    joins and pathlib's rglob): a folder, a link (its target, and the digest of the regular
+    file it reaches: a write through the link shows), a regular file (its digest), any other
+    file (its type, never read: a FIFO would block)."""
+    out = {}
+    with os.scandir(root) as entries:
+        for entry in entries:
+            rel = prefix + entry.name
+            if entry.is_symlink():
+                out[rel] = "-> " + os.readlink(entry.path)
+                try:
+                    st = entry.stat()  # the target's
+                except OSError:  # dangling, or a loop
+                    continue
+                if stat.S_ISREG(st.st_mode):
+                    out[rel + " ->"] = _digest(entry.path, st)
+            elif entry.is_dir():
+                out[rel] = "folder"
+                out.update(tree_state(entry.path, rel + "/"))
+            else:
+                st = entry.stat()
+                out[rel] = (_digest(entry.path, st) if stat.S_ISREG(st.st_mode)
+                            else stat.S_IFMT(st.st_mode))
+    return out
+
+
+_DIGESTS: dict[str, tuple[tuple, bytes]] = {}
+
+
+def _digest(path: str, st: os.stat_result) -> bytes:
+    """sha1 of the file at ``path``, read again only when its inode, size, mtime or ctime
+    changed (any write changes them; ctime cannot be set back)."""
+    key = (st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
+    known = _DIGESTS.get(path)
+    if known is None or known[0] != key:
+        with open(path, "rb") as fh:
+            known = _DIGESTS[path] = (key, hashlib.sha1(fh.read()).digest())
+    return known[1]

@@ -26,3 +26,12 @@ def robot():
     import pollard_pin
 
     return pollard_pin.load()
+
+
+@pytest.fixture(scope="module")
+def one_parser_per_module():
+    """The CLI parsed by one parser for the whole module (tests/cli_run.one_parser)."""
+    from cli_run import one_parser
+
+    with one_parser():
+        yield

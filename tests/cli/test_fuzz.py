@@ -13,17 +13,18 @@ own concatenated to it); the files named in them live in the ``scratch`` folder 
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import io
 import os
 import socket
-import stat
 from pathlib import Path
 
 import pytest
-from cli_run import one_parser, run_cli
+from cli_run import run_cli, tree_state
 
 from pollard_pin.cli import main
+
+# one parser per module (tests/conftest.py): building one per case was a tenth of the time
+pytestmark = pytest.mark.usefixtures("one_parser_per_module")
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -352,12 +353,6 @@ def scratch(tmp_path_factory):
     sock.close()
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _one_parser():
-    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
-        yield
-
-
 def _simulation_files(root: Path) -> None:
     """A real simulation and run table of good.csv, and damaged copies of the simulation."""
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
@@ -386,37 +381,6 @@ def _simulation_files(root: Path) -> None:
     write("sim_truncated.csv", [header, *rows[:-1], rows[-1][:20]])
     write("sim_duplicate.csv", [header + ",t", *(r + ",0" for r in rows)])
     (root / "sim_parquet.csv").write_bytes((root / "sim.parquet").read_bytes())
-
-
-def _state(root: Path | str, prefix: str = "") -> dict:
-    """Every folder, and every regular file's digest, under ``root`` (os.scandir: the 800
-    cases felt os.walk's joins and pathlib's rglob). A file is read again only when its inode,
-    size, mtime or ctime changed (any write changes them; ctime cannot be set back)."""
-    out = {}
-    with os.scandir(root) as entries:
-        for entry in entries:
-            rel = prefix + entry.name
-            if entry.is_dir():
-                out[rel] = True
-                if not entry.is_symlink():
-                    out.update(_state(entry.path, rel + "/"))
-                continue
-            st = entry.stat()
-            if stat.S_ISREG(st.st_mode):  # not the socket
-                out[rel] = _digest(entry.path, st)
-    return out
-
-
-_DIGESTS: dict[str, tuple[tuple, bytes]] = {}
-
-
-def _digest(path: str, st: os.stat_result) -> bytes:
-    key = (st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
-    known = _DIGESTS.get(path)
-    if known is None or known[0] != key:
-        with open(path, "rb") as fh:
-            known = _DIGESTS[path] = (key, hashlib.sha1(fh.read()).digest())
-    return known[1]
 
 
 # --- the cases ---------------------------------------------------------------------------------
@@ -1007,14 +971,14 @@ IDS = [" ".join(argv) for argv, _ in CASES]
 def test_bad_input_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch, capsys, argv,
                                                             says):
     monkeypatch.chdir(scratch)
-    before, beside = _state(scratch), sorted(os.listdir(scratch.parent))
+    before, beside = tree_state(scratch), sorted(os.listdir(scratch.parent))
     code, out, err = run_cli(argv, capsys)
     lines = err.strip().splitlines()
     assert code == 2, (code, out[-300:], err[-2000:])
     assert out == "", out[:300]  # nothing half-written on standard output either
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0] and "Traceback" not in err, lines[0]
-    assert _state(scratch) == before  # nothing written, nothing changed
+    assert tree_state(scratch) == before  # nothing written, nothing changed
     assert sorted(os.listdir(scratch.parent)) == beside  # nor beside the scratch folder
 
 

@@ -14,9 +14,12 @@ import threading
 from pathlib import Path
 
 import pytest
-from cli_run import one_parser, run_cli
+from cli_run import run_cli
 
 from pollard_pin.cli import main
+
+# one parser per module (tests/conftest.py): building one per case was a tenth of the time
+pytestmark = pytest.mark.usefixtures("one_parser_per_module")
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -109,12 +112,6 @@ def scratch(tmp_path_factory):
     yield root
     stop.set()
     thread.join()
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_parser():
-    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
-        yield
 
 
 def _unblock(fifos, stop: threading.Event) -> None:

@@ -7,7 +7,6 @@ output on an ASCII terminal (in this process, and once in a fresh interpreter)."
 from __future__ import annotations
 
 import errno
-import hashlib
 import io
 import os
 import subprocess
@@ -15,9 +14,12 @@ import sys
 from pathlib import Path
 
 import pytest
-from cli_run import one_parser, run_cli
+from cli_run import run_cli, tree_state
 
 from pollard_pin.cli import main
+
+# one parser per module (tests/conftest.py): building one per case was a tenth of the time
+pytestmark = pytest.mark.usefixtures("one_parser_per_module")
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -94,29 +96,6 @@ def scratch(tmp_path_factory):
     for name, target in LINKS.items():
         os.symlink(target, root / name)
     return root
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_parser():
-    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
-        yield
-
-
-def _state(root: Path) -> dict:
-    """Every folder, link (its target) and file (its digest) under ``root``."""
-    out = {}
-    for folder, dirs, files in os.walk(root):
-        for name in dirs + files:
-            path = os.path.join(folder, name)
-            rel = os.path.relpath(path, root)
-            if os.path.islink(path):
-                out[rel] = "-> " + os.readlink(path)
-            elif os.path.isdir(path):
-                out[rel] = "folder"
-            else:
-                with open(path, "rb") as fh:
-                    out[rel] = hashlib.sha1(fh.read()).hexdigest()
-    return out
 
 
 # --- the cases ---------------------------------------------------------------------------------
@@ -205,7 +184,7 @@ IDS = [" ".join(argv) for argv, _ in CASES]
 def test_a_bad_output_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypatch, capsys,
                                                                argv, says):
     monkeypatch.chdir(scratch)
-    before = _state(scratch)
+    before = tree_state(scratch)
     code, out, err = run_cli(argv, capsys)
     # sweep announces its work before it starts: a write error comes after it
     lines = [line for line in err.strip().splitlines() if " variants on this process" not in line]
@@ -213,7 +192,7 @@ def test_a_bad_output_gives_one_line_exit_2_and_writes_nothing(scratch, monkeypa
     assert out == "", out[:300]
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0] and "Traceback" not in err, lines[0]
-    assert _state(scratch) == before
+    assert tree_state(scratch) == before
 
 
 def test_every_writing_command_has_cases():
@@ -248,7 +227,7 @@ def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, mo
     for name in ("path.csv", "thickness.csv", "paint.json", "workspace.csv", "workspace.json",
                  "chain0_joints.png", "m.urdf", "m.srdf"):
         (tmp_path / "out" / name).write_bytes(PRECIOUS)
-    before = _state(tmp_path)
+    before = tree_state(tmp_path)
 
     def failing_savefig(fig, f, **kwargs):
         f.write(b"half a figure")
@@ -288,7 +267,7 @@ def test_a_failure_in_the_last_output_leaves_every_output_as_it_was(tmp_path, mo
     lines = err.strip().splitlines()
     assert code == 2 and len(lines) == 1 and "Traceback" not in err, err[-2000:]
     assert (says if module else "/dev/full: cannot write") in lines[0], lines[0]
-    assert _state(tmp_path) == before
+    assert tree_state(tmp_path) == before
 
 
 # --- stale outputs of the other format ----------------------------------------------------------

@@ -3,13 +3,15 @@ number that would overflow one, is one line on standard error, exit status 2, no
 written, and it says so before anything is allocated (well within a few seconds)."""
 from __future__ import annotations
 
-import hashlib
 import os
 import time
 from pathlib import Path
 
 import pytest
-from cli_run import one_parser, run_cli
+from cli_run import run_cli, tree_state
+
+# one parser per module (tests/conftest.py): building one per case was a tenth of the time
+pytestmark = pytest.mark.usefixtures("one_parser_per_module")
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 ACT = str(EXAMPLES / "actuators.toml")
@@ -57,18 +59,6 @@ def sized(tmp_path_factory):
     return root
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _one_parser():
-    with one_parser():  # tests/cli_run.py: building a parser per case was a tenth of the time
-        yield
-
-
-def _state(root: Path) -> dict:
-    """Every file's digest under ``root`` (as test_fuzz.py)."""
-    return {str(p.relative_to(root)): p.is_dir() or hashlib.sha1(p.read_bytes()).digest()
-            for p in root.rglob("*")}
-
-
 WS = ["workspace", "--quiet", "--out", "ws"]
 PAINT = ["paint", "--out", "p", "--job"]
 CASES = [
@@ -113,7 +103,7 @@ IDS = [" ".join(argv)[:80] for argv, _ in CASES]
 def test_an_absurd_size_is_one_line_at_once_and_writes_nothing(sized, monkeypatch, capsys,
                                                                argv, says):
     monkeypatch.chdir(sized)
-    before, beside = _state(sized), sorted(os.listdir(sized.parent))
+    before, beside = tree_state(sized), sorted(os.listdir(sized.parent))
     t0 = time.perf_counter()
     code, out, err = run_cli(argv, capsys)
     wall = time.perf_counter() - t0
@@ -123,6 +113,6 @@ def test_an_absurd_size_is_one_line_at_once_and_writes_nothing(sized, monkeypatc
     assert len(lines) == 1 and lines[0].startswith("pollard-pin"), err[-2000:]
     assert says in lines[0] and "Traceback" not in err, lines[0]
     assert len(lines[0]) < 330, lines[0]  # no 700-digit integers
-    assert _state(sized) == before
+    assert tree_state(sized) == before
     assert sorted(os.listdir(sized.parent)) == beside
     assert wall < 10.0, wall  # refused up front (the sweep: 10^6 names, seen 0.3 s)
