@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 import time
 from pathlib import Path
 
@@ -14,6 +13,8 @@ from .common import UsageError, command, load_robot, model_args, name, positive
 from .paint_files import (
     motor_use_line,
     part_summary_lines,
+    say_written,
+    spacing,
     write_panel_outputs,
     write_part_outputs,
 )
@@ -32,7 +33,6 @@ def run(args) -> int:
     import numpy as np
 
     from ..io.table import FORMATS, table_files
-    from ..paint.errors import PlanError
     from ..paint.film import film_resolution, plan_film
     from ..paint.job import PartJob, load_job
     from ..paint.plan import plan_paint
@@ -52,10 +52,7 @@ def run(args) -> int:
         return run_line(args, job, out, _actuators(args, job), stale)
     if isinstance(job, PartJob):
         return _run_part(args, job, out, stale)
-    try:
-        res = film_resolution(job, args.resolution)
-    except PlanError as exc:
-        raise UsageError(f"--resolution: {exc}") from None
+    res = spacing(film_resolution, job, args.resolution)
     act = _actuators(args, job)
     robot = load_robot(args)
     t0 = time.perf_counter()
@@ -75,24 +72,19 @@ def run(args) -> int:
                                {"command": "paint", "job": rep["job"]},
                                np.array([rel @ fr.u, rel @ fr.v]), stale)
     print("\n".join(summary_lines(rep, act.names)))
-    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
-          file=sys.stderr)
+    say_written(out, name)
     return 0
 
 
 def _run_part(args, job, out: Path, stale) -> int:
     """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
     (the outputs checked and ``stale`` found by :func:`run`)."""
-    from ..paint.errors import PlanError
     from ..paint.film_points import check_film_points
     from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
     from ..paint.surface_report import surface_report
     from ..viz.paint_part import ply_colours
 
-    try:
-        res = part_resolution(job, args.resolution)
-    except PlanError as exc:
-        raise UsageError(f"--resolution: {exc}") from None
+    res = spacing(part_resolution, job, args.resolution)
     act = _actuators(args, job)
     part = load_job_part(job)
     check_film_points(part, res)  # before planning: the budget of the film's points
@@ -109,8 +101,7 @@ def _run_part(args, job, out: Path, stale) -> int:
     name = write_part_outputs(out, args.format, plan, pts, film, painted, rep,
                               {"command": "paint", "job": rep["job"]}, stale)
     print("\n".join(part_summary_lines(rep, act.names)))
-    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
-          file=sys.stderr)
+    say_written(out, name)
     return 0
 
 

@@ -3,9 +3,28 @@ for a part: written once for both (cli/paint.py, cli/paint_line.py)."""
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 from ..io.atomic import all_or_nothing, atomic_open, make_folder, remove_stale
+from .common import UsageError
+
+
+def spacing(rule, job, resolution) -> float:
+    """The film point spacing [m] by ``rule(job, --resolution)`` (a panel's grid or a part's
+    points), its refusal as a usage error naming the flag."""
+    from ..paint.errors import PlanError
+
+    try:
+        return rule(job, resolution)
+    except PlanError as exc:
+        raise UsageError(f"--resolution: {exc}") from None
+
+
+def say_written(out: Path, table: Path) -> None:
+    """The line on standard error naming what paint wrote in ``out``."""
+    print(f"wrote {out}/path.csv, {table.name}, film.ply, paint.json, thickness.png",
+          file=sys.stderr)
 
 
 def motor_use_line(rep: dict, names) -> str:

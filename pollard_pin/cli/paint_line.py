@@ -2,7 +2,6 @@
 (docs/model.md §24)."""
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -11,6 +10,8 @@ from .common import UsageError, load_robot
 from .paint_files import (
     motor_use_line,
     part_summary_lines,
+    say_written,
+    spacing,
     write_panel_outputs,
     write_part_outputs,
 )
@@ -46,21 +47,16 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
                                {"command": "paint", "job": rep["job"], "frame": FRAME},
                                np.array([rel @ fr.u, rel @ fr.v]), stale, f"film: {FRAME}")
     print("\n".join(line_summary_lines(rep, actuators.names)))
-    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
-          file=sys.stderr)
+    say_written(out, name)
     return 0
 
 
 def _planned(args, job, actuators, resolution_of):
     """The film resolution (``resolution_of(job, --resolution)``), the plan at the job's
     speed or at the fastest (--max-line-speed), and the planning time [s]."""
-    from ..paint.errors import PlanError
     from ..paint.line import max_line_speed, plan_line_job
 
-    try:
-        res = resolution_of(job, args.resolution)
-    except PlanError as exc:
-        raise UsageError(f"--resolution: {exc}") from None
+    res = spacing(resolution_of, job, args.resolution)
     robot = load_robot(args)
     t0 = time.perf_counter()
     if args.max_line_speed:
@@ -98,8 +94,7 @@ def _run_line_part(args, job, out: Path, actuators, stale) -> int:
                               {"command": "paint", "job": rep["job"], "frame": FRAME}, stale,
                               f"film: {FRAME}")
     print("\n".join(line_lines(rep) + part_summary_lines(rep, actuators.names)))
-    print(f"wrote {out}/path.csv, {name.name}, film.ply, paint.json, thickness.png",
-          file=sys.stderr)
+    say_written(out, name)
     return 0
 
 

@@ -45,7 +45,6 @@ def line_plan(robot, line_job, act):
     return plan_line(robot, line_job, act)
 
 
-
 @pytest.fixture(scope="package")
 def line_part_job(tmp_path_factory):
     """A [part] on a [line] (docs/model.md §24): :func:`write_line_part`."""
