@@ -33,7 +33,8 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     if isinstance(job, PartJob):
         return _run_line_part(args, job, out, actuators, stale)
-    res, plan, planning = _planned(args, job, actuators, film_resolution)
+    res = spacing(film_resolution, job, args.resolution)
+    plan, planning = _planned(args, job, actuators)
     t0 = time.perf_counter()
     U, V, pts, film = line_film(plan, res)
     rep = line_report(plan, film, actuators, {"nu": len(U), "nv": len(V), "resolution": res})
@@ -51,19 +52,18 @@ def run_line(args, job, out: Path, actuators, stale) -> int:
     return 0
 
 
-def _planned(args, job, actuators, resolution_of):
-    """The film resolution (``resolution_of(job, --resolution)``), the plan at the job's
-    speed or at the fastest (--max-line-speed), and the planning time [s]."""
-    from ..paint.line import max_line_speed, plan_line_job
+def _planned(args, job, actuators, part=None):
+    """The plan at the job's speed or at the fastest (--max-line-speed), and the planning
+    time [s]; ``part``: a [part] job's mesh, read by the caller."""
+    from ..paint.line import SPEED_RESOLUTION, max_line_speed, plan_line_job
 
-    res = spacing(resolution_of, job, args.resolution)
     robot = load_robot(args)
     t0 = time.perf_counter()
     if args.max_line_speed:
-        _, plan = max_line_speed(robot, job, actuators)
+        _, plan = max_line_speed(robot, job, actuators, SPEED_RESOLUTION, part)
     else:
-        plan = plan_line_job(robot, job, actuators)
-    return res, plan, time.perf_counter() - t0
+        plan = plan_line_job(robot, job, actuators, part)
+    return plan, time.perf_counter() - t0
 
 
 def _run_line_part(args, job, out: Path, actuators, stale) -> int:
@@ -75,12 +75,10 @@ def _run_line_part(args, job, out: Path, actuators, stale) -> int:
     from ..paint.surface_plan import load_job_part, part_resolution, surface_film
     from ..viz.paint_part import ply_colours
 
-    def resolution_of(job, resolution):  # the film's budget checked before planning
-        res = part_resolution(job, resolution)
-        check_film_points(load_job_part(job), res)
-        return res
-
-    res, plan, planning = _planned(args, job, actuators, resolution_of)
+    res = spacing(part_resolution, job, args.resolution)
+    part = load_job_part(job)
+    check_film_points(part, res)  # before planning: the budget of the film's points
+    plan, planning = _planned(args, job, actuators, part)
     t0 = time.perf_counter()
     seen = plan.in_part_frame()
     pts, film, painted, efficiency = surface_film(seen, res)

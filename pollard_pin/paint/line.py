@@ -31,6 +31,7 @@ from .line_phases import (
     track,
     world_motion,
 )
+from .mesh import Part
 from .plan import MAX_STEP, STEP_SIGMA, panel_layout
 from .raster import PanelFrame, Segments, raster_motion, raster_segments
 
@@ -87,7 +88,7 @@ def panel_relative(frame, job, seg: Segments, horizontal: bool) -> Relative:
                     seg.duration, seg.kind, program=seg)
 
 
-def plan_line(robot, job, act: Actuators, speed: float | None = None, part=None):
+def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part | None = None):
     """The raster program for a panel on the line at ``speed`` (default the job's); a
     [part] job goes to :func:`.line_part.plan_line_part` (``part``: its mesh, read once)."""
     if isinstance(job, PartJob):
@@ -120,28 +121,30 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part=None)
                     world.relative, {"plan": time.perf_counter() - clock})
 
 
-def line_planner(robot, job, act: Actuators):
-    """speed ↦ the job's plan on the line at that speed (a part's mesh read once)."""
-    part = None
-    if isinstance(job, PartJob):
+def line_planner(robot, job, act: Actuators, part: Part | None = None):
+    """speed ↦ the job's plan on the line at that speed (a part's mesh, ``part`` if given,
+    read once)."""
+    if part is None and isinstance(job, PartJob):
         from .surface_plan import load_job_part
 
         part = load_job_part(job)
     return lambda speed=None: plan_line(robot, job, act, speed, part)
 
 
-def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION):
+def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
+                   part: Part | None = None):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
     part is painted under the same checks, and its plan (docs/model.md §24,
     :func:`.line_phases.fastest_line_speed`)."""
-    return fastest_line_speed(line_planner(robot, job, act), job.line.speed, job.source,
+    return fastest_line_speed(line_planner(robot, job, act, part), job.line.speed, job.source,
                               resolution)
 
 
-def plan_line_job(robot, job, act: Actuators):
+def plan_line_job(robot, job, act: Actuators, part: Part | None = None):
     """The job's line speed planned; a speed that cannot be painted is refused naming the
     fastest that works (:func:`max_line_speed`)."""
-    return plan_or_name_fastest(line_planner(robot, job, act), job.line.speed, job.source)
+    return plan_or_name_fastest(line_planner(robot, job, act, part), job.line.speed,
+                                job.source)
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
