@@ -3,7 +3,7 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 STAMP := $(VENV)/.installed
 
-.PHONY: run test venv clean urdf bench
+.PHONY: run test venv clean urdf bench install-check
 
 # setup.py and the C kernels: an editable install compiles them once, so rebuild on change
 $(STAMP): pyproject.toml setup.py $(wildcard csrc/*.c csrc/*.h)
@@ -23,6 +23,10 @@ test: $(STAMP)
 
 urdf: $(STAMP)
 	$(VENV)/bin/pollard-pin urdf --out models/pollard.urdf
+
+# A plain `pip install .` (the wheel, no extras) in a fresh venv runs every command
+install-check:
+	$(PYTHON) scripts/check_install.py
 
 bench: $(STAMP)
 	$(VENV)/bin/python scripts/benchmark.py

@@ -150,8 +150,20 @@ def test_every_core_dependency_is_imported_by_the_package():
                 imported |= {a.name.split(".")[0] for a in node.names}
             elif isinstance(node, ast.ImportFrom) and not node.level:
                 imported.add(node.module.split(".")[0])
+    # trimesh's ray engines: the package asks trimesh for rays, trimesh imports these
+    names -= {"embreex", "rtree"}
     unused = [n for n in names if IMPORT_NAME.get(n, n) not in imported]
     assert not unused, f"core dependencies no module imports: {unused}"
+
+
+def test_the_version_is_written_once():
+    """pyproject.toml takes the version from the package: the installed metadata agrees."""
+    import importlib.metadata
+
+    import pollard_pin
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    assert "version" not in project and "version" in project["dynamic"]
+    assert importlib.metadata.version("pollard-pin") == pollard_pin.__version__
 
 
 def _run_hidden(module: str, code: str):

@@ -1,0 +1,97 @@
+"""What a plain ``pip install .`` gives: build the wheel, install it without extras into a
+fresh venv, and run every command from a folder outside the repository (so the checkout's
+own ``pollard_pin`` cannot be imported). Paint runs on a mesh part and on a part on a line;
+the MuJoCo export, an extra, must refuse in one line. Run by ``.ci/run`` (``make
+install-check``); standard library only, so it runs with the bare interpreter.
+
+    python3 scripts/check_install.py [--keep DIR]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def sh(argv, cwd=None, ok=(0,)) -> subprocess.CompletedProcess:
+    t0 = time.perf_counter()
+    out = subprocess.run([str(a) for a in argv], cwd=cwd, capture_output=True, text=True)
+    took = time.perf_counter() - t0
+    shown = " ".join(str(a) for a in argv[1:] if not str(a).startswith("/"))
+    print(f"{took:7.1f} s  exit {out.returncode}  {shown}", flush=True)
+    if out.returncode not in ok:
+        sys.exit(f"check_install: `{' '.join(map(str, argv))}` exited {out.returncode}:\n"
+                 f"{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+    return out
+
+
+def need(path: Path, what: str) -> None:
+    if not path.is_file() or path.stat().st_size == 0:
+        sys.exit(f"check_install: {what}: {path.name} was not written")
+
+
+def commands(cli: Path, work: Path) -> None:
+    """One call of every command; paint on a still mesh part and a part on a line."""
+    ex = work / "examples"
+    sh([cli, "paint", "--job", ex / "parts/curved_panel.toml", "--out", "part"], work)
+    sh([cli, "paint", "--job", ex / "line_part.toml", "--out", "line"], work)
+    for folder in ("part", "line"):
+        need(work / folder / "path.csv", f"paint --out {folder}")
+        report = json.loads((work / folder / "paint.json").read_text())
+        if not report:
+            sys.exit(f"check_install: paint --out {folder}: empty paint.json")
+    # the painted program goes through run and size like any trajectory
+    sh([cli, "run", "--trajectory", work / "part/path.csv", "--out", "part_run.csv"], work)
+    sh([cli, "size", "--actuators", ex / "actuators.toml", "--trajectory",
+        work / "part/path.csv"], work)
+    sh([cli, "run", "--samples", "401", "--out", "run.csv"], work)
+    need(work / "run.csv", "run")
+    sh([cli, "urdf", "--out", "p.urdf"], work)
+    sh([cli, "info"], work)
+    sh([cli, "report", "--no-cross-check"], work)
+    sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
+    sh([cli, "workspace", "--plane", "x=0.55", "--resolution", "0.02", "--out", "ws"], work)
+    sh([cli, "sweep", "--grid", ex / "sweep.toml", "--out", "sweep.csv"], work)
+    sh([cli, "plot", "--out", "plots"], work)
+    sh([cli, "view", "--html", "v.html"], work)
+    sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
+    for f in ("sim.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
+        need(work / f, f)
+    # an extra that is not installed: one line and exit 2
+    out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))
+    if len(out.stderr.strip().splitlines()) != 1 or "mujoco" not in out.stderr:
+        sys.exit(f"check_install: export without the mujoco extra: {out.stderr!r}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--keep", type=Path, help="work in this folder and keep it")
+    args = ap.parse_args()
+    work = args.keep or Path(tempfile.mkdtemp(prefix="pollard-install-"))
+    work.mkdir(parents=True, exist_ok=True)
+    try:
+        t0 = time.perf_counter()
+        wheels = work / "wheel"
+        sh([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "-w", wheels, ROOT])
+        wheel = next(wheels.glob("pollard_pin-*.whl"))
+        sh([sys.executable, "-m", "venv", work / "venv"])
+        pip = work / "venv/bin/python"
+        sh([pip, "-m", "pip", "install", "--quiet", wheel])
+        shutil.copytree(ROOT / "examples", work / "examples")
+        commands(work / "venv/bin/pollard-pin", work)
+        print(f"check_install: a plain install ran every command "
+              f"({time.perf_counter() - t0:.0f} s)")
+    finally:
+        if args.keep is None:
+            shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
