@@ -156,7 +156,7 @@ def simulation_section(robot, repeats: int) -> None:
     per RK4 step and per control tick behind ``simulate``'s estimate (dynamics/tracking.py)."""
     from pollard_pin.dynamics.control import CONTROLLERS, desired_trajectory
     from pollard_pin.dynamics.plant import ModelMismatch
-    from pollard_pin.dynamics.tracking import simulate_tracking
+    from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
 
     traj = pp.thesis_trajectory()
     t0 = time.perf_counter()
@@ -169,7 +169,8 @@ def simulation_section(robot, repeats: int) -> None:
             walls = []
             for _ in range(max(1, repeats // 2)):
                 t0 = time.perf_counter()
-                res = simulate_tracking(robot, traj, controller, errors, desired=desired)
+                res = simulate_tracking(robot, traj,
+                                        TrackingOptions(controller, errors, desired=desired))
                 walls.append(time.perf_counter() - t0)
             print(f"  {controller:<16s} {label:<30s} {min(walls):6.2f} s wall "
                   f"({res.steps} RK4 steps, {traj.t[-1] / min(walls):4.1f}× real time), max tip "
@@ -179,7 +180,8 @@ def simulation_section(robot, repeats: int) -> None:
     for ratio in (1, 10):  # RK4 steps per control tick
         times = []
         for _ in range(max(1, repeats // 2)):
-            res = simulate_tracking(robot, short, "computed-torque", dt=1e-3 / ratio)
+            res = simulate_tracking(robot, short,
+                                    TrackingOptions("computed-torque", dt=1e-3 / ratio))
             times.append(res.wall / res.steps)
         walls[ratio] = min(times)
     tick = (walls[1] - walls[10]) / 0.9  # wall per step = step + tick / (steps per tick)

@@ -12,6 +12,7 @@ from .common import (
     count,
     load_robot,
     load_trajectory,
+    log,
     name,
     nonnegative,
     number,
@@ -29,7 +30,9 @@ def run(args) -> int:
     from ..dynamics.inverse import JointLosses
     from ..dynamics.plant import ModelMismatch
     from ..dynamics.tracking import (
+        MAX_STEPS,
         MeasurementNoise,
+        TrackingOptions,
         default_step,
         estimated_wall,
         integration_steps,
@@ -75,28 +78,30 @@ def run(args) -> int:
     traj = load_trajectory(args, robot.params)
     start = None if args.start == "path" else robot.home()
     duration = float(traj.t[-1] - traj.t[0])
+    if args.control_period > duration:
+        raise UsageError(f"--control-period {args.control_period:g} s is longer than the "
+                         f"trajectory ({duration:.6g} s): the controller would act once, at the "
+                         f"start; give --control-period <= {duration:.6g}")
     steps = integration_steps(duration, args.dt, args.control_period)
     guess = estimated_wall(duration, args.dt, args.control_period)
+    what = (f"{_count(steps)} RK4 steps ({duration:g} s, --control-period "
+            f"{args.control_period:g} s, --dt {args.dt:g} s)")
+    if steps > MAX_STEPS:
+        raise UsageError(f"{what}: more than a simulation can hold ({MAX_STEPS:.3g}), even "
+                         "with --force; give a longer --control-period or --dt")
     if steps > STEP_BUDGET and not args.force:
         raise UsageError(
-            f"{steps:,} RK4 steps ({duration:g} s, --control-period {args.control_period:g} s, "
-            f"--dt {args.dt:g} s) would take about {_duration(guess)}, over the budget of "
-            f"{STEP_BUDGET:,} steps: give --force to run it anyway, or a longer "
-            "--control-period or --dt")
-    bar = progress("simulating", not args.quiet)
-
-    def report(done: int, total: int) -> None:
-        if done == 1:  # the inputs passed every check: the run starts
-            print(f"simulating {duration:g} s: {steps:,} RK4 steps, about {_duration(guess)}",
-                  file=sys.stderr)
-        bar(done, total)
-
+            f"{what} would take about {_duration(guess)}, over the budget of {STEP_BUDGET:,} "
+            "steps: give --force to run it anyway, or a longer --control-period or --dt")
+    # said beside the bar, on a terminal only: an error is then the only line
+    banner = f"simulating {duration:g} s: {_count(steps)} RK4 steps, about {_duration(guess)}"
+    log.info(banner)
     t0 = time.perf_counter()
-    result = simulate_tracking(
-        robot, traj, args.controller, errors, gains=gains, dt=args.dt,
+    result = simulate_tracking(robot, traj, TrackingOptions(
+        controller=args.controller, errors=errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
         start=start, known_losses=known, joint_limits=not args.ignore_limits,
-        progress=None if args.quiet else report)
+        progress=progress(banner, not args.quiet)))
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
@@ -114,6 +119,11 @@ def run(args) -> int:
 
 
 STEP_BUDGET = 500_000  # RK4 steps a run may take without --force (25 × the default run)
+
+
+def _count(n: int) -> str:
+    """'220,000' or, past a thousand billion, '2.2e+299' (not 300 digits)."""
+    return f"{n:,}" if n < 10 ** 12 else f"{n:.3g}"
 
 
 def _duration(seconds: float) -> str:

@@ -128,6 +128,10 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     t = np.asarray(trajectory.t, dtype=float)
     if len(t) < 2:
         raise ControlError("the trajectory needs at least 2 samples to be simulated")
+    span = float(t[-1] - t[0])
+    if period > span:  # one tick only: the controller would act once, at the start
+        raise ControlError(f"control period {period:g} s is longer than the trajectory "
+                           f"({span:.6g} s): give a period <= the trajectory's duration")
     ticks = control_ticks(float(t[0]), float(t[-1]), period)
     poses, d, dd = (curve or trajectory_curve(trajectory))(ticks)
     ik = inverse_kinematics(robot, poses, d, dd, ticks, **ik_options)
