@@ -238,8 +238,10 @@ def workspace_section(robot, repeats: int) -> None:
     bounds (mostly outside the reach, as a user maps it), and one of the same size over the
     reachable box (mostly reachable: the full per-point work). Best of ``repeats``."""
     from pollard_pin.workspace.grid import map_workspace
+    from pollard_pin.workspace.options import WorkspaceOptions
 
-    map_workspace(robot, "x=0.55", resolution=0.02)  # warm-up: imports, compiled kernels
+    # warm-up: imports, compiled kernels
+    map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=0.02))
     cases = {"default bounds (500 × 500)": {"resolution": 0.00326},
              "reachable box (675 × 372)": {"resolution": 0.00089,
                                            "bounds": {"y": (-0.3, 0.3), "z": (-0.05, 0.28)}}}
@@ -248,7 +250,7 @@ def workspace_section(robot, repeats: int) -> None:
         times = []
         for _ in range(repeats):
             t0 = time.perf_counter()
-            ws = map_workspace(robot, "x=0.55", **kw)
+            ws = map_workspace(robot, "x=0.55", WorkspaceOptions(**kw))
             times.append(time.perf_counter() - t0)
         n = ws.grid.size
         print(f"  {label:<28s} {n:7d} points, {ws.summary['reachable_points']:7d} reachable "

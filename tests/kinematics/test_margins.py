@@ -175,7 +175,8 @@ def test_anything_but_margins_is_refused_wherever_it_enters(robot):
     for call in (lambda: inverse_kinematics(robot, pose, margins=0.05),
                  lambda: pp.run_pipeline(robot, traj, margins={"wrist": 0.05}),
                  lambda: motion(robot, act, pose, zero, zero, margins=0.05),
-                 lambda: pp.map_workspace(robot, "x=0.55", margins=(0.05, 1e-3))):
+                 lambda: pp.map_workspace(robot, "x=0.55",
+                                                  pp.WorkspaceOptions(margins=(0.05, 1e-3)))):
         with pytest.raises(MarginError) as ei:
             call()
         assert "Margins(" in str(ei.value) and "\n" not in str(ei.value)
