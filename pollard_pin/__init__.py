@@ -23,6 +23,7 @@ _API = {
     "solve_closure": "kinematics.closure", "forward_kinematics": "kinematics.closure",
     "tool_pose": "kinematics.closure",
     "inverse_kinematics": "kinematics.ik", "IKResult": "kinematics.ik",
+    "IkOptions": "kinematics.ik",
     "Margins": "kinematics.margins", "MarginError": "kinematics.margins",
     "ClosureError": "kinematics.errors", "KinematicsError": "kinematics.errors",
     "UnreachablePoseError": "kinematics.errors", "SingularityError": "kinematics.errors",
