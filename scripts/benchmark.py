@@ -76,10 +76,10 @@ def pinocchio_batch(robot, traj):
 def pinocchio_threads(robot, traj, workers: int):
     """The pipeline as ``run`` drives it: windows of 4096 samples solved by ``workers`` threads
     (IK, singularity analysis, inverse dynamics with energies, output columns; no writing)."""
-    from pollard_pin.run import solve_windows
+    from pollard_pin.run import StreamOptions, solve_windows
 
     def run(timings):
-        for _ in solve_windows(robot, traj, workers=workers):
+        for _ in solve_windows(robot, traj, StreamOptions(workers=workers)):
             pass
     return run
 
