@@ -410,6 +410,31 @@ def test_an_ascii_terminal_gets_escapes_not_a_crash(tmp_path, monkeypatch, argv,
         assert (tmp_path / "p" / "thickness.png").is_file()
 
 
+class _StrictAscii(io.StringIO):
+    """A text stream that cannot be reconfigured and refuses what ASCII cannot encode."""
+
+    encoding = "ascii"
+
+    def write(self, text):
+        text.encode("ascii")  # UnicodeEncodeError, as a strict stream's
+        return super().write(text)
+
+    def reconfigure(self, **kwargs):
+        raise AttributeError("reconfigure")
+
+
+def test_a_stream_that_cannot_show_the_text_is_one_line_and_exit_2(tmp_path, monkeypatch):
+    # the work is done, the file written; the summary cannot be shown: the status says so
+    monkeypatch.chdir(tmp_path)
+    err = io.StringIO()
+    monkeypatch.setattr(sys, "stdout", _StrictAscii())
+    monkeypatch.setattr(sys, "stderr", err)
+    code = main(["run", *SHORT, "--out", "r.csv"])
+    assert code == 2 and err.getvalue().splitlines() == [
+        "pollard-pin run: error: standard output cannot show '\\u03b8' in ascii: set "
+        "PYTHONIOENCODING=utf-8"], err.getvalue()
+
+
 def test_an_ascii_terminal_gets_escapes_in_a_fresh_interpreter(tmp_path):
     # end to end: the streams Python itself opens for PYTHONIOENCODING=ascii, and their
     # flush at exit
