@@ -38,7 +38,7 @@ def run(args) -> int:
 
 
 def _address(text: str) -> str:
-    """A Dask scheduler's address: not empty (an empty one ran the sweep locally)."""
+    """A Dask scheduler's address, not empty (no --dask is the local pool)."""
     if not text.strip():
         raise argparse.ArgumentTypeError("an empty address; give the scheduler's, e.g. "
                                          "tcp://127.0.0.1:8786")

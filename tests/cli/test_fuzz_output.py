@@ -129,7 +129,7 @@ if HAS_FULL:
     CASES += [(argv, FULL) for argv in _file_commands("/dev/full").values()]
     # the retimed trajectory was written, then the report failed
     CASES += [([*SIZE, "--retime", "R.csv", "--out", "/dev/full"], FULL)]
-    # without --quiet: the banner said before the work was a second line
+    # without --quiet too: the banner rides the progress bar, on a terminal only
     CASES += [(["simulate", "--trajectory", "good.csv", "--out", "/dev/full"], FULL),
               (["sweep", "--workers", "1", "--grid", "grid.toml", "--out", "/dev/full"], FULL)]
 # 2. links that lead nowhere: refused before any work, the link left alone
@@ -446,7 +446,7 @@ def test_an_ascii_terminal_gets_escapes_in_a_fresh_interpreter(tmp_path):
 
 @pytest.mark.parametrize("redirect", [">&-", ">&- 2>&-"])
 def test_a_closed_standard_output_is_one_line_before_any_work(tmp_path, redirect):
-    # print() to a closed stdout is silent, its flush a traceback (exit 1) after the work
+    # nowhere to say the summary: refused before the work
     done = subprocess.run(f"{sys.executable} -m pollard_pin.cli run --samples 11 --duration "
                           f"0.2 --out r.csv {redirect}", shell=True, cwd=tmp_path,
                           env={**os.environ, "PYTHONPATH": str(ROOT)}, stderr=subprocess.PIPE,

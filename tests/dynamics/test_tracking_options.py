@@ -70,7 +70,7 @@ def test_a_run_past_the_cap_or_with_one_tick_stops_before_any_work(robot):
     traj = thesis_head(0.2)
     with pytest.raises(ControlError, match="more than a simulation can hold"):
         simulate_tracking(robot, traj, TrackingOptions(dt=1e-12, control_period=1e-12))
-    # a period longer than the trajectory left one tick: an IndexError in the controller
+    # a period longer than the trajectory: one tick, the controller would act once
     with pytest.raises(ControlError, match=r"control period 1e\+300 s is longer than the "
                                            r"trajectory \(0\.2 s\)"):
         simulate_tracking(robot, traj, TrackingOptions(control_period=1e300))
@@ -79,7 +79,7 @@ def test_a_run_past_the_cap_or_with_one_tick_stops_before_any_work(robot):
 
 
 def test_a_plant_that_runs_away_is_named_once_without_numpy_warnings(robot):
-    # viscous friction of 1e300 N·m·s overflowed in numpy before the divergence was named
+    # viscous friction of 1e300 N·m·s: the divergence named once, numpy's overflow silent
     losses = JointLosses(viscous=np.where(np.isin(np.arange(12), robot.actuated_v), 1e300, 0))
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # any warning fails the test
