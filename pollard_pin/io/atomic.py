@@ -9,7 +9,8 @@ The rules every command follows (docs/model.md §15, end):
   all of them or none.
 * Anything else that exists (a FIFO, a character device such as ``/dev/null``) is written in
   place: renaming onto it would replace the device by a regular file, and it cannot be rolled
-  back, so a command writes it last. ``-`` is standard output.
+  back, so a command writes it last. A FIFO with no reader within :data:`FIFO_WAIT` s is an
+  :class:`OutputError`, not a hang. ``-`` is standard output.
 * A symbolic link to a file is written through: its target is replaced (atomically, beside
   the target) and the link stays. A dangling link or a link loop is refused up front.
 * :func:`check_outputs` checks every destination of a command before the work starts, and
