@@ -358,7 +358,7 @@ def test_a_fifo_whose_reader_comes_late_is_written(tmp_path, monkeypatch, capsys
         with open("fifo.csv", "rb") as f:
             got.append(f.read())
 
-    thread = threading.Thread(target=reader)
+    thread = threading.Thread(target=reader, daemon=True)  # never holds pytest at exit
     thread.start()
     code, _, err = run_cli(["run", *SHORT, "--out", "fifo.csv", "--quiet"], capsys)
     thread.join(timeout=60)
