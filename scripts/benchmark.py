@@ -76,10 +76,10 @@ def pinocchio_batch(robot, traj):
 def pinocchio_threads(robot, traj, workers: int):
     """The pipeline as ``run`` drives it: windows of 4096 samples solved by ``workers`` threads
     (IK, singularity analysis, inverse dynamics with energies, output columns; no writing)."""
-    from pollard_pin.run import solve_windows
+    from pollard_pin.run import StreamOptions, solve_windows
 
     def run(timings):
-        for _ in solve_windows(robot, traj, workers=workers):
+        for _ in solve_windows(robot, traj, StreamOptions(workers=workers)):
             pass
     return run
 
@@ -156,7 +156,7 @@ def simulation_section(robot, repeats: int) -> None:
     per RK4 step and per control tick behind ``simulate``'s estimate (dynamics/tracking.py)."""
     from pollard_pin.dynamics.control import CONTROLLERS, desired_trajectory
     from pollard_pin.dynamics.plant import ModelMismatch
-    from pollard_pin.dynamics.tracking import simulate_tracking
+    from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
 
     traj = pp.thesis_trajectory()
     t0 = time.perf_counter()
@@ -169,7 +169,8 @@ def simulation_section(robot, repeats: int) -> None:
             walls = []
             for _ in range(max(1, repeats // 2)):
                 t0 = time.perf_counter()
-                res = simulate_tracking(robot, traj, controller, errors, desired=desired)
+                res = simulate_tracking(robot, traj,
+                                        TrackingOptions(controller, errors, desired=desired))
                 walls.append(time.perf_counter() - t0)
             print(f"  {controller:<16s} {label:<30s} {min(walls):6.2f} s wall "
                   f"({res.steps} RK4 steps, {traj.t[-1] / min(walls):4.1f}× real time), max tip "
@@ -179,7 +180,8 @@ def simulation_section(robot, repeats: int) -> None:
     for ratio in (1, 10):  # RK4 steps per control tick
         times = []
         for _ in range(max(1, repeats // 2)):
-            res = simulate_tracking(robot, short, "computed-torque", dt=1e-3 / ratio)
+            res = simulate_tracking(robot, short,
+                                    TrackingOptions("computed-torque", dt=1e-3 / ratio))
             times.append(res.wall / res.steps)
         walls[ratio] = min(times)
     tick = (walls[1] - walls[10]) / 0.9  # wall per step = step + tick / (steps per tick)
@@ -236,8 +238,10 @@ def workspace_section(robot, repeats: int) -> None:
     bounds (mostly outside the reach, as a user maps it), and one of the same size over the
     reachable box (mostly reachable: the full per-point work). Best of ``repeats``."""
     from pollard_pin.workspace.grid import map_workspace
+    from pollard_pin.workspace.options import WorkspaceOptions
 
-    map_workspace(robot, "x=0.55", resolution=0.02)  # warm-up: imports, compiled kernels
+    # warm-up: imports, compiled kernels
+    map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=0.02))
     cases = {"default bounds (500 × 500)": {"resolution": 0.00326},
              "reachable box (675 × 372)": {"resolution": 0.00089,
                                            "bounds": {"y": (-0.3, 0.3), "z": (-0.05, 0.28)}}}
@@ -246,7 +250,7 @@ def workspace_section(robot, repeats: int) -> None:
         times = []
         for _ in range(repeats):
             t0 = time.perf_counter()
-            ws = map_workspace(robot, "x=0.55", **kw)
+            ws = map_workspace(robot, "x=0.55", WorkspaceOptions(**kw))
             times.append(time.perf_counter() - t0)
         n = ws.grid.size
         print(f"  {label:<28s} {n:7d} points, {ws.summary['reachable_points']:7d} reachable "

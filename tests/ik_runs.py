@@ -16,7 +16,10 @@ def wrap(a):
 
 
 def solve(robot, traj, **kw):
-    return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, **kw)
+    """IK of ``traj``; ``kw``: IkOptions fields (method, margins, tol, ...), q_start, progress."""
+    options = {k: kw.pop(k) for k in ("method", "margins", "tol", "max_iter", "chunk") if k in kw}
+    return pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
+                                 options=pp.IkOptions(**options), **kw)
 
 
 def to_joints_order(robot, q_tree):

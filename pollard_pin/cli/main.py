@@ -60,6 +60,10 @@ def _errors() -> tuple[type[BaseException], ...]:
 def main(argv=None) -> int:
     _survive_any_encoding()
     args = build_parser().parse_args(argv)
+    if sys.stdout is None:  # started with standard output closed (>&-): nowhere to say
+        print(f"pollard-pin {args.command}: error: standard output is closed: give it a file "
+              "or /dev/null", file=sys.stderr)  # (stderr closed too: print says nothing)
+        return 2
     logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
                         format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
     errors = _errors()
@@ -87,6 +91,11 @@ def main(argv=None) -> int:
         how = "terminated" if isinstance(exc, _Terminated) else "interrupted"
         print(f"pollard-pin {args.command}: {how}, nothing written", file=sys.stderr)
         return 143 if isinstance(exc, _Terminated) else 130
+    except UnicodeEncodeError as exc:  # a text stream _survive_any_encoding could not fix
+        print(f"pollard-pin {args.command}: error: standard output cannot show "
+              f"{exc.object[exc.start:exc.end]!a} in {exc.encoding}: set PYTHONIOENCODING=utf-8",
+              file=sys.stderr)
+        return 2
     except OSError as exc:
         if exc.errno in _FULL and not _broken_pipe(exc):
             # the outputs' own write errors are OutputErrors (above): this is the text the
@@ -124,10 +133,11 @@ _FULL = {errno.ENOSPC, errno.EIO, errno.EDQUOT, errno.EFBIG}
 
 
 def _stdout_failed(command: str, exc: OSError) -> None:
-    """One line for standard output that cannot take the command's text; no second failure
-    when Python flushes it at exit."""
-    print(f"pollard-pin {command}: error: cannot write to standard output: "
-          f"{exc.strerror or exc}", file=sys.stderr)
+    """One line for standard output that cannot take the command's text (worded as
+    io.atomic's write errors); no second failure when Python flushes it at exit."""
+    why = exc.strerror or str(exc)
+    print(f"pollard-pin {command}: error: standard output: cannot write: "
+          f"{why[:1].lower() + why[1:]}", file=sys.stderr)
     with contextlib.suppress(OSError, ValueError):
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
 

@@ -27,7 +27,7 @@ STREAM_WINDOW = 4096  # = pollard_pin.run.STREAM_CHUNK (not imported: --help sta
 
 def run(args) -> int:
     from ..io.table import table_files
-    from ..run import stream_run, summary
+    from ..run import StreamOptions, stream_run, summary
 
     check_outputs(*table_files(args.out))  # the table and its units sidecar
     margins = margins_of(args)
@@ -45,8 +45,8 @@ def run(args) -> int:
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
                                   -(-n // (STREAM_WINDOW - 1)))  # no idle threads
-    stats = stream_run(robot, traj, args.out, metadata=metadata, timings=timings,
-                       workers=workers,
+    stats = stream_run(robot, traj, args.out, StreamOptions(workers=workers),
+                       metadata=metadata, timings=timings,
                        progress=progress("solving", n >= 500 and not args.quiet),
                        margins=margins, loads=args.loads,
                        joint_limits=not args.ignore_limits)

@@ -12,6 +12,7 @@ from .common import (
     count,
     load_robot,
     load_trajectory,
+    log,
     name,
     nonnegative,
     number,
@@ -23,16 +24,12 @@ from .common import (
 
 
 def run(args) -> int:
-    import numpy as np
-
     from ..dynamics.control import Gains
-    from ..dynamics.inverse import JointLosses
     from ..dynamics.plant import ModelMismatch
     from ..dynamics.tracking import (
         MeasurementNoise,
+        TrackingOptions,
         default_step,
-        estimated_wall,
-        integration_steps,
         simulate_tracking,
         step_used,
     )
@@ -52,51 +49,19 @@ def run(args) -> int:
         raise UsageError(f"--torque-limit takes 1 value (all actuators) or 6, got "
                           f"{len(args.torque_limit)}")
     robot = load_robot(args)
-    losses = known = None
-    limit = args.torque_limit
-    if args.actuators:  # motors known to the controller (docs/model.md §18, §19)
-        from ..dynamics.motors import load_actuators
-
-        if args.armature or args.viscous or args.coulomb:
-            raise UsageError("--actuators gives the rotor inertia and friction; do not "
-                              "combine it with --armature/--viscous/--coulomb")
-        motors = load_actuators(args.actuators)
-        losses = known = motors.joint_losses(robot.joint_names)
-        if limit is None:
-            limit = motors.column("gear_ratio") * motors.column("peak_torque")
-    elif args.armature or args.viscous or args.coulomb:  # on the six actuated joints
-        per_joint = {}
-        for name, value in (("armature", args.armature), ("viscous", args.viscous),
-                            ("coulomb", args.coulomb)):
-            per_joint[name] = np.zeros(robot.model.nv)
-            per_joint[name][robot.actuated_v] = value
-        losses = JointLosses(**per_joint)
+    losses, known, limit = _losses(args, robot)
     errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
     start = None if args.start == "path" else robot.home()
     duration = float(traj.t[-1] - traj.t[0])
-    steps = integration_steps(duration, args.dt, args.control_period)
-    guess = estimated_wall(duration, args.dt, args.control_period)
-    if steps > STEP_BUDGET and not args.force:
-        raise UsageError(
-            f"{steps:,} RK4 steps ({duration:g} s, --control-period {args.control_period:g} s, "
-            f"--dt {args.dt:g} s) would take about {_duration(guess)}, over the budget of "
-            f"{STEP_BUDGET:,} steps: give --force to run it anyway, or a longer "
-            "--control-period or --dt")
-    bar = progress("simulating", not args.quiet)
-
-    def report(done: int, total: int) -> None:
-        if done == 1:  # the inputs passed every check: the run starts
-            print(f"simulating {duration:g} s: {steps:,} RK4 steps, about {_duration(guess)}",
-                  file=sys.stderr)
-        bar(done, total)
-
+    banner = _budget(args, duration)
+    log.info(banner)
     t0 = time.perf_counter()
-    result = simulate_tracking(
-        robot, traj, args.controller, errors, gains=gains, dt=args.dt,
+    result = simulate_tracking(robot, traj, TrackingOptions(
+        controller=args.controller, errors=errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
         start=start, known_losses=known, joint_limits=not args.ignore_limits,
-        progress=None if args.quiet else report)
+        progress=progress(banner, not args.quiet)))
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
@@ -113,7 +78,65 @@ def run(args) -> int:
     return 0
 
 
+def _losses(args, robot):
+    """(plant losses, losses the controller knows, torque limit) of --actuators or
+    --armature/--viscous/--coulomb (docs/model.md §18, §19)."""
+    import numpy as np
+
+    from ..dynamics.inverse import JointLosses
+
+    losses = known = None
+    limit = args.torque_limit
+    if args.actuators:  # motors known to the controller
+        from ..dynamics.motors import load_actuators
+
+        if args.armature or args.viscous or args.coulomb:
+            raise UsageError("--actuators gives the rotor inertia and friction; do not "
+                             "combine it with --armature/--viscous/--coulomb")
+        motors = load_actuators(args.actuators)
+        losses = known = motors.joint_losses(robot.joint_names)
+        if limit is None:
+            limit = motors.column("gear_ratio") * motors.column("peak_torque")
+    elif args.armature or args.viscous or args.coulomb:  # on the six actuated joints
+        per_joint = {}
+        for name, value in (("armature", args.armature), ("viscous", args.viscous),
+                            ("coulomb", args.coulomb)):
+            per_joint[name] = np.zeros(robot.model.nv)
+            per_joint[name][robot.actuated_v] = value
+        losses = JointLosses(**per_joint)
+    return losses, known, limit
+
+
+def _budget(args, duration: float) -> str:
+    """Refuse a run the controller cannot act in or that is over the step budget (without
+    --force) or over what memory holds; the banner of a run that starts."""
+    from ..dynamics.tracking import MAX_STEPS, estimated_wall, integration_steps
+
+    if args.control_period > duration:
+        raise UsageError(f"--control-period {args.control_period:g} s is longer than the "
+                         f"trajectory ({duration:.6g} s): the controller would act once, at the "
+                         f"start; give --control-period <= {duration:.6g}")
+    steps = integration_steps(duration, args.dt, args.control_period)
+    guess = estimated_wall(duration, args.dt, args.control_period)
+    what = (f"{_count(steps)} RK4 steps ({duration:g} s, --control-period "
+            f"{args.control_period:g} s, --dt {args.dt:g} s)")
+    if steps > MAX_STEPS:
+        raise UsageError(f"{what}: more than a simulation can hold ({MAX_STEPS:.3g}), even "
+                         "with --force; give a longer --control-period or --dt")
+    if steps > STEP_BUDGET and not args.force:
+        raise UsageError(
+            f"{what} would take about {_duration(guess)}, over the budget of {STEP_BUDGET:,} "
+            "steps: give --force to run it anyway, or a longer --control-period or --dt")
+    # said beside the bar, on a terminal only: an error is then the only line
+    return f"simulating {duration:g} s: {_count(steps)} RK4 steps, about {_duration(guess)}"
+
+
 STEP_BUDGET = 500_000  # RK4 steps a run may take without --force (25 × the default run)
+
+
+def _count(n: int) -> str:
+    """'220,000' or, past a thousand billion, '2.2e+299' (not 300 digits)."""
+    return f"{n:,}" if n < 10 ** 12 else f"{n:.3g}"
 
 
 def _duration(seconds: float) -> str:

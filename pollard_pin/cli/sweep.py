@@ -1,12 +1,13 @@
 """pollard-pin sweep: design sweeps."""
 from __future__ import annotations
 
+import argparse
 import os
 import sys
 import time
 
 from ..io.atomic import check_outputs
-from .common import STDOUT, command, count, name, progress, warnings_as_notes, wrote
+from .common import STDOUT, command, count, log, name, progress, warnings_as_notes, wrote
 
 
 def run(args) -> int:
@@ -22,16 +23,26 @@ def run(args) -> int:
     where = (f"Dask cluster {args.dask}" if args.dask else
              "this process" if args.workers == 1 else
              f"{args.workers or os.cpu_count()} local processes")
-    print(f"{sweep.source}: {len(sweep)} variants on {where}", file=sys.stderr)
+    # said beside the bar, on a terminal only: an error is then the only line
+    banner = f"{sweep.source}: {len(sweep)} variants on {where}"
+    log.info(banner)
     t0 = time.perf_counter()
     with warnings_as_notes(args):
         rows = run_sweep(sweep, workers=args.workers, dask=args.dask,
-                         progress=progress("sweep", not args.quiet))
+                         progress=progress(banner, not args.quiet))
     wall = time.perf_counter() - t0
     write_sweep_table(rows, args.out, sweep.columns)
     print(summary(rows), file=sys.stderr if args.out == STDOUT else sys.stdout)
     wrote(args.out, f" ({len(rows)} rows, wall time {wall:.2f} s)")
     return 0
+
+
+def _address(text: str) -> str:
+    """A Dask scheduler's address, not empty (no --dask is the local pool)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty address; give the scheduler's, e.g. "
+                                         "tcp://127.0.0.1:8786")
+    return text.strip()
 
 
 def add_parser(sub, parents) -> None:
@@ -43,7 +54,7 @@ def add_parser(sub, parents) -> None:
                    help="output CSV ('-': standard output)")
     p.add_argument("--workers", type=count(1), default=None,
                    help="local processes (1 = serial; default: all cores)")
-    p.add_argument("--dask", metavar="ADDRESS", default=None,
+    p.add_argument("--dask", type=_address, metavar="ADDRESS", default=None,
                    help="run on this Dask scheduler (needs pollard-pin[cluster]; default: "
                         "local processes)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -55,7 +55,7 @@ def add_parser(sub, parents) -> None:
 
 def parse_orientation(text: str) -> tuple[float, float, float]:
     """"PSI,THETA,PHI" in degrees → radians, checked as the library checks them."""
-    from ..workspace.grid import WorkspaceError, check_orientation
+    from ..workspace.options import WorkspaceError, check_orientation
 
     parts = text.split(",")
     try:
@@ -110,6 +110,7 @@ def run(args) -> int:
     )
     from ..io.table import FORMATS, TableWriter, table_files, write_table
     from ..workspace.grid import WorkspaceError, map_workspace, parse_plane
+    from ..workspace.options import WorkspaceOptions
 
     orientation = parse_orientation(args.orientation)
     margins = margins_of(args)
@@ -139,23 +140,24 @@ def run(args) -> int:
         from ..dynamics.motors import load_actuators
 
         act = load_actuators(args.actuators)
-    options = dict(orientation=orientation, resolution=args.resolution, bounds=bounds,
-                   actuators=act, margins=margins,
-                   progress=progress("mapping", not args.quiet))
+    options = WorkspaceOptions(volume=plane is None, orientation=orientation,
+                               resolution=args.resolution, bounds=bounds, actuators=act,
+                               margins=margins)
+    bar = progress("mapping", not args.quiet)
     metadata = {"command": "workspace", "parameters_source": str(robot.params.source),
                 "parameters": robot.params.to_toml_dict(),
                 "options": {"plane": plane, "volume": args.volume,
                             "orientation_deg": args.orientation, "bounds": args.bounds,
                             "resolution": args.resolution, "actuators": args.actuators}}
     if plane is not None:  # everything computed before anything written
-        ws = map_workspace(robot, plane, **options)
+        ws = map_workspace(robot, plane, options, progress=bar)
     with all_or_nothing():  # every output or none; a folder made for a failed map goes
         make_folder(out)
         if plane is not None:
             write_table(paths["table"], ws.columns, metadata, args.format)
         else:  # streamed: the table is written while the map is computed
             with TableWriter(paths["table"], metadata, args.format) as writer:
-                ws = map_workspace(robot, volume=True, sink=writer.write, **options)
+                ws = map_workspace(robot, None, options, sink=writer.write, progress=bar)
         ws.summary["metadata"].update(metadata)
         with atomic_open(paths["json"]) as f:
             json.dump(ws.summary, f, indent=1, ensure_ascii=False)

@@ -20,7 +20,7 @@ import pinocchio as pin
 
 from ..errors import InputError
 from ..kinematics.errors import JointLimitError
-from ..kinematics.ik import inverse_kinematics
+from ..kinematics.ik import IkOptions, inverse_kinematics
 from ..kinematics.limits import check_joint_limits
 from ..model.build import Robot
 from ..paths.trajectory import trajectory_curve
@@ -113,7 +113,7 @@ def control_ticks(t0: float, t1: float, period: float) -> np.ndarray:
 
 def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD, curve=None,
                        losses: JointLosses | None = None, joint_limits: bool = True,
-                       **ik_options) -> DesiredTrajectory:
+                       ik: IkOptions | None = None) -> DesiredTrajectory:
     """The reference of ``trajectory`` (times, poses and their rates and accelerations) at the
     control ticks, by the batched IK and inverse dynamics of ``robot`` (the nominal model),
     with the joint ``losses`` the controller knows (rotor inertia, friction; default none).
@@ -121,16 +121,21 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     ``curve(t) → (poses, rates, accelerations)`` evaluates the tool path between samples
     (default: the trajectory's own ``curve``, else the quintic Hermite spline through its
     samples, :func:`~pollard_pin.paths.trajectory.trajectory_curve`). ``joint_limits``: refuse a
-    tick with a joint outside its limits (kinematics.limits, the rule of every command).
+    tick with a joint outside its limits (kinematics.limits, the rule of every command);
+    ``ik``: how the IK solves (:class:`~pollard_pin.kinematics.ik.IkOptions`).
     """
     if not (math.isfinite(period) and period > 0):
         raise ControlError(f"control period must be > 0 s, got {period}")
     t = np.asarray(trajectory.t, dtype=float)
     if len(t) < 2:
         raise ControlError("the trajectory needs at least 2 samples to be simulated")
+    span = float(t[-1] - t[0])
+    if period > span:  # one tick only: the controller would act once, at the start
+        raise ControlError(f"control period {period:g} s is longer than the trajectory "
+                           f"({span:.6g} s): give a period <= the trajectory's duration")
     ticks = control_ticks(float(t[0]), float(t[-1]), period)
     poses, d, dd = (curve or trajectory_curve(trajectory))(ticks)
-    ik = inverse_kinematics(robot, poses, d, dd, ticks, **ik_options)
+    ik = inverse_kinematics(robot, poses, d, dd, ticks, options=ik)
     if joint_limits:
         try:
             check_joint_limits(robot, ik.q, ticks)

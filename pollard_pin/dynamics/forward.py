@@ -14,9 +14,11 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import SolveError
-from ..kinematics.ik import inverse_kinematics
+from ..kinematics.ik import IkOptions, inverse_kinematics
 from ..model.build import Robot, constraint_residual
 from .inverse import inverse_dynamics_sample, reduced_mass_matrix
+
+NEWTON = IkOptions(method="newton")  # sample by sample, warm-started at the last pose
 
 
 class SimulationError(SolveError):
@@ -136,8 +138,7 @@ def trajectory_torques(robot: Robot, curve, q_start=None, bandwidth: float | Non
 
     def torques(t: float, q=None, v=None) -> np.ndarray:
         pose, d, dd = curve(np.array([t]))
-        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), q_start=state["q"],
-                                method="newton")
+        ik = inverse_kinematics(robot, pose, d, dd, np.array([t]), state["q"], NEWTON)
         state["q"] = ik.q[0]
         tau = inverse_dynamics_sample(robot, ik.q[0], ik.v[0], ik.a[0])[0]
         if bandwidth is not None and q is not None:

@@ -8,8 +8,9 @@ reference.
   by one compiled call per tick (:class:`~pollard_pin.kinematics.sensing.LoopSensor`, the
   same to round-off, Pinocchio's path where it is not sure).
 * :func:`simulate_tracking`: the plant integrated by fixed-step RK4 under the controller's
-  torque, held over each control period (zero-order hold), saturated per actuator. One row per
-  sample time of the input trajectory; time-weighted RMS errors (:func:`tracking_summary`).
+  torque, held over each control period (zero-order hold), saturated per actuator
+  (:class:`~.tracking_options.TrackingOptions`). One row per sample time of the input
+  trajectory; time-weighted RMS errors (:func:`tracking_summary`).
 """
 from __future__ import annotations
 
@@ -17,7 +18,6 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import partial
 
 import numpy as np
 import pinocchio as pin
@@ -32,10 +32,8 @@ from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot
 from .averages import time_rms
 from .control import (
-    CONTROL_PERIOD,
     ComputedTorque,
     ControlError,
-    Controller,
     DesiredTrajectory,
     FeedforwardPD,
     Gains,
@@ -44,38 +42,25 @@ from .control import (
     make_controller,
 )
 from .forward import SimulationError
-from .inverse import JointLosses
-from .plant import BAUMGARTE, ModelMismatch, Plant
+from .plant import Plant
+from .tracking_options import (
+    DT,
+    LOOP_TOLERANCE,
+    MAX_STEPS,
+    STEP_SECONDS,
+    TICK_SECONDS,
+    MeasurementNoise,
+    TrackingOptions,
+    check_step_count,
+    check_steps,
+    default_step,
+    estimated_wall,
+    integration_steps,
+    step_used,
+)
 
-DT = 1e-3  # s, longest RK4 step
-# Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
-# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
-# 24–34 µs and 31–62 µs as the other load varied; 40 µs and 140 µs before sensing and RK4's
-# stages were compiled, 80 µs and 400 µs before a tick built Jc and N once).
-STEP_SECONDS, TICK_SECONDS = 30e-6, 45e-6
 START_TOL = 1e-6  # m and rad: a start configuration this close to the first pose is on the path
 DIVERGED_ANGLE = 1e4  # rad (1,600 turns): a joint this far out means the simulation diverged
-# m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick
-# that a simulation may reach; beyond it the RK4 step is too long for the motion and the
-# loops no longer hold (docs/model.md §18). Seen: 1e-13–1e-11 m at normal speeds, 1.4e-6 m
-# for the thesis curve in 1 s at 1 ms steps (2e-5 m at 2 ms).
-LOOP_TOLERANCE = 1e-5
-
-
-@dataclass(frozen=True)
-class MeasurementNoise:
-    """Gaussian noise on the measured actuator angles [rad] and rates [rad/s], seeded."""
-
-    position: float = 0.0
-    velocity: float = 0.0
-    seed: int | None = 0
-
-    def __post_init__(self):
-        for name, value in (("position noise", self.position),
-                            ("velocity noise", self.velocity)):
-            if not (math.isfinite(value) and value >= 0):
-                raise ControlError(f"{name} standard deviation must be >= 0, got {value}")
-
 
 def sensed_state(robot: Robot, theta: np.ndarray, dtheta: np.ndarray,
                  q_guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -193,46 +178,6 @@ def _start_state(plant: Plant, desired: DesiredTrajectory, trajectory, start):
     return q0, np.zeros(plant.robot.model.nv)
 
 
-def default_step(control_period: float) -> float:
-    """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
-    return min(DT, control_period) if control_period > 0 else DT
-
-
-def check_steps(dt: float, control_period: float) -> None:
-    """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
-    for name, value in (("time step", dt), ("control period", control_period)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            raise ControlError(f"{name} must be > 0 s, got {value}")
-    if dt > control_period * (1 + 1e-9):
-        raise ControlError(
-            f"time step {dt:g} s is longer than the control period {control_period:g} s: each "
-            "control period is integrated in equal RK4 steps of at most the time step, so the "
-            "step would be the period; give a time step <= the control period")
-
-
-def integration_steps(duration: float, dt: float, control_period: float) -> int:
-    """The number of RK4 steps :func:`simulate_tracking` takes over ``duration`` [s], each
-    control period in ⌈T/dt⌉ equal steps (computed without building the grid; output samples
-    off that grid add one step each)."""
-    check_steps(dt, control_period)
-    periods = math.ceil(duration / control_period - 1e-9)
-    return int(periods * math.ceil(control_period / dt - 1e-9))
-
-
-def estimated_wall(duration: float, dt: float, control_period: float) -> float:
-    """A rough wall time [s] of :func:`simulate_tracking` over ``duration`` [s] (reference and
-    output excluded), from :data:`STEP_SECONDS` and :data:`TICK_SECONDS`."""
-    ticks = math.ceil(duration / control_period - 1e-9)
-    return (integration_steps(duration, dt, control_period) * STEP_SECONDS
-            + ticks * TICK_SECONDS)
-
-
-def step_used(dt: float, control_period: float) -> float:
-    """The RK4 step [s] inside a control period: T / ⌈T/dt⌉ (≤ dt)."""
-    check_steps(dt, control_period)
-    return control_period / math.ceil(control_period / dt - 1e-9)
-
-
 def _nearest(sorted_points: np.ndarray, x: np.ndarray) -> np.ndarray:
     j = np.clip(np.searchsorted(sorted_points, x), 1, len(sorted_points) - 1)
     return np.where(np.abs(sorted_points[j - 1] - x) <= np.abs(sorted_points[j] - x), j - 1, j)
@@ -301,88 +246,106 @@ def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_l
         raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint()}")
 
 
-def _torque_limit(torque_limit) -> np.ndarray | None:
-    if torque_limit is None:
-        return None
-    if np.size(torque_limit) not in (1, 6):
-        raise ControlError(f"torque limit: give one value or 6 (one per actuator), got "
-                           f"{np.size(torque_limit)}")
-    limit = np.broadcast_to(np.asarray(torque_limit, dtype=float), (6,)).copy()
-    if not (np.all(np.isfinite(limit)) and np.all(limit > 0)):
-        raise ControlError(f"torque limits must be > 0 N·m, got {limit.tolist()}")
-    return limit
+class _Ticking:
+    """The controller's side of the loop: at each control tick the actuators sensed (with
+    their noise), the controller asked, its torque saturated; the time spent saturated."""
+
+    def __init__(self, robot: Robot, plant: Plant, controller, desired: DesiredTrajectory,
+                 opts: TrackingOptions):
+        self.controller = controller
+        self.builtin = isinstance(controller, (ComputedTorque, FeedforwardPD, PDGravity))
+        self.ia = plant.robot.actuated_v
+        self.noise = opts.noise
+        self.rng = np.random.default_rng(opts.noise.seed) if opts.noise is not None else None
+        self.sense = LoopSensor(robot)  # sensed_kinematics, compiled (one call per tick)
+        self.limit = opts.limits
+        self.guess, self.v_seen = desired.q[0], desired.v[0]  # the first FK's warm start
+        # equal coefficients as arrays: cheaper than a Python float times an array, same bits
+        self.P, self.C15, self.C05 = (np.full(plant.robot.model.nv, x)
+                                      for x in (opts.control_period, 1.5, 0.5))
+        self.gains, self.period = opts.gains, opts.control_period
+        self.saturated_since, self.saturation = None, 0.0
+
+    def hint(self) -> str:
+        return _unstable_hint(self.gains, self.period)
+
+    def stop_hint(self) -> str:
+        return _stop_hint(self.saturated_since, self.gains, self.period)
+
+    def torque(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The held actuator torque (6,) from the tick at time ``t``, plant state q, v."""
+        theta, dtheta = q[self.ia], v[self.ia]  # copies (an index array)
+        noise = self.noise
+        if self.rng is not None:
+            theta += self.rng.normal(0.0, noise.position, 6) if noise.position else 0.0
+            dtheta += self.rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
+        try:
+            qm, vm, Jc, N, a0 = self.sense(theta, dtheta, self.guess)
+        except ClosureError as exc:  # the plant ran away between ticks, or the noise
+            what = ("close the loops only on a parallel singularity"
+                    if isinstance(exc, SingularityError) or exc.residual is None else
+                    f"close no loop (leg {exc.leg} is {exc.residual * 1e3:.4g} mm off)")
+            raise SimulationError(f"simulation stopped at t = {t:.6g} s: the sensed actuator "
+                                  f"angles {what}; {self.hint()}") from None
+        # The next tick's FK warm start, second order: Newton then needs one step.
+        self.guess = qm + self.P * (self.C15 * vm - self.C05 * self.v_seen)
+        self.v_seen = vm
+        c = self.controller
+        command = c(t, qm, vm, Jc, N, a0) if self.builtin else c(t, qm, vm)
+        command = np.asarray(command, dtype=float).reshape(-1)
+        if command.shape != (6,) or not math.isfinite(sum(command.tolist())) and not np.all(
+                np.isfinite(command)):  # (a finite sum: all finite, the common case)
+            raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
+                               "expected 6 finite actuator torques")
+        limit = self.limit
+        tau = command if limit is None else np.clip(command, -limit, limit)
+        clipped = limit is not None and bool(np.any(np.abs(command) > limit))
+        if self.saturated_since is not None and not clipped:
+            self.saturation += t - self.saturated_since
+            self.saturated_since = None
+        elif clipped and self.saturated_since is None:
+            self.saturated_since = t
+        return tau
+
+    def finish(self, t_end: float) -> None:
+        if self.saturated_since is not None:
+            self.saturation += t_end - self.saturated_since
 
 
-def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "computed-torque",
-                      errors: ModelMismatch | None = None, *, gains: Gains | None = None,
-                      dt: float | None = None, control_period: float = CONTROL_PERIOD,
-                      torque_limit=None, noise: MeasurementNoise | None = None, start=None,
-                      baumgarte: tuple[float, float] = BAUMGARTE,
-                      desired: DesiredTrajectory | None = None, curve=None,
-                      known_losses: JointLosses | None = None, joint_limits: bool = True,
-                      loop_tolerance: float = LOOP_TOLERANCE,
-                      progress: Callable[[int, int], None] | None = None) -> TrackingResult:
-    """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
-    ``dd_poses``, e.g. :class:`~pollard_pin.paths.trajectory.Trajectory`; its ``curve``, if
-    any, is the path between the samples the reference follows).
+@dataclass
+class _Record:
+    """The plant at the output samples, from :func:`_integrate`."""
 
-    ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
-    :class:`Controller` callable; it sees :func:`sensed_state` at each tick. ``gains``: the
-    built-in controllers' (default :class:`Gains`()). ``errors``: how
-    the plant differs from ``robot`` (payload, mass error, losses). ``dt``: longest RK4 step
-    [s], at most ``control_period`` [s] (default: :data:`DT` or the period, the shorter); the
-    torque is computed at each tick and held;
-    ``torque_limit`` [N·m]: a scalar or one per actuator, |τ| clipped to it; ``noise``:
-    measurement noise on the actuator angles and rates. ``start``: None (on the path, at the
-    reference's state) or a closed configuration at rest whose tool pose is the trajectory's
-    first pose. ``desired`` reuses a :func:`desired_trajectory` computed with the same period
-    (and ``known_losses``). ``known_losses``: joint losses the built-in controllers know and
-    compensate (e.g. the motors' reflected rotor inertia and friction); the plant's are in
-    ``errors.losses``. ``progress(done, total)`` is called per output sample.
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    tau: np.ndarray
+    residual: np.ndarray
+    max_residual: float
+    steps: int
+    wall: float
 
-    The run stops with :class:`SimulationError` when, at a control tick, the plant's loops open
-    beyond ``loop_tolerance`` [m] (default :data:`LOOP_TOLERANCE`) or (``joint_limits``, the
-    default) a joint leaves its limits: past either the motion is not the robot's (e.g.
-    saturated torques let it fall). With ``joint_limits`` the reference must keep the limits
-    too (:func:`desired_trajectory`).
-    """
-    dt = default_step(control_period) if dt is None else dt
-    check_steps(dt, control_period)
-    gains = Gains() if gains is None else gains
-    limit = _torque_limit(torque_limit)
-    plant = Plant(robot, errors, baumgarte)
-    if desired is None:
-        desired = desired_trajectory(robot, trajectory, control_period, curve, known_losses,
-                                     joint_limits=joint_limits)
-    label = controller if isinstance(controller, str) else type(controller).__name__
-    if isinstance(controller, str):
-        controller = make_controller(controller, robot, desired, gains, known_losses)
-    builtin = isinstance(controller, (ComputedTorque, FeedforwardPD, PDGravity))
-    q, v = _start_state(plant, desired, trajectory, start)
 
-    samples = np.asarray(trajectory.t, dtype=float)
+def _integrate(plant: Plant, ticking: _Ticking, q: np.ndarray, v: np.ndarray, grid, n: int,
+               opts: TrackingOptions) -> _Record:
+    """RK4 over the breakpoints of ``grid`` (:func:`_grid`) from (q, v), the torque of each
+    tick held; the state at the ``n`` output samples. Small-vector arithmetic
+    (docs/model.md §18): numpy's fixed cost dominates, so each form below is the cheapest of
+    the same bits: RK4's stages compiled (kernels.rk4_step), dot products and Python's min
+    over a list for reductions (≈ 0.5 µs against 1.5)."""
     # as Python scalars: the loop reads three per step (numpy scalars cost more, same bits)
-    pts, is_tick, sample_of = (x.tolist() for x in _grid(desired.t, samples, dt))
-    n = len(samples)
+    pts, is_tick, sample_of = (x.tolist() for x in grid)
     nv = plant.robot.model.nv
     Q, V, A = np.empty((n, nv)), np.empty((n, nv)), np.empty((n, nv))
     TAU, RES = np.empty((n, 6)), np.empty(n)
-    ia = plant.robot.actuated_v
-    rng = np.random.default_rng(noise.seed) if noise is not None else None
-    sense = LoopSensor(robot)  # sensed_kinematics, compiled (one call per tick)
     f = plant.held(np.zeros(6))
     tau = np.zeros(6)
-    guess, v_seen = desired.q[0], desired.v[0]  # the first FK's warm start: the reference
-    saturated_since, saturation, max_res = None, 0.0, 0.0
+    max_res = 0.0
     names = plant.robot.joint_names
-    limits = (names, limit_bounds(plant.robot.params, names)) if joint_limits else None
-    lo, hi = limits[1] if joint_limits else (None, None)
-    # Small-vector arithmetic in the loop (docs/model.md §18): numpy's fixed cost dominates,
-    # so each form below is the cheapest of the same bits: RK4's stages compiled
-    # (kernels.rk4_step), an array of equal coefficients for a Python float (≈ 0.4 µs against
-    # 0.7), dot products and Python's min over a list for reductions (≈ 0.5 µs against 1.5).
+    limits = (names, limit_bounds(plant.robot.params, names)) if opts.joint_limits else None
+    lo, hi = limits[1] if opts.joint_limits else (None, None)
+    tolerance, progress = opts.loop_tolerance, opts.progress
     stage_q, stage_v = np.empty(nv), np.empty(nv)
-    P, C15, C05 = (np.full(nv, x) for x in (control_period, 1.5, 0.5))
     clock = time.perf_counter()
     last = len(pts) - 1
     for i in range(len(pts)):
@@ -393,40 +356,11 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         if not (q.dot(q) < DIVERGED_ANGLE ** 2 and v.dot(v) < math.inf) and not (
                 np.abs(q).max() < DIVERGED_ANGLE and np.abs(v).max() < math.inf):
             raise SimulationError(f"simulation diverged at t = {t:.6g} s: state not finite or "
-                                  f"beyond {DIVERGED_ANGLE:g} rad; "
-                                  f"{_unstable_hint(gains, control_period)}")
+                                  f"beyond {DIVERGED_ANGLE:g} rad; {ticking.hint()}")
         tick = is_tick[i]
         if tick:
-            theta, dtheta = q[ia], v[ia]  # copies (an index array)
-            if rng is not None:
-                theta += rng.normal(0.0, noise.position, 6) if noise.position else 0.0
-                dtheta += rng.normal(0.0, noise.velocity, 6) if noise.velocity else 0.0
-            try:
-                qm, vm, Jc, N, a0 = sense(theta, dtheta, guess)
-            except ClosureError as exc:  # the plant ran away between ticks, or the noise
-                what = ("close the loops only on a parallel singularity"
-                        if isinstance(exc, SingularityError) or exc.residual is None else
-                        f"close no loop (leg {exc.leg} is {exc.residual * 1e3:.4g} mm off)")
-                raise SimulationError(f"simulation stopped at t = {t:.6g} s: the sensed "
-                                      f"actuator angles {what}; "
-                                      f"{_unstable_hint(gains, control_period)}") from None
-            # The next tick's FK warm start, second order: Newton then needs one step.
-            guess = qm + P * (C15 * vm - C05 * v_seen)
-            v_seen = vm
-            command = controller(t, qm, vm, Jc, N, a0) if builtin else controller(t, qm, vm)
-            command = np.asarray(command, dtype=float).reshape(-1)
-            if command.shape != (6,) or not math.isfinite(sum(command.tolist())) and not np.all(
-                    np.isfinite(command)):  # (a finite sum: all finite, the common case)
-                raise ControlError(f"controller returned {command!r} at t = {t:.6g} s; "
-                                   "expected 6 finite actuator torques")
-            tau = command if limit is None else np.clip(command, -limit, limit)
+            tau = ticking.torque(t, q, v)
             f = plant.held(tau)
-            clipped = limit is not None and bool(np.any(np.abs(command) > limit))
-            if saturated_since is not None and not clipped:
-                saturation += t - saturated_since
-                saturated_since = None
-            elif clipped and saturated_since is None:
-                saturated_since = t
         a1 = f(q, v)
         k = sample_of[i]
         if tick or k >= 0:  # the loop residual at q, where f just placed the closures
@@ -435,10 +369,9 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
                 max_res = max(max_res, res)
                 # (q − lo)(hi − q) > 0 for every joint: strictly inside its limits (the common
                 # case); at a bound, outside or NaN, the exact rule (turns counted) decides
-                if res > loop_tolerance or lo is not None and not min(
+                if res > tolerance or lo is not None and not min(
                         ((q - lo) * (hi - q)).tolist()) > 0.0:
-                    _check_plant(plant, q, res, t, limits, loop_tolerance,
-                                 partial(_stop_hint, saturated_since, gains, control_period))
+                    _check_plant(plant, q, res, t, limits, tolerance, ticking.stop_hint)
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
             RES[k] = res
@@ -447,34 +380,80 @@ def simulate_tracking(robot: Robot, trajectory, controller: str | Controller = "
         if i == last:
             break
         q, v = rk4_step(f, q, v, a1, pts[i + 1] - t, stage_q, stage_v)
-    if saturated_since is not None:
-        saturation += pts[-1] - saturated_since
+    ticking.finish(pts[-1])
     wall = time.perf_counter() - clock
-    max_res = max(max_res, float(RES.max()))
+    return _Record(Q, V, A, TAU, RES, max(max_res, float(RES.max())), last, wall)
 
+
+def _result(robot: Robot, plant: Plant, trajectory, samples: np.ndarray, record: _Record,
+            ticking: _Ticking, opts: TrackingOptions) -> TrackingResult:
+    """The result table: the tool pose of every output sample against the trajectory's."""
+    n = len(samples)
     tip = np.empty((n, 3))
     o_err = np.empty(n)
     R_des = rotation(trajectory.poses)
     for k in range(n):
-        M = tool_pose(plant.robot, Q[k])
+        M = tool_pose(plant.robot, record.q[k])
         tip[k] = M.translation
         o_err[k] = np.linalg.norm(pin.log3(M.rotation @ R_des[k].T))
     tip_des = np.asarray(trajectory.poses, dtype=float)[:, :3]
-    settings = {"controller": label,
-                "wn": gains.wn, "zeta": gains.zeta, "dt": step_used(dt, control_period),
-                "control_period": control_period,
+    limit, noise = opts.limits, opts.noise
+    settings = {"controller": opts.label,
+                "wn": opts.gains.wn, "zeta": opts.gains.zeta,
+                "dt": step_used(opts.step, opts.control_period),
+                "control_period": opts.control_period,
                 "payload": plant.errors.payload, "mass_error": plant.errors.mass_error,
                 "torque_limit": None if limit is None else limit.tolist(),
                 "noise": None if noise is None else [noise.position, noise.velocity,
                                                      noise.seed]}
     return TrackingResult(
-        t=samples.copy(), q=Q, v=V, a=A, tau=TAU, tip=tip, tip_desired=tip_des,
-        tip_position_error=np.linalg.norm(tip - tip_des, axis=1), tip_orientation_error=o_err,
-        closure_residual=RES, joint_names=plant.robot.joint_names, actuated=robot.actuated,
-        saturation_time=saturation, max_closure_residual=max_res, steps=last, wall=wall,
-        settings=settings)
+        t=samples.copy(), q=record.q, v=record.v, a=record.a, tau=record.tau, tip=tip,
+        tip_desired=tip_des, tip_position_error=np.linalg.norm(tip - tip_des, axis=1),
+        tip_orientation_error=o_err, closure_residual=record.residual,
+        joint_names=plant.robot.joint_names, actuated=robot.actuated,
+        saturation_time=ticking.saturation, max_closure_residual=record.max_residual,
+        steps=record.steps, wall=record.wall, settings=settings)
 
 
-__all__ = ["LOOP_TOLERANCE", "MeasurementNoise", "TrackingResult", "check_steps", "default_step",
-           "estimated_wall", "integration_steps", "sensed_kinematics", "sensed_state",
-           "simulate_tracking", "step_used", "tracking_summary"]
+def simulate_tracking(robot: Robot, trajectory,
+                      options: TrackingOptions | None = None) -> TrackingResult:
+    """Simulate the closed loop along ``trajectory`` (``t``, ``poses``, ``d_poses``,
+    ``dd_poses``, e.g. :class:`~pollard_pin.paths.trajectory.Trajectory`; its ``curve``, if
+    any, is the path between the samples the reference follows) as ``options`` say
+    (:class:`TrackingOptions`: controller, plant errors, gains, steps, torque limit, noise,
+    start; default its defaults).
+
+    The run stops with :class:`SimulationError` when, at a control tick, the plant's loops open
+    beyond ``options.loop_tolerance`` [m] (default :data:`LOOP_TOLERANCE`) or (``joint_limits``,
+    the default) a joint leaves its limits: past either the motion is not the robot's (e.g.
+    saturated torques let it fall). With ``joint_limits`` the reference must keep the limits
+    too (:func:`desired_trajectory`). Past :data:`MAX_STEPS` RK4 steps it refuses at once.
+    """
+    opts = TrackingOptions() if options is None else options
+    if not isinstance(opts, TrackingOptions):
+        raise ControlError(f"options must be a TrackingOptions, got {type(opts).__name__}")
+    samples = np.asarray(trajectory.t, dtype=float)
+    if samples.ndim == 1 and len(samples) >= 2:  # (desired_trajectory names a shorter one)
+        check_step_count(float(samples[-1] - samples[0]), opts.step, opts.control_period)
+    plant = Plant(robot, opts.errors, opts.baumgarte)
+    desired = opts.desired
+    if desired is None:
+        desired = desired_trajectory(robot, trajectory, opts.control_period, opts.curve,
+                                     opts.known_losses, joint_limits=opts.joint_limits)
+    controller = opts.controller
+    if isinstance(controller, str):
+        controller = make_controller(controller, robot, desired, opts.gains, opts.known_losses)
+    q, v = _start_state(plant, desired, trajectory, opts.start)
+    ticking = _Ticking(robot, plant, controller, desired, opts)
+    grid = _grid(desired.t, samples, opts.step)
+    # a plant that runs away overflows on its way out: the loop names it once, no warnings
+    with np.errstate(over="ignore", invalid="ignore"):
+        record = _integrate(plant, ticking, q, v, grid, len(samples), opts)
+    return _result(robot, plant, trajectory, samples, record, ticking, opts)
+
+
+__all__ = ["DT", "LOOP_TOLERANCE", "MAX_STEPS", "STEP_SECONDS", "TICK_SECONDS",
+           "MeasurementNoise", "TrackingOptions", "TrackingResult", "check_step_count",
+           "check_steps", "default_step", "estimated_wall", "integration_steps",
+           "sensed_kinematics", "sensed_state", "simulate_tracking", "step_used",
+           "tracking_summary"]

@@ -9,7 +9,8 @@ The rules every command follows (docs/model.md §15, end):
   all of them or none.
 * Anything else that exists (a FIFO, a character device such as ``/dev/null``) is written in
   place: renaming onto it would replace the device by a regular file, and it cannot be rolled
-  back, so a command writes it last. ``-`` is standard output.
+  back, so a command writes it last. A FIFO with no reader within :data:`FIFO_WAIT` s is an
+  :class:`OutputError`, not a hang. ``-`` is standard output.
 * A symbolic link to a file is written through: its target is replaced (atomically, beside
   the target) and the link stays. A dangling link or a link loop is refused up front.
 * :func:`check_outputs` checks every destination of a command before the work starts, and
@@ -28,6 +29,7 @@ import re
 import stat
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 from ..errors import DestinationError, PollardError
@@ -138,6 +140,34 @@ def _cannot_create_in(folder: Path) -> str | None:
     os.close(fd)
     os.unlink(tmp)
     return None
+
+
+# s a FIFO's reader may take to open it (`pollard-pin run --out f & reader < f`)
+FIFO_WAIT = 2.0
+
+
+def _open_special(path: Path, target: Path) -> int:
+    """A descriptor writing to the device or FIFO ``target``. A FIFO is opened without
+    blocking: with no reader within :data:`FIFO_WAIT` s, one line rather than a hang."""
+    if not stat.S_ISFIFO(os.stat(target).st_mode):
+        try:
+            return os.open(target, os.O_WRONLY)
+        except OSError as exc:
+            raise OutputError(f"{path}: cannot write: {_why(exc)}") from None
+    deadline = time.monotonic() + FIFO_WAIT
+    while True:
+        try:
+            fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK)
+        except OSError as exc:
+            if exc.errno != errno.ENXIO:  # ENXIO: no reader yet
+                raise OutputError(f"{path}: cannot write: {_why(exc)}") from None
+            if time.monotonic() >= deadline:
+                raise OutputError(f"{path}: a FIFO that no one reads (none opened it in "
+                                  f"{FIFO_WAIT:g} s): start its reader first") from None
+            time.sleep(0.02)
+            continue
+        os.set_blocking(fd, True)  # a reader is there: write as to any file
+        return fd
 
 
 def _why(exc: OSError) -> str:
@@ -286,7 +316,8 @@ def atomic_open(path: str | Path, newline: str | None = None, binary: bool = Fal
     check_destination(path)
     target = _target(path)
     if is_special(target):
-        with _write_errors(path), open(target, mode, **text) as f:
+        fd = _open_special(path, target)
+        with _write_errors(path), os.fdopen(fd, mode, **text) as f:
             yield f
         return
     parent = target.parent if str(target.parent) else Path(".")

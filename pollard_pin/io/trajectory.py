@@ -41,6 +41,19 @@ def from_csv(path: str | Path) -> Trajectory:
     :class:`UserWarning` says so.
     """
     path = Path(path)
+    rows, lines = _read_rows(path)
+    header = _check_header(path, rows)
+    col = _parse_cells(path, rows, lines, header)
+    t = _check_times(path, col, lines)
+    poses = np.column_stack([col[n] for n in TASK_NAMES])
+    _check_units(path, poses, lines)
+    check_angle_wraps(path, t, poses, lines)
+    d, dd, source, curve = _derivatives(path, t, poses, col)
+    return Trajectory(t, poses, d, dd, name=path.stem, derivatives=source, curve=curve)
+
+
+def _read_rows(path: Path) -> tuple[list[list[str]], list[int]]:
+    """The CSV rows that are not comments, and the 1-based file line of each."""
     try:
         with open_regular(path, "rb") as f:  # not a FIFO: it would block forever
             magic = f.read(4)
@@ -73,6 +86,11 @@ def from_csv(path: str | Path) -> Trajectory:
                               "not CSV text")
     if not rows:
         raise TrajectoryError(f"{path}: empty file (expected a header t,x,y,z,psi,theta,phi)")
+    return rows, lines
+
+
+def _check_header(path: Path, rows: list[list[str]]) -> list[str]:
+    """The column names of the first row: known, each once, the base ones all there."""
     header = [h.strip() for h in rows[0]]
     base = ("t",) + TASK_NAMES
     allowed = (base + tuple(f"d_{n}" for n in TASK_NAMES) + tuple(f"dd_{n}" for n in TASK_NAMES)
@@ -86,6 +104,12 @@ def from_csv(path: str | Path) -> Trajectory:
     missing = [c for c in base if c not in header]
     if missing:
         raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")
+    return header
+
+
+def _parse_cells(path: Path, rows, lines, header) -> dict[str, np.ndarray]:
+    """Every cell a finite number, each row full; the columns by name (at least 2 samples,
+    ``spray`` in [0, 1])."""
     data = np.empty((len(rows) - 1, len(header)))
     for r, row in enumerate(rows[1:]):
         line = lines[r + 1]  # file line, comment and blank lines counted
@@ -112,6 +136,11 @@ def from_csv(path: str | Path) -> Trajectory:
             raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {SPRAY!r}: "
                                   f"{float(col[SPRAY][r])!r} is outside [0, 1] (the fraction "
                                   "of the gun's flow)")
+    return col
+
+
+def _check_times(path: Path, col, lines) -> np.ndarray:
+    """The times: in seconds, increasing strictly by at least the solver's least step."""
     t = col["t"]
     big = np.abs(t) > MAX_TIME
     if np.any(big):
@@ -132,7 +161,11 @@ def from_csv(path: str | Path) -> Trajectory:
                               f"{float(t[r + 1])!r} after {float(t[r])!r} is "
                               f"{float(dt[r]):.3g} s, below {MIN_TIME_STEP:g} s (times in "
                               "seconds?)")
-    poses = np.column_stack([col[n] for n in TASK_NAMES])
+    return t
+
+
+def _check_units(path: Path, poses: np.ndarray, lines) -> None:
+    """Refuse coordinates that look like millimetres and angles that look like degrees."""
     for c, name in enumerate(TASK_NAMES):
         limit, unit = (MAX_LENGTH, "millimetres (expected m)") if c < 3 else \
             (MAX_ANGLE, "degrees (expected rad)")
@@ -142,7 +175,12 @@ def from_csv(path: str | Path) -> Trajectory:
             raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {name!r}: "
                                   f"{float(poses[r, c])!r} looks like {unit}; "
                                   f"|value| > {limit:.4g}")
-    check_angle_wraps(path, t, poses, lines)
+
+
+def _derivatives(path: Path, t, poses, col):
+    """(d_poses, dd_poses, their source, the curve between samples or None): the file's
+    d_*/dd_* columns (full sets, checked against the positions), else a quintic spline's,
+    with a warning."""
     derivs = []
     for prefix in ("d_", "dd_"):
         names = [prefix + n for n in TASK_NAMES]
@@ -168,11 +206,11 @@ def from_csv(path: str | Path) -> Trajectory:
             derivs[1] = dd_spl
         source = "quintic spline"
         absent = "/".join(p + "*" for p, d in zip(("d_", "dd_"), derivs_given) if not d)
+        # stacklevel 3: the warning names from_csv's caller
         warnings.warn(f"{path}: no {absent} columns; derivatives taken from a quintic "
-                      "interpolating spline through the samples", UserWarning, stacklevel=2)
+                      "interpolating spline through the samples", UserWarning, stacklevel=3)
     check_derivatives(path, t, poses, derivs[0], derivs[1], *derivs_given)
-    return Trajectory(t, poses, derivs[0], derivs[1], name=path.stem, derivatives=source,
-                      curve=curve)
+    return derivs[0], derivs[1], source, curve
 
 
 def check_angle_wraps(path, t: np.ndarray, poses: np.ndarray, lines) -> None:

@@ -5,43 +5,42 @@ from __future__ import annotations
 
 from ..model.build import Robot
 from .errors import KinematicsInputError
-from .ik_batch import BATCH_CHUNK, inverse_kinematics_batch
-from .ik_common import IK_TOL, IKResult
+from .ik_batch import inverse_kinematics_batch
+from .ik_common import BATCH_CHUNK, IK_TOL, IkOptions, IKResult, ik_options
 from .ik_newton import inverse_kinematics_newton
-from .margins import MarginError, Margins
+from .margins import Margins
 
 
 def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
-                       q_start=None, *, method: str | None = None,
-                       margins: Margins | None = None, tol: float = IK_TOL, progress=None,
-                       **options) -> IKResult:
+                       q_start=None, options: IkOptions | None = None, *,
+                       progress=None, margins: Margins | None = None) -> IKResult:
     """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
 
-    ``method="batch"`` (the default without ``q_start``) stacks the work over samples (see
-    :func:`inverse_kinematics_batch`); ``method="newton"`` (the default with ``q_start``)
-    solves sample by sample (see :func:`inverse_kinematics_newton`). Both give the same result
-    to round-off. ``margins`` (:class:`~.margins.Margins`, default its defaults) say how close
-    to a singularity a sample may come (docs/model.md §12); ``tol`` is Newton's; ``options``:
-    ``max_iter`` (Newton) or ``chunk``, ``timings`` (batch). Invalid arguments (empty or
-    non-finite poses, times that do not increase, a bad tolerance) raise
-    :class:`KinematicsInputError`, a ValueError; a bad margin cannot be made
-    (:class:`~.margins.MarginError`), and anything but a ``Margins`` is refused with it.
+    ``options`` (:class:`IkOptions`, default its defaults): ``method="batch"`` (the default
+    without ``q_start``) stacks the work over samples (see :func:`inverse_kinematics_batch`);
+    ``method="newton"`` (the default with ``q_start``) solves sample by sample (see
+    :func:`inverse_kinematics_newton`). Both give the same result to round-off. Its
+    ``margins`` (:class:`~.margins.Margins`) say how close to a singularity a sample may come
+    (docs/model.md §12); ``tol`` is Newton's. ``progress(done, total)`` is called as samples
+    are solved. ``margins``: short for ``IkOptions(margins=…)`` where nothing else is set
+    (paint.motion's reach check). Invalid arguments (empty or non-finite poses, times that do
+    not increase, a bad tolerance) raise :class:`KinematicsInputError`, a ValueError.
     """
-    old = sorted({"wrist_margin", "singularity_margin"} & set(options))
-    if old:  # the keywords of before Margins: say what replaced them
-        raise MarginError(f"{', '.join(old)}: pass margins=Margins(wrist=…, singularity=…)")
-    method = method or ("newton" if q_start is not None else "batch")
+    if margins is not None:
+        if options is not None:
+            raise KinematicsInputError("give the margins in options (IkOptions(margins=…)) "
+                                       "or alone, not both", chain="margins")
+        options = IkOptions(margins=margins)
+    options = ik_options(options)
+    method = options.method or ("newton" if q_start is not None else "batch")
     if method == "newton":
-        return inverse_kinematics_newton(robot, poses, d_poses, dd_poses, t, q_start,
-                                         margins=margins, tol=tol, progress=progress,
-                                         **options)
-    if method != "batch":
-        raise KinematicsInputError(f"method must be 'batch' or 'newton', got {method!r}")
+        return inverse_kinematics_newton(robot, poses, d_poses, dd_poses, t, q_start, options,
+                                         progress=progress)
     if q_start is not None:
         raise KinematicsInputError("q_start applies to method='newton' only")
-    return inverse_kinematics_batch(robot, poses, d_poses, dd_poses, t, margins=margins,
-                                    tol=tol, progress=progress, **options)
+    return inverse_kinematics_batch(robot, poses, d_poses, dd_poses, t, options,
+                                    progress=progress)
 
 
-__all__ = ["inverse_kinematics", "IKResult", "IK_TOL", "BATCH_CHUNK", "Margins",
+__all__ = ["inverse_kinematics", "IKResult", "IkOptions", "IK_TOL", "BATCH_CHUNK", "Margins",
            "inverse_kinematics_batch", "inverse_kinematics_newton"]

@@ -12,16 +12,15 @@ from ..timing import Stopwatch
 from . import kernels
 from .errors import UnreachablePoseError
 from .ik_common import (
-    IK_TOL,
+    IkOptions,
     IKResult,
     KinematicFrames,
-    check_options,
     closed_form_angles,
+    ik_options,
     task_inputs,
     zyz,
     zyz_rates,
 )
-from .margins import Margins
 from .singularity import check_margins, conditioning, inverse_stack
 from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
 
@@ -118,15 +117,14 @@ def point_drifts(lay: Layout, R, o, v, pos):
                                 pos, *t.tool)
 
 
-BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
 POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step is applied
 
 
-def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None, *,
-                             tol: float = IK_TOL, margins: Margins | None = None,
-                             progress=None,
-                             chunk: int = BATCH_CHUNK, timings: dict | None = None) -> IKResult:
-    """Same result as :func:`inverse_kinematics`, stacked over samples.
+def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
+                             options: IkOptions | None = None, *, progress=None,
+                             timings: dict | None = None) -> IKResult:
+    """Same result as :func:`inverse_kinematics`, stacked over samples (``options``: its
+    ``margins``, ``tol`` and ``chunk``, samples per block).
 
     Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
     step on the [closure residual; tool-pose error]; velocities and accelerations solve the
@@ -143,7 +141,8 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     and :func:`~.singularity.check_margins` raises :class:`SingularityError` at the first
     singular (or margin-violating) sample, naming its time, chain and σ.
     """
-    margins = check_options(tol, margins, chunk=chunk)
+    options = ik_options(options)
+    margins, chunk = options.margins, options.chunk
     clock = Stopwatch(timings)
     poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
@@ -152,8 +151,8 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     parts = []
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
-        parts.append(_batch_block(robot, q0[sl], poses[sl], d_poses[sl], dd_poses[sl], t[sl],
-                                  tol, start, clock))
+        task = (poses[sl], d_poses[sl], dd_poses[sl], t[sl])
+        parts.append(_batch_block(robot, q0[sl], task, options.tol, start, clock))
         if progress is not None:
             progress(sl.stop, n)
     if len(parts) == 1:
@@ -167,7 +166,10 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     return result
 
 
-def _batch_block(robot: Robot, q0, poses, d_poses, dd_poses, t, tol, start, clock) -> IKResult:
+def _batch_block(robot: Robot, q0, task, tol, start, clock) -> IKResult:
+    """One block of samples from its closed-form angles ``q0``; ``task``: its (poses,
+    d_poses, dd_poses, t), the first being sample ``start``."""
+    poses, d_poses, dd_poses, t = task
     n = len(poses)
     model = robot.model
     lay = layout(robot)

@@ -22,6 +22,44 @@ from .margins import SERIAL_FLOOR, Margins, as_margins
 from .singularity import floor_message
 
 IK_TOL = 1e-12  # m / rad, closure residual and tool-pose error reached by Newton
+BATCH_CHUNK = 4096  # samples per stacked block: bounds memory (≈ 10 kB per sample)
+MAX_ITER = 30  # Newton iterations per sample (sample-by-sample solver)
+METHODS = ("batch", "newton")
+
+
+@dataclass(frozen=True)
+class IkOptions:
+    """How the constrained IK solves, checked once here (:class:`KinematicsInputError`, or
+    :class:`~.margins.MarginError` for margins that are not a :class:`Margins`).
+
+    ``method``: "batch" (stacked over samples), "newton" (sample by sample) or None (newton
+    with a ``q_start``, else batch). ``margins`` (None: the defaults) say how close to a
+    singularity a sample may come (docs/model.md §12); ``tol`` [m / rad]: Newton's;
+    ``max_iter``: Newton's iterations per sample; ``chunk``: samples per stacked block.
+    """
+
+    method: str | None = None
+    margins: Margins | None = None
+    tol: float = IK_TOL
+    max_iter: int = MAX_ITER
+    chunk: int = BATCH_CHUNK
+
+    def __post_init__(self):
+        if self.method is not None and self.method not in METHODS:
+            raise KinematicsInputError(f"method must be 'batch' or 'newton', got "
+                                       f"{self.method!r}")
+        object.__setattr__(self, "margins", check_options(
+            self.tol, self.margins, max_iter=self.max_iter, chunk=self.chunk))
+
+
+def ik_options(options) -> IkOptions:
+    """``options``, or the defaults for None; anything else is refused in one line."""
+    if options is None:
+        return IkOptions()
+    if not isinstance(options, IkOptions):
+        raise KinematicsInputError(f"options must be an IkOptions, got "
+                                   f"{type(options).__name__}", chain="options")
+    return options
 
 
 def zyz(M: np.ndarray) -> np.ndarray:

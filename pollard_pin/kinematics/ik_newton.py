@@ -3,6 +3,7 @@ accelerations (docs/model.md §7, §11): Newton with continuation on the assembl
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
@@ -11,11 +12,11 @@ from ..analytic.taskspace import rotation, twist, twist_dot
 from ..model.build import Robot, constraint_jacobian
 from .errors import KinematicsError, KinematicsInputError, SingularityError, UnreachablePoseError
 from .ik_common import (
-    IK_TOL,
+    IkOptions,
     IKResult,
     KinematicFrames,
-    check_options,
     closed_form_angles,
+    ik_options,
     task_inputs,
     zyz,
     zyz_rates,
@@ -75,7 +76,24 @@ def spherical_angles(data, fr: KinematicFrames):
     return np.concatenate(ang), np.concatenate(rate)
 
 
-def _newton(model, data, cms, cds, fr, q, p_des, R_des, tol, max_iter):
+@dataclass(frozen=True)
+class _Kinematics:
+    """The model, data, constraints and frame ids the per-sample solver works on."""
+
+    model: object
+    data: object
+    cms: object
+    cds: object
+    fr: KinematicFrames
+
+    @classmethod
+    def of(cls, robot: Robot) -> _Kinematics:
+        return cls(robot.model, robot.data, robot.constraint_models, robot.constraint_datas,
+                   KinematicFrames.of(robot))
+
+
+def _newton(kin: _Kinematics, q, p_des, R_des, tol, max_iter):
+    model, data, cms, cds, fr = kin.model, kin.data, kin.cms, kin.cds, kin.fr
     e = pose_error(model, data, fr, q, p_des, R_des)
     polished = False
     for _ in range(max_iter):
@@ -149,9 +167,10 @@ def _stop(stats_row, margins: Margins) -> bool:
 
 
 def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
-                              q_start=None, *, tol: float = IK_TOL, max_iter: int = 30,
-                              margins: Margins | None = None, progress=None) -> IKResult:
-    """Sample-by-sample constrained IK.
+                              q_start=None, options: IkOptions | None = None, *,
+                              progress=None) -> IKResult:
+    """Sample-by-sample constrained IK (``options``: its ``margins``, ``tol`` and
+    ``max_iter``).
 
     Positions: Newton on [closure residual; tool-pose error], warm-started from the previous
     sample (the first from ``q_start``, default the closed form on docs/model.md §9 branches)
@@ -165,18 +184,18 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
     drifts from Pinocchio's classical accelerations. Raises a :class:`KinematicsError` subclass
     at the first unreachable, singular or branch-flipping sample.
     """
-    margins = check_options(tol, margins, max_iter=max_iter)
-    model, data = robot.model, robot.data
-    cms, cds = robot.constraint_models, robot.constraint_datas
-    fr = KinematicFrames.of(robot)
+    options = ik_options(options)
+    margins = options.margins
+    kin = _Kinematics.of(robot)
+    fr = kin.fr
     poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
     Rs = rotation(poses)
     tw, twd = twist(poses, d_poses), twist_dot(poses, d_poses, dd_poses)
-    nv = model.nv
-    out = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
-    sph, dsph = np.empty((n, 6)), np.empty((n, 6))
-    stats = np.empty((n, 7))
+    nv = kin.model.nv
+    rows = {k: np.empty((n, nv)) for k in ("q", "v", "a")}
+    rows.update(spherical=np.empty((n, 6)), d_spherical=np.empty((n, 6)),
+                stats=np.empty((n, 7)))
     if q_start is None:  # docs/model.md §9 branches, through the closed form at the first pose
         # a start only: the margins judge the solution Newton reports (_stop, check_margins)
         q = closed_form_angles(robot, poses[:1], t[:1], None)[0]
@@ -184,63 +203,89 @@ def inverse_kinematics_newton(robot: Robot, poses, d_poses=None, dd_poses=None, 
         q = _start_configuration(robot, q_start)
 
     def solve(guess, pose, R=None):
-        return _newton(model, data, cms, cds, fr, guess, pose[:3],
-                       rotation(pose) if R is None else R, tol, max_iter)
+        return _newton(kin, guess, pose[:3], rotation(pose) if R is None else R, options.tol,
+                       options.max_iter)
 
     branch = BranchQuantities(robot)
-    rhs_v = np.zeros(12)
     ref = None
     for k in range(n):
         if k == 0:
             q, e, ok = solve(q, poses[0], Rs[0])
             signs = branch.signs_list(q)
-        else:  # predictor: second-order Taylor step from the previous sample
-            dt = t[k] - t[k - 1]
-            q_prev = out["q"][k - 1]
-            q = q_prev + dt * out["v"][k - 1] + 0.5 * dt * dt * out["a"][k - 1]
-            q, e, ok = solve(q if np.isfinite(q).all() else q_prev, poses[k], Rs[k])
-            signs = branch.signs_list(q)
-            if not (ok and same_branch(signs, ref)):
-                q, e, ok, flip = _follow(solve, branch.signs_list, q_prev, poses[k - 1],
-                                         poses[k], ref)
-                if flip is not None:
-                    s_, q_a, q_b = flip
-                    va, vb = branch(q_a), branch(q_b)
-                    j = next(i for i, (a_, b_) in enumerate(zip(branch.signs_list(q_b), ref))
-                             if a_ * b_ < 0)
-                    raise flip_error(k - 1, k, j, float(va[j]), float(vb[j]), t[k],
-                                     near=float(t[k - 1] + s_ * dt))
-                signs = branch.signs_list(q)
+        else:
+            q, e, ok, signs = _next_position(solve, branch, rows, (poses, t, Rs), k, ref)
         if not ok:
             raise _diagnose(robot, poses[k], k, t[k], e, margins)
         # The reference keeps the last non-zero sign (a zero is a boundary: no information).
         ref = signs if ref is None else [s if s else r for s, r in zip(signs, ref)]
-        K = kinematic_matrix(model, data, cms, cds, fr, q)
-        stats[k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(), abs(np.sin(q[fr.wrist_q])),
-                    *conditioning(K, fr.actuated_v, fr.passive_v, full=True))
-        rhs_v[6:] = tw[k]
-        try:
-            v = np.linalg.solve(K, rhs_v)
-            drift = frame_drifts(model, data, fr, q, v)
-            rhs_a = -drift
-            rhs_a[6:] += twd[k]
-            a = np.linalg.solve(K, rhs_a)
-        except np.linalg.LinAlgError:  # singular K: check_margins names the singularity
-            v = a = np.full(nv, np.nan)
-            pin.forwardKinematics(model, data, q, np.zeros(nv))
-        sph[k], dsph[k] = spherical_angles(data, fr)
-        out["q"][k], out["v"][k], out["a"][k] = q, v, a
+        K, v, a = _rates(kin, q, tw[k], twd[k])
+        rows["stats"][k] = (np.abs(e[:6]).max(), np.abs(e[6:]).max(),
+                            abs(np.sin(q[fr.wrist_q])),
+                            *conditioning(K, fr.actuated_v, fr.passive_v, full=True))
+        rows["spherical"][k], rows["d_spherical"][k] = spherical_angles(kin.data, fr)
+        rows["q"][k], rows["v"][k], rows["a"][k] = q, v, a
         if progress is not None:
             progress(k + 1, n)
-        if (_stop(stats[k], margins)
+        if (_stop(rows["stats"][k], margins)
                 or not math.isfinite(float(v.sum() + a.sum()))):  # NaN or inf anywhere
             n = k + 1  # stop here: the check below raises at the first offending sample
             break
-    result = IKResult(t=t[:n], poses=poses[:n], q=out["q"][:n], v=out["v"][:n],
-                      a=out["a"][:n], spherical=sph[:n], d_spherical=dsph[:n],
-                      closure_residual=stats[:n, 0], tool_error=stats[:n, 1],
-                      wrist_margin=stats[:n, 2], sigma_parallel=stats[:n, 3],
-                      sigma_serial=stats[:n, 4], joint_names=robot.joint_names,
-                      sigma_parallel_max=stats[:n, 5], sigma_serial_max=stats[:n, 6])
+    result = _result(robot, t, poses, rows, n)
     check_margins(robot, result, margins)
     return result
+
+
+def _next_position(solve, branch: BranchQuantities, rows, task, k: int, ref):
+    """(q, e, ok, signs) at sample k > 0: Newton from a second-order Taylor step off sample
+    k − 1, or, where that lands off the branch signs ``ref``, continuation along the pose
+    segment (:class:`BranchFlipError` where the motion crosses the assembly mode's
+    boundary). ``task``: (poses, t, their rotations)."""
+    poses, t, Rs = task
+    dt = t[k] - t[k - 1]
+    q_prev = rows["q"][k - 1]
+    q = q_prev + dt * rows["v"][k - 1] + 0.5 * dt * dt * rows["a"][k - 1]
+    q, e, ok = solve(q if np.isfinite(q).all() else q_prev, poses[k], Rs[k])
+    signs = branch.signs_list(q)
+    if not (ok and same_branch(signs, ref)):
+        q, e, ok, flip = _follow(solve, branch.signs_list, q_prev, poses[k - 1], poses[k], ref)
+        if flip is not None:
+            s_, q_a, q_b = flip
+            va, vb = branch(q_a), branch(q_b)
+            j = next(i for i, (a_, b_) in enumerate(zip(branch.signs_list(q_b), ref))
+                     if a_ * b_ < 0)
+            raise flip_error(k - 1, k, j, float(va[j]), float(vb[j]), t[k],
+                             near=float(t[k - 1] + s_ * dt))
+        signs = branch.signs_list(q)
+    return q, e, ok, signs
+
+
+def _rates(kin: _Kinematics, q, twist_k, twist_dot_k):
+    """(K, v, a) at q: K v = [0; twist], K a = [−closure drift; twist rate − tool drift];
+    NaN where K is singular (check_margins names the singularity). Leaves ``kin.data`` at
+    (q, v) for :func:`spherical_angles`."""
+    model, data, fr = kin.model, kin.data, kin.fr
+    K = kinematic_matrix(model, data, kin.cms, kin.cds, fr, q)
+    rhs_v = np.zeros(12)
+    rhs_v[6:] = twist_k
+    try:
+        v = np.linalg.solve(K, rhs_v)
+        drift = frame_drifts(model, data, fr, q, v)
+        rhs_a = -drift
+        rhs_a[6:] += twist_dot_k
+        a = np.linalg.solve(K, rhs_a)
+    except np.linalg.LinAlgError:  # singular K
+        v = a = np.full(model.nv, np.nan)
+        pin.forwardKinematics(model, data, q, np.zeros(model.nv))
+    return K, v, a
+
+
+def _result(robot: Robot, t, poses, rows, n: int) -> IKResult:
+    """The first ``n`` samples of ``rows`` as an IKResult."""
+    stats = rows["stats"]
+    return IKResult(t=t[:n], poses=poses[:n], q=rows["q"][:n], v=rows["v"][:n],
+                    a=rows["a"][:n], spherical=rows["spherical"][:n],
+                    d_spherical=rows["d_spherical"][:n], closure_residual=stats[:n, 0],
+                    tool_error=stats[:n, 1], wrist_margin=stats[:n, 2],
+                    sigma_parallel=stats[:n, 3], sigma_serial=stats[:n, 4],
+                    joint_names=robot.joint_names, sigma_parallel_max=stats[:n, 5],
+                    sigma_serial_max=stats[:n, 6])

@@ -3,7 +3,7 @@ table), :mod:`.stream` (window by window, in threads), :mod:`.stats` (summary an
 figures)."""
 from .pipeline import RunResult, run_pipeline, write_run_table
 from .stats import RunStats, duty_figures, summary
-from .stream import STREAM_CHUNK, solve_windows, stream_run, worker_robot
+from .stream import STREAM_CHUNK, StreamOptions, solve_windows, stream_run, worker_robot
 
-__all__ = ["STREAM_CHUNK", "RunResult", "RunStats", "duty_figures", "run_pipeline",
+__all__ = ["STREAM_CHUNK", "RunResult", "RunStats", "StreamOptions", "duty_figures", "run_pipeline",
            "solve_windows", "stream_run", "summary", "worker_robot", "write_run_table"]

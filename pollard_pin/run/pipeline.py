@@ -9,7 +9,7 @@ import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
 from ..io.table import write_table
-from ..kinematics.ik import IKResult, inverse_kinematics
+from ..kinematics.ik import IkOptions, IKResult, inverse_kinematics
 from ..kinematics.limits import check_joint_limits
 from ..kinematics.margins import Margins
 from ..model.names import SPHERICAL
@@ -53,7 +53,8 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     from ..dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
-                            progress=progress, margins=margins, method=method)
+                            options=IkOptions(method=method, margins=margins),
+                            progress=progress)
     if joint_limits:
         check_joint_limits(robot, ik.q, ik.t)
     dyn = inverse_dynamics(robot, ik) if dynamics or loads else None

@@ -3,10 +3,12 @@ overlapping windows, optionally in worker threads, each with its own Pinocchio d
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..errors import InputError
 from ..io.table import TableWriter
 from ..kinematics.ik import BATCH_CHUNK
 from ..paths.trajectory import Trajectory
@@ -14,6 +16,23 @@ from .pipeline import run_pipeline
 from .stats import RunStats
 
 STREAM_CHUNK = BATCH_CHUNK  # samples per solve (overlap included): bounded memory
+
+
+@dataclass(frozen=True)
+class StreamOptions:
+    """How :func:`stream_run` cuts and solves, checked once: ``chunk`` samples per window
+    (the overlap sample included, >= 2), ``workers`` solver threads (>= 1) and ``fmt`` the
+    table's format (None: from the file name)."""
+
+    chunk: int = STREAM_CHUNK
+    workers: int = 1
+    fmt: str | None = None
+
+    def __post_init__(self):
+        if not (isinstance(self.chunk, int) and self.chunk >= 2):
+            raise InputError(f"chunk must be an integer >= 2, got {self.chunk!r}")
+        if not (isinstance(self.workers, int) and self.workers >= 1):
+            raise InputError(f"workers must be an integer >= 1, got {self.workers!r}")
 
 
 def _overlapping_windows(traj, size: int):
@@ -40,12 +59,14 @@ def worker_robot(robot):
                                                  for cm in robot.constraint_models])
 
 
-def solve_windows(robot, traj, *, chunk: int = STREAM_CHUNK, workers: int = 1, **options):
+def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
     """Yield ``(start, result, columns)`` for the windows of ``traj`` in order: ``result`` the
     :class:`RunResult` of the window (overlap sample included), ``columns`` its output columns
     without the overlap sample, cumulative work carried across windows.
 
-    ``workers`` > 1 solves that many windows at once in threads, each with its own Pinocchio
+    ``stream``: :class:`StreamOptions` (default its defaults); ``options`` go to
+    :func:`run_pipeline`. ``workers`` > 1 solves that many windows at once in threads, each
+    with its own Pinocchio
     data (numpy and LAPACK release the GIL, so this uses the cores); at most ``workers + 1``
     windows are in flight, so memory stays bounded. An error is raised at its window, in order,
     with sample numbers counted from the trajectory's start."""
@@ -56,10 +77,8 @@ def solve_windows(robot, traj, *, chunk: int = STREAM_CHUNK, workers: int = 1, *
 
     from ..kinematics.errors import KinematicsError
 
-    if not (isinstance(chunk, int) and chunk >= 2):
-        raise ValueError(f"chunk must be an integer >= 2, got {chunk!r}")
-    if not (isinstance(workers, int) and workers >= 1):
-        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    stream = StreamOptions() if stream is None else stream
+    chunk, workers = stream.chunk, stream.workers
     local = threading.local()
 
     def solve(item):
@@ -111,32 +130,33 @@ class _Inline:
         return future
 
 
-def stream_run(robot, traj, path: str | Path, *, chunk: int = STREAM_CHUNK, workers: int = 1,
-               metadata: dict | None = None, fmt: str | None = None, progress=None,
-               timings: dict | None = None, **options) -> RunStats:
+def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = None, *,
+               metadata: dict | None = None, progress=None, timings: dict | None = None,
+               **options) -> RunStats:
     """Solve ``traj`` (a :class:`Trajectory` or :class:`ThesisTrajectory`) window by window and
     write each window's columns to ``path`` as it is done; memory stays that of a few windows.
 
     The same rows as ``write_run_table(run_pipeline(robot, traj, **options), path)`` (see
     :func:`solve_windows`; ``workers`` threads solve while this thread writes). Errors count
     samples from the trajectory's start; the file appears only if every window is solved
-    (atomic). ``options`` go to :func:`run_pipeline`; ``timings`` gets ``wall`` (solving and
+    (atomic). ``stream``: window size, threads and table format (:class:`StreamOptions`);
+    ``options`` go to :func:`run_pipeline`; ``timings`` gets ``wall`` (solving and
     writing) and ``write`` (this thread's writing, overlapped with the solving) seconds.
     """
     timings = {} if timings is None else timings
+    stream = StreamOptions() if stream is None else stream
     stats = RunStats(traj.name, traj.derivatives)
     n = len(traj)
     write = 0.0
-    with TableWriter(path, metadata, fmt) as writer:  # imports its library: not timed
+    with TableWriter(path, metadata, stream.fmt) as writer:  # imports its library: not timed
         t0 = time.perf_counter()
-        for start, result, cols in solve_windows(robot, traj, chunk=chunk, workers=workers,
-                                                 **options):
+        for start, result, cols in solve_windows(robot, traj, stream, **options):
             stats.add(result.ik, cols)
             t1 = time.perf_counter()
             writer.write(cols)
             write += time.perf_counter() - t1
             if progress is not None:
-                progress(min(start + chunk - 1, n), n)
+                progress(min(start + stream.chunk - 1, n), n)
     timings["wall"] = timings.get("wall", 0.0) + time.perf_counter() - t0
     timings["write"] = timings.get("write", 0.0) + write
     return stats

@@ -37,6 +37,8 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     ``if __name__ == "__main__":``, as with any such pool.
     """
     specs = sweep.specs()
+    if isinstance(dask, str) and not dask.strip():
+        raise SweepError("dask: an empty scheduler address (give None to run locally)")
     if dask is not None:
         return _run_dask(specs, dask, progress)
     n = len(specs)
@@ -102,7 +104,7 @@ def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> lis
     if own:
         try:
             client = Client(address)
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError) as exc:  # ValueError: a malformed address
             raise SweepError(f"cannot connect to the Dask scheduler at {address!r}: {exc}"
                              ) from None
     else:

@@ -17,16 +17,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES, rotation
-from ..checks import real
-from ..errors import InputError
-from ..kinematics.margins import Margins, as_margins
-from ..model.values import parse_float, shorten
+from ..analytic.taskspace import rotation
+from .options import (
+    CHUNK,
+    WorkspaceError,
+    WorkspaceOptions,
+    finite_value,
+)
 from .reach import REASONS, ReachOptions, evaluate, length_scale
 from .rectangle import boundary_points, edge_samples, largest_rectangle
 
 AXES = ("x", "y", "z")
-CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
 # A plane map is kept in memory (its columns, for the table, the figure and the rectangle):
 # about BYTES_PER_POINT each, within MEMORY_BUDGET. A volume streams, but its point count is
 # capped (MAX_VOLUME_POINTS: about an hour at 15 µs per point, some 30 GB of CSV).
@@ -40,10 +41,6 @@ COARSE_CELLS = 40  # points per axis of the coarse volume that finds the reachab
 # sample removes its grid neighbours and the search runs again, at most EDGE_ROUNDS times.
 EDGE_REFINE = 4
 EDGE_ROUNDS = 16
-
-
-class WorkspaceError(InputError):
-    """A workspace request that cannot be mapped (one line: which value, why)."""
 
 
 @dataclass(frozen=True)
@@ -153,35 +150,7 @@ def parse_plane(plane) -> tuple[int, float]:
     if axis not in AXES:
         raise WorkspaceError(f"plane {plane!r}: the axis must be x, y or z, got {axis!r}")
     # any finite value: one far off misses the robot, and that error names the reachable box
-    return AXES.index(axis), _finite(value, f"plane {axis}", "m", math.inf)
-
-
-def _finite(value, what: str, unit: str, limit: float = 1e3) -> float:
-    try:  # text as the user typed it: no "0.5_5", no full-width digits
-        v = parse_float(value) if isinstance(value, str) else float(value)
-    except (TypeError, ValueError):
-        raise WorkspaceError(f"{what} = {shorten(value)} is not a number [{unit}]") from None
-    if not math.isfinite(v) or abs(v) > limit:
-        within = f" within ±{limit:g} {unit}" if math.isfinite(limit) else f" [{unit}]"
-        raise WorkspaceError(f"{what} = {shorten(value)} must be a finite number{within}")
-    return v
-
-
-def check_orientation(orientation) -> tuple[float, float, float]:
-    """(ψ, θ, φ) [rad], three finite numbers."""
-    try:
-        vals = [float(v) for v in orientation]
-    except (TypeError, ValueError):
-        raise WorkspaceError(f"orientation {orientation!r}: expected three numbers "
-                             "(psi, theta, phi) [rad]") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
-                             "(psi, theta, phi) [rad]")
-    for name, v in zip(TASK_NAMES[3:], vals):
-        if abs(v) > MAX_ABS_TASK:  # the poses' own rule (analytic.taskspace)
-            raise WorkspaceError(f"orientation {name} = {v:.6g} rad is absurd: |{name}| > "
-                                 f"{MAX_ABS_TASK:g} rad (a unit or data error?)")
-    return tuple(vals)
+    return AXES.index(axis), finite_value(value, f"plane {axis}", "m", math.inf)
 
 
 def check_bounds(bounds) -> dict:
@@ -200,7 +169,8 @@ def check_bounds(bounds) -> dict:
         except (TypeError, ValueError):
             raise WorkspaceError(f"bounds of {a}: expected (low, high) in m, got "
                                  f"{pair!r}") from None
-        lo, hi = _finite(lo, f"lower bound of {a}", "m"), _finite(hi, f"upper bound of {a}", "m")
+        lo = finite_value(lo, f"lower bound of {a}", "m")
+        hi = finite_value(hi, f"upper bound of {a}", "m")
         if not lo < hi:
             raise WorkspaceError(f"bounds of {a}: the lower bound {lo:g} m must be below the "
                                  f"upper bound {hi:g} m")
@@ -221,7 +191,7 @@ def make_grid(params, orientation, resolution, plane=None, bounds=None) -> Grid:
     """The grid of a plane (``(axis, value)``) or, with ``plane`` None, of a box: ``bounds``
     where given, else the reach sphere widened by BOUND_MARGIN_CELLS cells, snapped outward
     to multiples of the resolution (so that finer grids of step h/k contain the coarser)."""
-    h = _finite(resolution, "resolution", "m")
+    h = finite_value(resolution, "resolution", "m")
     if not h > 0:
         raise WorkspaceError(f"resolution = {resolution!r} m must be > 0")
     bounds = check_bounds(bounds)
@@ -293,31 +263,25 @@ class _Summary:
                                 max(self.payload[1], float(cap.max()))]
 
 
-def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 0.0, 0.0),
-              resolution: float = 0.005, bounds=None, actuators=None,
-              margins: Margins | None = None, length_scale: float | None = None,
-              sink: Callable[[dict], None] | None = None,
-              keep: bool | None = None, chunk: int = CHUNK, progress=None) -> WorkspaceMap:
+def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
+                  sink: Callable[[dict], None] | None = None, progress=None) -> WorkspaceMap:
     """Map where the tool reaches at a fixed orientation (docs/model.md §22).
 
-    ``plane``: "x=0.55" (or ("x", 0.55)) for a plane grid, or ``volume=True`` for a box.
-    ``orientation`` (ψ, θ, φ) [rad]; ``resolution`` [m]; ``bounds`` {axis: (low, high)} [m]
-    (default: the whole reach with a margin); ``actuators`` (:class:`Actuators`) adds the
-    payload capacity; ``margins`` (:class:`Margins`) default to ``run``'s. ``sink(columns)``
-    receives every chunk's columns (x, y, z, psi, theta, phi, reachable, reason, …) in grid
-    order; ``keep`` (default: plane mode) keeps them in ``columns``. Raises
-    :class:`WorkspaceError` for bad values, a grid over budget, or a plane or bounds with no
-    reachable point (naming the reachable bounding box)."""
-    if (plane is None) == (not volume):
+    ``plane``: "x=0.55" (or ("x", 0.55)) for a plane grid, or ``options.volume`` for a box;
+    ``options`` (:class:`WorkspaceOptions`: orientation, resolution, bounds, actuators,
+    margins, …; default its defaults). ``sink(columns)`` receives every chunk's columns (x, y,
+    z, psi, theta, phi, reachable, reason, …) in grid order; ``progress(done, total)`` is
+    called per chunk. Raises :class:`WorkspaceError` for bad values, a grid over budget, or a
+    plane or bounds with no reachable point (naming the reachable bounding box)."""
+    o = WorkspaceOptions() if options is None else options
+    if not isinstance(o, WorkspaceOptions):
+        raise WorkspaceError(f"options must be a WorkspaceOptions, got {type(o).__name__}")
+    if (plane is None) == (not o.volume):
         raise WorkspaceError("give either a plane (e.g. x=0.55) or volume=True")
     t0 = time.perf_counter()
-    orient = check_orientation(orientation)
-    plane_ = None if volume else parse_plane(plane)
-    opts = ReachOptions(as_margins(margins),
-                        None if length_scale is None else real(
-                            length_scale, "length_scale", 0.0, above=True, why=" [m]",
-                            error=WorkspaceError),
-                        actuators)
+    orient = o.orientation
+    plane_ = None if o.volume else parse_plane(plane)
+    opts = ReachOptions(o.margins, o.length_scale, o.actuators)
     params = robot.params
     if plane_ is not None:
         centre, radius = reach_sphere(params, orient)
@@ -326,12 +290,12 @@ def map_workspace(robot, plane=None, *, volume: bool = False, orientation=(0.0, 
             raise _missed(robot, orient, opts, f"plane {AXES[a]} = {v:g} m misses the robot "
                           f"(its reach at this orientation is {AXES[a]} ∈ "
                           f"[{centre[a] - radius:.3g}, {centre[a] + radius:.3g}] m at most)")
-    grid = make_grid(params, orient, resolution, plane_, bounds)
-    keep = plane_ is not None if keep is None else keep
+    grid = make_grid(params, orient, o.resolution, plane_, o.bounds)
+    keep = plane_ is not None if o.keep is None else o.keep
     totals = _Summary()
     kept = []
-    for start in range(0, grid.size, chunk):
-        flat = np.arange(start, min(start + chunk, grid.size))
+    for start in range(0, grid.size, o.chunk):
+        flat = np.arange(start, min(start + o.chunk, grid.size))
         pts = grid.points(flat)
         poses = np.concatenate([pts, np.broadcast_to(orient, (len(pts), 3))], axis=1)
         cols = {name: poses[:, i] for i, name in enumerate(("x", "y", "z", "psi", "theta",
@@ -466,12 +430,10 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
     return out
 
 
-def largest_panel(robot, plane, *, orientation=(0.0, 0.0, 0.0), resolution: float = 0.005,
-                  bounds=None, **options) -> Rectangle | None:
+def largest_panel(robot, plane, options: WorkspaceOptions | None = None) -> Rectangle | None:
     """The largest axis-aligned rectangle (a :class:`Rectangle`, corner to corner through
     reachable grid points) of reachable tool positions in a plane (e.g. "x=0.55": the panel
-    surface minus the standoff) at this orientation — the biggest panel the robot can sweep
-    there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's own
-    search, a float scale of a job's panel, is :func:`pollard_pin.paint.plan.largest_scale`."""
-    return map_workspace(robot, plane, orientation=orientation, resolution=resolution,
-                     bounds=bounds, **options).rectangle
+    surface minus the standoff) at ``options.orientation`` — the biggest panel the robot can
+    sweep there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's
+    own search, a float scale of a job's panel, is :func:`pollard_pin.paint.plan.largest_scale`."""
+    return map_workspace(robot, plane, options).rectangle

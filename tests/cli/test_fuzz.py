@@ -495,6 +495,14 @@ CASES += [
     ([*SIM, "--mass-error", "-2.5"], "mass"),
     ([*SIM, "--torque-limit", "1", "2"], "takes 1 value (all actuators) or 6, got 2"),
     ([*SIM, "--wn", "1e300"], "must be at most 1e+06 rad/s"),
+    # one tick only: the controller would act once, at the start
+    ([*SIM, "--control-period", "1e300"], "--control-period 1e+300 s is longer than the "
+                                          "trajectory (0.22 s)"),
+    ([*SIM, "--control-period", "0.3", "--dt", "1e-3"], "longer than the trajectory"),
+    # --force does not pass what memory holds
+    ([*SIM, "--dt", "1e-300", "--force"], "2.2e+299 RK4 steps (0.22 s, --control-period "
+                                          "0.001 s, --dt 1e-300 s): more than a simulation"),
+    ([*SIM, "--control-period", "1e-300", "--force"], "even with --force"),
     # a run that starts says so (progress, silenced by --quiet); then its failure is one line
     ([*SIM, "--quiet", "--payload", "1e300"], "diverged"),
     ([*SIM, "--quiet", "--wn", "1e4"], "the gains are too high for the control period (ω·T = 10"),

@@ -8,6 +8,7 @@ characters, no warning), exit status 2, and write nothing.
 """
 from __future__ import annotations
 
+import importlib.util
 import os
 import sys
 import threading
@@ -67,6 +68,7 @@ def _files() -> dict[str, str]:
         "a_big.toml": act.replace("gear_ratio = 100.0", f"gear_ratio = {B400}", 1),
         "a_digits.toml": act.replace("gear_ratio = 100.0", f"gear_ratio = {B5000}", 1),
         "a_deep.toml": act.replace("gear_ratio = 100.0", f"gear_ratio = {DEEP}", 1),
+        "grid_ok.toml": f"trajectory = 'good.csv'\n{grid}",
         "g_big.toml": f"[grid]\n'chain0.x32' = [{B400}]\n",
         "g_digits.toml": f"[grid]\n'chain0.x32' = [{B5000}]\n",
         "g_deep.toml": f"[grid]\n'chain0.x32' = {DEEP}\n",
@@ -295,6 +297,15 @@ CASES += [([*prefix, option, value], says) for prefix, option, value, says in [
     (["simulate", "--trajectory", "good.csv", "--out", "out.csv"], "--mass-error", "-1_0",
      "digit separators"),
 ]]
+# a plant that runs away: named once, no numpy warning, no banner
+CASES += [(["simulate", "--trajectory", "good.csv", "--out", "out.csv", option, "1e300"],
+           "simulation diverged at t = 0.001 s") for option in ("--viscous", "--coulomb")]
+# an empty or malformed scheduler address
+CASES += [([*SWEEP, "grid_ok.toml", "--dask", address], "argument --dask: an empty address")
+          for address in ("", "  ")]
+if importlib.util.find_spec("distributed") is not None:
+    CASES += [([*SWEEP, "grid_ok.toml", "--dask", "tcp://"],
+               "cannot connect to the Dask scheduler at 'tcp://': missing port number")]
 IDS = [" ".join(a if len(a) <= 40 else f"{a[:30]}…({len(a)})" for a in argv)
        for argv, _ in CASES]
 

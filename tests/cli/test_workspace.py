@@ -22,7 +22,7 @@ def test_plane_files_match_the_library(robot, tmp_path, capsys, fmt):
     code, text, err = run_cli(["workspace", "--plane", "x=0.55", "--out", str(out), "--format",
                             fmt, *COARSE], capsys)
     assert code == 0, err
-    ws = pp.map_workspace(robot, "x=0.55", resolution=0.02)
+    ws = pp.map_workspace(robot, "x=0.55", pp.WorkspaceOptions(resolution=0.02))
     table = read_result(out / f"workspace.{fmt}")
     for name, col in ws.columns.items():
         np.testing.assert_array_equal(table[name], np.asarray(col, dtype=float), err_msg=name)

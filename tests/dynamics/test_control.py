@@ -11,7 +11,7 @@ from pollard_pin.dynamics.control import ControlError, FeedforwardPD, Gains, des
 from pollard_pin.dynamics.forward import forward_dynamics
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
 from pollard_pin.dynamics.plant import ModelMismatch, Plant, PlantError
-from pollard_pin.dynamics.tracking import MeasurementNoise, simulate_tracking
+from pollard_pin.dynamics.tracking import MeasurementNoise, TrackingOptions, simulate_tracking
 from pollard_pin.paths.curves import thesis_trajectory
 
 PERTURBED = ModelMismatch(payload=0.05, mass_error=0.1)
@@ -31,7 +31,7 @@ def desired(robot, traj):
 @pytest.fixture(scope="module")
 def runs(robot, traj, desired):
     """The built-in controllers on the exact and on the perturbed plant."""
-    return {(c, e): simulate_tracking(robot, traj, c, errs, desired=desired)
+    return {(c, e): simulate_tracking(robot, traj, TrackingOptions(c, errs, desired=desired))
             for c in ("computed-torque", "feedforward-pd", "pd")
             for e, errs in (("exact", None), ("perturbed", PERTURBED))}
 
@@ -77,7 +77,8 @@ def test_plant_obeys_its_inverse_dynamics(robot, traj, desired):
     losses = JointLosses(viscous=np.full(12, 2e-3), coulomb=np.full(12, 1e-3),
                          armature=np.full(12, 1e-4))
     errors = ModelMismatch(payload=0.05, mass_error=0.1, losses=losses)
-    res = simulate_tracking(robot, traj, "computed-torque", errors, desired=desired)
+    res = simulate_tracking(robot, traj,
+                            TrackingOptions("computed-torque", errors, desired=desired))
     plant = Plant(robot, errors)
     worst = 0.0
     for k in range(0, len(res), 10):
@@ -99,8 +100,8 @@ def test_known_motors_are_compensated(robot, traj, controller):
 
     motors = load_actuators(MOTORS)
     losses = motors.joint_losses(robot.joint_names)
-    blind, known = (simulate_tracking(robot, traj, controller, ModelMismatch(losses=losses),
-                                      known_losses=k) for k in (None, losses))
+    blind, known = (simulate_tracking(robot, traj, TrackingOptions(
+        controller, ModelMismatch(losses=losses), known_losses=k)) for k in (None, losses))
     assert known.tip_position_error.max() <= 3.5e-6
     assert known.tip_orientation_error.max() <= 4e-5  # 3.3e-05 (ct), 7.8e-06 (ff)
     assert blind.tip_orientation_error.max() > 0.4  # 0.487 rad
@@ -169,8 +170,8 @@ def test_energy_is_conserved_to_fourth_order(robot):
     drift = []
     for dt in (5e-3, 2.5e-3, 1.25e-3):
         # a free fall at coarse steps opens the loops to 1.2e-8 m at dt = 5 ms: allowed here
-        res = simulate_tracking(robot, traj, off, dt=dt, control_period=0.01,
-                                loop_tolerance=1e-6)
+        res = simulate_tracking(robot, traj, TrackingOptions(off, dt=dt, control_period=0.01,
+                                                             loop_tolerance=1e-6))
         e = np.array([plant.energy(q, v) for q, v in zip(res.q, res.v)])
         drift.append(np.abs(e - e[0]).max())
     rates = [drift[0] / drift[1], drift[1] / drift[2]]
@@ -188,8 +189,9 @@ def test_zero_order_hold_saturation_and_user_controller(robot, traj, desired):
 
     # 1.1 N·m (peak reference 1.2): saturated 0.48 s, the robot kept within its joint limits
     # (at 0.8 N·m it falls out of them: tests/dynamics/test_tracking.py)
-    res = simulate_tracking(robot, traj, mine, control_period=5e-3, torque_limit=1.1,
-                            desired=desired_trajectory(robot, traj, 5e-3))
+    res = simulate_tracking(robot, traj, TrackingOptions(
+        mine, control_period=5e-3, torque_limit=1.1,
+        desired=desired_trajectory(robot, traj, 5e-3)))
     assert np.allclose(np.diff(calls), 5e-3)
     assert np.abs(res.tau).max() <= 1.1 + 1e-15
     assert res.saturation_time > 0
@@ -200,7 +202,8 @@ def test_output_samples_off_the_control_grid(robot, traj):
     """Sample times (10 ms) that are not ticks (3 ms) nor RK4 steps (0.7 ms) are inserted as
     breakpoints: every output row is at its own time, tracking unchanged (feedforward-pd at a
     3 ms hold: 8.0e-7 m, (3 ms / 1 ms)² × 8.9e-8 m)."""
-    res = simulate_tracking(robot, traj, "feedforward-pd", dt=7e-4, control_period=3e-3)
+    res = simulate_tracking(robot, traj,
+                            TrackingOptions("feedforward-pd", dt=7e-4, control_period=3e-3))
     assert np.array_equal(res.t, traj.t)
     assert res.tip_position_error.max() <= 1e-6  # 8.01e-07
     plant = Plant(robot)
@@ -210,8 +213,9 @@ def test_output_samples_off_the_control_grid(robot, traj):
 
 
 def test_noise_is_seeded(robot, traj, desired):
-    runs = [simulate_tracking(robot, traj, "computed-torque", desired=desired,
-                              noise=MeasurementNoise(1e-4, 1e-2, seed)) for seed in (1, 1, 2)]
+    runs = [simulate_tracking(robot, traj, TrackingOptions(
+        "computed-torque", desired=desired, noise=MeasurementNoise(1e-4, 1e-2, seed)))
+        for seed in (1, 1, 2)]
     assert np.array_equal(runs[0].tau, runs[1].tau)
     assert not np.array_equal(runs[0].tau, runs[2].tau)
     # σ = 1e-4 rad on the encoders: 6.9e-5 m (seeds 2, 3: 4.4e-5, 5.1e-5 m)
@@ -234,7 +238,7 @@ def test_bad_api_inputs(robot, traj, desired, kwargs, says):
     if kwargs.get("start") == "home":
         kwargs["start"] = robot.home()
     with pytest.raises(ControlError, match=says):
-        simulate_tracking(robot, traj, desired=desired, **kwargs)
+        simulate_tracking(robot, traj, TrackingOptions(desired=desired, **kwargs))
     with pytest.raises(PlantError, match="fraction > -1"):
         ModelMismatch(mass_error=-1.5)
 

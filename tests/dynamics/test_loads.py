@@ -162,12 +162,12 @@ def test_sweep_row_has_the_peak_bearing_loads(robot):
 
 def test_streamed_run_writes_the_same_loads(robot, tmp_path):
     from pollard_pin.io.table import read_result
-    from pollard_pin.run import run_pipeline, stream_run
+    from pollard_pin.run import StreamOptions, run_pipeline, stream_run
 
     traj = pp.thesis_trajectory(samples=301)
     whole = run_pipeline(robot, traj, loads=True).columns()
     path = tmp_path / "s.parquet"
-    stream_run(robot, traj, path, chunk=64, loads=True)
+    stream_run(robot, traj, path, StreamOptions(chunk=64), loads=True)
     table = read_result(path)
     for name in whole:
         if name.startswith(("F_", "M_")):

@@ -16,6 +16,7 @@ from pollard_pin.dynamics.control import (
 from pollard_pin.dynamics.plant import Plant
 from pollard_pin.dynamics.tracking import (
     MeasurementNoise,
+    TrackingOptions,
     check_steps,
     integration_steps,
     sensed_state,
@@ -77,8 +78,8 @@ def _deviation(robot, law, period: float) -> float:
     start, goal = _rest(pose), _rest(pose + OFFSET)
     d_start, d_goal = (desired_trajectory(robot, tr, period) for tr in (start, goal))
     g = Gains()
-    res = simulate_tracking(robot, start, law(robot, d_goal, g), desired=d_start,
-                            control_period=period)
+    res = simulate_tracking(robot, start, TrackingOptions(law(robot, d_goal, g), desired=d_start,
+                                                          control_period=period))
     e = d_goal.q[0, robot.actuated_v] - res.q[:, robot.actuated_v]
     ek, ed, model = e[0].copy(), np.zeros(6), [e[0].copy()]
     for _ in range(len(e) - 1):
@@ -115,7 +116,8 @@ def seen(robot):
             calls.append((t, q.copy(), v.copy()))
             return inner(t, q, v)
 
-        res = simulate_tracking(robot, traj, recording, desired=desired, noise=noise)
+        res = simulate_tracking(robot, traj,
+                                TrackingOptions(recording, desired=desired, noise=noise))
         out[label] = (res, calls)
     return out
 
@@ -176,7 +178,7 @@ def test_tracking_rms_is_time_weighted(robot):
     keep = np.r_[0:10, 10:31:5]  # 10 ms samples, then 50 ms
     uneven = Trajectory(traj.t[keep], traj.poses[keep], traj.d_poses[keep],
                         traj.dd_poses[keep], name="uneven")
-    res = simulate_tracking(robot, uneven, "pd")
+    res = simulate_tracking(robot, uneven, TrackingOptions("pd"))
     t, e = res.t, res.tip_position_error
     by_hand = np.sqrt(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(t)) / (t[-1] - t[0]))
     s = res.summary()
@@ -185,7 +187,8 @@ def test_tracking_rms_is_time_weighted(robot):
 
 
 def test_steps_are_counted_and_checked(robot):
-    res = simulate_tracking(robot, thesis_head(0.1), "pd", dt=4e-4, control_period=1e-3)
+    res = simulate_tracking(robot, thesis_head(0.1),
+                            TrackingOptions("pd", dt=4e-4, control_period=1e-3))
     assert res.steps == integration_steps(0.1, 4e-4, 1e-3) == 300
     assert step_used(4e-4, 1e-3) == pytest.approx(1e-3 / 3, rel=1e-15)
     assert res.settings["dt"] == step_used(4e-4, 1e-3)
@@ -220,11 +223,11 @@ def test_a_saturated_robot_that_falls_out_of_its_limits_stops(robot):
     with pytest.raises(SimulationError, match=r"stopped at t = 1\.\d+ s: the plant left its "
                                               r"joint limits: joint theta\w+ at .* by .*°; the "
                                               r"torque has been saturated since t = 0\.6"):
-        simulate_tracking(robot, traj, "feedforward-pd", control_period=5e-3,
-                          torque_limit=0.8, desired=desired)
-    free = simulate_tracking(robot, traj, "feedforward-pd", control_period=5e-3,
-                             torque_limit=0.8, desired=desired, joint_limits=False,
-                             loop_tolerance=np.inf)
+        simulate_tracking(robot, traj, TrackingOptions(
+            "feedforward-pd", control_period=5e-3, torque_limit=0.8, desired=desired))
+    free = simulate_tracking(robot, traj, TrackingOptions(
+        "feedforward-pd", control_period=5e-3, torque_limit=0.8, desired=desired,
+        joint_limits=False, loop_tolerance=np.inf))
     assert _outside(robot, free.q) > 0.1  # 0.3° at the stop, further later
     assert free.saturation_time > 0.5
 
@@ -240,11 +243,11 @@ def test_loops_that_open_beyond_the_tolerance_stop_the_run(robot):
     kw = dict(control_period=4e-3, desired=desired)
     with pytest.raises(SimulationError, match=r"the plant's loops opened to .* m \(loop "
                                               r"tolerance 1e-05 m.*reduce the time step"):
-        simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, **kw)
-    free = simulate_tracking(robot, traj, "feedforward-pd", dt=4e-3, loop_tolerance=np.inf,
-                             **kw)
+        simulate_tracking(robot, traj, TrackingOptions("feedforward-pd", dt=4e-3, **kw))
+    free = simulate_tracking(robot, traj, TrackingOptions("feedforward-pd", dt=4e-3,
+                                                          loop_tolerance=np.inf, **kw))
     assert np.abs(free.closure_residual).max() > LOOP_TOLERANCE
-    fine = simulate_tracking(robot, traj, "feedforward-pd", dt=5e-4, **kw)
+    fine = simulate_tracking(robot, traj, TrackingOptions("feedforward-pd", dt=5e-4, **kw))
     assert fine.max_closure_residual <= LOOP_TOLERANCE / 100
 
 
@@ -291,7 +294,7 @@ def test_compiled_sensing_tracks_as_pinocchio_sensing(robot, monkeypatch):
     desired = desired_trajectory(robot, traj)
     kw = dict(errors=ModelMismatch(0.05, 0.1), desired=desired,
               noise=MeasurementNoise(1e-5, 1e-4, 3))
-    fast = simulate_tracking(robot, traj, "computed-torque", **kw).columns()
+    fast = simulate_tracking(robot, traj, TrackingOptions("computed-torque", **kw)).columns()
     ia = robot.actuated_v
     theta, dtheta = desired.q[20, ia] + 1e-4, desired.v[20, ia] - 0.1
     q, v, Jc, N, a0 = LoopSensor(robot)(theta, dtheta, desired.q[20])
@@ -300,7 +303,7 @@ def test_compiled_sensing_tracks_as_pinocchio_sensing(robot, monkeypatch):
     np.testing.assert_allclose(c(t, q, v, Jc, N, a0), c(t, q, v), rtol=0, atol=1e-13)
     monkeypatch.setattr(LoopSensor, "__call__",
                         lambda self, th, dth, g=None: reference_state(self.robot, th, dth, g))
-    ref = simulate_tracking(robot, traj, "computed-torque", **kw).columns()
+    ref = simulate_tracking(robot, traj, TrackingOptions("computed-torque", **kw)).columns()
     # achieved, relative to the column's largest entry (or 1): 3e-13 for dd_theta1817 (the
     # nearly massless last wrist joint), ≤ 2e-14 for the others
     for name, col in ref.items():

@@ -318,7 +318,7 @@ def test_sparse_sampling_keeps_the_branch(robot, method):
     sparse, dense = thesis_trajectory(samples=21), thesis_trajectory(samples=201)
     q_start = None if method == "batch" else solve(robot, dense).q[0]
     ik = pp.inverse_kinematics(robot, sparse.poses, sparse.d_poses, sparse.dd_poses, sparse.t,
-                               q_start=q_start, method=method)
+                               q_start=q_start, options=pp.IkOptions(method=method))
     ref = solve(robot, dense)
     for name in ("q", "v", "a"):
         assert np.abs(getattr(ik, name) - getattr(ref, name)[::10]).max() <= 1e-12, name
@@ -333,7 +333,7 @@ def test_jump_in_poses_is_not_a_branch_flip(robot, method):
     poses = traj.poses.copy()
     poses[100:, 1] += 0.05
     ik = pp.inverse_kinematics(robot, poses, traj.d_poses, traj.dd_poses, traj.t,
-                               method=method)
+                               options=pp.IkOptions(method=method))
     ref = thesis_reference(robot, poses, traj.d_poses, traj.dd_poses)
     assert np.abs(wrap(ik.q - ref["q"])).max() <= POS_TOL
     assert np.abs(ik.v - ref["v"]).max() <= VEL_TOL

@@ -22,7 +22,8 @@ def test_batch_equals_newton(robot, traj):
     args = (traj.poses, traj.d_poses, traj.dd_poses, traj.t)
     ref = inverse_kinematics_newton(robot, *args)
     fast = inverse_kinematics_batch(robot, *args)
-    chunked = inverse_kinematics_batch(robot, *args, chunk=97)  # odd block boundaries
+    # odd block boundaries
+    chunked = inverse_kinematics_batch(robot, *args, options=pp.IkOptions(chunk=97))
     for f in FIELDS:
         scale = max(1.0, np.abs(getattr(ref, f)).max())
         assert np.abs(getattr(fast, f) - getattr(ref, f)).max() <= 1e-12 * scale, f
@@ -45,7 +46,8 @@ def test_batch_reports_first_bad_sample_across_chunks(robot):
     poses = traj.poses.copy()
     poses[250:, 0] += 0.5  # out of reach from sample 250 on
     with pytest.raises(pp.UnreachablePoseError) as ei:
-        inverse_kinematics_batch(robot, poses, traj.d_poses, traj.dd_poses, traj.t, chunk=100)
+        inverse_kinematics_batch(robot, poses, traj.d_poses, traj.dd_poses, traj.t,
+                                 options=pp.IkOptions(chunk=100))
     assert ei.value.sample == 250 and ei.value.time == pytest.approx(traj.t[250])
 
 

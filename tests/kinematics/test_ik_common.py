@@ -88,3 +88,35 @@ def test_check_options_passes_the_margins_whole():
         check_options(1e-12, {"wrist": 0.2})
     with pytest.raises(MarginError):
         Margins(wrist=1.5)
+
+
+# --- IkOptions: checked once, passed whole ------------------------------------------------------
+@pytest.mark.parametrize("kw, says", [
+    ({"method": "lm"}, "method must be 'batch' or 'newton', got 'lm'"),
+    ({"tol": 0.0}, "tol = 0.0: "),
+    ({"max_iter": 0}, "max_iter = 0: must be an integer >= 1"),
+    ({"chunk": 2.5}, "chunk = 2.5: must be an integer >= 1"),
+])
+def test_ik_options_refuse_bad_values_at_construction(kw, says):
+    from pollard_pin.kinematics.ik_common import IkOptions
+
+    with pytest.raises(KinematicsInputError) as ei:
+        IkOptions(**kw)
+    assert says in str(ei.value) and "\n" not in str(ei.value)
+
+
+def test_ik_options_normalise_the_margins_and_the_solver_refuses_other_types(robot):
+    from pollard_pin.kinematics.ik import inverse_kinematics
+    from pollard_pin.kinematics.ik_common import IkOptions
+    from pollard_pin.kinematics.margins import Margins
+
+    assert IkOptions().margins == Margins()  # None: the defaults, made once
+    pose = np.asarray(robot.params.home_pose, dtype=float)[None, :]
+    with pytest.raises(KinematicsInputError, match="options must be an IkOptions, got dict"):
+        inverse_kinematics(robot, pose, options={"method": "newton"})
+    with pytest.raises(KinematicsInputError, match="not both"):
+        inverse_kinematics(robot, pose, options=IkOptions(), margins=Margins())
+    # the margins shorthand is the options with those margins, to the bit
+    a = inverse_kinematics(robot, pose, margins=Margins(0.1, 1e-3))
+    b = inverse_kinematics(robot, pose, options=IkOptions(margins=Margins(0.1, 1e-3)))
+    np.testing.assert_array_equal(a.q, b.q)

@@ -71,7 +71,8 @@ def at_margin(robot):
     the IK reports it; the workspace map computes the very same number."""
     _, poses, _ = path_to_wrist_singularity(robot.params, 1.0, 400, 1.0)
     pose = poses[220:221]
-    w = float(inverse_kinematics(robot, pose, margins=Margins(0.0, 0.0)).wrist_margin[0])
+    w = float(inverse_kinematics(robot, pose, options=pp.IkOptions(margins=Margins(0.0, 0.0)))
+              .wrist_margin[0])
     assert 0.1 < w < 0.3
     reach = evaluate(robot, pose, ReachOptions(Margins(0.0, 0.0)))
     assert reach["wrist_margin"][0] == w  # bit for bit (before: a few ulps apart)
@@ -83,7 +84,7 @@ def at_margin(robot):
 def _verdicts(robot, pose, margins):
     """Does the pose fail the wrist margin? for the IK, the workspace map, the paint planner."""
     try:
-        inverse_kinematics(robot, pose, margins=margins)
+        inverse_kinematics(robot, pose, options=pp.IkOptions(margins=margins))
         ik = False
     except SingularityError as e:
         assert e.chain == "wrist" and e.sample == 0
@@ -117,23 +118,26 @@ def test_newton_judges_the_value_it_reports(robot, at_margin):
     # its final check apply the same rule to the value it reports (the closed-form start is
     # only a start).
     pose, _ = at_margin
-    w = float(inverse_kinematics(robot, pose, method="newton",
-                                 margins=Margins(0.0, 0.0)).wrist_margin[0])
+    w = float(inverse_kinematics(robot, pose, options=pp.IkOptions(
+        method="newton", margins=Margins(0.0, 0.0))).wrist_margin[0])
     below, at, above = _around(w)
     for m in (below, at):
-        r = inverse_kinematics(robot, pose, method="newton", margins=Margins(m, 0.0))
+        r = inverse_kinematics(robot, pose,
+                               options=pp.IkOptions(method="newton", margins=Margins(m, 0.0)))
         assert r.wrist_margin[0] == w
     with pytest.raises(SingularityError) as ei:
-        inverse_kinematics(robot, pose, method="newton", margins=Margins(above, 0.0))
+        inverse_kinematics(robot, pose,
+                           options=pp.IkOptions(method="newton", margins=Margins(above, 0.0)))
     assert ei.value.chain == "wrist" and ei.value.amount == above - w
 
 
 def test_the_serial_margin_at_equality_passes_everywhere(robot, at_margin):
     pose, _ = at_margin
-    ss = float(inverse_kinematics(robot, pose, margins=Margins(0.0, 0.0)).sigma_serial[0])
+    ss = float(inverse_kinematics(robot, pose, options=pp.IkOptions(margins=Margins(0.0, 0.0)))
+               .sigma_serial[0])
     for m, fails in zip(_around(ss), (False, False, True)):
         try:
-            inverse_kinematics(robot, pose, margins=Margins(0.0, m))
+            inverse_kinematics(robot, pose, options=pp.IkOptions(margins=Margins(0.0, m)))
             ik = False
         except SingularityError as e:
             ik = e.chain == "serial"
@@ -172,10 +176,11 @@ def test_anything_but_margins_is_refused_wherever_it_enters(robot):
     act = load_actuators(f"{EXAMPLES}/actuators.toml")
     traj = pp.Trajectory(np.array([0.0, 1.0]), np.vstack([pose, pose]),
                          np.zeros((2, 6)), np.zeros((2, 6)))
-    for call in (lambda: inverse_kinematics(robot, pose, margins=0.05),
+    for call in (lambda: inverse_kinematics(robot, pose, options=pp.IkOptions(margins=0.05)),
                  lambda: pp.run_pipeline(robot, traj, margins={"wrist": 0.05}),
                  lambda: motion(robot, act, pose, zero, zero, margins=0.05),
-                 lambda: pp.map_workspace(robot, "x=0.55", margins=(0.05, 1e-3))):
+                 lambda: pp.map_workspace(robot, "x=0.55",
+                                                  pp.WorkspaceOptions(margins=(0.05, 1e-3)))):
         with pytest.raises(MarginError) as ei:
             call()
         assert "Margins(" in str(ei.value) and "\n" not in str(ei.value)

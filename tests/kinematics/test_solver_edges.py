@@ -64,7 +64,9 @@ ZERO_MARGINS = Margins(wrist=0.0, singularity=0.0)  # the numerical floors alone
 
 
 def ik(robot, poses, d=None, dd=None, t=None, method="batch", **kw):
-    return pp.inverse_kinematics(robot, poses, d, dd, t, method=method, **kw)
+    options = {k: kw.pop(k) for k in ("margins", "tol", "max_iter", "chunk") if k in kw}
+    return pp.inverse_kinematics(robot, poses, d, dd, t,
+                                 options=pp.IkOptions(method=method, **options), **kw)
 
 
 def wrap(a):
@@ -336,15 +338,16 @@ def test_invalid_tolerance_is_rejected_up_front(robot, method, value):
 
 
 @pytest.mark.parametrize("method", METHODS)
-@pytest.mark.parametrize("options", [{"margins": 0.05}, {"wrist_margin": 0.05},
-                                     {"singularity_margin": 0.0}])
-def test_margins_other_than_a_margins_value_are_refused(robot, method, options):
+def test_margins_other_than_a_margins_value_are_refused(robot, method):
     # The margins travel as one validated value (Margins), not as loose numbers.
     traj = thesis_trajectory(samples=5)
     with pytest.raises(MarginError) as ei:
-        ik(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, method=method, **options)
+        ik(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, method=method, margins=0.05)
     assert isinstance(ei.value, InputError)
     assert "Margins(" in str(ei.value) and "\n" not in str(ei.value)
+    for loose in ("wrist_margin", "singularity_margin"):  # no such option
+        with pytest.raises(TypeError, match=loose):
+            pp.IkOptions(method=method, **{loose: 0.05})
 
 
 @pytest.mark.parametrize("value", [-0.1, math.nan, 2.0])
@@ -611,7 +614,8 @@ def test_newton_keeps_the_branch_of_its_start(robot):
         traj = thesis_trajectory(samples=n)
         ref = T.position_ik(other, traj.poses)[:, tree]
         r = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
-                                  q_start=ref[0], margins=Margins(singularity=0.0))
+                                  q_start=ref[0],
+                                  options=pp.IkOptions(margins=Margins(singularity=0.0)))
         assert np.abs(wrap(r.q - ref)).max() <= POS_TOL
 
 

@@ -7,12 +7,12 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.paths.curves import thesis_trajectory
-from pollard_pin.run import RunStats, duty_figures, stream_run, summary
+from pollard_pin.run import RunStats, StreamOptions, duty_figures, stream_run, summary
 
 
 def test_summary_is_the_whole_runs(robot, tmp_path):
     traj = thesis_trajectory(samples=801)
-    stats = stream_run(robot, traj, tmp_path / "s.csv", chunk=128)
+    stats = stream_run(robot, traj, tmp_path / "s.csv", StreamOptions(chunk=128))
     whole = summary(pp.run_pipeline(robot, traj))
     number = re.compile(r"-?\d+\.?\d*(?:e[+-]?\d+)?")
     same_words = re.compile(r"\s+")

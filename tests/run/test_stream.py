@@ -13,7 +13,7 @@ from pollard_pin.io.table import read_result, units_path
 from pollard_pin.kinematics.errors import SingularityError
 from pollard_pin.paths.curves import ThesisTrajectory, thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
-from pollard_pin.run import stream_run, write_run_table
+from pollard_pin.run import StreamOptions, stream_run, write_run_table
 
 # A pose exactly on leg 2's reach boundary (tests/kinematics/test_solver_edges.py): singular.
 ROUND_OFF = 1e-13  # × max(1, column peak)
@@ -32,8 +32,8 @@ def whole(robot, tmp_path_factory):
                                             (97, 3), (500, 2)])
 def test_windows_give_the_whole_solve(robot, whole, tmp_path, chunk, workers):
     path = tmp_path / "s.csv"
-    stats = stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=chunk,
-                       workers=workers)
+    stats = stream_run(robot, ThesisTrajectory(samples=1201), path,
+                       StreamOptions(chunk=chunk, workers=workers))
     got = read_result(path)
     assert list(got.columns) == list(whole.columns) and len(got) == 1201 == stats.samples
     _same(got, whole)
@@ -48,7 +48,8 @@ def _same(got, ref):
 def test_parquet_round_trip_units_and_metadata(robot, whole, tmp_path):
     path = tmp_path / "s.parquet"
     meta = {"trajectory": {"name": "thesis", "samples": 1201}, "pollard_pin": pp.__version__}
-    stream_run(robot, ThesisTrajectory(samples=1201), path, chunk=300, metadata=meta)
+    stream_run(robot, ThesisTrajectory(samples=1201), path, StreamOptions(chunk=300),
+               metadata=meta)
     got = read_result(path)
     _same(got, whole)
     assert got.metadata == meta
@@ -82,7 +83,7 @@ def test_errors_count_samples_from_the_start(robot, tmp_path, k, workers):
     path = tmp_path / "s.csv"
     path.write_text("keep me\n")
     with pytest.raises(SingularityError) as streamed:
-        stream_run(robot, traj, path, chunk=300, workers=workers)
+        stream_run(robot, traj, path, StreamOptions(chunk=300, workers=workers))
     assert whole.value.sample == streamed.value.sample == k
     assert whole.value.chain == streamed.value.chain
     # the same message; σ at round-off level (≈ 1e-17) need not have the same bits
@@ -103,7 +104,7 @@ def test_memory_is_one_window(robot, tmp_path, monkeypatch):
     monkeypatch.setattr(results, "run_pipeline",
                         lambda robot, traj, **kw: seen.append(len(traj)) or real(robot, traj, **kw))
     traj = ThesisTrajectory(samples=5001)
-    stats = stream_run(robot, traj, tmp_path / "s.parquet", chunk=1000)
+    stats = stream_run(robot, traj, tmp_path / "s.parquet", StreamOptions(chunk=1000))
     assert stats.samples == 5001 and max(seen) == 1000 and sum(seen) == 5001 + len(seen) - 1
     assert not hasattr(traj, "t")
 
@@ -116,7 +117,7 @@ def test_first_error_in_order_with_threads(robot, tmp_path):
     poses[400] = EDGE
     traj = Trajectory(traj.t, poses, traj.d_poses, traj.dd_poses, name="edge")
     with pytest.raises(SingularityError) as ei:
-        stream_run(robot, traj, tmp_path / "s.csv", chunk=300, workers=3)
+        stream_run(robot, traj, tmp_path / "s.csv", StreamOptions(chunk=300, workers=3))
     assert ei.value.sample == 400
 
 
@@ -147,3 +148,13 @@ def test_cli_window_size_is_the_streaming_window():
     from pollard_pin.run import stream as results
 
     assert STREAM_WINDOW == results.STREAM_CHUNK
+
+
+@pytest.mark.parametrize("kw, says", [({"chunk": 1}, "chunk must be an integer >= 2, got 1"),
+                                      ({"chunk": 2.0}, "chunk must be an integer >= 2"),
+                                      ({"workers": 0}, "workers must be an integer >= 1")])
+def test_stream_options_refuse_bad_values_before_any_work(kw, says):
+    from pollard_pin.errors import InputError
+
+    with pytest.raises(InputError, match=says):
+        StreamOptions(**kw)

@@ -7,7 +7,7 @@ from pollard_pin.viz.workspace import workspace_figure
 
 
 def test_figure_draws_the_rectangle_and_the_reasons(robot):
-    ws = pp.map_workspace(robot, "x=0.55", resolution=0.02)
+    ws = pp.map_workspace(robot, "x=0.55", pp.WorkspaceOptions(resolution=0.02))
     fig = workspace_figure(ws)
     ax = fig.axes[0]
     box = [p for p in ax.patches if p.get_gid() == "rectangle"]

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from pollard_pin.workspace.grid import WorkspaceError, largest_panel, map_workspace
+from pollard_pin.workspace.options import WorkspaceOptions
 from pollard_pin.workspace.reach import REASONS, evaluate
 
 
@@ -20,8 +21,8 @@ def test_area_converges_on_finer_grids(robot):
     (seen: 0.0051, 0.0018, 0.0004, 0.0003 m² at h = 20, 10, 5, 2.5 mm)."""
     bounds = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
     steps = (0.02, 0.01, 0.005, 0.0025)
-    areas = {h: map_workspace(robot, "x=0.55", resolution=h, bounds=bounds).summary["area"]
-             for h in steps + (0.00125,)}
+    areas = {h: map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=h, bounds=bounds))
+             .summary["area"] for h in steps + (0.00125,)}
     errs = [abs(areas[h] - areas[0.00125]) for h in steps]
     perimeter = 2 * (0.6 + 0.34)  # m, of the region (its bounding box)
     for h, e in zip(steps, errs):
@@ -34,14 +35,15 @@ def test_volume_streams_and_equals_the_stacked_planes(robot):
     the plane maps' areas times the step (the grids coincide point for point)."""
     h = 0.04
     chunks = []
-    vol = map_workspace(robot, volume=True, resolution=h, sink=chunks.append, chunk=5000)
+    vol = map_workspace(robot, None, WorkspaceOptions(volume=True, resolution=h, chunk=5000),
+                        sink=chunks.append)
     assert vol.columns is None and len(chunks) > 1
     assert sum(len(c["x"]) for c in chunks) == vol.grid.size
     xs = vol.grid.coordinates(0)
     total = 0.0
     for x in xs:
         try:
-            ws = map_workspace(robot, ("x", float(x)), resolution=h)
+            ws = map_workspace(robot, ("x", float(x)), WorkspaceOptions(resolution=h))
         except WorkspaceError:
             continue  # plane with no reachable point
         total += ws.summary["area"] * h
@@ -53,7 +55,8 @@ def test_default_bounds_hold_the_whole_reach(wide, orientation):
     """With every joint limit a full turn (the largest reach), the reachable points of a
     default volume grid stay at least two cells inside its bounds: nothing is cut off."""
     h = 0.04
-    vol = map_workspace(wide, volume=True, resolution=h, orientation=orientation)
+    vol = map_workspace(wide, None, WorkspaceOptions(volume=True, resolution=h,
+                                                   orientation=orientation))
     g = vol.grid.as_dict()
     lo, hi = (np.asarray(vol.summary["bounding_box"][k]) for k in ("low", "high"))
     assert (lo >= np.asarray(g["start"]) + 2 * h - 1e-9).all()
@@ -61,7 +64,7 @@ def test_default_bounds_hold_the_whole_reach(wide, orientation):
 
 
 def test_largest_panel_is_reachable_and_maximal(robot):
-    rect = largest_panel(robot, "x=0.55", resolution=0.01)
+    rect = largest_panel(robot, "x=0.55", WorkspaceOptions(resolution=0.01))
     ys = np.arange(rect.low[1], rect.high[1] + 1e-9, 0.01)
     zs = np.arange(rect.low[2], rect.high[2] + 1e-9, 0.01)
     Y, Z = np.meshgrid(ys, zs)
@@ -77,7 +80,7 @@ def test_the_reported_rectangle_has_reachable_corners_and_edges(robot, h):
     step along its four edges (corners included): all reachable. Its size was points × h,
     half a cell past the corner points on each side (at 5 mm its top corners were out of a
     leg's reach); it is now (points − 1) × h, corner point to corner point."""
-    rect = largest_panel(robot, "x=0.55", resolution=h)
+    rect = largest_panel(robot, "x=0.55", WorkspaceOptions(resolution=h))
     assert rect.axes == ("y", "z")
     assert rect.size == pytest.approx(tuple((n - 1) * h for n in rect.points), abs=1e-9)
     (y0, z0), (sy, sz) = rect.centre[1:], rect.size
@@ -95,7 +98,7 @@ def test_the_reported_rectangle_has_reachable_corners_and_edges(robot, h):
 def test_a_coarse_map_states_what_it_does_not_know(robot):
     """At a 10 m resolution one point is reachable: the rectangle is that point (0 × 0 m, it
     was 10 × 10 m) and the area, 100 m² as one cell, carries a bound larger than itself."""
-    ws = map_workspace(robot, "x=0.55", resolution=10.0)
+    ws = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=10.0))
     assert ws.summary["reachable_points"] == 1
     assert ws.rectangle.size == (0.0, 0.0) and ws.rectangle.points == (1, 1)
     assert ws.summary["area"] == 100.0 and ws.summary["area_bound"] >= 100.0
@@ -105,9 +108,10 @@ def test_the_area_bound_holds_against_a_fine_grid(robot):
     """area ± area_bound (the cells of points with a mixed neighbourhood) holds the area of a
     grid 8-16× finer (seen: errors 6.5 % and 4.6 % of the bound at h = 20 and 10 mm)."""
     bounds = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
-    fine = map_workspace(robot, "x=0.55", resolution=0.00125, bounds=bounds).summary["area"]
+    fine = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=0.00125,
+                                                             bounds=bounds)).summary["area"]
     for h in (0.02, 0.01):
-        s = map_workspace(robot, "x=0.55", resolution=h, bounds=bounds).summary
+        s = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=h, bounds=bounds)).summary
         assert abs(s["area"] - fine) <= s["area_bound"], (h, s["area"], fine, s["area_bound"])
         assert s["area_bound"] < 0.5 * s["area"]
 
@@ -134,7 +138,8 @@ def test_the_area_bound_holds_against_a_fine_grid(robot):
     ({}, ["either a plane"])])
 def test_bad_input(robot, kw, words):
     with pytest.raises(WorkspaceError) as err:
-        map_workspace(robot, **kw)
+        plane = kw.pop("plane", None)
+        map_workspace(robot, plane, WorkspaceOptions(**kw))
     msg = str(err.value)
     assert "\n" not in msg
     for w in words:

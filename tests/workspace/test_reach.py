@@ -25,6 +25,7 @@ from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
 from pollard_pin.model.params import load_params
 from pollard_pin.workspace.grid import map_workspace
+from pollard_pin.workspace.options import WorkspaceOptions
 from pollard_pin.workspace.reach import REASONS, ReachOptions, evaluate
 
 ACTUATORS = __file__.rsplit("/tests/", 1)[0] + "/examples/actuators.toml"
@@ -118,7 +119,7 @@ def test_reasons_on_constructed_points(robot):
 
 def test_leg_reasons_agree_with_the_closed_form(wide):
     """Points the map puts out of a leg's reach: the raising closed form names that leg."""
-    ws = map_workspace(wide, "x=0.55", resolution=0.02)
+    ws = map_workspace(wide, "x=0.55", WorkspaceOptions(resolution=0.02))
     c = ws.columns
     for chain in ("leg 1", "leg 2"):
         idx = np.flatnonzero(c["reason"] == REASONS.index(f"{chain} out of reach"))
@@ -156,7 +157,7 @@ def per_point_serial_map(robot, q):
 
 def test_conditioning_and_payload_per_point(robot):
     act = load_actuators(ACTUATORS)
-    ws = map_workspace(robot, "x=0.55", resolution=0.03, actuators=act)
+    ws = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=0.03, actuators=act))
     c = ws.columns
     idx = np.flatnonzero(c["reachable"] == 1)
     assert len(idx) > 20

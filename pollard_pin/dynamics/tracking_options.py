@@ -1,0 +1,173 @@
+"""What a closed-loop simulation takes (docs/model.md §18): :class:`TrackingOptions`, validated
+once, the measurement noise, and the RK4 step rules shared with the CLI's estimates."""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
+from .inverse import JointLosses
+from .plant import BAUMGARTE, ModelMismatch
+
+DT = 1e-3  # s, longest RK4 step
+# Wall time per RK4 step and per control tick (sensing by forward kinematics and the built-in
+# controllers), for estimates only: measured on a shared 2-core machine (scripts/benchmark.py;
+# 24–34 µs and 31–62 µs as the other load varied).
+STEP_SECONDS, TICK_SECONDS = 30e-6, 45e-6
+# m: the plant's largest loop-closure residual (max |p_A − p_B| component) at a control tick
+# that a simulation may reach; beyond it the RK4 step is too long for the motion and the
+# loops no longer hold (docs/model.md §18). Seen: 1e-13–1e-11 m at normal speeds, 1.4e-6 m
+# for the thesis curve in 1 s at 1 ms steps (2e-5 m at 2 ms).
+LOOP_TOLERANCE = 1e-5
+# RK4 steps one simulation may take: its grid is held in memory (≈ 50 bytes a step as Python
+# lists: 2.5 GB), and at STEP_SECONDS it runs for 25 min
+MAX_STEPS = 50_000_000
+
+
+@dataclass(frozen=True)
+class MeasurementNoise:
+    """Gaussian noise on the measured actuator angles [rad] and rates [rad/s], seeded."""
+
+    position: float = 0.0
+    velocity: float = 0.0
+    seed: int | None = 0
+
+    def __post_init__(self):
+        for name, value in (("position noise", self.position),
+                            ("velocity noise", self.velocity)):
+            if not (math.isfinite(value) and value >= 0):
+                raise ControlError(f"{name} standard deviation must be >= 0, got {value}")
+
+
+@dataclass(frozen=True, eq=False)
+class TrackingOptions:
+    """How :func:`~pollard_pin.dynamics.tracking.simulate_tracking` runs, checked once here.
+
+    ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
+    :class:`Controller` callable; it sees the sensed state at each tick. ``errors``: how the
+    plant differs from the robot (payload, mass error, losses). ``gains``: the built-in
+    controllers'. ``dt``: longest RK4 step [s], at most ``control_period`` [s] (default:
+    :data:`DT` or the period, the shorter; :attr:`step`); the torque is computed at each tick
+    and held. ``torque_limit`` [N·m]: a scalar or one per actuator, |τ| clipped to it
+    (:attr:`limits`). ``noise``: measurement noise on the actuator angles and rates.
+    ``start``: None (on the path, at the reference's state) or a closed configuration at rest
+    whose tool pose is the trajectory's first pose. ``baumgarte``: the plant's loop
+    stabilisation. ``desired`` reuses a :func:`desired_trajectory` computed with the same
+    period (and ``known_losses``); ``curve`` is the path between samples it follows.
+    ``known_losses``: joint losses the built-in controllers know and compensate.
+    ``joint_limits``: stop where a joint leaves its limits; ``loop_tolerance`` [m]: stop where
+    the plant's loops open beyond it. ``progress(done, total)`` is called per output sample.
+    """
+
+    controller: str | Controller = "computed-torque"
+    errors: ModelMismatch | None = None
+    gains: Gains = Gains()
+    dt: float | None = None
+    control_period: float = CONTROL_PERIOD
+    torque_limit: Any = None
+    noise: MeasurementNoise | None = None
+    start: Any = None
+    baumgarte: tuple[float, float] = BAUMGARTE
+    desired: DesiredTrajectory | None = None
+    curve: Callable | None = None
+    known_losses: JointLosses | None = None
+    joint_limits: bool = True
+    loop_tolerance: float = LOOP_TOLERANCE
+    progress: Callable[[int, int], None] | None = None
+
+    def __post_init__(self):
+        check_steps(self.step, self.control_period)
+        if isinstance(self.controller, str):
+            if self.controller not in CONTROLLERS:
+                raise ControlError(f"unknown controller {self.controller!r} (expected one of: "
+                                   f"{', '.join(CONTROLLERS)})")
+        elif not callable(self.controller):
+            raise ControlError(f"controller must be a name or a callable, got "
+                               f"{type(self.controller).__name__}")
+        if not isinstance(self.gains, Gains):
+            raise ControlError(f"gains must be a Gains, got {type(self.gains).__name__}")
+        if not (isinstance(self.loop_tolerance, (int, float)) and self.loop_tolerance > 0):
+            raise ControlError(f"loop tolerance must be > 0 m, got {self.loop_tolerance}")
+        object.__setattr__(self, "_limits", _torque_limit(self.torque_limit))
+
+    @property
+    def step(self) -> float:
+        """The longest RK4 step [s]: ``dt``, or :func:`default_step` of the period."""
+        return default_step(self.control_period) if self.dt is None else self.dt
+
+    @property
+    def limits(self) -> np.ndarray | None:
+        """The torque limit per actuator (6,) [N·m], or None."""
+        return self._limits
+
+    @property
+    def label(self) -> str:
+        """The controller's name, or its class's."""
+        c = self.controller
+        return c if isinstance(c, str) else type(c).__name__
+
+
+def _torque_limit(torque_limit) -> np.ndarray | None:
+    if torque_limit is None:
+        return None
+    if np.size(torque_limit) not in (1, 6):
+        raise ControlError(f"torque limit: give one value or 6 (one per actuator), got "
+                           f"{np.size(torque_limit)}")
+    limit = np.broadcast_to(np.asarray(torque_limit, dtype=float), (6,)).copy()
+    if not (np.all(np.isfinite(limit)) and np.all(limit > 0)):
+        raise ControlError(f"torque limits must be > 0 N·m, got {limit.tolist()}")
+    return limit
+
+
+def default_step(control_period: float) -> float:
+    """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
+    return min(DT, control_period) if control_period > 0 else DT
+
+
+def check_steps(dt: float, control_period: float) -> None:
+    """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
+    for name, value in (("time step", dt), ("control period", control_period)):
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            raise ControlError(f"{name} must be > 0 s, got {value}")
+    if dt > control_period * (1 + 1e-9):
+        raise ControlError(
+            f"time step {dt:g} s is longer than the control period {control_period:g} s: each "
+            "control period is integrated in equal RK4 steps of at most the time step, so the "
+            "step would be the period; give a time step <= the control period")
+
+
+def integration_steps(duration: float, dt: float, control_period: float) -> int:
+    """The number of RK4 steps :func:`simulate_tracking` takes over ``duration`` [s], each
+    control period in ⌈T/dt⌉ equal steps (computed without building the grid; output samples
+    off that grid add one step each)."""
+    check_steps(dt, control_period)
+    periods = math.ceil(duration / control_period - 1e-9)
+    return int(periods * math.ceil(control_period / dt - 1e-9))
+
+
+def check_step_count(duration: float, dt: float, control_period: float) -> None:
+    """Raise :class:`ControlError` past :data:`MAX_STEPS` RK4 steps (before any work)."""
+    steps = integration_steps(duration, dt, control_period)
+    if steps > MAX_STEPS:
+        shown = f"{steps:,}" if steps < 10 ** 12 else f"{steps:.3g}"
+        raise ControlError(f"{shown} RK4 steps ({duration:g} s, control period "
+                           f"{control_period:g} s, time step {dt:g} s): more than a simulation "
+                           f"can hold ({MAX_STEPS:.3g}); give a longer period or time step")
+
+
+def estimated_wall(duration: float, dt: float, control_period: float) -> float:
+    """A rough wall time [s] of :func:`simulate_tracking` over ``duration`` [s] (reference and
+    output excluded), from :data:`STEP_SECONDS` and :data:`TICK_SECONDS`."""
+    ticks = math.ceil(duration / control_period - 1e-9)
+    return (integration_steps(duration, dt, control_period) * STEP_SECONDS
+            + ticks * TICK_SECONDS)
+
+
+def step_used(dt: float, control_period: float) -> float:
+    """The RK4 step [s] inside a control period: T / ⌈T/dt⌉ (≤ dt)."""
+    check_steps(dt, control_period)
+    return control_period / math.ceil(control_period / dt - 1e-9)

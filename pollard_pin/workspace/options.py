@@ -1,0 +1,83 @@
+"""What a workspace map takes (docs/model.md §22): :class:`WorkspaceOptions`, checked once, and
+the rules of its values shared with the CLI (orientation, a finite number)."""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES
+from ..checks import real
+from ..errors import InputError
+from ..kinematics.margins import Margins, as_margins
+from ..model.values import parse_float, shorten
+
+CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
+
+
+class WorkspaceError(InputError):
+    """A workspace request that cannot be mapped (one line: which value, why)."""
+
+
+@dataclass(frozen=True, eq=False)
+class WorkspaceOptions:
+    """How :func:`~pollard_pin.workspace.grid.map_workspace` maps, checked once here.
+
+    ``volume``: a box rather than a plane. ``orientation`` (ψ, θ, φ) [rad]; ``resolution``
+    [m]; ``bounds`` {axis: (low, high)} [m] (default: the whole reach with a margin);
+    ``actuators`` (:class:`~pollard_pin.dynamics.motors.Actuators`) adds the payload capacity;
+    ``margins`` (:class:`Margins`) default to ``run``'s; ``length_scale`` [m]: the
+    conditioning index's (default: the platform arm); ``keep`` (default: plane mode) keeps
+    every chunk's columns in the map; ``chunk``: points per stacked evaluation.
+    """
+
+    volume: bool = False
+    orientation: Any = (0.0, 0.0, 0.0)
+    resolution: float = 0.005
+    bounds: Mapping | None = None
+    actuators: Any = None
+    margins: Margins | None = None
+    length_scale: float | None = None
+    keep: bool | None = None
+    chunk: int = CHUNK
+
+    def __post_init__(self):
+        object.__setattr__(self, "orientation", check_orientation(self.orientation))
+        object.__setattr__(self, "margins", as_margins(self.margins))
+        if self.length_scale is not None:
+            object.__setattr__(self, "length_scale", real(
+                self.length_scale, "length_scale", 0.0, above=True, why=" [m]",
+                error=WorkspaceError))
+        if isinstance(self.chunk, bool) or not isinstance(self.chunk, int) or self.chunk < 1:
+            raise WorkspaceError(f"chunk = {self.chunk!r}: must be a whole number of points "
+                                 ">= 1")
+
+
+def finite_value(value, what: str, unit: str, limit: float = 1e3) -> float:
+    """``value`` as a float, finite and within ±``limit`` [``unit``] (text as typed)."""
+    try:  # text as the user typed it: no "0.5_5", no full-width digits
+        v = parse_float(value) if isinstance(value, str) else float(value)
+    except (TypeError, ValueError):
+        raise WorkspaceError(f"{what} = {shorten(value)} is not a number [{unit}]") from None
+    if not math.isfinite(v) or abs(v) > limit:
+        within = f" within ±{limit:g} {unit}" if math.isfinite(limit) else f" [{unit}]"
+        raise WorkspaceError(f"{what} = {shorten(value)} must be a finite number{within}")
+    return v
+
+
+def check_orientation(orientation) -> tuple[float, float, float]:
+    """(ψ, θ, φ) [rad], three finite numbers."""
+    try:
+        vals = [float(v) for v in orientation]
+    except (TypeError, ValueError):
+        raise WorkspaceError(f"orientation {orientation!r}: expected three numbers "
+                             "(psi, theta, phi) [rad]") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
+                             "(psi, theta, phi) [rad]")
+    for name, v in zip(TASK_NAMES[3:], vals):
+        if abs(v) > MAX_ABS_TASK:  # the poses' own rule (analytic.taskspace)
+            raise WorkspaceError(f"orientation {name} = {v:.6g} rad is absurd: |{name}| > "
+                                 f"{MAX_ABS_TASK:g} rad (a unit or data error?)")
+    return tuple(vals)
