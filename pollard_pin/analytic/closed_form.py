@@ -13,7 +13,7 @@ import numpy as np
 
 from ..checks import real
 from ..errors import InputError
-from ..model.names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
+from ..names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
 from . import jet as J
 from .jet import Jet, value
 from .taskspace import TaskInputError, check_task_array

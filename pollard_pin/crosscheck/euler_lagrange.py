@@ -20,7 +20,7 @@ import numpy as np
 
 from ..analytic.closed_form import as_poses, body_states, direction_jet, vee_skew
 from ..analytic.jet import Jet
-from ..model.names import ACTUATED, BODIES
+from ..names import ACTUATED, BODIES
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 

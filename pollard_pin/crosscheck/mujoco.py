@@ -43,8 +43,8 @@ from ..io.mjcf import (  # noqa: F401
     read_urdf,
     require_mujoco,
 )
-from ..model.names import ACTUATED
-from ..model.names import TREE_JOINTS as JOINTS
+from ..names import ACTUATED
+from ..names import TREE_JOINTS as JOINTS
 
 GRAVITY = np.array([0.0, 0.0, -9.81])  # docs/model.md §2
 MASS_TOL = 1e-12  # relative tolerance of the mass/inertia check

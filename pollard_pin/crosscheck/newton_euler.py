@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analytic.closed_form import body_kinematics, forward_frames, position_ik
-from ..model.names import BODIES, PASSIVE, TREE_JOINTS
+from ..names import BODIES, PASSIVE, TREE_JOINTS
 from .euler_lagrange import GRAVITY
 
 # joint → (frame of its origin and axis in forward_frames, axis column, bodies of its subtree)

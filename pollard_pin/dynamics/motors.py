@@ -23,10 +23,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..model.names import ACTUATED as ACTUATED_JOINTS
-from ..model.names import TREE_JOINTS as JOINT_NAMES
 from ..model.params import did_you_mean
 from ..model.values import fail, number, read_toml
+from ..names import ACTUATED as ACTUATED_JOINTS
+from ..names import TREE_JOINTS as JOINT_NAMES
 from .averages import mean_weights
 from .averages import time_rms as rms
 from .inverse import JointLosses

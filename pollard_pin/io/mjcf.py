@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.names import ACTUATED
-from ..model.names import TREE_JOINTS as JOINTS
+from ..names import ACTUATED
+from ..names import TREE_JOINTS as JOINTS
 from .atomic import atomic_open
 
 TIP = "tip"  # tool-tip frame of the URDF (docs/model.md §3: Tx(x1918) on gun)

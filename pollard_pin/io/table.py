@@ -19,8 +19,8 @@ import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
 from ..errors import InputError
-from ..model.names import JOINTS
 from ..model.values import clip, open_regular, shorten
+from ..names import JOINTS
 from .atomic import STDOUT, OutputError, all_or_nothing, atomic_open, check_destination, is_special
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"

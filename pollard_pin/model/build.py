@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import InputError
-from .names import ACTUATED, PASSIVE, TREE_JOINTS
+from ..names import ACTUATED, PASSIVE, TREE_JOINTS
 from .params import Params, load_params
 from .paths import models_dir
 from .urdf import generate_srdf, generate_urdf

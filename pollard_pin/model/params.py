@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from .names import ACTUATED, BODIES, TREE_JOINTS
+from ..names import ACTUATED, BODIES, TREE_JOINTS
 from .paths import models_dir
 from .values import fail, loads_toml, number, read_toml, shorten
 
@@ -286,7 +286,7 @@ def _check_home_reachable(p: Params) -> None:
     pose = "[" + ", ".join(f"{x:.4g}" for x in p.home_pose) + "]"
     try:
         position_ik(p, np.asarray(p.home_pose, dtype=float)[None, :])
-    except TaskInputError as exc:  # e.g. an absurd angle (a traceback before)
+    except TaskInputError as exc:  # e.g. an absurd angle: one line, not the solver's error
         raise ParameterError(f"home pose {pose} (home.tip, home.orientation): "
                              f"{exc.detail}") from None
     except UnreachableError as exc:

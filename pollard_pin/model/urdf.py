@@ -24,7 +24,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .names import TREE_JOINTS
+from ..names import TREE_JOINTS
 from .params import Params
 
 # Design workspace of the position limits: ± half-widths about the home pose in (x, y, z) [m]

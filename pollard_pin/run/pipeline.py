@@ -12,7 +12,7 @@ from ..io.table import write_table
 from ..kinematics.ik import IkOptions, IKResult, inverse_kinematics
 from ..kinematics.limits import check_joint_limits
 from ..kinematics.margins import Margins
-from ..model.names import SPHERICAL
+from ..names import SPHERICAL
 from ..paths.trajectory import Trajectory
 
 

@@ -9,7 +9,6 @@ import numpy as np
 
 from ..dynamics.averages import time_rms
 from ..errors import InputError
-from ..model.names import ACTUATED, TREE_JOINTS
 from ..model.params import (
     ParameterError,
     apply_overrides,
@@ -18,6 +17,7 @@ from ..model.params import (
     plain_value,
     read_params_dict,
 )
+from ..names import ACTUATED, TREE_JOINTS
 
 FAILURE_COLUMNS = ("feasible", "failure_kind", "failure", "failure_sample", "failure_time",
                    "failure_chain")

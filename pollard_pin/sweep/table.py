@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import atomic_open
-from ..model.names import ACTUATED
 from ..model.params import plain_value
+from ..names import ACTUATED
 
 
 # --- output -----------------------------------------------------------------------------------

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.names import ACTUATED, CHAIN_JOINTS, SPHERICAL
+from ..names import ACTUATED, CHAIN_JOINTS, SPHERICAL
 
 # Figure name → file name (without .png), in the order they are written.
 FIGURES = ("chain0_joints", "wrist_joints", "leg1_joints", "leg2_joints", "spherical_joints",

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..dynamics.control import ControlError
 from ..dynamics.tracking import tracking_summary
-from ..model.names import ACTUATED
+from ..names import ACTUATED
 from .plots import COLOURS, LABELS, figure_maker, finish_axes, plot_line
 
 SIMULATION_FIGURES = ("simulation_tracking", "simulation_torques", "simulation_path")

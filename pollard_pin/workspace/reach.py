@@ -16,7 +16,7 @@ from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
 from ..kinematics.margins import CHECKS, Margins
 from ..kinematics.singularity import conditioning, sigma_range
-from ..model.names import CHAINS, JOINTS, TREE_JOINTS
+from ..names import CHAINS, JOINTS, TREE_JOINTS
 
 # Reason codes (the ``reason`` column): 0 reachable, then in the order they are checked; a
 # point gets the first that applies (docs/model.md §22).

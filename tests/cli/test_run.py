@@ -13,7 +13,7 @@ import pollard_pin as pp
 from pollard_pin.cli import main
 from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import from_csv, to_csv
-from pollard_pin.model.names import SPHERICAL
+from pollard_pin.names import SPHERICAL
 from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
 from pollard_pin.run import run_pipeline

@@ -10,8 +10,8 @@ from thesis_curves import T_PROBE, sinusoid_trajectory
 
 from pollard_pin.analytic.closed_form import body_kinematics
 from pollard_pin.crosscheck.newton_euler import joint_loads, static_loads
-from pollard_pin.model.names import BODIES
 from pollard_pin.model.params import load_params
+from pollard_pin.names import BODIES
 
 G = np.array([0.0, 0.0, -9.81])
 BASE = ("theta21", "theta21_1", "theta21_2")

@@ -146,7 +146,7 @@ def test_columns_units_and_bearing_table(robot, case):
 
 
 def test_sweep_row_has_the_peak_bearing_loads(robot):
-    from pollard_pin.model.names import TREE_JOINTS
+    from pollard_pin.names import TREE_JOINTS
     from pollard_pin.sweep import LOAD_METRICS, evaluate_variant
 
     assert TREE_JOINTS == robot.joint_names

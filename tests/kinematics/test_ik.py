@@ -25,7 +25,7 @@ from pollard_pin.analytic import closed_form as T
 from pollard_pin.io.trajectory import from_csv, to_csv
 from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
-from pollard_pin.model.names import SPHERICAL
+from pollard_pin.names import SPHERICAL
 from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 from pollard_pin.paths.trajectory import TrajectoryError
 

@@ -11,10 +11,10 @@ import pinocchio as pin
 import pytest
 
 import pollard_pin
-from pollard_pin.model.names import ACTUATED, TREE_JOINTS
 from pollard_pin.model.params import ParameterError, load_params, params_from_dict, read_params_dict
 from pollard_pin.model.paths import models_dir
 from pollard_pin.model.urdf import position_limits
+from pollard_pin.names import ACTUATED, TREE_JOINTS
 
 URDF = models_dir() / "pollard.urdf"
 SRDF = models_dir() / "pollard.srdf"

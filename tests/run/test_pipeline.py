@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from pollard_pin.io.table import read_result
-from pollard_pin.model.names import SPHERICAL
+from pollard_pin.names import SPHERICAL
 from pollard_pin.paths.curves import thesis_trajectory
 from pollard_pin.run import run_pipeline, write_run_table
 

@@ -8,7 +8,7 @@ import pytest
 from sweep_grid import SAMPLES
 
 import pollard_pin as pp
-from pollard_pin.model.names import ACTUATED
+from pollard_pin.names import ACTUATED
 from pollard_pin.run import run_pipeline
 from pollard_pin.sweep import METRIC_COLUMNS, evaluate_variant
 

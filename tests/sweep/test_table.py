@@ -4,7 +4,7 @@ what the rows hold."""
 import csv
 import json
 
-from pollard_pin.model.names import ACTUATED
+from pollard_pin.names import ACTUATED
 from pollard_pin.sweep import summary, write_sweep_table
 
 

@@ -2,8 +2,8 @@
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.model.names import TREE_JOINTS
 from pollard_pin.model.params import load_params
+from pollard_pin.names import TREE_JOINTS
 
 
 @pytest.fixture(scope="package")

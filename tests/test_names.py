@@ -1,11 +1,11 @@
-"""The joint and body vocabulary (model/names.py) against the URDF generated from the shipped
+"""The joint and body vocabulary (names.py) against the URDF generated from the shipped
 parameters, its SRDF and the loaded model: every name and order the package takes from it is
 the description's own."""
 import xml.etree.ElementTree as ET
 
 import pytest
 
-from pollard_pin.model import names as N
+from pollard_pin import names as N
 from pollard_pin.model.params import load_params
 from pollard_pin.model.urdf import generate_srdf, generate_urdf
 
