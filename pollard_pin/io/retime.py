@@ -1,9 +1,12 @@
-"""A trajectory traversed with a new timing along the same path (docs/model.md §19)."""
+"""A trajectory traversed with a new timing along the same path, and its file, whose
+metadata says how it moves between its rows (docs/model.md §19)."""
 from __future__ import annotations
 
 import numpy as np
 
+from ..analytic.taskspace import TASK_NAMES
 from ..dynamics.timeopt import TimeOptimal
+from ..paths.arc_length import ArcLengthPath, ChordArcLengthPath
 from ..paths.const_accel import RetimedCurve
 from ..paths.trajectory import Trajectory, trajectory_curve
 
@@ -35,4 +38,58 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
                       curve=RetimedCurve(trajectory_curve(traj), float(t[0]), T, timing))
 
 
-__all__ = ["retimed_trajectory"]
+# How the motion between consecutive rows is defined, by the path parameter s of the timing.
+BETWEEN_ROWS = {
+    "arc_length": (
+        "along the source trajectory's path (its curve between times source_start and "
+        "source_end) with constant acceleration along its arc length s between consecutive "
+        "rows; s = σ/length, σ the arc length with lengths and angles each divided by "
+        "arc_length_scale (x, y, z, psi, theta, phi); at a row ṡ = |(d_x, …, d_phi) / "
+        "arc_length_scale| / length, so s_(i+1) − s_i = (ṡ_i + ṡ_(i+1))·(t_(i+1) − t_i)/2 and "
+        "s̈ = (ṡ_(i+1)² − ṡ_i²) / (2(s_(i+1) − s_i)); the dd_* columns hold one side of the "
+        "jump of s̈ at a row"),
+    "chord_arc_length": (
+        "along the source trajectory's path with constant acceleration along s between "
+        "consecutive rows, s its arc length from the chords of a quintic spline through it "
+        "(the path stands at an end); the dd_* columns hold one side of the jump of s̈"),
+    "source_time": (
+        "along the source trajectory's path with constant acceleration along s between "
+        "consecutive rows, s = (t − source_start)/(source_end − source_start) of the source "
+        "(its path stops inside); the dd_* columns hold one side of the jump of s̈"),
+}
+
+
+def retime_metadata(traj: Trajectory, timing: TimeOptimal) -> dict:
+    """The retimed file's metadata: the motion between its rows (:data:`BETWEEN_ROWS`) and to
+    what tolerance the limits hold there."""
+    curve = timing.curve
+    kind = ("arc_length" if isinstance(curve, ArcLengthPath) else
+            "chord_arc_length" if isinstance(curve, ChordArcLengthPath) else "source_time")
+    meta = {"trajectory": f"{traj.name}_time_optimal", "source": traj.name,
+            "derivatives": f"{traj.derivatives}, retimed (exact chain rule)",
+            "path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
+            "source_start": float(traj.t[0]), "source_end": float(traj.t[-1]),
+            "worst_utilisation_between_rows": (float(timing.between)
+                                               if np.isfinite(timing.between) else None),
+            "check_points_per_interval": 2 * timing.per_interval}
+    if kind != "source_time":
+        meta.update(arc_length_scale=[float(x) for x in curve.scale],
+                    length=curve.length)
+    return meta
+
+
+def write_retimed(traj: Trajectory, timing: TimeOptimal, path) -> Trajectory:
+    """Write ``traj`` retimed by ``timing`` in the ``run`` input format (every float64 exact),
+    atomically, with :func:`retime_metadata` in its sidecar; the retimed trajectory."""
+    from .table import write_table
+
+    retimed = retimed_trajectory(traj, timing)
+    cols = {"t": retimed.t}
+    for prefix, arr in (("", retimed.poses), ("d_", retimed.d_poses),
+                        ("dd_", retimed.dd_poses)):
+        cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
+    write_table(path, cols, retime_metadata(traj, timing), fmt="csv")
+    return retimed
+
+
+__all__ = ["BETWEEN_ROWS", "retime_metadata", "retimed_trajectory", "write_retimed"]

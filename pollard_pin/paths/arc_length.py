@@ -5,26 +5,23 @@ from __future__ import annotations
 
 import numpy as np
 
-ARC_POINTS = 8  # points per sample interval from which the arc-length path is built, and
-ARC_KNOTS = 6400  # at least this many in all (201 samples × 8 cut the thesis curve's bends)
+from .splines import QuinticHermite
+
+ARC_POINTS = 2  # knots per sample interval of the arc-length path at least, and
+# at least this many in all: u(σ)'s second derivative within 5e-5 of the thesis curve's
+# (4e-3 with 6400, 4e-4 with 12,800: docs/model.md §19)
+ARC_KNOTS = 25600
 STOP = 1e-6  # an interior point this slow (relative to the fastest) is a stop on the path
+# an end this slow (relative to the fastest) stands: u(σ) ~ √σ there, no polynomial, so the
+# path is the chord spline (ChordArcLengthPath)
+END_STOP = 1e-3
 
 
-class ArcLengthPath:
-    """The tool path of ``curve`` between times ``t[0]`` and ``t[-1]`` parameterised by its
-    arc length σ [0, ``length``] in task space, lengths and angles each scaled by their largest
-    range along the path: a ``curve(σ) -> (poses, dp/dσ, d²p/dσ²)``, the same whatever the
-    timing of the samples (docs/model.md §19). A quintic interpolating spline through
-    ARC_POINTS chords per sample interval, so it is smooth where the timed path comes to rest
-    (where p(t) is not: dp/ds = 0 there)."""
+class _Grid:
+    """The grid in ∫√(1 + κ) dσ shared by both arc-length paths (knots σ, ``length``)."""
 
-    def __init__(self, sigma: np.ndarray, poses: np.ndarray, scale: np.ndarray):
-        from scipy.interpolate import make_interp_spline
-
-        self.length = float(sigma[-1])
-        self.knots, self.scale = sigma, scale
-        self.spline = make_interp_spline(sigma, poses, k=5, axis=0)
-        kappa = np.sqrt(((self.spline(sigma, 2) / scale) ** 2).sum(axis=1))
+    def _measure(self, sigma: np.ndarray) -> None:
+        kappa = np.sqrt(((self(sigma)[2] / self.scale) ** 2).sum(axis=1))
         w = np.sqrt(1.0 + kappa)
         self._tau = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(sigma))])
         self.extent = float(self._tau[-1])  # ∫√(1 + κ) dσ: the grid's measure of the path
@@ -37,6 +34,48 @@ class ArcLengthPath:
         grid = np.interp(np.linspace(0.0, tau[-1], n), tau, self.knots) / self.length
         grid[0], grid[-1] = 0.0, 1.0
         return grid
+
+
+class ArcLengthPath(_Grid):
+    """The tool path of ``curve`` between times ``t[0]`` and ``t[-1]`` parameterised by its
+    arc length σ [0, ``length``] in task space, lengths and angles each divided by ``scale``
+    (their largest range along the path): a ``curve(σ) -> (poses, dp/dσ, d²p/dσ²)``, the same
+    whatever the timing of the samples (docs/model.md §19). The poses are ``curve`` itself at
+    its time u(σ), so the geometry is exact; u(σ) is the quintic Hermite spline through the
+    knots' (σ, u, 1/g, −g'/g³), g = |dp/du| scaled, σ by the end-corrected trapezoid rule
+    (error O(h⁵) per knot interval)."""
+
+    def __init__(self, curve, u: np.ndarray, rates: np.ndarray, accelerations: np.ndarray,
+                 scale: np.ndarray):
+        g = np.sqrt(((rates / scale) ** 2).sum(axis=1))
+        g1 = ((rates / scale) * (accelerations / scale)).sum(axis=1) / g  # dg/du
+        h = np.diff(u)
+        steps = h * (g[1:] + g[:-1]) / 2 + h * h * (g1[:-1] - g1[1:]) / 12
+        sigma = np.concatenate([[0.0], np.cumsum(steps)])
+        self.curve, self.scale, self.knots = curve, scale, sigma
+        self.length = float(sigma[-1])
+        self.time = QuinticHermite(sigma, u[:, None], (1 / g)[:, None], (-g1 / g**3)[:, None])
+        self._measure(sigma)
+
+    def __call__(self, sigma):
+        sigma = np.atleast_1d(np.asarray(sigma, dtype=float))
+        u, u1, u2 = (x[:, 0] for x in self.time(sigma))
+        poses, rates, accelerations = self.curve(u)
+        return (poses, rates * u1[:, None],
+                accelerations * (u1 * u1)[:, None] + rates * u2[:, None])
+
+
+class ChordArcLengthPath(_Grid):
+    """:class:`ArcLengthPath` of a path that stands at an end (σ from its chords, the poses a
+    quintic interpolating spline in σ): smooth where the timed path comes to rest, its
+    geometry within the spline's error of ``curve``'s."""
+
+    def __init__(self, sigma: np.ndarray, poses: np.ndarray, scale: np.ndarray):
+        from scipy.interpolate import make_interp_spline
+
+        self.length, self.knots, self.scale = float(sigma[-1]), sigma, scale
+        self.spline = make_interp_spline(sigma, poses, k=5, axis=0)
+        self._measure(sigma)
 
     def __call__(self, sigma):
         sigma = np.atleast_1d(np.asarray(sigma, dtype=float))
@@ -57,10 +96,13 @@ def arc_length_path(curve, t) -> ArcLengthPath | None:
     speed = np.sqrt(((rates / scale) ** 2).sum(axis=1))
     if not speed.max() > 0 or np.any(speed[1:-1] <= STOP * speed.max()):
         return None
+    if min(speed[0], speed[-1]) > END_STOP * speed.max():
+        return ArcLengthPath(curve, dense, rates, accelerations, scale)
     chord = np.sqrt(((np.diff(poses, axis=0) / scale) ** 2).sum(axis=1))
     if np.any(chord <= 0):
         return None
-    return ArcLengthPath(np.concatenate([[0.0], np.cumsum(chord)]), poses, scale)
+    return ChordArcLengthPath(np.concatenate([[0.0], np.cumsum(chord)]), poses, scale)
 
 
-__all__ = ["ARC_KNOTS", "ARC_POINTS", "ArcLengthPath", "STOP", "arc_length_path"]
+__all__ = ["ARC_KNOTS", "ARC_POINTS", "END_STOP", "STOP", "ArcLengthPath", "ChordArcLengthPath",
+           "arc_length_path"]
