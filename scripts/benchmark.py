@@ -219,7 +219,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         row("path dynamics", lambda ik=ik: path_mod.path_dynamics(robot, ik), n)
         row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
         row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
-            robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses, traj.curve), n)
+            robot, act, traj), n)
     # the paint planner's raster: 12 passes 0.26 m long, 0.12 m apart in all, at 0.2 m/s in
     # the plane x = 0.55 m, 0.4 s turnarounds, 0.75 s ramps
     frame = PanelFrame(np.array([0.55, 0.0, 0.16]), np.array([-1.0, 0.0, 0.0]),
@@ -228,7 +228,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     t = np.linspace(0.0, seg.total, round(seg.total / 2e-3) + 1)
     poses, rates, accelerations = raster_motion(frame, 0.0, seg, t)
     row("raster time_optimal_path", lambda: timeopt.time_optimal_path(
-        robot, act, t, poses, rates, accelerations), len(t))
+        robot, act, pp.Trajectory(t, poses, rates, accelerations)), len(t))
 
 
 def workspace_section(robot, repeats: int) -> None:

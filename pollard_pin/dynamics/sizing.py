@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics.errors import KinematicsError
-from ..paths.trajectory import trajectory_curve
 from .averages import mean_weights
 from .motors import (
     ActuatorError,
@@ -95,8 +94,7 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
                             f"{travel:.2g} rad over its {len(ik.t)} samples)")
     uniform = uniform_min_duration(act, path)
     try:
-        timing = time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                   traj.dd_poses, trajectory_curve(traj))
+        timing = time_optimal_path(robot, act, traj)
     except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
         timing, error = None, str(exc)
     checks = _checks(given)
