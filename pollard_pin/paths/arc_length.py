@@ -15,6 +15,7 @@ STOP = 1e-6  # an interior point this slow (relative to the fastest) is a stop o
 # an end this slow (relative to the fastest) stands: u(σ) ~ √σ there, no polynomial, so the
 # path is the chord spline (ChordArcLengthPath)
 END_STOP = 1e-3
+MIN_CHORD = 0.1  # of the median chord: the chord spline's closest knots
 
 
 class _Grid:
@@ -82,6 +83,20 @@ class ChordArcLengthPath(_Grid):
         return self.spline(sigma), self.spline(sigma, 1), self.spline(sigma, 2)
 
 
+def _stops_inside(speed: np.ndarray) -> bool:
+    """Whether the path stops (speed ≤ STOP of the fastest) at an interior point other than
+    while it speeds up from a rest start or slows down to a rest end (densely sampled, the
+    knots next to a rest end are that slow)."""
+    slow = np.flatnonzero(speed[1:-1] <= STOP * speed.max()) + 1
+    if not len(slow):
+        return False
+    step = np.diff(speed)
+    rising = int(np.argmax(step < 0)) if np.any(step < 0) else len(speed)  # speed[:rising+1] ↑
+    falling = len(speed) - 1 - (int(np.argmax(step[::-1] > 0)) if np.any(step > 0) else
+                                len(speed))  # speed[falling:] ↓
+    return bool(np.any((slow > rising) & (slow < falling)))
+
+
 def arc_length_path(curve, t) -> ArcLengthPath | None:
     """:class:`ArcLengthPath` of ``curve`` over the times ``t`` (n,), or None where arc length
     is no parameter: the path stands still, or stops inside (a cusp: it may turn back)."""
@@ -94,14 +109,33 @@ def arc_length_path(curve, t) -> ArcLengthPath | None:
     for g in (slice(0, 3), slice(3, 6)):
         scale[g] = max(float(np.ptp(poses[:, g], axis=0).max()), 1e-300)
     speed = np.sqrt(((rates / scale) ** 2).sum(axis=1))
-    if not speed.max() > 0 or np.any(speed[1:-1] <= STOP * speed.max()):
+    if not speed.max() > 0 or _stops_inside(speed):
         return None
     if min(speed[0], speed[-1]) > END_STOP * speed.max():
         return ArcLengthPath(curve, dense, rates, accelerations, scale)
     chord = np.sqrt(((np.diff(poses, axis=0) / scale) ** 2).sum(axis=1))
     if np.any(chord <= 0):
         return None
-    return ChordArcLengthPath(np.concatenate([[0.0], np.cumsum(chord)]), poses, scale)
+    sigma = np.concatenate([[0.0], np.cumsum(chord)])
+    # near a rest end the chords shrink as the time step squared (1e-13 at 2 ms steps): the
+    # spline through them blows up; knots closer than MIN_CHORD of the median are dropped
+    keep = _spaced(sigma, MIN_CHORD * float(np.median(chord)))
+    return ChordArcLengthPath(sigma[keep], poses[keep], scale)
+
+
+def _spaced(sigma: np.ndarray, gap: float) -> np.ndarray:
+    """Indices of the knots ``sigma`` (increasing) at least ``gap`` apart, first and last
+    kept (greedy from the start; the last replaces a kept knot within ``gap`` of it)."""
+    if np.diff(sigma).min() >= gap:
+        return np.arange(len(sigma))
+    keep, last = [0], sigma[0]
+    for k in range(1, len(sigma) - 1):
+        if sigma[k] - last >= gap:
+            keep.append(k)
+            last = sigma[k]
+    if sigma[-1] - last < gap and len(keep) > 1:
+        keep.pop()
+    return np.array(keep + [len(sigma) - 1])
 
 
 __all__ = ["ARC_KNOTS", "ARC_POINTS", "END_STOP", "STOP", "ArcLengthPath", "ChordArcLengthPath",
