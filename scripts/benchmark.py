@@ -218,7 +218,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         path = path_mod.path_dynamics(robot, ik)
         row("path dynamics", lambda ik=ik: path_mod.path_dynamics(robot, ik), n)
         row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
-        row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
+        row("time_optimal_path", lambda traj=traj: pp.time_optimal_path(
             robot, act, traj), n)
     # the paint planner's raster: 12 passes 0.26 m long, 0.12 m apart in all, at 0.2 m/s in
     # the plane x = 0.55 m, 0.4 s turnarounds, 0.75 s ramps
@@ -227,7 +227,7 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     seg = raster_segments(np.linspace(-0.06, 0.06, 12), 0.13, 0.2, 0.4, (0.75, 0.75))
     t = np.linspace(0.0, seg.total, round(seg.total / 2e-3) + 1)
     poses, rates, accelerations = raster_motion(frame, 0.0, seg, t)
-    row("raster time_optimal_path", lambda: timeopt.time_optimal_path(
+    row("raster time_optimal_path", lambda: pp.time_optimal_path(
         robot, act, pp.Trajectory(t, poses, rates, accelerations)), len(t))
 
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..kinematics.errors import KinematicsError
 from .averages import mean_weights
+from .cycle import time_optimal_path
 from .motors import (
     ActuatorError,
     Actuators,
@@ -25,7 +26,7 @@ from .motors import (
     uniform_min_duration,
 )
 from .path import PathDynamics, path_dynamics
-from .timeopt import TimeOptimal, time_optimal_path
+from .timeopt import TimeOptimal
 
 ACTIVE = 0.98  # a limit "binds" at a sample when used to within 2 %
 MIN_TRAVEL = 1e-9  # rad: a path moving no actuator further stands still (IK noise: 1e-14)

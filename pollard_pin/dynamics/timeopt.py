@@ -1,12 +1,13 @@
 """The fastest traversal of a path under the motors' peak torque and speed, at its samples and
-between them (TOPP-RA, ``toppra``; docs/model.md §19).
+between them (TOPP-RA, ``toppra``; docs/model.md §19); one moving segment (a path with waits:
+:mod:`.cycle`).
 
 TOPP-RA holds s̈ constant over each interval of the grid, so ṡ² = ṡ_i² + 2·s̈_i·(s − s_i)
 there. Each interval's limits are imposed at ``per_interval`` + 1 check points on the exact
 path (the interpolation scheme generalised: the sample's own constraint and the interval's
 end are two of them), then the motion is evaluated at the points halfway between the check
 points; where it uses a limit by more than ``TARGET``, the check points double and TOPP-RA
-solves again (:func:`time_optimal_path`). Rows are scaled to unit coefficients: TOPP-RA's
+solves again (:func:`time_optimal_segment`). Rows are scaled to unit coefficients: TOPP-RA's
 Seidel solver compares products of coefficients with an absolute 1e-10.
 """
 from __future__ import annotations
@@ -56,12 +57,16 @@ class TimeOptimal:
     between: float = float("nan")
     between_at: float = float("nan")
     tightened: int = 0  # intervals whose ratings were tightened to hold halfway
-    # the path the grid lies on (time_optimal_path): its dynamics at the grid, and
+    # the path the grid lies on (time_optimal_segment): its dynamics at the grid, and
     # ``curve(t0 + s·span) -> (poses, rates, accelerations)``, rates per unit of that parameter
     path: PathDynamics | None = None
     curve: object = None
     t0: float = 0.0
     span: float = 1.0
+    # a path with waits (dynamics.cycle): the traversals of its moving segments, one after the
+    # other; the arrays above join theirs (s = k + the k-th one's s, a rest sample at each
+    # junction twice, both sides of s̈), ``curve`` None
+    parts: tuple = ()
 
     @property
     def duration(self) -> float:
@@ -310,7 +315,7 @@ def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 @dataclass(frozen=True)
 class Options:
-    """How :func:`time_optimal_path` solves, validated once: ``per_interval`` check points per
+    """How :func:`time_optimal_segment` solves, validated once: ``per_interval`` check points per
     interval to start with, the worst utilisation ``target`` accepted between them, the path
     rates at the ends (rest to rest by default), and the viscous iteration's
     ``max_iterations`` TOPP-RA solves and relative ``tol`` on ṡ(s)."""
@@ -334,25 +339,8 @@ class Options:
                 raise ValueError(f"{key} must be finite and >= 0, got {value!r}")
 
 
-def moving_span(traj) -> tuple[int, int]:
-    """The samples ``start:stop`` of ``traj`` between its waits at the ends: runs of samples
-    at the end pose with zero rates and accelerations (a line job's wait), on which its path
-    is that one pose (the quintic Hermite between such samples is constant); the wait's last
-    and first samples are kept as the moving part's rest ends."""
-    still = ~(np.any(traj.d_poses, axis=1) | np.any(traj.dd_poses, axis=1))
-    poses, n = traj.poses, len(traj.t)
-    start, stop = 0, n
-    while still[start] and start + 1 < n and still[start + 1] \
-            and np.array_equal(poses[start + 1], poses[0]):
-        start += 1
-    while still[stop - 1] and stop - 2 > start and still[stop - 2] \
-            and np.array_equal(poses[stop - 2], poses[-1]):
-        stop -= 1
-    return (start, stop) if stop - start >= 3 else (0, n)  # one pose throughout: no path
-
-
-def time_optimal_path(robot, act: Actuators, traj, options: Options | None = None
-                      ) -> TimeOptimal:
+def time_optimal_segment(robot, act: Actuators, traj, options: Options | None = None
+                         ) -> TimeOptimal:
     """The time-optimal traversal, rest to rest, of the path of ``traj`` (``t`` (n,), task
     ``poses``, rates, accelerations (n, 6), and ``curve``, the exact path between the samples,
     default the quintic Hermite spline through them: :func:`trajectory_curve`), holding
@@ -364,16 +352,14 @@ def time_optimal_path(robot, act: Actuators, traj, options: Options | None = Non
     to ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
 
-    Waits at the ends (:func:`moving_span`) take no time and are left out. The path is
-    traversed by its arc length (:func:`~.arc_length_path`), on a grid of GRID_DENSITY points
-    per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends neither on how the
-    samples are timed nor on how many there are. A path that stops inside (or on which
-    TOPP-RA fails) keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
-    at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
+    The path is traversed by its arc length (:func:`~.arc_length_path`), on a grid of
+    GRID_DENSITY points per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends
+    neither on how the samples are timed nor on how many there are. A path that stops inside
+    (or on which TOPP-RA fails) keeps its samples' parameter s = (t − t0)/T. The result's
+    ``s``, ``t`` are at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
     """
     options = options or Options()
-    start, stop = moving_span(traj)
-    t = np.asarray(traj.t, dtype=float)[start:stop]
+    t = np.asarray(traj.t, dtype=float)
     curve = trajectory_curve(traj)
     # kept from the grid on the samples (a 2-sample path, rest to rest, is refused: tested)
     _check_count(len(t), options.s_dot_start, options.s_dot_end)
@@ -389,7 +375,7 @@ def time_optimal_path(robot, act: Actuators, traj, options: Options | None = Non
 
 
 def _solve(robot, act, on, grid, options: Options) -> TimeOptimal:
-    """:func:`time_optimal_path` on the path ``curve(t0 + s·T)``, ``on = (curve, t0, T)``,
+    """:func:`time_optimal_segment` on the path ``curve(t0 + s·T)``, ``on = (curve, t0, T)``,
     TOPP-RA's grid ``grid``."""
     curve, t0, T = on
     m, target = options.per_interval, options.target
@@ -464,4 +450,4 @@ def _dense_use(act, dense: PathDynamics, timing: TimeOptimal, m: int, rest) -> n
 
 
 __all__ = ["MAX_PER_INTERVAL", "PER_INTERVAL", "TARGET", "Options", "TimeOptimal",
-           "motion_at", "moving_span", "time_optimal", "time_optimal_path", "utilisation"]
+           "motion_at", "time_optimal", "time_optimal_segment", "utilisation"]

@@ -7,7 +7,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..dynamics.timeopt import TimeOptimal
 from ..paths.arc_length import ArcLengthPath, ChordArcLengthPath
-from ..paths.const_accel import RetimedCurve
+from ..paths.const_accel import Piecewise, RetimedCurve
 from ..paths.trajectory import Trajectory, trajectory_curve
 
 
@@ -18,6 +18,8 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
     length), else at ``traj``'s samples (``timing`` computed on s = (t − t0)/T of ``traj``):
     exact rates p'(s)·ṡ and accelerations p'(s)·s̈ + p''(s)·ṡ². Its ``curve`` is the retimed
     motion between the samples: s̈ constant per interval on that path."""
+    if timing.parts:
+        return _joined(traj, timing, name)
     sd, sdd = timing.s_dot[:, None], timing.s_ddot[:, None]
     if timing.curve is not None:  # the grid's own path (time_optimal_path: by arc length)
         base, t0, T = timing.curve, timing.t0, timing.span
@@ -38,6 +40,25 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
                       curve=RetimedCurve(trajectory_curve(traj), float(t[0]), T, timing))
 
 
+def _joined(traj: Trajectory, timing: TimeOptimal, name: str | None) -> Trajectory:
+    """:func:`retimed_trajectory` of a path with waits: its parts' one after the other, a
+    junction's rest sample once (the part before's, at the same time and pose)."""
+    pieces = [retimed_trajectory(traj, part) for part in timing.parts]
+    starts = [timing.t[0]] + [timing.t[k] for k in _junctions(timing)]
+    first = [slice(None)] + [slice(1, None)] * (len(pieces) - 1)
+    cat = [np.concatenate([getattr(p, key)[f] for p, f in zip(pieces, first)])
+           for key in ("poses", "d_poses", "dd_poses")]
+    t = np.concatenate([p.t[f] - p.t[0] + t0 for p, f, t0 in zip(pieces, first, starts)])
+    return Trajectory(t, *cat, name=name or f"{traj.name}_time_optimal",
+                      derivatives=f"{traj.derivatives}, retimed (exact chain rule)",
+                      curve=Piecewise(np.array(starts), tuple(p.curve for p in pieces)))
+
+
+def _junctions(timing: TimeOptimal) -> list[int]:
+    """Index in ``timing``'s arrays of each part's first sample after the first part's."""
+    return list(np.cumsum([len(p.t) for p in timing.parts[:-1]]))
+
+
 # How the motion between consecutive rows is defined, by the path parameter s of the timing.
 BETWEEN_ROWS = {
     "arc_length": (
@@ -48,10 +69,6 @@ BETWEEN_ROWS = {
         "arc_length_scale| / length, so s_(i+1) − s_i = (ṡ_i + ṡ_(i+1))·(t_(i+1) − t_i)/2 and "
         "s̈ = (ṡ_(i+1)² − ṡ_i²) / (2(s_(i+1) − s_i)); the dd_* columns hold one side of the "
         "jump of s̈ at a row"),
-    "chord_arc_length": (
-        "along the source trajectory's path with constant acceleration along s between "
-        "consecutive rows, s its arc length from the chords of a quintic spline through it "
-        "(the path stands at an end); the dd_* columns hold one side of the jump of s̈"),
     "source_time": (
         "along the source trajectory's path with constant acceleration along s between "
         "consecutive rows, s = (t − source_start)/(source_end − source_start) of the source "
@@ -61,21 +78,36 @@ BETWEEN_ROWS = {
 
 def retime_metadata(traj: Trajectory, timing: TimeOptimal) -> dict:
     """The retimed file's metadata: the motion between its rows (:data:`BETWEEN_ROWS`) and to
-    what tolerance the limits hold there."""
-    curve = timing.curve
-    kind = ("arc_length" if isinstance(curve, ArcLengthPath) else
-            "chord_arc_length" if isinstance(curve, ChordArcLengthPath) else "source_time")
+    what tolerance the limits hold there; for a path with waits, per ``segments`` (their
+    ``rows``: first and last), the first row of each at rest where the one before stopped."""
     meta = {"trajectory": f"{traj.name}_time_optimal", "source": traj.name,
             "derivatives": f"{traj.derivatives}, retimed (exact chain rule)",
-            "path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
-            "source_start": float(traj.t[0]), "source_end": float(traj.t[-1]),
             "worst_utilisation_between_rows": (float(timing.between)
                                                if np.isfinite(timing.between) else None),
             "check_points_per_interval": 2 * timing.per_interval}
-    if kind != "source_time":
-        meta.update(arc_length_scale=[float(x) for x in curve.scale],
-                    length=curve.length)
-    return meta
+    if not timing.parts:
+        return {**meta, **_between_rows(timing)}
+    first = [0] + [k - i - 1 for i, k in enumerate(_junctions(timing))]
+    last = first[1:] + [len(timing.t) - len(timing.parts)]
+    segments = [{"rows": [int(a), int(b)], **_between_rows(part)}
+                for a, b, part in zip(first, last, timing.parts)]
+    return {**meta, "path_parameter": "segments", "between_rows": "per segment: " +
+            "; ".join(sorted({seg["path_parameter"] for seg in segments})),
+            "segments": segments}
+
+
+def _between_rows(timing: TimeOptimal) -> dict:
+    curve = timing.curve
+    # a path standing at an end: a spline in σ through its points (within 1e-13 of the
+    # length, docs/model.md §19), the same definition
+    kind = ("arc_length" if isinstance(curve, (ArcLengthPath, ChordArcLengthPath)) else
+            "source_time")
+    if kind == "source_time":
+        return {"path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
+                "source_start": timing.t0, "source_end": timing.t0 + timing.span}
+    return {"path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
+            "source_start": curve.times[0], "source_end": curve.times[1],
+            "arc_length_scale": [float(x) for x in curve.scale], "length": curve.length}
 
 
 def write_retimed(traj: Trajectory, timing: TimeOptimal, path) -> Trajectory:

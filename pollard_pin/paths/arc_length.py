@@ -18,6 +18,25 @@ END_STOP = 1e-3
 MIN_CHORD = 0.1  # of the median chord: the chord spline's closest knots
 
 
+def _speed(rates, accelerations, scale):
+    """g = |dp/du| scaled and dg/du; at a rest end (g = 0) its one-sided limit ±|d²p/du²|,
+    the speed rising from the start and falling to the end."""
+    g = np.sqrt(((rates / scale) ** 2).sum(axis=1))
+    dot = ((rates / scale) * (accelerations / scale)).sum(axis=1)
+    side = np.where(np.arange(len(g)) < len(g) / 2, 1.0, -1.0)
+    limit = side * np.sqrt(((accelerations / scale) ** 2).sum(axis=1))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return g, np.where(g > 0, dot / g, limit)
+
+
+def _arc(u, rates, accelerations, scale) -> np.ndarray:
+    """σ at the points ``u`` by the end-corrected trapezoid rule (O(h⁵) per interval)."""
+    g, g1 = _speed(rates, accelerations, scale)
+    h = np.diff(u)
+    return np.concatenate([[0.0], np.cumsum(h * (g[1:] + g[:-1]) / 2
+                                            + h * h * (g1[:-1] - g1[1:]) / 12)])
+
+
 class _Grid:
     """The grid in ∫√(1 + κ) dσ shared by both arc-length paths (knots σ, ``length``)."""
 
@@ -48,12 +67,10 @@ class ArcLengthPath(_Grid):
 
     def __init__(self, curve, u: np.ndarray, rates: np.ndarray, accelerations: np.ndarray,
                  scale: np.ndarray):
-        g = np.sqrt(((rates / scale) ** 2).sum(axis=1))
-        g1 = ((rates / scale) * (accelerations / scale)).sum(axis=1) / g  # dg/du
-        h = np.diff(u)
-        steps = h * (g[1:] + g[:-1]) / 2 + h * h * (g1[:-1] - g1[1:]) / 12
-        sigma = np.concatenate([[0.0], np.cumsum(steps)])
+        g, g1 = _speed(rates, accelerations, scale)
+        sigma = _arc(u, rates, accelerations, scale)
         self.curve, self.scale, self.knots = curve, scale, sigma
+        self.times = (float(u[0]), float(u[-1]))  # of ``curve``: where the path starts, ends
         self.length = float(sigma[-1])
         self.time = QuinticHermite(sigma, u[:, None], (1 / g)[:, None], (-g1 / g**3)[:, None])
         self._measure(sigma)
@@ -71,10 +88,11 @@ class ChordArcLengthPath(_Grid):
     quintic interpolating spline in σ): smooth where the timed path comes to rest, its
     geometry within the spline's error of ``curve``'s."""
 
-    def __init__(self, sigma: np.ndarray, poses: np.ndarray, scale: np.ndarray):
+    def __init__(self, sigma: np.ndarray, poses: np.ndarray, scale: np.ndarray, times):
         from scipy.interpolate import make_interp_spline
 
         self.length, self.knots, self.scale = float(sigma[-1]), sigma, scale
+        self.times = times
         self.spline = make_interp_spline(sigma, poses, k=5, axis=0)
         self._measure(sigma)
 
@@ -116,11 +134,11 @@ def arc_length_path(curve, t) -> ArcLengthPath | None:
     chord = np.sqrt(((np.diff(poses, axis=0) / scale) ** 2).sum(axis=1))
     if np.any(chord <= 0):
         return None
-    sigma = np.concatenate([[0.0], np.cumsum(chord)])
+    sigma = _arc(dense, rates, accelerations, scale)
     # near a rest end the chords shrink as the time step squared (1e-13 at 2 ms steps): the
     # spline through them blows up; knots closer than MIN_CHORD of the median are dropped
     keep = _spaced(sigma, MIN_CHORD * float(np.median(chord)))
-    return ChordArcLengthPath(sigma[keep], poses[keep], scale)
+    return ChordArcLengthPath(sigma[keep], poses[keep], scale, (float(t[0]), float(t[-1])))
 
 
 def _spaced(sigma: np.ndarray, gap: float) -> np.ndarray:

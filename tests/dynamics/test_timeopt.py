@@ -94,7 +94,7 @@ def test_thesis_curve_holds_between_samples(robot, act, samples):
     assert at.max() == pytest.approx(timing.between, abs=5e-11)
     # limits imposed at the samples only (TOPP-RA's interpolation scheme) break between
     # them: seen 1.39 at 201 samples, 1.03 at 801
-    old = TO.time_optimal_path(robot, act, traj, TO.Options(per_interval=1, target=np.inf))
+    old = pp.time_optimal_path(robot, act, traj, TO.Options(per_interval=1, target=np.inf))
     assert _replay(robot, curve, 0.0, 20.0, old, THETA).max() > 1.02
     # the retimed trajectory's own curve is that motion (seen: 1.2e-9 relative, the time
     # within the interval rounded differently, on the arc-length spline's tight bends)
@@ -177,7 +177,7 @@ def test_long_raster_at_rest_ends_solves(robot, act):
         TO._rows = lambda *a: tuple(x * 5e-5 for x in rows(*a)[:3]) + rows(*a)[3:]
         with pytest.raises(M.ActuatorError, match="TOPP-RA failed numerically: its set of "
                            "controllable path rates came out empty at sample"):
-            TO.time_optimal_path(robot, act, pp.Trajectory(t, poses, rates, accelerations),
+            pp.time_optimal_path(robot, act, pp.Trajectory(t, poses, rates, accelerations),
                                  TO.Options(per_interval=1))
     finally:
         TO._rows = rows
@@ -242,7 +242,7 @@ def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, m
 
     def cycle(samples):
         traj = pp.thesis_trajectory(samples=samples)
-        return TO.time_optimal_path(robot, act, traj).duration
+        return pp.time_optimal_path(robot, act, traj).duration
 
     default = cycle(801)
     gap = abs(cycle(201) / default - 1)
