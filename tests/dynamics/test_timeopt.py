@@ -237,7 +237,7 @@ def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, t
 def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, monkeypatch):
     """TOPP-RA's grid on arc length is a property of the path (docs/model.md §19): the thesis
     curve gives one cycle at 201 and 801 samples, and the default grid is within 1 % of 4× its
-    points (seen 7.6750 s against 7.6430 s, 0.42 %). With as many grid points as samples, 801
+    points (seen 7.6736 s against 7.6422 s, 0.41 %). With as many grid points as samples, 801
     samples gave 8.040 s against 7.719 s on 4× the grid (4.2 %), and 201 samples 7.925 s."""
 
     def cycle(samples):
