@@ -47,7 +47,7 @@ _API = {
     "ThesisTrajectory": "paths.curves",
     "load_actuators": "dynamics.motors", "Actuators": "dynamics.motors",
     "ActuatorError": "dynamics.motors", "actuator_sizing": "dynamics.sizing",
-    "time_optimal_path": "dynamics.timeopt", "TimeOptimal": "dynamics.timeopt",
+    "time_optimal_path": "dynamics.cycle", "TimeOptimal": "dynamics.timeopt",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
     "map_workspace": "workspace.grid", "largest_panel": "workspace.grid",
     "WorkspaceOptions": "workspace.options",

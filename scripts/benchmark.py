@@ -220,8 +220,8 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         path = path_mod.path_dynamics(robot, ik)
         row("path dynamics", lambda ik=ik: path_mod.path_dynamics(robot, ik), n)
         row("uniform_min_duration", lambda path=path: motors.uniform_min_duration(act, path), n)
-        row("time_optimal_path", lambda traj=traj: timeopt.time_optimal_path(
-            robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses, traj.curve), n)
+        row("time_optimal_path", lambda traj=traj: pp.time_optimal_path(
+            robot, act, traj), n)
     # the paint planner's raster: 12 passes 0.26 m long, 0.12 m apart in all, at 0.2 m/s in
     # the plane x = 0.55 m, 0.4 s turnarounds, 0.75 s ramps
     frame = PanelFrame(np.array([0.55, 0.0, 0.16]), np.array([-1.0, 0.0, 0.0]),
@@ -229,8 +229,29 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     seg = raster_segments(np.linspace(-0.06, 0.06, 12), 0.13, 0.2, 0.4, (0.75, 0.75))
     t = np.linspace(0.0, seg.total, round(seg.total / 2e-3) + 1)
     poses, rates, accelerations = raster_motion(frame, 0.0, seg, t)
-    row("raster time_optimal_path", lambda: timeopt.time_optimal_path(
-        robot, act, t, poses, rates, accelerations), len(t))
+    row("raster time_optimal_path", lambda: pp.time_optimal_path(
+        robot, act, pp.Trajectory(t, poses, rates, accelerations)), len(t))
+    # a line job's shape: a wait (47 % of 100,000 samples at 2 ms), then the thesis curve from
+    # rest to rest; the wait is left out of the solve (dynamics/cycle.py)
+    wait = _wait_then_strokes(100_000)
+    row("wait + strokes cycle", lambda: pp.time_optimal_path(robot, act, wait),
+        len(wait.t))
+
+
+def _wait_then_strokes(n: int, dt: float = 2e-3):
+    from pollard_pin.paths.curves import thesis_curve
+
+    still, moving = int(0.47 * n), n - int(0.47 * n)
+    T = (moving - 1) * dt
+    x = np.linspace(0.0, 1.0, moving)
+    u = T * (10 * x**3 - 15 * x**4 + 6 * x**5)
+    du, ddu = 30 * x**2 - 60 * x**3 + 30 * x**4, (60 * x - 180 * x**2 + 120 * x**3) / T
+    p, d, dd = thesis_curve(u, T)
+    zero = np.zeros((still, 6))
+    return pp.Trajectory(np.concatenate([dt * np.arange(still), dt * still + x * T]),
+                         np.vstack([np.repeat(p[:1], still, 0), p]),
+                         np.vstack([zero, d * du[:, None]]),
+                         np.vstack([zero, dd * du[:, None] ** 2 + d * ddu[:, None]]))
 
 
 def workspace_section(robot, repeats: int) -> None:

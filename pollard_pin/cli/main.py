@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import ctypes
 import errno
 import logging
 import os
@@ -67,7 +68,7 @@ def main(argv=None) -> int:
     logging.basicConfig(level=logging.WARNING - 10 * min(args.verbose, 2),
                         format="%(levelname)s %(name)s: %(message)s", stream=sys.stderr)
     errors = _errors()
-    previous = _catch_sigterm()
+    previous = _catch_signals()
     args.notes = []  # said after the work: on an error, the error is the only line
     try:
         code = args.func(args)
@@ -88,9 +89,11 @@ def main(argv=None) -> int:
         print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:
-        how = "terminated" if isinstance(exc, _Terminated) else "interrupted"
-        print(f"pollard-pin {args.command}: {how}, nothing written", file=sys.stderr)
-        return 143 if isinstance(exc, _Terminated) else 130
+        return _interrupted(args.command, isinstance(exc, _Terminated))
+    except ctypes.ArgumentError:  # the interrupt raised converting a ctypes call's argument
+        if not _SIGNALLED:  # (rtree's queries): the same one line
+            raise
+        return _interrupted(args.command, _SIGNALLED[-1] == signal.SIGTERM)
     except UnicodeEncodeError as exc:  # a text stream _survive_any_encoding could not fix
         print(f"pollard-pin {args.command}: error: standard output cannot show "
               f"{exc.object[exc.start:exc.end]!a} in {exc.encoding}: set PYTHONIOENCODING=utf-8",
@@ -110,8 +113,8 @@ def main(argv=None) -> int:
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous:
+            signal.signal(signum, handler)
 
 
 def _flushed_stdout(command: str) -> bool:
@@ -167,15 +170,33 @@ class _Terminated(KeyboardInterrupt):
     output files are removed; Python's default would end the process on the spot."""
 
 
-def _catch_sigterm():
-    """Turn SIGTERM into :class:`_Terminated` (main thread only); the previous handler."""
+_SIGNALLED: list[int] = []  # the signals caught: an exception wrapping their raise maps too
+
+
+def _catch_signals() -> list:
+    """SIGTERM raises :class:`_Terminated` and SIGINT KeyboardInterrupt (main thread only; an
+    ignored SIGINT stays ignored), each noted in _SIGNALLED; the previous handlers."""
     if threading.current_thread() is not threading.main_thread():
-        return None
+        return []
 
     def terminate(signum, frame):
+        _SIGNALLED.append(signum)
         raise _Terminated
 
-    return signal.signal(signal.SIGTERM, terminate)
+    def interrupt(signum, frame):
+        _SIGNALLED.append(signum)
+        raise KeyboardInterrupt
+
+    previous = [(signal.SIGTERM, signal.signal(signal.SIGTERM, terminate))]
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous.append((signal.SIGINT, signal.signal(signal.SIGINT, interrupt)))
+    return previous
+
+
+def _interrupted(command: str, terminated: bool) -> int:
+    how = "terminated" if terminated else "interrupted"
+    print(f"pollard-pin {command}: {how}, nothing written", file=sys.stderr)
+    return 143 if terminated else 130
 
 
 def _broken_pipe(exc: OSError) -> bool:

@@ -12,9 +12,8 @@ from .common import STDOUT, UsageError, command, log, name, solve, trajectory_ar
 def run(args) -> int:
     from ..dynamics.motors import load_actuators
     from ..dynamics.sizing import actuator_sizing
-    from ..io.retime import retimed_trajectory
+    from ..io.retime import write_retimed
     from ..io.table import table_files
-    from ..io.trajectory import to_csv
     from ..viz.torque_speed import to_json, to_markdown, write_torque_speed
 
     out = args.out or STDOUT
@@ -34,8 +33,7 @@ def run(args) -> int:
     written = []
     with all_or_nothing():  # every output or none; the report last (it may be a device)
         if args.retime is not None and sized.timing is not None:
-            retimed = retimed_trajectory(result.trajectory, sized.timing)
-            to_csv(retimed, args.retime)
+            retimed = write_retimed(result.trajectory, sized.timing, args.retime)
             written.append((args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
                                          f"{len(retimed)} rows)"))
         if args.plot is not None:

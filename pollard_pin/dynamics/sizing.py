@@ -14,8 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics.errors import KinematicsError
-from ..paths.trajectory import trajectory_curve
 from .averages import mean_weights
+from .cycle import time_optimal_path
 from .motors import (
     ActuatorError,
     Actuators,
@@ -26,7 +26,7 @@ from .motors import (
     uniform_min_duration,
 )
 from .path import PathDynamics, path_dynamics
-from .timeopt import TimeOptimal, time_optimal_path
+from .timeopt import TimeOptimal
 
 ACTIVE = 0.98  # a limit "binds" at a sample when used to within 2 %
 MIN_TRAVEL = 1e-9  # rad: a path moving no actuator further stands still (IK noise: 1e-14)
@@ -95,8 +95,7 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
                             f"{travel:.2g} rad over its {len(ik.t)} samples)")
     uniform = uniform_min_duration(act, path)
     try:
-        timing = time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                   traj.dd_poses, trajectory_curve(traj))
+        timing = time_optimal_path(robot, act, traj)
     except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
         timing, error = None, str(exc)
     checks = _checks(given)

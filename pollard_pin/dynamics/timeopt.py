@@ -1,25 +1,26 @@
 """The fastest traversal of a path under the motors' peak torque and speed, at its samples and
-between them (TOPP-RA, ``toppra``; docs/model.md §19).
+between them (TOPP-RA, ``toppra``; docs/model.md §19); one moving segment (a path with waits:
+:mod:`.cycle`).
 
 TOPP-RA holds s̈ constant over each interval of the grid, so ṡ² = ṡ_i² + 2·s̈_i·(s − s_i)
 there. Each interval's limits are imposed at ``per_interval`` + 1 check points on the exact
 path (the interpolation scheme generalised: the sample's own constraint and the interval's
 end are two of them), then the motion is evaluated at the points halfway between the check
 points; where it uses a limit by more than ``TARGET``, the check points double and TOPP-RA
-solves again (:func:`time_optimal_path`). Rows are scaled to unit coefficients: TOPP-RA's
+solves again (:func:`time_optimal_segment`). Rows are scaled to unit coefficients: TOPP-RA's
 Seidel solver compares products of coefficients with an absolute 1e-10.
 """
 from __future__ import annotations
 
 import contextlib
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..paths import const_accel
 from ..paths.arc_length import arc_length_path
-from ..paths.splines import quintic_hermite
+from ..paths.trajectory import trajectory_curve
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
 from .motors import utilisation as motor_utilisation
 from .path import PathDynamics, path_dynamics_at
@@ -56,12 +57,16 @@ class TimeOptimal:
     between: float = float("nan")
     between_at: float = float("nan")
     tightened: int = 0  # intervals whose ratings were tightened to hold halfway
-    # the path the grid lies on (time_optimal_path): its dynamics at the grid, and
+    # the path the grid lies on (time_optimal_segment): its dynamics at the grid, and
     # ``curve(t0 + s·span) -> (poses, rates, accelerations)``, rates per unit of that parameter
     path: PathDynamics | None = None
     curve: object = None
     t0: float = 0.0
     span: float = 1.0
+    # a path with waits (dynamics.cycle): the traversals of its moving segments, one after the
+    # other; the arrays above join theirs (s = k + the k-th one's s, a rest sample at each
+    # junction twice, both sides of s̈), ``curve`` None
+    parts: tuple = ()
 
     @property
     def duration(self) -> float:
@@ -183,22 +188,24 @@ def _check_statics(act: Actuators, dense: PathDynamics, at_rest) -> None:
             f"{act.column('peak_torque')[j]:.4g} N·m; no traversal of the path meets it")
 
 
-def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
-                 s_dot_start: float = 0.0, s_dot_end: float = 0.0, max_iterations: int = 50,
-                 tol: float = 1e-6, s_dot_guess=None, tight=None) -> TimeOptimal:
+def time_optimal(act: Actuators, path: PathDynamics, options: Options | None = None, *,
+                 s_dot_guess=None, tight=None) -> TimeOptimal:
     """Shortest traversal of the path under the peak-torque and speed limits (TOPP-RA on the
     grid ``path.s[::per_interval]``, every point of ``path`` a check point; rest to rest by
-    default). ``per_interval = 1``: the limits at the samples only.
+    default; :class:`Options`, default ``per_interval = 1``: the limits at the samples only).
 
     TOPP-RA needs constraints of the form α s̈ + β ṡ² + γ; the viscous term b·N·q_s·ṡ is
     linear in ṡ = √(ṡ²), so it enters linearised in ṡ² about the previous solution's ṡ(s)
     (docs/model.md §19), repeated until ṡ(s) changes by less than ``tol`` (relative): the
-    limits then hold at the final profile. Not converging is an :class:`ActuatorError`.
+    limits then hold at the final profile. Not converging in ``max_iterations`` solves is an
+    :class:`ActuatorError`.
     ``s_dot_guess`` (at the points of ``path``) starts that iteration nearer its end;
     ``tight`` (n − 1,) scales each interval's ratings (default 1).
     """
     toppra = _toppra()
-    m = int(per_interval)
+    options = options or Options(per_interval=1)
+    m, tol = options.per_interval, options.tol
+    s_dot_start, s_dot_end = options.s_dot_start, options.s_dot_end
     s = np.asarray(path.s, dtype=float)[::m]
     if (len(path.s) - 1) % m or len(s) < 2:
         raise ValueError(f"a path of {len(path.s)} points is not (n − 1)·{m} + 1 points")
@@ -219,7 +226,7 @@ def time_optimal(act: Actuators, path: PathDynamics, per_interval: int = 1,
     aim = solved_at if s_dot_guess is None or not has_viscous else np.asarray(s_dot_guess)
     s_dot_v, s_dot = aim, None
     step, it, change = 1.0, 0, np.inf
-    while it < max_iterations and step >= 1.0 / 64:
+    while it < options.max_iterations and step >= 1.0 / 64:
         it += 1
         solver = toppra.algorithm.TOPPRA(
             [_constraint(*_rows(act, path, s, m, at_rest, s_dot_v, tight))], dummy,
@@ -306,62 +313,83 @@ def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return const_accel.at_path(timing.t, timing.s, timing.s_dot, s)
 
 
-def time_optimal_path(robot, act: Actuators, t, poses, d_poses, dd_poses, curve=None, *,
-                      per_interval: int = PER_INTERVAL, target: float = TARGET,
-                      s_dot_start: float = 0.0, s_dot_end: float = 0.0) -> TimeOptimal:
-    """The time-optimal traversal, rest to rest, of the path through the samples (``t`` (n,),
-    task ``poses``, rates, accelerations (n, 6)), holding between the samples: arrays in,
-    :class:`TimeOptimal` out (``t``: the retimed times of the samples, ``s_dot``, ``s_ddot``).
+@dataclass(frozen=True)
+class Options:
+    """How :func:`time_optimal_segment` solves, validated once: ``per_interval`` check points per
+    interval to start with, the worst utilisation ``target`` accepted between them, the path
+    rates at the ends (rest to rest by default), and the viscous iteration's
+    ``max_iterations`` TOPP-RA solves and relative ``tol`` on ṡ(s)."""
 
-    ``curve(times) -> (poses, rates, accelerations)`` is the exact path between the samples
-    (default: the quintic Hermite spline through them, :mod:`pollard_pin.paths.splines`). The
-    limits are imposed at ``per_interval`` + 1 check points per interval, then checked halfway
-    between them; while
-    the worst utilisation found exceeds ``target``, the offending intervals' ratings are
-    tightened by their overshoot when it is below ``TIGHTEN_BELOW`` (up to
-    ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
+    per_interval: int = PER_INTERVAL
+    target: float = TARGET
+    s_dot_start: float = 0.0
+    s_dot_end: float = 0.0
+    max_iterations: int = 50
+    tol: float = 1e-6
+
+    def __post_init__(self):
+        for key in ("per_interval", "max_iterations"):
+            if not (isinstance(getattr(self, key), int) and getattr(self, key) >= 1):
+                raise ValueError(f"{key} must be an integer >= 1, got {getattr(self, key)!r}")
+        if not self.target >= 1.0:
+            raise ValueError(f"target must be >= 1 (a utilisation), got {self.target!r}")
+        for key in ("s_dot_start", "s_dot_end", "tol"):
+            value = getattr(self, key)
+            if not (np.isfinite(value) and value >= 0):
+                raise ValueError(f"{key} must be finite and >= 0, got {value!r}")
+
+
+def time_optimal_segment(robot, act: Actuators, traj, options: Options | None = None
+                         ) -> TimeOptimal:
+    """The time-optimal traversal, rest to rest, of the path of ``traj`` (``t`` (n,), task
+    ``poses``, rates, accelerations (n, 6), and ``curve``, the exact path between the samples,
+    default the quintic Hermite spline through them: :func:`trajectory_curve`), holding
+    between the samples (:class:`Options`).
+
+    The limits are imposed at ``per_interval`` + 1 check points per interval, then checked
+    halfway between them; while the worst utilisation found exceeds ``target``, the offending
+    intervals' ratings are tightened by their overshoot when it is below ``TIGHTEN_BELOW`` (up
+    to ``TIGHTEN_ROUNDS`` times), else the check points double (up to ``MAX_PER_INTERVAL``).
     ``between`` reports the worst utilisation verified.
 
     The path is traversed by its arc length (:func:`~.arc_length_path`), on a grid of
     GRID_DENSITY points per unit of ∫√(1 + κ) dσ, evenly spaced in it: the answer depends
-    neither on how the samples are timed nor on how many there are (a path whose samples come
-    to rest, such as a retimed one, is degenerate in its own time: dp/ds = 0 there, so "rest
-    to rest" would hold it still twice). A path that stops inside (or on which TOPP-RA fails)
-    keeps its samples' parameter s = (t − t0)/T. The result's ``s``, ``t`` are
-    at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
+    neither on how the samples are timed nor on how many there are. A path that stops inside
+    (or on which TOPP-RA fails) keeps its samples' parameter s = (t − t0)/T. The result's
+    ``s``, ``t`` are at the grid on that parameter (``curve``, ``t0``, ``span``, ``path``).
     """
-    t = np.asarray(t, dtype=float)
-    curve = curve or quintic_hermite(t, poses, d_poses, dd_poses)
+    options = options or Options()
+    t = np.asarray(traj.t, dtype=float)
+    curve = trajectory_curve(traj)
     # kept from the grid on the samples (a 2-sample path, rest to rest, is refused: tested)
-    _check_count(len(t), s_dot_start, s_dot_end)
+    _check_count(len(t), options.s_dot_start, options.s_dot_end)
     arc = arc_length_path(curve, t)
-    options = (per_interval, target, s_dot_start, s_dot_end)
     if arc is not None:
         try:
             n = int(np.clip(np.ceil(GRID_DENSITY * arc.extent) + 1, MIN_GRID, MAX_GRID))
-            return _solve(robot, act, arc, 0.0, arc.length, arc.grid(n), *options)
+            return _solve(robot, act, (arc, 0.0, arc.length), arc.grid(n), options)
         except ActuatorError:  # e.g. too few samples for its bends: the samples' parameter
             pass
     t0, T = float(t[0]), float(t[-1] - t[0])
-    return _solve(robot, act, curve, t0, T, (t - t0) / T, *options)
+    return _solve(robot, act, (curve, t0, T), (t - t0) / T, options)
 
 
-def _solve(robot, act, curve, t0: float, T: float, grid, per_interval: int, target: float,
-           s_dot_start: float, s_dot_end: float) -> TimeOptimal:
-    """:func:`time_optimal_path` on the path ``curve(t0 + s·T)``, TOPP-RA's grid ``grid``."""
-    m = int(per_interval)
-    if m < 1:
-        raise ValueError(f"per_interval must be >= 1, got {per_interval}")
+def _solve(robot, act, on, grid, options: Options) -> TimeOptimal:
+    """:func:`time_optimal_segment` on the path ``curve(t0 + s·T)``, ``on = (curve, t0, T)``,
+    TOPP-RA's grid ``grid``."""
+    curve, t0, T = on
+    m, target = options.per_interval, options.target
+    rest = (options.s_dot_start == 0, options.s_dot_end == 0)
     dense = path_dynamics_at(robot, curve, t0, T, _points(grid, m, 0.0))
     iterations, guess, half, tight, rounds = 0, None, None, np.ones(len(grid) - 1), 0
     while True:
-        timing = time_optimal(act, dense, m, s_dot_start, s_dot_end, s_dot_guess=guess,
+        timing = time_optimal(act, dense, replace(options, per_interval=m), s_dot_guess=guess,
                               tight=tight)
         iterations += timing.iterations
         if half is None:
             half = path_dynamics_at(robot, curve, t0, T, _points(grid, m, 0.5))
             both = _interleave(dense, half, len(grid), m)
-        use = _dense_use(act, both, timing, 2 * m, (s_dot_start == 0, s_dot_end == 0))
+        use = _dense_use(act, both, timing, 2 * m, rest)
         worst = int(np.argmax(use))
         if use[worst] <= target:
             break
@@ -421,5 +449,5 @@ def _dense_use(act, dense: PathDynamics, timing: TimeOptimal, m: int, rest) -> n
     return out
 
 
-__all__ = ["MAX_PER_INTERVAL", "PER_INTERVAL", "TARGET", "TimeOptimal", "motion_at",
-           "time_optimal", "time_optimal_path", "utilisation"]
+__all__ = ["MAX_PER_INTERVAL", "PER_INTERVAL", "TARGET", "Options", "TimeOptimal",
+           "motion_at", "time_optimal", "time_optimal_segment", "utilisation"]

@@ -1,10 +1,13 @@
-"""A trajectory traversed with a new timing along the same path (docs/model.md §19)."""
+"""A trajectory traversed with a new timing along the same path, and its file, whose
+metadata says how it moves between its rows (docs/model.md §19)."""
 from __future__ import annotations
 
 import numpy as np
 
+from ..analytic.taskspace import TASK_NAMES
 from ..dynamics.timeopt import TimeOptimal
-from ..paths.const_accel import RetimedCurve
+from ..paths.arc_length import ArcLengthPath, ChordArcLengthPath
+from ..paths.const_accel import Piecewise, RetimedCurve
 from ..paths.trajectory import Trajectory, trajectory_curve
 
 
@@ -15,6 +18,8 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
     length), else at ``traj``'s samples (``timing`` computed on s = (t − t0)/T of ``traj``):
     exact rates p'(s)·ṡ and accelerations p'(s)·s̈ + p''(s)·ṡ². Its ``curve`` is the retimed
     motion between the samples: s̈ constant per interval on that path."""
+    if timing.parts:
+        return _joined(traj, timing, name)
     sd, sdd = timing.s_dot[:, None], timing.s_ddot[:, None]
     if timing.curve is not None:  # the grid's own path (time_optimal_path: by arc length)
         base, t0, T = timing.curve, timing.t0, timing.span
@@ -35,4 +40,88 @@ def retimed_trajectory(traj: Trajectory, timing: TimeOptimal, name: str | None =
                       curve=RetimedCurve(trajectory_curve(traj), float(t[0]), T, timing))
 
 
-__all__ = ["retimed_trajectory"]
+def _joined(traj: Trajectory, timing: TimeOptimal, name: str | None) -> Trajectory:
+    """:func:`retimed_trajectory` of a path with waits: its parts' one after the other, a
+    junction's rest sample once (the part before's, at the same time and pose)."""
+    pieces = [retimed_trajectory(traj, part) for part in timing.parts]
+    starts = [timing.t[0]] + [timing.t[k] for k in _junctions(timing)]
+    first = [slice(None)] + [slice(1, None)] * (len(pieces) - 1)
+    cat = [np.concatenate([getattr(p, key)[f] for p, f in zip(pieces, first)])
+           for key in ("poses", "d_poses", "dd_poses")]
+    t = np.concatenate([p.t[f] - p.t[0] + t0 for p, f, t0 in zip(pieces, first, starts)])
+    return Trajectory(t, *cat, name=name or f"{traj.name}_time_optimal",
+                      derivatives=f"{traj.derivatives}, retimed (exact chain rule)",
+                      curve=Piecewise(np.array(starts), tuple(p.curve for p in pieces)))
+
+
+def _junctions(timing: TimeOptimal) -> list[int]:
+    """Index in ``timing``'s arrays of each part's first sample after the first part's."""
+    return list(np.cumsum([len(p.t) for p in timing.parts[:-1]]))
+
+
+# How the motion between consecutive rows is defined, by the path parameter s of the timing.
+BETWEEN_ROWS = {
+    "arc_length": (
+        "along the source trajectory's path (its curve between times source_start and "
+        "source_end) with constant acceleration along its arc length s between consecutive "
+        "rows; s = σ/length, σ the arc length with lengths and angles each divided by "
+        "arc_length_scale (x, y, z, psi, theta, phi); at a row ṡ = |(d_x, …, d_phi) / "
+        "arc_length_scale| / length, so s_(i+1) − s_i = (ṡ_i + ṡ_(i+1))·(t_(i+1) − t_i)/2 and "
+        "s̈ = (ṡ_(i+1)² − ṡ_i²) / (2(s_(i+1) − s_i)); the dd_* columns hold one side of the "
+        "jump of s̈ at a row"),
+    "source_time": (
+        "along the source trajectory's path with constant acceleration along s between "
+        "consecutive rows, s = (t − source_start)/(source_end − source_start) of the source "
+        "(its path stops inside); the dd_* columns hold one side of the jump of s̈"),
+}
+
+
+def retime_metadata(traj: Trajectory, timing: TimeOptimal) -> dict:
+    """The retimed file's metadata: the motion between its rows (:data:`BETWEEN_ROWS`) and to
+    what tolerance the limits hold there; for a path with waits, per ``segments`` (their
+    ``rows``: first and last), the first row of each at rest where the one before stopped."""
+    meta = {"trajectory": f"{traj.name}_time_optimal", "source": traj.name,
+            "derivatives": f"{traj.derivatives}, retimed (exact chain rule)",
+            "worst_utilisation_between_rows": (float(timing.between)
+                                               if np.isfinite(timing.between) else None),
+            "check_points_per_interval": 2 * timing.per_interval}
+    if not timing.parts:
+        return {**meta, **_between_rows(timing)}
+    first = [0] + [k - i - 1 for i, k in enumerate(_junctions(timing))]
+    last = first[1:] + [len(timing.t) - len(timing.parts)]
+    segments = [{"rows": [int(a), int(b)], **_between_rows(part)}
+                for a, b, part in zip(first, last, timing.parts)]
+    return {**meta, "path_parameter": "segments", "between_rows": "per segment: " +
+            "; ".join(sorted({seg["path_parameter"] for seg in segments})),
+            "segments": segments}
+
+
+def _between_rows(timing: TimeOptimal) -> dict:
+    curve = timing.curve
+    # a path standing at an end: a spline in σ through its points (within 1e-13 of the
+    # length, docs/model.md §19), the same definition
+    kind = ("arc_length" if isinstance(curve, (ArcLengthPath, ChordArcLengthPath)) else
+            "source_time")
+    if kind == "source_time":
+        return {"path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
+                "source_start": timing.t0, "source_end": timing.t0 + timing.span}
+    return {"path_parameter": kind, "between_rows": BETWEEN_ROWS[kind],
+            "source_start": curve.times[0], "source_end": curve.times[1],
+            "arc_length_scale": [float(x) for x in curve.scale], "length": curve.length}
+
+
+def write_retimed(traj: Trajectory, timing: TimeOptimal, path) -> Trajectory:
+    """Write ``traj`` retimed by ``timing`` in the ``run`` input format (every float64 exact),
+    atomically, with :func:`retime_metadata` in its sidecar; the retimed trajectory."""
+    from .table import write_table
+
+    retimed = retimed_trajectory(traj, timing)
+    cols = {"t": retimed.t}
+    for prefix, arr in (("", retimed.poses), ("d_", retimed.d_poses),
+                        ("dd_", retimed.dd_poses)):
+        cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
+    write_table(path, cols, retime_metadata(traj, timing), fmt="csv")
+    return retimed
+
+
+__all__ = ["BETWEEN_ROWS", "retime_metadata", "retimed_trajectory", "write_retimed"]

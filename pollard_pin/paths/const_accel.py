@@ -69,5 +69,24 @@ class RetimedCurve:
         return poses, T * rates * s_dot, T * rates * u + T * T * accelerations * s_dot**2
 
 
-__all__ = ["RetimedCurve", "at_path", "at_time", "interval_acceleration",
+class Piecewise:
+    """Curves one after the other: ``curves[k]`` from time ``starts[k]`` (its own time 0
+    there) to the next start; a ``curve(times) -> (poses, rates, accelerations)``."""
+
+    def __init__(self, starts, curves):
+        self.starts, self.curves = np.asarray(starts, dtype=float), tuple(curves)
+
+    def __call__(self, times):
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        k = np.clip(np.searchsorted(self.starts, times, side="right") - 1, 0,
+                    len(self.curves) - 1)
+        out = [np.empty((len(times), 6)) for _ in range(3)]
+        for j in np.unique(k):
+            at = k == j
+            for o, value in zip(out, self.curves[j](times[at] - self.starts[j])):
+                o[at] = value
+        return tuple(out)
+
+
+__all__ = ["Piecewise", "RetimedCurve", "at_path", "at_time", "interval_acceleration",
            "interval_durations", "rate_squared"]

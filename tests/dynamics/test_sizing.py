@@ -19,3 +19,4 @@ def test_a_path_that_does_not_move_the_actuators_is_refused(robot):
     with pytest.raises(M.ActuatorError, match=r"^the path does not move the actuators \(each "
                                               r"travels at most .* rad over its 50 samples\)$"):
         actuator_sizing(robot, pp.run_pipeline(robot, still), M.load_actuators(EXAMPLE))
+

@@ -79,8 +79,7 @@ THETA = (np.arange(10) + 0.3) / 10  # 10 points per interval, none a check point
 def test_thesis_curve_holds_between_samples(robot, act, samples):
     traj = pp.thesis_trajectory(samples=samples)
     curve = partial(thesis_curve, duration=20.0)
-    timing = pp.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                  traj.dd_poses, curve)
+    timing = pp.time_optimal_path(robot, act, traj)
     use = _replay(robot, curve, 0.0, 20.0, timing, THETA)
     # within 1.002 between the samples, and a limit is used (no slack bought with it)
     assert use.max() <= 1.002 and use.max() >= 0.999, use.max()
@@ -95,8 +94,7 @@ def test_thesis_curve_holds_between_samples(robot, act, samples):
     assert at.max() == pytest.approx(timing.between, abs=5e-11)
     # limits imposed at the samples only (TOPP-RA's interpolation scheme) break between
     # them: seen 1.39 at 201 samples, 1.03 at 801
-    old = TO.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses, traj.dd_poses,
-                               curve, per_interval=1, target=np.inf)
+    old = pp.time_optimal_path(robot, act, traj, TO.Options(per_interval=1, target=np.inf))
     assert _replay(robot, curve, 0.0, 20.0, old, THETA).max() > 1.02
     # the retimed trajectory's own curve is that motion (seen: 1.2e-9 relative, the time
     # within the interval rounded differently, on the arc-length spline's tight bends)
@@ -115,8 +113,7 @@ def test_figure8_csv_holds_between_samples(robot, act):
     for got, exact in zip(quintic_hermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t),
                           figure_eight(t)):  # seen 1e-14 m, 2e-12 m/s, 7e-10 m/s²
         np.testing.assert_allclose(got, exact, rtol=0, atol=1e-7)
-    timing = pp.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                  traj.dd_poses)
+    timing = pp.time_optimal_path(robot, act, traj)
     use = _replay(robot, figure_eight, 0.0, 6.0, timing, THETA)
     assert 0.999 <= use.max() <= 1.002, use.max()
 
@@ -169,7 +166,7 @@ def test_long_raster_at_rest_ends_solves(robot, act):
     given = pp.run_pipeline(robot, pp.Trajectory(t, poses, rates, accelerations))
     assert max(r.max() for r in M.motor_load_of(robot, act, given.ik,
                                                 given.dynamics).ratios().values()) < 0.51
-    timing = pp.time_optimal_path(robot, act, t, poses, rates, accelerations)
+    timing = pp.time_optimal_path(robot, act, pp.Trajectory(t, poses, rates, accelerations))
     curve = quintic_hermite(t, poses, rates, accelerations)
     use = _replay(robot, curve, 0.0, t[-1], timing, THETA)
     assert 0.999 <= use.max() <= 1.002, use.max()
@@ -180,7 +177,8 @@ def test_long_raster_at_rest_ends_solves(robot, act):
         TO._rows = lambda *a: tuple(x * 5e-5 for x in rows(*a)[:3]) + rows(*a)[3:]
         with pytest.raises(M.ActuatorError, match="TOPP-RA failed numerically: its set of "
                            "controllable path rates came out empty at sample"):
-            TO.time_optimal_path(robot, act, t, poses, rates, accelerations, per_interval=1)
+            pp.time_optimal_path(robot, act, pp.Trajectory(t, poses, rates, accelerations),
+                                 TO.Options(per_interval=1))
     finally:
         TO._rows = rows
 
@@ -195,8 +193,7 @@ def test_time_optimal_with_strong_viscous_friction(robot, act, viscous):
     ratings = {n: {**RATINGS[n], "viscous": viscous} for n in NAMES}
     traj = pp.thesis_trajectory(samples=201)
     curve = partial(thesis_curve, duration=20.0)
-    timing = pp.time_optimal_path(robot, sticky, traj.t, traj.poses, traj.d_poses,
-                                  traj.dd_poses, curve)
+    timing = pp.time_optimal_path(robot, sticky, traj)
     use = _replay(robot, curve, 0.0, 20.0, timing, THETA, ratings)
     assert 0.999 <= use.max() <= 1.002, use.max()
     uniform = M.uniform_min_duration(sticky, path_dynamics(
@@ -209,7 +206,7 @@ def test_a_path_that_does_not_move_has_no_time_optimal_cycle(robot, act):
     poses = np.tile([0.55, 0.0, 0.16, 0.0, 0.0, 0.0], (50, 1))
     zero = np.zeros_like(poses)
     with pytest.raises(M.ActuatorError, match="the path does not move the actuators"):
-        pp.time_optimal_path(robot, act, t, poses, zero, zero)
+        pp.time_optimal_path(robot, act, pp.Trajectory(t, poses, zero, zero))
 
 
 def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, tmp_path):
@@ -232,22 +229,20 @@ def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, t
     assert max(given) <= 1 + 1e-4  # the retimed file is within the peak ratings
     assert again.timing.duration == pytest.approx(first.timing.duration, rel=0.01)
     t = np.linspace(0.0, 6.0, 3 * (len(traj.t) - 1) + 1)
-    fine = pp.time_optimal_path(robot, act, t, *quintic_hermite(
-        traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t))
+    fine = pp.time_optimal_path(robot, act, pp.Trajectory(t, *quintic_hermite(
+        traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t)))
     assert first.timing.duration == pytest.approx(fine.duration, rel=0.02)
 
 
 def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, monkeypatch):
     """TOPP-RA's grid on arc length is a property of the path (docs/model.md §19): the thesis
     curve gives one cycle at 201 and 801 samples, and the default grid is within 1 % of 4× its
-    points (seen 7.6750 s against 7.6430 s, 0.42 %). With as many grid points as samples, 801
+    points (seen 7.6736 s against 7.6422 s, 0.41 %). With as many grid points as samples, 801
     samples gave 8.040 s against 7.719 s on 4× the grid (4.2 %), and 201 samples 7.925 s."""
-    curve = partial(thesis_curve, duration=20.0)
 
     def cycle(samples):
         traj = pp.thesis_trajectory(samples=samples)
-        return TO.time_optimal_path(robot, act, traj.t, traj.poses, traj.d_poses,
-                                    traj.dd_poses, curve).duration
+        return pp.time_optimal_path(robot, act, traj).duration
 
     default = cycle(801)
     gap = abs(cycle(201) / default - 1)
