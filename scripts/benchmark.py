@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 from bench_paint import line_section, paint_section, parts_section  # scripts/, beside this
+from bench_signals import signal_section
 
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
@@ -458,6 +459,7 @@ def main(argv=None) -> int:
         simulation_section(robot, args.repeats)
     if not args.no_size:
         sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
+        signal_section(_wait_then_strokes)
     if not args.no_paint:
         paint_section(robot, 3)
         parts_section(robot)

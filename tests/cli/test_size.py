@@ -212,7 +212,7 @@ def _wait_then_strokes(path, n=40_000, dt=2e-3):
 
 @pytest.mark.parametrize("signum, code, word", [(signal.SIGTERM, 143, "terminated"),
                                                 (signal.SIGINT, 130, "interrupted")])
-def test_size_stops_within_a_second_of_a_signal(tmp_path, signum, code, word):
+def test_size_stops_on_a_signal_with_one_line(tmp_path, signum, code, word):
     _wait_then_strokes(tmp_path / "long.csv")  # 40,000 samples: size takes ≈ 8 s here
     out = tmp_path / "out"
     out.mkdir()
@@ -230,8 +230,9 @@ def test_size_stops_within_a_second_of_a_signal(tmp_path, signum, code, word):
         _, err = proc.communicate(timeout=30)
     finally:
         proc.kill()
-    # seen 0.07-0.47 s, depending on where the signal lands; the promise is 1 s
-    assert time.monotonic() - sent < 1.0
+    # a hang guard, not a timing claim (the suite holds none): the stop takes 0.07-0.47 s
+    # here, depending on where the signal lands; scripts/benchmark.py measures it
+    assert time.monotonic() - sent < 20.0
     assert proc.returncode == code
     assert err.decode().splitlines() == [f"pollard-pin size: {word}, nothing written"]
     assert list(out.iterdir()) == []
