@@ -10,15 +10,18 @@ from .common import STDOUT, UsageError, command, name, positive, say_notes, solv
 
 def _inputs(args) -> list:
     """(what, path) of every file ``view`` reads: never one of its outputs."""
+    from ..io.table import units_path
     from .view_paint import paint_inputs
 
-    files = [("the trajectory", args.trajectory if args.trajectory != "thesis" else None),
-             ("the parameter file", args.params)]
+    files = [("the parameter file", args.params)]
+    if args.trajectory != "thesis":
+        files += [("the trajectory", args.trajectory),
+                  ("the trajectory's units", units_path(args.trajectory))]
     if args.paint is not None:
         files += paint_inputs(args.paint)
     if args.workspace is not None:
-        files += [(f"the workspace map {n}", Path(args.workspace) / n)
-                  for n in ("workspace.csv", "workspace.parquet")]
+        files += [(f"the workspace map's {n}", Path(args.workspace) / n)
+                  for n in ("workspace.csv", "workspace.units.json", "workspace.parquet")]
     return files
 
 

@@ -11,7 +11,8 @@ import numpy as np
 
 from .common import UsageError
 
-FILES = ("path.csv", "paint.json", "thickness.csv", "thickness.parquet", "film.ply")
+FILES = ("path.csv", "path.units.json", "paint.json", "thickness.csv", "thickness.units.json",
+         "thickness.parquet", "film.ply")
 
 
 def paint_inputs(folder) -> list[tuple[str, Path]]:
