@@ -17,7 +17,7 @@ import numpy as np
 from .film_scale import legend_html
 
 MESHCAT_FOV = 75.0  # degrees, the vertical field of view of MeshCat's default camera
-FIT_MARGIN = 1.4  # the painted faces' sphere fills 1 / FIT_MARGIN of the view's height
+FIT_MARGIN = 1.1  # the painted faces' sphere fills 1 / FIT_MARGIN of the view's height
 PAINTED_SHARE = 0.5
 # background (top, bottom) of a scene with a film: mid slate, against white film and the
 # dark gun alike
