@@ -59,6 +59,9 @@ def run(args) -> int:
                   "needed; Open Controls → Animations to play and scrub", file=sys.stderr)
         return 0
     say_notes(args)  # serving lasts until interrupted
+    if getattr(overlay, "view", None) is not None:  # the live page has no legend
+        print(f"film colours: {overlay.view.scale}, blue thin, white on target, red thick",
+              file=sys.stderr)
     viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps, overlay=overlay)
     return 0
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .film_scale import legend_html
+from .film_scale import film_label, legend_html
 
 MESHCAT_FOV = 75.0  # degrees, the vertical field of view of MeshCat's default camera
 FIT_MARGIN = 1.1  # the painted faces' sphere fills 1 / FIT_MARGIN of the view's height
@@ -32,6 +32,7 @@ class FilmView:
     normal: tuple  # unit, from the centre towards the camera
     radius: float  # of the sphere about the centre holding the painted vertices
     legend: str = ""  # HTML colour bar for the static page
+    scale: str = ""  # the colour scale in words (film_scale.film_label)
     background: tuple = FILM_BACKGROUND
 
     @property
@@ -97,7 +98,8 @@ def film_view(vertices, faces, thickness, target: float, toward=None) -> FilmVie
         n = -n
     radius = float(np.linalg.norm(v[np.unique(f)] - centre, axis=1).max())
     return FilmView(centre=tuple(centre), normal=tuple(n / np.linalg.norm(n)),
-                    radius=max(radius, 1e-3), legend=legend_html(target))
+                    radius=max(radius, 1e-3), legend=legend_html(target),
+                    scale=film_label(target))
 
 
 __all__ = ["FIT_MARGIN", "FILM_BACKGROUND", "FilmView", "MESHCAT_FOV", "PAINTED_SHARE",

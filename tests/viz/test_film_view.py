@@ -68,6 +68,7 @@ def test_seen_from_the_gun_side_and_over_the_travel():
     seen = view.seen_from(tips)
     assert np.asarray(seen.normal) @ N0 == pytest.approx(1, abs=1e-12)
     assert seen.centre == view.centre and seen.radius == view.radius
+    assert view.scale == "film thickness [µm] (target 25 ± 10 %)"
 
     def place(t):  # a line carrying the part along +y at 0.1 m/s
         T = np.eye(4)
