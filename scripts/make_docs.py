@@ -39,14 +39,15 @@ def main():
 def film_view():
     """docs/film_view.png: the ribbed plate's paint folder (the rib's shadow) in the static
     viewer as it opens (the default view of the painted faces, the film's legend), at 4 s."""
-    from pollard_pin.cli import main as cli
+    import subprocess
 
     with tempfile.TemporaryDirectory() as tmp:
         out, html = Path(tmp) / "paint", Path(tmp) / "film.html"
         job = ROOT / "examples" / "parts" / "ribbed_plate.toml"
-        if cli(["paint", "--job", str(job), "--out", str(out)]) or cli(
-                ["view", "--paint", str(out), "--html", str(html), "--fps", "5"]):
-            sys.exit("make_docs: paint or view of examples/parts/ribbed_plate.toml failed")
+        for argv in (["paint", "--job", str(job), "--out", str(out)],
+                     ["view", "--paint", str(out), "--html", str(html), "--fps", "5"]):
+            if subprocess.run([sys.executable, "-m", "pollard_pin.cli", *argv]).returncode:
+                sys.exit(f"make_docs: pollard-pin {argv[0]} of {job.name} failed")
         png = DOCS / "film_view.png"
         capture_meshcat(html, png, width=1100, height=640, time_s=4.0, controls=False)
     print(f"wrote {png} ({png.stat().st_size // 1024} kB)")

@@ -70,22 +70,23 @@ def _panel_overlay(found: Path, report: dict):
 
     grid, target = report.get("grid"), report["target"]
     nu, nv = (grid.get("nu"), grid.get("nv")) if isinstance(grid, dict) else (None, None)
-    if not all(type(n) is int and n >= 2 for n in (nu, nv)):
+    if not all(type(n) is int and n >= 1 for n in (nu, nv)):
         raise ResultFileError(f"{found.parent / 'paint.json'}: not a paint report (grid nu = "
-                              f"{shorten(nu)}, nv = {shorten(nv)}: expected point counts >= 2)")
+                              f"{shorten(nu)}, nv = {shorten(nv)}: expected point counts >= 1)")
     table = read_result(found)
     try:
         pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
         th = table["thickness"].reshape(nv, nu)
     except (KeyError, ValueError, OverflowError) as exc:
-        raise ResultFileError(f"{found}: not the film of paint.json's {nu} × {nv} grid "
-                              f"({clip(exc, 100)})") from None
+        raise ResultFileError(f"{found}: not the film of paint.json's {shorten(nu)} × "
+                              f"{shorten(nv)} grid ({clip(exc, 100)})") from None
     _check_film(found, pts.reshape(-1, 3), th.ravel(), target, "row", 1)
 
     def draw(vis):
         film_panel(vis, pts, th, *film_range(target))
 
-    draw.view = film_view(pts.reshape(-1, 3), grid_faces(nv, nu), th.ravel(), target)
+    if min(nu, nv) > 1:  # a grid of one row has no faces to frame: the default view
+        draw.view = film_view(pts.reshape(-1, 3), grid_faces(nv, nu), th.ravel(), target)
     return draw
 
 
@@ -110,7 +111,7 @@ def _part_overlay(folder: Path, target: float):
 def _check_film(where: Path, points, th, target: float, what: str, first: int) -> None:
     """One line for a point or thickness that is no film: not finite, negative, over
     ABSURD_FILM × target, or beyond the scene (element ``what`` numbered from ``first``)."""
-    from ..io.ply import ABSURD_FILM
+    from ..io.ply import check_film_values
     from ..io.table import ResultFileError
     from ..viz.viewer import ViewerError, check_scene_points
 
@@ -118,13 +119,7 @@ def _check_film(where: Path, points, th, target: float, what: str, first: int) -
     if bad.any():
         k = int(np.argmax(bad))
         raise ResultFileError(f"{where}: {what} {k + first}: x, y, z not finite")
-    odd = ~np.isfinite(th) | (th < 0) | (th > ABSURD_FILM * target)
-    if odd.any():
-        k = int(np.argmax(odd))
-        why = ("not finite" if not np.isfinite(th[k]) else "below 0 (a film is at least 0 m "
-               "thick)" if th[k] < 0 else f"over {ABSURD_FILM:g} × the target {target:.4g} m "
-               "(paint.json): a damaged file?")
-        raise ResultFileError(f"{where}: {what} {k + first}: thickness = {th[k]:.4g} m, {why}")
+    check_film_values(where, th, target, what, first)
     try:
         check_scene_points(points, str(where), rows=np.arange(len(points)) + first)
     except ViewerError as exc:

@@ -73,15 +73,28 @@ def _check_film(path, v, f, th, target) -> None:
         k = int(np.argwhere(~np.isfinite(v))[0][0])
         raise ResultFileError(f"{path}: vertex {k} (from 0): position {v[k].tolist()} m, "
                               "not finite")
+    check_film_values(path, th, target)
+
+
+def check_film_values(where, th, target: float | None, what: str = "vertex",
+                      first: int = 0) -> None:
+    """A :class:`~pollard_pin.io.table.ResultFileError` line for the first film ``th`` [m]
+    that no spray lays: not finite, below 0, or over :data:`ABSURD_FILM` × ``target`` [m]
+    (when given); ``where`` names the file, ``what`` its elements, numbered from ``first``."""
+    from .table import ResultFileError
+
+    th = np.asarray(th, float).ravel()
     odd = ~np.isfinite(th) | (th < 0)
     if target is not None:
         odd |= th > ABSURD_FILM * target
     if odd.any():
         k = int(np.argmax(odd))
-        why = ("not finite" if not np.isfinite(th[k]) else "below 0 (a film is at least 0 m "
-               "thick)" if th[k] < 0 else f"over {ABSURD_FILM:g} × the target {target:.4g} m:"
-               " a damaged file?")
-        raise ResultFileError(f"{path}: vertex {k} (from 0): thickness = {th[k]:.4g} m, {why}")
+        at = f"{where}: {what} {k + first}" + (" (from 0)" if first == 0 else "")
+        if not np.isfinite(th[k]):
+            raise ResultFileError(f"{at}: thickness not finite ({th[k]})")
+        why = ("below 0 (a film is at least 0 m thick)" if th[k] < 0 else
+               f"over {ABSURD_FILM:g} × the target {target:.4g} m: a damaged file?")
+        raise ResultFileError(f"{at}: thickness = {th[k]:.4g} m, {why}")
 
 
-__all__ = ["ABSURD_FILM", "read_film_ply", "write_film_ply"]
+__all__ = ["ABSURD_FILM", "check_film_values", "read_film_ply", "write_film_ply"]

@@ -102,7 +102,7 @@ def _set(a, k, x):
     (lambda v, f, th: (v, f, _set(th, 5, -1e-6)), "vertex 5 (from 0): thickness = -1e-06 m"),
     (lambda v, f, th: (v, f, _set(th, 9, 25e-6 * 1e30)),
      "vertex 9 (from 0): thickness = 2.5e+25 m, over 1000 × the target 2.5e-05 m"),
-    (lambda v, f, th: (v, f, _set(th, 3, np.inf)), "vertex 3 (from 0): thickness = inf m"),
+    (lambda v, f, th: (v, f, _set(th, 3, np.inf)), "vertex 3 (from 0): thickness not finite (inf)"),
 ])
 def test_a_film_ply_that_is_no_film_is_one_line(painted, tmp_path, capsys, edit, words):
     folder = tmp_path / "d"

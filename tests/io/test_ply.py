@@ -53,7 +53,7 @@ def _film(tmp_path, faces=((0, 1, 2), (1, 3, 2)), th=(1e-6, 2e-6, 3e-6, 4e-6)):
      "face 1 (from 0): vertex index 1592, outside 0 … 3 (the file's 4 vertices)"),
     (((0, -7, 2), (1, 3, 2)), None, None, "face 0 (from 0): vertex index -7, outside 0 … 3"),
     (None, (1e-6, -2e-6, 3e-6, 4e-6), None, "vertex 1 (from 0): thickness = -2e-06 m, below 0"),
-    (None, (1e-6, 2e-6, float("nan"), 4e-6), None, "vertex 2 (from 0): thickness = nan m, not"),
+    (None, (1e-6, 2e-6, float("nan"), 4e-6), None, "vertex 2 (from 0): thickness not finite (nan)"),
     (None, (1e-6, 2e-6, 3e-6, 25e-6 * 1e30), 25e-6,
      "vertex 3 (from 0): thickness = 2.5e+25 m, over 1000 × the target 2.5e-05 m"),
 ])
