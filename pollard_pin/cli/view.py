@@ -4,8 +4,25 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..io.atomic import check_outputs
+from ..io.atomic import check_not_inputs, check_outputs
 from .common import STDOUT, UsageError, command, name, positive, say_notes, solve, trajectory_args
+
+
+def _inputs(args) -> list:
+    """(what, path) of every file ``view`` reads: never one of its outputs."""
+    from ..io.table import units_path
+    from .view_paint import paint_inputs
+
+    files = [("the parameter file", args.params)]
+    if args.trajectory != "thesis":
+        files += [("the trajectory", args.trajectory),
+                  ("the trajectory's units", units_path(args.trajectory))]
+    if args.paint is not None:
+        files += paint_inputs(args.paint)
+    if args.workspace is not None:
+        files += [(f"the workspace map's {n}", Path(args.workspace) / n)
+                  for n in ("workspace.csv", "workspace.units.json", "workspace.parquet")]
+    return files
 
 
 def run(args) -> int:
@@ -13,30 +30,26 @@ def run(args) -> int:
 
     if args.html:
         check_outputs(args.html)
+        check_not_inputs([args.html], _inputs(args))
     overlay = None
     if args.paint is not None:
-        from .paint import paint_overlay
+        from .view_paint import paint_overlay
 
         if args.trajectory != "thesis":
             raise UsageError("--paint DIR shows DIR/path.csv: give no --trajectory with it")
         args.trajectory = str(Path(args.paint) / "path.csv")
         overlay = paint_overlay(Path(args.paint))
     if args.workspace is not None:  # read before solving: a bad folder fails at once
-        from ..viz.viewer import point_cloud
-        from ..viz.workspace import workspace_cloud
-
-        cloud = workspace_cloud(args.workspace)
-        paint = overlay
-
-        def overlay(vis, paint=paint):
-            if paint is not None:
-                paint(vis)
-            point_cloud(vis, *cloud)
+        overlay = _with_workspace(overlay, args.workspace)
     robot, result = solve(args, dynamics=False)
     try:
         viewer.check_frame_rate(result.ik.t, args.fps)
     except viewer.ViewerError as exc:
         raise UsageError(f"--fps {args.fps:g}: {exc}") from None
+    if getattr(overlay, "view", None) is not None:  # from the gun's side, over the travel
+        moving = getattr(overlay, "moving", None) or {}
+        overlay.view = overlay.view.seen_from(result.ik.poses[:, :3], result.ik.t,
+                                              next(iter(moving.values()), None))
     if args.html:
         path = viewer.write_html(args.html, robot, result.ik, frames=args.frames, fps=args.fps,
                                  overlay=overlay)
@@ -46,8 +59,29 @@ def run(args) -> int:
                   "needed; Open Controls → Animations to play and scrub", file=sys.stderr)
         return 0
     say_notes(args)  # serving lasts until interrupted
+    if getattr(overlay, "view", None) is not None:  # the live page has no legend
+        print(f"film colours: {overlay.view.scale}, blue thin, white on target, red thick",
+              file=sys.stderr)
     viewer.serve(robot, result.ik, frames=args.frames, fps=args.fps, overlay=overlay)
     return 0
+
+
+def _with_workspace(paint, folder):
+    """The overlay drawing the film ``paint`` (or None) and the workspace map's points; the
+    film's moving nodes and view kept."""
+    from ..viz.viewer import point_cloud
+    from ..viz.workspace import workspace_cloud
+
+    cloud = workspace_cloud(folder)
+
+    def overlay(vis):
+        if paint is not None:
+            paint(vis)
+        point_cloud(vis, *cloud)
+
+    overlay.moving = getattr(paint, "moving", None)
+    overlay.view = getattr(paint, "view", None)
+    return overlay
 
 
 def add_parser(sub, parents) -> None:
@@ -59,8 +93,9 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
     p.add_argument("--paint", type=name, metavar="DIR", default=None,
                    help="show a paint output folder (pollard-pin paint --out DIR): the robot "
-                        "running DIR/path.csv and the panel coloured by film thickness "
-                        "(default: no panel)")
+                        "running DIR/path.csv and the panel or part coloured by film "
+                        "thickness, framed by the default view, with the colour scale's "
+                        "legend (default: no film)")
     p.add_argument("--workspace", type=name, metavar="DIR", default=None,
                    help="also draw the reachable points of a workspace map written by "
                         "pollard-pin workspace --out DIR (default: none)")

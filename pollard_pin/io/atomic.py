@@ -120,6 +120,27 @@ def check_outputs(*files: str | Path | None, folders: tuple = ()) -> None:
         seen[key] = path
 
 
+def check_not_inputs(outputs, inputs) -> None:
+    """Refuse, before the work, an output that is one of the command's inputs (writing it
+    would destroy what was read). ``outputs``: paths (``None``: not written); ``inputs``:
+    (what, path) pairs, e.g. ``("the mesh", mesh)``. Identity as :func:`check_outputs` sees it:
+    the same file through a symbolic link or a hard link is the same file; standard output
+    and character devices (``/dev/null``) are never inputs."""
+    read = {}
+    for what, path in inputs:
+        if path is not None and str(path) != STDOUT and os.path.exists(path):
+            read.setdefault(_identity(path), (what, path))
+    for out in outputs:
+        if out is None or str(out) == STDOUT:
+            continue
+        key = _identity(out)
+        if key is not None and key in read:
+            what, path = read[key]
+            also = "" if os.path.abspath(out) == os.path.abspath(path) else f", {path}"
+            raise OutputError(f"{out}: is one of the inputs ({what}{also}): writing it would "
+                              "destroy it, give another path")
+
+
 def _identity(path: str | Path):
     if str(path) == STDOUT:
         return STDOUT

@@ -6,16 +6,17 @@ from pathlib import Path
 
 import numpy as np
 
-BAND = 0.02  # the colour scale spans the target ± this share (±2 %, the planner's aim)
+from .film_scale import FILM_BAND as BAND
+from .film_scale import FILM_CMAP, film_label, film_range
 
 
 def thickness_figure(U, V, thickness, target: float, path_uv=None,
                      width: float | None = None, height: float | None = None,
                      title: str = "Film thickness"):
     """Heat map of ``thickness`` (nv, nu) [m] on the panel grid ``U`` (nu,), ``V`` (nv,) [m],
-    coloured over target ± BAND, with ``path_uv`` (2, N) [m] (the tool tip in panel
-    coordinates) drawn over it, clipped to a margin around the panel. Artist gids:
-    ``film``, ``path``, ``panel``."""
+    coloured on the film scale (:mod:`.film_scale`, target ± BAND), with ``path_uv`` (2, N)
+    [m] (the tool tip in panel coordinates) drawn over it, clipped to a margin around the
+    panel. Artist gids: ``film``, ``path``, ``panel``."""
     from matplotlib.figure import Figure
 
     U, V = np.asarray(U) * 1e3, np.asarray(V) * 1e3
@@ -23,11 +24,11 @@ def thickness_figure(U, V, thickness, target: float, path_uv=None,
     t0 = target * 1e6
     fig = Figure(figsize=(9, 5.2), constrained_layout=True)
     ax = fig.add_subplot()
-    mesh = ax.pcolormesh(U, V, th, shading="nearest", cmap="RdBu_r",
-                         vmin=t0 * (1 - BAND), vmax=t0 * (1 + BAND))
+    lo, hi = film_range(t0)
+    mesh = ax.pcolormesh(U, V, th, shading="nearest", cmap=FILM_CMAP, vmin=lo, vmax=hi)
     mesh.set_gid("film")
     cb = fig.colorbar(mesh, ax=ax, extend="both")
-    cb.set_label(f"film thickness [µm] (target {t0:.4g} ± {100 * BAND:g} %)")
+    cb.set_label(film_label(target))
     w = (U[-1] - U[0]) if width is None else width * 1e3
     h = (V[-1] - V[0]) if height is None else height * 1e3
     (edge,) = ax.plot([-w / 2, w / 2, w / 2, -w / 2, -w / 2],

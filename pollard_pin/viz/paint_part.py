@@ -8,45 +8,39 @@ from pathlib import Path
 
 import numpy as np
 
-from .paint import BAND
-
-# film.ply's vertex colours: matplotlib's "RdBu_r" over the target ± PLY_BAND (blue thin,
-# white on target, red thick), clipped beyond it.
-PLY_CMAP = "RdBu_r"
-PLY_BAND = 0.10
+from .film_scale import FILM_BAND as PLY_BAND
+from .film_scale import FILM_CMAP as PLY_CMAP
+from .film_scale import film_label, film_range, film_rgba
 
 
 def ply_colours(target: float) -> dict:
     """What film.ply's colours mean, for paint.json: the colour map and the range [m]."""
-    return {"colour_map": PLY_CMAP, "range": [target * (1 - PLY_BAND), target * (1 + PLY_BAND)]}
+    return {"colour_map": PLY_CMAP, "range": list(film_range(target))}
 
 
-def film_colours(thickness, target: float, band: float = PLY_BAND) -> np.ndarray:
-    """RGBA bytes (P, 4) of ``thickness`` [m]: PLY_CMAP over target × (1 ± band)."""
-    from matplotlib import colormaps
-
-    x = (np.asarray(thickness, float) / target - (1 - band)) / (2 * band)
-    return (colormaps[PLY_CMAP](np.clip(x, 0, 1)) * 255).round().astype(np.uint8)
+def film_colours(thickness, target: float) -> np.ndarray:
+    """RGBA bytes (P, 4) of ``thickness`` [m] on the film scale (:mod:`.film_scale`)."""
+    return film_rgba(thickness, target)
 
 
 def part_figure(points, thickness, target: float, along, across, tracks=(),
                 title: str = "Film thickness on the part"):
     """Scatter of the film ``points`` (P, 3) [m] projected on the unit ``along`` and
-    ``across`` axes, coloured by ``thickness`` [m] over target ± BAND, with ``tracks`` (each
+    ``across`` axes, coloured by ``thickness`` [m] on the film scale, with ``tracks`` (each
     (K, 3) [m], the spray spot's centre along a pass) drawn over them. Artist gids: ``film``,
     ``passes``."""
     from matplotlib.figure import Figure
 
     pts = np.asarray(points, float)
     x, y = pts @ along * 1e3, pts @ across * 1e3
-    t0 = target * 1e6
+    lo, hi = film_range(target * 1e6)
     fig = Figure(figsize=(9, 5.2), constrained_layout=True)
     ax = fig.add_subplot()
-    sc = ax.scatter(x, y, c=np.asarray(thickness) * 1e6, s=4, cmap="RdBu_r",
-                    vmin=t0 * (1 - BAND), vmax=t0 * (1 + BAND), linewidths=0)
+    sc = ax.scatter(x, y, c=np.asarray(thickness) * 1e6, s=4, cmap=PLY_CMAP, vmin=lo,
+                    vmax=hi, linewidths=0)
     sc.set_gid("film")
     cb = fig.colorbar(sc, ax=ax, extend="both")
-    cb.set_label(f"film thickness [µm] (target {t0:.4g} ± {100 * BAND:g} %)")
+    cb.set_label(film_label(target))
     for k, tr in enumerate(tracks):
         tr = np.asarray(tr, float)
         (ln,) = ax.plot(tr @ along * 1e3, tr @ across * 1e3, color="0.25", lw=0.7, alpha=0.8,

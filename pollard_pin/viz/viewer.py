@@ -117,8 +117,8 @@ class OfflineWindow:
                 out.append(node.animation)
         return out
 
-    def get_scene(self, title: str = "Pollard robot (MeshCat)") -> str:
-        return static_page(self.commands(), title)
+    def get_scene(self, title: str = "Pollard robot (MeshCat)", legend: str = "") -> str:
+        return static_page(self.commands(), title, legend)
 
     def get_image(self):
         raise RuntimeError("an offline MeshCat scene has no browser to capture images from")
@@ -145,13 +145,15 @@ def _viewer_bundle() -> str:
     return (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text()
 
 
-def static_page(commands: list[bytes], title: str = "Pollard robot (MeshCat)") -> str:
+def static_page(commands: list[bytes], title: str = "Pollard robot (MeshCat)",
+                legend: str = "") -> str:
     """MeshCat's static export of a list of command blobs.
 
     Same layout as the page MeshCat's server returns for ``get_scene`` (viewer bundle inline,
     then the commands), except that the commands are decoded and applied synchronously, in
     order, rather than through one asynchronous ``fetch`` each, and that the page marks
-    itself ready (``document.body.dataset.meshcatReady = "1"``) once all are applied.
+    itself ready (``document.body.dataset.meshcatReady = "1"``) once all are applied;
+    ``legend`` (HTML, e.g. a film's colour bar) is laid over the scene.
     """
     blobs = ",\n".join(f'"{base64.b64encode(c).decode()}"' for c in commands)
     return f"""<!DOCTYPE html>
@@ -163,7 +165,7 @@ body {{ margin: 0; }}
 </style>
 </head>
 <body>
-<div id="meshcat-pane"></div>
+<div id="meshcat-pane"></div>{legend}
 <script>
 {_viewer_bundle()}
 </script>
@@ -319,24 +321,22 @@ def _key_samples(t: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
 def film_panel(vis, points, values, lo: float, hi: float, node: str = f"{ROOT}/paint"):
     """Draw a surface grid ``points`` (nv, nu, 3) [m] as triangles coloured by ``values``
     (nv, nu) from blue (``lo``) through white to red (``hi``): the painted film."""
-    nv, nu = np.shape(values)
-    k = np.arange(nv * nu).reshape(nv, nu)
-    a, b, c, d = k[:-1, :-1].ravel(), k[:-1, 1:].ravel(), k[1:, 1:].ravel(), k[1:, :-1].ravel()
-    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    from .film_view import grid_faces
+
+    faces = grid_faces(*np.shape(values))
     return film_mesh(vis, np.reshape(points, (-1, 3)), faces, np.ravel(values), lo, hi, node)
 
 
 def film_mesh(vis, vertices, faces, values, lo: float, hi: float,
               node: str = f"{ROOT}/paint"):
     """Draw triangles ``faces`` (M, 3) over ``vertices`` (V, 3) [m] coloured per vertex by
-    ``values`` (V,) from blue (``lo``) through white to red (``hi``): a film on a part."""
+    ``values`` (V,) on the film scale from ``lo`` (blue) through white to ``hi`` (red): a film
+    on a part."""
     import meshcat.geometry as mg
 
-    x = np.clip((np.asarray(values, float) - lo) / (hi - lo), 0.0, 1.0).ravel()
-    # blue (0.13, 0.4, 0.67) → white → red (0.7, 0.09, 0.17), as matplotlib's RdBu_r ends
-    blue, red, white = np.array([0.13, 0.4, 0.67]), np.array([0.7, 0.09, 0.17]), np.ones(3)
-    w = np.abs(2 * x - 1)[:, None]
-    colour = (1 - w) * white + w * np.where((x < 0.5)[:, None], blue, red)
+    from .film_scale import scale_rgba
+
+    colour = scale_rgba(values, lo, hi)[:, :3]
     vis[node].set_object(mg.TriangularMeshGeometry(np.asarray(vertices, float),
                                                    np.asarray(faces), color=colour),
                          mg.MeshBasicMaterial(vertexColors=True, side=2))
@@ -372,15 +372,18 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
     viz.loadViewerModel(rootNodeName=ROOT)
     model, data, gdata = viz.model, viz.data, viz.visual_data
 
-    vis["/Background"].set_property("top_color", list(BACKGROUND))
-    vis["/Background"].set_property("bottom_color", list(BACKGROUND))
+    view = getattr(overlay, "view", None)  # a film's view (.film_view.FilmView)
+    top, bottom = (BACKGROUND, BACKGROUND) if view is None else view.background
+    vis["/Background"].set_property("top_color", list(top))
+    vis["/Background"].set_property("bottom_color", list(bottom))
     if camera:
         # MeshCat 0.3's orbit controls always aim at the world origin. Shift the drawn world
-        # (our nodes, grid and axes) by −target so that the orbit centre is CAMERA_TARGET.
-        shift = pin.SE3(np.eye(3), -np.asarray(CAMERA_TARGET)).homogeneous
+        # (our nodes, grid and axes) by −target so that the orbit centre is the target.
+        target = CAMERA_TARGET if view is None else view.centre
+        shift = pin.SE3(np.eye(3), -np.asarray(target)).homogeneous
         for node in ("/meshcat", "/Axes"):
             vis[node].set_transform(shift)
-        off = np.asarray(CAMERA_OFFSET)
+        off = np.asarray(CAMERA_OFFSET if view is None else view.offset)
         # The camera lives in MeshCat's y-up "rotated" frame: world (x, y, z) = (a, −c, b).
         vis["/Cameras/default/rotated/<object>"].set_property(
             "position", [float(off[0]), float(off[2]), float(-off[1])])
@@ -439,7 +442,8 @@ def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
     window = OfflineWindow()
     vis = meshcat.Visualizer(window=window)
     build_scene(vis, robot, ik, frames=frames, fps=fps, overlay=overlay)
-    return window.get_scene(title or "Pollard robot (MeshCat)")
+    legend = getattr(getattr(overlay, "view", None), "legend", "")
+    return window.get_scene(title or "Pollard robot (MeshCat)", legend)
 
 
 def write_html(path, robot, ik, **kwargs) -> Path:

@@ -15,6 +15,7 @@ from pollard_pin.io.atomic import (
     all_or_nothing,
     atomic_open,
     check_destination,
+    check_not_inputs,
     check_outputs,
     make_folder,
     remove_stale,
@@ -178,3 +179,23 @@ def test_a_table_read_back_after_the_block(tmp_path):
         write_table(tmp_path / "t.csv", {"t": [0.0, 1.0], "x": [0.5, 0.25]}, {"k": "µ"})
     table = read_result(tmp_path / "t.csv")
     assert table["x"].tolist() == [0.5, 0.25] and table.metadata == {"k": "µ"}
+
+
+def test_an_output_that_is_an_input_is_refused_however_named(tmp_path):
+    """The same file by its name, another spelling, a symbolic link or a hard link is one of
+    the inputs; another file, standard output and /dev/null are not."""
+    mesh = tmp_path / "part" / "film.ply"
+    mesh.parent.mkdir()
+    mesh.write_bytes(b"mesh bytes")
+    (tmp_path / "link.ply").symlink_to(mesh)
+    os.link(mesh, tmp_path / "hard.ply")
+    inputs = [("the mesh", mesh), ("the job", tmp_path / "absent.toml"), ("none", None)]
+    for out, also in [(mesh, ""), (tmp_path / "part" / ".." / "part" / "film.ply", ""),
+                      (tmp_path / "link.ply", f", {mesh}"), (tmp_path / "hard.ply", f", {mesh}")]:
+        with pytest.raises(OutputError) as exc:
+            check_not_inputs([None, out], inputs)
+        assert str(exc.value) == (f"{out}: is one of the inputs (the mesh{also}): writing it "
+                                  "would destroy it, give another path")
+    check_not_inputs([tmp_path / "other.ply", "-", "/dev/null", tmp_path / "absent.toml"],
+                     inputs + [("stdin", "-"), ("null", "/dev/null")])
+    assert mesh.read_bytes() == b"mesh bytes"
