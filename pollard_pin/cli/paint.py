@@ -4,103 +4,47 @@ from __future__ import annotations
 
 import json
 import math
-import time
 from pathlib import Path
 
-from .. import __version__
-from ..io.atomic import check_outputs
 from .common import UsageError, command, load_robot, model_args, name, positive
-from .paint_files import (
-    motor_use_line,
-    part_summary_lines,
-    say_written,
-    spacing,
-    write_panel_outputs,
-    write_part_outputs,
-)
+from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
 
 
-def _actuators(args, job):
-    """--actuators, else the job's ``actuators``, else the package default (the ratings of
-    examples/actuators.toml, shipped as models/actuators.toml)."""
+def _actuators(args):
+    """--actuators, else None: the job's, else the package's (pollard_pin.paint)."""
     from ..dynamics.motors import load_actuators
-    from ..model.paths import models_dir
 
-    return load_actuators(args.actuators or job.actuators or models_dir() / "actuators.toml")
+    return load_actuators(args.actuators) if args.actuators else None
 
 
 def run(args) -> int:
-    import numpy as np
-
-    from ..io.table import FORMATS, table_files
-    from ..paint.film import film_resolution, plan_film
-    from ..paint.job import PartJob, load_job
-    from ..paint.plan import plan_paint
-    from ..paint.report import paint_report
-    from ..viz.paint_part import ply_colours
+    from ..io.atomic import check_outputs
+    from ..io.paint_files import paint_outputs
+    from ..paint.api import PaintOptions, default_actuators, film_spacing_of, job_kind, paint
+    from ..paint.job import load_job
 
     out = Path(args.out)
-    name = out / f"thickness.{args.format}"
-    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
-                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
-    stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
-             for f in table_files(out / f"thickness.{fmt}", fmt)]
+    check_outputs(*paint_outputs(out, args.format)[0], folders=(out,))
     job = load_job(args.job)
-    if job.line is not None or args.max_line_speed:  # a moving line (docs/model.md §24)
-        from .paint_line import run_line
+    kind = job_kind(job)
+    if args.max_line_speed and job.line is None:
+        raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
+    res = spacing(film_spacing_of, job, args.resolution)
+    act = _actuators(args) or default_actuators(job)
+    result = paint(load_robot(args), job, act,
+                   PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
+    name = result.write(out, args.format)
+    rep = result.report.to_dict()
+    if kind == "panel":
+        lines = summary_lines(rep, act.names)
+    elif kind == "part":
+        lines = part_summary_lines(rep, act.names)
+    else:
+        from .paint_line import line_lines, line_summary_lines
 
-        return run_line(args, job, out, _actuators(args, job), stale)
-    if isinstance(job, PartJob):
-        return _run_part(args, job, out, stale)
-    res = spacing(film_resolution, job, args.resolution)
-    act = _actuators(args, job)
-    robot = load_robot(args)
-    t0 = time.perf_counter()
-    plan = plan_paint(robot, job, act)
-    t1 = time.perf_counter()
-    U, V, pts, film = plan_film(plan, res)
-    t2 = time.perf_counter()
-    rep = paint_report(plan, film, act)
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               grid={"nu": len(U), "nv": len(V), "resolution": res},
-               film_ply=ply_colours(job.thickness),
-               pollard_pin=__version__)
-    tr, fr = plan.trajectory, plan.frame
-    rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
-    name = write_panel_outputs(out, args.format, tr, np.ones(len(tr.t)), U, V, pts,
-                               film.thickness, fr, job, rep,
-                               {"command": "paint", "job": rep["job"]},
-                               np.array([rel @ fr.u, rel @ fr.v]), stale)
-    print("\n".join(summary_lines(rep, act.names)))
-    say_written(out, name)
-    return 0
-
-
-def _run_part(args, job, out: Path, stale) -> int:
-    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
-    (the outputs checked and ``stale`` found by :func:`run`)."""
-    from ..paint.film_points import check_film_points
-    from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
-    from ..paint.surface_report import surface_report
-    from ..viz.paint_part import ply_colours
-
-    res = spacing(part_resolution, job, args.resolution)
-    act = _actuators(args, job)
-    part = load_job_part(job)
-    check_film_points(part, res)  # before planning: the budget of the film's points
-    robot = load_robot(args)
-    t0 = time.perf_counter()
-    plan = plan_surface(robot, job, act, part)
-    t1 = time.perf_counter()
-    pts, film, painted, efficiency = surface_film(plan, res)
-    t2 = time.perf_counter()
-    rep = surface_report(plan, pts, film, painted, efficiency, act)
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               film_ply=ply_colours(job.thickness),
-               pollard_pin=__version__)
-    name = write_part_outputs(out, args.format, plan, pts, film, painted, rep,
-                              {"command": "paint", "job": rep["job"]}, stale)
-    print("\n".join(part_summary_lines(rep, act.names)))
+        lines = (line_summary_lines(rep, act.names) if kind == "line panel" else
+                 line_lines(rep) + part_summary_lines(rep, act.names))
+    print("\n".join(lines))
     say_written(out, name)
     return 0
 

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..analytic.taskspace import rotation
 from .deposition import Film, film
-from .errors import PlanError
+from .errors import PlanError, ResolutionError
 from .job import PaintJob
 from .plan import PaintPlan, gun_of
 
@@ -25,7 +25,7 @@ def film_spacing(sigma: float, resolution: float | None = None,
     the ripple between passes (some 2σ apart, docs/model.md §21)."""
     res = sigma / 3 if resolution is None else resolution
     if isinstance(res, bool) or not (isinstance(res, numbers.Real) and 0 < res <= sigma):
-        raise PlanError(f"{what} {res!r} m must be > 0 and at most the spray spot's "
+        raise ResolutionError(f"{what} {res!r} m must be > 0 and at most the spray spot's "
                         f"σ = {sigma:g} m (a coarser one cannot show the film between "
                         "passes)")
     return float(res)
@@ -37,9 +37,9 @@ def film_resolution(job: PaintJob, resolution: float | None = None) -> float:
     res = film_spacing(job.sigma, resolution)
     points = _axis_points(job.width, res) * _axis_points(job.height, res)
     if points > MAX_FILM_POINTS:
-        raise PlanError(f"film grid spacing {res:.4g} m makes {points:.4g} film points on the "
-                        f"{job.width:g} × {job.height:g} m panel, budget {MAX_FILM_POINTS:.3g}: "
-                        "a coarser resolution")
+        raise ResolutionError(f"film grid spacing {res:.4g} m makes {points:.4g} film points "
+                              f"on the {job.width:g} × {job.height:g} m panel, budget "
+                              f"{MAX_FILM_POINTS:.3g}: a coarser resolution")
     return res
 
 

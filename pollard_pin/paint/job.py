@@ -14,6 +14,7 @@ import numpy as np
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
+from .errors import JobKindError
 from .line_job import Line, line_from_table
 
 # Required and optional keys per table, in file order.
@@ -260,5 +261,18 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
     return job
 
 
-__all__ = ["DIRECTIONS", "JobError", "MIN_PANEL_SIGMAS", "PaintJob", "PartJob", "job_from_dict",
-           "load_job", "part_job_from_dict"]
+KINDS = ("panel", "part", "line panel", "line part")
+
+
+def job_kind(job: Any) -> str:
+    """The job's kind, one of KINDS; :class:`JobKindError` naming the type of anything else."""
+    if isinstance(job, PaintJob):
+        return "panel" if job.line is None else "line panel"
+    if isinstance(job, PartJob):
+        return "part" if job.line is None else "line part"
+    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
+                       f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
+
+
+__all__ = ["DIRECTIONS", "KINDS", "MIN_PANEL_SIGMAS", "JobError", "PaintJob", "PartJob",
+           "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

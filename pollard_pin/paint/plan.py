@@ -29,8 +29,8 @@ from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ..dynamics.path import path_dynamics
 from ..paths.trajectory import Trajectory
 from .deposition import Gun
-from .errors import BudgetError, PlanError, ReachError
-from .job import MIN_PANEL_SIGMAS, PaintJob
+from .errors import BudgetError, JobKindError, PlanError, ReachError
+from .job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from .motion import fastest, motion, reach
 from .raster import (
     SPOT_RADIUS,
@@ -141,8 +141,13 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     A path out of reach raises :class:`PlanError` naming where it leaves the workspace and
     the largest panel of the same centre and proportions that was planned in full
     (:func:`largest_scale`: a float scale, not :func:`pollard_pin.workspace.grid.largest_panel`'s
-    rectangle).
+    rectangle). A job of another kind (a part, a line) is a :class:`JobKindError`: those
+    are :func:`pollard_pin.paint`'s.
     """
+    kind = job_kind(job)
+    if kind != "panel":
+        raise JobKindError(f"{job.source}: plan_paint plans a still panel, not a {kind}: "
+                           "paint it with pollard_pin.paint(robot, job)")
     try:
         return _plan(robot, job, act)
     except ReachError as exc:

@@ -2,7 +2,8 @@
 independent integral, and one motor-use order for every kind of job."""
 import numpy as np
 
-from pollard_pin.cli.paint_files import motor_use_line, panel_table
+from pollard_pin.cli.paint_files import motor_use_line
+from pollard_pin.io.paint_files import panel_table
 
 
 def test_panel_table_areas_weight_the_film_as_the_trapezoid_rule():

@@ -9,7 +9,7 @@ import pytest
 
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.paint import film as film_module
-from pollard_pin.paint.errors import PlanError
+from pollard_pin.paint.errors import PlanError, ResolutionError
 from pollard_pin.paint.film import film_resolution, film_stats, plan_film
 from pollard_pin.paint.job import load_job
 from pollard_pin.paint.plan import plan_paint
@@ -42,7 +42,8 @@ def test_interior_film_is_flow_over_speed_times_spacing(plan, film, job):
 @pytest.mark.parametrize("resolution", [0.0, -1.0, math.nan, math.inf, 0.0101, "0.005"])
 def test_a_film_grid_coarser_than_the_spot_or_not_a_spacing(job, resolution):
     # coarser than σ, the grid would miss the ripple between passes (some 2σ apart)
-    with pytest.raises(PlanError, match="must be > 0 and at most the spray spot's σ = 0.01 m"):
+    with pytest.raises(ResolutionError, match="must be > 0 and at most the spray spot's σ = "
+                                              "0.01 m"):
         film_resolution(job, resolution)
 
 
@@ -80,8 +81,8 @@ def test_film_grid_budget_is_checked_in_floats():
     job = load_job(EXAMPLES / "paint.toml")
     assert film_resolution(job) == pytest.approx(job.sigma / 3)
     for res, says in ((1e-6, r"makes 3.12e\+10 film points"), (1e-300, "makes inf film points")):
-        with pytest.raises(PlanError, match=says):
-            film_resolution(job, res)  # was a 600-digit count in the CLI, no check in here
+        with pytest.raises(ResolutionError, match=says):
+            film_resolution(job, res)  # floats: a 600-digit count is never made
 
 
 def test_film_pairs_budget(robot, monkeypatch):
