@@ -151,5 +151,10 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     return Film(total, err)
 
 
-__all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film", "near_spot",
-           "pair_rate"]
+def gun_of(job) -> Gun:
+    """The gun of a job, a panel's or a part's (its standoff, σ and flow)."""
+    return Gun(job.standoff, job.sigma, job.flow)
+
+
+__all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
+           "gun_of", "near_spot", "pair_rate"]

@@ -7,10 +7,10 @@ import numbers
 import numpy as np
 
 from ..analytic.taskspace import rotation
-from .deposition import Film, film
+from .deposition import Film, film, gun_of
 from .errors import PlanError, ResolutionError
 from .job import PaintJob
-from .plan import PaintPlan, gun_of
+from .plan import PaintPlan
 
 # Budgets of the film map, checked before the grid is made: its points (the table, the figure)
 # and the point × path-sample pairs the integration evaluates (≈ 70 ns each: 5e9 ≈ 6 min).
@@ -72,14 +72,3 @@ def plan_film(plan: PaintPlan, resolution: float | None = None):
     f: Film = film(gun_of(plan.job), tr.t, tr.poses[:, :3], axes, pts.reshape(-1, 3),
                    plan.frame.n, origin=plan.frame.c)
     return U, V, pts, f
-
-
-def film_stats(thickness: np.ndarray, target: float) -> dict:
-    """``mean, min, max, std`` [m], ``uniformity`` (min/max) and ``within_10pct`` (the share
-    of grid points within ±10 % of the target)."""
-    th = np.asarray(thickness, dtype=float).ravel()
-    return {"mean": float(th.mean()), "min": float(th.min()), "max": float(th.max()),
-            "std": float(th.std()), "uniformity": float(th.min() / th.max()),
-            "within_10pct": float(np.mean(np.abs(th / target - 1) <= 0.10)),
-            "deviation_min": float(th.min() / target - 1),
-            "deviation_max": float(th.max() / target - 1)}

@@ -32,7 +32,8 @@ from .line_phases import (
     world_motion,
 )
 from .mesh import Part
-from .plan import MAX_STEP, STEP_SIGMA, panel_layout
+from .plan import panel_layout
+from .policy import MAX_STEP, STEP_SIGMA, first_guess
 from .raster import PanelFrame, Segments, raster_motion, raster_segments
 
 
@@ -111,7 +112,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
         seg = raster_segments(offsets, half_length, pass_speed, tau[1:-1], (tau[0], tau[-1]))
         return panel_relative(frame, job_x, seg, horizontal)
 
-    guess = np.full(len(offsets) + 1, 4 * pass_speed / 10.0)  # ramps and turns
+    guess = np.full(len(offsets) + 1, first_guess(pass_speed))  # ramps and turns
     world = plan_world(robot, act, build, guess, speed, e,
                        min(MAX_STEP, STEP_SIGMA * job.sigma / pass_speed),
                        track(frame.c + job.standoff * frame.n, e),

@@ -19,6 +19,7 @@ from ..paths.trajectory import Trajectory
 from .job import PartJob
 from .line_phases import LineTimes, Relative, line_shift, one_coat, plan_world, track
 from .mesh import Part
+from .policy import first_guess
 from .surface import SurfaceLayout, pass_speed, surface_frame, surface_layout
 from .surface_plan import (
     Program,
@@ -111,7 +112,7 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
         return part_relative(build_program(pieces, tau))
 
     f = layout.frame
-    world = plan_world(robot, act, build, np.full(len(pieces) + 1, 4 * v / 10.0), speed, e,
+    world = plan_world(robot, act, build, np.full(len(pieces) + 1, first_guess(v)), speed, e,
                        dt, track(f.centre + job.standoff * f.n, e),
                        f"the passes ({v:.4g} m/s on the part's surface)", job.source)
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,

@@ -18,7 +18,7 @@ from ..dynamics.motors import Actuators
 from ..paths.trajectory import Trajectory
 from .errors import BudgetError, PlanError, ReachError
 from .motion import fastest, motion, reach
-from .plan import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
+from .policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
 from .raster import SMOOTHSTEP
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time

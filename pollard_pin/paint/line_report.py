@@ -11,11 +11,11 @@ import numpy as np
 
 from ..analytic.taskspace import rotation
 from ..dynamics.motors import Actuators
-from .deposition import Film, film
+from .deposition import Film, film, gun_of
 from .errors import PlanError
-from .film import MAX_FILM_PAIRS, film_grid, film_stats
+from .film import MAX_FILM_PAIRS, film_grid
 from .line import LinePlan
-from .plan import gun_of
+from .stats import film_stats
 
 
 def part_frame_positions(plan: LinePlan) -> np.ndarray:
@@ -63,7 +63,6 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
     """The numbers of ``paint.json`` for a panel on the line."""
     j = plan.job
     th = film_stats(f.thickness, j.thickness)
-    th["within_5pct"] = float(np.mean(np.abs(f.thickness / j.thickness - 1) <= 0.05))
     seg = plan.segments
     return {
         "job": j.to_dict(),

@@ -28,10 +28,19 @@ from ..dynamics.averages import time_rms
 from ..dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ..dynamics.path import path_dynamics
 from ..paths.trajectory import Trajectory
-from .deposition import Gun
 from .errors import BudgetError, JobKindError, PlanError, ReachError
 from .job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from .motion import fastest, motion, reach
+from .policy import (
+    CHECK_REFINE,
+    MAX_PASSES,
+    MAX_PATH_SAMPLES,
+    MAX_STEP,
+    STEP_SIGMA,
+    TURN_SAMPLES,
+    UTILISATION,
+    first_guess,
+)
 from .raster import (
     SPOT_RADIUS,
     PanelFrame,
@@ -43,17 +52,6 @@ from .raster import (
     ripple_spacing,
     task_motion,
 )
-
-UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples
-TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
-CHECK_REFINE = 4  # the final motor check samples the path this many times more densely
-MAX_STEP = 0.002  # s: the trajectory's largest time step
-STEP_SIGMA = 0.25  # the gun moves at most this many σ per step (film integration, §20)
-# Budgets, checked before anything is built: the path's samples (the final motor check
-# solves CHECK_REFINE× as many at ≈ 3.3 KB and 20 µs each: ≈ 3.3 GB and 20 s) and the passes
-# over all coats (the layout's cross-profile grid grows with their square).
-MAX_PATH_SAMPLES = 250_000
-MAX_PASSES = 1000
 
 
 @dataclass(frozen=True)
@@ -92,10 +90,6 @@ def derated(act: Actuators, factor: float) -> Actuators:
     units = tuple(replace(u, peak_torque=u.peak_torque * factor,
                           max_speed=u.max_speed * factor) for u in act.units)
     return replace(act, units=units)
-
-
-def gun_of(job: PaintJob) -> Gun:
-    return Gun(job.standoff, job.sigma, job.flow)
 
 
 def _sample_pieces(seg: Segments, pieces: np.ndarray, n: int):
@@ -204,7 +198,7 @@ def _reach_scale(robot, job: PaintJob, steps: int) -> float:
         scaled = replace(job, width=mid * job.width, height=mid * job.height)
         try:
             frame, offsets, half_length, speed, coats, _ = _layout(scaled)
-            tau = _first_guess(speed)
+            tau = first_guess(speed)
             seg = raster_segments(offsets, half_length, speed, tau, (tau, tau), coats)
             t = _path_times(seg, scaled, speed, np.arange)
             reach(robot, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
@@ -232,11 +226,6 @@ def _check_samples(n: float, duration: float, speed: float, job: PaintJob) -> No
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
                           f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
                           f"{fix}")
-
-
-def _first_guess(speed: float) -> float:
-    """The duration search's first turnaround/ramp duration [s]: reversing at ~10 m/s²."""
-    return 4 * speed / 10.0
 
 
 def _layout(job: PaintJob):
@@ -350,7 +339,7 @@ def _fastest_segments(robot, act, frame, job, offsets, half_length, speed, coats
             raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job) from None
         return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
 
-    guess = np.full(len(pieces), _first_guess(speed))
+    guess = np.full(len(pieces), first_guess(speed))
     return build(fastest(evaluate, guess, UTILISATION))
 
 
@@ -429,8 +418,7 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
-__all__ = ["CHECK_REFINE", "MAX_PASSES", "MAX_PATH_SAMPLES", "PaintPlan", "UTILISATION",
-           "derated", "gun_of", "largest_scale", "max_pass_speed", "panel_layout",
+__all__ = ["PaintPlan", "derated", "largest_scale", "max_pass_speed", "panel_layout",
            "plan_paint"]
 
 

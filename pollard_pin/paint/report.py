@@ -6,8 +6,8 @@ import numpy as np
 
 from ..dynamics.motors import Actuators
 from .deposition import Film
-from .film import film_stats
 from .plan import PaintPlan
+from .stats import film_stats
 
 
 def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:

@@ -29,21 +29,21 @@ from ..analytic.taskspace import angles_from_rotation, rotation
 from ..dynamics.averages import time_rms
 from ..dynamics.motors import Actuators
 from ..paths.trajectory import Trajectory
-from .deposition import BLOCK_ELEMENTS
+from .deposition import BLOCK_ELEMENTS, gun_of
 from .errors import BudgetError, PlanError, ReachError
 from .film import film_spacing
 from .film_points import surface_points
 from .mesh import Part, load_part
 from .mesh_film import MeshFilm, mesh_film
 from .motion import fastest, motion
-from .plan import (
+from .policy import (
     CHECK_REFINE,
     MAX_PATH_SAMPLES,
     MAX_STEP,
     STEP_SIGMA,
     TURN_SAMPLES,
     UTILISATION,
-    gun_of,  # the job's standoff, sigma and flow: a panel's or a part's
+    first_guess,
 )
 from .surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
 
@@ -327,7 +327,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
                              f"s): {exc}", exc.sample, exc.pose) from None
         return m.utilisation.reshape(len(sel), TURN_SAMPLES, -1).max(axis=(1, 2))
 
-    taus = fastest(evaluate, np.full(len(pieces) + 1, 4 * v / 10.0), UTILISATION)
+    taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
     program = build_program(pieces, taus)
     clock.append(time.perf_counter())
     n = math.ceil(program.total / dt) + 1
@@ -395,21 +395,6 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     return pts, film, plan.part.painted[pts.faces], efficiency
 
 
-def film_stats(thickness, areas, target: float) -> dict:
-    """Area-weighted film statistics [m] over points with area shares: mean, min, max, std,
-    and the area shares within ±5 % and ±10 % of ``target``."""
-    th, w = np.asarray(thickness, float), np.asarray(areas, float)
-    w = w / w.sum()
-    mean = float(w @ th)
-    dev = np.abs(th / target - 1)
-    return {"mean": mean, "min": float(th.min()), "max": float(th.max()),
-            "std": float(math.sqrt(max(w @ (th - mean) ** 2, 0.0))),
-            "within_5pct": min(1.0, float(w[dev <= 0.05].sum())),
-            "within_10pct": min(1.0, float(w[dev <= 0.10].sum())),
-            "deviation_min": float(th.min() / target - 1),
-            "deviation_max": float(th.max() / target - 1)}
-
-
-__all__ = ["PassPiece", "Program", "Quintic", "SurfacePlan", "build_program", "film_stats",
+__all__ = ["PassPiece", "Program", "Quintic", "SurfacePlan", "build_program",
            "gun_frame", "live_faces", "load_job_part", "part_resolution", "pass_pieces",
            "plan_surface", "surface_film", "time_step"]

@@ -7,7 +7,8 @@ import numpy as np
 
 from ..dynamics.motors import Actuators
 from .mesh_film import MeshFilm
-from .surface_plan import SurfacePlan, film_stats
+from .stats import film_stats
+from .surface_plan import SurfacePlan
 
 
 def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficiency: float,
@@ -21,7 +22,7 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
         "job": j.to_dict(),
         "part": {"mesh": part.source, "faces": len(part.faces),
                  "painted_faces": int(part.painted.sum()), "painted_area": part.painted_area},
-        "thickness": film_stats(film.thickness[painted], points.areas[painted], j.thickness),
+        "thickness": film_stats(film.thickness[painted], j.thickness, points.areas[painted]),
         "target": j.thickness,
         "largest_incidence_deg": lay.incidence,
         "normal_smoothing": lay.smoothing,

@@ -10,9 +10,10 @@ import pytest
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.paint import film as film_module
 from pollard_pin.paint.errors import PlanError, ResolutionError
-from pollard_pin.paint.film import film_resolution, film_stats, plan_film
+from pollard_pin.paint.film import film_resolution, plan_film
 from pollard_pin.paint.job import load_job
 from pollard_pin.paint.plan import plan_paint
+from pollard_pin.paint.stats import film_stats
 
 
 def test_film_within_two_percent_edges_included(plan, film, job):
@@ -57,7 +58,7 @@ def test_film_integration_converged(plan, film, job):
     0.1 % of the target (achieved 5e-11 relative); the a-posteriori estimate (achieved 1.4e-9
     of the target) bounds it."""
     from pollard_pin.paint.deposition import film as integrate
-    from pollard_pin.paint.plan import gun_of
+    from pollard_pin.paint.deposition import gun_of
     from pollard_pin.paint.raster import task_motion
 
     U, V, pts, f = film

@@ -8,13 +8,13 @@ import pytest
 from line_parts import write_line_part
 
 from pollard_pin.analytic.taskspace import rotation
+from pollard_pin.paint.deposition import gun_of
 from pollard_pin.paint.errors import PlanError
 from pollard_pin.paint.job import load_job
 from pollard_pin.paint.line import max_line_speed, plan_line
 from pollard_pin.paint.line_phases import CATCH, LineSpeedError, world_motion
 from pollard_pin.paint.line_report import line_table
 from pollard_pin.paint.mesh_film import mesh_film
-from pollard_pin.paint.plan import gun_of
 from pollard_pin.paint.surface_plan import surface_film
 
 

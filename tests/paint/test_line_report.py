@@ -4,10 +4,9 @@ import numpy as np
 import pytest
 
 from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.paint.deposition import film
+from pollard_pin.paint.deposition import film, gun_of
 from pollard_pin.paint.line import relative_motion
 from pollard_pin.paint.line_report import line_film, line_table
-from pollard_pin.paint.plan import gun_of
 
 
 def test_film_in_the_parts_frame(line_plan):

@@ -16,10 +16,11 @@ from pollard_pin.dynamics.averages import time_rms
 from pollard_pin.dynamics.motors import motor_load_of, motor_torque
 from pollard_pin.paint import plan as planner
 from pollard_pin.paint.errors import BudgetError, PlanError, ReachError
-from pollard_pin.paint.film import film_stats, plan_film
+from pollard_pin.paint.film import plan_film
 from pollard_pin.paint.motion import motion, reach
 from pollard_pin.paint.plan import plan_paint
 from pollard_pin.paint.raster import SPOT_RADIUS
+from pollard_pin.paint.stats import film_stats
 from pollard_pin.run import run_pipeline
 
 NAIVE_CYCLE = 17.3  # s: a constant-speed raster with slow semicircle turns
@@ -83,7 +84,7 @@ def test_coats_split_the_film(robot, job, act):
     spray tails, 4σ off the panel; asserted 1e-3)."""
     from pollard_pin.analytic.taskspace import rotation
     from pollard_pin.paint.deposition import film as integrate
-    from pollard_pin.paint.plan import gun_of
+    from pollard_pin.paint.deposition import gun_of
 
     target = 50e-6
     one = plan_paint(robot, replace(job, thickness=target), act)

@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from pollard_pin.paint.film import film_stats
 from pollard_pin.paint.report import paint_report
+from pollard_pin.paint.stats import film_stats
 
 
 @pytest.fixture(scope="module")

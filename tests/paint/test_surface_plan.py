@@ -8,18 +8,13 @@ import numpy as np
 import pytest
 
 from pollard_pin.analytic.taskspace import rotation
+from pollard_pin.paint.deposition import gun_of
 from pollard_pin.paint.film_points import SurfacePoints
 from pollard_pin.paint.job import PartJob, load_job
 from pollard_pin.paint.mesh import panel_part
 from pollard_pin.paint.mesh_film import mesh_film
-from pollard_pin.paint.plan import gun_of
-from pollard_pin.paint.surface_plan import (
-    Quintic,
-    film_stats,
-    gun_frame,
-    plan_surface,
-    surface_film,
-)
+from pollard_pin.paint.stats import film_stats
+from pollard_pin.paint.surface_plan import Quintic, gun_frame, plan_surface, surface_film
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -79,7 +74,7 @@ def test_program_is_c2_with_exact_derivatives(curved):
 
 def test_curved_panel_film_within_target(curved):
     plan, (pts, film, painted, efficiency) = curved
-    st = film_stats(film.thickness[painted], pts.areas[painted], plan.job.thickness)
+    st = film_stats(film.thickness[painted], plan.job.thickness, pts.areas[painted])
     # measured: all within ±0.7 %
     assert st["within_5pct"] >= 0.99 and st["within_10pct"] == 1.0
     assert abs(st["mean"] / plan.job.thickness - 1) < 0.01
