@@ -51,11 +51,12 @@ _API = {
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
     "load_job": "paint.job", "PaintJob": "paint.job", "JobError": "paint.job",
-    "plan_paint": "paint.plan", "plan_film": "paint.film", "PaintPlan": "paint.plan",
+    "plan_paint": "paint.plan.panel", "plan_film": "paint.film.grid",
+    "PaintPlan": "paint.plan.panel",
     "paint": "paint", "PaintOptions": "paint.api", "PaintResult": "paint.api",
     "PaintReport": "paint.api", "JobKindError": "paint.errors",
-    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.deposition",
-    "deposition_rate": "paint.deposition", "film": "paint.deposition",
+    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
+    "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
 }
 
 __all__ = sorted(_API)

@@ -75,8 +75,8 @@ def panel_table(U, V, pts, thickness, normal) -> dict:
 def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
     coordinates, in the part's frame on a line)."""
-    from ..paint.film_mesh import grid_mesh
-    from ..paint.line_report import part_frame_positions
+    from ..paint.film.line import part_frame_positions
+    from ..paint.film.ply_mesh import grid_mesh
     from ..viz.paint import write_thickness_png
     from ..viz.paint_part import film_colours
     from .ply import write_film_ply
@@ -87,16 +87,14 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     job, tr, fr = plan.job, plan.trajectory, plan.frame
     U, V = f.grid
     thickness = f.thickness
-    if result.kind == "line panel":
-        spray, comment = plan.spray, f"film: {LINE_FRAME}"
-        tips = part_frame_positions(plan)[plan.spray > 0]
-    else:
-        spray, comment, tips = np.ones(len(tr.t)), None, tr.poses[:, :3]
-    rel = tips - fr.c - job.standoff * fr.n
+    moving = result.kind == "line panel"  # the tips seen from the part, on a line
+    comment = f"film: {LINE_FRAME}" if moving else None
+    tips = part_frame_positions(plan) if moving else tr.poses[:, :3]
+    rel = tips[plan.spray > 0] - fr.c - job.standoff * fr.n
     out = name.parent
     with all_or_nothing():  # everything is computed: now write every output, or none
         make_folder(out)
-        to_csv(tr, out / "path.csv", spray=spray)
+        to_csv(tr, out / "path.csv", spray=plan.spray)
         write_table(name, panel_table(U, V, f.points, thickness, fr.n), meta,
                     fmt=name.suffix[1:])
         with atomic_open(out / "paint.json") as fh:
@@ -113,7 +111,7 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
 def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A part's outputs, still or on the line: the film table on the painted faces, film.ply
     the refined mesh (on a line: the part at its t = 0 pose, the world path in path.csv)."""
-    from ..paint.film_mesh import refined_mesh
+    from ..paint.film.ply_mesh import refined_mesh
     from ..viz.paint_part import film_colours, write_part_png
     from .ply import write_film_ply
     from .table import write_table

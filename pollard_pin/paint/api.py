@@ -23,9 +23,8 @@ import numpy as np
 from .. import __version__
 from ..dynamics.motors import Actuators
 from ..errors import InputError
-from .errors import JobKindError
 from .job import KINDS, PartJob, job_kind
-from .line_phases import SPEED_RESOLUTION
+from .line.phases import SPEED_RESOLUTION
 
 
 @dataclass(frozen=True)
@@ -47,21 +46,21 @@ class PaintOptions:
         if r is not None and (isinstance(r, bool) or not isinstance(r, numbers.Real)
                               or not (math.isfinite(r) and r > 0)):
             raise InputError(f"PaintOptions.resolution = {r!r}: expected a spacing > 0 [m] "
-                            "(or None for σ/3)")
+                             "(or None for σ/3)")
         if not isinstance(self.max_line_speed, bool):
             raise InputError(f"PaintOptions.max_line_speed = {self.max_line_speed!r}: expected "
-                            "True or False")
+                             "True or False")
         s = self.speed_resolution
         if isinstance(s, bool) or not isinstance(s, numbers.Real) or not 0 < s < 1:
             raise InputError(f"PaintOptions.speed_resolution = {s!r}: expected a relative "
-                            "bracket in (0, 1)")
+                             "bracket in (0, 1)")
 
 
 @dataclass(frozen=True)
 class PaintFilm:
     """The film a plan leaves. A panel: ``points`` (nv, nu, 3) on the grid ``grid`` = (U, V),
-    ``film`` a :class:`.deposition.Film`. A part: ``points`` the
-    :class:`.film_points.SurfacePoints`, ``film`` a :class:`.mesh_film.MeshFilm`,
+    ``film`` a :class:`.spray.deposition.Film`. A part: ``points`` the
+    :class:`.film.points.SurfacePoints`, ``film`` a :class:`.film.mesh.MeshFilm`,
     ``painted`` the mask of points on painted faces, ``efficiency`` the transfer
     efficiency. On a line, the part (or panel) at its t = 0 pose, world coordinates."""
 
@@ -108,8 +107,8 @@ class PaintReport:
 @dataclass(frozen=True)
 class PaintResult:
     """What :func:`paint` returns: the job, its kind, the plan (a
-    :class:`.plan.PaintPlan`, :class:`.surface_plan.SurfacePlan`, :class:`.line.LinePlan`
-    or :class:`.line_part.LinePartPlan`), the film, the report and the actuators it was
+    :class:`.plan.panel.PaintPlan`, :class:`.plan.part.SurfacePlan`, :class:`.line.panel.LinePlan`
+    or :class:`.line.part.LinePartPlan`), the film, the report and the actuators it was
     checked against."""
 
     job: Any
@@ -123,7 +122,8 @@ class PaintResult:
     def write(self, folder: str | Path, format: str = "csv") -> Path:
         """Write path.csv, thickness.csv|parquet, film.ply, paint.json and thickness.png in
         ``folder``, every one or none, as ``pollard-pin paint`` does; the table's path."""
-        from ..io.paint_files import write_paint  # the writers live with the other files'
+        # the one call up the layers: paint's files are written by io's writers
+        from ..io.paint_files import write_paint
 
         return write_paint(self, Path(folder), format)
 
@@ -140,8 +140,8 @@ def default_actuators(job) -> Actuators:
 def film_spacing_of(job, resolution: float | None = None) -> float:
     """The film point spacing [m] ``paint`` uses for the job (a panel's grid or a part's
     points), refused as a :class:`.errors.ResolutionError`."""
-    from .film import film_resolution
-    from .surface_plan import part_resolution
+    from .film.grid import film_resolution
+    from .film.part import part_resolution
 
     return (part_resolution if isinstance(job, PartJob) else film_resolution)(job, resolution)
 
@@ -154,10 +154,10 @@ def paint(robot, job, actuators: Actuators | None = None,
     kind = job_kind(job)
     options = PaintOptions() if options is None else options
     if not isinstance(options, PaintOptions):
-        raise JobKindError(f"options: a {type(options).__name__}, expected PaintOptions")
+        raise InputError(f"options: a {type(options).__name__}, expected PaintOptions")
     if options.max_line_speed and job.line is None:
         raise InputError(f"{job.source}: max_line_speed: the {kind} job has no [line] table "
-                        "(speed, direction)")
+                         "(speed, direction)")
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
     painter = {"panel": _panel, "part": _part, "line panel": _line_panel,
@@ -167,8 +167,8 @@ def paint(robot, job, actuators: Actuators | None = None,
 
 
 def _panel(robot, job, act, options, res):
-    from .film import plan_film
-    from .plan import plan_paint
+    from .film.grid import plan_film
+    from .plan.panel import plan_paint
     from .report import paint_report
 
     t0 = time.perf_counter()
@@ -183,9 +183,11 @@ def _panel(robot, job, act, options, res):
 
 
 def _part(robot, job, act, options, res):
-    from .film_points import check_film_points
-    from .surface_plan import load_job_part, plan_surface, surface_film
-    from .surface_report import surface_report
+    from .film.part import surface_film
+    from .film.points import check_film_points
+    from .plan.part import plan_surface
+    from .report import surface_report
+    from .target.mesh import load_job_part
 
     part = load_job_part(job)
     check_film_points(part, res)  # before planning: the budget of the film's points
@@ -201,7 +203,7 @@ def _part(robot, job, act, options, res):
 
 def _line_plan(robot, job, act, options, part=None):
     """The plan at the job's line speed or at the fastest, and the planning time [s]."""
-    from .line import max_line_speed, plan_line_job
+    from .line.panel import max_line_speed, plan_line_job
 
     t0 = time.perf_counter()
     if options.max_line_speed:
@@ -212,7 +214,8 @@ def _line_plan(robot, job, act, options, part=None):
 
 
 def _line_panel(robot, job, act, options, res):
-    from .line_report import line_film, line_report
+    from .film.line import line_film
+    from .report import line_report
 
     plan, planning = _line_plan(robot, job, act, options)
     t0 = time.perf_counter()
@@ -225,9 +228,10 @@ def _line_panel(robot, job, act, options, res):
 
 
 def _line_part(robot, job, act, options, res):
-    from .film_points import check_film_points
-    from .line_report import line_part_report
-    from .surface_plan import load_job_part, surface_film
+    from .film.part import surface_film
+    from .film.points import check_film_points
+    from .report import line_part_report
+    from .target.mesh import load_job_part
 
     part = load_job_part(job)
     check_film_points(part, res)  # before planning: the budget of the film's points

@@ -15,7 +15,7 @@ from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
 from .errors import JobKindError
-from .line_job import Line, line_from_table
+from .line.conveyor import Line, line_from_table
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
@@ -23,7 +23,8 @@ REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "job": ("thickness",)}
 OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "coats",
                                              "actuators")}
-# A part's mesh instead of a panel (paint/mesh.py reads and places it): [part] replaces [panel].
+# A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
+# replaces [panel].
 PART_REQUIRED = ("mesh", "position")
 PART_OPTIONAL = ("units", "rotation", "facing", "max_angle")
 DIRECTIONS = ("horizontal", "vertical")
@@ -72,8 +73,8 @@ class PaintJob:
 class PartJob:
     """A checked paint job over a part's mesh (``[part]``), SI units: ``mesh`` the file (a
     path, relative to the job file's folder once loaded), its length ``units`` ('m' or 'mm',
-    checked by :func:`.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
-    (:func:`.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
+    checked by :func:`.target.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
+    (:func:`.target.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
     robot) and ``max_angle`` [deg] (None: the default)."""
 
     mesh: str
@@ -105,7 +106,7 @@ class PartJob:
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
     """Validate a parsed job file with a [part] table (the mesh itself is read by
-    :func:`.mesh.load_part`, which checks the units, facing and max_angle)."""
+    :func:`.target.mesh.load_part`, which checks the units, facing and max_angle)."""
     part, gun, job = (_check_table(source, d, name) for name in ("part", "gun", "job"))
     mesh = part["mesh"]
     if not (isinstance(mesh, str) and mesh.strip()):

@@ -40,7 +40,8 @@ def test_panel_is_the_panel_planners(result, plan, film, act):
 def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
     """examples/line.toml: the world path and film statistics of plan_line + line_film +
     line_report at the job's speed (equal)."""
-    from pollard_pin.paint.line_report import line_film, line_report
+    from pollard_pin.paint.film.line import line_film
+    from pollard_pin.paint.report import line_report
 
     r = pp.paint(robot, line_job, act)
     U, V, _, f = line_film(line_plan)
@@ -54,8 +55,8 @@ def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
 def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, act):
     """A [part] on a [line]: the film of the plan seen from the part, surface_film's, and
     the report's statistics (equal)."""
-    from pollard_pin.paint.line_report import line_part_report
-    from pollard_pin.paint.surface_plan import surface_film
+    from pollard_pin.paint.film.part import surface_film
+    from pollard_pin.paint.report import line_part_report
 
     r = pp.paint(robot, line_part_job, act)
     pts, f, painted, eff = surface_film(line_part_plan.in_part_frame())
@@ -92,13 +93,38 @@ def test_options_are_checked_once(field, value, says):
     assert says in str(info.value)
 
 
-def test_callable_package_is_the_entry_point(result):
-    """pp.paint is the subpackage pollard_pin.paint, callable as paint.api.paint, whichever
-    was imported first."""
+def test_callable_package_is_the_entry_point(robot, job, act, monkeypatch):
+    """pp.paint is the subpackage pollard_pin.paint, and calling it is paint.api.paint's call
+    (a stub records the arguments passed through)."""
+    import types
+
     import pollard_pin.paint.api as api
 
-    assert pp.paint is __import__("pollard_pin.paint").paint and callable(pp.paint)
-    assert api.paint.__name__ == "paint"
+    seen = []
+    monkeypatch.setattr(api, "paint", lambda *args: seen.append(args) or "painted")
+    assert isinstance(pp.paint, types.ModuleType)
+    options = PaintOptions(resolution=0.005)
+    assert pp.paint(robot, job, act, options) == "painted"
+    assert seen == [(robot, job, act, options)]
+
+
+def test_part_is_the_part_planners(robot, act):
+    """examples/parts/curved_panel.toml at film spacing σ: plan_surface, surface_film and
+    surface_report called directly give the same film and statistics (equal)."""
+    from pollard_pin.paint.film.part import surface_film
+    from pollard_pin.paint.plan.part import plan_surface
+    from pollard_pin.paint.report import surface_report
+
+    job = pp.load_job(Path(__file__).resolve().parents[2] / "examples" / "parts"
+                      / "curved_panel.toml")
+    r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma))
+    plan = plan_surface(robot, job, act)
+    pts, f, painted, eff = surface_film(plan, job.sigma)
+    direct = surface_report(plan, pts, f, painted, eff, act)
+    assert r.kind == "part" and np.array_equal(r.film.thickness, f.thickness)
+    assert np.array_equal(r.film.painted, painted) and r.film.efficiency == eff
+    assert r.report.thickness == direct["thickness"]
+    assert r.report.data["film_points"] == direct["film_points"]
 
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])
