@@ -10,17 +10,18 @@ from .common import UsageError, command, load_robot, model_args, name, positive
 from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
 
 
-def _actuators(args):
-    """--actuators, else None: the job's, else the package's (pollard_pin.paint)."""
+def _actuators(args, job):
+    """--actuators, else the job's, else the package's (pollard_pin.paint's rule)."""
     from ..dynamics.motors import load_actuators
+    from ..paint.api import default_actuators
 
-    return load_actuators(args.actuators) if args.actuators else None
+    return load_actuators(args.actuators) if args.actuators else default_actuators(job)
 
 
 def run(args) -> int:
     from ..io.atomic import check_outputs
     from ..io.paint_files import paint_outputs
-    from ..paint.api import PaintOptions, default_actuators, film_spacing_of, job_kind, paint
+    from ..paint.api import PaintOptions, film_spacing_of, job_kind, paint
     from ..paint.job import load_job
 
     out = Path(args.out)
@@ -30,7 +31,7 @@ def run(args) -> int:
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
-    act = _actuators(args) or default_actuators(job)
+    act = _actuators(args, job)
     result = paint(load_robot(args), job, act,
                    PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
     name = result.write(out, args.format)
