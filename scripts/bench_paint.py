@@ -64,8 +64,8 @@ def parts_section(robot, big_faces: int = 195_000) -> None:
 def line_section(robot) -> None:
     """Jobs on a moving line (docs/model.md §24): examples/line.toml (a panel) and
     examples/line_part.toml (a part's mesh), each planned at the job's speed (budget 20 s)
-    with its film, and searched for the fastest speed with --max-line-speed (budget 120 s).
-    One run each."""
+    with its film, and searched for the fastest speed with --max-line-speed (budget 120 s;
+    timed with the film at that speed, as the CLI runs it). One run each."""
     act = pp.load_actuators(REPO / "examples" / "actuators.toml")
     print("\npainting on a moving line, one run each [s]")
     for name in ("line.toml", "line_part.toml"):
