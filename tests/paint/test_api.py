@@ -173,3 +173,21 @@ def test_every_example_job_has_a_kind():
     assert kinds["line_part.toml"] == "line part"
     assert {kinds[k] for k in kinds if k.endswith("plate.toml") or k == "curved_panel.toml"
             } == {"part"}
+
+
+def test_write_is_what_the_cli_writes(result, tmp_path):
+    """pollard-pin paint on the same job and motors: the same files, byte for byte, and the
+    same paint.json but for the timings."""
+    from pollard_pin.cli import main
+
+    job = Path(result.job.source)
+    assert main(["paint", "--job", str(job), "--out", str(tmp_path / "cli"),
+                 "--actuators", str(job.parent / "actuators.toml")]) == 0
+    result.write(tmp_path / "api")
+    for name in ("path.csv", "path.units.json", "thickness.csv", "thickness.units.json",
+                 "film.ply", "thickness.png"):
+        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "api" / name).read_bytes()
+    cli, api = (json.loads((tmp_path / d / "paint.json").read_text(encoding="utf-8"))
+                for d in ("cli", "api"))
+    assert cli.pop("timings").keys() == api.pop("timings").keys()
+    assert cli == api
