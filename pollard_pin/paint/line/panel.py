@@ -24,6 +24,7 @@ from ..target.mesh import Part
 from .phases import (
     CATCH,
     SPEED_RESOLUTION,
+    LineProgram,
     LineSpeedError,
     LineTimes,
     Relative,
@@ -112,10 +113,10 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
         return panel_relative(frame, job_x, seg, horizontal)
 
     guess = np.full(len(offsets) + 1, first_guess(pass_speed))  # ramps and turns
-    world = plan_world(robot, act, build, guess, speed, e,
-                       min(MAX_STEP, STEP_SIGMA * job.sigma / pass_speed),
-                       track(frame.c + job.standoff * frame.n, e),
-                       f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
+    program = LineProgram(build, guess, min(MAX_STEP, STEP_SIGMA * job.sigma / pass_speed),
+                          track(frame.c + job.standoff * frame.n, e),
+                          f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
+    world = plan_world(robot, act, program, speed, e)
     return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
                     offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
                     spray=world.spray, ratios=world.ratios,

@@ -23,7 +23,7 @@ from ..plan.part import SurfacePlan, time_step
 from ..plan.result import PlanResult
 from ..policy import first_guess
 from ..target.mesh import Part, load_job_part
-from .phases import LineTimes, Relative, line_shift, one_coat, plan_world, track
+from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
 
 
 @dataclass(frozen=True)
@@ -104,9 +104,10 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
         return part_relative(build_program(pieces, tau))
 
     f = layout.frame
-    world = plan_world(robot, act, build, np.full(len(pieces) + 1, first_guess(v)), speed, e,
-                       dt, track(f.centre + job.standoff * f.n, e),
-                       f"the passes ({v:.4g} m/s on the part's surface)", job.source)
+    program = LineProgram(build, np.full(len(pieces) + 1, first_guess(v)), dt,
+                          track(f.centre + job.standoff * f.n, e),
+                          f"the passes ({v:.4g} m/s on the part's surface)", job.source)
+    world = plan_world(robot, act, program, speed, e)
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
                         world.times, v, trajectory=world.trajectory, spray=world.spray,
                         ratios=world.ratios, timings={"plan": time.perf_counter() - clock})

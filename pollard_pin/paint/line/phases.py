@@ -218,6 +218,21 @@ def track(centre, e) -> str:
 
 
 @dataclass(frozen=True)
+class LineProgram:
+    """What :func:`plan_world` runs on the line: the relative program ``build(τ)`` (τ the ramp
+    and turnaround durations, from ``guess``), the path's time step ``dt`` [s], the gun's
+    track ``where`` (:func:`track`), what the passes are (for the motors' message) and the
+    job's ``source``."""
+
+    build: Callable
+    guess: np.ndarray
+    dt: float
+    where: str
+    passes: str
+    source: str
+
+
+@dataclass(frozen=True)
 class World:
     """A relative program run on the line: its ``relative`` program, phases ``times``, the
     world ``trajectory`` with its ``spray`` column and the motors' ``ratios``."""
@@ -235,14 +250,13 @@ def one_coat(job) -> None:
                         "in one coat (the second would run back against the travel)")
 
 
-def plan_world(robot, act: Actuators, build, guess, speed: float, e, dt: float,
-               where: str, passes: str, source: str) -> World:
-    """The world path of the relative program ``build(τ)`` (τ the ramp and turnaround
-    durations, from ``guess``) at line ``speed`` along ``e`` (docs/model.md §24): the
-    turnarounds the shortest within UTILISATION on the world path held at one world centre,
-    the delay at the middle of the feasible shifts, the return the shortest, sampled every
-    ``dt`` and checked at CHECK_REFINE× that. ``where``: the gun's track (:func:`track`),
-    ``passes``: what the passes are (for the motors' message), ``source``: the job."""
+def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> World:
+    """The world path of the relative ``program`` (:class:`LineProgram`) at line ``speed``
+    along ``e`` (docs/model.md §24): the turnarounds the shortest within UTILISATION on the
+    world path held at one world centre, the delay at the middle of the feasible shifts, the
+    return the shortest, sampled every ``program.dt`` and checked at CHECK_REFINE× that."""
+    build, guess, dt, where = program.build, program.guess, program.dt, program.where
+    passes, source = program.passes, program.source
     e = np.asarray(e, dtype=float)
     rel = build(guess)
     centre = choose_shift(robot, rel, speed, e, where) + _mid_along(rel, speed, e)
@@ -392,6 +406,7 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
                         f"{fastest_speed:.4g} m/s (--max-line-speed)") from None
 
 
-__all__ = ["CATCH", "LineSpeedError", "LineTimes", "Relative", "SPEED_RESOLUTION", "World",
-           "choose_shift", "fastest_line_speed", "feasible_shifts", "line_shift", "one_coat",
-           "plan_or_name_fastest", "plan_world", "track", "world_motion"]
+__all__ = ["CATCH", "LineProgram", "LineSpeedError", "LineTimes", "Relative",
+           "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
+           "feasible_shifts", "line_shift", "one_coat", "plan_or_name_fastest", "plan_world",
+           "track", "world_motion"]
