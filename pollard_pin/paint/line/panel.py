@@ -16,11 +16,12 @@ import numpy as np
 
 from ...dynamics.motors import Actuators
 from ..job import PaintJob, PartJob
-from ..passes.raster import PanelFrame, Segments, raster_motion, raster_segments
+from ..passes.raster import Segments, raster_motion, raster_segments
 from ..plan.panel import panel_layout
 from ..plan.result import PlanResult
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
 from ..target.mesh import Part
+from ..target.panel import PanelFrame
 from .phases import (
     CATCH,
     SPEED_RESOLUTION,
@@ -100,7 +101,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)
     one_coat(job)
-    from ..passes.raster import panel_frame
+    from ..target.panel import panel_frame
 
     horizontal = pass_direction(panel_frame(job), e)
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")

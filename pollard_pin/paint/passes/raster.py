@@ -22,49 +22,13 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from ...analytic.taskspace import angles_from_rotation
-from ..job import PaintJob
+from ..target.panel import PanelFrame
 
 # σ: the spot's reach (docs/model.md §21): constant speed while within it of the panel
 SPOT_RADIUS = 4.0
 PROFILE_TOLERANCE = 0.01  # largest relative film deviation the pass layout allows
 TURN_SHAPE = 1  # m of the turnaround's U acceleration −c·(1 − (2x − 1)^(2m)) (see _turn_u)
 DEGREE = 7  # coefficients per segment polynomial (degree 6)
-
-
-@dataclass(frozen=True)
-class PanelFrame:
-    """The panel: centre ``c``, unit normal ``n`` (towards the robot), in-plane unit axes
-    ``u`` (width, = n × v) and ``v`` (height: world z projected on the plane), sizes [m]."""
-
-    c: np.ndarray
-    n: np.ndarray
-    u: np.ndarray
-    v: np.ndarray
-    width: float
-    height: float
-
-    @property
-    def rotation(self) -> np.ndarray:
-        """The tool orientation spraying along −n: R = [−n, u, v] (a proper rotation:
-        (−n) × u = v), so the tool's x (spray) axis is a = −n."""
-        return np.column_stack([-self.n, self.u, self.v])
-
-    def world(self, U, V, offset: float = 0.0) -> np.ndarray:
-        """World points c + U u + V v + offset·n, for arrays U, V → (..., 3)."""
-        U, V = np.asarray(U, dtype=float), np.asarray(V, dtype=float)
-        return (self.c + U[..., None] * self.u + V[..., None] * self.v
-                + offset * self.n)
-
-
-def panel_frame(job: PaintJob) -> PanelFrame:
-    n = np.asarray(job.normal, dtype=float)
-    n = n / np.linalg.norm(n)
-    ez = np.array([0.0, 0.0, 1.0])
-    v = ez - (ez @ n) * n
-    v /= np.linalg.norm(v)
-    u = np.array([n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2],
-                  n[0] * v[1] - n[1] * v[0]])
-    return PanelFrame(np.asarray(job.center, dtype=float), n, u, v, job.width, job.height)
 
 
 # --- pass layout -----------------------------------------------------------------------------
@@ -230,6 +194,5 @@ def raster_motion(frame: PanelFrame, standoff: float, seg: Segments, t,
     return poses, d, dd
 
 
-__all__ = ["PROFILE_TOLERANCE", "PanelFrame", "SPOT_RADIUS", "Segments", "cross_profile",
-           "panel_frame", "pass_offsets", "raster_motion", "raster_segments", "ripple_spacing",
-           "task_motion"]
+__all__ = ["PROFILE_TOLERANCE", "SPOT_RADIUS", "Segments", "cross_profile", "pass_offsets",
+           "raster_motion", "raster_segments", "ripple_spacing", "task_motion"]

@@ -33,9 +33,7 @@ from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
     SPOT_RADIUS,
-    PanelFrame,
     Segments,
-    panel_frame,
     pass_offsets,
     raster_motion,
     raster_segments,
@@ -52,6 +50,7 @@ from ..policy import (
     UTILISATION,
     first_guess,
 )
+from ..target.panel import PanelFrame, panel_frame
 from .checks import fastest, motion, reach
 from .result import PlanResult
 

@@ -26,7 +26,7 @@ from ...analytic.taskspace import rotation as tool_rotation
 from ...errors import InputError
 from ...model.values import read_bytes
 from ..job import PaintJob
-from ..passes.raster import panel_frame
+from .panel import panel_frame
 
 FORMATS = ("stl", "obj", "ply")
 UNITS = {"m": 1.0, "mm": 1e-3}

@@ -10,11 +10,11 @@ import pytest
 from pollard_pin.paint.film.mesh import mesh_film
 from pollard_pin.paint.film.points import surface_points
 from pollard_pin.paint.job import load_job
-from pollard_pin.paint.passes.raster import panel_frame
 from pollard_pin.paint.spray.deposition import Gun, film
 from pollard_pin.paint.spray.occlusion import visible
 from pollard_pin.paint.target import shapes
 from pollard_pin.paint.target.mesh import MeshError, make_part, panel_part
+from pollard_pin.paint.target.panel import panel_frame
 
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "paint.toml"
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
