@@ -6,8 +6,8 @@ Public API (imported lazily: ``pollard_pin.analytic.closed_form`` and
     robot = pollard_pin.load()                       # model, data, closures, geometry
     traj = pollard_pin.thesis_trajectory()           # docs/model.md §9 painting curve
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
-    plan = pollard_pin.plan_paint(robot, pollard_pin.load_job("examples/paint.toml"),
-                                  pollard_pin.load_actuators("examples/actuators.toml"))
+    result = pollard_pin.paint(robot, pollard_pin.load_job("examples/paint.toml"))
+    result.write("out", "csv")                       # what ``pollard-pin paint`` writes
 """
 from __future__ import annotations
 
@@ -55,15 +55,20 @@ _API = {
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
     "load_job": "paint.job", "PaintJob": "paint.job", "JobError": "paint.job",
-    "plan_paint": "paint.plan", "plan_film": "paint.film", "PaintPlan": "paint.plan",
-    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.deposition",
-    "deposition_rate": "paint.deposition", "film": "paint.deposition",
+    "plan_paint": "paint.plan.panel", "plan_film": "paint.film.grid",
+    "PaintPlan": "paint.plan.panel",
+    "paint": "paint", "PaintOptions": "paint.api", "PaintResult": "paint.api",
+    "PaintReport": "paint.api", "JobKindError": "paint.errors",
+    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
+    "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
 }
 
 __all__ = sorted(_API)
 
 
 def __getattr__(name: str):
+    if name == "paint":  # the subpackage, callable as paint.api.paint (paint/__init__.py)
+        return importlib.import_module(".paint", __name__)
     if name in _API:
         return getattr(importlib.import_module(f".{_API[name]}", __name__), name)
     raise AttributeError(f"module 'pollard_pin' has no attribute {name!r}")

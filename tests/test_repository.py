@@ -65,11 +65,15 @@ RANKS = [
     ("pollard_pin.analytic.taskspace", 0), ("pollard_pin.analytic", 1),
     ("pollard_pin.model", 2), ("pollard_pin.paths", 2), ("pollard_pin.kinematics", 3),
     ("pollard_pin.dynamics", 4),
+    ("pollard_pin.io.paint_files", 8),  # paint's files: its film (paint) and figures (viz)
     ("pollard_pin.io", 5), ("pollard_pin.workspace", 6), ("pollard_pin.paint", 6),
     ("pollard_pin.crosscheck", 6),
     ("pollard_pin.run", 7), ("pollard_pin.viz", 8), ("pollard_pin.sweep", 9),
     ("pollard_pin.cli", 10), ("pollard_pin", 11),
 ]
+# The one call up the layers: PaintResult.write (paint/api.py) writes through paint's file
+# writers, lazily, so that a Python user writes what the CLI writes.
+UPWARD = {("pollard_pin.paint.api", "pollard_pin.io.paint_files")}
 
 
 def _rank(module: str) -> int:
@@ -110,7 +114,8 @@ def test_layers_import_one_way():
     assert len(graph) > 20
     upward = [f"{m} (rank {_rank(m)}) imports {t} (rank {_rank(t)})"
               for m, ts in graph.items() for t in ts
-              if _rank(t) > _rank(m) and not (m == "pollard_pin" or t == "pollard_pin")]
+              if _rank(t) > _rank(m) and not (m == "pollard_pin" or t == "pollard_pin")
+              and (m, t) not in UPWARD]
     assert not upward, "\n".join(upward)
 
 

@@ -2,105 +2,53 @@
 over a part's mesh (§23)."""
 from __future__ import annotations
 
-import json
-import math
-import time
 from pathlib import Path
 
-from .. import __version__
-from ..io.atomic import check_outputs
 from .common import UsageError, command, load_robot, model_args, name, positive
-from .paint_files import (
-    motor_use_line,
-    part_summary_lines,
-    say_written,
-    spacing,
-    write_panel_outputs,
-    write_part_outputs,
-)
+from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
 
 
 def _actuators(args, job):
-    """--actuators, else the job's ``actuators``, else the package default (the ratings of
-    examples/actuators.toml, shipped as models/actuators.toml)."""
+    """--actuators, else the job's, else the package's (pollard_pin.paint's rule)."""
     from ..dynamics.motors import load_actuators
-    from ..model.paths import models_dir
+    from ..paint.api import default_actuators
 
-    return load_actuators(args.actuators or job.actuators or models_dir() / "actuators.toml")
+    return load_actuators(args.actuators) if args.actuators else default_actuators(job)
 
 
 def run(args) -> int:
-    import numpy as np
-
-    from ..io.table import FORMATS, table_files
-    from ..paint.film import film_resolution, plan_film
-    from ..paint.job import PartJob, load_job
-    from ..paint.plan import plan_paint
-    from ..paint.report import paint_report
-    from ..viz.paint_part import ply_colours
+    from ..io.atomic import check_not_inputs, check_outputs
+    from ..io.paint_files import paint_outputs
+    from ..paint.api import PaintOptions, film_spacing_of, job_kind, paint
+    from ..paint.job import load_job
 
     out = Path(args.out)
-    name = out / f"thickness.{args.format}"
-    check_outputs(*table_files(out / "path.csv"), *table_files(name, args.format),
-                  out / "paint.json", out / "thickness.png", out / "film.ply", folders=(out,))
-    stale = [f for fmt in FORMATS if fmt != args.format  # view --paint never finds two films
-             for f in table_files(out / f"thickness.{fmt}", fmt)]
+    files, stale = paint_outputs(out, args.format)
+    check_outputs(*files, folders=(out,))
     job = load_job(args.job)
-    if job.line is not None or args.max_line_speed:  # a moving line (docs/model.md §24)
-        from .paint_line import run_line
-
-        return run_line(args, job, out, _actuators(args, job), stale)
-    if isinstance(job, PartJob):
-        return _run_part(args, job, out, stale)
-    res = spacing(film_resolution, job, args.resolution)
+    check_not_inputs([*files, *stale], [
+        ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
+        ("the actuators", args.actuators or job.actuators),
+        ("the parameter file", getattr(args, "params", None))])
+    kind = job_kind(job)
+    if args.max_line_speed and job.line is None:
+        raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
+    res = spacing(film_spacing_of, job, args.resolution)
     act = _actuators(args, job)
-    robot = load_robot(args)
-    t0 = time.perf_counter()
-    plan = plan_paint(robot, job, act)
-    t1 = time.perf_counter()
-    U, V, pts, film = plan_film(plan, res)
-    t2 = time.perf_counter()
-    rep = paint_report(plan, film, act)
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               grid={"nu": len(U), "nv": len(V), "resolution": res},
-               film_ply=ply_colours(job.thickness),
-               pollard_pin=__version__)
-    tr, fr = plan.trajectory, plan.frame
-    rel = tr.poses[:, :3] - fr.c - job.standoff * fr.n
-    name = write_panel_outputs(out, args.format, tr, np.ones(len(tr.t)), U, V, pts,
-                               film.thickness, fr, job, rep,
-                               {"command": "paint", "job": rep["job"]},
-                               np.array([rel @ fr.u, rel @ fr.v]), stale)
-    print("\n".join(summary_lines(rep, act.names)))
-    say_written(out, name)
-    return 0
+    result = paint(load_robot(args), job, act,
+                   PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
+    name = result.write(out, args.format)
+    rep = result.report.to_dict()
+    if kind == "panel":
+        lines = summary_lines(rep, act.names)
+    elif kind == "part":
+        lines = part_summary_lines(rep, act.names)
+    else:
+        from .paint_line import line_lines, line_summary_lines
 
-
-def _run_part(args, job, out: Path, stale) -> int:
-    """``paint`` of a [part] job: the surface planner, the film on the mesh, and film.ply
-    (the outputs checked and ``stale`` found by :func:`run`)."""
-    from ..paint.film_points import check_film_points
-    from ..paint.surface_plan import load_job_part, part_resolution, plan_surface, surface_film
-    from ..paint.surface_report import surface_report
-    from ..viz.paint_part import ply_colours
-
-    res = spacing(part_resolution, job, args.resolution)
-    act = _actuators(args, job)
-    part = load_job_part(job)
-    check_film_points(part, res)  # before planning: the budget of the film's points
-    robot = load_robot(args)
-    t0 = time.perf_counter()
-    plan = plan_surface(robot, job, act, part)
-    t1 = time.perf_counter()
-    pts, film, painted, efficiency = surface_film(plan, res)
-    t2 = time.perf_counter()
-    rep = surface_report(plan, pts, film, painted, efficiency, act)
-    rep.update(timings={"plan": t1 - t0, "film": t2 - t1},
-               film_ply=ply_colours(job.thickness),
-               pollard_pin=__version__)
-    name = write_part_outputs(out, args.format, plan, pts, film, painted, rep,
-                              {"command": "paint", "job": rep["job"]}, stale)
-    print("\n".join(part_summary_lines(rep, act.names)))
+        lines = (line_summary_lines(rep, act.names) if kind == "line panel" else
+                 line_lines(rep) + part_summary_lines(rep, act.names))
+    print("\n".join(lines))
     say_written(out, name)
     return 0
 
@@ -120,95 +68,6 @@ def summary_lines(rep: dict, names) -> list[str]:
         f"planned in {rep['timings']['plan']:.2f} s, film map in {rep['timings']['film']:.2f} s "
         f"({rep['grid']['nu']} × {rep['grid']['nv']} points, {rep['samples']} path samples)",
     ]
-
-
-def paint_overlay(folder: Path):
-    """The film of a ``paint`` output folder as a viewer overlay (``view --paint``): the panel
-    coloured by thickness over the target ± 2 %."""
-    import numpy as np
-
-    from ..io.table import ResultFileError, read_result
-    from ..model.values import clip, shorten
-    from ..viz.paint import BAND
-    from ..viz.viewer import ViewerError, check_scene_points, film_panel
-
-    found = [p for p in (folder / "thickness.csv", folder / "thickness.parquet") if p.is_file()]
-    if not (folder / "path.csv").is_file() or not found or not (folder / "paint.json").is_file():
-        raise UsageError(f"--paint {folder}: not a paint output folder (expected path.csv, "
-                         "thickness.csv or .parquet and paint.json from pollard-pin paint)")
-    try:
-        report = json.loads((folder / "paint.json").read_text(encoding="utf-8"))
-        if isinstance(report, dict) and "part" in report.get("job", {}):
-            return _part_overlay(folder, report)
-        nu, nv, target = report["grid"]["nu"], report["grid"]["nv"], report["target"]
-    except (OSError, ValueError, KeyError, TypeError, RecursionError) as exc:  # deep nesting
-        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report "
-                              f"({clip(exc, 100)})") from None
-    counts_ok = all(type(n) is int and n >= 1 for n in (nu, nv))
-    if not (counts_ok and type(target) in (int, float) and 0 < target < math.inf):
-        raise ResultFileError(f"{folder / 'paint.json'}: not a paint report (grid nu = "
-                              f"{shorten(nu)}, nv = {shorten(nv)}, target = {shorten(target)}: "
-                              "expected point counts >= 1 and a film thickness > 0 [m])")
-    if len(found) > 1:  # pollard-pin paint never leaves both: which film is meant?
-        raise UsageError(f"--paint {folder}: holds both thickness.csv and thickness.parquet, "
-                         "two different films perhaps: remove the one not meant")
-    table = read_result(found[0])
-    try:
-        pts = np.column_stack([table["x"], table["y"], table["z"]]).reshape(nv, nu, 3)
-        th = table["thickness"].reshape(nv, nu)
-    except (KeyError, ValueError, OverflowError) as exc:
-        raise ResultFileError(f"{found[0]}: not the film of paint.json's {shorten(nu)} × "
-                              f"{shorten(nv)} grid ({clip(exc, 100)})") from None
-    for what, values in (("x, y, z", pts), ("thickness", th)):
-        if not np.isfinite(values).all():
-            k = int(np.argwhere(~np.isfinite(values).reshape(nv * nu, -1))[0][0])
-            raise ResultFileError(f"{found[0]}: row {k + 1}: {what} not finite")
-    if (th < 0).any():
-        k = int(np.argmax(th.ravel() < 0))
-        raise ResultFileError(f"{found[0]}: row {k + 1}: thickness = {th.ravel()[k]:.4g} m, "
-                              "below 0 (a film is at least 0 m thick)")
-    try:
-        check_scene_points(pts, str(found[0]))
-    except ViewerError as exc:
-        raise ResultFileError(str(exc)) from None
-
-    def draw(vis):
-        film_panel(vis, pts, th, target * (1 - BAND), target * (1 + BAND))
-
-    if "line" in report:  # the panel rides the line with the path (docs/model.md §24)
-        from .paint_line import riding
-
-        draw.moving = riding(report["line"], folder)
-    return draw
-
-
-def _part_overlay(folder: Path, report: dict):
-    """The film of a part's ``paint`` folder (film.ply) as a viewer overlay."""
-    from ..io.ply import read_film_ply
-    from ..io.table import ResultFileError
-    from ..viz.paint import BAND
-    from ..viz.viewer import ViewerError, check_scene_points, film_mesh
-
-    target = report.get("target")
-    if not (type(target) in (int, float) and 0 < target < math.inf):
-        raise ResultFileError(f"{folder / 'paint.json'}: target = {target!r}: expected a film "
-                              "thickness > 0 [m]")
-    if not (folder / "film.ply").is_file():
-        raise UsageError(f"--paint {folder}: a part's paint folder without film.ply")
-    v, f, th = read_film_ply(folder / "film.ply")
-    try:
-        check_scene_points(v, str(folder / "film.ply"))
-    except ViewerError as exc:
-        raise ResultFileError(str(exc)) from None
-
-    def draw(vis):
-        film_mesh(vis, v, f, th, target * (1 - BAND), target * (1 + BAND))
-
-    if "line" in report:  # the part rides the line with the path (docs/model.md §24)
-        from .paint_line import riding
-
-        draw.moving = riding(report["line"], folder)
-    return draw
 
 
 def add_parser(sub, parents) -> None:

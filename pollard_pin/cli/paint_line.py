@@ -2,98 +2,9 @@
 (docs/model.md §24)."""
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
-from .. import __version__
-from .common import UsageError, load_robot
-from .paint_files import (
-    motor_use_line,
-    part_summary_lines,
-    say_written,
-    spacing,
-    write_panel_outputs,
-    write_part_outputs,
-)
-
-FRAME = "the part at its t = 0 pose, world coordinates"
-
-
-def run_line(args, job, out: Path, actuators, stale) -> int:
-    """``paint`` of a panel or part on the line at the job's speed, or at the fastest with
-    ``--max-line-speed``. ``actuators``: the motor ratings (cli/paint.py's rule)."""
-    import numpy as np
-
-    from ..paint.film import film_resolution
-    from ..paint.job import PartJob
-    from ..paint.line_report import line_film, line_report, part_frame_positions
-    from ..viz.paint_part import ply_colours
-
-    if job.line is None:
-        raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
-    if isinstance(job, PartJob):
-        return _run_line_part(args, job, out, actuators, stale)
-    res = spacing(film_resolution, job, args.resolution)
-    plan, planning = _planned(args, job, actuators)
-    t0 = time.perf_counter()
-    U, V, pts, film = line_film(plan, res)
-    rep = line_report(plan, film, actuators, {"nu": len(U), "nv": len(V), "resolution": res})
-    rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
-               film_ply=ply_colours(job.thickness), pollard_pin=__version__)
-    rep["line"]["searched"] = bool(args.max_line_speed)
-    fr, j = plan.frame, plan.job
-    rel = part_frame_positions(plan)[plan.spray > 0] - fr.c - j.standoff * fr.n
-    name = write_panel_outputs(out, args.format, plan.trajectory, plan.spray, U, V, pts,
-                               film.thickness, fr, j, rep,
-                               {"command": "paint", "job": rep["job"], "frame": FRAME},
-                               np.array([rel @ fr.u, rel @ fr.v]), stale, f"film: {FRAME}")
-    print("\n".join(line_summary_lines(rep, actuators.names)))
-    say_written(out, name)
-    return 0
-
-
-def _planned(args, job, actuators, part=None):
-    """The plan at the job's speed or at the fastest (--max-line-speed), and the planning
-    time [s]; ``part``: a [part] job's mesh, read by the caller."""
-    from ..paint.line import SPEED_RESOLUTION, max_line_speed, plan_line_job
-
-    robot = load_robot(args)
-    t0 = time.perf_counter()
-    if args.max_line_speed:
-        _, plan = max_line_speed(robot, job, actuators, SPEED_RESOLUTION, part)
-    else:
-        plan = plan_line_job(robot, job, actuators, part)
-    return plan, time.perf_counter() - t0
-
-
-def _run_line_part(args, job, out: Path, actuators, stale) -> int:
-    """``paint`` of a [part] on the line (the surface planner's passes, docs/model.md §23)."""
-    from dataclasses import replace
-
-    from ..paint.film_points import check_film_points
-    from ..paint.line_report import line_part_report
-    from ..paint.surface_plan import load_job_part, part_resolution, surface_film
-    from ..viz.paint_part import ply_colours
-
-    res = spacing(part_resolution, job, args.resolution)
-    part = load_job_part(job)
-    check_film_points(part, res)  # before planning: the budget of the film's points
-    plan, planning = _planned(args, job, actuators, part)
-    t0 = time.perf_counter()
-    seen = plan.in_part_frame()
-    pts, film, painted, efficiency = surface_film(seen, res)
-    rep = line_part_report(plan, pts, film, painted, efficiency, actuators)
-    rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
-               film_ply=ply_colours(job.thickness), pollard_pin=__version__)
-    rep["line"]["searched"] = bool(args.max_line_speed)
-    # the world path and its trigger; the film on the part at its t = 0 pose
-    world = replace(seen, trajectory=plan.trajectory)
-    name = write_part_outputs(out, args.format, world, pts, film, painted, rep,
-                              {"command": "paint", "job": rep["job"], "frame": FRAME}, stale,
-                              f"film: {FRAME}")
-    print("\n".join(line_lines(rep) + part_summary_lines(rep, actuators.names)))
-    say_written(out, name)
-    return 0
+from .paint_files import motor_use_line
 
 
 def line_lines(rep: dict) -> list[str]:
@@ -133,7 +44,7 @@ def riding(line, folder: Path) -> dict:
     import numpy as np
 
     from ..io.table import ResultFileError
-    from ..paint.line_job import LINE_KEYS, line_from_table
+    from ..paint.line.conveyor import LINE_KEYS, line_from_table
     from ..viz.viewer import ROOT
 
     table = {k: line[k] for k in LINE_KEYS if k in line} if isinstance(line, Mapping) else line

@@ -1,10 +1,16 @@
-"""The paint planner's errors (one line each, under :class:`pollard_pin.errors.InputError`)."""
+"""The paint planner's errors, one line each.
+
+A job the planner cannot paint is a :class:`pollard_pin.errors.SolveError`, as a pose out of
+the kinematics' reach is (:class:`pollard_pin.kinematics.errors.UnreachablePoseError`): the
+job is a valid one and no program meets it. A value the planner cannot use (a film spacing,
+a job of another kind) is an :class:`pollard_pin.errors.InputError`.
+"""
 from __future__ import annotations
 
-from ..errors import InputError
+from ..errors import InputError, SolveError
 
 
-class PlanError(InputError):
+class PlanError(SolveError):
     """No paint program meets the job: one line saying why, where, and what would fit."""
 
 
@@ -19,3 +25,12 @@ class ReachError(PlanError):
 
 class BudgetError(PlanError):
     """A plan over its stated budget (samples, passes): one line with what it would need."""
+
+
+class ResolutionError(InputError):
+    """A film point spacing the film cannot be computed at (not > 0, over σ, or over the
+    budget of film points)."""
+
+
+class JobKindError(InputError):
+    """A job of a kind the planner does not handle (one line naming the kind)."""

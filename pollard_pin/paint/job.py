@@ -14,7 +14,8 @@ import numpy as np
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
-from .line_job import Line, line_from_table
+from .errors import JobKindError
+from .line.conveyor import Line, line_from_table
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
@@ -22,7 +23,8 @@ REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "job": ("thickness",)}
 OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "coats",
                                              "actuators")}
-# A part's mesh instead of a panel (paint/mesh.py reads and places it): [part] replaces [panel].
+# A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
+# replaces [panel].
 PART_REQUIRED = ("mesh", "position")
 PART_OPTIONAL = ("units", "rotation", "facing", "max_angle")
 DIRECTIONS = ("horizontal", "vertical")
@@ -71,8 +73,8 @@ class PaintJob:
 class PartJob:
     """A checked paint job over a part's mesh (``[part]``), SI units: ``mesh`` the file (a
     path, relative to the job file's folder once loaded), its length ``units`` ('m' or 'mm',
-    checked by :func:`.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
-    (:func:`.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
+    checked by :func:`.target.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
+    (:func:`.target.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
     robot) and ``max_angle`` [deg] (None: the default)."""
 
     mesh: str
@@ -104,7 +106,7 @@ class PartJob:
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
     """Validate a parsed job file with a [part] table (the mesh itself is read by
-    :func:`.mesh.load_part`, which checks the units, facing and max_angle)."""
+    :func:`.target.mesh.load_part`, which checks the units, facing and max_angle)."""
     part, gun, job = (_check_table(source, d, name) for name in ("part", "gun", "job"))
     mesh = part["mesh"]
     if not (isinstance(mesh, str) and mesh.strip()):
@@ -260,5 +262,18 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
     return job
 
 
-__all__ = ["DIRECTIONS", "JobError", "MIN_PANEL_SIGMAS", "PaintJob", "PartJob", "job_from_dict",
-           "load_job", "part_job_from_dict"]
+KINDS = ("panel", "part", "line panel", "line part")
+
+
+def job_kind(job: Any) -> str:
+    """The job's kind, one of KINDS; :class:`JobKindError` naming the type of anything else."""
+    if isinstance(job, PaintJob):
+        return "panel" if job.line is None else "line panel"
+    if isinstance(job, PartJob):
+        return "part" if job.line is None else "line part"
+    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
+                       f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
+
+
+__all__ = ["DIRECTIONS", "KINDS", "MIN_PANEL_SIGMAS", "JobError", "PaintJob", "PartJob",
+           "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

@@ -1,13 +1,20 @@
-"""The numbers of ``paint.json`` (docs/model.md §21): the job, the film statistics, timing,
-layout and each motor's use. Computed here; the CLI only writes them."""
+"""The numbers of ``paint.json``, one report for every kind of job: a panel (docs/model.md
+§21), a part (§23: area-weighted film statistics over the painted faces, the largest
+incidence, the transfer efficiency), either on a line (§24: the line table, the cycle).
+Each holds the job, the film statistics (:func:`.film.stats.film_stats`), timing, layout
+and each motor's use. Computed here; the writers (pollard_pin.io.paint_files) only write
+them."""
 from __future__ import annotations
 
 import numpy as np
 
 from ..dynamics.motors import Actuators
-from .deposition import Film
-from .film import film_stats
-from .plan import PaintPlan
+from .film.mesh import MeshFilm
+from .film.stats import film_stats
+from .line.panel import LinePlan
+from .plan.panel import PaintPlan
+from .plan.part import SurfacePlan
+from .spray.deposition import Film
 
 
 def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
@@ -33,11 +40,115 @@ def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
         "turnarounds": [float(d) for d, k in zip(plan.segments.duration, plan.segments.kind)
                         if k == "turn"],
         "samples": len(tr),
-        "motors": {name: {lim: float(plan.ratios[lim][i]) for lim in plan.ratios}
-                   for i, name in enumerate(act.names)},
+        "motors": plan.motor_use(act.names),
         "motors_source": act.source,
         "integration": {"rule": "trapezoid over the path samples",
                         "time_step": float(tr.t[1] - tr.t[0]),
                         "largest_step_over_sigma": float(steps.max() / j.sigma),
                         "error_estimate_max": float(np.nanmax(f.error_estimate))},
     }
+
+
+def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficiency: float,
+                   act: Actuators) -> dict:
+    j, part, lay = plan.job, plan.part, plan.layout
+    tr = plan.trajectory
+    on = plan.spray > 0
+    tip_speed = np.linalg.norm(tr.d_poses[on, :3], axis=1)
+    steps = np.linalg.norm(np.diff(tr.poses[:, :3], axis=0), axis=1)
+    return {
+        "job": j.to_dict(),
+        "part": {"mesh": part.source, "faces": len(part.faces),
+                 "painted_faces": int(part.painted.sum()), "painted_area": part.painted_area},
+        "thickness": film_stats(film.thickness[painted], j.thickness, points.areas[painted]),
+        "target": j.thickness,
+        "largest_incidence_deg": lay.incidence,
+        "normal_smoothing": lay.smoothing,
+        "transfer_efficiency": efficiency,
+        "cycle_time": plan.cycle_time,
+        "lower_bound": plan.lower_bound,
+        "passes": plan.passes,
+        "spacing": lay.spacing,
+        "speed": plan.speed,
+        "tip_speed_range": [float(tip_speed.min()), float(tip_speed.max())],
+        "coats": plan.coats,
+        "direction": j.direction,
+        "turnarounds": [float(p.duration) for p in plan.program.pieces if p.kind == "turn"],
+        "samples": len(tr),
+        "motors": plan.motor_use(act.names),
+        "motors_source": act.source,
+        "film_points": {"painted": int(np.count_nonzero(painted)), "total": len(points),
+                        "resolution": points.resolution},
+        "shadows": {"pairs_tested": film.pairs, "shaded": film.shaded,
+                    "edges_integrated_apart": film.switches},
+        "integration": {"rule": "trapezoid over the path samples; shadow edges by bisection "
+                                "and Gauss with the end term (docs/model.md §23)",
+                        "time_step": float(tr.t[1] - tr.t[0]),
+                        "largest_step_over_sigma": float(steps.max() / j.sigma),
+                        "error_estimate_max": float(np.nanmax(film.error_estimate))},
+    }
+
+
+def line_table(plan) -> dict:
+    """The ``line`` table of paint.json (docs/model.md §24) of a panel's or a part's plan on
+    the line (its ``length`` along the line and painted ``area``)."""
+    j, tr = plan.job, plan.trajectory
+    on = plan.spray > 0
+    along = tr.poses[on, :3] @ plan.direction
+    window = [float(along.min()), float(along.max())]
+    cycle = float(tr.t[-1])
+    length, area = plan.length, plan.area
+    return {"speed": plan.speed, "direction": [float(c) for c in plan.direction],
+            "start_delay": plan.times.delay, "program": [plan.times.delay, plan.times.end],
+            "window": window, "window_length": window[1] - window[0],
+            "travel": plan.speed * cycle, "cycle": cycle,
+            "min_pitch": plan.speed * cycle, "parts_per_hour": 3600.0 / cycle,
+            "part_length": length,
+            "upper_bound": (length + window[1] - window[0]) / (area * j.thickness / j.flow),
+            "frames": "thickness table, grid and film.ply: the part at its t = 0 pose, "
+                      "world coordinates; path.csv: the world path"}
+
+
+def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
+    """The numbers of ``paint.json`` for a panel on the line."""
+    j = plan.job
+    th = film_stats(f.thickness, j.thickness)
+    seg = plan.segments
+    return {
+        "job": j.to_dict(),
+        "thickness": th,
+        "target": j.thickness,
+        "cycle_time": float(plan.trajectory.t[-1]),
+        "program_time": seg.total,
+        "lower_bound": j.width * j.height * j.thickness / j.flow,
+        "passes": len(plan.offsets),
+        "spacing": plan.spacing,
+        "speed": plan.pass_speed,
+        "coats": 1,
+        "direction": "horizontal" if plan.horizontal else "vertical",
+        "turnarounds": [float(d) for d, k in zip(seg.duration, seg.kind) if k == "turn"],
+        "samples": len(plan.trajectory),
+        "motors": plan.motor_use(act.names),
+        "motors_source": act.source,
+        "line": line_table(plan),
+        "grid": grid,
+        "integration": {"rule": "trapezoid over the sprayed path samples, in the part's "
+                                "frame",
+                        "error_estimate_max": float(np.nanmax(f.error_estimate))},
+    }
+
+
+def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators) -> dict:
+    """The numbers of ``paint.json`` for a part on the line (``plan`` a
+    :class:`.line.part.LinePartPlan`, ``points``, ``f``, ``painted``, ``efficiency`` its film
+    from :func:`.film.part.surface_film` of ``plan.in_part_frame()``): the still part's
+    report (§23) of the motion relative to the part, with the cycle and the line table."""
+    rep = surface_report(plan.in_part_frame(), points, f, painted, efficiency, act)
+    rep["cycle_time"] = float(plan.trajectory.t[-1])
+    rep["program_time"] = plan.program.total
+    rep["line"] = line_table(plan)
+    rep["integration"]["rule"] += ", in the part's frame"
+    return rep
+
+
+__all__ = ["line_part_report", "line_report", "line_table", "paint_report", "surface_report"]

@@ -435,5 +435,6 @@ def largest_panel(robot, plane, options: WorkspaceOptions | None = None) -> Rect
     reachable grid points) of reachable tool positions in a plane (e.g. "x=0.55": the panel
     surface minus the standoff) at ``options.orientation`` — the biggest panel the robot can
     sweep there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's
-    own search, a float scale of a job's panel, is :func:`pollard_pin.paint.plan.largest_scale`."""
+    own search, a float scale of a job's panel, is
+    :func:`pollard_pin.paint.plan.panel.largest_scale`."""
     return map_workspace(robot, plane, options).rectangle

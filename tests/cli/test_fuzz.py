@@ -866,7 +866,7 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_out_of_reach.toml", "the path leaves the workspace on a pass at panel (u, v) = "
                               "(-170, -73) mm, tool tip (1.850, -0.170, 0.087) m"),
     ("job_too_big.toml", "the largest panel that fits at standoff 0.15 m, same centre and "
-                         "proportions, is 0.447 × 0.021 m"),
+                         "proportions, is 0.446 × 0.020 m"),
     ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
                       "spacing 18.15 mm) but the motors allow 1.825 m/s"),
     ("job_thin_coats.toml", "at most 5 coat(s) of this target"),

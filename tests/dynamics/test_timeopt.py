@@ -15,7 +15,8 @@ from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.dynamics.path import PathDynamics, path_dynamics
 from pollard_pin.io.retime import retimed_trajectory
-from pollard_pin.paint.raster import PanelFrame, raster_motion, raster_segments
+from pollard_pin.paint.passes.raster import raster_motion, raster_segments
+from pollard_pin.paint.target.panel import PanelFrame
 from pollard_pin.paths.curves import thesis_curve
 from pollard_pin.paths.splines import quintic_hermite
 
@@ -144,7 +145,7 @@ def test_coulomb_counts_at_the_rest_ends():
 
 
 def _raster(width, height, passes, turn, ramp, speed=0.2, dt=2e-3):
-    """The paint planner's rest-to-rest raster (paint/raster.py) in the plane x = 0.55 m
+    """The paint planner's rest-to-rest raster (paint/passes/raster.py) in the plane x = 0.55 m
     around the home tip, gun orientation (0, 0, 0), sampled every ``dt``."""
     frame = PanelFrame(np.array([0.55, 0.0, 0.16]), np.array([-1.0, 0.0, 0.0]),
                        np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), width, height)

@@ -5,9 +5,9 @@ import pytest
 from line_parts import write_line_part
 
 from pollard_pin.dynamics.motors import load_actuators
-from pollard_pin.paint.film import plan_film
+from pollard_pin.paint.film.grid import plan_film
 from pollard_pin.paint.job import load_job
-from pollard_pin.paint.plan import plan_paint
+from pollard_pin.paint.plan.panel import plan_paint
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -40,7 +40,7 @@ def line_job():
 
 @pytest.fixture(scope="package")
 def line_plan(robot, line_job, act):
-    from pollard_pin.paint.line import plan_line
+    from pollard_pin.paint.line.panel import plan_line
 
     return plan_line(robot, line_job, act)
 
@@ -53,6 +53,6 @@ def line_part_job(tmp_path_factory):
 
 @pytest.fixture(scope="package")
 def line_part_plan(robot, line_part_job, act):
-    from pollard_pin.paint.line import plan_line
+    from pollard_pin.paint.line.panel import plan_line
 
     return plan_line(robot, line_part_job, act)

@@ -1,12 +1,17 @@
-"""The numbers of paint.json (paint/report.py): each against the plan, the film and the motor
-check it comes from, and the swept lower bound against the time the passes take."""
+"""The numbers of paint.json (paint/report.py), a panel's, a part's and a line's: each against
+the plan, the film and the motor check it comes from, and the swept lower bound against the
+time the passes take."""
 import json
 
 import numpy as np
 import pytest
 
-from pollard_pin.paint.film import film_stats
-from pollard_pin.paint.report import paint_report
+from pollard_pin.paint.film.part import surface_film
+from pollard_pin.paint.film.stats import film_stats
+from pollard_pin.paint.job import PartJob
+from pollard_pin.paint.plan.part import plan_surface
+from pollard_pin.paint.report import line_table, paint_report, surface_report
+from pollard_pin.paint.target.mesh import panel_part
 
 
 @pytest.fixture(scope="module")
@@ -38,3 +43,45 @@ def test_layout_film_and_motors_come_from_the_plan(plan, film, act, report):
     steps = np.linalg.norm(np.diff(plan.trajectory.poses[:, :3], axis=0), axis=1)
     assert report["integration"]["largest_step_over_sigma"] == steps.max() / plan.job.sigma
     assert report["integration"]["largest_step_over_sigma"] <= 0.25 * (1 + 1e-9)
+
+
+@pytest.fixture(scope="module")
+def part_report(robot, act, job):
+    part = panel_part(job)
+    pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
+                 sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
+    plan = plan_surface(robot, pj, act, part)
+    pts, film, painted, te = surface_film(plan, job.sigma)
+    return plan, surface_report(plan, pts, film, painted, te, act), pts, film
+
+
+def test_part_report_numbers(part_report, act):
+    plan, rep, pts, film = part_report
+    th = rep["thickness"]
+    assert th["min"] <= th["mean"] <= th["max"]
+    assert 0 <= th["within_5pct"] <= th["within_10pct"] <= 1
+    # a flat panel: the thickness is the area-weighted mean of the film points
+    assert th["mean"] == pytest.approx(np.average(film.thickness, weights=pts.areas), rel=1e-12)
+    job = plan.job
+    assert rep["lower_bound"] == pytest.approx(plan.part.painted_area * job.thickness / job.flow)
+    assert rep["largest_incidence_deg"] < 1e-6  # a flat panel: the gun is normal
+    assert 0 < rep["transfer_efficiency"] < 1
+    assert set(rep["motors"]) == set(act.names)
+    assert rep["passes"] == len(plan.layout.passes)
+    # the spline through the 1 mm samples: its speed within 1e-6 of the spot's (measured)
+    assert rep["tip_speed_range"][0] == pytest.approx(plan.speed, rel=1e-4)
+
+
+def test_line_table_numbers(line_plan):
+    t = line_table(line_plan)
+    assert t["cycle"] == pytest.approx(line_plan.trajectory.t[-1])
+    assert t["min_pitch"] == pytest.approx(line_plan.speed * t["cycle"], rel=1e-15)
+    assert t["parts_per_hour"] == pytest.approx(3600 / t["cycle"], rel=1e-15)
+    j = line_plan.job
+    assert t["upper_bound"] == pytest.approx((0.9 + t["window_length"]) / (
+        0.9 * 0.1 * j.thickness / j.flow), rel=1e-12)
+    # the window: the world interval the sprayed tips span along the line
+    on = line_plan.spray > 0
+    y = line_plan.trajectory.poses[on, 1]
+    assert t["window"] == [y.min(), y.max()]
+    assert line_plan.speed < t["upper_bound"]

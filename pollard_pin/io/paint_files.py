@@ -1,0 +1,146 @@
+"""What ``paint`` writes for a panel or a part, still or on a line: path.csv (with the
+trigger), the film table, film.ply, paint.json and thickness.png, every one or none
+(:meth:`pollard_pin.paint.api.PaintResult.write` and the CLI)."""
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from .atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
+
+# The frame a line's film and figure are given in (its paint.json, table and film.ply)
+LINE_FRAME = "the part at its t = 0 pose, world coordinates"
+
+
+def paint_outputs(out: Path, fmt: str) -> tuple[tuple, tuple]:
+    """(every file ``paint`` writes in ``out`` with a ``fmt`` table, the other format's
+    table files it removes): check the first before any work."""
+    from .table import FORMATS, table_files
+
+    files = (*table_files(out / "path.csv"), *table_files(out / f"thickness.{fmt}", fmt),
+             out / "paint.json", out / "thickness.png", out / "film.ply")
+    stale = tuple(f for other in FORMATS if other != fmt  # view --paint never finds two films
+                  for f in table_files(out / f"thickness.{other}", other))
+    return files, stale
+
+
+def report_json(result) -> dict:
+    """paint.json: the result's report with what film.ply's colours mean."""
+    from ..viz.paint_part import ply_colours
+
+    rep = dict(result.report.data)
+    version = rep.pop("pollard_pin", None)
+    rep["film_ply"] = ply_colours(result.job.thickness)
+    if version is not None:
+        rep["pollard_pin"] = version
+    return rep
+
+
+def write_paint(result, out: Path, fmt: str = "csv") -> Path:
+    """Every output of a :class:`~pollard_pin.paint.api.PaintResult` in ``out``, or none;
+    the table's path."""
+    from .table import FORMATS
+
+    if fmt not in FORMATS:
+        raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
+    files, stale = paint_outputs(out, fmt)
+    check_outputs(*files, folders=(out,))
+    rep = report_json(result)
+    meta = {"command": "paint", "job": rep["job"]}
+    if result.kind.startswith("line"):
+        meta["frame"] = LINE_FRAME
+    writer = _write_part if result.kind.endswith("part") else _write_panel
+    return writer(result, out / f"thickness.{fmt}", rep, meta, stale)
+
+
+def panel_table(U, V, pts, thickness, normal) -> dict:
+    """The film table of a panel with a part's columns (a panel is the two-triangle part):
+    x, y, z, the unit normal towards the gun, each grid point's share of the area (trapezoid
+    weights, summing to width × height), the panel coordinates u, v and the thickness."""
+    from ..dynamics.averages import trapezoid_weights
+
+    flat = pts.reshape(-1, 3)
+    area = np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()
+    n = np.broadcast_to(normal, flat.shape)
+    UU, VV = np.meshgrid(U, V)
+    return {"x": flat[:, 0], "y": flat[:, 1], "z": flat[:, 2], "nx": n[:, 0], "ny": n[:, 1],
+            "nz": n[:, 2], "area": area, "u": UU.ravel(), "v": VV.ravel(),
+            "thickness": thickness}
+
+
+def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
+    """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
+    coordinates, in the part's frame on a line)."""
+    from ..paint.film.line import part_frame_positions
+    from ..paint.film.ply_mesh import grid_mesh
+    from ..viz.paint import write_thickness_png
+    from ..viz.paint_part import film_colours
+    from .ply import write_film_ply
+    from .table import write_table
+    from .trajectory import to_csv
+
+    plan, f = result.plan, result.film
+    job, tr, fr = plan.job, plan.trajectory, plan.frame
+    U, V = f.grid
+    thickness = f.thickness
+    moving = result.kind == "line panel"  # the tips seen from the part, on a line
+    comment = f"film: {LINE_FRAME}" if moving else None
+    tips = part_frame_positions(plan) if moving else tr.poses[:, :3]
+    rel = tips[plan.spray > 0] - fr.c - job.standoff * fr.n
+    out = name.parent
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(tr, out / "path.csv", spray=plan.spray)
+        write_table(name, panel_table(U, V, f.points, thickness, fr.n), meta,
+                    fmt=name.suffix[1:])
+        with atomic_open(out / "paint.json") as fh:
+            fh.write(json.dumps(rep, indent=2) + "\n")
+        write_film_ply(out / "film.ply", f.points.reshape(-1, 3), grid_mesh(f.points, fr.n),
+                       thickness, film_colours(thickness, job.thickness), comment)
+        write_thickness_png(out / "thickness.png", U, V, thickness.reshape(len(V), len(U)),
+                            job.thickness, np.array([rel @ fr.u, rel @ fr.v]), job.width,
+                            job.height)
+        remove_stale(*stale)
+    return name
+
+
+def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
+    """A part's outputs, still or on the line: the film table on the painted faces, film.ply
+    the refined mesh (on a line: the part at its t = 0 pose, the world path in path.csv)."""
+    from ..paint.film.ply_mesh import refined_mesh
+    from ..viz.paint_part import film_colours, write_part_png
+    from .ply import write_film_ply
+    from .table import write_table
+    from .trajectory import to_csv
+
+    plan, f = result.plan, result.film
+    comment = None
+    if result.kind == "line part":  # the world path and its trigger; the film on the part
+        plan, comment = replace(plan.in_part_frame(), trajectory=plan.trajectory), \
+            f"film: {LINE_FRAME}"
+    job, lay, pts, painted = plan.job, plan.layout, f.points, f.painted
+    out = name.parent
+    used, triangles = refined_mesh(plan.part, pts)
+    P, N, th = pts.points[painted], pts.normals[painted], f.thickness[painted]
+    table = {"x": P[:, 0], "y": P[:, 1], "z": P[:, 2], "nx": N[:, 0], "ny": N[:, 1],
+             "nz": N[:, 2], "area": pts.areas[painted], "thickness": th}
+    tracks = [p.tip + job.standoff * p.axis for p in lay.passes]
+    with all_or_nothing():  # everything is computed: now write every output, or none
+        make_folder(out)
+        to_csv(plan.trajectory, out / "path.csv", spray=plan.spray)
+        write_table(name, table, meta, fmt=name.suffix[1:])
+        with atomic_open(out / "paint.json") as fh:
+            fh.write(json.dumps(rep, indent=2) + "\n")
+        write_film_ply(out / "film.ply", pts.points[used], triangles, f.thickness[used],
+                       film_colours(f.thickness[used], job.thickness), comment)
+        write_part_png(out / "thickness.png", P, th, job.thickness, lay.frame.along,
+                       lay.frame.across, tracks)
+        remove_stale(*stale)
+    return name
+
+
+__all__ = ["LINE_FRAME", "panel_table", "paint_outputs", "report_json", "write_paint"]

@@ -1,0 +1,40 @@
+"""The film of a panel on the line (docs/model.md §24); a part's is the still part's film
+of the plan seen from the part (:meth:`.line.part.LinePartPlan.in_part_frame`).
+
+The film is integrated in the part's frame: the gun's world positions minus the line's
+displacement, over the samples where the gun sprays; the grid (a part: its film points) is
+the part at its t = 0 pose, in world coordinates.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ...analytic.taskspace import rotation
+from ..errors import PlanError
+from ..line.panel import LinePlan
+from ..spray.deposition import film, gun_of
+from .grid import MAX_FILM_PAIRS, film_grid
+
+
+def part_frame_positions(plan: LinePlan) -> np.ndarray:
+    """The gun's tips (N, 3) in the part's frame (the part at its t = 0 pose)."""
+    tr = plan.trajectory
+    return tr.poses[:, :3] - plan.speed * tr.t[:, None] * plan.direction[None, :]
+
+
+def line_film(plan: LinePlan, resolution: float | None = None):
+    """(U, V, points (nv, nu, 3) at t = 0, Film) of the line's program."""
+    U, V, pts = film_grid(plan.frame, plan.job, resolution)
+    tr = plan.trajectory
+    on = plan.spray > 0
+    pairs = float(pts.shape[0] * pts.shape[1]) * int(on.sum())
+    if pairs > MAX_FILM_PAIRS:
+        raise PlanError(f"the film map needs {pairs:.3g} point × sample pairs, budget "
+                        f"{MAX_FILM_PAIRS:.3g}: a coarser film grid")
+    axes = rotation(tr.poses[on])[:, :, 0]
+    f = film(gun_of(plan.job), tr.t[on], part_frame_positions(plan)[on], axes,
+             pts.reshape(-1, 3), plan.frame.n, origin=plan.frame.c)
+    return U, V, pts, f
+
+
+__all__ = ["line_film", "part_frame_positions"]

@@ -1,0 +1,412 @@
+"""The world path of a paint program on a moving line, for a panel or a part alike
+(docs/model.md §24): the relative program behind :class:`Relative`, the line's phases (hold,
+catch up, program, slow down, return), the shift along the line that keeps it in reach, the
+turnarounds timed on the world path, every check on the world path, and the fastest line
+speed. ``line.py`` (a panel) and ``line_part.py`` (a part's mesh) only build their relative
+programs.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...dynamics.averages import time_rms
+from ...dynamics.motors import Actuators
+from ...paths.trajectory import Trajectory
+from ..errors import BudgetError, PlanError, ReachError
+from ..passes.raster import SMOOTHSTEP
+from ..plan.checks import fastest, motion, reach
+from ..policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
+
+CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
+SHIFT_RANGE = 2.0  # m: the line may carry the part this far before the program starts
+SHIFT_STEP = 0.005  # m: the scan of shifts along the line
+SHIFT_BISECT = 10  # bisection steps refining each end of the feasible shifts
+SPEED_RESOLUTION = 0.01  # relative: --max-line-speed's bisection stops at this bracket
+SPEED_TRIES = 12  # doublings/halvings bracketing the fastest speed
+_RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
+
+
+class LineSpeedError(PlanError):
+    """No program paints the part at this line speed (its drift does not fit the reach, or
+    the motors cannot follow): ``too_fast`` says which side."""
+
+    def __init__(self, message: str, too_fast: bool):
+        super().__init__(message)
+        self.too_fast = too_fast
+
+
+@dataclass(frozen=True)
+class LineTimes:
+    """The world path's phases [s]: hold until ``delay − CATCH``, speed up to the line until
+    ``delay``, the program until ``end``, slow to rest until ``end + CATCH``, return until
+    ``total``."""
+
+    delay: float
+    end: float
+    back: float  # return duration
+
+    @property
+    def total(self) -> float:
+        return self.end + CATCH + self.back
+
+
+@dataclass(frozen=True, eq=False)
+class Relative:
+    """The gun's program relative to the part (at its t = 0 pose), on its own time from 0:
+    ``motion(t)`` → (poses, rates, accelerations) (N, 6), at rest at both ends; its pieces'
+    ``start``, ``duration`` and ``kind`` ("ramp", "pass", "turn"), the first a ramp, the
+    second the first pass; ``passes_only``: the trigger is open on the passes only (a part),
+    else throughout (a panel); ``program``: what it was built from (a panel's Segments, a
+    part's Program)."""
+
+    motion: Callable
+    start: np.ndarray
+    duration: np.ndarray
+    kind: tuple
+    passes_only: bool = False
+    program: object = None
+
+    @property
+    def total(self) -> float:
+        return float(self.start[-1] + self.duration[-1])
+
+    def evaluate(self, t):
+        return self.motion(np.asarray(t, dtype=float))
+
+    def coarse_times(self) -> np.ndarray:
+        """Piece ends and middles: the program's extremes along and across the passes."""
+        return np.unique(np.concatenate([self.start, self.start + self.duration / 2,
+                                         [self.total]]))
+
+    def not_passes(self) -> np.ndarray:
+        return np.array([i for i, k in enumerate(self.kind) if k != "pass"])
+
+    def trigger(self, t) -> np.ndarray:
+        """The trigger (0 or 1) at program times ``t``."""
+        t = np.asarray(t, dtype=float)
+        if not self.passes_only:
+            return np.ones(len(t))
+        i = np.clip(np.searchsorted(self.start, t, side="right") - 1, 0, len(self.start) - 1)
+        return np.array([k == "pass" for k in self.kind], dtype=float)[i]
+
+
+def line_shift(poses, d, t, speed: float, direction):
+    """Relative motion → world (docs/model.md §24): positions + speed·t·direction, rates +
+    speed·direction, accelerations unchanged (new arrays)."""
+    p = np.array(poses, dtype=float)
+    v = np.array(d, dtype=float)
+    p[:, :3] += speed * np.asarray(t, float)[:, None] * np.asarray(direction)[None, :]
+    v[:, :3] += speed * np.asarray(direction)[None, :]
+    return p, v
+
+
+def world_motion(rel: Relative, speed: float, e, times: LineTimes, t):
+    """The world path at times ``t`` (hold, catch up, program, slow down, return):
+    (poses, rates, accelerations, spray)."""
+    t = np.asarray(t, dtype=float)
+    e = np.asarray(e, dtype=float)
+    D, E = times.delay, times.end
+    poses = np.empty((len(t), 6))
+    d, dd = np.zeros((len(t), 6)), np.zeros((len(t), 6))
+    prog = (t >= D) & (t <= E)
+    spray = np.zeros(len(t))
+    if prog.any():
+        p, v, a = rel.evaluate(t[prog] - D)
+        poses[prog], d[prog] = line_shift(p, v, t[prog], speed, e)
+        dd[prog] = a
+        spray[prog] = rel.trigger(t[prog] - D)
+    r0, _, _ = rel.evaluate(np.array([0.0]))
+    r1, _, _ = rel.evaluate(np.array([rel.total]))
+    hold = speed * (D - CATCH / 2)  # the start pose's shift along the line
+    before = t < D
+    x = np.clip((t[before] - (D - CATCH)) / CATCH, 0.0, 1.0)
+    g = hold + speed * CATCH * _RISE(x)
+    poses[before] = r0[0]
+    poses[before, :3] += g[:, None] * e
+    d[before, :3] = (speed * SMOOTHSTEP(x))[:, None] * e
+    dd[before, :3] = (speed / CATCH * SMOOTHSTEP.deriv()(x))[:, None] * e
+    slow = (t > E) & (t <= E + CATCH)
+    x = (t[slow] - E) / CATCH
+    g = speed * E + speed * CATCH * (x - _RISE(x))
+    poses[slow] = r1[0]
+    poses[slow, :3] += g[:, None] * e
+    d[slow, :3] = (speed * (1 - SMOOTHSTEP(x)))[:, None] * e
+    dd[slow, :3] = (-speed / CATCH * SMOOTHSTEP.deriv()(x))[:, None] * e
+    back = t > E + CATCH
+    if back.any():  # the whole pose, angles too: a part's gun turns between its passes
+        a, b = r1[0].copy(), r0[0].copy()
+        a[:3] += speed * (E + CATCH / 2) * e
+        b[:3] += hold * e
+        x = np.clip((t[back] - E - CATCH) / times.back, 0.0, 1.0)
+        poses[back] = a + SMOOTHSTEP(x)[:, None] * (b - a)
+        d[back] = (SMOOTHSTEP.deriv()(x) / times.back)[:, None] * (b - a)
+        dd[back] = (SMOOTHSTEP.deriv(2)(x) / times.back ** 2)[:, None] * (b - a)
+    return poses, d, dd, spray
+
+
+def _drift(rel: Relative, speed: float, e, t):
+    """The program's world positions with no wait (shift 0): relative + speed·t·direction."""
+    p, v, _ = rel.evaluate(t)
+    return line_shift(p, v, t, speed, e)[0]
+
+
+def _fits(robot, poses, e, x) -> bool:
+    p = np.array(poses)
+    p[:, :3] += x * e
+    try:
+        reach(robot, p)
+    except ReachError:
+        return False
+    return True
+
+
+def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE):
+    """The longest run of shifts x ∈ [lo, lo + span] along the line with every pose + x·e in
+    reach (scan at SHIFT_STEP, ends refined by bisection), or None."""
+    xs = lo + np.arange(0.0, span + SHIFT_STEP / 2, SHIFT_STEP)
+    ok = np.array([_fits(robot, poses, e, x) for x in xs])
+    if not ok.any():
+        return None
+    # the longest run of True
+    edges = np.diff(np.concatenate([[0], ok.astype(int), [0]]))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    k = int(np.argmax(stops - starts))
+    a, b = int(starts[k]), int(stops[k]) - 1
+
+    def refine(good, bad):
+        if bad < lo - 1e-15 or bad > lo + span + 1e-15:
+            return good
+        for _ in range(SHIFT_BISECT):
+            mid = 0.5 * (good + bad)
+            good, bad = (mid, bad) if _fits(robot, poses, e, mid) else (good, mid)
+        return good
+
+    return refine(xs[a], xs[a] - SHIFT_STEP), refine(xs[b], xs[b] + SHIFT_STEP)
+
+
+def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
+    """The line's shift speed·delay [m] at the middle of the shifts that keep the world
+    program (coarse samples) in reach; :class:`LineSpeedError` if none does, a
+    :class:`PlanError` naming ``where`` (the gun's track) if no pass is ever in reach."""
+    t = rel.coarse_times()
+    poses = _drift(rel, speed, e, t)
+    found = feasible_shifts(robot, poses, e, speed * CATCH)
+    if found is None:
+        # one pass alone, no drift: does the part come within reach at all?
+        first = rel.start[1] + rel.duration[1] * np.linspace(0, 1, 9)
+        p, _, _ = rel.evaluate(first)
+        if feasible_shifts(robot, p, e, speed * CATCH) is None:
+            raise PlanError(f"the part never comes within reach: {where}, and no pass of it "
+                            f"is reachable within {SHIFT_RANGE:g} m of travel: move the part "
+                            "or the line")
+        along = poses[:, :3] @ e
+        drift = float(along[-1] - along[0])
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "
+                             f"{drift:+.3f} m along the line in {rel.total:.4g} s and leaves "
+                             "the reach wherever it starts", drift > 0)
+    return 0.5 * float(found[0] + found[1])
+
+
+def track(centre, e) -> str:
+    """Where the gun's track over the part's centre runs (the never-in-reach message)."""
+    return (f"the gun's track at the part's centre runs through ({centre[0]:.3f}, "
+            f"{centre[1]:.3f}, {centre[2]:.3f}) m along ({e[0]:.3g}, {e[1]:.3g}, {e[2]:.3g})")
+
+
+@dataclass(frozen=True)
+class LineProgram:
+    """What :func:`plan_world` runs on the line: the relative program ``build(τ)`` (τ the ramp
+    and turnaround durations, from ``guess``), the path's time step ``dt`` [s], the gun's
+    track ``where`` (:func:`track`), what the passes are (for the motors' message) and the
+    job's ``source``."""
+
+    build: Callable
+    guess: np.ndarray
+    dt: float
+    where: str
+    passes: str
+    source: str
+
+
+@dataclass(frozen=True)
+class World:
+    """A relative program run on the line: its ``relative`` program, phases ``times``, the
+    world ``trajectory`` with its ``spray`` column and the motors' ``ratios``."""
+
+    relative: Relative
+    times: LineTimes
+    trajectory: Trajectory
+    spray: np.ndarray
+    ratios: dict
+
+
+def one_coat(job) -> None:
+    if job.coats not in (None, 1):
+        raise PlanError(f"{job.source}: job.coats = {job.coats}: a part on the line is painted "
+                        "in one coat (the second would run back against the travel)")
+
+
+def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> World:
+    """The world path of the relative ``program`` (:class:`LineProgram`) at line ``speed``
+    along ``e`` (docs/model.md §24): the turnarounds the shortest within UTILISATION on the
+    world path held at one world centre, the delay at the middle of the feasible shifts, the
+    return the shortest, sampled every ``program.dt`` and checked at CHECK_REFINE× that."""
+    build, guess, dt, where = program.build, program.guess, program.dt, program.where
+    passes, source = program.passes, program.source
+    e = np.asarray(e, dtype=float)
+    rel = build(guess)
+    centre = choose_shift(robot, rel, speed, e, where) + _mid_along(rel, speed, e)
+
+    def evaluate(tau):
+        r = build(tau)
+        x = centre - _mid_along(r, speed, e)
+        pieces = r.not_passes()
+        u = np.linspace(0.0, 1.0 - 1e-12, TURN_SAMPLES)
+        tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
+        p, v, a = r.evaluate(tt)
+        p, v = line_shift(p, v, tt + x / speed, speed, e)
+        try:
+            m = motion(robot, act, p, v, a)
+        except ReachError:
+            return np.full(len(pieces), np.inf)
+        return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
+
+    try:
+        rel = build(fastest(evaluate, np.asarray(guess, float), UTILISATION))
+    except PlanError:
+        # too fast or too slow by the drift's sign, as every other failure here: the
+        # turnarounds fail on the reach where the program drifts out of it (§24)
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
+                             f"{passes} keeps the world path in reach and the motors within "
+                             "their ratings with the line's speed added",
+                             _drift_along(rel, speed, e) > 0) from None
+    delay = choose_shift(robot, rel, speed, e, where) / speed
+    back = _return_time(robot, act, rel, speed, e, delay)
+    times = LineTimes(delay, delay + rel.total, back)
+    n = math.ceil(times.total / dt) + 1
+    if n > MAX_PATH_SAMPLES:
+        raise BudgetError(f"{source}: the line's path needs {n:.3g} samples ({times.total:.4g} "
+                          f"s), budget {MAX_PATH_SAMPLES:.3g}: a thinner film or more flow")
+    t = np.linspace(0.0, times.total, n)
+    poses, d, dd, spray = world_motion(rel, speed, e, times, t)
+    traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
+                      curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
+    tf = np.linspace(0.0, times.total, CHECK_REFINE * (n - 1) + 1)
+    drift = _drift_along(rel, speed, e)
+    try:
+        fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
+    except ReachError as exc:
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s the path leaves the workspace at "
+                             f"t = {tf[exc.sample]:.3f} s: {exc}", drift > 0) from None
+    ratios = {"peak_torque": fine.torque_ratio.max(0),
+              "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
+              "speed": fine.speed_ratio.max(0)}
+    worst = max(float(ratios["peak_torque"].max()), float(ratios["speed"].max()))
+    if worst > 1.0:
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {100 * worst:.0f} % "
+                             "of its peak torque or speed", drift > 0)
+    return World(rel, times, traj, spray, ratios)
+
+
+def _drift_along(rel: Relative, speed: float, e) -> float:
+    """The program's world drift along the line [m], s·T − (relative travel): a failure at a
+    positive drift is one of too fast a line, at a negative one of too slow (§24)."""
+    along = _drift(rel, speed, e, np.array([0.0, rel.total]))[:, :3] @ e
+    return float(along[1] - along[0])
+
+
+def _mid_along(rel: Relative, speed: float, e) -> float:
+    """The middle, along the line, of the program's world extent at shift 0."""
+    along = _drift(rel, speed, e, rel.coarse_times())[:, :3] @ e
+    return 0.5 * float(along.min() + along.max())
+
+
+def _return_time(robot, act, rel: Relative, speed: float, e, delay: float) -> float:
+    """The shortest return to the start pose (rest to rest) within UTILISATION."""
+    u = np.linspace(0.0, 1.0, TURN_SAMPLES)
+
+    def evaluate(tau):
+        times = LineTimes(delay, delay + rel.total, float(tau[0]))
+        tt = times.end + CATCH + tau[0] * u
+        try:
+            m = motion(robot, act, *world_motion(rel, speed, e, times, tt)[:3])
+        except ReachError:
+            return np.array([np.inf])
+        return np.array([m.utilisation.max()])
+
+    return float(fastest(evaluate, np.array([0.5]), UTILISATION)[0])
+
+
+def fastest_line_speed(plan_at, start: float, source: str,
+                       resolution: float = SPEED_RESOLUTION):
+    """The fastest line speed [m/s] (within ``resolution``, relative) at which
+    ``plan_at(speed)`` plans, and that plan (docs/model.md §24): from ``start`` (the job's
+    speed), halved while too fast and doubled while too slow until one plans, then doubled
+    until one fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
+    s = start
+    best = None
+    slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
+    for _ in range(2 * SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
+        try:
+            best = (s, plan_at(s))
+            break
+        except LineSpeedError as exc:
+            if exc.too_fast:
+                fast = s
+            else:
+                slow = s
+        if fast < math.inf and slow > 0:
+            if fast - slow <= resolution * slow:
+                break
+            s = 0.5 * (slow + fast)
+        else:
+            s = 2 * s if fast == math.inf else 0.5 * s
+    if best is None:
+        raise PlanError(f"{source}: no line speed paints the part (too slow at "
+                        f"{slow:.4g} m/s, too fast at {fast:.4g} m/s)")
+    lo, plan = best
+    hi = None
+    for _ in range(SPEED_TRIES):
+        try:
+            s2 = 2 * lo if hi is None else hi
+            plan = plan_at(s2)
+            lo = s2
+        except LineSpeedError:
+            hi = s2
+            break
+    if hi is None:
+        return lo, plan
+    while (hi - lo) > resolution * lo:
+        mid = 0.5 * (lo + hi)
+        try:
+            plan = plan_at(mid)
+            lo = mid
+        except LineSpeedError:
+            hi = mid
+    if plan.speed != lo:
+        plan = plan_at(lo)
+    return lo, plan
+
+
+def plan_or_name_fastest(plan_at, speed: float, source: str):
+    """``plan_at(speed)``; a speed that cannot be painted is refused naming the fastest that
+    works (:func:`fastest_line_speed`)."""
+    try:
+        return plan_at(speed)
+    except LineSpeedError as exc:
+        try:
+            fastest_speed, _ = fastest_line_speed(plan_at, speed, source)
+        except PlanError:
+            raise exc from None
+        raise PlanError(f"{exc}; the fastest line speed that paints it is "
+                        f"{fastest_speed:.4g} m/s (--max-line-speed)") from None
+
+
+__all__ = ["CATCH", "LineProgram", "LineSpeedError", "LineTimes", "Relative",
+           "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
+           "feasible_shifts", "line_shift", "one_coat", "plan_or_name_fastest", "plan_world",
+           "track", "world_motion"]

@@ -1,0 +1,2 @@
+"""The passes: a panel's raster, a part's surface passes, a part's program of pieces
+(docs/model.md §21, §23)."""

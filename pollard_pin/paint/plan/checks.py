@@ -1,0 +1,94 @@
+"""Reach and motors along candidate tool motions: the rules of ``run`` (closed-form IK on the
+configured branches, wrist and singularity margins) plus the joint limits of the parameter
+file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...dynamics.motors import Actuators, motor_speed, motor_torque
+from ...kinematics.errors import KinematicsError
+from ...kinematics.limits import check_joint_limits
+from ...kinematics.margins import Margins
+from ..errors import PlanError, ReachError
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Joint motion and motor load of a batch of tool poses (not necessarily one path)."""
+
+    ik: object  # IKResult
+    tau: np.ndarray  # (N, 6) actuator torques
+    torque: np.ndarray  # (N, 6) motor torques τm (§19)
+    torque_ratio: np.ndarray  # (N, 6) |τm| / peak torque, with breakaway ±c at rest
+    speed_ratio: np.ndarray  # (N, 6) |ωm| / max speed
+
+    @property
+    def utilisation(self) -> np.ndarray:
+        return np.maximum(self.torque_ratio, self.speed_ratio)
+
+
+def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None = None):
+    """The reach check alone (no dynamics, where the motors are not the question): IK of the
+    tool poses (N, 6) under ``run``'s rules and ``margins`` (default ``run``'s), and the joint
+    limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
+    fails."""
+    from ...kinematics.ik import inverse_kinematics
+
+    n = len(poses)
+    try:
+        ik = inverse_kinematics(robot, poses, d_poses, dd_poses, np.arange(n, dtype=float),
+                                margins=margins)
+    except KinematicsError as exc:
+        k = 0 if exc.sample is None else int(exc.sample)
+        detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
+        raise ReachError(detail, k, np.asarray(poses)[k]) from None
+    try:
+        check_joint_limits(robot, ik.q)
+    except KinematicsError as exc:
+        raise ReachError(exc.detail, exc.sample, np.asarray(poses)[exc.sample]) from None
+    return ik
+
+
+def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
+           margins: Margins | None = None) -> Motion:
+    """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
+    accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
+    joint leaves its limits (:func:`reach`)."""
+    from ...dynamics.inverse import inverse_dynamics
+
+    ik = reach(robot, poses, d_poses, dd_poses, margins=margins)
+    tau = inverse_dynamics(robot, ik, energies=False).tau
+    ia = robot.actuated_v
+    v, a = ik.v[:, ia], ik.a[:, ia]
+    tm = motor_torque(act, tau, v, a)  # at rest |τm| already carries the breakaway c
+    return Motion(ik, tau, tm, np.abs(tm) / act.column("peak_torque"),
+                  np.abs(motor_speed(act, v)) / act.column("max_speed"))
+
+
+def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings: int = 12):
+    """Smallest durations τ (one per piece, vectorised bisection) with
+    ``evaluate(τ)`` (per-piece peak utilisation) ≤ ``target``; ``guess`` (P,) starts the
+    bracket, doubled until feasible. Utilisation must fall as τ grows (acceleration-bound
+    pieces); raises :class:`PlanError` if a piece is not feasible at any tried duration."""
+    hi = np.array(guess, dtype=float)
+    lo = np.zeros_like(hi)
+    for _ in range(max_doublings):
+        ok = evaluate(hi) <= target
+        if ok.all():
+            break
+        lo = np.where(ok, lo, hi)
+        hi = np.where(ok, hi, 2 * hi)
+    else:
+        raise PlanError(f"no turnaround or ramp of up to {hi.max():.3g} s keeps every motor "
+                        f"within {100 * target:.0f} % of its ratings: the pass speed itself "
+                        "is too much for them")
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        ok = evaluate(mid) <= target
+        lo, hi = np.where(ok, lo, mid), np.where(ok, mid, hi)
+    return hi
+
+

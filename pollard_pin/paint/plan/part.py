@@ -1,0 +1,208 @@
+"""Plan a paint job over a part's mesh (docs/model.md §23): the passes of
+:mod:`.passes.surface` timed into one C² rest-to-rest program (:mod:`.passes.program`) the
+robot and its motors can run; its film is :mod:`.film.part`'s. The turnarounds lie off the
+part (the passes run EXTENSION σ past its edges) with the gun closed (``spray`` 0), the
+passes open (1).
+
+Each turnaround and ramp is the shortest whose motors stay within UTILISATION of peak torque
+and speed (:func:`.plan.checks.fastest`); then the whole path is checked like ``run`` (reach,
+margins, joint limits) and against the motors' peak torque, speed and continuous (RMS)
+rating at CHECK_REFINE× its sampling.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...dynamics.averages import time_rms
+from ...dynamics.motors import Actuators
+from ...paths.trajectory import Trajectory
+from ..errors import BudgetError, PlanError, ReachError
+from ..passes.program import Program, build_program, pass_pieces
+from ..passes.surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
+from ..policy import (
+    CHECK_REFINE,
+    MAX_PATH_SAMPLES,
+    MAX_STEP,
+    STEP_SIGMA,
+    TURN_SAMPLES,
+    UTILISATION,
+    first_guess,
+)
+from ..target.mesh import Part, load_job_part
+from .checks import fastest, motion
+from .result import PlanResult
+
+
+@dataclass(frozen=True)
+class SurfacePlan(PlanResult):
+    """A still part's program (``spray``: 1 on the passes, 0 on the turnarounds off it)."""
+
+    job: object  # PartJob
+    part: Part
+    layout: SurfaceLayout
+    program: Program
+    speed: float  # surface speed of the spot on the passes [m/s]
+    coats: int
+
+    @property
+    def cycle_time(self) -> float:
+        return self.program.total
+
+    @property
+    def passes(self) -> int:
+        return len(self.layout.passes) * self.coats
+
+    @property
+    def lower_bound(self) -> float:
+        """Painting-only lower bound [s]: painted area × target / flow."""
+        return self.part.painted_area * self.job.thickness / self.job.flow
+
+
+def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
+    """The motors' peak utilisation over one coat's passes (at their samples)."""
+    ev = [p.evaluate(np.linspace(0, p.duration, len(layout.passes[p.index].s)))
+          for p in pieces]
+    poses, d, dd = (np.concatenate([e[i] for e in ev]) for i in range(3))
+    try:
+        m = motion(robot, act, poses, d, dd)
+    except ReachError as exc:
+        lengths = np.cumsum([len(layout.passes[p.index].s) for p in pieces])
+        k = int(np.searchsorted(lengths, exc.sample, side="right"))
+        p = layout.passes[pieces[k].index]
+        tip = np.asarray(exc.pose[:3])
+        j = int(np.argmin(np.linalg.norm(p.tip - tip, axis=1)))
+        x = p.surface[j]
+        raise ReachError(f"the path leaves the workspace on pass {pieces[k].index + 1} of "
+                         f"{len(layout.passes)} at part point ({x[0]:.3f}, {x[1]:.3f}, "
+                         f"{x[2]:.3f}) m, tip ({tip[0]:.3f}, {tip[1]:.3f}, "
+                         f"{tip[2]:.3f}) m: {exc}; {_reachable(robot, layout, pieces, poses)}",
+                         exc.sample, exc.pose) from None
+    return float(m.utilisation.max())
+
+
+def _reachable(robot, layout: SurfaceLayout, pieces, poses) -> str:
+    """Which of the part the gun reaches on the passes: the share of the on-part pass
+    samples whose pose passes ``run``'s rules (docs/model.md §22's workspace test) and the
+    box of their surface points."""
+    from ...workspace.reach import evaluate
+
+    ok = evaluate(robot, poses)["reachable"] > 0
+    on = np.concatenate([layout.passes[p.index].on_part for p in pieces])
+    surf = np.concatenate([layout.passes[p.index].surface for p in pieces])
+    good = ok & on
+    if not good.any():
+        return "no point of the painted faces is within reach with the gun normal to it"
+    lo, hi = surf[good].min(axis=0), surf[good].max(axis=0)
+    return (f"reachable: {100 * good.sum() / max(on.sum(), 1):.0f} % of the passes, "
+            f"x {lo[0]:.3f}..{hi[0]:.3f}, y {lo[1]:.3f}..{hi[1]:.3f}, "
+            f"z {lo[2]:.3f}..{hi[2]:.3f} m")
+
+
+def time_step(job, pieces, v: float) -> float:
+    """The path's time step [s]: STEP_SIGMA σ of the tip's travel, the tip moving up to
+    tip_rate × the spot's speed ``v`` (a convex part's stretch); the passes alone within the
+    sample budget."""
+    tip_rate = max(1.0, max(float(np.linalg.norm(p.d1(p.spline.t[5:-5])[:, :3], axis=1).max())
+                            for p in pieces if p.kind == "pass"))
+    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / (v * tip_rate))
+    swept = sum(p.duration for p in pieces)
+    if swept / dt > MAX_PATH_SAMPLES:
+        raise BudgetError(f"{job.source}: the passes alone need {swept / dt:.3g} samples "
+                          f"({swept:.4g} s at {v:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
+                          "a thinner film, more flow or fewer coats")
+    return dt
+
+
+def _where(program: Program, layout: SurfaceLayout, t: float, pose) -> str:
+    piece = program.pieces[int(program.piece_at(np.array([t]))[0])]
+    tip = np.asarray(pose[:3])
+    where = f"tool tip ({tip[0]:.3f}, {tip[1]:.3f}, {tip[2]:.3f}) m"
+    if piece.kind == "pass":
+        p = layout.passes[piece.index]
+        k = int(np.argmin(np.linalg.norm(p.tip - tip, axis=1)))
+        x = p.surface[k]
+        return (f"on pass {piece.index + 1} of {len(layout.passes)} (level "
+                f"{p.level:.4g} m) over the part at ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m, "
+                f"{where}")
+    return f"in a {piece.kind}, {where}"
+
+
+def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> SurfacePlan:
+    """The spray program over the job's part (read from ``job.mesh`` unless given): see the
+    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
+    clock = [time.perf_counter()]
+    part = load_job_part(job) if part is None else part
+    v = pass_speed(job, pass_spacing(job))
+    coats = job.coats or 1
+    smoothing = 0.0
+    while True:  # the least smoothing whose passes the motors follow at speed v
+        layout = surface_layout(part, job, min_smoothing=smoothing)
+        pieces = pass_pieces(layout, v, coats)
+        use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
+        if use <= UTILISATION:
+            break
+        wider = [w for w in SMOOTHING if w > layout.smoothing]
+        if not wider:
+            raise PlanError(f"{part.source}: the motors need {use:.3g}× their peak torque or "
+                            f"speed on the passes at {v:.4g} m/s even with the gun's normal "
+                            f"averaged over {layout.smoothing:g} m: a thinner coat (more "
+                            "coats), a smaller standoff or a gentler part")
+        smoothing = wider[0]
+    dt = time_step(job, pieces, v)
+    clock.append(time.perf_counter())
+
+    def evaluate(taus):
+        prog = build_program(pieces, taus)
+        sel = [i for i, p in enumerate(prog.pieces) if p.kind != "pass"]
+        start = prog.start
+        x = np.linspace(0.0, 1.0 - 1e-12, TURN_SAMPLES)
+        t = np.concatenate([start[i] + prog.pieces[i].duration * x for i in sel])
+        try:
+            m = motion(robot, act, *prog.evaluate(t))
+        except ReachError as exc:
+            k = exc.sample // TURN_SAMPLES
+            raise ReachError(f"the path leaves the workspace "
+                             f"{_where(prog, layout, t[exc.sample], exc.pose)} ({taus[k]:.3g} "
+                             f"s): {exc}", exc.sample, exc.pose) from None
+        return m.utilisation.reshape(len(sel), TURN_SAMPLES, -1).max(axis=(1, 2))
+
+    taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
+    program = build_program(pieces, taus)
+    clock.append(time.perf_counter())
+    n = math.ceil(program.total / dt) + 1
+    if n > MAX_PATH_SAMPLES:
+        raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({program.total:.4g} "
+                          f"s), budget {MAX_PATH_SAMPLES:.3g}: a thinner film or more flow")
+    t = np.linspace(0.0, program.total, n)
+    traj = Trajectory(t, *program.evaluate(t), name="paint", derivatives="analytic",
+                      curve=program.evaluate)
+    tf = np.linspace(0.0, program.total, CHECK_REFINE * (n - 1) + 1)
+    try:
+        fine = motion(robot, act, *program.evaluate(tf))
+    except ReachError as exc:
+        raise ReachError(f"the path leaves the workspace "
+                         f"{_where(program, layout, tf[exc.sample], exc.pose)}: {exc}",
+                         exc.sample, exc.pose) from None
+    ratios = {"peak_torque": fine.torque_ratio.max(0),
+              "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
+              "speed": fine.speed_ratio.max(0)}
+    for what, r in ratios.items():
+        if r.max() > 1.0:
+            k = int(np.argmax(r))
+            raise PlanError(f"motor {act.names[k]} needs {r[k]:.3g}× its "
+                            f"{what.replace('_', ' ')} rating on the passes at "
+                            f"{v:.4g} m/s: more coats of a thinner film, or a wider "
+                            "spacing")
+    clock.append(time.perf_counter())
+    return SurfacePlan(job, part, layout, program, v, coats, trajectory=traj,
+                       spray=program.spray(t), ratios=ratios,
+                       timings={"layout": clock[1] - clock[0],
+                                "turnarounds": clock[2] - clock[1],
+                                "check": clock[3] - clock[2]})
+
+
+__all__ = ["SurfacePlan", "plan_surface", "time_step"]

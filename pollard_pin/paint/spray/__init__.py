@@ -1,0 +1,2 @@
+"""The spray (docs/model.md §20): the deposition model, the part's shade on it, the steps
+where a shadow edge passes."""

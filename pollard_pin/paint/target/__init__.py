@@ -1,0 +1,1 @@
+"""The target: a part's mesh read and placed (docs/model.md §23), the example shapes."""
