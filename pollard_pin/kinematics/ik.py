@@ -13,7 +13,7 @@ from .margins import Margins
 
 def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                        q_start=None, options: IkOptions | None = None, *,
-                       progress=None, margins: Margins | None = None) -> IKResult:
+                       progress=None) -> IKResult:
     """Constrained IK with Pinocchio: positions, velocities, accelerations of all 12 tree joints.
 
     ``options`` (:class:`IkOptions`, default its defaults): ``method="batch"`` (the default
@@ -22,15 +22,9 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     :func:`inverse_kinematics_newton`). Both give the same result to round-off. Its
     ``margins`` (:class:`~.margins.Margins`) say how close to a singularity a sample may come
     (docs/model.md §12); ``tol`` is Newton's. ``progress(done, total)`` is called as samples
-    are solved. ``margins``: short for ``IkOptions(margins=…)`` where nothing else is set
-    (paint.motion's reach check). Invalid arguments (empty or non-finite poses, times that do
+    are solved. Invalid arguments (empty or non-finite poses, times that do
     not increase, a bad tolerance) raise :class:`KinematicsInputError`, a ValueError.
     """
-    if margins is not None:
-        if options is not None:
-            raise KinematicsInputError("give the margins in options (IkOptions(margins=…)) "
-                                       "or alone, not both", chain="margins")
-        options = IkOptions(margins=margins)
     options = ik_options(options)
     method = options.method or ("newton" if q_start is not None else "batch")
     if method == "newton":

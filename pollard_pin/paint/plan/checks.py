@@ -35,12 +35,12 @@ def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None 
     tool poses (N, 6) under ``run``'s rules and ``margins`` (default ``run``'s), and the joint
     limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
     fails."""
-    from ...kinematics.ik import inverse_kinematics
+    from ...kinematics.ik import IkOptions, inverse_kinematics
 
     n = len(poses)
     try:
         ik = inverse_kinematics(robot, poses, d_poses, dd_poses, np.arange(n, dtype=float),
-                                margins=margins)
+                                options=IkOptions(margins=margins))
     except KinematicsError as exc:
         k = 0 if exc.sample is None else int(exc.sample)
         detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
