@@ -15,9 +15,9 @@ to the nozzle; the first face it meets, if any, shades the pair when it lies clo
 nozzle. A face met within 2 × the offset is grazed (a point at the foot of a wall lies in the
 wall's plane) and the ray goes on past it: into a closed part's material, where it meets the
 inside of another face.
-The first hit comes from ``Part.mesh.ray`` (Embree through the optional ``embreex``
-package when installed, else trimesh's numpy intersector) or any object with trimesh's
-``intersects_first``.
+The first hit comes from :func:`ray_engine` (Embree through ``embreex``, installed with the
+package where it has wheels, else trimesh's numpy intersector on ``rtree``: the same verdicts,
+10-35x slower on the example parts) or any object with trimesh's ``intersects_first``.
 """
 from __future__ import annotations
 
@@ -48,11 +48,26 @@ def offset(part: Part) -> float:
     return max(OFFSET_M, OFFSET * part.size)
 
 
+def ray_engine(part: Part):
+    """The part's first-hit ray engine: Embree (``embreex``, a dependency where it has wheels)
+    or else trimesh's numpy intersector, which needs ``rtree``: one line when neither is
+    installed (the numpy intersector would fail deep inside its first query)."""
+    import trimesh.ray
+
+    if not trimesh.ray.has_embree:
+        try:
+            import rtree  # noqa: F401
+        except ImportError:
+            raise ImportError("the spray's shadow rays on a part's mesh need Embree (embreex) "
+                              "or rtree, and neither is installed: pip install rtree") from None
+    return part.mesh.ray
+
+
 def visible(part: Part, p, s, n, intersector=None) -> np.ndarray:
     """(K,) True where the segment from nozzle p (K, 3) to point s (K, 3) of outward normal
     n (K, 3) crosses no face of ``part`` (the point moved :func:`offset` along n first)."""
     p, s, n = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s, n))
-    ray = part.mesh.ray if intersector is None else intersector
+    ray = ray_engine(part) if intersector is None else intersector
     out = np.ones(len(s), dtype=bool)
     eps = offset(part)
     for start in range(0, len(s), RAY_BLOCK):

@@ -6,9 +6,9 @@ Faces keep the file's winding: counter-clockwise seen from outside, so the right
 the other way throughout and is turned over once; an open sheet is taken as given. Faces of
 zero area (below 1e-12 of the part's size squared) are dropped: they receive no paint.
 
-Ray queries (:mod:`.spray.occlusion`) go through ``Part.mesh.ray``: Embree (the optional
-``embreex`` package, ``pip install 'pollard-pin[embree]'``) when installed, else trimesh's
-own numpy intersector: the same verdicts (up to Embree's float32 arithmetic), only slower.
+Ray queries (:mod:`..spray.occlusion`) go through ``Part.mesh.ray``: Embree (``embreex``,
+installed with the package where it has wheels), else trimesh's own numpy intersector on
+``rtree``: the same verdicts (up to Embree's float32 arithmetic), only slower.
 """
 from __future__ import annotations
 

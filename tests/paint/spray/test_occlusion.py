@@ -139,3 +139,20 @@ def test_without_embree_the_numpy_intersector_gives_the_same_film():
                      surface_points(part, 0.004), part)
     assert fast.shaded == int(shaded)
     assert np.abs(fast.thickness - slow).max() < 1e-3 * slow.max()
+
+
+def test_without_any_ray_engine_paint_says_what_to_install(tmp_path):
+    """embreex and rtree both hidden: trimesh's numpy intersector would fail inside its first
+    query; paint on a part is one line naming what to install, and writes nothing."""
+    root = Path(__file__).resolve().parents[3]
+    code = ("import sys; sys.modules['embreex'] = None; sys.modules['rtree'] = None\n"
+            "from pollard_pin.cli import main\n"
+            "sys.exit(main(sys.argv[1:]))\n")
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-c", code, "paint", "--job",
+                        str(root / "examples/parts/ribbed_plate.toml"), "--out", str(out)],
+                       cwd=root, capture_output=True, text=True, timeout=300)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert "neither is installed: pip install rtree" in lines[0]
+    assert not out.exists()
