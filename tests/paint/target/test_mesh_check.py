@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from pollard_pin.paint.mesh_check import (
+from pollard_pin.paint.target.mesh_check import (
     MeshFileError,
     check_indices,
     obj_absolute,
