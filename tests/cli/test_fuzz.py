@@ -890,7 +890,7 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_no_mesh.toml", "'part.mesh' is missing"),
     ("part_mesh_number.toml", "'part.mesh' = 3: must be a mesh file name"),
     ("part_rotation.toml", "'part.rotation[1]' = 'x': must be a number"),
-    ("part_max_angle.toml", "max_angle = 200° must be in (0, 180]"),
+    ("part_max_angle.toml", "max_angle = 200° must be in (0, 90)"),
     ("part_zero_facing.toml", "has zero length"),
     ("part_far.toml", "no point of the painted faces is within reach"),
     ("part_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),

@@ -45,7 +45,8 @@ import numpy as np
 import trimesh
 from scipy.ndimage import gaussian_filter1d
 
-from ..errors import PlanError
+from ..errors import BudgetError, PlanError
+from ..policy import MAX_PASSES
 from ..target.mesh import Part
 from .raster import pass_offsets, ripple_spacing
 
@@ -284,6 +285,12 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
         raise PlanError(f"{part.source}: the painted faces span {span:.4g} × {extent:.4g} m, "
                         f"less than the spray spot (σ = {job.sigma:.4g} m): a mesh in metres "
                         "read as millimetres (part.units)?")
+    coats = job.coats or 1
+    passes = (extent / spacing + 1) * coats
+    if passes > MAX_PASSES:  # before the cross profile, which grows with their square
+        raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
+                          f"{spacing:.3g} m over {extent:.3g} m of surface), budget "
+                          f"{MAX_PASSES}: a wider job.spacing or fewer coats")
     try:
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:

@@ -154,8 +154,9 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
                         "length")
     facing = facing / length
     max_angle = float(max_angle)
-    if not 0 < max_angle <= 180:
-        raise MeshError(f"{source}: max_angle = {max_angle:.4g}° must be in (0, 180]")
+    if not 0 < max_angle < 90:  # a face at 90° or more is edge-on or turned away
+        raise MeshError(f"{source}: max_angle = {max_angle:.4g}° must be in (0, 90): a face "
+                        "at 90° or more is seen edge-on or from behind")
     painted = normals @ facing >= math.cos(math.radians(max_angle)) - 1e-12
     if not painted.any():
         best = math.degrees(math.acos(float(np.clip((normals @ facing).max(), -1, 1))))
