@@ -7,7 +7,7 @@ a job of another kind) is an :class:`pollard_pin.errors.InputError`.
 """
 from __future__ import annotations
 
-from ..errors import InputError, SolveError
+from ..errors import InputError, PollardError, SolveError
 
 
 class PlanError(SolveError):
@@ -21,6 +21,11 @@ class ReachError(PlanError):
     def __init__(self, message: str, sample: int, pose=None):
         super().__init__(message)
         self.sample, self.pose = sample, pose
+
+
+class ReportError(PollardError, RuntimeError):
+    """A report number breaks an invariant the model guarantees (a lower bound over the cycle,
+    a transfer efficiency over 100 %): a bug, refused rather than printed."""
 
 
 class BudgetError(PlanError):
