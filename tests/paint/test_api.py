@@ -282,3 +282,20 @@ def test_a_table_top_paints_or_is_one_line(robot, act, tmp_path, z, normal):
         assert "outside its limits" in msg and "\n" not in msg and len(msg) <= 400, msg
         return
     assert r.report.thickness["within_10pct"] > 0.9, r.report.thickness
+
+
+EXAMPLE_JOBS = ["paint.toml", "line.toml", "line_part.toml", "parts/bent_plate.toml",
+                "parts/curved_panel.toml", "parts/ribbed_plate.toml"]
+
+
+@pytest.mark.slow  # ~45 s for the six at film spacing σ
+@pytest.mark.parametrize("name", EXAMPLE_JOBS)
+def test_every_example_keeps_the_report_invariants(robot, name):
+    """Lower bound ≤ cycle and transfer efficiency ≤ 100 % on every shipped job (measured:
+    cycles 8.0–42 s over bounds 4.0–15 s, efficiencies 55–60 %)."""
+    root = Path(__file__).resolve().parents[2] / "examples"
+    job = pp.load_job(root / name)
+    rep = pp.paint(robot, job, options=PaintOptions(resolution=job.sigma)).report.data
+    assert 0 < rep["lower_bound"] <= rep["cycle_time"]
+    eff = rep.get("transfer_efficiency")
+    assert eff is None or 0 < eff <= 1
