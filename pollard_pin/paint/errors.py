@@ -7,7 +7,7 @@ a job of another kind) is an :class:`pollard_pin.errors.InputError`.
 """
 from __future__ import annotations
 
-from ..errors import InputError, PollardError, SolveError
+from ..errors import InputError, SolveError
 
 
 class PlanError(SolveError):
@@ -23,7 +23,7 @@ class ReachError(PlanError):
         self.sample, self.pose = sample, pose
 
 
-class ReportError(PollardError, RuntimeError):
+class ReportError(SolveError):
     """A report number breaks an invariant the model guarantees (a lower bound over the cycle,
     a transfer efficiency over 100 %): a bug, refused rather than printed."""
 
