@@ -22,11 +22,11 @@ package where it has wheels, else trimesh's numpy intersector on ``rtree``: the 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..target.mesh import Part
+from ..target.mesh import MeshError, Part, load_job_part
 from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate
 
 SPOT_SIGMAS = 5.0
@@ -141,5 +141,37 @@ def occlusion(part: Part, gun: Gun, p, a, s, n, intersector=None, origin=None) -
     return Occlusion(np.concatenate(ti), np.concatenate(pi), np.concatenate(vis))
 
 
+def seen_faces(part: Part, standoff: float, intersector=None) -> np.ndarray:
+    """(F,) True for the faces ``part.painted`` chose whose centroid sees a nozzle at
+    ``standoff`` along the face's normal (:func:`visible`): a face behind another part, or
+    the inside of a box's far wall, is not painted."""
+    idx = np.flatnonzero(part.painted)
+    centroid = part.vertices[part.faces[idx]].mean(axis=1)
+    n = part.normals[idx]
+    out = np.zeros(len(part.faces), dtype=bool)
+    out[idx] = visible(part, centroid + standoff * n, centroid, n, intersector)
+    return out
+
+
+def painted_part(part: Part, standoff: float, intersector=None) -> Part:
+    """``part`` painting only the faces the gun can see (:func:`seen_faces`); a
+    :class:`MeshError` line when none is left."""
+    seen = seen_faces(part, standoff, intersector)
+    if not seen.any():
+        raise MeshError(f"{part.source}: all {int(part.painted.sum())} faces within "
+                        f"{part.max_angle:.4g}° of facing are hidden from a gun at "
+                        f"{standoff:.4g} m along their normals (behind other faces): turn "
+                        "the part or change facing")
+    seen.flags.writeable = False
+    return replace(part, painted=seen)
+
+
+def load_painted_part(job) -> Part:
+    """The job's part (:func:`.target.mesh.load_job_part`) painting the faces a gun at the
+    job's standoff sees (:func:`painted_part`)."""
+    return painted_part(load_job_part(job), job.standoff)
+
+
 __all__ = ["OFFSET", "OFFSET_M", "Occlusion", "RATE_FLOOR", "SPOT_SIGMAS", "in_spot",
-           "occlusion", "offset", "visible"]
+           "load_painted_part", "occlusion", "offset", "painted_part", "seen_faces",
+           "visible"]
