@@ -46,7 +46,10 @@ def to_markdown(rep: dict) -> str:
         lines += [f"* time-optimal (TOPP-RA): **failed**: {rep['time_optimal_error']}"]
         return "\n".join(lines) + "\n"
     between = rep["time_optimal_between_samples"]
-    lines += [f"* time-optimal (TOPP-RA, peak torque and speed, rest to rest): "
+    if rep.get("time_optimal_film"):
+        lines += [f"* time-optimal, {rep['time_optimal_film']['summary']}"]
+    lines += [f"* time-optimal (TOPP-RA, peak torque and speed, "
+              f"{rep['time_optimal_start_end']}): "
               f"**{rep['time_optimal_duration']:.4g} s**; between the samples (s̈ constant "
               f"per interval, {between['check_points_per_interval']} check points per "
               f"interval and halfway between them, {between['intervals_tightened']} "
