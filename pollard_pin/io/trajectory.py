@@ -35,7 +35,8 @@ SPRAY = "spray"
 
 
 def from_csv(path: str | Path) -> Trajectory:
-    """Read ``t,x,y,z,psi,theta,phi`` (+ optional ``d_*`` and ``dd_*``) from a CSV file.
+    """Read ``t,x,y,z,psi,theta,phi`` (+ optional ``d_*``, ``dd_*`` and ``spray``, the paint
+    gun's trigger, kept as the trajectory's ``spray``) from a CSV file.
 
     Without derivative columns, derivatives come from a quintic interpolating spline and a
     :class:`UserWarning` says so.

@@ -176,6 +176,7 @@ def test_a_stretch_whose_ends_cannot_be_held_is_kept_as_planned(robot, turns_off
     timing, summary = time_optimal_program(robot, load_actuators(EXAMPLE), traj)
     assert summary["gun_off_as_planned"] == 1 and summary["gun_off_retimed"] == 9
     assert "its end rates are beyond the motors" in summary["as_planned_because"]
+    assert "1 kept as planned" in summary["summary"]
     a, b, _ = spray_stretches(traj)[2]
     kept = timing.parts[2]
     assert kept.planned is not None and kept.duration == pytest.approx(traj.t[b - 1] - traj.t[a],
