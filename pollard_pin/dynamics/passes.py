@@ -102,8 +102,8 @@ def time_optimal_program(robot, act: Actuators, traj, options: Options | None = 
     }
     if kept:  # said once: the first stretch and why, the count
         summary["as_planned_because"] = kept[0]
-        summary["summary"] += (f"; {len(kept)} kept as planned, TOPP-RA could not hold their end "
-                               f"rates (first: {kept[0]})")
+        summary["summary"] += (f"; {len(kept)} kept as planned: TOPP-RA found no traversal "
+                               f"between the path rates at its ends (first, {kept[0]})")
     return join(parts), summary
 
 

@@ -40,7 +40,9 @@ def to_markdown(rep: dict) -> str:
              f"holds at this duration and any longer; binding: `{ub['actuator']}` "
              f"{ub['limit']}; each limit alone: "
              + ", ".join(f"{k.replace('_', ' ')} {v:.4g} s"
-                         for k, v in rep["uniform_min_duration_by_limit"].items()) + ")",
+                         for k, v in rep["uniform_min_duration_by_limit"].items()) + ")"
+             + ("; it changes the painting speed, so the film" if "time_optimal_film" in rep
+                else ""),
              ]
     if rep["time_optimal_duration"] is None:
         lines += [f"* time-optimal (TOPP-RA): **failed**: {rep['time_optimal_error']}"]

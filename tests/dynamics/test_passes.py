@@ -18,7 +18,7 @@ from scipy.interpolate import BPoly
 
 from pollard_pin.cli import main
 from pollard_pin.dynamics import passes
-from pollard_pin.dynamics.motors import ActuatorError, load_actuators
+from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.dynamics.passes import spray_stretches, time_optimal_program
 from pollard_pin.io.retime import retimed_trajectory
 from pollard_pin.io.trajectory import from_csv, to_csv
@@ -156,30 +156,29 @@ def test_the_retimed_file_keeps_the_film_and_replays_within_the_ratings(
         worst = max(worst, use.max())
     assert kinds == ["arc_length", "planned"] * 9 + ["arc_length"]
     assert 0.99 <= worst <= 1.002, worst
-    assert "the passes (gun on) as planned" in (tmp_path / "r.md").read_text()
+    report = (tmp_path / "r.md").read_text()
+    assert "the passes (gun on) as planned" in report
+    assert "it changes the painting speed, so the film" in report  # the uniform scaling
 
 
-def test_a_stretch_whose_ends_cannot_be_held_is_kept_as_planned(robot, turns_off,
-                                                                monkeypatch):
-    """Where TOPP-RA cannot hold a gun-off stretch's end rates, that stretch keeps its planned
-    timing and the summary says why, once."""
+def test_a_stretch_whose_ends_cannot_be_held_is_kept_as_planned(robot, turns_off, tmp_path):
+    """Motors with 22 % of the example's peak torque cannot take the gun from rest to the
+    first pass's speed over the approach: that stretch keeps its planned timing (and breaks
+    the ratings, seen 4.4×, which the cycle's worst use says), the summary says so once, the
+    other nine are retimed."""
+    text = EXAMPLE.read_text().replace("peak_torque = 0.05", "peak_torque = 0.011")
+    (tmp_path / "weak.toml").write_text(text.replace("continuous_torque = 0.02",
+                                                     "continuous_torque = 0.0099"))
     traj = from_csv(turns_off)
-    real, calls = passes.time_optimal_path, []
-
-    def refuse_second(robot, act, window, options):
-        calls.append(window.t[0])
-        if len(calls) == 2:
-            raise ActuatorError("its end rates are beyond the motors")
-        return real(robot, act, window, options)
-
-    monkeypatch.setattr(passes, "time_optimal_path", refuse_second)
-    timing, summary = time_optimal_program(robot, load_actuators(EXAMPLE), traj)
+    timing, summary = time_optimal_program(robot, load_actuators(tmp_path / "weak.toml"), traj)
     assert summary["gun_off_as_planned"] == 1 and summary["gun_off_retimed"] == 9
-    assert "its end rates are beyond the motors" in summary["as_planned_because"]
-    assert "1 kept as planned" in summary["summary"]
-    a, b, _ = spray_stretches(traj)[2]
-    kept = timing.parts[2]
-    assert kept.planned is not None and kept.duration == pytest.approx(traj.t[b - 1] - traj.t[a],
-                                                                       abs=1e-12)
+    assert summary["as_planned_because"].startswith("t = 0…0.082 s")
+    assert summary["summary"].count("kept as planned") == 1
+    a, b, on = spray_stretches(traj)[0]
+    kept = timing.parts[0]
+    assert not on and kept.planned is not None
+    assert kept.duration == pytest.approx(traj.t[b - 1] - traj.t[a], abs=1e-12)
+    assert timing.between > 2.0
     out = retimed_trajectory(traj, timing)
+    assert np.array_equal(out.poses[:b], traj.poses[:b])
     assert np.count_nonzero(out.spray) == np.count_nonzero(traj.spray)
