@@ -6,7 +6,10 @@ off (approach, turnarounds, return) are retimed time-optimally, TOPP-RA between 
 path rates at their ends, so that they join the passes C¹ in the pose. A gun-off stretch
 whose end rates TOPP-RA cannot hold keeps its planned timing too. A path that waits (a line
 job's conveyor) times its passes to the world outside: everything up to its last pass is
-kept, only what follows is retimed.
+kept, only what follows is retimed. Each retimed stretch costs a TOPP-RA solve (≈ 0.5 s, at
+least 201 rows), so only those of ``MIN_SAMPLES`` samples or more are, the ``MAX_RETIMED``
+longest of them (all 835 stretches of a 5008-sample program whose gun toggles every 3 samples
+take 9 minutes, 2.1 GB and 206,000 rows).
 """
 from __future__ import annotations
 
@@ -20,6 +23,9 @@ from .cycle import join, moving_segments, time_optimal_path
 from .motors import ActuatorError, Actuators
 from .path import path_dynamics_at
 from .timeopt import Options, TimeOptimal, utilisation
+
+MIN_SAMPLES = 16  # a shorter gun-off stretch keeps its plan (a turnaround at 2 ms: 40–100)
+MAX_RETIMED = 32  # gun-off stretches retimed at most, the longest (the rest keep their plan)
 
 
 def sprays(traj) -> bool:
@@ -73,26 +79,17 @@ def planned(robot, act: Actuators, window) -> TimeOptimal:
 def time_optimal_program(robot, act: Actuators, traj, options: Options | None = None
                          ) -> tuple[TimeOptimal, dict]:
     """The fastest traversal of the paint program ``traj`` that keeps its film (the module's
-    doc), its stretches one after the other (``parts``, flat: a retimed stretch that waits
-    gives one part per moving segment), and a summary for the report."""
-    options = options or Options()
-    parts, retimed, kept = [], 0, []
+    doc): its stretches one after the other (``parts``, flat: consecutive stretches kept as
+    planned are one part, a retimed stretch that waits gives one part per moving segment),
+    and a summary for the report."""
     stretches = spray_stretches(traj)
-    for start, stop, on in stretches:
-        window = traj.window(start, stop)
-        part = None
-        if not on:
-            try:
-                part = time_optimal_path(robot, act, window, replace(options, end_rates=True))
-                retimed += 1
-            except (ActuatorError, KinematicsError) as exc:
-                kept.append(f"t = {traj.t[start]:.4g}…{traj.t[stop - 1]:.4g} s: {exc}")
-        parts.extend(part.parts or (part,) if part is not None else
-                     (planned(robot, act, window),))
+    chosen = _chosen(traj, stretches)
+    parts, kept = _parts(robot, act, traj, stretches, chosen, options or Options())
     off = sum(not on for _, _, on in stretches)
+    retimed = len(chosen) - len(kept)
     summary = {
         "gun_on_stretches": len(stretches) - off, "gun_off_stretches": off,
-        "gun_off_retimed": retimed, "gun_off_as_planned": len(kept),
+        "gun_off_retimed": retimed, "gun_off_as_planned": off - retimed,
         "timed_to_waits": waits(traj),
         "summary": (f"the film kept: {len(stretches) - off} stretch(es) with the gun on as "
                     f"planned, {retimed} of {off} gun-off stretch(es) retimed between the "
@@ -100,6 +97,9 @@ def time_optimal_program(robot, act: Actuators, traj, options: Options | None = 
                                             "to its last pass as planned"
                                             if waits(traj) else "")),
     }
+    if off > len(chosen):
+        summary["summary"] += (f"; {off - len(chosen)} kept as planned: shorter than "
+                               f"{MIN_SAMPLES} samples or beyond the {MAX_RETIMED} longest")
     if kept:  # said once: the first stretch and why, the count
         summary["as_planned_because"] = kept[0]
         summary["summary"] += (f"; {len(kept)} kept as planned: TOPP-RA found no traversal "
@@ -107,4 +107,37 @@ def time_optimal_program(robot, act: Actuators, traj, options: Options | None = 
     return join(parts), summary
 
 
-__all__ = ["planned", "spray_stretches", "sprays", "time_optimal_program", "waits"]
+def _parts(robot, act, traj, stretches, chosen, options):
+    """The traversals of ``stretches``: the ``chosen`` ones retimed where TOPP-RA can, the
+    others and those as planned, runs of them joined; and why each chosen one failed."""
+    parts, kept, run = [], [], None  # run: samples of the stretches as planned, not yet added
+    for k, (start, stop, _) in enumerate(stretches):
+        part = None
+        if k in chosen:
+            try:
+                part = time_optimal_path(robot, act, traj.window(start, stop),
+                                         replace(options, end_rates=True))
+            except (ActuatorError, KinematicsError) as exc:
+                kept.append(f"t = {traj.t[start]:.4g}…{traj.t[stop - 1]:.4g} s: {exc}")
+        if part is None:
+            run = (start if run is None else run[0], stop)
+            continue
+        if run is not None:
+            parts.append(planned(robot, act, traj.window(*run)))
+            run = None
+        parts.extend(part.parts or (part,))
+    if run is not None:
+        parts.append(planned(robot, act, traj.window(*run)))
+    return parts, kept
+
+
+def _chosen(traj, stretches) -> set[int]:
+    """Indices of the gun-off stretches to retime: at least MIN_SAMPLES samples, the
+    MAX_RETIMED longest in time."""
+    long = [k for k, (a, b, on) in enumerate(stretches) if not on and b - a >= MIN_SAMPLES]
+    long.sort(key=lambda k: traj.t[stretches[k][0]] - traj.t[stretches[k][1] - 1])
+    return set(long[:MAX_RETIMED])
+
+
+__all__ = ["MAX_RETIMED", "MIN_SAMPLES", "planned", "spray_stretches", "sprays",
+           "time_optimal_program", "waits"]

@@ -174,11 +174,41 @@ def test_a_stretch_whose_ends_cannot_be_held_is_kept_as_planned(robot, turns_off
     assert summary["gun_off_as_planned"] == 1 and summary["gun_off_retimed"] == 9
     assert summary["as_planned_because"].startswith("t = 0…0.082 s")
     assert summary["summary"].count("kept as planned") == 1
-    a, b, on = spray_stretches(traj)[0]
-    kept = timing.parts[0]
+    (_, _, on), (_, b, _) = spray_stretches(traj)[:2]
+    kept = timing.parts[0]  # the approach and the first pass: one part, as planned
     assert not on and kept.planned is not None
-    assert kept.duration == pytest.approx(traj.t[b - 1] - traj.t[a], abs=1e-12)
+    assert kept.duration == pytest.approx(traj.t[b - 1] - traj.t[0], abs=1e-12)
     assert timing.between > 2.0
     out = retimed_trajectory(traj, timing)
     assert np.array_equal(out.poses[:b], traj.poses[:b])
     assert np.count_nonzero(out.spray) == np.count_nonzero(traj.spray)
+
+
+def test_short_gun_off_stretches_and_those_beyond_the_longest_keep_their_plan(
+        robot, turns_off, monkeypatch):
+    """A gap of 5 samples in a pass is too short to retime; with room for the 2 longest
+    gun-off stretches only, the others keep their plan, joined with the passes around them
+    into one part each, every row the source's, and the saving is exactly those two's."""
+    traj = from_csv(turns_off)
+    spray = traj.spray.copy()
+    spray[300:305] = 0.0  # inside the first pass
+    traj = replace(traj, spray=spray)
+    monkeypatch.setattr(passes, "MAX_RETIMED", 2)
+    timing, summary = time_optimal_program(robot, load_actuators(EXAMPLE), traj)
+    stretches = spray_stretches(traj)
+    off = [(a, b) for a, b, on in stretches if not on]
+    assert len(off) == 11 and (300, 305) in off  # samples 300…304: 4 intervals
+    assert summary["gun_off_retimed"] == 2 and summary["gun_off_as_planned"] == 9
+    assert "9 kept as planned: shorter than 16 samples or beyond the 2 longest" in \
+        summary["summary"]
+    longest = sorted(off, key=lambda ab: traj.t[ab[1] - 1] - traj.t[ab[0]])[-2:]
+    retimed = [p for p in timing.parts if p.planned is None]
+    assert len(retimed) == 2 and len(timing.parts) == 5
+    saved = sum(traj.t[b - 1] - traj.t[a] for a, b in longest) - sum(p.duration
+                                                                       for p in retimed)
+    planned = traj.t[-1] - traj.t[0]
+    assert timing.duration == pytest.approx(planned - saved, abs=1e-9)
+    out = retimed_trajectory(traj, timing)
+    a, b = longest[0] if longest[0][0] < longest[1][0] else longest[1]
+    assert np.array_equal(out.poses[:a + 1], traj.poses[:a + 1])  # all kept up to the first
+    assert np.array_equal(out.spray[:a + 1], traj.spray[:a + 1])
