@@ -34,8 +34,9 @@ def run(args) -> int:
     with all_or_nothing():  # every output or none; the report last (it may be a device)
         if args.retime is not None and sized.timing is not None:
             retimed = write_retimed(result.trajectory, sized.timing, args.retime)
-            written.append((args.retime, f" (time-optimal, {sized.timing.duration:.4g} s, "
-                                         f"{len(retimed)} rows)"))
+            kept = ", the passes as planned" if sized.report.get("time_optimal_film") else ""
+            written.append((args.retime, f" (time-optimal{kept}, "
+                                         f"{sized.timing.duration:.4g} s, {len(retimed)} rows)"))
         if args.plot is not None:
             written.append((write_torque_speed(sized, args.plot), ""))
         with atomic_open(out) as f:
@@ -64,7 +65,8 @@ def add_parser(sub, parents) -> None:
                    help="write the table to this file (default: standard output)")
     p.add_argument("--retime", type=name, metavar="OUT.csv", default=None,
                    help="write the time-optimal traversal as a trajectory CSV (replay it with "
-                        "run --trajectory OUT.csv; default: not written)")
+                        "run --trajectory OUT.csv; a paint program keeps its passes and its "
+                        "spray column; default: not written)")
     p.add_argument("--plot", type=name, metavar="FOLDER", default=None,
                    help="write FOLDER/torque_speed.png, the motors' operating points and "
                         "ratings (default: no figure)")

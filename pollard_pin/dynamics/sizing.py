@@ -4,7 +4,8 @@
 Per actuator, on the given trajectory and on the time-optimal traversal of the same path:
 peak and RMS motor torque and peak motor speed, each with its ratio to the rating (≤ 1
 passes). Besides: the shortest uniformly time-scaled duration, the time-optimal duration
-(TOPP-RA under the peak-torque and speed limits, rest to rest, checked between the samples),
+(TOPP-RA under the peak-torque and speed limits, rest to rest, checked between the samples;
+a paint program's passes kept as planned, :mod:`.passes`),
 and where the time-optimal cycle spends its time (which limit binds, time-weighted).
 """
 from __future__ import annotations
@@ -25,6 +26,7 @@ from .motors import (
     motor_load_of,
     uniform_min_duration,
 )
+from .passes import sprays, time_optimal_program
 from .path import PathDynamics, path_dynamics
 from .timeopt import TimeOptimal
 
@@ -94,8 +96,12 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
         raise ActuatorError(f"the path does not move the actuators (each travels at most "
                             f"{travel:.2g} rad over its {len(ik.t)} samples)")
     uniform = uniform_min_duration(act, path)
+    film = None
     try:
-        timing = time_optimal_path(robot, act, traj)
+        if sprays(traj):  # a paint program: its passes keep their timing (docs/model.md §19)
+            timing, film = time_optimal_program(robot, act, traj)
+        else:
+            timing = time_optimal_path(robot, act, traj)
     except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
         timing, error = None, str(exc)
     checks = _checks(given)
@@ -114,6 +120,9 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
         "uniform_min_duration_by_limit": uniform.by_limit,
         "time_optimal_start_end": "rest to rest",
     }
+    if sprays(traj):
+        report["time_optimal_start_end"] = "rest to rest, the passes (gun on) as planned"
+        report["time_optimal_film"] = film
     if timing is None:
         report.update(time_optimal_duration=None, time_optimal_error=error)
         return Sizing(report, act, given, None, uniform, None, path)

@@ -67,6 +67,9 @@ class TimeOptimal:
     # other; the arrays above join theirs (s = k + the k-th one's s, a rest sample at each
     # junction twice, both sides of s̈), ``curve`` None
     parts: tuple = ()
+    # a stretch kept as planned (dynamics.passes): its trajectory, whose rows and times the
+    # traversal is (s = (t − t0)/span, ṡ = 1/span, s̈ = 0)
+    planned: object = None
 
     @property
     def duration(self) -> float:
@@ -317,13 +320,16 @@ def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarra
 class Options:
     """How :func:`time_optimal_segment` solves, validated once: ``per_interval`` check points per
     interval to start with, the worst utilisation ``target`` accepted between them, the path
-    rates at the ends (rest to rest by default), and the viscous iteration's
+    rates at the ends (rest to rest by default; ``end_rates``: the trajectory's own rates at
+    its first and last samples, on whichever parameter the path is traversed by, so that the
+    traversal joins the motion before and after it C¹), and the viscous iteration's
     ``max_iterations`` TOPP-RA solves and relative ``tol`` on ṡ(s)."""
 
     per_interval: int = PER_INTERVAL
     target: float = TARGET
     s_dot_start: float = 0.0
     s_dot_end: float = 0.0
+    end_rates: bool = False
     max_iterations: int = 50
     tol: float = 1e-6
 
@@ -367,11 +373,28 @@ def time_optimal_segment(robot, act: Actuators, traj, options: Options | None = 
     if arc is not None:
         try:
             n = int(np.clip(np.ceil(GRID_DENSITY * arc.extent) + 1, MIN_GRID, MAX_GRID))
-            return _solve(robot, act, (arc, 0.0, arc.length), arc.grid(n), options)
+            on = (arc, 0.0, arc.length)
+            return _solve(robot, act, on, arc.grid(n), _ends(options, traj, on))
         except ActuatorError:  # e.g. too few samples for its bends: the samples' parameter
             pass
     t0, T = float(t[0]), float(t[-1] - t[0])
-    return _solve(robot, act, (curve, t0, T), (t - t0) / T, options)
+    on = (curve, t0, T)
+    return _solve(robot, act, on, (t - t0) / T, _ends(options, traj, on))
+
+
+def _ends(options: Options, traj, on) -> Options:
+    """``options`` with ``end_rates`` resolved: ṡ at each end such that p'(s)·ṡ is the
+    trajectory's rate there (least squares in the path's scaled norm: p' is parallel to it)."""
+    if not options.end_rates:
+        return options
+    curve, t0, T = on
+    p_s = T * curve(np.array([t0, t0 + T]))[1]
+    w = 1.0 / np.asarray(getattr(curve, "scale", np.ones(6)))
+    rates = np.asarray(traj.d_poses)[[0, -1]]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sd = ((p_s * w) * (rates * w)).sum(1) / ((p_s * w) ** 2).sum(1)
+    sd = np.where(np.isfinite(sd), np.maximum(sd, 0.0), 0.0)
+    return replace(options, s_dot_start=float(sd[0]), s_dot_end=float(sd[1]), end_rates=False)
 
 
 def _solve(robot, act, on, grid, options: Options) -> TimeOptimal:

@@ -35,7 +35,8 @@ SPRAY = "spray"
 
 
 def from_csv(path: str | Path) -> Trajectory:
-    """Read ``t,x,y,z,psi,theta,phi`` (+ optional ``d_*`` and ``dd_*``) from a CSV file.
+    """Read ``t,x,y,z,psi,theta,phi`` (+ optional ``d_*``, ``dd_*`` and ``spray``, the paint
+    gun's trigger, kept as the trajectory's ``spray``) from a CSV file.
 
     Without derivative columns, derivatives come from a quintic interpolating spline and a
     :class:`UserWarning` says so.
@@ -49,7 +50,8 @@ def from_csv(path: str | Path) -> Trajectory:
     _check_units(path, poses, lines)
     check_angle_wraps(path, t, poses, lines)
     d, dd, source, curve = _derivatives(path, t, poses, col)
-    return Trajectory(t, poses, d, dd, name=path.stem, derivatives=source, curve=curve)
+    return Trajectory(t, poses, d, dd, name=path.stem, derivatives=source, curve=curve,
+                      spray=col.get(SPRAY))
 
 
 def _read_rows(path: Path) -> tuple[list[list[str]], list[int]]:
@@ -277,12 +279,14 @@ def check_derivatives(path, t: np.ndarray, poses: np.ndarray, d: np.ndarray, dd:
 def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     """Write the trajectory in the ``run`` input format (``t``, poses, ``d_*``, ``dd_*``; every
     float64 exact) through :mod:`pollard_pin.io.table`, atomically, units in the sidecar;
-    ``spray`` (N,): the gun's trigger in [0, 1] as a last column (absent: on throughout)."""
+    ``spray`` (N,): the gun's trigger in [0, 1] as a last column (absent: on throughout;
+    default: the trajectory's own, if any)."""
     from .table import write_table
 
     cols = {"t": traj.t}
     for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
+    spray = traj.spray if spray is None else spray
     if spray is not None:
         cols[SPRAY] = np.asarray(spray, dtype=float)
     write_table(path, cols, {"trajectory": traj.name, "derivatives": traj.derivatives},

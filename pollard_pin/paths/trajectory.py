@@ -27,15 +27,19 @@ class Trajectory:
     # the exact path between the samples, times -> (poses, rates, accelerations); None: the
     # quintic Hermite spline through the samples (see :func:`trajectory_curve`)
     curve: Callable | None = None
+    # the paint gun's trigger per sample, the fraction of its flow in [0, 1] (a paint
+    # program's ``spray`` column); None: no gun
+    spray: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.t)
 
     def window(self, start: int, stop: int) -> Trajectory:
         """Samples ``start:stop`` as a trajectory of their own (views, no copy)."""
+        spray = None if self.spray is None else self.spray[start:stop]
         return Trajectory(self.t[start:stop], self.poses[start:stop],
                           self.d_poses[start:stop], self.dd_poses[start:stop], self.name,
-                          self.derivatives, self.curve)
+                          self.derivatives, self.curve, spray)
 
     def windows(self, size: int):
         """``(start, window)`` pairs of at most ``size`` samples, in order (streaming)."""
@@ -49,6 +53,9 @@ class Trajectory:
             if np.shape(arr) != (n, 6):
                 raise TrajectoryError(f"{self.name}: {label} has shape {np.shape(arr)}, "
                                       f"expected ({n}, 6)")
+        if self.spray is not None and np.shape(self.spray) != (n,):
+            raise TrajectoryError(f"{self.name}: spray has shape {np.shape(self.spray)}, "
+                                  f"expected ({n},)")
 
 
 def trajectory_curve(traj) -> Callable:

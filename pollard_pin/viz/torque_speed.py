@@ -40,13 +40,18 @@ def to_markdown(rep: dict) -> str:
              f"holds at this duration and any longer; binding: `{ub['actuator']}` "
              f"{ub['limit']}; each limit alone: "
              + ", ".join(f"{k.replace('_', ' ')} {v:.4g} s"
-                         for k, v in rep["uniform_min_duration_by_limit"].items()) + ")",
+                         for k, v in rep["uniform_min_duration_by_limit"].items()) + ")"
+             + ("; it changes the painting speed, so the film" if "time_optimal_film" in rep
+                else ""),
              ]
     if rep["time_optimal_duration"] is None:
         lines += [f"* time-optimal (TOPP-RA): **failed**: {rep['time_optimal_error']}"]
         return "\n".join(lines) + "\n"
     between = rep["time_optimal_between_samples"]
-    lines += [f"* time-optimal (TOPP-RA, peak torque and speed, rest to rest): "
+    if rep.get("time_optimal_film"):
+        lines += [f"* time-optimal, {rep['time_optimal_film']['summary']}"]
+    lines += [f"* time-optimal (TOPP-RA, peak torque and speed, "
+              f"{rep['time_optimal_start_end']}): "
               f"**{rep['time_optimal_duration']:.4g} s**; between the samples (s̈ constant "
               f"per interval, {between['check_points_per_interval']} check points per "
               f"interval and halfway between them, {between['intervals_tightened']} "

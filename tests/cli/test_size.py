@@ -159,6 +159,29 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
     assert shares["switching"] < 0.15
 
 
+def test_a_paint_program_keeps_its_passes_and_its_spray_column(tmp_path, capsys):
+    """examples/paint.toml's program sprays throughout (its turnarounds too): ``--retime``
+    keeps every row, the spray column with it, at the planned times (seen: exact), and the
+    report's time-optimal cycle is the planned one, saying why (the gun-off stretches retimed:
+    tests/dynamics/test_passes.py)."""
+    assert _cli(["paint", "--job", ROOT / "examples" / "paint.toml", "--out", tmp_path],
+                capsys)[0] == 0
+    src = pp.from_csv(tmp_path / "path.csv")
+    out, rep = tmp_path / "rt.csv", tmp_path / "r.json"
+    code, _, err = _cli(["size", "--trajectory", tmp_path / "path.csv", "--quiet",
+                         "--actuators", EXAMPLE, "--retime", out, "--format", "json",
+                         "--out", rep], capsys)
+    assert code == 0, err
+    got = pp.from_csv(out)
+    for key in ("poses", "d_poses", "dd_poses", "spray"):
+        assert np.array_equal(getattr(got, key), getattr(src, key)), key
+    assert np.abs((got.t - got.t[0]) - (src.t - src.t[0])).max() < 1e-12
+    report = json.loads(rep.read_text())
+    assert report["time_optimal_duration"] == pytest.approx(src.t[-1] - src.t[0], abs=1e-12)
+    assert report["time_optimal_start_end"] == "rest to rest, the passes (gun on) as planned"
+    assert report["time_optimal_film"]["gun_off_stretches"] == 0
+
+
 def test_size_reports_when_the_time_optimal_cycle_fails(tmp_path, capsys):
     """Rest to rest over one interval never moves: TOPP-RA has no answer, the given
     trajectory's ratios and the uniform scaling are still reported, the failure in one line."""

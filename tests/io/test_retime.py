@@ -6,20 +6,19 @@ The file ``size --retime`` writes, replayed by the definition its metadata state
 along the source path's arc length between rows) with only numpy, the exact source path and
 the pipeline's inverse dynamics (not toppra, not the solver's code, not its arc-length path),
 densely, stays within the ratings between its rows."""
-import csv
 import importlib.util
-import json
+from dataclasses import replace
 from functools import partial
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
+from motor_model import EXAMPLE, ROOT
 from motor_model import cli as _cli
-from motor_model import motor as _motor
+from retime_replay import read_retimed, replay
 
 import pollard_pin as pp
 from pollard_pin.dynamics.timeopt import TimeOptimal
-from pollard_pin.io.retime import retimed_trajectory
+from pollard_pin.io.retime import retimed_trajectory, write_retimed
 from pollard_pin.paths.curves import thesis_curve, thesis_trajectory
 
 D = 7.0  # s: the new duration
@@ -65,13 +64,21 @@ def test_rates_and_curve_against_central_differences(traj):
     assert np.abs(cv - r.d_poses[k]).max() < 1e-12 and np.abs(ca - r.dd_poses[k]).max() < 1e-10
 
 
+def test_a_spraying_path_retimed_through_its_passes_is_not_written(traj, tmp_path):
+    """A paint program whose passes a timing would change (its film with them) is refused,
+    nothing written; its gun-off rows retimed carry the spray column (off)."""
+    spray = np.where(np.arange(len(traj)) < 100, 1.0, 0.0)
+    with pytest.raises(ValueError, match="its film would change"):
+        write_retimed(replace(traj, spray=spray), _timing(traj), tmp_path / "r.csv")
+    assert not list(tmp_path.iterdir())
+    off = retimed_trajectory(replace(traj, spray=np.zeros(len(traj))), _timing(traj))
+    assert np.array_equal(off.spray, np.zeros(len(traj)))
+
+
 def test_a_timing_of_another_length_is_refused(traj):
     tim = _timing(thesis_trajectory(samples=11))
     with pytest.raises(ValueError, match="timing has 11 samples, the trajectory 201"):
         retimed_trajectory(traj, tim)
-
-
-THETA = (np.arange(12) + 0.5) / 12  # 12 points per interval, none a row
 
 
 def _figure_eight():
@@ -80,77 +87,6 @@ def _figure_eight():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module.figure_eight
-
-
-def _read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    cols = dict(zip(rows[0], np.array(rows[1:], dtype=float).T))
-    meta = json.loads(path.with_name(path.stem + ".units.json").read_text())["metadata"]
-    return cols, meta
-
-
-class _ArcLength:
-    """s(u) of the source path by the trapezoid rule on a fine grid of its time u, the
-    metadata's scale; inverted by Newton steps."""
-
-    def __init__(self, curve, u0, u1, scale, n=1_000_001):
-        self.curve, self.scale = curve, np.asarray(scale)
-        self.u = np.linspace(u0, u1, n)
-        g = self.speed(self.u)[0]
-        self.sigma = np.concatenate([[0.0], np.cumsum((g[1:] + g[:-1]) / 2 * np.diff(self.u))])
-        self.length = self.sigma[-1]
-
-    def speed(self, u):
-        p, pu, puu = self.curve(u)
-        w, ww = pu / self.scale, puu / self.scale
-        g = np.sqrt((w * w).sum(1))
-        g1 = np.divide((w * ww).sum(1), g, out=np.zeros_like(g), where=g > 0)
-        return g, g1, p, pu, puu
-
-    def at(self, s):
-        """Poses, dp/du, d²p/du², ds/du, d²s/du² at the points s ∈ [0, 1]."""
-        target = s * self.length
-        u = np.interp(target, self.sigma, self.u)
-        for _ in range(2):
-            g = self.speed(u)[0]
-            step = np.interp(u, self.u, self.sigma) - target
-            u = u - np.divide(step, g, out=np.zeros_like(g), where=g > 0)
-        g, g1, p, pu, puu = self.speed(u)
-        return p, pu, puu, g / self.length, g1 / self.length
-
-
-def _replay(robot, cols, meta, curve):
-    """Worst motor use, per definition, at THETA of every interval between the rows."""
-    assert meta["path_parameter"] == "arc_length", meta
-    names = ("x", "y", "z", "psi", "theta", "phi")
-    t = cols["t"]
-    rate = np.column_stack([cols["d_" + n] for n in names])
-    arc = _ArcLength(curve, meta["source_start"], meta["source_end"], meta["arc_length_scale"])
-    # the stated length is the path's (seen 5e-14; 6e-12 with rest ends, this trapezoid's)
-    assert arc.length == pytest.approx(meta["length"], rel=1e-9)
-    sd = np.sqrt(((rate / meta["arc_length_scale"]) ** 2).sum(1)) / meta["length"]
-    s = np.concatenate([[0.0], np.cumsum((sd[1:] + sd[:-1]) / 2 * np.diff(t))])
-    assert s[-1] == pytest.approx(1.0, abs=1e-9)  # seen 8e-12
-    poses = np.column_stack([cols[n] for n in names])
-    assert np.abs(arc.at(s)[0] - poses).max() < 5e-8  # the rows lie on the path: seen 4e-10
-    ds, k = np.diff(s), len(THETA)
-    acc = (sd[1:] ** 2 - sd[:-1] ** 2) / (2 * ds)
-    S = (s[:-1, None] + THETA * ds[:, None]).ravel()
-    A, s0, sd0 = (np.repeat(x, k) for x in (acc, s[:-1], sd[:-1]))
-    SD = np.sqrt(np.maximum(sd0**2 + 2 * A * (S - s0), 0.0))
-    T = np.repeat(t[:-1], k) + 2 * (S - s0) / (SD + sd0)
-    p, pu, puu, s_u, s_uu = arc.at(S)
-    ud = SD / s_u
-    udd = (A - s_uu * ud**2) / s_u
-    traj = pp.Trajectory(T, p, pu * ud[:, None], puu * (ud**2)[:, None] + pu * udd[:, None])
-    run = pp.run_pipeline(robot, traj).columns()
-    use = []
-    for name in NAMES:
-        tau_m, w_m = _motor(run, name)
-        use += [np.abs(tau_m) / RATINGS[name]["peak_torque"],
-                np.abs(w_m) / RATINGS[name]["max_speed"]]
-    return np.max(use, axis=0)
 
 
 @pytest.mark.parametrize("source", ["thesis", "figure8"])
@@ -163,8 +99,8 @@ def test_the_retimed_file_holds_between_its_rows(robot, tmp_path, capsys, source
     code, _, err = _cli(["size", *args, "--quiet", "--actuators", str(EXAMPLE),
                          "--retime", str(out), "--out", str(tmp_path / "r.md")], capsys)
     assert code == 0, err
-    cols, meta = _read(out)
-    use = _replay(robot, cols, meta, curve)
+    cols, meta = read_retimed(out)
+    use = replay(robot, cols, meta, curve)
     # seen 1.0010 (thesis, 801 samples: 6407 rows) and 0.999999 (figure8): a limit binds,
     # none is broken; the promise is 1.002
     assert 0.999 <= use.max() <= 1.002, use.max()
@@ -199,12 +135,12 @@ def test_a_path_with_a_wait_holds_between_its_rows_per_segment(robot, tmp_path, 
                          "--actuators", str(EXAMPLE), "--retime", str(out), "--out",
                          str(tmp_path / "r.md")], capsys)
     assert code == 0, err
-    cols, meta = _read(out)
+    cols, meta = read_retimed(out)
     assert [seg["source_start"] for seg in meta["segments"]] == [0.0, STROKE + WAIT]
     worst = 0.0
     for seg in meta["segments"]:
         a, b = seg["rows"]
-        use = _replay(robot, {k: v[a:b + 1] for k, v in cols.items()}, seg, _strokes)
+        use = replay(robot, {k: v[a:b + 1] for k, v in cols.items()}, seg, _strokes)
         worst = max(worst, use.max())
     # seen 1.0008: a limit binds, none is broken
     assert 0.999 <= worst <= 1.002, worst

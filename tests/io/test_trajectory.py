@@ -104,3 +104,16 @@ def test_angle_wrap_is_refused(tmp_path, figure8):
         ok = from_csv(_write(tmp_path / "unwrapped.csv",
                              Trajectory(figure8.t, poses, poses, poses), columns=("",)))
     assert np.abs(ok.d_poses[:, 5]).max() < 1.0  # 0.2·6/6 s ≈ 0.2 rad/s, vs 460 wrapped
+
+
+def test_the_spray_column_is_read_with_the_samples_and_written_back(tmp_path, figure8):
+    """A paint program's trigger (``spray``) comes with its rows, each value exact, and goes
+    back out with them; a file without one has none."""
+    spray = np.where(np.arange(len(figure8)) % 7 < 3, 0.0, 1.0)
+    spray[5] = 0.25
+    to_csv(figure8, tmp_path / "p.csv", spray=spray)
+    got = from_csv(tmp_path / "p.csv")
+    assert np.array_equal(got.spray, spray) and np.array_equal(got.poses, figure8.poses)
+    to_csv(got, tmp_path / "q.csv")  # its own spray, unless told otherwise
+    assert (tmp_path / "q.csv").read_text() == (tmp_path / "p.csv").read_text()
+    assert figure8.spray is None

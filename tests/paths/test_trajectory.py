@@ -18,6 +18,11 @@ def test_shapes_are_checked_and_windows_are_views():
     w = traj.window(3, 7)
     assert len(w) == 4 and w.curve is traj.curve and np.shares_memory(w.poses, traj.poses)
     assert [s for s, _ in traj.windows(4)] == [0, 4, 8]
+    spray = np.array([0.0, 1, 1, 0.5, 0])
+    assert np.array_equal(replace(traj.window(0, 5), spray=spray).window(1, 4).spray,
+                          [1, 1, 0.5])
+    with pytest.raises(TrajectoryError, match=r"spray has shape \(4,\), expected \(5,\)"):
+        Trajectory(t, *np.zeros((3, 5, 6)), spray=np.zeros(4))
 
 
 def test_the_curve_is_the_trajectorys_own_else_the_hermite_through_its_samples():
