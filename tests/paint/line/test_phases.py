@@ -22,9 +22,9 @@ def planner(slowest: float, fastest: float, calls: list):
     def plan_at(s):
         calls.append(s)
         if s > fastest:
-            raise LineSpeedError(f"{s} too fast", True)
+            raise LineSpeedError(f"{s} too fast", True, f"drifts at {s}")
         if s < slowest:
-            raise LineSpeedError(f"{s} too slow", False)
+            raise LineSpeedError(f"{s} too slow", False, f"turns at {s}")
         return SimpleNamespace(speed=s)
 
     return plan_at
@@ -40,8 +40,15 @@ def test_fastest_speed_is_found_to_the_resolution(start):
 
 def test_no_speed_paints_it():
     calls = []
-    with pytest.raises(PlanError, match="no line speed paints the part"):
+    with pytest.raises(PlanError, match="no line speed paints the part") as info:
         fastest_line_speed(planner(0.05, 0.04, calls), 0.03, "j.toml")
+    # each side says why, the reason of the speed it names
+    msg = str(info.value)
+    assert msg.startswith("j.toml: no line speed paints the part: too slow at ")
+    for side, why in (("too slow at ", "turns at "), ("too fast at ", "drifts at ")):
+        named = msg.split(side)[1].split(" m/s")[0]
+        assert f"{named} m/s ({why}" in msg and float(named) in [float(f"{c:.4g}")
+                                                                  for c in calls]
 
 
 def test_a_speed_too_fast_names_the_fastest():
