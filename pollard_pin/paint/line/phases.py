@@ -20,6 +20,7 @@ from ..errors import BudgetError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..plan.checks import fastest, motion, reach
 from ..policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
+from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
@@ -33,12 +34,15 @@ _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
 
 class LineSpeedError(PlanError):
     """No program paints the part at this line speed (its drift does not fit the reach, or
-    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words."""
+    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
+    ``hint`` a speed [m/s] worth trying next (None: no guess)."""
 
-    def __init__(self, message: str, too_fast: bool, why: str = ""):
+    def __init__(self, message: str, too_fast: bool, why: str = "",
+                 hint: float | None = None):
         super().__init__(message)
         self.too_fast = too_fast
         self.why = why
+        self.hint = hint
 
 
 @dataclass(frozen=True)
@@ -233,7 +237,8 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "
                              f"{drift:+.3f} m along the line in {rel.total:.4g} s and leaves "
                              "the reach wherever it starts", drift > 0,
-                             f"the program drifts {drift:+.3f} m, out of the reach")
+                             f"the program drifts {drift:+.3f} m, out of the reach",
+                             speed - drift / rel.total)  # the speed of no drift
     return 0.5 * float(found[0] + found[1])
 
 
@@ -421,8 +426,9 @@ def fastest_line_speed(plan_at, start: float, source: str,
                        resolution: float = SPEED_RESOLUTION):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which
     ``plan_at(speed)`` plans, and that plan (docs/model.md §24): from ``start`` (the job's
-    speed), halved while too fast and doubled while too slow until one plans, then doubled
-    until one fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
+    speed), halved while too fast and doubled while too slow (or sent to the failure's
+    ``hint``, the speed of no drift, if further) until one plans, then doubled until one
+    fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
     s = start
     best = None
     slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
@@ -432,7 +438,8 @@ def fastest_line_speed(plan_at, start: float, source: str,
             best = (s, plan_at(s))
             break
         except LineSpeedError as exc:
-            why[exc.too_fast] = exc.why
+            why[exc.too_fast] = f" ({exc.why})" if exc.why else ""
+            hint = exc.hint
             if exc.too_fast:
                 fast = s
             else:
@@ -441,12 +448,13 @@ def fastest_line_speed(plan_at, start: float, source: str,
             if fast - slow <= resolution * slow:
                 break
             s = 0.5 * (slow + fast)
+        elif fast == math.inf:  # too slow: on to the speed of no drift if it is further
+            s = max(2 * s, hint if hint is not None and hint < MAX_LINE_SPEED else 0.0)
         else:
-            s = 2 * s if fast == math.inf else 0.5 * s
+            s = 0.5 * s
     if best is None:
         raise PlanError(f"{source}: no line speed paints the part: too slow at {slow:.4g} m/s"
-                        f"{_because(why[False])}, too fast at {fast:.4g} m/s"
-                        f"{_because(why[True])}")
+                        f"{why[False]}, too fast at {fast:.4g} m/s{why[True]}")
     lo, plan = best
     hi = None
     for _ in range(SPEED_TRIES):
@@ -469,10 +477,6 @@ def fastest_line_speed(plan_at, start: float, source: str,
     if plan.speed != lo:
         plan = plan_at(lo)
     return lo, plan
-
-
-def _because(why: str) -> str:
-    return f" ({why})" if why else ""
 
 
 def plan_or_name_fastest(plan_at, speed: float, source: str):

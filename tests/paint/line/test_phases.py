@@ -38,6 +38,24 @@ def test_fastest_speed_is_found_to_the_resolution(start):
     assert len(calls) < 40
 
 
+def test_too_slow_goes_to_the_speed_of_no_drift():
+    """A too-slow failure that names the speed of no drift is followed there, not doubled
+    towards it (from 1e-5 m/s: 12 doublings before)."""
+    calls = []
+
+    def plan_at(s):
+        calls.append(s)
+        if s < 0.03:
+            raise LineSpeedError(f"{s} too slow", False, "drifts back", hint=0.031)
+        if s > 0.0371:
+            raise LineSpeedError(f"{s} too fast", True)
+        return SimpleNamespace(speed=s)
+
+    s, plan = fastest_line_speed(plan_at, 1e-5, "j", resolution=0.01)
+    assert calls[:2] == [1e-5, 0.031] and 0.0371 / 1.01 <= s <= 0.0371
+    assert len(calls) < 12
+
+
 def test_no_speed_paints_it():
     calls = []
     with pytest.raises(PlanError, match="no line speed paints the part") as info:
