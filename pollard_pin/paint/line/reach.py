@@ -20,6 +20,8 @@ from ...workspace.reach import evaluate
 PASS_SAMPLES = 17  # points along each pass
 SCAN_STEP = 0.02  # m between the shifts tried along the line
 CHUNK = 50_000  # poses per call of the workspace rules
+# Poses tried at most (≈ 30 µs each): a program of many passes gets a coarser shift grid.
+MAX_POSES = 200_000
 
 
 @dataclass(frozen=True)
@@ -64,9 +66,9 @@ def reach_ball(params) -> tuple[np.ndarray, float]:
             params.x32 + params.x65 + params.x1514 + params.x1918)
 
 
-def _ball_shifts(params, points, e, lo: float, hi: float) -> np.ndarray:
-    """The SCAN_STEP grid of shifts in [lo, hi] at which some of ``points`` + x·e can be in
-    the reach ball (empty if none)."""
+def _ball_shifts(params, points, e, lo: float, hi: float, most: int) -> np.ndarray:
+    """The grid of shifts in [lo, hi] at which some of ``points`` + x·e can be in the reach
+    ball (empty if none), SCAN_STEP apart or wider to keep to ``most`` shifts."""
     c, r = reach_ball(params)
     d = points - c
     along = d @ e
@@ -79,7 +81,8 @@ def _ball_shifts(params, points, e, lo: float, hi: float) -> np.ndarray:
     b = min(hi, float(np.max(-along[inside] + half)))
     if a > b:
         return np.empty(0)
-    return a + np.arange(0.0, b - a + SCAN_STEP / 2, SCAN_STEP)
+    step = max(SCAN_STEP, (b - a) / max(most - 1, 1))
+    return a + np.arange(0.0, b - a + step / 2, step)
 
 
 def _longest_run(ok: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -103,7 +106,8 @@ def unreachable_passes(robot, rel, e, lo: float, hi: float) -> tuple[list[PassRe
     u = np.linspace(0.0, 1.0, PASS_SAMPLES)
     tt = np.concatenate([rel.start[i] + rel.duration[i] * u for i in pieces])
     poses = rel.evaluate(tt)[0].reshape(len(pieces), PASS_SAMPLES, 6)
-    xs = _ball_shifts(robot.params, poses[..., :3].reshape(-1, 3), e, lo, hi)
+    xs = _ball_shifts(robot.params, poses[..., :3].reshape(-1, 3), e, lo, hi,
+                      max(8, MAX_POSES // (len(pieces) * PASS_SAMPLES)))
     cum = np.concatenate([np.zeros((len(pieces), 1)), np.cumsum(np.linalg.norm(
         np.diff(poses[..., :3], axis=1), axis=2), axis=1)], axis=1)  # (P, K) arc length
     rise = poses[:, -1, 2] - poses[:, 0, 2]
@@ -164,5 +168,5 @@ def out_of_reach(passes: list[PassReach], total: int) -> str:
             f"{worst.covered:.3f} m of it in reach, {where}")
 
 
-__all__ = ["CHUNK", "PASS_SAMPLES", "PassReach", "SCAN_STEP", "numbers", "out_of_reach",
-           "reach_ball", "unreachable_passes"]
+__all__ = ["CHUNK", "MAX_POSES", "PASS_SAMPLES", "PassReach", "SCAN_STEP", "numbers",
+           "out_of_reach", "reach_ball", "unreachable_passes"]

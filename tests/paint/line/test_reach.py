@@ -112,3 +112,31 @@ def test_numbers_are_ranges():
 
     assert numbers(passes(3, 4, 5, 9, 11, 12)) == "3–5, 9, 11–12"
     assert numbers(passes(1, 3, 5, 7, 9)) == "1, 3, 5, 7, …"
+
+
+def test_many_passes_keep_to_the_pose_budget(robot, monkeypatch):
+    """1000 vertical passes 1 mm apart: the shift grid coarsens so that at most MAX_POSES
+    poses are tried, and each pass is still judged (here: all in reach somewhere)."""
+    from pollard_pin.paint.line import reach as reach_mod
+    from pollard_pin.paint.line.phases import Relative
+
+    n = 1000
+    kind = ("ramp",) + ("pass", "turn") * (n - 1) + ("pass", "ramp")
+    start = np.arange(len(kind), dtype=float)
+    home = np.asarray(robot.params.home_pose, float)
+
+    def motion(t):
+        i = np.clip(np.ceil(t) - 1, 0, None)  # piece i holds t ∈ (i, i + 1]
+        p = np.tile(home, (len(t), 1))
+        p[:, 1] += -0.001 * (i // 2)  # levels along −y, the line along +y
+        p[:, 2] += 0.02 * (t - i) - 0.01  # a 20 mm vertical pass
+        return p, np.zeros_like(p), np.zeros_like(p)
+
+    rel = Relative(motion, start, np.ones(len(kind)), kind)
+    tried = []
+    real = reach_mod.evaluate
+    monkeypatch.setattr(reach_mod, "evaluate",
+                        lambda r, poses: tried.append(len(poses)) or real(r, poses))
+    bad, total = unreachable_passes(robot, rel, np.array([0.0, 1.0, 0.0]), 0.0, 2.0)
+    assert total == n and sum(tried) <= reach_mod.MAX_POSES
+    assert bad == []  # each 20 mm pass round home fits at some shift
