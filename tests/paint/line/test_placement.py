@@ -29,6 +29,20 @@ def part_plan(robot, part_job, act):
     return plan_line(robot, part_job, act)
 
 
+@pytest.fixture(scope="module")
+def moved(robot, act, line_job, part_job):
+    """(kind, by) ↦ the example's plan ``by`` m upstream, each planned once."""
+    plans = {}
+
+    def plan(kind: str, by: float):
+        if (kind, by) not in plans:
+            job = line_job if kind == "panel" else part_job
+            plans[kind, by] = plan_line(robot, upstream(job, by), act)
+        return plans[kind, by]
+
+    return plan
+
+
 def upstream(job, by: float):
     """The job with its part (or panel) ``by`` metres further upstream at t = 0."""
     back = -by * np.asarray(job.line.direction)
@@ -63,25 +77,23 @@ def same_cycle(a, b, by: float):
 
 
 @pytest.mark.parametrize("by", UPSTREAM)
-def test_panel_upstream_same_parts_per_hour(robot, act, line_job, line_plan, by):
-    same_cycle(line_plan, plan_line(robot, upstream(line_job, by), act), by)
+def test_panel_upstream_same_parts_per_hour(line_plan, moved, by):
+    same_cycle(line_plan, moved("panel", by), by)
 
 
 @pytest.mark.parametrize("by", UPSTREAM)
-def test_part_upstream_same_parts_per_hour(robot, act, part_job, part_plan, by):
-    same_cycle(part_plan, plan_line(robot, upstream(part_job, by), act), by)
+def test_part_upstream_same_parts_per_hour(part_plan, moved, by):
+    same_cycle(part_plan, moved("part", by), by)
 
 
-def test_same_film_figures_upstream(robot, act, line_job, line_plan, part_job, part_plan):
+def test_same_film_figures_upstream(line_job, line_plan, part_job, part_plan, moved):
     """The films themselves, 0.3 m upstream, at a coarse film resolution (the comparison,
     not the film, is tested): the same statistics to 1e-9 of the target."""
     res = 2 * line_job.sigma / 3
-    moved = plan_line(robot, upstream(line_job, 0.3), act)
-    a, b = line_film(line_plan, res)[3], line_film(moved, res)[3]
+    a, b = line_film(line_plan, res)[3], line_film(moved("panel", 0.3), res)[3]
     assert np.abs(a.thickness - b.thickness).max() < 1e-9 * line_job.thickness  # ~1e-19 m
-    moved = plan_line(robot, upstream(part_job, 0.3), act)
     (pts, fa, pa, ea), (_, fb, pb, eb) = (surface_film(p.in_part_frame(), res)
-                                          for p in (part_plan, moved))
+                                          for p in (part_plan, moved("part", 0.3)))
     assert np.array_equal(pa, pb) and ea == pytest.approx(eb, rel=1e-9)
     sa, sb = (film_stats(f.thickness[pa], part_job.thickness, pts.areas[pa]) for f in (fa, fb))
     for key in ("min", "max", "mean", "within_5pct", "within_10pct"):
