@@ -226,7 +226,7 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
         # each pass alone, no drift: a pass out of reach at every shift fails at any speed
         bad, n = unreachable_passes(robot, rel, e, speed * CATCH,
                                     speed * CATCH + SHIFT_RANGE)
-        if bad and max(b.covered for b in bad) == 0.0:
+        if len(bad) == n and all(b.nowhere for b in bad):
             raise PlanError(f"the part never comes within reach: {where}; none of its {n} "
                             f"passes is in reach within {SHIFT_RANGE:g} m of travel: move the "
                             "part or the line")

@@ -44,6 +44,11 @@ class PassReach:
         return self.length - self.covered
 
     @property
+    def nowhere(self) -> bool:
+        """No sample of the pass is in reach at any shift."""
+        return self.ends == (self.length, self.length)
+
+    @property
     def tall(self) -> bool:
         """The pass runs mostly along world z."""
         return abs(self.rise) > 0.5 * self.length
@@ -153,7 +158,7 @@ def out_of_reach(passes: list[PassReach], total: int) -> str:
     which = (f"all {total} passes" if len(passes) == total else
              f"pass{'es' if len(passes) > 1 else ''} {numbers(passes)} of {total}")
     head = f"{which} out of reach at any place on the line: "
-    nowhere = [p for p in passes if p.covered == 0.0]
+    nowhere = [p for p in passes if p.nowhere]
     if nowhere:
         p = nowhere[len(nowhere) // 2]
         x, y, z = p.middle

@@ -140,3 +140,23 @@ def test_many_passes_keep_to_the_pose_budget(robot, monkeypatch):
     bad, total = unreachable_passes(robot, rel, np.array([0.0, 1.0, 0.0]), 0.0, 2.0)
     assert total == n and sum(tried) <= reach_mod.MAX_POSES
     assert bad == []  # each 20 mm pass round home fits at some shift
+
+
+def test_out_of_reach_says_why():
+    from pollard_pin.paint.line.reach import PassReach, out_of_reach
+
+    mid = (0.7, -0.9, 0.16)
+    top = PassReach(1, 0.36, 0.29, (0.0, 0.07), 0.36, mid)  # rising: its end is the top
+    both = PassReach(2, 0.50, 0.30, (0.10, 0.10), -0.50, mid)
+    never = PassReach(3, 0.20, 0.0, (0.20, 0.20), 0.20, mid)
+    one = PassReach(4, 0.20, 0.0, (0.05, 0.15), 0.20, mid)  # one sample in reach
+    head = " out of reach at any place on the line: "
+    assert out_of_reach([top], 9) == ("pass 1 of 9" + head + "pass 1 is 0.360 m (run-on "
+                                      "included), at most 0.290 m of it in reach, its top 70 "
+                                      "mm out")
+    assert out_of_reach([top, both], 2).startswith("all 2 passes" + head + "pass 2 is 0.500")
+    assert out_of_reach([top, both], 2).endswith("200 mm too tall for the reach")
+    assert out_of_reach([top, never, one], 5) == (
+        "passes 1, 3–4 of 5" + head + "no part of pass 3 (0.200 m, its middle at (0.700, "
+        "-0.900, 0.160) m at t = 0) is ever in reach")
+    assert not one.nowhere and one.side() == "both ends"
