@@ -104,7 +104,8 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
                     "edges_integrated_apart": film.switches},
         "integration": {"rule": "trapezoid over the path samples; shadow edges by bisection "
                                 "and Gauss with the end term (docs/model.md §23)",
-                        "time_step": float(tr.t[1] - tr.t[0]),
+                        # the sprayed steps: a line's wait may start with an odd one
+                        "time_step": float(np.diff(tr.t)[on[1:] | on[:-1]].max()),
                         "largest_step_over_sigma": float(steps.max() / j.sigma),
                         "error_estimate_max": float(np.nanmax(film.error_estimate))},
     }
@@ -118,12 +119,12 @@ def line_table(plan) -> dict:
     on = plan.spray > 0
     along = tr.poses[on, :3] @ plan.direction
     window = [float(along.min()), float(along.max())]
-    cycle = float(tr.t[-1])
+    cycle = plan.times.cycle  # the wait before is a phase, not the cycle (§24)
     length, area = plan.length, plan.area
     return {"speed": plan.speed, "direction": [float(c) for c in plan.direction],
             "start_delay": plan.times.delay, "program": [plan.times.delay, plan.times.end],
             "window": window, "window_length": window[1] - window[0],
-            "travel": plan.speed * cycle, "cycle": cycle,
+            "travel": plan.speed * cycle, "cycle": cycle, "path_time": float(tr.t[-1]),
             "min_pitch": plan.speed * cycle, "parts_per_hour": 3600.0 / cycle,
             "part_length": length,
             "upper_bound": (length + window[1] - window[0]) / (area * j.thickness / j.flow),
@@ -140,7 +141,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
         "job": j.to_dict(),
         "thickness": th,
         "target": j.thickness,
-        "cycle_time": float(plan.trajectory.t[-1]),
+        "cycle_time": plan.times.cycle,
         "program_time": seg.total,
         "lower_bound": j.width * j.height * j.thickness / j.flow,
         "passes": len(plan.offsets),
@@ -167,7 +168,7 @@ def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators
     from :func:`.film.part.surface_film` of ``plan.in_part_frame()``): the still part's
     report (§23) of the motion relative to the part, with the cycle and the line table."""
     rep = surface_report(plan.in_part_frame(), points, f, painted, efficiency, act)
-    rep["cycle_time"] = float(plan.trajectory.t[-1])
+    rep["cycle_time"] = plan.times.cycle
     rep["program_time"] = plan.program.total
     rep["line"] = line_table(plan)
     rep["integration"]["rule"] += ", in the part's frame"

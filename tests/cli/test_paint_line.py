@@ -59,7 +59,9 @@ def test_outputs(painted):
 def test_run_and_size_take_the_world_path(painted, capsys, tmp_path):
     traj = from_csv(painted / "path.csv")
     rep = json.loads((painted / "paint.json").read_text())
-    assert traj.t[-1] == pytest.approx(rep["line"]["cycle"])
+    assert traj.t[-1] == pytest.approx(rep["line"]["path_time"], rel=1e-12)
+    first = int(np.argmax(np.abs(traj.d_poses).max(axis=1) > 0))  # leaves its start pose
+    assert traj.t[-1] - traj.t[first] <= rep["line"]["cycle"] <= traj.t[-1] - traj.t[first - 1]
     sized = run_and_size(painted / "path.csv", ACT, capsys, tmp_path)
     assert sized["given_within_ratings"] is True
     for name, m in rep["motors"].items():
@@ -94,6 +96,9 @@ def _refused(job, tmp_path, capsys, words: str) -> None:
      "never comes within reach"),
     (lambda t: t.replace("speed = 0.03 ", "speed = 0.05 "),
      "the fastest line speed that paints it is"),
+    # refused before any reach is checked or speed searched (143 s of search otherwise)
+    (lambda t: t.replace("speed = 0.03 ", "speed = 1e-12 "),
+     "carries the part 5e-10 m in the longest path the budget allows"),
 ])
 def test_bad_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
     job = tmp_path / "job.toml"
@@ -178,7 +183,9 @@ def test_part_outputs(part_painted):
     assert "t = 0 pose" in (part_painted / "thickness.units.json").read_text()
     assert b"comment film: the part at its t = 0 pose" in (part_painted / "film.ply").read_bytes()
     traj = from_csv(part_painted / "path.csv")
-    assert traj.t[-1] == pytest.approx(line["cycle"])
+    assert traj.t[-1] == pytest.approx(line["path_time"], rel=1e-12)
+    first = int(np.argmax(np.abs(traj.d_poses).max(axis=1) > 0))  # leaves its start pose
+    assert traj.t[-1] - traj.t[first] <= line["cycle"] <= traj.t[-1] - traj.t[first - 1]
 
 
 def test_part_run_and_size_take_the_world_path(part_painted, capsys, tmp_path):
@@ -217,3 +224,29 @@ def test_bad_part_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, kwa
 
     job = write_line_part(tmp_path, **kwargs)
     _refused(job, tmp_path, capsys, words)
+
+
+@pytest.mark.parametrize("rotation, head, why", [
+    # stood on end: every pass 0.90 m tall
+    ("[90.0, 0.0, 0.0]", "all 8 passes out of reach", " mm too tall for the reach"),
+    # turned 25° about z: the ends too far from (or too near) the robot, the middle fits
+    ("[0.0, 0.0, 25.0]", "passes 1–13, 43–52 of 52 out of reach", ") m at t = 0) is ever in "
+                                                                  "reach"),
+])
+def test_passes_out_of_reach_are_named(tmp_path, capsys, rotation, head, why):
+    """examples/line_part.toml's 0.90 m strip turned: one line naming the passes out of reach
+    and why, before any speed search (seconds, not minutes)."""
+    text = (ROOT / "examples" / "line_part.toml").read_text()
+    mesh = (ROOT / "examples" / "parts" / "long_strip.stl").as_posix()
+    turned = text.replace('"parts/long_strip.stl"', f'"{mesh}"').replace(
+        "facing = ", f"rotation = {rotation}\nfacing = ")
+    assert turned.count("rotation") == 1 and mesh in turned
+    job = tmp_path / "job.toml"
+    job.write_text(turned)
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    assert code == 2 and not out.exists()
+    (line,) = err.strip().splitlines()
+    msg = line.removeprefix("pollard-pin paint: error: ").split(" (nothing written")[0]
+    assert msg.startswith(head + " at any place on the line: "), msg
+    assert len(msg) <= 250 and why in msg, msg

@@ -74,7 +74,12 @@ def test_part_report_numbers(part_report, act):
 
 def test_line_table_numbers(line_plan):
     t = line_table(line_plan)
-    assert t["cycle"] == pytest.approx(line_plan.trajectory.t[-1])
+    # the cycle: from leaving the start pose (the first sample that moves, to one step) to
+    # the path's end, the wait before it left out
+    tr = line_plan.trajectory
+    first = int(np.argmax(np.abs(tr.d_poses).max(axis=1) > 0))
+    assert tr.t[-1] - tr.t[first] <= t["cycle"] <= tr.t[-1] - tr.t[first - 1]
+    assert t["path_time"] == tr.t[-1] > t["cycle"] + 5.0  # the example waits 7.8 s
     assert t["min_pitch"] == pytest.approx(line_plan.speed * t["cycle"], rel=1e-15)
     assert t["parts_per_hour"] == pytest.approx(3600 / t["cycle"], rel=1e-15)
     j = line_plan.job

@@ -20,6 +20,8 @@ from ..errors import BudgetError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..plan.checks import fastest, motion, reach
 from ..policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
+from .conveyor import MAX_LINE_SPEED
+from .reach import out_of_reach, unreachable_passes
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
 SHIFT_RANGE = 2.0  # m: the line may carry the part this far before the program starts
@@ -32,11 +34,15 @@ _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
 
 class LineSpeedError(PlanError):
     """No program paints the part at this line speed (its drift does not fit the reach, or
-    the motors cannot follow): ``too_fast`` says which side."""
+    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
+    ``hint`` a speed [m/s] worth trying next (None: no guess)."""
 
-    def __init__(self, message: str, too_fast: bool):
+    def __init__(self, message: str, too_fast: bool, why: str = "",
+                 hint: float | None = None):
         super().__init__(message)
         self.too_fast = too_fast
+        self.why = why
+        self.hint = hint
 
 
 @dataclass(frozen=True)
@@ -52,6 +58,18 @@ class LineTimes:
     @property
     def total(self) -> float:
         return self.end + CATCH + self.back
+
+    @property
+    def cycle(self) -> float:
+        """The repeating cycle [s], from leaving the start pose to being back at it (catch
+        up, program, slow down, return): the wait before is where the job placed the part,
+        a phase, not part of the cycle (docs/model.md §24)."""
+        return self.total - self.leave
+
+    @property
+    def leave(self) -> float:
+        """When the robot leaves its start pose [s]."""
+        return self.delay - CATCH
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,10 +182,17 @@ def _fits(robot, poses, e, x) -> bool:
     return True
 
 
-def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE):
+def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
+                    anchor: float = 0.0):
     """The longest run of shifts x ∈ [lo, lo + span] along the line with every pose + x·e in
-    reach (scan at SHIFT_STEP, ends refined by bisection), or None."""
-    xs = lo + np.arange(0.0, span + SHIFT_STEP / 2, SHIFT_STEP)
+    reach (scan at the x with x + ``anchor`` a multiple of SHIFT_STEP, ends refined by
+    bisection), or None. With ``anchor`` the poses' world place along e, the scanned places
+    are fixed in the world, wherever the job puts the part at t = 0."""
+    first = math.ceil((lo + anchor) / SHIFT_STEP - 1e-9)
+    last = math.floor((lo + span + anchor) / SHIFT_STEP + 1e-9)
+    xs = np.arange(first, last + 1) * SHIFT_STEP - anchor
+    if not len(xs):
+        return None
     ok = np.array([_fits(robot, poses, e, x) for x in xs])
     if not ok.any():
         return None
@@ -191,23 +216,29 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE):
 def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     """The line's shift speed·delay [m] at the middle of the shifts that keep the world
     program (coarse samples) in reach; :class:`LineSpeedError` if none does, a
-    :class:`PlanError` naming ``where`` (the gun's track) if no pass is ever in reach."""
+    :class:`PlanError` naming the passes out of reach at any shift (:mod:`.line.reach`), or
+    ``where`` (the gun's track) if none is ever in reach."""
     t = rel.coarse_times()
     poses = _drift(rel, speed, e, t)
-    found = feasible_shifts(robot, poses, e, speed * CATCH)
+    found = feasible_shifts(robot, poses, e, speed * CATCH,
+                            anchor=_mid_along(rel, speed, e))
     if found is None:
-        # one pass alone, no drift: does the part come within reach at all?
-        first = rel.start[1] + rel.duration[1] * np.linspace(0, 1, 9)
-        p, _, _ = rel.evaluate(first)
-        if feasible_shifts(robot, p, e, speed * CATCH) is None:
-            raise PlanError(f"the part never comes within reach: {where}, and no pass of it "
-                            f"is reachable within {SHIFT_RANGE:g} m of travel: move the part "
-                            "or the line")
+        # each pass alone, no drift: a pass out of reach at every shift fails at any speed
+        bad, n = unreachable_passes(robot, rel, e, speed * CATCH,
+                                    speed * CATCH + SHIFT_RANGE)
+        if len(bad) == n and all(b.nowhere for b in bad):
+            raise PlanError(f"the part never comes within reach: {where}; none of its {n} "
+                            f"passes is in reach within {SHIFT_RANGE:g} m of travel: move the "
+                            "part or the line")
+        if bad:
+            raise PlanError(f"{out_of_reach(bad, n)}: turn, move or split the part")
         along = poses[:, :3] @ e
         drift = float(along[-1] - along[0])
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "
                              f"{drift:+.3f} m along the line in {rel.total:.4g} s and leaves "
-                             "the reach wherever it starts", drift > 0)
+                             "the reach wherever it starts", drift > 0,
+                             f"the program drifts {drift:+.3f} m, out of the reach",
+                             speed - drift / rel.total)  # the speed of no drift
     return 0.5 * float(found[0] + found[1])
 
 
@@ -258,8 +289,13 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> 
     build, guess, dt, where = program.build, program.guess, program.dt, program.where
     passes, source = program.passes, program.source
     e = np.asarray(e, dtype=float)
+    slow_budget(speed, dt, source)
     rel = build(guess)
-    centre = choose_shift(robot, rel, speed, e, where) + _mid_along(rel, speed, e)
+    shift = choose_shift(robot, rel, speed, e, where)
+    # the wait and the passes alone, before the turnarounds are searched
+    passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
+    samples_budget(shift / speed + passes_time, dt, source)
+    centre = shift + _mid_along(rel, speed, e)
 
     def evaluate(tau):
         r = build(tau)
@@ -283,33 +319,78 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> 
         raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
                              f"{passes} keeps the world path in reach and the motors within "
                              "their ratings with the line's speed added",
-                             _drift_along(rel, speed, e) > 0) from None
+                             _drift_along(rel, speed, e) > 0,
+                             "no turnaround keeps the path in reach and the motors within "
+                             "ratings") from None
     delay = choose_shift(robot, rel, speed, e, where) / speed
     back = _return_time(robot, act, rel, speed, e, delay)
     times = LineTimes(delay, delay + rel.total, back)
-    n = math.ceil(times.total / dt) + 1
-    if n > MAX_PATH_SAMPLES:
-        raise BudgetError(f"{source}: the line's path needs {n:.3g} samples ({times.total:.4g} "
-                          f"s), budget {MAX_PATH_SAMPLES:.3g}: a thinner film or more flow")
-    t = np.linspace(0.0, times.total, n)
+    samples_budget(times.total, dt, source)
+    steps = math.ceil((times.total - times.delay) / dt - 1e-9)  # the program's, on
+    t = path_times(times, steps)
     poses, d, dd, spray = world_motion(rel, speed, e, times, t)
     traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
-    tf = np.linspace(0.0, times.total, CHECK_REFINE * (n - 1) + 1)
+    tf = path_times(times, CHECK_REFINE * steps)
     drift = _drift_along(rel, speed, e)
     try:
         fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
     except ReachError as exc:
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the path leaves the workspace at "
-                             f"t = {tf[exc.sample]:.3f} s: {exc}", drift > 0) from None
+                             f"t = {tf[exc.sample]:.3f} s: {exc}", drift > 0,
+                             f"the path leaves the workspace at t = {tf[exc.sample]:.3f} s"
+                             ) from None
+    cyc = tf >= times.leave - 1e-12  # RMS over the repeating cycle, not the wait
     ratios = {"peak_torque": fine.torque_ratio.max(0),
-              "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
+              "rms_torque": time_rms(tf[cyc], fine.torque[cyc])
+              / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
     worst = max(float(ratios["peak_torque"].max()), float(ratios["speed"].max()))
     if worst > 1.0:
         raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {100 * worst:.0f} % "
-                             "of its peak torque or speed", drift > 0)
+                             "of its peak torque or speed", drift > 0,
+                             f"a motor at {100 * worst:.0f} % of its rating")
     return World(rel, times, traj, spray, ratios)
+
+
+def path_times(times: LineTimes, steps: int) -> np.ndarray:
+    """The path's sample times from 0 to ``times.total``: ``steps`` equal steps from the
+    program's start to the end, the same steps back into the wait, so that the program
+    (hence the film) is sampled alike wherever the job puts the part at t = 0; the first
+    step, in the wait, is between 0.5 and 1.5 of the others."""
+    m = steps
+    h = (times.total - times.delay) / m
+    k = math.floor(times.delay / h + 1e-9)
+    t = times.delay + h * np.arange(-k, m + 1)
+    t[-1] = times.total
+    if t[0] < 0.5 * h:
+        t[0] = 0.0
+    else:
+        t = np.concatenate([[0.0], t])
+    return t
+
+
+def samples_budget(duration: float, dt: float, source: str) -> None:
+    """A path of ``duration`` [s] sampled every ``dt`` within MAX_PATH_SAMPLES, else one
+    :class:`BudgetError` line."""
+    n = duration / dt + 1
+    if n > MAX_PATH_SAMPLES:
+        raise BudgetError(f"{source}: the line's path needs {n:.3g} samples ({duration:.4g} s "
+                          f"at {dt:.3g} s), budget {MAX_PATH_SAMPLES:.3g}: a faster line, the "
+                          "part placed nearer the robot, a thinner film or more flow")
+
+
+def slow_budget(speed: float, dt: float, source: str) -> None:
+    """Before anything is planned: over the longest path the budget allows, the line must
+    carry the part at least the SHIFT_STEP the program is placed to; slower, the wait alone
+    breaks the budget wherever the part starts, and no speed search starts from there."""
+    longest = MAX_PATH_SAMPLES * dt
+    if speed * longest < SHIFT_STEP:
+        raise BudgetError(f"{source}: line.speed = {speed:.3g} m/s carries the part "
+                          f"{speed * longest:.3g} m in the longest path the budget allows "
+                          f"({MAX_PATH_SAMPLES:.3g} samples, {longest:.4g} s): give at least "
+                          f"{SHIFT_STEP / longest:.3g} m/s, in m/s, or no [line] for a still "
+                          "part")
 
 
 def _drift_along(rel: Relative, speed: float, e) -> float:
@@ -345,16 +426,20 @@ def fastest_line_speed(plan_at, start: float, source: str,
                        resolution: float = SPEED_RESOLUTION):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which
     ``plan_at(speed)`` plans, and that plan (docs/model.md §24): from ``start`` (the job's
-    speed), halved while too fast and doubled while too slow until one plans, then doubled
-    until one fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
+    speed), halved while too fast and doubled while too slow (or sent to the failure's
+    ``hint``, the speed of no drift, if further) until one plans, then doubled until one
+    fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
     s = start
     best = None
     slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
+    why = {True: "", False: ""}
     for _ in range(2 * SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
         try:
             best = (s, plan_at(s))
             break
         except LineSpeedError as exc:
+            why[exc.too_fast] = f" ({exc.why})" if exc.why else ""
+            hint = exc.hint
             if exc.too_fast:
                 fast = s
             else:
@@ -363,11 +448,13 @@ def fastest_line_speed(plan_at, start: float, source: str,
             if fast - slow <= resolution * slow:
                 break
             s = 0.5 * (slow + fast)
+        elif fast == math.inf:  # too slow: on to the speed of no drift if it is further
+            s = max(2 * s, hint if hint is not None and hint < MAX_LINE_SPEED else 0.0)
         else:
-            s = 2 * s if fast == math.inf else 0.5 * s
+            s = 0.5 * s
     if best is None:
-        raise PlanError(f"{source}: no line speed paints the part (too slow at "
-                        f"{slow:.4g} m/s, too fast at {fast:.4g} m/s)")
+        raise PlanError(f"{source}: no line speed paints the part: too slow at {slow:.4g} m/s"
+                        f"{why[False]}, too fast at {fast:.4g} m/s{why[True]}")
     lo, plan = best
     hi = None
     for _ in range(SPEED_TRIES):
@@ -408,5 +495,5 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
 
 __all__ = ["CATCH", "LineProgram", "LineSpeedError", "LineTimes", "Relative",
            "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
-           "feasible_shifts", "line_shift", "one_coat", "plan_or_name_fastest", "plan_world",
-           "track", "world_motion"]
+           "feasible_shifts", "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
+           "plan_world", "track", "world_motion"]
