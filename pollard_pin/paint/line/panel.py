@@ -17,6 +17,7 @@ import numpy as np
 from ...dynamics.motors import Actuators
 from ..job import PaintJob, PartJob
 from ..passes.raster import Segments, raster_motion, raster_segments
+from ..plan.clearance import job_clearance, panel_mesh
 from ..plan.panel import panel_layout
 from ..plan.result import PlanResult
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
@@ -118,9 +119,14 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
                           track(frame.c + job.standoff * frame.n, e),
                           f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
     world = plan_world(robot, act, program, speed, e)
+    tr = world.trajectory
+    rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -speed, e)  # the panel at rest
+    clear = job_clearance(robot, job, panel_mesh(frame), rel, tr.t,
+                          lambda i: "while spraying" if world.spray[i] > 0 else
+                          "with the gun closed")
     return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
                     offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
-                    spray=world.spray, ratios=world.ratios,
+                    spray=world.spray, ratios=world.ratios, clearance=clear,
                     timings={"plan": time.perf_counter() - clock})
 
 
