@@ -1,29 +1,31 @@
 """The gun's clearance from the part along a planned path (docs/model.md §25).
 
 At every sample of the path (the part at rest: a line's path less the line's displacement),
-the gun's body (:class:`.spray.gun_body.GunBody`: capsules along the spray axis behind the
-tip) must stay ``clearance`` from the part's mesh. The distance is that of the capsules'
-sampled axis points to the mesh, less each capsule's radius, the least over all samples:
+the gun's body must stay ``clearance`` from the part's mesh. The body is a union of K spheres
+on the spray axis behind the tip that holds the gun link (:class:`.spray.gun_body.GunBody`);
+its distance from the mesh is the least of |c − mesh| − r over the spheres (c, r) and the
+samples, found so:
 
 1. the mesh's faces are sampled on barycentric grids (:func:`surface_samples`) whose every
-   sub-triangle's longest edge is at most δ, so any point of the mesh lies within δ of a
-   sample, and a k-d tree gives each axis point's distance d̃ to the samples:
-   d − δ ≤ ... ≤ d̃ − r bounds the point's clearance d − r (d its distance to the mesh);
-2. only the axis points whose lower bound d̃ − δ − r lies below the least upper bound can
-   hold the least distance: their exact closest points on the faces whose centroid lies
-   within d̃ + the faces' largest centroid-to-vertex distance (a k-d tree of centroids;
-   ``trimesh.triangles.closest_point`` on each pair), lowest bound first, stopping when no
-   lower bound is below the least exact distance found less δ: the least found is within δ
-   above the least over the sampled points.
+   sub-triangle's longest edge is at most δ, so any point of the mesh lies within δ of one
+   of its own face's samples; a k-d tree gives each centre's distance d̃ to the samples,
+   and d̃ − δ − r ≤ |c − mesh| − r ≤ d̃ − r;
+2. every COARSE_STRIDE-th sample's spheres set a ceiling (an achieved d̃ − r); the others
+   are asked only within the ceiling + r + δ (a sphere further off cannot hold the least),
+   which keeps the queries short;
+3. the EXACT_POINTS spheres of lowest bound get their exact distance: the closest points of
+   the faces that own a sample within d̃ + δ of c (``trimesh.triangles.closest_point``).
+   The least of them is the figure; the least bound left unchecked says how much less the
+   true least over the spheres may be (0 when none is below).
 
-What lies between the samples may come closer, by at most ``between`` (stated in the
-result): δ, plus half the largest spacing of the axis points, plus half the largest chord
-any body point travels in one time step (|Δtip| + reach·|Δaxis|). A path refused is one line naming
-the sample's time, what the gun is doing there, the point on the part [mm] and the distance
-found against the clearance.
+What lies between the samples may come closer, by at most ``between`` (in the result): that
+bound plus half the largest chord a body point travels in one time step (|Δtip| +
+reach·|Δaxis|). A path refused is one line naming the time, what the gun does there, the
+point on the part [mm] and the distance found against the clearance.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -37,7 +39,8 @@ from ..spray.gun_body import CLEARANCE, GunBody
 
 SURFACE_STEP = 0.004  # m: the surface samples' sub-triangle edges, at most (δ)
 MAX_SURFACE_POINTS = 400_000  # δ grows until the samples fit (≈ 10 MB of k-d tree)
-EXACT_POINTS = 512  # the axis points of lowest bound whose exact distance is computed
+EXACT_POINTS = 512  # the spheres of lowest bound whose exact distance is computed
+COARSE_STRIDE = 16  # every this many samples set the ceiling of the bounded queries
 
 
 class ClearanceError(PlanError):
@@ -96,38 +99,48 @@ def body_points(poses, body: GunBody):
 
 
 def least_distance(mesh: trimesh.Trimesh, centres, radii):
-    """The least of |c − mesh| − r found over axis points ``centres`` (M, 3) of radii (M,)
-    (module notes 1–2): (that distance, its index, the mesh's closest point there, how much
-    less the least over all of them may be)."""
+    """The least of |c − mesh| − r found over the spheres of centres ``centres`` (N, K, 3)
+    and radii ``radii`` (K,) (module notes 1–3): (that distance, the index (n, k) of its
+    sphere, the mesh's closest point there, how much less the least over all may be)."""
     tri = np.asarray(mesh.triangles, float)
     samples, owner, delta = surface_samples(mesh.vertices, mesh.faces)
-    tree = cKDTree(samples, balanced_tree=False, compact_nodes=False)  # faster far queries
-    approx, _ = tree.query(centres)
-    lower = approx - delta - radii
-    order = np.argsort(lower)[:EXACT_POINTS]
-    # a face within d ≤ d̃ of c has one of its samples within d̃ + δ
-    near = tree.query_ball_point(centres[order], approx[order] + delta)
+    # an unbalanced tree of distinct points answers the far queries several times faster
+    tree = cKDTree(np.unique(samples, axis=0), balanced_tree=False, compact_nodes=False)
+    coarse, _ = tree.query(centres[::COARSE_STRIDE])
+    ceiling = float((coarse - radii).min())  # an achieved upper bound of the least
+    approx = np.column_stack([tree.query(centres[:, k], distance_upper_bound=ceiling + r
+                                         + delta)[0] for k, r in enumerate(radii)])
+    lower = (approx - delta - radii).ravel()  # inf: at least the ceiling
+    flat = centres.reshape(-1, 3)
+    order = np.argsort(lower)
+    order = order[np.isfinite(lower[order])][:EXACT_POINTS]
+    if len(order) == 0:  # no sphere within the ceiling + δ: only round-off can do this
+        order = np.array([int(np.argmin(np.where(np.isfinite(approx), approx, coarse.max())))])
+    # a face within d ≤ d̃ of c has one of its own samples within d̃ + δ
+    near = cKDTree(samples).query_ball_point(flat[order], np.minimum(
+        approx.ravel()[order], ceiling + radii[order % len(radii)]) + delta)
     pair = np.unique(np.concatenate([
         i * len(tri) + np.unique(owner[np.asarray(f, int)]) for i, f in enumerate(near)]))
     who, face = order[pair // len(tri)], pair % len(tri)
-    closest = trimesh.triangles.closest_point(tri[face], centres[who])
-    dist = np.linalg.norm(closest - centres[who], axis=1) - radii[who]
+    closest = trimesh.triangles.closest_point(tri[face], flat[who])
+    dist = np.linalg.norm(closest - flat[who], axis=1) - radii[who % len(radii)]
     j = int(np.argmin(dist))
     best = float(dist[j])
-    rest = np.argsort(lower)[EXACT_POINTS:EXACT_POINTS + 1]
-    floor = min(best, float(lower[rest[0]])) if len(rest) else best
-    return best, int(who[j]), closest[j], best - floor
+    rest = np.sort(lower)[len(order)]if len(lower) > len(order) else math.inf
+    floor = min(best, float(rest), ceiling if np.isinf(lower).any() else math.inf)
+    return best, divmod(int(who[j]), len(radii)), closest[j], best - floor
 
 
 def between_samples(poses, body: GunBody) -> float:
-    """How much closer than the samples the body may come [m] (module notes)."""
+    """How much closer than the samples the body may come [m] (module notes): half the
+    largest chord a point of it travels in one time step."""
     poses = np.asarray(poses, float)
     if len(poses) < 2:
-        return body.axis_gap
+        return 0.0
     axis = rotation(poses)[:, :, 0]
     chord = (np.linalg.norm(np.diff(poses[:, :3], axis=0), axis=1)
              + body.reach * np.linalg.norm(np.diff(axis, axis=0), axis=1))
-    return body.axis_gap + float(chord.max()) / 2
+    return float(chord.max()) / 2
 
 
 def clearance_of(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None,
@@ -137,9 +150,7 @@ def clearance_of(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None,
     body = GunBody() if body is None else body
     poses = np.asarray(poses, float)
     centres, radii = body_points(poses, body)
-    n, k = centres.shape[:2]
-    best, idx, point, less = least_distance(mesh, centres.reshape(-1, 3), np.tile(radii, n))
-    i = idx // k
+    best, (i, _), point, less = least_distance(mesh, centres, radii)
     return Clearance(best, less + between_samples(poses, body), float(required), i, float(t[i]),
                      tuple(float(c) for c in point), tuple(float(c) for c in poses[i, :3]))
 

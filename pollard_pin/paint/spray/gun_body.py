@@ -5,8 +5,10 @@ gun's body (a box of section b × c over ``length`` behind the nozzle, held by a
 radius √(b² + c²)/2).
 
 A capsule is the set of points within its radius of its axis segment, so it holds its
-cylinder and reaches its radius past each end: the nozzle's capsule reaches ``nozzle_radius``
-ahead of the tip (a gun normal to a flat part at standoff h is h − nozzle_radius from it).
+cylinder; the check measures a union of spheres on the capsules' axes that holds them
+(:meth:`GunBody.axis_points`): the front sphere, centred on the tip, reaches its radius
+√(r² + (h/2)²) ahead of it (a gun normal to a flat part at standoff s is s minus that from
+it: 150 − 4.59 = 145.41 mm with the defaults).
 """
 from __future__ import annotations
 
@@ -19,14 +21,14 @@ import numpy as np
 from ...errors import InputError
 from ...model.urdf import GUN_BOX_SECTION, GUN_BOX_SHARE, NOZZLE_RADIUS
 
-AXIS_STEP = 0.005  # m: the capsules' axes are sampled at most this far apart
+AXIS_STEP = 0.02  # m: the capsules' axes are sampled at most this far apart (and ≤ r)
 CLEARANCE = 0.010  # m: the default least distance between the gun's body and the part
 
 
 @dataclass(frozen=True)
 class GunBody:
     """The gun's body as two capsules behind the tip along the spray axis [m] (module
-    notes); ``step`` the largest spacing of the points sampled on their axes."""
+    notes); ``step`` the largest spacing of the spheres' centres on their axes."""
 
     nozzle_radius: float = NOZZLE_RADIUS
     nozzle_length: float = (1 - GUN_BOX_SHARE) * 0.06
@@ -43,22 +45,17 @@ class GunBody:
                                  + (", > 0" if name == "step" else ""))
 
     def axis_points(self) -> tuple[np.ndarray, np.ndarray]:
-        """(offsets (K,) behind the tip along the axis [m], radii (K,) [m]): both capsules'
-        axes sampled at most ``step`` apart, their ends included."""
+        """(offsets (K,) behind the tip along the axis [m], radii (K,) [m]): the centres and
+        radii of the spheres whose union holds both capsules. Each capsule's axis is
+        sampled at spacing h ≤ min(step, its radius), ends included; a sphere of radius
+        √(r² + (h/2)²) there holds the capsule's slice within h/2 of its centre."""
         offs, radii = [], []
         for a, b, r in ((0.0, self.nozzle_length, self.nozzle_radius),
                         (self.nozzle_length, self.nozzle_length + self.length, self.radius)):
-            n = max(2, math.ceil((b - a) / self.step) + 1)
+            n = max(2, math.ceil((b - a) / min(self.step, r if r > 0 else self.step)) + 1)
             offs.append(np.linspace(a, b, n))
-            radii.append(np.full(n, r))
+            radii.append(np.full(n, math.hypot(r, (b - a) / (n - 1) / 2)))
         return np.concatenate(offs), np.concatenate(radii)
-
-    @property
-    def axis_gap(self) -> float:
-        """Half the largest spacing of :meth:`axis_points` [m]: every point of a capsule's
-        axis lies within it of a sampled one."""
-        offs, _ = self.axis_points()
-        return float(np.diff(offs).max() / 2)
 
     @property
     def reach(self) -> float:
