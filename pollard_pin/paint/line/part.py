@@ -19,7 +19,6 @@ from ...paths.trajectory import Trajectory
 from ..job import PartJob
 from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SurfaceLayout, pass_speed, surface_frame, surface_layout
-from ..plan.clearance import job_clearance
 from ..plan.part import SurfacePlan, time_step
 from ..plan.result import PlanResult
 from ..policy import first_guess
@@ -88,7 +87,8 @@ def part_relative(program: Program) -> Relative:
 
 def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = None,
                    part: Part | None = None) -> LinePartPlan:
-    """The surface program for a part on the line at ``speed`` (default the job's)."""
+    """The surface program for a part on the line at ``speed`` (default the job's), its
+    clearance not checked (:func:`.line.panel.plan_line` checks it)."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)
@@ -109,17 +109,9 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
                           track(f.centre + job.standoff * f.n, e),
                           f"the passes ({v:.4g} m/s on the part's surface)", job.source)
     world = plan_world(robot, act, program, speed, e)
-    tr = world.trajectory
-    rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -speed, e)  # the part at rest
-    clear = job_clearance(robot, job, part.mesh, rel, tr.t, lambda i: _doing(world.spray[i]))
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
                         world.times, v, trajectory=world.trajectory, spray=world.spray,
-                        ratios=world.ratios, timings={"plan": time.perf_counter() - clock},
-                        clearance=clear)
-
-
-def _doing(spray) -> str:
-    return "while spraying" if spray > 0 else "with the gun closed"
+                        ratios=world.ratios, timings={"plan": time.perf_counter() - clock})
 
 
 __all__ = ["LinePartPlan", "across_the_travel", "leading_first", "part_relative",
