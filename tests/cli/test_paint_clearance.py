@@ -51,8 +51,10 @@ def test_a_kept_clearance_is_reported(tmp_path, capsys):
     job.write_text(JOB.read_text().replace("flow = 1.5e-7", "flow = 1.5e-7\nclearance = 0.02",
                                            1))
     out = tmp_path / "out"
-    code, _, err = run_cli(["paint", "--job", job, "--out", out], capsys)
+    code, text, err = run_cli(["paint", "--job", job, "--out", out], capsys)
     assert code == 0, err
+    assert "gun body 145.6 mm from the part at its closest" in text
+    assert "clearance 20 mm" in text
     rep = json.loads((out / "paint.json").read_text())
     # the gun normal to the panel at 0.15 m: 150 − √(4² + 1.8²) mm (the front sphere, §25)
     assert rep["min_clearance_m"] == pytest.approx(0.15 - (0.004 ** 2 + 0.0018 ** 2) ** 0.5,
