@@ -1,6 +1,7 @@
 """What a plain ``pip install .`` gives: build the wheel, install it without extras into a
 fresh venv, and run every command from a folder outside the repository (so the checkout's
-own ``pollard_pin`` cannot be imported). Paint runs on a mesh part and on a part on a line;
+own ``pollard_pin`` cannot be imported). Paint runs every example job (panel, parts, a panel
+and a part on a line);
 the MuJoCo export, an extra, must refuse in one line. Run by ``.ci/run`` (``make
 install-check``); standard library only, so it runs with the bare interpreter.
 
@@ -40,9 +41,12 @@ def need(path: Path, what: str) -> None:
 def commands(cli: Path, work: Path) -> None:
     """One call of every command; paint on a still mesh part and a part on a line."""
     ex = work / "examples"
-    sh([cli, "paint", "--job", ex / "parts/curved_panel.toml", "--out", "part"], work)
-    sh([cli, "paint", "--job", ex / "line_part.toml", "--out", "line"], work)
-    for folder in ("part", "line"):
+    jobs = {"part": "parts/curved_panel.toml", "line": "line_part.toml", "panel": "paint.toml",
+            "line_panel": "line.toml", "bent": "parts/bent_plate.toml",
+            "ribbed": "parts/ribbed_plate.toml"}  # every example job
+    for folder, job in jobs.items():
+        sh([cli, "paint", "--job", ex / job, "--out", folder], work)
+    for folder in jobs:
         need(work / folder / "path.csv", f"paint --out {folder}")
         report = json.loads((work / folder / "paint.json").read_text())
         if not report:

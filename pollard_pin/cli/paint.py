@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UsageError, command, load_robot, model_args, name, positive
+from .common import UsageError, command, load_robot, model_args, name, positive, warnings_as_notes
 from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
 
 
@@ -35,8 +35,9 @@ def run(args) -> int:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
     act = _actuators(args, job)
-    result = paint(load_robot(args), job, act,
-                   PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
+    with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
+        result = paint(load_robot(args), job, act,
+                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
     name = result.write(out, args.format)
     rep = result.report.to_dict()
     if kind == "panel":

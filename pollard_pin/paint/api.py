@@ -187,9 +187,9 @@ def _part(robot, job, act, options, res):
     from .film.points import check_film_points
     from .plan.part import plan_surface
     from .report import surface_report
-    from .target.mesh import load_job_part
+    from .spray.occlusion import load_painted_part
 
-    part = load_job_part(job)
+    part = load_painted_part(job)
     check_film_points(part, res)  # before planning: the budget of the film's points
     t0 = time.perf_counter()
     plan = plan_surface(robot, job, act, part)
@@ -231,9 +231,9 @@ def _line_part(robot, job, act, options, res):
     from .film.part import surface_film
     from .film.points import check_film_points
     from .report import line_part_report
-    from .target.mesh import load_job_part
+    from .spray.occlusion import load_painted_part
 
-    part = load_job_part(job)
+    part = load_painted_part(job)
     check_film_points(part, res)  # before planning: the budget of the film's points
     plan, planning = _line_plan(robot, job, act, options, part)
     t0 = time.perf_counter()

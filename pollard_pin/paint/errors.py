@@ -23,6 +23,11 @@ class ReachError(PlanError):
         self.sample, self.pose = sample, pose
 
 
+class ReportError(SolveError):
+    """A report number breaks an invariant the model guarantees (a lower bound over the cycle,
+    a transfer efficiency over 100 %): a bug, refused rather than printed."""
+
+
 class BudgetError(PlanError):
     """A plan over its stated budget (samples, passes): one line with what it would need."""
 

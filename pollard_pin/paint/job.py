@@ -33,6 +33,10 @@ MAX_LENGTH = 10.0
 # The smallest panel side, in spray spots σ: below it the film is the spot's own profile and
 # "within ±10 %" says nothing about the panel (docs/model.md §21).
 MIN_PANEL_SIGMAS = 1.0
+# A part's coats: each repeats every pass at 1/coats of the film, and the example gun's
+# fastest pass leaves the thinnest coat at ~1/5 of the example target (the panel planner's
+# "at most 5 coat(s)"): more only make the program longer and the film thinner per coat.
+MAX_PART_COATS = 5
 
 
 class JobError(InputError):
@@ -132,6 +136,9 @@ def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
         values["max_angle"] = _number(source, "part.max_angle", part["max_angle"])
     values.update(_gun_values(source, gun))
     values.update(_job_values(source, job))
+    if values.get("coats", 1) > MAX_PART_COATS:
+        _fail(source, "job.coats", job["coats"], f"must be at most {MAX_PART_COATS} for a part "
+              "(each coat repeats every pass): a slower gun (job.speed) lays more per coat")
     return PartJob(direction=job.get("direction", "horizontal"), actuators=job.get("actuators"),
                    source=source, **values)
 

@@ -9,12 +9,32 @@ from __future__ import annotations
 import numpy as np
 
 from ..dynamics.motors import Actuators
+from .errors import ReportError
 from .film.mesh import MeshFilm
 from .film.stats import film_stats
 from .line.panel import LinePlan
 from .plan.panel import PaintPlan
 from .plan.part import SurfacePlan
 from .spray.deposition import Film
+
+# Relative slack of the invariants: the film's integration error (error_estimate ≲ 1e-3 of
+# the target on the examples) on the landed volume; the cycle and the bound are exact sums.
+SLACK = 1e-2
+
+
+def check_report(rep: dict, source: str) -> dict:
+    """``rep`` if its lower bound ≤ its cycle and its transfer efficiency ≤ 100 % (within
+    SLACK); else a :class:`ReportError` naming both numbers."""
+    cycle, bound = rep["cycle_time"], rep["lower_bound"]
+    if not bound <= cycle * (1 + 1e-9):
+        raise ReportError(f"{source}: internal error: the painting-only lower bound "
+                          f"{bound:.6g} s exceeds the cycle {cycle:.6g} s (a bug)")
+    eff = rep.get("transfer_efficiency")
+    # nan (nothing sprayed) is left to the caller
+    if eff is not None and eff == eff and not eff <= 1 + SLACK:
+        raise ReportError(f"{source}: internal error: transfer efficiency "
+                              f"{100 * eff:.4g} % exceeds 100 % (a bug)")
+    return rep
 
 
 def clearance_entries(plan) -> dict:
@@ -31,7 +51,7 @@ def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
     tr = plan.trajectory
     swept = 2 * plan.half_length * len(plan.offsets) * plan.spacing * plan.coats
     steps = np.linalg.norm(np.diff(tr.poses[:, :3], axis=0), axis=1)
-    return {
+    rep = {
         "job": j.to_dict(),
         "thickness": film_stats(f.thickness, j.thickness),
         "target": j.thickness,
@@ -55,6 +75,7 @@ def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
                         "largest_step_over_sigma": float(steps.max() / j.sigma),
                         "error_estimate_max": float(np.nanmax(f.error_estimate))},
     }
+    return check_report(rep, plan.job.source)
 
 
 def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficiency: float,
@@ -64,7 +85,7 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
     on = plan.spray > 0
     tip_speed = np.linalg.norm(tr.d_poses[on, :3], axis=1)
     steps = np.linalg.norm(np.diff(tr.poses[:, :3], axis=0), axis=1)
-    return {
+    rep = {
         "job": j.to_dict(),
         "part": {"mesh": part.source, "faces": len(part.faces),
                  "painted_faces": int(part.painted.sum()), "painted_area": part.painted_area},
@@ -96,6 +117,7 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
                         "largest_step_over_sigma": float(steps.max() / j.sigma),
                         "error_estimate_max": float(np.nanmax(film.error_estimate))},
     }
+    return check_report(rep, plan.job.source)
 
 
 def line_table(plan) -> dict:
@@ -123,7 +145,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
     j = plan.job
     th = film_stats(f.thickness, j.thickness)
     seg = plan.segments
-    return {
+    rep = {
         "job": j.to_dict(),
         "thickness": th,
         "target": j.thickness,
@@ -146,6 +168,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
                                 "frame",
                         "error_estimate_max": float(np.nanmax(f.error_estimate))},
     }
+    return check_report(rep, plan.job.source)
 
 
 def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators) -> dict:
@@ -158,8 +181,8 @@ def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators
     rep["program_time"] = plan.program.total
     rep["line"] = line_table(plan)
     rep["integration"]["rule"] += ", in the part's frame"
-    return rep
+    return check_report(rep, plan.job.source)
 
 
-__all__ = ["clearance_entries", "line_part_report", "line_report", "line_table", "paint_report",
-           "surface_report"]
+__all__ = ["SLACK", "check_report", "clearance_entries", "line_part_report", "line_report",
+           "line_table", "paint_report", "surface_report"]

@@ -213,6 +213,32 @@ def _parts() -> dict[str, bytes | str]:
         "part_line_coats.toml": job + "coats = 2\n" + line,
         "part_line_past.toml": sub("position = [0.0, 0.0, 0.0]",
                                    "position = [0.0, 2.5, 0.0]") + line,
+        # malformed meshes, faces nobody can paint, absurd values (issue 33 §1, §2)
+        "mesh_zero_based.obj": square + "f 0 2 1\n",
+        "mesh_relative_out.obj": square + "f 1 3 -4\n",
+        "mesh_counts.ply": "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                           "property float y\nproperty float z\nelement face 1\n"
+                           "property list uchar int vertex_indices\nend_header\n"
+                           + square.replace("v ", "") + "3 0 2 1\n",
+        "mesh_negative.ply": "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n"
+                             + square.replace("v ", "") + "3 0 2 -1\n",
+        "mesh_table.obj": "v 0.39 -0.06 0\nv 0.51 -0.06 0\nv 0.51 0.06 0\nv 0.39 0.06 0\n"
+                          "f 1 2 3\nf 1 3 4\n",
+        # a plate behind a sheet turned away from the robot
+        "mesh_hidden.obj": square + "v 0.6 -0.3 0\nv 0.6 0.3 0\nv 0.6 0.3 0.4\n"
+                           "f 1 3 2\nf 4 5 6\n",
+        "part_zero_based.toml": mesh("mesh_zero_based.obj"),
+        "part_relative_out.toml": mesh("mesh_relative_out.obj"),
+        "part_counts.toml": mesh("mesh_counts.ply"),
+        "part_negative.toml": mesh("mesh_negative.ply"),
+        "part_table.toml": sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 0.0, 1.0]",
+                               mesh("mesh_table.obj")),
+        "part_hidden.toml": mesh("mesh_hidden.obj"),
+        "part_max_angle_90.toml": sub("max_angle = 45.0", "max_angle = 90.0"),
+        "part_coats.toml": job + "coats = 1000000000\n",
+        "part_spacing.toml": job + "spacing = 1e-5\n",
     }
 
 
@@ -890,13 +916,23 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_no_mesh.toml", "'part.mesh' is missing"),
     ("part_mesh_number.toml", "'part.mesh' = 3: must be a mesh file name"),
     ("part_rotation.toml", "'part.rotation[1]' = 'x': must be a number"),
-    ("part_max_angle.toml", "max_angle = 200° must be in (0, 180]"),
+    ("part_max_angle.toml", "max_angle = 200° must be in (0, 90)"),
     ("part_zero_facing.toml", "has zero length"),
     ("part_far.toml", "no point of the painted faces is within reach"),
     ("part_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
     ("part_line_coats.toml", "job.coats = 2: a part on the line is painted in one coat"),
     ("part_line_past.toml", "the part never comes within reach: the gun's track at the part's "
                             "centre runs through (0.556, 2.500, 0.160) m along (0, 1, 0)"),
+    ("part_zero_based.toml", "line 4: face index 0 (OBJ indices start at 1"),
+    ("part_relative_out.toml", "line 4: face index -4 refers to vertex 0, but 3 vertices"),
+    ("part_counts.toml",
+     "the PLY header declares 2 vertex and 1 face (3 lines) but the data has 4 lines"),
+    ("part_negative.toml", "face 0 has vertex index -1, outside 0..2"),
+    ("part_table.toml", "is outside its limits"),
+    ("part_hidden.toml", "all 1 faces within 45° of facing are hidden from a gun at 0.15 m"),
+    ("part_max_angle_90.toml", "max_angle = 90° must be in (0, 90)"),
+    ("part_coats.toml", "'job.coats' = 1000000000: must be at most 5 for a part"),
+    ("part_spacing.toml", "passes (1 coat(s) at spacing 1e-05 m over"),
     ("", "an empty name"),
 ]]
 CASES += [([*PAINT, "part_line.toml", "--resolution", "0.011"],

@@ -301,3 +301,21 @@ def test_view_part_overlay(part_painted, tmp_path, capsys):
     (broken / "film.ply").write_bytes(b"ply\nformat ascii 1.0\nend_header\n")
     code, _, err = run_cli(["view", "--paint", broken, "--html", tmp_path / "w.html"], capsys)
     assert code == 2 and len(err.strip().splitlines()) == 1 and "not a film PLY" in err, err
+
+
+def test_a_mesh_with_repeated_faces_is_painted_once_with_a_note(tmp_path, capsys):
+    """A 0.12 m square plate (two triangles) at x = 0.70 facing the robot, each face written
+    twice: a note, and the painted area is the square's 0.0144 m², by hand."""
+    verts = "v 0.7 -0.06 0.10\nv 0.7 0.06 0.10\nv 0.7 0.06 0.22\nv 0.7 -0.06 0.22\n"
+    faces = "f 1 3 2\nf 1 4 3\n"
+    (tmp_path / "plate.obj").write_text(verts + faces + faces)
+    job = tmp_path / "plate.toml"
+    job.write_text('[part]\nmesh = "plate.obj"\nposition = [0.0, 0.0, 0.0]\n[gun]\n'
+                   "standoff = 0.15\nsigma = 0.010\nflow = 1.5e-7\n[job]\nthickness = 25e-6\n")
+    out = tmp_path / "out"
+    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.01"]) == 0
+    err = capsys.readouterr().err
+    assert "note: " in err and "plate.obj: dropped 2 repeated faces" in err, err
+    rep = json.loads((out / "paint.json").read_text())
+    assert abs(rep["part"]["painted_area"] - 0.0144) < 1e-12 and rep["part"]["faces"] == 2
+    assert rep["transfer_efficiency"] <= 1.0

@@ -100,3 +100,21 @@ def test_actuators_path_is_relative_to_the_job(tmp_path):
     text = EXAMPLE.read_text().replace("# optional:", 'actuators = "motors.toml"\n# optional:')
     (tmp_path / "job.toml").write_text(text)
     assert load_job(tmp_path / "job.toml").actuators == str(tmp_path / "motors.toml")
+
+
+@pytest.mark.parametrize("coats, ok", [(5, True), (6, False), (1_000_000_000, False)])
+def test_a_parts_coats_are_capped(coats, ok):
+    """A part's coats repeat every pass: more than MAX_PART_COATS = 5 is one line (a billion
+    grew memory without bound)."""
+    from pollard_pin.paint.job import MAX_PART_COATS
+
+    d = {"part": {"mesh": "p.stl", "position": [0.0, 0.0, 0.0]}, "gun": _good()["gun"],
+         "job": {"thickness": 25e-6, "coats": coats}}
+    if ok:
+        assert job_from_dict(d, "job.toml").coats == coats
+        return
+    with pytest.raises(JobError) as info:
+        job_from_dict(d, "job.toml")
+    msg = str(info.value)
+    assert msg.startswith(f"job.toml: 'job.coats' = {coats}: must be at most {MAX_PART_COATS}")
+    assert "\n" not in msg and len(msg) <= 250, msg

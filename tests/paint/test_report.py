@@ -85,3 +85,18 @@ def test_line_table_numbers(line_plan):
     y = line_plan.trajectory.poses[on, 1]
     assert t["window"] == [y.min(), y.max()]
     assert line_plan.speed < t["upper_bound"]
+
+
+@pytest.mark.parametrize("rep, says", [
+    ({"cycle_time": 2.0, "lower_bound": 2.5}, "lower bound 2.5 s exceeds the cycle 2 s"),
+    ({"cycle_time": 2.0, "lower_bound": 1.0, "transfer_efficiency": 1.1},
+     "transfer efficiency 110 % exceeds 100 %"),
+])
+def test_a_report_breaking_an_invariant_is_an_internal_error(rep, says):
+    from pollard_pin.paint.errors import ReportError
+    from pollard_pin.paint.report import check_report
+
+    with pytest.raises(ReportError, match=says):
+        check_report(rep, "job.toml")
+    ok = {"cycle_time": 2.0, "lower_bound": 2.0, "transfer_efficiency": 1.0}
+    assert check_report(ok, "job.toml") is ok

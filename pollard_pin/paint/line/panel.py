@@ -145,9 +145,9 @@ def line_planner(robot, job, act: Actuators, part: Part | None = None):
     """speed ↦ the job's plan on the line at that speed (a part's mesh, ``part`` if given,
     read once)."""
     if part is None and isinstance(job, PartJob):
-        from ..target.mesh import load_job_part
+        from ..spray.occlusion import load_painted_part
 
-        part = load_job_part(job)
+        part = load_painted_part(job)
     return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False)
 
 

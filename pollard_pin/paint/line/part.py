@@ -22,7 +22,8 @@ from ..passes.surface import SurfaceLayout, pass_speed, surface_frame, surface_l
 from ..plan.part import SurfacePlan, time_step
 from ..plan.result import PlanResult
 from ..policy import first_guess
-from ..target.mesh import Part, load_job_part
+from ..spray.occlusion import load_painted_part
+from ..target.mesh import Part
 from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
 
 
@@ -93,7 +94,7 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)
     one_coat(job)
-    part = load_job_part(job) if part is None else part
+    part = load_painted_part(job) if part is None else part
     horizontal = across_the_travel(part, e)
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
     layout = leading_first(surface_layout(part, job_x), e)

@@ -16,15 +16,23 @@ import numpy as np
 from scipy.interpolate import make_interp_spline
 
 from ...analytic.taskspace import angles_from_rotation
-from .surface import SurfaceLayout
+from ..errors import PlanError
+from .surface import SurfaceLayout, reference_axis
 
 
-def gun_frame(axis: np.ndarray) -> np.ndarray:
+def gun_frame(axis: np.ndarray, reference=(0.0, 0.0, 1.0)) -> np.ndarray:
     """Tool rotations (K, 3, 3) spraying along unit ``axis`` (K, 3): R = [a, c × a, c], c the
-    world z projected off a (the panel's [−n, u, v] for a = −n)."""
-    ez = np.array([0.0, 0.0, 1.0])
-    c = ez - (axis @ ez)[:, None] * axis
-    c /= np.linalg.norm(c, axis=1, keepdims=True)
+    unit ``reference`` (world z: the panel's [−n, u, v] for a = −n) projected off a;
+    :class:`PlanError` where an axis runs along the reference."""
+    ref = np.asarray(reference, dtype=float)
+    c = ref - (axis @ ref)[:, None] * axis
+    norm = np.linalg.norm(c, axis=1)
+    if not norm.min() > 1e-6:
+        k = int(np.argmin(norm))
+        raise PlanError(f"the spray axis {tuple(round(float(x), 3) for x in axis[k])} runs "
+                        f"along the gun frame's reference axis {tuple(ref)}: the part's "
+                        "surface turns more than 45° off its facing")
+    c /= norm[:, None]
     return np.stack([axis, np.cross(c, axis), c], axis=-1)
 
 
@@ -123,12 +131,12 @@ class Program:
 
 def pass_poses(layout: SurfaceLayout):
     out = []
-    ref = None
+    ref, first = reference_axis(layout.frame.n), None
     for p in layout.passes:
-        ang = np.unwrap(angles_from_rotation(gun_frame(p.axis)), axis=0)
-        if ref is None:
-            ref = ang[0]
-        ang -= 2 * math.pi * np.round((ang[0] - ref) / (2 * math.pi))
+        ang = np.unwrap(angles_from_rotation(gun_frame(p.axis, ref)), axis=0)
+        if first is None:
+            first = ang[0]
+        ang -= 2 * math.pi * np.round((ang[0] - first) / (2 * math.pi))
         out.append(np.column_stack([p.tip, ang]))
     return out
 

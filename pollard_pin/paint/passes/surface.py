@@ -2,8 +2,9 @@
 when (:mod:`.plan.part` times it against the motors).
 
 Frame. n = the part's ``facing`` (towards the robot), v = world z projected off n, u = n × v
-(as the panel's frame, :func:`.passes.raster.panel_frame`). Horizontal passes run along e_p = u and
-are stacked along e_s = v; vertical ones swap the two.
+(as the panel's frame, :func:`.passes.raster.panel_frame`); world x instead of z for a part
+facing nearer vertical than horizontal (:func:`reference_axis`). Horizontal passes run along
+e_p = u and are stacked along e_s = v; vertical ones swap the two.
 
 Passes. Pass k is the section of the painted faces by the plane e_s·x = level_k. With every
 painted face within max_angle < 90° of n, the section is a graph over e_p: at each e_p the
@@ -44,7 +45,8 @@ import numpy as np
 import trimesh
 from scipy.ndimage import gaussian_filter1d
 
-from ..errors import PlanError
+from ..errors import BudgetError, PlanError
+from ..policy import MAX_PASSES
 from ..target.mesh import Part
 from .raster import pass_offsets, ripple_spacing
 
@@ -105,13 +107,19 @@ class SurfaceLayout:
     extent: float
 
 
+def reference_axis(n) -> np.ndarray:
+    """The world axis the part's frame and the gun's roll are referred to: z (up), unless
+    the facing ``n`` lies nearer vertical than horizontal (a table top), then x (away from
+    the robot): at least 45° off ``n`` either way, so projecting it off n never divides by
+    nearly zero."""
+    n = np.asarray(n, dtype=float)
+    return np.array([1.0, 0.0, 0.0] if abs(n[2]) > math.sqrt(0.5) else [0.0, 0.0, 1.0])
+
+
 def surface_frame(part: Part, direction: str = "horizontal") -> SurfaceFrame:
     n = np.asarray(part.facing, dtype=float)
-    ez = np.array([0.0, 0.0, 1.0])
-    v = ez - (ez @ n) * n
-    if np.linalg.norm(v) < 1e-9:  # facing up or down: v along world x projected
-        ex = np.array([1.0, 0.0, 0.0])
-        v = ex - (ex @ n) * n
+    ref = reference_axis(n)
+    v = ref - (ref @ n) * n
     v /= np.linalg.norm(v)
     u = np.cross(n, v)
     idx = np.flatnonzero(part.painted)
@@ -277,6 +285,12 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
         raise PlanError(f"{part.source}: the painted faces span {span:.4g} × {extent:.4g} m, "
                         f"less than the spray spot (σ = {job.sigma:.4g} m): a mesh in metres "
                         "read as millimetres (part.units)?")
+    coats = job.coats or 1
+    passes = (extent / spacing + 1) * coats
+    if passes > MAX_PASSES:  # before the cross profile, which grows with their square
+        raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
+                          f"{spacing:.3g} m over {extent:.3g} m of surface), budget "
+                          f"{MAX_PASSES}: a wider job.spacing or fewer coats")
     try:
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:
@@ -327,5 +341,5 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
 
 
 __all__ = ["EXTENSION", "FORWARD", "SAMPLE_STEP", "SMOOTHING", "STRETCH", "SurfaceFrame",
-           "SurfaceLayout", "SurfacePass", "pass_spacing", "pass_speed", "section",
-           "surface_frame", "surface_layout"]
+           "SurfaceLayout", "SurfacePass", "pass_spacing", "pass_speed", "reference_axis",
+           "section", "surface_frame", "surface_layout"]

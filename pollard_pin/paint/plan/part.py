@@ -32,7 +32,8 @@ from ..policy import (
     UTILISATION,
     first_guess,
 )
-from ..target.mesh import Part, load_job_part
+from ..spray.occlusion import load_painted_part
+from ..target.mesh import Part
 from .checks import fastest, motion
 from .clearance import job_clearance
 from .result import PlanResult
@@ -143,7 +144,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
     module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
     clock = [time.perf_counter()]
-    part = load_job_part(job) if part is None else part
+    part = load_painted_part(job) if part is None else part
     v = pass_speed(job, pass_spacing(job))
     coats = job.coats or 1
     smoothing = 0.0

@@ -6,9 +6,9 @@ Faces keep the file's winding: counter-clockwise seen from outside, so the right
 the other way throughout and is turned over once; an open sheet is taken as given. Faces of
 zero area (below 1e-12 of the part's size squared) are dropped: they receive no paint.
 
-Ray queries (:mod:`.spray.occlusion`) go through ``Part.mesh.ray``: Embree (the optional
-``embreex`` package, ``pip install 'pollard-pin[embree]'``) when installed, else trimesh's
-own numpy intersector: the same verdicts (up to Embree's float32 arithmetic), only slower.
+Ray queries (:mod:`..spray.occlusion`) go through ``Part.mesh.ray``: Embree (``embreex``,
+installed with the package where it has wheels), else trimesh's own numpy intersector on
+``rtree``: the same verdicts (up to Embree's float32 arithmetic), only slower.
 """
 from __future__ import annotations
 
@@ -23,9 +23,16 @@ import numpy as np
 import trimesh
 
 from ...analytic.taskspace import rotation as tool_rotation
-from ...errors import InputError
 from ...model.values import read_bytes
 from ..job import PaintJob
+from .mesh_check import (
+    MeshError,
+    MeshFileError,
+    check_indices,
+    obj_absolute,
+    ply_counts,
+    unique_faces,
+)
 from .panel import panel_frame
 
 FORMATS = ("stl", "obj", "ply")
@@ -44,10 +51,6 @@ MAX_ANGLE = 45.0
 # (examples/paint.toml's panel normal).
 FACING = (-1.0, 0.0, 0.0)
 DEGENERATE = 1e-12  # of the part's size squared: faces of smaller area are dropped
-
-
-class MeshError(InputError):
-    """A part's mesh cannot be used: one line naming the file, the value and the rule."""
 
 
 def _frozen(x, dtype=float) -> np.ndarray:
@@ -134,6 +137,10 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
     if not keep.any():
         raise MeshError(f"{source}: all {len(f)} faces have zero area (the part is "
                         f"{extent:.4g} m across)")
+    if not keep.all():
+        warnings.warn(f"{source}: dropped {int((~keep).sum())} faces of zero area (below "
+                      f"{DEGENERATE:g} of the part's size squared): they take no paint",
+                      stacklevel=3)
     f, cross, area2 = f[keep], cross[keep], area2[keep]
     normals = cross / area2[:, None]
     mesh = trimesh.Trimesh(v, f, process=False)
@@ -147,8 +154,9 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
                         "length")
     facing = facing / length
     max_angle = float(max_angle)
-    if not 0 < max_angle <= 180:
-        raise MeshError(f"{source}: max_angle = {max_angle:.4g}° must be in (0, 180]")
+    if not 0 < max_angle < 90:  # a face at 90° or more is edge-on or turned away
+        raise MeshError(f"{source}: max_angle = {max_angle:.4g}° must be in (0, 90): a face "
+                        "at 90° or more is seen edge-on or from behind")
     painted = normals @ facing >= math.cos(math.radians(max_angle)) - 1e-12
     if not painted.any():
         best = math.degrees(math.acos(float(np.clip((normals @ facing).max(), -1, 1))))
@@ -158,6 +166,41 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
     return Part(_frozen(v), _frozen(f, int), _frozen(normals), _frozen(area2 / 2),
                 _frozen(painted, bool), tuple(float(c) for c in facing), max_angle, mesh,
                 source)
+
+
+def _read_mesh(data: bytes, ext: str, src: str):
+    """(vertices, faces) of a mesh file's bytes, checked against what the file says
+    (:mod:`.mesh_check`): indices, PLY counts; repeated faces dropped with a warning."""
+    if ext == "obj":
+        data = obj_absolute(data, src)
+    elif ext == "ply":
+        ply_counts(data, src)
+    try:
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            loaded = trimesh.load(io.BytesIO(data), file_type=ext, force="mesh",
+                                  process=False)
+            if len(getattr(loaded, "faces", ())):
+                check_indices(loaded.vertices, loaded.faces, src)
+                # one vertex per position (an STL repeats each corner per face), so that a
+                # closed part is seen to be closed
+                loaded.merge_vertices(merge_tex=True, merge_norm=True)
+    except MeshFileError:
+        raise
+    except Exception as exc:  # any reader failure is the file's fault
+        raise MeshError(f"{src}: not a readable {ext.upper()} mesh "
+                        f"({str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__})"
+                        ) from None
+    v = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=float)
+    f = np.asarray(getattr(loaded, "faces", np.empty((0, 3), int)))
+    if len(f) == 0:
+        raise MeshError(f"{src}: no triangles in the file (is it a triangle mesh in {ext.upper()} "
+                        "format?)")
+    f, repeated = unique_faces(f)
+    if repeated:
+        warnings.warn(f"{src}: dropped {repeated} repeated faces (the same three corners as "
+                      "another face): each is painted once", stacklevel=3)
+    return v, f
 
 
 def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0),
@@ -180,24 +223,7 @@ def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0
     # the one reading rule: a regular file (a FIFO would block), within a size budget
     data = read_bytes(path, "mesh file", MeshError, MAX_MESH_BYTES)
     R, p = placement(position, rotation, src)
-    try:
-        with warnings.catch_warnings(), np.errstate(all="ignore"):
-            warnings.simplefilter("ignore")
-            loaded = trimesh.load(io.BytesIO(data), file_type=ext, force="mesh",
-                                  process=False)
-            if len(getattr(loaded, "faces", ())):
-                # one vertex per position (an STL repeats each corner per face), so that a
-                # closed part is seen to be closed
-                loaded.merge_vertices(merge_tex=True, merge_norm=True)
-    except Exception as exc:  # any reader failure is the file's fault
-        raise MeshError(f"{src}: not a readable {ext.upper()} mesh "
-                        f"({str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__})"
-                        ) from None
-    v = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=float)
-    f = np.asarray(getattr(loaded, "faces", np.empty((0, 3), int)))
-    if len(f) == 0:
-        raise MeshError(f"{src}: no triangles in the file (is it a triangle mesh in {ext.upper()} "
-                        "format?)")
+    v, f = _read_mesh(data, ext, src)
     v = v * UNITS[units]
     if not np.all(np.isfinite(v)):
         return make_part(v, f, facing, max_angle, src, units)  # names the vertex

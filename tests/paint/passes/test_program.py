@@ -1,6 +1,7 @@
 """A part's program pieces (paint/passes/program.py): a turnaround's quintic meets its end
 states with exact derivatives, the gun frame sprays along its axis."""
 import numpy as np
+import pytest
 
 from pollard_pin.paint.passes.program import Quintic, gun_frame
 
@@ -29,3 +30,17 @@ def test_gun_frame_sprays_along_the_axis():
     assert np.abs(R[:, :, 0] - a).max() < 1e-15
     assert np.abs(np.einsum("kij,kil->kjl", R, R) - np.eye(3)).max() < 1e-14
     assert np.abs(np.linalg.det(R) - 1).max() < 1e-14
+
+
+def test_gun_frame_of_a_vertical_axis_refers_to_world_x():
+    """A spray axis along ∓z (a table top) with reference x: the frame is the rotation
+    [a, c × a, c] with c = x projected off a, by hand; along the reference itself, a
+    PlanError line (no division by zero)."""
+    from pollard_pin.paint.errors import PlanError
+
+    a = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    R = gun_frame(a, (1.0, 0.0, 0.0))
+    assert np.abs(R[:, :, 0] - a).max() == 0.0 and np.abs(R[:, :, 2] - [1, 0, 0]).max() == 0.0
+    assert np.abs(np.linalg.det(R) - 1.0).max() < 1e-12  # achieved 0
+    with pytest.raises(PlanError, match="runs along the gun frame's reference axis"):
+        gun_frame(np.array([[1.0, 0.0, 0.0]]), (1.0, 0.0, 0.0))

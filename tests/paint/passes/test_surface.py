@@ -115,3 +115,35 @@ def test_passes_are_timed_by_the_spots_footprint():
     assert off_axis.max() < 1e-4  # the polyline between 1 mm samples
     flat = surface_layout(plate(), JOB).passes[2]
     assert np.abs(np.diff(flat.s) - np.diff(flat.s).mean()).max() < 5e-8  # measured 4.4e-10
+
+
+def test_a_spacing_far_too_fine_is_refused_before_planning():
+    """0.10 m of surface at spacing 1e-5 m: (0.10/1e-5 + 1) = 1.0e4 passes > MAX_PASSES,
+    refused with the figure (the cross profile of 1e4 passes took minutes)."""
+    from dataclasses import replace
+
+    from pollard_pin.paint.errors import BudgetError
+    from pollard_pin.paint.policy import MAX_PASSES
+
+    with pytest.raises(BudgetError) as exc:
+        surface_layout(plate(), replace(JOB, spacing=1e-5))
+    msg = str(exc.value)
+    assert "1e+04 passes" in msg and f"budget {MAX_PASSES}" in msg and "\n" not in msg, msg
+
+
+@pytest.mark.parametrize("facing", [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0), (0.3, 0.0, -1.0)])
+def test_a_horizontal_part_has_a_finite_frame(facing):
+    """A table top: the frame refers to world x (z lies along the facing), orthonormal and
+    right-handed (checked against numpy's cross product)."""
+    from pollard_pin.paint.passes.surface import reference_axis, surface_frame
+
+    n = np.asarray(facing) / np.linalg.norm(facing)
+    v = np.array([[0.0, 0, 0], [0.1, 0, 0], [0, 0.1, 0]])
+    tri = [[0, 1, 2]] if n[2] > 0 else [[0, 2, 1]]
+    part = make_part(v + [0.6, 0, 0], np.array(tri), facing=n)
+    f = surface_frame(part)
+    assert np.array_equal(reference_axis(n), [1.0, 0.0, 0.0])
+    basis = np.array([f.along, f.across, f.n])
+    assert np.abs(basis @ basis.T - np.eye(3)).max() < 1e-12  # achieved ~1e-16
+    assert np.abs(np.cross(f.n, f.across) - f.along).max() < 1e-12
+    assert np.array_equal(reference_axis([-1.0, 0.0, 0.0]), [0.0, 0.0, 1.0])

@@ -139,3 +139,66 @@ def test_without_embree_the_numpy_intersector_gives_the_same_film():
                      surface_points(part, 0.004), part)
     assert fast.shaded == int(shaded)
     assert np.abs(fast.thickness - slow).max() < 1e-3 * slow.max()
+
+
+def test_without_any_ray_engine_paint_says_what_to_install(tmp_path):
+    """embreex and rtree both hidden: trimesh's numpy intersector would fail inside its first
+    query; paint on a part is one line naming what to install, and writes nothing."""
+    root = Path(__file__).resolve().parents[3]
+    code = ("import sys; sys.modules['embreex'] = None; sys.modules['rtree'] = None\n"
+            "from pollard_pin.cli import main\n"
+            "sys.exit(main(sys.argv[1:]))\n")
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-c", code, "paint", "--job",
+                        str(root / "examples/parts/ribbed_plate.toml"), "--out", str(out)],
+                       cwd=root, capture_output=True, text=True, timeout=300)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert "neither is installed: pip install rtree" in lines[0]
+    assert not out.exists()
+
+
+def _slab(x0, x1, half=0.05):
+    return trimesh.creation.box(bounds=[[x0, -half, 0.11], [x1, half, 0.21]])
+
+
+def test_faces_the_gun_cannot_see_are_not_painted():
+    """A closed slab in front (x 0.60–0.61) and one behind it (0.70–0.71), both 0.10 m
+    square: the back slab's face towards the robot (an open box's inside far wall) lies
+    wholly behind the front slab, so by hand only the front slab's two −x triangles are
+    seen at 0.15 m standoff; the normals alone chose four."""
+    from pollard_pin.paint.spray.occlusion import painted_part, seen_faces
+
+    m = trimesh.util.concatenate([_slab(0.60, 0.61), _slab(0.70, 0.71)])
+    part = make_part(m.vertices, m.faces)
+    facing = part.normals @ [-1.0, 0.0, 0.0] > 0.99
+    front = part.vertices[part.faces].mean(axis=1)[:, 0] < 0.65
+    assert np.array_equal(part.painted, facing) and facing.sum() == 4
+    seen = seen_faces(part, 0.15)
+    assert np.array_equal(seen, facing & front)
+    assert np.array_equal(painted_part(part, 0.15).painted, facing & front)
+    # the two slabs side by side: nothing hides either
+    side = trimesh.util.concatenate([_slab(0.60, 0.61), _slab(0.70, 0.71).apply_translation(
+        [0.0, 0.2, 0.0])])
+    part = make_part(side.vertices, side.faces)
+    assert np.array_equal(seen_faces(part, 0.15), part.painted)
+
+
+def test_a_part_wholly_hidden_is_one_line():
+    """The slab behind a sheet turned away from the robot (normal +x, not painted itself):
+    every face towards the robot is hidden."""
+    from pollard_pin.paint.spray.occlusion import painted_part
+    from pollard_pin.paint.target.mesh import MeshError
+
+    slab = _slab(0.70, 0.71)
+    sheet = np.array([[0.60, -0.2, 0.0], [0.60, 0.2, 0.0], [0.60, 0.2, 0.4], [0.60, -0.2, 0.4]])
+    v = np.vstack([slab.vertices, sheet])
+    k = len(slab.vertices)
+    f = np.vstack([slab.faces, [[k, k + 1, k + 2], [k, k + 2, k + 3]]])
+    part = make_part(v, f)
+    assert part.normals[-1] @ [1.0, 0, 0] > 0.99 and part.painted.sum() == 2
+    with pytest.raises(MeshError) as exc:
+        painted_part(part, 0.15)
+    msg = str(exc.value)
+    assert "all 2 faces within 45° of facing are hidden" in msg and "\n" not in msg, msg
+    assert len(msg) <= 250

@@ -97,7 +97,7 @@ TRI = "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"  # normal +x: faces away from the r
     ("none.stl", None, {}, "does not exist"),
     ("part.step", "x", {}, "format '.step' is not a mesh"),
     ("junk.stl", "hello\n", {}, "no triangles in the file"),
-    ("junk.ply", "hello\n", {}, "not a readable PLY mesh"),
+    ("junk.ply", "hello\n", {}, "not a PLY file"),
     ("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y"
      "\nproperty float z\nend_header\n0 0 0\n", {}, "no triangles in the file"),
     ("nan.obj", "v 0 0 0\nv 0 1 0\nv nan 0 1\nf 1 2 3\n", {}, "vertex 2 = (nan, 0.0, 1.0)"),

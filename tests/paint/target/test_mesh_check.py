@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from pollard_pin.paint.mesh_check import (
+from pollard_pin.paint.target.mesh_check import (
     MeshFileError,
     check_indices,
     obj_absolute,
@@ -89,3 +89,48 @@ def test_repeated_faces_dropped_the_two_sides_of_a_sheet_kept():
     kept, dropped = unique_faces(f)
     # [1 2 0], [2 0 1], [0 1 2] repeat the first; [0 2 1] is its other side
     assert dropped == 3 and kept.tolist() == [[0, 1, 2], [0, 2, 1], [0, 2, 3]]
+
+
+# --- through the part loader (paint.target.mesh.load_part) -----------------------------------
+def _load(tmp_path, name, data: bytes, **kwargs):
+    from pollard_pin.paint.target.mesh import load_part
+
+    (tmp_path / name).write_bytes(data)
+    return load_part(tmp_path / name, **kwargs)
+
+
+def test_loader_reads_relative_obj_indices_as_the_file_means(tmp_path):
+    """The two triangles of INTERLEAVED: areas 1/2 and 2 by hand (the reader alone made
+    another part)."""
+    part = _load(tmp_path, "t.obj", INTERLEAVED, facing=(0, 0, 1))
+    assert np.allclose(np.sort(part.areas), [0.5, 2.0], rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("name, data, says", [
+    ("zero.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "line 4: face index 0"),
+    ("short.ply", PLY.replace(b"element vertex 4", b"element vertex 3"),
+     "but the data has 6 lines"),
+    ("negative.ply", PLY.replace(b"3 0 2 3\n", b"3 0 2 -1\n"),
+     "face 1 has vertex index -1, outside 0..3"),
+])
+def test_loader_refuses_a_self_contradicting_file_in_one_line(tmp_path, name, data, says):
+    from pollard_pin.paint.target.mesh import MeshError
+
+    with pytest.raises(MeshError) as exc:
+        _load(tmp_path, name, data, facing=(0, 0, 1))
+    msg = str(exc.value)
+    assert says in msg and "\n" not in msg and len(msg) <= 250, msg
+
+
+def test_loader_drops_repeated_and_zero_area_faces_and_says_so(tmp_path):
+    """PLY's square (two triangles, area 1) with each face written three times (rotated
+    corners) and one face of zero area: the part is the square, with two notes."""
+    body = b"3 0 1 2\n3 0 2 3\n3 1 2 0\n3 2 3 0\n3 2 0 1\n3 3 0 2\n3 0 1 1\n"
+    data = PLY.replace(b"element face 2", b"element face 7").split(b"end_header\n")[0]
+    data += b"end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n" + body
+    with pytest.warns(UserWarning) as notes:
+        part = _load(tmp_path, "rep.ply", data, facing=(0, 0, 1))
+    said = [str(w.message) for w in notes]
+    assert any("dropped 4 repeated faces" in s for s in said), said
+    assert any("dropped 1 faces of zero area" in s for s in said), said
+    assert len(part.faces) == 2 and abs(part.areas.sum() - 1.0) < 1e-14
