@@ -8,7 +8,7 @@ A capsule is the set of points within its radius of its axis segment, so it hold
 cylinder; the check measures a union of spheres on the capsules' axes that holds them
 (:meth:`GunBody.axis_points`): the front sphere, centred on the tip, reaches its radius
 √(r² + (h/2)²) ahead of it (a gun normal to a flat part at standoff s is s minus that from
-it: 150 − 4.59 = 145.41 mm with the defaults).
+it: 150 − 4.386 = 145.614 mm with the defaults).
 """
 from __future__ import annotations
 
