@@ -76,8 +76,8 @@ def surface_samples(vertices, faces, step: float = SURFACE_STEP):
     longest = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).max(axis=1)
     while True:
         n = np.maximum(1, np.ceil(longest / step)).astype(int)
-        if ((n + 1) * (n + 2) // 2).sum() <= MAX_SURFACE_POINTS:
-            break
+        if ((n + 1) * (n + 2) // 2).sum() <= MAX_SURFACE_POINTS or n.max() == 1:
+            break  # (the vertices alone, 3 a face, whatever their count)
         step *= 1.5
     points, owner = [], []
     for k in np.unique(n):

@@ -101,6 +101,15 @@ def test_surface_samples_cover_every_face_within_delta(mesh):
     assert set(np.unique(owner)) == set(range(len(mesh.faces)))
 
 
+def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
+    from pollard_pin.paint.plan import clearance
+
+    monkeypatch.setattr(clearance, "MAX_SURFACE_POINTS", 10)
+    mesh = plate()
+    pts, owner, delta = surface_samples(mesh.vertices, mesh.faces)
+    assert len(pts) == 6 and delta == pytest.approx(0.4 * math.sqrt(2), rel=1e-12)
+
+
 def test_a_close_pass_is_refused_naming_the_place():
     s = 0.012
     tips = np.column_stack([np.full(10, 0.7 - s), np.linspace(-0.1, 0.1, 10), np.zeros(10)])
