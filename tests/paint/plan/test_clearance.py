@@ -19,7 +19,7 @@ from pollard_pin.paint.plan.clearance import (
     surface_samples,
 )
 from pollard_pin.paint.plan.part import plan_surface
-from pollard_pin.paint.spray.gun_body import GunBody, gun_body
+from pollard_pin.paint.spray.gun_body import GunBody
 from pollard_pin.paint.target import shapes
 from pollard_pin.paint.target.mesh import load_part
 
@@ -45,14 +45,6 @@ def poses_along(axis, tips):
     b = b / np.linalg.norm(b) if np.linalg.norm(b) > 1e-9 else np.array([0.0, 1.0, 0.0])
     R = np.column_stack([a, b, np.cross(a, b)])
     return np.column_stack([tips, np.tile(angles_from_rotation(R), (len(tips), 1))])
-
-
-def test_the_default_body_is_the_gun_link_by_hand():
-    offs, radii = GunBody().axis_points()
-    assert offs[0] == 0 and offs[-1] == pytest.approx(0.06, abs=1e-15)
-    np.testing.assert_allclose(radii[:6], NOZZLE_SPHERE, rtol=1e-14)
-    np.testing.assert_allclose(radii[6:], BODY_SPHERE, rtol=1e-14)
-    assert gun_body() == GunBody()
 
 
 def test_a_flat_plate_normal_gun_is_the_standoff_less_the_front_sphere():
