@@ -49,6 +49,11 @@ def run(args) -> int:
 
         lines = (line_summary_lines(rep, act.names) if kind == "line panel" else
                  line_lines(rep) + part_summary_lines(rep, act.names))
+    if "min_clearance_m" in rep:  # docs/model.md §25
+        c = rep["clearance"]
+        lines.append(f"gun body {rep['min_clearance_m'] * 1e3:.1f} mm from the part at its "
+                     f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
+                     f"clearance {c['required_m'] * 1e3:.3g} mm)")
     print("\n".join(lines))
     say_written(out, name)
     return 0

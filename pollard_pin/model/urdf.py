@@ -50,6 +50,11 @@ CHAIN_COLOURS = {  # one colour per chain (docs/model.md §1)
 ARM_RADIUS = 0.008
 JOINT_RADIUS = 0.014
 CLOSURE_RADIUS = 0.010
+# The gun link: a box of this cross-section [m] over this share of x1918 from the wrist
+# centre, then the nozzle (a cylinder of NOZZLE_RADIUS [m]) to the tip.
+GUN_BOX_SECTION = (0.022, 0.03)
+GUN_BOX_SHARE = 0.7
+NOZZLE_RADIUS = 0.004
 
 
 @dataclass(frozen=True)
@@ -95,9 +100,10 @@ def tree(p: Params) -> tuple[list[str], list[Joint], dict[str, list[Shape]], dic
         "platform": [Shape("cylinder", (0, 0, 0), _ex(L), (ARM_RADIUS,))],
         "wrist1": [Shape("sphere", (0, 0, 0), size=(JOINT_RADIUS * 1.2,))],
         "wrist2": [Shape("cylinder", (0, 0, -0.012), (0, 0, 0.012), (0.007,))],
-        "gun": [Shape("box", (0.5 * p.x1918 * 0.7, 0, 0), size=(0.7 * p.x1918, 0.022, 0.03),
-                      colour="gun"),
-                Shape("cylinder", (0.7 * p.x1918, 0, 0), _ex(p.x1918), (0.004,), colour="gun")],
+        "gun": [Shape("box", (0.5 * p.x1918 * GUN_BOX_SHARE, 0, 0),
+                      size=(GUN_BOX_SHARE * p.x1918, *GUN_BOX_SECTION), colour="gun"),
+                Shape("cylinder", (GUN_BOX_SHARE * p.x1918, 0, 0), _ex(p.x1918),
+                      (NOZZLE_RADIUS,), colour="gun")],
         "tip": [],
     }
     chain = {"base": "base", "arm0": "chain0", "cross0": "chain0", "platform": "chain0",

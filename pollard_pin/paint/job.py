@@ -21,7 +21,7 @@ from .line.conveyor import Line, line_from_table
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "gun": ("standoff", "sigma", "flow"),
             "job": ("thickness",)}
-OPTIONAL = {"panel": (), "gun": (), "job": ("spacing", "speed", "direction", "coats",
+OPTIONAL = {"panel": (), "gun": ("clearance",), "job": ("spacing", "speed", "direction", "coats",
                                              "actuators")}
 # A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
 # replaces [panel].
@@ -63,12 +63,13 @@ class PaintJob:
     actuators: str | None = None  # a path, relative to the job file's folder
     source: str = "<python>"
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
+    clearance: float | None = None  # gun body to part [m]; None: the default (§25)
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
         return {"panel": {k: d[k] for k in REQUIRED["panel"]},
-                "gun": {k: d[k] for k in REQUIRED["gun"]},
+                "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {})}
 
@@ -98,12 +99,13 @@ class PartJob:
     actuators: str | None = None
     source: str = "<python>"
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
+    clearance: float | None = None  # gun body to part [m]; None: the default (§25)
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
-                "gun": {k: d[k] for k in REQUIRED["gun"]},
+                "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {})}
 
@@ -231,8 +233,13 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
 
 
 def _gun_values(source: str, gun: Mapping) -> dict:
-    return {k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
-            for k in REQUIRED["gun"]}
+    values = {k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
+              for k in REQUIRED["gun"]}
+    if "clearance" in gun:  # the gun body's least distance from the part (§25)
+        values["clearance"] = _number(source, "gun.clearance", gun["clearance"], length=True)
+        if values["clearance"] < 0:
+            _fail(source, "gun.clearance", gun["clearance"], "must be ≥ 0 m")
+    return values
 
 
 def _job_values(source: str, job: Mapping) -> dict:

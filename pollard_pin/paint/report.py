@@ -37,6 +37,13 @@ def check_report(rep: dict, source: str) -> dict:
     return rep
 
 
+def clearance_entries(plan) -> dict:
+    """paint.json's ``min_clearance_m`` (the gun body's least distance from the part [m],
+    docs/model.md §25) and ``clearance`` (where, and the bound between samples)."""
+    c = plan.clearance
+    return {} if c is None else {"min_clearance_m": c.distance, "clearance": c.to_dict()}
+
+
 def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
     """The numbers of ``paint.json``: the job, film statistics [m], timing and layout, and
     each motor's peak utilisation (checked at CHECK_REFINE× the path's sampling)."""
@@ -60,6 +67,7 @@ def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
         "turnarounds": [float(d) for d, k in zip(plan.segments.duration, plan.segments.kind)
                         if k == "turn"],
         "samples": len(tr),
+        **clearance_entries(plan),
         "motors": plan.motor_use(act.names),
         "motors_source": act.source,
         "integration": {"rule": "trapezoid over the path samples",
@@ -96,6 +104,7 @@ def surface_report(plan: SurfacePlan, points, film: MeshFilm, painted, efficienc
         "direction": j.direction,
         "turnarounds": [float(p.duration) for p in plan.program.pieces if p.kind == "turn"],
         "samples": len(tr),
+        **clearance_entries(plan),
         "motors": plan.motor_use(act.names),
         "motors_source": act.source,
         "film_points": {"painted": int(np.count_nonzero(painted)), "total": len(points),
@@ -151,6 +160,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
         "direction": "horizontal" if plan.horizontal else "vertical",
         "turnarounds": [float(d) for d, k in zip(seg.duration, seg.kind) if k == "turn"],
         "samples": len(plan.trajectory),
+        **clearance_entries(plan),
         "motors": plan.motor_use(act.names),
         "motors_source": act.source,
         "line": line_table(plan),
@@ -175,5 +185,5 @@ def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators
     return check_report(rep, plan.job.source)
 
 
-__all__ = ["SLACK", "check_report", "line_part_report", "line_report", "line_table",
-           "paint_report", "surface_report"]
+__all__ = ["SLACK", "check_report", "clearance_entries", "line_part_report", "line_report",
+           "line_table", "paint_report", "surface_report"]

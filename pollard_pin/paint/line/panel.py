@@ -17,6 +17,7 @@ import numpy as np
 from ...dynamics.motors import Actuators
 from ..job import PaintJob, PartJob
 from ..passes.raster import Segments, raster_motion, raster_segments
+from ..plan.clearance import job_clearance, panel_mesh
 from ..plan.panel import panel_layout
 from ..plan.result import PlanResult
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
@@ -90,13 +91,17 @@ def panel_relative(frame, job, seg: Segments, horizontal: bool) -> Relative:
                     seg.duration, seg.kind, program=seg)
 
 
-def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part | None = None):
+def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part | None = None,
+              clearance: bool = True):
     """The raster program for a panel on the line at ``speed`` (default the job's); a
-    [part] job goes to :func:`.line.part.plan_line_part` (``part``: its mesh, read once)."""
+    [part] job goes to :func:`.line.part.plan_line_part` (``part``: its mesh, read once).
+    ``clearance``: check the gun body's clearance (:func:`line_clearance`); the speed
+    searches leave it to the plan they return."""
     if isinstance(job, PartJob):
         from .part import plan_line_part
 
-        return plan_line_part(robot, job, act, speed, part)
+        plan = plan_line_part(robot, job, act, speed, part)
+        return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)
@@ -118,10 +123,22 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
                           track(frame.c + job.standoff * frame.n, e),
                           f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
     world = plan_world(robot, act, program, speed, e)
-    return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
+    plan = LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
                     offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
                     spray=world.spray, ratios=world.ratios,
                     timings={"plan": time.perf_counter() - clock})
+    return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+
+
+def line_clearance(robot, plan):
+    """The gun body's :class:`.plan.clearance.Clearance` from the panel or part of a plan on
+    the line, seen from the part at rest (the world path less the line's displacement),
+    refused as a :class:`.plan.clearance.ClearanceError` (docs/model.md §25)."""
+    tr = plan.trajectory
+    rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -plan.speed, plan.direction)
+    mesh = plan.part.mesh if isinstance(plan.job, PartJob) else panel_mesh(plan.frame)
+    return job_clearance(robot, plan.job, mesh, rel, tr.t, lambda i: (
+        "while spraying" if plan.spray[i] > 0 else "with the gun closed"))
 
 
 def line_planner(robot, job, act: Actuators, part: Part | None = None):
@@ -131,7 +148,7 @@ def line_planner(robot, job, act: Actuators, part: Part | None = None):
         from ..spray.occlusion import load_painted_part
 
         part = load_painted_part(job)
-    return lambda speed=None: plan_line(robot, job, act, speed, part)
+    return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False)
 
 
 def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
@@ -139,18 +156,20 @@ def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
     part is painted under the same checks, and its plan (docs/model.md §24,
     :func:`.line.phases.fastest_line_speed`)."""
-    return fastest_line_speed(line_planner(robot, job, act, part), job.line.speed, job.source,
-                              resolution)
+    speed, plan = fastest_line_speed(line_planner(robot, job, act, part), job.line.speed,
+                                     job.source, resolution)
+    return speed, replace(plan, clearance=line_clearance(robot, plan))
 
 
 def plan_line_job(robot, job, act: Actuators, part: Part | None = None):
     """The job's line speed planned; a speed that cannot be painted is refused naming the
     fastest that works (:func:`max_line_speed`)."""
-    return plan_or_name_fastest(line_planner(robot, job, act, part), job.line.speed,
+    plan = plan_or_name_fastest(line_planner(robot, job, act, part), job.line.speed,
                                 job.source)
+    return replace(plan, clearance=line_clearance(robot, plan))
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
-           "line_planner", "line_shift", "max_line_speed", "panel_relative",
+           "line_clearance", "line_planner", "line_shift", "max_line_speed", "panel_relative",
            "part_length", "pass_direction", "plan_line", "plan_line_job", "relative_motion",
            "world_motion"]

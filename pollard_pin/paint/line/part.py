@@ -62,7 +62,7 @@ class LinePartPlan(PlanResult):
         rel = Trajectory(tr.t, p, d, tr.dd_poses, name="paint line, the part's frame")
         return SurfacePlan(self.job, self.part, self.layout, self.program, self.pass_speed, 1,
                            trajectory=rel, spray=self.spray, ratios=self.ratios,
-                           timings=self.timings)
+                           timings=self.timings, clearance=self.clearance)
 
 
 def across_the_travel(part: Part, direction) -> bool:
@@ -88,7 +88,8 @@ def part_relative(program: Program) -> Relative:
 
 def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = None,
                    part: Part | None = None) -> LinePartPlan:
-    """The surface program for a part on the line at ``speed`` (default the job's)."""
+    """The surface program for a part on the line at ``speed`` (default the job's), its
+    clearance not checked (:func:`.line.panel.plan_line` checks it)."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)

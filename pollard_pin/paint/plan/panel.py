@@ -52,6 +52,7 @@ from ..policy import (
 )
 from ..target.panel import PanelFrame, panel_frame
 from .checks import fastest, motion, reach
+from .clearance import job_clearance, panel_mesh
 from .result import PlanResult
 
 
@@ -331,9 +332,12 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
               "speed": fine.speed_ratio.max(0)}
     if ratios["rms_torque"].max() > 1.0:  # the search's samples missed it: say so, never pass
         raise PlanError(_rms_text(act, ratios["rms_torque"], "the planned cycle"))
+    clear = job_clearance(robot, job, panel_mesh(frame), poses, t, lambda i: "in a " + str(
+        seg.kind[int(np.searchsorted(seg.start, t[i], "right") - 1)]))
     clock["check"] = time.perf_counter()
     return PaintPlan(job, frame, seg, offsets, spacing, speed, coats, half_length, vmax,
                      horizontal, trajectory=traj, spray=np.ones(n), ratios=ratios,
+                     clearance=clear,
                      timings={"layout": clock["layout"] - clock["start"],
                               "turnarounds": clock["turns"] - clock["layout"],
                               "check": clock["check"] - clock["turns"]})

@@ -35,6 +35,7 @@ from ..policy import (
 from ..spray.occlusion import load_painted_part
 from ..target.mesh import Part
 from .checks import fastest, motion
+from .clearance import job_clearance
 from .result import PlanResult
 
 
@@ -132,6 +133,13 @@ def _where(program: Program, layout: SurfaceLayout, t: float, pose) -> str:
     return f"in a {piece.kind}, {where}"
 
 
+def _piece_name(program: Program, layout: SurfaceLayout, t: float) -> str:
+    piece = program.pieces[int(program.piece_at(np.array([t]))[0])]
+    if piece.kind == "pass":
+        return f"on pass {piece.index + 1} of {len(layout.passes)}"
+    return f"in a {piece.kind}"
+
+
 def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> SurfacePlan:
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
     module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
@@ -198,9 +206,11 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
                             f"{what.replace('_', ' ')} rating on the passes at "
                             f"{v:.4g} m/s: more coats of a thinner film, or a wider "
                             "spacing")
+    clear = job_clearance(robot, job, part.mesh, traj.poses, t,
+                          lambda i: _piece_name(program, layout, t[i]))
     clock.append(time.perf_counter())
     return SurfacePlan(job, part, layout, program, v, coats, trajectory=traj,
-                       spray=program.spray(t), ratios=ratios,
+                       spray=program.spray(t), ratios=ratios, clearance=clear,
                        timings={"layout": clock[1] - clock[0],
                                 "turnarounds": clock[2] - clock[1],
                                 "check": clock[3] - clock[2]})
