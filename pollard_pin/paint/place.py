@@ -244,7 +244,7 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
             continue
     best = max(fits, key=lambda f: (round(f.margin / opts.step * 2), -abs(f.turn)))
     if best.margin < 0:
-        raise PlaceError(_missed(robot, job, fits[0], orient, len(fits)))
+        raise PlaceError(_missed(robot, job, fits[0], orient, box, len(fits)))
     shift, margin = _centre(robot, best, opts)
     R = _axis_rotation(np.asarray(base.facing), math.radians(best.turn))
     Rj, _ = placement((0, 0, 0), job.rotation, job.source)
@@ -267,7 +267,7 @@ def _runs(mask: np.ndarray, axis: int) -> int:
     return best
 
 
-def _missed(robot, job, fit: _Fit, orient, turns: int) -> str:
+def _missed(robot, job, fit: _Fit, orient, box, turns: int) -> str:
     """How the part misses: taller or wider than the reach in the plane of its tips (the
     passes' run-ons included), else the share of gun poses the best position reaches."""
     frame = surface_frame(fit.part)
@@ -276,15 +276,16 @@ def _missed(robot, job, fit: _Fit, orient, turns: int) -> str:
     height, width = np.ptp(tips @ v), np.ptp(tips @ u)
     h = 0.01
     best = (0, 0)
-    from ..workspace.grid import reach_sphere
-
-    c, r = reach_sphere(robot.params, orient)
-    g = np.arange(-r, r + h / 2, h)
-    for depth in np.arange(-r, r + h / 2, 3 * h):
-        pts = c + depth * n + g[:, None, None] * u + g[None, :, None] * v
+    lo, hi, hb = box  # the reachable box's corners in the frame (u, v, n) bound the scan
+    corners = np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]]
+                        for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+    span = [(float((corners @ e).min()) - hb, float((corners @ e).max()) + hb) for e in (u, v, n)]
+    gu, gv = (np.arange(a, b + h / 2, h) for a, b in span[:2])
+    for depth in np.arange(span[2][0], span[2][1] + h / 2, 3 * h):
+        pts = depth * n + gu[:, None, None] * u + gv[None, :, None] * v
         poses = np.concatenate([pts.reshape(-1, 3), np.broadcast_to(orient, (pts.size // 3, 3))],
                                axis=1)
-        ok = evaluate(robot, poses)["reachable"].reshape(len(g), len(g)) > 0
+        ok = evaluate(robot, poses)["reachable"].reshape(len(gu), len(gv)) > 0
         if ok.any():
             best = (max(best[0], _runs(ok, 1)), max(best[1], _runs(ok, 0)))
     tall, wide = height - best[0] * h, width - best[1] * h
