@@ -5,6 +5,7 @@ from .common import command, load_robot, model_args, name, nonnegative, positive
 
 
 def run(args) -> int:
+    from ..errors import InputError
     from ..io.atomic import check_not_inputs, check_outputs
     from ..paint.job import PartJob, load_job
     from ..paint.place import PlaceOptions, place
@@ -15,7 +16,11 @@ def run(args) -> int:
     if not isinstance(job, PartJob):
         raise UsageError(f"--job {args.job}: a [panel] job; place moves a [part]'s mesh")
     check_not_inputs([args.out], [("the job", args.job), ("the mesh", job.mesh)])
-    opts = PlaceOptions(step=args.step, max_turn=args.max_turn)
+    try:
+        opts = PlaceOptions(step=args.step, max_turn=args.max_turn)
+    except InputError as exc:  # the library names the option; the user typed the flag
+        flag = "--step" if ".step" in str(exc) else "--max-turn"
+        raise UsageError(f"{flag}: {str(exc).split(' = ', 1)[1]}") from None
     result = place(load_robot(args), job, opts)
     p, r = result.job.position, result.job.rotation
     print(f"position [{p[0]:.4f}, {p[1]:.4f}, {p[2]:.4f}] m, rotation [{r[0]:.4g}, "
