@@ -242,10 +242,14 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
             fits.append(_coarse(robot, job, _turned(job, base, t), t, box, opts))
         except PlanError:  # passes the gun cannot follow at this turn: not a candidate
             continue
-    best = max(fits, key=lambda f: (round(f.margin / opts.step * 2), -abs(f.turn)))
-    if best.margin < 0:
-        raise PlaceError(_missed(robot, job, fits[0], orient, box, len(fits)))
-    shift, margin = _centre(robot, best, opts)
+    top = max(f.margin for f in fits)
+    if top < 0:
+        raise PlaceError(f"{job.source}: {_missed(robot, fits[0], orient, box, len(fits))}")
+    # the coarse margin ranks the turns to a step; those within one of the best are refined
+    # and the refined margin decides (to half a centring tolerance, the smaller turn first)
+    near = [(f, *_centre(robot, f, opts)) for f in fits if f.margin >= top - opts.step]
+    best, shift, margin = max(near, key=lambda c: (round(c[2] / opts.step * 16),
+                                                   -abs(c[0].turn)))
     R = _axis_rotation(np.asarray(base.facing), math.radians(best.turn))
     Rj, _ = placement((0, 0, 0), job.rotation, job.source)
     a = angles_from_rotation(R @ Rj)  # (ψ, θ, φ) of Rx(θ)·Ry(ψ)·Rz(φ)
@@ -267,7 +271,7 @@ def _runs(mask: np.ndarray, axis: int) -> int:
     return best
 
 
-def _missed(robot, job, fit: _Fit, orient, box, turns: int) -> str:
+def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
     """How the part misses: taller or wider than the reach in the plane of its tips (the
     passes' run-ons included), else the share of gun poses the best position reaches."""
     frame = surface_frame(fit.part)
@@ -293,14 +297,39 @@ def _missed(robot, job, fit: _Fit, orient, box, turns: int) -> str:
     if tall > 0 or wide > 0:
         what = " and ".join(w for w, x in (("taller", tall), ("wider", wide)) if x > 0)
         by = max(tall, wide)
-        return (f"{job.source}: the part is {what} than the reach{turned} by "
+        return (f"the part is {what} than the reach{turned} by "
                 f"{by * 1e3:.0f} mm (passes {width:.3f} × {height:.3f} m, reach "
                 f"{best[1] * h:.2f} × {best[0] * h:.2f} m): a line or a cell of robots would "
                 "paint it")
-    return (f"{job.source}: no position{turned} reaches every gun pose of the passes "
+    return (f"no position{turned} reaches every gun pose of the passes "
             f"({width:.3f} × {height:.3f} m; reach {best[1] * h:.2f} × {best[0] * h:.2f} m "
             "with the gun level): the gun tilts too far on the curves; a flatter part or a "
             "line")
 
 
-__all__ = ["SAMPLES", "PlaceError", "PlaceOptions", "PlaceResult", "place"]
+def reach_hint(robot, job: PartJob) -> str:
+    """What would bring a still part whose passes leave the reach within it: vertical passes
+    where they reach as placed, else the move to :func:`place`'s placement, else by how much
+    the part misses (taller or wider than the reach)."""
+    if job.direction == "horizontal":
+        vertical = replace(job, direction="vertical")
+        part = load_part(job.mesh, job.unit, job.position, job.rotation, job.facing,
+                         45.0 if job.max_angle is None else job.max_angle)
+        try:
+            poses = np.concatenate(pass_poses(surface_layout(part, vertical)))
+        except PlanError:
+            poses = None
+        if poses is not None and evaluate(robot, poses)["reachable"].all():
+            return 'direction = "vertical" reaches every pass as placed'
+    try:
+        r = place(robot, job, PlaceOptions(max_turn=0.0))
+    except PlaceError as exc:
+        return str(exc).split(": ", 1)[1]
+    except PlanError:
+        return "pollard-pin place may find where it fits"
+    d = np.subtract(r.job.position, job.position)
+    return (f"move the part by ({d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f}) m ({r.margin * 1e3:.0f} "
+            "mm of margin; pollard-pin place writes that job)")
+
+
+__all__ = ["SAMPLES", "PlaceError", "PlaceOptions", "PlaceResult", "place", "reach_hint"]
