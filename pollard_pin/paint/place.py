@@ -307,10 +307,11 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
             "line")
 
 
-def reach_hint(robot, job: PartJob) -> str:
+def reach_hint(robot, job: PartJob, paints=None) -> str:
     """What would bring a still part whose passes leave the reach within it: vertical passes
-    where they reach as placed, else the move to :func:`place`'s placement, else by how much
-    the part misses (taller or wider than the reach)."""
+    where they reach as placed (and ``paints(vertical job)`` is true: the whole program
+    holds), else the move to :func:`place`'s placement, else by how much the part misses
+    (taller or wider than the reach)."""
     if job.direction == "horizontal":
         vertical = replace(job, direction="vertical")
         part = load_part(job.mesh, job.unit, job.position, job.rotation, job.facing,
@@ -319,8 +320,9 @@ def reach_hint(robot, job: PartJob) -> str:
             poses = np.concatenate(pass_poses(surface_layout(part, vertical)))
         except PlanError:
             poses = None
-        if poses is not None and evaluate(robot, poses)["reachable"].all():
-            return 'direction = "vertical" reaches every pass as placed'
+        if (poses is not None and evaluate(robot, poses)["reachable"].all()
+                and (paints is None or paints(vertical))):
+            return 'direction = "vertical" paints it as placed'
     try:
         r = place(robot, job, PlaceOptions(max_turn=0.0))
     except PlaceError as exc:

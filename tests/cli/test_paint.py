@@ -246,10 +246,14 @@ def test_part_path_runs(part_painted, capsys, tmp_path):
      "not a mesh this reads"),
     (lambda t: t.replace("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")
      .replace("max_angle = 45.0", "max_angle = 10.0"), None, "no face has its outward normal"),
+    # out of reach: the move that brings it back (place's placement, 75 mm of margin)
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"), None,
-     "no point of the painted faces is within reach"),
+     "move the part by (-0.410, -0.000, -0.056) m (75 mm of margin"),
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.0, 0.25, 0.0]"), None,
-     "reachable: 6"),
+     "move the part by (-0.010, -0.250, -0.056) m"),
+    # horizontal passes hit theta54's limit in their run-on; vertical ones paint it
+    (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [-0.05, -0.1, -0.05]"), None,
+     'direction = "vertical" paints it as placed'),
     (lambda t: t.replace('units = "m"', 'units = "mm"'), None, "read as millimetres"),
     (lambda t: t.replace('mesh = ', 'mesch = '), None, "did you mean 'mesh'"),
 ])

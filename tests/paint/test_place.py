@@ -100,6 +100,24 @@ def test_turn_composes_with_the_job_rotation(robot, tmp_path):
     assert np.abs(got - want).max() < 1e-9  # achieved ~1e-16 (angles written to 1e-9°)
 
 
+def test_vertical_passes_suggested_where_they_paint(robot):
+    """The example part 5 cm back, 10 cm right and 5 cm down: its horizontal passes' run-on
+    takes theta54 past its limit, and the refusal says vertical passes paint it, as they
+    do."""
+    from pollard_pin.paint.api import default_actuators
+    from pollard_pin.paint.errors import ReachError
+    from pollard_pin.paint.plan.part import plan_surface
+
+    job = replace(load_job(CURVED), position=(-0.05, -0.1, -0.05))
+    act = default_actuators(job)
+    with pytest.raises(ReachError) as exc:
+        plan_surface(robot, job, act)
+    msg = str(exc.value)
+    assert 'direction = "vertical" paints it as placed' in msg and len(msg) <= 250, msg
+    plan = plan_surface(robot, replace(job, direction="vertical"), act)
+    assert plan.ratios["peak_torque"].max() <= 1.0
+
+
 @pytest.mark.parametrize("options, fragment", [
     (dict(step=0.0), "PlaceOptions.step = 0.0"),
     (dict(max_turn=-1.0), "PlaceOptions.max_turn = -1.0"),

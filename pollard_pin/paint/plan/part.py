@@ -89,12 +89,22 @@ def _cause(exc: ReachError) -> str:
     return clip(str(exc).split(": ")[0], 60)
 
 
-def _refusal(robot, job, part: Part, exc: ReachError) -> ReachError:
+def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool) -> ReachError:
     """The reach error of a still part, one line with what would paint it
     (:func:`.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
     from ..place import reach_hint
 
-    name, hint = Path(part.source).name, clip(reach_hint(robot, job), 170)
+    if not hints:
+        return exc
+
+    def paints(other) -> bool:
+        try:
+            plan_surface(robot, other, act, part, hints=False)
+        except PlanError:
+            return False
+        return True
+
+    name, hint = Path(part.source).name, clip(reach_hint(robot, job, paints), 170)
     where = clip(str(exc), 250 - 2 - len(name) - 2 - len(hint))
     return ReachError(f"{name}: {where}; {hint}", exc.sample, exc.pose)
 
@@ -128,9 +138,11 @@ def _where(program: Program, layout: SurfaceLayout, t: float, pose) -> str:
     return f"in a {piece.kind}, {where}"
 
 
-def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> SurfacePlan:
+def plan_surface(robot, job, act: Actuators, part: Part | None = None,
+                 hints: bool = True) -> SurfacePlan:
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
-    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
+    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails
+    (out of reach, with ``hints``: what would paint it, :func:`.place.reach_hint`)."""
     clock = [time.perf_counter()]
     part = load_job_part(job) if part is None else part
     v = pass_speed(job, pass_spacing(job))
@@ -142,7 +154,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
         try:
             use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
         except ReachError as exc:
-            raise _refusal(robot, job, part, exc) from None
+            raise _refusal(robot, job, act, part, exc, hints) from None
         if use <= UTILISATION:
             break
         wider = [w for w in SMOOTHING if w > layout.smoothing]
@@ -173,7 +185,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     try:
         taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
     except ReachError as exc:
-        raise _refusal(robot, job, part, exc) from None
+        raise _refusal(robot, job, act, part, exc, hints) from None
     program = build_program(pieces, taus)
     clock.append(time.perf_counter())
     n = math.ceil(program.total / dt) + 1
@@ -187,9 +199,9 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     try:
         fine = motion(robot, act, *program.evaluate(tf))
     except ReachError as exc:
-        raise _refusal(robot, job, part, ReachError(
+        raise _refusal(robot, job, act, part, ReachError(
             f"the path leaves the reach {_where(program, layout, tf[exc.sample], exc.pose)} "
-            f"({_cause(exc)})", exc.sample, exc.pose)) from None
+            f"({_cause(exc)})", exc.sample, exc.pose), hints) from None
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
