@@ -255,6 +255,9 @@ def test_part_path_runs(part_painted, capsys, tmp_path):
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [-0.05, -0.1, -0.05]"), None,
      'direction = "vertical" paints it as placed'),
     (lambda t: t.replace('units = "m"', 'units = "mm"'), None, "read as millimetres"),
+    # 0.2 m of part at scale 0.01: 2 mm, under the spot's σ = 10 mm
+    (lambda t: t.replace('units = "m"', "scale = 0.01"), None,
+     "the part is smaller than the spray spot: its painted faces span 0.00"),
     (lambda t: t.replace('mesh = ', 'mesch = '), None, "did you mean 'mesh'"),
 ])
 def test_bad_part_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, mesh, words):

@@ -274,9 +274,11 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
     extent = float(w[-1])
     span = np.ptp(part.vertices[part.faces[part.painted]].reshape(-1, 3) @ frame.along)
     if min(extent, span) < job.sigma:  # the job's rule for panels (MIN_PANEL_SIGMAS)
-        raise PlanError(f"{part.source}: the painted faces span {span:.4g} × {extent:.4g} m, "
-                        f"less than the spray spot (σ = {job.sigma:.4g} m): a mesh in metres "
-                        "read as millimetres (part.units)?")
+        why = ("a mesh in metres read as millimetres (part.units)?"
+               if getattr(job, "unit", 1.0) < 1.0 else "a smaller spot (gun.sigma)")
+        raise PlanError(f"{part.source}: the part is smaller than the spray spot: its painted "
+                        f"faces span {span:.3g} × {extent:.3g} m, σ = {job.sigma:.3g} m (the "
+                        f"film would be the spot's own profile): {why}")
     try:
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:
