@@ -12,7 +12,8 @@ moves them, its turn changes them. For each turn a coarse grid of positions (``s
 checked at a few extreme poses, then at ``samples`` of them; the margin of a position is
 its distance to the nearest failing one (a Euclidean distance transform), and the best
 position is then centred along each world axis in its reachable interval at ``step``/8.
-The turnarounds beyond the run-ons are not checked here: ``paint`` checks them.
+The turnarounds beyond the run-ons are not checked here: ``paint`` checks them. A job on a
+line is placed as if still, across the line: where it starts along the line stays the job's.
 """
 from __future__ import annotations
 
@@ -254,6 +255,10 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
     Rj, _ = placement((0, 0, 0), job.rotation, job.source)
     a = angles_from_rotation(R @ Rj)  # (ψ, θ, φ) of Rx(θ)·Ry(ψ)·Rz(φ)
     rotation = tuple(round(math.degrees(float(x)), 9) + 0.0 for x in (a[1], a[0], a[2]))
+    if job.line is not None:  # on a line: where it starts along the line stays the job's
+        d = np.asarray(job.line.direction, dtype=float)
+        d /= np.linalg.norm(d)
+        shift = shift + (np.dot(job.position, d) - np.dot(shift, d)) * d
     placed = replace(job, position=tuple(round(float(x), 6) + 0.0 for x in shift),
                      rotation=rotation)
     return PlaceResult(placed, best.turn, margin, len(best.checked),

@@ -53,6 +53,19 @@ def test_moved_part_is_brought_back_with_its_margin(robot, placed):
     assert min(beyond) < 1.0
 
 
+def test_line_job_keeps_its_start_along_the_line(robot, placed):
+    """On a line (along +y) the placement moves the part across the line only: x and z as
+    the still placement's, y the job's own start."""
+    from pollard_pin.paint.line.conveyor import Line
+
+    job, still = placed
+    on_line = replace(job, position=(0.0, -0.6, 0.25), line=Line(0.03, (0.0, 1.0, 0.0)))
+    result = place(robot, on_line, PlaceOptions(max_turn=0.0))
+    x, y, z = result.job.position
+    assert y == -0.6 and result.job.line == on_line.line
+    assert abs(x - still.job.position[0]) < 1e-6 and abs(z - still.job.position[2]) < 1e-6
+
+
 def test_placed_job_paints(robot, placed, tmp_path):
     """The written job is read back as is and painted: the film within ±5 % of target."""
     _, result = placed
