@@ -892,7 +892,7 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_rotation.toml", "'part.rotation[1]' = 'x': must be a number"),
     ("part_max_angle.toml", "max_angle = 200° must be in (0, 180]"),
     ("part_zero_facing.toml", "has zero length"),
-    ("part_far.toml", "no point of the painted faces is within reach"),
+    ("part_far.toml", "move the part by (-0.410, -0.000, -0.056) m (75 mm of margin"),
     ("part_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
     ("part_line_coats.toml", "job.coats = 2: a part on the line is painted in one coat"),
     ("part_line_past.toml", "the part never comes within reach: the gun's track at the part's "
