@@ -27,8 +27,9 @@ LINE = Line(0.03, (0.0, 1.0, 0.0))  # as examples/line_part.toml
 UPSTREAM = 0.6  # m the line job starts upstream of the still placement
 
 # The film statistics [µm] and shares, still and on the line. Run to run they repeat to the
-# last bit on this machine; the tolerance, rel 1e-4, leaves room for the ray verdicts of
-# Embree (float32) against trimesh's numpy intersector, not for a change of the model:
+# last bit on this machine; the tolerance, rel 1e-3, is twice the spread between Embree's
+# float32 ray verdicts and trimesh's numpy intersector at shadow edges (docs/model.md §23,
+# 5e-4 of the film), not room for a change of the model:
 # mean, std, min, max [µm], within ±5 %, ±10 % (area shares)
 PINNED = {
     ("plate_holes", "still"):
@@ -85,4 +86,4 @@ def test_paint(robot, placed, name, kind):
     assert rep["part"]["painted_area"] == pytest.approx(_trimesh_area(job), rel=1e-12)
     got = [th[k] * 1e6 for k in ("mean", "std", "min", "max")] + [
         th["within_5pct"], th["within_10pct"]]
-    assert got == pytest.approx(PINNED[name, kind], rel=1e-4), got
+    assert got == pytest.approx(PINNED[name, kind], rel=1e-3), got
