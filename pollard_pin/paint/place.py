@@ -34,7 +34,7 @@ from .errors import PlanError
 from .job import PartJob
 from .passes.program import pass_poses
 from .passes.surface import surface_frame, surface_layout
-from .target.mesh import Part, load_part, make_part, placement
+from .target.mesh import MAX_ANGLE, Part, load_job_part, load_part, make_part, placement
 
 # gun poses checked at every coarse position after the extreme ones
 SAMPLES = 400
@@ -229,7 +229,7 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
     if not isinstance(opts, PlaceOptions):
         raise InputError(f"options: a {type(opts).__name__}, expected PlaceOptions")
     base = load_part(job.mesh, job.unit, (0.0, 0.0, 0.0), job.rotation, job.facing,
-                     45.0 if job.max_angle is None else job.max_angle)
+                     MAX_ANGLE if job.max_angle is None else job.max_angle)
     first = _turned(job, base, 0.0)
     poses0 = np.concatenate(pass_poses(surface_layout(first, job)))
     orient = np.median(poses0[:, 3:], axis=0)
@@ -252,9 +252,7 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
     best, shift, margin = max(near, key=lambda c: (round(c[2] / opts.step * 16),
                                                    -abs(c[0].turn)))
     R = _axis_rotation(np.asarray(base.facing), math.radians(best.turn))
-    Rj, _ = placement((0, 0, 0), job.rotation, job.source)
-    a = angles_from_rotation(R @ Rj)  # (ψ, θ, φ) of Rx(θ)·Ry(ψ)·Rz(φ)
-    rotation = tuple(round(math.degrees(float(x)), 9) + 0.0 for x in (a[1], a[0], a[2]))
+    rotation = _rotation_angles(R @ placement((0, 0, 0), job.rotation, job.source)[0])
     if job.line is not None:  # on a line: where it starts along the line stays the job's
         d = np.asarray(job.line.direction, dtype=float)
         d /= np.linalg.norm(d)
@@ -263,6 +261,17 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
                      rotation=rotation)
     return PlaceResult(placed, best.turn, margin, len(best.checked),
                        {f.turn: f.margin for f in fits})
+
+
+def _rotation_angles(R: np.ndarray) -> tuple[float, float, float]:
+    """(rx, ry, rz) [deg] of R = Rx·Ry·Rz (:func:`.target.mesh.placement`); at ry = ±90°
+    (the gimbal lock of a part turned to face the robot) rz = 0 and rx takes the rest."""
+    a = angles_from_rotation(R)  # (ψ, θ, φ) of Rx(θ)·Ry(ψ)·Rz(φ)
+    rot = tuple(round(math.degrees(float(x)), 9) + 0.0 for x in (a[1], a[0], a[2]))
+    if np.abs(placement((0, 0, 0), rot)[0] - R).max() > 1e-9:
+        rx = math.degrees(math.atan2(R[2, 1], R[1, 1]))  # R·e_y = Rx(rx)·e_y when rz = 0
+        rot = (round(rx, 9) + 0.0, rot[1], 0.0)
+    return rot
 
 
 def _runs(mask: np.ndarray, axis: int) -> int:
@@ -319,8 +328,7 @@ def reach_hint(robot, job: PartJob, paints=None) -> str:
     (taller or wider than the reach)."""
     if job.direction == "horizontal":
         vertical = replace(job, direction="vertical")
-        part = load_part(job.mesh, job.unit, job.position, job.rotation, job.facing,
-                         45.0 if job.max_angle is None else job.max_angle)
+        part = load_job_part(job)
         try:
             poses = np.concatenate(pass_poses(surface_layout(part, vertical)))
         except PlanError:

@@ -15,11 +15,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from scipy.spatial import cKDTree
 
 from pollard_pin.paint.api import PaintOptions, paint
 from pollard_pin.paint.job import load_job
 from pollard_pin.paint.line.conveyor import Line
 from pollard_pin.paint.place import PlaceOptions, place
+from pollard_pin.paint.target.mesh import load_job_part
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "meshes"
 RESOLUTION = 0.01  # m, the film points at σ: the coarsest paint takes, seconds per part
@@ -61,6 +63,17 @@ def test_placements(placed):
     assert min(wavy.turns.values()) > 0.02, wavy.turns
     for result in placed.values():
         assert result.margin > 0.02, result  # plate 34 mm, wavy 52 mm
+        # the placed rotation at the gimbal lock ry = −90°: the file's vertices turned by
+        # Ry(−90°), then about the facing axis −x, then moved, as numpy turns them
+        job = result.job
+        t = np.radians(result.turn)
+        ry = np.array([[0.0, 0, -1], [0, 1, 0], [1, 0, 0]])  # Ry(−90°)
+        rt = np.array([[1, 0, 0], [0, np.cos(t), np.sin(t)], [0, -np.sin(t), np.cos(t)]])
+        v = trimesh.load(job.mesh, force="mesh", process=False).vertices * job.unit
+        got = load_job_part(job).vertices  # (its corners merged: compared as point sets)
+        want = v @ (rt @ ry).T + job.position
+        gap = max(cKDTree(want).query(got)[0].max(), cKDTree(got).query(want)[0].max())
+        assert gap < 1e-9, gap  # achieved ~1e-16 (angles written to 1e-9°)
 
 
 def _trimesh_area(job) -> float:
