@@ -274,8 +274,9 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
     extent = float(w[-1])
     span = np.ptp(part.vertices[part.faces[part.painted]].reshape(-1, 3) @ frame.along)
     if min(extent, span) < job.sigma:  # the job's rule for panels (MIN_PANEL_SIGMAS)
+        # under a tenth of the spot: more likely a unit slip than a part that small
         why = ("a mesh in metres read as millimetres (part.units)?"
-               if getattr(job, "unit", 1.0) < 1.0 else "a smaller spot (gun.sigma)")
+               if max(span, extent) < job.sigma / 10 else "a smaller spot (gun.sigma)")
         raise PlanError(f"{part.source}: the part is smaller than the spray spot: its painted "
                         f"faces span {span:.3g} × {extent:.3g} m, σ = {job.sigma:.3g} m (the "
                         f"film would be the spot's own profile): {why}")
