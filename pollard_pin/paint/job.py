@@ -108,6 +108,8 @@ class PartJob:
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        if self.scale is not None:  # the file names one of units and scale
+            del d["units"]
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
                 "gun": {k: d[k] for k in REQUIRED["gun"]},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
