@@ -286,14 +286,18 @@ def _runs(mask: np.ndarray, axis: int) -> int:
 
 
 def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
-    """How the part misses: taller or wider than the reach in the plane of its tips (the
-    passes' run-ons included), else the share of gun poses the best position reaches."""
+    """How the part misses: the rectangle of its passes' tips (run-ons included) against
+    the plane maps at the median orientation, every 3 cm of depth: taller than the tallest
+    reachable rectangle of its width, wider than the widest of its height (the smaller
+    first); where it fits as a rectangle, the gun's tilt is what fails."""
     frame = surface_frame(fit.part)
     u, v, n = frame.along, frame.across, frame.n
     tips = fit.poses[:, :3]
     height, width = np.ptp(tips @ v), np.ptp(tips @ u)
     h = 0.01
-    best = (0, 0)
+    best = (0, 0)  # the tallest reachable rectangle at the passes' width, the widest at
+    # their height (cells), over the depths
+    wc, hc = (max(1, math.ceil(x / h - 1e-9)) for x in (width, height))
     lo, hi, hb = box  # the reachable box's corners in the frame (u, v, n) bound the scan
     corners = np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]]
                         for i in (0, 1) for j in (0, 1) for k in (0, 1)])
@@ -305,16 +309,16 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
                                axis=1)
         ok = evaluate(robot, poses)["reachable"].reshape(len(gu), len(gv)) > 0
         if ok.any():
-            best = (max(best[0], _runs(ok, 1)), max(best[1], _runs(ok, 0)))
+            tall_at_w = _runs(ndimage.binary_erosion(ok, np.ones((wc, 1), bool)), 1)
+            wide_at_h = _runs(ndimage.binary_erosion(ok, np.ones((1, hc), bool)), 0)
+            best = (max(best[0], tall_at_w), max(best[1], wide_at_h))
     tall, wide = height - best[0] * h, width - best[1] * h
     turned = f" at any of {turns} turns" if turns > 1 else ""
-    if tall > 0 or wide > 0:
-        what = " and ".join(w for w, x in (("taller", tall), ("wider", wide)) if x > 0)
-        by = max(tall, wide)
-        return (f"the part is {what} than the reach{turned} by "
-                f"{by * 1e3:.0f} mm (passes {width:.3f} × {height:.3f} m, reach "
-                f"{best[1] * h:.2f} × {best[0] * h:.2f} m): a line or a cell of robots would "
-                "paint it")
+    if tall > 0 and wide > 0:  # the passes' rectangle fits at no depth
+        (x, what), (y, other) = sorted([(tall, "taller"), (wide, "wider")])
+        return (f"the part is {what} than the reach{turned} by {x * 1e3:.0f} mm "
+                f"(or {other} by {y * 1e3:.0f} mm; passes {width:.3f} × "
+                f"{height:.3f} m): a line or a cell of robots would paint it")
     return (f"no position{turned} reaches every gun pose of the passes "
             f"({width:.3f} × {height:.3f} m; reach {best[1] * h:.2f} × {best[0] * h:.2f} m "
             "with the gun level): the gun tilts too far on the curves; a flatter part or a "

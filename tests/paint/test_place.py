@@ -80,10 +80,10 @@ def test_placed_job_paints(robot, placed, tmp_path):
 
 
 def test_turn_composes_with_the_job_rotation(robot, tmp_path):
-    """A plate 0.45 m tall and 0.2 m wide is taller than the reach (about 0.35 m with the
-    passes): refused with how much it misses; allowed to turn, it lies on its side. The
-    placed rotation moves the file's vertices as numpy's rotation about the facing axis
-    does after the job's own."""
+    """A plate 0.45 m tall and 0.2 m wide is taller than the reach (some 0.32 m at the
+    passes' 0.26 m width): refused with how much it misses; allowed to turn, it lies on its
+    side. The placed rotation moves the file's vertices as numpy's rotation about the
+    facing axis does after the job's own."""
     h, w = 0.45, 0.2
     (tmp_path / "tall.obj").write_text(
         f"v 0 {-w / 2} {-h / 2}\nv 0 {w / 2} {-h / 2}\nv 0 {w / 2} {h / 2}\nv 0 {-w / 2} {h / 2}\n"
@@ -98,7 +98,8 @@ def test_turn_composes_with_the_job_rotation(robot, tmp_path):
     assert "taller than the reach by" in msg and "a line or a cell" in msg, msg
     assert len(msg) <= 250 and "\n" not in msg and isinstance(exc.value, PollardError)
     by = float(msg.split("reach by ")[1].split(" mm")[0])
-    assert 40 < by < 150, msg  # 0.45 m of plate against some 0.35 m of reach
+    # 0.49 m of passes against the 0.32 m tallest reachable rectangle 0.26 m wide: 170 mm
+    assert 100 < by < 250, msg
     result = place(robot, job, PlaceOptions(max_turn=90.0, turn_step=90.0))
     assert abs(result.turn) == 90.0 and result.margin > 0.01, result.turns
     assert _reach_share(robot, result.job) == 1.0
