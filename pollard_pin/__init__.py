@@ -59,6 +59,8 @@ _API = {
     "PaintPlan": "paint.plan.panel",
     "paint": "paint", "PaintOptions": "paint.api", "PaintResult": "paint.api",
     "PaintReport": "paint.api", "JobKindError": "paint.errors",
+    "place": "paint.place", "PlaceOptions": "paint.place", "PlaceResult": "paint.place",
+    "PlaceError": "paint.place",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
 }

@@ -20,7 +20,21 @@ import threading
 
 from .. import __version__
 from ..io.atomic import STDOUT
-from . import export, info, paint, plot, report, run, simulate, size, sweep, urdf, view, workspace
+from . import (
+    export,
+    info,
+    paint,
+    place,
+    plot,
+    report,
+    run,
+    simulate,
+    size,
+    sweep,
+    urdf,
+    view,
+    workspace,
+)
 from .common import HelpFormatter, Parser, say_notes
 
 DESCRIPTION = """\
@@ -31,7 +45,7 @@ a browser, plot it, size the actuators, sweep the design, and plan how to paint 
 docs/model.md for the model and its conventions.
 """
 
-COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, export,
+COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, place, export,
             workspace)
 
 

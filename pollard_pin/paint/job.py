@@ -26,7 +26,10 @@ OPTIONAL = {"panel": (), "gun": ("clearance",), "job": ("spacing", "speed", "dir
 # A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
 # replaces [panel].
 PART_REQUIRED = ("mesh", "position")
-PART_OPTIONAL = ("units", "rotation", "facing", "max_angle")
+PART_OPTIONAL = ("units", "scale", "rotation", "facing", "max_angle")
+# The mesh file's length unit [m]: ``units`` names one, or ``scale`` gives it as a number
+# (a mesh of unknown unit, sized to a plausible part).
+UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "in": 0.0254}
 DIRECTIONS = ("horizontal", "vertical")
 # A length beyond this is a unit slip (mm for m): the robot reaches ~0.5 m.
 MAX_LENGTH = 10.0
@@ -77,8 +80,9 @@ class PaintJob:
 @dataclass(frozen=True)
 class PartJob:
     """A checked paint job over a part's mesh (``[part]``), SI units: ``mesh`` the file (a
-    path, relative to the job file's folder once loaded), its length ``units`` ('m' or 'mm',
-    checked by :func:`.target.mesh.load_part`), ``position`` [m] and ``rotation`` (rx, ry, rz) [deg]
+    path, relative to the job file's folder once loaded), its length ``units`` (a name of
+    UNITS) or ``scale`` (the file's unit in m; :attr:`unit` is the one rule), ``position``
+    [m] and ``rotation`` (rx, ry, rz) [deg]
     (:func:`.target.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
     robot) and ``max_angle`` [deg] (None: the default)."""
 
@@ -89,6 +93,7 @@ class PartJob:
     flow: float
     thickness: float
     units: str = "m"
+    scale: float | None = None
     rotation: tuple[float, float, float] = (0.0, 0.0, 0.0)
     facing: tuple[float, float, float] | None = None
     max_angle: float | None = None
@@ -101,9 +106,16 @@ class PartJob:
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
 
+    @property
+    def unit(self) -> float:
+        """The mesh file's length unit [m]: ``scale`` if given, else ``units``'."""
+        return self.scale if self.scale is not None else UNITS[self.units]
+
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        if self.scale is not None:  # the file names one of units and scale
+            del d["units"]
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
                 "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
@@ -119,10 +131,7 @@ def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
         _fail(source, "part.mesh", mesh, "must be a mesh file name (STL, OBJ or PLY)")
     values: dict[str, Any] = {"mesh": mesh,
                               "position": _vector(source, "part.position", part["position"])}
-    if "units" in part:
-        if not isinstance(part["units"], str):
-            _fail(source, "part.units", part["units"], "must be 'm' or 'mm'")
-        values["units"] = part["units"]
+    values.update(_unit_values(source, part))
     if "rotation" in part:
         r = part["rotation"]
         if not isinstance(r, list) or len(r) != 3:
@@ -141,6 +150,27 @@ def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
               "(each coat repeats every pass): a slower gun (job.speed) lays more per coat")
     return PartJob(direction=job.get("direction", "horizontal"), actuators=job.get("actuators"),
                    source=source, **values)
+
+
+def _unit_values(source: str, part: Mapping) -> dict:
+    """``units`` (a name of UNITS) or ``scale`` (the file's unit [m], a number > 0), not
+    both: the job reader's one rule for the mesh's length unit."""
+    if "units" in part and "scale" in part:
+        raise JobError(f"{source}: give part.units or part.scale, not both (scale = the mesh "
+                       "file's length unit in m, e.g. 0.001 for mm)")
+    if "scale" in part:
+        scale = _positive(source, "part.scale", part["scale"])
+        if not 1e-6 <= scale <= 1e3:
+            _fail(source, "part.scale", part["scale"], "must be within 1e-6..1e3 m per file "
+                  "unit (the mesh's length unit in m: 0.001 for mm)")
+        return {"scale": scale}
+    if "units" in part:
+        u = part["units"]
+        if not (isinstance(u, str) and u in UNITS):
+            _fail(source, "part.units", u, f"must be {', '.join(repr(k) for k in UNITS)}"
+                  f"{did_you_mean(str(u), tuple(UNITS))} (or give part.scale, the unit in m)")
+        return {"units": u}
+    return {}
 
 
 def _fail(source: str, key: str, value: Any, rule: str):
@@ -289,5 +319,5 @@ def job_kind(job: Any) -> str:
                        f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
 
 
-__all__ = ["DIRECTIONS", "KINDS", "MIN_PANEL_SIGMAS", "JobError", "PaintJob", "PartJob",
+__all__ = ["DIRECTIONS", "KINDS", "UNITS", "MIN_PANEL_SIGMAS", "JobError", "PaintJob", "PartJob",
            "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

@@ -246,11 +246,18 @@ def test_part_path_runs(part_painted, capsys, tmp_path):
      "not a mesh this reads"),
     (lambda t: t.replace("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")
      .replace("max_angle = 45.0", "max_angle = 10.0"), None, "no face has its outward normal"),
+    # out of reach: the move that brings it back (place's placement, 75 mm of margin)
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.4, 0.0, 0.0]"), None,
-     "no point of the painted faces is within reach"),
+     "move the part by (-0.410, -0.000, -0.056) m (75 mm of margin"),
     (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [0.0, 0.25, 0.0]"), None,
-     "reachable: 6"),
+     "move the part by (-0.010, -0.250, -0.056) m"),
+    # horizontal passes hit theta54's limit in their run-on; vertical ones paint it
+    (lambda t: t.replace("position = [0.0, 0.0, 0.0]", "position = [-0.05, -0.1, -0.05]"), None,
+     'direction = "vertical" paints it as placed'),
     (lambda t: t.replace('units = "m"', 'units = "mm"'), None, "read as millimetres"),
+    # 0.2 m of part at scale 0.01: 2 mm, under the spot's σ = 10 mm
+    (lambda t: t.replace('units = "m"', "scale = 0.01"), None,
+     "the part is smaller than the spray spot: its painted faces span 0.00"),
     (lambda t: t.replace('mesh = ', 'mesch = '), None, "did you mean 'mesh'"),
 ])
 def test_bad_part_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, mesh, words):

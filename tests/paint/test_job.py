@@ -2,6 +2,7 @@
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from pollard_pin.paint.job import JobError, job_from_dict, load_job
@@ -118,3 +119,51 @@ def test_a_parts_coats_are_capped(coats, ok):
     msg = str(info.value)
     assert msg.startswith(f"job.toml: 'job.coats' = {coats}: must be at most {MAX_PART_COATS}")
     assert "\n" not in msg and len(msg) <= 250, msg
+
+
+def _part(**part) -> dict:
+    return {"part": {"mesh": "p.stl", "position": [0.0, 0.0, 0.0], **part},
+            "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7},
+            "job": {"thickness": 25e-6}}
+
+
+@pytest.mark.parametrize("part, unit", [
+    ({}, 1.0), ({"units": "m"}, 1.0), ({"units": "cm"}, 0.01), ({"units": "mm"}, 0.001),
+    ({"units": "in"}, 0.0254), ({"scale": 0.02}, 0.02), ({"scale": 1}, 1.0),
+])
+def test_mesh_unit_one_rule(part, unit):
+    """The mesh file's length unit [m]: a name, or scale as a number (an inch is 25.4 mm
+    exactly)."""
+    assert job_from_dict(_part(**part)).unit == unit
+
+
+@pytest.mark.parametrize("part, words", [
+    ({"units": "ft"}, "'part.units' = 'ft': must be 'm', 'cm', 'mm', 'in'"),
+    ({"units": "inch"}, "did you mean 'in'"),
+    ({"scale": 0.0}, "'part.scale' = 0.0: must be > 0"),
+    ({"scale": 1e9}, "'part.scale' = 1000000000.0: must be within 1e-6..1e3 m per file unit"),
+    ({"scale": "0.02"}, "'part.scale' = '0.02': must be a number"),
+    ({"units": "mm", "scale": 0.001}, "give part.units or part.scale, not both"),
+])
+def test_bad_mesh_units_are_one_line(part, words):
+    with pytest.raises(JobError) as exc:
+        job_from_dict(_part(**part), "j.toml")
+    msg = str(exc.value)
+    assert words in msg and len(msg) <= 250 and "\n" not in msg, msg
+
+
+def test_scale_scales_the_mesh(tmp_path):
+    """A file in inches read with units = 'in' and with scale = 0.0254: the same vertices,
+    the file's × 0.0254 (numpy)."""
+    from pollard_pin.paint.target.mesh import load_job_part
+
+    (tmp_path / "p.obj").write_text("v 0 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\n")
+    parts = []
+    for extra in ('units = "in"', "scale = 0.0254"):
+        (tmp_path / "j.toml").write_text(
+            f'[part]\nmesh = "p.obj"\n{extra}\nposition = [0.5, 0.0, 0.0]\n[gun]\n'
+            "standoff = 0.15\nsigma = 0.01\nflow = 1.5e-7\n[job]\nthickness = 25e-6\n")
+        parts.append(load_job_part(load_job(tmp_path / "j.toml")).vertices)
+    want = np.array([[0, 0, 0], [0, 10, 0], [0, 0, 10]]) * 0.0254 + [0.5, 0, 0]
+    for v in parts:
+        assert np.abs(v - want).max() < 1e-15  # achieved 0

@@ -282,9 +282,12 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
     extent = float(w[-1])
     span = np.ptp(part.vertices[part.faces[part.painted]].reshape(-1, 3) @ frame.along)
     if min(extent, span) < job.sigma:  # the job's rule for panels (MIN_PANEL_SIGMAS)
-        raise PlanError(f"{part.source}: the painted faces span {span:.4g} × {extent:.4g} m, "
-                        f"less than the spray spot (σ = {job.sigma:.4g} m): a mesh in metres "
-                        "read as millimetres (part.units)?")
+        # under a tenth of the spot: more likely a unit slip than a part that small
+        why = ("a mesh in metres read as millimetres (part.units)?"
+               if max(span, extent) < job.sigma / 10 else "a smaller spot (gun.sigma)")
+        raise PlanError(f"{part.source}: the part is smaller than the spray spot: its painted "
+                        f"faces span {span:.3g} × {extent:.3g} m, σ = {job.sigma:.3g} m (the "
+                        f"film would be the spot's own profile): {why}")
     coats = job.coats or 1
     passes = (extent / spacing + 1) * coats
     if passes > MAX_PASSES:  # before the cross profile, which grows with their square

@@ -14,11 +14,13 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
+from ...model.values import clip
 from ...paths.trajectory import Trajectory
 from ..errors import BudgetError, PlanError, ReachError
 from ..passes.program import Program, build_program, pass_pieces
@@ -78,30 +80,35 @@ def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
         tip = np.asarray(exc.pose[:3])
         j = int(np.argmin(np.linalg.norm(p.tip - tip, axis=1)))
         x = p.surface[j]
-        raise ReachError(f"the path leaves the workspace on pass {pieces[k].index + 1} of "
-                         f"{len(layout.passes)} at part point ({x[0]:.3f}, {x[1]:.3f}, "
-                         f"{x[2]:.3f}) m, tip ({tip[0]:.3f}, {tip[1]:.3f}, "
-                         f"{tip[2]:.3f}) m: {exc}; {_reachable(robot, layout, pieces, poses)}",
-                         exc.sample, exc.pose) from None
+        raise ReachError(f"pass {pieces[k].index + 1} of {len(layout.passes)} leaves the "
+                         f"reach at part point ({x[0]:.3f}, {x[1]:.3f}, {x[2]:.3f}) m "
+                         f"({_cause(exc)})", exc.sample, exc.pose) from None
     return float(m.utilisation.max())
 
 
-def _reachable(robot, layout: SurfaceLayout, pieces, poses) -> str:
-    """Which of the part the gun reaches on the passes: the share of the on-part pass
-    samples whose pose passes ``run``'s rules (docs/model.md §22's workspace test) and the
-    box of their surface points."""
-    from ...workspace.reach import evaluate
+def _cause(exc: ReachError) -> str:
+    """The kinematics' reason without its figures ('chain 0 cannot reach the wrist centre')."""
+    return clip(str(exc).split(": ")[0], 60)
 
-    ok = evaluate(robot, poses)["reachable"] > 0
-    on = np.concatenate([layout.passes[p.index].on_part for p in pieces])
-    surf = np.concatenate([layout.passes[p.index].surface for p in pieces])
-    good = ok & on
-    if not good.any():
-        return "no point of the painted faces is within reach with the gun normal to it"
-    lo, hi = surf[good].min(axis=0), surf[good].max(axis=0)
-    return (f"reachable: {100 * good.sum() / max(on.sum(), 1):.0f} % of the passes, "
-            f"x {lo[0]:.3f}..{hi[0]:.3f}, y {lo[1]:.3f}..{hi[1]:.3f}, "
-            f"z {lo[2]:.3f}..{hi[2]:.3f} m")
+
+def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool) -> ReachError:
+    """The reach error of a still part, one line with what would paint it
+    (:func:`.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
+    from ..place import reach_hint
+
+    if not hints:
+        return exc
+
+    def paints(other) -> bool:
+        try:
+            plan_surface(robot, other, act, part, hints=False)
+        except PlanError:
+            return False
+        return True
+
+    name, hint = Path(part.source).name, clip(reach_hint(robot, job, paints), 170)
+    where = clip(str(exc), 250 - 2 - len(name) - 2 - len(hint))
+    return ReachError(f"{name}: {where}; {hint}", exc.sample, exc.pose)
 
 
 def time_step(job, pieces, v: float) -> float:
@@ -140,9 +147,11 @@ def _piece_name(program: Program, layout: SurfaceLayout, t: float) -> str:
     return f"in a {piece.kind}"
 
 
-def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> SurfacePlan:
+def plan_surface(robot, job, act: Actuators, part: Part | None = None,
+                 hints: bool = True) -> SurfacePlan:
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
-    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails."""
+    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails
+    (out of reach, with ``hints``: what would paint it, :func:`.place.reach_hint`)."""
     clock = [time.perf_counter()]
     part = load_painted_part(job) if part is None else part
     v = pass_speed(job, pass_spacing(job))
@@ -151,7 +160,10 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     while True:  # the least smoothing whose passes the motors follow at speed v
         layout = surface_layout(part, job, min_smoothing=smoothing)
         pieces = pass_pieces(layout, v, coats)
-        use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
+        try:
+            use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
+        except ReachError as exc:
+            raise _refusal(robot, job, act, part, exc, hints) from None
         if use <= UTILISATION:
             break
         wider = [w for w in SMOOTHING if w > layout.smoothing]
@@ -174,12 +186,15 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
             m = motion(robot, act, *prog.evaluate(t))
         except ReachError as exc:
             k = exc.sample // TURN_SAMPLES
-            raise ReachError(f"the path leaves the workspace "
+            raise ReachError(f"the path leaves the reach "
                              f"{_where(prog, layout, t[exc.sample], exc.pose)} ({taus[k]:.3g} "
-                             f"s): {exc}", exc.sample, exc.pose) from None
+                             f"s; {_cause(exc)})", exc.sample, exc.pose) from None
         return m.utilisation.reshape(len(sel), TURN_SAMPLES, -1).max(axis=(1, 2))
 
-    taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
+    try:
+        taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
+    except ReachError as exc:
+        raise _refusal(robot, job, act, part, exc, hints) from None
     program = build_program(pieces, taus)
     clock.append(time.perf_counter())
     n = math.ceil(program.total / dt) + 1
@@ -193,9 +208,9 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None) -> Surfac
     try:
         fine = motion(robot, act, *program.evaluate(tf))
     except ReachError as exc:
-        raise ReachError(f"the path leaves the workspace "
-                         f"{_where(program, layout, tf[exc.sample], exc.pose)}: {exc}",
-                         exc.sample, exc.pose) from None
+        raise _refusal(robot, job, act, part, ReachError(
+            f"the path leaves the reach {_where(program, layout, tf[exc.sample], exc.pose)} "
+            f"({_cause(exc)})", exc.sample, exc.pose), hints) from None
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}

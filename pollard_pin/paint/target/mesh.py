@@ -24,7 +24,7 @@ import trimesh
 
 from ...analytic.taskspace import rotation as tool_rotation
 from ...model.values import read_bytes
-from ..job import PaintJob
+from ..job import UNITS, PaintJob
 from .mesh_check import (
     MeshError,
     MeshFileError,
@@ -36,7 +36,6 @@ from .mesh_check import (
 from .panel import panel_frame
 
 FORMATS = ("stl", "obj", "ply")
-UNITS = {"m": 1.0, "mm": 1e-3}
 # Faces beyond this make the film (≥ 3 points a face) and the shadows slow for no gain: the
 # film grid is ~σ/3 = 3 mm, so a 0.3 m part needs ~1e4 faces, a 1 m² part ~1e5.
 MAX_FACES = 200_000
@@ -104,7 +103,7 @@ def placement(position=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0), source: str = 
 
 
 def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
-              source: str = "<python>", units: str = "m") -> Part:
+              source: str = "<python>", units: str | float = "m") -> Part:
     """Check world ``vertices`` (V, 3) [m] and ``faces`` (F, 3) and build the :class:`Part`
     (see :func:`load_part` for the rules)."""
     v = np.asarray(vertices, dtype=float)
@@ -126,8 +125,8 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
     used = v[np.unique(f)]
     extent = float(np.ptp(used, axis=0).max())
     if extent > MAX_EXTENT:
-        hint = ("1000x too large: units = 'mm'?" if units == "m" else
-                "far beyond this robot's reach")
+        hint = ("1000x too large: units = 'mm'?" if units in ("m", 1.0) else
+                "far beyond this robot's reach: a smaller part.scale?")
         raise MeshError(f"{source}: the part is {extent:.4g} m across, more than "
                         f"{MAX_EXTENT:g} m: {hint}")
     tri = v[f]
@@ -203,11 +202,23 @@ def _read_mesh(data: bytes, ext: str, src: str):
     return v, f
 
 
-def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0),
+def unit_length(units: str | float, source: str = "<python>") -> float:
+    """The mesh file's length unit [m]: a name of UNITS or a number > 0 (a job's scale)."""
+    if isinstance(units, str) and units in UNITS:
+        return UNITS[units]
+    if (not isinstance(units, (str, bool)) and isinstance(units, (int, float))
+            and math.isfinite(units) and units > 0):
+        return float(units)
+    raise MeshError(f"{source}: units = {units!r} must be one of "
+                    f"{', '.join(repr(k) for k in UNITS)} or a length in m > 0")
+
+
+def load_part(path, units: str | float = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0),
               facing=None, max_angle: float = MAX_ANGLE) -> Part:
     """Read a part's mesh (STL, OBJ or PLY by its extension) and place it: file coordinates
-    in ``units`` ('m' or 'mm'), turned by ``rotation`` (degrees, :func:`placement`) about the
-    file's origin and moved to ``position`` [m]. Painted faces: outward normal within
+    in ``units`` (a name of UNITS, or the unit's length in m: :func:`unit_length`), turned
+    by ``rotation`` (degrees, :func:`placement`) about the file's origin and moved to
+    ``position`` [m]. Painted faces: outward normal within
     ``max_angle`` degrees of ``facing`` (default −x, towards the robot).
 
     One :class:`MeshError` line for: a file that is missing, unreadable or of another format;
@@ -215,8 +226,7 @@ def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0
     over MAX_EXTENT across (mm read as m); no face within ``max_angle``."""
     path = Path(path)
     src = str(path)
-    if units not in UNITS:
-        raise MeshError(f"{src}: units = {units!r} must be 'm' or 'mm'")
+    unit = unit_length(units, src)
     ext = path.suffix.lower().lstrip(".")
     if ext not in FORMATS:
         raise MeshError(f"{src}: format '.{ext}' is not a mesh this reads (STL, OBJ or PLY)")
@@ -224,7 +234,7 @@ def load_part(path, units: str = "m", position=(0.0, 0.0, 0.0), rotation=(0.0, 0
     data = read_bytes(path, "mesh file", MeshError, MAX_MESH_BYTES)
     R, p = placement(position, rotation, src)
     v, f = _read_mesh(data, ext, src)
-    v = v * UNITS[units]
+    v = v * unit
     if not np.all(np.isfinite(v)):
         return make_part(v, f, facing, max_angle, src, units)  # names the vertex
     return make_part(v @ R.T + p, f, facing, max_angle, src, units)
@@ -245,9 +255,10 @@ def panel_part(job: PaintJob) -> Part:
 
 def load_job_part(job) -> Part:
     """The job's part, read and placed (:func:`.target.mesh.load_part`)."""
-    return load_part(job.mesh, job.units, job.position, job.rotation, job.facing,
+    return load_part(job.mesh, job.unit, job.position, job.rotation, job.facing,
                      MAX_ANGLE if job.max_angle is None else job.max_angle)
 
 
 __all__ = ["FACING", "FORMATS", "MAX_ANGLE", "MAX_EXTENT", "MAX_FACES", "MeshError", "Part",
-           "UNITS", "load_job_part", "load_part", "make_part", "panel_part", "placement"]
+           "UNITS", "load_job_part", "load_part", "make_part", "panel_part", "placement",
+           "unit_length"]

@@ -105,7 +105,7 @@ TRI = "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"  # normal +x: faces away from the r
     ("away.obj", TRI, {}, "no face has its outward normal within 45° of facing (-1.0, 0.0"),
     ("huge.obj", "v 0 0 0\nv 0 300 0\nv 0 0 300\nf 1 2 3\n", {"facing": (1, 0, 0)},
      "300 m across, more than 5 m: 1000x too large: units = 'mm'?"),
-    ("tri.obj", TRI, {"units": "cm"}, "units = 'cm' must be 'm' or 'mm'"),
+    ("tri.obj", TRI, {"units": "ft"}, "units = 'ft' must be one of 'm', 'cm', 'mm', 'in'"),
     ("tri.obj", TRI, {"rotation": (0, 90)}, "rotation = (0, 90) must be 3 finite numbers"),
     ("tri.obj", TRI, {"position": (0, 0, math.inf)}, "position = (0, 0, inf) must be 3"),
     ("tri.obj", TRI, {"facing": (0, 0, 0)}, "facing = (0.0, 0.0, 0.0) has zero length"),

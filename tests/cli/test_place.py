@@ -1,0 +1,50 @@
+"""`pollard-pin place`: the placement printed and written as a job that `paint` runs as
+is; bad inputs one line, exit 2, nothing written."""
+import re
+from pathlib import Path
+
+from cli_run import run_cli
+
+from pollard_pin.paint.job import load_job
+
+ROOT = Path(__file__).resolve().parents[2]
+PART = ROOT / "examples" / "parts" / "ribbed_plate.toml"
+
+
+def test_place_writes_a_job_paint_runs(tmp_path, capsys):
+    out = tmp_path / "placed.toml"
+    code, text, err = run_cli(["place", "--job", PART, "--out", out, "--max-turn", "0"],
+                              capsys)
+    assert code == 0, err
+    m = re.search(r"position \[(\S+), (\S+), (\S+)\] m, .*margin (\d+) mm", text)
+    assert m, text
+    job = load_job(out)
+    assert all(abs(a - float(m.group(i + 1))) <= 5e-5 for i, a in enumerate(job.position))
+    assert int(m.group(4)) >= 30  # ribbed_plate: 83 mm
+    assert Path(job.mesh).samefile(load_job(PART).mesh)
+    code, text, err = run_cli(["paint", "--job", out, "--out", tmp_path / "paint",
+                               "--resolution", "0.01"], capsys)
+    assert code == 0, err
+    mean = float(re.search(r"mean (\S+) µm", text).group(1))
+    assert abs(mean / 25 - 1) < 0.05, text  # the target 25 µm
+
+
+def _refused(argv, capsys, tmp_path, fragment):
+    before = sorted(p.name for p in tmp_path.iterdir())
+    code, text, err = run_cli(argv, capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and fragment in lines[0], err
+    assert len(lines[0]) <= 250 + len("pollard-pin place: error: ") + 60
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+def test_bad_inputs(tmp_path, capsys):
+    job = tmp_path / "job.toml"
+    job.write_text(PART.read_text().replace('"ribbed_plate.obj"',
+                                            f'"{(PART.parent / "ribbed_plate.obj").as_posix()}"'))
+    _refused(["place", "--job", ROOT / "examples" / "paint.toml", "--out", tmp_path / "o.toml"],
+             capsys, tmp_path, "a [panel] job; place moves a [part]'s mesh")
+    _refused(["place", "--job", job, "--out", job], capsys, tmp_path, "is one of the inputs")
+    _refused(["place", "--job", tmp_path / "none.toml"], capsys, tmp_path, "none.toml")
+    _refused(["place", "--job", job, "--step", "0.5"], capsys, tmp_path,
+             "--step: 0.5: expected a number in [0.001, 0.2]")
