@@ -146,15 +146,14 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     try:
         return _plan(robot, job, act)
     except ReachError as exc:
-        scale, within = _largest_scale(robot, job, act)
+        scale, _ = _largest_scale(robot, job, act)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
                     f"{tuple(round(c, 4) for c in job.center)} fits")
         else:
             fit = printed_panel(job, scale)  # the panel planned, as printed
-            fits = (f"the largest panel that fits at standoff {job.standoff:g} m, same centre "
-                    f"and proportions, is {fit.width:.3f} × {fit.height:.3f} m (planned in "
-                    f"full; within {100 * within:.1f} %)")
+            fits = (f"the largest panel that fits (same centre, proportions) is "
+                    f"{fit.width:.3f} × {fit.height:.3f} m, planned in full")
         raise PlanError(f"{exc}; {fits}") from None
 
 
@@ -434,13 +433,12 @@ def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments,
 
 
 def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) -> ReachError:
-    """The error with where the path leaves the workspace: panel (u, v) and tool tip."""
+    """The error with where the path leaves the workspace: panel (u, v)."""
     msg = f"the path leaves the workspace {where}"
     if exc.pose is not None:
         xyz = np.asarray(exc.pose[:3])
         p = xyz - frame.c - job.standoff * frame.n
-        msg += (f" at panel (u, v) = ({p @ frame.u * 1e3:.0f}, {p @ frame.v * 1e3:.0f}) mm, "
-                f"tool tip ({xyz[0]:.3f}, {xyz[1]:.3f}, {xyz[2]:.3f}) m")
+        msg += f" at panel (u, v) = ({p @ frame.u * 1e3:.0f}, {p @ frame.v * 1e3:.0f}) mm"
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 

@@ -119,7 +119,7 @@ def test_out_of_reach_names_where_and_what_fits(robot, job, act):
     msg = str(info.value)
     assert "\n" not in msg
     for w in ("leaves the workspace", "panel (u, v) = (", "cannot reach",
-              "the largest panel that fits at standoff 0.15 m"):
+              "the largest panel that fits (same centre, proportions) is"):
         assert w in msg
     # the panel it names plans, and one 5 % larger does not
     w, h = (float(x) for x in re.search(r"is ([\d.]+) × ([\d.]+) m", msg).groups())
