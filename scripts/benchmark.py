@@ -33,6 +33,7 @@ from bench_signals import signal_section
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.paths.curves import wait_then_strokes
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
 REPO = Path(__file__).resolve().parents[1]
@@ -235,25 +236,9 @@ def sizing_section(robot, sizes, repeats: int) -> None:
         robot, act, pp.Trajectory(t, poses, rates, accelerations)), len(t))
     # a line job's shape: a wait (47 % of 100,000 samples at 2 ms), then the thesis curve from
     # rest to rest; the wait is left out of the solve (dynamics/cycle.py)
-    wait = _wait_then_strokes(100_000)
+    wait = wait_then_strokes(100_000)
     row("wait + strokes cycle", lambda: pp.time_optimal_path(robot, act, wait),
         len(wait.t))
-
-
-def _wait_then_strokes(n: int, dt: float = 2e-3):
-    from pollard_pin.paths.curves import thesis_curve
-
-    still, moving = int(0.47 * n), n - int(0.47 * n)
-    T = (moving - 1) * dt
-    x = np.linspace(0.0, 1.0, moving)
-    u = T * (10 * x**3 - 15 * x**4 + 6 * x**5)
-    du, ddu = 30 * x**2 - 60 * x**3 + 30 * x**4, (60 * x - 180 * x**2 + 120 * x**3) / T
-    p, d, dd = thesis_curve(u, T)
-    zero = np.zeros((still, 6))
-    return pp.Trajectory(np.concatenate([dt * np.arange(still), dt * still + x * T]),
-                         np.vstack([np.repeat(p[:1], still, 0), p]),
-                         np.vstack([zero, d * du[:, None]]),
-                         np.vstack([zero, dd * du[:, None] ** 2 + d * ddu[:, None]]))
 
 
 def workspace_section(robot, repeats: int) -> None:
@@ -460,7 +445,7 @@ def main(argv=None) -> int:
         simulation_section(robot, args.repeats)
     if not args.no_size:
         sizing_section(robot, [n for n in args.samples if n <= 5000] or [2001], 3)
-        signal_section(_wait_then_strokes)
+        signal_section(wait_then_strokes)
     if not args.no_paint:
         paint_section(robot, 3)
         parts_section(robot)

@@ -1,5 +1,8 @@
 """Task-space curves about the home pose shared by the closed-form and Euler–Lagrange tests:
 (t, poses, rates, accelerations) at any times."""
+import importlib.util
+from pathlib import Path
+
 import numpy as np
 
 from pollard_pin.paths.curves import sinusoid_curve, thesis_curve
@@ -30,3 +33,13 @@ def thesis_head(seconds: float, step: float = 0.01):
     n = int(round(seconds / step)) + 1
     return Trajectory(full.t[:n], full.poses[:n], full.d_poses[:n], full.dd_poses[:n],
                       name="thesis head")
+
+
+def figure_eight():
+    """examples/make_trajectory.py's figure_eight (the example CSV's own curve)."""
+    path = Path(__file__).resolve().parents[1] / "examples" / "make_trajectory.py"
+    spec = importlib.util.spec_from_file_location("make_trajectory", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.figure_eight
+

@@ -132,3 +132,22 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
 
 __all__ = ["THESIS_DURATION", "THESIS_SAMPLES", "U_RANGE", "ThesisTrajectory", "sinusoid_curve",
            "smooth_random_trajectory", "thesis_curve", "thesis_trajectory"]
+
+
+def wait_then_strokes(n: int, dt: float = 2e-3, wait: float = 0.47) -> Trajectory:
+    """A line job's shape for timing and sizing checks: ``wait`` of the ``n`` samples at rest
+    at the curve's start (``dt`` apart), then the thesis curve once over from rest to rest
+    (a quintic time law, so the joins are C²)."""
+    still = int(wait * n)
+    moving = n - still
+    T = (moving - 1) * dt
+    x = np.linspace(0.0, 1.0, moving)
+    u = T * (10 * x**3 - 15 * x**4 + 6 * x**5)
+    du, ddu = 30 * x**2 - 60 * x**3 + 30 * x**4, (60 * x - 180 * x**2 + 120 * x**3) / T
+    p, d, dd = thesis_curve(u, T)
+    zero = np.zeros((still, 6))
+    return Trajectory(np.concatenate([dt * np.arange(still), dt * still + x * T]),
+                      np.vstack([np.repeat(p[:1], still, 0), p]),
+                      np.vstack([zero, d * du[:, None]]),
+                      np.vstack([zero, dd * du[:, None] ** 2 + d * ddu[:, None]]))
+

@@ -25,7 +25,7 @@ import pollard_pin as pp
 from pollard_pin.cli import size as size_cli
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.io.table import read_result
-from pollard_pin.paths.curves import thesis_curve
+from pollard_pin.paths.curves import wait_then_strokes
 
 SAMPLES = 801
 
@@ -216,27 +216,10 @@ def test_toppra_missing_gives_one_line(tmp_path):
     assert not (tmp_path / "never.md").exists()
 
 
-def _wait_then_strokes(path, n=40_000, dt=2e-3):
-    """A line job's shape: a wait of 47 % of the samples at 2 ms steps, then the thesis curve
-    once over from rest to rest."""
-    wait = int(n * 0.47)
-    moving = n - wait
-    T = (moving - 1) * dt
-    x = np.linspace(0.0, 1.0, moving)
-    u = T * (10 * x**3 - 15 * x**4 + 6 * x**5)
-    du, ddu = 30 * x**2 - 60 * x**3 + 30 * x**4, (60 * x - 180 * x**2 + 120 * x**3) / T
-    p, d, dd = thesis_curve(u, T)
-    zero = np.zeros((wait, 6))
-    t = np.concatenate([dt * np.arange(wait), dt * wait + x * T])
-    pp.to_csv(pp.Trajectory(t, np.vstack([np.repeat(p[:1], wait, 0), p]),
-                            np.vstack([zero, d * du[:, None]]),
-                            np.vstack([zero, dd * du[:, None] ** 2 + d * ddu[:, None]])), path)
-
-
 @pytest.mark.parametrize("signum, code, word", [(signal.SIGTERM, 143, "terminated"),
                                                 (signal.SIGINT, 130, "interrupted")])
 def test_size_stops_on_a_signal_with_one_line(tmp_path, signum, code, word):
-    _wait_then_strokes(tmp_path / "long.csv")  # 40,000 samples: size takes ≈ 8 s here
+    pp.to_csv(wait_then_strokes(40_000), tmp_path / "long.csv")  # size takes ≈ 8 s here
     out = tmp_path / "out"
     out.mkdir()
     env = {**os.environ, "PYTHONPATH": str(ROOT)}

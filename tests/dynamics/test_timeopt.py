@@ -1,7 +1,6 @@
 """The time-optimal traversal (docs/model.md §19), checked by rebuilding the retimed motion
 between the samples (s̈ constant per interval, as TOPP-RA defines it) on the exact path and
 replaying it through the pipeline, with the motor model written out here."""
-import importlib.util
 import pickle
 from functools import partial
 
@@ -9,6 +8,7 @@ import numpy as np
 import pytest
 from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
 from motor_model import motor as _motor
+from thesis_curves import figure_eight
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as M
@@ -19,14 +19,6 @@ from pollard_pin.paint.passes.raster import raster_motion, raster_segments
 from pollard_pin.paint.target.panel import PanelFrame
 from pollard_pin.paths.curves import thesis_curve
 from pollard_pin.paths.splines import quintic_hermite
-
-
-def _figure_eight():
-    spec = importlib.util.spec_from_file_location("make_trajectory",
-                                                  ROOT / "examples" / "make_trajectory.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.figure_eight
 
 
 @pytest.fixture(scope="module")
@@ -109,13 +101,13 @@ def test_figure8_csv_holds_between_samples(robot, act):
     """examples/figure8.csv has exact rates and accelerations: between its samples the path
     is the quintic Hermite through them, checked here against the analytic figure eight."""
     traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
-    figure_eight = _figure_eight()
+    curve = figure_eight()
     t = np.linspace(0, 6, 3001)
     for got, exact in zip(quintic_hermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t),
-                          figure_eight(t)):  # seen 1e-14 m, 2e-12 m/s, 7e-10 m/s²
+                          curve(t)):  # seen 1e-14 m, 2e-12 m/s, 7e-10 m/s²
         np.testing.assert_allclose(got, exact, rtol=0, atol=1e-7)
     timing = pp.time_optimal_path(robot, act, traj)
-    use = _replay(robot, figure_eight, 0.0, 6.0, timing, THETA)
+    use = _replay(robot, curve, 0.0, 6.0, timing, THETA)
     assert 0.999 <= use.max() <= 1.002, use.max()
 
 

@@ -6,7 +6,6 @@ The file ``size --retime`` writes, replayed by the definition its metadata state
 along the source path's arc length between rows) with only numpy, the exact source path and
 the pipeline's inverse dynamics (not toppra, not the solver's code, not its arc-length path),
 densely, stays within the ratings between its rows."""
-import importlib.util
 from dataclasses import replace
 from functools import partial
 
@@ -15,6 +14,7 @@ import pytest
 from motor_model import EXAMPLE, ROOT
 from motor_model import cli as _cli
 from retime_replay import read_retimed, replay
+from thesis_curves import figure_eight
 
 import pollard_pin as pp
 from pollard_pin.dynamics.timeopt import TimeOptimal
@@ -81,21 +81,13 @@ def test_a_timing_of_another_length_is_refused(traj):
         retimed_trajectory(traj, tim)
 
 
-def _figure_eight():
-    spec = importlib.util.spec_from_file_location("make_trajectory",
-                                                  ROOT / "examples" / "make_trajectory.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.figure_eight
-
-
 @pytest.mark.parametrize("source", ["thesis", "figure8"])
 def test_the_retimed_file_holds_between_its_rows(robot, tmp_path, capsys, source):
     out = tmp_path / "opt.csv"
     if source == "thesis":
         args, curve = ["--samples", "801"], partial(thesis_curve, duration=20.0)
     else:
-        args, curve = ["--trajectory", str(ROOT / "examples" / "figure8.csv")], _figure_eight()
+        args, curve = ["--trajectory", str(ROOT / "examples" / "figure8.csv")], figure_eight()
     code, _, err = _cli(["size", *args, "--quiet", "--actuators", str(EXAMPLE),
                          "--retime", str(out), "--out", str(tmp_path / "r.md")], capsys)
     assert code == 0, err
