@@ -10,6 +10,7 @@ import re
 import sys
 import time
 import warnings
+from pathlib import Path
 
 from ..checks import problem
 from ..errors import InputError
@@ -272,3 +273,27 @@ def trajectory_args(p) -> None:
     p.add_argument("--ignore-limits", action="store_true",
                    help="solve poses with joints outside the parameter file's [limits] "
                         "(default: refuse them, like workspace and paint)")
+
+
+def command_inputs(args) -> list:
+    """(what, path) of the files a command reads through the shared options: the parameter
+    file, a trajectory CSV and its units sidecar, the actuators, a sweep grid, a simulation
+    table."""
+    from ..io.table import units_path
+
+    files = [("the parameter file", getattr(args, "params", None)),
+             ("the actuators", getattr(args, "actuators", None)),
+             ("the sweep grid", getattr(args, "grid", None)),
+             ("the simulation table", getattr(args, "simulation", None))]
+    traj = getattr(args, "trajectory", None)
+    if traj not in (None, "thesis"):
+        files += [("the trajectory", traj), ("the trajectory's units", units_path(traj))]
+    return [(what, path) for what, path in files if isinstance(path, (str, Path))]
+
+
+def refuse_inputs(args, *outputs) -> None:
+    """An output that is one of the command's inputs is refused before any work (one line):
+    writing it would destroy what is read."""
+    from ..io.atomic import check_not_inputs
+
+    check_not_inputs([o for o in outputs if o is not None], command_inputs(args))

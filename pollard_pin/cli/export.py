@@ -2,11 +2,12 @@
 from __future__ import annotations
 
 from ..io.atomic import check_outputs
-from .common import command, load_robot, model_args, name, wrote
+from .common import command, load_robot, model_args, name, refuse_inputs, wrote
 
 
 def run(args) -> int:
     check_outputs(args.out)
+    refuse_inputs(args, args.out)
     from ..io.mjcf import export_mjcf
 
     robot = load_robot(args)

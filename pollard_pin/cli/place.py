@@ -22,12 +22,13 @@ def run(args) -> int:
         flag = "--step" if ".step" in str(exc) else "--max-turn"
         raise UsageError(f"{flag}: {str(exc).split(' = ', 1)[1]}") from None
     result = place(load_robot(args), job, opts)
+    written = result.write(args.out) if args.out else None  # all of it, before the summary
     p, r = result.job.position, result.job.rotation
     print(f"position [{p[0]:.4f}, {p[1]:.4f}, {p[2]:.4f}] m, rotation [{r[0]:.4g}, "
           f"{r[1]:.4g}, {r[2]:.4g}] deg (turned {result.turn:+.0f}° about the facing axis); "
           f"margin {result.margin * 1e3:.0f} mm along every axis ({result.poses} gun poses)")
-    if args.out:
-        wrote(result.write(args.out))
+    if written is not None:
+        wrote(written)
     return 0
 
 

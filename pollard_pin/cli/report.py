@@ -2,7 +2,16 @@
 from __future__ import annotations
 
 from ..io.atomic import atomic_open, check_outputs
-from .common import STDOUT, command, name, simulation_table, solve, trajectory_args, wrote
+from .common import (
+    STDOUT,
+    command,
+    name,
+    refuse_inputs,
+    simulation_table,
+    solve,
+    trajectory_args,
+    wrote,
+)
 
 
 def run(args) -> int:
@@ -10,6 +19,7 @@ def run(args) -> int:
 
     out = args.out or STDOUT
     check_outputs(out)
+    refuse_inputs(args, out)
     table = simulation_table(args.simulation) if args.simulation else None
     robot, result = solve(args)
     rep = report(robot, result, cross_check=not args.no_cross_check)

@@ -17,6 +17,7 @@ from .common import (
     margins_of,
     name,
     progress,
+    refuse_inputs,
     trajectory_args,
     wrote,
 )
@@ -30,6 +31,7 @@ def run(args) -> int:
     from ..run import StreamOptions, stream_run, summary
 
     check_outputs(*table_files(args.out))  # the table and its units sidecar
+    refuse_inputs(args, *table_files(args.out))
     margins = margins_of(args)
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)

@@ -18,6 +18,7 @@ from .common import (
     number,
     positive,
     progress,
+    refuse_inputs,
     trajectory_args,
     wrote,
 )
@@ -36,6 +37,7 @@ def run(args) -> int:
     from ..io.table import table_files, write_table
 
     check_outputs(*table_files(args.out))  # the table and its units sidecar
+    refuse_inputs(args, *table_files(args.out))
     if args.dt is None:
         args.dt = default_step(args.control_period)
     elif args.dt > args.control_period:

@@ -6,7 +6,17 @@ import time
 from pathlib import Path
 
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs
-from .common import STDOUT, UsageError, command, log, name, solve, trajectory_args, wrote
+from .common import (
+    STDOUT,
+    UsageError,
+    command,
+    log,
+    name,
+    refuse_inputs,
+    solve,
+    trajectory_args,
+    wrote,
+)
 
 
 def run(args) -> int:
@@ -23,6 +33,7 @@ def run(args) -> int:
     retime = table_files(args.retime, "csv") if args.retime is not None else ()
     figure = Path(args.plot) / "torque_speed.png" if args.plot is not None else None
     check_outputs(*retime, figure, out, folders=(args.plot,))
+    refuse_inputs(args, *retime, figure, out)
     actuators = load_actuators(args.actuators)
     robot, result = solve(args)
     t0 = time.perf_counter()

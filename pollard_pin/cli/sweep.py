@@ -7,13 +7,24 @@ import sys
 import time
 
 from ..io.atomic import check_outputs
-from .common import STDOUT, command, count, log, name, progress, warnings_as_notes, wrote
+from .common import (
+    STDOUT,
+    command,
+    count,
+    log,
+    name,
+    progress,
+    refuse_inputs,
+    warnings_as_notes,
+    wrote,
+)
 
 
 def run(args) -> int:
     from ..sweep import load_grid, run_sweep, summary, write_sweep_table
 
     check_outputs(args.out)
+    refuse_inputs(args, args.out)
     if args.dask:  # the extra, before the banner: a missing one is then the only line
         from ..sweep.backends import require_distributed
 

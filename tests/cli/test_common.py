@@ -69,3 +69,44 @@ def test_notes_are_said_once_in_order(capsys):
         warnings.warn("second", stacklevel=1)
     C.say_notes(args)
     assert capsys.readouterr().err == "note: second\nnote: first\n" and args.notes == []
+
+
+# --- an output that is one of the inputs --------------------------------------------------------
+def _outputs_over_inputs(tmp):
+    """(argv, the input it would overwrite) for each command that reads a shared input."""
+    import shutil
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    ex = root / "examples"
+    traj = tmp / "f8.csv"
+    shutil.copy(ex / "figure8.csv", traj)
+    shutil.copy(ex / "figure8.units.json", tmp / "f8.units.json")
+    grid = tmp / "sweep.toml"
+    shutil.copy(ex / "sweep.toml", grid)
+    act = tmp / "act.toml"
+    shutil.copy(ex / "actuators.toml", act)
+    t = ["--trajectory", str(traj)]
+    return [
+        (["run", *t, "--out", str(traj)], traj),
+        (["size", "--actuators", str(act), *t, "--retime", str(traj)], traj),
+        (["size", "--actuators", str(act), *t, "--retime", str(tmp / "x.csv"), "--out",
+          str(act)], act),
+        (["simulate", *t, "--out", str(tmp / "f8.units.json")], tmp / "f8.units.json"),
+        (["sweep", "--grid", str(grid), "--out", str(grid)], grid),
+        (["report", *t, "--no-cross-check", "--out", str(traj)], traj),
+    ]
+
+
+def test_an_output_that_is_an_input_is_refused_and_left_alone(tmp_path, capsys):
+    """`size --retime in.csv --trajectory in.csv` wrote the retimed file over the path it
+    read; every command's outputs are now checked against its inputs before any work."""
+    from cli_run import run_cli
+
+    for argv, victim in _outputs_over_inputs(tmp_path):
+        before = victim.read_bytes()
+        code, out, err = run_cli(argv, capsys)
+        lines = err.strip().splitlines()
+        assert code == 2 and len(lines) == 1, (argv, err)
+        assert "is one of the inputs" in lines[0] and "destroy" in lines[0], lines[0]
+        assert victim.read_bytes() == before, argv
