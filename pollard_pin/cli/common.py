@@ -291,9 +291,10 @@ def command_inputs(args) -> list:
     return [(what, path) for what, path in files if isinstance(path, (str, Path))]
 
 
-def refuse_inputs(args, *outputs) -> None:
-    """An output that is one of the command's inputs is refused before any work (one line):
-    writing it would destroy what is read."""
+def refuse_inputs(args, *outputs, also=()) -> None:
+    """An output that is one of the command's inputs (:func:`command_inputs`, and ``also``:
+    the command's own (what, path) pairs) is refused before any work (one line): writing it
+    would destroy what is read."""
     from ..io.atomic import check_not_inputs
 
-    check_not_inputs([o for o in outputs if o is not None], command_inputs(args))
+    check_not_inputs([o for o in outputs if o is not None], [*command_inputs(args), *also])

@@ -4,7 +4,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import UsageError, command, load_robot, model_args, name, positive, warnings_as_notes
+from .common import (
+    UsageError,
+    command,
+    load_robot,
+    model_args,
+    name,
+    positive,
+    refuse_inputs,
+    warnings_as_notes,
+)
 from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
 
 
@@ -17,7 +26,7 @@ def _actuators(args, job):
 
 
 def run(args) -> int:
-    from ..io.atomic import check_not_inputs, check_outputs
+    from ..io.atomic import check_outputs
     from ..io.paint_files import paint_outputs
     from ..paint.api import PaintOptions, film_spacing_of, job_kind, paint
     from ..paint.job import load_job
@@ -26,10 +35,9 @@ def run(args) -> int:
     files, stale = paint_outputs(out, args.format)
     check_outputs(*files, folders=(out,))
     job = load_job(args.job)
-    check_not_inputs([*files, *stale], [
+    refuse_inputs(args, *files, *stale, also=[
         ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
-        ("the actuators", args.actuators or job.actuators),
-        ("the parameter file", getattr(args, "params", None))])
+        ("the actuators", job.actuators)])
     kind = job_kind(job)
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")

@@ -6,16 +6,16 @@ from .common import command, load_robot, model_args, name, nonnegative, positive
 
 def run(args) -> int:
     from ..errors import InputError
-    from ..io.atomic import check_not_inputs, check_outputs
+    from ..io.atomic import check_outputs
     from ..paint.job import PartJob, load_job
     from ..paint.place import PlaceOptions, place
-    from .common import UsageError
+    from .common import UsageError, refuse_inputs
 
     check_outputs(args.out)
     job = load_job(args.job)
     if not isinstance(job, PartJob):
         raise UsageError(f"--job {args.job}: a [panel] job; place moves a [part]'s mesh")
-    check_not_inputs([args.out], [("the job", args.job), ("the mesh", job.mesh)])
+    refuse_inputs(args, args.out, also=[("the job", args.job), ("the mesh", job.mesh)])
     try:
         opts = PlaceOptions(step=args.step, max_turn=args.max_turn)
     except InputError as exc:  # the library names the option; the user typed the flag

@@ -4,19 +4,26 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..io.atomic import check_not_inputs, check_outputs
-from .common import STDOUT, UsageError, command, name, positive, say_notes, solve, trajectory_args
+from ..io.atomic import check_outputs
+from .common import (
+    STDOUT,
+    UsageError,
+    command,
+    name,
+    positive,
+    refuse_inputs,
+    say_notes,
+    solve,
+    trajectory_args,
+)
 
 
 def _inputs(args) -> list:
-    """(what, path) of every file ``view`` reads: never one of its outputs."""
-    from ..io.table import units_path
+    """(what, path) of the files ``view`` reads besides the shared options' (the paint
+    folder's, the workspace map's): never one of its outputs."""
     from .view_paint import paint_inputs
 
-    files = [("the parameter file", args.params)]
-    if args.trajectory != "thesis":
-        files += [("the trajectory", args.trajectory),
-                  ("the trajectory's units", units_path(args.trajectory))]
+    files = []
     if args.paint is not None:
         files += paint_inputs(args.paint)
     if args.workspace is not None:
@@ -30,7 +37,7 @@ def run(args) -> int:
 
     if args.html:
         check_outputs(args.html)
-        check_not_inputs([args.html], _inputs(args))
+        refuse_inputs(args, args.html, also=_inputs(args))
     overlay = None
     if args.paint is not None:
         from .view_paint import paint_overlay
