@@ -15,7 +15,7 @@ THESIS_SAMPLES = 2001
 U_RANGE = 60.0 * math.pi  # u ∈ [−60π, 60π], thesis appendix B (mm)
 # Sample budgets of the thesis trajectory, checked before anything is allocated: solved whole
 # (view, plot, report, size, simulate, sweep) a sample costs ≈ 3 KB; streamed window by window
-# (run) it costs ≈ 11 µs and 30-300 bytes of output (README: a million samples in 11 s).
+# (run) it costs ≈ 11 µs and 30-300 bytes of output (docs/guide.md: a million samples in 11 s).
 MAX_SAMPLES = 1_000_000  # ≈ 3 GB solved
 MAX_STREAMED_SAMPLES = 100_000_000  # ≈ 20 min and 3-30 GB of output
 
