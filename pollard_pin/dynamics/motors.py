@@ -40,6 +40,10 @@ _POSITIVE = ("gear_ratio", "peak_torque", "continuous_torque", "max_speed")
 MIN_POSITIVE, MAX_VALUE = 1e-6, 1e6
 UNITS = dict(zip(KEYS, ("", " kg·m²", " N·m·s/rad", " N·m", " N·m", " N·m", " rad/s")))
 LIMITS = ("peak_torque", "rms_torque", "speed")  # the three checks, in report order
+# Optional: the drive's torsional stiffness k [N·m/rad], joint side (docs/model.md §19); only
+# the compliance and the flexible-joint simulation need it.
+OPTIONAL = ("stiffness",)
+MAX_STIFFNESS = 1e9  # N·m/rad: above it the drive is rigid for any use here, or a unit slip
 
 
 class ActuatorError(InputError):
@@ -57,6 +61,7 @@ class Actuator:
     peak_torque: float  # [N·m]
     continuous_torque: float  # RMS limit [N·m]
     max_speed: float  # [rad/s]
+    stiffness: float | None = None  # k [N·m/rad], joint side; None: not given
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,15 @@ class Actuators:
     def column(self, key: str) -> np.ndarray:
         """One rating or constant of every actuator, shape (6,)."""
         return np.array([getattr(u, key) for u in self.units], dtype=float)
+
+    def stiffness(self) -> np.ndarray:
+        """The drives' torsional stiffnesses k [N·m/rad], shape (6,); an
+        :class:`ActuatorError` naming the first actuator without one."""
+        for name, u in zip(self.names, self.units):
+            if u.stiffness is None:
+                raise ActuatorError(f"{self.source}: '{name}.stiffness' is missing (the drives' "
+                                    "torsional stiffness [N·m/rad] is needed here)")
+        return self.column("stiffness")
 
     def joint_losses(self, joint_names=JOINT_NAMES) -> JointLosses:
         """The motors seen from the joints, for forward dynamics/simulation: armature N²·Jm,
@@ -111,13 +125,14 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
         if not isinstance(table, Mapping):
             _fail(source, name, table, "must be a table [" + name + "]")
         absent = [k for k in KEYS if k not in table]
-        unknown = [k for k in table if k not in KEYS]
+        unknown = [k for k in table if k not in KEYS + OPTIONAL]
         if absent:
             raise ActuatorError(f"{source}: '{name}.{absent[0]}' is missing (every actuator "
                                 f"needs {', '.join(KEYS)})")
         if unknown:
             _fail(source, f"{name}.{unknown[0]}", table[unknown[0]],
-                  f"unknown key{did_you_mean(unknown[0], KEYS)}; expected {', '.join(KEYS)}")
+                  f"unknown key{did_you_mean(unknown[0], KEYS + OPTIONAL)}; expected "
+                  f"{', '.join(KEYS)} (and optionally {', '.join(OPTIONAL)})")
         values = {}
         for k in KEYS:
             low = f"between {MIN_POSITIVE:g} and" if k in _POSITIVE else "at most"
@@ -131,6 +146,11 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
         if values["continuous_torque"] > values["peak_torque"]:
             _fail(source, f"{name}.continuous_torque", table["continuous_torque"],
                   f"exceeds {name}.peak_torque = {values['peak_torque']:.4g}")
+        if "stiffness" in table:
+            values["stiffness"] = number(
+                table["stiffness"], f"{name}.stiffness", ActuatorError, f"{source}: ",
+                positive=True, limit=MAX_STIFFNESS,
+                limit_rule=f"must be > 0 and at most {MAX_STIFFNESS:g} N·m/rad (joint side)")
         units.append(Actuator(**values))
     return Actuators(tuple(names), tuple(units), source)
 
@@ -314,6 +334,7 @@ def uniform_min_duration(act: Actuators, path: PathDynamics) -> UniformScaling:
 
 __all__ = [
     "KEYS",
+    "OPTIONAL",
     "LIMITS",
     "Actuator",
     "ActuatorError",
