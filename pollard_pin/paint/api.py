@@ -23,6 +23,7 @@ import numpy as np
 from .. import __version__
 from ..dynamics.motors import Actuators
 from ..errors import InputError
+from .errors import JobKindError
 from .job import KINDS, PartJob, job_kind
 from .line.phases import SPEED_RESOLUTION
 
@@ -161,7 +162,9 @@ def paint(robot, job, actuators: Actuators | None = None,
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
     painter = {"panel": _panel, "part": _part, "line panel": _line_panel,
-               "line part": _line_part}[kind]
+               "line part": _line_part}.get(kind)
+    if painter is None:
+        raise JobKindError(f"{job.source}: a {kind} is not planned yet")
     plan, film, rep = painter(robot, job, act, options, res)
     return PaintResult(job, kind, plan, film, PaintReport.from_dict(kind, rep), act, options)
 

@@ -14,6 +14,7 @@ import numpy as np
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
+from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobKindError
 from .line.conveyor import Line, line_from_table
 
@@ -67,14 +68,17 @@ class PaintJob:
     source: str = "<python>"
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
+    robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
-        d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        d = {k: v for k, v in asdict(self).items()
+             if v is not None and k not in ("source", "robots")}
         return {"panel": {k: d[k] for k in REQUIRED["panel"]},
                 "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
-                **({"line": self.line.to_dict()} if self.line is not None else {})}
+                **({"line": self.line.to_dict()} if self.line is not None else {}),
+                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
 
 
 @dataclass(frozen=True)
@@ -105,6 +109,7 @@ class PartJob:
     source: str = "<python>"
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
+    robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
 
     @property
     def unit(self) -> float:
@@ -113,13 +118,15 @@ class PartJob:
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
-        d = {k: v for k, v in asdict(self).items() if v is not None and k != "source"}
+        d = {k: v for k, v in asdict(self).items()
+             if v is not None and k not in ("source", "robots")}
         if self.scale is not None:  # the file names one of units and scale
             del d["units"]
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
                 "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
-                **({"line": self.line.to_dict()} if self.line is not None else {})}
+                **({"line": self.line.to_dict()} if self.line is not None else {}),
+                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
 
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
@@ -221,12 +228,21 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
     """Validate a parsed job file."""
     if not isinstance(d, Mapping):
         raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
-    tables = (*REQUIRED, "part", "line")
+    tables = (*REQUIRED, "part", "line", "robot")
     for name in d:
         if name not in tables:
             raise JobError(f"{source}: [{name}] is not a table of a paint job"
                            f"{did_you_mean(name, tables)}; expected [panel] or [part], [gun], "
                            "[job]")
+    if "robot" in d:  # a cell (docs/model.md §26): its robots paint the part as it passes
+        from dataclasses import replace
+
+        robots = robots_from_tables(source, d["robot"])
+        if "line" not in d:
+            raise JobError(f"{source}: [[robot]] needs [line]: a cell's robots paint the part "
+                           "as the conveyor carries it past them (add [line] speed, direction)")
+        return replace(job_from_dict({k: v for k, v in d.items() if k != "robot"}, source),
+                       robots=robots)
     if "line" in d:  # the conveyor (docs/model.md §24), checked in line_job.py
         from dataclasses import replace
 
@@ -306,15 +322,16 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
     return job
 
 
-KINDS = ("panel", "part", "line panel", "line part")
+KINDS = ("panel", "part", "line panel", "line part", "cell panel", "cell part")
 
 
 def job_kind(job: Any) -> str:
     """The job's kind, one of KINDS; :class:`JobKindError` naming the type of anything else."""
-    if isinstance(job, PaintJob):
-        return "panel" if job.line is None else "line panel"
-    if isinstance(job, PartJob):
-        return "part" if job.line is None else "line part"
+    if isinstance(job, PaintJob | PartJob):
+        what = "panel" if isinstance(job, PaintJob) else "part"
+        if job.robots:
+            return f"cell {what}"
+        return what if job.line is None else f"line {what}"
     raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
                        f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
 
