@@ -61,6 +61,8 @@ _RATES = ("", "d_", "dd_")
 _KNOWN = frozenset((*_FIXED, *(f"f{i}_{a}" for i in (1, 2) for a in "xyz"),
                     *(r + n for r in _RATES for n in (*TASK_NAMES, *JOINTS)),
                     *(f"{p}{j}" for p in ("tau_", "power_", "work_") for j in JOINTS),
+                    # flexible drives' motors, docs/model.md §28
+                    *(f"{p}{j}" for p in ("phi_", "d_phi_", "deflection_") for j in JOINTS),
                     *(f"{p}{j}_{a}" for p in ("F_", "M_") for j in JOINTS for a in "xyz")))
 
 
