@@ -35,6 +35,7 @@ _API = {
     "PDGravity": "dynamics.control", "Gains": "dynamics.control",
     "MeasurementNoise": "dynamics.tracking", "TrackingResult": "dynamics.tracking",
     "TrackingOptions": "dynamics.tracking",
+    "FlexibleDrives": "dynamics.flexible",
     "Plant": "dynamics.plant", "ModelMismatch": "dynamics.plant", "PlantError": "dynamics.plant",
     "JointLoads": "dynamics.loads",
     "Trajectory": "paths.trajectory", "thesis_trajectory": "paths.curves",

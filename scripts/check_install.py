@@ -38,6 +38,20 @@ def need(path: Path, what: str) -> None:
         sys.exit(f"check_install: {what}: {path.name} was not written")
 
 
+def with_stiffness(ex: Path, work: Path) -> Path:
+    """examples/actuators.toml, a 'stiffness' added to each drive that has none (3e3 N·m/rad
+    base, 1e2 wrist) for simulate --flexible."""
+    text, out, table = (ex / "actuators.toml").read_text(), [], ""
+    for line in text.splitlines():
+        table = line if line.startswith("[") else table
+        out.append(line)
+        if line.startswith("max_speed") and "stiffness" not in text:
+            out.append(f"stiffness = {3e3 if table.startswith('[theta21') else 1e2}")
+    path = work / "flexible_actuators.toml"
+    path.write_text("\n".join(out) + "\n")
+    return path
+
+
 def commands(cli: Path, work: Path) -> None:
     """One call of every command; paint on a still mesh part and a part on a line."""
     ex = work / "examples"
@@ -61,12 +75,14 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "info"], work)
     sh([cli, "report", "--no-cross-check"], work)
     sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
+    sh([cli, "simulate", "--duration", "0.2", "--actuators", with_stiffness(ex, work),
+        "--flexible", "--out", "flex.csv"], work)
     sh([cli, "workspace", "--plane", "x=0.55", "--resolution", "0.02", "--out", "ws"], work)
     sh([cli, "sweep", "--grid", ex / "sweep.toml", "--out", "sweep.csv"], work)
     sh([cli, "plot", "--out", "plots"], work)
     sh([cli, "view", "--html", "v.html"], work)
     sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
-    for f in ("sim.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
+    for f in ("sim.csv", "flex.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
         need(work / f, f)
     # an extra that is not installed: one line and exit 2
     out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))

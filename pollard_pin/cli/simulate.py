@@ -84,7 +84,8 @@ def run(args) -> int:
              f"{duration:.4g} s, RK4 step {step_used(args.dt, args.control_period):g} s, "
              "control period "
              f"{args.control_period:g} s, ω {args.wn:g} rad/s, ζ {args.zeta:g}",
-             *result.summary_lines(), f"wall time {wall:.2f} s (desired trajectory included)"]
+             *_drive_line(result.settings.get("drives")), *result.summary_lines(),
+             f"wall time {wall:.2f} s (desired trajectory included)"]
     print("\n".join(lines), file=sys.stderr if args.out == STDOUT else sys.stdout)
     wrote(args.out, f" ({rows} rows)")
     return 0
@@ -117,6 +118,13 @@ def _losses(args, robot):
             per_joint[name][robot.actuated_v] = value
         losses = JointLosses(**per_joint)
     return losses, known, limit, motors
+
+
+def _drive_line(drives: dict | None) -> list[str]:
+    if drives is None:
+        return []
+    return [f"flexible drives (springs {'known' if drives['known'] else 'unknown'} to the "
+            f"controller): fastest mode {drives['fastest_mode_hz']:.4g} Hz"]
 
 
 def _drives(motors, which: str):

@@ -25,7 +25,7 @@ from .motors import MAX_STIFFNESS, Actuators
 from .plant import BAUMGARTE, ModelMismatch, Plant, PlantError
 
 # ω·dt of the fastest drive mode: RK4 is stable to 2.8 on the imaginary axis; at 0.5 it
-# damps that mode by 1.1e-4 per step (the default step), at 2 by 0.29 (the longest accepted)
+# damps that mode by 1.1e-4 per step (the default step), at 2 by 0.25 (the longest accepted)
 STEP_OMEGA, MAX_STEP_OMEGA = 0.5, 2.0
 MODE_POSES = 17  # reference configurations over which the fastest mode is sought
 
