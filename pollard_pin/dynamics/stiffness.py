@@ -23,7 +23,9 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import InputError
+from ..kinematics.errors import SingularityError
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
+from ..kinematics.singularity import inverse_stack
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
 FREQUENCIES = tuple(f"f{i}" for i in range(1, 7))
@@ -120,17 +122,8 @@ def closed_loop_maps(robot, q) -> ClosedLoop:
     Kq, _ = point_rows(lay, R, o, robot.model.nv)
     Kinv = kinematic_inverse(Kq, lay)
     tool = Kinv[:, :, 6:]
-    J = _inverse(tool[:, robot.actuated_v, :])
+    J = inverse_stack(tool[:, robot.actuated_v, :])
     return ClosedLoop(J=J, S=tool @ J)
-
-
-def _inverse(A):
-    try:
-        return np.linalg.inv(A)
-    except np.linalg.LinAlgError:
-        from ..kinematics.singularity import inverse_stack
-
-        return inverse_stack(A)
 
 
 def reduced_mass_and_gravity(robot, q, S) -> tuple[np.ndarray, np.ndarray]:
@@ -155,15 +148,26 @@ def reduced_mass_and_gravity(robot, q, S) -> tuple[np.ndarray, np.ndarray]:
 
 def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
                  ) -> StiffnessResult:
-    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) with drive
-    stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the samples' times (default
-    their indices)."""
+    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) (the IK's,
+    loops closed) with drive stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the
+    samples' times (default their indices). A configuration where the closed-loop maps are
+    not finite (a singular Jc_p or J) raises :class:`SingularityError` naming its sample."""
     options = StiffnessOptions() if options is None else options
     k = check_stiffness(k)
     q = np.atleast_2d(np.asarray(q, dtype=float))
     n = len(q)
+    if q.shape != (n, robot.model.nq) or not np.isfinite(q).all():
+        raise StiffnessError(f"configurations must be finite, shape (N, {robot.model.nq}), got "
+                             f"shape {q.shape}")
+    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
     loop = closed_loop_maps(robot, q)
     J = loop.J
+    bad = ~np.isfinite(loop.S).all(axis=(1, 2))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise SingularityError("the closed-loop Jacobian J (actuated rates → tool twist) is "
+                               "not finite: a parallel or serial singularity (docs/model.md "
+                               "§12, §27.1)", chain="stiffness", sample=i, time=float(t[i]))
     Ma, tau_g = reduced_mass_and_gravity(robot, q, loop.S)
     W = np.asarray(options.wrench)
     # d = J K⁻¹ (Jᵀ W − τ_g): the springs' twist under the joint-space load (§27.2)
@@ -174,7 +178,5 @@ def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
     # K u = ω² Mₐ u ⇔ (D Mₐ D) y = ω⁻² y with D = K^-½, u = D y: symmetric, batched (§27.3)
     s = 1.0 / np.sqrt(k)
     mu = np.linalg.eigvalsh(s[:, None] * Ma * s[None, :])[:, ::-1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
-    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+    freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
     return StiffnessResult(t=t, deflection=defl, frequencies=freq, kmin=kmin)

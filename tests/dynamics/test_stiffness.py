@@ -323,3 +323,21 @@ def test_frequencies_against_mujoco_with_joint_springs(robot, q):
         hard = softer - (soft - softer) / 9.0
         assert np.abs(hard / f - 1.0).max() < 2e-3
         assert np.abs(softer / f - 1.0).max() < 0.3 * np.abs(soft / f - 1.0).max()
+
+
+def test_a_singular_or_malformed_configuration_is_named(robot, q):
+    """The wrist singularity (θ1716 = 0: the spray axis along the platform arm; the loops stay
+    closed) makes J singular: a SingularityError naming the sample; a mis-shaped or
+    non-finite stack is refused in one line."""
+    from pollard_pin.kinematics.errors import SingularityError
+
+    wrist = q.copy()
+    wrist[2, robot.idx_q("theta1716")] = 0.0
+    with pytest.raises(SingularityError, match="sample 2 .*not finite"):
+        stiffness_at(robot, wrist, K)
+    with pytest.raises(StiffnessError, match="shape"):
+        stiffness_at(robot, q[:, :6], K)
+    bad = q.copy()
+    bad[2, 0] = np.nan
+    with pytest.raises(StiffnessError, match="finite"):
+        stiffness_at(robot, bad, K)
