@@ -71,6 +71,13 @@ def commands(cli: Path, work: Path) -> None:
         work / "part/path.csv"], work)
     sh([cli, "run", "--samples", "401", "--out", "run.csv"], work)
     need(work / "run.csv", "run")
+    # stiffness on the thesis path and on a paint program's path (docs/model.md §27)
+    sh([cli, "stiffness", "--actuators", ex / "actuators.toml", "--samples", "401", "--out",
+        "stiff.csv"], work)
+    sh([cli, "stiffness", "--actuators", ex / "actuators.toml", "--trajectory",
+        work / "part/path.csv", "--wrench=0,0,-5,0,0,0", "--out", "part_stiff.parquet"], work)
+    for f in ("stiff.csv", "part_stiff.parquet"):
+        need(work / f, "stiffness")
     sh([cli, "urdf", "--out", "p.urdf"], work)
     sh([cli, "info"], work)
     sh([cli, "report", "--no-cross-check"], work)

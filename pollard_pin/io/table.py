@@ -37,7 +37,10 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "spray": "1", "nx": "1", "ny": "1", "nz": "1", "area": "m²",
           # workspace maps, docs/model.md §22
           "reachable": "1", "reason": "code (workspace.json reason_codes)",
-          "conditioning": "1", "payload_capacity": "kg"}
+          "conditioning": "1", "payload_capacity": "kg",
+          # stiffness, docs/model.md §27
+          "dx": "m", "dy": "m", "dz": "m", "rx": "rad", "ry": "rad", "rz": "rad",
+          **{f"f{i}": "Hz" for i in range(1, 7)}, "kmin": "N/m"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 
