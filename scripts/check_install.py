@@ -38,20 +38,6 @@ def need(path: Path, what: str) -> None:
         sys.exit(f"check_install: {what}: {path.name} was not written")
 
 
-def with_stiffness(ex: Path, work: Path) -> Path:
-    """examples/actuators.toml, a 'stiffness' added to each drive that has none (3e3 N·m/rad
-    base, 1e2 wrist) for simulate --flexible."""
-    text, out, table = (ex / "actuators.toml").read_text(), [], ""
-    for line in text.splitlines():
-        table = line if line.startswith("[") else table
-        out.append(line)
-        if line.startswith("max_speed") and "stiffness" not in text:
-            out.append(f"stiffness = {3e3 if table.startswith('[theta21') else 1e2}")
-    path = work / "flexible_actuators.toml"
-    path.write_text("\n".join(out) + "\n")
-    return path
-
-
 def commands(cli: Path, work: Path) -> None:
     """One call of every command; paint on a still mesh part and a part on a line."""
     ex = work / "examples"
@@ -82,7 +68,7 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "info"], work)
     sh([cli, "report", "--no-cross-check"], work)
     sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
-    sh([cli, "simulate", "--duration", "0.2", "--actuators", with_stiffness(ex, work),
+    sh([cli, "simulate", "--duration", "0.2", "--actuators", ex / "actuators.toml",
         "--flexible", "--out", "flex.csv"], work)
     sh([cli, "workspace", "--plane", "x=0.55", "--resolution", "0.02", "--out", "ws"], work)
     sh([cli, "sweep", "--grid", ex / "sweep.toml", "--out", "sweep.csv"], work)

@@ -16,6 +16,7 @@ from pollard_pin.dynamics.flexible import FlexibleDrives, FlexiblePlant, flexibl
 from pollard_pin.dynamics.forward import robot_copy
 from pollard_pin.dynamics.motors import ActuatorError, load_actuators
 from pollard_pin.dynamics.plant import ModelMismatch, PlantError
+from pollard_pin.dynamics.stiffness import stiffness_at
 from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
@@ -134,46 +135,78 @@ def test_energy_balances_the_controller_work_and_the_friction(robot, drives):
     assert np.abs(residual).max() < 1e-11 * np.abs(work).max(), (residual, work, loss)
 
 
-def test_free_vibration_has_the_linearised_frequencies(robot, drives):
-    """No gravity, no controller (u = 0), at home: started along one vibration mode of
-    [Mₐ 0; 0 B] ẍ = −[K −K; −K K] x (Mₐ = NᵀMN the links' mass matrix on the actuated
-    angles, from crba and the constraint Jacobian; the simulation solves the KKT system), the
-    plant's spring deflection swings at that mode's frequency: the six modes 54–1246 Hz
-    found to 1.8e-7 relative by zero crossings (asserted 2e-5)."""
+def _swing(robot, drives, u_link, u_motor, omega: float) -> float:
+    """The angular frequency at which the spring deflection of the free plant (no gravity,
+    no controller, no friction, no Baumgarte term) swings, started at home with actuated
+    rates ``u_link`` (the loops' velocity map gives the rest) and motor rates ``u_motor``:
+    zero crossings over six periods of ``omega``, by RK4 at ω·h = 0.05 (or shorter steps, for
+    RK4 to stay stable on the fastest mode, which round-off excites)."""
     copy = robot_copy(robot)
     copy.model.gravity = pin.Motion.Zero()
-    drives = dataclasses.replace(drives, viscous=0.0, coulomb=0.0)  # undamped
-    plant = FlexiblePlant(copy, None, drives, baumgarte=(0.0, 0.0))
+    plant = FlexiblePlant(copy, None, dataclasses.replace(drives, viscous=0.0, coulomb=0.0),
+                          baumgarte=(0.0, 0.0))
+    f = plant.held(np.zeros(6))
     q0 = robot.home()
-    model, data = copy.model, copy.data
-    Jc = constraint_jacobian(model, data, copy.constraint_models, copy.constraint_datas, q0)
-    N = actuator_velocity_map(Jc, copy.actuated_v, copy.passive_v)
+    x = np.concatenate((q0, q0[copy.actuated_v]))
+    xd = np.concatenate((_velocity_map(copy, q0) @ u_link, u_motor))
+    h = min(0.05 / omega, 1.0 / plant.fastest_mode(q0))
+    j = int(np.argmax(np.abs(u_motor - u_link)))  # the largest swing
+    delta = []
+    for _ in range(int(6 * 2 * np.pi / omega / h)):
+        delta.append(plant.spring_torque(x)[j])
+        k1v, k1a = xd, f(x, xd)
+        k2v, k2a = xd + h / 2 * k1a, f(x + h / 2 * k1v, xd + h / 2 * k1a)
+        k3v, k3a = xd + h / 2 * k2a, f(x + h / 2 * k2v, xd + h / 2 * k2a)
+        k4v, k4a = xd + h * k3a, f(x + h * k3v, xd + h * k3a)
+        x = x + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+        xd = xd + h / 6 * (k1a + 2 * k2a + 2 * k3a + k4a)
+    d = np.array(delta)
+    i = np.nonzero(np.sign(d[1:]) != np.sign(d[:-1]))[0][1:]  # skip t = 0
+    crossings = h * (i + d[i] / (d[i] - d[i + 1]))
+    return np.pi / np.mean(np.diff(crossings))
+
+
+def _velocity_map(robot, q):
+    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+                             robot.constraint_datas, q)
+    return actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
+
+
+def _links_mass(robot, q):
+    """Mₐ = NᵀMN: the links' mass matrix on the actuated angles, from crba."""
+    N = _velocity_map(robot, q)
+    return N.T @ _mass_matrix(robot.model, robot.data, q) @ N
+
+
+def test_free_vibration_has_the_linearised_frequencies(robot, drives):
+    """No gravity, no controller (u = 0), at home: started along one vibration mode of
+    [Mₐ 0; 0 B] ẍ = −[K −K; −K K] x (Mₐ = NᵀMN from crba and the constraint Jacobian; the
+    simulation solves the KKT system instead), the plant's spring deflection swings at that
+    mode's frequency: the six modes 54–1246 Hz found to 1.7e-7 relative (asserted 2e-5)."""
     K = np.diag(drives.stiffness)
     w2, shapes = scipy.linalg.eigh(np.block([[K, -K], [-K, K]]), scipy.linalg.block_diag(
-        N.T @ _mass_matrix(model, data, q0) @ N, np.diag(drives.inertia)))
-    f = plant.held(np.zeros(6))
+        _links_mass(robot, robot.home()), np.diag(drives.inertia)))
     worst = 0.0
     for mode in range(6, 12):  # the first six are the rigid motions (ω = 0)
         omega, u = np.sqrt(w2[mode]), shapes[:, mode]
         u = u * 1e-6 * omega / np.abs(u[6:] - u[:6]).max()  # deflection amplitude 1e-6 rad
-        x = np.concatenate((q0, q0[copy.actuated_v]))
-        xd = np.concatenate((N @ u[:6], u[6:]))
-        h, j = 0.05 / omega, int(np.argmax(np.abs(u[6:] - u[:6])))
-        delta = []
-        for _ in range(int(6 * 2 * np.pi / omega / h)):  # six periods by RK4
-            delta.append(plant.spring_torque(x)[j])
-            k1v, k1a = xd, f(x, xd)
-            k2v, k2a = xd + h / 2 * k1a, f(x + h / 2 * k1v, xd + h / 2 * k1a)
-            k3v, k3a = xd + h / 2 * k2a, f(x + h / 2 * k2v, xd + h / 2 * k2a)
-            k4v, k4a = xd + h * k3a, f(x + h * k3v, xd + h * k3a)
-            x = x + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
-            xd = xd + h / 6 * (k1a + 2 * k2a + 2 * k3a + k4a)
-        d = np.array(delta)
-        i = np.nonzero(np.sign(d[1:]) != np.sign(d[:-1]))[0][1:]  # skip t = 0
-        crossings = h * (i + d[i] / (d[i] - d[i + 1]))
-        period = 2 * np.mean(np.diff(crossings))
-        worst = max(worst, abs(2 * np.pi / period / omega - 1))
+        worst = max(worst, abs(_swing(robot, drives, u[:6], u[6:], omega) / omega - 1))
     assert worst < 2e-5, worst
+
+
+def test_motors_held_still_swing_at_the_stiffness_modes(robot):
+    """The modes of docs/model.md §27 (``stiffness_at``: rotors held by their loops) are the
+    flexible plant's with rotors too heavy to move (B = 10⁶ kg·m²): with the example drives
+    (k = 3000, 300 N·m/rad), started along each mode (its shape from K u = ω² Mₐ u here),
+    the links swing at §27's f1 … f6 (37.5–2157 Hz at home) to 1.7e-7 relative (asserted
+    2e-5)."""
+    k = load_actuators(EXAMPLE).stiffness()
+    f27 = stiffness_at(robot, robot.home()[None], k).frequencies[0]
+    held = FlexibleDrives(stiffness=k, inertia=1e6)
+    w2, shapes = scipy.linalg.eigh(np.diag(k), _links_mass(robot, robot.home()))
+    measured = np.array([_swing(robot, held, shapes[:, m] * 1e-6 * np.sqrt(w2[m]) / np.abs(
+        shapes[:, m]).max(), np.zeros(6), np.sqrt(w2[m])) for m in range(6)]) / (2 * np.pi)
+    assert np.abs(measured / f27 - 1).max() < 2e-5, (measured, f27)
 
 
 @pytest.mark.parametrize("kwargs, says", [
@@ -201,7 +234,7 @@ def test_what_the_flexible_simulation_refuses(robot, drives, tmp_path):
     plant = FlexiblePlant(robot, None, drives)
     # the gun roll's drive: 1.2 kHz (k = 100 N·m/rad on 1.7e-6 kg·m² of link)
     step, hz = flexible_step(plant, robot.home()[None], 1e-3)
-    assert step == pytest.approx(0.5 / (2 * np.pi * hz), rel=1e-12) and 1000 < hz < 1500
+    assert step == pytest.approx(1 / (2 * np.pi * hz), rel=1e-12) and 1000 < hz < 1500
     with pytest.raises(ControlError, match=r"time step 0.001 s is too long for the drives' "
                                            r"fastest mode \(12\d\d Hz\): RK4 needs ω·dt <= 2, "
                                            r"here 7\.8"):
