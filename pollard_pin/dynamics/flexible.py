@@ -54,7 +54,10 @@ class FlexibleDrives:
             if np.size(raw) not in (1, 6):
                 raise PlantError(f"drive {name}: give one value or 6 (one per actuator), got "
                                  f"{np.size(raw)}")
-            value = np.broadcast_to(np.asarray(raw, dtype=float), (6,)).copy()
+            try:
+                value = np.broadcast_to(np.asarray(raw, dtype=float), (6,)).copy()
+            except (TypeError, ValueError):
+                raise PlantError(f"drive {name} must be numbers, got {raw!r}"[:200]) from None
             bad = ~np.isfinite(value) | ((value <= low) if strict else (value < low))
             if name == "stiffness":
                 bad |= value > MAX_STIFFNESS
@@ -65,7 +68,8 @@ class FlexibleDrives:
                 raise PlantError(f"drive {name} of actuator {j + 1} must be {rule}, got "
                                  f"{value[j]:g}")
             object.__setattr__(self, name, value)
-        if not (math.isfinite(self.coulomb_speed) and self.coulomb_speed > 0):
+        if not (isinstance(self.coulomb_speed, (int, float)) and math.isfinite(
+                self.coulomb_speed) and self.coulomb_speed > 0):
             raise PlantError(f"Coulomb smoothing speed must be > 0 rad/s, got "
                              f"{self.coulomb_speed}")
 

@@ -215,6 +215,8 @@ def test_motors_held_still_swing_at_the_stiffness_modes(robot):
     ({"inertia": 0.0}, "drive inertia of actuator 1 must be > 0 kg·m²"),
     ({"viscous": np.nan}, "drive viscous of actuator 1 must be >= 0, got nan"),
     ({"coulomb_speed": 0.0}, "Coulomb smoothing speed must be > 0"),
+    ({"coulomb_speed": "fast"}, "Coulomb smoothing speed must be > 0"),
+    ({"inertia": "heavy"}, "drive inertia must be numbers, got 'heavy'"),
 ])
 def test_bad_drives_are_refused_in_one_line(kwargs, says):
     args = {"stiffness": K0, "inertia": 1e-3, **kwargs}
