@@ -68,8 +68,8 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "info"], work)
     sh([cli, "report", "--no-cross-check"], work)
     sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
-    sh([cli, "simulate", "--duration", "0.2", "--actuators", ex / "actuators.toml",
-        "--flexible", "--out", "flex.csv"], work)
+    sh([cli, "simulate", "--trajectory", ex / "figure8.csv", "--actuators",
+        ex / "actuators.toml", "--flexible", "--out", "flex.csv"], work)
     sh([cli, "workspace", "--plane", "x=0.55", "--resolution", "0.02", "--out", "ws"], work)
     sh([cli, "sweep", "--grid", ex / "sweep.toml", "--out", "sweep.csv"], work)
     sh([cli, "plot", "--out", "plots"], work)
