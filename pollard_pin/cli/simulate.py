@@ -228,7 +228,8 @@ def add_parser(sub, parents) -> None:
                    help="flexible drives: each motor (rotor inertia, friction) drives its joint "
                         "through a spring of the actuator file's 'stiffness'; the controller "
                         "reads the motors and knows the springs ('unknown': it tracks the "
-                        "rigid reference); needs --actuators; docs/model.md §28")
+                        "rigid reference); needs --actuators; docs/model.md §28 (default: rigid "
+                        "drives)")
     p.add_argument("--armature", type=nonnegative, default=0.0, metavar="KG·M²",
                    help="rotor inertia on each actuated joint (plant only; default: 0)")
     p.add_argument("--viscous", type=nonnegative, default=0.0, metavar="N·M·S",
