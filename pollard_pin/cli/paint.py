@@ -62,9 +62,21 @@ def run(args) -> int:
         lines.append(f"gun body {rep['min_clearance_m'] * 1e3:.1f} mm from the part at its "
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
+    if "compliance" in rep:  # docs/model.md §27.5
+        lines.append(compliance_line(rep["compliance"]))
     print("\n".join(lines))
     say_written(out, name)
     return 0
+
+
+def compliance_line(c: dict) -> str:
+    """paint.json's ``compliance`` in one line (docs/model.md §27.5)."""
+    if not c["stiffness"]:
+        return f"compliance {c['note']}"
+    return (f"compliance (weight, recoil {c['recoil_n']:.3g} N): standoff error "
+            f"{c['standoff_error_m'] * 1e6:.3g} µm, lateral {c['lateral_error_m'] * 1e6:.3g} µm, "
+            f"tilt {c['tilt_rad'] * 1e3:.3g} mrad; film changes by at most "
+            f"{100 * c['film_error']:.2g} % of the target")
 
 
 def summary_lines(rep: dict, names) -> list[str]:
