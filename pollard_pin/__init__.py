@@ -50,7 +50,7 @@ _API = {
     "stiffness": "run.stiffness", "stream_stiffness": "run.stiffness",
     "StiffnessRun": "run.stiffness", "StiffnessOptions": "dynamics.stiffness",
     "StiffnessResult": "dynamics.stiffness", "StiffnessError": "dynamics.stiffness",
-    "stiffness_at": "dynamics.stiffness",
+    "stiffness_at": "dynamics.stiffness", "deflection_at": "dynamics.stiffness",
     "time_optimal_path": "dynamics.cycle", "TimeOptimal": "dynamics.timeopt",
     "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
     "map_workspace": "workspace.grid", "largest_panel": "workspace.grid",
@@ -67,6 +67,7 @@ _API = {
     "PlaceError": "paint.place",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
+    "program_deflection": "paint.plan.compliance", "compliance_entry": "paint.film.compliance",
 }
 
 __all__ = sorted(_API)

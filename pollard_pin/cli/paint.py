@@ -62,7 +62,7 @@ def run(args) -> int:
         lines.append(f"gun body {rep['min_clearance_m'] * 1e3:.1f} mm from the part at its "
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
-    if "compliance" in rep:  # docs/model.md §27.5
+    if "compliance" in rep:  # docs/model.md §27.7
         lines.append(compliance_line(rep["compliance"]))
     print("\n".join(lines))
     say_written(out, name)
@@ -70,7 +70,7 @@ def run(args) -> int:
 
 
 def compliance_line(c: dict) -> str:
-    """paint.json's ``compliance`` in one line (docs/model.md §27.5)."""
+    """paint.json's ``compliance`` in one line (docs/model.md §27.7)."""
     if not c["stiffness"]:
         return f"compliance {c['note']}"
     return (f"compliance (weight, recoil {c['recoil_n']:.3g} N): standoff error "

@@ -104,8 +104,7 @@ def add_parser(sub, parents) -> None:
                         "(see examples/actuators.toml)")
     p.add_argument("--wrench", type=wrench, default=None, metavar="FX,FY,FZ,MX,MY,MZ",
                    help="wrench on the tool [N, N·m], force at the tip and moment about it, "
-                        "world axes, besides the weight; write --wrench=-5,0,0,0,0,0 for a "
-                        "leading minus (default: none)")
+                        "world axes, besides the weight, e.g. -5,0,0,0,0,0 (default: none)")
     p.add_argument("--out", type=name, default="stiffness.csv",
                    metavar="FILE.csv|FILE.parquet",
                    help="output table: t, dx, dy, dz [m], rx, ry, rz [rad], f1…f6 [Hz], kmin "

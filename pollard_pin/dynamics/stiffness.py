@@ -23,7 +23,9 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import InputError
+from ..kinematics.errors import SingularityError
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
+from ..kinematics.singularity import inverse_stack
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
 FREQUENCIES = tuple(f"f{i}" for i in range(1, 7))
@@ -120,17 +122,8 @@ def closed_loop_maps(robot, q) -> ClosedLoop:
     Kq, _ = point_rows(lay, R, o, robot.model.nv)
     Kinv = kinematic_inverse(Kq, lay)
     tool = Kinv[:, :, 6:]
-    J = _inverse(tool[:, robot.actuated_v, :])
+    J = inverse_stack(tool[:, robot.actuated_v, :])
     return ClosedLoop(J=J, S=tool @ J)
-
-
-def _inverse(A):
-    try:
-        return np.linalg.inv(A)
-    except np.linalg.LinAlgError:
-        from ..kinematics.singularity import inverse_stack
-
-        return inverse_stack(A)
 
 
 def reduced_mass_and_gravity(robot, q, S) -> tuple[np.ndarray, np.ndarray]:
@@ -153,28 +146,78 @@ def reduced_mass_and_gravity(robot, q, S) -> tuple[np.ndarray, np.ndarray]:
     return St @ M @ S, (St @ tree)[..., 0]
 
 
-def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
-                 ) -> StiffnessResult:
-    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) with drive
-    stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the samples' times (default
-    their indices)."""
-    options = StiffnessOptions() if options is None else options
+def holding_torques(robot, q, S) -> np.ndarray:
+    """τ_g (N, 6) = Sᵀ g(q): the actuator torques that hold the robot still at closed
+    configurations q (the gravity half of :func:`reduced_mass_and_gravity`)."""
+    model, data = robot.model, robot.data
+    tree = np.empty((len(q), model.nv, 1))
+    for i in range(len(q)):
+        tree[i, :, 0] = pin.computeGeneralizedGravity(model, data, q[i])
+    return (np.swapaxes(S, 1, 2) @ tree)[..., 0]
+
+
+def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
+    """d = J K⁻¹ (Jᵀ W − τ_g) (N, 6): dx, dy, dz [m], rx, ry, rz [rad], world axes, at closed
+    configurations q (N, 12) under the weight and ``wrench``: None, six numbers for every
+    sample, or (N, 6) one per sample (FX, FY, FZ [N] at the tip, MX, MY, MZ [N·m] about it,
+    world axes; e.g. a spray's recoil along each sample's gun axis). Without the modes: one
+    gravity pass per sample (docs/model.md §27.2)."""
     k = check_stiffness(k)
+    q, t = _configurations(robot, q, t)
+    W = np.zeros(6) if wrench is None else np.asarray(wrench, dtype=float)
+    if W.shape not in ((6,), (len(q), 6)) or not np.isfinite(W).all():
+        raise StiffnessError(f"wrench must be six finite numbers or ({len(q)}, 6) of them, got "
+                             f"shape {W.shape}" + ("" if np.isfinite(W).all() else
+                                                   " with non-finite entries"))
+    loop = _regular_maps(robot, q, t)
+    return _deflection(loop.J, k, W, holding_torques(robot, q, loop.S))
+
+
+def _deflection(J, k, W, tau_g):
+    # the springs' turn under the joint-space load, mapped to the tool (§27.2)
+    load = (np.swapaxes(J, 1, 2) @ np.broadcast_to(W, (len(J), 6))[..., None])[..., 0] - tau_g
+    return (J @ (load / k)[..., None])[..., 0]
+
+
+def _configurations(robot, q, t):
     q = np.atleast_2d(np.asarray(q, dtype=float))
     n = len(q)
+    if q.shape != (n, robot.model.nq) or not np.isfinite(q).all():
+        raise StiffnessError(f"configurations must be finite, shape (N, {robot.model.nq}), got "
+                             f"shape {q.shape}")
+    return q, np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+
+
+def _regular_maps(robot, q, t) -> ClosedLoop:
+    """:func:`closed_loop_maps`, or a SingularityError naming the first sample where they are
+    not finite."""
     loop = closed_loop_maps(robot, q)
+    bad = ~np.isfinite(loop.S).all(axis=(1, 2))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise SingularityError("the closed-loop Jacobian J (actuated rates → tool twist) is "
+                               "not finite: a parallel or serial singularity (docs/model.md "
+                               "§12, §27.1)", chain="stiffness", sample=i, time=float(t[i]))
+    return loop
+
+
+def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
+                 ) -> StiffnessResult:
+    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) (the IK's,
+    loops closed) with drive stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the
+    samples' times (default their indices). A configuration where the closed-loop maps are
+    not finite (a singular Jc_p or J) raises :class:`SingularityError` naming its sample."""
+    options = StiffnessOptions() if options is None else options
+    k = check_stiffness(k)
+    q, t = _configurations(robot, q, t)
+    loop = _regular_maps(robot, q, t)
     J = loop.J
     Ma, tau_g = reduced_mass_and_gravity(robot, q, loop.S)
-    W = np.asarray(options.wrench)
-    # d = J K⁻¹ (Jᵀ W − τ_g): the springs' twist under the joint-space load (§27.2)
-    load = np.einsum("nji,j->ni", J, W) - tau_g
-    defl = (J @ (load / k)[..., None])[..., 0]
+    defl = _deflection(J, k, np.asarray(options.wrench), tau_g)
     C = (J[:, :3, :] / k) @ np.swapaxes(J[:, :3, :], 1, 2)  # the force block of J K⁻¹ Jᵀ
     kmin = 1.0 / np.linalg.eigvalsh(C)[:, -1]
     # K u = ω² Mₐ u ⇔ (D Mₐ D) y = ω⁻² y with D = K^-½, u = D y: symmetric, batched (§27.3)
     s = 1.0 / np.sqrt(k)
     mu = np.linalg.eigvalsh(s[:, None] * Ma * s[None, :])[:, ::-1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
-    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+    freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
     return StiffnessResult(t=t, deflection=defl, frequencies=freq, kmin=kmin)

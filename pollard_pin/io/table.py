@@ -40,7 +40,7 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "conditioning": "1", "payload_capacity": "kg",
           # stiffness, docs/model.md §27
           "dx": "m", "dy": "m", "dz": "m", "rx": "rad", "ry": "rad", "rz": "rad",
-          **{f"f{i}": "Hz" for i in range(1, 7)}, "kmin": "N/m"}
+          **{f"f{i}": "Hz" for i in range(1, 7)}, "kmin": "N/m", "sag": "m"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 

@@ -36,7 +36,7 @@ class PaintOptions:
     at most the spray spot's σ; None: σ/3. ``max_line_speed``: a job on a line is planned at
     the fastest line speed that paints it (bisection to ``speed_resolution``, relative)
     instead of the job's speed (docs/model.md §24). ``compliance``: report what the drives'
-    compliance does to the gun and the film (docs/model.md §27.5; a second film integration).
+    compliance does to the gun and the film (docs/model.md §27.7; a second film integration).
     """
 
     resolution: float | None = None
@@ -177,7 +177,7 @@ def paint(robot, job, actuators: Actuators | None = None,
 
 
 def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
-    """paint.json's ``compliance`` entry and its time (docs/model.md §27.5)."""
+    """paint.json's ``compliance`` entry and its time (docs/model.md §27.7)."""
     from .film.compliance import compliance_entry
 
     t0 = time.perf_counter()

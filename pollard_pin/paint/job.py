@@ -42,7 +42,7 @@ MIN_PANEL_SIGMAS = 1.0
 # "at most 5 coat(s)"): more only make the program longer and the film thinner per coat.
 MAX_PART_COATS = 5
 # The spray's recoil [N]: a gun kicks back by a few N at most; beyond this a unit slip (the
-# drives' linear deflection, docs/model.md §27.5, is long gone anyway).
+# drives' linear deflection, docs/model.md §27.7, is long gone anyway).
 MAX_RECOIL = 100.0
 
 
@@ -72,7 +72,7 @@ class PaintJob:
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
-    recoil: float | None = None  # the spray's push back on the gun [N] (§27.5); None: none
+    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
@@ -114,7 +114,7 @@ class PartJob:
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
-    recoil: float | None = None  # the spray's push back on the gun [N] (§27.5); None: none
+    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
 
     @property
     def unit(self) -> float:
@@ -290,7 +290,7 @@ def _gun_values(source: str, gun: Mapping) -> dict:
         values["clearance"] = _number(source, "gun.clearance", gun["clearance"], length=True)
         if values["clearance"] < 0:
             _fail(source, "gun.clearance", gun["clearance"], "must be ≥ 0 m")
-    if "recoil" in gun:  # along the spray axis, pushing the gun back (§27.5)
+    if "recoil" in gun:  # along the spray axis, pushing the gun back (§27.7)
         values["recoil"] = number(gun["recoil"], "gun.recoil", JobError, f"{source}: ",
                                   nonnegative=True, limit=MAX_RECOIL,
                                   limit_rule=f"must be at most {MAX_RECOIL:g} N (the force "

@@ -418,6 +418,7 @@ TRAJ_COMMANDS = {  # argv prefix of each command that takes --trajectory; nothin
     "report": ["report", "--no-cross-check", "--out", "out.md"],
     "size": ["size", "--actuators", ACT, "--out", "out.md"],
     "simulate": ["simulate", "--out", "out.csv"],
+    "stiffness": ["stiffness", "--actuators", ACT, "--out", "out.csv"],
 }
 SIM = ["simulate", "--trajectory", "good.csv", "--out", "out.csv"]  # 0.22 s: 220 steps
 SHORT = ["--samples", "11", "--duration", "0.2"]  # a short thesis trajectory

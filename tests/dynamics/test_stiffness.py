@@ -323,3 +323,39 @@ def test_frequencies_against_mujoco_with_joint_springs(robot, q):
         hard = softer - (soft - softer) / 9.0
         assert np.abs(hard / f - 1.0).max() < 2e-3
         assert np.abs(softer / f - 1.0).max() < 0.3 * np.abs(soft / f - 1.0).max()
+
+
+def test_a_singular_or_malformed_configuration_is_named(robot, q):
+    """The wrist singularity (θ1716 = 0: the spray axis along the platform arm; the loops stay
+    closed) makes J singular: a SingularityError naming the sample; a mis-shaped or
+    non-finite stack is refused in one line."""
+    from pollard_pin.kinematics.errors import SingularityError
+
+    wrist = q.copy()
+    wrist[2, robot.idx_q("theta1716")] = 0.0
+    with pytest.raises(SingularityError, match="sample 2 .*not finite"):
+        stiffness_at(robot, wrist, K)
+    with pytest.raises(StiffnessError, match="shape"):
+        stiffness_at(robot, q[:, :6], K)
+    bad = q.copy()
+    bad[2, 0] = np.nan
+    with pytest.raises(StiffnessError, match="finite"):
+        stiffness_at(robot, bad, K)
+
+
+def test_deflection_with_a_wrench_per_sample(robot, q):
+    """deflection_at with one wrench per sample gives, row by row, stiffness_at's deflection
+    under that wrench for every sample (achieved: identical, tolerance 1e-15 relative); bad
+    wrench arrays are one line."""
+    from pollard_pin.dynamics.stiffness import deflection_at
+
+    rng = np.random.default_rng(5)
+    W = rng.normal(size=(len(q), 6))
+    d = deflection_at(robot, q, K, W)
+    for i, w in enumerate(W):
+        ref = stiffness_at(robot, q, K, StiffnessOptions(tuple(w))).deflection[i]
+        assert np.abs(d[i] - ref).max() <= 1e-15 * np.abs(ref).max()
+    assert np.array_equal(deflection_at(robot, q, K), deflection_at(robot, q, K, np.zeros(6)))
+    for bad in (np.zeros((len(q) + 1, 6)), np.zeros(5), np.full(6, np.inf)):
+        with pytest.raises(StiffnessError, match="wrench"):
+            deflection_at(robot, q, K, bad)

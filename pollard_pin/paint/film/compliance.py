@@ -1,4 +1,4 @@
-"""What compliance does to the paint (docs/model.md §27.5): the film of the deflected program
+"""What compliance does to the paint (docs/model.md §27.7): the film of the deflected program
 (the same planned path, each sample's pose moved by the drives' deflection under the weight
 and the spray's recoil, :mod:`.plan.compliance`) against the rigid film, at the same film
 points, by the same integration; and paint.json's ``compliance`` entry."""
@@ -64,7 +64,7 @@ def film_error(thickness, deflected, target: float, painted=None) -> tuple[float
 
 
 def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
-    """paint.json's ``compliance`` (docs/model.md §27.5): over the sprayed samples the largest
+    """paint.json's ``compliance`` (docs/model.md §27.7): over the sprayed samples the largest
     standoff error, lateral error and tilt [m, rad] from the weight and the job's recoil [N],
     and the largest film change over the painted points relative to the target; without
     the actuators' ``stiffness``, an entry that says so."""

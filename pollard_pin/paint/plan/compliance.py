@@ -1,4 +1,4 @@
-"""How far the gun gives along a paint program (docs/model.md §27.5): the compliant drives'
+"""How far the gun gives along a paint program (docs/model.md §27.7): the compliant drives'
 deflection d = J K⁻¹ (Jᵀ W − τ_g) of :mod:`pollard_pin.dynamics.stiffness` at every sample
 of the program, under the robot's weight and the spray's recoil, split along the gun's axis.
 
@@ -13,11 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
-from ...dynamics.stiffness import check_stiffness, closed_loop_maps, reduced_mass_and_gravity
+from ...dynamics.stiffness import check_stiffness, deflection_at
 from ...paths.trajectory import Trajectory
 from .checks import reach
 
-CHUNK = 4096  # samples per block: the (N, 12, 12) mass matrices stay ~50 MB
+CHUNK = 4096  # samples per block: the IK's and the maps' arrays stay some 50 MB
 
 
 @dataclass(frozen=True)
@@ -48,7 +48,7 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
                        recoil: float = 0.0) -> ProgramDeflection:
     """The deflection at every sample of ``trajectory`` (the robot's base frame) with drive
     stiffnesses ``stiffness`` (6,) [N·m/rad], under the weight and ``recoil`` [N] × ``spray``
-    (the trigger per sample, default 1) along −a (docs/model.md §27.2, §27.5). The IK is
+    (the trigger per sample, default 1) along −a (docs/model.md §27.2, §27.7). The IK is
     ``run``'s (a pose out of reach is a :class:`.errors.ReachError`)."""
     k = check_stiffness(stiffness)
     poses = np.asarray(trajectory.poses, dtype=float)
@@ -59,11 +59,7 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
     for start in range(0, n, CHUNK):
         sl = slice(start, start + CHUNK)
         q = reach(robot, poses[sl]).q
-        loop = closed_loop_maps(robot, q)
-        _, tau_g = reduced_mass_and_gravity(robot, q, loop.S)
-        w = recoil_wrench(axes[sl], spray[sl], recoil)
-        load = np.einsum("nji,nj->ni", loop.J, w) - tau_g  # Jᵀ W − τ_g
-        d[sl] = (loop.J @ (load / k)[..., None])[..., 0]
+        d[sl] = deflection_at(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
     along = np.einsum("ij,ij->i", d[:, :3], axes)
     turn = np.einsum("ij,ij->i", d[:, 3:], axes)
     lateral = np.linalg.norm(d[:, :3] - along[:, None] * axes, axis=1)

@@ -1,4 +1,4 @@
-"""What compliance does to the paint (docs/model.md §27.5): the standoff error against
+"""What compliance does to the paint (docs/model.md §27.7): the standoff error against
 stiffness_at's deflection projected by hand, the film error against a brute-force film of the
 deflected program (its own deflection, rotation and integration), the recoil's bad values one
 line each, and an actuators file without stiffness reported, not refused."""
