@@ -27,6 +27,10 @@ from .errors import JobKindError
 from .job import KINDS, PartJob, job_kind
 from .line.phases import SPEED_RESOLUTION
 
+# The kinds whose plan is one robot's program (docs/model.md §27.7): a cell's robots are
+# each one such program in their own base frame.
+COMPLIANCE_KINDS = ("panel", "part", "line panel", "line part")
+
 
 @dataclass(frozen=True)
 class PaintOptions:
@@ -171,7 +175,7 @@ def paint(robot, job, actuators: Actuators | None = None,
     if painter is None:
         raise JobKindError(f"{job.source}: a {kind} is not planned yet")
     plan, film, rep = painter(robot, job, act, options, res)
-    if options.compliance:
+    if options.compliance and kind in COMPLIANCE_KINDS:
         _compliance(robot, plan, film, act, rep)
     return PaintResult(job, kind, plan, film, PaintReport.from_dict(kind, rep), act, options)
 

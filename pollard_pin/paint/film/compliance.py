@@ -11,6 +11,7 @@ import numpy as np
 from ...analytic.taskspace import rotation
 from ...dynamics.motors import ActuatorError, Actuators
 from ...paths.trajectory import Trajectory
+from ..errors import JobKindError
 from ..line.panel import LinePlan
 from ..line.part import LinePartPlan
 from ..plan.compliance import ProgramDeflection, deflected_poses, program_deflection
@@ -51,7 +52,8 @@ def program_film(plan, points, poses) -> np.ndarray:
     if isinstance(moved, PaintPlan):
         return film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0], pts,
                     moved.frame.n, origin=moved.frame.c).thickness
-    raise TypeError(f"no film for a {type(plan).__name__}")
+    raise JobKindError(f"no film of a deflected program for a {type(plan).__name__}: a "
+                       "panel's or a part's plan, still or on a line")
 
 
 def film_error(thickness, deflected, target: float, painted=None) -> tuple[float, int]:

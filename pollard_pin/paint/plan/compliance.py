@@ -14,7 +14,10 @@ import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
 from ...dynamics.stiffness import check_stiffness, deflection_at
+from ...errors import InputError
 from ...paths.trajectory import Trajectory
+from ..errors import ReachError
+from ..job import MAX_RECOIL
 from .checks import reach
 
 CHUNK = 4096  # samples per block: the IK's and the maps' arrays stay some 50 MB
@@ -54,11 +57,19 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
     poses = np.asarray(trajectory.poses, dtype=float)
     n = len(poses)
     spray = np.ones(n) if spray is None else np.asarray(spray, dtype=float)
+    if spray.shape != (n,) or not np.all((spray >= 0) & (spray <= 1)):
+        raise InputError(f"spray: one trigger fraction in [0, 1] per sample ({n}), got shape "
+                         f"{spray.shape}")
+    if isinstance(recoil, bool) or not 0 <= recoil <= MAX_RECOIL:  # NaN fails too
+        raise InputError(f"recoil = {recoil!r}: expected a force of 0 to {MAX_RECOIL:g} N")
     axes = rotation(poses)[:, :, 0]
     d = np.empty((n, 6))
     for start in range(0, n, CHUNK):
         sl = slice(start, start + CHUNK)
-        q = reach(robot, poses[sl]).q
+        try:
+            q = reach(robot, poses[sl]).q
+        except ReachError as exc:  # the sample counted from the program's start
+            raise ReachError(str(exc), start + exc.sample, exc.pose) from None
         d[sl] = deflection_at(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
     along = np.einsum("ij,ij->i", d[:, :3], axes)
     turn = np.einsum("ij,ij->i", d[:, 3:], axes)

@@ -220,3 +220,11 @@ def test_the_film_thins_by_the_spots_divergence(robot, job, plan, film, act):
              & (np.abs(VV) <= job.height / 2 - 2 * job.sigma))
     assert change[inner].mean() < -5e-4  # the weight does thin the film
     assert change[inner].mean() == pytest.approx(-div[inner].mean(), rel=0.1)
+
+
+@pytest.mark.parametrize("recoil", [-1.0, math.nan, 1e6, True])
+def test_program_deflection_refuses_a_bad_recoil(robot, act, small, recoil):
+    plan = small[1]
+    with pytest.raises(PollardError, match="recoil") as exc:
+        program_deflection(robot, plan.trajectory, act.stiffness(), recoil=recoil)
+    assert "\n" not in str(exc.value)
