@@ -96,8 +96,12 @@ def test_film_error_against_a_brute_force(robot, act, small):
 
 
 def test_film_error_is_zero_without_deflection(robot, act, small):
-    """Near-rigid drives (1e9 N·m/rad): the deflected film is the rigid one."""
+    """The rigid poses give the plan's own film (equal: the same integration); near-rigid
+    drives (1e9 N·m/rad) a film within 1e-6 of it."""
+    from pollard_pin.paint.film.compliance import program_film
+
     job, plan, pts, f = small
+    assert np.array_equal(program_film(plan, pts, plan.trajectory.poses), f.thickness)
     stiff = replace(act, units=tuple(replace(u, stiffness=1e9) for u in act.units))
     entry = compliance_entry(robot, plan, pts, f.thickness, stiff)
     # achieved: film 7e-9 of the target, standoff 4.9e-10 m (the deflection scales as 1/k)
@@ -228,3 +232,40 @@ def test_program_deflection_refuses_a_bad_recoil(robot, act, small, recoil):
     with pytest.raises(PollardError, match="recoil") as exc:
         program_deflection(robot, plan.trajectory, act.stiffness(), recoil=recoil)
     assert "\n" not in str(exc.value)
+
+
+def _window(plan, n=400):
+    """The plan cut to ``n`` sprayed samples from the first sprayed one (a cheap film)."""
+    i = int(np.flatnonzero(plan.spray > 0)[0])
+    tr = plan.trajectory
+    return replace(plan, trajectory=tr.window(i, i + n), spray=plan.spray[i:i + n])
+
+
+@pytest.mark.parametrize("kind", ["line panel", "part", "line part"])
+def test_every_kind_films_as_its_planner(robot, act, line_plan, line_part_plan, kind):
+    """A line panel, a still part (examples/parts/ribbed_plate.toml), a part on a line: the
+    rigid poses give the kind's own film (equal), the deflected ones a small change."""
+    from pathlib import Path
+
+    from pollard_pin.paint.film.compliance import film_error, program_film
+    from pollard_pin.paint.film.line import line_film
+    from pollard_pin.paint.film.part import surface_film
+    from pollard_pin.paint.plan.compliance import deflected_poses
+    from pollard_pin.paint.plan.part import plan_surface
+
+    if kind == "part":
+        root = Path(__file__).resolve().parents[3]
+        job = pp.load_job(root / "examples" / "parts" / "ribbed_plate.toml")
+        plan = _window(plan_surface(robot, job, act))
+    else:
+        plan = _window(line_plan if kind == "line panel" else line_part_plan)
+    sigma = plan.job.sigma
+    if kind == "line panel":
+        pts, own = line_film(plan, sigma)[2:]
+    else:
+        pts, own = surface_film(plan.in_part_frame() if kind == "line part" else plan, sigma)[:2]
+    assert np.array_equal(program_film(plan, pts, plan.trajectory.poses), own.thickness)
+    d = program_deflection(robot, plan.trajectory, act.stiffness(), plan.spray, 5.0)
+    moved = program_film(plan, pts, deflected_poses(plan.trajectory.poses, d.deflection))
+    err, _ = film_error(own.thickness, moved, plan.job.thickness)
+    assert 1e-6 < err < 0.05  # a 400-sample piece: its film's edges move with the gun
