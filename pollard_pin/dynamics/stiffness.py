@@ -208,6 +208,8 @@ def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
     samples' times (default their indices). A configuration where the closed-loop maps are
     not finite (a singular Jc_p or J) raises :class:`SingularityError` naming its sample."""
     options = StiffnessOptions() if options is None else options
+    if not isinstance(options, StiffnessOptions):
+        raise StiffnessError(f"options must be a StiffnessOptions, got {type(options).__name__}")
     k = check_stiffness(k)
     q, t = _configurations(robot, q, t)
     loop = _regular_maps(robot, q, t)

@@ -112,6 +112,7 @@ def stream_stiffness(robot, traj, drives, path: str | Path,
     ``joint_limits``; ``timings`` gets ``wall`` seconds."""
     timings = {} if timings is None else timings
     stream = StreamOptions() if stream is None else stream
+    drives = drive_stiffness(drives)  # before any file is opened
     stats = StiffnessStats()
     n = len(traj)
     with TableWriter(path, metadata, stream.fmt) as writer:

@@ -341,6 +341,8 @@ def test_a_singular_or_malformed_configuration_is_named(robot, q):
     bad[2, 0] = np.nan
     with pytest.raises(StiffnessError, match="finite"):
         stiffness_at(robot, bad, K)
+    with pytest.raises(StiffnessError, match="StiffnessOptions"):
+        stiffness_at(robot, q, K, (1.0, 0, 0, 0, 0, 0))
 
 
 def test_deflection_with_a_wrench_per_sample(robot, q):
