@@ -45,7 +45,8 @@ def run(args) -> int:
     act = _actuators(args, job)
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
         result = paint(load_robot(args), job, act,
-                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
+                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
+                                    compliance=not args.no_compliance))
     name = result.write(out, args.format)
     rep = result.report.to_dict()
     if kind == "panel":
@@ -115,6 +116,9 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
                    help="film grid (a part: film point) spacing [m], at most σ (default: "
                         "σ/3)")
+    p.add_argument("--no-compliance", action="store_true",
+                   help="skip what the drives' compliance does to the gun and the film "
+                        "(docs/model.md §27.7: a second film integration)")
     p.add_argument("--max-line-speed", action="store_true",
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "

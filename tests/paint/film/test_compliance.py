@@ -109,7 +109,8 @@ def test_paint_reports_it(robot, act, small):
 
 def test_cli_without_stiffness_says_so(robot, tmp_path, capsys):
     """pollard-pin paint with an actuators file without stiffness: it paints, its summary
-    line and paint.json say the compliance is not computed and which key is missing."""
+    line and paint.json say the compliance is not computed and which key is missing; with
+    --no-compliance neither says anything of it."""
     import json
     import re
     from pathlib import Path
@@ -133,6 +134,10 @@ def test_cli_without_stiffness_says_so(robot, tmp_path, capsys):
     assert rep["compliance"]["stiffness"] is False and rep["compliance"]["recoil_n"] == 5.0
     line = [x for x in out.splitlines() if x.startswith("compliance")]
     assert len(line) == 1 and "not computed" in line[0] and "stiffness' is missing" in line[0]
+    assert main(["paint", "--job", str(tmp_path / "job.toml"), "--out", str(tmp_path / "off"),
+                 "--resolution", "0.01", "--no-compliance"]) == 0
+    assert "compliance" not in capsys.readouterr().out
+    assert "compliance" not in (tmp_path / "off" / "paint.json").read_text(encoding="utf-8")
 
 
 def test_summary_line_states_the_entry():
