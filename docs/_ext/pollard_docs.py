@@ -1,0 +1,200 @@
+"""Sphinx glue for the pollard-pin site.
+
+- ``§N`` anchors: every ``## N. Title`` heading of docs/model.md gets the label ``sN`` (the
+  page's HTML anchor ``model.html#sN``), added when the page is read, so that the Markdown file
+  stays as GitHub shows it and new sections get their anchor with no edit here.
+- ``docs/model.md §N`` in a docstring becomes a link to that section; a bare ``§N`` in the
+  model document itself links too (``thesis §4.1`` and other dotted numbers are the thesis').
+- A reference to a public name through the module that defines it
+  (``pollard_pin.model.build.load``, ``.closure.solve_closure``, ``Margins``) resolves to its
+  entry under ``pollard_pin.*`` when it is the same object.
+- ``.. cli-reference::`` writes the command-line reference from ``build_parser()``.
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import re
+import sys
+from pathlib import Path
+
+from cli_text import cli_reference
+from docutils import nodes
+from docutils.statemachine import StringList
+from sphinx.util.docutils import SphinxDirective
+from sphinx.util.nodes import nested_parse_with_titles
+
+HEADING = re.compile(r"^## (\d+)\. ")
+# an integer section (not a thesis' dotted one), not right after "thesis " and not in code
+BARE_SECTION = re.compile(r"(?<![\w.`§])(?<!thesis )§(\d+)(?![\d.]*\d)(?!\.\d)")
+DOCSTRING_CITE = re.compile(r"(?<![`<])docs/model\.md §(\d+)")
+ROOT = Path(__file__).resolve().parents[2]  # the checkout: pollard_pin/ beside docs/
+
+
+# -- the model document's § anchors ----------------------------------------------------------
+
+def _model_source(app, docname, source):
+    if docname != "model":
+        return
+    out, fenced = [], False
+    for line in source[0].splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        elif not fenced:
+            m = HEADING.match(line)
+            if m:
+                out += [f"(s{m.group(1)})=", ""]
+            elif not line.startswith("    "):
+                line = _link_sections(line)
+        out.append(line)
+    source[0] = "\n".join(out) + "\n"
+
+
+def _link_sections(line: str) -> str:
+    """``§N`` outside inline code becomes a MyST link to the section's label."""
+    parts = line.split("`")
+    for i in range(0, len(parts), 2):  # the even parts lie outside code spans
+        parts[i] = BARE_SECTION.sub(r"[§\1](#s\1)", parts[i])
+    return "`".join(parts)
+
+
+def _docstrings(app, what, name, obj, options, lines):
+    """Before napoleon: the cites become links, ``|x|`` (an absolute value, as the docstrings
+    write it) is no substitution, and a property's first line is text, not ``type: text``."""
+    for i, line in enumerate(lines):
+        line = DOCSTRING_CITE.sub(r":ref:`docs/model.md §\1 <s\1>`", line)
+        row = line.strip()
+        if not (row.startswith(("+-", "+=")) or row[:1] == row[-1:] == "|"):  # not a table's
+            parts = line.split("``")
+            parts[::2] = [p.replace("|", r"\|") for p in parts[::2]]
+            line = "``".join(parts)
+        lines[i] = line
+    if what in ("property", "attribute", "data") and lines:
+        lines[:0] = ["..", ""]  # an empty comment: napoleon reads no type from the first line
+
+
+# -- public names reached through their defining module ---------------------------------------
+
+def _public_target(target: str) -> str | None:
+    """The ``pollard_pin.NAME[.rest]`` entry that ``target`` names, or None."""
+    import pollard_pin
+
+    parts = target.lstrip(".~").split(".")
+    for i, part in enumerate(parts):
+        if part not in pollard_pin.__all__ or part == "paint":
+            continue
+        public = getattr(pollard_pin, part)
+        if i > 0 and parts[0] == "pollard_pin":  # a full path: the same object, or nothing
+            try:
+                module = importlib.import_module(".".join(parts[:i]))
+            except ImportError:
+                return None
+            if getattr(module, part, None) is not public:
+                return None
+        return ".".join(["pollard_pin", *parts[i:]])
+    return None
+
+
+def _missing_reference(app, env, node, contnode):
+    """A public name through its module links to its entry; a short name links to the one
+    documented object it ends; a name of the package that the reference does not list shows as
+    code. Anything else (a misspelt or removed name) stays missing and fails the build."""
+    if node.get("refdomain") != "py":
+        return None
+    target = node["reftarget"].lstrip("~")
+    domain = env.get_domain("py")
+    module = _source_module(node)
+    for full in _candidates(target, module, node.get("py:class")):
+        if full != target and full in domain.objects:
+            return _resolve(app, env, node, contnode, full)
+    public = _public_target(target)
+    if public is not None and public != target:
+        resolved = _resolve(app, env, node, contnode, public)
+        if resolved is not None:
+            return resolved
+    tail = "." + target.lstrip(".")
+    ends = [name for name in domain.objects if name.endswith(tail)]
+    if len(ends) == 1:
+        return _resolve(app, env, node, contnode, ends[0])
+    if any(_exists(full) for full in _candidates(target, module, node.get("py:class"))):
+        if os.environ.get("POLLARD_DOCS_UNLISTED"):  # which package names the reference lacks
+            print(f"unlisted: {target} (from {module})", file=sys.stderr)
+        return contnode
+    return None
+
+
+def _resolve(app, env, node, contnode, target):
+    node = node.deepcopy()
+    node["reftarget"], node["refspecific"] = target, False
+    return env.get_domain("py").resolve_xref(env, node["refdoc"], app.builder, node["reftype"],
+                                             target, node, contnode)
+
+
+def _source_module(node) -> str | None:
+    """The module whose docstring holds the reference (autodoc names its file)."""
+    m = re.match(r"(.*?\.py):docstring of ", node.source or "")
+    if not m:
+        return None
+    try:
+        parts = Path(m.group(1)).resolve().relative_to(ROOT).with_suffix("").parts
+    except ValueError:
+        return None
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _candidates(target: str, module: str | None, cls: str | None) -> list[str]:
+    """Full names that ``target`` may mean, seen from ``module`` (innermost first)."""
+    name = target.lstrip(".")
+    if name.startswith("pollard_pin."):
+        return [name]
+    out = []
+    scope = (module or "pollard_pin").split(".")
+    for i in range(len(scope), 0, -1):
+        prefix = ".".join(scope[:i])
+        if cls and i == len(scope):
+            out.append(f"{prefix}.{cls.split('.')[-1]}.{name}")
+        out.append(f"{prefix}.{name}")
+    return out
+
+
+def _exists(full: str) -> bool:
+    """Whether ``full`` names a module, or an attribute (a class's field too) of one."""
+    parts = full.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            continue
+        for part in parts[i:]:
+            fields = getattr(obj, "__annotations__", {}) if isinstance(obj, type) else {}
+            if hasattr(obj, part):
+                obj = getattr(obj, part)
+            elif part in fields:
+                obj = None
+            else:
+                return False
+        return True
+    return False
+
+
+# -- the command-line reference -------------------------------------------------------------
+
+class CliReference(SphinxDirective):
+    """Every command of ``pollard-pin``, its usage, options, defaults and help."""
+
+    def run(self):
+        from pollard_pin.cli.main import build_parser
+
+        lines = cli_reference(build_parser())
+        node = nodes.section()
+        node.document = self.state.document
+        nested_parse_with_titles(self.state, StringList(lines, "cli-reference"), node)
+        return node.children
+
+
+def setup(app):
+    app.connect("source-read", _model_source)
+    app.connect("autodoc-process-docstring", _docstrings, priority=400)
+    app.connect("missing-reference", _missing_reference)
+    app.add_directive("cli-reference", CliReference)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
