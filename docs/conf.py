@@ -25,6 +25,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "pollard_docs",
 ]
+smartquotes = False  # "--out" stays two hyphens, as typed; the pages write their own dashes
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "tutorials", "Thumbs.db", ".DS_Store"]
@@ -84,6 +85,7 @@ else:  # a checkout without the tutorials: the page says so instead of failing t
         "Tutorials\n=========\n\nThis checkout has no ``docs/tutorials/``.\n")
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "warning")  # a tutorial's LocalCluster, quiet
 
 # -- HTML --------------------------------------------------------------------------------
 html_theme = "furo"

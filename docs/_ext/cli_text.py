@@ -14,7 +14,7 @@ def cli_reference(parser: argparse.ArgumentParser) -> list[str]:
     """The reference of ``parser`` and each of its subcommands, as reStructuredText lines."""
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     helps = {c.dest: c.help or "" for c in sub._choices_actions}
-    lines = ["Options of every command", "-" * 24, ""] + _option_lines(parser) + [""]
+    lines = ["Options of every command", "-" * 24, ""] + _option_lines(parser, True) + [""]
     for name, command in sub.choices.items():
         lines += _command_lines(name, command, helps.get(name, ""))
     return lines
@@ -40,10 +40,13 @@ def _help(action: argparse.Action, prog: str) -> str:
     return " ".join(text.split()).replace("*", r"\*").replace("`", r"\`").replace("|", r"\|")
 
 
-def _option_lines(parser: argparse.ArgumentParser) -> list[str]:
+def _option_lines(parser: argparse.ArgumentParser, top: bool = False) -> list[str]:
+    """One bullet per option: its flags and metavar, help, default and choices (a command's
+    ``--help`` is said once, with the options of every command)."""
     lines = []
     for action in parser._actions:
-        if action.help == argparse.SUPPRESS or isinstance(action, argparse._SubParsersAction):
+        if action.help == argparse.SUPPRESS or isinstance(action, argparse._SubParsersAction) \
+                or (isinstance(action, argparse._HelpAction) and not top):
             continue
         if action.option_strings:
             metavar = "" if action.nargs == 0 else " " + (
@@ -56,7 +59,9 @@ def _option_lines(parser: argparse.ArgumentParser) -> list[str]:
             choices = " One of " + ", ".join(f"``{c}``" for c in action.choices) + "."
         else:
             choices = ""
-        text = (_help(action, parser.prog).rstrip(".") + _default(action)).strip()
+        text = _help(action, parser.prog).rstrip(".")
+        if "default" not in text.lower():  # where the help says its default, it says it once
+            text = (text + _default(action)).strip()
         lines += [f"* {name}: {text}.{choices}" if text else f"* {name}.{choices}"]
     return lines
 
@@ -67,8 +72,9 @@ def _command_lines(name: str, parser: argparse.ArgumentParser, help_text: str) -
     if help_text:
         lines += [" ".join(help_text.split()), ""]
     usage = parser.format_usage().strip()
-    lines += ["::", "", *("    " + u for u in usage.splitlines()), ""]
+    lines += [".. code-block:: text", "", *("    " + u for u in usage.splitlines()), ""]
     desc = parser.description or ""
     if desc.strip() and desc.strip() != help_text.strip():
-        lines += ["::", "", *("    " + d for d in desc.strip().splitlines()), ""]
+        lines += [".. code-block:: text", "", *("    " + d for d in desc.strip().splitlines()),
+                  ""]
     return lines + _option_lines(parser) + [""]
