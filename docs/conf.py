@@ -74,8 +74,10 @@ if any((HERE / "tutorials" / name).is_file() for name in _HEADERS):
         "matplotlib_animations": False,
         "image_scrapers": ("matplotlib",),
         "show_memory": False,
+        # the tutorials' code links to the reference: pp.load → pollard_pin.load
         "reference_url": {"pollard_pin": None},
-        "backreferences_dir": None,
+        "doc_module": ("pollard_pin",),
+        "backreferences_dir": "auto_tutorials/backreferences",
         "promote_jupyter_magic": False,
     }
 else:  # a checkout without the tutorials: the page says so instead of failing the build

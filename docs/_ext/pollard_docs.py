@@ -15,6 +15,7 @@ from __future__ import annotations
 import importlib
 import os
 import re
+import shutil
 import sys
 from pathlib import Path
 
@@ -34,6 +35,9 @@ ROOT = Path(__file__).resolve().parents[2]  # the checkout: pollard_pin/ beside 
 # -- the model document's § anchors ----------------------------------------------------------
 
 def _model_source(app, docname, source):
+    if docname.startswith("auto_tutorials/"):  # the gallery's RST: text lines, not code
+        source[0] = "\n".join(line if line[:1].isspace() else _cite_link(line)
+                               for line in source[0].splitlines()) + "\n"
     if docname != "model":
         return
     out, fenced = [], False
@@ -58,11 +62,15 @@ def _link_sections(line: str) -> str:
     return "`".join(parts)
 
 
+def _cite_link(line: str) -> str:
+    return DOCSTRING_CITE.sub(r":ref:`docs/model.md §\1 <s\1>`", line)
+
+
 def _docstrings(app, what, name, obj, options, lines):
     """Before napoleon: the cites become links, ``|x|`` (an absolute value, as the docstrings
     write it) is no substitution, and a property's first line is text, not ``type: text``."""
     for i, line in enumerate(lines):
-        line = DOCSTRING_CITE.sub(r":ref:`docs/model.md §\1 <s\1>`", line)
+        line = _cite_link(line)
         row = line.strip()
         if not (row.startswith(("+-", "+=")) or row[:1] == row[-1:] == "|"):  # not a table's
             parts = line.split("``")
@@ -192,9 +200,22 @@ class CliReference(SphinxDirective):
         return node.children
 
 
+# -- files the tutorials write for their pages ----------------------------------------------
+
+def _tutorial_files(app, exception):
+    """A page a tutorial writes beside itself (sphinx-gallery runs it in docs/tutorials/), such
+    as the viewer's HTML, goes beside the tutorial's page, where its link points."""
+    src, dst = Path(app.srcdir) / "tutorials", Path(app.outdir) / "auto_tutorials"
+    if exception is not None or app.builder.format != "html" or not dst.is_dir():
+        return
+    for page in src.glob("*.html"):
+        shutil.copy2(page, dst / page.name)
+
+
 def setup(app):
     app.connect("source-read", _model_source)
     app.connect("autodoc-process-docstring", _docstrings, priority=400)
     app.connect("missing-reference", _missing_reference)
     app.add_directive("cli-reference", CliReference)
+    app.connect("build-finished", _tutorial_files)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
