@@ -7,7 +7,11 @@
   model document itself links too (``thesis §4.1`` and other dotted numbers are the thesis').
 - A reference to a public name through the module that defines it
   (``pollard_pin.model.build.load``, ``.closure.solve_closure``, ``Margins``) resolves to its
-  entry under ``pollard_pin.*`` when it is the same object.
+  entry under ``pollard_pin.*`` when it is the same object; a name of the package that the
+  reference does not list shows as code; a name that exists nowhere fails the build
+  (``nitpicky``).
+- Docstrings, before napoleon reads them: ``|x|`` (an absolute value) is no substitution, and
+  a property's first line is text, not napoleon's ``type: text``.
 - ``.. cli-reference::`` writes the command-line reference from ``build_parser()``.
 """
 from __future__ import annotations
@@ -104,15 +108,17 @@ def _public_target(target: str) -> str | None:
 
 
 def _missing_reference(app, env, node, contnode):
-    """A public name through its module links to its entry; a short name links to the one
-    documented object it ends; a name of the package that the reference does not list shows as
-    code. Anything else (a misspelt or removed name) stays missing and fails the build."""
+    """A name documented in the reference, seen from the docstring's module, links to it; a
+    public name through its module links to its ``pollard_pin.*`` entry; a name of the package
+    that the reference does not list shows as code; a short name found nowhere else links to
+    the one documented object whose name it ends. Anything else (a misspelt or removed name)
+    stays missing and fails the build."""
     if node.get("refdomain") != "py":
         return None
     target = node["reftarget"].lstrip("~")
     domain = env.get_domain("py")
-    module = _source_module(node)
-    for full in _candidates(target, module, node.get("py:class")):
+    candidates = _candidates(target, _source_module(node), node.get("py:class"))
+    for full in candidates:
         if full != target and full in domain.objects:
             return _resolve(app, env, node, contnode, full)
     public = _public_target(target)
@@ -120,14 +126,14 @@ def _missing_reference(app, env, node, contnode):
         resolved = _resolve(app, env, node, contnode, public)
         if resolved is not None:
             return resolved
-    tail = "." + target.lstrip(".")
-    ends = [name for name in domain.objects if name.endswith(tail)]
+    if any(_exists(full) for full in candidates):
+        if os.environ.get("POLLARD_DOCS_UNLISTED"):  # which package names the reference lacks
+            print(f"unlisted: {target} (from {candidates[0]})", file=sys.stderr)
+        return contnode
+    # a name only the type checker imports (``if TYPE_CHECKING:``), as in annotations
+    ends = [name for name in domain.objects if name.endswith("." + target.lstrip("."))]
     if len(ends) == 1:
         return _resolve(app, env, node, contnode, ends[0])
-    if any(_exists(full) for full in _candidates(target, module, node.get("py:class"))):
-        if os.environ.get("POLLARD_DOCS_UNLISTED"):  # which package names the reference lacks
-            print(f"unlisted: {target} (from {module})", file=sys.stderr)
-        return contnode
     return None
 
 
