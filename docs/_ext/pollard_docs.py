@@ -16,6 +16,7 @@
 """
 from __future__ import annotations
 
+import functools
 import importlib
 import os
 import re
@@ -67,7 +68,16 @@ def _link_sections(line: str) -> str:
 
 
 def _cite_link(line: str) -> str:
-    return DOCSTRING_CITE.sub(r":ref:`docs/model.md §\1 <s\1>`", line)
+    """``docs/model.md §N`` as a link to section N, where the model document has it (a cite of
+    a section still to be written stays text: tests/test_repository.py names it)."""
+    return DOCSTRING_CITE.sub(lambda m: f":ref:`{m.group(0)} <s{m.group(1)}>`"
+                              if m.group(1) in _model_sections() else m.group(0), line)
+
+
+@functools.cache
+def _model_sections() -> frozenset[str]:
+    text = (ROOT / "docs" / "model.md").read_text(encoding="utf-8")
+    return frozenset(m.group(1) for m in re.finditer(r"^## (\d+)\. ", text, re.M))
 
 
 def _docstrings(app, what, name, obj, options, lines):
