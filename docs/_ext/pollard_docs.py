@@ -34,6 +34,7 @@ HEADING = re.compile(r"^## (\d+)\. ")
 # an integer section (not a thesis' dotted one), not right after "thesis " and not in code
 BARE_SECTION = re.compile(r"(?<![\w.`§])(?<!thesis )§(\d+)(?![\d.]*\d)(?!\.\d)")
 DOCSTRING_CITE = re.compile(r"(?<![`<])docs/model\.md §(\d+)")
+MARKDOWN_CITE = re.compile(r"(?<!\[)docs/model\.md §(\d+)(?!\d)")
 ROOT = Path(__file__).resolve().parents[2]  # the checkout: pollard_pin/ beside docs/
 
 
@@ -44,6 +45,8 @@ def _model_source(app, docname, source):
         source[0] = "\n".join(line if line[:1].isspace() else _cite_link(line)
                                for line in source[0].splitlines()) + "\n"
     if docname != "model":
+        if app.env.doc2path(docname).suffix == ".md":
+            source[0] = _markdown_cites(source[0])
         return
     out, fenced = [], False
     for line in source[0].splitlines():
@@ -57,6 +60,22 @@ def _model_source(app, docname, source):
                 line = _link_sections(line)
         out.append(line)
     source[0] = "\n".join(out) + "\n"
+
+
+def _markdown_cites(text: str) -> str:
+    """A Markdown page's ``docs/model.md §N`` (outside code and links) links to section N."""
+    out, fenced = [], False
+    for line in text.splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        elif not fenced:
+            parts = line.split("`")
+            parts[::2] = [MARKDOWN_CITE.sub(
+                lambda m: f"{{ref}}`{m.group(0)} <s{m.group(1)}>`"
+                if m.group(1) in _model_sections() else m.group(0), p) for p in parts[::2]]
+            line = "`".join(parts)
+        out.append(line)
+    return "\n".join(out) + "\n"
 
 
 def _link_sections(line: str) -> str:
