@@ -79,10 +79,12 @@ def _markdown_cites(text: str) -> str:
 
 
 def _link_sections(line: str) -> str:
-    """``§N`` outside inline code becomes a MyST link to the section's label."""
+    """``§N`` outside inline code becomes a MyST link to the section's label (a section still
+    to be written stays text)."""
     parts = line.split("`")
     for i in range(0, len(parts), 2):  # the even parts lie outside code spans
-        parts[i] = BARE_SECTION.sub(r"[§\1](#s\1)", parts[i])
+        parts[i] = BARE_SECTION.sub(lambda m: f"[§{m.group(1)}](#s{m.group(1)})"
+                                    if m.group(1) in _model_sections() else m.group(0), parts[i])
     return "`".join(parts)
 
 
