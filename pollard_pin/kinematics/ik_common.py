@@ -124,7 +124,8 @@ class KinematicFrames:
 @dataclass
 class IKResult:
     """Joint motion along a trajectory. Arrays have one row per sample; tree joints in
-    :attr:`Robot.joint_names` order, spherical angles in :data:`SPHERICAL` order."""
+    :attr:`Robot.joint_names` order, spherical angles in
+    :data:`~pollard_pin.names.SPHERICAL` order."""
 
     t: np.ndarray
     poses: np.ndarray

@@ -46,7 +46,7 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
                  loads: bool = False, *, margins: Margins | None = None,
                  method: str | None = None, joint_limits: bool = True) -> RunResult:
     """IK (and inverse dynamics) along a trajectory: ``margins`` (:class:`Margins`, default
-    its defaults) and ``method`` go to :func:`~pollard_pin.kinematics.inverse_kinematics`.
+    its defaults) and ``method`` go to :func:`~pollard_pin.inverse_kinematics`.
     ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``).
     ``joint_limits``: refuse a sample with a joint outside its limits (the reach rule of
     ``workspace`` and ``paint``, kinematics.limits); False waives them."""
