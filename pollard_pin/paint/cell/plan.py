@@ -1,0 +1,213 @@
+"""Plan a paint cell (docs/model.md §26): every robot's program in its own base frame on the
+common clock (t = 0: the part at its ``position``), each painting its zone of the shared
+strokes (:mod:`.cell.program`), checked as a single robot's is today (reach, limits,
+margins, motors with gravity in its base frame, the gun body's clearance from the part).
+The slowest robot sets the cell's line speed.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...dynamics.motors import Actuators
+from ..errors import PlanError
+from ..job import PartJob
+from ..line.panel import line_clearance
+from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
+from ..target.mesh import Part
+from .frames import panel_in_base, part_in_base, robot_model_in_base
+from .program import plan_zone
+from .robots import CellRobot
+from .zones import Split, Zone, seam_runout
+
+
+@dataclass(frozen=True)
+class RobotPlan:
+    """One robot of the cell: its ``robot`` (base pose), ``zone``, and ``plan`` (a
+    :class:`.line.panel.LinePlan` or :class:`.line.part.LinePartPlan`) in its base frame."""
+
+    robot: CellRobot
+    zone: Zone
+    plan: object
+
+
+@dataclass(frozen=True, eq=False)
+class CellPlan:
+    """The cell's plan at line ``speed``: the world ``job``, the ``split``, each robot's
+    :class:`RobotPlan` and, for a part, the world ``part`` (t = 0) painting every zone's
+    faces."""
+
+    job: object
+    split: Split
+    robots: tuple[RobotPlan, ...]
+    speed: float
+    part: Part | None = None
+    timings: dict | None = None
+
+    @property
+    def cycle(self) -> float:
+        """The cell's cycle [s]: its slowest robot's."""
+        return max(r.plan.times.cycle for r in self.robots)
+
+
+def across_axis(job, facing=None) -> np.ndarray:
+    """The world unit vector across the travel in the painted faces' plane (normal the
+    panel's normal or the part's ``facing``), pointing up (else along its largest
+    component)."""
+    n = np.asarray(job.normal if facing is None else facing, dtype=float)
+    e = np.asarray(job.line.direction, dtype=float)
+    a = np.cross(n, e)
+    norm = np.linalg.norm(a)
+    if not norm > 1e-9:
+        raise PlanError(f"{job.source}: the line runs along the painted faces' normal: no "
+                        "zone is stacked across the travel")
+    a /= norm
+    k = 2 if abs(a[2]) > 1e-9 else int(np.argmax(np.abs(a)))
+    return a if a[k] > 0 else -a
+
+
+def robot_facing(robot: CellRobot) -> np.ndarray:
+    """The world direction of the faces a robot paints: against its base's +x (the gun
+    sprays along base +x at the standoff)."""
+    return -robot.R[:, 0]
+
+
+def _extent(job, part: Part | None, axis, facing) -> tuple[float, float]:
+    if part is None:
+        from ..target.mesh import panel_part
+
+        v = panel_part(job).vertices
+    else:
+        f = np.asarray(facing, float)
+        keep = part.normals @ f >= math.cos(math.radians(part.max_angle)) - 1e-12
+        v = part.vertices[part.faces[keep]].reshape(-1, 3)
+    x = v @ axis
+    return float(x.min()), float(x.max())
+
+
+def simple_split(job, robots, part: Part | None = None) -> Split:
+    """Robots facing the same side stacked by their bases' height along the across-travel
+    axis, seams at equal shares of the painted faces' extent along it."""
+    job_facing = np.asarray(job.normal if part is None else part.facing, float)
+    groups: dict = {}
+    for r in robots:
+        f = robot_facing(r)
+        key = None if f @ job_facing > math.sqrt(0.5) else tuple(np.round(f, 9))
+        groups.setdefault(key, []).append(r)
+    if part is None and set(groups) != {None}:
+        raise PlanError(f"{job.source}: a panel has one painted side, facing "
+                        f"{tuple(round(c, 3) for c in job.normal)}: a robot turned away from "
+                        "it paints nothing")
+    axis = across_axis(job, None if part is None else job_facing)
+    zones = []
+    for key, group in sorted(groups.items(), key=lambda kv: kv[0] is not None):
+        lo, hi = _extent(job, part, axis, job_facing if key is None else key)
+        group = sorted(group, key=lambda r: r.origin @ axis)
+        cuts = [lo + (hi - lo) * k / len(group) for k in range(1, len(group))]
+        edges = [-math.inf, *cuts, math.inf]
+        zones += [Zone(r.name, edges[i], edges[i + 1], key) for i, r in enumerate(group)]
+    return Split(tuple(float(c) for c in axis), tuple(zones), seam_runout(job))
+
+
+def cell_part(job: PartJob, part: Part, split: Split) -> Part:
+    """The world part painting every zone's faces (within max_angle of each zone's facing,
+    seen from the standoff)."""
+    from ..spray.occlusion import painted_part
+
+    masks = [part.painted]
+    for f in {z.facing for z in split.zones if z.facing is not None}:
+        other = painted_part(replace(part, painted=part.normals @ np.asarray(f) >= math.cos(
+            math.radians(part.max_angle)) - 1e-12, facing=f), job.standoff)
+        masks.append(other.painted)
+    painted = np.logical_or.reduce(masks)
+    painted.flags.writeable = False
+    return replace(part, painted=painted)
+
+
+def _robot_part(job, part: Part, cr: CellRobot, zone: Zone) -> Part:
+    from ..spray.occlusion import painted_part
+
+    return painted_part(part_in_base(part, cr, zone.facing), job.standoff)
+
+
+def plan_cell(robot, job, act: Actuators, speed: float | None = None,
+              part: Part | None = None, split: Split | None = None,
+              clearance: bool = True) -> CellPlan:
+    """Every robot's program at line ``speed`` (default the job's), ``part`` the job's
+    painted part (read once; None for a panel), ``split`` the zones (default
+    :func:`simple_split`). A robot that cannot paint its zone at this speed raises the line
+    planner's :class:`.line.phases.LineSpeedError` (named), so the fastest speed is searched
+    as for one robot; ``clearance``: the gun bodies' clearance from the part."""
+    clock = time.perf_counter()
+    speed = job.line.speed if speed is None else float(speed)
+    robots = job.robots or (CellRobot("robot"),)
+    if split is None:
+        split = simple_split(job, robots, part)
+    axis = np.asarray(split.axis, float)
+    out = []
+    for cr in robots:
+        zone = split.zone_of(cr.name)
+        model = robot_model_in_base(robot, cr)
+        is_part = isinstance(job, PartJob)
+        job_b = replace(job, line=_line_b(job, cr), robots=()) if is_part else \
+            panel_in_base(job, cr)
+        part_b = _robot_part(job, part, cr, zone) if is_part else None
+        try:
+            plan = plan_zone(model, act, job_b, zone, split.runout, cr.direction_to_base(axis),
+                             float(cr.origin @ axis), speed, part_b)
+        except LineSpeedError as exc:
+            raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
+                                 exc.hint) from None
+        except PlanError as exc:
+            raise PlanError(f"robot {cr.name!r}: {exc}") from None
+        if clearance:
+            plan = replace(plan, clearance=line_clearance(model, plan))
+        out.append(RobotPlan(cr, zone, plan))
+    world_part = cell_part(job, part, split) if isinstance(job, PartJob) else None
+    return CellPlan(job, split, tuple(out), speed, world_part,
+                    {"plan": time.perf_counter() - clock})
+
+
+def _line_b(job, cr: CellRobot):
+    from .frames import line_in_base
+
+    return line_in_base(job.line, cr)
+
+
+def cell_planner(robot, job, act: Actuators, part: Part | None = None,
+                 split: Split | None = None):
+    """speed ↦ the cell's plan at that speed (clearance left to the plan returned)."""
+    return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)
+
+
+def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
+                   part: Part | None = None, split: Split | None = None):
+    """The fastest line speed [m/s] (within ``resolution``, relative) at which every robot
+    paints its zone, and that plan (the slowest robot sets it: docs/model.md §26.1)."""
+    speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split),
+                                     job.line.speed, job.source, resolution)
+    return speed, _with_clearance(robot, plan)
+
+
+def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
+                  split: Split | None = None) -> CellPlan:
+    """The job's line speed planned; a speed no robot ordering can paint is refused naming
+    the fastest that works."""
+    from ..line.phases import plan_or_name_fastest
+
+    plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split), job.line.speed,
+                                job.source)
+    return _with_clearance(robot, plan)
+
+
+def _with_clearance(robot, plan: CellPlan) -> CellPlan:
+    robots = tuple(replace(r, plan=replace(r.plan, clearance=line_clearance(
+        robot_model_in_base(robot, r.robot), r.plan))) for r in plan.robots)
+    return replace(plan, robots=robots)
+
+
+__all__ = ["CellPlan", "RobotPlan", "across_axis", "cell_part", "cell_planner",
+           "max_cell_speed", "plan_cell", "plan_cell_job", "robot_facing", "simple_split"]
