@@ -21,7 +21,8 @@ from ..target.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
 from .program import plan_zone
 from .robots import CellRobot
-from .zones import Split, Zone, seam_runout
+from .split import split_cell
+from .zones import Split, Zone
 
 
 @dataclass(frozen=True)
@@ -53,65 +54,6 @@ class CellPlan:
         return max(r.plan.times.cycle for r in self.robots)
 
 
-def across_axis(job, facing=None) -> np.ndarray:
-    """The world unit vector across the travel in the painted faces' plane (normal the
-    panel's normal or the part's ``facing``), pointing up (else along its largest
-    component)."""
-    n = np.asarray(job.normal if facing is None else facing, dtype=float)
-    e = np.asarray(job.line.direction, dtype=float)
-    a = np.cross(n, e)
-    norm = np.linalg.norm(a)
-    if not norm > 1e-9:
-        raise PlanError(f"{job.source}: the line runs along the painted faces' normal: no "
-                        "zone is stacked across the travel")
-    a /= norm
-    k = 2 if abs(a[2]) > 1e-9 else int(np.argmax(np.abs(a)))
-    return a if a[k] > 0 else -a
-
-
-def robot_facing(robot: CellRobot) -> np.ndarray:
-    """The world direction of the faces a robot paints: against its base's +x (the gun
-    sprays along base +x at the standoff)."""
-    return -robot.R[:, 0]
-
-
-def _extent(job, part: Part | None, axis, facing) -> tuple[float, float]:
-    if part is None:
-        from ..target.mesh import panel_part
-
-        v = panel_part(job).vertices
-    else:
-        f = np.asarray(facing, float)
-        keep = part.normals @ f >= math.cos(math.radians(part.max_angle)) - 1e-12
-        v = part.vertices[part.faces[keep]].reshape(-1, 3)
-    x = v @ axis
-    return float(x.min()), float(x.max())
-
-
-def simple_split(job, robots, part: Part | None = None) -> Split:
-    """Robots facing the same side stacked by their bases' height along the across-travel
-    axis, seams at equal shares of the painted faces' extent along it."""
-    job_facing = np.asarray(job.normal if part is None else part.facing, float)
-    groups: dict = {}
-    for r in robots:
-        f = robot_facing(r)
-        key = None if f @ job_facing > math.sqrt(0.5) else tuple(np.round(f, 9))
-        groups.setdefault(key, []).append(r)
-    if part is None and set(groups) != {None}:
-        raise PlanError(f"{job.source}: a panel has one painted side, facing "
-                        f"{tuple(round(c, 3) for c in job.normal)}: a robot turned away from "
-                        "it paints nothing")
-    axis = across_axis(job, None if part is None else job_facing)
-    zones = []
-    for key, group in sorted(groups.items(), key=lambda kv: kv[0] is not None):
-        lo, hi = _extent(job, part, axis, job_facing if key is None else key)
-        group = sorted(group, key=lambda r: r.origin @ axis)
-        cuts = [lo + (hi - lo) * k / len(group) for k in range(1, len(group))]
-        edges = [-math.inf, *cuts, math.inf]
-        zones += [Zone(r.name, edges[i], edges[i + 1], key) for i, r in enumerate(group)]
-    return Split(tuple(float(c) for c in axis), tuple(zones), seam_runout(job))
-
-
 def cell_part(job: PartJob, part: Part, split: Split) -> Part:
     """The world part painting every zone's faces (within max_angle of each zone's facing,
     seen from the standoff)."""
@@ -138,14 +80,14 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
               clearance: bool = True) -> CellPlan:
     """Every robot's program at line ``speed`` (default the job's), ``part`` the job's
     painted part (read once; None for a panel), ``split`` the zones (default
-    :func:`simple_split`). A robot that cannot paint its zone at this speed raises the line
+    :func:`.split.split_cell`). A robot that cannot paint its zone at this speed raises the line
     planner's :class:`.line.phases.LineSpeedError` (named), so the fastest speed is searched
     as for one robot; ``clearance``: the gun bodies' clearance from the part."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     robots = job.robots or (CellRobot("robot"),)
     if split is None:
-        split = simple_split(job, robots, part)
+        split = split_cell(robot, job, robots, part)
     axis = np.asarray(split.axis, float)
     out = []
     for cr in robots:
@@ -179,7 +121,10 @@ def _line_b(job, cr: CellRobot):
 
 def cell_planner(robot, job, act: Actuators, part: Part | None = None,
                  split: Split | None = None):
-    """speed ↦ the cell's plan at that speed (clearance left to the plan returned)."""
+    """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
+    split made once."""
+    if split is None:
+        split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
     return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)
 
 
@@ -209,5 +154,5 @@ def _with_clearance(robot, plan: CellPlan) -> CellPlan:
     return replace(plan, robots=robots)
 
 
-__all__ = ["CellPlan", "RobotPlan", "across_axis", "cell_part", "cell_planner",
-           "max_cell_speed", "plan_cell", "plan_cell_job", "robot_facing", "simple_split"]
+__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",
+           "plan_cell_job"]
