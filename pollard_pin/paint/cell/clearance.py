@@ -38,6 +38,7 @@ from ..spray.gun_body import AXIS_STEP
 from .robots import CellRobot
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
+COARSE = 16  # every this many samples, every capsule pair sets the ceiling
 
 
 @dataclass(frozen=True)
@@ -141,25 +142,38 @@ def _chords(a, b, shift=None) -> np.ndarray:
 
 def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     """The least distance [m] between two robots' capsules over the samples (ends (N, L, 3)
-    each, radii (L,)) and its sample; bounding spheres screen the pairs first."""
-    best, where = math.inf, 0
+    each, radii (L,)) and its sample. Every pair at every COARSE-th sample sets a ceiling;
+    then only the pairs of capsules whose bounding boxes come within it of the other robot's
+    (the union of its capsules' boxes) are measured."""
     rr = r1[:, None] + r2[None, :]
+    coarse = (segment_distance(a1[::COARSE, :, None], b1[::COARSE, :, None],
+                               a2[::COARSE, None], b2[::COARSE, None]) - rr).min(axis=(1, 2))
+    where = int(np.argmin(coarse)) * COARSE
+    best = float(coarse.min())
     for lo in range(0, len(a1), CHUNK):
         sl = slice(lo, lo + CHUNK)
-        m1, m2 = (a1[sl] + b1[sl]) / 2, (a2[sl] + b2[sl]) / 2
-        h1 = np.linalg.norm(b1[sl] - a1[sl], axis=2) / 2
-        h2 = np.linalg.norm(b2[sl] - a2[sl], axis=2) / 2
-        centres = np.linalg.norm(m1[:, :, None] - m2[:, None, :], axis=3) - rr
-        best = min(best, float(centres.min()))  # the midpoints' gap: an achieved distance
-        lower = centres - h1[:, :, None] - h2[:, None, :]
-        n, i, j = np.nonzero(lower <= best)
+        box1, box2 = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
+        near1 = _box_gap(box1, box2[:, :, 0].min(axis=1), box2[:, :, 1].max(axis=1)) < best
+        near2 = _box_gap(box2, box1[:, :, 0].min(axis=1), box1[:, :, 1].max(axis=1)) < best
+        n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
         if len(n) == 0:
             continue
         d = segment_distance(a1[sl][n, i], b1[sl][n, i], a2[sl][n, j], b2[sl][n, j]) - rr[i, j]
         k = int(np.argmin(d))
-        if d[k] <= best:
+        if d[k] < best:
             best, where = float(d[k]), lo + int(n[k])
     return best, where
+
+
+def _boxes(a, b, r) -> np.ndarray:
+    """Each capsule's bounding box (N, L, 2, 3): lower and upper corners."""
+    return np.stack([np.minimum(a, b) - r[:, None], np.maximum(a, b) + r[:, None]], axis=2)
+
+
+def _box_gap(boxes, lo, hi) -> np.ndarray:
+    """The distance (N, L) of each box from the box lo–hi of its sample (each (N, 3))."""
+    out = np.maximum(np.maximum(lo[:, None] - boxes[:, :, 1], boxes[:, :, 0] - hi[:, None]), 0)
+    return np.linalg.norm(out, axis=2)
 
 
 def _robots(members: Sequence[_Sampled], r: np.ndarray):
@@ -179,24 +193,31 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
     return best
 
 
+def _spheres(a, b, layout, caps: np.ndarray):
+    """Centres (N, S, 3) and radii (S,) of the spheres holding capsules ``caps``."""
+    owner, frac, radii = axis_spheres(layout.a[caps], layout.b[caps], layout.r[caps], AXIS_STEP)
+    owner = caps[owner]
+    return a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner]), radii
+
+
 def _to_part(s: _Sampled, layout, part: MovingPart):
     """(distance, time, between) of one robot against the moving part."""
-    v = np.asarray(part.velocity, float)
-    shift = s.t[:, None] * v  # the part's travel: the capsules in the part's frame at t = 0
-    a, b = s.a - shift[:, None], s.b - shift[:, None]
-    owner, frac, radii = axis_spheres(layout.a, layout.b, layout.r, AXIS_STEP)
-    centres = a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner])
-    gun = layout.gun[owner]
-    best, (n, _), _, less = least_distance(part.mesh, centres[:, gun], radii[gun])
-    lo, hi = part.mesh.bounds
-    box = np.linalg.norm(centres - np.clip(centres, lo, hi), axis=2) - radii  # a lower bound
-    rows = np.flatnonzero((box[:, ~gun] < best).any(axis=1))
-    cols = np.flatnonzero(~gun)[(box[rows][:, ~gun] < best).any(axis=0)]
+    shift = s.t[:, None] * np.asarray(part.velocity, float)  # the part's travel
+    a, b = s.a - shift[:, None], s.b - shift[:, None]  # in the part's frame at t = 0
+    best, (n, _), _, less = least_distance(part.mesh, *_spheres(a, b, layout,
+                                                                 np.flatnonzero(layout.gun)))
+    others = np.flatnonzero(~layout.gun)
+    mid = (a[:, others] + b[:, others]) / 2
+    lo, hi = part.mesh.bounds  # a capsule's distance from the box: a lower bound
+    lower = (np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - layout.r[others]
+             - np.linalg.norm(b[:, others] - a[:, others], axis=2) / 2)
+    near = lower < best
+    rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
-        d, (k, _), _, l2 = least_distance(part.mesh, centres[rows][:, cols], radii[cols])
+        d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(a[rows], b[rows], layout, caps))
         if d < best:
             best, n, less = d, int(rows[k]), l2
-    between = (float(_chords(a, b).max()) / 2 if len(s.t) > 1 else 0.0)
+    between = float(_chords(a, b).max()) / 2 if len(s.t) > 1 else 0.0
     return best, float(s.t[n]), less + between
 
 
