@@ -60,13 +60,16 @@ def cell_lines(rep: dict, names) -> list[str]:
                      f"program {r['program_time']:.3f} s, cycle {r['cycle']:.3f} s, motors "
                      f"≤ {100 * peak:.0f} % of peak torque, ≤ {100 * rms:.0f} % RMS")
     c = rep["clearance"]
-    if c["to_part_m"] is not None:
-        lines.append(f"gun body {c['to_part_m'] * 1e3:.1f} mm from the part at its closest "
-                     f"(robot {c['robot']!r})")
-    if c["between_robots_m"] is not None:
+    if c.get("gun_to_part_m") is not None:
+        lines.append(f"gun body {c['gun_to_part_m'] * 1e3:.1f} mm from the part at its "
+                     f"closest (robot {c['gun_robot']!r})")
+    if c.get("to_part_m") is not None:
+        lines.append(f"robot {c['robot']!r}'s links {c['to_part_m'] * 1e3:.1f} mm from the "
+                     f"part at their closest (t = {c['robot_at_s']:.2f} s)")
+    if c.get("between_robots_m") is not None:
         lines.append(f"robots {c['pair'][0]!r} and {c['pair'][1]!r} "
                      f"{c['between_robots_m'] * 1e3:.1f} mm apart at their closest "
-                     f"(t = {c['at_s']:.3f} s)")
+                     f"(t = {c['pair_at_s']:.2f} s)")
     lines.append(f"planned in {rep['timings']['plan']:.2f} s, film in "
                  f"{rep['timings']['film']:.2f} s")
     return lines

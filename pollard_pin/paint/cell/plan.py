@@ -47,6 +47,7 @@ class CellPlan:
     speed: float
     part: Part | None = None
     timings: dict | None = None
+    clearance: object = None  # .cell.clearance.CellClearance, once checked
 
     @property
     def cycle(self) -> float:
@@ -149,9 +150,27 @@ def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
 
 
 def _with_clearance(robot, plan: CellPlan) -> CellPlan:
+    """Each robot's gun body from the part (today's check), then every pair of robots and
+    every robot's links against the moving part along the clock (docs/model.md §26.4)."""
     robots = tuple(replace(r, plan=replace(r.plan, clearance=line_clearance(
         robot_model_in_base(robot, r.robot), r.plan))) for r in plan.robots)
-    return replace(plan, robots=robots)
+    return replace(plan, robots=robots, clearance=cell_clearance_of(robot, plan))
+
+
+def cell_clearance_of(robot, plan: CellPlan):
+    """:func:`.cell.clearance.cell_clearance` of the plan: the robots' programs on the clock,
+    the part's (or panel's) mesh at t = 0 riding the line, the job's gun clearance."""
+    from ..plan.clearance import CLEARANCE, panel_mesh
+    from ..target.panel import panel_frame
+    from .clearance import MovingPart, cell_clearance
+
+    job = plan.job
+    mesh = panel_mesh(panel_frame(job)) if plan.part is None else plan.part.mesh
+    v = plan.speed * np.asarray(job.line.direction, float)
+    members = [(r.robot, r.plan.trajectory.t, r.plan.trajectory.poses) for r in plan.robots]
+    required = CLEARANCE if job.clearance is None else job.clearance
+    return cell_clearance(robot, members, MovingPart(mesh, tuple(float(c) for c in v)),
+                          required)
 
 
 __all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",

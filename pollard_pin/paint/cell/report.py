@@ -64,6 +64,16 @@ def seam_entries(split, x, th, areas, target: float) -> list:
     return out
 
 
+def _clearance(cell, near) -> dict:
+    """paint.json's ``clearance``: the cell's (robot pairs, robots' links to the part) and
+    the gun body's nearest approach to the part (today's check, per robot)."""
+    out = {} if cell.clearance is None else cell.clearance.to_dict()
+    if near is not None:
+        out.update(gun_to_part_m=near["to_part_m"], gun_robot=near["name"],
+                   gun_at_s=near["to_part_at_s"])
+    return out
+
+
 def _motors(robots, names) -> dict:
     """Each motor's worst use over the robots."""
     return {n: {k: max(r["motors"][n][k] for r in robots) for k in robots[0]["motors"][n]}
@@ -103,10 +113,7 @@ def cell_report(cell, film_points, normals, thickness, areas, act: Actuators,
         "split": {"axis": list(split.axis), "runout": split.runout, "seams": split.seams()},
         "seams": seam_entries(split, x, thickness, areas, job.thickness),
         "robots": robots,
-        "clearance": {"between_robots_m": None, "pair": None, "at_s": None,
-                      "to_part_m": None if near is None else near["to_part_m"],
-                      "robot": None if near is None else near["name"],
-                      "to_part_at_s": None if near is None else near["to_part_at_s"]},
+        "clearance": _clearance(cell, near),
         "motors": _motors(robots, act.names),
         "motors_source": act.source,
         **(extra or {}),
