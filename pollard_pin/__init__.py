@@ -61,6 +61,8 @@ _API = {
     "PaintReport": "paint.api", "JobKindError": "paint.errors",
     "place": "paint.place", "PlaceOptions": "paint.place", "PlaceResult": "paint.place",
     "PlaceError": "paint.place",
+    "plan_cell": "paint.cell.plan", "CellPlan": "paint.cell.plan", "Split": "paint.cell.zones",
+    "Zone": "paint.cell.zones",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
 }

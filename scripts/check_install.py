@@ -51,6 +51,11 @@ def commands(cli: Path, work: Path) -> None:
         report = json.loads((work / folder / "paint.json").read_text())
         if not report:
             sys.exit(f"check_install: paint --out {folder}: empty paint.json")
+    # a cell (docs/model.md §26): a folder per robot, one film
+    sh([cli, "paint", "--job", ex / "cell.toml", "--out", "cell"], work)
+    for name in ("low", "high"):
+        need(work / "cell" / name / "path.csv", f"paint --out cell ({name})")
+    need(work / "cell" / "paint.json", "paint --out cell")
     # the painted program goes through run and size like any trajectory
     sh([cli, "run", "--trajectory", work / "part/path.csv", "--out", "part_run.csv"], work)
     sh([cli, "size", "--actuators", ex / "actuators.toml", "--trajectory",

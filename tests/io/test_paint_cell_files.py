@@ -1,7 +1,7 @@
-"""`pollard-pin paint` of a cell (docs/model.md §26): a folder per robot whose path.csv passes
-`run` and `size`, one film of all robots on the panel at t = 0 (its seam within the target),
-paint.json's line, robots and clearance, and a colliding layout refused in one line with
-nothing written."""
+"""What `pollard-pin paint` writes for a cell (io/paint_cell_files.py, docs/model.md §26): a
+folder per robot whose path.csv passes `run` and `size`, one film of all robots on the panel
+at t = 0 (its seam within the target), paint.json's line, robots and clearance, and a
+colliding layout refused in one line with nothing written."""
 import json
 from pathlib import Path
 
