@@ -103,13 +103,15 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml; a part's mesh: "
                         "examples/parts/*.toml; a panel on a moving line: "
-                        "examples/line.toml, a part: examples/line_part.toml)")
+                        "examples/line.toml, a part: examples/line_part.toml; a cell of "
+                        "robots: examples/cell.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
     p.add_argument("--out", type=name, default="paint", metavar="DIR",
                    help="output folder: path.csv, thickness.csv|parquet, paint.json, "
-                        "thickness.png (and film.ply for a part)")
+                        "thickness.png (and film.ply for a part); a cell: NAME/path.csv per "
+                        "robot")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="thickness table format")
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
