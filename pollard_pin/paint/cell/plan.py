@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -70,10 +71,13 @@ def cell_part(job: PartJob, part: Part, split: Split) -> Part:
     return replace(part, painted=painted)
 
 
-def _robot_part(job, part: Part, cr: CellRobot, zone: Zone) -> Part:
+@lru_cache(maxsize=32)  # a speed search plans the cell ~10 times: the ray tests once
+def robot_part(standoff: float, part: Part, cr: CellRobot, facing) -> Part:
+    """The world part in the robot's base frame painting the faces of ``facing`` that a gun
+    at ``standoff`` sees."""
     from ..spray.occlusion import painted_part
 
-    return painted_part(part_in_base(part, cr, zone.facing), job.standoff)
+    return painted_part(part_in_base(part, cr, facing), standoff)
 
 
 def plan_cell(robot, job, act: Actuators, speed: float | None = None,
@@ -97,7 +101,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         is_part = isinstance(job, PartJob)
         job_b = replace(job, line=_line_b(job, cr), robots=()) if is_part else \
             panel_in_base(job, cr)
-        part_b = _robot_part(job, part, cr, zone) if is_part else None
+        part_b = robot_part(job.standoff, part, cr, zone.facing) if is_part else None
         try:
             plan = plan_zone(model, act, job_b, zone, split.runout, cr.direction_to_base(axis),
                              float(cr.origin @ axis), speed, part_b)
@@ -174,4 +178,4 @@ def cell_clearance_of(robot, plan: CellPlan):
 
 
 __all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",
-           "plan_cell_job"]
+           "plan_cell_job", "robot_part"]
