@@ -21,7 +21,7 @@ from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
 from ..target.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
 from .program import plan_zone
-from .robots import CellRobot
+from .robots import CellRobot, base_footprint, check_spacing
 from .split import split_cell
 from .zones import Split, Zone
 
@@ -127,7 +127,8 @@ def _line_b(job, cr: CellRobot):
 def cell_planner(robot, job, act: Actuators, part: Part | None = None,
                  split: Split | None = None):
     """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
-    split made once."""
+    split made once, the bases first checked to stand apart (two base footprints)."""
+    check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
     return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)

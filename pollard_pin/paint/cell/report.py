@@ -42,7 +42,7 @@ def _robot_entry(rp, act: Actuators, area: float, job, axis) -> dict:
                      "facing": None if z.facing is None else list(z.facing),
                      "area": area},
             "painting_bound": bound,
-            "upper_bound": (plan.length + window[1] - window[0]) / bound if bound > 0
+            "upper_bound": float((plan.length + window[1] - window[0]) / bound) if bound > 0
             else math.inf,
             "motors": plan.motor_use(act.names),
             "to_part_m": None if c is None else c.distance,

@@ -106,3 +106,14 @@ def test_turned_robots_are_planned_with_their_gravity(robot, act, cell):
     m = robot_model_in_base(robot, turned)
     assert np.allclose(m.model.gravity.linear, [0.0, 0.0, 9.81], atol=1e-12)
     assert np.allclose(robot.model.gravity.linear, [0.0, 0.0, -9.81])  # shared one untouched
+
+
+def test_bases_closer_than_two_footprints_are_refused(robot, act):
+    """Two bases 0.1 m apart (each base's joints lie 85 mm from its origin)."""
+    from pollard_pin.paint.cell.robots import CellError
+
+    tables = panel_cell([{"name": "low", "base": [0.0, 0.0, 0.0]},
+                         {"name": "high", "base": [0.0, 0.1, 0.0]}])
+    with pytest.raises(CellError, match="'low' and 'high' stand 100 mm apart, closer than "
+                                        "a robot's own base .170 mm."):
+        plan_cell_job(robot, cell_job(tables), act)
