@@ -76,9 +76,9 @@ def _unreached(robot, cell_robot: CellRobot, strokes: Strokes, source: str) -> C
 
 def _longest_zone_ok(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
     """Seams (forward greedy, as high as possible) with every zone ≤ T, or None."""
-    w, seams = e_lo, []
-    for a, b in zip(lo_bounds, hi_bounds):
-        w = min(b, w + T)
+    w, seams, n = e_lo, [], len(lo_bounds)
+    for i, (a, b) in enumerate(zip(lo_bounds, hi_bounds)):
+        w = min(b, w + T, e_hi - least * (n - i))  # room left for the zones above
         if w < max(a, (seams[-1] if seams else e_lo) + least):
             return None
         seams.append(w)

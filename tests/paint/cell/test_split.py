@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 import pytest
-from cell_split_jobs import plate_part, tall_panel
+from cell_split_jobs import check_zones, plate_part, tall_panel
 
-from pollard_pin.paint.cell.bands import Band, Strokes, job_strokes, robot_band
+from pollard_pin.paint.cell.bands import Band, Strokes, job_strokes
 from pollard_pin.paint.cell.robots import CellError, CellRobot
 from pollard_pin.paint.cell.split import seams_between, split_cell
 from pollard_pin.paint.job import load_job
@@ -16,25 +16,12 @@ from pollard_pin.paint.job import load_job
 LOW, HIGH = CellRobot("low"), CellRobot("high", (0.0, 0.75, 0.17))
 
 
-def check_zones(robot, job, robots, split, strokes):
-    """Contiguous zones, free edges at the ends, each zone + run-outs in its band."""
-    by = {r.name: r for r in robots}
-    z = split.zones
-    assert z[0].lo == -math.inf and z[-1].hi == math.inf
-    assert all(a.hi == b.lo for a, b in zip(z, z[1:]))
-    assert all(a.lo < a.hi for a in z)
-    for zone in z:
-        band = robot_band(robot, by[zone.robot], strokes)
-        assert band.holds(*strokes.needed(zone.lo, zone.hi)), (zone, band)
-    return [min(b.hi, strokes.extent[1]) - max(b.lo, strokes.extent[0]) for b in z]
-
-
 def test_two_stacked_robots_split_the_part_in_halves(robot):
     job = tall_panel()
     split = split_cell(robot, job, [HIGH, LOW])
     assert split.axis == (0.0, 0.0, 1.0) and split.runout == pytest.approx(0.04, abs=1e-15)
     assert [z.robot for z in split.zones] == ["low", "high"]
-    lengths = check_zones(robot, job, [LOW, HIGH], split, job_strokes(job))
+    lengths = check_zones(robot, [LOW, HIGH], split, job_strokes(job))
     # the bands (-0.06…0.28, 0.11…0.45 m) allow seams 0.15…0.24 m: the middle, to bisection
     assert lengths == pytest.approx([0.17, 0.17], abs=1e-3)  # seen 2e-6
 
@@ -43,7 +30,7 @@ def test_the_seam_moves_to_where_both_run_outs_fit(robot):
     job = tall_panel()
     high = CellRobot("high", (0.0, 0.75, 0.21))  # band 0.15…0.49 m: seam ≥ 0.15 + R
     split = split_cell(robot, job, [LOW, high])
-    check_zones(robot, job, [LOW, high], split, job_strokes(job))
+    check_zones(robot, [LOW, high], split, job_strokes(job))
     assert split.zones[0].hi == pytest.approx(0.19, abs=1e-3)  # seen 2.4e-6
 
 
@@ -52,7 +39,7 @@ def test_three_robots_take_a_third_each(robot):
     robots = [LOW, HIGH, CellRobot("mid", (0.0, 1.5, 0.08))]
     split = split_cell(robot, job, robots)
     assert [z.robot for z in split.zones] == ["low", "mid", "high"]
-    lengths = check_zones(robot, job, robots, split, job_strokes(job))
+    lengths = check_zones(robot, robots, split, job_strokes(job))
     assert lengths == pytest.approx([0.34 / 3] * 3, abs=1e-3)  # seen 3e-6
 
 
@@ -125,14 +112,14 @@ def brute_longest(bands, strokes, least, step=0.0025):
     return best
 
 
-@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("seed", range(24))
 def test_the_seams_shorten_the_longest_zone_as_brute_force_does(seed):
     rng = np.random.default_rng(seed)
     n = 2 + seed % 2
     s = fake_strokes()
     starts = np.sort(rng.uniform(-0.1, 0.8, n))
     starts[0] = -0.05
-    bands = [Band(f"r{i}", float(a), float(min(a + rng.uniform(0.3, 0.7), 1.2)), None)
+    bands = [Band(f"r{i}", float(a), float(a + rng.uniform(0.3, 0.9)), None)
              for i, a in enumerate(starts)]
     bands[-1] = Band(bands[-1].robot, bands[-1].lo, 1.05, None)
     seams = seams_between(bands, s, 0.01)
@@ -145,6 +132,7 @@ def test_the_seams_shorten_the_longest_zone_as_brute_force_does(seed):
     w = [0.0, *seams, 1.0]
     for i, x in enumerate(seams):  # each seam's run-outs in both bands
         assert bands[i + 1].lo + s.runout - 1e-12 <= x <= bands[i].hi - s.runout + 1e-12
+    assert all(b - a >= 0.01 - 1e-12 for a, b in zip(w, w[1:]))
     longest = max(b - a for a, b in zip(w, w[1:]))
     # the brute force on a 2.5 mm grid is at most a grid step worse; bisection to 1e-5
     assert brute - 0.0025 - 1e-9 <= longest <= brute + 1e-4, (longest, brute)
