@@ -121,4 +121,5 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--robots", type=robots_arg, default=None, metavar="N|auto",
                    help="a job with [line] and no [[robot]]: propose N robots (1..16) for the "
                         "part, stacked along the line (or auto: the fewest that paint it), "
-                        "plan with them and write DIR/robots.toml (docs/model.md §26.5)")
+                        "plan with them and write DIR/robots.toml (docs/model.md §26.5; "
+                        "default: the job's robots, else one at the origin)")
