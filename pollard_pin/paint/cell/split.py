@@ -75,15 +75,21 @@ def _unreached(robot, cell_robot: CellRobot, strokes: Strokes, source: str) -> C
 
 
 def _longest_zone_ok(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
-    """Seams (forward greedy, as high as possible) with every zone ≤ T, or None."""
-    w, seams, n = e_lo, [], len(lo_bounds)
-    for i, (a, b) in enumerate(zip(lo_bounds, hi_bounds)):
-        w = min(b, w + T, e_hi - least * (n - i))  # room left for the zones above
-        if w < max(a, (seams[-1] if seams else e_lo) + least):
+    """Seams (forward greedy, as high as possible) with every zone ≤ T, or None. The upper
+    bounds are first tightened backwards so that each leaves room for the zones above; then
+    pushing a seam higher never hurts the next, and the greedy is exact."""
+    top, upper = e_hi, []
+    for b in hi_bounds[::-1]:
+        top = min(b, top - least)
+        upper.append(top)
+    w, seams = e_lo, []
+    for a, u in zip(lo_bounds, upper[::-1]):
+        w_next = min(u, w + T)
+        if w_next < max(a, w + least):
             return None
+        w = w_next
         seams.append(w)
-    last = seams[-1] if seams else e_lo
-    return seams if least <= e_hi - last <= T + 1e-12 else None
+    return seams if e_hi - w <= T + 1e-12 and e_hi - w >= least - 1e-12 else None
 
 
 def _backward(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
