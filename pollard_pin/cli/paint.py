@@ -15,7 +15,14 @@ from .common import (
     warnings_as_notes,
 )
 from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
-from .paint_robots import check_job, paint_layout, robot_count, robots_arg, write_layout
+from .paint_robots import (
+    check_job,
+    paint_layout,
+    proposed_names,
+    robot_count,
+    robots_arg,
+    write_layout,
+)
 
 
 def _actuators(args, job):
@@ -43,6 +50,16 @@ def run(args) -> int:
         ("the actuators", job.actuators)])
     kind = job_kind(job)
     check_job(count, job)
+    names = [r.name for r in job.robots] or proposed_names(count)
+    if names:  # a cell writes a folder per robot (docs/model.md §26)
+        from ..io.paint_cell_files import cell_outputs
+
+        files, stale = cell_outputs(out, args.format, names)
+        files = (*files, out / "robots.toml") if count is not None else files
+        check_outputs(*files, folders=(out,))
+        refuse_inputs(args, *files, *stale, also=[
+            ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
+            ("the actuators", job.actuators)])
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
@@ -63,6 +80,10 @@ def run(args) -> int:
         lines = summary_lines(rep, act.names)
     elif kind == "part":
         lines = part_summary_lines(rep, act.names)
+    elif kind.startswith("cell"):
+        from .paint_line import cell_lines
+
+        lines = cell_lines(rep, act.names)
     else:
         from .paint_line import line_lines, line_summary_lines
 
@@ -74,7 +95,7 @@ def run(args) -> int:
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
     print("\n".join(lines))
-    say_written(out, name)
+    say_written(out, name, [r.name for r in job.robots])
     return 0
 
 

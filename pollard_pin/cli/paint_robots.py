@@ -29,6 +29,16 @@ def robot_count(text: str | None) -> int | str | None:
     return n
 
 
+def proposed_names(count) -> list[str]:
+    """The folders a proposal of ``count`` robots may write (auto: up to MAX_ROBOTS), named
+    as :func:`pollard_pin.paint.cell.layout.propose_layout` names them."""
+    from ..paint.cell.layout import LayoutOptions
+    from ..paint.cell.robots import MAX_ROBOTS
+
+    n = 0 if count is None else MAX_ROBOTS if count == "auto" else count
+    return [f"{LayoutOptions().prefix}{i + 1}" for i in range(n)]
+
+
 def check_job(count, job) -> None:
     """--robots needs a job on a line without its own [[robot]] tables."""
     if count is None:
@@ -68,4 +78,5 @@ def write_layout(robots, out: Path, count, job) -> Path:
     return path
 
 
-__all__ = ["check_job", "paint_layout", "robot_count", "robots_arg", "write_layout"]
+__all__ = ["check_job", "paint_layout", "proposed_names", "robot_count", "robots_arg",
+           "write_layout"]
