@@ -15,9 +15,11 @@ def robots_toml(robots, header: str = "") -> str:
     """The ``[[robot]]`` tables of ``robots`` (CellRobots), ``header`` as comment lines."""
     lines = [f"# {h}" if h else "#" for h in header.splitlines()]
     for r in robots:
-        lines += ["", "[[robot]]", f'name = "{r.name}"',
-                  "base = [" + ", ".join(_number(c) for c in r.base) + "]        # m, world",
-                  "rotation = [" + ", ".join(_number(c) for c in r.rotation) + "]  # deg"]
+        base = "base = [" + ", ".join(_number(c) for c in r.base) + "]"
+        turn = "rotation = [" + ", ".join(_number(c) for c in r.rotation) + "]"
+        width = max(len(base), len(turn)) + 2
+        lines += ["", "[[robot]]", f'name = "{r.name}"', f"{base:<{width}}# m, world",
+                  f"{turn:<{width}}# deg about world x, y, z (R = Rx·Ry·Rz)"]
     return "\n".join(lines).lstrip("\n") + "\n"
 
 

@@ -44,7 +44,8 @@ def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatc
     real, planned = api.paint, []
 
     def paint(robot, job, actuators=None, options=None):
-        # until a cell is planned: the proposal recorded, the job planned by one robot
+        # the proposal recorded, the job planned by one robot: the cell's own planning is
+        # tested in tests/paint/cell/test_plan.py, and takes a minute
         planned.append(job.robots)
         return real(robot, replace(job, robots=()), actuators, options)
 

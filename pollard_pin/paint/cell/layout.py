@@ -21,7 +21,7 @@ import numpy as np
 
 from ...errors import InputError
 from ...workspace.reach import evaluate
-from ..errors import PlanError
+from ..errors import BudgetError, PlanError
 from ..job import PartJob
 from .bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from .robots import MAX_ROBOTS, CellError, CellRobot, base_footprint, check_spacing
@@ -29,6 +29,7 @@ from .split import split_cell
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
+AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
 
 
 @dataclass(frozen=True)
@@ -141,10 +142,13 @@ def _triple(v) -> tuple[float, float, float]:
 
 
 def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOptions | None = None):
-    """(robots, :class:`pollard_pin.paint.api.PaintResult`): the fewest robots, 1 …
-    MAX_ROBOTS, whose :func:`propose_layout` paints the job at its line speed (or at the
-    fastest, with ``options.max_line_speed``); the first n tried is the fewest whose bands
-    hold the zones. A :class:`CellError` line naming the last reason when none does."""
+    """(robots, :class:`pollard_pin.paint.api.PaintResult`): the fewest robots whose
+    :func:`propose_layout` paints the job at its line speed (or at the fastest, with
+    ``options.max_line_speed``). The first n tried is the fewest whose bands hold the zones;
+    a plan refused (reach, motors, the line's speed) tries n + 1, at most AUTO_MORE times:
+    more robots shorten every zone, which cures a motor or reach refusal at once or not at
+    all (a line too slow for the programs' drift gets worse). A :class:`CellError` line naming
+    the last reason when none paints."""
     from ..api import paint
     from ..spray.occlusion import load_painted_part
 
@@ -154,26 +158,18 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     if first is None:
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
+    last = min(MAX_ROBOTS, first + AUTO_MORE)
     why = ""
-    for n in range(first, MAX_ROBOTS + 1):
+    for n in range(first, last + 1):
         try:
             robots = propose_layout(robot, job, n, layout, part)
             return robots, paint(robot, replace(job, robots=robots), actuators, options)
+        except BudgetError:
+            raise
         except (CellError, PlanError) as exc:
-            if n == MAX_ROBOTS or isinstance(exc, PlanError) and not _may_improve(exc):
-                why = str(exc)
-                break
             why = str(exc)
-    raise CellError(f"{job.source}: no layout of {first}…{n} robots paints the part: {why}")
+    raise CellError(f"{job.source}: no layout of {first}…{last} robots paints the part: {why}")
 
 
-def _may_improve(exc: PlanError) -> bool:
-    """More robots may cure a reach or speed refusal, not a job the planner refuses as such
-    (a budget, a film spacing)."""
-    from ..errors import BudgetError
-
-    return not isinstance(exc, BudgetError)
-
-
-__all__ = ["LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",
+__all__ = ["AUTO_MORE", "LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",
            "propose_layout", "reach_window", "reference_band", "zone_needs"]

@@ -90,9 +90,10 @@ def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     robots, result = fewest_robots(robot, tall_panel())
     assert (tried, len(robots), result) == ([2, 3], 3, "painted")
     tried.clear()
-    monkeypatch.setattr(cell_layout, "MAX_ROBOTS", 2)
+    monkeypatch.setattr(cell_layout, "AUTO_MORE", 0)
     with pytest.raises(CellError, match=r"no layout of 2…2 robots paints the part: too fast"):
         fewest_robots(robot, tall_panel())
+    assert tried == [2]
 
 
 def test_a_cell_of_one_robot_is_proposed_where_it_reaches(robot):
