@@ -104,3 +104,16 @@ def test_a_cell_of_one_robot_is_proposed_where_it_reaches(robot):
     # the band's middle on the zone's (run-ons included): 0.5 m, to the grid
     assert (band.lo + band.hi) / 2 == pytest.approx(0.5, abs=1.01 * STEP)
     assert CellRobot("x").is_origin
+
+
+def test_a_part_gets_the_layout_of_its_panel(robot, tmp_path):
+    from cell_split_jobs import plate_part
+
+    from pollard_pin.paint.job import load_job
+
+    part = propose_layout(robot, load_job(plate_part(tmp_path, x=0.69 + 0.01)), 2)
+    panel = propose_layout(robot, tall_panel(x=0.69), 2)
+    # the plate's front face is the panel; only the free edges' run-on differs (3σ, 4σ), so
+    # each zone's need, and with it each base, moves by half the difference or less
+    for a, b in zip(part, panel):
+        assert np.allclose(a.base, b.base, atol=0.005 + 1e-9), (a, b)
