@@ -16,6 +16,7 @@ import numpy as np
 
 from ..job import PartJob
 from ..line.reach import reach_ball
+from ..passes.raster import SPOT_RADIUS
 from .bands import Band, Strokes, axis_name, job_strokes, robot_band
 from .robots import CellError, CellRobot
 from .zones import Split, Zone
@@ -163,7 +164,7 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
         if b.empty or b.hi < lo or b.lo > hi:
             raise _unreached(robot, r, strokes, source)
     bands.sort(key=lambda b: (b.lo + b.hi) / 2)
-    least = MIN_ZONE * strokes.runout / 4.0  # σ (R = 4σ)
+    least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
     seams = seams_between(bands, strokes, least)
     if seams is None:
         raise _why_not(source, bands, strokes, least)
