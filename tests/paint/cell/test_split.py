@@ -51,6 +51,26 @@ def test_moving_the_part_and_robots_together_moves_the_seams(robot):
     assert b.zones[0].hi - a.zones[0].hi == pytest.approx(lift, abs=1e-3)  # seen 1e-16
 
 
+def test_turning_the_whole_cell_about_z_leaves_the_split(robot):
+    """Panel, line and robots turned 90° about world z (x, y → −y, x): the same seams."""
+    from cell_split_jobs import GUN
+
+    from pollard_pin.paint.job import job_from_dict
+
+    turned = job_from_dict({
+        "panel": {"center": [0.75, 0.70, 0.17], "normal": [0.0, -1.0, 0.0], "width": 0.8,
+                  "height": 0.34},
+        "gun": dict(GUN), "job": {"thickness": 25e-6},
+        "line": {"speed": 0.012, "direction": [-1.0, 0.0, 0.0]}})
+    robots = [CellRobot("low", (0.0, 0.0, 0.0), (0.0, 0.0, 90.0)),
+              CellRobot("high", (-0.75, 0.0, 0.21), (0.0, 0.0, 90.0))]
+    a = split_cell(robot, tall_panel(), [LOW, CellRobot("high", (0.0, 0.75, 0.21))])
+    b = split_cell(robot, turned, robots)
+    assert b.axis == pytest.approx(a.axis, abs=1e-15)
+    # the bands agree to round-off on the grid; the seam to the bisection (1e-5 m)
+    assert b.zones[0].hi == pytest.approx(a.zones[0].hi, abs=1e-4)  # seen 0
+
+
 def test_a_robot_on_the_far_side_paints_the_back_faces(robot, tmp_path):
     job = load_job(plate_part(tmp_path, height=0.25, z=0.125))
     back = CellRobot("back", (1.40, 0.3, 0.0), (0.0, 0.0, 180.0))  # gun along −x
