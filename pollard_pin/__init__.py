@@ -65,6 +65,8 @@ _API = {
     "Zone": "paint.cell.zones",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
+    "split_cell": "paint.cell.split", "propose_layout": "paint.cell.layout",
+    "fewest_robots": "paint.cell.layout", "LayoutOptions": "paint.cell.layout",
 }
 
 __all__ = sorted(_API)

@@ -73,6 +73,9 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
     for f in ("sim.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
         need(work / f, f)
+    # paint --robots auto: a proposed cell planned, its [[robot]] tables written (§26.5)
+    sh([cli, "paint", "--job", ex / "line.toml", "--robots", "auto", "--out", "cell"], work)
+    need(work / "cell" / "robots.toml", "paint --robots auto")
     # an extra that is not installed: one line and exit 2
     out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))
     if len(out.stderr.strip().splitlines()) != 1 or "mujoco" not in out.stderr:
