@@ -63,6 +63,8 @@ _API = {
     "PlaceError": "paint.place",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
+    "cell_clearance": "paint.cell.clearance", "CellClearance": "paint.cell.clearance",
+    "MovingPart": "paint.cell.clearance", "link_capsules": "kinematics.capsules",
 }
 
 __all__ = sorted(_API)

@@ -264,14 +264,12 @@ def _triad_object(scale: float):
 
 
 def aim_camera(vis, target, offset) -> None:
-    """The orbit centre at ``target`` (world, m), the camera at ``offset`` from it. MeshCat
-    0.3's orbit controls always aim at the world origin: the drawn world (our nodes, grid and
-    axes) is shifted by −target; the camera lives in MeshCat's y-up "rotated" frame, world
-    (x, y, z) = (a, −c, b)."""
+    """The orbit centre at ``target``, the camera at ``offset`` from it (world, m): MeshCat
+    0.3's orbit controls aim at the origin, so the drawn world is shifted by −target."""
     shift = pin.SE3(np.eye(3), -np.asarray(target, float)).homogeneous
     for node in ("/meshcat", "/Axes"):
         vis[node].set_transform(shift)
-    off = np.asarray(offset, float)
+    off = np.asarray(offset, float)  # in MeshCat's y-up frame: (x, y, z) = (a, −c, b)
     vis["/Cameras/default/rotated/<object>"].set_property(
         "position", [float(off[0]), float(off[2]), float(-off[1])])
 
