@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -88,7 +89,9 @@ def view_cell(args, decorate=None) -> int:
         moving = getattr(overlay, "moving", None) or {}
         tips = np.concatenate([c.to_world(m.ik.poses[:, :3]) for c, m in zip(cells, members)])
         t = np.concatenate([m.ik.t for m in members])
-        overlay.view = overlay.view.seen_from(tips, t, next(iter(moving.values()), None))
+        view = overlay.view.seen_from(tips, t, next(iter(moving.values()), None))
+        reach = np.linalg.norm(tips - np.asarray(view.centre), axis=1).max()  # every gun seen
+        overlay.view = replace(view, radius=max(view.radius, float(reach)))
     if args.html:
         path = write_cell_html(args.html, robot, members, fps=args.fps, overlay=overlay)
         if args.html != STDOUT:

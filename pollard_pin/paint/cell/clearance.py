@@ -107,13 +107,13 @@ def _checked(member, i: int) -> tuple[CellRobot, np.ndarray, np.ndarray]:
     return cell_robot, t, poses
 
 
-def _sample(robot, layout, member, i: int) -> _Sampled:
+def _sample(robot, layout, member, i: int, margins) -> _Sampled:
     from ..errors import ReachError
     from ..plan.checks import reach
 
     cell_robot, t, poses = _checked(member, i)
     try:
-        q = reach(robot, poses).q
+        q = reach(robot, poses, margins=margins).q
     except ReachError as exc:
         raise ReachError(f"robot {cell_robot.name!r}: {exc}", exc.sample, exc.pose) from None
     a, b, _ = link_capsules(robot, q, layout)
@@ -221,18 +221,19 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
     return best, float(s.t[n]), less + between
 
 
-def cell_clearance(robot, members, part: MovingPart | None = None,
-                   required: float = 0.0) -> CellClearance:
+def cell_clearance(robot, members, part: MovingPart | None = None, required: float = 0.0,
+                   margins=None) -> CellClearance:
     """The :class:`CellClearance` of a cell's programs: ``members`` are (CellRobot, t (N,),
     poses (N, 6) in its base frame) on the cell's clock, ``robot`` the model every robot
-    shares, ``part`` the moving part (None: robots only). Raises :class:`ClearanceError`
+    shares, ``part`` the moving part (None: robots only), ``margins`` the IK's
+    (:class:`...kinematics.margins.Margins`, default ``run``'s). Raises :class:`ClearanceError`
     naming the two robots (or the robot and the part), the time and the distance when a
     distance less what may lie between samples is under ``required`` [m]."""
     if isinstance(required, bool) or not (isinstance(required, (int, float))
                                           and 0 <= required < 1):
         raise InputError(f"required = {required!r}: expected a clearance in [0, 1) m")
     layout = capsule_layout(robot)
-    sampled = [_sample(robot, layout, m, i) for i, m in enumerate(members)]
+    sampled = [_sample(robot, layout, m, i, margins) for i, m in enumerate(members)]
     names = [s.name for s in sampled]
     if len(set(names)) < len(names):
         twice = next(n for n in names if names.count(n) > 1)

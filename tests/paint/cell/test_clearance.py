@@ -154,3 +154,15 @@ def test_bad_required(robot, sway):
     t, poses = sway
     with pytest.raises(InputError, match="required"):
         cell_clearance(robot, [(CellRobot("a"), t, poses)], required=-0.1)
+
+
+def test_a_pose_out_of_reach_names_its_robot(robot, sway):
+    from pollard_pin.paint.errors import ReachError
+
+    t, poses = sway
+    far = poses.copy()
+    far[400, 0] = 2.0  # 2 m ahead of the base: out of reach
+    with pytest.raises(ReachError, match=r"^robot 'high': ") as err:
+        cell_clearance(robot, [(CellRobot("low"), t, poses),
+                               (CellRobot("high", (0.0, 0.75, 0.17)), t, far)])
+    assert err.value.sample == 400
