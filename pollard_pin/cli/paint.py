@@ -39,6 +39,14 @@ def run(args) -> int:
         ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
         ("the actuators", job.actuators)])
     kind = job_kind(job)
+    if job.robots:  # a cell writes a folder per robot (docs/model.md §26)
+        from ..io.paint_cell_files import cell_outputs
+
+        files, stale = cell_outputs(out, args.format, [r.name for r in job.robots])
+        check_outputs(*files, folders=(out,))
+        refuse_inputs(args, *files, *stale, also=[
+            ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
+            ("the actuators", job.actuators)])
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
@@ -52,6 +60,10 @@ def run(args) -> int:
         lines = summary_lines(rep, act.names)
     elif kind == "part":
         lines = part_summary_lines(rep, act.names)
+    elif kind.startswith("cell"):
+        from .paint_line import cell_lines
+
+        lines = cell_lines(rep, act.names)
     else:
         from .paint_line import line_lines, line_summary_lines
 
@@ -63,7 +75,7 @@ def run(args) -> int:
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
     print("\n".join(lines))
-    say_written(out, name)
+    say_written(out, name, [r.name for r in job.robots])
     return 0
 
 
