@@ -67,6 +67,8 @@ _API = {
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
     "split_cell": "paint.cell.split", "propose_layout": "paint.cell.layout",
     "fewest_robots": "paint.cell.layout", "LayoutOptions": "paint.cell.layout",
+    "cell_clearance": "paint.cell.clearance", "CellClearance": "paint.cell.clearance",
+    "MovingPart": "paint.cell.clearance", "link_capsules": "kinematics.capsules",
 }
 
 __all__ = sorted(_API)

@@ -107,13 +107,13 @@ def _checked(member, i: int) -> tuple[CellRobot, np.ndarray, np.ndarray]:
     return cell_robot, t, poses
 
 
-def _sample(robot, layout, member, i: int) -> _Sampled:
+def _sample(robot, layout, member, i: int, margins) -> _Sampled:
     from ..errors import ReachError
     from ..plan.checks import reach
 
     cell_robot, t, poses = _checked(member, i)
     try:
-        q = reach(robot, poses).q
+        q = reach(robot, poses, margins=margins).q
     except ReachError as exc:
         raise ReachError(f"robot {cell_robot.name!r}: {exc}", exc.sample, exc.pose) from None
     a, b, _ = link_capsules(robot, q, layout)
@@ -153,8 +153,11 @@ def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     for lo in range(0, len(a1), CHUNK):
         sl = slice(lo, lo + CHUNK)
         box1, box2 = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
-        near1 = _box_gap(box1, box2[:, :, 0].min(axis=1), box2[:, :, 1].max(axis=1)) < best
-        near2 = _box_gap(box2, box1[:, :, 0].min(axis=1), box1[:, :, 1].max(axis=1)) < best
+        # boxes apart by g hold capsules at least g apart; capsules that cut into each
+        # other (best < 0) have touching boxes (g = 0)
+        cut = max(best, 0.0)
+        near1 = _box_gap(box1, box2[:, :, 0].min(axis=1), box2[:, :, 1].max(axis=1)) <= cut
+        near2 = _box_gap(box2, box1[:, :, 0].min(axis=1), box1[:, :, 1].max(axis=1)) <= cut
         n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
         if len(n) == 0:
             continue
@@ -177,20 +180,26 @@ def _box_gap(boxes, lo, hi) -> np.ndarray:
 
 
 def _robots(members: Sequence[_Sampled], r: np.ndarray):
-    """(distance, pair, time, between) of the closest pair on the union of times."""
-    best = (math.inf, None, None, 0.0)
+    """(distance, pair, time, between) of the closest pair on the union of times, taken
+    CHUNK times at a time (each block overlaps the last by one: the step between them)."""
     if len(members) < 2:
-        return best
+        return math.inf, None, None, 0.0
     u = np.unique(np.concatenate([m.t for m in members]))
-    ends = [_at(m, u) for m in members]
-    chords = [_chords(a, b) if len(u) > 1 else np.zeros(0) for a, b in ends]
-    for i in range(len(members)):
-        for j in range(i + 1, len(members)):
+    pairs = [(i, j) for i in range(len(members)) for j in range(i + 1, len(members))]
+    least = {p: (math.inf, 0.0) for p in pairs}
+    between = dict.fromkeys(pairs, 0.0)
+    for lo in range(0, len(u), CHUNK):
+        uu = u[max(lo - 1, 0):lo + CHUNK]
+        ends = [_at(m, uu) for m in members]
+        chords = [_chords(a, b) for a, b in ends]
+        for i, j in pairs:
             d, k = pair_distance(*ends[i], *ends[j], r, r)
-            between = float((chords[i] + chords[j]).max()) / 2 if len(u) > 1 else 0.0
-            if d - between < best[0] - best[3]:
-                best = (d, (members[i].name, members[j].name), float(u[k]), between)
-    return best
+            if d < least[i, j][0]:
+                least[i, j] = (d, float(uu[k]))
+            if len(uu) > 1:
+                between[i, j] = max(between[i, j], float((chords[i] + chords[j]).max()) / 2)
+    i, j = min(pairs, key=lambda p: least[p][0] - between[p])
+    return least[i, j][0], (members[i].name, members[j].name), least[i, j][1], between[i, j]
 
 
 def _spheres(a, b, layout, caps: np.ndarray):
@@ -207,9 +216,13 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
     best, (n, _), _, less = least_distance(part.mesh, *_spheres(a, b, layout,
                                                                  np.flatnonzero(layout.gun)))
     others = np.flatnonzero(~layout.gun)
+    owner, _, radii = axis_spheres(layout.a[others], layout.b[others], layout.r[others],
+                                   AXIS_STEP)
+    rho = np.zeros(len(others))
+    np.maximum.at(rho, owner, radii)  # each capsule's largest sphere
     mid = (a[:, others] + b[:, others]) / 2
-    lo, hi = part.mesh.bounds  # a capsule's distance from the box: a lower bound
-    lower = (np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - layout.r[others]
+    lo, hi = part.mesh.bounds  # a sphere's distance from the box: a lower bound
+    lower = (np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - rho
              - np.linalg.norm(b[:, others] - a[:, others], axis=2) / 2)
     near = lower < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
@@ -221,26 +234,26 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
     return best, float(s.t[n]), less + between
 
 
-def cell_clearance(robot, members, part: MovingPart | None = None,
-                   required: float = 0.0) -> CellClearance:
+def cell_clearance(robot, members, part: MovingPart | None = None, required: float = 0.0,
+                   margins=None) -> CellClearance:
     """The :class:`CellClearance` of a cell's programs: ``members`` are (CellRobot, t (N,),
     poses (N, 6) in its base frame) on the cell's clock, ``robot`` the model every robot
-    shares, ``part`` the moving part (None: robots only). Raises :class:`ClearanceError`
+    shares, ``part`` the moving part (None: robots only), ``margins`` the IK's
+    (:class:`...kinematics.margins.Margins`, default ``run``'s). Raises :class:`ClearanceError`
     naming the two robots (or the robot and the part), the time and the distance when a
     distance less what may lie between samples is under ``required`` [m]."""
     if isinstance(required, bool) or not (isinstance(required, (int, float))
                                           and 0 <= required < 1):
         raise InputError(f"required = {required!r}: expected a clearance in [0, 1) m")
     layout = capsule_layout(robot)
-    sampled = [_sample(robot, layout, m, i) for i, m in enumerate(members)]
+    sampled = [_sample(robot, layout, m, i, margins) for i, m in enumerate(members)]
     names = [s.name for s in sampled]
     if len(set(names)) < len(names):
         twice = next(n for n in names if names.count(n) > 1)
         raise InputError(f"two members are robot {twice!r}: each robot once")
     d, pair, at, between = _robots(sampled, layout.r)
     if pair is not None and d - between < required:
-        gap = _gap(d).replace("into", "into each other")
-        raise ClearanceError(f"robots {pair[0]!r} and {pair[1]!r} {gap} at t = {at:.2f} s "
+        raise ClearanceError(f"robots {pair[0]!r} and {pair[1]!r} {_gap(d)} at t = {at:.2f} s "
                              f"(clearance {required * 1e3:.3g} mm, ± {between * 1e3:.1f} mm "
                              "between samples): move a base further along the line")
     near = (None, None, None, None)
@@ -250,15 +263,18 @@ def cell_clearance(robot, members, part: MovingPart | None = None,
             if near[0] is None or dp - bp < near[0] - near[3]:
                 near = (dp, s.name, tp, bp)
         if near[0] - near[3] < required:
-            raise ClearanceError(f"robot {near[1]!r} {_gap(near[0], 's')} of the part at t = "
+            raise ClearanceError(f"robot {near[1]!r} {_gap(near[0], 's', 'the part')} at t = "
                                  f"{near[2]:.2f} s (clearance {required * 1e3:.3g} mm, ± "
                                  f"{near[3] * 1e3:.1f} mm between samples)")
     return CellClearance(d, pair, at, between, near[0], near[1], near[2], near[3],
                          float(required))
 
 
-def _gap(d: float, s: str = "") -> str:
-    return f"come{s} within {d * 1e3:.0f} mm" if d >= 0 else f"cut{s} {-d * 1e3:.0f} mm into"
+def _gap(d: float, s: str = "", what: str = "each other") -> str:
+    """'come within 12 mm (of what)' or 'cut 3 mm into what' (``s``: the verb's -s)."""
+    if d >= 0:
+        return f"come{s} within {d * 1e3:.0f} mm" + ("" if s == "" else f" of {what}")
+    return f"cut{s} {-d * 1e3:.0f} mm into {what}"
 
 
 __all__ = ["CellClearance", "MovingPart", "cell_clearance", "pair_distance"]

@@ -60,14 +60,18 @@ def test_the_screened_search_finds_every_pairs_least(robot, sway):
     t, poses = sway
     q = inverse_kinematics(robot, poses, t=t).q
     a, b, r = link_capsules(robot, q)
+    cuts = 0
     for base, rot in (((0.0, 0.75, 0.17), (0, 0, 0)), ((1.0, 0.3, 0.0), (0, 0, 180)),
-                      ((0.2, 0.2, 0.9), (180, 0, 0))):
+                      ((0.2, 0.2, 0.9), (180, 0, 0)), ((0.0, 0.25, 0.0), (0, 0, 0)),
+                      ((1.06, 0.05, 0.0), (0, 0, 180))):  # the last two cut into each other
         other = CellRobot("b", base, rot)
         a2, b2 = other.to_world(a), other.to_world(b)
         d, k = pair_distance(a, b, a2, b2, r, r)
         every = (segment_distance(a[:, :, None], b[:, :, None], a2[:, None], b2[:, None])
                  - r[:, None] - r[None, :]).min(axis=(1, 2))
         assert d == pytest.approx(every.min(), abs=1e-12) and k == int(np.argmin(every))
+        cuts += d < 0
+    assert cuts == 2
 
 
 def test_the_bound_between_samples_holds(robot, sway):
@@ -132,6 +136,9 @@ def test_the_part_against_the_guns_own_check(robot, sway):
     with pytest.raises(ClearanceError, match=r"^robot 'only' comes within 146 mm of the part"):
         cell_clearance(robot, [(base, t, poses)], MovingPart(plate, tuple(v)), required=0.2)
     assert c.to_dict()["between_robots_m"] is None
+    plate.apply_translation((-0.148, 0.0, 0.0))  # its face 2 mm ahead of the tip: 2.4 mm in
+    with pytest.raises(ClearanceError, match=r"^robot 'only' cuts 2 mm into the part at t = "):
+        cell_clearance(robot, [(base, t, poses)], MovingPart(plate, tuple(v)))
 
 
 def test_capsule_count(robot):
@@ -154,3 +161,37 @@ def test_bad_required(robot, sway):
     t, poses = sway
     with pytest.raises(InputError, match="required"):
         cell_clearance(robot, [(CellRobot("a"), t, poses)], required=-0.1)
+
+
+def test_a_pose_out_of_reach_names_its_robot(robot, sway):
+    from pollard_pin.paint.errors import ReachError
+
+    t, poses = sway
+    far = poses.copy()
+    far[400, 0] = 2.0  # 2 m ahead of the base: out of reach
+    with pytest.raises(ReachError, match=r"^robot 'high': ") as err:
+        cell_clearance(robot, [(CellRobot("low"), t, poses),
+                               (CellRobot("high", (0.0, 0.75, 0.17)), t, far)])
+    assert err.value.sample == 400
+
+
+def test_the_parts_screen_keeps_the_nearest_link(robot, sway):
+    """A block under a leg's elbow, nearer to it than to the gun: the screened search
+    equals every capsule's spheres measured against it (§25's least_distance, no screen)."""
+    from pollard_pin.kinematics.capsules import axis_spheres
+    from pollard_pin.paint.plan.clearance import least_distance
+    from pollard_pin.paint.spray.gun_body import AXIS_STEP
+
+    t, poses = sway
+    block = trimesh.creation.box((0.1, 0.1, 0.1))  # under leg 1's elbow (0.30, -0.23, -0.03)
+    block.apply_translation((0.3, -0.25, -0.12))
+    v = np.array([0.0, 0.01, 0.0])
+    c = cell_clearance(robot, [(CellRobot("only"), t, poses)], MovingPart(block, tuple(v)))
+    lay = capsule_layout(robot)
+    a, b, _ = link_capsules(robot, inverse_kinematics(robot, poses, t=t).q, lay)
+    a, b = a - (t[:, None] * v)[:, None], b - (t[:, None] * v)[:, None]
+    owner, frac, radii = axis_spheres(lay.a, lay.b, lay.r, AXIS_STEP)
+    centres = a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner])
+    every, (n, s), _, _ = least_distance(block, centres, radii)
+    assert not lay.gun[owner[s]]  # a leg, not the gun, is nearest
+    assert c.to_part == pytest.approx(every, abs=1e-12) and c.part_time == t[n]
