@@ -52,10 +52,12 @@ def commands(cli: Path, work: Path) -> None:
         if not report:
             sys.exit(f"check_install: paint --out {folder}: empty paint.json")
     # a cell (docs/model.md §26): a folder per robot, one film
-    sh([cli, "paint", "--job", ex / "cell.toml", "--out", "cell"], work)
+    sh([cli, "paint", "--job", ex / "cell.toml", "--out", "cell2"], work)
     for name in ("low", "high"):
-        need(work / "cell" / name / "path.csv", f"paint --out cell ({name})")
-    need(work / "cell" / "paint.json", "paint --out cell")
+        need(work / "cell2" / name / "path.csv", f"paint --out cell2 ({name})")
+    need(work / "cell2" / "paint.json", "paint --out cell2")
+    sh([cli, "view", "--paint", "cell2", "--html", "cell2.html"], work)
+    need(work / "cell2.html", "view --paint cell2")
     # the painted program goes through run and size like any trajectory
     sh([cli, "run", "--trajectory", work / "part/path.csv", "--out", "part_run.csv"], work)
     sh([cli, "size", "--actuators", ex / "actuators.toml", "--trajectory",

@@ -95,7 +95,8 @@ def run(args) -> int:
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
     print("\n".join(lines))
-    say_written(out, name, [r.name for r in job.robots])
+    say_written(out, name, [r.robot.name for r in result.plan.robots]
+                if kind.startswith("cell") else ())
     return 0
 
 
