@@ -20,7 +20,7 @@ from ..line.panel import line_clearance
 from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
 from ..target.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
-from .program import plan_zone
+from .program import ZoneView, plan_zone
 from .robots import CellRobot, base_footprint, check_spacing
 from .split import split_cell
 from .zones import Split, Zone
@@ -103,8 +103,9 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
             panel_in_base(job, cr)
         part_b = robot_part(job.standoff, part, cr, zone.facing) if is_part else None
         try:
-            plan = plan_zone(model, act, job_b, zone, split.runout, cr.direction_to_base(axis),
-                             float(cr.origin @ axis), speed, part_b)
+            view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
+                            float(cr.origin @ axis))
+            plan = plan_zone(model, act, job_b, view, speed, part_b)
         except LineSpeedError as exc:
             raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
                                  exc.hint) from None
