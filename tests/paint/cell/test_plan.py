@@ -117,3 +117,21 @@ def test_bases_closer_than_two_footprints_are_refused(robot, act):
     with pytest.raises(CellError, match="'low' and 'high' stand 100 mm apart, closer than "
                                         "a robot's own base .170 mm."):
         plan_cell_job(robot, cell_job(tables), act)
+
+
+def test_an_upside_down_robot_paints_from_above(robot, act):
+    """A robot hung 0.26 m up, turned 180° about x (gravity +z in its base), paints a 0.2 ×
+    0.15 m panel passing under it: planned with its gravity, the film on target."""
+    tables = panel_cell([{"name": "under", "base": [0.0, 0.0, 0.26],
+                          "rotation": [180.0, 0.0, 0.0]}], speed=0.016)
+    tables["panel"].update(height=0.15, center=[0.70, -0.3, 0.16])
+    cell = plan_cell_job(robot, cell_job(tables), act)
+    p = cell.robots[0].plan
+    # the panel's z 0.085…0.235 m is z_b 0.175…0.025 m in the hung base; the strokes run
+    # 4σ past both edges at constant speed, the turnarounds (gun open) a little further
+    z = p.trajectory.poses[p.spray > 0, 2]
+    assert -0.05 < z.min() <= 0.025 - 0.04 + 1e-9
+    assert 0.175 + 0.04 - 1e-9 <= z.max() < 0.25
+    assert np.allclose(p.direction, [0.0, -1.0, 0.0], atol=1e-15)  # the line in its base
+    th = cell_panel_film(cell)[3].thickness / cell.job.thickness
+    assert np.abs(th - 1).max() <= 0.05  # seen ±0.5 %
