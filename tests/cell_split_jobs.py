@@ -1,5 +1,7 @@
 """Tall parts on a line for the cell's split and layout tests (docs/model.md §26.2, §26.5):
 a panel, and a thin plate's mesh painted on both faces."""
+import math
+
 from pollard_pin.paint.job import job_from_dict
 
 GUN = {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7}
@@ -45,3 +47,19 @@ direction = [0.0, 1.0, 0.0]
 """
     (folder / "plate.toml").write_text(text)
     return folder / "plate.toml"
+
+
+def check_zones(robot, robots, split, strokes):
+    """Contiguous zones, free edges at the ends, each zone + its run-outs in its robot's
+    band; the zones' lengths on the part."""
+    from pollard_pin.paint.cell.bands import robot_band
+
+    by = {r.name: r for r in robots}
+    z = split.zones
+    assert z[0].lo == -math.inf and z[-1].hi == math.inf
+    assert all(a.hi == b.lo for a, b in zip(z, z[1:]))
+    assert all(a.lo < a.hi for a in z)
+    for zone in z:
+        band = robot_band(robot, by[zone.robot], strokes)
+        assert band.holds(*strokes.needed(zone.lo, zone.hi)), (zone, band)
+    return [min(b.hi, strokes.extent[1]) - max(b.lo, strokes.extent[0]) for b in z]

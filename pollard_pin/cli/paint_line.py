@@ -64,7 +64,7 @@ def cell_lines(rep: dict, names) -> list[str]:
         lines.append(f"gun body {c['gun_to_part_m'] * 1e3:.1f} mm from the part at its "
                      f"closest (robot {c['gun_robot']!r})")
     if c.get("to_part_m") is not None:
-        lines.append(f"robot {c['robot']!r}'s links {c['to_part_m'] * 1e3:.1f} mm from the "
+        lines.append(f"the links of robot {c['robot']!r} {c['to_part_m'] * 1e3:.1f} mm from the "
                      f"part at their closest (t = {c['robot_at_s']:.2f} s)")
     if c.get("between_robots_m") is not None:
         lines.append(f"robots {c['pair'][0]!r} and {c['pair'][1]!r} "

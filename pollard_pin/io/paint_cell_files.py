@@ -42,11 +42,17 @@ def robot_metadata(rp) -> dict:
             "gravity_base": [float(g) for g in gravity_in_base(cr)]}
 
 
-def write_cell(result, out: Path, fmt: str, rep: dict) -> Path:
+def write_cell(result, out: Path, fmt: str = "csv") -> Path:
     """Every output of a cell's :class:`~pollard_pin.paint.api.PaintResult` in ``out``, or
     none; the film table's path."""
+    from ..errors import InputError
     from .atomic import check_outputs
-    from .table import write_table
+    from .paint_files import report_json
+    from .table import FORMATS, write_table
+
+    if fmt not in FORMATS:
+        raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
+    rep = report_json(result)
 
     cell = result.plan
     files, stale = cell_outputs(out, fmt, [r.robot.name for r in cell.robots])

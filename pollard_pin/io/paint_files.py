@@ -47,13 +47,9 @@ def write_paint(result, out: Path, fmt: str = "csv") -> Path:
 
     if fmt not in FORMATS:
         raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    rep = report_json(result)
-    if result.kind.startswith("cell"):  # docs/model.md §26: a folder per robot
-        from .paint_cell_files import write_cell
-
-        return write_cell(result, out, fmt, rep)
     files, stale = paint_outputs(out, fmt)
     check_outputs(*files, folders=(out,))
+    rep = report_json(result)
     meta = {"command": "paint", "job": rep["job"]}
     if result.kind.startswith("line"):
         meta["frame"] = LINE_FRAME

@@ -123,7 +123,11 @@ class PaintResult:
     def write(self, folder: str | Path, format: str = "csv") -> Path:
         """Write path.csv, thickness.csv|parquet, film.ply, paint.json and thickness.png in
         ``folder``, every one or none, as ``pollard-pin paint`` does; the table's path."""
-        # the one call up the layers: paint's files are written by io's writers
+        # the calls up the layers: paint's files are written by io's writers
+        if self.kind.startswith("cell"):  # a folder per robot (docs/model.md §26)
+            from ..io.paint_cell_files import write_cell
+
+            return write_cell(self, Path(folder), format)
         from ..io.paint_files import write_paint
 
         return write_paint(self, Path(folder), format)

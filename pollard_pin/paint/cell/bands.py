@@ -197,7 +197,7 @@ class Band:
         return not self.empty and self.lo <= a and b <= self.hi
 
 
-def _base_poses(cell_robot: CellRobot, tips, spray, panel: bool, facing) -> np.ndarray:
+def base_poses(cell_robot: CellRobot, tips, spray, panel: bool, facing) -> np.ndarray:
     """Gun poses (..., 6) in the robot's base frame, the roll referred to its own axes."""
     tb = cell_robot.to_base(tips)
     ab = cell_robot.direction_to_base(spray).reshape(-1, 3)
@@ -231,8 +231,8 @@ def _runs(ok: np.ndarray) -> np.ndarray:
     return run
 
 
-def distinct(tips, spray, e) -> list[int]:
-    """Strokes of distinct shape (up to a shift along the line), at most MAX_STROKES of them
+def distinct(tips, spray, e, most: int = MAX_STROKES) -> list[int]:
+    """Strokes of distinct shape (up to a shift along the line), at most ``most`` of them
     evenly chosen, the first and last kept."""
     e = np.asarray(e, float)
     keys, picked = [], []
@@ -242,22 +242,23 @@ def distinct(tips, spray, e) -> list[int]:
                    for r, s in keys):
             keys.append((rel, spray[k]))
             picked.append(k)
-    if len(picked) > MAX_STROKES:
+    if len(picked) > most:
         picked = [picked[int(i)] for i in np.unique(np.linspace(0, len(picked) - 1,
-                                                                MAX_STROKES).round())]
+                                                                most).round())]
     return picked
 
 
 def robot_band(robot, cell_robot: CellRobot, strokes: Strokes, margin: float = MARGIN,
-               step: float = STEP) -> Band:
+               step: float = STEP, most: int = MAX_STROKES) -> Band:
     """The band of ``cell_robot`` (``robot``: the model, its reach rules) over ``strokes``,
-    on the grid of :meth:`Strokes.grid` (``margin``, ``step``)."""
+    on the grid of :meth:`Strokes.grid` (``margin``, ``step``), at most ``most`` distinct
+    strokes checked."""
     w, tips, spray = strokes.grid(margin, step)
     e_b = cell_robot.direction_to_base(strokes.direction)
     longest = np.full(len(w), np.iinfo(int).max)
     seen = np.zeros(len(w), dtype=bool)
-    for k in distinct(tips, spray, strokes.direction):
-        poses = _base_poses(cell_robot, tips[k], spray[k], strokes.panel, strokes.facing)
+    for k in distinct(tips, spray, strokes.direction, most):
+        poses = base_poses(cell_robot, tips[k], spray[k], strokes.panel, strokes.facing)
         xs = _shifts(robot.params, poses[:, :3], e_b)
         if not len(xs):
             longest[:] = 0
@@ -278,5 +279,5 @@ def robot_band(robot, cell_robot: CellRobot, strokes: Strokes, margin: float = M
 
 
 __all__ = ["Band", "CHUNK", "MARGIN", "MAX_STROKES", "SHIFT_STEP", "STEP", "Strokes",
-           "axis_name", "cell_axis", "distinct", "job_strokes", "panel_strokes",
+           "axis_name", "base_poses", "cell_axis", "distinct", "job_strokes", "panel_strokes",
            "part_strokes", "robot_band"]

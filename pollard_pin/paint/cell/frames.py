@@ -44,13 +44,14 @@ def gravity_in_base(robot: CellRobot) -> np.ndarray:
 
 def robot_model_in_base(model_robot, robot: CellRobot):
     """The robot model with gravity Rᵀ g (its own model and data: the shared one is left
-    as it is); itself when the base is not turned."""
-    if not any(robot.rotation):
+    as it is); itself when Rᵀ g is g (a base turned about z only)."""
+    g = gravity_in_base(robot)
+    if np.array_equal(g, GRAVITY):
         return model_robot
     import pinocchio as pin
 
     model = pin.Model(model_robot.model)
-    model.gravity = pin.Motion(np.asarray(gravity_in_base(robot), float), np.zeros(3))
+    model.gravity = pin.Motion(np.asarray(g, float), np.zeros(3))
     return replace(model_robot, model=model, data=model.createData(),
                    constraint_datas=[c.createData() for c in model_robot.constraint_models])
 

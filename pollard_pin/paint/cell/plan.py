@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -19,8 +20,8 @@ from ..line.panel import line_clearance
 from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
 from ..target.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
-from .program import plan_zone
-from .robots import CellRobot
+from .program import ZoneView, plan_zone
+from .robots import CellRobot, base_footprint, check_spacing
 from .split import split_cell
 from .zones import Split, Zone
 
@@ -70,10 +71,13 @@ def cell_part(job: PartJob, part: Part, split: Split) -> Part:
     return replace(part, painted=painted)
 
 
-def _robot_part(job, part: Part, cr: CellRobot, zone: Zone) -> Part:
+@lru_cache(maxsize=32)  # a speed search plans the cell ~10 times: the ray tests once
+def robot_part(standoff: float, part: Part, cr: CellRobot, facing) -> Part:
+    """The world part in the robot's base frame painting the faces of ``facing`` that a gun
+    at ``standoff`` sees."""
     from ..spray.occlusion import painted_part
 
-    return painted_part(part_in_base(part, cr, zone.facing), job.standoff)
+    return painted_part(part_in_base(part, cr, facing), standoff)
 
 
 def plan_cell(robot, job, act: Actuators, speed: float | None = None,
@@ -97,10 +101,11 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         is_part = isinstance(job, PartJob)
         job_b = replace(job, line=_line_b(job, cr), robots=()) if is_part else \
             panel_in_base(job, cr)
-        part_b = _robot_part(job, part, cr, zone) if is_part else None
+        part_b = robot_part(job.standoff, part, cr, zone.facing) if is_part else None
         try:
-            plan = plan_zone(model, act, job_b, zone, split.runout, cr.direction_to_base(axis),
-                             float(cr.origin @ axis), speed, part_b)
+            view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
+                            float(cr.origin @ axis))
+            plan = plan_zone(model, act, job_b, view, speed, part_b)
         except LineSpeedError as exc:
             raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
                                  exc.hint) from None
@@ -123,7 +128,8 @@ def _line_b(job, cr: CellRobot):
 def cell_planner(robot, job, act: Actuators, part: Part | None = None,
                  split: Split | None = None):
     """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
-    split made once."""
+    split made once, the bases first checked to stand apart (two base footprints)."""
+    check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
     return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)
@@ -174,4 +180,4 @@ def cell_clearance_of(robot, plan: CellPlan):
 
 
 __all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",
-           "plan_cell_job"]
+           "plan_cell_job", "robot_part"]

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -28,6 +28,18 @@ from ..plan.part import time_step
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
 from ..target.panel import panel_frame
 from .zones import CLOSED, OPEN, ZoneRelative, seam_fractions, window, with_samples
+
+
+@dataclass(frozen=True)
+class ZoneView:
+    """A robot's zone seen from its base: the ``zone`` (world coordinates along the split's
+    axis), the run-on ``runout`` R [m], the ``axis`` in the base frame and ``offset`` = the
+    base origin's world coordinate along it (x_base = x_world − offset)."""
+
+    zone: object
+    runout: float
+    axis: np.ndarray
+    offset: float
 
 
 class ClippedPass(PassPiece):
@@ -79,10 +91,10 @@ def _panel_windows(seg, on, m: float) -> tuple:
     return tuple(out)
 
 
-def panel_program(job_b, zone, runout: float, axis_b, offset: float, e):
-    """(LineProgram, frame, offsets, horizontal, spacing, pass speed) of the panel job in a
-    robot's base frame (``job_b``), its raster clipped to ``zone`` (along ``axis_b``, its
-    world coordinate less ``offset``)."""
+def panel_program(job_b, view: ZoneView, e):
+    """(LineProgram, job, frame, offsets, horizontal, spacing, pass speed) of the panel job
+    in a robot's base frame (``job_b``), its raster clipped to its zone (``view``)."""
+    zone, runout, axis_b, offset = view.zone, view.runout, view.axis, view.offset
     horizontal = pass_direction(panel_frame(job_b), e)
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
     frame, offsets, half, v, _, spacing = panel_layout(job_x)
@@ -128,9 +140,10 @@ def _arcs(s, aim, lo: float, hi: float) -> tuple:
     return tuple(sorted((_arc_at(s, aim, lo), _arc_at(s, aim, hi))))
 
 
-def zone_pieces(layout, pieces, zone, runout: float, axis_b, offset: float, standoff: float):
+def zone_pieces(layout, pieces, view: ZoneView, standoff: float):
     """The passes clipped to the zone (a pass whose trigger would never open dropped, the
     rest run in serpentine order) and each one's trigger window (local times)."""
+    zone, runout, axis_b, offset = view.zone, view.runout, view.axis, view.offset
     kept, windows = [], []
     for p in pieces:
         lp = layout.passes[p.index]
@@ -162,16 +175,16 @@ def _poses(layout, piece):
     return pass_poses(layout)[piece.index]
 
 
-def part_program(job_b, part_b, zone, runout: float, axis_b, offset: float, e):
+def part_program(job_b, part_b, view: ZoneView, e):
     """(LineProgram, job, layout, pass speed) of the part (``part_b``, base frame) for one
-    robot, its passes clipped to ``zone``."""
+    robot, its passes clipped to its zone (``view``)."""
     horizontal = across_the_travel(part_b, e)
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
     layout = leading_first(surface_layout(part_b, job_x), e)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v)  # the whole part's: every robot samples alike
-    pieces, windows = zone_pieces(layout, full, zone, runout, axis_b, offset, job_x.standoff)
+    pieces, windows = zone_pieces(layout, full, view, job_x.standoff)
 
     def build(tau):
         prog = build_program(pieces, tau)
@@ -203,18 +216,16 @@ def seamed(world, speed: float, e, dt: float):
     return traj, seam_fractions(t, spray, seams, 1e-9 * max(1.0, float(t[-1])))
 
 
-def plan_zone(robot, act, job_b, zone, runout: float, axis_b, offset: float, speed: float,
-              part_b=None):
+def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None):
     """One robot's plan on the line at ``speed`` (a :class:`.line.panel.LinePlan` or
     :class:`.line.part.LinePartPlan`, in its base frame), clearance not checked."""
     clock = time.perf_counter()
     e = np.asarray(job_b.line.direction, float)
     one_coat(job_b)
     if part_b is None:
-        program, job_x, frame, offsets, horizontal, spacing, v = panel_program(
-            job_b, zone, runout, axis_b, offset, e)
+        program, job_x, frame, offsets, horizontal, spacing, v = panel_program(job_b, view, e)
     else:
-        program, job_x, layout, v = part_program(job_b, part_b, zone, runout, axis_b, offset, e)
+        program, job_x, layout, v = part_program(job_b, part_b, view, e)
     world = plan_world(robot, act, program, speed, e)
     traj, spray = seamed(world, speed, e, program.dt)
     common = {"trajectory": traj, "spray": spray, "ratios": world.ratios,
@@ -226,5 +237,5 @@ def plan_zone(robot, act, job_b, zone, runout: float, axis_b, offset: float, spe
                         speed, world.times, v, **common)
 
 
-__all__ = ["ClippedPass", "panel_program", "part_program", "plan_zone", "seamed",
+__all__ = ["ClippedPass", "ZoneView", "panel_program", "part_program", "plan_zone", "seamed",
            "zone_pieces"]

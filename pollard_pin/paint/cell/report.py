@@ -23,7 +23,7 @@ def _zone_mask(x, n, zone, job_facing, split) -> np.ndarray:
     return inside & (n @ f > 0)
 
 
-def _robot_entry(rp, act: Actuators, area: float, job) -> dict:
+def _robot_entry(rp, act: Actuators, area: float, job, axis) -> dict:
     plan, cr = rp.plan, rp.robot
     tr = plan.trajectory
     on = plan.spray > 0
@@ -38,11 +38,11 @@ def _robot_entry(rp, act: Actuators, area: float, job) -> dict:
             "cycle": plan.times.cycle, "path_time": float(tr.t[-1]), "samples": len(tr),
             "window": window,
             "zone": {"lo": None if math.isinf(z.lo) else z.lo,
-                     "hi": None if math.isinf(z.hi) else z.hi,
+                     "hi": None if math.isinf(z.hi) else z.hi, "axis": list(axis),
                      "facing": None if z.facing is None else list(z.facing),
                      "area": area},
             "painting_bound": bound,
-            "upper_bound": (plan.length + window[1] - window[0]) / bound if bound > 0
+            "upper_bound": float((plan.length + window[1] - window[0]) / bound) if bound > 0
             else math.inf,
             "motors": plan.motor_use(act.names),
             "to_part_m": None if c is None else c.distance,
@@ -91,7 +91,7 @@ def cell_report(cell, film_points, normals, thickness, areas, act: Actuators,
     robots = []
     for rp in cell.robots:
         area = float(areas[_zone_mask(x, normals, rp.zone, facing, split)].sum())
-        robots.append(_robot_entry(rp, act, area, job))
+        robots.append(_robot_entry(rp, act, area, job, split.axis))
     slow = max(robots, key=lambda r: r["cycle"])
     cycle = slow["cycle"]
     e = np.asarray(job.line.direction, float)

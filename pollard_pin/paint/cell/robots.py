@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from ...analytic.taskspace import rotation
 from ...errors import InputError
 from ...model.params import did_you_mean
 from ...model.values import fail, number
@@ -40,10 +41,10 @@ class CellRobot:
 
     @property
     def R(self) -> np.ndarray:
-        """The base's rotation, world ← base (3, 3)."""
-        from ..target.mesh import placement
-
-        return placement((0.0, 0.0, 0.0), self.rotation)[0]
+        """The base's rotation, world ← base (3, 3): a part's rule
+        (:func:`..target.mesh.placement`), R = Rx(rx)·Ry(ry)·Rz(rz)."""
+        rx, ry, rz = np.radians(self.rotation)
+        return rotation(np.array([0.0, 0.0, 0.0, ry, rx, rz]))
 
     @property
     def origin(self) -> np.ndarray:

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..job import PartJob
 from ..line.reach import reach_ball
+from ..passes.raster import SPOT_RADIUS
 from .bands import Band, Strokes, axis_name, job_strokes, robot_band
 from .robots import CellError, CellRobot
 from .zones import Split, Zone
@@ -75,15 +76,21 @@ def _unreached(robot, cell_robot: CellRobot, strokes: Strokes, source: str) -> C
 
 
 def _longest_zone_ok(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
-    """Seams (forward greedy, as high as possible) with every zone ≤ T, or None."""
+    """Seams (forward greedy, as high as possible) with every zone ≤ T, or None. The upper
+    bounds are first tightened backwards so that each leaves room for the zones above; then
+    pushing a seam higher never hurts the next, and the greedy is exact."""
+    top, upper = e_hi, []
+    for b in hi_bounds[::-1]:
+        top = min(b, top - least)
+        upper.append(top)
     w, seams = e_lo, []
-    for a, b in zip(lo_bounds, hi_bounds):
-        w = min(b, w + T)
-        if w < max(a, (seams[-1] if seams else e_lo) + least):
+    for a, u in zip(lo_bounds, upper[::-1]):
+        w_next = min(u, w + T)
+        if w_next < max(a, w + least):
             return None
+        w = w_next
         seams.append(w)
-    last = seams[-1] if seams else e_lo
-    return seams if least <= e_hi - last <= T + 1e-12 else None
+    return seams if e_hi - w <= T + 1e-12 and e_hi - w >= least - 1e-12 else None
 
 
 def _backward(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
@@ -157,7 +164,7 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
         if b.empty or b.hi < lo or b.lo > hi:
             raise _unreached(robot, r, strokes, source)
     bands.sort(key=lambda b: (b.lo + b.hi) / 2)
-    least = MIN_ZONE * strokes.runout / 4.0  # σ (R = 4σ)
+    least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
     seams = seams_between(bands, strokes, least)
     if seams is None:
         raise _why_not(source, bands, strokes, least)
