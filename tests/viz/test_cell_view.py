@@ -25,8 +25,9 @@ def _sway(robot, t0, duration, n):
 
 @pytest.fixture(scope="module")
 def cell(robot):
-    cells = [CellRobot("low"), CellRobot("high", (0.0, 0.75, 0.17), (0.0, 0.0, 30.0))]
-    iks = [_sway(robot, 0.0, 2.0, 81), _sway(robot, 1.0, 2.0, 41)]
+    cells = [CellRobot("low"), CellRobot("high", (0.0, 0.75, 0.17), (0.0, 0.0, 30.0)),
+             CellRobot("hung", (0.0, -0.8, 0.6), (180.0, 0.0, 0.0))]  # upside down
+    iks = [_sway(robot, 0.0, 2.0, 81), _sway(robot, 1.0, 2.0, 41), _sway(robot, 0.5, 1.0, 21)]
     members = []
     for c, ik in zip(cells, iks):
         base = np.eye(4)

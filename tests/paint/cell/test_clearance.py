@@ -195,3 +195,19 @@ def test_the_parts_screen_keeps_the_nearest_link(robot, sway):
     every, (n, s), _, _ = least_distance(block, centres, radii)
     assert not lay.gun[owner[s]]  # a leg, not the gun, is nearest
     assert c.to_part == pytest.approx(every, abs=1e-12) and c.part_time == t[n]
+
+
+def test_blocks_of_the_union_change_nothing(robot, sway, monkeypatch):
+    """The union of times taken 37 at a time (blocks overlapping by one step) gives the same
+    least, time and bound between samples as one block."""
+    import pollard_pin.paint.cell.clearance as clearance
+
+    t, poses = sway
+    a, b = facing(0.02)
+    members = [(a, t[::3], poses[::3]), (CellRobot("high", b.base, (0.0, 0.0, 175.0)),
+                                         t[1::4], poses[1::4])]
+    whole = cell_clearance(robot, members)
+    monkeypatch.setattr(clearance, "CHUNK", 37)
+    parts = cell_clearance(robot, members)
+    assert (parts.between_robots, parts.pair_time) == (whole.between_robots, whole.pair_time)
+    assert parts.robots_between == whole.robots_between
