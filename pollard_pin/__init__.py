@@ -66,9 +66,15 @@ _API = {
     "PaintReport": "paint.api", "JobKindError": "paint.errors",
     "place": "paint.place", "PlaceOptions": "paint.place", "PlaceResult": "paint.place",
     "PlaceError": "paint.place",
+    "plan_cell": "paint.cell.plan", "CellPlan": "paint.cell.plan", "Split": "paint.cell.zones",
+    "Zone": "paint.cell.zones",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
     "program_deflection": "paint.plan.compliance", "compliance_entry": "paint.film.compliance",
+    "split_cell": "paint.cell.split", "propose_layout": "paint.cell.layout",
+    "fewest_robots": "paint.cell.layout", "LayoutOptions": "paint.cell.layout",
+    "cell_clearance": "paint.cell.clearance", "CellClearance": "paint.cell.clearance",
+    "MovingPart": "paint.cell.clearance", "link_capsules": "kinematics.capsules",
 }
 
 __all__ = sorted(_API)

@@ -79,3 +79,26 @@ def line_section(robot) -> None:
               f"{t['film']:5.2f}, {g['parts_per_hour']:.1f} parts/h; --max-line-speed "
               f"{search:5.1f}: {best['speed']:.4g} m/s (upper bound {best['upper_bound']:.4g}), "
               f"{best['parts_per_hour']:.1f} parts/h")
+
+
+def cell_section(robot) -> None:
+    """Paint cells (docs/model.md §26): examples/cell.toml (two robots, budget 60 s to plan)
+    and examples/cell3.toml (three) at the job's speed with the film, and --max-line-speed
+    on the two-robot cell (budget 300 s, with the film at that speed). One run each."""
+    act = pp.load_actuators(REPO / "examples" / "actuators.toml")
+    print("\npaint cells, one run each [s]")
+    for name in ("cell.toml", "cell3.toml"):
+        job = pp.load_job(REPO / "examples" / name)
+        r = pp.paint(robot, job, act)
+        rep, t = r.report.data, r.report.timings
+        seams = ", ".join(f"{s['at']:.4f} m film {s['min']:.4f}-{s['max']:.4f}"
+                          for s in rep["seams"])
+        print(f"  {name:<11s} at {rep['line']['speed']:.4g} m/s: plan {t['plan']:5.1f}, film "
+              f"{t['film']:5.1f}, {rep['line']['parts_per_hour']:.1f} parts/h; seams {seams}; "
+              f"film within ±5 % {100 * rep['thickness']['within_5pct']:.2f} %")
+        if name == "cell.toml":
+            t0 = time.perf_counter()
+            fast = pp.paint(robot, job, act, pp.PaintOptions(max_line_speed=True))
+            best = fast.report.line
+            print(f"  {name:<11s} --max-line-speed {time.perf_counter() - t0:5.1f}: "
+                  f"{best['speed']:.4g} m/s, {best['parts_per_hour']:.1f} parts/h")

@@ -27,7 +27,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-from bench_paint import line_section, paint_section, parts_section  # scripts/, beside this
+from bench_paint import (  # scripts/, beside this
+    cell_section,
+    line_section,
+    paint_section,
+    parts_section,
+)
 from bench_signals import signal_section
 
 import pollard_pin as pp
@@ -481,6 +486,7 @@ def main(argv=None) -> int:
         paint_section(robot, 3)
         parts_section(robot)
         line_section(robot)
+        cell_section(robot)
     if not args.no_workspace:
         workspace_section(robot, args.repeats)
     if not args.no_stiffness:

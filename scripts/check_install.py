@@ -53,6 +53,13 @@ def commands(cli: Path, work: Path) -> None:
             sys.exit(f"check_install: paint --out {folder}: empty paint.json")
         if report.get("compliance", {}).get("stiffness") is not True:  # docs/model.md §27.7
             sys.exit(f"check_install: paint --out {folder}: no compliance in paint.json")
+    # a cell (docs/model.md §26): a folder per robot, one film
+    sh([cli, "paint", "--job", ex / "cell.toml", "--out", "cell2"], work)
+    for name in ("low", "high"):
+        need(work / "cell2" / name / "path.csv", f"paint --out cell2 ({name})")
+    need(work / "cell2" / "paint.json", "paint --out cell2")
+    sh([cli, "view", "--paint", "cell2", "--html", "cell2.html"], work)
+    need(work / "cell2.html", "view --paint cell2")
     # the painted program goes through run and size like any trajectory
     sh([cli, "run", "--trajectory", work / "part/path.csv", "--out", "part_run.csv"], work)
     sh([cli, "size", "--actuators", ex / "actuators.toml", "--trajectory",
@@ -79,6 +86,9 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
     for f in ("sim.csv", "flex.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
         need(work / f, f)
+    # paint --robots auto: a proposed cell planned, its [[robot]] tables written (§26.5)
+    sh([cli, "paint", "--job", ex / "line.toml", "--robots", "auto", "--out", "cell"], work)
+    need(work / "cell" / "robots.toml", "paint --robots auto")
     # an extra that is not installed: one line and exit 2
     out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))
     if len(out.stderr.strip().splitlines()) != 1 or "mujoco" not in out.stderr:

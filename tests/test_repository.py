@@ -66,14 +66,17 @@ RANKS = [
     ("pollard_pin.model", 2), ("pollard_pin.paths", 2), ("pollard_pin.kinematics", 3),
     ("pollard_pin.dynamics", 4),
     ("pollard_pin.io.paint_files", 8),  # paint's files: its film (paint) and figures (viz)
+    ("pollard_pin.io.paint_cell_files", 8),  # a cell's files, the same
     ("pollard_pin.io", 5), ("pollard_pin.workspace", 6), ("pollard_pin.paint", 6),
     ("pollard_pin.crosscheck", 6),
     ("pollard_pin.run", 7), ("pollard_pin.viz", 8), ("pollard_pin.sweep", 9),
     ("pollard_pin.cli", 10), ("pollard_pin", 11),
 ]
-# The one call up the layers: PaintResult.write (paint/api.py) writes through paint's file
-# writers, lazily, so that a Python user writes what the CLI writes.
-UPWARD = {("pollard_pin.paint.api", "pollard_pin.io.paint_files")}
+# The calls up the layers: PaintResult.write (paint/api.py) writes through paint's file
+# writers (a cell's in their own module), lazily, so that a Python user writes what the CLI
+# writes.
+UPWARD = {("pollard_pin.paint.api", "pollard_pin.io.paint_files"),
+          ("pollard_pin.paint.api", "pollard_pin.io.paint_cell_files")}
 
 
 def _rank(module: str) -> int:

@@ -15,6 +15,14 @@ from .common import (
     warnings_as_notes,
 )
 from .paint_files import motor_use_line, part_summary_lines, say_written, spacing
+from .paint_robots import (
+    check_job,
+    paint_layout,
+    proposed_names,
+    robot_count,
+    robots_arg,
+    write_layout,
+)
 
 
 def _actuators(args, job):
@@ -26,33 +34,57 @@ def _actuators(args, job):
 
 
 def run(args) -> int:
-    from ..io.atomic import check_outputs
+    from ..io.atomic import all_or_nothing, check_outputs
     from ..io.paint_files import paint_outputs
     from ..paint.api import PaintOptions, film_spacing_of, job_kind, paint
     from ..paint.job import load_job
 
     out = Path(args.out)
+    count = robot_count(args.robots)  # --robots N|auto: a proposed cell (§26.5)
     files, stale = paint_outputs(out, args.format)
+    files = (*files, out / "robots.toml") if count is not None else files
     check_outputs(*files, folders=(out,))
     job = load_job(args.job)
     refuse_inputs(args, *files, *stale, also=[
         ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
         ("the actuators", job.actuators)])
     kind = job_kind(job)
+    check_job(count, job)
+    names = [r.name for r in job.robots] or proposed_names(count)
+    if names:  # a cell writes a folder per robot (docs/model.md §26)
+        from ..io.paint_cell_files import cell_outputs
+
+        files, stale = cell_outputs(out, args.format, names)
+        files = (*files, out / "robots.toml") if count is not None else files
+        check_outputs(*files, folders=(out,))
+        refuse_inputs(args, *files, *stale, also=[
+            ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
+            ("the actuators", job.actuators)])
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
     act = _actuators(args, job)
+    options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
+                           compliance=not args.no_compliance)
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
-        result = paint(load_robot(args), job, act,
-                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
-                                    compliance=not args.no_compliance))
-    name = result.write(out, args.format)
+        if count is None:
+            result = paint(load_robot(args), job, act, options)
+        else:
+            robots, result = paint_layout(count, load_robot(args), job, act, options)
+    kind = result.kind
+    with all_or_nothing():
+        name = result.write(out, args.format)
+        if count is not None:
+            write_layout(robots, out, count, job)
     rep = result.report.to_dict()
     if kind == "panel":
         lines = summary_lines(rep, act.names)
     elif kind == "part":
         lines = part_summary_lines(rep, act.names)
+    elif kind.startswith("cell"):
+        from .paint_line import cell_lines
+
+        lines = cell_lines(rep, act.names)
     else:
         from .paint_line import line_lines, line_summary_lines
 
@@ -66,7 +98,8 @@ def run(args) -> int:
     if "compliance" in rep:  # docs/model.md §27.7
         lines.append(compliance_line(rep["compliance"]))
     print("\n".join(lines))
-    say_written(out, name)
+    say_written(out, name, [r.robot.name for r in result.plan.robots]
+                if kind.startswith("cell") else ())
     return 0
 
 
@@ -104,13 +137,15 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--job", type=name, required=True, metavar="JOB.toml",
                    help="the paint job (see examples/paint.toml; a part's mesh: "
                         "examples/parts/*.toml; a panel on a moving line: "
-                        "examples/line.toml, a part: examples/line_part.toml)")
+                        "examples/line.toml, a part: examples/line_part.toml; a cell of "
+                        "robots: examples/cell.toml)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
                    help="motor ratings (default: the job's actuators, else the ratings of "
                         "examples/actuators.toml, shipped in the package)")
     p.add_argument("--out", type=name, default="paint", metavar="DIR",
                    help="output folder: path.csv, thickness.csv|parquet, paint.json, "
-                        "thickness.png (and film.ply for a part)")
+                        "thickness.png (and film.ply for a part); a cell: NAME/path.csv per "
+                        "robot")
     p.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="thickness table format")
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
@@ -123,3 +158,8 @@ def add_parser(sub, parents) -> None:
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
                         "§24)")
+    p.add_argument("--robots", type=robots_arg, default=None, metavar="N|auto",
+                   help="a job with [line] and no [[robot]]: propose N robots (1..16) for the "
+                        "part, stacked along the line (or auto: the fewest that paint it), "
+                        "plan with them and write DIR/robots.toml (docs/model.md §26.5; "
+                        "default: the job's robots, else one at the origin)")

@@ -20,9 +20,12 @@ def spacing(rule, job, resolution) -> float:
         raise UsageError(f"--resolution: {exc}") from None
 
 
-def say_written(out: Path, table: Path) -> None:
-    """The line on standard error naming what paint wrote in ``out``."""
-    print(f"wrote {out}/path.csv, {table.name}, film.ply, paint.json, thickness.png",
+def say_written(out: Path, table: Path, robots=()) -> None:
+    """The line on standard error naming what paint wrote in ``out`` (a cell: a path.csv in
+    each robot's folder)."""
+    paths = (", ".join(f"{out}/{r}/path.csv" for r in robots) if robots else
+             f"{out}/path.csv")
+    print(f"wrote {paths}, {table.name}, film.ply, paint.json, thickness.png",
           file=sys.stderr)
 
 

@@ -35,6 +35,46 @@ def line_summary_lines(rep: dict, names) -> list[str]:
     ]
 
 
+def cell_lines(rep: dict, names) -> list[str]:
+    """The lines ``paint`` prints for a cell (docs/model.md §26): the line, the film, the
+    seams, each robot's zone, start, program and motors, the clearances."""
+    ln, th = rep["line"], rep["thickness"]
+    lines = [
+        f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
+        f"cycle {ln['cycle']:.3f} s (robot {ln['slowest_robot']!r}, the slowest), pitch "
+        f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour; upper bound "
+        f"{ln['upper_bound']:.4g} m/s",
+        f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
+        f"(target {rep['target'] * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area "
+        f"within ±5 %, {100 * th['within_10pct']:.2f} % within ±10 %"]
+    lines += [f"seam at {s['at']:.4f} m: film {s['min']:.4f}–{s['max']:.4f} of the target "
+              f"within ±{s['band_m'] * 1e3:.0f} mm" for s in rep["seams"]]
+    for r in rep["robots"]:
+        z = r["zone"]
+        lo = "edge" if z["lo"] is None else f"{z['lo']:.4f}"
+        hi = "edge" if z["hi"] is None else f"{z['hi']:.4f}"
+        use = r["motors"]
+        peak = max(use[n]["peak_torque"] for n in names)
+        rms = max(use[n]["rms_torque"] for n in names)
+        lines.append(f"robot {r['name']!r}: zone {lo}..{hi} m, starts {r['start']:.3f} s, "
+                     f"program {r['program_time']:.3f} s, cycle {r['cycle']:.3f} s, motors "
+                     f"≤ {100 * peak:.0f} % of peak torque, ≤ {100 * rms:.0f} % RMS")
+    c = rep["clearance"]
+    if c.get("gun_to_part_m") is not None:
+        lines.append(f"gun body {c['gun_to_part_m'] * 1e3:.1f} mm from the part at its "
+                     f"closest (robot {c['gun_robot']!r})")
+    if c.get("to_part_m") is not None:
+        lines.append(f"the links of robot {c['robot']!r} {c['to_part_m'] * 1e3:.1f} mm from the "
+                     f"part at their closest (t = {c['robot_at_s']:.2f} s)")
+    if c.get("between_robots_m") is not None:
+        lines.append(f"robots {c['pair'][0]!r} and {c['pair'][1]!r} "
+                     f"{c['between_robots_m'] * 1e3:.1f} mm apart at their closest "
+                     f"(t = {c['pair_at_s']:.2f} s)")
+    lines.append(f"planned in {rep['timings']['plan']:.2f} s, film in "
+                 f"{rep['timings']['film']:.2f} s")
+    return lines
+
+
 def riding(line, folder: Path) -> dict:
     """The viewer's moving nodes of a line's paint folder: the film (a panel's or a part's)
     carried by the line (translation speed·t·direction at path time t, docs/model.md §24),

@@ -21,11 +21,12 @@ from .common import (
 def _inputs(args) -> list:
     """(what, path) of the files ``view`` reads besides the shared options' (the paint
     folder's, the workspace map's): never one of its outputs."""
+    from .view_cell import cell_inputs
     from .view_paint import paint_inputs
 
     files = []
     if args.paint is not None:
-        files += paint_inputs(args.paint)
+        files += paint_inputs(args.paint) + cell_inputs(args.paint)
     if args.workspace is not None:
         files += [(f"the workspace map's {n}", Path(args.workspace) / n)
                   for n in ("workspace.csv", "workspace.units.json", "workspace.parquet")]
@@ -40,10 +41,14 @@ def run(args) -> int:
         refuse_inputs(args, args.html, also=_inputs(args))
     overlay = None
     if args.paint is not None:
+        from .view_cell import is_cell, view_cell
         from .view_paint import paint_overlay
 
         if args.trajectory != "thesis":
             raise UsageError("--paint DIR shows DIR/path.csv: give no --trajectory with it")
+        if is_cell(Path(args.paint)):  # a cell: DIR/<name>/path.csv each
+            return view_cell(args, None if args.workspace is None else
+                             lambda paint: _with_workspace(paint, args.workspace))
         args.trajectory = str(Path(args.paint) / "path.csv")
         overlay = paint_overlay(Path(args.paint))
     if args.workspace is not None:  # read before solving: a bad folder fails at once
@@ -100,7 +105,8 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--frames", action="store_true", help="also draw the tool and platform frames")
     p.add_argument("--paint", type=name, metavar="DIR", default=None,
                    help="show a paint output folder (pollard-pin paint --out DIR): the robot "
-                        "running DIR/path.csv and the panel or part coloured by film "
+                        "running DIR/path.csv (a cell: every robot at its base running "
+                        "DIR/<name>/path.csv) and the panel or part coloured by film "
                         "thickness, framed by the default view, with the colour scale's "
                         "legend (default: no film)")
     p.add_argument("--workspace", type=name, metavar="DIR", default=None,

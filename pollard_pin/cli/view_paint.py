@@ -20,7 +20,8 @@ def paint_inputs(folder) -> list[tuple[str, Path]]:
     return [(f"the paint folder's {n}", Path(folder) / n) for n in FILES]
 
 
-def _report(folder: Path) -> dict:
+def paint_report(folder: Path) -> dict:
+    """DIR/paint.json, a table with a film target > 0 (one line otherwise)."""
     from ..io.table import ResultFileError
     from ..model.values import clip
 
@@ -38,13 +39,14 @@ def _report(folder: Path) -> dict:
     return report
 
 
-def paint_overlay(folder: Path):
-    """The film of a ``paint`` output folder as a viewer overlay (``view --paint``)."""
+def paint_overlay(folder: Path, path: str = "path.csv"):
+    """The film of a ``paint`` output folder as a viewer overlay (``view --paint``); ``path``
+    the program it needs (a cell's: "<name>/path.csv")."""
     found = [p for p in (folder / "thickness.csv", folder / "thickness.parquet") if p.is_file()]
-    if not (folder / "path.csv").is_file() or not found or not (folder / "paint.json").is_file():
-        raise UsageError(f"--paint {folder}: not a paint output folder (expected path.csv, "
+    if not (folder / path).is_file() or not found or not (folder / "paint.json").is_file():
+        raise UsageError(f"--paint {folder}: not a paint output folder (expected {path}, "
                          "thickness.csv or .parquet and paint.json from pollard-pin paint)")
-    report = _report(folder)
+    report = paint_report(folder)
     job = report.get("job")
     if isinstance(job, dict) and "part" in job:
         draw = _part_overlay(folder, report["target"])

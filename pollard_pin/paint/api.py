@@ -132,7 +132,11 @@ class PaintResult:
     def write(self, folder: str | Path, format: str = "csv") -> Path:
         """Write path.csv, thickness.csv|parquet, film.ply, paint.json and thickness.png in
         ``folder``, every one or none, as ``pollard-pin paint`` does; the table's path."""
-        # the one call up the layers: paint's files are written by io's writers
+        # the calls up the layers: paint's files are written by io's writers
+        if self.kind.startswith("cell"):  # a folder per robot (docs/model.md §26)
+            from ..io.paint_cell_files import write_cell
+
+            return write_cell(self, Path(folder), format)
         from ..io.paint_files import write_paint
 
         return write_paint(self, Path(folder), format)
@@ -171,7 +175,7 @@ def paint(robot, job, actuators: Actuators | None = None,
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
     painter = {"panel": _panel, "part": _part, "line panel": _line_panel,
-               "line part": _line_part}.get(kind)
+               "line part": _line_part, "cell panel": _cell, "cell part": _cell}.get(kind)
     if painter is None:
         raise JobKindError(f"{job.source}: a {kind} is not planned yet")
     plan, film, rep = painter(robot, job, act, options, res)
@@ -267,6 +271,56 @@ def _line_part(robot, job, act, options, res):
                pollard_pin=__version__)
     rep["line"]["searched"] = options.max_line_speed
     return plan, PaintFilm(pts, film, res, painted=painted, efficiency=efficiency), rep
+
+
+def _cell(robot, job, act, options, res):
+    """A cell (docs/model.md §26): every robot's program, the film of all on the part."""
+    from .cell.plan import max_cell_speed, plan_cell_job
+    from .cell.report import cell_report
+
+    part = None
+    if isinstance(job, PartJob):
+        from .film.points import check_film_points
+        from .spray.occlusion import load_painted_part
+
+        part = load_painted_part(job)
+        check_film_points(part, res)
+    t0 = time.perf_counter()
+    if options.max_line_speed:
+        _, plan = max_cell_speed(robot, job, act, options.speed_resolution, part)
+    else:
+        plan = plan_cell_job(robot, job, act, part)
+    t1 = time.perf_counter()
+    if part is None:
+        from .film.cell import cell_panel_film
+
+        U, V, pts, film = cell_panel_film(plan, res)
+        flat = pts.reshape(-1, 3)
+        areas = _grid_areas(U, V)
+        rep = cell_report(plan, flat, None, film.thickness, areas, act,
+                          {"grid": {"nu": len(U), "nv": len(V), "resolution": res}})
+        pf = PaintFilm(pts, film, res, grid=(U, V))
+    else:
+        from .film.cell import cell_part_film
+
+        pts, film, painted, efficiency = cell_part_film(plan, res)
+        rep = cell_report(plan, pts.points[painted], pts.normals[painted],
+                          film.thickness[painted], pts.areas[painted], act,
+                          {"transfer_efficiency": efficiency,
+                           "film_points": {"painted": int(np.count_nonzero(painted)),
+                                           "total": len(pts), "resolution": res}})
+        pf = PaintFilm(pts, film, res, painted=painted, efficiency=efficiency)
+    rep.update(timings={"plan": t1 - t0, "film": time.perf_counter() - t1},
+               pollard_pin=__version__)
+    rep["line"]["searched"] = options.max_line_speed
+    return plan, pf, rep
+
+
+def _grid_areas(U, V) -> np.ndarray:
+    """A panel grid point's share of the area (trapezoid weights)."""
+    from ..dynamics.averages import trapezoid_weights
+
+    return np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()
 
 
 __all__ = ["KINDS", "PaintFilm", "PaintOptions", "PaintReport", "PaintResult",

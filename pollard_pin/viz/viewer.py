@@ -263,11 +263,23 @@ def _triad_object(scale: float):
                            mg.LineBasicMaterial(vertexColors=True, linewidth=3))
 
 
-def _floor_grid(size: float = FLOOR_SIZE, step: float = 0.1, z: float = 0.0):
+def aim_camera(vis, target, offset) -> None:
+    """The orbit centre at ``target``, the camera at ``offset`` from it (world, m): MeshCat
+    0.3's orbit controls aim at the origin, so the drawn world is shifted by −target."""
+    shift = pin.SE3(np.eye(3), -np.asarray(target, float)).homogeneous
+    for node in ("/meshcat", "/Axes"):
+        vis[node].set_transform(shift)
+    off = np.asarray(offset, float)  # in MeshCat's y-up frame: (x, y, z) = (a, −c, b)
+    vis["/Cameras/default/rotated/<object>"].set_property(
+        "position", [float(off[0]), float(off[2]), float(-off[1])])
+
+
+def floor_grid(size: float = FLOOR_SIZE, step: float = 0.1, z: float = 0.0,
+               origin=FLOOR_ORIGIN):
     import meshcat.geometry as mg
 
-    xs = np.arange(FLOOR_ORIGIN[0], FLOOR_ORIGIN[0] + size + 1e-9, step)
-    ys = np.arange(FLOOR_ORIGIN[1], FLOOR_ORIGIN[1] + size + 1e-9, step)
+    xs = np.arange(origin[0], origin[0] + size + 1e-9, step)
+    ys = np.arange(origin[1], origin[1] + size + 1e-9, step)
     seg = [((x, ys[0], z), (x, ys[-1], z)) for x in xs] + [((xs[0], y, z), (xs[-1], y, z))
                                                           for y in ys]
     pts = np.array([p for s in seg for p in s], dtype=np.float32).T
@@ -377,20 +389,12 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
     vis["/Background"].set_property("top_color", list(top))
     vis["/Background"].set_property("bottom_color", list(bottom))
     if camera:
-        # MeshCat 0.3's orbit controls always aim at the world origin. Shift the drawn world
-        # (our nodes, grid and axes) by −target so that the orbit centre is the target.
-        target = CAMERA_TARGET if view is None else view.centre
-        shift = pin.SE3(np.eye(3), -np.asarray(target)).homogeneous
-        for node in ("/meshcat", "/Axes"):
-            vis[node].set_transform(shift)
-        off = np.asarray(CAMERA_OFFSET if view is None else view.offset)
-        # The camera lives in MeshCat's y-up "rotated" frame: world (x, y, z) = (a, −c, b).
-        vis["/Cameras/default/rotated/<object>"].set_property(
-            "position", [float(off[0]), float(off[2]), float(-off[1])])
+        aim_camera(vis, CAMERA_TARGET if view is None else view.centre,
+                   CAMERA_OFFSET if view is None else view.offset)
 
     # MeshCat's 20 m grid is replaced by a 1 m floor grid, 0.1 m squares, under the robot.
     vis["/Grid"].set_property("visible", False)
-    vis[f"{ROOT}/floor"].set_object(_floor_grid(z=FLOOR_Z))
+    vis[f"{ROOT}/floor"].set_object(floor_grid(z=FLOOR_Z))
 
     path_node = f"{ROOT}/tool_path"
     pts = np.asarray(ik.poses[:, :3], dtype=np.float32).T
@@ -456,9 +460,10 @@ def write_html(path, robot, ik, **kwargs) -> Path:
 
 
 def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.stdout,
-          ready=None, overlay=None) -> None:
-    """Start MeshCat's server on localhost, draw the scene and serve until interrupted
-    (Ctrl-C or SIGTERM); the server process is stopped on the way out."""
+          ready=None, overlay=None, build=None) -> None:
+    """Start MeshCat's server on localhost, draw the scene (``build(vis)`` -> Scene, default
+    :func:`build_scene` of ``robot`` along ``ik``) and serve until interrupted (Ctrl-C or
+    SIGTERM); the server process is stopped on the way out."""
     from contextlib import redirect_stdout
 
     meshcat = _meshcat()
@@ -474,7 +479,8 @@ def serve(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS, out=sys.
     except ValueError:
         previous = None
     try:
-        scene = build_scene(vis, robot, ik, frames=frames, fps=fps, overlay=overlay)
+        scene = (build_scene(vis, robot, ik, frames=frames, fps=fps, overlay=overlay)
+                 if build is None else build(vis))
         print(f"MeshCat viewer: {window.web_url}", file=out)
         print(f"(zmq {window.zmq_url}; {len(scene.geometry_nodes)} shapes, "
               f"{scene.duration:.3g} s animation at {scene.fps:g} key frames/s; "

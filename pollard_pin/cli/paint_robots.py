@@ -1,0 +1,82 @@
+"""``paint --robots N|auto``: a layout of N robots (or the fewest that paint) proposed for a
+job on a line, planned, and written as ``DIR/robots.toml`` beside the outputs (docs/model.md
+§26.5)."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from .common import UsageError
+
+
+def robots_arg(text: str) -> str:
+    """--robots' value as given: checked by :func:`robot_count` (its refusal names it)."""
+    return text
+
+
+def robot_count(text: str | None) -> int | str | None:
+    """N in 1..MAX_ROBOTS, 'auto', or None (no --robots); one line otherwise."""
+    from ..paint.cell.robots import MAX_ROBOTS
+
+    if text is None:
+        return None
+    t = text.strip()
+    if t == "auto":
+        return t
+    n = int(t) if t.isascii() and t.isdigit() and len(t) < 6 else 0
+    if not 1 <= n <= MAX_ROBOTS:
+        raise UsageError(f"--robots {text[:20]}: expected 1..{MAX_ROBOTS} or auto")
+    return n
+
+
+def proposed_names(count) -> list[str]:
+    """The folders a proposal of ``count`` robots may write (auto: up to MAX_ROBOTS), named
+    as :func:`pollard_pin.paint.cell.layout.propose_layout` names them."""
+    from ..paint.cell.layout import LayoutOptions
+    from ..paint.cell.robots import MAX_ROBOTS
+
+    n = 0 if count is None else MAX_ROBOTS if count == "auto" else count
+    return [f"{LayoutOptions().prefix}{i + 1}" for i in range(n)]
+
+
+def check_job(count, job) -> None:
+    """--robots needs a job on a line without its own [[robot]] tables."""
+    if count is None:
+        return
+    if job.robots:
+        raise UsageError(f"--robots: {job.source} places its own {len(job.robots)} robot(s) "
+                         "([[robot]] tables): drop them or drop --robots")
+    if job.line is None:
+        raise UsageError(f"--robots: {job.source} has no [line] table: a cell's robots paint "
+                         "the part as the line carries it past them")
+
+
+def paint_layout(count, robot, job, act, options):
+    """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest."""
+    from dataclasses import replace
+
+    from ..paint.api import paint
+    from ..paint.cell.layout import fewest_robots, propose_layout
+
+    if count == "auto":
+        return fewest_robots(robot, job, act, options)
+    robots = propose_layout(robot, job, count)
+    return robots, paint(robot, replace(job, robots=robots), act, options)
+
+
+def write_layout(robots, out: Path, count, job) -> Path:
+    """robots.toml in ``out`` (inside the command's all-or-nothing block), one line said."""
+    from ..io.robots_toml import write_robots
+
+    how = "the fewest robots that paint" if count == "auto" else f"{count} robot(s)"
+    path = write_robots(robots, out / "robots.toml", f"[[robot]] tables proposed by "
+                        f"pollard-pin paint --robots {count} ({how}) for {job.source}\n"
+                        "(docs/model.md §26.5): add them to the job to plan with them")
+    print(f"proposed {len(robots)} robot(s): " + ", ".join(
+        f"{r.name} at ({', '.join(f'{c:.3f}' for c in r.base)}) m" for r in robots),
+        file=sys.stderr)
+    return path
+
+
+__all__ = ["check_job", "paint_layout", "proposed_names", "robot_count", "robots_arg",
+           "write_layout"]

@@ -1,0 +1,16 @@
+"""A cell's [[robot]] tables written (io/robots_toml.py) read back by the job reader as the
+same robots, bit for bit."""
+import tomllib
+
+from pollard_pin.io.robots_toml import write_robots
+from pollard_pin.paint.cell.robots import CellRobot, robots_from_tables
+
+
+def test_robots_round_trip(tmp_path):
+    robots = (CellRobot("robot1", (0.0, 0.0, -0.025)),
+              CellRobot("far_2", (1.4, 0.77, 0.1 + 0.2), (180.0, -0.0, 12.345678901234567)))
+    path = write_robots(robots, tmp_path / "robots.toml", "proposed\nfor a test")
+    text = path.read_text()
+    assert text.startswith("# proposed\n# for a test\n") and "-0.0," not in text
+    back = robots_from_tables(str(path), tomllib.loads(text)["robot"])
+    assert back == robots
