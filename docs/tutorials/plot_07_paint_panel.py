@@ -64,17 +64,17 @@ for name, use in rep.motors.items():
 # ``result.plan.trajectory`` is the program, a :class:`pollard_pin.Trajectory` (on a
 # still panel the gun sprays throughout; a part's program adds a ``spray`` trigger column).
 nv, nu = result.film.points.shape[:2]
-film = result.film.thickness.reshape(nv, nu) * 1e6
+deviation = (result.film.thickness.reshape(nv, nu) / rep.target - 1) * 100
 pts = result.film.points
 traj = result.plan.trajectory
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.6))
-im = ax1.pcolormesh(pts[..., 1], pts[..., 2], film, cmap="RdBu_r",
-                    vmin=22.5, vmax=27.5, shading="auto")
-fig.colorbar(im, ax=ax1, label="film [µm]")
+im = ax1.pcolormesh(pts[..., 1], pts[..., 2], deviation, cmap="RdBu_r",
+                    vmin=-1, vmax=1, shading="auto")
+fig.colorbar(im, ax=ax1, label="film − target [%]")
 ax1.set_aspect("equal")
 ax1.set_xlabel("y [m]")
 ax1.set_ylabel("z [m]")
-ax1.set_title("film on the panel (target 25 µm ± 10 %)")
+ax1.set_title("film on the panel, edges included")
 sc = ax2.scatter(traj.poses[:, 1], traj.poses[:, 2], c=traj.t, s=2, cmap="viridis")
 fig.colorbar(sc, ax=ax2, label="t [s]")
 ax2.set_aspect("equal")

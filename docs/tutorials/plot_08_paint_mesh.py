@@ -82,24 +82,26 @@ print(f"transfer efficiency {result.film.efficiency:.0%}; motors at most "
 # %%
 # The film on the part, and the gun's yaw
 # ---------------------------------------
-# Each film point lies on a face of the mesh; the gun turns to stay normal to the surface
-# (ψ, the first ZYZ angle, is its yaw here), on only over the passes (``plan.spray``, the
+# Each film point lies on a face of the mesh (coloured by its deviation from the target);
+# the gun turns to stay normal to the surface (with θ = 0 the ZYZ angles make a turn about
+# z by ψ + φ: the gun's yaw), on only over the passes (``plan.spray``, the
 # trigger that ``path.csv`` writes as its ``spray`` column).
 pts = result.film.points.points[result.film.painted]
-film = result.film.thickness[result.film.painted] * 1e6
+deviation = (result.film.thickness[result.film.painted] / rep.target - 1) * 100
 traj = result.plan.trajectory
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.6))
-sc = ax1.scatter(pts[:, 1], pts[:, 2], c=film, s=3, cmap="RdBu_r", vmin=22.5, vmax=27.5)
-fig.colorbar(sc, ax=ax1, label="film [µm]")
+sc = ax1.scatter(pts[:, 1], pts[:, 2], c=deviation, s=3, cmap="RdBu_r", vmin=-2, vmax=2)
+fig.colorbar(sc, ax=ax1, label="film − target [%]")
 ax1.set_aspect("equal")
 ax1.set_xlabel("y [m]")
 ax1.set_ylabel("z [m]")
 ax1.set_title("film on the painted faces")
-ax2.plot(traj.t, np.degrees(traj.poses[:, 3]), color="0.6", lw=1, label="gun off")
-ax2.plot(traj.t, np.where(result.plan.spray > 0, np.degrees(traj.poses[:, 3]), np.nan),
+yaw = np.degrees(traj.poses[:, 3] + traj.poses[:, 5])
+ax2.plot(traj.t, yaw, color="0.6", lw=1, label="gun off")
+ax2.plot(traj.t, np.where(result.plan.spray > 0, yaw, np.nan),
          color="C3", label="gun on")
 ax2.set_xlabel("t [s]")
-ax2.set_ylabel("ψ [deg]")
+ax2.set_ylabel("yaw ψ + φ [deg]")
 ax2.legend(fontsize=8)
 fig.tight_layout()
 plt.show()
