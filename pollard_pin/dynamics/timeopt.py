@@ -318,7 +318,7 @@ def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 @dataclass(frozen=True)
 class Options:
-    """How :func:`time_optimal_segment` solves, validated once: ``per_interval`` check points per
+    """How ``time_optimal_segment`` solves, validated once: ``per_interval`` check points per
     interval to start with, the worst utilisation ``target`` accepted between them, the path
     rates at the ends (rest to rest by default; ``end_rates``: the trajectory's own rates at
     its first and last samples, on whichever parameter the path is traversed by, so that the

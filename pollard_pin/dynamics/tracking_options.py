@@ -30,7 +30,22 @@ MAX_STEPS = 50_000_000
 
 @dataclass(frozen=True)
 class MeasurementNoise:
-    """Gaussian noise on the measured actuator angles [rad] and rates [rad/s], seeded."""
+    """Gaussian noise on the measured actuator angles and rates, seeded.
+
+    Parameters
+    ----------
+    position : float, optional
+        Standard deviation of the angle noise [rad], ≥ 0 (default 0).
+    velocity : float, optional
+        Standard deviation of the rate noise [rad/s], ≥ 0 (default 0).
+    seed : int or None, optional
+        The random generator's seed (default 0; None: unseeded).
+
+    Raises
+    ------
+    pollard_pin.dynamics.control.ControlError
+        A standard deviation that is negative or not finite.
+    """
 
     position: float = 0.0
     velocity: float = 0.0
@@ -51,7 +66,7 @@ class TrackingOptions:
     :class:`Controller` callable; it sees the sensed state at each tick. ``errors``: how the
     plant differs from the robot (payload, mass error, losses). ``gains``: the built-in
     controllers'. ``dt``: longest RK4 step [s], at most ``control_period`` [s] (default:
-    :data:`DT` or the period, the shorter; :attr:`step`); the torque is computed at each tick
+    ``DT`` (1 ms) or the period, the shorter; :attr:`step`); the torque is computed at each tick
     and held. ``torque_limit`` [N·m]: a scalar or one per actuator, |τ| clipped to it
     (:attr:`limits`). ``noise``: measurement noise on the actuator angles and rates.
     ``start``: None (on the path, at the reference's state) or a closed configuration at rest
@@ -96,7 +111,7 @@ class TrackingOptions:
 
     @property
     def step(self) -> float:
-        """The longest RK4 step [s]: ``dt``, or :func:`default_step` of the period."""
+        """The longest RK4 step [s]: ``dt``, or ``default_step`` of the period."""
         return default_step(self.control_period) if self.dt is None else self.dt
 
     @property
