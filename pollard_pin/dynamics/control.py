@@ -205,7 +205,22 @@ class ComputedTorque:
     (:func:`~pollard_pin.dynamics.inverse.reduced_dynamics`) with the joint ``losses`` the
     controller knows. With an exact model the actuator errors obey ë + 2ζω ė + ω² e = 0
     wherever the robot is, on the reference or not. θ̈_d is held over each control period as
-    the mean of its ends (as the feedforward, :class:`DesiredTrajectory`)."""
+    the mean of its ends (as the feedforward, :class:`DesiredTrajectory`).
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):
@@ -235,7 +250,22 @@ class FeedforwardPD:
     scaled by the nominal closed-loop inertia at the measured configuration (docs/model.md
     §18). Off the reference it does not cancel the dynamics at the measured state.
     ``losses``: the rotor inertia the controller knows (in M_red; the feedforward's losses
-    are ``desired``'s)."""
+    are ``desired``'s).
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):
@@ -254,7 +284,22 @@ class PDGravity:
     """τ = g_red(q) + K_p e + K_d ė: the baseline. g_red is the nominal closed-loop gravity
     torque at the measured configuration; K_p = ω² M₀, K_d = 2ζω M₀ with M₀ the nominal
     closed-loop inertia at the reference's start (constant gains; rotor inertia of ``losses``
-    included)."""
+    included).
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):

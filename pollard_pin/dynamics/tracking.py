@@ -120,7 +120,11 @@ class TrackingResult:
     max_closure_residual : float
         The largest loop residual over every control tick [m].
     steps : int
-        RK4 steps taken; ``wall`` the seconds spent integrating.
+        RK4 steps taken.
+    wall : float
+        Seconds spent integrating.
+    settings : dict
+        The run's settings (controller, gains, steps, errors), for the table's metadata.
 
     :meth:`columns` is the ``pollard-pin simulate`` table, :meth:`summary` its figures.
     """

@@ -76,6 +76,10 @@ class PaintJob:
         The conveyor (docs/model.md §24); None: a still panel.
     clearance : float or None
         The gun body's smallest distance to the part [m] (None: 10 mm).
+    source : str
+        The job file (for messages).
+    robots : tuple of pollard_pin.paint.cell.robots.CellRobot
+        A cell's robots (docs/model.md §26); empty: one robot at the origin.
     """
 
     center: tuple[float, float, float]

@@ -104,10 +104,24 @@ class PlaceOptions:
 
 @dataclass(frozen=True)
 class PlaceResult:
-    """The placed ``job`` (its position and rotation set), the ``turn`` about the facing
-    axis it took [deg], the ``margin`` [m] (how far the part can move along any world axis
-    before a gun pose leaves the reach), the gun ``poses`` checked and the ``turns`` tried
-    with each one's coarse margin [m] (negative: none fits)."""
+    """What :func:`~pollard_pin.place` returns.
+
+    Attributes
+    ----------
+    job : pollard_pin.paint.job.PartJob
+        The placed job (its position and rotation set).
+    turn : float
+        The turn about the facing axis it took [deg].
+    margin : float
+        How far the part can move along any world axis before a gun pose leaves the reach
+        [m].
+    poses : int
+        The gun poses checked.
+    turns : dict
+        Each turn tried [deg] and its coarse margin [m] (negative: none fits).
+
+    ``write(path)`` writes the placed job as TOML (``paint --job`` reads it as is).
+    """
 
     job: PartJob
     turn: float

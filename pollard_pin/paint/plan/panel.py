@@ -71,10 +71,26 @@ class PaintPlan(PlanResult):
         The passes' positions across the passes [m].
     spacing : float
         Pass spacing [m].
-    speed : float
-        Pass speed [m/s]; ``max_speed`` the fastest the motors allow.
+    speed, max_speed : float
+        Pass speed [m/s], and the fastest the motors allow.
     coats : int
         Coats.
+    frame : pollard_pin.paint.target.panel.PanelFrame
+        The panel's frame (centre, u, v, normal).
+    segments : pollard_pin.paint.passes.raster.Segments
+        The program's segments (passes, ramps, turnarounds) and their durations.
+    half_length : float
+        Passes run at constant speed over ``|U| ≤ half_length`` [m].
+    horizontal : bool
+        Horizontal (True) or vertical passes.
+    spray : ndarray
+        The trigger per sample (all 1 here).
+    ratios : dict
+        Each motor's use of each rating (peak_torque, rms_torque, speed).
+    timings : dict
+        Seconds spent planning.
+    clearance : object
+        The gun body's smallest distance to the panel and where.
 
     ``cycle_time`` [s], ``passes`` and ``lower_bound`` (the painting-only bound [s]) are
     properties.
