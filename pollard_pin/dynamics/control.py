@@ -207,6 +207,9 @@ class ComputedTorque:
     wherever the robot is, on the reference or not. θ̈_d is held over each control period as
     the mean of its ends (as the feedforward, :class:`DesiredTrajectory`).
 
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
     Parameters
     ----------
     robot : Robot
@@ -217,9 +220,6 @@ class ComputedTorque:
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
         The joint losses the controller knows (default none).
-
-    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
-    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
     """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
@@ -252,6 +252,9 @@ class FeedforwardPD:
     ``losses``: the rotor inertia the controller knows (in M_red; the feedforward's losses
     are ``desired``'s).
 
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
     Parameters
     ----------
     robot : Robot
@@ -262,9 +265,6 @@ class FeedforwardPD:
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
         The joint losses the controller knows (default none).
-
-    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
-    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
     """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
@@ -286,6 +286,9 @@ class PDGravity:
     closed-loop inertia at the reference's start (constant gains; rotor inertia of ``losses``
     included).
 
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
     Parameters
     ----------
     robot : Robot
@@ -296,9 +299,6 @@ class PDGravity:
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
         The joint losses the controller knows (default none).
-
-    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
-    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
     """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),

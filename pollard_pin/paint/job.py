@@ -79,7 +79,7 @@ class PaintJob:
     source : str
         The job file (for messages).
     robots : tuple of pollard_pin.paint.cell.robots.CellRobot
-        A cell's robots (docs/model.md §26); empty: one robot at the origin.
+        A cell's robots; empty: one robot at the origin.
     """
 
     center: tuple[float, float, float]
