@@ -1,10 +1,13 @@
 """The ``Examples`` of the public names' docstrings run and print what they say (doctest).
 
-Every name of ``pollard_pin.__all__`` (and the methods of the public classes) is searched for
-``>>>`` examples; each docstring runs as one doctest in a temporary folder, so an example may
-write files. A wrong example fails with the doctest's report (expected vs got).
+Every name of ``pollard_pin.__all__`` (and the methods of the public classes), and the
+cross-check modules, are searched for ``>>>`` examples; each docstring runs as one doctest in
+a temporary folder, so an example may write files. A wrong example fails with the doctest's
+report (expected vs got). Every public name's parameters must appear in its numpydoc
+``Parameters`` or ``Attributes`` section.
 """
 import doctest
+import importlib
 import inspect
 
 import pytest
@@ -23,6 +26,10 @@ def _public_objects():
             yield name, obj
 
 
+# Modules whose every docstring example runs too: the engines the tests compare against.
+MODULES = ("pollard_pin.crosscheck.euler_lagrange", "pollard_pin.crosscheck.compare")
+
+
 def _doctests():
     finder = doctest.DocTestFinder(exclude_empty=True)
     found = {}
@@ -30,6 +37,10 @@ def _doctests():
         for test in finder.find(obj, name, module=inspect.getmodule(obj)):
             if test.examples:
                 found.setdefault(f"{obj.__module__}.{test.name}", test)
+    for module in map(importlib.import_module, MODULES):
+        for test in finder.find(module):
+            if test.examples:
+                found.setdefault(test.name, test)
     return found
 
 
