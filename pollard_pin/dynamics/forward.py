@@ -50,7 +50,7 @@ def robot_copy(robot: Robot, model: pin.Model | None = None,
 
 
 def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
-    """Joint accelerations under actuator torques, with the loops closed (docs/model.md §13).
+    """Joint accelerations under actuator torques, with the loops closed (docs/model.md §14).
 
     ``losses`` subtract friction and add the rotor inertia (armature) to the mass matrix: the
     inverse of the inverse dynamics with the same losses. With rotor inertia the solve runs on

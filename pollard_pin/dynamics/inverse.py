@@ -198,7 +198,7 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
 
     One RNEA (and, with ``energies``, K and U) per sample; the ``[Sᵀ Jcᵀ]`` systems are solved
     stacked (passive rows first, 6 × 6), reusing the IK's constraint Jacobians when it has them
-    (docs/model.md §10).
+    (docs/model.md §13).
 
     Parameters
     ----------
