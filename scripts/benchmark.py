@@ -9,7 +9,7 @@ Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints 
                                 [--big 1000001]
                                 [--no-loads] [--no-simulate] [--no-size]
                                 [--no-startup] [--startup-source DIR] [--no-paint]
-                                [--no-workspace]
+                                [--no-workspace] [--no-stiffness]
 """
 from __future__ import annotations
 
@@ -265,6 +265,36 @@ def workspace_section(robot, repeats: int) -> None:
               f"{1e6 * min(times) / n:8.2f}")
 
 
+def stiffness_section(robot, sizes, repeats: int) -> None:
+    """The whole ``stiffness`` run (docs/model.md §27) in process, streamed to a CSV: the IK
+    windows, the stiffness of each sample and the writing, one thread (target ≤ 20 µs per
+    sample); beside it the IK windows alone. Best of ``repeats``, wall and CPU time."""
+    from pollard_pin.run import StreamOptions, solve_windows
+    from pollard_pin.run.stiffness import stream_stiffness
+
+    drives = pp.load_actuators(REPO / "examples" / "actuators.toml")
+    print(f"\nstiffness run, thesis path, one thread, best of {repeats} [µs/sample, wall / CPU]")
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in sizes:
+            traj = pp.ThesisTrajectory(samples=n, home_pose=robot.params.home_pose)
+            stages = {
+                "IK windows alone": lambda traj=traj: sum(1 for _ in solve_windows(
+                    robot, traj, StreamOptions(workers=1), dynamics=False)),
+                "stiffness run, CSV": lambda traj=traj: stream_stiffness(
+                    robot, traj, drives, Path(tmp) / "s.csv", stream=StreamOptions(workers=1)),
+            }
+            for label, fn in stages.items():
+                fn()  # warm-up
+                wall, cpu = [], []
+                for _ in range(repeats):
+                    t0, c0 = time.perf_counter(), time.process_time()
+                    fn()
+                    wall.append(time.perf_counter() - t0)
+                    cpu.append(time.process_time() - c0)
+                print(f"  {n:8d} samples, {label:<22s} {1e6 * min(wall) / n:8.2f} "
+                      f"{1e6 * min(cpu) / n:8.2f}")
+
+
 def cli_run(samples: int, out: str) -> tuple[float, float, str]:
     """``pollard-pin run`` as a user runs it: (wall seconds, peak resident MB, its output)."""
     exe = Path(sys.executable).with_name("pollard-pin")
@@ -396,6 +426,7 @@ def main(argv=None) -> int:
                     help="the project checkout whose start-up is measured (default this one)")
     ap.add_argument("--no-paint", action="store_true", help="skip the paint-planning section")
     ap.add_argument("--no-workspace", action="store_true", help="skip the workspace-map section")
+    ap.add_argument("--no-stiffness", action="store_true", help="skip the stiffness section")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
@@ -452,6 +483,8 @@ def main(argv=None) -> int:
         line_section(robot)
     if not args.no_workspace:
         workspace_section(robot, args.repeats)
+    if not args.no_stiffness:
+        stiffness_section(robot, args.samples, args.repeats)
     if not args.no_cli:
         sizes = (min(args.samples), max(args.samples))
         if sizes[0] == sizes[1]:

@@ -57,16 +57,25 @@ def commands(cli: Path, work: Path) -> None:
         work / "part/path.csv"], work)
     sh([cli, "run", "--samples", "401", "--out", "run.csv"], work)
     need(work / "run.csv", "run")
+    # stiffness on the thesis path and on a paint program's path (docs/model.md §27)
+    sh([cli, "stiffness", "--actuators", ex / "actuators.toml", "--samples", "401", "--out",
+        "stiff.csv"], work)
+    sh([cli, "stiffness", "--actuators", ex / "actuators.toml", "--trajectory",
+        work / "part/path.csv", "--wrench=0,0,-5,0,0,0", "--out", "part_stiff.parquet"], work)
+    for f in ("stiff.csv", "part_stiff.parquet"):
+        need(work / f, "stiffness")
     sh([cli, "urdf", "--out", "p.urdf"], work)
     sh([cli, "info"], work)
     sh([cli, "report", "--no-cross-check"], work)
     sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
+    sh([cli, "simulate", "--trajectory", ex / "figure8.csv", "--actuators",
+        ex / "actuators.toml", "--flexible", "--out", "flex.csv"], work)
     sh([cli, "workspace", "--plane", "x=0.55", "--resolution", "0.02", "--out", "ws"], work)
     sh([cli, "sweep", "--grid", ex / "sweep.toml", "--out", "sweep.csv"], work)
     sh([cli, "plot", "--out", "plots"], work)
     sh([cli, "view", "--html", "v.html"], work)
     sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
-    for f in ("sim.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
+    for f in ("sim.csv", "flex.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
         need(work / f, f)
     # an extra that is not installed: one line and exit 2
     out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))

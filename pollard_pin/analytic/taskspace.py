@@ -66,6 +66,12 @@ def rotation(pose: np.ndarray) -> np.ndarray:
     return R
 
 
+def turn(rx: float, ry: float, rz: float) -> np.ndarray:
+    """R = Rx(rx)·Ry(ry)·Rz(rz) for angles [deg] about the world axes (a part's or a cell
+    robot's base rotation): the tool pose's composition, docs/model.md §2."""
+    return rotation(np.radians([0.0, 0.0, 0.0, ry, rx, rz]))
+
+
 def angles_from_rotation(R: np.ndarray) -> np.ndarray:
     """(ψ, θ, φ) of R = Rx(θ) Ry(ψ) Rz(φ), with ψ in [−π/2, π/2]."""
     psi = np.arctan2(R[..., 0, 2], np.hypot(R[..., 0, 0], R[..., 0, 1]))

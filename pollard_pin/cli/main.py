@@ -30,6 +30,7 @@ from . import (
     run,
     simulate,
     size,
+    stiffness,
     sweep,
     urdf,
     view,
@@ -46,7 +47,7 @@ docs/model.md for the model and its conventions.
 """
 
 COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, place, export,
-            workspace)
+            workspace, stiffness)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -9,9 +9,9 @@ from .common import command, count, name, simulation_table, solve, trajectory_ar
 
 def run(args) -> int:
     from ..viz.plots import FIGURES, LOAD_FIGURES, write_figures
-    from ..viz.simulation import SIMULATION_FIGURES, write_simulation_figures
+    from ..viz.simulation import FLEXIBLE_FIGURES, SIMULATION_FIGURES, write_simulation_figures
 
-    names = SIMULATION_FIGURES if args.simulation else FIGURES + LOAD_FIGURES
+    names = SIMULATION_FIGURES + FLEXIBLE_FIGURES if args.simulation else FIGURES + LOAD_FIGURES
     check_outputs(*(Path(args.out) / f"{n}.png" for n in names), folders=(args.out,))
     if args.simulation:  # the simulation's figures only (docs/model.md §18)
         table = simulation_table(args.simulation)
@@ -34,5 +34,5 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--dpi", type=count(10, 1200), default=100, help="PNG resolution")
     p.add_argument("--simulation", type=name, metavar="SIM.csv", default=None,
                    help="plot this closed-loop simulation (pollard-pin simulate) instead: "
-                        "tracking errors, torques, desired vs actual path (default: plot the "
-                        "trajectory)")
+                        "tracking errors, torques, desired vs actual path, and the drives' "
+                        "deflections of a --flexible one (default: plot the trajectory)")

@@ -38,6 +38,10 @@ def run(args) -> int:
 
     check_outputs(*table_files(args.out))  # the table and its units sidecar
     refuse_inputs(args, *table_files(args.out))
+    if args.flexible and not args.actuators:
+        raise UsageError("--flexible needs --actuators FILE.toml with a 'stiffness' [N·m/rad] "
+                         "per actuator: the drives' springs (docs/model.md §28)")
+    given_dt = args.dt
     if args.dt is None:
         args.dt = default_step(args.control_period)
     elif args.dt > args.control_period:
@@ -51,9 +55,14 @@ def run(args) -> int:
         raise UsageError(f"--torque-limit takes 1 value (all actuators) or 6, got "
                           f"{len(args.torque_limit)}")
     robot = load_robot(args)
-    losses, known, limit = _losses(args, robot)
+    losses, known, limit, motors = _losses(args, robot)
+    drives = None
+    if args.flexible:  # the motors' inertia and friction are the drives' (docs/model.md §28)
+        drives, losses = _drives(motors, args.flexible), None
     errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
+    if drives is not None:
+        args.dt = _flexible_step(robot, traj, drives, errors, args, given_dt)
     start = None if args.start == "path" else robot.home()
     duration = float(traj.t[-1] - traj.t[0])
     banner = _budget(args, duration)
@@ -63,9 +72,10 @@ def run(args) -> int:
         controller=args.controller, errors=errors, gains=gains, dt=args.dt,
         control_period=args.control_period, torque_limit=limit, noise=noise,
         start=start, known_losses=known, joint_limits=not args.ignore_limits,
-        progress=progress(banner, not args.quiet)))
+        progress=progress(banner, not args.quiet), drives=drives))
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
+            "flexible": args.flexible,
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
             **result.settings,
             "summary": result.summary()}
@@ -74,7 +84,8 @@ def run(args) -> int:
              f"{duration:.4g} s, RK4 step {step_used(args.dt, args.control_period):g} s, "
              "control period "
              f"{args.control_period:g} s, ω {args.wn:g} rad/s, ζ {args.zeta:g}",
-             *result.summary_lines(), f"wall time {wall:.2f} s (desired trajectory included)"]
+             *_drive_line(result.settings.get("drives")), *result.summary_lines(),
+             f"wall time {wall:.2f} s (desired trajectory included)"]
     print("\n".join(lines), file=sys.stderr if args.out == STDOUT else sys.stdout)
     wrote(args.out, f" ({rows} rows)")
     return 0
@@ -87,7 +98,7 @@ def _losses(args, robot):
 
     from ..dynamics.inverse import JointLosses
 
-    losses = known = None
+    losses = known = motors = None
     limit = args.torque_limit
     if args.actuators:  # motors known to the controller
         from ..dynamics.motors import load_actuators
@@ -106,7 +117,39 @@ def _losses(args, robot):
             per_joint[name] = np.zeros(robot.model.nv)
             per_joint[name][robot.actuated_v] = value
         losses = JointLosses(**per_joint)
-    return losses, known, limit
+    return losses, known, limit, motors
+
+
+def _drive_line(drives: dict | None) -> list[str]:
+    if drives is None:
+        return []
+    return [f"flexible drives (springs {'known' if drives['known'] else 'unknown'} to the "
+            f"controller): fastest mode {drives['fastest_mode_hz']:.4g} Hz"]
+
+
+def _drives(motors, which: str):
+    """The flexible drives of the actuator file (its stiffness required); ``which``: 'known'
+    (the controller tracks the motors' reference) or 'unknown' (the rigid one)."""
+    from ..dynamics.flexible import FlexibleDrives
+
+    return FlexibleDrives.from_actuators(motors, known=which == "known")
+
+
+def _flexible_step(robot, traj, drives, errors, args, given_dt) -> float:
+    """The RK4 step that resolves the drives' fastest mode over up to 17 of the trajectory's
+    poses (docs/model.md §28), or ``given_dt`` checked against it."""
+    import numpy as np
+
+    from ..dynamics.flexible import FlexiblePlant, flexible_step, mode_configurations
+    from ..dynamics.tracking import default_step
+    from ..kinematics.ik import inverse_kinematics
+
+    idx = mode_configurations(np.arange(len(traj.t)))
+    ik = inverse_kinematics(robot, traj.poses[idx], traj.d_poses[idx], traj.dd_poses[idx],
+                            traj.t[idx])
+    step, _ = flexible_step(FlexiblePlant(robot, errors, drives), ik.q,
+                            default_step(args.control_period), given_dt)
+    return step
 
 
 def _budget(args, duration: float) -> str:
@@ -180,6 +223,13 @@ def add_parser(sub, parents) -> None:
                         "reflected rotor inertia N²·Jm and friction act in the plant and are "
                         "known to the controller; --torque-limit defaults to N × peak motor "
                         "torque (default: ideal joints)")
+    p.add_argument("--flexible", nargs="?", const="known", choices=("known", "unknown"),
+                   default=None,
+                   help="flexible drives: each motor (rotor inertia, friction) drives its joint "
+                        "through a spring of the actuator file's 'stiffness'; the controller "
+                        "reads the motors and knows the springs ('unknown': it tracks the "
+                        "rigid reference); needs --actuators; docs/model.md §28 (default: rigid "
+                        "drives)")
     p.add_argument("--armature", type=nonnegative, default=0.0, metavar="KG·M²",
                    help="rotor inertia on each actuated joint (plant only; default: 0)")
     p.add_argument("--viscous", type=nonnegative, default=0.0, metavar="N·M·S",

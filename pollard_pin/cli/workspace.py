@@ -42,7 +42,9 @@ def add_parser(sub, parents) -> None:
                    help="grid bounds [m] of some axes, e.g. y=-0.3:0.3,z=-0.1:0.3 (default: "
                         "the whole reach with a margin)")
     p.add_argument("--actuators", type=name, metavar="FILE.toml", default=None,
-                   help="actuator file: adds each point's payload capacity (default: none)")
+                   help="actuator file: adds each point's payload capacity and, when it "
+                        "gives stiffnesses, kmin, f1 and the sag under the weight "
+                        "(workspace_stiffness.png for a plane; default: none)")
     model_args(p)
     margin_args(p)
     p.add_argument("--out", type=name, default="workspace", metavar="DIR",
@@ -132,14 +134,18 @@ def run(args) -> int:
              for f in table_files(out / f"workspace.{fmt}", fmt)]
     if plane is None:
         stale.append(paths.pop("png"))
-    check_outputs(*table_files(paths["table"], args.format), *list(paths.values())[1:],
-                  folders=(out,))
-    robot = load_robot(args)
     act = None
     if args.actuators is not None:
         from ..dynamics.motors import load_actuators
+        from ..workspace.reach import has_stiffness
 
         act = load_actuators(args.actuators)
+        if plane is not None and has_stiffness(act):  # docs/model.md §27.6
+            paths["stiffness"] = out / "workspace_stiffness.png"
+    stale.extend(f for f in (out / "workspace_stiffness.png",) if "stiffness" not in paths)
+    check_outputs(*table_files(paths["table"], args.format), *list(paths.values())[1:],
+                  folders=(out,))
+    robot = load_robot(args)
     options = WorkspaceOptions(volume=plane is None, orientation=orientation,
                                resolution=args.resolution, bounds=bounds, actuators=act,
                                margins=margins)
@@ -166,6 +172,10 @@ def run(args) -> int:
             from ..viz.workspace import write_workspace_png
 
             write_workspace_png(ws, paths["png"], args.dpi)
+        if "stiffness" in paths:
+            from ..viz.workspace import write_stiffness_png
+
+            write_stiffness_png(ws, paths["stiffness"], args.dpi)
         remove_stale(*stale)
     print(summary_text(ws))
     for path in paths.values():
@@ -201,6 +211,12 @@ def summary_text(ws) -> str:
         p = s["payload_capacity"]
         lines.append(f"payload capacity {p['min']:.4g} to {p['max']:.4g} kg over the "
                      "reachable points")
+    if "stiffness" in s:
+        st = s["stiffness"]
+        lines.append(f"stiffness over the reachable points: kmin {st['kmin']['min']:.4g} to "
+                     f"{st['kmin']['max']:.4g} N/m, f1 {st['f1']['min']:.4g} to "
+                     f"{st['f1']['max']:.4g} Hz, sag {1e6 * st['sag']['min']:.4g} to "
+                     f"{1e6 * st['sag']['max']:.4g} µm")
     lines.append("points by reason: " + ", ".join(f"{r} {c:,}"
                                                   for r, c in s["reason_counts"].items()))
     return "\n".join(lines)

@@ -131,6 +131,7 @@ class Plant:
         pin.initConstraintDynamics(r.model, r.data, r.constraint_models, r.constraint_datas)
         self._settings = pin.ProximalSettings(1e-14, 0.0, 1)
         self._ia, self._passive = r.actuated_v, r.passive_v
+        self.sensed_v = r.actuated_v  # the state's entries the encoders read
         self._tau = np.zeros(r.model.nv)
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau_act: np.ndarray) -> np.ndarray:

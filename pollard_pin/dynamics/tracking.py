@@ -14,6 +14,7 @@ reference.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable
@@ -40,6 +41,14 @@ from .control import (
     PDGravity,
     desired_trajectory,
     make_controller,
+)
+from .flexible import (
+    FlexiblePlant,
+    flexible_columns,
+    flexible_step,
+    max_deflection,
+    mode_configurations,
+    motor_reference,
 )
 from .forward import SimulationError
 from .plant import Plant
@@ -146,6 +155,8 @@ class TrackingResult:
     steps: int = 0  # RK4 steps
     wall: float = 0.0  # s spent integrating
     settings: dict = field(default_factory=dict)
+    phi: np.ndarray | None = None  # (N, 6) flexible drives: motor angles, joint side [rad]
+    d_phi: np.ndarray | None = None  # (N, 6) [rad/s]
 
     def __len__(self) -> int:
         return len(self.t)
@@ -161,12 +172,19 @@ class TrackingResult:
         cols.update({"tip_position_error": self.tip_position_error,
                      "tip_orientation_error": self.tip_orientation_error,
                      "closure_residual": self.closure_residual})
+        if self.phi is not None:
+            cols.update(flexible_columns(self.actuated, self.joint_names, self.q, self.phi,
+                                         self.d_phi))
         return cols
 
     def summary(self) -> dict:
-        return tracking_summary(self.t, self.tip_position_error, self.tip_orientation_error,
-                                dict(zip(self.actuated, self.tau.T)),
-                                self.max_closure_residual, self.saturation_time)
+        s = tracking_summary(self.t, self.tip_position_error, self.tip_orientation_error,
+                             dict(zip(self.actuated, self.tau.T)),
+                             self.max_closure_residual, self.saturation_time)
+        if self.phi is not None:
+            s["max_deflection"] = max_deflection(self.actuated, self.joint_names, self.q,
+                                                 self.phi)
+        return s
 
     def summary_lines(self) -> list[str]:
         s = self.summary()
@@ -178,6 +196,9 @@ class TrackingResult:
                                                for n, p in s["peak_torque"].items()),
                 (f"saturated {s['saturation_time']:.4g} s; max closure residual "
                  f"{s['max_closure_residual']:.3g} m"),
+                *(["max |φ − q| [rad]: " + ", ".join(
+                    f"{n} {p:.3g}" for n, p in s["max_deflection"].items())]
+                  if self.phi is not None else []),
                 f"{self.steps} RK4 steps in {self.wall:.2f} s wall"]
 
 
@@ -286,7 +307,7 @@ class _Ticking:
                  opts: TrackingOptions):
         self.controller = controller
         self.builtin = isinstance(controller, (ComputedTorque, FeedforwardPD, PDGravity))
-        self.ia = plant.robot.actuated_v
+        self.ia = plant.sensed_v
         self.noise = opts.noise
         self.rng = np.random.default_rng(opts.noise.seed) if opts.noise is not None else None
         self.sense = LoopSensor(robot)  # sensed_kinematics, compiled (one call per tick)
@@ -367,8 +388,8 @@ def _integrate(plant: Plant, ticking: _Ticking, q: np.ndarray, v: np.ndarray, gr
     over a list for reductions (≈ 0.5 µs against 1.5)."""
     # as Python scalars: the loop reads three per step (numpy scalars cost more, same bits)
     pts, is_tick, sample_of = (x.tolist() for x in grid)
-    nv = plant.robot.model.nv
-    Q, V, A = np.empty((n, nv)), np.empty((n, nv)), np.empty((n, nv))
+    nv, nx = plant.robot.model.nv, len(q)  # nx: the state's size (flexible: 12 + 6 motors)
+    Q, V, A = np.empty((n, nx)), np.empty((n, nx)), np.empty((n, nx))
     TAU, RES = np.empty((n, 6)), np.empty(n)
     f = plant.held(np.zeros(6))
     tau = np.zeros(6)
@@ -376,8 +397,11 @@ def _integrate(plant: Plant, ticking: _Ticking, q: np.ndarray, v: np.ndarray, gr
     names = plant.robot.joint_names
     limits = (names, limit_bounds(plant.robot.params, names)) if opts.joint_limits else None
     lo, hi = limits[1] if opts.joint_limits else (None, None)
+    if lo is not None and nx > nv:  # the motors have no limits
+        pad = np.full(nx - nv, np.inf)
+        lo, hi = np.append(lo, -pad), np.append(hi, pad)
     tolerance, progress = opts.loop_tolerance, opts.progress
-    stage_q, stage_v = np.empty(nv), np.empty(nv)
+    stage_q, stage_v = np.empty(nx), np.empty(nx)
     clock = time.perf_counter()
     last = len(pts) - 1
     for i in range(len(pts)):
@@ -403,7 +427,8 @@ def _integrate(plant: Plant, ticking: _Ticking, q: np.ndarray, v: np.ndarray, gr
                 # case); at a bound, outside or NaN, the exact rule (turns counted) decides
                 if res > tolerance or lo is not None and not min(
                         ((q - lo) * (hi - q)).tolist()) > 0.0:
-                    _check_plant(plant, q, res, t, limits, tolerance, ticking.stop_hint)
+                    _check_plant(plant, q[:nv], res, t, limits, tolerance,
+                                 ticking.stop_hint)
         if k >= 0:
             Q[k], V[k], A[k], TAU[k] = q, v, a1, tau
             RES[k] = res
@@ -420,12 +445,12 @@ def _integrate(plant: Plant, ticking: _Ticking, q: np.ndarray, v: np.ndarray, gr
 def _result(robot: Robot, plant: Plant, trajectory, samples: np.ndarray, record: _Record,
             ticking: _Ticking, opts: TrackingOptions) -> TrackingResult:
     """The result table: the tool pose of every output sample against the trajectory's."""
-    n = len(samples)
+    n, nv = len(samples), plant.robot.model.nv
     tip = np.empty((n, 3))
     o_err = np.empty(n)
     R_des = rotation(trajectory.poses)
     for k in range(n):
-        M = tool_pose(plant.robot, record.q[k])
+        M = tool_pose(plant.robot, record.q[k, :nv])
         tip[k] = M.translation
         o_err[k] = np.linalg.norm(pin.log3(M.rotation @ R_des[k].T))
     tip_des = np.asarray(trajectory.poses, dtype=float)[:, :3]
@@ -438,13 +463,16 @@ def _result(robot: Robot, plant: Plant, trajectory, samples: np.ndarray, record:
                 "torque_limit": None if limit is None else limit.tolist(),
                 "noise": None if noise is None else [noise.position, noise.velocity,
                                                      noise.seed]}
+    motors = record.q.shape[1] > nv  # flexible drives: the motors' angles and rates
     return TrackingResult(
-        t=samples.copy(), q=record.q, v=record.v, a=record.a, tau=record.tau, tip=tip,
+        t=samples.copy(), q=record.q[:, :nv], v=record.v[:, :nv], a=record.a[:, :nv],
+        tau=record.tau, tip=tip,
         tip_desired=tip_des, tip_position_error=np.linalg.norm(tip - tip_des, axis=1),
         tip_orientation_error=o_err, closure_residual=record.residual,
         joint_names=plant.robot.joint_names, actuated=robot.actuated,
         saturation_time=ticking.saturation, max_closure_residual=record.max_residual,
-        steps=record.steps, wall=record.wall, settings=settings)
+        steps=record.steps, wall=record.wall, settings=settings,
+        phi=record.q[:, nv:] if motors else None, d_phi=record.v[:, nv:] if motors else None)
 
 
 def simulate_tracking(robot: Robot, trajectory,
@@ -501,23 +529,37 @@ def simulate_tracking(robot: Robot, trajectory,
     if not isinstance(opts, TrackingOptions):
         raise ControlError(f"options must be a TrackingOptions, got {type(opts).__name__}")
     samples = np.asarray(trajectory.t, dtype=float)
-    if samples.ndim == 1 and len(samples) >= 2:  # (desired_trajectory names a shorter one)
+    drives = opts.drives
+    if drives is None and samples.ndim == 1 and len(samples) >= 2:  # (else refused below)
         check_step_count(float(samples[-1] - samples[0]), opts.step, opts.control_period)
-    plant = Plant(robot, opts.errors, opts.baumgarte)
+    plant = (Plant(robot, opts.errors, opts.baumgarte) if drives is None else
+             FlexiblePlant(robot, opts.errors, drives, opts.baumgarte))
     desired = opts.desired
     if desired is None:
         desired = desired_trajectory(robot, trajectory, opts.control_period, opts.curve,
                                      opts.known_losses, joint_limits=opts.joint_limits)
+    reference, fastest = desired, None
+    if drives is not None:  # the controller tracks the motors' reference (docs/model.md §28)
+        step, fastest = flexible_step(plant, mode_configurations(desired.q),
+                                      default_step(opts.control_period), opts.dt)
+        opts = dataclasses.replace(opts, dt=step)
+        check_step_count(float(samples[-1] - samples[0]), opts.step, opts.control_period)
+        reference = motor_reference(robot, desired, drives, opts.known_losses)
     controller = opts.controller
     if isinstance(controller, str):
-        controller = make_controller(controller, robot, desired, opts.gains, opts.known_losses)
+        controller = make_controller(controller, robot, reference, opts.gains, opts.known_losses)
     q, v = _start_state(plant, desired, trajectory, opts.start)
-    ticking = _Ticking(robot, plant, controller, desired, opts)
+    if drives is not None:  # the motors where the springs carry the link
+        q, v = plant.start(q, v, reference, at_rest=opts.start is not None)
+    ticking = _Ticking(robot, plant, controller, reference, opts)
     grid = _grid(desired.t, samples, opts.step)
     # a plant that runs away overflows on its way out: the loop names it once, no warnings
     with np.errstate(over="ignore", invalid="ignore"):
         record = _integrate(plant, ticking, q, v, grid, len(samples), opts)
-    return _result(robot, plant, trajectory, samples, record, ticking, opts)
+    result = _result(robot, plant, trajectory, samples, record, ticking, opts)
+    if drives is not None:
+        result.settings["drives"] = drives.settings(fastest)
+    return result
 
 
 __all__ = ["DT", "LOOP_TOLERANCE", "MAX_STEPS", "STEP_SECONDS", "TICK_SECONDS",

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
+from .flexible import FlexibleDrives
 from .inverse import JointLosses
 from .plant import BAUMGARTE, ModelMismatch
 
@@ -76,6 +77,9 @@ class TrackingOptions:
     ``known_losses``: joint losses the built-in controllers know and compensate.
     ``joint_limits``: stop where a joint leaves its limits; ``loop_tolerance`` [m]: stop where
     the plant's loops open beyond it. ``progress(done, total)`` is called per output sample.
+    ``drives``: flexible drives (:class:`~.flexible.FlexibleDrives`, docs/model.md §28): the
+    motors then sit behind springs, the controller reads them, and ``errors`` carry no
+    losses; the default ``dt`` then also resolves the drives' fastest mode.
     """
 
     controller: str | Controller = "computed-torque"
@@ -93,6 +97,7 @@ class TrackingOptions:
     joint_limits: bool = True
     loop_tolerance: float = LOOP_TOLERANCE
     progress: Callable[[int, int], None] | None = None
+    drives: FlexibleDrives | None = None
 
     def __post_init__(self):
         check_steps(self.step, self.control_period)
@@ -107,6 +112,9 @@ class TrackingOptions:
             raise ControlError(f"gains must be a Gains, got {type(self.gains).__name__}")
         if not (isinstance(self.loop_tolerance, (int, float)) and self.loop_tolerance > 0):
             raise ControlError(f"loop tolerance must be > 0 m, got {self.loop_tolerance}")
+        if self.drives is not None and not isinstance(self.drives, FlexibleDrives):
+            raise ControlError(f"drives must be a FlexibleDrives, got "
+                               f"{type(self.drives).__name__}")
         object.__setattr__(self, "_limits", _torque_limit(self.torque_limit))
 
     @property

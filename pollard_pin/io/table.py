@@ -37,7 +37,10 @@ _FIXED = {"t": "s", "closure_residual": "m", "wrist_margin": "1", "sigma_paralle
           "spray": "1", "nx": "1", "ny": "1", "nz": "1", "area": "m²",
           # workspace maps, docs/model.md §22
           "reachable": "1", "reason": "code (workspace.json reason_codes)",
-          "conditioning": "1", "payload_capacity": "kg"}
+          "conditioning": "1", "payload_capacity": "kg",
+          # stiffness, docs/model.md §27
+          "dx": "m", "dy": "m", "dz": "m", "rx": "rad", "ry": "rad", "rz": "rad",
+          **{f"f{i}": "Hz" for i in range(1, 7)}, "kmin": "N/m", "sag": "m"}
 _PREFIX = (("tau_", "N·m"), ("power_", "W"), ("work_", "J"),
            ("F_", "N"), ("M_", "N·m"))  # joint loads, docs/model.md §17
 
@@ -61,6 +64,8 @@ _RATES = ("", "d_", "dd_")
 _KNOWN = frozenset((*_FIXED, *(f"f{i}_{a}" for i in (1, 2) for a in "xyz"),
                     *(r + n for r in _RATES for n in (*TASK_NAMES, *JOINTS)),
                     *(f"{p}{j}" for p in ("tau_", "power_", "work_") for j in JOINTS),
+                    # flexible drives' motors, docs/model.md §28
+                    *(f"{p}{j}" for p in ("phi_", "d_phi_", "deflection_") for j in JOINTS),
                     *(f"{p}{j}_{a}" for p in ("F_", "M_") for j in JOINTS for a in "xyz")))
 
 

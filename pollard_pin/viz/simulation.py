@@ -15,6 +15,8 @@ from ..names import ACTUATED
 from .plots import COLOURS, LABELS, figure_maker, finish_axes, plot_line
 
 SIMULATION_FIGURES = ("simulation_tracking", "simulation_torques", "simulation_path")
+# a simulation with flexible drives (docs/model.md §28) adds the springs' deflections
+FLEXIBLE_FIGURES = ("simulation_deflection",)
 REQUIRED = ("t", "x", "y", "z", "desired_x", "desired_y", "desired_z", "tip_position_error",
             "tip_orientation_error", "closure_residual")
 
@@ -126,14 +128,34 @@ def _path_figure(plt, cols, name):
     return fig
 
 
+def _deflection_figure(plt, cols, name):
+    t = cols["t"]
+    fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for i, n in enumerate(ACTUATED):
+        col = f"deflection_{n}"
+        if col in cols:
+            ax = axes[0] if i < 3 else axes[1]
+            plot_line(ax, t, 1e3 * np.asarray(cols[col]), col, color=COLOURS[i],
+                      label=LABELS.get(n, n))
+    finish_axes(axes[0], "φ − q [mrad]", "Drive spring deflections, base actuators")
+    finish_axes(axes[1], "φ − q [mrad]", "Drive spring deflections, wrist actuators")
+    axes[-1].set_xlabel("t [s]")
+    fig.suptitle(f"Flexible drives ({name})")
+    fig.tight_layout()
+    return fig
+
+
 def simulation_figures(cols: dict, name: str = "simulation") -> dict:
     """``{name: Figure}``: tracking errors and residual, applied torques, desired vs actual
-    tool path."""
+    tool path; with flexible drives (``deflection_*`` columns) the springs' deflections."""
     check_simulation_columns(cols)
     plt = figure_maker()
-    return {"simulation_tracking": _tracking_figure(plt, cols, name),
+    figs = {"simulation_tracking": _tracking_figure(plt, cols, name),
             "simulation_torques": _torque_figure(plt, cols, name),
             "simulation_path": _path_figure(plt, cols, name)}
+    if any(c.startswith("deflection_") for c in cols):
+        figs["simulation_deflection"] = _deflection_figure(plt, cols, name)
+    return figs
 
 
 def write_simulation_figures(cols: dict, out_dir, dpi: int = 100,

@@ -82,6 +82,52 @@ def workspace_figure(ws):
     return fig
 
 
+# the stiffness panels (docs/model.md §27.6): column, label, scale to the shown unit
+STIFFNESS_PANELS = (("kmin", "kmin [kN/m], softest tip stiffness", 1e-3),
+                    ("f1", "f1 [Hz], lowest natural frequency", 1.0),
+                    ("sag", "sag [µm], the tip's displacement under the weight", 1e6))
+
+
+def stiffness_figure(ws):
+    """A matplotlib Figure of a plane map's stiffness columns (kmin, f1, sag) side by side,
+    unreachable points blank. Each image carries the gid of its column."""
+    from matplotlib.figure import Figure
+
+    grid = ws.grid
+    if len(grid.axes) != 2 or ws.columns is None or "kmin" not in ws.columns:
+        raise ValueError("the stiffness figure draws a plane map made with stiffnesses")
+    names = [("x", "y", "z")[a] for a in grid.axes]
+    h = grid.step
+    x0, y0 = grid.coordinates(0), grid.coordinates(1)
+    extent = (x0[0] - h / 2, x0[-1] + h / 2, y0[0] - h / 2, y0[-1] + h / 2)
+    lo, hi = (np.asarray(ws.summary["bounding_box"][k]) for k in ("low", "high"))
+    fig = Figure(figsize=(15, 4.4), constrained_layout=True)
+    for i, (col, label, scale) in enumerate(STIFFNESS_PANELS):
+        ax = fig.add_subplot(1, 3, i + 1)
+        img = ax.imshow(scale * ws.image(col).T, origin="lower", extent=extent,
+                        interpolation="nearest", cmap="viridis")
+        img.set_gid(col)
+        fig.colorbar(img, ax=ax, shrink=0.8).set_label(label)
+        ax.set_xlabel(f"{names[0]} [m]")
+        ax.set_ylabel(f"{names[1]} [m]")
+        ax.set_aspect("equal")
+        for a, setter in zip(grid.axes, (ax.set_xlim, ax.set_ylim)):
+            setter(lo[a] - h, hi[a] + h)
+    fixed = ws.summary["grid"]["plane"]
+    deg = ", ".join(f"{math.degrees(a):.3g}" for a in ws.orientation)
+    fig.suptitle(f"Stiffness at {', '.join(f'{k} = {v:g} m' for k, v in fixed.items())}, "
+                 f"(ψ, θ, φ) = ({deg})°: compliant drives, rigid links (docs/model.md §27)",
+                 fontsize=10)
+    return fig
+
+
+def write_stiffness_png(ws, path, dpi: int = 100) -> Path:
+    """Write :func:`stiffness_figure` to ``path`` (PNG), atomically."""
+    from .plots import save_png
+
+    return save_png(stiffness_figure(ws), path, dpi)
+
+
 def _rgba(hex_colour: str) -> tuple:
     from matplotlib.colors import to_rgba
 

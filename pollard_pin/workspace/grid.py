@@ -24,7 +24,7 @@ from .options import (
     WorkspaceOptions,
     finite_value,
 )
-from .reach import REASONS, ReachOptions, evaluate, length_scale
+from .reach import REASONS, STIFFNESS_COLUMNS, ReachOptions, evaluate, length_scale
 from .rectangle import boundary_points, edge_samples, largest_rectangle
 
 AXES = ("x", "y", "z")
@@ -267,6 +267,7 @@ class _Summary:
         self.conditioning = 0.0
         self.counts = np.zeros(len(REASONS), dtype=np.int64)
         self.payload = [np.inf, -np.inf]
+        self.ranges: dict = {}  # the stiffness columns' [min, max] (docs/model.md §27.6)
 
     def add(self, pts: np.ndarray, cols: dict) -> None:
         ok = cols["reason"] == 0
@@ -280,6 +281,11 @@ class _Summary:
                 cap = cols["payload_capacity"][ok]
                 self.payload = [min(self.payload[0], float(cap.min())),
                                 max(self.payload[1], float(cap.max()))]
+            for name in STIFFNESS_COLUMNS:
+                if name in cols:
+                    x = cols[name][ok]
+                    lo, hi = self.ranges.get(name, (np.inf, -np.inf))
+                    self.ranges[name] = [min(lo, float(x.min())), max(hi, float(x.max()))]
 
 
 def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
@@ -467,6 +473,11 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
     if opts.actuators is not None:
         out["payload_capacity"] = {"min": totals.payload[0], "max": totals.payload[1],
                                    "over": "reachable points", "unit": "kg"}
+    if totals.ranges:
+        units = {"kmin": "N/m", "f1": "Hz", "sag": "m"}
+        out["stiffness"] = {name: {"min": lo, "max": hi, "unit": units[name]}
+                            for name, (lo, hi) in totals.ranges.items()}
+        out["stiffness"]["over"] = "reachable points"
     from .. import __version__
 
     out["metadata"] = {

@@ -12,6 +12,7 @@ import numpy as np
 from ..analytic import closed_form
 from ..dynamics.inverse import batched_rnea, split_tree_torques
 from ..dynamics.motors import Actuators
+from ..dynamics.stiffness import stiffness_at
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
 from ..kinematics.margins import CHECKS, Margins
@@ -54,8 +55,10 @@ def length_scale(params, options: ReachOptions) -> float:
 def evaluate(robot, poses: np.ndarray, options: ReachOptions = ReachOptions()) -> dict:
     """Columns (each (N,)) of the workspace table at the tool poses (N, 6): reachable (0/1),
     reason (code into :data:`REASONS`), wrist_margin, sigma_parallel, sigma_serial,
-    conditioning and, with actuators, payload_capacity [kg]. Margins are NaN where the closed
-    form has no solution; the index and the capacity where, in addition, K is singular."""
+    conditioning and, with actuators, payload_capacity [kg] (and, when they have stiffnesses,
+    kmin, f1 and sag at the reachable points: :func:`stiffness_columns`). Margins are NaN
+    where the closed form has no solution; the index and the capacity where, in addition, K is
+    singular."""
     n = len(poses)
     params = robot.params
     q18, failed = closed_form.position_ik_masked(params, poses)
@@ -100,7 +103,35 @@ def evaluate(robot, poses: np.ndarray, options: ReachOptions = ReachOptions()) -
         ok = ~FLOORS_ONLY.violations(parallel=sp, parallel_max=sp_max)["parallel"]
         cap[solved[ok]] = payload_capacity(robot, options.actuators, qs[ok], K[ok])
         out["payload_capacity"] = cap
+        if has_stiffness(options.actuators):
+            out.update(stiffness_columns(robot, options.actuators.stiffness(), q,
+                                         reason == 0))
     return out
+
+
+STIFFNESS_COLUMNS = ("kmin", "f1", "sag")
+
+
+def has_stiffness(act: Actuators) -> bool:
+    """Whether every drive has a stiffness (the stiffness columns are then mapped); some but
+    not all is an :class:`~pollard_pin.dynamics.motors.ActuatorError` naming the first
+    without."""
+    given = [u.stiffness is not None for u in act.units]
+    if any(given) and not all(given):
+        act.stiffness()  # raises, naming it
+    return all(given)
+
+
+def stiffness_columns(robot, k, q: np.ndarray, ok: np.ndarray) -> dict:
+    """kmin [N/m], f1 [Hz] and sag [m] (the tip's displacement under the weight, |d|) at the
+    points ``ok`` of the closed-form configurations q (N, 12), NaN elsewhere (docs/model.md
+    §27.6)."""
+    cols = {c: np.full(len(q), np.nan) for c in STIFFNESS_COLUMNS}
+    if ok.any():
+        r = stiffness_at(robot, q[ok], k)
+        cols["kmin"][ok], cols["f1"][ok] = r.kmin, r.frequencies[:, 0]
+        cols["sag"][ok] = np.linalg.norm(r.deflection[:, :3], axis=1)
+    return cols
 
 
 def kinematic_matrices(robot, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

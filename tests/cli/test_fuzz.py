@@ -255,7 +255,8 @@ def _jobs() -> dict[str, bytes | str]:
     return {
         "job_good.toml": job,
         "job_unknown_key.toml": sub("width = 0.26", "width = 0.26\ncolour = 'red'"),
-        "job_unknown_table.toml": job + "\n[robot]\nspeed = 1\n",
+        "job_unknown_table.toml": job + "\n[conveyor]\nspeed = 1\n",
+        "job_robot_table.toml": job + "\n[robot]\nspeed = 1\n",
         "job_top_level_key.toml": "units = 'SI'\n" + job,
         "job_missing_key.toml": sub("flow = 1.5e-7", ""),
         "job_missing_table.toml": job.split("[job]")[0],
@@ -418,6 +419,7 @@ TRAJ_COMMANDS = {  # argv prefix of each command that takes --trajectory; nothin
     "report": ["report", "--no-cross-check", "--out", "out.md"],
     "size": ["size", "--actuators", ACT, "--out", "out.md"],
     "simulate": ["simulate", "--out", "out.csv"],
+    "stiffness": ["stiffness", "--actuators", ACT, "--out", "out.csv"],
 }
 SIM = ["simulate", "--trajectory", "good.csv", "--out", "out.csv"]  # 0.22 s: 220 steps
 SHORT = ["--samples", "11", "--duration", "0.2"]  # a short thesis trajectory
@@ -854,7 +856,8 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_duplicate.toml", "is not valid TOML"),
     ("job_unknown_key.toml", "'panel.colour' = 'red': unknown key; [panel] takes center, "
                              "normal, width, height"),
-    ("job_unknown_table.toml", "[robot] is not a table of a paint job"),
+    ("job_unknown_table.toml", "[conveyor] is not a table of a paint job"),
+    ("job_robot_table.toml", "'robot' = {'speed': 1}: must be an array of tables [[robot]]"),
     ("job_top_level_key.toml", "[units] is not a table of a paint job"),
     ("job_missing_key.toml", "'gun.flow' is missing ([gun] needs standoff, sigma, flow)"),
     ("job_missing_table.toml", "missing table [job]"),

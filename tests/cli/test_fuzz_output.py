@@ -111,6 +111,7 @@ def _file_commands(out: str) -> dict:
         "urdf": ["urdf", "--out", out],
         "export": ["export", "--out", out],
         "view": ["view", *SHORT, "--html", out],
+        "stiffness": ["stiffness", *SHORT, "--actuators", ACT, "--out", out],
     }
 
 

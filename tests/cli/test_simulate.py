@@ -83,3 +83,67 @@ def test_plot_and_report_show_a_simulation(short_csv, tmp_path, capsys):
     assert main(["plot", "--simulation", str(short_csv), "--out", str(tmp_path / "p2")]) == 2
     err = capsys.readouterr().err.strip()
     assert "not a simulation table" in err and len(err.splitlines()) == 1
+
+
+def _with_stiffness(path):
+    """examples/actuators.toml with a 'stiffness' per drive (3e3 N·m/rad base, 1e2 wrist)."""
+    lines, table = [], ""
+    for line in MOTORS.read_text().splitlines():
+        table = line if line.startswith("[") else table
+        if not line.startswith("stiffness"):
+            lines.append(line)
+        if line.startswith("max_speed"):  # the last key of each table
+            lines.append(f"stiffness = {3e3 if table.startswith('[theta21') else 1e2}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_cli_flexible_refusals(short_csv, tmp_path, capsys):
+    out = tmp_path / "sim.csv"
+    bare = tmp_path / "bare.toml"
+    bare.write_text("".join(line for line in MOTORS.read_text().splitlines(True)
+                            if not line.startswith("stiffness")))
+    for argv, says in ((["--flexible"], "--flexible needs --actuators FILE.toml with a "
+                                        "'stiffness'"),
+                       (["--flexible", "--actuators", bare], "'theta21.stiffness' is missing"),
+                       (["--flexible", "--actuators", _with_stiffness(tmp_path / "k.toml"),
+                         "--dt", "1e-3"], "too long for the drives' fastest mode")):
+        code, _, err = run_cli(["simulate", "--trajectory", short_csv, "--out", out, *argv],
+                               capsys)
+        err = err.strip()
+        assert code == 2 and says in err and len(err.splitlines()) == 1, err
+        assert not out.exists()
+
+
+def test_cli_flexible_writes_the_motors(tmp_path, capsys):
+    """The table's motor columns are the API's simulation, same bits; the deflection is the
+    motor angle less the joint's."""
+    import numpy as np
+
+    import pollard_pin
+    from pollard_pin.dynamics.flexible import FlexibleDrives
+    from pollard_pin.dynamics.motors import load_actuators
+    from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
+    from pollard_pin.io.table import read_result
+    from pollard_pin.io.trajectory import to_csv
+
+    head = thesis_head(0.05)
+    to_csv(head, tmp_path / "head.csv")
+    motors = _with_stiffness(tmp_path / "k.toml")
+    out = tmp_path / "sim.csv"
+    code, stdout, err = run_cli(["simulate", "--trajectory", tmp_path / "head.csv",
+                                 "--actuators", motors, "--flexible", "--out", out], capsys)
+    assert code == 0, err
+    assert "max |φ − q| [rad]" in stdout
+    table = read_result(out)
+    robot = pollard_pin.load()
+    act = load_actuators(motors)
+    losses = act.joint_losses(robot.joint_names)
+    limit = act.column("gear_ratio") * act.column("peak_torque")
+    api = simulate_tracking(robot, head, TrackingOptions(
+        known_losses=losses, torque_limit=limit, drives=FlexibleDrives.from_actuators(act)))
+    for i, name in enumerate(robot.actuated):
+        assert np.array_equal(table[f"phi_{name}"], api.phi[:, i])
+        assert np.array_equal(table[f"deflection_{name}"], table[f"phi_{name}"] - table[name])
+        assert table.units[f"d_phi_{name}"] == "rad/s"
+    assert table.metadata["drives"]["stiffness"] == [3e3] * 3 + [1e2] * 3

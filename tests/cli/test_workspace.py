@@ -48,6 +48,14 @@ def test_orientation_in_degrees_and_actuators(robot, tmp_path, capsys):
     ok = table["reachable"] == 1
     assert np.isfinite(table["payload_capacity"][ok]).all()
     assert "payload capacity" in text
+    # the example's drives have stiffnesses: kmin, f1, sag and their figure (docs/model.md §27.6)
+    for name, unit in (("kmin", "N/m"), ("f1", "Hz"), ("sag", "m")):
+        assert np.isfinite(table[name][ok]).all() and np.isnan(table[name][~ok]).all()
+        assert table.units[name] == unit
+    summary = json.loads((out / "workspace.json").read_text())
+    assert summary["stiffness"]["kmin"]["min"] == table["kmin"][ok].min()
+    assert (out / "workspace_stiffness.png").stat().st_size > 0
+    assert "stiffness over the reachable points" in text
 
 
 def test_volume_streams(robot, tmp_path, capsys):

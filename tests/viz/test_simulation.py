@@ -6,6 +6,7 @@ import pytest
 
 from pollard_pin.dynamics.control import ControlError
 from pollard_pin.viz.simulation import (
+    FLEXIBLE_FIGURES,
     SIMULATION_FIGURES,
     check_simulation_columns,
     simulation_figures,
@@ -60,6 +61,22 @@ def test_lines_are_the_columns():
         y = np.asarray(ln.get_ydata(), dtype=float)
         scale = y.max() / cols[name].max() if cols[name].max() else 1.0  # a unit per axis
         assert np.allclose(y, cols[name] * scale, rtol=1e-12, atol=0), name
+
+
+def test_flexible_drives_add_their_deflections():
+    """A table with the motors' columns (docs/model.md §28) adds one figure, whose lines are
+    the deflection columns (in mrad)."""
+    cols = _table()
+    for k, name in enumerate(("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716",
+                              "theta1817")):
+        cols[f"deflection_{name}"] = (k + 1) * 1e-4 * np.sin(cols["t"])
+    figs = simulation_figures(cols)
+    assert tuple(figs) == SIMULATION_FIGURES + FLEXIBLE_FIGURES
+    lines = {ln.get_gid(): ln for ax in figs["simulation_deflection"].axes
+             for ln in ax.get_lines()}
+    assert len(lines) == 6
+    for name, ln in lines.items():
+        assert np.allclose(ln.get_ydata(), 1e3 * cols[name], rtol=1e-15, atol=0), name
 
 
 @pytest.mark.parametrize("edit, says", [

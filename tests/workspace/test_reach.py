@@ -10,6 +10,8 @@ the motor model of dynamics/motors.py at rest) at the
 capacity is 1 within 1.3e-15 (1e-13).
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from poses import wrist_singular_pose  # tests/poses.py
@@ -182,3 +184,32 @@ def test_conditioning_and_payload_per_point(robot):
         assert utilisation(cap * (1 - 1e-6)) < 1.0
     assert worst <= 1e-12
     assert worst_util <= 1e-13
+
+
+def test_stiffness_columns_are_those_of_the_ik(robot):
+    """With stiffnesses, kmin, f1 and sag at the reachable points equal stiffness_at on the
+    constrained IK's configurations (the map starts from the closed form; achieved 2e-15
+    relative, tolerance 1e-12), NaN elsewhere; without them, no such columns; some but not all
+    is one line naming the first drive without."""
+    from dataclasses import replace
+
+    from pollard_pin.dynamics.stiffness import stiffness_at
+
+    act = load_actuators(Path(__file__).resolve().parents[2] / "examples" / "actuators.toml")
+    ys, zs = np.meshgrid(np.linspace(-0.3, 0.3, 9), np.linspace(-0.1, 0.3, 7))
+    poses = np.column_stack([np.full(ys.size, 0.55), ys.ravel(), zs.ravel(),
+                             np.zeros((ys.size, 3))])
+    cols = evaluate(robot, poses, ReachOptions(actuators=act))
+    ok = cols["reason"] == 0
+    assert 10 < ok.sum() < len(poses)
+    ref = stiffness_at(robot, pp.inverse_kinematics(robot, poses[ok]).q, act.stiffness())
+    for name, want in (("kmin", ref.kmin), ("f1", ref.frequencies[:, 0]),
+                       ("sag", np.linalg.norm(ref.deflection[:, :3], axis=1))):
+        assert np.abs(cols[name][ok] / want - 1).max() < 1e-12, name
+        assert np.isnan(cols[name][~ok]).all()
+    bare = replace(act, units=tuple(replace(u, stiffness=None) for u in act.units))
+    assert "kmin" not in evaluate(robot, poses[:3], ReachOptions(actuators=bare))
+    part = replace(act, units=(*act.units[:4], replace(act.units[4], stiffness=None),
+                               act.units[5]))
+    with pytest.raises(pp.ActuatorError, match=r"'theta1716\.stiffness' is missing"):
+        evaluate(robot, poses[:3], ReachOptions(actuators=part))

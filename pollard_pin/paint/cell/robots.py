@@ -2,7 +2,7 @@
 
 Each robot has a name (its output folder), its base origin in the world [m] and its base's
 rotation (rx, ry, rz) [deg] about the world axes, R = Rx·Ry·Rz, the convention of a part's
-rotation (:func:`..target.mesh.placement`). A robot's base frame is world ← base:
+rotation (:func:`pollard_pin.analytic.taskspace.turn`). A robot's base frame is world ← base:
 p_world = R·p_base + base.
 """
 from __future__ import annotations
@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from ...analytic.taskspace import turn
 from ...errors import InputError
 from ...model.params import did_you_mean
 from ...model.values import fail, number
@@ -41,9 +42,7 @@ class CellRobot:
     @property
     def R(self) -> np.ndarray:
         """The base's rotation, world ← base (3, 3)."""
-        from ..target.mesh import placement
-
-        return placement((0.0, 0.0, 0.0), self.rotation)[0]
+        return turn(*self.rotation)
 
     @property
     def origin(self) -> np.ndarray:

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from ...analytic.taskspace import rotation as tool_rotation
+from ...analytic.taskspace import turn
 from ...model.values import read_bytes
 from ..job import UNITS, PaintJob
 from .mesh_check import (
@@ -97,9 +97,9 @@ def placement(position=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0), source: str = 
     axes, composed like the tool pose (docs/model.md §2) R = Rx(rx)·Ry(ry)·Rz(rz): the part
     turns about world z first, then world y, then world x (extrinsic z–y–x, intrinsic
     x–y′–z″), about its own origin, which then goes to ``position`` [m]."""
-    rx, ry, rz = np.radians(_vector(source, "rotation", rotation, "deg"))
+    angles = _vector(source, "rotation", rotation, "deg")
     p = _vector(source, "position", position, "m")
-    return tool_rotation(np.array([0.0, 0.0, 0.0, ry, rx, rz])), p
+    return turn(*angles), p
 
 
 def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,

@@ -1,0 +1,225 @@
+"""Stiffness and vibration with compliant drives and rigid links (docs/model.md §27).
+
+Each actuated joint's drive is a torsional spring kᵢ [N·m/rad] (joint side) between the motor,
+held by its position loop, and the joint. At closed-loop configurations q (N, 12), stacked over
+samples with no Python loop over them:
+
+* J (6 × 6) = ∂(tip velocity, gun angular velocity; world axes)/∂(actuated angles), both loops
+  closed, from the batched IK's [Jc; J_tool] (J⁻¹ is a block of its inverse);
+* the compliance C = J K⁻¹ Jᵀ, the softest tip stiffness under a pure force
+  kmin = 1/λmax(C[:3, :3]);
+* the deflection d = J K⁻¹ (Jᵀ W − τ_g) under a wrench W (force at the tip, moment about the
+  tip, world axes) plus the weight, τ_g the actuator torques that hold the robot still;
+* the natural frequencies from K u = ω² Mₐ u, Mₐ = Sᵀ M S the links' mass matrix reduced to the
+  actuated angles (S = ∂q/∂θ on the loops). The rotors sit on the motor side of the springs
+  and do not count.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+from ..errors import InputError
+from ..kinematics.errors import SingularityError
+from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
+from ..kinematics.singularity import inverse_stack
+
+DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
+FREQUENCIES = tuple(f"f{i}" for i in range(1, 7))
+COLUMNS = ("t", *DEFLECTION, *FREQUENCIES, "kmin")
+UNITS = {"t": "s", **dict.fromkeys(DEFLECTION[:3], "m"), **dict.fromkeys(DEFLECTION[3:], "rad"),
+         **dict.fromkeys(FREQUENCIES, "Hz"), "kmin": "N/m"}
+WRENCH = ("FX", "FY", "FZ", "MX", "MY", "MZ")
+MAX_WRENCH = 1e6  # N, N·m: beyond it a unit slip (the linear model is long gone anyway)
+
+
+class StiffnessError(InputError):
+    """A stiffness option or input the model cannot use (one line)."""
+
+
+@dataclass(frozen=True)
+class StiffnessOptions:
+    """What :func:`stiffness_at` applies, checked once: ``wrench`` (FX, FY, FZ [N], MX, MY, MZ
+    [N·m]) on the tool, force at the tip and moment about the tip, world axes; default none
+    (the weight alone)."""
+
+    wrench: tuple = field(default=(0.0,) * 6)
+
+    def __post_init__(self):
+        w = self.wrench
+        try:
+            values = tuple(float(x) for x in w)
+        except (TypeError, ValueError):
+            raise StiffnessError(f"wrench must be six numbers {', '.join(WRENCH)}, got "
+                                 f"{w!r}") from None
+        if len(values) != 6:
+            raise StiffnessError(f"wrench must be six numbers {', '.join(WRENCH)}, got "
+                                 f"{len(values)}")
+        for name, v in zip(WRENCH, values):
+            if not (math.isfinite(v) and abs(v) <= MAX_WRENCH):
+                raise StiffnessError(f"wrench {name} = {v!r}: must be a finite number of at "
+                                     f"most {MAX_WRENCH:g} in magnitude (N, N·m)")
+        object.__setattr__(self, "wrench", values)
+
+
+def check_stiffness(k) -> np.ndarray:
+    """The six drive stiffnesses [N·m/rad] as an array, each finite and > 0
+    (:class:`StiffnessError` naming the first that is not)."""
+    k = np.asarray(k, dtype=float).reshape(-1)
+    if k.shape != (6,):
+        raise StiffnessError(f"stiffness must be six numbers (one per actuator), got {k.size}")
+    bad = np.flatnonzero(~(np.isfinite(k) & (k > 0)))
+    if len(bad):
+        i = int(bad[0])
+        raise StiffnessError(f"stiffness of actuator {i + 1} = {k[i]!r}: must be a finite "
+                             "number > 0 N·m/rad")
+    return k
+
+
+@dataclass
+class StiffnessResult:
+    """Per sample: ``deflection`` (N, 6) dx, dy, dz [m], rx, ry, rz [rad] (world axes),
+    ``frequencies`` (N, 6) [Hz] ascending and ``kmin`` (N,) [N/m] (the table's writer:
+    :class:`pollard_pin.run.stiffness.StiffnessRun`)."""
+
+    t: np.ndarray
+    deflection: np.ndarray
+    frequencies: np.ndarray
+    kmin: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The ``stiffness`` table's columns (:data:`COLUMNS`), SI units (:data:`UNITS`)."""
+        cols = {"t": self.t}
+        cols.update({n: self.deflection[:, i] for i, n in enumerate(DEFLECTION)})
+        cols.update({n: self.frequencies[:, i] for i, n in enumerate(FREQUENCIES)})
+        cols["kmin"] = self.kmin
+        return cols
+
+
+@dataclass(frozen=True)
+class ClosedLoop:
+    """The closed-loop maps at a stack of configurations: ``J`` (N, 6, 6) actuated rates →
+    tool twist (tip velocity, angular velocity; world axes) and ``S`` (N, 12, 6) actuated rates
+    → tree rates (v = S θ̇)."""
+
+    J: np.ndarray
+    S: np.ndarray
+
+
+def closed_loop_maps(robot, q) -> ClosedLoop:
+    """J and S at closed configurations q (N, 12) (docs/model.md §27.1): with
+    Kq = [Jc; J_tool] (12 × 12), Kq v = [0; twist] on the loops, so θ̇ = Kq⁻¹[act, 6:] twist:
+    J⁻¹ is that block, and S = Kq⁻¹[:, 6:] J. NaN where Kq or J⁻¹ is singular."""
+    q = np.atleast_2d(np.asarray(q, dtype=float))
+    lay = layout(robot)
+    R, o = lay.tree.placements(q)
+    Kq, _ = point_rows(lay, R, o, robot.model.nv)
+    Kinv = kinematic_inverse(Kq, lay)
+    tool = Kinv[:, :, 6:]
+    J = inverse_stack(tool[:, robot.actuated_v, :])
+    return ClosedLoop(J=J, S=tool @ J)
+
+
+def reduced_mass_and_gravity(robot, q, S) -> tuple[np.ndarray, np.ndarray]:
+    """(Mₐ (N, 6, 6), τ_g (N, 6)) at closed configurations q (N, 12) with S = ∂q/∂θ
+    (docs/model.md §27.3): Mₐ = Sᵀ M S with M Pinocchio's joint-space mass matrix of the links
+    (CRBA; the model's armature, rotors, taken out), and τ_g = Sᵀ g(q), the open tree's
+    gravity torques projected on the loops: the closed-loop inverse dynamics of §13 at zero
+    velocity and acceleration (Jc S = 0 drops the closure forces)."""
+    model, data = robot.model, robot.data
+    n, nv = len(q), model.nv
+    M, tree = np.empty((n, nv, nv)), np.empty((n, nv, 1))
+    for i in range(n):  # ≈ 3 µs a sample: cheaper than any stacked numpy form here
+        M[i] = pin.crba(model, data, q[i])
+        tree[i, :, 0] = pin.computeGeneralizedGravity(model, data, q[i])
+    M = np.triu(M) + np.swapaxes(np.triu(M, 1), 1, 2)  # crba fills the upper triangle
+    arm = np.asarray(model.armature, dtype=float)
+    if arm.any():
+        M -= np.diag(arm)
+    St = np.swapaxes(S, 1, 2)
+    return St @ M @ S, (St @ tree)[..., 0]
+
+
+def holding_torques(robot, q, S) -> np.ndarray:
+    """τ_g (N, 6) = Sᵀ g(q): the actuator torques that hold the robot still at closed
+    configurations q (the gravity half of :func:`reduced_mass_and_gravity`)."""
+    model, data = robot.model, robot.data
+    tree = np.empty((len(q), model.nv, 1))
+    for i in range(len(q)):
+        tree[i, :, 0] = pin.computeGeneralizedGravity(model, data, q[i])
+    return (np.swapaxes(S, 1, 2) @ tree)[..., 0]
+
+
+def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
+    """d = J K⁻¹ (Jᵀ W − τ_g) (N, 6): dx, dy, dz [m], rx, ry, rz [rad], world axes, at closed
+    configurations q (N, 12) under the weight and ``wrench``: None, six numbers for every
+    sample, or (N, 6) one per sample (FX, FY, FZ [N] at the tip, MX, MY, MZ [N·m] about it,
+    world axes; e.g. a spray's recoil along each sample's gun axis). Without the modes: one
+    gravity pass per sample (docs/model.md §27.2)."""
+    k = check_stiffness(k)
+    q, t = _configurations(robot, q, t)
+    W = np.zeros(6) if wrench is None else np.asarray(wrench, dtype=float)
+    if W.shape not in ((6,), (len(q), 6)) or not np.isfinite(W).all():
+        raise StiffnessError(f"wrench must be six finite numbers or ({len(q)}, 6) of them, got "
+                             f"shape {W.shape}" + ("" if np.isfinite(W).all() else
+                                                   " with non-finite entries"))
+    loop = _regular_maps(robot, q, t)
+    return _deflection(loop.J, k, W, holding_torques(robot, q, loop.S))
+
+
+def _deflection(J, k, W, tau_g):
+    # the springs' turn under the joint-space load, mapped to the tool (§27.2)
+    load = (np.swapaxes(J, 1, 2) @ np.broadcast_to(W, (len(J), 6))[..., None])[..., 0] - tau_g
+    return (J @ (load / k)[..., None])[..., 0]
+
+
+def _configurations(robot, q, t):
+    q = np.atleast_2d(np.asarray(q, dtype=float))
+    n = len(q)
+    if q.shape != (n, robot.model.nq) or not np.isfinite(q).all():
+        raise StiffnessError(f"configurations must be finite, shape (N, {robot.model.nq}), got "
+                             f"shape {q.shape}")
+    return q, np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float)
+
+
+def _regular_maps(robot, q, t) -> ClosedLoop:
+    """:func:`closed_loop_maps`, or a SingularityError naming the first sample where they are
+    not finite."""
+    loop = closed_loop_maps(robot, q)
+    bad = ~np.isfinite(loop.S).all(axis=(1, 2))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise SingularityError("the closed-loop Jacobian J (actuated rates → tool twist) is "
+                               "not finite: a parallel or serial singularity (docs/model.md "
+                               "§12, §27.1)", chain="stiffness", sample=i, time=float(t[i]))
+    return loop
+
+
+def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
+                 ) -> StiffnessResult:
+    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) (the IK's,
+    loops closed) with drive stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the
+    samples' times (default their indices). A configuration where the closed-loop maps are
+    not finite (a singular Jc_p or J) raises :class:`SingularityError` naming its sample."""
+    options = StiffnessOptions() if options is None else options
+    if not isinstance(options, StiffnessOptions):
+        raise StiffnessError(f"options must be a StiffnessOptions, got {type(options).__name__}")
+    k = check_stiffness(k)
+    q, t = _configurations(robot, q, t)
+    loop = _regular_maps(robot, q, t)
+    J = loop.J
+    Ma, tau_g = reduced_mass_and_gravity(robot, q, loop.S)
+    defl = _deflection(J, k, np.asarray(options.wrench), tau_g)
+    C = (J[:, :3, :] / k) @ np.swapaxes(J[:, :3, :], 1, 2)  # the force block of J K⁻¹ Jᵀ
+    kmin = 1.0 / np.linalg.eigvalsh(C)[:, -1]
+    # K u = ω² Mₐ u ⇔ (D Mₐ D) y = ω⁻² y with D = K^-½, u = D y: symmetric, batched (§27.3)
+    s = 1.0 / np.sqrt(k)
+    mu = np.linalg.eigvalsh(s[:, None] * Ma * s[None, :])[:, ::-1]
+    freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
+    return StiffnessResult(t=t, deflection=defl, frequencies=freq, kmin=kmin)
