@@ -134,6 +134,9 @@ class TrackingResult:
         Seconds spent integrating.
     settings : dict
         The run's settings (controller, gains, steps, errors), for the table's metadata.
+    phi, d_phi : ndarray or None
+        With flexible drives, the motor angles [rad] and rates [rad/s] (N, 6), joint side;
+        None otherwise.
 
     :meth:`columns` is the ``pollard-pin simulate`` table, :meth:`summary` its figures.
     """
