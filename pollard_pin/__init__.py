@@ -68,6 +68,7 @@ _API = {
     "PlaceError": "paint.place",
     "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
     "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
+    "program_deflection": "paint.plan.compliance", "compliance_entry": "paint.film.compliance",
 }
 
 __all__ = sorted(_API)

@@ -51,6 +51,8 @@ def commands(cli: Path, work: Path) -> None:
         report = json.loads((work / folder / "paint.json").read_text())
         if not report:
             sys.exit(f"check_install: paint --out {folder}: empty paint.json")
+        if report.get("compliance", {}).get("stiffness") is not True:  # docs/model.md §27.7
+            sys.exit(f"check_install: paint --out {folder}: no compliance in paint.json")
     # the painted program goes through run and size like any trajectory
     sh([cli, "run", "--trajectory", work / "part/path.csv", "--out", "part_run.csv"], work)
     sh([cli, "size", "--actuators", ex / "actuators.toml", "--trajectory",

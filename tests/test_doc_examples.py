@@ -105,10 +105,11 @@ def _undocumented():
     return missing
 
 
-# Public names documented by the authors of their modules (the drives' stiffness and the
-# flexible simulation), not by this test's conversion.
+# Public names documented by the authors of their modules (the drives' stiffness, the
+# flexible simulation, what compliance does to the paint), not by this test's conversion.
 OWN_DOCS = ("pollard_pin.dynamics.stiffness", "pollard_pin.dynamics.flexible",
-            "pollard_pin.run.stiffness")
+            "pollard_pin.run.stiffness", "pollard_pin.paint.plan.compliance",
+            "pollard_pin.paint.film.compliance")
 
 
 def test_public_names_document_their_parameters():

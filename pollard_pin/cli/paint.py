@@ -45,7 +45,8 @@ def run(args) -> int:
     act = _actuators(args, job)
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
         result = paint(load_robot(args), job, act,
-                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed))
+                       PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
+                                    compliance=not args.no_compliance))
     name = result.write(out, args.format)
     rep = result.report.to_dict()
     if kind == "panel":
@@ -62,9 +63,21 @@ def run(args) -> int:
         lines.append(f"gun body {rep['min_clearance_m'] * 1e3:.1f} mm from the part at its "
                      f"closest (± {c['between_samples_m'] * 1e3:.1f} mm between samples; "
                      f"clearance {c['required_m'] * 1e3:.3g} mm)")
+    if "compliance" in rep:  # docs/model.md §27.7
+        lines.append(compliance_line(rep["compliance"]))
     print("\n".join(lines))
     say_written(out, name)
     return 0
+
+
+def compliance_line(c: dict) -> str:
+    """paint.json's ``compliance`` in one line (docs/model.md §27.7)."""
+    if not c["stiffness"]:
+        return f"compliance {c['note']}"
+    return (f"compliance (weight, recoil {c['recoil_n']:.3g} N): standoff error "
+            f"{c['standoff_error_m'] * 1e6:.3g} µm, lateral {c['lateral_error_m'] * 1e6:.3g} µm, "
+            f"tilt {c['tilt_rad'] * 1e3:.3g} mrad; film changes by at most "
+            f"{100 * c['film_error']:.2g} % of the target")
 
 
 def summary_lines(rep: dict, names) -> list[str]:
@@ -103,6 +116,9 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--resolution", type=positive, default=None, metavar="M",
                    help="film grid (a part: film point) spacing [m], at most σ (default: "
                         "σ/3)")
+    p.add_argument("--no-compliance", action="store_true",
+                   help="skip what the drives' compliance does to the gun and the film "
+                        "(docs/model.md §27.7: a second film integration)")
     p.add_argument("--max-line-speed", action="store_true",
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "

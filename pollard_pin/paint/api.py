@@ -27,6 +27,10 @@ from .errors import JobKindError
 from .job import KINDS, PartJob, job_kind
 from .line.phases import SPEED_RESOLUTION
 
+# The kinds whose plan is one robot's program (docs/model.md §27.7): a cell's robots are
+# each one such program in their own base frame.
+COMPLIANCE_KINDS = ("panel", "part", "line panel", "line part")
+
 
 @dataclass(frozen=True)
 class PaintOptions:
@@ -42,6 +46,9 @@ class PaintOptions:
         job's speed (docs/model.md §24; default False).
     speed_resolution : float, optional
         That search's relative bracket, in (0, 1) (default 0.01).
+    compliance : bool, optional
+        Report what the drives' compliance does to the gun and the film (docs/model.md
+        §27.7; a second film integration; default True).
 
     Raises
     ------
@@ -52,12 +59,13 @@ class PaintOptions:
     --------
     >>> import pollard_pin as pp
     >>> pp.PaintOptions(resolution=0.004)
-    PaintOptions(resolution=0.004, max_line_speed=False, speed_resolution=0.01)
+    PaintOptions(resolution=0.004, max_line_speed=False, speed_resolution=0.01, compliance=True)
     """
 
     resolution: float | None = None
     max_line_speed: bool = False
     speed_resolution: float = SPEED_RESOLUTION
+    compliance: bool = True
 
     def __post_init__(self):
         r = self.resolution
@@ -72,6 +80,9 @@ class PaintOptions:
         if isinstance(s, bool) or not isinstance(s, numbers.Real) or not 0 < s < 1:
             raise InputError(f"PaintOptions.speed_resolution = {s!r}: expected a relative "
                              "bracket in (0, 1)")
+        if not isinstance(self.compliance, bool):
+            raise InputError(f"PaintOptions.compliance = {self.compliance!r}: expected True or "
+                             "False")
 
 
 @dataclass(frozen=True)
@@ -270,7 +281,19 @@ def paint(robot, job, actuators: Actuators | None = None,
     if painter is None:
         raise JobKindError(f"{job.source}: a {kind} is not planned yet")
     plan, film, rep = painter(robot, job, act, options, res)
+    if options.compliance and kind in COMPLIANCE_KINDS:
+        _compliance(robot, plan, film, act, rep)
     return PaintResult(job, kind, plan, film, PaintReport.from_dict(kind, rep), act, options)
+
+
+def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
+    """paint.json's ``compliance`` entry and its time (docs/model.md §27.7)."""
+    from .film.compliance import compliance_entry
+
+    t0 = time.perf_counter()
+    rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
+                                         film.painted)
+    rep["timings"]["compliance"] = time.perf_counter() - t0
 
 
 def _panel(robot, job, act, options, res):

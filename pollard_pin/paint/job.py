@@ -22,8 +22,8 @@ from .line.conveyor import Line, line_from_table
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "gun": ("standoff", "sigma", "flow"),
             "job": ("thickness",)}
-OPTIONAL = {"panel": (), "gun": ("clearance",), "job": ("spacing", "speed", "direction", "coats",
-                                             "actuators")}
+OPTIONAL = {"panel": (), "gun": ("clearance", "recoil"),
+            "job": ("spacing", "speed", "direction", "coats", "actuators")}
 # A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
 # replaces [panel].
 PART_REQUIRED = ("mesh", "position")
@@ -41,6 +41,9 @@ MIN_PANEL_SIGMAS = 1.0
 # fastest pass leaves the thinnest coat at ~1/5 of the example target (the panel planner's
 # "at most 5 coat(s)"): more only make the program longer and the film thinner per coat.
 MAX_PART_COATS = 5
+# The spray's recoil [N]: a gun kicks back by a few N at most; beyond this a unit slip (the
+# drives' linear deflection, docs/model.md §27.7, is long gone anyway).
+MAX_RECOIL = 100.0
 
 
 class JobError(InputError):
@@ -80,6 +83,9 @@ class PaintJob:
         The job file (for messages).
     robots : tuple of pollard_pin.paint.cell.robots.CellRobot
         A cell's robots; empty: one robot at the origin.
+    recoil : float or None
+        The spray's push back on the gun along its axis [N] (docs/model.md §27.7); None:
+        none.
     """
 
     center: tuple[float, float, float]
@@ -99,6 +105,7 @@ class PaintJob:
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
+    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
@@ -140,6 +147,7 @@ class PartJob:
     line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
+    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
 
     @property
     def unit(self) -> float:
@@ -315,6 +323,11 @@ def _gun_values(source: str, gun: Mapping) -> dict:
         values["clearance"] = _number(source, "gun.clearance", gun["clearance"], length=True)
         if values["clearance"] < 0:
             _fail(source, "gun.clearance", gun["clearance"], "must be ≥ 0 m")
+    if "recoil" in gun:  # along the spray axis, pushing the gun back (§27.7)
+        values["recoil"] = number(gun["recoil"], "gun.recoil", JobError, f"{source}: ",
+                                  nonnegative=True, limit=MAX_RECOIL,
+                                  limit_rule=f"must be at most {MAX_RECOIL:g} N (the force "
+                                             "the spray pushes the gun back with)")
     return values
 
 
@@ -400,5 +413,5 @@ def job_kind(job: Any) -> str:
                        f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
 
 
-__all__ = ["DIRECTIONS", "KINDS", "UNITS", "MIN_PANEL_SIGMAS", "JobError", "PaintJob", "PartJob",
-           "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]
+__all__ = ["DIRECTIONS", "KINDS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "JobError",
+           "PaintJob", "PartJob", "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

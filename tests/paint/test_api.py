@@ -43,7 +43,7 @@ def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
     from pollard_pin.paint.film.line import line_film
     from pollard_pin.paint.report import line_report
 
-    r = pp.paint(robot, line_job, act)
+    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
     U, V, _, f = line_film(line_plan)
     direct = line_report(line_plan, f, act, {"nu": len(U), "nv": len(V)})
     assert r.kind == "line panel" and r.report.line["searched"] is False
@@ -58,7 +58,7 @@ def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, ac
     from pollard_pin.paint.film.part import surface_film
     from pollard_pin.paint.report import line_part_report
 
-    r = pp.paint(robot, line_part_job, act)
+    r = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False))
     pts, f, painted, eff = surface_film(line_part_plan.in_part_frame())
     direct = line_part_report(line_part_plan, pts, f, painted, eff, act)
     assert r.kind == "line part"
@@ -117,7 +117,7 @@ def test_part_is_the_part_planners(robot, act):
 
     job = pp.load_job(Path(__file__).resolve().parents[2] / "examples" / "parts"
                       / "curved_panel.toml")
-    r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma))
+    r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma, compliance=False))
     plan = plan_surface(robot, job, act)
     pts, f, painted, eff = surface_film(plan, job.sigma)
     direct = surface_report(plan, pts, f, painted, eff, act)
