@@ -55,7 +55,9 @@ direction = [0.0, 1.0, 0.0]
 """)
 robot = pp.load()
 job = pp.load_job(folder / "line.toml")
-result = pp.paint(robot, job, options=pp.PaintOptions(resolution=0.008))
+# A film resolution of 8 mm keeps this page quick, and so does leaving out what the drives'
+# compliance does to the film (``compliance=False``: a second film integration).
+result = pp.paint(robot, job, options=pp.PaintOptions(resolution=0.008, compliance=False))
 
 # %%
 # The line's numbers
