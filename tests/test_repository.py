@@ -218,6 +218,7 @@ def test_chromium_missing_gives_one_line_and_writes_nothing():
 UNMIRRORED_TESTS = {
     "tests/test_repository.py",  # the repository as a whole
     "tests/test_scripts.py",  # scripts/
+    "tests/test_docs.py",  # docs/: the site's sources
     # the CLI fuzz suite, every command's bad input: tests/cli/test_fuzz*.py (by class)
     "tests/kinematics/test_solver_edges.py",  # edge cases across ik_*, singularity, closure
     "tests/paint/test_real_meshes.py",  # third-party meshes through place and paint

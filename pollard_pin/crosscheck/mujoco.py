@@ -18,6 +18,7 @@ The model itself (the URDF read without Pinocchio, the closed-loop spec, the MJC
 :func:`build_mujoco` can read back with ``mjcf_path=``) comes from :mod:`pollard_pin.io.mjcf`.
 
 Modelling notes:
+
 - MuJoCo rejects massless moving bodies, so each massless U-joint cross (docs/model.md §5) is
   removed and its hinge moved into its child body ahead of the child's own hinge. MuJoCo
   composes the joints of one body in order, so the kinematics are unchanged: Ry(θ43) Rz(θ54)
@@ -56,9 +57,10 @@ def build_mujoco(urdf_path=None, mjcf_path=None):
     """Compile the closed-loop MuJoCo model. Returns ``(model, data, info)``.
 
     The model is built from the URDF ``urdf_path`` (default: the shipped one), or read from an
-    MJCF file ``mjcf_path`` (as :func:`export_mjcf` writes it); the URDF is then the reference
-    its contents are checked against (sites, equalities, masses, inertias). Either way the
-    joints are made ideal (no limits, springs, damping, friction, contacts: docs/model.md §13).
+    MJCF file ``mjcf_path`` (as :func:`~pollard_pin.io.mjcf.export_mjcf` writes it); the URDF
+    is then the reference its contents are checked against (sites, equalities, masses,
+    inertias). Either way the joints are made ideal (no limits, springs, damping, friction,
+    contacts: docs/model.md §13).
 
     ``info`` holds the name→address maps (in :data:`JOINTS` order), the site/equality ids, the
     efc sign and the mass/inertia check against the URDF. Raises ``ValueError`` when a check
@@ -193,12 +195,14 @@ def inverse_dynamics_mujoco(q, v, a, urdf_path=None, built=None, mjcf_path=None)
     """Closed-loop inverse dynamics with MuJoCo at samples (N, 12) in :data:`JOINTS` order.
 
     Returns a dict of
-      ``tau`` (N, 6): actuator torques [N·m], :data:`ACTUATED` order (docs/model.md §6);
-      ``closure_forces`` (N, 2, 3): force the platform exerts ON ``link_i`` at the ball joint
-        [N], world axes (docs/model.md §4);
-      ``tree`` (N, 12): open-tree torques (M a + c + g) [N·m], :data:`JOINTS` order;
-      ``residual`` (N, 2): |p_A − p_B| of each connect pair in MuJoCo [m] (sanity check);
-      ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
+
+    - ``tau`` (N, 6): actuator torques [N·m], :data:`ACTUATED` order (docs/model.md §6);
+    - ``closure_forces`` (N, 2, 3): force the platform exerts ON ``link_i`` at the ball joint
+      [N], world axes (docs/model.md §4);
+    - ``tree`` (N, 12): open-tree torques (M a + c + g) [N·m], :data:`JOINTS` order;
+    - ``residual`` (N, 2): |p_A − p_B| of each connect pair in MuJoCo [m] (sanity check);
+    - ``residual_vec`` (N, 2, 3): p_A − p_B [m], world axes.
+
     ``built`` may pass ``build_mujoco()``'s result; otherwise a cached model is used, built from
     ``urdf_path`` or read from ``mjcf_path`` (see :func:`build_mujoco`).
     """
@@ -317,6 +321,7 @@ def inverse_kinematics_mujoco(poses, d_poses=None, dd_poses=None, q_start=None, 
       gives each point's classical acceleration (its ω × v term included) and the angular
       acceleration. ``cacc`` starts from −gravity at the world body, a uniform offset that is
       added back (gravity stays untouched in the model).
+
     ``timings`` (a dict) accumulates seconds in 'position', 'velocity', 'acceleration'.
 
     ``predictor="secant"`` starts Newton from 2 q[k−1] − q[k−2] instead of q[k−1] (about one

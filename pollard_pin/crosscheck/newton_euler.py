@@ -3,7 +3,7 @@
 Independent of Pinocchio and of ``data.f``: numpy only, with the closed-form kinematics of
 docs/model.md §7 (body CoG accelerations, angular velocities and accelerations exact by jets).
 For a tree joint j, the wrench of the parent on the child about the joint origin o_j is what
-the subtree S_j needs beyond gravity and the closure forces acting on it:
+the subtree S_j needs beyond gravity and the closure forces acting on it::
 
     F_j = Σ_{b ∈ S_j} m_b (a_b − g) − Σ_{ext on S_j} f
     M_j = Σ_{b ∈ S_j} [I_b α_b + ω_b × I_b ω_b + (r_b − o_j) × m_b (a_b − g)]

@@ -13,8 +13,7 @@ module-level function of plain data, and yields one flat row of the result table
   (first unreachable/singular/branch-flipping sample, as the kinematics reports it; empty when
   the parameter set itself is invalid, e.g. the home pose is unreachable);
 * per actuator (docs/model.md §6 order): ``peak_tau_<a>`` = max |τ| [N·m], ``rms_tau_<a>`` = the
-time
-  RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
+  time RMS sqrt(1/T ∫ τ² dt) (trapezoid rule) [N·m], ``peak_power_<a>`` = max |τ·q̇| [W];
 * ``peak_force_leg1``, ``peak_force_leg2`` = max |λ_i| [N] at the spherical joints;
 * ``min_wrist_margin``, ``min_sigma_parallel``, ``min_sigma_serial``: how close the variant
   came to the singularities (see :class:`pollard_pin.kinematics.ik.IKResult`);
