@@ -225,6 +225,7 @@ UNMIRRORED_TESTS = {
     # the CLI fuzz suite, every command's bad input: tests/cli/test_fuzz*.py (by class)
     "tests/kinematics/test_solver_edges.py",  # edge cases across ik_*, singularity, closure
     "tests/paint/test_real_meshes.py",  # third-party meshes through place and paint
+    "tests/test_doc_examples.py",  # the public names' docstring examples, across layers
 }
 
 

@@ -10,6 +10,25 @@ import numpy as np
 
 
 def agreement(ours, ref) -> dict:
+    """How closely ``ours`` matches ``ref``.
+
+    Parameters
+    ----------
+    ours, ref : ndarray
+        Arrays of one shape.
+
+    Returns
+    -------
+    dict
+        ``max_abs_diff`` (the largest ``|ours − ref|``), ``reference_peak`` (the largest
+        ``|ref|``) and ``relative`` (their ratio; NaN when ``ref`` is all zero).
+
+    Examples
+    --------
+    >>> from pollard_pin.crosscheck.compare import agreement
+    >>> agreement([1.0, 2.0], [1.0, 2.5])
+    {'max_abs_diff': 0.5, 'reference_peak': 2.5, 'relative': 0.2}
+    """
     ours, ref = np.asarray(ours, dtype=float), np.asarray(ref, dtype=float)
     diff = float(np.max(np.abs(ours - ref)))
     scale = float(np.max(np.abs(ref)))
@@ -31,7 +50,22 @@ def result_loads(robot, result):
 
 
 def cross_check_thesis(robot, result) -> dict:
-    """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques."""
+    """Pinocchio vs the thesis' closed-form IK and Euler–Lagrange torques, and the joint loads
+    vs free-body Newton–Euler (the ``thesis`` column of ``pollard-pin report``).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    result : RunResult
+        :func:`~pollard_pin.run_pipeline`'s result.
+
+    Returns
+    -------
+    dict
+        :func:`agreement` figures for the joint positions [rad], velocities, accelerations
+        and, with dynamics, the torques [N·m], joint forces [N] and moments [N·m].
+    """
     from ..analytic import closed_form as ik_mod
     from . import euler_lagrange as lagrange
 
@@ -58,7 +92,23 @@ def cross_check_thesis(robot, result) -> dict:
 
 
 def cross_check_mujoco(robot, result) -> dict:
-    """Pinocchio vs MuJoCo: actuator torques and closure forces (skipped without MuJoCo)."""
+    """Pinocchio vs MuJoCo: actuator torques, closure forces and joint loads (the ``mujoco``
+    column of ``pollard-pin report``).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (its URDF is the one MuJoCo reads).
+    result : RunResult
+        :func:`~pollard_pin.run_pipeline`'s result, with its dynamics.
+
+    Returns
+    -------
+    dict
+        ``available`` and, when MuJoCo is installed, :func:`agreement` figures for the
+        torques [N·m], closure forces and joint forces [N], joint moments [N·m] and MuJoCo's
+        own loop residual [m]; otherwise the ``reason`` it was skipped.
+    """
     try:
         import mujoco  # noqa: F401
     except ImportError as exc:

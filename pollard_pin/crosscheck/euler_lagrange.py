@@ -71,10 +71,39 @@ def _solve_T(J_tau, Q):
 
 def inverse_dynamics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0) -> dict:
     """Actuator torques along a task trajectory by (3.154) with all six actuators (docs/model.md
-    §6, §8).
+    §6, §8): the thesis' method, numpy only, independent of Pinocchio.
 
-    Returns a dict of arrays: 'tau' (N, 6) in ACTUATED order [N·m], 'D' (N, 6, 6), 'Vqd', 'C',
-    'Q' (N, 6), 'J_tau' (N, 6, 6), 'qd_act' = J_τ q̇ (N, 6), 'K', 'U' (N,) energies [J].
+    Parameters
+    ----------
+    params : Params
+        The model's numbers (:func:`~pollard_pin.load_params`, or ``robot.params``).
+    poses, d_poses, dd_poses : ndarray
+        Tool poses (N, 6) (x, y, z [m], ψ, θ, φ [rad]) and their first and second time
+        derivatives.
+    wrist_margin : float, optional
+        The smallest ``|sin θ1716|`` allowed by the closed-form IK (default 0).
+
+    Returns
+    -------
+    dict
+        ``tau`` (N, 6) in :attr:`Robot.actuated` order [N·m]; ``D`` (N, 6, 6), ``Vqd``,
+        ``C``, ``Q`` (N, 6): the terms of D q̈ + V q̇ + C = Q = J_τᵀ τ; ``J_tau``
+        (N, 6, 6); ``qd_act`` = J_τ q̇ (N, 6); ``K``, ``U`` (N,) energies [J].
+
+    Examples
+    --------
+    The thesis' method and Pinocchio agree on the torques to round-off:
+
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> from pollard_pin.crosscheck import euler_lagrange
+    >>> robot = pp.load()
+    >>> traj = pp.thesis_trajectory(samples=201)
+    >>> tau = euler_lagrange.inverse_dynamics(robot.params, traj.poses, traj.d_poses,
+    ...                                       traj.dd_poses)["tau"]
+    >>> ours = pp.run_pipeline(robot, traj).dynamics.tau
+    >>> bool(np.abs(tau - ours).max() < 1e-12)                     # N·m; 3e-15 achieved
+    True
     """
     qd, qdd = as_poses(d_poses), as_poses(dd_poses)
     out = _terms(params, poses, qd, wrist_margin)
@@ -85,18 +114,57 @@ def inverse_dynamics(params, poses, d_poses, dd_poses, wrist_margin: float = 0.0
 
 
 def mass_matrix(params, poses) -> np.ndarray:
-    """D(q), (N, 6, 6)."""
+    """The task-space mass matrix D(q) of docs/model.md §8.
+
+    Parameters
+    ----------
+    params : Params
+        The model's numbers.
+    poses : ndarray
+        Tool poses (N, 6).
+
+    Returns
+    -------
+    ndarray
+        (N, 6, 6), symmetric positive definite away from singularities [kg, kg·m, kg·m²].
+    """
     return _terms(params, poses)["D"]
 
 
 def energy(params, poses, d_poses):
-    """(K, U) [J], each (N,): kinetic and gravitational potential energy (U = −Σ m gᵀ r_G)."""
+    """Kinetic and gravitational potential energy (U = −Σ m gᵀ r_G) along a task trajectory.
+
+    Parameters
+    ----------
+    params : Params
+        The model's numbers.
+    poses, d_poses : ndarray
+        Tool poses (N, 6) and their rates.
+
+    Returns
+    -------
+    K, U : ndarray
+        Each (N,) [J].
+    """
     t = _terms(params, poses, as_poses(d_poses))
     return t["K"], t["U"]
 
 
 def gravity_torques(params, poses) -> np.ndarray:
-    """Static actuator torques (N, 6): τ = J_τ⁻ᵀ ∂U/∂q."""
+    """Static actuator torques τ = J_τ⁻ᵀ ∂U/∂q: what holds the robot still at each pose.
+
+    Parameters
+    ----------
+    params : Params
+        The model's numbers.
+    poses : ndarray
+        Tool poses (N, 6).
+
+    Returns
+    -------
+    ndarray
+        (N, 6) [N·m], :attr:`Robot.actuated` order.
+    """
     t = _terms(params, poses)
     return _solve_T(t["J_tau"], t["C"])
 

@@ -55,8 +55,27 @@ class Controller(Protocol):
 
 @dataclass(frozen=True)
 class Gains:
-    """Actuator-space error dynamics ë + 2ζω ė + ω² e = 0: natural frequency ω [rad/s] and
-    damping ratio ζ."""
+    """The gains of the built-in controllers: actuator-space error dynamics
+    ë + 2ζω ė + ω² e = 0 (docs/model.md §18).
+
+    Parameters
+    ----------
+    wn : float, optional
+        Natural frequency ω [rad/s] (default 60), at most 1e6.
+    zeta : float, optional
+        Damping ratio ζ (default 1, critical).
+
+    Raises
+    ------
+    pollard_pin.dynamics.control.ControlError
+        A gain that is negative, not finite, or ω above 1e6 rad/s.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.Gains(wn=120.0)
+    Gains(wn=120.0, zeta=1.0)
+    """
 
     wn: float = WN
     zeta: float = ZETA
@@ -118,11 +137,39 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     control ticks, by the batched IK and inverse dynamics of ``robot`` (the nominal model),
     with the joint ``losses`` the controller knows (rotor inertia, friction; default none).
 
-    ``curve(t) → (poses, rates, accelerations)`` evaluates the tool path between samples
-    (default: the trajectory's own ``curve``, else the quintic Hermite spline through its
-    samples, :func:`~pollard_pin.paths.trajectory.trajectory_curve`). ``joint_limits``: refuse a
-    tick with a joint outside its limits (kinematics.limits, the rule of every command);
-    ``ik``: how the IK solves (:class:`~pollard_pin.kinematics.ik.IkOptions`).
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    trajectory : Trajectory
+        The tool path to follow (``t``, ``poses``, ``d_poses``, ``dd_poses``).
+    period : float, optional
+        The control period [s] (default 1 ms): the ticks run from the first sample's time to
+        the last's.
+    curve : Callable or None, optional
+        ``curve(t) → (poses, rates, accelerations)``, the tool path between samples (default:
+        the trajectory's own ``curve``, else the quintic Hermite spline through its samples,
+        :func:`~pollard_pin.trajectory_curve`).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+    joint_limits : bool, optional
+        Refuse a tick with a joint outside its limits (default True, the rule of every
+        command).
+    ik : IkOptions or None, optional
+        How the IK solves.
+
+    Returns
+    -------
+    pollard_pin.dynamics.control.DesiredTrajectory
+        At the ticks ``t`` (K,): ``q``, ``v``, ``a`` (K, 12) and the feedforward torque
+        ``tau`` (K, 6) [N·m], held over each period.
+
+    Raises
+    ------
+    pollard_pin.dynamics.control.ControlError
+        A control period that is not > 0, a trajectory of fewer than 2 samples.
+    KinematicsError
+        A tick the kinematics cannot solve (unreachable, singular, out of the joint limits).
     """
     if not (math.isfinite(period) and period > 0):
         raise ControlError(f"control period must be > 0 s, got {period}")
@@ -158,7 +205,22 @@ class ComputedTorque:
     (:func:`~pollard_pin.dynamics.inverse.reduced_dynamics`) with the joint ``losses`` the
     controller knows. With an exact model the actuator errors obey ë + 2ζω ė + ω² e = 0
     wherever the robot is, on the reference or not. θ̈_d is held over each control period as
-    the mean of its ends (as the feedforward, :class:`DesiredTrajectory`)."""
+    the mean of its ends (as the feedforward, :class:`DesiredTrajectory`).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):
@@ -188,7 +250,22 @@ class FeedforwardPD:
     scaled by the nominal closed-loop inertia at the measured configuration (docs/model.md
     §18). Off the reference it does not cancel the dynamics at the measured state.
     ``losses``: the rotor inertia the controller knows (in M_red; the feedforward's losses
-    are ``desired``'s)."""
+    are ``desired``'s).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):
@@ -207,7 +284,22 @@ class PDGravity:
     """τ = g_red(q) + K_p e + K_d ė: the baseline. g_red is the nominal closed-loop gravity
     torque at the measured configuration; K_p = ω² M₀, K_d = 2ζω M₀ with M₀ the nominal
     closed-loop inertia at the reference's start (constant gains; rotor inertia of ``losses``
-    included)."""
+    included).
+
+    Called as ``controller(t, q, v)`` with the measured state, it returns the six actuator
+    torques [N·m]; :func:`~pollard_pin.simulate_tracking` builds it from its name.
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model (the controller's).
+    desired : pollard_pin.dynamics.control.DesiredTrajectory
+        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+    gains : Gains, optional
+        ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        The joint losses the controller knows (default none).
+    """
 
     def __init__(self, robot: Robot, desired: DesiredTrajectory, gains: Gains = Gains(),
                  losses: JointLosses | None = None):

@@ -35,11 +35,52 @@ def moving_segments(traj) -> list[tuple[int, int]]:
 
 def time_optimal_path(robot, act: Actuators, traj, options: Options | None = None
                       ) -> TimeOptimal:
-    """The time-optimal traversal of the path of ``traj`` (``t``, ``poses``, rates,
-    accelerations and optional ``curve``: a :class:`~pollard_pin.paths.trajectory.Trajectory`):
-    :func:`~.timeopt.time_optimal_segment` on each of its moving segments
-    (:func:`moving_segments`), rest to rest between them (``options.s_dot_start`` and
-    ``s_dot_end`` at the path's own ends), the waits taking no time."""
+    """The time-optimal traversal of the path of ``traj`` under the motors' peak torque and
+    speed, by TOPP-RA (docs/model.md §19): each of its moving segments solved on its own,
+    rest to rest between them (``options.s_dot_start`` and ``s_dot_end`` at the path's own
+    ends), the waits taking no time. The limits hold between the samples too (checked on the
+    exact path, ``traj.curve`` or the spline through the samples).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    act : Actuators
+        The motors (:func:`~pollard_pin.load_actuators`).
+    traj : Trajectory
+        The path (``t``, ``poses``, rates, accelerations and optional ``curve``).
+    options : pollard_pin.dynamics.timeopt.Options or None, optional
+        Check points per interval, the accepted utilisation between them, the end rates.
+
+    Returns
+    -------
+    TimeOptimal
+        At the grid ``s``: times ``t`` [s], path rate ``s_dot`` and acceleration ``s_ddot``;
+        ``between`` the worst use of a limit found between the samples.
+
+    Raises
+    ------
+    ActuatorError
+        No traversal meets the ratings (e.g. a motor too weak to hold the path at rest).
+    KinematicsError
+        The path cannot be solved between its samples.
+
+    Examples
+    --------
+    >>> import os
+    >>> import pollard_pin as pp
+    >>> row = ("{gear_ratio = 100.0, rotor_inertia = 5e-6, viscous = 1e-6, coulomb = 1e-3, "
+    ...        "peak_torque = 0.05, continuous_torque = 0.02, max_speed = 500.0}")
+    >>> names = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+    >>> with open("motors.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(f"{n} = {row}" for n in names))
+    >>> act = pp.load_actuators("motors.toml")
+    >>> robot = pp.load()
+    >>> first_2s = pp.thesis_trajectory(samples=401).window(0, 41)  # the curve's first 2 s
+    >>> timing = pp.time_optimal_path(robot, act, first_2s)
+    >>> round(float(timing.t[-1]), 2), bool(timing.between <= 1.001)
+    (0.83, True)
+    """
     options = options or Options()
     spans = moving_segments(traj)
     n = len(traj.t)

@@ -50,11 +50,43 @@ def robot_copy(robot: Robot, model: pin.Model | None = None,
 
 
 def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
-    """Joint accelerations (12,) under actuator torques ``tau_act`` (6,) with the loops closed.
+    """Joint accelerations under actuator torques, with the loops closed (docs/model.md §14).
 
-    ``losses`` (:class:`JointLosses`) subtract friction and add the rotor inertia (armature) to
-    the mass matrix: the inverse of ``inverse_dynamics_sample(robot, q, v, a, losses)``. With
-    rotor inertia the solve runs on a copy of the model (``robot.model`` is not changed).
+    ``losses`` subtract friction and add the rotor inertia (armature) to the mass matrix: the
+    inverse of the inverse dynamics with the same losses. With rotor inertia the solve runs on
+    a copy of the model (``robot.model`` is not changed).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    q, v : ndarray
+        Configuration (12,) [rad] on the loops and joint velocities (12,) [rad/s].
+    tau_act : ndarray
+        Actuator torques (6,) [N·m], :attr:`Robot.actuated` order.
+    settings : optional
+        Pinocchio's ``ProximalSettings`` for the constrained solve (default: its own).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        Joint friction and rotor inertia (default none).
+
+    Returns
+    -------
+    ndarray
+        Joint accelerations (12,) [rad/s²], :attr:`Robot.joint_names` order.
+
+    Examples
+    --------
+    The torques of the inverse dynamics give back the accelerations they were computed for:
+
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> traj = pp.thesis_trajectory(duration=20.0, samples=11)
+    >>> ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    >>> tau = pp.inverse_dynamics(robot, ik).tau
+    >>> a = pp.forward_dynamics(robot, ik.q[5], ik.v[5], tau[5])
+    >>> bool(np.allclose(a, ik.a[5], atol=1e-8))
+    True
     """
     tau = np.zeros(robot.model.nv)
     tau[robot.actuated_v] = tau_act
@@ -77,13 +109,33 @@ def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) ->
 
 def replay_open_loop(robot: Robot, torques, q0, v0, duration: float, dt: float = 1e-3,
                      baumgarte: tuple[float, float] = (400.0, 40.0)) -> SimulationResult:
-    """Open-loop replay: integrate the loop-closed dynamics under given ``torques(t, q, v) → (6,)``
-    with fixed-step RK4 (no controller; the ``simulate`` command's closed-loop tracking is
-    ``simulate_tracking``, dynamics/tracking.py).
+    """Open-loop replay: integrate the loop-closed dynamics under given torques with
+    fixed-step RK4 (no controller; closed-loop tracking is
+    :func:`~pollard_pin.simulate_tracking`).
 
     Baumgarte stabilisation (a_c = −Kp·r − Kd·ṙ on the closure) keeps the loops closed; ``Kp``,
     ``Kd`` default to a critically damped 20 rad/s correction. They are set on the run's own
     constraint models and data: ``robot`` is not changed (its model is shared, read only).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    torques : Callable
+        ``torques(t, q, v)`` → actuator torques (6,) [N·m] at time ``t`` [s].
+    q0, v0 : ndarray
+        The start configuration (12,) [rad], on the loops, and velocities (12,) [rad/s].
+    duration : float
+        Time to integrate [s].
+    dt : float, optional
+        The RK4 step [s] (default 1 ms).
+    baumgarte : tuple of float, optional
+        ``(Kp, Kd)`` [1/s², 1/s] of the closure stabilisation.
+
+    Returns
+    -------
+    pollard_pin.dynamics.forward.SimulationResult
+        Times ``t`` (M,) [s], ``q`` and ``v`` (M, 12), and the closure residual (M,) [m].
     """
     return _rk4(robot_copy(robot, robot.model, baumgarte), torques, q0, v0, duration, dt)
 

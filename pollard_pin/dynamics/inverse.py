@@ -197,7 +197,46 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     """Actuator torques, closure forces and energies along an IK result.
 
     One RNEA (and, with ``energies``, K and U) per sample; the ``[Sᵀ Jcᵀ]`` systems are solved
-    stacked (passive rows first, 6 × 6), reusing the IK's constraint Jacobians when it has them.
+    stacked (passive rows first, 6 × 6), reusing the IK's constraint Jacobians when it has them
+    (docs/model.md §13).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    ik : IKResult
+        Joint positions, velocities and accelerations (:func:`pollard_pin.inverse_kinematics`).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        Joint friction and rotor inertia to add (default none: ideal joints, as the thesis).
+    energies : bool, optional
+        Also compute the kinetic and potential energies (default True).
+    timings : dict or None, optional
+        Accumulates the seconds spent per stage.
+
+    Returns
+    -------
+    pollard_pin.dynamics.inverse.DynamicsResult
+        ``tau`` (N, 6) actuator torques [N·m] (:attr:`Robot.actuated` order),
+        ``closure_forces`` (N, 2, 3) the force of the platform on each leg at its ball joint
+        [N], world axes, the open-tree torques, actuator velocities, energies [J]; ``power``
+        [W] and ``work`` [J] as properties.
+
+    Raises
+    ------
+    SingularityError
+        A sample where the closure system is singular (a parallel singularity).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> traj = pp.thesis_trajectory(duration=20.0, samples=201)
+    >>> ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    >>> dyn = pp.inverse_dynamics(robot, ik)
+    >>> dyn.tau.shape, dyn.closure_forces.shape
+    ((201, 6), (201, 2, 3))
+    >>> round(float(abs(dyn.tau[:, 0]).max()), 2)      # theta21's peak torque [N·m]
+    1.21
     """
     clock = Stopwatch(timings)
     model, data = robot.model, robot.data

@@ -32,8 +32,28 @@ from .averages import cubic_mean
 
 @dataclass
 class JointLoads:
-    """Joint wrenches along a trajectory (docs/model.md §17). Arrays have one row per sample;
-    joints in :attr:`joints` order (the tree order of docs/model.md §2)."""
+    """Joint wrenches along a trajectory (docs/model.md §17), from
+    :func:`~pollard_pin.joint_loads`. Arrays have one row per sample; joints in ``joints``
+    order (the tree order of docs/model.md §2).
+
+    Attributes
+    ----------
+    t : ndarray
+        Times (N,) [s].
+    joints : tuple of str
+        The 12 tree joints.
+    force, moment : ndarray
+        (N, 12, 3): the force [N] of the parent on the child through each joint and its
+        moment [N·m] about the joint origin, world axes.
+    axis : ndarray
+        (N, 12, 3): each joint's unit axis, world axes.
+    closure_forces : ndarray
+        (N, 2, 3): the ball-joint force on each leg [N], world axes.
+
+    The properties ``axial``, ``radial`` [N], ``torque`` and ``bending`` [N·m] (each
+    (N, 12)) are frame-invariant; :meth:`bearing_table` gives their peaks and ISO 281
+    equivalent loads.
+    """
 
     t: np.ndarray
     joints: tuple[str, ...]
@@ -179,7 +199,38 @@ def joint_loads(robot: Robot, ik: IKResult, dyn, timings: dict | None = None) ->
     stacked over samples (docs/model.md §17).
 
     Ideal joints, as ``run``: with ``JointLosses`` in ``dyn`` the axis moment is τ minus the
-    loss torque of the joint, not τ."""
+    loss torque of the joint, not τ.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    ik : IKResult
+        The joint motion (:func:`pollard_pin.inverse_kinematics`).
+    dyn : pollard_pin.dynamics.inverse.DynamicsResult
+        Its inverse dynamics (:func:`pollard_pin.inverse_dynamics`).
+    timings : dict or None, optional
+        Accumulates the seconds spent.
+
+    Returns
+    -------
+    JointLoads
+        The force and moment through every tree joint at every sample.
+
+    Examples
+    --------
+    The moment along an actuated joint's axis is its actuator torque:
+
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> traj = pp.thesis_trajectory(duration=20.0, samples=51)
+    >>> ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    >>> dyn = pp.inverse_dynamics(robot, ik)
+    >>> loads = pp.joint_loads(robot, ik, dyn)
+    >>> bool(np.allclose(loads.torque[:, robot.actuated_v], dyn.tau, atol=1e-10))
+    True
+    """
     clock = Stopwatch(timings)
     lam = _closure_forces(robot, ik, dyn)
     F, M, U = _passes(robot.model, _tree(robot), ik.q, ik.v, ik.a, lam)

@@ -66,7 +66,23 @@ class Actuator:
 
 @dataclass(frozen=True)
 class Actuators:
-    """The six actuators, in docs/model.md §6 order (``names``)."""
+    """The motors and gearboxes of the six actuators, in docs/model.md §6 order (``names``);
+    from :func:`~pollard_pin.load_actuators`.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The actuated joints.
+    units : tuple of pollard_pin.dynamics.motors.Actuator
+        Each one's gear ratio N, rotor inertia Jm [kg·m²], viscous b [N·m·s/rad] and Coulomb
+        c [N·m] friction, peak and continuous torque [N·m] and maximum speed [rad/s], all
+        motor side, and its optional stiffness [N·m/rad] (joint side).
+    source : str
+        The file they were read from.
+
+    ``act[name]`` is one actuator, ``act.column(key)`` one rating of all six (6,),
+    ``act.joint_losses()`` the motors seen from the joints (docs/model.md §19).
+    """
 
     names: tuple[str, ...]
     units: tuple[Actuator, ...]
@@ -156,7 +172,42 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
 
 
 def load_actuators(path: str | Path, names: tuple[str, ...] = ACTUATED_JOINTS) -> Actuators:
-    """Read and validate an actuator TOML file (format: ``examples/actuators.toml``)."""
+    """Read and validate an actuator TOML file (format: ``examples/actuators.toml``).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        One table per actuator joint, every key required: ``gear_ratio``,
+        ``rotor_inertia`` [kg·m²], ``viscous`` [N·m·s/rad], ``coulomb`` [N·m],
+        ``peak_torque`` and ``continuous_torque`` [N·m], ``max_speed`` [rad/s] (motor side);
+        optional ``stiffness`` [N·m/rad] (joint side).
+    names : tuple of str, optional
+        The actuators the file must hold (default the six of docs/model.md §6).
+
+    Returns
+    -------
+    Actuators
+        The validated motors.
+
+    Raises
+    ------
+    ActuatorError
+        A missing file, table or key, an unknown key, a value that is not finite or breaks its
+        rule (the message names the file, the key and the rule).
+
+    Examples
+    --------
+    >>> import os
+    >>> import pollard_pin as pp
+    >>> row = ("{gear_ratio = 100.0, rotor_inertia = 5e-6, viscous = 1e-6, coulomb = 1e-3, "
+    ...        "peak_torque = 0.05, continuous_torque = 0.02, max_speed = 500.0}")
+    >>> names = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+    >>> with open("motors.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(f"{n} = {row}" for n in names))
+    >>> act = pp.load_actuators("motors.toml")
+    >>> act["theta21"].gear_ratio, act.column("peak_torque").tolist()[:2]
+    (100.0, [0.05, 0.05])
+    """
     d = read_toml(path, "actuator file", ActuatorError)
     return actuators_from_dict(d, str(path), names)
 

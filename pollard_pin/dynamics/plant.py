@@ -31,10 +31,27 @@ class PlantError(InputError):
 class ModelMismatch:
     """How the plant differs from the controller's (nominal) model.
 
-    ``payload`` [kg]: a point mass at the tool tip (``tip`` frame origin). ``mass_error``: every
-    link's mass and rotational inertia (about its centre of mass) scaled by 1 + mass_error.
-    ``losses``: joint friction and rotor inertia (armature) of the plant; the controller does
-    not know them.
+    Parameters
+    ----------
+    payload : float, optional
+        A point mass at the tool tip (``tip`` frame origin) [kg], ≥ 0 (default 0).
+    mass_error : float, optional
+        Every link's mass and rotational inertia (about its centre of mass) scaled by
+        1 + ``mass_error`` (default 0; > −1).
+    losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        Joint friction and rotor inertia (armature) of the plant; the controller does not
+        know them.
+
+    Raises
+    ------
+    PlantError
+        A payload or mass error the simulation cannot use.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.ModelMismatch(payload=0.05, mass_error=0.1).payload
+    0.05
     """
 
     payload: float = 0.0
@@ -79,6 +96,20 @@ class Plant:
     ``plant.robot`` holds the perturbed model (armature in ``model.armature``, so Pinocchio's
     ``crba``/``rnea``/``constraintDynamics`` all include it); ``plant.friction`` the viscous and
     Coulomb part of the losses, applied as −(viscous·v + coulomb·tanh(v/v_s)).
+
+    Parameters
+    ----------
+    robot : Robot
+        The nominal model; it is not changed (the plant works on a copy).
+    errors : ModelMismatch or None, optional
+        How the plant differs from ``robot`` (default: not at all).
+    baumgarte : tuple of float, optional
+        ``(Kp, Kd)`` [1/s², 1/s] of the loops' Baumgarte stabilisation (default (400, 40)).
+
+    Raises
+    ------
+    PlantError
+        Baumgarte gains that are negative or not finite.
     """
 
     def __init__(self, robot: Robot, errors: ModelMismatch | None = None,

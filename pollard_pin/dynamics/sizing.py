@@ -87,7 +87,46 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
     """Size the motors of ``act`` on the pipeline result ``result`` (IK, dynamics and the
     trajectory, whose ``curve``, if any, is the exact path between its samples). A failing
     time-optimal solve leaves the rest of the report and says why in
-    ``report['time_optimal_error']``."""
+    ``report['time_optimal_error']`` (docs/model.md §19).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    result : RunResult
+        :func:`~pollard_pin.run_pipeline`'s result, with its dynamics.
+    act : Actuators
+        The motors and gearboxes (:func:`~pollard_pin.load_actuators`).
+
+    Returns
+    -------
+    pollard_pin.dynamics.sizing.Sizing
+        ``report`` (what ``pollard-pin size --format json`` prints: per motor the peak and RMS
+        torque and peak speed and their ratios to the ratings; ``uniform_min_duration`` [s],
+        the shortest uniformly time-scaled cycle; ``time_optimal_duration`` [s], TOPP-RA's),
+        the motor loads of the given and of the time-optimal motion, and the traversal.
+
+    Raises
+    ------
+    ActuatorError
+        The path does not move the actuators (no cycle to find).
+
+    Examples
+    --------
+    >>> import os
+    >>> import pollard_pin as pp
+    >>> row = ("{gear_ratio = 100.0, rotor_inertia = 5e-6, viscous = 1e-6, coulomb = 1e-3, "
+    ...        "peak_torque = 0.05, continuous_torque = 0.02, max_speed = 500.0}")
+    >>> names = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
+    >>> with open("motors.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(f"{n} = {row}" for n in names))
+    >>> act = pp.load_actuators("motors.toml")
+    >>> robot = pp.load()
+    >>> first_2s = pp.thesis_trajectory(samples=401).window(0, 41)  # the curve's first 2 s
+    >>> report = pp.actuator_sizing(robot, pp.run_pipeline(robot, first_2s), act).report
+    >>> report["given_within_ratings"], round(report["time_optimal_duration"], 2)
+    (True, 0.83)
+    """
     ik, traj = result.ik, result.trajectory
     given = motor_load_of(robot, act, ik, result.dynamics)
     path = path_dynamics(robot, ik)

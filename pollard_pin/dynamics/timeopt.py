@@ -46,7 +46,31 @@ class TimeOptimal:
     jumps; ``s_ddot`` holds the one-sided value (before or after) that loads the motors more.
     ``between`` is the worst utilisation (max of |τm|/peak and |ωm|/max speed) found at the
     check points and halfway between them, ``between_at`` its s; NaN when not checked.
-    ``tightened``: intervals whose ratings were scaled down to hold halfway."""
+    ``tightened``: intervals whose ratings were scaled down to hold halfway.
+
+    Attributes
+    ----------
+    s, t : ndarray
+        The path grid (n,), 0 to 1 per segment, and its times [s].
+    s_dot, s_ddot : ndarray
+        Path rate [1/s] and acceleration [1/s²] at the grid.
+    iterations : int
+        TOPP-RA solves (viscous friction is re-linearised between them).
+    per_interval : int
+        Check points per interval imposed.
+    between, between_at : float
+        The worst utilisation between the samples and its s.
+    tightened : int
+        Intervals whose ratings were tightened to hold halfway.
+    path : pollard_pin.dynamics.path.PathDynamics or None
+        The path's dynamics τ = a(s)s̈ + b(s)ṡ² + c(s) at the grid.
+    curve, t0, span
+        The path the grid lies on: ``curve(t0 + s·span) → (poses, rates, accelerations)``.
+    parts : tuple
+        A path with waits: the traversals of its moving segments, joined here.
+    planned : object
+        A stretch kept as planned (a paint program's passes): its trajectory.
+    """
 
     s: np.ndarray
     t: np.ndarray
@@ -318,7 +342,7 @@ def motion_at(timing: TimeOptimal, s) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 @dataclass(frozen=True)
 class Options:
-    """How :func:`time_optimal_segment` solves, validated once: ``per_interval`` check points per
+    """How ``time_optimal_segment`` solves, validated once: ``per_interval`` check points per
     interval to start with, the worst utilisation ``target`` accepted between them, the path
     rates at the ends (rest to rest by default; ``end_rates``: the trajectory's own rates at
     its first and last samples, on whichever parameter the path is traversed by, so that the

@@ -31,7 +31,22 @@ MAX_STEPS = 50_000_000
 
 @dataclass(frozen=True)
 class MeasurementNoise:
-    """Gaussian noise on the measured actuator angles [rad] and rates [rad/s], seeded."""
+    """Gaussian noise on the measured actuator angles and rates, seeded.
+
+    Parameters
+    ----------
+    position : float, optional
+        Standard deviation of the angle noise [rad], ≥ 0 (default 0).
+    velocity : float, optional
+        Standard deviation of the rate noise [rad/s], ≥ 0 (default 0).
+    seed : int or None, optional
+        The random generator's seed (default 0; None: unseeded).
+
+    Raises
+    ------
+    pollard_pin.dynamics.control.ControlError
+        A standard deviation that is negative or not finite.
+    """
 
     position: float = 0.0
     velocity: float = 0.0
@@ -46,25 +61,63 @@ class MeasurementNoise:
 
 @dataclass(frozen=True, eq=False)
 class TrackingOptions:
-    """How :func:`~pollard_pin.dynamics.tracking.simulate_tracking` runs, checked once here.
+    """How :func:`~pollard_pin.simulate_tracking` runs, checked once here.
 
-    ``controller``: a name of :data:`~pollard_pin.dynamics.control.CONTROLLERS` or any
-    :class:`Controller` callable; it sees the sensed state at each tick. ``errors``: how the
-    plant differs from the robot (payload, mass error, losses). ``gains``: the built-in
-    controllers'. ``dt``: longest RK4 step [s], at most ``control_period`` [s] (default:
-    :data:`DT` or the period, the shorter; :attr:`step`); the torque is computed at each tick
-    and held. ``torque_limit`` [N·m]: a scalar or one per actuator, |τ| clipped to it
-    (:attr:`limits`). ``noise``: measurement noise on the actuator angles and rates.
-    ``start``: None (on the path, at the reference's state) or a closed configuration at rest
-    whose tool pose is the trajectory's first pose. ``baumgarte``: the plant's loop
-    stabilisation. ``desired`` reuses a :func:`desired_trajectory` computed with the same
-    period (and ``known_losses``); ``curve`` is the path between samples it follows.
-    ``known_losses``: joint losses the built-in controllers know and compensate.
-    ``joint_limits``: stop where a joint leaves its limits; ``loop_tolerance`` [m]: stop where
-    the plant's loops open beyond it. ``progress(done, total)`` is called per output sample.
-    ``drives``: flexible drives (:class:`~.flexible.FlexibleDrives`, docs/model.md §28): the
-    motors then sit behind springs, the controller reads them, and ``errors`` carry no
-    losses; the default ``dt`` then also resolves the drives' fastest mode.
+    Parameters
+    ----------
+    controller : str or Callable, optional
+        ``"computed-torque"`` (default), ``"feedforward-pd"``, ``"pd"``, or any callable
+        ``controller(t, q, v) → τ (6,)``; it sees the sensed state at each tick.
+    errors : ModelMismatch or None, optional
+        How the plant differs from the robot (payload, mass error, losses).
+    gains : Gains, optional
+        The built-in controllers' ω [rad/s] and ζ.
+    dt : float or None, optional
+        The longest RK4 step [s], at most ``control_period`` (default ``DT`` (1 ms) or the
+        period, the shorter; :attr:`step`).
+    control_period : float, optional
+        The controller's tick [s] (default 1 ms); the torque is computed at each tick and
+        held.
+    torque_limit : float or ndarray or None, optional
+        [N·m], a scalar or one per actuator: |τ| clipped to it (:attr:`limits`).
+    noise : MeasurementNoise or None, optional
+        Measurement noise on the actuator angles and rates.
+    start : ndarray or None, optional
+        None (on the path, at the reference's state) or a closed configuration (12,) at rest
+        whose tool pose is the trajectory's first pose.
+    baumgarte : tuple of float, optional
+        The plant's loop stabilisation ``(Kp, Kd)``.
+    desired : pollard_pin.dynamics.control.DesiredTrajectory or None, optional
+        A reference from :func:`~pollard_pin.desired_trajectory` with the same period (and
+        ``known_losses``), reused.
+    curve : Callable or None, optional
+        The path between samples the reference follows.
+    known_losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
+        Joint losses the built-in controllers know and compensate.
+    joint_limits : bool, optional
+        Stop where a joint leaves its limits (default True).
+    loop_tolerance : float, optional
+        Stop where the plant's loops open beyond it [m] (default 1e-5).
+    progress : Callable or None, optional
+        ``progress(done, total)``, called per output sample.
+    drives : FlexibleDrives or None, optional
+        Flexible drives (docs/model.md §28): the motors then sit behind springs, the
+        controller reads them, and ``errors`` carry no losses; the default ``dt`` then also
+        resolves the drives' fastest mode.
+
+    Raises
+    ------
+    pollard_pin.dynamics.control.ControlError
+        An unknown controller name, gains that are not a :class:`~pollard_pin.Gains`, a step
+        or period that is not > 0 or a step over the period, a bad torque limit or loop
+        tolerance, drives that are not a :class:`~pollard_pin.FlexibleDrives`.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> opts = pp.TrackingOptions("pd", pp.ModelMismatch(payload=0.05), torque_limit=2.0)
+    >>> opts.label, opts.step, opts.limits.tolist()
+    ('pd', 0.001, [2.0, 2.0, 2.0, 2.0, 2.0, 2.0])
     """
 
     controller: str | Controller = "computed-torque"
@@ -104,7 +157,7 @@ class TrackingOptions:
 
     @property
     def step(self) -> float:
-        """The longest RK4 step [s]: ``dt``, or :func:`default_step` of the period."""
+        """The longest RK4 step [s]: ``dt``, or ``default_step`` of the period."""
         return default_step(self.control_period) if self.dt is None else self.dt
 
     @property

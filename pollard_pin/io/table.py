@@ -211,10 +211,37 @@ class ResultFileError(InputError):
 
 
 def read_result(path: str | Path) -> ResultTable:
-    """Read a table written by :class:`TableWriter` (``run``, ``simulate``, ``size
-    --retime``), CSV or Parquet: every column float64. A missing, unreadable, malformed or
-    empty file, one with text columns (such as a ``sweep`` table), or a CSV whose columns no
-    command writes and that has no units sidecar raises :class:`ResultFileError`."""
+    """Read a result table (``run``, ``simulate``, ``size --retime``, a paint ``path.csv``),
+    CSV or Parquet: every column float64.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A ``.csv`` (units and metadata from its ``.units.json`` sidecar) or ``.parquet``
+        (units and metadata inside).
+
+    Returns
+    -------
+    pollard_pin.io.table.ResultTable
+        ``columns`` (name → float64 array), ``units`` (name → unit) and ``metadata``;
+        ``table[name]`` is one column.
+
+    Raises
+    ------
+    pollard_pin.io.table.ResultFileError
+        A missing, unreadable, malformed or empty file, one with text columns (such as a
+        ``sweep`` table), or a CSV whose columns no command writes and that has no units
+        sidecar.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> result = pp.run_pipeline(pp.load(), pp.thesis_trajectory(samples=11))
+    >>> pp.write_run_table(result, "run.csv")
+    >>> table = pp.read_result("run.csv")
+    >>> len(table), table.units["theta21"], table.units["tau_theta21"]
+    (11, 'rad', 'N·m')
+    """
     path = Path(path)
     if path.is_dir():
         raise ResultFileError(f"{path}: is a folder, not a result file")

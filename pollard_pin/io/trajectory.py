@@ -40,6 +40,34 @@ def from_csv(path: str | Path) -> Trajectory:
 
     Without derivative columns, derivatives come from a quintic interpolating spline and a
     :class:`UserWarning` says so.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV: a header row, then one row per sample; times [s] strictly increasing,
+        positions [m], angles [rad] (ZYZ), rates and accelerations in the same units per s
+        and s². A ``.units.json`` sidecar, when present, must agree.
+
+    Returns
+    -------
+    Trajectory
+        Named after the file's stem; ``derivatives`` says where the rates came from
+        (``"file columns"`` or the spline), ``curve`` the path between the samples.
+
+    Raises
+    ------
+    TrajectoryError
+        A missing or unreadable file, a bad header, a cell that is not a finite number
+        (the message names the row and column), times that do not increase, angles that
+        jump by a turn, units that disagree with the sidecar.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.to_csv(pp.thesis_trajectory(samples=101), "thesis.csv")
+    >>> traj = pp.from_csv("thesis.csv")
+    >>> len(traj), traj.derivatives
+    (101, 'file columns')
     """
     path = Path(path)
     rows, lines = _read_rows(path)
@@ -278,9 +306,25 @@ def check_derivatives(path, t: np.ndarray, poses: np.ndarray, d: np.ndarray, dd:
 
 def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     """Write the trajectory in the ``run`` input format (``t``, poses, ``d_*``, ``dd_*``; every
-    float64 exact) through :mod:`pollard_pin.io.table`, atomically, units in the sidecar;
-    ``spray`` (N,): the gun's trigger in [0, 1] as a last column (absent: on throughout;
-    default: the trajectory's own, if any)."""
+    float64 exact), atomically, units in the ``.units.json`` sidecar.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The trajectory to write.
+    path : str or pathlib.Path
+        The CSV to write (replaced whole or not at all).
+    spray : ndarray or None, optional
+        (N,) the gun's trigger in [0, 1], written as a last column (absent: on throughout;
+        default: the trajectory's own, if any).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.to_csv(pp.thesis_trajectory(samples=5), "path.csv")
+    >>> open("path.csv").readline().split(",")[:7]
+    ['t', 'x', 'y', 'z', 'psi', 'theta', 'phi']
+    """
     from .table import write_table
 
     cols = {"t": traj.t}

@@ -22,8 +22,50 @@ def _leg_residuals(r: np.ndarray) -> np.ndarray:
 
 def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None,
                   tol: float = CLOSURE_TOL, max_iter: int = MAX_ITER) -> np.ndarray:
-    """Full configuration (12,) with the six actuator angles fixed and the loops closed
-    (:func:`close_loops` without the Jacobian)."""
+    """The full configuration with the six actuator angles fixed and the loops closed.
+
+    Newton on the six passive angles with the constraint Jacobian (docs/model.md §4),
+    warm-started at ``q_guess``.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    actuated : ndarray
+        The six actuator angles (6,) [rad], :attr:`Robot.actuated` order.
+    q_guess : ndarray or None, optional
+        A configuration (12,) [rad] to start from; None: the home posture.
+    tol : float, optional
+        The closure residual to reach [m] (default 1e-12).
+    max_iter : int, optional
+        Newton steps at most (default 50).
+
+    Returns
+    -------
+    ndarray
+        The configuration (12,) [rad], :attr:`Robot.joint_names` order.
+
+    Raises
+    ------
+    ClosureError
+        The loops cannot be closed (a leg cannot reach its attachment point); the message
+        names the leg and the residual reached.
+    SingularityError
+        The loops close only on a parallel singularity (docs/model.md §12), where the
+        passive angles are not locally unique.
+    ValueError
+        ``actuated`` is not six finite numbers, or ``q_guess`` not twelve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> home = robot.home()
+    >>> q = pp.solve_closure(robot, home[robot.actuated_v])
+    >>> bool(np.allclose(q, home, atol=1e-9))
+    True
+    """
     return close_loops(robot, actuated, q_guess, tol, max_iter)[0]
 
 
@@ -102,16 +144,69 @@ def closure_drift(robot: Robot, q: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
-    """World placement of the ``tip`` frame."""
+    """The world placement of the tool tip (the ``tip`` frame) at a configuration.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model; its ``data`` frames are updated here.
+    q : ndarray
+        A configuration (12,) [rad], :attr:`Robot.joint_names` order.
+
+    Returns
+    -------
+    pinocchio.SE3
+        The tip's rotation and position [m] in the world frame.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> pp.tool_pose(robot, robot.home()).translation.round(3).tolist()  # docs/model.md §9
+    [0.55, 0.0, 0.16]
+    """
     pin.framesForwardKinematics(robot.model, robot.data, q)
     return pin.SE3(robot.data.oMf[robot.tip_frame])
 
 
 def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None = None
                        ) -> tuple[np.ndarray, np.ndarray]:
-    """Actuator angles (N, 6) → full configurations (N, 12) and task poses (N, 6).
+    """Forward kinematics: actuator angles to full configurations and tool poses.
 
-    Each sample warm-starts from the previous one, so a trajectory stays on one branch.
+    Each sample closes the loops (:func:`~pollard_pin.solve_closure`) warm-started from the
+    previous one, so a trajectory stays on one assembly branch.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    actuated : ndarray
+        Actuator angles (N, 6) or (6,) [rad], :attr:`Robot.actuated` order.
+    q_guess : ndarray or None, optional
+        A configuration (12,) [rad] the first sample starts from; None: the home posture.
+
+    Returns
+    -------
+    q : ndarray
+        Configurations (N, 12) [rad], :attr:`Robot.joint_names` order.
+    poses : ndarray
+        Tool poses (N, 6): x, y, z [m] and the ZYZ angles ψ, θ, φ [rad].
+
+    Raises
+    ------
+    ClosureError
+        A sample's loops cannot be closed (the message names the sample, the leg and the
+        residual).
+    SingularityError
+        A sample closes only on a parallel singularity.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> q, poses = pp.forward_kinematics(robot, robot.home()[robot.actuated_v])
+    >>> poses.round(3).tolist()
+    [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]]
     """
     act = np.atleast_2d(np.asarray(actuated, dtype=float))
     qs = np.empty((len(act), robot.model.nq))

@@ -10,7 +10,8 @@ _SAMPLE_WORDS = re.compile(r"\b(samples? )(\d+)(?:( and )(\d+))?")
 
 
 class ClosureError(SolveError):
-    """The loops cannot be closed for the given actuator angles."""
+    """The loops cannot be closed for the given actuator angles: ``leg`` (1 or 2) the leg
+    that falls short, ``residual`` [m] the closure residual reached."""
 
     def __init__(self, message: str, leg: int | None = None, residual: float | None = None):
         super().__init__(message)
@@ -19,7 +20,9 @@ class ClosureError(SolveError):
 
 
 class KinematicsError(SolveError):
-    """IK failed at a sample: ``chain``, ``sample``, ``time``, ``amount`` say where, how far."""
+    """IK failed at a sample: ``sample`` (index), ``time`` [s], ``chain`` (``"chain 0"``,
+    ``"leg 1"``, ``"leg 2"``, a joint or a margin) say where and ``amount`` how far off (in
+    the unit of the rule broken); ``detail`` is the message without the sample prefix."""
 
     def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
                  chain: str | None = None, amount: float | None = None):

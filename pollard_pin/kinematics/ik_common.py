@@ -29,13 +29,35 @@ METHODS = ("batch", "newton")
 
 @dataclass(frozen=True)
 class IkOptions:
-    """How the constrained IK solves, checked once here (:class:`KinematicsInputError`, or
-    :class:`~.margins.MarginError` for margins that are not a :class:`Margins`).
+    """How the constrained IK solves, checked once when made.
 
-    ``method``: "batch" (stacked over samples), "newton" (sample by sample) or None (newton
-    with a ``q_start``, else batch). ``margins`` (None: the defaults) say how close to a
-    singularity a sample may come (docs/model.md §12); ``tol`` [m / rad]: Newton's;
-    ``max_iter``: Newton's iterations per sample; ``chunk``: samples per stacked block.
+    Parameters
+    ----------
+    method : {"batch", "newton"} or None, optional
+        "batch" (stacked over samples), "newton" (sample by sample) or None (newton with a
+        ``q_start``, else batch).
+    margins : Margins or None, optional
+        How close to a singularity a sample may come (docs/model.md §12); None: the
+        defaults.
+    tol : float, optional
+        Newton's tolerance [m or rad].
+    max_iter : int, optional
+        Newton's iterations per sample at most.
+    chunk : int, optional
+        Samples per stacked block (batch method).
+
+    Raises
+    ------
+    pollard_pin.kinematics.errors.KinematicsInputError
+        An unknown method, a tolerance that is not > 0, a count below 1.
+    MarginError
+        ``margins`` is not a :class:`~pollard_pin.Margins`.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.IkOptions(method="newton", margins=pp.Margins(wrist=0.1)).margins.wrist
+    0.1
     """
 
     method: str | None = None
@@ -123,9 +145,37 @@ class KinematicFrames:
 
 @dataclass
 class IKResult:
-    """Joint motion along a trajectory. Arrays have one row per sample; tree joints in
-    :attr:`Robot.joint_names` order, spherical angles in
-    :data:`~pollard_pin.names.SPHERICAL` order."""
+    """Joint motion along a trajectory, from :func:`~pollard_pin.inverse_kinematics`.
+
+    Arrays have one row per sample; tree joints in :attr:`Robot.joint_names` order, the
+    spherical joints' ZYZ angles leg 1 (θ98, θ109, θ1110) then leg 2.
+
+    Attributes
+    ----------
+    t : ndarray
+        Times (N,) [s].
+    poses : ndarray
+        Tool poses (N, 6): x, y, z [m], ψ, θ, φ [rad].
+    q, v, a : ndarray
+        Joint positions [rad], velocities [rad/s], accelerations [rad/s²], each (N, 12).
+    spherical, d_spherical : ndarray
+        The cut spherical joints' angles [rad] and rates [rad/s], each (N, 6).
+    closure_residual : ndarray
+        (N,) the largest component of ``p_A − p_B`` [m].
+    tool_error : ndarray
+        (N,) the largest tool pose error component [m or rad].
+    wrist_margin : ndarray
+        (N,) |sin θ1716|, the wrist's distance to its singularity.
+    sigma_parallel, sigma_serial : ndarray
+        (N,) the smallest singular values of the passive-joint constraint Jacobian and of
+        the actuator-rate → tool-twist map (docs/model.md §12).
+    joint_names : tuple of str
+        The column names of ``q``, ``v`` and ``a``.
+    constraint_jacobian : ndarray or None
+        (N, 6, 12) at ``q``, reused by the dynamics.
+    sigma_parallel_max, sigma_serial_max : ndarray or None
+        The largest singular values of the same maps (the scale of the numerical floors).
+    """
 
     t: np.ndarray
     poses: np.ndarray

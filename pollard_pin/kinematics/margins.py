@@ -36,9 +36,32 @@ class MarginError(InputError):
 
 @dataclass(frozen=True)
 class Margins:
-    """How close to a singularity a sample may come (docs/model.md §12): ``wrist``, the
-    smallest |sin θ1716| allowed, in [0, 1]; ``singularity``, the smallest σ_min of the
-    parallel and the serial map, finite and ≥ 0. Validated once, here; passed whole."""
+    """How close to a singularity a sample may come (docs/model.md §12). Validated once,
+    here; passed whole.
+
+    Parameters
+    ----------
+    wrist : float, optional
+        The smallest |sin θ1716| allowed, in [0, 1] (default 0.05, about 2.9°).
+    singularity : float, optional
+        The smallest σ_min of the parallel and of the serial map allowed, finite and ≥ 0
+        (default 1e-3). The numerical floors apply whatever the margins, even 0.
+
+    Raises
+    ------
+    MarginError
+        A margin that is not a number, not finite, negative, or (the wrist's) above 1.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.Margins(wrist=0.1)
+    Margins(wrist=0.1, singularity=0.001)
+    >>> pp.Margins(wrist=2.0)
+    Traceback (most recent call last):
+    ...
+    pollard_pin.kinematics.margins.MarginError: ...
+    """
 
     wrist: float = WRIST_MARGIN
     singularity: float = SINGULARITY_MARGIN
@@ -52,12 +75,12 @@ class Margins:
             why=" (the smallest parallel and serial σ_min allowed)"))
 
     def margin(self, check: str) -> float:
-        """The margin a check of :data:`CHECKS` applies (the spherical joints: floor only)."""
+        """The margin a check of ``CHECKS`` applies (the spherical joints: floor only)."""
         return {"wrist": self.wrist, "parallel": self.singularity,
                 "serial": self.singularity}.get(check, 0.0)
 
     def limits(self, parallel_max=1.0, serial_max=1.0) -> dict:
-        """{check: limit} (:data:`CHECKS`): each margin raised to its numerical floor, the σ
+        """{check: limit} (``CHECKS``): each margin raised to its numerical floor, the σ
         floors relative to the map's σ_max (scalars or arrays)."""
         return {c: self._limit(c, parallel_max, serial_max) for c in CHECKS}
 

@@ -28,7 +28,8 @@ DEFAULT_SRDF = "pollard.srdf"
 
 
 class ModelFileError(InputError):
-    """The URDF/SRDF is malformed or does not describe the Pollard tree."""
+    """The URDF/SRDF is malformed or does not describe the Pollard tree (one line: what is
+    missing or wrong, and in which file)."""
 
 
 @dataclass(frozen=True)
@@ -42,7 +43,41 @@ class Closure:
 
 @dataclass(repr=False)
 class Robot:
-    """Pinocchio model, data, geometry and loop closures of the Pollard robot."""
+    """Pinocchio model, data, geometry and loop closures of the Pollard robot.
+
+    Build it with :func:`pollard_pin.load`. The model is the open tree of docs/model.md §3
+    (12 revolute joints, ``nq = nv = 12``); the two cut spherical joints are 3D point
+    constraints (docs/model.md §4) in ``constraint_models``.
+
+    Attributes
+    ----------
+    params : Params
+        The numbers the model was built from (SI units).
+    model, data : pinocchio.Model, pinocchio.Data
+        Pinocchio's model of the open tree and its workspace.
+    visual_model, collision_model : pinocchio.GeometryModel
+        The link geometry (drawn by the viewer).
+    closures : tuple of pollard_pin.model.build.Closure
+        The two cut spherical joints: frame ``frame_a`` (leg side) meets ``frame_b``
+        (platform).
+    constraint_models, constraint_datas
+        Pinocchio's ``RigidConstraintModel`` and ``RigidConstraintData`` of the closures
+        (``CONTACT_3D``, ``LOCAL_WORLD_ALIGNED``).
+    urdf : str
+        The URDF text the model was built from.
+    actuated, passive : tuple of str
+        The six actuated and six passive joint names (docs/model.md §6 order).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> robot.model.nq, robot.actuated[:3]
+    (12, ('theta21', 'theta21_1', 'theta21_2'))
+    >>> q = robot.home()            # the home pose, loops closed to round-off
+    >>> bool(robot.as_dict(q)["theta21"] == q[robot.idx_q("theta21")])
+    True
+    """
 
     params: Params
     model: pin.Model
@@ -224,11 +259,39 @@ def generate(params: Params) -> tuple[str, str]:
 
 
 def load(params: Params | str | Path | None = None) -> Robot:
-    """Load the robot.
+    """Load the robot: the Pinocchio model of the Pollard mechanism with its loop closures.
 
-    ``None`` loads the shipped ``models/pollard.urdf`` and ``pollard.srdf`` with the shipped
-    parameters; a :class:`Params` (or a path to a parameter TOML) generates the description in
-    memory from those parameters.
+    Parameters
+    ----------
+    params : Params or str or pathlib.Path or None, optional
+        ``None`` (the default) loads the shipped ``models/pollard.urdf`` and ``pollard.srdf``
+        with the shipped parameters (``models/pollard.toml``, docs/model.md §5). A
+        :class:`~pollard_pin.Params` (from :func:`~pollard_pin.load_params`), or the path of
+        a parameter TOML (which may list only the keys that differ from the shipped file),
+        generates the description in memory from those parameters.
+
+    Returns
+    -------
+    Robot
+        The model, its data, geometry and closures.
+
+    Raises
+    ------
+    ParameterError
+        A parameter file or value breaks a rule (the message names the key and the rule).
+    ModelFileError
+        The shipped URDF/SRDF do not match the shipped parameters, or Pinocchio cannot build
+        them.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> robot.joint_names[:3]
+    ('theta21', 'theta43', 'theta54')
+    >>> longer = pp.load(pp.load_params(overrides={"chain0.x32": 0.34}))
+    >>> round(longer.params.x32, 3)
+    0.34
     """
     if params is None:
         d = models_dir()
@@ -246,7 +309,33 @@ def load(params: Params | str | Path | None = None) -> Robot:
 
 # --- constraint residual and Jacobian ---------------------------------------------------------
 def constraint_residual(model, data, cmodels, cdatas, q) -> np.ndarray:
-    """Stacked ``p_A − p_B`` [m] of the closures, world axes (kinematics updated here)."""
+    """The loop-closure residual: the stacked ``p_A − p_B`` [m] of the two closures.
+
+    Parameters
+    ----------
+    model, data : pinocchio.Model, pinocchio.Data
+        ``robot.model`` and ``robot.data`` (``data``'s kinematics are updated here).
+    cmodels, cdatas
+        ``robot.constraint_models`` and ``robot.constraint_datas``.
+    q : ndarray
+        A configuration (12,) [rad], :attr:`Robot.joint_names` order.
+
+    Returns
+    -------
+    ndarray
+        Shape (6,): ``p_A − p_B`` of closure 1 then closure 2 [m], world axes
+        (docs/model.md §4); zero when the loops are closed.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> r = pp.load()
+    >>> res = pp.constraint_residual(r.model, r.data, r.constraint_models,
+    ...                              r.constraint_datas, r.home())
+    >>> bool(np.abs(res).max() < 1e-12)
+    True
+    """
     pin.forwardKinematics(model, data, q)
     out = []
     for cm, cd in zip(cmodels, cdatas):
@@ -270,7 +359,31 @@ def constraint_residual_jacobian(robot: Robot, q) -> tuple[np.ndarray, np.ndarra
 
 
 def constraint_jacobian(model, data, cmodels, cdatas, q) -> np.ndarray:
-    """``∂(p_A − p_B)/∂q`` (6 × nv), world axes."""
+    """The constraint Jacobian ``Jc = ∂(p_A − p_B)/∂q`` of the two closures.
+
+    Parameters
+    ----------
+    model, data : pinocchio.Model, pinocchio.Data
+        ``robot.model`` and ``robot.data`` (``data``'s Jacobians are updated here).
+    cmodels, cdatas
+        ``robot.constraint_models`` and ``robot.constraint_datas``.
+    q : ndarray
+        A configuration (12,) [rad].
+
+    Returns
+    -------
+    ndarray
+        Shape (6, 12) [m/rad], world axes (``LOCAL_WORLD_ALIGNED``, docs/model.md §4):
+        the residual's rows, :func:`~pollard_pin.constraint_residual` order.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> r = pp.load()
+    >>> pp.constraint_jacobian(r.model, r.data, r.constraint_models, r.constraint_datas,
+    ...                        r.home()).shape
+    (6, 12)
+    """
     pin.computeJointJacobians(model, data, q)
     for cm, cd in zip(cmodels, cdatas):
         cm.calc(model, data, cd)  # refresh before reading the Jacobian (stale otherwise)

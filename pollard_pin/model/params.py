@@ -86,7 +86,34 @@ class JointLimits:
 
 @dataclass(frozen=True)
 class Params:
-    """All model numbers, SI units. Build with :func:`load_params`; never mutated."""
+    """All model numbers, SI units. Build with :func:`~pollard_pin.load_params`; never mutated.
+
+    Attributes
+    ----------
+    z10, x32, x65, x1514, x1918 : float
+        Chain 0 and wrist lengths [m] (docs/model.md §5; thesis symbols).
+    legs : tuple of pollard_pin.model.params.Leg
+        Legs 1 and 2: their base positions, lengths and attachment points [m].
+    bodies : tuple of tuple
+        ``(name, Body)`` pairs (:class:`pollard_pin.model.params.Body`): mass [kg], centre of
+        gravity [m] and inertia [kg·m²] of each body.
+    home_pose : tuple of float
+        The home tool pose (x, y, z [m], ψ, θ, φ [rad]; docs/model.md §9).
+    branches : tuple of int
+        Assembly branches of chain 0, leg 1 and leg 2 (docs/model.md §7).
+    limits : tuple of tuple
+        ``(joint, JointLimits)`` pairs (:class:`pollard_pin.model.params.JointLimits`): the
+        limits [rad] of each tree joint.
+    source : str
+        Where the numbers came from (a file name, or ``"<python>"``).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> p = pp.load_params(overrides={"bodies.gun.mass": 0.05})
+    >>> p.body("gun").mass
+    0.05
+    """
 
     z10: float
     x32: float
@@ -115,7 +142,7 @@ class Params:
         return sum(b.mass for _, b in self.bodies)
 
     def to_toml_dict(self) -> dict:
-        """The thesis-unit dictionary that :func:`params_from_dict` reads back."""
+        """The thesis-unit dictionary that ``params_from_dict`` reads back."""
         d: dict[str, Any] = {"chain0": {k: getattr(self, k) for k in CHAIN0_KEYS}}
         for i, leg in enumerate(self.legs, start=1):
             entry = {k: getattr(leg, k) for k in LEG_KEYS}
@@ -446,9 +473,40 @@ def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | N
     """Load and validate parameters: the shipped file, with the keys of the file ``path``
     (which may list only some parameters) and then ``overrides`` put in.
 
-    ``overrides`` maps dotted keys in thesis units to values, e.g.
-    ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "home.tip[2]": 0.2}`` (see
-    :func:`apply_overrides`).
+    Parameters
+    ----------
+    path : str or pathlib.Path or None, optional
+        A parameter TOML in the format of ``models/pollard.toml`` (thesis units: m, deg, kg,
+        kg·mm²); it may list only the keys that differ. None: the shipped values alone.
+    overrides : Mapping or None, optional
+        Dotted keys in thesis units to values, applied last, e.g.
+        ``{"chain0.x32": 0.34, "bodies.gun.mass": 0.05, "home.tip[2]": 0.2}``
+        (``key[i]`` is one component of a vector parameter).
+    check_home : bool, optional
+        Check that the home pose is reachable on the assembly branches (default True).
+
+    Returns
+    -------
+    Params
+        The validated numbers, converted to SI units.
+
+    Raises
+    ------
+    ParameterError
+        An unknown key, a value that is not finite or breaks its rule (a non-positive length
+        or mass, an inertia that is not physical, an unreachable home pose); the message
+        names the key, the value and the rule.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> p = pp.load_params(overrides={"chain0.x32": 0.34})
+    >>> p.x32, p.source
+    (0.34, 'pollard.toml')
+    >>> pp.load_params(overrides={"chain0.x32": -1.0})
+    Traceback (most recent call last):
+    ...
+    pollard_pin.model.params.ParameterError: ...
     """
     d = read_params_dict()
     if path is not None:  # a partial file overrides the shipped values

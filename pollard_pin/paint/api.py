@@ -34,13 +34,32 @@ COMPLIANCE_KINDS = ("panel", "part", "line panel", "line part")
 
 @dataclass(frozen=True)
 class PaintOptions:
-    """How :func:`paint` plans and integrates, validated once.
+    """How :func:`~pollard_pin.paint.api.paint` plans and integrates, validated once.
 
-    ``resolution``: the film's point spacing [m] (a panel's grid, a part's film points),
-    at most the spray spot's σ; None: σ/3. ``max_line_speed``: a job on a line is planned at
-    the fastest line speed that paints it (bisection to ``speed_resolution``, relative)
-    instead of the job's speed (docs/model.md §24). ``compliance``: report what the drives'
-    compliance does to the gun and the film (docs/model.md §27.7; a second film integration).
+    Parameters
+    ----------
+    resolution : float or None, optional
+        The film's point spacing [m] (a panel's grid, a part's film points), at most the
+        spray spot's σ; None: σ/3.
+    max_line_speed : bool, optional
+        A job on a line is planned at the fastest line speed that paints it instead of the
+        job's speed (docs/model.md §24; default False).
+    speed_resolution : float, optional
+        That search's relative bracket, in (0, 1) (default 0.01).
+    compliance : bool, optional
+        Report what the drives' compliance does to the gun and the film (docs/model.md
+        §27.7; a second film integration; default True).
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A resolution that is not > 0, a flag that is not a bool, a bracket outside (0, 1).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.PaintOptions(resolution=0.004)
+    PaintOptions(resolution=0.004, max_line_speed=False, speed_resolution=0.01, compliance=True)
     """
 
     resolution: float | None = None
@@ -69,8 +88,9 @@ class PaintOptions:
 @dataclass(frozen=True)
 class PaintFilm:
     """The film a plan leaves. A panel: ``points`` (nv, nu, 3) on the grid ``grid`` = (U, V),
-    ``film`` a :class:`.spray.deposition.Film`. A part: ``points`` the
-    :class:`.film.points.SurfacePoints`, ``film`` a :class:`.film.mesh.MeshFilm`,
+    ``film`` a :class:`~pollard_pin.paint.spray.deposition.Film`. A part: ``points`` the
+    film points (``paint.film.points.SurfacePoints``: points, normals, areas, faces),
+    ``film`` a ``paint.film.mesh.MeshFilm``,
     ``painted`` the mask of points on painted faces, ``efficiency`` the transfer
     efficiency. On a line, the part (or panel) at its t = 0 pose, world coordinates."""
 
@@ -89,11 +109,31 @@ class PaintFilm:
 
 @dataclass(frozen=True)
 class PaintReport:
-    """The numbers of ``paint.json`` (docs/model.md §21, §23, §24), its main ones typed:
-    ``cycle_time`` [s], ``target`` [m], ``thickness`` (the film statistics [m] and shares),
-    ``motors`` (per motor, each limit's use over its rating), ``line`` (None when still),
-    ``timings`` [s]; ``data`` the whole report (paint.json adds film.ply's colour map:
-    :func:`pollard_pin.io.paint_files.report_json`)."""
+    """The numbers of ``paint.json`` (docs/model.md §21, §23, §24), its main ones typed.
+
+    Attributes
+    ----------
+    kind : str
+        The job's kind (``"panel"``, ``"part"``, ``"line panel"``, ``"line part"``).
+    cycle_time : float
+        The program's cycle [s].
+    target : float
+        The target film thickness [m].
+    thickness : Mapping
+        The film statistics: ``mean``, ``min``, ``max``, ``std`` [m], ``uniformity``,
+        ``within_5pct`` and ``within_10pct`` (shares of the area), ``deviation_min`` and
+        ``deviation_max`` (relative to the target).
+    motors : Mapping
+        Per motor, each limit's use over its rating (``peak_torque``, ``rms_torque``,
+        ``speed``).
+    line : Mapping or None
+        On a line: start delay, window, travel, cycle, pitch, parts per hour, the speed's
+        upper bound; None when still.
+    timings : Mapping
+        Seconds spent planning and integrating the film.
+    data : Mapping
+        The whole report (``paint.json`` adds film.ply's colour map).
+    """
 
     kind: str
     cycle_time: float
@@ -116,10 +156,29 @@ class PaintReport:
 
 @dataclass(frozen=True)
 class PaintResult:
-    """What :func:`paint` returns: the job, its kind, the plan (a
-    :class:`.plan.panel.PaintPlan`, :class:`.plan.part.SurfacePlan`, :class:`.line.panel.LinePlan`
-    or :class:`.line.part.LinePartPlan`), the film, the report and the actuators it was
-    checked against."""
+    """What :func:`~pollard_pin.paint.api.paint` returns.
+
+    Attributes
+    ----------
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        The job.
+    kind : str
+        Its kind (``"panel"``, ``"part"``, ``"line panel"``, ``"line part"``).
+    plan : object
+        The plan of that kind (a :class:`~pollard_pin.PaintPlan` for a still panel): its
+        ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and ``spray`` (the
+        gun's trigger per sample), passes, speed, cycle time.
+    film : pollard_pin.paint.api.PaintFilm
+        The film points and the thickness [m] at each.
+    report : PaintReport
+        The numbers of ``paint.json``.
+    actuators : Actuators
+        The motor ratings the program was checked against.
+    options : PaintOptions
+        How it was planned.
+
+    :meth:`write` writes what ``pollard-pin paint`` writes.
+    """
 
     job: Any
     kind: str
@@ -163,8 +222,55 @@ def film_spacing_of(job, resolution: float | None = None) -> float:
 def paint(robot, job, actuators: Actuators | None = None,
           options: PaintOptions | None = None) -> PaintResult:
     """Plan the job (a panel or a part, still or on a line), integrate its film and compute
-    its report: one :class:`PaintResult`. ``actuators``: the motor ratings (default: the
-    job's, else the package's). A job of another type is a :class:`.errors.JobKindError`."""
+    its report (docs/model.md §20–§24): what ``pollard-pin paint`` does. Also callable as
+    ``pollard_pin.paint(robot, job, ...)``.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        From :func:`~pollard_pin.load_job`.
+    actuators : Actuators or None, optional
+        The motor ratings the program must keep (default: the job's ``actuators`` file, else
+        the package's, ``examples/actuators.toml``).
+    options : PaintOptions or None, optional
+        Film resolution, the line speed search.
+
+    Returns
+    -------
+    PaintResult
+        The plan, the film, the report; ``result.write(folder)`` writes the outputs.
+
+    Raises
+    ------
+    PlanError
+        No program meets the job: out of reach (naming where, and the largest panel that
+        fits), a budget broken (a film too thick for the flow, a panel narrower than the
+        spot), the gun's body too close to the part.
+    JobKindError
+        A job of a kind the planner does not handle.
+    pollard_pin.errors.InputError
+        Options of the wrong type, ``max_line_speed`` without a line.
+
+    Examples
+    --------
+    >>> import os
+    >>> import pollard_pin as pp
+    >>> lines = ["panel = {center = [0.70, 0.0, 0.16], normal = [-1.0, 0.0, 0.0], "
+    ...          "width = 0.26, height = 0.12}",
+    ...          "gun = {standoff = 0.15, sigma = 0.010, flow = 1.5e-7}",
+    ...          "job = {thickness = 25e-6}"]
+    >>> with open("paint.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(lines))
+    >>> result = pp.paint(pp.load(), pp.load_job("paint.toml"))
+    >>> result.kind, result.report.data["passes"], round(result.report.cycle_time, 1)
+    ('panel', 9, 10.0)
+    >>> result.report.thickness["within_5pct"]
+    1.0
+    >>> sorted(p.name for p in result.write("out").parent.iterdir())[:3]
+    ['film.ply', 'paint.json', 'path.csv']
+    """
     kind = job_kind(job)
     options = PaintOptions() if options is None else options
     if not isinstance(options, PaintOptions):

@@ -52,8 +52,41 @@ class JobError(InputError):
 
 @dataclass(frozen=True)
 class PaintJob:
-    """A checked paint job, SI units. ``normal`` is unit length; optional entries are None
-    when the file leaves them to the planner."""
+    """A checked panel job, SI units (:func:`~pollard_pin.load_job`). ``normal`` is unit
+    length; optional entries are None when the file leaves them to the planner.
+
+    Attributes
+    ----------
+    center, normal : tuple of float
+        The panel's centre [m] and unit normal (towards the robot), world frame.
+    width, height : float
+        Its size [m] along u = normal × v and v (world z projected onto the panel).
+    standoff, sigma : float
+        The gun's distance to the panel and the spray spot's spread [m].
+    flow : float
+        Film volume deposited [m³/s].
+    thickness : float
+        The target film [m].
+    spacing, speed : float or None
+        Pass spacing [m] and speed [m/s] (None: the planner's).
+    direction : str
+        ``"horizontal"`` or ``"vertical"`` passes.
+    coats : int or None
+        Coats (None: the planner's).
+    actuators : str or None
+        The motor ratings file.
+    line : pollard_pin.paint.line.conveyor.Line or None
+        The conveyor (docs/model.md §24); None: a still panel.
+    clearance : float or None
+        The gun body's smallest distance to the part [m] (None: 10 mm).
+    source : str
+        The job file (for messages).
+    robots : tuple of pollard_pin.paint.cell.robots.CellRobot
+        A cell's robots; empty: one robot at the origin.
+    recoil : float or None
+        The spray's push back on the gun along its axis [N] (docs/model.md §27.7); None:
+        none.
+    """
 
     center: tuple[float, float, float]
     normal: tuple[float, float, float]
@@ -91,7 +124,7 @@ class PartJob:
     path, relative to the job file's folder once loaded), its length ``units`` (a name of
     UNITS) or ``scale`` (the file's unit in m; :attr:`unit` is the one rule), ``position``
     [m] and ``rotation`` (rx, ry, rz) [deg]
-    (:func:`.target.mesh.placement`), the painted faces' ``facing`` direction (None: towards the
+    (``paint.target.mesh.placement``), the painted faces' ``facing`` direction (None: towards the
     robot) and ``max_angle`` [deg] (None: the default)."""
 
     mesh: str
@@ -321,7 +354,41 @@ def _job_values(source: str, job: Mapping) -> dict:
 def load_job(path: str | Path) -> PaintJob | PartJob:
     """Read and check a paint job file (format: ``examples/paint.toml``, or
     ``examples/parts/*.toml`` with a [part]). A relative ``job.actuators`` or ``part.mesh`` is
-    taken relative to the job file's folder."""
+    taken relative to the job file's folder.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A TOML job: ``[panel]`` (centre, normal, width, height [m]) or ``[part]`` (mesh,
+        units, position, rotation, facing, max_angle); ``[gun]`` (standoff, sigma [m], flow
+        [m³/s]); ``[job]`` (thickness [m]; optional spacing, speed, direction, coats,
+        actuators); optional ``[line]`` (speed [m/s], direction) and ``[[robot]]`` tables.
+
+    Returns
+    -------
+    PaintJob or pollard_pin.paint.job.PartJob
+        The checked job, SI units.
+
+    Raises
+    ------
+    JobError
+        A missing or malformed file, a missing or unknown key, a value that breaks its rule
+        (the message names the file, the key and the rule).
+
+    Examples
+    --------
+    >>> import os
+    >>> import pollard_pin as pp
+    >>> lines = ["panel = {center = [0.70, 0.0, 0.16], normal = [-1.0, 0.0, 0.0], "
+    ...          "width = 0.26, height = 0.12}",
+    ...          "gun = {standoff = 0.15, sigma = 0.010, flow = 1.5e-7}",
+    ...          "job = {thickness = 25e-6}"]
+    >>> with open("paint.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(lines))
+    >>> job = pp.load_job("paint.toml")
+    >>> job.width, job.height, job.thickness
+    (0.26, 0.12, 2.5e-05)
+    """
     from dataclasses import replace
 
     job = job_from_dict(read_toml(path, "paint job file", JobError), str(path))

@@ -50,9 +50,31 @@ class PlaceError(PlanError):
 
 @dataclass(frozen=True)
 class PlaceOptions:
-    """How :func:`place` searches, validated once: the coarse grid ``step`` [m], the turns
-    about the facing axis tried, every ``turn_step`` degrees within ±``max_turn`` (0: the
-    job's orientation only), and the gun poses checked per position, ``samples``."""
+    """How :func:`~pollard_pin.place` searches, validated once.
+
+    Parameters
+    ----------
+    step : float, optional
+        The coarse grid of positions [m], in [0.001, 0.2] (default 0.02).
+    max_turn : float, optional
+        Turns about the facing axis tried within ±``max_turn`` [deg], in [0, 180] (default
+        90; 0: the job's orientation only).
+    turn_step : float, optional
+        Every ``turn_step`` degrees, in [1, 180] (default 30).
+    samples : int, optional
+        The gun poses checked per position, in [20, 100000] (default 400).
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A value that is not a number in its range.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.PlaceOptions(max_turn=60.0).turns         # degrees, the job's own first
+    (0.0, 30.0, -30.0, 60.0, -60.0)
+    """
 
     step: float = 0.02
     max_turn: float = 90.0
@@ -82,10 +104,24 @@ class PlaceOptions:
 
 @dataclass(frozen=True)
 class PlaceResult:
-    """The placed ``job`` (its position and rotation set), the ``turn`` about the facing
-    axis it took [deg], the ``margin`` [m] (how far the part can move along any world axis
-    before a gun pose leaves the reach), the gun ``poses`` checked and the ``turns`` tried
-    with each one's coarse margin [m] (negative: none fits)."""
+    """What :func:`~pollard_pin.place` returns.
+
+    Attributes
+    ----------
+    job : pollard_pin.paint.job.PartJob
+        The placed job (its position and rotation set).
+    turn : float
+        The turn about the facing axis it took [deg].
+    margin : float
+        How far the part can move along any world axis before a gun pose leaves the reach
+        [m].
+    poses : int
+        The gun poses checked.
+    turns : dict
+        Each turn tried [deg] and its coarse margin [m] (negative: none fits).
+
+    ``write(path)`` writes the placed job as TOML (``paint --job`` reads it as is).
+    """
 
     job: PartJob
     turn: float
@@ -220,8 +256,32 @@ def _travel(robot, poses, shift, axis: int, sign: float, reach: float, tol: floa
 
 
 def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResult:
-    """The placement of the job's part with the most margin (see the module notes). Raises
-    :class:`PlaceError` saying by how much the part misses when nothing fits."""
+    """The placement of the job's part with the most margin: the position, and a turn about
+    the facing axis, that puts every gun pose of the part's passes (run-ons included) within
+    reach with the most margin. What ``pollard-pin place`` does.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    job : pollard_pin.paint.job.PartJob
+        A part's job (:func:`~pollard_pin.load_job` on a job with ``[part]``).
+    options : PlaceOptions or None, optional
+        The search's grid, turns and samples.
+
+    Returns
+    -------
+    PlaceResult
+        The placed job, its turn [deg] and margin [m]; ``.write(path)`` writes the job.
+
+    Raises
+    ------
+    PlaceError
+        Nothing fits: the message says by how much the part misses (taller or wider than the
+        reach).
+    pollard_pin.errors.InputError
+        A job that is not a part's, options of the wrong type.
+    """
     if not isinstance(job, PartJob):
         raise InputError(f"place: a {type(job).__name__}, expected a part's job (PartJob, "
                          "from load_job on a job with [part])")

@@ -45,8 +45,26 @@ def clearance_entries(plan) -> dict:
 
 
 def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
-    """The numbers of ``paint.json``: the job, film statistics [m], timing and layout, and
-    each motor's peak utilisation (checked at CHECK_REFINE× the path's sampling)."""
+    """The numbers of ``paint.json`` for a still panel: the job, film statistics [m], timing
+    and layout, and each motor's peak utilisation (checked at CHECK_REFINE× the path's
+    sampling).
+
+    Parameters
+    ----------
+    plan : PaintPlan
+        From :func:`~pollard_pin.plan_paint`.
+    f : pollard_pin.paint.spray.deposition.Film
+        Its film (:func:`~pollard_pin.plan_film`).
+    act : Actuators
+        The motor ratings.
+
+    Returns
+    -------
+    dict
+        ``job``, ``thickness`` (mean, min, max, std [m], shares within ±5 % and ±10 %),
+        ``target`` [m], ``cycle_time`` and ``lower_bound`` [s], passes, spacing, speed, the
+        motors' use of their ratings, ...
+    """
     j = plan.job
     tr = plan.trajectory
     swept = 2 * plan.half_length * len(plan.offsets) * plan.spacing * plan.coats

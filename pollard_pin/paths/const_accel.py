@@ -56,7 +56,20 @@ class RetimedCurve:
     """The retimed motion between the samples: s̈ constant per interval of ``timing`` (``t``,
     ``s``, ``s_dot``) on the path ``base(t0 + s·T)``; a ``curve(times) -> (poses, rates,
     accelerations)`` by the chain rule: p'(s)·ṡ and p'(s)·s̈ + p''(s)·ṡ², p' = T·ṗ and
-    p'' = T²·p̈ of the base timing."""
+    p'' = T²·p̈ of the base timing.
+
+    Parameters
+    ----------
+    base : Callable
+        The path in its own timing, ``base(times) → (poses, rates, accelerations)``.
+    t0 : float
+        The base time at s = 0 [s].
+    duration : float
+        T, the base time from s = 0 to s = 1 [s].
+    timing : TimeOptimal
+        The traversal (its ``t``, ``s``, ``s_dot``), e.g. from
+        :func:`~pollard_pin.time_optimal_path`.
+    """
 
     def __init__(self, base, t0: float, duration: float, timing):
         self.base, self.t0, self.T, self.timing = base, t0, duration, timing

@@ -26,6 +26,27 @@ def thesis_curve(t, duration: float = THESIS_DURATION,
 
     Appendix B: x = −0.001u², y = u, z = 100 sin(0.3u) [mm], u linear in t from −60π at
     t = 0 to 60π at ``duration``, added to the home pose (docs/model.md §9). Exact derivatives.
+
+    Parameters
+    ----------
+    t : ndarray
+        Times [s], any values (the curve extends past [0, ``duration``]).
+    duration : float, optional
+        The time to run the curve once [s] (default 20).
+    home_pose : tuple of float, optional
+        The pose the curve is added to: x, y, z [m], ψ, θ, φ [rad].
+
+    Returns
+    -------
+    poses, rates, accelerations : ndarray
+        Each (N, 6): [m, rad], [m/s, rad/s], [m/s², rad/s²].
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> poses, rates, acc = pp.thesis_curve([10.0])      # halfway: u = 0, the home pose
+    >>> poses.round(6).tolist()
+    [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]]
     """
     t = np.atleast_1d(np.asarray(t, dtype=float))
     ud = 2.0 * U_RANGE / duration
@@ -62,7 +83,40 @@ def count_text(n) -> str:
 
 def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
                       home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)) -> Trajectory:
-    """The default painting trajectory (docs/model.md §9) sampled at ``samples`` points."""
+    """The default painting trajectory (docs/model.md §9) sampled at ``samples`` points.
+
+    Parameters
+    ----------
+    duration : float, optional
+        Time to run the curve [s] (default 20).
+    samples : int, optional
+        Number of samples, evenly spaced from 0 to ``duration`` (default 2001), ≥ 2.
+    home_pose : tuple of float, optional
+        The pose the curve is added to: x, y, z [m], ψ, θ, φ [rad] (default the home pose
+        (0.55, 0, 0.16, 0, 0, 0)).
+
+    Returns
+    -------
+    Trajectory
+        Exact derivatives; its ``curve`` is the exact curve between the samples.
+
+    Raises
+    ------
+    TrajectoryError
+        A duration that is not a positive number (or so short that the accelerations
+        overflow), a sample count that is not an integer ≥ 2 or over the budget.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> traj = pp.thesis_trajectory(duration=20.0, samples=401)
+    >>> len(traj), float(traj.t[-1]), traj.derivatives
+    (401, 20.0, 'analytic')
+    >>> pp.thesis_trajectory(samples=1)
+    Traceback (most recent call last):
+    ...
+    pollard_pin.paths.trajectory.TrajectoryError: samples must be an integer >= 2, got 1
+    """
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
     if not 2.0 * U_RANGE / duration < 1e150:  # the accelerations grow as 1/duration²
@@ -78,7 +132,35 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
 class ThesisTrajectory:
     """The thesis trajectory evaluated window by window, never whole: a million samples cost
     one window's memory. ``windows(size)`` yields exactly the slices of
-    :func:`thesis_trajectory` with the same arguments (same bits: ``np.linspace``'s rule)."""
+    :func:`~pollard_pin.thesis_trajectory` with the same arguments (same bits:
+    ``np.linspace``'s rule). :func:`~pollard_pin.stream_run` takes it.
+
+    Parameters
+    ----------
+    duration : float, optional
+        Time to run the curve [s] (default 20).
+    samples : int, optional
+        Number of samples (default 2001), ≥ 2 and within the streamed budget.
+    home_pose : tuple of float, optional
+        The pose the curve is added to: x, y, z [m], ψ, θ, φ [rad].
+
+    Raises
+    ------
+    TrajectoryError
+        The arguments :func:`~pollard_pin.thesis_trajectory` refuses, or too many samples.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> starts = [start for start, _ in pp.ThesisTrajectory(samples=10_001).windows(4096)]
+    >>> starts
+    [0, 4096, 8192]
+    >>> start, window = list(pp.ThesisTrajectory(samples=10_001).windows(4096))[1]
+    >>> whole = pp.thesis_trajectory(samples=10_001)
+    >>> bool(np.array_equal(window.poses, whole.poses[4096:8192]))
+    True
+    """
 
     def __init__(self, duration: float = THESIS_DURATION, samples: int = THESIS_SAMPLES,
                  home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0)):
@@ -119,7 +201,33 @@ def sinusoid_curve(t, home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),
 def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int = 401,
                              home_pose=(0.55, 0.0, 0.16, 0.0, 0.0, 0.0),
                              amplitude=(0.04, 0.06, 0.05, 0.2, 0.2, 0.3)) -> Trajectory:
-    """Random sum-of-sines motion of all six task coordinates about home, exact derivatives."""
+    """Random sum-of-sines motion of all six task coordinates about home, exact derivatives.
+
+    Parameters
+    ----------
+    seed : int, optional
+        The random generator's seed: the same seed, the same motion.
+    duration : float, optional
+        Time span [s] (default 4).
+    samples : int, optional
+        Number of samples (default 401).
+    home_pose : tuple of float, optional
+        The start pose: x, y, z [m], ψ, θ, φ [rad].
+    amplitude : tuple of float, optional
+        The largest amplitude of each coordinate [m, rad]; each is drawn in [0.5, 1] × it.
+
+    Returns
+    -------
+    Trajectory
+        Starting exactly at ``home_pose``.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> traj = pp.smooth_random_trajectory(seed=3, samples=101)
+    >>> traj.name, traj.poses[0].round(6).tolist()
+    ('random3', [0.55, 0.0, 0.16, 0.0, 0.0, 0.0])
+    """
     rng = np.random.default_rng(seed)
     amp = np.asarray(amplitude) * rng.uniform(0.5, 1.0, 6)
     freq = rng.uniform(0.5, 2.5, 6) / duration

@@ -13,11 +13,52 @@ from .splines import quintic_hermite
 
 
 class TrajectoryError(InputError):
-    """A trajectory (file) is malformed; the message names the row and column."""
+    """A trajectory (file) is malformed; the message names the row and column (a file) or the
+    array and its shape."""
 
 
 @dataclass(frozen=True)
 class Trajectory:
+    """A tool-pose trajectory: times, task poses and their first and second time derivatives
+    (docs/model.md §2), SI units and radians. Checked when made.
+
+    Parameters
+    ----------
+    t : ndarray
+        Times (N,) [s], strictly increasing.
+    poses : ndarray
+        Tool poses (N, 6): tip position x, y, z [m] and ZYZ angles ψ, θ, φ [rad], world frame.
+    d_poses, dd_poses : ndarray
+        Their first (N, 6) [m/s, rad/s] and second (N, 6) [m/s², rad/s²] time derivatives.
+    name : str, optional
+        A label for messages and output metadata.
+    derivatives : str, optional
+        Where the derivatives came from (``"analytic"``, ``"quintic spline"``,
+        ``"file columns"``).
+    curve : Callable or None, optional
+        The exact path between the samples, ``curve(times) → (poses, rates,
+        accelerations)``; None: the quintic Hermite spline through the samples
+        (:func:`~pollard_pin.trajectory_curve`).
+    spray : ndarray or None, optional
+        The paint gun's trigger per sample (N,), the fraction of its flow in [0, 1]; None: no
+        gun.
+
+    Raises
+    ------
+    TrajectoryError
+        An array whose shape does not match ``t``'s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> t = np.linspace(0.0, 2.0, 5)
+    >>> poses = np.tile([0.55, 0.0, 0.16, 0.0, 0.0, 0.0], (5, 1))
+    >>> still = pp.Trajectory(t, poses, np.zeros((5, 6)), np.zeros((5, 6)), name="still")
+    >>> len(still), still.window(1, 3).t.tolist()
+    (5, [0.5, 1.0])
+    """
+
     t: np.ndarray  # (N,) s, strictly increasing
     poses: np.ndarray  # (N, 6)
     d_poses: np.ndarray  # (N, 6)
@@ -62,7 +103,28 @@ def trajectory_curve(traj) -> Callable:
     """The path between the samples of ``traj`` (``t``, ``poses``, ``d_poses``,
     ``dd_poses``, optional ``curve``): its own ``curve`` (the thesis curve, the spline a CSV's
     derivatives came from), else the C² quintic Hermite spline through its poses, rates and
-    accelerations."""
+    accelerations.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The samples.
+
+    Returns
+    -------
+    Callable
+        ``curve(times) → (poses, rates, accelerations)``, each (M, 6), at any times [s]
+        within ``traj.t``'s span.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> traj = pp.thesis_trajectory(samples=201)
+    >>> poses, rates, acc = pp.trajectory_curve(traj)([10.0])
+    >>> bool(np.allclose(poses[0], traj.poses[100]))
+    True
+    """
     curve = getattr(traj, "curve", None)
     if curve is not None:
         return curve

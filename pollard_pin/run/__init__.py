@@ -1,5 +1,5 @@
-"""Run a trajectory through the pipeline: :mod:`.pipeline` (the whole-trajectory solve and its
-table), :mod:`.stream` (window by window, in threads), :mod:`.stats` (summary and duty
+"""Run a trajectory through the pipeline: ``run.pipeline`` (the whole-trajectory solve and its
+table), ``run.stream`` (window by window, in threads), ``run.stats`` (summary and duty
 figures)."""
 from .pipeline import RunResult, run_pipeline, write_run_table
 from .stats import RunStats, duty_figures, summary

@@ -18,6 +18,24 @@ from ..paths.trajectory import Trajectory
 
 @dataclass
 class RunResult:
+    """A whole-trajectory run, from :func:`~pollard_pin.run_pipeline`.
+
+    Attributes
+    ----------
+    trajectory : Trajectory
+        The input trajectory.
+    ik : IKResult
+        The joint motion and the singularity margins at each sample.
+    dynamics : pollard_pin.dynamics.inverse.DynamicsResult or None
+        Actuator torques, closure forces, powers and energies (None with
+        ``dynamics=False``).
+    loads : JointLoads or None
+        The joint loads of docs/model.md §17 (``loads=True`` only).
+
+    :meth:`columns` is every output column by name (the ``run`` CSV layout);
+    :func:`~pollard_pin.write_run_table` writes them.
+    """
+
     trajectory: Trajectory
     ik: IKResult
     dynamics: object | None = None  # dynamics.DynamicsResult once computed
@@ -45,11 +63,50 @@ class RunResult:
 def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
                  loads: bool = False, *, margins: Margins | None = None,
                  method: str | None = None, joint_limits: bool = True) -> RunResult:
-    """IK (and inverse dynamics) along a trajectory: ``margins`` (:class:`Margins`, default
-    its defaults) and ``method`` go to :func:`~pollard_pin.inverse_kinematics`.
-    ``loads`` adds the joint loads of docs/model.md §17 (needs ``dynamics``).
-    ``joint_limits``: refuse a sample with a joint outside its limits (the reach rule of
-    ``workspace`` and ``paint``, kinematics.limits); False waives them."""
+    """IK (and inverse dynamics) along a trajectory: what ``pollard-pin run`` computes.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    traj : Trajectory
+        The tool path (:func:`~pollard_pin.thesis_trajectory`,
+        :func:`~pollard_pin.from_csv`, ...).
+    progress : Callable or None, optional
+        ``progress(done, total)`` as the IK solves samples.
+    dynamics : bool, optional
+        Also solve the inverse dynamics (default True).
+    loads : bool, optional
+        Also compute the joint loads of docs/model.md §17 (default False).
+    margins : Margins or None, optional
+        How close to a singularity a sample may come (default :class:`~pollard_pin.Margins`'
+        defaults); with ``method``, passed to :func:`~pollard_pin.inverse_kinematics`.
+    method : {"batch", "newton"} or None, optional
+        The IK method (default batch).
+    joint_limits : bool, optional
+        Refuse a sample with a joint outside its limits (default True, the reach rule of
+        ``workspace`` and ``paint``); False waives them.
+
+    Returns
+    -------
+    RunResult
+        The trajectory, its IK and (unless ``dynamics=False``) its dynamics and loads.
+
+    Raises
+    ------
+    KinematicsError
+        A sample the kinematics cannot solve: out of reach, too close to a singularity, a
+        branch flip, a joint out of its limits (the message names the sample, time and
+        chain or joint).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> result = pp.run_pipeline(robot, pp.thesis_trajectory(samples=101))
+    >>> result.dynamics.tau.shape, len(result.columns())
+    ((101, 6), 85)
+    """
     from ..dynamics.inverse import inverse_dynamics
 
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
@@ -66,6 +123,24 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
 
 
 def write_run_table(result: RunResult, path: str | Path, metadata: dict | None = None) -> None:
-    """Write the result's columns (CSV, or Parquet for ``*.parquet``) through
-    :mod:`pollard_pin.io.table`, atomically: a failed run never leaves a half-written file."""
+    """Write the result's columns (CSV, or Parquet for ``*.parquet``), atomically: a failed
+    run never leaves a half-written file. What ``pollard-pin run --out`` writes.
+
+    Parameters
+    ----------
+    result : RunResult
+        From :func:`~pollard_pin.run_pipeline`.
+    path : str or pathlib.Path
+        ``*.csv`` (units and metadata in a ``.units.json`` sidecar) or ``*.parquet`` (inside).
+    metadata : dict or None, optional
+        More metadata to store with the table.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> result = pp.run_pipeline(pp.load(), pp.thesis_trajectory(samples=11))
+    >>> pp.write_run_table(result, "run.csv")
+    >>> open("run.csv").readline().split(",")[:4]
+    ['t', 'x', 'y', 'z']
+    """
     write_table(path, result.columns(), metadata)

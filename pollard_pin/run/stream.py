@@ -20,9 +20,22 @@ STREAM_CHUNK = BATCH_CHUNK  # samples per solve (overlap included): bounded memo
 
 @dataclass(frozen=True)
 class StreamOptions:
-    """How :func:`stream_run` cuts and solves, checked once: ``chunk`` samples per window
-    (the overlap sample included, >= 2), ``workers`` solver threads (>= 1) and ``fmt`` the
-    table's format (None: from the file name)."""
+    """How :func:`~pollard_pin.stream_run` cuts and solves, checked once.
+
+    Parameters
+    ----------
+    chunk : int, optional
+        Samples per window (the overlap sample included), ≥ 2 (default 4096).
+    workers : int, optional
+        Solver threads, ≥ 1 (default 1).
+    fmt : {"csv", "parquet"} or None, optional
+        The table's format (None: from the file name).
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A chunk below 2 or a worker count below 1.
+    """
 
     chunk: int = STREAM_CHUNK
     workers: int = 1
@@ -133,15 +146,52 @@ class _Inline:
 def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = None, *,
                metadata: dict | None = None, progress=None, timings: dict | None = None,
                **options) -> RunStats:
-    """Solve ``traj`` (a :class:`Trajectory` or :class:`ThesisTrajectory`) window by window and
-    write each window's columns to ``path`` as it is done; memory stays that of a few windows.
+    """Solve ``traj`` window by window and write each window's columns to ``path`` as it is
+    done; memory stays that of a few windows. What ``pollard-pin run`` does.
 
-    The same rows as ``write_run_table(run_pipeline(robot, traj, **options), path)`` (see
-    :func:`solve_windows`; ``workers`` threads solve while this thread writes). Errors count
-    samples from the trajectory's start; the file appears only if every window is solved
-    (atomic). ``stream``: window size, threads and table format (:class:`StreamOptions`);
-    ``options`` go to :func:`run_pipeline`; ``timings`` gets ``wall`` (solving and
-    writing) and ``write`` (this thread's writing, overlapped with the solving) seconds.
+    The same rows as ``write_run_table(run_pipeline(robot, traj, **options), path)``
+    (``workers`` threads solve while this thread writes). Errors count samples from the
+    trajectory's start; the file appears only if every window is solved (atomic).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    traj : Trajectory or ThesisTrajectory
+        The tool path; a :class:`~pollard_pin.ThesisTrajectory` is never held whole.
+    path : str or pathlib.Path
+        The table to write (CSV or Parquet).
+    stream : StreamOptions or None, optional
+        Window size, threads and table format.
+    metadata : dict or None, optional
+        More metadata to store with the table.
+    progress : Callable or None, optional
+        ``progress(done, total)`` after each window.
+    timings : dict or None, optional
+        Gets ``wall`` (solving and writing) and ``write`` (this thread's writing, overlapped
+        with the solving) seconds.
+    **options
+        Passed to :func:`~pollard_pin.run_pipeline` (``dynamics``, ``loads``, ``margins``,
+        ``method``, ``joint_limits``).
+
+    Returns
+    -------
+    pollard_pin.run.stats.RunStats
+        The summary figures (peaks, margins, works), accumulated without keeping the samples.
+
+    Raises
+    ------
+    KinematicsError
+        A sample the kinematics cannot solve (its number counted from the trajectory's
+        start); nothing is written.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> stats = pp.stream_run(pp.load(), pp.ThesisTrajectory(samples=10_001), "big.csv",
+    ...                       pp.StreamOptions(chunk=4096, workers=2))
+    >>> stats.samples, len(pp.read_result("big.csv"))
+    (10001, 10001)
     """
     timings = {} if timings is None else timings
     stream = StreamOptions() if stream is None else stream

@@ -30,7 +30,8 @@ LOAD_METRICS = ("peak_axial", "peak_radial", "peak_bending")
 METRIC_COLUMNS += tuple(f"{m}_{j}" for m in LOAD_METRICS for j in TREE_JOINTS)
 
 class SweepError(InputError):
-    """A grid file or sweep definition is invalid, or a variant crashed unexpectedly."""
+    """A grid file or sweep definition is invalid (one line naming the variant, the key and
+    the rule), or a variant crashed unexpectedly."""
 
 
 # --- the per-variant function (pure, picklable) -----------------------------------------------
@@ -76,11 +77,31 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
 
     The function has no side effects and depends on nothing but ``spec``, so it gives the same
     row in any process or machine with the same pollard-pin installed. An invalid parameter set
-    (:class:`~pollard_pin.model.params.ParameterError`, e.g. an unreachable home pose) and a
-    trajectory the variant cannot follow (:class:`~pollard_pin.kinematics.errors.KinematicsError`,
-    :class:`~pollard_pin.kinematics.errors.ClosureError`, a singular linear system) give an
-    infeasible
-    row; anything else is a bug and raises.
+    (:class:`~pollard_pin.ParameterError`, e.g. an unreachable home pose) and a trajectory the
+    variant cannot follow (:class:`~pollard_pin.KinematicsError`,
+    :class:`~pollard_pin.ClosureError`, a singular linear system) give an infeasible row;
+    anything else is a bug and raises.
+
+    Parameters
+    ----------
+    spec : Mapping
+        As above (one of ``Sweep.specs()``).
+
+    Returns
+    -------
+    dict
+        The row: ``variant``, the parameter values, ``feasible`` and the failure columns,
+        then per actuator ``peak_tau_*`` and ``rms_tau_*`` [N·m], ``peak_power_*`` [W], the
+        peak closure forces [N], the smallest singularity margins and the peak bearing loads
+        (the columns of :mod:`pollard_pin.sweep`).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> spec = pp.make_sweep(variants=[("short leg 1", {"leg1.x87": 0.31})], samples=201).specs()[0]
+    >>> row = pp.evaluate_variant(spec)
+    >>> row["variant"], row["feasible"], row["failure_kind"]
+    ('short leg 1', False, 'UnreachablePoseError')
     """
     from ..kinematics.errors import ClosureError, KinematicsError
     from ..model.build import load

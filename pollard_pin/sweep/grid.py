@@ -120,13 +120,57 @@ def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
                trajectory: Any = "thesis", duration: float | None = None,
                samples: int | None = None, params: str | Path | Mapping | None = None,
                source: str = "<python>") -> Sweep:
-    """Validate and build a :class:`Sweep`.
+    """Validate and build a design sweep: parameter variants over one trajectory.
 
-    ``grid`` = {key: [values]} (cartesian product) and/or ``variants`` = [(name, overrides)]
-    or [{"name": …, key: value, …}]. Every key must name a parameter and every value must
-    have the parameter's shape and pass its rules (a :class:`SweepError` naming the variant
-    and the parameter otherwise); only whether the home pose is reachable is left to the run,
-    where it makes the variant infeasible.
+    Every key must name a parameter and every value must have the parameter's shape and pass
+    its rules; only whether the home pose is reachable is left to the run, where it makes the
+    variant infeasible.
+
+    Parameters
+    ----------
+    grid : Mapping or None, optional
+        ``{key: [values]}``, a cartesian product; keys are the dotted keys of
+        ``models/pollard.toml`` in its units (m, deg, kg, kg·mm²), ``"key[i]"`` one component
+        of a vector parameter.
+    variants : Iterable, optional
+        Explicit variants after the grid: ``(name, overrides)`` pairs or
+        ``{"name": ..., key: value, ...}`` mappings.
+    trajectory : str or Trajectory, optional
+        ``"thesis"`` (default; laid around each variant's home pose) or a trajectory (a CSV
+        path or a :class:`~pollard_pin.Trajectory`, absolute).
+    duration : float or None, optional
+        The thesis trajectory's duration [s] (default 20).
+    samples : int or None, optional
+        The thesis trajectory's samples (default 2001).
+    params : str or pathlib.Path or Mapping or None, optional
+        The base parameters (default the shipped file).
+    source : str, optional
+        A label for messages.
+
+    Returns
+    -------
+    pollard_pin.sweep.grid.Sweep
+        The variants; ``specs()`` gives each one's plain-data spec for
+        :func:`~pollard_pin.evaluate_variant`, ``columns`` the result table's columns.
+
+    Raises
+    ------
+    SweepError
+        An unknown key, a value of the wrong shape or breaking its rule (naming the variant
+        and the parameter), duplicate variant names, no variant at all.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> sweep = pp.make_sweep(grid={"chain0.x32": [0.32, 0.34], "bodies.gun.mass": [0.035, 0.05]},
+    ...                       variants=[("long legs", {"leg1.x87": 0.34, "leg2.x87": 0.34})],
+    ...                       samples=201)
+    >>> len(sweep), sweep.columns[:3]
+    (5, ['variant', 'chain0.x32', 'bodies.gun.mass'])
+    >>> pp.make_sweep(grid={"chain0.x99": [0.3]})
+    Traceback (most recent call last):
+    ...
+    pollard_pin.sweep.evaluate.SweepError: ...
     """
     if isinstance(params, Mapping):
         base = copy.deepcopy(dict(params))
@@ -200,7 +244,36 @@ def _flatten(table: Mapping, prefix: str = "") -> dict:
 
 
 def load_grid(path: str | Path) -> Sweep:
-    """Read and validate a grid TOML file (format: module docstring)."""
+    """Read and validate a grid TOML file (format: ``examples/sweep.toml``): top-level
+    ``trajectory`` (``"thesis"`` or a CSV path relative to the file), ``duration``,
+    ``samples``, ``params``; a ``[grid]`` table (cartesian product) and ``[[variant]]``
+    tables, keyed by quoted dotted parameter keys.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The grid file.
+
+    Returns
+    -------
+    pollard_pin.sweep.grid.Sweep
+        As :func:`~pollard_pin.make_sweep`.
+
+    Raises
+    ------
+    SweepError
+        A missing or malformed file, an unknown entry, a bad parameter key or value.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> import os
+    >>> lines = ["samples = 201", "[grid]", '"chain0.x32" = [0.32, 0.34]']
+    >>> with open("grid.toml", "w") as f:
+    ...     _ = f.write(os.linesep.join(lines))
+    >>> [name for name, _ in pp.load_grid("grid.toml").variants]
+    ['x32=0.32', 'x32=0.34']
+    """
     path = Path(path)
     d = read_toml(path, "grid file", SweepError)
     unknown = [k for k in d if k not in GRID_KEYS]

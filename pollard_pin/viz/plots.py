@@ -268,7 +268,38 @@ def save_png(fig, path, dpi: int = 100) -> Path:
 
 
 def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
-    """Write every figure of :func:`figures` as ``out_dir/<name>.png``; returns the paths."""
+    """Write every figure of ``pollard_pin.viz.plots.figures`` as ``out_dir/<name>.png``
+    (the ``pollard-pin plot`` figures, like the thesis' chapter 4), with matplotlib's
+    non-interactive backend.
+
+    Parameters
+    ----------
+    result : RunResult
+        :func:`~pollard_pin.run_pipeline`'s result, with its dynamics.
+    out_dir : str or pathlib.Path
+        The folder (made if missing).
+    dpi : int, optional
+        The PNGs' resolution (default 100).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written: ``chain0_joints.png``, ``wrist_joints.png``, ``leg1_joints.png``,
+        ``leg2_joints.png``, ``spherical_joints.png``, ``actuators.png``,
+        ``closure_forces.png``, ``conditioning.png``, ``tool_path.png``, ...
+
+    Raises
+    ------
+    ValueError
+        The result has no dynamics (``run_pipeline(..., dynamics=False)``).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> result = pp.run_pipeline(pp.load(), pp.thesis_trajectory(samples=101))
+    >>> sorted(p.name for p in pp.write_figures(result, "plots", dpi=40))[:3]
+    ['actuators.png', 'chain0_joints.png', 'closure_forces.png']
+    """
     from ..io.atomic import make_folder
 
     out_dir = make_folder(out_dir)

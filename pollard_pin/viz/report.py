@@ -51,9 +51,40 @@ BEARING_FIELDS = (  # key, heading (docs/model.md §17); torque in N·m, forces 
 
 
 def sizing_report(robot, result, cross_check: bool = True) -> dict:
-    """The whole report for a :class:`~pollard_pin.run.RunResult` as a JSON-ready dict:
-    ``trajectory``, ``model``, ``units``, ``sizing`` and (unless ``cross_check=False``)
-    ``cross_check`` with the ``thesis`` and ``mujoco`` agreement figures."""
+    """The whole ``pollard-pin report`` for a run as a JSON-ready dict.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    result : RunResult
+        :func:`~pollard_pin.run_pipeline`'s result, with its dynamics.
+    cross_check : bool, optional
+        Also compare the torques with the thesis' Euler–Lagrange method and MuJoCo (default
+        True; MuJoCo's column says so when it is not installed).
+
+    Returns
+    -------
+    dict
+        ``trajectory``, ``model``, ``units``, ``sizing`` (per actuator: peak and RMS torque
+        [N·m], peak speed [rad/s], peak power [W], energy and net work [J]; per spherical
+        joint: peak force [N]), ``bearings`` (peak and equivalent joint loads) and, with
+        ``cross_check``, ``cross_check`` with the ``thesis`` and ``mujoco`` agreement.
+
+    Raises
+    ------
+    ValueError
+        The result has no dynamics.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> result = pp.run_pipeline(robot, pp.thesis_trajectory(samples=201))
+    >>> report = pp.sizing_report(robot, result, cross_check=False)
+    >>> round(report["sizing"]["actuators"]["theta21"]["peak_torque"], 2)    # N·m
+    1.21
+    """
     if result.dynamics is None:
         raise ValueError("the report needs the dynamics: run_pipeline(..., dynamics=True)")
     ik, traj = result.ik, result.trajectory

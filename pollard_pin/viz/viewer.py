@@ -451,6 +451,37 @@ def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
 
 
 def write_html(path, robot, ik, **kwargs) -> Path:
+    """Write the robot moving along ``ik`` as one self-contained MeshCat page (about 3 MB;
+    any browser opens it from disk, offline): what ``pollard-pin view --html`` writes.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The HTML file (replaced whole or not at all).
+    robot : Robot
+        The model.
+    ik : IKResult
+        The joint motion to animate (:func:`~pollard_pin.inverse_kinematics`, or a
+        :class:`~pollard_pin.RunResult`'s ``ik``).
+    **kwargs
+        ``frames`` (bool: draw the tool and platform frames), ``fps`` (key frames per second
+        of trajectory time, default 25), ``title`` (the page's), ``overlay`` (a callable
+        drawing more into the scene).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> robot = pp.load()
+    >>> ik = pp.run_pipeline(robot, pp.thesis_trajectory(samples=51), dynamics=False).ik
+    >>> page = pp.write_html("pollard.html", robot, ik, frames=True)
+    >>> page.name, page.stat().st_size > 1_000_000
+    ('pollard.html', True)
+    """
     from ..io.atomic import atomic_open
 
     html = static_html(robot, ik, **kwargs)

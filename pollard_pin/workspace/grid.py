@@ -112,9 +112,28 @@ class Rectangle:
 
 @dataclass
 class WorkspaceMap:
-    """A workspace map: its grid, tool orientation (ψ, θ, φ) [rad], the per-point columns
-    (None for a streamed volume), the largest reachable rectangle (plane mode) and the
-    summary written to ``workspace.json`` (docs/model.md §22)."""
+    """A workspace map (:func:`~pollard_pin.map_workspace`, docs/model.md §22).
+
+    Attributes
+    ----------
+    grid : pollard_pin.workspace.grid.Grid
+        The regular grid: origin [m], step [m], varying axes and shape.
+    orientation : tuple of float
+        The tool orientation (ψ, θ, φ) [rad].
+    columns : dict or None
+        Per-point columns (x, y, z, psi, theta, phi, reachable, reason, wrist_margin,
+        sigma_parallel, sigma_serial, conditioning, ...) in grid order; None for a streamed
+        volume.
+    summary : dict
+        What ``workspace.json`` holds: ``area`` [m²] (or ``volume`` [m³]) and its bound, the
+        reachable bounding box, the global conditioning index, ``reason_counts``.
+    rectangle : pollard_pin.workspace.grid.Rectangle or None
+        The largest reachable rectangle (plane mode).
+    reasons : tuple of str
+        The names of the ``reason`` codes (0: reachable).
+
+    ``image(name)`` is a column as a 2-D array over a plane grid.
+    """
 
     grid: Grid
     orientation: tuple[float, float, float]
@@ -271,14 +290,45 @@ class _Summary:
 
 def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
                   sink: Callable[[dict], None] | None = None, progress=None) -> WorkspaceMap:
-    """Map where the tool reaches at a fixed orientation (docs/model.md §22).
+    """Map where the tool reaches at a fixed orientation (docs/model.md §22): every point of a
+    plane grid or of a box, under ``run``'s rules plus the joint limits; each unreachable
+    point names the first rule it breaks.
 
-    ``plane``: "x=0.55" (or ("x", 0.55)) for a plane grid, or ``options.volume`` for a box;
-    ``options`` (:class:`WorkspaceOptions`: orientation, resolution, bounds, actuators,
-    margins, …; default its defaults). ``sink(columns)`` receives every chunk's columns (x, y,
-    z, psi, theta, phi, reachable, reason, …) in grid order; ``progress(done, total)`` is
-    called per chunk. Raises :class:`WorkspaceError` for bad values, a grid over budget, or a
-    plane or bounds with no reachable point (naming the reachable bounding box)."""
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    plane : str or tuple or None, optional
+        ``"x=0.55"`` (or ``("x", 0.55)``, metres) for a plane grid; None with
+        ``options.volume`` for a box.
+    options : WorkspaceOptions or None, optional
+        Orientation, resolution, bounds, actuators, margins, ... (default its defaults).
+    sink : Callable or None, optional
+        ``sink(columns)`` receives every chunk's columns (x, y, z, psi, theta, phi,
+        reachable, reason, ...) in grid order (how a volume is streamed to a file).
+    progress : Callable or None, optional
+        ``progress(done, total)`` per chunk.
+
+    Returns
+    -------
+    WorkspaceMap
+        The grid, the per-point columns (plane mode), the largest reachable rectangle (plane
+        mode) and the summary of ``workspace.json`` (area or volume, reachable box, global
+        conditioning index, counts per reason).
+
+    Raises
+    ------
+    WorkspaceError
+        A bad value, a grid over budget, or a plane or bounds with no reachable point
+        (naming the reachable bounding box).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> ws = pp.map_workspace(pp.load(), "x=0.55", pp.WorkspaceOptions(resolution=0.01))
+    >>> round(ws.summary["area"], 3), ws.rectangle.size            # m², (m, m)
+    (0.189, (0.6, 0.25))
+    """
     o = WorkspaceOptions() if options is None else options
     if not isinstance(o, WorkspaceOptions):
         raise WorkspaceError(f"options must be a WorkspaceOptions, got {type(o).__name__}")
@@ -442,10 +492,37 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
 
 
 def largest_panel(robot, plane, options: WorkspaceOptions | None = None) -> Rectangle | None:
-    """The largest axis-aligned rectangle (a :class:`Rectangle`, corner to corner through
-    reachable grid points) of reachable tool positions in a plane (e.g. "x=0.55": the panel
-    surface minus the standoff) at ``options.orientation`` — the biggest panel the robot can
-    sweep there (docs/model.md §22). ``options`` as :func:`map_workspace`. The paint planner's
-    own search, a float scale of a job's panel, is
-    :func:`pollard_pin.paint.plan.panel.largest_scale`."""
+    """The largest axis-aligned rectangle (corner to corner through reachable grid points) of
+    reachable tool positions in a plane (e.g. "x=0.55": the panel surface minus the
+    standoff) at ``options.orientation`` — the biggest panel the robot can sweep there
+    (docs/model.md §22). The paint planner's own search, a float scale of a job's panel, is
+    ``pollard_pin.paint.plan.panel.largest_scale``.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    plane : str or tuple
+        ``"x=0.55"`` or ``("x", 0.55)`` [m].
+    options : WorkspaceOptions or None, optional
+        As :func:`~pollard_pin.map_workspace`'s.
+
+    Returns
+    -------
+    pollard_pin.workspace.grid.Rectangle or None
+        Its ``axes``, ``size`` [m], ``centre`` and corners ``low``, ``high`` (x, y, z) [m];
+        None when no rectangle of reachable points exists.
+
+    Raises
+    ------
+    WorkspaceError
+        As :func:`~pollard_pin.map_workspace`.
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> panel = pp.largest_panel(pp.load(), "x=0.55", pp.WorkspaceOptions(resolution=0.01))
+    >>> panel.axes, panel.size, panel.centre
+    (('y', 'z'), (0.6, 0.25), (0.55, 0.0, 0.095))
+    """
     return map_workspace(robot, plane, options).rectangle

@@ -17,19 +17,49 @@ CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
 
 
 class WorkspaceError(InputError):
-    """A workspace request that cannot be mapped (one line: which value, why)."""
+    """A workspace request that cannot be mapped (one line: which value, why; for a plane or
+    bounds with nothing reachable, the reachable bounding box)."""
 
 
 @dataclass(frozen=True, eq=False)
 class WorkspaceOptions:
-    """How :func:`~pollard_pin.workspace.grid.map_workspace` maps, checked once here.
+    """How :func:`~pollard_pin.map_workspace` maps, checked once here.
 
-    ``volume``: a box rather than a plane. ``orientation`` (ψ, θ, φ) [rad]; ``resolution``
-    [m]; ``bounds`` {axis: (low, high)} [m] (default: the whole reach with a margin);
-    ``actuators`` (:class:`~pollard_pin.dynamics.motors.Actuators`) adds the payload capacity;
-    ``margins`` (:class:`Margins`) default to ``run``'s; ``length_scale`` [m]: the
-    conditioning index's (default: the platform arm); ``keep`` (default: plane mode) keeps
-    every chunk's columns in the map; ``chunk``: points per stacked evaluation.
+    Parameters
+    ----------
+    volume : bool, optional
+        Map a box rather than a plane (default False).
+    orientation : tuple of float, optional
+        The tool orientation (ψ, θ, φ) [rad], ZYZ (default (0, 0, 0): the gun along +x).
+    resolution : float, optional
+        The grid step [m] (default 0.005).
+    bounds : Mapping or None, optional
+        ``{axis: (low, high)}`` [m] (default: the whole reach with a margin).
+    actuators : Actuators or None, optional
+        Adds the static payload capacity per point (:func:`~pollard_pin.load_actuators`).
+    margins : Margins or None, optional
+        Singularity margins (default ``run``'s).
+    length_scale : float or None, optional
+        The conditioning index's length [m] (default: the platform arm).
+    keep : bool or None, optional
+        Keep every chunk's columns in the map (default: in plane mode only).
+    chunk : int, optional
+        Points per stacked evaluation (default 8192).
+
+    Raises
+    ------
+    WorkspaceError
+        An orientation that is not three finite angles, a non-positive length scale or
+        chunk.
+    MarginError
+        Margins that are not a :class:`~pollard_pin.Margins`.
+
+    Examples
+    --------
+    >>> import math
+    >>> import pollard_pin as pp
+    >>> pp.WorkspaceOptions(orientation=(0.0, math.radians(20), 0.0)).orientation[1]
+    0.3490658503988659
     """
 
     volume: bool = False

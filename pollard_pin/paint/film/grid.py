@@ -60,7 +60,29 @@ def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
 
 
 def plan_film(plan: PaintPlan, resolution: float | None = None):
-    """(U, V, points (nv, nu, 3), Film over the flattened grid) of the planned path."""
+    """The film a still panel's plan leaves, on a grid over the panel (edges included).
+
+    Parameters
+    ----------
+    plan : PaintPlan
+        From :func:`~pollard_pin.plan_paint`.
+    resolution : float or None, optional
+        The grid spacing [m], at most σ (None: σ/3).
+
+    Returns
+    -------
+    U, V : ndarray
+        The grid's coordinates along the panel's u and v axes [m].
+    points : ndarray
+        (nv, nu, 3) the grid points, world frame [m].
+    film : pollard_pin.paint.spray.deposition.Film
+        The thickness [m] over the flattened grid and its error estimate.
+
+    Raises
+    ------
+    PlanError
+        A grid too fine for the path (over the point × sample budget).
+    """
     U, V, pts = film_grid(plan, plan.job, resolution)
     tr = plan.trajectory
     pairs = float(pts.shape[0] * pts.shape[1]) * len(tr.t)

@@ -58,7 +58,43 @@ from .result import PlanResult
 
 @dataclass(frozen=True)
 class PaintPlan(PlanResult):
-    """A still panel's raster (the gun sprays throughout: ``spray`` all 1)."""
+    """A still panel's raster (:func:`~pollard_pin.plan_paint`; the gun sprays throughout:
+    ``spray`` all 1).
+
+    Attributes
+    ----------
+    job : PaintJob
+        The job.
+    trajectory : Trajectory
+        The program: the tool path, world frame.
+    offsets : ndarray
+        The passes' positions across the passes [m].
+    spacing : float
+        Pass spacing [m].
+    speed, max_speed : float
+        Pass speed [m/s], and the fastest the motors allow.
+    coats : int
+        Coats.
+    frame : pollard_pin.paint.target.panel.PanelFrame
+        The panel's frame (centre, u, v, normal).
+    segments : pollard_pin.paint.passes.raster.Segments
+        The program's segments (passes, ramps, turnarounds) and their durations.
+    half_length : float
+        Passes run at constant speed over ``|U| ≤ half_length`` [m].
+    horizontal : bool
+        Horizontal (True) or vertical passes.
+    spray : ndarray
+        The trigger per sample (all 1 here).
+    ratios : dict
+        Each motor's use of each rating (peak_torque, rms_torque, speed).
+    timings : dict
+        Seconds spent planning.
+    clearance : object
+        The gun body's smallest distance to the panel and where.
+
+    ``cycle_time`` [s], ``passes`` and ``lower_bound`` (the painting-only bound [s]) are
+    properties.
+    """
 
     job: PaintJob
     frame: PanelFrame
@@ -131,13 +167,33 @@ def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offs
 
 
 def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
-    """The fastest raster program for the job that the motors and the workspace allow.
+    """The fastest raster program for a still panel that the motors and the workspace allow
+    (docs/model.md §21): passes at the constant speed the target film needs, every ramp and
+    turnaround as short as the motors allow.
 
-    A path out of reach raises :class:`PlanError` naming where it leaves the workspace and
-    the largest panel of the same centre and proportions that was planned in full
-    (:func:`largest_scale`: a float scale, not :func:`pollard_pin.workspace.grid.largest_panel`'s
-    rectangle). A job of another kind (a part, a line) is a :class:`JobKindError`: those
-    are :func:`pollard_pin.paint`'s.
+    Parameters
+    ----------
+    robot : Robot
+        The model.
+    job : PaintJob
+        A still panel's job (:func:`~pollard_pin.load_job`).
+    act : Actuators
+        The motor ratings the program must keep.
+
+    Returns
+    -------
+    PaintPlan
+        The program (``trajectory``), its passes, speed, spacing and cycle time.
+
+    Raises
+    ------
+    PlanError
+        A path out of reach, naming where it leaves the workspace and the largest panel of
+        the same centre and proportions that was planned in full (a float scale, not
+        :func:`~pollard_pin.largest_panel`'s rectangle); a budget the job breaks.
+    JobKindError
+        A job of another kind (a part, a line): those are
+        :func:`~pollard_pin.paint.api.paint`'s.
     """
     kind = job_kind(job)
     if kind != "panel":

@@ -15,7 +15,7 @@ from ...paths.trajectory import Trajectory
 class PlanResult:
     """A planned program: the ``job`` first, then each kind's layout and program; every kind
     has, by keyword, the robot's path ``trajectory`` (world), its trigger ``spray`` (N,) (1
-    sprays), the gun body's ``clearance`` from the part (:class:`.plan.clearance.Clearance`),
+    sprays), the gun body's ``clearance`` from the part (``paint.plan.clearance.Clearance``),
     each motor's use ``ratios`` (peak_torque, rms_torque, speed: arrays over the
     motors, each over its rating) and ``timings`` [s]."""
 

@@ -36,8 +36,17 @@ CULL_WIDEST = 4.0  # tan of the widest cone culled: a wider spray evaluates ever
 
 @dataclass(frozen=True)
 class Gun:
-    """The spray gun (SI): ``standoff`` [m] nozzle to surface along the axis where the spot
-    has spread ``sigma`` [m]; ``flow`` [m³/s] of film volume deposited."""
+    """The spray gun (SI, docs/model.md §20).
+
+    Parameters
+    ----------
+    standoff : float
+        Nozzle to surface along the spray axis [m], where the spot has spread ``sigma``.
+    sigma : float
+        The spot's Gaussian spread at the standoff [m].
+    flow : float
+        Film volume deposited [m³/s] (flow × transfer efficiency × solids).
+    """
 
     standoff: float
     sigma: float
@@ -50,6 +59,36 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
 
     Every pairwise quantity is a product of small matrices (h = s·a − p·a, …); coordinates
     should be centred near the scene (the caller's origin) to keep |d|² − h² exact enough.
+    The model: a point source with a self-similar Gaussian spot, cos i / cos α on tilted
+    surfaces (docs/model.md §20).
+
+    Parameters
+    ----------
+    gun : Gun
+        Standoff, spread and flow.
+    p, a : ndarray
+        Gun tips (T, 3) [m] and unit spray axes (T, 3).
+    s, n : ndarray
+        Surface points (P, 3) [m] and unit normals ((P, 3) or (3,)) towards the gun.
+
+    Returns
+    -------
+    ndarray
+        (T, P) the film growth rate [m/s].
+
+    Examples
+    --------
+    At the standoff, the spot's centre grows at flow / (2πσ²), and σ away by e^(−1/2) less:
+
+    >>> import math
+    >>> import pollard_pin as pp
+    >>> gun = pp.Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
+    >>> rate = pp.deposition_rate(gun, [[0, 0, 0.15]], [[0, 0, -1]],
+    ...                           [[0, 0, 0], [0.01, 0, 0]], [0, 0, 1])
+    >>> math.isclose(rate[0, 0], gun.flow / (2 * math.pi * gun.sigma**2), rel_tol=1e-12)
+    True
+    >>> math.isclose(rate[0, 1] / rate[0, 0], math.exp(-0.5), rel_tol=1e-12)
+    True
     """
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
     n = np.asarray(n, dtype=float)
@@ -132,7 +171,43 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     """Film at surface points ``s`` (P, 3), normals ``n``, after the gun passes through the
     tips ``p`` (T, 3) with axes ``a`` (T, 3) at times ``t`` (T,): trapezoid rule in time,
     vectorised in blocks of samples. ``origin`` (3,): subtracted from every position first
-    (default: the mean of ``s``), for the accuracy of the matrix products."""
+    (default: the mean of ``s``), for the accuracy of the matrix products.
+
+    Parameters
+    ----------
+    gun : Gun
+        Standoff, spread and flow.
+    t : ndarray
+        Times (T,) [s].
+    p, a : ndarray
+        Gun tips (T, 3) [m] and unit spray axes (T, 3).
+    s, n : ndarray
+        Surface points (P, 3) [m] and unit normals ((P, 3) or (3,)) towards the gun.
+    origin : ndarray or None, optional
+        (3,) [m].
+
+    Returns
+    -------
+    pollard_pin.paint.spray.deposition.Film
+        ``thickness`` (P,) [m] and the trapezoid rule's ``error_estimate`` (P,) [m].
+
+    Examples
+    --------
+    A straight pass at speed v over a point leaves flow / (√(2π) σ v):
+
+    >>> import math
+    >>> import numpy as np
+    >>> import pollard_pin as pp
+    >>> gun = pp.Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
+    >>> t = np.linspace(-1.0, 1.0, 2001)
+    >>> v = 0.5                                          # m/s, along x
+    >>> tips = np.column_stack([v * t, 0 * t, 0 * t + 0.15])
+    >>> axes = np.tile([0.0, 0.0, -1.0], (len(t), 1))
+    >>> f = pp.film(gun, t, tips, axes, [[0.0, 0.0, 0.0]], [0.0, 0.0, 1.0])
+    >>> math.isclose(f.thickness[0], gun.flow / (math.sqrt(2 * math.pi) * gun.sigma * v),
+    ...              rel_tol=1e-9)
+    True
+    """
     t = np.asarray(t, dtype=float)
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
     n = np.asarray(n, dtype=float)
