@@ -67,14 +67,8 @@ def time_optimal_path(robot, act: Actuators, traj, options: Options | None = Non
 
     Examples
     --------
-    >>> import os
     >>> import pollard_pin as pp
-    >>> row = ("{gear_ratio = 100.0, rotor_inertia = 5e-6, viscous = 1e-6, coulomb = 1e-3, "
-    ...        "peak_torque = 0.05, continuous_torque = 0.02, max_speed = 500.0}")
-    >>> names = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
-    >>> with open("motors.toml", "w") as f:
-    ...     _ = f.write(os.linesep.join(f"{n} = {row}" for n in names))
-    >>> act = pp.load_actuators("motors.toml")
+    >>> act = pp.load_actuators()  # the package's ratings
     >>> robot = pp.load()
     >>> first_2s = pp.thesis_trajectory(samples=401).window(0, 41)  # the curve's first 2 s
     >>> timing = pp.time_optimal_path(robot, act, first_2s)

@@ -171,13 +171,16 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
     return Actuators(tuple(names), tuple(units), source)
 
 
-def load_actuators(path: str | Path, names: tuple[str, ...] = ACTUATED_JOINTS) -> Actuators:
+def load_actuators(path: str | Path | None = None,
+                   names: tuple[str, ...] = ACTUATED_JOINTS) -> Actuators:
     """Read and validate an actuator TOML file (format: ``examples/actuators.toml``).
 
     Parameters
     ----------
-    path : str or pathlib.Path
-        One table per actuator joint, every key required: ``gear_ratio``,
+    path : str or pathlib.Path or None, optional
+        None: the package's own ratings (``examples/actuators.toml``, shipped as
+        ``models/actuators.toml``). Else one table per actuator joint, every key required:
+        ``gear_ratio``,
         ``rotor_inertia`` [kg·m²], ``viscous`` [N·m·s/rad], ``coulomb`` [N·m],
         ``peak_torque`` and ``continuous_torque`` [N·m], ``max_speed`` [rad/s] (motor side);
         optional ``stiffness`` [N·m/rad] (joint side).
@@ -197,17 +200,15 @@ def load_actuators(path: str | Path, names: tuple[str, ...] = ACTUATED_JOINTS) -
 
     Examples
     --------
-    >>> import os
     >>> import pollard_pin as pp
-    >>> row = ("{gear_ratio = 100.0, rotor_inertia = 5e-6, viscous = 1e-6, coulomb = 1e-3, "
-    ...        "peak_torque = 0.05, continuous_torque = 0.02, max_speed = 500.0}")
-    >>> names = ("theta21", "theta21_1", "theta21_2", "theta1615", "theta1716", "theta1817")
-    >>> with open("motors.toml", "w") as f:
-    ...     _ = f.write(os.linesep.join(f"{n} = {row}" for n in names))
-    >>> act = pp.load_actuators("motors.toml")
+    >>> act = pp.load_actuators()  # the package's ratings
     >>> act["theta21"].gear_ratio, act.column("peak_torque").tolist()[:2]
     (100.0, [0.05, 0.05])
     """
+    if path is None:
+        from ..model.paths import models_dir
+
+        path = models_dir() / "actuators.toml"
     d = read_toml(path, "actuator file", ActuatorError)
     return actuators_from_dict(d, str(path), names)
 

@@ -205,9 +205,8 @@ def default_actuators(job) -> Actuators:
     """The job's ``actuators`` file, else the package's ratings (examples/actuators.toml,
     shipped as models/actuators.toml)."""
     from ..dynamics.motors import load_actuators
-    from ..model.paths import models_dir
 
-    return load_actuators(job.actuators or models_dir() / "actuators.toml")
+    return load_actuators(job.actuators)
 
 
 def film_spacing_of(job, resolution: float | None = None) -> float:
