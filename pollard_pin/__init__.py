@@ -33,7 +33,7 @@ _API = {
     "simulate_tracking": "dynamics.tracking", "desired_trajectory": "dynamics.control",
     "ComputedTorque": "dynamics.control", "FeedforwardPD": "dynamics.control",
     "PDGravity": "dynamics.control", "Gains": "dynamics.control",
-    "MeasurementNoise": "dynamics.tracking", "TrackingResult": "dynamics.tracking",
+    "MeasurementNoise": "dynamics.tracking", "TrackingResult": "dynamics.tracking_result",
     "TrackingOptions": "dynamics.tracking",
     "FlexibleDrives": "dynamics.flexible",
     "Plant": "dynamics.plant", "ModelMismatch": "dynamics.plant", "PlantError": "dynamics.plant",

@@ -137,7 +137,8 @@ def progress(label: str, enabled: bool):
 
 def params_of(args):
     """The parameters of --params (a file, possibly partial) and --set, or None (shipped)."""
-    from ..model.params import ParameterError, load_params, parse_assignment
+    from ..model.overrides import parse_assignment
+    from ..model.params import ParameterError, load_params
 
     try:
         sets = dict(parse_assignment(s) for s in getattr(args, "set", None) or ())

@@ -76,7 +76,8 @@ def parse_orientation(text: str) -> tuple[float, float, float]:
 def parse_bounds(text: str | None) -> dict | None:
     """"y=-0.3:0.3,z=-0.1:0.3" → {"y": (-0.3, 0.3), "z": (-0.1, 0.3)}, checked as the library
     checks them."""
-    from ..workspace.grid import WorkspaceError, check_bounds
+    from ..workspace.lattice import check_bounds
+    from ..workspace.options import WorkspaceError
 
     if text is None:
         return None
@@ -111,7 +112,8 @@ def run(args) -> int:
         remove_stale,
     )
     from ..io.table import FORMATS, TableWriter, table_files, write_table
-    from ..workspace.grid import WorkspaceError, map_workspace, parse_plane
+    from ..workspace.grid import WorkspaceError, map_workspace
+    from ..workspace.lattice import parse_plane
     from ..workspace.options import WorkspaceOptions
 
     orientation = parse_orientation(args.orientation)

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import copy
 import math
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,10 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
 from ..names import ACTUATED, BODIES, TREE_JOINTS
+from .overrides import ParameterError, apply_overrides, plain_value
 from .paths import models_dir
-from .values import fail, loads_toml, number, read_toml, shorten
+from .values import fail, number, read_toml
 
 DEFAULT_PARAMS = "pollard.toml"
 
@@ -33,10 +32,6 @@ HOME_KEYS = ("tip", "orientation")
 BRANCH_KEYS = ("chain0", "leg1", "leg2")
 LIMIT_KEYS = ("lower", "upper", "effort", "velocity")  # deg, deg, N·m, rad/s
 SECTIONS = ("chain0", "leg1", "leg2", "bodies", "home", "branches", "limits")
-
-
-class ParameterError(InputError):
-    """A parameter file or override breaks a rule; the message names key, value and rule."""
 
 
 @dataclass(frozen=True)
@@ -322,97 +317,6 @@ def _check_home_reachable(p: Params) -> None:
                              f"{str(exc).replace(' at sample 0', '')}") from None
 
 
-_UNSET = object()
-_KEY_RE = re.compile(r"^([A-Za-z_][\w]*(?:\.[A-Za-z_][\w]*)*)((?:\[\d+\])*)$")
-
-
-def _split_key(key: str) -> tuple[list[str], list[int]]:
-    """``"bodies.gun.inertia[1][2]"`` → (["bodies", "gun", "inertia"], [1, 2])."""
-    m = _KEY_RE.match(key) if isinstance(key, str) else None
-    if m is None:
-        raise ParameterError(f"parameter {shorten(key)}: not a dotted parameter key "
-                             "(like 'chain0.x32' or 'home.tip[2]')")
-    return m.group(1).split("."), [int(i) for i in re.findall(r"\[(\d+)\]", m.group(2))]
-
-
-def lookup(d: Mapping, key: str, value: Any = _UNSET) -> Any:
-    """The value at ``key`` in a thesis-unit parameter dictionary (ParameterError if none);
-    ``value``, if given, is the override being applied (shown in the message)."""
-    shown = "" if value is _UNSET else f" = {shorten(plain_value(value))}"
-    path, index = _split_key(key)
-    node: Any = d
-    for j, part in enumerate(path):
-        if not isinstance(node, Mapping) or part not in node:
-            what = "unknown key" if j == len(path) - 1 else "unknown section"
-            raise ParameterError(f"parameter {shorten(key)}{shown}: override names no "
-                                 f"parameter ({what})")
-        node = node[part]
-    if isinstance(node, Mapping):
-        raise ParameterError(f"parameter {shorten(key)}{shown}: names a section, not a parameter")
-    for i in index:
-        if not isinstance(node, list) or i >= len(node):
-            raise ParameterError(f"parameter {shorten(key)}{shown}: index [{i}] is out of range "
-                                 f"for '{path[-1]}' = {shorten(node)}")
-        node = node[i]
-    return node
-
-
-def value_shape(value: Any) -> tuple[int, ...] | None:
-    """Shape of a number (()) or nested list of numbers; None for anything else."""
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, (int, float)):
-        return ()
-    if isinstance(value, (list, tuple)) and value:
-        shapes = {value_shape(v) for v in value}
-        if len(shapes) == 1 and None not in shapes:
-            return (len(value),) + shapes.pop()
-    return None
-
-
-def plain_value(value: Any) -> Any:
-    """Tuples/arrays → lists, numpy scalars → Python numbers (TOML layout)."""
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (list, tuple)):
-        return [plain_value(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def apply_overrides(d: Mapping, overrides: Mapping[str, Any]) -> dict:
-    """A deep copy of the thesis-unit dictionary ``d`` with ``overrides`` applied.
-
-    Plain dotted keys (``"chain0.x32"``) replace a parameter; ``key[i]`` (``key[i][j]``)
-    replaces one component of a vector (matrix) parameter. The new
-    value must have the shape of the old one; values themselves are validated later by
-    :func:`params_from_dict`.
-    """
-    out = copy.deepcopy(dict(d))
-    for key, value in overrides.items():
-        value = plain_value(value)
-        old = lookup(out, key, value)
-        if value_shape(value) != value_shape(old):
-            shape = value_shape(old)
-            want = ("a number" if shape == () else
-                    f"a list of {shape[0]} numbers" if len(shape) == 1 else
-                    f"a {'x'.join(map(str, shape))} matrix (list of {shape[0]} rows)")
-            raise ParameterError(f"parameter {shorten(key)} = {shorten(value)}: must be {want}")
-        path, index = _split_key(key)
-        node: Any = out
-        for part in path[:-1]:
-            node = node[part]
-        if not index:
-            node[path[-1]] = value
-            continue
-        node = node[path[-1]]
-        for i in index[:-1]:
-            node = node[i]
-        node[index[-1]] = value
-    return out
-
-
 def did_you_mean(word: str, choices) -> str:
     """`` (did you mean 'x'?)`` for the closest of ``choices`` to a misspelt ``word``, or ""."""
     import difflib
@@ -442,30 +346,6 @@ def merge_partial(base: Mapping, partial: Mapping, prefix: str = "") -> dict:
             _fail(key, v, f"unknown key (expected keys: {', '.join(out)})")
         out[k] = merge_partial(out[k], v, key) if isinstance(out[k], Mapping) else v
     return out
-
-
-def parse_assignment(text: str) -> tuple[str, Any]:
-    """``"chain0.x32=0.35"`` or ``"home.tip=[0.5, 0, 0.2]"`` → (key, value), value as TOML
-    (one line, ASCII, no ``_`` digit separators)."""
-    key, sep, value = text.partition("=")
-    where = f"override {shorten(text)}"
-    if not sep or not key.strip():
-        raise ParameterError(f"{where}: expected KEY=VALUE, e.g. chain0.x32=0.35")
-    bad = next((c for c in value if not c.isprintable() or not c.isascii() or c == "_"), None)
-    if bad is not None:  # TOML would read a newline as a second key and drop it
-        why = ("'_' digit separators are not accepted" if bad == "_" else
-               f"{bad!r} is not an ASCII character" if bad.isprintable() else
-               f"the value holds a control character {bad!r}: one KEY=VALUE per override")
-        raise ParameterError(f"{where}: {why}")
-    try:
-        # a huge integer goes on to the parameter's own check, which names its key
-        return key.strip(), loads_toml(f"v = {value.strip()}", where, ParameterError,
-                                       ints=False)["v"]
-    except ParameterError as exc:
-        if "not valid TOML" not in str(exc):
-            raise
-        raise ParameterError(f"{where}: the value is not a number or a list of "
-                             "numbers") from None
 
 
 def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | None = None,
@@ -506,7 +386,7 @@ def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | N
     >>> pp.load_params(overrides={"chain0.x32": -1.0})
     Traceback (most recent call last):
     ...
-    pollard_pin.model.params.ParameterError: ...
+    pollard_pin.model.overrides.ParameterError: ...
     """
     d = read_params_dict()
     if path is not None:  # a partial file overrides the shipped values

@@ -9,14 +9,8 @@ import numpy as np
 
 from ..dynamics.averages import time_rms
 from ..errors import InputError
-from ..model.params import (
-    ParameterError,
-    apply_overrides,
-    lookup,
-    params_from_dict,
-    plain_value,
-    read_params_dict,
-)
+from ..model.overrides import ParameterError, apply_overrides, lookup, plain_value
+from ..model.params import params_from_dict, read_params_dict
 from ..names import ACTUATED, TREE_JOINTS
 
 FAILURE_COLUMNS = ("feasible", "failure_kind", "failure", "failure_sample", "failure_time",

@@ -13,13 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ..model.params import (
-    ParameterError,
-    apply_overrides,
-    params_from_dict,
-    plain_value,
-    read_params_dict,
-)
+from ..model.overrides import ParameterError, apply_overrides, plain_value
+from ..model.params import params_from_dict, read_params_dict
 from ..model.values import number, read_toml, shorten
 from .evaluate import FAILURE_COLUMNS, METRIC_COLUMNS, SweepError
 

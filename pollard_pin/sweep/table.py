@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..io.atomic import atomic_open
-from ..model.params import plain_value
+from ..model.overrides import plain_value
 from ..names import ACTUATED
 
 

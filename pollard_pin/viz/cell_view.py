@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .meshcat_page import OfflineWindow
 from .viewer import (
     BACKGROUND,
     CAMERA_OFFSET,
@@ -21,7 +22,6 @@ from .viewer import (
     FLOOR_Z,
     PATH_COLOUR,
     ROOT,
-    OfflineWindow,
     Scene,
     aim_camera,
     check_frame_rate,

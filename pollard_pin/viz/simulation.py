@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..dynamics.control import ControlError
-from ..dynamics.tracking import tracking_summary
+from ..dynamics.tracking_result import tracking_summary
 from ..names import ACTUATED
 from .plots import COLOURS, LABELS, figure_maker, finish_axes, plot_line
 
@@ -45,7 +45,7 @@ def check_simulation_columns(cols: dict, source: str = "the table") -> None:
 
 def simulation_summary(cols: dict, metadata: dict | None = None) -> dict:
     """Max and time-weighted RMS tool errors, peak |τ| per actuator, settings (JSON-ready):
-    :func:`~pollard_pin.dynamics.tracking.tracking_summary` of the table."""
+    :func:`~pollard_pin.dynamics.tracking_result.tracking_summary` of the table."""
     check_simulation_columns(cols)
     meta = dict(metadata or {})
     summary = meta.pop("summary", {})

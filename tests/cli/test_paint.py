@@ -126,12 +126,12 @@ def test_summary_lines(tmp_path, capsys):
 
 
 def test_view_paint_overlay(painted, tmp_path, capsys):
-    from pollard_pin.viz import viewer
+    from pollard_pin.viz import meshcat_page, viewer
 
     html = tmp_path / "v.html"
     code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "5"], capsys)
     assert code == 0, err
-    cmds = viewer.page_commands(html.read_text())
+    cmds = meshcat_page.page_commands(html.read_text())
     paint = [c for c in cmds if c.get("type") == "set_object"
              and c["path"].endswith(f"{viewer.ROOT}/paint")]
     assert len(paint) == 1
@@ -292,7 +292,7 @@ def test_part_in_mm_read_as_m_says_so(tmp_path, capsys):
 
 def test_view_part_overlay(part_painted, tmp_path, capsys):
     """view --paint of a part's folder draws film.ply's triangles, coloured by the film."""
-    from pollard_pin.viz.viewer import page_commands
+    from pollard_pin.viz.meshcat_page import page_commands
 
     html = tmp_path / "v.html"
     code, _, err = run_cli(["view", "--paint", part_painted, "--html", html], capsys)

@@ -119,7 +119,7 @@ def test_max_line_speed_needs_a_line(tmp_path, capsys):
 def test_view_shows_the_part_riding(painted, tmp_path, capsys):
     """The film panel's node is animated along the line: at key frame time t it is shifted
     by speed·t·direction."""
-    from pollard_pin.viz.viewer import page_commands
+    from pollard_pin.viz.meshcat_page import page_commands
 
     html = tmp_path / "v.html"
     code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "1"], capsys)
@@ -199,7 +199,7 @@ def test_part_run_and_size_take_the_world_path(part_painted, capsys, tmp_path):
 
 def test_view_shows_the_mesh_riding(part_painted, tmp_path, capsys):
     """A part's film.ply node rides the line as the panel's does."""
-    from pollard_pin.viz.viewer import page_commands
+    from pollard_pin.viz.meshcat_page import page_commands
 
     html = tmp_path / "v.html"
     code, _, err = run_cli(["view", "--paint", part_painted, "--html", html, "--fps", "1"],

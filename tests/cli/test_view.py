@@ -16,7 +16,7 @@ from cli_run import run_cli
 import pollard_pin as pp
 from pollard_pin.cli import main
 from pollard_pin.run import run_pipeline
-from pollard_pin.viz import viewer
+from pollard_pin.viz import meshcat_page, viewer
 
 SAMPLES = 401  # thesis curve, 20 s: dense enough for the IK's branch check, quick to solve
 
@@ -80,8 +80,8 @@ def test_live_server_serves_the_same_scene(ik, robot, tmp_path):
         sock.send(b"get_scene")
         server_html = sock.recv().decode()
         sock.close(0)
-        live = viewer.page_commands(server_html)
-        static = viewer.page_commands(viewer.static_html(robot, ik))
+        live = meshcat_page.page_commands(server_html)
+        static = meshcat_page.page_commands(viewer.static_html(robot, ik))
         assert len(live) == len(static) > 30
         assert _without_uuids(live) == _without_uuids(static)
         with urllib.request.urlopen(web_url, timeout=10) as r:
@@ -113,5 +113,5 @@ def test_html_to_standard_output_is_the_page(capsys):
     assert code == 0, err
     assert out.startswith("<!DOCTYPE html>") and out.rstrip().endswith("</html>")
     assert "wrote" not in err
-    cmds = viewer.page_commands(out)
+    cmds = meshcat_page.page_commands(out)
     assert any(c["type"] == "set_animation" for c in cmds)

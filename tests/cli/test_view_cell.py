@@ -12,7 +12,7 @@ from cli_run import run_cli
 from pollard_pin.io.ply import write_film_ply
 from pollard_pin.io.trajectory import to_csv
 from pollard_pin.paths.trajectory import Trajectory
-from pollard_pin.viz import viewer
+from pollard_pin.viz import meshcat_page, viewer
 
 TARGET = 25e-6
 ROBOTS = [{"name": "low", "base": [0.0, 0.0, 0.0], "rotation": [0.0, 0.0, 0.0]},
@@ -55,7 +55,7 @@ def test_the_page_draws_every_robot_and_the_riding_film(folder, tmp_path, capsys
     page = tmp_path / "cell.html"
     code, _, err = run_cli(["view", "--paint", folder, "--html", page, "--fps", "10"], capsys)
     assert code == 0, err
-    cmds = viewer.page_commands(page.read_text())
+    cmds = meshcat_page.page_commands(page.read_text())
     placed = {c["path"]: np.array(c["matrix"]).reshape(4, 4).T for c in cmds
               if c["type"] == "set_transform"}
     for r in ROBOTS:

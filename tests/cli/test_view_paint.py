@@ -134,8 +134,8 @@ def test_the_page_frames_the_film_and_states_its_scale(painted, tmp_path, capsys
     import trimesh
 
     from pollard_pin.io.table import read_result
+    from pollard_pin.viz.meshcat_page import page_commands
     from pollard_pin.viz.viewer import ROOT as NODE
-    from pollard_pin.viz.viewer import page_commands
 
     html = tmp_path / "v.html"
     code, _, err = run_cli(["view", "--paint", painted, "--html", html, "--fps", "1"], capsys)

@@ -108,7 +108,7 @@ def test_view_draws_the_reachable_cloud(tmp_path, capsys):
     code, _, err = run_cli(["view", "--samples", "51", "--quiet", "--html", str(html),
                          "--workspace", str(out)], capsys)
     assert code == 0, err
-    from pollard_pin.viz.viewer import page_commands
+    from pollard_pin.viz.meshcat_page import page_commands
 
     cloud = [c for c in page_commands(html.read_text()) if c.get("path", "").endswith(
         "/workspace")]

@@ -171,21 +171,6 @@ def test_noisy_encoders_move_the_passive_joints_by_kinematics(robot, seen):
     assert np.abs(q_fk - q).max() <= 1e-10
 
 
-def test_tracking_rms_is_time_weighted(robot):
-    """Uneven output samples: the summary's RMS is √(∫e² dt / T) by the trapezoid rule (a
-    quadrature written out here), not the plain mean over rows."""
-    traj = thesis_head(0.3)
-    keep = np.r_[0:10, 10:31:5]  # 10 ms samples, then 50 ms
-    uneven = Trajectory(traj.t[keep], traj.poses[keep], traj.d_poses[keep],
-                        traj.dd_poses[keep], name="uneven")
-    res = simulate_tracking(robot, uneven, TrackingOptions("pd"))
-    t, e = res.t, res.tip_position_error
-    by_hand = np.sqrt(np.sum(0.5 * (e[1:] ** 2 + e[:-1] ** 2) * np.diff(t)) / (t[-1] - t[0]))
-    s = res.summary()
-    assert s["rms_tip_position_error"] == pytest.approx(by_hand, rel=1e-13)
-    assert abs(np.sqrt(np.mean(e**2)) / by_hand - 1) > 0.05  # rows would weigh differently
-
-
 def test_steps_are_counted_and_checked(robot):
     res = simulate_tracking(robot, thesis_head(0.1),
                             TrackingOptions("pd", dt=4e-4, control_period=1e-3))

@@ -7,7 +7,7 @@ from scipy.spatial.transform import Rotation
 
 from pollard_pin.kinematics.ik import inverse_kinematics
 from pollard_pin.paint.cell.robots import CellRobot
-from pollard_pin.viz import viewer
+from pollard_pin.viz import meshcat_page, viewer
 from pollard_pin.viz.cell_view import CellMember, cell_html, cell_key_samples
 
 
@@ -52,7 +52,7 @@ def _transform(cmd):
 
 def test_the_page_places_each_robot_at_its_base(robot, cell):
     cells, members = cell
-    cmds = viewer.page_commands(cell_html(robot, members, fps=10.0))
+    cmds = meshcat_page.page_commands(cell_html(robot, members, fps=10.0))
     placed = {c["path"]: _transform(c) for c in cmds if c["type"] == "set_transform"}
     (anim,) = [c for c in cmds if c["type"] == "set_animation"]
     clips = {a["path"]: a["clip"] for a in anim["animations"]}

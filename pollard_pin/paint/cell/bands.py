@@ -114,10 +114,10 @@ def axis_name(axis) -> str:
 
 
 def panel_strokes(job) -> Strokes:
-    """A panel's raster strokes on the line (:func:`.plan.panel.panel_layout`, run across
+    """A panel's raster strokes on the line (:func:`.plan.layout.panel_layout`, run across
     the travel)."""
     from ..line.panel import pass_direction
-    from ..plan.panel import panel_layout
+    from ..plan.layout import panel_layout
     from ..target.panel import panel_frame
 
     e = np.asarray(job.line.direction, float)

@@ -23,7 +23,7 @@ from ..line.phases import LineProgram, one_coat, plan_world, track, world_motion
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
 from ..passes.surface import pass_speed, surface_layout
-from ..plan.panel import panel_layout
+from ..plan.layout import panel_layout
 from ..plan.part import time_step
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
 from ..target.panel import panel_frame

@@ -18,7 +18,7 @@ from ...dynamics.motors import Actuators
 from ..job import PaintJob, PartJob
 from ..passes.raster import Segments, raster_motion, raster_segments
 from ..plan.clearance import job_clearance, panel_mesh
-from ..plan.panel import panel_layout
+from ..plan.layout import panel_layout
 from ..plan.result import PlanResult
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
 from ..target.mesh import Part

@@ -21,7 +21,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
-from typing import NamedTuple
 
 import numpy as np
 
@@ -32,27 +31,21 @@ from ...paths.trajectory import Trajectory
 from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
-    SPOT_RADIUS,
     Segments,
-    pass_offsets,
     raster_motion,
     raster_segments,
-    ripple_spacing,
     task_motion,
 )
 from ..policy import (
     CHECK_REFINE,
-    MAX_PASSES,
-    MAX_PATH_SAMPLES,
-    MAX_STEP,
-    STEP_SIGMA,
     TURN_SAMPLES,
     UTILISATION,
     first_guess,
 )
-from ..target.panel import PanelFrame, panel_frame
+from ..target.panel import PanelFrame
 from .checks import fastest, motion, reach
 from .clearance import job_clearance, panel_mesh
+from .layout import PanelLayout, panel_layout, path_times
 from .result import PlanResult
 
 
@@ -265,10 +258,10 @@ def _reach_scale(robot, job: PaintJob, steps: int) -> float:
         mid = 0.5 * (lo + hi)
         scaled = replace(job, width=mid * job.width, height=mid * job.height)
         try:
-            frame, offsets, half_length, speed, coats, _ = _layout(scaled)
+            frame, offsets, half_length, speed, coats, _ = panel_layout(scaled)
             tau = first_guess(speed)
             seg = raster_segments(offsets, half_length, speed, tau, (tau, tau), coats)
-            t = _path_times(seg, scaled, speed, np.arange)
+            t = path_times(seg, scaled, speed, np.arange)
             reach(robot, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
             lo = mid
         except BudgetError:
@@ -278,72 +271,9 @@ def _reach_scale(robot, job: PaintJob, steps: int) -> float:
     return lo
 
 
-def _path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace) -> np.ndarray:
-    """The path's sample times: steps of at most MAX_STEP and STEP_SIGMA·σ of gun travel,
-    within MAX_PATH_SAMPLES (checked before they are made)."""
-    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
-    n = math.ceil(seg.total / dt) + 1
-    _check_samples(n, seg.total, speed, job)
-    return np.arange(0.0, seg.total, dt) if how is np.arange else np.linspace(0.0, seg.total, n)
-
-
-def _check_samples(n: float, duration: float, speed: float, job: PaintJob) -> None:
-    if n > MAX_PATH_SAMPLES:
-        fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
-               "a thinner film, more flow or a smaller panel")
-        raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
-                          f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
-                          f"{fix}")
-
-
-class PanelLayout(NamedTuple):
-    """A panel's raster before the motors have their say."""
-
-    frame: PanelFrame
-    offsets: np.ndarray  # pass positions across the passes [m]
-    half_length: float  # passes run at constant speed over |U| ≤ half_length
-    speed: float  # pass speed [m/s]: the job's, or the one its film needs
-    coats: int
-    spacing: float  # between passes [m]
-
-
-def _layout(job: PaintJob) -> PanelLayout:
-    """The job's :class:`PanelLayout`, its budgets checked."""
-    frame = panel_frame(job)
-    horizontal = job.direction == "horizontal"
-    length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
-    coats = job.coats or 1
-    if job.spacing is not None:
-        spacing = job.spacing
-    elif job.speed is not None:
-        spacing = job.flow * coats / (job.thickness * job.speed)
-    else:
-        spacing = ripple_spacing(job.sigma)
-    # pass_offsets' count, give or take the edges
-    passes = (extent / spacing + 1) * coats if spacing > 0 else math.inf
-    if passes > MAX_PASSES:
-        raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
-                          f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {MAX_PASSES}: "
-                          "a wider spacing, fewer coats or a smaller panel")
-    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    half_length = length / 2 + SPOT_RADIUS * job.sigma
-    # the passes alone, before any turnaround: their samples bound the path's from below
-    passing = passes * 2 * half_length / speed if speed > 0 else math.inf
-    _check_samples(passing / min(MAX_STEP, STEP_SIGMA * job.sigma / speed) if speed > 0 else
-                   math.inf, passing, speed, job)
-    try:
-        offsets = pass_offsets(extent, spacing, job.sigma)
-    except ValueError as exc:  # name the job entries the spacing came from
-        origin = ("job.spacing" if job.spacing is not None else
-                  "job.speed" + (" and job.coats" if job.coats else "")
-                  if job.speed is not None else "the ripple rule")
-        raise PlanError(f"{job.source}: {origin}: {exc}") from None
-    return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
-
-
 def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     clock = {"start": time.perf_counter()}
-    lay = _layout(job)
+    lay = panel_layout(job)
     frame, offsets, half_length, speed, coats, spacing = lay
     horizontal = job.direction == "horizontal"
     try:
@@ -371,7 +301,7 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
     seg = _fastest_segments(robot, act, job, lay, horizontal)
     seg = _within_rms(robot, act, job, lay, seg, horizontal)
     clock["turns"] = time.perf_counter()
-    t = _path_times(seg, job, speed)
+    t = path_times(seg, job, speed)
     n = len(t)
     poses, d, dd = _task(frame, job, seg, t, horizontal)
     traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic",
@@ -498,11 +428,5 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
     return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
 
 
-__all__ = ["PaintPlan", "PanelLayout", "derated", "largest_scale", "max_pass_speed", "panel_layout",
-           "plan_paint", "printed_panel"]
-
-
-def panel_layout(job: PaintJob) -> PanelLayout:
-    """The job's :class:`PanelLayout` before the motors have their say: the raster's layout,
-    shared with the moving line (paint/line/panel.py)."""
-    return _layout(job)
+__all__ = ["PaintPlan", "derated", "largest_scale", "max_pass_speed", "plan_paint",
+           "printed_panel"]
