@@ -19,6 +19,7 @@ from .common import (
     positive,
     progress,
     refuse_inputs,
+    robot_for_trajectory,
     trajectory_args,
     wrote,
 )
@@ -61,6 +62,7 @@ def run(args) -> int:
         drives, losses = _drives(motors, args.flexible), None
     errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
+    robot = robot_for_trajectory(args, robot)
     if drives is not None:
         args.dt = _flexible_step(robot, traj, drives, errors, args, given_dt)
     start = None if args.start == "path" else robot.home()

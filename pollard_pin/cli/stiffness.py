@@ -22,6 +22,7 @@ from .common import (
     number,
     progress,
     refuse_inputs,
+    robot_for_trajectory,
     trajectory_args,
     wrote,
 )
@@ -64,6 +65,7 @@ def run(args) -> int:
     k = drive_stiffness(load_actuators(args.actuators))
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)
+    robot = robot_for_trajectory(args, robot)
     n = len(traj)
     log.info("trajectory %s: %d samples", traj.name, n)
     metadata = {"pollard_pin": __version__, "command": "stiffness",
