@@ -187,7 +187,8 @@ def robot_for_trajectory(args, robot):
     g = trajectory_gravity(args.trajectory)
     if g is None or np.array_equal(g, np.asarray(robot.model.gravity.linear)):
         return robot
-    args.notes.append(f"gravity ({g[0]:.6g}, {g[1]:.6g}, {g[2]:.6g}) m/s² in the robot's "
+    shown = ", ".join(f"{c:.6g}" for c in np.round(g, 9) + 0.0)  # no −1e-15 round-off
+    args.notes.append(f"gravity ({shown}) m/s² in the robot's "
                       f"base frame, from {args.trajectory}'s metadata")
     return with_gravity(robot, g)
 

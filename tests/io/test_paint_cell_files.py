@@ -148,6 +148,12 @@ def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path)
     down = read_result(tmp_path / "down.csv")
     tau_down = np.column_stack([down.columns[f"tau_{n}"] for n in names])
     assert np.abs(tau_down - tau).max() >= 0.2 * scale  # seen 0.77 of the peak
+    # `size` with its gravity finds the motors within ratings, as the planner did; not so under −z
+    for path, ok in ((hung / "path.csv", True), (bare, False)):
+        code, out, err = run_cli(["size", "--trajectory", path, "--actuators", ACT, "--format",
+                                  "json", "--quiet"], capsys)
+        assert code == 0, err
+        assert json.loads(out)["given_within_ratings"] is ok, path
 
 
 @pytest.mark.parametrize("g, why", [([0.0, 0.0, float("nan")], "three finite numbers"),
