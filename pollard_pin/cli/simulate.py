@@ -78,6 +78,7 @@ def run(args) -> int:
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "flexible": args.flexible,
+            "gravity": [float(c) for c in robot.model.gravity.linear],
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
             **result.settings,
             "summary": result.summary()}

@@ -75,7 +75,8 @@ def run(args) -> int:
                 "actuators": {"source": args.actuators,
                               "stiffness": dict(zip(robot.actuated, k.tolist()))},
                 "options": {**margins.as_dict(), "wrench": list(options.wrench),
-                            "joint_limits": not args.ignore_limits},
+                            "joint_limits": not args.ignore_limits,
+                            "gravity": [float(c) for c in robot.model.gravity.linear]},
                 "units": UNITS}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_WORKERS,
