@@ -175,6 +175,25 @@ def load_trajectory(args, params, lazy: bool = False):
         return from_csv(args.trajectory)
 
 
+def robot_for_trajectory(args, robot):
+    """The robot with the gravity the trajectory CSV's metadata records (a paint cell's turned
+    robot, docs/model.md §26.1; a note says it), else itself (gravity (0, 0, −9.81))."""
+    import numpy as np
+
+    from ..io.trajectory import trajectory_gravity
+    from ..model.gravity import with_gravity
+
+    if getattr(args, "trajectory", "thesis") == "thesis":
+        return robot
+    g = trajectory_gravity(args.trajectory)
+    if g is None or np.array_equal(g, np.asarray(robot.model.gravity.linear)):
+        return robot
+    shown = ", ".join(f"{c:.6g}" for c in np.round(g, 9) + 0.0)  # no −1e-15 round-off
+    args.notes.append(f"gravity ({shown}) m/s² in the robot's "
+                      f"base frame, from {args.trajectory}'s metadata")
+    return with_gravity(robot, g)
+
+
 @contextlib.contextmanager
 def warnings_as_notes(args):
     """The library's warnings become notes, said once the command has succeeded (an error is
@@ -198,6 +217,7 @@ def solve(args, dynamics: bool = True, **ik_options):
 
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params)
+    robot = robot_for_trajectory(args, robot)
     log.info("trajectory %s: %d samples over %.4g s (derivatives: %s)", traj.name, len(traj),
              traj.t[-1] - traj.t[0], traj.derivatives)
     t0 = time.perf_counter()

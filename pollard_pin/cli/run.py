@@ -18,6 +18,7 @@ from .common import (
     name,
     progress,
     refuse_inputs,
+    robot_for_trajectory,
     trajectory_args,
     wrote,
 )
@@ -35,6 +36,7 @@ def run(args) -> int:
     margins = margins_of(args)
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)
+    robot = robot_for_trajectory(args, robot)
     n = len(traj)
     log.info("trajectory %s: %d samples (derivatives: %s)", traj.name, n, traj.derivatives)
     metadata = {"pollard_pin": __version__, "command": "run",
@@ -43,7 +45,8 @@ def run(args) -> int:
                 "trajectory": {"name": traj.name, "source": args.trajectory, "samples": n,
                                "derivatives": traj.derivatives},
                 "options": {**margins.as_dict(), "loads": args.loads,
-                            "joint_limits": not args.ignore_limits}}
+                            "joint_limits": not args.ignore_limits,
+                            "gravity": [float(c) for c in robot.model.gravity.linear]}}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_RUN_WORKERS,
                                   -(-n // (STREAM_WINDOW - 1)))  # no idle threads

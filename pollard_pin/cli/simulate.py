@@ -19,6 +19,7 @@ from .common import (
     positive,
     progress,
     refuse_inputs,
+    robot_for_trajectory,
     trajectory_args,
     wrote,
 )
@@ -61,6 +62,7 @@ def run(args) -> int:
         drives, losses = _drives(motors, args.flexible), None
     errors = ModelMismatch(args.payload, args.mass_error, losses)
     traj = load_trajectory(args, robot.params)
+    robot = robot_for_trajectory(args, robot)
     if drives is not None:
         args.dt = _flexible_step(robot, traj, drives, errors, args, given_dt)
     start = None if args.start == "path" else robot.home()
@@ -76,6 +78,7 @@ def run(args) -> int:
     wall = time.perf_counter() - t0
     meta = {"command": "simulate", "trajectory": traj.name, "actuators": args.actuators,
             "flexible": args.flexible,
+            "gravity": [float(c) for c in robot.model.gravity.linear],
             "armature": args.armature, "viscous": args.viscous, "coulomb": args.coulomb,
             **result.settings,
             "summary": result.summary()}

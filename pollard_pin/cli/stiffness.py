@@ -22,6 +22,7 @@ from .common import (
     number,
     progress,
     refuse_inputs,
+    robot_for_trajectory,
     trajectory_args,
     wrote,
 )
@@ -64,6 +65,7 @@ def run(args) -> int:
     k = drive_stiffness(load_actuators(args.actuators))
     robot = load_robot(args)
     traj = load_trajectory(args, robot.params, lazy=True)
+    robot = robot_for_trajectory(args, robot)
     n = len(traj)
     log.info("trajectory %s: %d samples", traj.name, n)
     metadata = {"pollard_pin": __version__, "command": "stiffness",
@@ -73,7 +75,8 @@ def run(args) -> int:
                 "actuators": {"source": args.actuators,
                               "stiffness": dict(zip(robot.actuated, k.tolist()))},
                 "options": {**margins.as_dict(), "wrench": list(options.wrench),
-                            "joint_limits": not args.ignore_limits},
+                            "joint_limits": not args.ignore_limits,
+                            "gravity": [float(c) for c in robot.model.gravity.linear]},
                 "units": UNITS}
     timings: dict = {}
     workers = args.workers or min(os.cpu_count() or 1, MAX_WORKERS,

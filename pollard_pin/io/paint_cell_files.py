@@ -30,16 +30,17 @@ def cell_outputs(out: Path, fmt: str, names) -> tuple[tuple, tuple]:
 
 def robot_metadata(rp) -> dict:
     """A robot's path.csv metadata: its base pose and gravity in its base frame (``run``,
-    ``size`` and ``simulate`` take gravity as (0, 0, −9.81): a turned base is checked with
-    its own in ``paint``)."""
+    ``size``, ``simulate`` and ``stiffness`` check the program with that gravity, as
+    ``paint`` did)."""
     from ..paint.cell.frames import gravity_in_base
+    from .trajectory import GRAVITY_KEY
 
     cr = rp.robot
     return {"trajectory": rp.plan.trajectory.name, "derivatives": "analytic",
             "frame": f"robot {cr.name!r} base frame (world <- base: base {list(cr.base)} m, "
                      f"rotation {list(cr.rotation)} deg, R = Rx·Ry·Rz)",
             "robot": cr.to_dict(),
-            "gravity_base": [float(g) for g in gravity_in_base(cr)]}
+            GRAVITY_KEY: [float(g) for g in gravity_in_base(cr)]}
 
 
 def write_cell(result, out: Path, fmt: str = "csv") -> Path:

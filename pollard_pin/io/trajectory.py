@@ -337,4 +337,29 @@ def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
                 fmt="csv")
 
 
-__all__ = ["check_angle_wraps", "check_derivatives", "from_csv", "to_csv"]
+GRAVITY_KEY = "gravity_base"  # a path.csv's metadata: gravity in the robot's base [m/s²]
+
+
+def trajectory_gravity(path: str | Path):
+    """The gravity [m/s²] a trajectory CSV's units sidecar records for the robot that runs it
+    (a paint cell's turned robot, docs/model.md §26.1), checked (three finite numbers, 9.81
+    m/s² ± 10 %); None when the file records none (gravity (0, 0, −9.81) then)."""
+    import json
+
+    from ..model.gravity import check_gravity
+    from .table import units_path
+
+    side = units_path(path)
+    if not side.is_file():
+        return None
+    try:
+        meta = json.loads(side.read_text(encoding="utf-8")).get("metadata") or {}
+    except (OSError, UnicodeDecodeError, ValueError, AttributeError) as exc:
+        raise TrajectoryError(f"{side}: unreadable units sidecar: {exc}") from None
+    if not isinstance(meta, dict) or GRAVITY_KEY not in meta:
+        return None
+    return check_gravity(meta[GRAVITY_KEY], f"{side}: metadata {GRAVITY_KEY!r}")
+
+
+__all__ = ["GRAVITY_KEY", "check_angle_wraps", "check_derivatives", "from_csv", "to_csv",
+           "trajectory_gravity"]

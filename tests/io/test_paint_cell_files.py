@@ -89,3 +89,120 @@ def test_a_colliding_layout_is_one_line_and_writes_nothing(tmp_path, capsys):
     assert len(err.strip().splitlines()) == 1
     assert "'low'" in err and "'high'" in err
     assert not (tmp_path / "out").exists()
+
+
+@pytest.fixture(scope="module")
+def hung(tmp_path_factory):
+    """A robot hung 0.26 m up, turned 180° about x (gravity +z in its base), painting a 0.2 ×
+    0.15 m panel under it (tests/paint/cell/test_plan.py's): its output folder."""
+    folder = tmp_path_factory.mktemp("hung")
+    tables = panel_cell([{"name": "under", "base": [0.0, 0.0, 0.26],
+                          "rotation": [180.0, 0.0, 0.0]}], speed=0.016)
+    tables["panel"].update(height=0.15, center=[0.70, -0.3, 0.16])
+    job = folder / "cell.toml"
+    job.write_text(job_text(tables))
+    from pollard_pin.cli import main
+
+    assert main(["paint", "--job", str(job), "--out", str(folder / "out")]) == 0
+    return folder / "out" / "under"
+
+
+def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path):
+    """`run` of the hung robot's path.csv reads gravity +z from its metadata: its torques are
+    the planner's (the motor check of paint/plan/checks.py with the base's gravity), and far
+    from a default-gravity run's (the same file without its metadata)."""
+    import shutil
+
+    from pollard_pin.dynamics.motors import load_actuators, motor_torque
+    from pollard_pin.paint.cell.frames import robot_model_in_base
+    from pollard_pin.paint.cell.robots import CellRobot
+    from pollard_pin.paint.plan.checks import motion
+
+    meta = json.loads((hung / "path.units.json").read_text())["metadata"]
+    assert meta["gravity_base"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)  # round trip
+    code, _, err = run_cli(["run", "--trajectory", hung / "path.csv", "--out",
+                            tmp_path / "run.csv", "--quiet"], capsys)
+    assert code == 0, err
+    notes = [s for s in err.splitlines() if "gravity" in s]
+    assert len(notes) == 1 and notes[0].startswith("note: gravity (0, ") and "9.81" in notes[0]
+    run = read_result(tmp_path / "run.csv")
+    assert run.metadata["options"]["gravity"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)
+    tr = from_csv(hung / "path.csv")
+    act = load_actuators(ACT)
+    model = robot_model_in_base(robot, CellRobot("under", (0.0, 0.0, 0.26), (180.0, 0, 0)))
+    plan = motion(model, act, tr.poses, tr.d_poses, tr.dd_poses)
+    names = robot.actuated
+    tau = np.column_stack([run.columns[f"tau_{n}"] for n in names])
+    v = np.column_stack([run.columns[f"d_{n}"] for n in names])
+    a = np.column_stack([run.columns[f"dd_{n}"] for n in names])
+    scale = np.abs(plan.tau).max()
+    assert np.abs(tau - plan.tau).max() <= 2e-13 * scale  # seen 1.5e-15 of the peak
+    tm = motor_torque(act, tau, v, a)
+    assert np.abs(tm - plan.torque).max() <= 2e-13 * np.abs(plan.torque).max()  # 1.4e-15
+    # the same program under gravity −z: the torques differ by the weight's share
+    bare = tmp_path / "bare.csv"
+    shutil.copy(hung / "path.csv", bare)
+    code, _, err = run_cli(["run", "--trajectory", bare, "--out", tmp_path / "down.csv",
+                            "--quiet"], capsys)
+    assert code == 0 and "gravity" not in err, err
+    down = read_result(tmp_path / "down.csv")
+    tau_down = np.column_stack([down.columns[f"tau_{n}"] for n in names])
+    assert np.abs(tau_down - tau).max() >= 0.2 * scale  # seen 0.77 of the peak
+    # `size` with its gravity finds the motors within ratings, as the planner did; not so under −z
+    for path, ok in ((hung / "path.csv", True), (bare, False)):
+        code, out, err = run_cli(["size", "--trajectory", path, "--actuators", ACT, "--format",
+                                  "json", "--quiet"], capsys)
+        assert code == 0, err
+        assert json.loads(out)["given_within_ratings"] is ok, path
+
+
+@pytest.mark.parametrize("g, why", [([0.0, 0.0, float("nan")], "three finite numbers"),
+                                    ([0.0, 9.81], "three finite numbers"),
+                                    ("down", "three"),
+                                    ([0.0, 0.0, -98.1], "900% off 9.81"),
+                                    ([0.0, 0.0, -8.5], "13% off 9.81")])
+def test_a_bad_gravity_is_one_line(hung, capsys, tmp_path, g, why):
+    import shutil
+
+    path = tmp_path / "path.csv"
+    shutil.copy(hung / "path.csv", path)
+    side = json.loads((hung / "path.units.json").read_text())
+    side["metadata"]["gravity_base"] = g
+    (tmp_path / "path.units.json").write_text(json.dumps(side))
+    for cmd in (["run", "--out", tmp_path / "run.csv"],
+                ["size", "--actuators", ACT, "--out", tmp_path / "size.md"]):
+        code, out, err = run_cli([*cmd, "--trajectory", path, "--quiet"], capsys)
+        assert code == 2, err
+        assert len(err.strip().splitlines()) == 1 and why in err, err
+        assert "gravity_base" in err and "path.units.json" in err
+    assert not (tmp_path / "run.csv").exists() and not (tmp_path / "size.md").exists()
+
+
+def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, capsys, tmp_path):
+    """`simulate` (computed torque, no actuators) of the hung robot's path.csv: its torques are
+    `run`'s at the median sample (the controller's model and plant both carry gravity +z);
+    the same file without its metadata simulates under −z, far from them."""
+    import shutil
+
+    bare = tmp_path / "bare.csv"
+    shutil.copy(hung / "path.csv", bare)
+    tables = {}
+    for name, path in (("run", hung / "path.csv"), ("sim", hung / "path.csv"),
+                       ("bare", bare)):
+        cmd = "run" if name == "run" else "simulate"
+        code, _, err = run_cli([cmd, "--trajectory", path, "--out", tmp_path / f"out_{name}.csv",
+                                "--quiet"], capsys)
+        assert code == 0, err
+        assert ("note: gravity (0, 0, 9.81)" in err) is (name != "bare"), err
+        tables[name] = read_result(tmp_path / f"out_{name}.csv").columns
+    names = [f"tau_{n}" for n in robot.actuated]
+    want = np.column_stack([tables["run"][n] for n in names])
+    scale = np.abs(want).max()
+
+    def median_gap(name):
+        got = np.column_stack([tables[name][n] for n in names])
+        return float(np.median(np.abs(got - want).max(axis=1))) / scale
+
+    # the median, not the worst: a few samples where the pieces meet differ by up to 6 %
+    assert median_gap("sim") <= 1e-13  # seen 2.2e-16 of the peak
+    assert median_gap("bare") >= 0.05  # seen 0.76 of the peak (the weight pulls the other way)

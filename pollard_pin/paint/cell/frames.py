@@ -7,11 +7,10 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...model.gravity import GRAVITY, with_gravity
 from ..job import PaintJob
 from ..target.mesh import Part, make_part
 from .robots import CellRobot
-
-GRAVITY = np.array([0.0, 0.0, -9.81])  # world, m/s² (docs/model.md §2)
 
 
 def line_in_base(line, robot: CellRobot):
@@ -45,15 +44,7 @@ def gravity_in_base(robot: CellRobot) -> np.ndarray:
 def robot_model_in_base(model_robot, robot: CellRobot):
     """The robot model with gravity Rᵀ g (its own model and data: the shared one is left
     as it is); itself when Rᵀ g is g (a base turned about z only)."""
-    g = gravity_in_base(robot)
-    if np.array_equal(g, GRAVITY):
-        return model_robot
-    import pinocchio as pin
-
-    model = pin.Model(model_robot.model)
-    model.gravity = pin.Motion(np.asarray(g, float), np.zeros(3))
-    return replace(model_robot, model=model, data=model.createData(),
-                   constraint_datas=[c.createData() for c in model_robot.constraint_models])
+    return with_gravity(model_robot, gravity_in_base(robot))
 
 
 __all__ = ["GRAVITY", "gravity_in_base", "line_in_base", "panel_in_base", "part_in_base",
