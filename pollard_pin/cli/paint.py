@@ -107,8 +107,10 @@ def compliance_line(c: dict) -> str:
     """paint.json's ``compliance`` in one line (docs/model.md §27.7)."""
     if not c["stiffness"]:
         return f"compliance {c['note']}"
+    who = f" (robot '{c['standoff_error_robot']}')" if "standoff_error_robot" in c else ""
     return (f"compliance (weight, recoil {c['recoil_n']:.3g} N): standoff error "
-            f"{c['standoff_error_m'] * 1e6:.3g} µm, lateral {c['lateral_error_m'] * 1e6:.3g} µm, "
+            f"{c['standoff_error_m'] * 1e6:.3g} µm{who}, lateral "
+            f"{c['lateral_error_m'] * 1e6:.3g} µm, "
             f"tilt {c['tilt_rad'] * 1e3:.3g} mrad; film changes by at most "
             f"{100 * c['film_error']:.2g} % of the target")
 

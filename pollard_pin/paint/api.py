@@ -27,9 +27,9 @@ from .errors import JobKindError
 from .job import KINDS, PartJob, job_kind
 from .line.phases import SPEED_RESOLUTION
 
-# The kinds whose plan is one robot's program (docs/model.md §27.7): a cell's robots are
-# each one such program in their own base frame.
-COMPLIANCE_KINDS = ("panel", "part", "line panel", "line part")
+# The kinds with a compliance report (docs/model.md §27.7): one robot's program, or a cell's
+# robots, each one such program in its own base frame (§26.6).
+COMPLIANCE_KINDS = ("panel", "part", "line panel", "line part", "cell panel", "cell part")
 
 
 @dataclass(frozen=True)
@@ -294,8 +294,16 @@ def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
     from .film.compliance import compliance_entry
 
     t0 = time.perf_counter()
-    rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
-                                         film.painted)
+    if hasattr(plan, "robots"):  # a cell: the worst over its robots, each robot's own
+        from .cell.compliance import cell_compliance
+
+        rep["compliance"], per = cell_compliance(robot, plan, film.points, film.thickness,
+                                                 act, film.painted)
+        for r, c in zip(rep["robots"], per):
+            r["compliance"] = c
+    else:
+        rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
+                                             film.painted)
     rep["timings"]["compliance"] = time.perf_counter() - t0
 
 
