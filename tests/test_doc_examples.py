@@ -105,14 +105,6 @@ def _undocumented():
     return missing
 
 
-# Public names documented by the authors of their modules (the drives' stiffness, the
-# flexible simulation, what compliance does to the paint), not by this test's conversion.
-OWN_DOCS = ("pollard_pin.dynamics.stiffness", "pollard_pin.dynamics.flexible",
-            "pollard_pin.run.stiffness", "pollard_pin.paint.plan.compliance",
-            "pollard_pin.paint.film.compliance")
-
-
 def test_public_names_document_their_parameters():
-    missing = {k: v for k, v in _undocumented().items()
-               if getattr(pp, k).__module__ not in OWN_DOCS}
+    missing = _undocumented()
     assert not missing, f"parameters missing from the numpydoc sections: {missing}"

@@ -33,12 +33,34 @@ MODE_POSES = 17  # reference configurations over which the fastest mode is sough
 
 @dataclass(frozen=True, eq=False)
 class FlexibleDrives:
-    """The six drives seen from the joints, docs/model.md §6 order: ``stiffness`` k [N·m/rad],
-    rotor ``inertia`` B = N²Jm [kg·m²] (> 0: the motor side's mass), ``viscous`` N²b
-    [N·m·s/rad] and ``coulomb`` N·c [N·m] friction of the motor side, the Coulomb sign
-    smoothed as c·tanh(φ̇ / coulomb_speed) (as :class:`~.inverse.JointLosses`). ``known``:
-    the controller knows the springs and tracks the motors' reference (:func:`motor_reference`);
-    else it tracks the rigid reference with the motors."""
+    """The six flexible drives seen from the joints, docs/model.md §6 order, for
+    ``TrackingOptions(drives=...)`` (docs/model.md §28); ``FlexibleDrives.from_actuators(act)``
+    reads them from an actuators file. Give the controller the rotors too
+    (``known_losses=act.joint_losses(robot.joint_names)``, as ``simulate --actuators`` does):
+    without them it does not know the motor side's inertia.
+
+    Attributes
+    ----------
+    stiffness : numpy.ndarray
+        (6,) the springs' k [N·m/rad], joint side.
+    inertia : numpy.ndarray
+        (6,) the rotors' B = N²Jm [kg·m²], > 0 (the motor side's mass).
+    viscous : numpy.ndarray or float
+        The motor side's viscous friction N²b [N·m·s/rad].
+    coulomb : numpy.ndarray or float
+        The motor side's Coulomb friction N·c [N·m], its sign smoothed as
+        c·tanh(φ̇ / coulomb_speed) (as :class:`~pollard_pin.dynamics.inverse.JointLosses`).
+    coulomb_speed : float
+        The smoothing speed [rad/s].
+    known : bool
+        True: the controller knows the springs and tracks the motors' reference
+        (``motor_reference``); False: it tracks the rigid reference with the motors.
+
+    Raises
+    ------
+    PlantError
+        A stiffness or inertia not finite and positive, or a friction negative.
+    """
 
     stiffness: np.ndarray
     inertia: np.ndarray

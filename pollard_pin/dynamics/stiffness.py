@@ -42,9 +42,19 @@ class StiffnessError(InputError):
 
 @dataclass(frozen=True)
 class StiffnessOptions:
-    """What :func:`stiffness_at` applies, checked once: ``wrench`` (FX, FY, FZ [N], MX, MY, MZ
-    [N·m]) on the tool, force at the tip and moment about the tip, world axes; default none
-    (the weight alone)."""
+    """What :func:`stiffness_at` applies, checked once.
+
+    Attributes
+    ----------
+    wrench : tuple of float
+        FX, FY, FZ [N] and MX, MY, MZ [N·m] on the tool: the force at the tip and the moment
+        about the tip, world axes (default none: the weight alone).
+
+    Raises
+    ------
+    StiffnessError
+        A wrench that is not six finite numbers.
+    """
 
     wrench: tuple = field(default=(0.0,) * 6)
 
@@ -81,9 +91,20 @@ def check_stiffness(k) -> np.ndarray:
 
 @dataclass
 class StiffnessResult:
-    """Per sample: ``deflection`` (N, 6) dx, dy, dz [m], rx, ry, rz [rad] (world axes),
-    ``frequencies`` (N, 6) [Hz] ascending and ``kmin`` (N,) [N/m] (the table's writer:
-    :class:`pollard_pin.run.stiffness.StiffnessRun`)."""
+    """Stiffness and vibration per sample (the table's writer:
+    :class:`pollard_pin.run.stiffness.StiffnessRun`).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        (N,) the samples' times [s].
+    deflection : numpy.ndarray
+        (N, 6) dx, dy, dz [m] and rx, ry, rz [rad] (rotation vector), world axes.
+    frequencies : numpy.ndarray
+        (N, 6) the natural frequencies [Hz], ascending.
+    kmin : numpy.ndarray
+        (N,) the tip's stiffness in its softest direction, 1 / λmax(C[:3, :3]) [N/m].
+    """
 
     t: np.ndarray
     deflection: np.ndarray
@@ -157,11 +178,36 @@ def holding_torques(robot, q, S) -> np.ndarray:
 
 
 def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
-    """d = J K⁻¹ (Jᵀ W − τ_g) (N, 6): dx, dy, dz [m], rx, ry, rz [rad], world axes, at closed
-    configurations q (N, 12) under the weight and ``wrench``: None, six numbers for every
-    sample, or (N, 6) one per sample (FX, FY, FZ [N] at the tip, MX, MY, MZ [N·m] about it,
-    world axes; e.g. a spray's recoil along each sample's gun axis). Without the modes: one
-    gravity pass per sample (docs/model.md §27.2)."""
+    """The deflection d = J K⁻¹ (Jᵀ W − τ_g) under the weight and a wrench, without the
+    modes: one gravity pass per sample (docs/model.md §27.2).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    q : numpy.ndarray
+        Configurations (N, 12) or (12,), loops closed.
+    k : ArrayLike
+        The six drives' stiffnesses [N·m/rad].
+    wrench : ArrayLike or None, optional
+        None (the weight alone), six numbers for every sample, or (N, 6) one per sample:
+        FX, FY, FZ [N] at the tip, MX, MY, MZ [N·m] about it, world axes (e.g. a spray's
+        recoil along each sample's gun axis).
+    t : ArrayLike or None, optional
+        The samples' times [s], for the error messages (default their indices).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 6): dx, dy, dz [m] and rx, ry, rz [rad], world axes.
+
+    Raises
+    ------
+    StiffnessError
+        ``k`` or the wrench not finite, or of the wrong shape.
+    SingularityError
+        A singular configuration, naming its sample.
+    """
     k = check_stiffness(k)
     q, t = _configurations(robot, q, t)
     W = np.zeros(6) if wrench is None else np.asarray(wrench, dtype=float)
@@ -203,10 +249,34 @@ def _regular_maps(robot, q, t) -> ClosedLoop:
 
 def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
                  ) -> StiffnessResult:
-    """Deflection, natural frequencies and kmin at closed configurations q (N, 12) (the IK's,
-    loops closed) with drive stiffnesses ``k`` (6,) [N·m/rad] (docs/model.md §27). ``t``: the
-    samples' times (default their indices). A configuration where the closed-loop maps are
-    not finite (a singular Jc_p or J) raises :class:`SingularityError` naming its sample."""
+    """Deflection, natural frequencies and kmin at closed configurations (docs/model.md §27).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    q : numpy.ndarray
+        Configurations (N, 12) or (12,), loops closed (an IK's ``q``).
+    k : ArrayLike
+        The six drives' stiffnesses [N·m/rad], docs/model.md §6 order.
+    options : StiffnessOptions or None, optional
+        The wrench on the tool (default none: the weight alone).
+    t : ArrayLike or None, optional
+        The samples' times [s] (default their indices).
+
+    Returns
+    -------
+    StiffnessResult
+        Per sample the deflection [m, rad], the six frequencies [Hz] and kmin [N/m].
+
+    Raises
+    ------
+    StiffnessError
+        ``k`` not six finite positive numbers, or ``options`` not a StiffnessOptions.
+    SingularityError
+        The closed-loop maps not finite at a configuration (a singular Jc_p or J), naming
+        its sample.
+    """
     options = StiffnessOptions() if options is None else options
     if not isinstance(options, StiffnessOptions):
         raise StiffnessError(f"options must be a StiffnessOptions, got {type(options).__name__}")

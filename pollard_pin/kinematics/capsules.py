@@ -91,8 +91,25 @@ def capsule_layout(robot) -> CapsuleLayout:
 
 
 def link_capsules(robot, q, layout: CapsuleLayout | None = None):
-    """The capsules at configurations ``q`` (N, nq) in the base frame: ends a, b (N, L, 3)
-    [m] and radii r (L,) [m] (:func:`capsule_layout`'s order)."""
+    """Conservative capsules around the links at closed configurations, the geometry of a
+    cell's clearance check (docs/model.md §26.4).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    q : numpy.ndarray
+        Configurations (N, nq), loops closed (an IK's ``q``).
+    layout : CapsuleLayout or None, optional
+        Which links and radii (default: ``capsule_layout(robot)``'s).
+
+    Returns
+    -------
+    a, b : numpy.ndarray
+        The capsules' end points (N, L, 3) [m] in the base frame.
+    r : numpy.ndarray
+        Their radii (L,) [m].
+    """
     lay = capsule_layout(robot) if layout is None else layout
     q = np.atleast_2d(np.asarray(q, float))
     model = robot.model

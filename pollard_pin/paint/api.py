@@ -220,9 +220,18 @@ def film_spacing_of(job, resolution: float | None = None) -> float:
 
 def paint(robot, job, actuators: Actuators | None = None,
           options: PaintOptions | None = None) -> PaintResult:
-    """Plan the job (a panel or a part, still or on a line), integrate its film and compute
-    its report (docs/model.md §20–§24): what ``pollard-pin paint`` does. Also callable as
+    """Plan the job (a panel or a part, still or on a line, painted by one robot or by a
+    cell of several), integrate its film and compute its report (docs/model.md §20–§24,
+    §26): what ``pollard-pin paint`` does. Also callable as
     ``pollard_pin.paint(robot, job, ...)``.
+
+    A job with ``[line]`` and ``[[robot]]`` tables (``job.robots``) is a cell: the part is
+    split into zones, one per robot (:func:`~pollard_pin.split_cell`), each robot's program
+    is planned in its own base frame on the cell's clock (:func:`~pollard_pin.plan_cell`),
+    the robots' clearance from each other and from the part is checked, and the film is that
+    of all robots together; ``result.kind`` is then ``"cell panel"`` or ``"cell part"``. To
+    propose the robots' bases: :func:`~pollard_pin.propose_layout`,
+    :func:`~pollard_pin.fewest_robots`.
 
     Parameters
     ----------
@@ -239,14 +248,16 @@ def paint(robot, job, actuators: Actuators | None = None,
     Returns
     -------
     PaintResult
-        The plan, the film, the report; ``result.write(folder)`` writes the outputs.
+        The plan, the film, the report; ``result.write(folder)`` writes the outputs (for a
+        cell: ``folder/<robot>/path.csv`` per robot, one film for the whole part).
 
     Raises
     ------
     PlanError
         No program meets the job: out of reach (naming where, and the largest panel that
         fits), a budget broken (a film too thick for the flow, a panel narrower than the
-        spot), the gun's body too close to the part.
+        spot), the gun's body too close to the part; for a cell, a robot that cannot paint
+        its zone, or two robots (or a robot and the part) closer than the clearance.
     JobKindError
         A job of a kind the planner does not handle.
     pollard_pin.errors.InputError

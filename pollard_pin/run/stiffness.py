@@ -26,7 +26,19 @@ from .stream import StreamOptions, solve_windows
 
 class StiffnessRun(StiffnessResult):
     """:class:`~pollard_pin.dynamics.stiffness.StiffnessResult` along a trajectory, with the
-    table writer of ``pollard-pin stiffness``."""
+    table writer of ``pollard-pin stiffness`` (:meth:`write`).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        (N,) the samples' times [s].
+    deflection : numpy.ndarray
+        (N, 6) dx, dy, dz [m] and rx, ry, rz [rad], world axes.
+    frequencies : numpy.ndarray
+        (N, 6) the natural frequencies [Hz], ascending.
+    kmin : numpy.ndarray
+        (N,) the tip's stiffness in its softest direction [N/m].
+    """
 
     def write(self, path: str | Path, metadata: dict | None = None) -> None:
         """The table (CSV with its units sidecar, or Parquet for ``*.parquet``), all or
@@ -58,9 +70,38 @@ def stiffness_windows(robot, traj, drives, options: StiffnessOptions | None = No
 def stiffness(robot, traj, drives, options: StiffnessOptions | None = None, *,
               margins: Margins | None = None, joint_limits: bool = True) -> StiffnessRun:
     """Deflection under ``options.wrench`` plus the weight, the six natural frequencies and
-    kmin at every sample of ``traj`` (docs/model.md §27); ``drives``: an
-    :class:`~pollard_pin.dynamics.motors.Actuators` with stiffnesses, or six k [N·m/rad].
-    ``result.write(path)`` writes what ``pollard-pin stiffness`` writes."""
+    kmin at every sample of ``traj`` (docs/model.md §27): what ``pollard-pin stiffness``
+    computes; ``result.write(path)`` writes its table.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    traj : Trajectory
+        The tool's path (a :class:`~pollard_pin.paths.trajectory.Trajectory` or the lazy
+        thesis curve); the IK and its checks are ``run``'s.
+    drives : Actuators or ArrayLike
+        An :class:`~pollard_pin.dynamics.motors.Actuators` whose every actuator has a
+        ``stiffness``, or six stiffnesses k [N·m/rad], docs/model.md §6 order.
+    options : StiffnessOptions or None, optional
+        The wrench on the tool (default none: the weight alone).
+    margins : Margins or None, optional
+        The IK's singularity margins (default ``run``'s).
+    joint_limits : bool, optional
+        Check the joint limits (default True).
+
+    Returns
+    -------
+    StiffnessRun
+        Per sample the deflection [m, rad], the frequencies [Hz] and kmin [N/m].
+
+    Raises
+    ------
+    StiffnessError
+        A stiffness missing, not finite or not positive (naming the actuator or the key).
+    KinematicsError
+        A pose out of reach or singular, naming the sample (as ``run``).
+    """
     parts = [r for _, r in stiffness_windows(robot, traj, drives, options, margins=margins,
                                              joint_limits=joint_limits)]
     return StiffnessRun(*(np.concatenate([getattr(p, f) for p in parts])
@@ -107,9 +148,45 @@ def stream_stiffness(robot, traj, drives, path: str | Path,
                      stream: StreamOptions | None = None, *, metadata: dict | None = None,
                      timings: dict | None = None, progress=None, **ik_options
                      ) -> StiffnessStats:
-    """:func:`stiffness` written window by window to ``path`` (CSV with its units sidecar, or
-    Parquet), all or nothing; memory stays that of a few windows. ``ik_options``: ``margins``,
-    ``joint_limits``; ``timings`` gets ``wall`` seconds."""
+    """:func:`stiffness` written window by window to ``path``, all or nothing; memory stays
+    that of a few windows (10⁶ samples in bounded memory).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    traj : Trajectory
+        The tool's path, as for :func:`stiffness`.
+    drives : Actuators or ArrayLike
+        As for :func:`stiffness`: stiffnesses k [N·m/rad].
+    path : str or pathlib.Path
+        The table: CSV with its units sidecar, or Parquet for ``*.parquet``.
+    options : StiffnessOptions or None, optional
+        The wrench on the tool (default none).
+    stream : StreamOptions or None, optional
+        The window size (default ``run``'s).
+    metadata : dict or None, optional
+        Extra entries for the table's metadata.
+    timings : dict or None, optional
+        Filled with ``wall`` [s].
+    progress : Callable or None, optional
+        Called with (done, total) samples.
+    **ik_options
+        ``margins``, ``joint_limits``, as for :func:`stiffness`.
+
+    Returns
+    -------
+    StiffnessStats
+        The worst sample of each column: ``worst[name]`` = (value, sample, t);
+        ``summary()`` is what the command prints.
+
+    Raises
+    ------
+    StiffnessError
+        A stiffness missing or invalid.
+    KinematicsError
+        A pose out of reach or singular, naming the sample; nothing is written.
+    """
     timings = {} if timings is None else timings
     stream = StreamOptions() if stream is None else stream
     drives = drive_stiffness(drives)  # before any file is opened

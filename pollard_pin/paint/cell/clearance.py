@@ -43,8 +43,15 @@ COARSE = 16  # every this many samples, every capsule pair sets the ceiling
 
 @dataclass(frozen=True)
 class MovingPart:
-    """The part's mesh in the world at t = 0, moving at ``velocity`` [m/s] (the line's
-    speed times its direction)."""
+    """The part in the world, for :func:`cell_clearance` (docs/model.md §26.4).
+
+    Attributes
+    ----------
+    mesh : trimesh.Trimesh
+        The part's mesh in the world at t = 0 [m].
+    velocity : tuple of float
+        Its velocity [m/s], world axes: the line's speed times its direction (default still).
+    """
 
     mesh: trimesh.Trimesh
     velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -52,10 +59,29 @@ class MovingPart:
 
 @dataclass(frozen=True)
 class CellClearance:
-    """The least distances [m] of a cell: between two robots (``pair``, at ``pair_time``
-    [s]; inf with one robot) and from a robot to the part (``robot``, at ``part_time``; None
-    without a part); ``*_between`` [m] how much closer they may come between samples;
-    ``required`` the clearance asked for."""
+    """The least distances of a cell along its clock (docs/model.md §26.4).
+
+    Attributes
+    ----------
+    between_robots : float
+        The least distance [m] between two robots' links (inf with one robot).
+    pair : tuple of str or None
+        The two robots' names at that distance (None with one robot).
+    pair_time : float or None
+        When [s, the cell's clock].
+    robots_between : float
+        How much closer [m] two robots may come between samples (a bound).
+    to_part : float or None
+        The least distance [m] from a robot's links to the part (None without a part).
+    robot : str or None
+        That robot's name.
+    part_time : float or None
+        When [s].
+    part_between : float or None
+        How much closer [m] a robot may come to the part between samples.
+    required : float
+        The clearance asked for [m].
+    """
 
     between_robots: float
     pair: tuple[str, str] | None
@@ -236,12 +262,35 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
 
 def cell_clearance(robot, members, part: MovingPart | None = None, required: float = 0.0,
                    margins=None) -> CellClearance:
-    """The :class:`CellClearance` of a cell's programs: ``members`` are (CellRobot, t (N,),
-    poses (N, 6) in its base frame) on the cell's clock, ``robot`` the model every robot
-    shares, ``part`` the moving part (None: robots only), ``margins`` the IK's
-    (:class:`...kinematics.margins.Margins`, default ``run``'s). Raises :class:`ClearanceError`
-    naming the two robots (or the robot and the part), the time and the distance when a
-    distance less what may lie between samples is under ``required`` [m]."""
+    """The least distances between a cell's robots and from them to the part, checked on the
+    links' capsules along the common clock (docs/model.md §26.4).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    members : Sequence of tuple
+        One ``(CellRobot, t, poses)`` per robot: its
+        :class:`~pollard_pin.paint.cell.robots.CellRobot`, the times t (N,) [s] on the
+        cell's clock and the tool poses (N, 6) [m, rad] in its base frame.
+    part : MovingPart or None, optional
+        The moving part (default None: the robots only).
+    required : float, optional
+        The least distance allowed [m] (default 0).
+    margins : Margins or None, optional
+        The IK's margins (default ``run``'s).
+
+    Returns
+    -------
+    CellClearance
+        The least distances, who and when.
+
+    Raises
+    ------
+    pollard_pin.paint.plan.clearance.ClearanceError
+        One line naming the two robots (or the robot and the part), the time and the
+        distance, when a distance less what may lie between samples is under ``required``.
+    """
     if isinstance(required, bool) or not (isinstance(required, (int, float))
                                           and 0 <= required < 1):
         raise InputError(f"required = {required!r}: expected a clearance in [0, 1) m")

@@ -34,9 +34,21 @@ AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--ro
 
 @dataclass(frozen=True)
 class LayoutOptions:
-    """How :func:`propose_layout` places robots: ``spacing`` [m] between neighbours along the
-    line (None: the reach window along the line + twice the base's footprint), ``prefix`` of
-    the robots' names (prefix1, prefix2, …)."""
+    """How :func:`propose_layout` places robots (docs/model.md §26.5).
+
+    Attributes
+    ----------
+    spacing : float or None
+        The distance [m] between neighbours along the line, in (0, 10] (default None: the
+        reach window along the line plus twice the base's footprint).
+    prefix : str
+        The robots' names: prefix1, prefix2, … (1–24 letters or digits; default "robot").
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A spacing or prefix out of range.
+    """
 
     spacing: float | None = None
     prefix: str = "robot"
@@ -103,9 +115,34 @@ def reach_window(robot, strokes: Strokes, band: Band) -> float:
 
 def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
                    part=None) -> tuple[CellRobot, ...]:
-    """n robots stacked along the cell's axis and spaced along the line (see the module
-    notes), checked by :func:`.split.split_cell`; a :class:`CellError` line when n robots'
-    bands cannot hold n equal zones with their run-outs (naming the fewest that can)."""
+    """Bases for n robots for this part on this line: their zones stacked across the travel,
+    the robots spaced along the line to clear each other (docs/model.md §26.5).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        A job with ``[line]`` and no ``[[robot]]`` tables.
+    n : int
+        The number of robots (1–16).
+    options : LayoutOptions or None, optional
+        The spacing and the names (default :class:`LayoutOptions`).
+    part : object or None, optional
+        The job's painted part if already read (default None: read here).
+
+    Returns
+    -------
+    tuple of CellRobot
+        One :class:`~pollard_pin.paint.cell.robots.CellRobot` per robot (name, base [m],
+        rotation [deg]), checked by :func:`split_cell`.
+
+    Raises
+    ------
+    pollard_pin.paint.cell.robots.CellError
+        One line when n robots' bands cannot hold n equal zones with their run-outs (naming
+        the fewest that can), or the job has robots or no line.
+    """
     options = LayoutOptions() if options is None else options
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"robots = {n!r}: expected 1..{MAX_ROBOTS}")
@@ -142,13 +179,40 @@ def _triple(v) -> tuple[float, float, float]:
 
 
 def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOptions | None = None):
-    """(robots, :class:`pollard_pin.paint.api.PaintResult`): the fewest robots whose
-    :func:`propose_layout` paints the job at its line speed (or at the fastest, with
-    ``options.max_line_speed``). The first n tried is the fewest whose bands hold the zones;
-    a plan refused (reach, motors, the line's speed) tries n + 1, at most AUTO_MORE times:
-    more robots shorten every zone, which cures a motor or reach refusal at once or not at
-    all (a line too slow for the programs' drift gets worse). A :class:`CellError` line naming
-    the last reason when none paints."""
+    """The fewest robots whose :func:`propose_layout` paints the job at its line speed (or at
+    the fastest, with ``options.max_line_speed``), and their plan (docs/model.md §26.5).
+
+    The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
+    motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
+    every zone, which cures a motor or reach refusal at once or not at all (a line too slow
+    for the programs' drift gets worse).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        A job with ``[line]`` and no ``[[robot]]`` tables.
+    actuators : Actuators or None, optional
+        The motor ratings (default: the job's file, else the package's).
+    options : PaintOptions or None, optional
+        As for :func:`pollard_pin.paint.api.paint`.
+    layout : LayoutOptions or None, optional
+        The spacing and the names.
+
+    Returns
+    -------
+    robots : tuple of CellRobot
+        The proposed robots.
+    result : PaintResult
+        The cell's plan, film and report with them.
+
+    Raises
+    ------
+    pollard_pin.paint.cell.robots.CellError
+        One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
+        paints the part.
+    """
     from ..api import paint
     from ..spray.occlusion import load_painted_part
 

@@ -38,9 +38,26 @@ class RobotPlan:
 
 @dataclass(frozen=True, eq=False)
 class CellPlan:
-    """The cell's plan at line ``speed``: the world ``job``, the ``split``, each robot's
-    :class:`RobotPlan` and, for a part, the world ``part`` (t = 0) painting every zone's
-    faces."""
+    """A cell's plan at one line speed, from :func:`plan_cell` (docs/model.md §26).
+
+    Attributes
+    ----------
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        The job, world coordinates.
+    split : Split
+        Which robot paints which zone.
+    robots : tuple of RobotPlan
+        Per robot its ``robot`` (a :class:`~pollard_pin.paint.cell.robots.CellRobot`), its
+        ``zone`` and its ``plan`` (the program in its base frame, on the cell's clock).
+    speed : float
+        The line speed [m/s].
+    part : object or None
+        For a part, the world part at t = 0 painting every zone's faces (None for a panel).
+    timings : dict or None
+        Seconds spent per stage.
+    clearance : CellClearance or None
+        The cell's least distances, once checked.
+    """
 
     job: object
     split: Split
@@ -83,11 +100,38 @@ def robot_part(standoff: float, part: Part, cr: CellRobot, facing) -> Part:
 def plan_cell(robot, job, act: Actuators, speed: float | None = None,
               part: Part | None = None, split: Split | None = None,
               clearance: bool = True) -> CellPlan:
-    """Every robot's program at line ``speed`` (default the job's), ``part`` the job's
-    painted part (read once; None for a panel), ``split`` the zones (default
-    :func:`.split.split_cell`). A robot that cannot paint its zone at this speed raises the line
-    planner's :class:`.line.phases.LineSpeedError` (named), so the fastest speed is searched
-    as for one robot; ``clearance``: the gun bodies' clearance from the part."""
+    """Every robot's program of a cell at one line speed (docs/model.md §26).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        A job with ``[line]`` and its ``robots`` (``[[robot]]`` tables).
+    act : Actuators
+        The motor ratings every program must keep.
+    speed : float or None, optional
+        The line speed [m/s] (default the job's).
+    part : object or None, optional
+        The job's painted part if already read (default None: read here; a panel has none).
+    split : Split or None, optional
+        The zones (default :func:`split_cell`'s).
+    clearance : bool, optional
+        Check the gun bodies' clearance from the part (default True).
+
+    Returns
+    -------
+    CellPlan
+        The split and each robot's program.
+
+    Raises
+    ------
+    pollard_pin.paint.line.phases.LineSpeedError
+        A robot cannot paint its zone at this speed (named), so the fastest speed is
+        searched as for one robot.
+    PlanError
+        A robot's program breaks a check (reach, limits, margins, motors).
+    """
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     robots = job.robots or (CellRobot("robot"),)

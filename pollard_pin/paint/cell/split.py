@@ -174,9 +174,31 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
 
 
 def split_cell(robot, job, robots, part=None) -> Split:
-    """The cell's :class:`Split` of the job's part among ``robots`` (CellRobots; ``robot``
-    the model, its reach rules), ``part`` the painted mesh if already read: a
-    :class:`CellError` line if a robot reaches none of the part, or no split covers it."""
+    """Which robot paints which zone of the job's part: each zone within its robot's reach
+    over the part's whole passage, the programs balanced (docs/model.md §26.2).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares, its reach rules (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.paint.job.PartJob
+        A job with ``[line]``.
+    robots : Sequence of CellRobot
+        The cell's robots (:class:`~pollard_pin.paint.cell.robots.CellRobot`).
+    part : object or None, optional
+        The painted part if already read (default None: read here; a panel has none).
+
+    Returns
+    -------
+    Split
+        The zones and their seams.
+
+    Raises
+    ------
+    pollard_pin.paint.cell.robots.CellError
+        One line if a robot reaches none of the part (where the part passes it), or no split
+        covers it (the region no robot reaches).
+    """
     robots = tuple(robots)
     if not robots:
         raise CellError(f"{job.source}: a cell needs at least one robot")

@@ -27,9 +27,23 @@ CLOSED = (math.inf, -math.inf)  # ... shut throughout
 
 @dataclass(frozen=True)
 class Zone:
-    """The band a robot paints: ``lo`` .. ``hi`` [m] along :attr:`Split.axis` (the part at
-    t = 0, world coordinates; ∓inf: a free edge of the part), on the faces that look along
-    the world ``facing`` (None: the job's)."""
+    """The band a robot paints (docs/model.md §26.2).
+
+    Attributes
+    ----------
+    robot : str
+        The robot's name.
+    lo, hi : float
+        The band's limits [m] along ``Split.axis`` (the part at t = 0, world coordinates;
+        ∓inf: a free edge of the part), lo < hi.
+    facing : tuple of float or None
+        The faces painted look along this world direction (None: the job's).
+
+    Raises
+    ------
+    PlanError
+        An empty band (lo ≥ hi).
+    """
 
     robot: str
     lo: float
@@ -44,9 +58,17 @@ class Zone:
 
 @dataclass(frozen=True)
 class Split:
-    """Which robot paints which band: ``axis`` (world unit vector across the travel),
-    ``zones`` sorted by (facing, lo), neighbours sharing a seam (hi_i == lo_{i+1}), and the
-    run-on ``runout`` R [m] past a seam."""
+    """Which robot paints which band of the part (docs/model.md §26.2).
+
+    Attributes
+    ----------
+    axis : tuple of float
+        The world unit vector across the travel along which the zones lie.
+    zones : tuple of Zone
+        Sorted by (facing, lo); neighbours share a seam (hi_i == lo_{i+1}).
+    runout : float
+        The run-on R [m] of a robot's strokes past a seam (§26.3).
+    """
 
     axis: tuple[float, float, float]
     zones: tuple[Zone, ...]

@@ -66,10 +66,33 @@ def film_error(thickness, deflected, target: float, painted=None) -> tuple[float
 
 
 def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
-    """paint.json's ``compliance`` (docs/model.md §27.7): over the sprayed samples the largest
-    standoff error, lateral error and tilt [m, rad] from the weight and the job's recoil [N],
-    and the largest film change over the painted points relative to the target; without
-    the actuators' ``stiffness``, an entry that says so."""
+    """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
+    paint under the weight and the job's recoil.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    plan : object
+        A single robot's plan (``PaintResult.plan``): its program, trigger and job.
+    points : object
+        The film points (a panel's grid (nv, nu, 3) or a part's surface points) [m].
+    thickness : numpy.ndarray
+        The rigid film there [m].
+    act : Actuators
+        The motor ratings; their ``stiffness`` gives the springs.
+    painted : numpy.ndarray or None, optional
+        The mask of points whose film counts (default all).
+
+    Returns
+    -------
+    dict
+        ``recoil_n`` [N]; ``stiffness`` (False, with a ``note``, when the actuators have
+        none); over the sprayed samples ``standoff_error_m`` [m] (at
+        ``standoff_error_at_t`` [s]), ``lateral_error_m`` [m], ``tilt_rad`` [rad]; over the
+        painted points ``film_error``, the largest film change relative to the target, at
+        ``film_error_at`` [m]; ``drive_stiffness`` [N·m/rad].
+    """
     job = plan.job
     recoil = float(getattr(job, "recoil", None) or 0.0)
     entry = {"recoil_n": recoil}

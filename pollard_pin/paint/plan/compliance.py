@@ -49,10 +49,36 @@ def recoil_wrench(axes, spray, recoil: float) -> np.ndarray:
 
 def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
                        recoil: float = 0.0) -> ProgramDeflection:
-    """The deflection at every sample of ``trajectory`` (the robot's base frame) with drive
-    stiffnesses ``stiffness`` (6,) [N·m/rad], under the weight and ``recoil`` [N] × ``spray``
-    (the trigger per sample, default 1) along −a (docs/model.md §27.2, §27.7). The IK is
-    ``run``'s (a pose out of reach is a :class:`.errors.ReachError`)."""
+    """The gun's deflection at every sample of a paint program under the weight and the
+    spray's recoil along −a, the spray axis (docs/model.md §27.2, §27.7).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    trajectory : Trajectory
+        The program, in the robot's base frame.
+    stiffness : ArrayLike
+        The six drives' stiffnesses [N·m/rad].
+    spray : ArrayLike or None, optional
+        The trigger per sample, 0…1 (default 1 throughout).
+    recoil : float, optional
+        The spray's push back on the gun [N] while the trigger is on (default 0).
+
+    Returns
+    -------
+    ProgramDeflection
+        Per sample the ``deflection`` (N, 6) [m, rad], the rigid spray ``axis`` (N, 3), the
+        ``standoff`` (N,) [m] change along it (> 0: towards the surface), the ``lateral``
+        (N,) [m] translation across it and the ``tilt`` (N,) [rad].
+
+    Raises
+    ------
+    KinematicsError
+        A pose out of reach or singular, naming the sample (the IK is ``run``'s).
+    StiffnessError
+        A stiffness missing or invalid.
+    """
     k = check_stiffness(stiffness)
     poses = np.asarray(trajectory.poses, dtype=float)
     n = len(poses)
