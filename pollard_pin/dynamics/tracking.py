@@ -414,6 +414,11 @@ def simulate_tracking(robot: Robot, trajectory,
         raise ControlError(f"options must be a TrackingOptions, got {type(opts).__name__}")
     samples = np.asarray(trajectory.t, dtype=float)
     drives = opts.drives
+    if drives is not None and opts.known_losses is None:
+        # the controller knows its own motors (N²Jm, friction) unless it is told otherwise: a
+        # feedforward blind to the rotors behind the springs misses by centimetres
+        opts = dataclasses.replace(opts, known_losses=drives.losses(robot.model.nv,
+                                                                     robot.actuated_v))
     if drives is None and samples.ndim == 1 and len(samples) >= 2:  # (else refused below)
         check_step_count(float(samples[-1] - samples[0]), opts.step, opts.control_period)
     plant = (Plant(robot, opts.errors, opts.baumgarte) if drives is None else
