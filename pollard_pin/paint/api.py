@@ -265,15 +265,13 @@ def paint(robot, job, actuators: Actuators | None = None,
 
     Examples
     --------
-    >>> import os
     >>> import pollard_pin as pp
-    >>> lines = ["panel = {center = [0.70, 0.0, 0.16], normal = [-1.0, 0.0, 0.0], "
-    ...          "width = 0.26, height = 0.12}",
-    ...          "gun = {standoff = 0.15, sigma = 0.010, flow = 1.5e-7}",
-    ...          "job = {thickness = 25e-6}"]
-    >>> with open("paint.toml", "w") as f:
-    ...     _ = f.write(os.linesep.join(lines))
-    >>> result = pp.paint(pp.load(), pp.load_job("paint.toml"))
+    >>> job = pp.job_from_dict({
+    ...     "panel": {"center": [0.70, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0],
+    ...               "width": 0.26, "height": 0.12},
+    ...     "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7},
+    ...     "job": {"thickness": 25e-6}})
+    >>> result = pp.paint(pp.load(), job)
     >>> result.kind, result.report.data["passes"], round(result.report.cycle_time, 1)
     ('panel', 9, 10.0)
     >>> result.report.thickness["within_5pct"]

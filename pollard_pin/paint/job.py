@@ -262,8 +262,38 @@ def _check_table(source: str, d: Mapping, name: str) -> Mapping:
     return table
 
 
-def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob:
-    """Validate a parsed job file."""
+def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
+    """Validate a job given as the file's tables (a parsed TOML file, or built in Python).
+
+    Parameters
+    ----------
+    d : Mapping
+        The tables: ``panel`` or ``part``, ``gun``, ``job``, optionally ``line`` and ``robot``
+        (a list of tables), keys and units as in a job file (docs/formats.md).
+    source : str, optional
+        What the messages call the job (a file name).
+
+    Returns
+    -------
+    PaintJob or pollard_pin.paint.job.PartJob
+        The checked job (a relative ``part.mesh`` or ``job.actuators`` is taken as given).
+
+    Raises
+    ------
+    JobError
+        A missing or unknown table or key, a value that breaks its rule (one line).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> job = pp.job_from_dict({
+    ...     "panel": {"center": [0.70, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0],
+    ...               "width": 0.26, "height": 0.12},
+    ...     "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7},
+    ...     "job": {"thickness": 25e-6}})
+    >>> job.width, job.height, job.line is None
+    (0.26, 0.12, True)
+    """
     if not isinstance(d, Mapping):
         raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
     tables = (*REQUIRED, "part", "line", "robot")
