@@ -133,7 +133,7 @@ def _drive_line(drives: dict | None) -> list[str]:
 def _drives(motors, which: str):
     """The flexible drives of the actuator file (its stiffness required); ``which``: 'known'
     (the controller tracks the motors' reference) or 'unknown' (the rigid one)."""
-    from ..dynamics.flexible import FlexibleDrives
+    from ..dynamics.drives.flexible import FlexibleDrives
 
     return FlexibleDrives.from_actuators(motors, known=which == "known")
 
@@ -143,7 +143,7 @@ def _flexible_step(robot, traj, drives, errors, args, given_dt) -> float:
     poses (docs/model.md §28), or ``given_dt`` checked against it."""
     import numpy as np
 
-    from ..dynamics.flexible import FlexiblePlant, flexible_step, mode_configurations
+    from ..dynamics.drives.flexible import FlexiblePlant, flexible_step, mode_configurations
     from ..dynamics.tracking import default_step
     from ..kinematics.ik import inverse_kinematics
 

@@ -49,8 +49,8 @@ def wrench(text: str) -> tuple[float, ...]:
 
 
 def run(args) -> int:
+    from ..dynamics.drives.stiffness import UNITS, StiffnessError, StiffnessOptions
     from ..dynamics.motors import load_actuators
-    from ..dynamics.stiffness import UNITS, StiffnessError, StiffnessOptions
     from ..io.table import table_files
     from ..run import StreamOptions
     from ..run.stiffness import drive_stiffness, stream_stiffness

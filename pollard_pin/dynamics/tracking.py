@@ -41,7 +41,7 @@ from .control import (
     desired_trajectory,
     make_controller,
 )
-from .flexible import (
+from .drives.flexible import (
     FlexiblePlant,
     flexible_step,
     mode_configurations,

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
-from .flexible import FlexibleDrives
+from .drives.flexible import FlexibleDrives
 from .inverse import JointLosses
 from .plant import BAUMGARTE, ModelMismatch
 

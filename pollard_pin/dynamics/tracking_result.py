@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .averages import time_rms
-from .flexible import flexible_columns, max_deflection
+from .drives.flexible import flexible_columns, max_deflection
 
 
 def tracking_summary(t, tip_position_error, tip_orientation_error, torques: dict,

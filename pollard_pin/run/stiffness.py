@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..dynamics.stiffness import (
+from ..dynamics.drives.stiffness import (
     DEFLECTION,
     FREQUENCIES,
     UNITS,
@@ -25,7 +25,7 @@ from .stream import StreamOptions, solve_windows
 
 
 class StiffnessRun(StiffnessResult):
-    """:class:`~pollard_pin.dynamics.stiffness.StiffnessResult` along a trajectory, with the
+    """:class:`~pollard_pin.dynamics.drives.stiffness.StiffnessResult` along a trajectory, with the
     table writer of ``pollard-pin stiffness`` (:meth:`write`).
 
     Attributes

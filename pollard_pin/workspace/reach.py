@@ -10,9 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic import closed_form
+from ..dynamics.drives.stiffness import stiffness_at
 from ..dynamics.inverse import batched_rnea, split_tree_torques
 from ..dynamics.motors import Actuators
-from ..dynamics.stiffness import stiffness_at
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ..kinematics.limits import limit_violations
 from ..kinematics.margins import CHECKS, Margins

@@ -121,7 +121,7 @@ def test_cli_flexible_writes_the_motors(tmp_path, capsys):
     import numpy as np
 
     import pollard_pin
-    from pollard_pin.dynamics.flexible import FlexibleDrives
+    from pollard_pin.dynamics.drives.flexible import FlexibleDrives
     from pollard_pin.dynamics.motors import load_actuators
     from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
     from pollard_pin.io.table import read_result

@@ -8,7 +8,7 @@ import pytest
 from cli_run import run_cli
 
 import pollard_pin as pp
-from pollard_pin.dynamics.stiffness import closed_loop_maps
+from pollard_pin.dynamics.drives.stiffness import closed_loop_maps
 from pollard_pin.io.table import read_result
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.dynamics.stiffness import DEFLECTION, FREQUENCIES, UNITS, StiffnessOptions
+from pollard_pin.dynamics.drives.stiffness import DEFLECTION, FREQUENCIES, UNITS, StiffnessOptions
 from pollard_pin.io.table import read_result
 from pollard_pin.kinematics.errors import UnreachablePoseError
 from pollard_pin.run import StreamOptions

@@ -193,7 +193,7 @@ def test_stiffness_columns_are_those_of_the_ik(robot):
     is one line naming the first drive without."""
     from dataclasses import replace
 
-    from pollard_pin.dynamics.stiffness import stiffness_at
+    from pollard_pin.dynamics.drives.stiffness import stiffness_at
 
     act = load_actuators(Path(__file__).resolve().parents[2] / "examples" / "actuators.toml")
     ys, zs = np.meshgrid(np.linspace(-0.3, 0.3, 9), np.linspace(-0.1, 0.3, 7))

@@ -1,5 +1,5 @@
 """How far the gun gives along a paint program (docs/model.md §27.7): the compliant drives'
-deflection d = J K⁻¹ (Jᵀ W − τ_g) of :mod:`pollard_pin.dynamics.stiffness` at every sample
+deflection d = J K⁻¹ (Jᵀ W − τ_g) of :mod:`pollard_pin.dynamics.drives.stiffness` at every sample
 of the program, under the robot's weight and the spray's recoil, split along the gun's axis.
 
 The recoil is a force of ``recoil`` [N] × the trigger at the tip along −a (a = R e_x the
@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
-from ...dynamics.stiffness import check_stiffness, deflection_at
+from ...dynamics.drives.stiffness import check_stiffness, deflection_at
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
 from ..errors import ReachError

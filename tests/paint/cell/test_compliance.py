@@ -11,7 +11,7 @@ from cell_jobs import cell_job, panel_cell
 
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.dynamics.stiffness import StiffnessOptions, stiffness_at
+from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
 from pollard_pin.paint.api import PaintOptions
 from pollard_pin.paint.cell.compliance import cell_compliance, robot_deflection
 from pollard_pin.paint.cell.plan import plan_cell

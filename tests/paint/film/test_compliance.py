@@ -10,7 +10,7 @@ from scipy.spatial.transform import Rotation
 
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.dynamics.stiffness import StiffnessOptions, stiffness_at
+from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
 from pollard_pin.errors import PollardError
 from pollard_pin.paint.film.compliance import compliance_entry
 from pollard_pin.paint.film.grid import plan_film

@@ -7,7 +7,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.dynamics.stiffness import StiffnessOptions, stiffness_at
+from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
 from pollard_pin.errors import PollardError
 from pollard_pin.paint.job import JobError, job_from_dict
 from pollard_pin.paint.plan.compliance import program_deflection

@@ -12,11 +12,11 @@ from motor_model import EXAMPLE  # examples/actuators.toml
 from thesis_curves import painting_trajectory
 
 from pollard_pin.dynamics.control import ControlError, Gains
-from pollard_pin.dynamics.flexible import FlexibleDrives, FlexiblePlant, flexible_step
+from pollard_pin.dynamics.drives.flexible import FlexibleDrives, FlexiblePlant, flexible_step
+from pollard_pin.dynamics.drives.stiffness import stiffness_at
 from pollard_pin.dynamics.forward import robot_copy
 from pollard_pin.dynamics.motors import ActuatorError, load_actuators
 from pollard_pin.dynamics.plant import ModelMismatch, PlantError
-from pollard_pin.dynamics.stiffness import stiffness_at
 from pollard_pin.dynamics.tracking import TrackingOptions, simulate_tracking
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian

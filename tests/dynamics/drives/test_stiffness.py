@@ -8,7 +8,7 @@ import pytest
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form
 from pollard_pin.analytic.taskspace import angles_from_rotation, rotation
-from pollard_pin.dynamics.stiffness import (
+from pollard_pin.dynamics.drives.stiffness import (
     StiffnessError,
     StiffnessOptions,
     check_stiffness,
@@ -349,7 +349,7 @@ def test_deflection_with_a_wrench_per_sample(robot, q):
     """deflection_at with one wrench per sample gives, row by row, stiffness_at's deflection
     under that wrench for every sample (achieved: identical, tolerance 1e-15 relative); bad
     wrench arrays are one line."""
-    from pollard_pin.dynamics.stiffness import deflection_at
+    from pollard_pin.dynamics.drives.stiffness import deflection_at
 
     rng = np.random.default_rng(5)
     W = rng.normal(size=(len(q), 6))

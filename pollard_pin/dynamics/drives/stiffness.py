@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
-from ..errors import InputError
-from ..kinematics.errors import SingularityError
-from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
-from ..kinematics.singularity import inverse_stack
+from ...errors import InputError
+from ...kinematics.errors import SingularityError
+from ...kinematics.ik_batch import kinematic_inverse, layout, point_rows
+from ...kinematics.singularity import inverse_stack
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
 FREQUENCIES = tuple(f"f{i}" for i in range(1, 7))

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .control import ControlError, DesiredTrajectory
-from .inverse import JointLosses, reduced_mass_matrix
-from .motors import MAX_STIFFNESS, Actuators
-from .plant import BAUMGARTE, ModelMismatch, Plant, PlantError
+from ..control import ControlError, DesiredTrajectory
+from ..inverse import JointLosses, reduced_mass_matrix
+from ..motors import MAX_STIFFNESS, Actuators
+from ..plant import BAUMGARTE, ModelMismatch, Plant, PlantError
 
 # ω·dt of the fastest drive mode: RK4 is stable to 2.8 on the imaginary axis; at 1 it damps
 # that mode by 0.6 % per step (the default step; the fastest mode is the gun roll's, whose
