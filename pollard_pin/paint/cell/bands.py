@@ -23,7 +23,7 @@ import numpy as np
 from ...analytic.taskspace import angles_from_rotation
 from ...workspace.reach import evaluate
 from ..job import PartJob
-from ..line.reach import reach_ball
+from ..line.reach import ball_shift_range
 from ..passes.program import gun_frame
 from ..passes.raster import SPOT_RADIUS
 from ..passes.surface import EXTENSION, reference_axis
@@ -209,15 +209,10 @@ def base_poses(cell_robot: CellRobot, tips, spray, panel: bool, facing) -> np.nd
 def _shifts(params, tips_b, e_b) -> np.ndarray:
     """The shifts along the line (base-frame unit ``e_b``) at which some tip can be in the
     reach ball, SHIFT_STEP apart (empty: none)."""
-    c, r = reach_ball(params)
-    d = tips_b - c
-    along = d @ e_b
-    perp2 = np.einsum("ij,ij->i", d, d) - along ** 2
-    inside = perp2 < r * r
-    if not inside.any():
+    span = ball_shift_range(params, tips_b, e_b)
+    if span is None:
         return np.empty(0)
-    half = np.sqrt(r * r - perp2[inside])
-    a, b = float(np.min(-along[inside] - half)), float(np.max(-along[inside] + half))
+    a, b = span
     return a + SHIFT_STEP * np.arange(int((b - a) / SHIFT_STEP) + 1)
 
 

@@ -71,19 +71,28 @@ def reach_ball(params) -> tuple[np.ndarray, float]:
             params.x32 + params.x65 + params.x1514 + params.x1918)
 
 
-def _ball_shifts(params, points, e, lo: float, hi: float, most: int) -> np.ndarray:
-    """The grid of shifts in [lo, hi] at which some of ``points`` + x·e can be in the reach
-    ball (empty if none), SCAN_STEP apart or wider to keep to ``most`` shifts."""
+def ball_shift_range(params, points, e) -> tuple[float, float] | None:
+    """(a, b): the shifts x along the unit ``e`` at which some of ``points`` + x·e can be in
+    the reach ball (:func:`reach_ball`), from the first point to enter to the last to leave;
+    None if no point's line meets the ball."""
     c, r = reach_ball(params)
     d = points - c
     along = d @ e
     perp2 = np.einsum("ij,ij->i", d, d) - along ** 2
     inside = perp2 < r * r
     if not inside.any():
-        return np.empty(0)
+        return None
     half = np.sqrt(r * r - perp2[inside])
-    a = max(lo, float(np.min(-along[inside] - half)))
-    b = min(hi, float(np.max(-along[inside] + half)))
+    return float(np.min(-along[inside] - half)), float(np.max(-along[inside] + half))
+
+
+def _ball_shifts(params, points, e, lo: float, hi: float, most: int) -> np.ndarray:
+    """The grid of shifts in [lo, hi] at which some of ``points`` + x·e can be in the reach
+    ball (empty if none), SCAN_STEP apart or wider to keep to ``most`` shifts."""
+    span = ball_shift_range(params, points, e)
+    if span is None:
+        return np.empty(0)
+    a, b = max(lo, span[0]), min(hi, span[1])
     if a > b:
         return np.empty(0)
     step = max(SCAN_STEP, (b - a) / max(most - 1, 1))
@@ -173,5 +182,5 @@ def out_of_reach(passes: list[PassReach], total: int) -> str:
             f"{worst.covered:.3f} m of it in reach, {where}")
 
 
-__all__ = ["CHUNK", "MAX_POSES", "PASS_SAMPLES", "PassReach", "SCAN_STEP", "numbers",
-           "out_of_reach", "reach_ball", "unreachable_passes"]
+__all__ = ["CHUNK", "MAX_POSES", "PASS_SAMPLES", "PassReach", "SCAN_STEP", "ball_shift_range",
+           "numbers", "out_of_reach", "reach_ball", "unreachable_passes"]
