@@ -10,10 +10,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...dynamics.motors import ActuatorError, Actuators
+from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
 from ..film.cell import weighted_film, world_gun
-from ..film.compliance import film_error
+from ..film.compliance import drive_stiffness, film_error
 from ..film.mesh import mesh_film
 from ..plan.compliance import ProgramDeflection, deflected_poses, program_deflection
 from ..spray.deposition import gun_of
@@ -89,13 +89,10 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
     (naming the robot), and the film change of all robots deflected together relative to
     the target over the painted points; without ``stiffness``, entries that say so."""
     job = cell.job
-    recoil = float(getattr(job, "recoil", None) or 0.0)
-    entry = {"recoil_n": recoil}
-    try:
-        k = act.stiffness()
-    except ActuatorError as exc:
-        note = {**entry, "stiffness": False, "note": f"not computed: {exc}"}
+    recoil, k, note = drive_stiffness(job, act)
+    if k is None:
         return note, [note] * len(cell.robots)
+    entry = {"recoil_n": recoil}
     site = film_site(cell, points)
     pts = points.points if hasattr(points, "points") else np.asarray(points).reshape(-1, 3)
     deflected = np.zeros(len(pts))

@@ -65,6 +65,18 @@ def film_error(thickness, deflected, target: float, painted=None) -> tuple[float
     return float(change[k]), k
 
 
+def drive_stiffness(job, act: Actuators) -> tuple[float, np.ndarray | None, dict]:
+    """(the job's recoil [N], the drives' stiffnesses or None, the report entry that says
+    why nothing was computed): an actuators file without ``stiffness`` is not an error for
+    paint, only a note (docs/model.md §27.7)."""
+    recoil = float(getattr(job, "recoil", None) or 0.0)
+    try:
+        return recoil, act.stiffness(), {}
+    except ActuatorError as exc:
+        return recoil, None, {"recoil_n": recoil, "stiffness": False,
+                              "note": f"not computed: {exc}"}
+
+
 def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
     """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
     paint under the weight and the job's recoil.
@@ -93,17 +105,14 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         painted points ``film_error``, the largest film change relative to the target, at
         ``film_error_at`` [m]; ``drive_stiffness`` [N·m/rad].
     """
-    job = plan.job
-    recoil = float(getattr(job, "recoil", None) or 0.0)
+    recoil, k, note = drive_stiffness(plan.job, act)
+    if k is None:
+        return note
     entry = {"recoil_n": recoil}
-    try:
-        k = act.stiffness()
-    except ActuatorError as exc:
-        return {**entry, "stiffness": False, "note": f"not computed: {exc}"}
     d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
     on = plan.spray > 0
     T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection))
-    err, where = film_error(thickness, T, job.thickness, painted)
+    err, where = film_error(thickness, T, plan.job.thickness, painted)
     pts = points.points if hasattr(points, "points") else np.asarray(points).reshape(-1, 3)
     i = int(np.flatnonzero(on)[np.argmax(np.abs(d.standoff[on]))])
     return {**entry, "stiffness": True,
@@ -116,4 +125,4 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
             "drive_stiffness": [float(x) for x in k]}
 
 
-__all__ = ["compliance_entry", "film_error", "program_film"]
+__all__ = ["compliance_entry", "drive_stiffness", "film_error", "program_film"]
