@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import importlib
 
-__version__ = "0.1.0"
+from .version import __version__ as __version__
 
 _API = {
     "load": "model.build", "Robot": "model.build", "ACTUATED": "model.build",
@@ -59,31 +59,32 @@ _API = {
     "WorkspaceMap": "workspace.grid", "WorkspaceError": "workspace.grid",
     "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
     "evaluate_variant": "sweep", "SweepError": "sweep",
-    "load_job": "paint.job", "job_from_dict": "paint.job", "PaintJob": "paint.job",
-    "JobError": "paint.job",
-    "plan_paint": "paint.plan.panel", "plan_film": "paint.film.grid",
-    "PaintPlan": "paint.plan.panel",
-    "paint": "paint", "PaintOptions": "paint.api", "PaintResult": "paint.api",
-    "PaintReport": "paint.api", "JobKindError": "paint.errors",
-    "place": "paint.place", "PlaceOptions": "paint.place", "PlaceResult": "paint.place",
-    "PlaceError": "paint.place",
-    "plan_cell": "paint.cell.plan", "CellPlan": "paint.cell.plan", "Split": "paint.cell.zones",
-    "Zone": "paint.cell.zones",
-    "paint_report": "paint.report", "PlanError": "paint.errors", "Gun": "paint.spray.deposition",
-    "deposition_rate": "paint.spray.deposition", "film": "paint.spray.deposition",
-    "program_deflection": "paint.plan.compliance", "compliance_entry": "paint.film.compliance",
-    "split_cell": "paint.cell.split", "propose_layout": "paint.cell.layout",
-    "fewest_robots": "paint.cell.layout", "LayoutOptions": "paint.cell.layout",
-    "cell_clearance": "paint.cell.clearance", "CellClearance": "paint.cell.clearance",
-    "MovingPart": "paint.cell.clearance", "link_capsules": "kinematics.capsules",
+    "load_job": "painting.job", "job_from_dict": "painting.job", "PaintJob": "painting.job",
+    "JobError": "painting.job",
+    "plan_paint": "painting.plan.panel", "plan_film": "painting.film.grid",
+    "PaintPlan": "painting.plan.panel",
+    "paint": "painting.api", "PaintOptions": "painting.api", "PaintResult": "painting.api",
+    "PaintReport": "painting.api", "JobKindError": "painting.errors",
+    "place": "painting.place", "PlaceOptions": "painting.place", "PlaceResult": "painting.place",
+    "PlaceError": "painting.place",
+    "plan_cell": "painting.cell.plan", "CellPlan": "painting.cell.plan",
+    "Split": "painting.cell.zones",
+    "Zone": "painting.cell.zones",
+    "paint_report": "painting.report", "PlanError": "painting.errors",
+    "Gun": "painting.spray.deposition",
+    "deposition_rate": "painting.spray.deposition", "film": "painting.spray.deposition",
+    "program_deflection": "painting.plan.compliance",
+    "compliance_entry": "painting.film.compliance",
+    "split_cell": "painting.cell.split", "propose_layout": "painting.cell.layout",
+    "fewest_robots": "painting.cell.layout", "LayoutOptions": "painting.cell.layout",
+    "cell_clearance": "painting.cell.clearance", "CellClearance": "painting.cell.clearance",
+    "MovingPart": "painting.cell.clearance", "link_capsules": "kinematics.capsules",
 }
 
 __all__ = sorted(_API)
 
 
 def __getattr__(name: str):
-    if name == "paint":  # the subpackage, callable as paint.api.paint (paint/__init__.py)
-        return importlib.import_module(".paint", __name__)
     if name in _API:
         return getattr(importlib.import_module(f".{_API[name]}", __name__), name)
     raise AttributeError(f"module 'pollard_pin' has no attribute {name!r}")

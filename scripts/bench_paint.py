@@ -38,7 +38,7 @@ def parts_section(robot, big_faces: int = 195_000) -> None:
     triangles (the face budget is 200,000; the time budget 60 s, memory bounded). One run each."""
     import resource
 
-    from pollard_pin.paint.target.shapes import curved_panel  # the example parts' generator
+    from pollard_pin.painting.workpiece.shapes import curved_panel  # the example parts' generator
 
     act = pp.load_actuators(REPO / "examples" / "actuators.toml")
     print("\npainting parts (examples/parts/*.toml), one run each [s]")

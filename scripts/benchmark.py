@@ -205,8 +205,8 @@ def sizing_section(robot, sizes, repeats: int) -> None:
     raster (2 ms) as the paint planner gives it."""
     from pollard_pin.dynamics import motors, timeopt
     from pollard_pin.dynamics import path as path_mod
-    from pollard_pin.paint.passes.raster import raster_motion, raster_segments
-    from pollard_pin.paint.target.panel import PanelFrame
+    from pollard_pin.painting.passes.raster import raster_motion, raster_segments
+    from pollard_pin.painting.workpiece.panel import PanelFrame
 
     act = motors.load_actuators(REPO / "examples" / "actuators.toml")
     print(f"\nmotor sizing (examples/actuators.toml), min of {repeats} runs [ms]")

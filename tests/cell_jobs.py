@@ -3,7 +3,7 @@
 the same scene moved rigidly."""
 import numpy as np
 
-from pollard_pin.paint.job import job_from_dict
+from pollard_pin.painting.job import job_from_dict
 
 GUN = {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7}
 STACKED = [{"name": "low", "base": [0.0, 0.0, 0.0]},

@@ -2,7 +2,7 @@
 a panel, and a thin plate's mesh painted on both faces."""
 import math
 
-from pollard_pin.paint.job import job_from_dict
+from pollard_pin.painting.job import job_from_dict
 
 GUN = {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7}
 LINE = {"speed": 0.012, "direction": [0.0, 1.0, 0.0]}
@@ -52,7 +52,7 @@ direction = [0.0, 1.0, 0.0]
 def check_zones(robot, robots, split, strokes):
     """Contiguous zones, free edges at the ends, each zone + its run-outs in its robot's
     band; the zones' lengths on the part."""
-    from pollard_pin.paint.cell.bands import robot_band
+    from pollard_pin.painting.cell.bands import robot_band
 
     by = {r.name: r for r in robots}
     z = split.zones

@@ -25,7 +25,7 @@ def write_line_part(folder, speed: float = 0.03, position=(0.0, -0.45, 0.0)):
     """A small part on a line, for tests: a 0.30 × 0.06 m strip of radius 3 m (the shape of
     examples/parts/long_strip.stl, shorter) at ``position``, as a mesh and a job file in
     ``folder``; the job's path."""
-    from pollard_pin.paint.target import shapes
+    from pollard_pin.painting.workpiece import shapes
 
     shapes.curved_panel(radius=3.0, width=0.30, height=0.06, step=0.01).export(
         folder / "strip.stl")

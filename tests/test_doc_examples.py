@@ -21,7 +21,7 @@ def _public_objects():
     for name in pp.__all__:
         obj = getattr(pp, name)
         if name == "paint":  # the callable subpackage: its entry point holds the docstring
-            from pollard_pin.paint.api import paint as obj
+            from pollard_pin.painting.api import paint as obj
         if inspect.isclass(obj) or inspect.isfunction(obj):
             yield name, obj
 

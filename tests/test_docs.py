@@ -110,10 +110,10 @@ def test_cli_reference_lists_every_command_and_option():
 
 def test_formats_page_names_every_key_the_readers_take():
     from pollard_pin.dynamics.motors import KEYS, OPTIONAL
-    from pollard_pin.paint.cell.robots import ROBOT_KEYS
-    from pollard_pin.paint.job import OPTIONAL as JOB_OPTIONAL
-    from pollard_pin.paint.job import PART_OPTIONAL, PART_REQUIRED, REQUIRED
-    from pollard_pin.paint.line.conveyor import LINE_KEYS
+    from pollard_pin.painting.cell.robots import ROBOT_KEYS
+    from pollard_pin.painting.job import OPTIONAL as JOB_OPTIONAL
+    from pollard_pin.painting.job import PART_OPTIONAL, PART_REQUIRED, REQUIRED
+    from pollard_pin.painting.line.conveyor import LINE_KEYS
 
     text = (DOCS / "formats.md").read_text(encoding="utf-8")
     tables = {name: REQUIRED[name] + JOB_OPTIONAL[name] for name in REQUIRED}

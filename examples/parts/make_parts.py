@@ -20,12 +20,12 @@ and for a conveyor (``examples/line_part.toml``, docs/model.md §24):
   0.10 m high, a cylinder section of radius 3 m convex towards the robot: the gun yaws by up
   to ±8.6° from one end to the other.
 
-Read one with ``pollard_pin.paint.target.mesh.load_part("examples/parts/curved_panel.stl")``.
+Read one with ``pollard_pin.painting.workpiece.mesh.load_part("examples/parts/curved_panel.stl")``.
 """
 import argparse
 from pathlib import Path
 
-from pollard_pin.paint.target import shapes
+from pollard_pin.painting.workpiece import shapes
 
 PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24, height=0.10),
          "bent_plate.ply": lambda: shapes.bent_plate(flat=0.12, wing=0.11, angle_deg=30.0,

@@ -18,8 +18,8 @@ import signal
 import sys
 import threading
 
-from .. import __version__
 from ..io.atomic import STDOUT
+from ..version import __version__
 from . import (
     export,
     info,

@@ -28,7 +28,7 @@ from .paint_robots import (
 def _actuators(args, job):
     """--actuators, else the job's, else the package's (pollard_pin.paint's rule)."""
     from ..dynamics.motors import load_actuators
-    from ..paint.api import default_actuators
+    from ..painting.api import default_actuators
 
     return load_actuators(args.actuators) if args.actuators else default_actuators(job)
 
@@ -36,8 +36,8 @@ def _actuators(args, job):
 def run(args) -> int:
     from ..io.atomic import all_or_nothing, check_outputs
     from ..io.paint_files import paint_outputs
-    from ..paint.api import PaintOptions, film_spacing_of, job_kind, paint
-    from ..paint.job import load_job
+    from ..painting.api import PaintOptions, film_spacing_of, job_kind, paint
+    from ..painting.job import load_job
 
     out = Path(args.out)
     count = robot_count(args.robots)  # --robots N|auto: a proposed cell (§26.5)

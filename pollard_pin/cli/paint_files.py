@@ -12,7 +12,7 @@ from .common import UsageError
 def spacing(rule, job, resolution) -> float:
     """The film point spacing [m] by ``rule(job, --resolution)`` (a panel's grid or a part's
     points), its refusal as a usage error naming the flag."""
-    from ..paint.errors import ResolutionError
+    from ..painting.errors import ResolutionError
 
     try:
         return rule(job, resolution)

@@ -84,7 +84,7 @@ def riding(line, folder: Path) -> dict:
     import numpy as np
 
     from ..io.table import ResultFileError
-    from ..paint.line.conveyor import LINE_KEYS, line_from_table
+    from ..painting.line.conveyor import LINE_KEYS, line_from_table
     from ..viz.viewer import ROOT
 
     table = {k: line[k] for k in LINE_KEYS if k in line} if isinstance(line, Mapping) else line

@@ -16,7 +16,7 @@ def robots_arg(text: str) -> str:
 
 def robot_count(text: str | None) -> int | str | None:
     """N in 1..MAX_ROBOTS, 'auto', or None (no --robots); one line otherwise."""
-    from ..paint.cell.robots import MAX_ROBOTS
+    from ..painting.cell.robots import MAX_ROBOTS
 
     if text is None:
         return None
@@ -31,9 +31,9 @@ def robot_count(text: str | None) -> int | str | None:
 
 def proposed_names(count) -> list[str]:
     """The folders a proposal of ``count`` robots may write (auto: up to MAX_ROBOTS), named
-    as :func:`pollard_pin.paint.cell.layout.propose_layout` names them."""
-    from ..paint.cell.layout import LayoutOptions
-    from ..paint.cell.robots import MAX_ROBOTS
+    as :func:`pollard_pin.painting.cell.layout.propose_layout` names them."""
+    from ..painting.cell.layout import LayoutOptions
+    from ..painting.cell.robots import MAX_ROBOTS
 
     n = 0 if count is None else MAX_ROBOTS if count == "auto" else count
     return [f"{LayoutOptions().prefix}{i + 1}" for i in range(n)]
@@ -55,8 +55,8 @@ def paint_layout(count, robot, job, act, options):
     """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest."""
     from dataclasses import replace
 
-    from ..paint.api import paint
-    from ..paint.cell.layout import fewest_robots, propose_layout
+    from ..painting.api import paint
+    from ..painting.cell.layout import fewest_robots, propose_layout
 
     if count == "auto":
         return fewest_robots(robot, job, act, options)

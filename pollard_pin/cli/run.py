@@ -4,8 +4,8 @@ from __future__ import annotations
 import os
 import sys
 
-from .. import __version__
 from ..io.atomic import check_outputs
+from ..version import __version__
 from .common import (
     STDOUT,
     command,

@@ -6,8 +6,8 @@ import argparse
 import os
 import sys
 
-from .. import __version__
 from ..io.atomic import check_outputs
+from ..version import __version__
 from .common import (
     STDOUT,
     UsageError,

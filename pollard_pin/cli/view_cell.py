@@ -37,7 +37,7 @@ def cell_inputs(folder) -> list[tuple[str, Path]]:
 
 def cell_robots(folder: Path, report: dict):
     """The report's robots as :class:`...paint.cell.robots.CellRobot` (the job's rules)."""
-    from ..paint.cell.robots import ROBOT_KEYS, robots_from_tables
+    from ..painting.cell.robots import ROBOT_KEYS, robots_from_tables
 
     tables = [{k: r[k] for k in ROBOT_KEYS if k in r} if isinstance(r, dict) else r
               for r in report["robots"]]

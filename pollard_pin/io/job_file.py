@@ -1,5 +1,5 @@
 """A paint job written back as TOML (``place`` writes the placed job): the tables of
-:meth:`pollard_pin.paint.job.PartJob.to_dict`, file paths made relative to the written
+:meth:`pollard_pin.painting.job.PartJob.to_dict`, file paths made relative to the written
 file's folder so that ``load_job`` finds the same mesh and actuators."""
 from __future__ import annotations
 

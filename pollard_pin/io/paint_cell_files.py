@@ -32,7 +32,7 @@ def robot_metadata(rp) -> dict:
     """A robot's path.csv metadata: its base pose and gravity in its base frame (``run``,
     ``size``, ``simulate`` and ``stiffness`` check the program with that gravity, as
     ``paint`` did)."""
-    from ..paint.cell.frames import gravity_in_base
+    from ..painting.cell.frames import gravity_in_base
     from .trajectory import GRAVITY_KEY
 
     cr = rp.robot
@@ -44,7 +44,7 @@ def robot_metadata(rp) -> dict:
 
 
 def write_cell(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a cell's :class:`~pollard_pin.paint.api.PaintResult` in ``out``, or
+    """Every output of a cell's :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or
     none; the film table's path."""
     from ..errors import InputError
     from .atomic import check_outputs
@@ -82,8 +82,8 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
 
 
 def _panel(result, out: Path):
-    from ..paint.film.ply_mesh import grid_mesh
-    from ..paint.target.panel import panel_frame
+    from ..painting.film.ply_mesh import grid_mesh
+    from ..painting.workpiece.panel import panel_frame
     from ..viz.paint import write_thickness_png
     from ..viz.paint_part import film_colours
     from .paint_files import panel_table
@@ -111,7 +111,7 @@ def _panel(result, out: Path):
 
 
 def _part(result, out: Path):
-    from ..paint.film.ply_mesh import refined_mesh
+    from ..painting.film.ply_mesh import refined_mesh
     from ..viz.paint_part import film_colours, write_part_png
     from .ply import write_film_ply
 
@@ -138,7 +138,7 @@ def _part(result, out: Path):
 
 def _aims(rp) -> np.ndarray:
     """A robot's spray spot centres while it sprays (world, the part at t = 0)."""
-    from ..paint.film.cell import world_gun
+    from ..painting.film.cell import world_gun
 
     _, p, a, s = world_gun(rp)
     return (p + rp.plan.job.standoff * a)[s > 0]

@@ -1,6 +1,6 @@
 """What ``paint`` writes for a panel or a part, still or on a line: path.csv (with the
 trigger), the film table, film.ply, paint.json and thickness.png, every one or none
-(:meth:`pollard_pin.paint.api.PaintResult.write` and the CLI)."""
+(:meth:`pollard_pin.painting.api.PaintResult.write` and the CLI)."""
 from __future__ import annotations
 
 import json
@@ -41,7 +41,7 @@ def report_json(result) -> dict:
 
 
 def write_paint(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a :class:`~pollard_pin.paint.api.PaintResult` in ``out``, or none;
+    """Every output of a :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or none;
     the table's path."""
     from .table import FORMATS
 
@@ -75,8 +75,8 @@ def panel_table(U, V, pts, thickness, normal) -> dict:
 def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
     coordinates, in the part's frame on a line)."""
-    from ..paint.film.line import part_frame_positions
-    from ..paint.film.ply_mesh import grid_mesh
+    from ..painting.film.line import part_frame_positions
+    from ..painting.film.ply_mesh import grid_mesh
     from ..viz.paint import write_thickness_png
     from ..viz.paint_part import film_colours
     from .ply import write_film_ply
@@ -111,7 +111,7 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
 def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A part's outputs, still or on the line: the film table on the painted faces, film.ply
     the refined mesh (on a line: the part at its t = 0 pose, the world path in path.csv)."""
-    from ..paint.film.ply_mesh import refined_mesh
+    from ..painting.film.ply_mesh import refined_mesh
     from ..viz.paint_part import film_colours, write_part_png
     from .ply import write_film_ply
     from .table import write_table

@@ -324,7 +324,7 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
         out["stiffness"] = {name: {"min": lo, "max": hi, "unit": units[name]}
                             for name, (lo, hi) in totals.ranges.items()}
         out["stiffness"]["over"] = "reachable points"
-    from .. import __version__
+    from ..version import __version__
 
     out["metadata"] = {
         "pollard_pin": __version__, "params": robot.params.source,
@@ -342,7 +342,7 @@ def largest_panel(robot, plane, options: WorkspaceOptions | None = None) -> Rect
     reachable tool positions in a plane (e.g. "x=0.55": the panel surface minus the
     standoff) at ``options.orientation`` — the biggest panel the robot can sweep there
     (docs/model.md §22). The paint planner's own search, a float scale of a job's panel, is
-    ``pollard_pin.paint.plan.panel.largest_scale``.
+    ``pollard_pin.painting.plan.panel.largest_scale``.
 
     Parameters
     ----------

@@ -342,7 +342,7 @@ def _refused_clearance(capsys, job, out, words):
 
 
 def test_a_rib_taller_than_the_standoff_is_refused_naming_the_place(tmp_path, capsys):
-    from pollard_pin.paint.target import shapes
+    from pollard_pin.painting.workpiece import shapes
 
     shapes.ribbed_plate(rib_height=0.2, step=0.01).export(tmp_path / "rib.obj")
     job = tmp_path / "rib.toml"

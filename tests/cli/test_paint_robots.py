@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from cli_run import run_cli
 
-from pollard_pin.paint.cell.robots import robots_from_tables
+from pollard_pin.painting.cell.robots import robots_from_tables
 
 ROOT = Path(__file__).resolve().parents[2]
 LINE = ROOT / "examples" / "line.toml"
@@ -39,13 +39,13 @@ def test_jobs_that_cannot_take_a_layout(tmp_path, capsys, extra, words):
 
 
 def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatch):
-    import pollard_pin.paint.api as api
+    import pollard_pin.painting.api as api
 
     real, planned = api.paint, []
 
     def paint(robot, job, actuators=None, options=None):
         # the proposal recorded, the job planned by one robot: the cell's own planning is
-        # tested in tests/paint/cell/test_plan.py, and takes a minute
+        # tested in tests/painting/cell/test_plan.py, and takes a minute
         planned.append(job.robots)
         return real(robot, replace(job, robots=()), actuators, options)
 

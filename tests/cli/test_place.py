@@ -5,7 +5,7 @@ from pathlib import Path
 
 from cli_run import run_cli
 
-from pollard_pin.paint.job import load_job
+from pollard_pin.painting.job import load_job
 
 ROOT = Path(__file__).resolve().parents[2]
 PART = ROOT / "examples" / "parts" / "ribbed_plate.toml"

@@ -15,8 +15,8 @@ from pollard_pin.dynamics import motors as M
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.dynamics.path import PathDynamics, path_dynamics
 from pollard_pin.io.retime import retimed_trajectory
-from pollard_pin.paint.passes.raster import raster_motion, raster_segments
-from pollard_pin.paint.target.panel import PanelFrame
+from pollard_pin.painting.passes.raster import raster_motion, raster_segments
+from pollard_pin.painting.workpiece.panel import PanelFrame
 from pollard_pin.paths.curves import thesis_curve
 from pollard_pin.paths.splines import quintic_hermite
 

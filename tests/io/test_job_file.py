@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 
 from pollard_pin.io.job_file import job_toml, write_job
-from pollard_pin.paint.job import load_job
-from pollard_pin.paint.line.conveyor import Line
+from pollard_pin.painting.job import load_job
+from pollard_pin.painting.line.conveyor import Line
 
 ROOT = Path(__file__).resolve().parents[2]
 

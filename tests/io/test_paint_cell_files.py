@@ -94,7 +94,7 @@ def test_a_colliding_layout_is_one_line_and_writes_nothing(tmp_path, capsys):
 @pytest.fixture(scope="module")
 def hung(tmp_path_factory):
     """A robot hung 0.26 m up, turned 180° about x (gravity +z in its base), painting a 0.2 ×
-    0.15 m panel under it (tests/paint/cell/test_plan.py's): its output folder."""
+    0.15 m panel under it (tests/painting/cell/test_plan.py's): its output folder."""
     folder = tmp_path_factory.mktemp("hung")
     tables = panel_cell([{"name": "under", "base": [0.0, 0.0, 0.26],
                           "rotation": [180.0, 0.0, 0.0]}], speed=0.016)
@@ -114,9 +114,9 @@ def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path)
     import shutil
 
     from pollard_pin.dynamics.motors import load_actuators, motor_torque
-    from pollard_pin.paint.cell.frames import robot_model_in_base
-    from pollard_pin.paint.cell.robots import CellRobot
-    from pollard_pin.paint.plan.checks import motion
+    from pollard_pin.painting.cell.frames import robot_model_in_base
+    from pollard_pin.painting.cell.robots import CellRobot
+    from pollard_pin.painting.plan.checks import motion
 
     meta = json.loads((hung / "path.units.json").read_text())["metadata"]
     assert meta["gravity_base"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)  # round trip

@@ -3,7 +3,7 @@ same robots, bit for bit."""
 import tomllib
 
 from pollard_pin.io.robots_toml import write_robots
-from pollard_pin.paint.cell.robots import CellRobot, robots_from_tables
+from pollard_pin.painting.cell.robots import CellRobot, robots_from_tables
 
 
 def test_robots_round_trip(tmp_path):

@@ -6,7 +6,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from pollard_pin.kinematics.ik import inverse_kinematics
-from pollard_pin.paint.cell.robots import CellRobot
+from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.viz import meshcat_page, viewer
 from pollard_pin.viz.cell_view import CellMember, cell_html, cell_key_samples
 

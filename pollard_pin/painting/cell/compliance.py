@@ -1,0 +1,124 @@
+"""What compliance does to a paint cell (docs/model.md §27.7, §26.6): each robot's program in
+its base frame deflected by the drives under its weight (gravity Rᵀg in that frame,
+:func:`.cell.frames.robot_model_in_base`) and the spray's recoil; the deflected poses seen
+from the part in the world (:func:`.film.cell.world_gun`) and the film of all robots with
+their deflected programs, integrated at the rigid film's points by the cell's film code.
+The films add over the robots, so the cell's film change is the sum of each robot's."""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...dynamics.motors import Actuators
+from ...paths.trajectory import Trajectory
+from ..film.cell import weighted_film, world_gun
+from ..film.compliance import drive_stiffness, film_error
+from ..film.mesh import mesh_film
+from ..plan.compliance import ProgramDeflection, deflected_poses, program_deflection
+from ..spray.deposition import gun_of
+from .frames import robot_model_in_base
+
+
+@dataclass(frozen=True)
+class FilmSite:
+    """Where a cell's film is integrated: the film ``points`` (a panel's grid (…, 3) or a
+    part's :class:`.film.points.SurfacePoints`) and, for a panel, its ``frame`` (normal n,
+    centre c); for a part, the world ``part`` at t = 0 (its shadows)."""
+
+    points: object
+    frame: object = None
+    part: object = None
+
+
+def robot_deflection(robot, rp, stiffness, recoil: float) -> ProgramDeflection:
+    """The deflection (base frame) along one cell robot's program (:class:`.cell.plan.
+    RobotPlan`), its model carrying its base-frame gravity Rᵀg."""
+    model = robot_model_in_base(robot, rp.robot)
+    return program_deflection(model, rp.plan.trajectory, stiffness, rp.plan.spray, recoil)
+
+
+def deflected_robot(rp, d: ProgramDeflection):
+    """The robot's plan with its program's poses moved by the deflection ``d`` (base frame;
+    times, rates and trigger unchanged)."""
+    tr = rp.plan.trajectory
+    moved = Trajectory(tr.t, deflected_poses(tr.poses, d.deflection), tr.d_poses,
+                       tr.dd_poses, name=tr.name + ", deflected")
+    return replace(rp, plan=replace(rp.plan, trajectory=moved))
+
+
+def robot_film(job, rp, site: FilmSite) -> np.ndarray:
+    """The film [m] one robot's program leaves at the site's points, as the cell's film
+    integrates it (:func:`.film.cell.cell_panel_film`, :func:`.film.cell.cell_part_film`)."""
+    t, p, a, spray = world_gun(rp)
+    if site.part is not None:
+        return mesh_film(gun_of(job), t, p, a, site.points, site.part, spray).thickness
+    flat = np.asarray(site.points).reshape(-1, 3)
+    return weighted_film(gun_of(job), t, p, a, spray, flat, site.frame.n,
+                         site.frame.c).thickness
+
+
+def film_site(cell, points) -> FilmSite:
+    """The cell's film site: the panel's frame, or the world part at t = 0."""
+    if cell.part is not None:
+        return FilmSite(points, part=cell.part)
+    from ..workpiece.panel import panel_frame
+
+    return FilmSite(points, frame=panel_frame(cell.job))
+
+
+def _robot_entry(rp, d: ProgramDeflection, change, target: float, pts, painted) -> dict:
+    """A robot's ``compliance``: its sprayed samples' worst standoff, lateral and tilt
+    errors, and the largest film change its deflection alone makes."""
+    on = rp.plan.spray > 0
+    if not on.any():
+        return {"sprayed": False}
+    i = int(np.flatnonzero(on)[np.argmax(np.abs(d.standoff[on]))])
+    err, where = film_error(np.zeros_like(change), change, target, painted)
+    return {"standoff_error_m": float(np.abs(d.standoff[on]).max()),
+            "standoff_error_at_t": float(rp.plan.trajectory.t[i]),
+            "lateral_error_m": float(d.lateral[on].max()),
+            "tilt_rad": float(d.tilt[on].max()),
+            "film_error": err, "film_error_at": [float(c) for c in pts[where]]}
+
+
+def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
+                    ) -> tuple[dict, list]:
+    """(paint.json's ``compliance`` for the cell, each robot's entry for ``robots[i]``)
+    (docs/model.md §26.6): the worst standoff, lateral and tilt errors over the robots
+    (naming the robot), and the film change of all robots deflected together relative to
+    the target over the painted points; without ``stiffness``, entries that say so."""
+    job = cell.job
+    recoil, k, note = drive_stiffness(job, act)
+    if k is None:
+        return note, [note] * len(cell.robots)
+    entry = {"recoil_n": recoil}
+    site = film_site(cell, points)
+    pts = points.points if hasattr(points, "points") else np.asarray(points).reshape(-1, 3)
+    deflected = np.zeros(len(pts))
+    per = []
+    for rp in cell.robots:
+        d = robot_deflection(robot, rp, k, recoil)
+        mine = robot_film(job, deflected_robot(rp, d), site)
+        change = mine - robot_film(job, rp, site)
+        deflected += mine
+        per.append({**entry, "stiffness": True,
+                    **_robot_entry(rp, d, change, job.thickness, pts, painted)})
+    err, where = film_error(thickness, deflected, job.thickness, painted)
+    live = [(e, rp.robot.name) for e, rp in zip(per, cell.robots) if "standoff_error_m" in e]
+    if not live:
+        return {**entry, "stiffness": True, "note": "no robot sprays"}, per
+    worst = max(live, key=lambda x: x[0]["standoff_error_m"])
+    out = {**entry, "stiffness": True,
+           "standoff_error_m": worst[0]["standoff_error_m"],
+           "standoff_error_at_t": worst[0]["standoff_error_at_t"],
+           "standoff_error_robot": worst[1],
+           "lateral_error_m": max(e["lateral_error_m"] for e, _ in live),
+           "tilt_rad": max(e["tilt_rad"] for e, _ in live),
+           "film_error": err, "film_error_at": [float(c) for c in pts[where]],
+           "drive_stiffness": [float(x) for x in k]}
+    return out, per
+
+
+__all__ = ["FilmSite", "cell_compliance", "deflected_robot",
+           "film_site", "robot_deflection", "robot_film"]

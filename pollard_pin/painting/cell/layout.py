@@ -1,0 +1,239 @@
+"""A cell's layout for a part: where to put n robots (docs/model.md §26.5).
+
+The part's strokes are split into n equal zones stacked along the cell's axis (the first and
+last with today's run-on past the part's free edges, the others R = 4σ past each seam). A
+robot at the world origin, unturned, has its band along the axis at the part's depth
+(:mod:`.bands`, the strokes continued past the part); robot i is that robot moved along the
+axis so that its band's middle is its zone's (run-outs included) middle, the bands' overlaps
+holding the seams' run-outs, and set ``spacing`` further down the line than robot i − 1
+(default: the tip's reach window along the line at the part's depth plus twice the base's
+footprint, the room one robot sweeps painting). The proposal is then split by
+:func:`.split.split_cell`, which checks it as any given cell. :func:`fewest_robots` tries
+n = 1, 2, … until :func:`pollard_pin.painting.paint` paints the job with the proposal.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...errors import InputError
+from ...workspace.reach import evaluate
+from ..errors import BudgetError, PlanError
+from ..job import PartJob
+from .bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
+from .robots import MAX_ROBOTS, CellError, CellRobot, base_footprint, check_spacing
+from .split import split_cell
+
+WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
+REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
+AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
+
+
+@dataclass(frozen=True)
+class LayoutOptions:
+    """How :func:`propose_layout` places robots (docs/model.md §26.5).
+
+    Attributes
+    ----------
+    spacing : float or None
+        The distance [m] between neighbours along the line, in (0, 10] (default None: the
+        reach window along the line plus twice the base's footprint).
+    prefix : str
+        The robots' names: prefix1, prefix2, … (1–24 letters or digits; default "robot").
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A spacing or prefix out of range.
+    """
+
+    spacing: float | None = None
+    prefix: str = "robot"
+
+    def __post_init__(self):
+        s = self.spacing
+        if s is not None and (isinstance(s, bool) or not isinstance(s, numbers.Real)
+                              or not (math.isfinite(s) and 0 < s <= 10)):
+            raise InputError(f"LayoutOptions.spacing = {s!r}: expected a distance in (0, 10] m "
+                             "(or None)")
+        if not (isinstance(self.prefix, str) and self.prefix.isalnum() and
+                len(self.prefix) <= 24):
+            raise InputError(f"LayoutOptions.prefix = {self.prefix!r}: expected 1-24 letters "
+                             "or digits")
+
+
+def zone_needs(strokes: Strokes, n: int) -> list[tuple[float, float]]:
+    """The stretches of the axis n equal zones need in reach, run-outs included."""
+    e0, e1 = strokes.extent
+    cut = np.linspace(e0, e1, n + 1)
+    return [strokes.needed(-math.inf if i == 0 else float(cut[i]),
+                           math.inf if i == n - 1 else float(cut[i + 1])) for i in range(n)]
+
+
+def fewest_for(strokes: Strokes, width: float) -> int | None:
+    """The fewest equal zones whose needs fit a band ``width`` [m] wide (None: none up to
+    MAX_ROBOTS)."""
+    for n in range(1, MAX_ROBOTS + 1):
+        if max(b - a for a, b in zone_needs(strokes, n)) <= width:
+            return n
+    return None
+
+
+def reference_band(robot, strokes: Strokes) -> Band:
+    """The band of a robot at the world origin, unturned, over the strokes continued across
+    its reach (the part's depth; its few distinct strokes)."""
+    from ..line.reach import reach_ball
+
+    ref = CellRobot("reference")
+    band = robot_band(robot, ref, strokes, margin=2 * reach_ball(robot.params)[1], step=STEP,
+                      most=REFERENCE_STROKES)
+    if band.empty:
+        raise CellError("a robot reaches no point of the part's plane at its depth at any "
+                        "height: move the part within the robot's reach across the line")
+    return band
+
+
+def reach_window(robot, strokes: Strokes, band: Band) -> float:
+    """The width [m] along the line over which the origin robot holds the gun pose at its
+    band's middle on the middle stroke (the tip's reach window along the line)."""
+    w, tips, spray = strokes.grid(0.0, STEP)
+    k = len(tips) // 2
+    mid = (band.lo + band.hi) / 2
+    tip = np.array([np.interp(mid, w, tips[k, :, i]) for i in range(3)])
+    a = np.array([np.interp(mid, w, spray[k, :, i]) for i in range(3)])
+    pose = base_poses(CellRobot("reference"), tip[None], (a / np.linalg.norm(a))[None],
+                       strokes.panel, strokes.facing)[0]
+    xs = np.arange(-2.0, 2.0 + WINDOW_STEP / 2, WINDOW_STEP)
+    poses = np.repeat(pose[None], len(xs), axis=0)
+    poses[:, :3] += xs[:, None] * strokes.direction
+    ok = evaluate(robot, poses)["reachable"] > 0
+    return float(np.ptp(xs[ok])) if ok.any() else 0.0
+
+
+def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
+                   part=None) -> tuple[CellRobot, ...]:
+    """Bases for n robots for this part on this line: their zones stacked across the travel,
+    the robots spaced along the line to clear each other (docs/model.md §26.5).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.painting.job.PartJob
+        A job with ``[line]`` and no ``[[robot]]`` tables.
+    n : int
+        The number of robots (1–16).
+    options : LayoutOptions or None, optional
+        The spacing and the names (default :class:`LayoutOptions`).
+    part : object or None, optional
+        The job's painted part if already read (default None: read here).
+
+    Returns
+    -------
+    tuple of CellRobot
+        One :class:`~pollard_pin.painting.cell.robots.CellRobot` per robot (name, base [m],
+        rotation [deg]), checked by :func:`split_cell`.
+
+    Raises
+    ------
+    pollard_pin.painting.cell.robots.CellError
+        One line when n robots' bands cannot hold n equal zones with their run-outs (naming
+        the fewest that can), or the job has robots or no line.
+    """
+    options = LayoutOptions() if options is None else options
+    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
+        raise CellError(f"robots = {n!r}: expected 1..{MAX_ROBOTS}")
+    if job.line is None:
+        raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
+    if job.robots:
+        raise CellError(f"{job.source}: the job already places its {len(job.robots)} "
+                        "robot(s) ([[robot]]): a layout is proposed for a job without them")
+    strokes = job_strokes(job, part)
+    band = reference_band(robot, strokes)
+    needs = zone_needs(strokes, n)
+    widest = max(b - a for a, b in needs)
+    if widest > band.width + 1e-9:
+        least = fewest_for(strokes, band.width)
+        more = (f"at least {least} robots" if least is not None else
+                f"more than {MAX_ROBOTS} robots")
+        raise CellError(f"{job.source}: {n} robot(s) cannot paint the part: each zone needs "
+                        f"{widest:.3f} m along {axis_name(strokes.axis)} with its run-outs, a "
+                        f"robot's band is {band.width:.3f} m ({more})")
+    foot = base_footprint(robot.model)
+    spacing = (options.spacing if options.spacing is not None else
+               reach_window(robot, strokes, band) + 2 * foot)
+    middle = (band.lo + band.hi) / 2
+    robots = tuple(CellRobot(f"{options.prefix}{i + 1}", _triple(
+        ((a + b) / 2 - middle) * strokes.axis + i * spacing * strokes.direction))
+        for i, (a, b) in enumerate(needs))
+    check_spacing(robots, 2 * foot, job.source)
+    split_cell(robot, replace(job, robots=robots), robots, part)
+    return robots
+
+
+def _triple(v) -> tuple[float, float, float]:
+    return tuple(round(float(c), 6) + 0.0 for c in v)
+
+
+def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOptions | None = None):
+    """The fewest robots whose :func:`propose_layout` paints the job at its line speed (or at
+    the fastest, with ``options.max_line_speed``), and their plan (docs/model.md §26.5).
+
+    The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
+    motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
+    every zone, which cures a motor or reach refusal at once or not at all (a line too slow
+    for the programs' drift gets worse).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.painting.job.PartJob
+        A job with ``[line]`` and no ``[[robot]]`` tables.
+    actuators : Actuators or None, optional
+        The motor ratings (default: the job's file, else the package's).
+    options : PaintOptions or None, optional
+        As for :func:`pollard_pin.painting.api.paint`.
+    layout : LayoutOptions or None, optional
+        The spacing and the names.
+
+    Returns
+    -------
+    robots : tuple of CellRobot
+        The proposed robots.
+    result : PaintResult
+        The cell's plan, film and report with them.
+
+    Raises
+    ------
+    pollard_pin.painting.cell.robots.CellError
+        One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
+        paints the part.
+    """
+    from ..api import paint
+    from ..spray.occlusion import load_painted_part
+
+    part = load_painted_part(job) if isinstance(job, PartJob) else None
+    strokes = job_strokes(job, part)
+    first = fewest_for(strokes, reference_band(robot, strokes).width)
+    if first is None:
+        raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
+                        "to stack zones over the part")
+    last = min(MAX_ROBOTS, first + AUTO_MORE)
+    why = ""
+    for n in range(first, last + 1):
+        try:
+            robots = propose_layout(robot, job, n, layout, part)
+            return robots, paint(robot, replace(job, robots=robots), actuators, options)
+        except BudgetError:
+            raise
+        except (CellError, PlanError) as exc:
+            why = str(exc)
+    raise CellError(f"{job.source}: no layout of {first}…{last} robots paints the part: {why}")
+
+
+__all__ = ["AUTO_MORE", "LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",
+           "propose_layout", "reach_window", "reference_band", "zone_needs"]

@@ -1,0 +1,227 @@
+"""Plan a paint cell (docs/model.md §26): every robot's program in its own base frame on the
+common clock (t = 0: the part at its ``position``), each painting its zone of the shared
+strokes (:mod:`.cell.program`), checked as a single robot's is today (reach, limits,
+margins, motors with gravity in its base frame, the gun body's clearance from the part).
+The slowest robot sets the cell's line speed.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from ...dynamics.motors import Actuators
+from ..errors import PlanError
+from ..job import PartJob
+from ..line.panel import line_clearance
+from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
+from ..workpiece.mesh import Part
+from .frames import panel_in_base, part_in_base, robot_model_in_base
+from .program import ZoneView, plan_zone
+from .robots import CellRobot, base_footprint, check_spacing
+from .split import split_cell
+from .zones import Split, Zone
+
+
+@dataclass(frozen=True)
+class RobotPlan:
+    """One robot of the cell: its ``robot`` (base pose), ``zone``, and ``plan`` (a
+    :class:`.line.panel.LinePlan` or :class:`.line.part.LinePartPlan`) in its base frame."""
+
+    robot: CellRobot
+    zone: Zone
+    plan: object
+
+
+@dataclass(frozen=True, eq=False)
+class CellPlan:
+    """A cell's plan at one line speed, from :func:`plan_cell` (docs/model.md §26).
+
+    Attributes
+    ----------
+    job : PaintJob or pollard_pin.painting.job.PartJob
+        The job, world coordinates.
+    split : Split
+        Which robot paints which zone.
+    robots : tuple of RobotPlan
+        Per robot its ``robot`` (a :class:`~pollard_pin.painting.cell.robots.CellRobot`), its
+        ``zone`` and its ``plan`` (the program in its base frame, on the cell's clock).
+    speed : float
+        The line speed [m/s].
+    part : object or None
+        For a part, the world part at t = 0 painting every zone's faces (None for a panel).
+    timings : dict or None
+        Seconds spent per stage.
+    clearance : CellClearance or None
+        The cell's least distances, once checked.
+    """
+
+    job: object
+    split: Split
+    robots: tuple[RobotPlan, ...]
+    speed: float
+    part: Part | None = None
+    timings: dict | None = None
+    clearance: object = None  # .cell.clearance.CellClearance, once checked
+
+    @property
+    def cycle(self) -> float:
+        """The cell's cycle [s]: its slowest robot's."""
+        return max(r.plan.times.cycle for r in self.robots)
+
+
+def cell_part(job: PartJob, part: Part, split: Split) -> Part:
+    """The world part painting every zone's faces (within max_angle of each zone's facing,
+    seen from the standoff)."""
+    from ..spray.occlusion import painted_part
+
+    masks = [part.painted]
+    for f in {z.facing for z in split.zones if z.facing is not None}:
+        other = painted_part(replace(part, painted=part.normals @ np.asarray(f) >= math.cos(
+            math.radians(part.max_angle)) - 1e-12, facing=f), job.standoff)
+        masks.append(other.painted)
+    painted = np.logical_or.reduce(masks)
+    painted.flags.writeable = False
+    return replace(part, painted=painted)
+
+
+@lru_cache(maxsize=32)  # a speed search plans the cell ~10 times: the ray tests once
+def robot_part(standoff: float, part: Part, cr: CellRobot, facing) -> Part:
+    """The world part in the robot's base frame painting the faces of ``facing`` that a gun
+    at ``standoff`` sees."""
+    from ..spray.occlusion import painted_part
+
+    return painted_part(part_in_base(part, cr, facing), standoff)
+
+
+def plan_cell(robot, job, act: Actuators, speed: float | None = None,
+              part: Part | None = None, split: Split | None = None,
+              clearance: bool = True) -> CellPlan:
+    """Every robot's program of a cell at one line speed (docs/model.md §26).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model every robot shares (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.painting.job.PartJob
+        A job with ``[line]`` and its ``robots`` (``[[robot]]`` tables).
+    act : Actuators
+        The motor ratings every program must keep.
+    speed : float or None, optional
+        The line speed [m/s] (default the job's).
+    part : object or None, optional
+        The job's painted part if already read (default None: read here; a panel has none).
+    split : Split or None, optional
+        The zones (default :func:`split_cell`'s).
+    clearance : bool, optional
+        Check the gun bodies' clearance from the part (default True).
+
+    Returns
+    -------
+    CellPlan
+        The split and each robot's program.
+
+    Raises
+    ------
+    pollard_pin.painting.line.phases.LineSpeedError
+        A robot cannot paint its zone at this speed (named), so the fastest speed is
+        searched as for one robot.
+    PlanError
+        A robot's program breaks a check (reach, limits, margins, motors).
+    """
+    clock = time.perf_counter()
+    speed = job.line.speed if speed is None else float(speed)
+    robots = job.robots or (CellRobot("robot"),)
+    if split is None:
+        split = split_cell(robot, job, robots, part)
+    axis = np.asarray(split.axis, float)
+    out = []
+    for cr in robots:
+        zone = split.zone_of(cr.name)
+        model = robot_model_in_base(robot, cr)
+        is_part = isinstance(job, PartJob)
+        job_b = replace(job, line=_line_b(job, cr), robots=()) if is_part else \
+            panel_in_base(job, cr)
+        part_b = robot_part(job.standoff, part, cr, zone.facing) if is_part else None
+        try:
+            view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
+                            float(cr.origin @ axis))
+            plan = plan_zone(model, act, job_b, view, speed, part_b)
+        except LineSpeedError as exc:
+            raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
+                                 exc.hint) from None
+        except PlanError as exc:
+            raise PlanError(f"robot {cr.name!r}: {exc}") from None
+        if clearance:
+            plan = replace(plan, clearance=line_clearance(model, plan))
+        out.append(RobotPlan(cr, zone, plan))
+    world_part = cell_part(job, part, split) if isinstance(job, PartJob) else None
+    return CellPlan(job, split, tuple(out), speed, world_part,
+                    {"plan": time.perf_counter() - clock})
+
+
+def _line_b(job, cr: CellRobot):
+    from .frames import line_in_base
+
+    return line_in_base(job.line, cr)
+
+
+def cell_planner(robot, job, act: Actuators, part: Part | None = None,
+                 split: Split | None = None):
+    """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
+    split made once, the bases first checked to stand apart (two base footprints)."""
+    check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
+    if split is None:
+        split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
+    return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)
+
+
+def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
+                   part: Part | None = None, split: Split | None = None):
+    """The fastest line speed [m/s] (within ``resolution``, relative) at which every robot
+    paints its zone, and that plan (the slowest robot sets it: docs/model.md §26.1)."""
+    speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split),
+                                     job.line.speed, job.source, resolution)
+    return speed, _with_clearance(robot, plan)
+
+
+def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
+                  split: Split | None = None) -> CellPlan:
+    """The job's line speed planned; a speed no robot ordering can paint is refused naming
+    the fastest that works."""
+    from ..line.phases import plan_or_name_fastest
+
+    plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split), job.line.speed,
+                                job.source)
+    return _with_clearance(robot, plan)
+
+
+def _with_clearance(robot, plan: CellPlan) -> CellPlan:
+    """Each robot's gun body from the part (today's check), then every pair of robots and
+    every robot's links against the moving part along the clock (docs/model.md §26.4)."""
+    robots = tuple(replace(r, plan=replace(r.plan, clearance=line_clearance(
+        robot_model_in_base(robot, r.robot), r.plan))) for r in plan.robots)
+    return replace(plan, robots=robots, clearance=cell_clearance_of(robot, plan))
+
+
+def cell_clearance_of(robot, plan: CellPlan):
+    """:func:`.cell.clearance.cell_clearance` of the plan: the robots' programs on the clock,
+    the part's (or panel's) mesh at t = 0 riding the line, the job's gun clearance."""
+    from ..plan.clearance import CLEARANCE, panel_mesh
+    from ..workpiece.panel import panel_frame
+    from .clearance import MovingPart, cell_clearance
+
+    job = plan.job
+    mesh = panel_mesh(panel_frame(job)) if plan.part is None else plan.part.mesh
+    v = plan.speed * np.asarray(job.line.direction, float)
+    members = [(r.robot, r.plan.trajectory.t, r.plan.trajectory.poses) for r in plan.robots]
+    required = CLEARANCE if job.clearance is None else job.clearance
+    return cell_clearance(robot, members, MovingPart(mesh, tuple(float(c) for c in v)),
+                          required)
+
+
+__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",
+           "plan_cell_job", "robot_part"]

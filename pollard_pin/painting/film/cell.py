@@ -1,0 +1,110 @@
+"""The film of a paint cell (docs/model.md §26.1, §26.3): every robot's gun seen from the part
+(its base-frame path less the line's displacement, turned into the world), integrated on
+the part at its t = 0 pose in world coordinates, summed over the robots. The trigger's
+fractions at the seam samples weigh the trapezoid rule, so each robot's film stops exactly
+at its seam."""
+from __future__ import annotations
+
+import numpy as np
+
+from ...analytic.taskspace import rotation
+from ...dynamics.averages import trapezoid_weights
+from ..errors import PlanError
+from ..spray.deposition import (
+    BLOCK_ELEMENTS,
+    Film,
+    coarse_weights,
+    deposition_rate,
+    gun_of,
+    near_spot,
+)
+from .grid import MAX_FILM_PAIRS, film_grid
+from .mesh import MeshFilm, mesh_film
+
+
+def world_gun(rp) -> tuple:
+    """(t, tips (N, 3), axes (N, 3), spray (N,)) of a robot's plan (:class:`.cell.plan.
+    RobotPlan`) seen from the part at its t = 0 pose, world coordinates."""
+    plan, cr = rp.plan, rp.robot
+    tr = plan.trajectory
+    tips = tr.poses[:, :3] - plan.speed * tr.t[:, None] * plan.direction[None, :]
+    axes = rotation(tr.poses)[:, :, 0]
+    return tr.t, cr.to_world(tips), axes @ cr.R.T, plan.spray
+
+
+def run_weights(t, spray) -> tuple:
+    """The trapezoid weights (and the coarse rule's) over each run of samples where the
+    trigger is open, a seam's sample (a fraction) ending its run: the rule of a trigger that
+    switches exactly at the run's end samples, as :func:`.film.line.line_film` integrates
+    the sprayed samples."""
+    on = np.concatenate([[False], spray > 0, [False]])
+    edges = np.flatnonzero(np.diff(on.astype(int)))
+    w, w2 = np.zeros(len(t)), np.zeros(len(t))
+    for a, b in zip(edges[::2], edges[1::2]):
+        w[a:b], w2[a:b] = trapezoid_weights(t[a:b]), coarse_weights(t[a:b])
+    return w, w2
+
+
+def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
+    """The film at points ``s`` (P, 3) of normal ``n`` (3,) of the tips ``p`` and axes ``a``
+    at times ``t``, the trapezoid rule over each run of open trigger (:func:`run_weights`;
+    :func:`.spray.deposition.film` over the sprayed samples where there is one run)."""
+    w, w2 = run_weights(t, spray)
+    live = np.flatnonzero(w > 0)
+    p, s = p - origin, s - origin
+    total, coarse = np.zeros(len(s)), np.zeros(len(s))
+    block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
+    for start in range(0, len(live), block):
+        i = live[start:start + block]
+        k = near_spot(gun, p[i], a[i], s)
+        r = deposition_rate(gun, p[i], a[i], s[k], n)
+        total[k] += w[i] @ r
+        coarse[k] += w2[i] @ r
+    return Film(total, np.abs(total - coarse))
+
+
+def cell_panel_film(cell, resolution: float | None = None):
+    """(U, V, points (nv, nu, 3), Film) of a panel cell: the world panel's grid, the film of
+    every robot summed."""
+    from ..workpiece.panel import panel_frame
+
+    job = cell.job
+    frame = panel_frame(job)
+    U, V, pts = film_grid(frame, job, resolution)
+    flat = pts.reshape(-1, 3)
+    total, err = np.zeros(len(flat)), np.zeros(len(flat))
+    for rp in cell.robots:
+        t, p, a, spray = world_gun(rp)
+        pairs = float(len(flat)) * int((spray > 0).sum())
+        if pairs > MAX_FILM_PAIRS:
+            raise PlanError(f"the film map needs {pairs:.3g} point × sample pairs for robot "
+                            f"{rp.robot.name!r}, budget {MAX_FILM_PAIRS:.3g}: a coarser film "
+                            "grid")
+        f = weighted_film(gun_of(job), t, p, a, spray, flat, frame.n, frame.c)
+        total += f.thickness
+        err += f.error_estimate
+    return U, V, pts, Film(total, err)
+
+
+def cell_part_film(cell, resolution: float | None = None):
+    """(film points, :class:`.film.mesh.MeshFilm` summed over the robots, painted mask,
+    transfer efficiency) of a part cell: the world part at t = 0 (``cell.part``), every
+    robot's film with shadows and its trigger."""
+    from .part import live_faces
+    from .points import surface_points
+
+    job, part = cell.job, cell.part
+    guns = [world_gun(rp) for rp in cell.robots]
+    tips = np.concatenate([p[s > 0] for _, p, _, s in guns])
+    faces = live_faces(part, tips) | part.painted
+    pts = surface_points(part, resolution, sigma=job.sigma, faces=faces)
+    films = [mesh_film(gun_of(job), t, p, a, pts, part, s) for t, p, a, s in guns]
+    f = MeshFilm(sum(x.thickness for x in films), sum(x.error_estimate for x in films),
+                 sum(x.pairs for x in films), sum(x.shaded for x in films),
+                 sum(x.sprayed for x in films), sum(x.landed for x in films),
+                 films[0].whole_part, sum(x.switches for x in films))
+    efficiency = f.landed / f.sprayed if f.sprayed > 0 else float("nan")
+    return pts, f, part.painted[pts.faces], efficiency
+
+
+__all__ = ["cell_panel_film", "cell_part_film", "weighted_film", "world_gun"]

@@ -1,0 +1,175 @@
+"""Paint a panel (or, through :mod:`.line.part`, a part's mesh) riding a conveyor
+(docs/model.md §24).
+
+The part is at ``center + speed·t·direction`` at time t of the path. The passes run across
+the travel, leading end first, and are planned relative to the part (the raster of plan.py);
+the robot runs the world path, relative + the line's displacement (:mod:`.line.phases`: the
+wait, catch-up, program, slow-down and return, the shift that keeps it in reach, every check
+on the world path, the fastest speed).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...dynamics.motors import Actuators
+from ..job import PaintJob, PartJob
+from ..passes.raster import Segments, raster_motion, raster_segments
+from ..plan.clearance import job_clearance, panel_mesh
+from ..plan.layout import panel_layout
+from ..plan.result import PlanResult
+from ..policy import MAX_STEP, STEP_SIGMA, first_guess
+from ..workpiece.mesh import Part
+from ..workpiece.panel import PanelFrame
+from .phases import (
+    CATCH,
+    SPEED_RESOLUTION,
+    LineProgram,
+    LineSpeedError,
+    LineTimes,
+    Relative,
+    fastest_line_speed,
+    line_shift,
+    one_coat,
+    plan_or_name_fastest,
+    plan_world,
+    track,
+    world_motion,
+)
+
+
+@dataclass(frozen=True)
+class LinePlan(PlanResult):
+    """A panel's raster on the line: ``trajectory`` the world path, ``spray`` 1 during the
+    program, 0 while waiting and returning."""
+
+    job: PaintJob
+    frame: PanelFrame
+    segments: Segments  # the relative program (panel coordinates, its own time from 0)
+    horizontal: bool
+    direction: np.ndarray  # (3,) unit
+    speed: float  # line speed [m/s]
+    times: LineTimes
+    offsets: np.ndarray
+    spacing: float
+    pass_speed: float
+    relative: Relative  # the program relative to the part (line/phases.py)
+
+    @property
+    def length(self) -> float:
+        """The panel's extent along the line [m]."""
+        return part_length(self.job, self.frame, self.direction)
+
+    @property
+    def area(self) -> float:
+        return self.job.width * self.job.height
+
+
+def pass_direction(frame: PanelFrame, direction) -> bool:
+    """True for horizontal passes (along u): the passes run across the travel."""
+    d = np.asarray(direction, float)
+    return abs(d @ frame.v) > abs(d @ frame.u)
+
+
+def part_length(job: PaintJob, frame: PanelFrame, direction) -> float:
+    """The panel's extent along the line [m]."""
+    d = np.asarray(direction, float)
+    return abs(job.width * (d @ frame.u)) + abs(job.height * (d @ frame.v))
+
+
+def relative_motion(frame, job, seg: Segments, horizontal: bool, t):
+    """The gun relative to the part (panel at its t = 0 pose), (poses, rates, accelerations)
+    at the program's own times ``t``."""
+    return raster_motion(frame, job.standoff, seg, t, horizontal)
+
+
+def panel_relative(frame, job, seg: Segments, horizontal: bool) -> Relative:
+    """The raster as the line's relative program (the gun open throughout, §21)."""
+    return Relative(lambda t: relative_motion(frame, job, seg, horizontal, t), seg.start,
+                    seg.duration, seg.kind, program=seg)
+
+
+def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part | None = None,
+              clearance: bool = True):
+    """The raster program for a panel on the line at ``speed`` (default the job's); a
+    [part] job goes to :func:`.line.part.plan_line_part` (``part``: its mesh, read once).
+    ``clearance``: check the gun body's clearance (:func:`line_clearance`); the speed
+    searches leave it to the plan they return."""
+    if isinstance(job, PartJob):
+        from .part import plan_line_part
+
+        plan = plan_line_part(robot, job, act, speed, part)
+        return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+    clock = time.perf_counter()
+    speed = job.line.speed if speed is None else float(speed)
+    e = np.asarray(job.line.direction, float)
+    one_coat(job)
+    from ..workpiece.panel import panel_frame
+
+    horizontal = pass_direction(panel_frame(job), e)
+    job_x = replace(job, direction="horizontal" if horizontal else "vertical")
+    frame, offsets, half_length, pass_speed, _, spacing = panel_layout(job_x)
+    es = frame.v if horizontal else frame.u
+    offsets = np.array(sorted(offsets, key=lambda o: -o * float(es @ e)))  # leading end first
+
+    def build(tau):
+        seg = raster_segments(offsets, half_length, pass_speed, tau[1:-1], (tau[0], tau[-1]))
+        return panel_relative(frame, job_x, seg, horizontal)
+
+    guess = np.full(len(offsets) + 1, first_guess(pass_speed))  # ramps and turns
+    program = LineProgram(build, guess, min(MAX_STEP, STEP_SIGMA * job.sigma / pass_speed),
+                          track(frame.c + job.standoff * frame.n, e),
+                          f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
+    world = plan_world(robot, act, program, speed, e)
+    plan = LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
+                    offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
+                    spray=world.spray, ratios=world.ratios,
+                    timings={"plan": time.perf_counter() - clock})
+    return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+
+
+def line_clearance(robot, plan):
+    """The gun body's :class:`.plan.clearance.Clearance` from the panel or part of a plan on
+    the line, seen from the part at rest (the world path less the line's displacement),
+    refused as a :class:`.plan.clearance.ClearanceError` (docs/model.md §25)."""
+    tr = plan.trajectory
+    rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -plan.speed, plan.direction)
+    mesh = plan.part.mesh if isinstance(plan.job, PartJob) else panel_mesh(plan.frame)
+    return job_clearance(robot, plan.job, mesh, rel, tr.t, lambda i: (
+        "while spraying" if plan.spray[i] > 0 else "with the gun closed"))
+
+
+def line_planner(robot, job, act: Actuators, part: Part | None = None):
+    """speed ↦ the job's plan on the line at that speed (a part's mesh, ``part`` if given,
+    read once)."""
+    if part is None and isinstance(job, PartJob):
+        from ..spray.occlusion import load_painted_part
+
+        part = load_painted_part(job)
+    return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False)
+
+
+def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
+                   part: Part | None = None):
+    """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
+    part is painted under the same checks, and its plan (docs/model.md §24,
+    :func:`.line.phases.fastest_line_speed`)."""
+    speed, plan = fastest_line_speed(line_planner(robot, job, act, part), job.line.speed,
+                                     job.source, resolution)
+    return speed, replace(plan, clearance=line_clearance(robot, plan))
+
+
+def plan_line_job(robot, job, act: Actuators, part: Part | None = None):
+    """The job's line speed planned; a speed that cannot be painted is refused naming the
+    fastest that works (:func:`max_line_speed`)."""
+    plan = plan_or_name_fastest(line_planner(robot, job, act, part), job.line.speed,
+                                job.source)
+    return replace(plan, clearance=line_clearance(robot, plan))
+
+
+__all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
+           "line_clearance", "line_planner", "line_shift", "max_line_speed", "panel_relative",
+           "part_length", "pass_direction", "plan_line", "plan_line_job", "relative_motion",
+           "world_motion"]

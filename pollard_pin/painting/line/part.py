@@ -1,0 +1,119 @@
+"""Paint a part's mesh riding a conveyor (docs/model.md §24): the surface planner's passes
+(§23) across the travel, leading end first, one coat, as the line's relative program; the
+world path, its checks and the fastest speed are :mod:`.line.phases`' as for a panel.
+
+The pass layout is the still part's (:func:`.passes.surface.surface_layout` at its least smoothing):
+the still planner widens the normal's averaging where the motors cannot follow the passes,
+which needs the passes in reach, and a part longer than the reach is never all in reach at
+one pose; on the line a pass the motors cannot follow is refused on the world path instead.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ...dynamics.motors import Actuators
+from ...paths.trajectory import Trajectory
+from ..job import PartJob
+from ..passes.program import Program, build_program, pass_pieces
+from ..passes.surface import SurfaceLayout, pass_speed, surface_frame, surface_layout
+from ..plan.part import SurfacePlan, time_step
+from ..plan.result import PlanResult
+from ..policy import first_guess
+from ..spray.occlusion import load_painted_part
+from ..workpiece.mesh import Part
+from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
+
+
+@dataclass(frozen=True)
+class LinePartPlan(PlanResult):
+    """A part's program on the line: the ``layout`` (passes in painting order), the relative
+    ``program`` (the part at its t = 0 pose) and its world ``trajectory`` at line ``speed``
+    along ``direction``; ``pass_speed`` the spot's speed on the surface."""
+
+    job: PartJob  # direction: the passes', across the travel
+    part: Part
+    layout: SurfaceLayout
+    program: Program
+    relative: Relative
+    direction: np.ndarray  # (3,) unit
+    speed: float  # line speed [m/s]
+    times: LineTimes
+    pass_speed: float
+
+    @property
+    def length(self) -> float:
+        """The painted faces' extent along the line [m]."""
+        p = self.part
+        return float(np.ptp(p.vertices[p.faces[p.painted]].reshape(-1, 3) @ self.direction))
+
+    @property
+    def area(self) -> float:
+        return self.part.painted_area
+
+    def in_part_frame(self) -> SurfacePlan:
+        """The plan seen from the part (at its t = 0 pose): the world path less the line's
+        displacement speed·t·direction (and velocity), the still part's planner's type, so
+        that its film (:func:`.film.part.surface_film`) and report are the still part's."""
+        tr = self.trajectory
+        p, d = line_shift(tr.poses, tr.d_poses, tr.t, -self.speed, self.direction)
+        rel = Trajectory(tr.t, p, d, tr.dd_poses, name="paint line, the part's frame")
+        return SurfacePlan(self.job, self.part, self.layout, self.program, self.pass_speed, 1,
+                           trajectory=rel, spray=self.spray, ratios=self.ratios,
+                           timings=self.timings, clearance=self.clearance)
+
+
+def across_the_travel(part: Part, direction) -> bool:
+    """True for horizontal passes (along the surface frame's u): across the travel."""
+    f = surface_frame(part, "horizontal")
+    e = np.asarray(direction, float)
+    return abs(e @ f.across) > abs(e @ f.along)
+
+
+def leading_first(layout: SurfaceLayout, direction) -> SurfaceLayout:
+    """The passes ordered from the end furthest along the line (the leading end)."""
+    side = float(layout.frame.across @ np.asarray(direction, float))
+    order = sorted(layout.passes, key=lambda p: -p.level * side)
+    return replace(layout, passes=tuple(order))
+
+
+def part_relative(program: Program) -> Relative:
+    """The surface program as the line's relative program (the gun open on the passes)."""
+    return Relative(program.evaluate, program.start,
+                    np.array([p.duration for p in program.pieces]),
+                    tuple(p.kind for p in program.pieces), passes_only=True, program=program)
+
+
+def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = None,
+                   part: Part | None = None) -> LinePartPlan:
+    """The surface program for a part on the line at ``speed`` (default the job's), its
+    clearance not checked (:func:`.line.panel.plan_line` checks it)."""
+    clock = time.perf_counter()
+    speed = job.line.speed if speed is None else float(speed)
+    e = np.asarray(job.line.direction, float)
+    one_coat(job)
+    part = load_painted_part(job) if part is None else part
+    horizontal = across_the_travel(part, e)
+    job_x = replace(job, direction="horizontal" if horizontal else "vertical")
+    layout = leading_first(surface_layout(part, job_x), e)
+    v = pass_speed(job_x, layout.spacing)
+    pieces = pass_pieces(layout, v, 1)
+    dt = time_step(job_x, pieces, v)
+
+    def build(tau):
+        return part_relative(build_program(pieces, tau))
+
+    f = layout.frame
+    program = LineProgram(build, np.full(len(pieces) + 1, first_guess(v)), dt,
+                          track(f.centre + job.standoff * f.n, e),
+                          f"the passes ({v:.4g} m/s on the part's surface)", job.source)
+    world = plan_world(robot, act, program, speed, e)
+    return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
+                        world.times, v, trajectory=world.trajectory, spray=world.spray,
+                        ratios=world.ratios, timings={"plan": time.perf_counter() - clock})
+
+
+__all__ = ["LinePartPlan", "across_the_travel", "leading_first", "part_relative",
+           "plan_line_part"]

@@ -1,0 +1,196 @@
+"""The gun's clearance from the part along a planned path (docs/model.md §25).
+
+At every sample of the path (the part at rest: a line's path less the line's displacement),
+the gun's body must stay ``clearance`` from the part's mesh. The body is a union of K spheres
+on the spray axis behind the tip that holds the gun link (:class:`.spray.gun_body.GunBody`);
+its distance from the mesh is the least of |c − mesh| − r over the spheres (c, r) and the
+samples, found so:
+
+1. the mesh's faces are sampled on barycentric grids (:func:`surface_samples`) whose every
+   sub-triangle's longest edge is at most δ, so any point of the mesh lies within δ of one
+   of its own face's samples; a k-d tree gives each centre's distance d̃ to the samples,
+   and d̃ − δ − r ≤ |c − mesh| − r ≤ d̃ − r;
+2. every COARSE_STRIDE-th sample's spheres set a ceiling (an achieved d̃ − r); the others
+   are asked only within the ceiling + r + δ (a sphere further off cannot hold the least),
+   which keeps the queries short;
+3. the EXACT_POINTS spheres of lowest bound get their exact distance: the closest points of
+   the faces that own a sample within d̃ + δ of c (``trimesh.triangles.closest_point``).
+   The least of them is the figure; the least bound left unchecked says how much less the
+   true least over the spheres may be (0 when none is below).
+
+What lies between the samples may come closer, by at most ``between`` (in the result): that
+bound plus half the largest chord a body point travels in one time step (|Δtip| +
+reach·|Δaxis|). A path refused is one line naming the time, what the gun does there, the
+point on the part [mm] and the distance found against the clearance.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import trimesh
+from scipy.spatial import cKDTree
+
+from ...analytic.taskspace import rotation
+from ..errors import PlanError
+from ..spray.gun_body import CLEARANCE, GunBody
+
+SURFACE_STEP = 0.004  # m: the surface samples' sub-triangle edges, at most (δ)
+MAX_SURFACE_POINTS = 400_000  # δ grows until the samples fit (≈ 10 MB of k-d tree)
+EXACT_POINTS = 512  # the spheres of lowest bound whose exact distance is computed
+COARSE_STRIDE = 16  # every this many samples set the ceiling of the bounded queries
+
+
+class ClearanceError(PlanError):
+    """The gun's body comes closer to the part than the clearance (one line: where)."""
+
+
+@dataclass(frozen=True)
+class Clearance:
+    """The least distance [m] between the gun's body and the part over a path's samples
+    (negative: the body cuts into the part), at ``sample`` (time ``time`` [s]), the part's
+    ``point`` nearest the body there and the ``tip``; ``between`` [m] how much closer the
+    body may come between samples; ``required`` the clearance asked for."""
+
+    distance: float
+    between: float
+    required: float
+    sample: int
+    time: float
+    point: tuple[float, float, float]
+    tip: tuple[float, float, float]
+
+    def to_dict(self) -> dict:
+        return {"min_m": self.distance, "between_samples_m": self.between,
+                "required_m": self.required, "time": self.time,
+                "point": list(self.point), "tip": list(self.tip)}
+
+
+def surface_samples(vertices, faces, step: float = SURFACE_STEP):
+    """Points on every face (barycentric grids), the face of each, and δ [m]: every point
+    of the mesh lies within δ of one of its face's points (a sub-triangle's diameter is its
+    longest edge)."""
+    tri = np.asarray(vertices, float)[np.asarray(faces)]
+    longest = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).max(axis=1)
+    while True:
+        n = np.maximum(1, np.ceil(longest / step)).astype(int)
+        if ((n + 1) * (n + 2) // 2).sum() <= MAX_SURFACE_POINTS or n.max() == 1:
+            break  # (the vertices alone, 3 a face, whatever their count)
+        step *= 1.5
+    points, owner = [], []
+    for k in np.unique(n):
+        i, j = np.meshgrid(np.arange(k + 1), np.arange(k + 1), indexing="ij")
+        keep = i + j <= k
+        w = np.stack([k - i[keep] - j[keep], i[keep], j[keep]], axis=1) / k  # (G, 3)
+        these = np.flatnonzero(n == k)
+        points.append(np.einsum("gc,fcx->fgx", w, tri[these]).reshape(-1, 3))
+        owner.append(np.repeat(these, len(w)))
+    return np.concatenate(points), np.concatenate(owner), float((longest / n).max())
+
+
+def body_points(poses, body: GunBody):
+    """The body's sampled axis points (N, K, 3) for tool poses (N, 6), their radii (K,)."""
+    poses = np.asarray(poses, float)
+    axis = rotation(poses)[:, :, 0]  # the spray axis a = R·e_x (docs/model.md §20)
+    offs, radii = body.axis_points()
+    return poses[:, None, :3] - offs[None, :, None] * axis[:, None, :], radii
+
+
+def least_distance(mesh: trimesh.Trimesh, centres, radii):
+    """The least of |c − mesh| − r found over the spheres of centres ``centres`` (N, K, 3)
+    and radii ``radii`` (K,) (module notes 1–3): (that distance, the index (n, k) of its
+    sphere, the mesh's closest point there, how much less the least over all may be)."""
+    tri = np.asarray(mesh.triangles, float)
+    samples, owner, delta = surface_samples(mesh.vertices, mesh.faces)
+    # an unbalanced tree of distinct points answers the far queries several times faster
+    tree = cKDTree(np.unique(samples, axis=0), balanced_tree=False, compact_nodes=False)
+    coarse, _ = tree.query(centres[::COARSE_STRIDE])
+    ceiling = float((coarse - radii).min())  # an achieved upper bound of the least
+    approx = np.column_stack([tree.query(centres[:, k], distance_upper_bound=ceiling + r
+                                         + delta)[0] for k, r in enumerate(radii)])
+    lower = (approx - delta - radii).ravel()  # inf: at least the ceiling
+    flat = centres.reshape(-1, 3)
+    order = np.argsort(lower)
+    order = order[np.isfinite(lower[order])][:EXACT_POINTS]
+    if len(order) == 0:  # no sphere within the ceiling + δ: only round-off can do this
+        order = np.array([int(np.argmin(np.where(np.isfinite(approx), approx, coarse.max())))])
+    # a face within d ≤ d̃ of c has one of its own samples within d̃ + δ
+    near = cKDTree(samples).query_ball_point(flat[order], np.minimum(
+        approx.ravel()[order], ceiling + radii[order % len(radii)]) + delta)
+    pair = np.unique(np.concatenate([
+        i * len(tri) + np.unique(owner[np.asarray(f, int)]) for i, f in enumerate(near)]))
+    who, face = order[pair // len(tri)], pair % len(tri)
+    closest = trimesh.triangles.closest_point(tri[face], flat[who])
+    dist = np.linalg.norm(closest - flat[who], axis=1) - radii[who % len(radii)]
+    j = int(np.argmin(dist))
+    best = float(dist[j])
+    rest = np.sort(lower)[len(order)]if len(lower) > len(order) else math.inf
+    floor = min(best, float(rest), ceiling if np.isinf(lower).any() else math.inf)
+    return best, divmod(int(who[j]), len(radii)), closest[j], best - floor
+
+
+def between_samples(poses, body: GunBody) -> float:
+    """How much closer than the samples the body may come [m] (module notes): half the
+    largest chord a point of it travels in one time step."""
+    poses = np.asarray(poses, float)
+    if len(poses) < 2:
+        return 0.0
+    axis = rotation(poses)[:, :, 0]
+    chord = (np.linalg.norm(np.diff(poses[:, :3], axis=0), axis=1)
+             + body.reach * np.linalg.norm(np.diff(axis, axis=0), axis=1))
+    return float(chord.max()) / 2
+
+
+def clearance_of(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None,
+                 required: float = CLEARANCE) -> Clearance:
+    """The :class:`Clearance` of tool poses (N, 6) at times ``t`` (N,) from the mesh (in
+    the same frame), not checked against ``required``."""
+    body = GunBody() if body is None else body
+    poses = np.asarray(poses, float)
+    centres, radii = body_points(poses, body)
+    best, (i, _), point, less = least_distance(mesh, centres, radii)
+    return Clearance(best, less + between_samples(poses, body), float(required), i, float(t[i]),
+                     tuple(float(c) for c in point), tuple(float(c) for c in poses[i, :3]))
+
+
+def check_clearance(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None,
+                    required: float = CLEARANCE,
+                    where: Callable[[int], str] | None = None) -> Clearance:
+    """:func:`clearance_of`, refused as a :class:`ClearanceError` naming the place (``where``
+    of the sample: what the gun does there) when the body comes closer than ``required``
+    less what may lie between samples."""
+    c = clearance_of(mesh, poses, t, body, required)
+    if c.distance - c.between < required:
+        x = np.asarray(c.point) * 1e3
+        place = f" {where(c.sample)}" if where is not None else ""
+        gap = (f"comes {c.distance * 1e3:.1f} mm from" if c.distance >= 0 else
+               f"cuts {-c.distance * 1e3:.1f} mm into")
+        raise ClearanceError(
+            f"the gun's body {gap} the part at ({x[0]:.0f}, {x[1]:.0f}, {x[2]:.0f}) mm, t = "
+            f"{c.time:.3f} s{place}; clearance {required * 1e3:.3g} mm (± "
+            f"{c.between * 1e3:.1f} mm between samples): a larger standoff, or turn the part "
+            "so nothing stands taller than it")
+    return c
+
+
+def job_clearance(robot, job, mesh, poses, t, where=None) -> Clearance:
+    """:func:`check_clearance` of a planned path (poses in the part's frame) with the
+    robot's gun body and the job's ``gun.clearance`` (default CLEARANCE)."""
+    from ..spray.gun_body import gun_body
+
+    required = CLEARANCE if getattr(job, "clearance", None) is None else job.clearance
+    return check_clearance(mesh, poses, t, gun_body(getattr(robot, "params", None)),
+                           required, where)
+
+
+def panel_mesh(frame) -> trimesh.Trimesh:
+    """A panel (:class:`.workpiece.panel.PanelFrame`) as two triangles."""
+    corners = frame.world(np.array([-1, 1, 1, -1]) * frame.width / 2,
+                          np.array([-1, -1, 1, 1]) * frame.height / 2)
+    return trimesh.Trimesh(corners, np.array([[0, 1, 2], [0, 2, 3]]), process=False)
+
+
+__all__ = ["Clearance", "ClearanceError", "between_samples", "body_points", "check_clearance",
+           "clearance_of", "job_clearance", "least_distance", "panel_mesh", "surface_samples"]

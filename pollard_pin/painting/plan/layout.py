@@ -1,0 +1,83 @@
+"""A still panel's raster before the motors have their say (docs/model.md §21): the spacing,
+pass speed, coats and pass positions of a job (:func:`panel_layout`), and the path's sample
+times (:func:`path_times`), each within its budget (:mod:`..policy`), checked before anything
+is built."""
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..errors import BudgetError, PlanError
+from ..job import PaintJob
+from ..passes.raster import SPOT_RADIUS, Segments, pass_offsets, ripple_spacing
+from ..policy import MAX_PASSES, MAX_PATH_SAMPLES, MAX_STEP, STEP_SIGMA
+from ..workpiece.panel import PanelFrame, panel_frame
+
+
+class PanelLayout(NamedTuple):
+    """A panel's raster before the motors have their say."""
+
+    frame: PanelFrame
+    offsets: np.ndarray  # pass positions across the passes [m]
+    half_length: float  # passes run at constant speed over |U| ≤ half_length
+    speed: float  # pass speed [m/s]: the job's, or the one its film needs
+    coats: int
+    spacing: float  # between passes [m]
+
+
+def panel_layout(job: PaintJob) -> PanelLayout:
+    """The job's :class:`PanelLayout` before the motors have their say, its budgets checked:
+    the raster's layout, shared with the moving line (paint/line/panel.py)."""
+    frame = panel_frame(job)
+    horizontal = job.direction == "horizontal"
+    length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
+    coats = job.coats or 1
+    if job.spacing is not None:
+        spacing = job.spacing
+    elif job.speed is not None:
+        spacing = job.flow * coats / (job.thickness * job.speed)
+    else:
+        spacing = ripple_spacing(job.sigma)
+    # pass_offsets' count, give or take the edges
+    passes = (extent / spacing + 1) * coats if spacing > 0 else math.inf
+    if passes > MAX_PASSES:
+        raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
+                          f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {MAX_PASSES}: "
+                          "a wider spacing, fewer coats or a smaller panel")
+    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    half_length = length / 2 + SPOT_RADIUS * job.sigma
+    # the passes alone, before any turnaround: their samples bound the path's from below
+    passing = passes * 2 * half_length / speed if speed > 0 else math.inf
+    check_samples(passing / min(MAX_STEP, STEP_SIGMA * job.sigma / speed) if speed > 0 else
+                   math.inf, passing, speed, job)
+    try:
+        offsets = pass_offsets(extent, spacing, job.sigma)
+    except ValueError as exc:  # name the job entries the spacing came from
+        origin = ("job.spacing" if job.spacing is not None else
+                  "job.speed" + (" and job.coats" if job.coats else "")
+                  if job.speed is not None else "the ripple rule")
+        raise PlanError(f"{job.source}: {origin}: {exc}") from None
+    return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
+
+
+def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace) -> np.ndarray:
+    """The path's sample times: steps of at most MAX_STEP and STEP_SIGMA·σ of gun travel,
+    within MAX_PATH_SAMPLES (checked before they are made)."""
+    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
+    n = math.ceil(seg.total / dt) + 1
+    check_samples(n, seg.total, speed, job)
+    return np.arange(0.0, seg.total, dt) if how is np.arange else np.linspace(0.0, seg.total, n)
+
+
+def check_samples(n: float, duration: float, speed: float, job: PaintJob) -> None:
+    if n > MAX_PATH_SAMPLES:
+        fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
+               "a thinner film, more flow or a smaller panel")
+        raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
+                          f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
+                          f"{fix}")
+
+
+__all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times"]

@@ -1,0 +1,119 @@
+"""A cell's proposed layout (paint/cell/layout.py, docs/model.md §26.5): the fewest robots
+whose bands hold equal zones, bases clear of each other along the line, every zone with its
+run-outs in its robot's band; the search for the fewest that paint."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from cell_split_jobs import check_zones, tall_panel
+
+from pollard_pin.errors import InputError
+from pollard_pin.painting.cell import layout as cell_layout
+from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
+from pollard_pin.painting.cell.layout import (
+    LayoutOptions,
+    fewest_robots,
+    propose_layout,
+    reference_band,
+)
+from pollard_pin.painting.cell.robots import CellError, CellRobot, base_footprint
+from pollard_pin.painting.cell.split import split_cell
+from pollard_pin.painting.line.phases import LineSpeedError
+
+BAND = 0.34  # m: one robot's band along z at the gun plane x = 0.55 (test_bands.py)
+
+
+@pytest.mark.parametrize("height, fewest", [(0.24, 1), (0.34, 2), (0.6, 3), (1.0, 4)])
+def test_the_fewest_robots_whose_bands_hold_the_zones(robot, height, fewest):
+    job = tall_panel(height=height, z=height / 2)
+    R = run_on = 0.04  # 4σ past a seam and past a panel's free edge
+    # by hand: one zone needs height + 2 run-ons; n ≥ 2 equal zones, height/n + R + run-on
+    # at the ends, height/n + 2R between
+    need = [height + 2 * run_on] + [height / n + max(R + run_on, 2 * R) for n in range(2, 6)]
+    assert fewest == 1 + next(i for i, x in enumerate(need) if x <= BAND + 1e-9)
+    robots = propose_layout(robot, job, fewest)
+    assert len(robots) == fewest
+    if fewest > 1:
+        with pytest.raises(CellError, match=f"at least {fewest} robots"):
+            propose_layout(robot, job, fewest - 1)
+
+
+def test_the_proposal_covers_the_part_with_clear_bases(robot):
+    job = tall_panel(height=0.6, z=0.3)
+    robots = propose_layout(robot, job, 3)
+    strokes = job_strokes(job)
+    split = split_cell(robot, replace(job, robots=robots), robots)
+    lengths = check_zones(robot, robots, split, strokes)
+    assert lengths == pytest.approx([0.2] * 3, abs=1e-3)  # seen 3e-6
+    foot = base_footprint(robot.model)
+    e = np.array(job.line.direction)
+    along = [np.array(r.base) @ e for r in robots]
+    # neighbours at least the tip's reach window along the line (0.60 m here) + 2 footprints
+    assert np.diff(along) == pytest.approx(0.60 + 2 * foot, abs=2 * STEP)
+    # each band is the reference band moved with its base (a flat panel: exact to the grid)
+    ref = reference_band(robot, strokes)
+    for r in robots:
+        b = robot_band(robot, r, strokes, margin=1.0)
+        assert b.lo == pytest.approx(ref.lo + r.base[2], abs=1.01 * STEP)
+        assert b.hi == pytest.approx(ref.hi + r.base[2], abs=1.01 * STEP)
+
+
+def test_options_and_bad_counts(robot):
+    job = tall_panel()
+    robots = propose_layout(robot, job, 2, LayoutOptions(spacing=1.2, prefix="paint"))
+    assert [r.name for r in robots] == ["paint1", "paint2"]
+    assert robots[1].base[1] - robots[0].base[1] == pytest.approx(1.2, abs=1e-12)
+    for n in (0, 17, 10 ** 6, 2.0, True):
+        with pytest.raises(CellError, match=r"expected 1\.\.16"):
+            propose_layout(robot, job, n)
+    for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"}):
+        with pytest.raises(InputError):
+            LayoutOptions(**bad)
+    placed = tall_panel(robots=[{"name": "a", "base": [0.0, 0.0, 0.0]}])
+    with pytest.raises(CellError, match="already places its 1 robot"):
+        propose_layout(robot, placed, 2)
+
+
+def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
+    tried = []
+
+    def paint(robot, job, actuators=None, options=None):
+        tried.append(len(job.robots))
+        if len(job.robots) < 3:
+            raise LineSpeedError("too fast for the motors", too_fast=True)
+        return "painted"
+
+    import pollard_pin.painting.api as api
+
+    monkeypatch.setattr(api, "paint", paint)
+    robots, result = fewest_robots(robot, tall_panel())
+    assert (tried, len(robots), result) == ([2, 3], 3, "painted")
+    tried.clear()
+    monkeypatch.setattr(cell_layout, "AUTO_MORE", 0)
+    with pytest.raises(CellError, match=r"no layout of 2…2 robots paints the part: too fast"):
+        fewest_robots(robot, tall_panel())
+    assert tried == [2]
+
+
+def test_a_cell_of_one_robot_is_proposed_where_it_reaches(robot):
+    job = tall_panel(height=0.2, z=0.5)  # above the origin robot's band
+    (r,) = propose_layout(robot, job, 1)
+    assert r.base[0] == 0.0 and r.base[1] == 0.0
+    band = robot_band(robot, r, job_strokes(job))
+    # the band's middle on the zone's (run-ons included): 0.5 m, to the grid
+    assert (band.lo + band.hi) / 2 == pytest.approx(0.5, abs=1.01 * STEP)
+    assert CellRobot("x").is_origin
+
+
+def test_a_part_gets_the_layout_of_its_panel(robot, tmp_path):
+    from cell_split_jobs import plate_part
+
+    from pollard_pin.painting.job import load_job
+
+    part = propose_layout(robot, load_job(plate_part(tmp_path, x=0.69 + 0.01)), 2)
+    panel = propose_layout(robot, tall_panel(x=0.69), 2)
+    # the plate's front face is the panel; only the free edges' run-on differs (3σ, 4σ), so
+    # each zone's need, and with it each base, moves by half the difference or less
+    for a, b in zip(part, panel):
+        assert np.allclose(a.base, b.base, atol=0.005 + 1e-9), (a, b)

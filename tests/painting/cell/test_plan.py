@@ -1,0 +1,137 @@
+"""The cell planner (paint/cell/plan.py, docs/model.md §26): one robot at the origin is
+today's line job, a rigid motion of the whole scene leaves the film as it was, the seam's
+film is the target's (and would not be if a robot sprayed past it), a robot turned about z
+on the far side of the line paints the part's back."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from cell_jobs import cell_job, moved, panel_cell
+
+from pollard_pin.painting.cell.plan import plan_cell, plan_cell_job
+from pollard_pin.painting.cell.robots import CellRobot
+from pollard_pin.painting.cell.zones import Split, Zone
+from pollard_pin.painting.film.cell import cell_panel_film
+from pollard_pin.painting.film.line import line_film
+
+
+@pytest.fixture(scope="module")
+def cell(robot, act):
+    return plan_cell_job(robot, cell_job(panel_cell()), act)
+
+
+@pytest.fixture(scope="module")
+def cell_film(cell):
+    return cell_panel_film(cell)
+
+
+def seam_rows(cell, film, seam: float, half: float):
+    """(heights, each grid row's mean film over the target) of the rows within ``half`` [m]
+    of the seam (the row mean takes out the ripple along the travel)."""
+    U, V, pts, f = film
+    z = pts[:, 0, 2]
+    rows = f.thickness.reshape(len(V), len(U)).mean(axis=1) / cell.job.thickness
+    near = np.abs(z - seam) <= half
+    return z[near], rows[near]
+
+
+def test_one_robot_at_the_origin_is_todays_line_job(robot, line_job, line_plan, act):
+    cell = plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act)
+    p = cell.robots[0].plan
+    assert np.array_equal(p.trajectory.t, line_plan.trajectory.t)
+    assert np.array_equal(p.trajectory.poses, line_plan.trajectory.poses)
+    assert np.array_equal(p.spray, line_plan.spray)
+    today = line_film(line_plan)[3].thickness
+    ours = cell_panel_film(cell)[3].thickness
+    # the same samples and weights: equal (seen 0.0)
+    assert np.abs(ours - today).max() <= 1e-12 * line_job.thickness
+
+
+def test_the_seam_lays_the_target(cell, cell_film):
+    (seam,) = cell.split.seams()
+    assert [r.zone.robot for r in cell.robots] == ["low", "high"]
+    _, rows = seam_rows(cell, cell_film, seam, cell.split.runout)
+    # a robot spraying 1 mm past the seam at full rate adds 4 % there (the next test);
+    # seen |row − 1| ≤ 5e-5
+    assert np.abs(rows - 1).max() <= 5e-3
+    th = cell_film[3].thickness / cell.job.thickness
+    assert np.abs(th - 1).max() <= 0.05  # the whole panel within ±5 % (seen ±0.5 %)
+
+
+def test_a_robot_spraying_past_the_seam_shows(robot, act, cell):
+    """The check above fails for a layout whose low robot sprays 1 mm past the seam."""
+    (seam,) = cell.split.seams()
+    s = cell.split
+    over = Split(s.axis, (Zone("low", -math.inf, seam + 1e-3), Zone("high", seam, math.inf)),
+                 s.runout)
+    bad = plan_cell(robot, cell.job, act, cell.speed, split=over, clearance=False)
+    _, rows = seam_rows(bad, cell_panel_film(bad), seam, s.runout)
+    assert rows.max() - 1 > 5e-3  # the doubled millimetre: seen +4.0 %
+
+
+def test_each_robot_sprays_only_its_zone(cell):
+    """The spot's centre while spraying lies in the robot's zone; the trigger switches at
+    samples placed at the seam, a fraction of the trapezoid weight there."""
+    from pollard_pin.painting.film.cell import world_gun
+
+    for rp in cell.robots:
+        _, p, a, s = world_gun(rp)
+        aim = (p + rp.plan.job.standoff * a) @ np.asarray(cell.split.axis)
+        on = s > 0
+        assert aim[on].min() >= rp.zone.lo - 1e-9 and aim[on].max() <= rp.zone.hi + 1e-9
+        part = (s > 0) & (s < 1)
+        assert part.sum() >= len(rp.plan.offsets)  # a seam sample on every pass
+        seam = rp.zone.hi if math.isfinite(rp.zone.hi) else rp.zone.lo
+        assert np.abs(aim[part] - seam).max() <= 1e-13  # seen 1e-15
+
+
+def test_a_rigid_motion_of_the_scene_leaves_the_film(robot, act, cell, cell_film):
+    tables = moved(panel_cell(), 30.0, (0.2, -0.1, 0.05))
+    other = plan_cell_job(robot, cell_job(tables), act)
+    assert other.split.seams() == pytest.approx([s + 0.05 for s in cell.split.seams()],
+                                                abs=1e-9)
+    U, V, pts, f = cell_panel_film(other)
+    # every robot's plan is the same in its base frame: seen 8e-14 of the target
+    assert np.abs(f.thickness - cell_film[3].thickness).max() <= 1e-11 * cell.job.thickness
+    assert len(U) == len(cell_film[0]) and len(V) == len(cell_film[1])
+
+
+def test_turned_robots_are_planned_with_their_gravity(robot, act, cell):
+    """Gravity Rᵀg in the base frame: the planner's motors see the same loads whatever the
+    base's turn about z, and a turned base carries its own into the model."""
+    from pollard_pin.painting.cell.frames import robot_model_in_base
+
+    turned = CellRobot("t", (0.0, 0.0, 0.0), (180.0, 0.0, 0.0))
+    m = robot_model_in_base(robot, turned)
+    assert np.allclose(m.model.gravity.linear, [0.0, 0.0, 9.81], atol=1e-12)
+    assert np.allclose(robot.model.gravity.linear, [0.0, 0.0, -9.81])  # shared one untouched
+
+
+def test_bases_closer_than_two_footprints_are_refused(robot, act):
+    """Two bases 0.1 m apart (each base's joints lie 85 mm from its origin)."""
+    from pollard_pin.painting.cell.robots import CellError
+
+    tables = panel_cell([{"name": "low", "base": [0.0, 0.0, 0.0]},
+                         {"name": "high", "base": [0.0, 0.1, 0.0]}])
+    with pytest.raises(CellError, match="'low' and 'high' stand 100 mm apart, closer than "
+                                        "a robot's own base .170 mm."):
+        plan_cell_job(robot, cell_job(tables), act)
+
+
+def test_an_upside_down_robot_paints_from_above(robot, act):
+    """A robot hung 0.26 m up, turned 180° about x (gravity +z in its base), paints a 0.2 ×
+    0.15 m panel passing under it: planned with its gravity, the film on target."""
+    tables = panel_cell([{"name": "under", "base": [0.0, 0.0, 0.26],
+                          "rotation": [180.0, 0.0, 0.0]}], speed=0.016)
+    tables["panel"].update(height=0.15, center=[0.70, -0.3, 0.16])
+    cell = plan_cell_job(robot, cell_job(tables), act)
+    p = cell.robots[0].plan
+    # the panel's z 0.085…0.235 m is z_b 0.175…0.025 m in the hung base; the strokes run
+    # 4σ past both edges at constant speed, the turnarounds (gun open) a little further
+    z = p.trajectory.poses[p.spray > 0, 2]
+    assert -0.05 < z.min() <= 0.025 - 0.04 + 1e-9
+    assert 0.175 + 0.04 - 1e-9 <= z.max() < 0.25
+    assert np.allclose(p.direction, [0.0, -1.0, 0.0], atol=1e-15)  # the line in its base
+    th = cell_panel_film(cell)[3].thickness / cell.job.thickness
+    assert np.abs(th - 1).max() <= 0.05  # seen ±0.5 %

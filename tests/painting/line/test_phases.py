@@ -1,0 +1,195 @@
+"""The line's shared phases (paint/line/phases.py, docs/model.md §24): the relative program's
+interface and the fastest-speed search, against stand-in planners whose answers are known;
+where the job puts the part at t = 0 sets the wait, not the cycle: the examples' strip and
+part moved upstream give the same parts per hour, world program and film (fixtures
+line_job, line_plan: tests/painting/conftest.py). The world path of real plans is tested in
+test_panel.py (a panel) and test_part.py (a part)."""
+from dataclasses import replace
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from pollard_pin.painting.errors import PlanError
+from pollard_pin.painting.film.line import line_film
+from pollard_pin.painting.film.part import surface_film
+from pollard_pin.painting.film.stats import film_stats
+from pollard_pin.painting.job import load_job
+from pollard_pin.painting.line.panel import plan_line
+from pollard_pin.painting.line.phases import (
+    LineSpeedError,
+    Relative,
+    fastest_line_speed,
+    plan_or_name_fastest,
+)
+from pollard_pin.painting.report import line_table
+
+
+def planner(slowest: float, fastest: float, calls: list):
+    """Plans between ``slowest`` and ``fastest`` [m/s]; outside, the side's LineSpeedError."""
+
+    def plan_at(s):
+        calls.append(s)
+        if s > fastest:
+            raise LineSpeedError(f"{s} too fast", True, f"drifts at {s}")
+        if s < slowest:
+            raise LineSpeedError(f"{s} too slow", False, f"turns at {s}")
+        return SimpleNamespace(speed=s)
+
+    return plan_at
+
+
+@pytest.mark.parametrize("start", [0.001, 0.02, 0.0371, 0.5, 1.9])
+def test_fastest_speed_is_found_to_the_resolution(start):
+    calls = []
+    s, plan = fastest_line_speed(planner(0.01, 0.0371, calls), start, "j", resolution=0.01)
+    assert plan.speed == s and s <= 0.0371 and s >= 0.0371 / 1.01
+    assert len(calls) < 40
+
+
+def test_too_slow_goes_to_the_speed_of_no_drift():
+    """A too-slow failure that names the speed of no drift is followed there, not doubled
+    towards it (from 1e-5 m/s: 12 doublings before)."""
+    calls = []
+
+    def plan_at(s):
+        calls.append(s)
+        if s < 0.03:
+            raise LineSpeedError(f"{s} too slow", False, "drifts back", hint=0.031)
+        if s > 0.0371:
+            raise LineSpeedError(f"{s} too fast", True)
+        return SimpleNamespace(speed=s)
+
+    s, plan = fastest_line_speed(plan_at, 1e-5, "j", resolution=0.01)
+    assert calls[:2] == [1e-5, 0.031] and 0.0371 / 1.01 <= s <= 0.0371
+    assert len(calls) < 12
+
+
+def test_no_speed_paints_it():
+    calls = []
+    with pytest.raises(PlanError, match="no line speed paints the part") as info:
+        fastest_line_speed(planner(0.05, 0.04, calls), 0.03, "j.toml")
+    # each side says why, the reason of the speed it names
+    msg = str(info.value)
+    assert msg.startswith("j.toml: no line speed paints the part: too slow at ")
+    for side, why in (("too slow at ", "turns at "), ("too fast at ", "drifts at ")):
+        named = msg.split(side)[1].split(" m/s")[0]
+        assert f"{named} m/s ({why}" in msg and float(named) in [float(f"{c:.4g}")
+                                                                  for c in calls]
+
+
+def test_a_speed_too_fast_names_the_fastest():
+    calls = []
+    with pytest.raises(PlanError) as info:
+        plan_or_name_fastest(planner(0.01, 0.0371, calls), 0.2, "j.toml")
+    msg = str(info.value)
+    assert msg.startswith("0.2 too fast; the fastest line speed that paints it is ")
+    named = float(msg.split(" is ")[1].split()[0])
+    assert 0.0371 / 1.01 <= named <= 0.0371
+    assert not isinstance(info.value, LineSpeedError)  # not to be searched again
+    calls.clear()
+    assert plan_or_name_fastest(planner(0.01, 0.0371, calls), 0.03, "j").speed == 0.03
+    assert calls == [0.03]
+
+
+def test_relative_program_interface():
+    """Pieces ramp, pass, turn, pass, ramp: the trigger open on the passes only (a part) or
+    throughout (a panel), coarse times at piece ends and middles."""
+    start, dur = np.array([0.0, 1.0, 3.0, 4.0, 6.0]), np.array([1.0, 2.0, 1.0, 2.0, 1.0])
+    kind = ("ramp", "pass", "turn", "pass", "ramp")
+    part = Relative(lambda t: (t,), start, dur, kind, passes_only=True)
+    panel = Relative(lambda t: (t,), start, dur, kind)
+    assert part.total == panel.total == 7.0
+    t = np.array([0.5, 1.0, 2.9, 3.5, 4.0, 6.5, 7.0])
+    assert list(part.trigger(t)) == [0, 1, 1, 0, 1, 0, 0]
+    assert list(panel.trigger(t)) == [1] * 7
+    assert list(part.coarse_times()) == [0, 0.5, 1, 2, 3, 3.5, 4, 5, 6, 6.5, 7]
+    assert list(part.not_passes()) == [0, 2, 4]
+
+
+# --- the part placed further upstream ------------------------------------------------------------
+ROOT = Path(__file__).resolve().parents[3]
+
+UPSTREAM = (0.1, 0.3, 1.0)  # m
+
+
+@pytest.fixture(scope="module")
+def part_job():
+    return load_job(ROOT / "examples" / "line_part.toml")
+
+
+@pytest.fixture(scope="module")
+def part_plan(robot, part_job, act):
+    return plan_line(robot, part_job, act)
+
+
+@pytest.fixture(scope="module")
+def moved(robot, act, line_job, part_job):
+    """(kind, by) ↦ the example's plan ``by`` m upstream, each planned once."""
+    plans = {}
+
+    def plan(kind: str, by: float):
+        if (kind, by) not in plans:
+            job = line_job if kind == "panel" else part_job
+            plans[kind, by] = plan_line(robot, upstream(job, by), act)
+        return plans[kind, by]
+
+    return plan
+
+
+def upstream(job, by: float):
+    """The job with its part (or panel) ``by`` metres further upstream at t = 0."""
+    back = -by * np.asarray(job.line.direction)
+    if hasattr(job, "center"):
+        return replace(job, center=tuple(np.asarray(job.center) + back))
+    return replace(job, position=tuple(np.asarray(job.position) + back))
+
+
+def sprayed_relative(plan, by: float = 0.0):
+    """The sprayed samples as the film sees them: times from the program's start and the
+    gun's poses relative to the part, the part's shift ``by`` taken back out."""
+    tr, on = plan.trajectory, plan.spray > 0
+    p = tr.poses[on].copy()
+    p[:, :3] += (by - plan.speed * tr.t[on, None]) * plan.direction
+    return tr.t[on] - plan.times.delay, p
+
+
+def same_cycle(a, b, by: float):
+    ta, tb = line_table(a), line_table(b)
+    # achieved 2e-16 relative (the shift found on a world grid, the path sampled from the
+    # program's start)
+    assert tb["parts_per_hour"] == pytest.approx(ta["parts_per_hour"], rel=1e-9)
+    assert tb["cycle"] == pytest.approx(ta["cycle"], rel=1e-9)
+    # the wait is the only difference: the part's extra way at the line's speed
+    assert b.times.delay - a.times.delay == pytest.approx(by / a.speed, rel=1e-9)
+    assert tb["window"] == pytest.approx(ta["window"], abs=1e-9)
+    sa, sb = sprayed_relative(a), sprayed_relative(b, by)
+    assert len(sa[0]) == len(sb[0])
+    assert np.abs(sa[0] - sb[0]).max() < 1e-9  # achieved ~1e-14 s
+    assert np.abs(sa[1] - sb[1]).max() < 1e-9  # achieved ~1e-15 m
+    assert np.abs(a.ratios["rms_torque"] - b.ratios["rms_torque"]).max() < 1e-9
+
+
+@pytest.mark.parametrize("by", UPSTREAM)
+def test_panel_upstream_same_parts_per_hour(line_plan, moved, by):
+    same_cycle(line_plan, moved("panel", by), by)
+
+
+@pytest.mark.parametrize("by", UPSTREAM)
+def test_part_upstream_same_parts_per_hour(part_plan, moved, by):
+    same_cycle(part_plan, moved("part", by), by)
+
+
+def test_same_film_figures_upstream(line_job, line_plan, part_job, part_plan, moved):
+    """The films themselves, 0.3 m upstream, at a coarse film resolution (the comparison,
+    not the film, is tested): the same statistics to 1e-9 of the target."""
+    res = 2 * line_job.sigma / 3
+    a, b = line_film(line_plan, res)[3], line_film(moved("panel", 0.3), res)[3]
+    assert np.abs(a.thickness - b.thickness).max() < 1e-9 * line_job.thickness  # ~1e-19 m
+    (pts, fa, pa, ea), (_, fb, pb, eb) = (surface_film(p.in_part_frame(), res)
+                                          for p in (part_plan, moved("part", 0.3)))
+    assert np.array_equal(pa, pb) and ea == pytest.approx(eb, rel=1e-9)
+    sa, sb = (film_stats(f.thickness[pa], part_job.thickness, pts.areas[pa]) for f in (fa, fb))
+    for key in ("min", "max", "mean", "within_5pct", "within_10pct"):
+        assert sb[key] == pytest.approx(sa[key], rel=1e-9), key

@@ -1,0 +1,46 @@
+"""A part's program pieces (paint/passes/program.py): a turnaround's quintic meets its end
+states with exact derivatives, the gun frame sprays along its axis."""
+import numpy as np
+import pytest
+
+from pollard_pin.painting.passes.program import Quintic, gun_frame
+
+
+def test_quintic_meets_its_end_states():
+    rng = np.random.default_rng(1)
+    start, end = (tuple(rng.normal(size=(3, 6))), tuple(rng.normal(size=(3, 6))))
+    q = Quintic("turn", start, end, 0.7)
+    for tau, state in ((0.0, start), (0.7, end)):
+        got = q.evaluate(np.array([tau]))
+        for g, want in zip(got, state):
+            assert np.abs(g[0] - want).max() < 1e-12
+    # rates and accelerations are the derivatives (central differences, O(h²) ≈ 1e-8)
+    tau, h = np.linspace(0.05, 0.65, 7), 1e-5
+    p, d, dd = q.evaluate(tau)
+    pp, dp, _ = q.evaluate(tau + h)
+    pm, dm, _ = q.evaluate(tau - h)
+    assert np.abs((pp - pm) / (2 * h) - d).max() < 1e-6
+    assert np.abs((dp - dm) / (2 * h) - dd).max() < 1e-5
+
+
+def test_gun_frame_sprays_along_the_axis():
+    a = np.array([[1.0, 0.0, 0.0], [0.9, 0.3, -0.1]])
+    a /= np.linalg.norm(a, axis=1, keepdims=True)
+    R = gun_frame(a)
+    assert np.abs(R[:, :, 0] - a).max() < 1e-15
+    assert np.abs(np.einsum("kij,kil->kjl", R, R) - np.eye(3)).max() < 1e-14
+    assert np.abs(np.linalg.det(R) - 1).max() < 1e-14
+
+
+def test_gun_frame_of_a_vertical_axis_refers_to_world_x():
+    """A spray axis along ∓z (a table top) with reference x: the frame is the rotation
+    [a, c × a, c] with c = x projected off a, by hand; along the reference itself, a
+    PlanError line (no division by zero)."""
+    from pollard_pin.painting.errors import PlanError
+
+    a = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    R = gun_frame(a, (1.0, 0.0, 0.0))
+    assert np.abs(R[:, :, 0] - a).max() == 0.0 and np.abs(R[:, :, 2] - [1, 0, 0]).max() == 0.0
+    assert np.abs(np.linalg.det(R) - 1.0).max() < 1e-12  # achieved 0
+    with pytest.raises(PlanError, match="runs along the gun frame's reference axis"):
+        gun_frame(np.array([[1.0, 0.0, 0.0]]), (1.0, 0.0, 0.0))

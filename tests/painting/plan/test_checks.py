@@ -1,0 +1,69 @@
+"""The planner's motion check (paint/plan/checks.py): motor utilisation at rest, the duration
+bisection against a closed form, the joint-limit rule."""
+import numpy as np
+import pytest
+
+
+def test_breakaway_counted_at_rest(robot, plan, act):
+    """At the rest-to-rest ends every motor must overcome Coulomb friction in either
+    direction: utilisation (|τ/N + Jm·N·q̈| + c)/peak there, not sign(0) = 0 (exact)."""
+    from pollard_pin.painting.plan.checks import motion
+
+    tr = plan.trajectory
+    ends = [0, len(tr) - 1]
+    m = motion(robot, act, tr.poses[ends], tr.d_poses[ends], tr.dd_poses[ends])
+    ia = robot.actuated_v
+    assert np.all(m.ik.v[:, ia] == 0)
+    n, jm, c = (act.column(k) for k in ("gear_ratio", "rotor_inertia", "coulomb"))
+    rest = m.tau / n + jm * n * m.ik.a[:, ia]
+    expected = (np.abs(rest) + c) / act.column("peak_torque")
+    assert m.torque_ratio == pytest.approx(expected, rel=1e-14)
+
+
+def test_fastest_finds_the_smallest_feasible_durations():
+    """Utilisation (c/τ)² per piece falls as τ grows: the smallest τ within ``target`` is
+    c/√target. The bisection returns a feasible τ within its bracket (guess·2^k / 2^16) of it,
+    each piece on its own."""
+    from pollard_pin.painting.plan.checks import fastest
+
+    c, target = np.array([0.05, 0.3, 1.7]), 0.97
+    tau = fastest(lambda t: (c / t) ** 2, np.full(3, 0.1), target)
+    exact = c / np.sqrt(target)
+    assert np.all((c / tau) ** 2 <= target)
+    assert np.all(tau >= exact) and np.all(tau - exact <= 0.1 * 2 ** 5 / 2 ** 16)
+    assert tau[0] - exact[0] <= 0.1 / 2 ** 16  # feasible from the start: no doubling
+
+
+def test_fastest_refuses_a_piece_no_duration_fixes():
+    from pollard_pin.painting.errors import PlanError
+    from pollard_pin.painting.plan.checks import fastest
+
+    with pytest.raises(PlanError, match="the pass speed itself is too much"):
+        fastest(lambda t: np.array([0.5, 1.2]) + 0 * t, np.ones(2), 0.97)
+
+
+def test_reach_names_the_first_joint_beyond_its_limits(robot, plan, act, monkeypatch):
+    """A joint pushed past its upper limit is named with its first sample, its angle and how
+    far off (kinematics.limits, the one rule); an angle 2π off a legal one is legal."""
+    import pollard_pin.painting.plan.checks as motion_module
+    from pollard_pin.kinematics.limits import check_joint_limits
+    from pollard_pin.painting.errors import ReachError
+    from pollard_pin.painting.plan.checks import motion, reach
+
+    tr = plan.trajectory
+    pick = np.linspace(0, len(tr) - 1, 8).astype(int)
+    ik = motion(robot, act, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick]).ik
+    check_joint_limits(robot, ik.q)
+    check_joint_limits(robot, ik.q + 2 * np.pi)
+    j = 0
+    lim = robot.params.joint_limits(robot.joint_names[j])
+    bad = ik.q.copy()
+    bad[3:, j] = lim.upper + 0.01
+
+    def pushed(robot_, q, t=None):  # the IK's angles, one joint pushed 0.01 rad too far
+        return check_joint_limits(robot_, bad, t)
+
+    monkeypatch.setattr(motion_module, "check_joint_limits", pushed)
+    with pytest.raises(ReachError, match=rf"joint {robot.joint_names[j]} at .* by 0\.573°") as e:
+        reach(robot, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick])
+    assert e.value.sample == 3

@@ -1,0 +1,167 @@
+"""The gun body's clearance from the part (docs/model.md §25) against figures computed by
+hand (a flat plate, the gun normal or parallel to it), a brute-force replay (trimesh's
+closest point of every sphere centre) and the example plans."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+
+from pollard_pin.analytic.taskspace import angles_from_rotation, rotation
+from pollard_pin.errors import InputError
+from pollard_pin.painting.errors import PlanError
+from pollard_pin.painting.job import JobError, job_from_dict, load_job
+from pollard_pin.painting.plan.clearance import (
+    ClearanceError,
+    check_clearance,
+    clearance_of,
+    surface_samples,
+)
+from pollard_pin.painting.plan.part import plan_surface
+from pollard_pin.painting.spray.gun_body import GunBody
+from pollard_pin.painting.workpiece import shapes
+from pollard_pin.painting.workpiece.mesh import load_part
+
+ROOT = Path(__file__).resolve().parents[3]
+# The default body by hand (model/urdf.py's gun link, x1918 = 0.06 m): the nozzle, r 4 mm
+# over 18 mm, sampled every 3.6 mm (ceil(18/4) = 5 steps); the box 22 × 30 mm over 42 mm,
+# held by r = √(11² + 15²) mm, sampled every 14 mm (ceil(42/18.6) = 3 steps).
+NOZZLE_SPHERE = math.hypot(0.004, 0.0018)
+BODY_SPHERE = math.hypot(math.hypot(0.011, 0.015), 0.007)
+
+
+def plate(size=0.4, x=0.7):
+    """A square plate in the plane x = ``x``, facing −x, two triangles."""
+    h = size / 2
+    v = np.array([[x, -h, -h], [x, h, -h], [x, h, h], [x, -h, h]])
+    return trimesh.Trimesh(v, [[0, 2, 1], [0, 3, 2]], process=False)
+
+
+def poses_along(axis, tips):
+    """Tool poses spraying along ``axis`` from ``tips`` (N, 3)."""
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    b = np.cross(a, [0.0, 0.0, 1.0])
+    b = b / np.linalg.norm(b) if np.linalg.norm(b) > 1e-9 else np.array([0.0, 1.0, 0.0])
+    R = np.column_stack([a, b, np.cross(a, b)])
+    return np.column_stack([tips, np.tile(angles_from_rotation(R), (len(tips), 1))])
+
+
+def test_a_flat_plate_normal_gun_is_the_standoff_less_the_front_sphere():
+    s = 0.15
+    tips = np.column_stack([np.full(50, 0.7 - s), np.linspace(-0.1, 0.1, 50), np.zeros(50)])
+    c = clearance_of(plate(), poses_along([1, 0, 0], tips), np.arange(50.0))
+    assert c.distance == pytest.approx(s - NOZZLE_SPHERE, abs=1e-9)  # achieves ~1e-16
+    assert c.point[0] == pytest.approx(0.7, abs=1e-12)
+
+
+def test_a_gun_parallel_to_the_plate_is_its_height_less_the_body_sphere():
+    h = 0.03
+    tips = np.column_stack([np.full(20, 0.7 - h), np.zeros(20), np.linspace(-0.05, 0.05, 20)])
+    c = clearance_of(plate(), poses_along([0, 0, 1], tips), np.arange(20.0))
+    assert c.distance == pytest.approx(h - BODY_SPHERE, abs=1e-9)  # achieves ~1e-17
+
+
+def test_the_figure_against_a_brute_force_replay():
+    mesh = load_part(ROOT / "examples" / "parts" / "ribbed_plate.obj").mesh
+    rng = np.random.default_rng(3)
+    n = 400
+    tips = np.column_stack([rng.uniform(0.55, 0.66, n), rng.uniform(-0.1, 0.1, n),
+                            rng.uniform(0.1, 0.2, n)])
+    axes = np.array([1.0, 0.0, 0.0]) + rng.normal(scale=0.3, size=(n, 3))
+    poses = np.vstack([poses_along(a, t[None]) for a, t in zip(axes, tips)])
+    c = clearance_of(mesh, poses, np.arange(float(n)))
+    offs, radii = GunBody().axis_points()
+    ax = rotation(poses)[:, :, 0]
+    centres = (tips[:, None] - offs[None, :, None] * ax[:, None]).reshape(-1, 3)
+    _, dist, _ = trimesh.proximity.closest_point(mesh, centres)
+    brute = (dist.reshape(n, -1) - radii).min()
+    # never below the brute force; above it by no more than the stated bound
+    assert c.distance >= brute - 1e-12
+    assert c.distance - brute <= c.between
+
+
+@pytest.mark.parametrize("mesh", [plate(), shapes.bent_plate(step=0.02)])
+def test_surface_samples_cover_every_face_within_delta(mesh):
+    from scipy.spatial import cKDTree
+
+    pts, owner, delta = surface_samples(mesh.vertices, mesh.faces, 0.01)
+    probe, face = trimesh.sample.sample_surface(mesh, 4000, seed=1)
+    for f in np.unique(face)[:50]:  # within δ of a sample of its own face
+        d, _ = cKDTree(pts[owner == f]).query(probe[face == f])
+        assert d.max() <= delta  # achieves about delta / 2
+    assert set(np.unique(owner)) == set(range(len(mesh.faces)))
+
+
+def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
+    from pollard_pin.painting.plan import clearance
+
+    monkeypatch.setattr(clearance, "MAX_SURFACE_POINTS", 10)
+    mesh = plate()
+    pts, owner, delta = surface_samples(mesh.vertices, mesh.faces)
+    assert len(pts) == 6 and delta == pytest.approx(0.4 * math.sqrt(2), rel=1e-12)
+
+
+def test_a_close_pass_is_refused_naming_the_place():
+    s = 0.012
+    tips = np.column_stack([np.full(10, 0.7 - s), np.linspace(-0.1, 0.1, 10), np.zeros(10)])
+    with pytest.raises(ClearanceError) as e:
+        check_clearance(plate(), poses_along([1, 0, 0], tips), np.arange(10.0),
+                        where=lambda i: f"on pass {i}")
+    msg = str(e.value)
+    assert "comes 7.6 mm from the part" in msg and "(700, " in msg and "on pass" in msg
+    assert "clearance 10 mm" in msg and len(msg) <= 250 and "\n" not in msg
+
+
+def test_the_example_panel_and_line_keep_the_standoff_less_the_front_sphere(plan, line_plan):
+    for p in (plan, line_plan):  # the gun normal to the panel: by hand
+        assert p.clearance.distance == pytest.approx(p.job.standoff - NOZZLE_SPHERE,
+                                                     abs=1e-9)  # achieves ~1e-16
+
+
+def test_the_example_parts_clearance_pinned(robot, act, line_part_plan):
+    job = load_job(ROOT / "examples" / "parts" / "ribbed_plate.toml")
+    c = plan_surface(robot, job, act).clearance
+    # the rib's top edge (15 mm high) beside pass 2: standoff − rib − the nozzle's sphere
+    # at the tip's offset from the edge; figure of this code, rel 1e-6 (its bound 3 mm)
+    assert c.distance == pytest.approx(0.13227581686404988, rel=1e-6)
+    assert c.point[0] == pytest.approx(0.685, abs=1e-9)
+    assert line_part_plan.clearance.distance == pytest.approx(0.14384285944179728, rel=1e-6)
+    assert line_part_plan.in_part_frame().clearance is line_part_plan.clearance
+
+
+def test_a_tall_rib_is_refused_naming_the_pass(robot, act, tmp_path):
+    shapes.ribbed_plate(rib_height=0.2, step=0.01).export(tmp_path / "rib.obj")
+    text = (ROOT / "examples" / "parts" / "ribbed_plate.toml").read_text()
+    (tmp_path / "rib.toml").write_text(text.replace("ribbed_plate.obj", "rib.obj"))
+    with pytest.raises(ClearanceError) as e:
+        plan_surface(robot, load_job(tmp_path / "rib.toml"), act)
+    msg = str(e.value)
+    assert "cuts" in msg and "into the part at (" in msg and "on pass 2 of" in msg
+    assert len(msg) <= 250
+    assert isinstance(e.value, PlanError)
+
+
+def _job(**gun):
+    return {"panel": {"center": [0.7, 0, 0.16], "normal": [-1, 0, 0], "width": 0.2,
+                      "height": 0.1},
+            "gun": {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7, **gun},
+            "job": {"thickness": 25e-6}}
+
+
+def test_the_job_clearance_is_checked_once():
+    assert job_from_dict(_job(clearance=0.02)).clearance == 0.02
+    assert job_from_dict(_job()).clearance is None
+    assert job_from_dict(_job(clearance=0.02)).to_dict()["gun"]["clearance"] == 0.02
+    for bad in (-0.01, "1 cm", float("nan"), 20.0):
+        with pytest.raises(JobError, match="gun.clearance"):
+            job_from_dict(_job(clearance=bad))
+    with pytest.raises(InputError, match="GunBody.radius"):
+        GunBody(radius=-1.0)
+
+
+def test_a_clearance_beyond_the_standoff_refuses_the_panel(robot, act):
+    from pollard_pin.painting.plan.panel import plan_paint
+
+    with pytest.raises(ClearanceError, match="comes 145.6 mm from the part"):
+        plan_paint(robot, job_from_dict(_job(clearance=0.16)), act)

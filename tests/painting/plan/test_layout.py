@@ -1,0 +1,53 @@
+"""A still panel's raster before the motors (paint/plan/layout.py, docs/model.md §21): the
+film per coat is the target's share, the passes are the spacing apart and cover the panel, a
+spacing too wide names the job entry it came from, and the budgets stop a job before its path
+is built."""
+from dataclasses import replace
+
+import pytest
+
+from pollard_pin.painting.errors import BudgetError, PlanError
+from pollard_pin.painting.passes.raster import SPOT_RADIUS
+from pollard_pin.painting.plan.layout import panel_layout
+from pollard_pin.painting.plan.panel import plan_paint
+
+
+@pytest.mark.parametrize("coats", [1, 3])
+def test_the_layout_splits_the_film_over_its_coats(job, coats):
+    """Film per coat = flow/(speed·spacing) (docs/model.md §21), coats of it make the target
+    (to 1e-15 relative: it achieves 2e-16); the passes are centred, ``spacing`` apart and
+    reach the panel's edges; the passes run the panel's length plus the spot radius."""
+    j = replace(job, coats=coats)
+    lay = panel_layout(j)
+    assert lay.coats == coats
+    film = j.flow / (lay.speed * lay.spacing) * coats
+    assert film == pytest.approx(j.thickness, rel=1e-13)
+    gaps = lay.offsets[1:] - lay.offsets[:-1]
+    assert gaps == pytest.approx(lay.spacing, rel=1e-13)
+    assert lay.offsets.sum() == pytest.approx(0.0, abs=1e-15)
+    length, extent = (j.width, j.height) if j.direction == "horizontal" else (j.height, j.width)
+    assert lay.offsets[-1] - lay.offsets[0] >= extent - 2 * lay.spacing
+    assert lay.half_length == pytest.approx(length / 2 + SPOT_RADIUS * j.sigma, rel=1e-15)
+
+
+def test_too_wide_a_spacing(robot, job, act):
+    with pytest.raises(PlanError, match=r"job\.spacing: spacing 0\.04 m is too wide"):
+        plan_paint(robot, replace(job, spacing=0.04), act)
+    # A speed that implies too wide a spacing names the speed (flow/(thickness·speed) = 0.2 m).
+    with pytest.raises(PlanError, match=r"job\.speed: spacing 0\.2 m is too wide"):
+        plan_paint(robot, replace(job, speed=job.flow / (job.thickness * 0.2)), act)
+
+
+@pytest.mark.parametrize("change, says", [
+    ({"thickness": 0.1}, "the path needs 1.57e+07 samples"),  # 7.6 GB of samples, then more
+    ({"flow": 1e-300}, "samples"),  # overflowed the sample count
+    ({"flow": 5e-324}, "the path needs inf samples"),  # a speed that underflows
+    ({"thickness": 0.1, "speed": 0.001, "coats": 3}, "fewer coats or a faster gun"),
+    ({"spacing": 1e-5}, "passes"),
+    ({"coats": 10**9}, "passes"),
+])
+def test_budgets_are_checked_before_the_path_is_built(robot, act, job, change, says):
+    with pytest.raises(BudgetError) as err:  # the budget's words: refused before building
+        plan_paint(robot, replace(job, **change), act)
+    msg = str(err.value)
+    assert says in msg and "budget" in msg and "\n" not in msg and len(msg) < 250, msg

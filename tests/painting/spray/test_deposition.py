@@ -1,0 +1,198 @@
+"""The deposition model (docs/model.md §20) against closed forms, flux balance and ray
+sampling."""
+import math
+
+import numpy as np
+import pytest
+from scipy.special import erf, ndtri
+from scipy.stats import qmc
+
+from pollard_pin.painting.spray.deposition import Gun, coarse_weights, deposition_rate, film
+
+GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
+
+
+def _straight_pass(y, speed=0.4, half=0.08, step=GUN.sigma / 4):
+    """The gun along x at the standoff above the plane z = 0 (normal +z), spraying −z."""
+    n = int(round(2 * half / step)) + 1
+    x = np.linspace(-half, half, n)
+    t = (x + half) / speed
+    p = np.column_stack([x, np.zeros(n), np.full(n, GUN.standoff)])
+    a = np.tile([0.0, 0.0, -1.0], (n, 1))
+    s = np.column_stack([np.zeros_like(y), y, np.zeros_like(y)])
+    return film(GUN, t, p, a, s, np.array([0.0, 0.0, 1.0]), origin=np.zeros(3))
+
+
+def test_straight_pass_cross_profile():
+    """flow/(√(2π)σv)·exp(−y²/2σ²), times the pass's finite length erf(L/(√2σ)) exactly.
+    Achieved 3e-15 relative (trapezoid at σ/4 steps: Poisson summation error ~e^-316);
+    asserted 1e-12, well within the issue's 1e-6."""
+    y = np.linspace(-3 * GUN.sigma, 3 * GUN.sigma, 25)
+    speed, half = 0.4, 0.08
+    f = _straight_pass(y, speed, half)
+    exact = (GUN.flow / (math.sqrt(2 * math.pi) * GUN.sigma * speed)
+             * np.exp(-0.5 * (y / GUN.sigma) ** 2) * erf(half / (math.sqrt(2) * GUN.sigma)))
+    assert np.abs(f.thickness / exact - 1).max() < 1e-12
+    assert f.error_estimate.max() < 1e-12 * exact.max()
+
+
+def test_coarse_steps_lose_accuracy():
+    """The step rule is real: at 2σ per step the same pass is off by ~1e-4 (Poisson:
+    2·exp(−2π²/4) = 1.4e-2 at worst), and the error estimate sees it."""
+    y = np.array([0.0, 0.005])
+    f = _straight_pass(y, step=2 * GUN.sigma)
+    exact = (GUN.flow / (math.sqrt(2 * math.pi) * GUN.sigma * 0.4)
+             * np.exp(-0.5 * (y / GUN.sigma) ** 2))
+    err = np.abs(f.thickness / exact - 1).max()
+    assert 1e-6 < err < 3e-2
+    assert f.error_estimate.max() > err * exact.min()
+
+
+@pytest.mark.parametrize("tilt_deg", [0.0, 30.0])
+def test_flux_balance_on_a_large_plane(tilt_deg):
+    """Film integrated over a large plane = flow × spraying time: the gun circles at the
+    standoff (axis along −z) over a plane tilted by ``tilt_deg`` about y (every ray with
+    h > 0 hits it). Achieved 4e-15 (0°) and 1.4e-14 (30°); asserted 1e-12, within the issue's
+    1e-4."""
+    tilt = math.radians(tilt_deg)
+    n_plane = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
+    e1 = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    e2 = np.array([0.0, 1.0, 0.0])
+    T, r = 0.5, 0.02
+    t = np.linspace(0, T, 401)
+    p = np.column_stack([r * np.cos(4 * t), r * np.sin(4 * t), np.full_like(t, GUN.standoff)])
+    a = np.tile([0.0, 0.0, -1.0], (len(t), 1))
+    h = GUN.sigma / 3
+    half = 0.15
+    g = np.arange(-half, half + h / 2, h)
+    G1, G2 = np.meshgrid(g, g)
+    s = G1.ravel()[:, None] * e1 + G2.ravel()[:, None] * e2
+    f = film(GUN, t, p, a, s, n_plane, origin=np.zeros(3))
+    volume = f.thickness.sum() * h * h
+    assert abs(volume / (GUN.flow * T) - 1) < 1e-12
+
+
+def test_tilted_plane_against_ray_sampling():
+    """A static gun over a plane tilted 40° about y: the rate equals the density of rays
+    (straight lines from the nozzle through a Gaussian spot of σ at the standoff, quasi-random
+    Sobol samples) hitting each cell. Achieved 2.8e-4 relative on the 36 cells within 1.5σ of
+    the spot centre (sampling noise); asserted 1 % as in the issue (a wrong cos i/cos α
+    factor is off by 30 % here)."""
+    tilt = math.radians(40)
+    n_plane = np.array([math.sin(tilt), 0.0, math.cos(tilt)])  # towards the gun (+z side)
+    e1 = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    e2 = np.array([0.0, 1.0, 0.0])
+    p = np.array([0.0, 0.0, GUN.standoff])
+    a = np.array([0.0, 0.0, -1.0])
+    rays = 2 ** 22
+    u = qmc.Sobol(2, scramble=True, seed=7).random(rays)
+    xi = ndtri(np.clip(u, 1e-12, 1 - 1e-12)) * GUN.sigma
+    # ray through (xi, eta) on the plane perpendicular to a at the standoff
+    direction = np.column_stack([xi[:, 0], xi[:, 1], np.full(rays, -GUN.standoff)])
+    lam = -(p @ n_plane) / (direction @ n_plane)  # plane through the origin
+    hit = p + lam[:, None] * direction
+    c1, c2 = hit @ e1, hit @ e2
+    cell = GUN.sigma / 2
+    edges = np.arange(-3 * GUN.sigma, 3 * GUN.sigma + cell / 2, cell)
+    counts, _, _ = np.histogram2d(c1, c2, bins=[edges, edges])
+    density = counts / rays * GUN.flow / cell ** 2
+    # the model averaged over each cell (8×8 midpoints)
+    sub = (np.arange(8) + 0.5) / 8 * cell
+    mids = edges[:-1, None] + sub[None, :]
+    A, B = np.meshgrid(mids.ravel(), mids.ravel(), indexing="ij")
+    s = A.ravel()[:, None] * e1 + B.ravel()[:, None] * e2
+    rate = deposition_rate(GUN, p[None], a[None], s, n_plane)[0]
+    k = len(edges) - 1
+    model = rate.reshape(k, 8, k, 8).mean(axis=(1, 3))
+    centre = (edges[:-1] + cell / 2)
+    C1, C2 = np.meshgrid(centre, centre, indexing="ij")
+    spot = (C1 * math.cos(tilt)) ** 2 + C2 ** 2 <= (1.5 * GUN.sigma) ** 2
+    rel = np.abs(density[spot] / model[spot] - 1)
+    assert rel.max() < 0.01
+
+
+def test_behind_the_nozzle_and_grazing_get_nothing():
+    """h ≤ 0 (behind the nozzle) and surfaces facing away (cos i ≤ 0) receive no paint."""
+    p = np.array([[0.0, 0.0, 0.15]])
+    a = np.array([[0.0, 0.0, -1.0]])
+    s = np.array([[0.0, 0.0, 0.2], [0.0, 0.0, 0.0]])
+    assert deposition_rate(GUN, p, a, s, np.array([0.0, 0.0, 1.0]))[0, 0] == 0
+    assert deposition_rate(GUN, p, a, s, np.array([0.0, 0.0, -1.0]))[0, 1] == 0
+    # on the axis at the standoff: flow / (2π σ²)
+    r = deposition_rate(GUN, p, a, s, np.array([0.0, 0.0, 1.0]))[0, 1]
+    assert r == pytest.approx(GUN.flow / (2 * math.pi * GUN.sigma ** 2), rel=1e-14)
+
+
+@pytest.mark.parametrize("n", [2, 3, 8, 9])
+def test_coarse_weights_are_the_rule_on_every_second_sample_and_the_last(n):
+    # numpy's trapezoid rule on the kept samples, written out: even and odd counts.
+    t = np.cumsum(np.linspace(0.1, 0.5, n)) ** 1.5
+    f = np.cos(3 * t) + 2
+    kept = sorted(set(range(0, n, 2)) | {n - 1})
+    w = coarse_weights(t)
+    assert np.flatnonzero(w).tolist() == kept
+    # achieves ≈ 1e-16 relative
+    assert w @ f == pytest.approx(np.trapezoid(f[kept], t[kept]), rel=1e-13)
+
+
+def test_pair_rate_is_the_matrix_rate_pair_by_pair():
+    """pair_rate(p_k, a_k, s_k, n_k) = deposition_rate's (k, k) entry (achieved 1e-15
+    relative; asserted 1e-12), zero behind the nozzle."""
+    from pollard_pin.painting.spray.deposition import pair_rate
+
+    rng = np.random.default_rng(3)
+    gun = Gun(standoff=0.15, sigma=0.01, flow=1e-7)
+    s = rng.normal(scale=0.01, size=(40, 3))
+    n = np.tile([-1.0, 0.0, 0.0], (40, 1))
+    p = s + np.array([-0.15, 0.0, 0.0]) + rng.normal(scale=0.01, size=(40, 3))
+    a = rng.normal(scale=0.1, size=(40, 3)) + [1.0, 0.0, 0.0]
+    a /= np.linalg.norm(a, axis=1)[:, None]
+    a[:3] *= -1  # spraying away from the points
+    full = np.diagonal(deposition_rate(gun, p, a, s, n))
+    got = pair_rate(gun, p, a, s, n)
+    assert (got[:3] == 0).all() and (got[3:] > 0).all()
+    assert np.abs(got - full).max() < 1e-12 * full.max()
+
+
+def _scene(seed: int, gun: Gun, tips: int = 40, points: int = 4000):
+    """Random tips wandering 1 cm around (0, 0, standoff), axes within 12° of −z, and points
+    on a ±0.6 m patch of z = 0 tilted up to 30°, some within a few mm of the nozzles."""
+    rng = np.random.default_rng(seed)
+    p = np.array([0.0, 0.0, gun.standoff]) + 0.01 * rng.standard_normal((tips, 3))
+    a = np.array([0.0, 0.0, -1.0]) + 0.15 * rng.uniform(-1, 1, (tips, 3)) * [1, 1, 0]
+    a /= np.linalg.norm(a, axis=1, keepdims=True)
+    s = np.column_stack([rng.uniform(-0.6, 0.6, (points, 2)), 0.1 * rng.uniform(-1, 1, points)])
+    s[:20] = p[:20] + 0.004 * rng.standard_normal((20, 3))  # next to a nozzle
+    n = np.array([0.0, 0.0, 1.0]) + 0.5 * rng.uniform(-1, 1, (points, 3)) * [1, 1, 0]
+    return p, a, s, n / np.linalg.norm(n, axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("sigma", [0.004, 0.010, 0.020])
+def test_near_spot_keeps_every_point_the_spray_reaches(seed, sigma):
+    """Every point left out by near_spot gets, from every tip, below 3e-18 of the spot's
+    centre rate flow/(2πσ²) (the bound of deposition.py's docstring), checked against the
+    dense rate of every pair; achieved ≤ 1e-20 (σ = 4, 10, 20 mm), asserted at the bound."""
+    from pollard_pin.painting.spray.deposition import near_spot
+
+    gun = Gun(standoff=0.15, sigma=sigma, flow=1.5e-7)
+    p, a, s, n = _scene(seed, gun)
+    kept = near_spot(gun, p, a, s)
+    dropped = np.setdiff1d(np.arange(len(s)), kept)
+    assert 0 < len(dropped) and len(kept) < len(s)  # it culls, or the test proves nothing
+    rate = deposition_rate(gun, p, a, s[dropped], n[dropped])
+    centre = gun.flow / (2 * math.pi * sigma ** 2)
+    assert rate.max(initial=0.0) <= 3e-18 * centre
+
+
+def test_film_of_the_kept_points_is_the_dense_film():
+    """film() (each block on the points near_spot keeps) against the trapezoid rule over
+    the dense rate of every pair: equal to 1e-14 of the largest film (achieved 1.5e-16, the
+    sums' round-off: a dropped pair's rate is far below it)."""
+    from pollard_pin.dynamics.averages import trapezoid_weights
+
+    p, a, s, n = _scene(7, GUN, tips=600)
+    t = np.linspace(0.0, 1.2, len(p))
+    dense = trapezoid_weights(t) @ deposition_rate(GUN, p, a, s, n)
+    culled = film(GUN, t, p, a, s, n, origin=np.zeros(3)).thickness
+    assert np.abs(culled - dense).max() <= 1e-14 * dense.max()

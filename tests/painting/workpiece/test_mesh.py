@@ -1,0 +1,162 @@
+"""A part from its mesh: every format reads back the same triangles, placement follows the
+tool pose's rotation convention, and each bad file or value is one MeshError line."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+from scipy.spatial.transform import Rotation
+
+from pollard_pin.errors import InputError
+from pollard_pin.painting.job import load_job
+from pollard_pin.painting.workpiece import mesh as mesh_module
+from pollard_pin.painting.workpiece import shapes
+from pollard_pin.painting.workpiece.mesh import (
+    MAX_ANGLE,
+    MeshError,
+    load_part,
+    make_part,
+    panel_part,
+)
+
+EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "paint.toml"
+
+
+@pytest.fixture(scope="module")
+def rib():
+    return shapes.ribbed_plate(step=0.02)
+
+
+@pytest.mark.parametrize("name", ["part.stl", "ascii.stl", "part.obj", "part.ply"])
+def test_every_format_reads_back_the_same_part(tmp_path, rib, name):
+    path = tmp_path / name
+    if name == "ascii.stl":
+        path.write_text(trimesh.exchange.stl.export_stl_ascii(rib))
+    else:
+        rib.export(path)
+    part = load_part(path)
+    tri = part.vertices[part.faces]
+    assert len(part.faces) == len(rib.faces)
+    # the same triangles in the same order, corners in the same order (binary STL: float32)
+    assert np.abs(tri - rib.triangles).max() < 1e-7
+    # outward normals follow the winding: the same as trimesh's per face, unit length
+    assert np.abs(part.normals - rib.face_normals).max() < 1e-5
+    assert part.areas.sum() == pytest.approx(rib.area, rel=1e-6)
+    assert np.array_equal(part.painted,
+                          part.normals @ [-1.0, 0, 0] >= math.cos(math.radians(MAX_ANGLE)))
+    # the painted faces of the ribbed plate: its front and the rib's top, 0.24 × 0.10 m
+    # less the rib's footprint plus its top (walls are at 90°, not painted by default)
+    assert part.painted_area == pytest.approx(0.24 * 0.10, rel=1e-6)
+
+
+def test_units_position_and_rotation(tmp_path, rib):
+    local = rib.copy()
+    local.apply_translation(-local.bounds.mean(axis=0))
+    local.apply_scale(1000.0)  # a file in mm
+    path = tmp_path / "mm.stl"
+    local.export(path)
+    pos, rot = (0.7, -0.05, 0.2), (10.0, -20.0, 35.0)
+    part = load_part(path, units="mm", position=pos, rotation=rot, facing=(-1, 0, 0))
+    # R = Rx(rx)·Ry(ry)·Rz(rz) (docs/model.md §2) is scipy's intrinsic "XYZ"
+    R = Rotation.from_euler("XYZ", rot, degrees=True).as_matrix()
+    ref = trimesh.load(path, process=False).triangles * 1e-3 @ R.T + pos
+    assert np.abs(part.vertices[part.faces] - ref).max() < 1e-12
+    n_ref = np.cross(ref[:, 1] - ref[:, 0], ref[:, 2] - ref[:, 0])
+    n_ref /= np.linalg.norm(n_ref, axis=1)[:, None]
+    assert np.abs(part.normals - n_ref).max() < 1e-12
+
+
+def test_an_inside_out_closed_mesh_is_turned_over(tmp_path, rib):
+    inverted = trimesh.Trimesh(rib.vertices, rib.faces[:, ::-1], process=False)
+    assert inverted.volume < 0
+    part = make_part(inverted.vertices, inverted.faces)
+    assert np.abs(part.normals - rib.face_normals).max() < 1e-12
+    inverted.export(tmp_path / "inverted.stl")  # STL: a corner per face, merged on reading
+    part = load_part(tmp_path / "inverted.stl")
+    assert part.mesh.is_watertight
+    assert np.abs(part.normals - rib.face_normals).max() < 1e-5
+    sheet = make_part(rib.vertices, rib.faces[:1, ::-1], facing=-rib.face_normals[0])
+    assert np.allclose(sheet.normals[0], -rib.face_normals[0])  # an open sheet: as given
+
+
+def test_panel_part_is_the_jobs_panel():
+    job = load_job(EXAMPLE)
+    part = panel_part(job)
+    assert part.painted.all() and len(part.faces) == 2
+    assert np.abs(part.normals - np.array(job.normal)).max() < 1e-15
+    assert part.areas.sum() == pytest.approx(job.width * job.height, rel=1e-14)
+    lo, hi = part.vertices.min(axis=0), part.vertices.max(axis=0)
+    assert np.allclose(lo, [0.70, -0.13, 0.10]) and np.allclose(hi, [0.70, 0.13, 0.22])
+
+
+def _write(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+TRI = "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"  # normal +x: faces away from the robot
+
+
+@pytest.mark.parametrize("name, text, kwargs, fragment", [
+    ("none.stl", None, {}, "does not exist"),
+    ("part.step", "x", {}, "format '.step' is not a mesh"),
+    ("junk.stl", "hello\n", {}, "no triangles in the file"),
+    ("junk.ply", "hello\n", {}, "not a PLY file"),
+    ("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y"
+     "\nproperty float z\nend_header\n0 0 0\n", {}, "no triangles in the file"),
+    ("nan.obj", "v 0 0 0\nv 0 1 0\nv nan 0 1\nf 1 2 3\n", {}, "vertex 2 = (nan, 0.0, 1.0)"),
+    ("flat.obj", "v 0 0 0\nv 0 1 0\nv 0 2 0\nf 1 2 3\n", {}, "all 1 faces have zero area"),
+    ("away.obj", TRI, {}, "no face has its outward normal within 45° of facing (-1.0, 0.0"),
+    ("huge.obj", "v 0 0 0\nv 0 300 0\nv 0 0 300\nf 1 2 3\n", {"facing": (1, 0, 0)},
+     "300 m across, more than 5 m: 1000x too large: units = 'mm'?"),
+    ("tri.obj", TRI, {"units": "ft"}, "units = 'ft' must be one of 'm', 'cm', 'mm', 'in'"),
+    ("tri.obj", TRI, {"rotation": (0, 90)}, "rotation = (0, 90) must be 3 finite numbers"),
+    ("tri.obj", TRI, {"position": (0, 0, math.inf)}, "position = (0, 0, inf) must be 3"),
+    ("tri.obj", TRI, {"facing": (0, 0, 0)}, "facing = (0.0, 0.0, 0.0) has zero length"),
+    ("tri.obj", TRI, {"facing": (1, 0, 0), "max_angle": 0}, "max_angle = 0° must be in"),
+])
+def test_bad_meshes_are_one_line(tmp_path, name, text, kwargs, fragment):
+    path = tmp_path / name if text is None else _write(tmp_path, name, text)
+    with pytest.raises(MeshError) as exc:
+        load_part(path, **kwargs)
+    msg = str(exc.value)
+    assert isinstance(exc.value, InputError)
+    assert fragment in msg and "\n" not in msg and len(msg) < 250, msg
+
+
+def test_a_fifo_is_refused_not_waited_on(tmp_path):
+    """A FIFO with no writer as the mesh: one line at once (a plain open would block)."""
+    import os
+
+    fifo = tmp_path / "part.stl"
+    os.mkfifo(fifo)
+    with pytest.raises(MeshError, match=r"cannot be read: not a regular file \(a FIFO\)"):
+        load_part(fifo)
+
+
+def test_face_budget(tmp_path, monkeypatch, rib):
+    monkeypatch.setattr(mesh_module, "MAX_FACES", 10)
+    with pytest.raises(MeshError, match=rf"{len(rib.faces)} faces, more than the 10"):
+        make_part(rib.vertices, rib.faces)
+
+
+PARTS = Path(__file__).resolve().parents[3] / "examples" / "parts"
+
+
+def test_the_example_parts_load_and_are_what_make_parts_writes(tmp_path):
+    import runpy
+
+    runpy.run_path(str(PARTS / "make_parts.py"), run_name="make_parts")["main"](
+        ["--out-dir", str(tmp_path)])
+    for name in ("curved_panel.stl", "bent_plate.ply", "ribbed_plate.obj"):
+        part = load_part(PARTS / name)
+        fresh = load_part(tmp_path / name)
+        assert np.array_equal(part.faces, fresh.faces)
+        assert np.abs(part.vertices - fresh.vertices).max() < 1e-6  # STL stores float32
+        assert 1000 < len(part.faces) < 5000 and part.mesh.is_watertight
+        # in front of the robot: the painted front 0.24 × 0.10 m near x = 0.70, facing −x
+        front = part.vertices[np.unique(part.faces[part.painted])]
+        assert np.abs(front.mean(axis=0) - [0.69, 0.0, 0.16]).max() < 0.02
+        assert 0.0235 < part.painted_area < 0.025
