@@ -61,6 +61,7 @@ def test_citations_point_into_the_model_document():
 RANKS = [
     ("pollard_pin.version", 0), ("pollard_pin.timing", 0), ("pollard_pin.errors", 0),
     ("pollard_pin.checks", 0), ("pollard_pin.names", 0),
+    ("pollard_pin.film_scale", 0),  # the film's colours: any writer's, any figure's
     ("pollard_pin.analytic.jet", 0),
     ("pollard_pin.analytic.taskspace", 0), ("pollard_pin.analytic", 1),
     ("pollard_pin.model", 2), ("pollard_pin.paths", 2), ("pollard_pin.kinematics", 3),
@@ -69,8 +70,9 @@ RANKS = [
     ("pollard_pin.io.paint_cell_files", 8),  # a cell's files, the same
     ("pollard_pin.io", 5), ("pollard_pin.workspace", 6), ("pollard_pin.painting", 6),
     ("pollard_pin.crosscheck", 6),
-    ("pollard_pin.run", 7), ("pollard_pin.viz", 8), ("pollard_pin.sweep", 9),
-    ("pollard_pin.cli", 10), ("pollard_pin", 11),
+    ("pollard_pin.run", 7), ("pollard_pin.viz", 8),
+    ("pollard_pin.outputs", 9),  # paint's outputs read back (paint.json's schema, a folder)
+    ("pollard_pin.sweep", 10), ("pollard_pin.cli", 11), ("pollard_pin", 12),
 ]
 # The calls up the layers: PaintResult.write (paint/api.py) writes through paint's file
 # writers (a cell's in their own module), lazily, so that a Python user writes what the CLI

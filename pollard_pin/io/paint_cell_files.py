@@ -82,10 +82,10 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
 
 
 def _panel(result, out: Path):
+    from ..film_scale import film_rgba as film_colours
     from ..painting.film.ply_mesh import grid_mesh
     from ..painting.workpiece.panel import panel_frame
     from ..viz.paint import write_thickness_png
-    from ..viz.paint_part import film_colours
     from .paint_files import panel_table
     from .ply import write_film_ply
 
@@ -111,8 +111,9 @@ def _panel(result, out: Path):
 
 
 def _part(result, out: Path):
+    from ..film_scale import film_rgba as film_colours
     from ..painting.film.ply_mesh import refined_mesh
-    from ..viz.paint_part import film_colours, write_part_png
+    from ..viz.paint_part import write_part_png
     from .ply import write_film_ply
 
     cell, f = result.plan, result.film

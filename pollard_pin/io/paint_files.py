@@ -30,7 +30,7 @@ def paint_outputs(out: Path, fmt: str) -> tuple[tuple, tuple]:
 
 def report_json(result) -> dict:
     """paint.json: the result's report with what film.ply's colours mean."""
-    from ..viz.paint_part import ply_colours
+    from ..film_scale import ply_colours
 
     rep = dict(result.report.data)
     version = rep.pop("pollard_pin", None)
@@ -75,10 +75,10 @@ def panel_table(U, V, pts, thickness, normal) -> dict:
 def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
     coordinates, in the part's frame on a line)."""
+    from ..film_scale import film_rgba as film_colours
     from ..painting.film.line import part_frame_positions
     from ..painting.film.ply_mesh import grid_mesh
     from ..viz.paint import write_thickness_png
-    from ..viz.paint_part import film_colours
     from .ply import write_film_ply
     from .table import write_table
     from .trajectory import to_csv
@@ -111,8 +111,9 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
 def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A part's outputs, still or on the line: the film table on the painted faces, film.ply
     the refined mesh (on a line: the part at its t = 0 pose, the world path in path.csv)."""
+    from ..film_scale import film_rgba as film_colours
     from ..painting.film.ply_mesh import refined_mesh
-    from ..viz.paint_part import film_colours, write_part_png
+    from ..viz.paint_part import write_part_png
     from .ply import write_film_ply
     from .table import write_table
     from .trajectory import to_csv

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .film_scale import film_label, legend_html
+from ..film_scale import film_label, film_range, scale_rgba
 
 MESHCAT_FOV = 75.0  # degrees, the vertical field of view of MeshCat's default camera
 FIT_MARGIN = 1.1  # the painted faces' sphere fills 1 / FIT_MARGIN of the view's height
@@ -32,7 +32,7 @@ class FilmView:
     normal: tuple  # unit, from the centre towards the camera
     radius: float  # of the sphere about the centre holding the painted vertices
     legend: str = ""  # HTML colour bar for the static page
-    scale: str = ""  # the colour scale in words (film_scale.film_label)
+    scale: str = ""  # the colour scale in words (pollard_pin.film_scale.film_label)
     background: tuple = FILM_BACKGROUND
 
     @property
@@ -61,6 +61,25 @@ class FilmView:
         travel = float(np.linalg.norm(shifts - mid, axis=1).max())
         return replace(self, centre=tuple(centre + mid), normal=tuple(n),
                        radius=self.radius + travel)
+
+
+def legend_html(target: float, stops: int = 11) -> str:
+    """A colour bar for a web page (the static viewer): the film scale's gradient
+    (:mod:`pollard_pin.film_scale`) with its ends, target and label in µm, fixed at the bottom
+    left."""
+    lo, hi = film_range(target)
+    rgb = (scale_rgba(np.linspace(lo, hi, stops), lo, hi)[:, :3] * 255).round().astype(int)
+    grad = ", ".join(f"rgb({r},{g},{b})" for r, g, b in rgb)
+    ticks = "".join(f'<span>{x * 1e6:.4g}</span>' for x in (lo, target, hi))
+    return (
+        '<div id="film-legend" style="position:fixed;left:12px;bottom:12px;z-index:10;'
+        'padding:6px 10px;background:rgba(255,255,255,0.92);border-radius:4px;'
+        'font:12px sans-serif;color:#222">'
+        f'<div>{film_label(target)}</div>'
+        f'<div style="width:260px;height:14px;margin:4px 0;border:1px solid #444;'
+        f'background:linear-gradient(to right, {grad})"></div>'
+        f'<div style="width:262px;display:flex;justify-content:space-between">{ticks}</div>'
+        '<div>beyond the ends: the end colour</div></div>')
 
 
 def grid_faces(nv: int, nu: int) -> np.ndarray:
@@ -103,4 +122,4 @@ def film_view(vertices, faces, thickness, target: float, toward=None) -> FilmVie
 
 
 __all__ = ["FIT_MARGIN", "FILM_BACKGROUND", "FilmView", "MESHCAT_FOV", "PAINTED_SHARE",
-           "film_view", "grid_faces", "painted_faces"]
+           "film_view", "grid_faces", "legend_html", "painted_faces"]

@@ -6,17 +6,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .film_scale import FILM_BAND as BAND
-from .film_scale import FILM_CMAP, film_label, film_range
+from ..film_scale import FILM_BAND as BAND
+from ..film_scale import FILM_CMAP, film_label, film_range
 
 
 def thickness_figure(U, V, thickness, target: float, path_uv=None,
                      width: float | None = None, height: float | None = None,
                      title: str = "Film thickness"):
     """Heat map of ``thickness`` (nv, nu) [m] on the panel grid ``U`` (nu,), ``V`` (nv,) [m],
-    coloured on the film scale (:mod:`.film_scale`, target ± BAND), with ``path_uv`` (2, N)
-    [m] (the tool tip in panel coordinates) drawn over it, clipped to a margin around the
-    panel. Artist gids: ``film``, ``path``, ``panel``."""
+    coloured on the film scale (:mod:`pollard_pin.film_scale`, target ± BAND), with
+    ``path_uv`` (2, N) [m] (the tool tip in panel coordinates) drawn over it, clipped to a
+    margin around the panel. Artist gids: ``film``, ``path``, ``panel``."""
     from matplotlib.figure import Figure
 
     U, V = np.asarray(U) * 1e3, np.asarray(V) * 1e3

@@ -1,26 +1,14 @@
 """The film on a part (``paint`` of a [part] job): the film points projected on the passes'
 plane (along, across the passes: the part seen from the robot) coloured by thickness, the
-passes' spot tracks drawn over them; and the film's vertex colours for ``film.ply``. It draws
-what :mod:`pollard_pin.paint` computed; nothing here computes."""
+passes' spot tracks drawn over them, on the film scale (:mod:`pollard_pin.film_scale`). It
+draws what :mod:`pollard_pin.painting` computed; nothing here computes."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-from .film_scale import FILM_BAND as PLY_BAND
-from .film_scale import FILM_CMAP as PLY_CMAP
-from .film_scale import film_label, film_range, film_rgba
-
-
-def ply_colours(target: float) -> dict:
-    """What film.ply's colours mean, for paint.json: the colour map and the range [m]."""
-    return {"colour_map": PLY_CMAP, "range": list(film_range(target))}
-
-
-def film_colours(thickness, target: float) -> np.ndarray:
-    """RGBA bytes (P, 4) of ``thickness`` [m] on the film scale (:mod:`.film_scale`)."""
-    return film_rgba(thickness, target)
+from ..film_scale import FILM_CMAP, film_label, film_range
 
 
 def part_figure(points, thickness, target: float, along, across, tracks=(),
@@ -36,7 +24,7 @@ def part_figure(points, thickness, target: float, along, across, tracks=(),
     lo, hi = film_range(target * 1e6)
     fig = Figure(figsize=(9, 5.2), constrained_layout=True)
     ax = fig.add_subplot()
-    sc = ax.scatter(x, y, c=np.asarray(thickness) * 1e6, s=4, cmap=PLY_CMAP, vmin=lo,
+    sc = ax.scatter(x, y, c=np.asarray(thickness) * 1e6, s=4, cmap=FILM_CMAP, vmin=lo,
                     vmax=hi, linewidths=0)
     sc.set_gid("film")
     cb = fig.colorbar(sc, ax=ax, extend="both")
@@ -62,4 +50,4 @@ def write_part_png(path, *args, dpi: int = 100, **kwargs) -> Path:
     return save_png(part_figure(*args, **kwargs), path, dpi)
 
 
-__all__ = ["PLY_BAND", "PLY_CMAP", "film_colours", "part_figure", "write_part_png"]
+__all__ = ["part_figure", "write_part_png"]

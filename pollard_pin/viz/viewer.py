@@ -202,7 +202,7 @@ def film_mesh(vis, vertices, faces, values, lo: float, hi: float,
     on a part."""
     import meshcat.geometry as mg
 
-    from .film_scale import scale_rgba
+    from ..film_scale import scale_rgba
 
     colour = scale_rgba(values, lo, hi)[:, :3]
     vis[node].set_object(mg.TriangularMeshGeometry(np.asarray(vertices, float),

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from pollard_pin.viz.film_view import MESHCAT_FOV, film_view, grid_faces
+from pollard_pin.film_scale import film_label
+from pollard_pin.viz.film_view import MESHCAT_FOV, film_view, grid_faces, legend_html
 
 TARGET = 25e-6
 N0 = np.array([-1.0, 0.3, 0.2]) / np.linalg.norm([-1.0, 0.3, 0.2])  # the plate's normal
@@ -81,3 +82,9 @@ def test_seen_from_the_gun_side_and_over_the_travel():
     assert np.asarray(moved.normal) @ N0 == pytest.approx(1, abs=1e-12)
     assert np.allclose(np.asarray(moved.centre) - view.centre, [0, 0.1, 0], atol=1e-12)
     assert moved.radius == pytest.approx(view.radius + 0.1, abs=1e-12)
+
+
+def test_the_legend_states_the_scale():
+    html = legend_html(TARGET)
+    assert film_label(TARGET) in html and all(f"<span>{x}</span>" in html
+                                              for x in ("22.5", "25", "27.5"))

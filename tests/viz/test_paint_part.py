@@ -1,16 +1,11 @@
-"""The part's film figure and film.ply's colours (viz/paint_part.py)."""
+"""The part's film figure (viz/paint_part.py), on the one film scale."""
 import numpy as np
+import pytest
 
-from pollard_pin.viz.paint_part import PLY_BAND, film_colours, part_figure, write_part_png
+from pollard_pin.film_scale import film_label
+from pollard_pin.viz.paint_part import part_figure, write_part_png
 
-
-def test_film_colours_span_the_band():
-    target = 25e-6
-    c = film_colours(np.array([0.5, 1 - PLY_BAND, 1.0, 1 + PLY_BAND, 2.0]) * target, target)
-    assert c.dtype == np.uint8 and c.shape == (5, 4)
-    assert np.array_equal(c[0], c[1]) and np.array_equal(c[3], c[4])  # clipped
-    assert c[1, 2] > c[1, 0] and c[3, 0] > c[3, 2]  # thin blue, thick red
-    assert c[2, :3].min() > 200  # on target: near white
+TARGET = 25e-6
 
 
 def test_part_figure(tmp_path):
@@ -22,3 +17,16 @@ def test_part_figure(tmp_path):
     assert {"film", "passes"} <= gids
     path = write_part_png(tmp_path / "t.png", pts, np.full(50, 25e-6), 25e-6, along, across)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_thickness_png_and_part_png_state_the_scale():
+    from pollard_pin.viz.paint import thickness_figure
+
+    U, V = np.linspace(-0.1, 0.1, 5), np.linspace(-0.05, 0.05, 3)
+    figs = [thickness_figure(U, V, np.full((3, 5), TARGET), TARGET),
+            part_figure(np.zeros((4, 3)), np.full(4, TARGET), TARGET, [1, 0, 0], [0, 1, 0])]
+    for fig in figs:
+        ax, cax = fig.axes
+        film = next(a for a in ax.get_children() if a.get_gid() == "film")
+        assert film.get_clim() == pytest.approx((22.5, 27.5), rel=1e-12)
+        assert cax.get_ylabel() == film_label(TARGET)
