@@ -21,8 +21,7 @@ from .common import (
 def _inputs(args) -> list:
     """(what, path) of the files ``view`` reads besides the shared options' (the paint
     folder's, the workspace map's): never one of its outputs."""
-    from .view_cell import cell_inputs
-    from .view_paint import paint_inputs
+    from ..outputs.folder import cell_inputs, paint_inputs
 
     files = []
     if args.paint is not None:
@@ -41,7 +40,8 @@ def run(args) -> int:
         refuse_inputs(args, args.html, also=_inputs(args))
     overlay = None
     if args.paint is not None:
-        from .view_cell import is_cell, view_cell
+        from ..outputs.folder import is_cell
+        from .view_cell import view_cell
         from .view_paint import paint_overlay
 
         if args.trajectory != "thesis":

@@ -1,9 +1,10 @@
 """``view --paint DIR`` of a paint cell (docs/model.md §26): DIR/paint.json names the robots
 (``robots``: name, base, rotation) and each runs DIR/<name>/path.csv in its own base frame
-on the cell's clock; every robot is drawn at its base, the film on the part riding the line."""
+on the cell's clock; every robot is drawn at its base, the film on the part riding the line.
+The folder is read by :mod:`pollard_pin.outputs.folder`; here the robots' programs are solved
+and the page written or served."""
 from __future__ import annotations
 
-import json
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -12,50 +13,20 @@ import numpy as np
 
 from .common import STDOUT, UsageError, load_robot, say_notes, warnings_as_notes
 
-CELL_FILES = ("path.csv", "path.units.json")
-
-
-def is_cell(folder: Path) -> bool:
-    """Whether DIR/paint.json is a cell's (a non-empty ``robots`` list); an unreadable
-    report is left to the film's reader to refuse."""
-    try:
-        report = json.loads((Path(folder) / "paint.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return False
-    return isinstance(report, dict) and isinstance(report.get("robots"), list) and bool(
-        report["robots"])
-
-
-def cell_inputs(folder) -> list[tuple[str, Path]]:
-    """(what, path) of the robots' files ``view --paint DIR`` reads: DIR/*/path.csv."""
-    folder = Path(folder)
-    if not folder.is_dir():
-        return []
-    return [(f"the paint folder's {d.name}/{n}", d / n) for d in sorted(folder.iterdir())
-            if d.is_dir() for n in CELL_FILES]
-
-
-def cell_robots(folder: Path, report: dict):
-    """The report's robots as :class:`...paint.cell.robots.CellRobot` (the job's rules)."""
-    from ..painting.cell.robots import ROBOT_KEYS, robots_from_tables
-
-    tables = [{k: r[k] for k in ROBOT_KEYS if k in r} if isinstance(r, dict) else r
-              for r in report["robots"]]
-    return robots_from_tables(str(folder / "paint.json"), tables)
-
 
 def cell_members(args, folder: Path, cells):
     """The model and each robot's program solved (:class:`...viz.cell_view.CellMember`)."""
     from ..io.trajectory import from_csv
+    from ..outputs.folder import robot_paths
     from ..run import run_pipeline
     from ..viz.cell_view import CellMember
+    from .view_paint import paint_flag
 
     robot = load_robot(args)
     members = []
-    for c in cells:
-        path = folder / c.name / "path.csv"
-        if not path.is_file():
-            raise UsageError(f"--paint {folder}: robot {c.name!r} has no {c.name}/path.csv")
+    with paint_flag():
+        paths = robot_paths(folder, cells)
+    for c, path in zip(cells, paths):
         with warnings_as_notes(args):
             traj = from_csv(path)
         ik = run_pipeline(robot, traj, dynamics=False, joint_limits=not args.ignore_limits).ik
@@ -68,12 +39,13 @@ def cell_members(args, folder: Path, cells):
 def view_cell(args, decorate=None) -> int:
     """``view --paint DIR`` for a cell; ``decorate(overlay)`` adds more drawing (the
     workspace map)."""
+    from ..outputs.folder import cell_robots, read_report
     from ..viz import viewer
     from ..viz.cell_view import build_cell_scene, cell_key_samples, write_cell_html
-    from .view_paint import paint_overlay, paint_report
+    from .view_paint import paint_overlay
 
     folder = Path(args.paint)
-    report = paint_report(folder)
+    report = read_report(folder)
     cells = cell_robots(folder, report)
     overlay = paint_overlay(folder, f"{cells[0].name}/path.csv")
     if decorate is not None:
