@@ -445,7 +445,7 @@ def load_paint_json(path: str | Path) -> dict:
     except OSError as exc:
         raise ResultFileError(f"{path}: not a paint report ({clip(exc, 100)})") from None
     if len(data) > MAX_REPORT_BYTES:
-        _refuse(path, f"over {MAX_REPORT_BYTES >> 20} MiB")
+        _refuse(path, f"over {MAX_REPORT_BYTES / 2**20:.4g} MiB")
     try:
         report = json.loads(data.decode("utf-8"))
     except (ValueError, RecursionError) as exc:  # not UTF-8, not JSON; deep nesting
