@@ -10,7 +10,7 @@ import numpy as np
 
 def paint_overlay(folder, path: str = "path.csv"):
     """The film of a ``paint`` output folder as a viewer overlay: a callable drawing it, with
-    ``view`` (the default :class:`~pollard_pin.viz.film_view.FilmView`, or None) and
+    ``view`` (the default ``viz.film_view.FilmView``, or None) and
     ``moving`` (the nodes the line carries, or None); ``path`` the program it needs (a
     cell's: "<name>/path.csv")."""
     from ..film_scale import film_range

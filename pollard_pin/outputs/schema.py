@@ -77,7 +77,7 @@ _CHECKS = {"float": _number, "float | None": _number, "int": _count, "str": _tex
            "tuple[float, float]": _pair}
 
 
-class _Section:
+class Section:
     """A table of paint.json with fixed keys, in the order the package writes them."""
 
     @classmethod
@@ -115,7 +115,7 @@ class _Section:
 
 
 @dataclass(frozen=True)
-class Thickness(_Section):
+class Thickness(Section):
     """paint.json's ``thickness``: the film's statistics (docs/model.md §21, §23;
     painting.film.stats).
 
@@ -143,7 +143,7 @@ class Thickness(_Section):
 
 
 @dataclass(frozen=True)
-class MotorUse(_Section):
+class MotorUse(Section):
     """One motor's entry of paint.json's ``motors``: each limit's use over its rating.
 
     Attributes
@@ -158,7 +158,7 @@ class MotorUse(_Section):
 
 
 @dataclass(frozen=True)
-class Grid(_Section):
+class Grid(Section):
     """paint.json's ``grid`` (a panel's film): ``nv`` rows of ``nu`` points.
 
     Attributes
@@ -189,7 +189,7 @@ def check_grid(path, nu, nv) -> None:
 
 
 @dataclass(frozen=True)
-class FilmPoints(_Section):
+class FilmPoints(Section):
     """paint.json's ``film_points`` (a part's film, docs/model.md §23).
 
     Attributes
@@ -206,9 +206,9 @@ class FilmPoints(_Section):
 
 
 @dataclass(frozen=True)
-class FilmPly(_Section):
+class FilmPly(Section):
     """paint.json's ``film_ply``: what film.ply's vertex colours mean
-    (:func:`pollard_pin.film_scale.ply_colours`).
+    (``pollard_pin.film_scale.ply_colours``).
 
     Attributes
     ----------
@@ -223,7 +223,7 @@ class FilmPly(_Section):
 
 
 @dataclass(frozen=True)
-class Seam(_Section):
+class Seam(Section):
     """One entry of a cell's ``seams`` (docs/model.md §26): the film where two robots' zones
     meet.
 
@@ -272,13 +272,12 @@ class PaintJson:
         The cycle [s].
     line : Mapping or None
         On a line: speed, direction, cycle, pitch, parts per hour … (read by the job's rule,
-        :func:`pollard_pin.painting.line.conveyor.line_from_table`, where it moves a film).
+        ``painting.line.conveyor.line_from_table``, where it moves a film).
     seams : tuple of Seam or None
         A cell's seams.
     robots : tuple of Mapping or None
         A cell's robots: name, base, rotation (read by the job's rule,
-        :func:`pollard_pin.painting.cell.robots.robots_from_tables`), zone, start, program,
-        motors ….
+        ``painting.cell.robots.robots_from_tables``), zone, start, program, motors ….
     clearance : Mapping or None
         The gun's (a cell: the robots' too) least distance from the part.
     motors : Mapping of str to MotorUse, or None
@@ -470,5 +469,5 @@ def read_paint_json(path: str | Path) -> PaintJson:
 
 
 __all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "MAX_REPORT_BYTES", "MotorUse",
-           "PaintJson", "Seam", "Thickness", "check_grid", "dumps", "load_paint_json",
-           "read_paint_json"]
+           "PaintJson", "Seam", "Section", "Thickness", "check_grid", "dumps",
+           "load_paint_json", "read_paint_json"]
