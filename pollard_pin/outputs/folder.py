@@ -28,7 +28,7 @@ def paint_inputs(folder) -> list[tuple[str, Path]]:
 
 
 def cell_inputs(folder) -> list[tuple[str, Path]]:
-    """(what, path) of a cell's robots' files in ``folder``: DIR/*/path.csv."""
+    """(what, path) of a cell's robots' files in ``folder``: ``DIR/*/path.csv``."""
     folder = Path(folder)
     if not folder.is_dir():
         return []
