@@ -170,3 +170,14 @@ def test_the_page_frames_the_film_and_states_its_scale(painted, tmp_path, capsys
     ply = np.asarray(mesh.visual.vertex_colors[:, :3], float) / 255
     assert np.abs(colour - ply).max() < 1.5 / 255  # film.ply rounds to bytes: 0.49/255
     assert 'id="film-legend"' in page and "film thickness [µm] (target 25 ± 10 %)" in page
+
+
+def test_the_report_paint_wrote_reads_back_through_its_schema(painted):
+    """paint.json as ``paint`` writes it today: read by the schema view reads it with, and
+    written back, the same text (tests/outputs/test_schema.py: every example job's)."""
+    from pollard_pin.outputs.schema import dumps, read_paint_json
+
+    text = (painted / "paint.json").read_text(encoding="utf-8")
+    report = read_paint_json(painted / "paint.json")
+    assert report.grid is not None and report.thickness is not None and report.version
+    assert dumps(report) == text
