@@ -72,11 +72,11 @@ RANKS = [
     ("pollard_pin.run", 7), ("pollard_pin.viz", 8), ("pollard_pin.sweep", 9),
     ("pollard_pin.cli", 10), ("pollard_pin", 11),
 ]
-# The calls up the layers: PaintResult.write (paint/api.py) writes through paint's file
+# The calls up the layers: PaintResult.write (painting/result.py) writes through paint's file
 # writers (a cell's in their own module), lazily, so that a Python user writes what the CLI
 # writes.
-UPWARD = {("pollard_pin.painting.api", "pollard_pin.io.paint_files"),
-          ("pollard_pin.painting.api", "pollard_pin.io.paint_cell_files")}
+UPWARD = {("pollard_pin.painting.result", "pollard_pin.io.paint_files"),
+          ("pollard_pin.painting.result", "pollard_pin.io.paint_cell_files")}
 
 
 def _rank(module: str) -> int:

@@ -1,12 +1,12 @@
-"""A cell's paint.json numbers (paint/cell/report.py, docs/model.md §26): each seam's film
+"""A cell's paint.json numbers (painting/kinds/cell.py, docs/model.md §26): each seam's film
 over the run-on band around it, area-weighted."""
 import math
 
 import numpy as np
 import pytest
 
-from pollard_pin.painting.cell.report import seam_entries
 from pollard_pin.painting.cell.zones import Split, Zone
+from pollard_pin.painting.kinds.cell import seam_entries
 
 
 def test_a_seams_band_is_the_points_within_the_runout():
