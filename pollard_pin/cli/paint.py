@@ -74,7 +74,7 @@ def run(args) -> int:
         if count is not None:
             write_layout(robots, out, count, job)
     print("\n".join(result.summary_lines()))
-    say_written(out, name, result.robots)
+    say_written(out, name, result.robot_folders)
     return 0
 
 

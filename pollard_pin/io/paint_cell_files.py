@@ -31,7 +31,7 @@ def robot_metadata(rp) -> dict:
 
 
 def write_cell(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a cell's :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or
+    """Every output of a cell's :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or
     none; the film table's path."""
     from ..errors import InputError
     from .atomic import check_outputs
@@ -43,7 +43,7 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
     rep = report_json(result)
 
     cell = result.plan
-    files, stale = result.painter.outputs.files(out, fmt, result.robots)
+    files, stale = result.painter.outputs.files(out, fmt, result.robot_folders)
     check_outputs(*files, folders=(out, *(out / r.robot.name for r in cell.robots)))
     name = out / f"thickness.{fmt}"
     meta = {"command": "paint", "job": rep["job"], "frame": CELL_FRAME}

@@ -1,6 +1,6 @@
 """What ``paint`` writes for a panel or a part, still or on a line: path.csv (with the
 trigger), the film table, film.ply, paint.json and thickness.png, every one or none
-(:meth:`pollard_pin.painting.api.PaintResult.write` and the CLI)."""
+(:meth:`pollard_pin.painting.result.PaintResult.write` and the CLI)."""
 from __future__ import annotations
 
 import json
@@ -28,7 +28,7 @@ def report_json(result) -> dict:
 
 
 def write_paint(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or none;
+    """Every output of a :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or none;
     the table's path."""
     from .table import FORMATS
 

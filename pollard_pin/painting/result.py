@@ -109,7 +109,7 @@ class PaintResult:
         The plan of that kind (a :class:`~pollard_pin.PaintPlan` for a still panel): its
         ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and ``spray`` (the
         gun's trigger per sample), passes, speed, cycle time.
-    film : pollard_pin.painting.api.PaintFilm
+    film : pollard_pin.painting.result.PaintFilm
         The film points and the thickness [m] at each.
     report : PaintReport
         The numbers of ``paint.json``.
@@ -134,7 +134,7 @@ class PaintResult:
     painter: JobKind
 
     @property
-    def robots(self) -> tuple[str, ...]:
+    def robot_folders(self) -> tuple[str, ...]:
         """The robots with a folder of their own in the outputs (a cell's; else none)."""
         if not self.painter.outputs.per_robot:
             return ()

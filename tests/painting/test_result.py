@@ -77,4 +77,4 @@ def test_summary_lines_are_the_kinds_then_clearance_and_compliance(result):
     rep = result.report.data
     assert result.summary_lines() == [*summary_lines(rep, result.actuators.names),
                                       clearance_line(rep), compliance_line(rep["compliance"])]
-    assert result.robots == () and result.painter.name == result.kind == "panel"
+    assert result.robot_folders == () and result.painter.name == result.kind == "panel"

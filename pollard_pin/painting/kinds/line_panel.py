@@ -73,7 +73,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
     return check_report(rep, plan.job.source)
 
 
-def line_summary_lines(rep: dict, names) -> list[str]:
+def summary_lines(rep: dict, names) -> list[str]:
     """The lines ``paint`` prints for a panel on the line."""
     th = rep["thickness"]
     return line_lines(rep) + [
@@ -89,7 +89,7 @@ def line_summary_lines(rep: dict, names) -> list[str]:
 
 
 # the film and the figure: the panel at its t = 0 pose, the tips seen from it
-KIND = JobKind("line panel", paint, line_summary_lines,
+KIND = JobKind("line panel", paint, summary_lines,
                outputs=Outputs(part_frame=True, tips=part_frame_positions))
 
-__all__ = ["KIND", "line_plan", "line_report", "line_summary_lines", "paint"]
+__all__ = ["KIND", "line_plan", "line_report", "paint", "summary_lines"]

@@ -12,13 +12,13 @@ from cell_jobs import cell_job, panel_cell
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
-from pollard_pin.painting.api import PaintOptions
 from pollard_pin.painting.cell.compliance import cell_compliance, robot_deflection
 from pollard_pin.painting.cell.plan import plan_cell
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.film.cell import cell_panel_film
 from pollard_pin.painting.film.compliance import compliance_entry
 from pollard_pin.painting.film.line import line_film
+from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.plan.compliance import deflected_poses, program_deflection
 
 RECOIL = 3.0  # N

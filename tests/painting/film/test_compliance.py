@@ -96,7 +96,7 @@ def test_without_stiffness_the_report_says_so(robot, act, small):
 def test_paint_reports_it(robot, act, small):
     """pollard_pin.paint: paint.json's ``compliance`` is compliance_entry's on its plan and
     film (equal); PaintOptions(compliance=False) leaves it out."""
-    from pollard_pin.painting.api import PaintOptions
+    from pollard_pin.painting.options import PaintOptions
 
     job = small[0]
     r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma))

@@ -16,7 +16,7 @@ def test_part_is_the_part_planners(robot, act):
     from pollard_pin.painting.plan.part import plan_surface
     from pollard_pin.painting.report import surface_report
 
-    job = pp.load_job(Path(__file__).resolve().parents[2] / "examples" / "parts"
+    job = pp.load_job(Path(__file__).resolve().parents[3] / "examples" / "parts"
                       / "curved_panel.toml")
     r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma, compliance=False))
     plan = plan_surface(robot, job, act)
