@@ -10,19 +10,19 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..dynamics.motors import Actuators
+from .cell.plan import CellPlan
+from .film.mesh import MeshFilm
+from .film.points import SurfacePoints
+from .job import PaintJob, PartJob
+from .line.panel import LinePlan
+from .line.part import LinePartPlan
 from .options import PaintOptions
+from .plan.panel import PaintPlan
+from .plan.part import SurfacePlan
+from .spray.deposition import Film
 
-if TYPE_CHECKING:
-    from .cell.plan import CellPlan
-    from .film.mesh import MeshFilm
-    from .film.points import SurfacePoints
-    from .job import PaintJob, PartJob
+if TYPE_CHECKING:  # the kinds import this module: a kind's type only
     from .kinds.base import JobKind
-    from .line.panel import LinePlan
-    from .line.part import LinePartPlan
-    from .plan.panel import PaintPlan
-    from .plan.part import SurfacePlan
-    from .spray.deposition import Film
 
 
 @dataclass(frozen=True)

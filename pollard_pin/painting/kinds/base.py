@@ -57,7 +57,7 @@ class Outputs:
     part_frame : bool
         The film table, film.ply and figure give the part at its t = 0 pose, world
         coordinates, the path the world's (a job on a line, docs/model.md §24).
-    tips : callable
+    tips : Callable
         ``tips(plan)``: the gun's tips (N, 3) seen from the part, a panel's figure's tracks.
     """
 
@@ -78,16 +78,16 @@ class JobKind:
     ----------
     name : str
         ``result.kind`` and ``paint.json``'s word for it (``"panel"``, ``"line part"``, ...).
-    paint : callable
+    paint : Callable
         ``paint(robot, job, actuators, options, resolution)`` → (plan, PaintFilm, report
         dict): plan, integrate the film, compute ``paint.json``'s numbers.
-    summary_lines : callable
+    summary_lines : Callable
         ``summary_lines(report, motor_names)`` → the lines ``pollard-pin paint`` prints.
     compliance : bool
         Whether ``paint`` adds the compliance report (docs/model.md §27.7).
     outputs : Outputs
         What its written files differ in.
-    recognise : callable or None
+    recognise : Callable or None
         ``recognise(job)`` → whether the job is of this kind; None: the paint jobs
         :func:`~pollard_pin.painting.job.job_kind` names ``name``.
     """
