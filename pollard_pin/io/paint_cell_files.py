@@ -15,19 +15,6 @@ from .atomic import all_or_nothing, atomic_open, make_folder, remove_stale
 CELL_FRAME = "the part at its t = 0 pose, world coordinates; all robots"
 
 
-def cell_outputs(out: Path, fmt: str, names) -> tuple[tuple, tuple]:
-    """(every file a cell's ``paint`` writes in ``out``, the stale ones it removes): each
-    robot's path.csv in its folder, and the whole part's film, report and figure."""
-    from .table import FORMATS, table_files
-
-    files = tuple(f for n in names for f in table_files(out / n / "path.csv"))
-    files += (*table_files(out / f"thickness.{fmt}", fmt), out / "paint.json",
-              out / "thickness.png", out / "film.ply")
-    stale = tuple(f for other in FORMATS if other != fmt
-                  for f in table_files(out / f"thickness.{other}", other))
-    return files, stale
-
-
 def robot_metadata(rp) -> dict:
     """A robot's path.csv metadata: its base pose and gravity in its base frame (``run``,
     ``size``, ``simulate`` and ``stiffness`` check the program with that gravity, as
@@ -44,7 +31,7 @@ def robot_metadata(rp) -> dict:
 
 
 def write_cell(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a cell's :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or
+    """Every output of a cell's :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or
     none; the film table's path."""
     from ..errors import InputError
     from .atomic import check_outputs
@@ -56,7 +43,7 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
     rep = report_json(result)
 
     cell = result.plan
-    files, stale = cell_outputs(out, fmt, [r.robot.name for r in cell.robots])
+    files, stale = result.painter.outputs.files(out, fmt, result.robot_folders)
     check_outputs(*files, folders=(out, *(out / r.robot.name for r in cell.robots)))
     name = out / f"thickness.{fmt}"
     meta = {"command": "paint", "job": rep["job"], "frame": CELL_FRAME}
@@ -145,4 +132,4 @@ def _aims(rp) -> np.ndarray:
     return (p + rp.plan.job.standoff * a)[s > 0]
 
 
-__all__ = ["CELL_FRAME", "cell_outputs", "robot_metadata", "write_cell"]
+__all__ = ["CELL_FRAME", "robot_metadata", "write_cell"]

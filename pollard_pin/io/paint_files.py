@@ -1,10 +1,9 @@
 """What ``paint`` writes for a panel or a part, still or on a line: path.csv (with the
 trigger), the film table, film.ply, paint.json and thickness.png, every one or none
-(:meth:`pollard_pin.painting.api.PaintResult.write` and the CLI)."""
+(:meth:`pollard_pin.painting.result.PaintResult.write` and the CLI)."""
 from __future__ import annotations
 
 import json
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -14,18 +13,6 @@ from .atomic import all_or_nothing, atomic_open, check_outputs, make_folder, rem
 
 # The frame a line's film and figure are given in (its paint.json, table and film.ply)
 LINE_FRAME = "the part at its t = 0 pose, world coordinates"
-
-
-def paint_outputs(out: Path, fmt: str) -> tuple[tuple, tuple]:
-    """(every file ``paint`` writes in ``out`` with a ``fmt`` table, the other format's
-    table files it removes): check the first before any work."""
-    from .table import FORMATS, table_files
-
-    files = (*table_files(out / "path.csv"), *table_files(out / f"thickness.{fmt}", fmt),
-             out / "paint.json", out / "thickness.png", out / "film.ply")
-    stale = tuple(f for other in FORMATS if other != fmt  # view --paint never finds two films
-                  for f in table_files(out / f"thickness.{other}", other))
-    return files, stale
 
 
 def report_json(result) -> dict:
@@ -41,19 +28,20 @@ def report_json(result) -> dict:
 
 
 def write_paint(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a :class:`~pollard_pin.painting.api.PaintResult` in ``out``, or none;
+    """Every output of a :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or none;
     the table's path."""
     from .table import FORMATS
 
     if fmt not in FORMATS:
         raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    files, stale = paint_outputs(out, fmt)
+    files, stale = result.painter.outputs.files(out, fmt)
     check_outputs(*files, folders=(out,))
     rep = report_json(result)
     meta = {"command": "paint", "job": rep["job"]}
-    if result.kind.startswith("line"):
+    if result.painter.outputs.part_frame:
         meta["frame"] = LINE_FRAME
-    writer = _write_part if result.kind.endswith("part") else _write_panel
+    # a panel's film on its grid, a part's on its mesh
+    writer = _write_panel if result.film.grid is not None else _write_part
     return writer(result, out / f"thickness.{fmt}", rep, meta, stale)
 
 
@@ -76,7 +64,6 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
     coordinates, in the part's frame on a line)."""
     from ..film_scale import film_rgba as film_colours
-    from ..painting.film.line import part_frame_positions
     from ..painting.film.ply_mesh import grid_mesh
     from ..viz.paint import write_thickness_png
     from .ply import write_film_ply
@@ -87,9 +74,9 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     job, tr, fr = plan.job, plan.trajectory, plan.frame
     U, V = f.grid
     thickness = f.thickness
-    moving = result.kind == "line panel"  # the tips seen from the part, on a line
-    comment = f"film: {LINE_FRAME}" if moving else None
-    tips = part_frame_positions(plan) if moving else tr.poses[:, :3]
+    outputs = result.painter.outputs
+    comment = f"film: {LINE_FRAME}" if outputs.part_frame else None
+    tips = outputs.tips(plan)  # seen from the part
     rel = tips[plan.spray > 0] - fr.c - job.standoff * fr.n
     out = name.parent
     with all_or_nothing():  # everything is computed: now write every output, or none
@@ -118,11 +105,8 @@ def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     from .table import write_table
     from .trajectory import to_csv
 
-    plan, f = result.plan, result.film
-    comment = None
-    if result.kind == "line part":  # the world path and its trigger; the film on the part
-        plan, comment = replace(plan.in_part_frame(), trajectory=plan.trajectory), \
-            f"film: {LINE_FRAME}"
+    plan, f = result.plan, result.film  # on a line: the world path, the part at t = 0
+    comment = f"film: {LINE_FRAME}" if result.painter.outputs.part_frame else None
     job, lay, pts, painted = plan.job, plan.layout, f.points, f.painted
     out = name.parent
     used, triangles = refined_mesh(plan.part, pts)
@@ -144,4 +128,4 @@ def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     return name
 
 
-__all__ = ["LINE_FRAME", "panel_table", "paint_outputs", "report_json", "write_paint"]
+__all__ = ["LINE_FRAME", "panel_table", "report_json", "write_paint"]

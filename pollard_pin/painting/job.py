@@ -429,19 +429,19 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
     return job
 
 
-KINDS = ("panel", "part", "line panel", "line part", "cell panel", "cell part")
-
-
 def job_kind(job: Any) -> str:
-    """The job's kind, one of KINDS; :class:`JobKindError` naming the type of anything else."""
+    """The name of the job's kind: what it paints (``panel``, ``part``) and where (still,
+    ``line ...`` with a [line] table, ``cell ...`` with [[robot]] tables; the kinds:
+    ``pollard_pin.painting.kinds.KINDS``); :class:`JobKindError` naming the type of anything
+    else."""
     if isinstance(job, PaintJob | PartJob):
         what = "panel" if isinstance(job, PaintJob) else "part"
         if job.robots:
             return f"cell {what}"
         return what if job.line is None else f"line {what}"
-    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
-                       f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
+    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job (a PaintJob "
+                       "or PartJob, from load_job)")
 
 
-__all__ = ["DIRECTIONS", "KINDS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "JobError",
+__all__ = ["DIRECTIONS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "JobError",
            "PaintJob", "PartJob", "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

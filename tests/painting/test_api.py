@@ -1,10 +1,8 @@
-"""pollard_pin.paint (paint/api.py): one entry point for every job kind. Its film and report
-are the kind's own planner's (exactly: the same deterministic computation, asserted equal),
-a job it cannot paint is a PollardError naming the kind, and PaintResult.write writes what
-the result holds (tables read back against its arrays)."""
+"""pollard_pin.paint (painting/api.py): one entry point for every job kind, the kind looked up
+in the table (each kind's film and report against its own planner's:
+tests/painting/kinds/test_<kind>.py); a job it cannot paint is a PollardError naming the
+kind; hostile parts; every example keeps the report's invariants."""
 import importlib
-import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -12,59 +10,8 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.errors import InputError, PollardError
-from pollard_pin.io.table import read_result
-from pollard_pin.io.trajectory import from_csv
-from pollard_pin.painting.api import PaintOptions, PaintResult
 from pollard_pin.painting.errors import JobKindError
-from pollard_pin.painting.report import paint_report
-
-
-@pytest.fixture(scope="module")
-def result(robot, job, act) -> PaintResult:
-    return pp.paint(robot, job, act)
-
-
-def test_panel_is_the_panel_planners(result, plan, film, act):
-    """examples/paint.toml: the plan, the film and paint.json's statistics are those of
-    plan_paint, plan_film and paint_report called directly (equal, not close)."""
-    U, V, pts, f = film
-    assert result.kind == "panel" and isinstance(result, PaintResult)
-    assert np.array_equal(result.plan.trajectory.poses, plan.trajectory.poses)
-    assert np.array_equal(result.film.thickness, f.thickness)
-    assert np.array_equal(result.film.grid[0], U) and np.array_equal(result.film.points, pts)
-    direct = paint_report(plan, f, act)
-    assert result.report.thickness == direct["thickness"]
-    assert result.report.cycle_time == direct["cycle_time"] == plan.cycle_time
-    assert result.report.motors == direct["motors"]
-
-
-def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
-    """examples/line.toml: the world path and film statistics of plan_line + line_film +
-    line_report at the job's speed (equal)."""
-    from pollard_pin.painting.film.line import line_film
-    from pollard_pin.painting.report import line_report
-
-    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
-    U, V, _, f = line_film(line_plan)
-    direct = line_report(line_plan, f, act, {"nu": len(U), "nv": len(V)})
-    assert r.kind == "line panel" and r.report.line["searched"] is False
-    assert np.array_equal(r.plan.trajectory.poses, line_plan.trajectory.poses)
-    assert r.report.thickness == direct["thickness"]
-    assert r.report.line["speed"] == direct["line"]["speed"] == line_job.line.speed
-
-
-def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, act):
-    """A [part] on a [line]: the film of the plan seen from the part, surface_film's, and
-    the report's statistics (equal)."""
-    from pollard_pin.painting.film.part import surface_film
-    from pollard_pin.painting.report import line_part_report
-
-    r = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False))
-    pts, f, painted, eff = surface_film(line_part_plan.in_part_frame())
-    direct = line_part_report(line_part_plan, pts, f, painted, eff, act)
-    assert r.kind == "line part"
-    assert np.array_equal(r.film.thickness, f.thickness)
-    assert r.report.thickness == direct["thickness"] and r.film.efficiency == eff
+from pollard_pin.painting.options import PaintOptions
 
 
 def test_a_job_of_another_kind_is_named(robot, act, job):
@@ -84,16 +31,6 @@ def test_a_job_of_another_kind_is_named(robot, act, job):
         pp.paint(robot, job, act, PaintOptions(max_line_speed=True))
 
 
-@pytest.mark.parametrize(("field", "value", "says"), [
-    ("resolution", -1e-3, "-0.001"), ("resolution", float("nan"), "nan"),
-    ("max_line_speed", 1, "True or False"), ("speed_resolution", 1.0, "(0, 1)"),
-])
-def test_options_are_checked_once(field, value, says):
-    with pytest.raises(InputError, match=re.escape(f"PaintOptions.{field} = ")) as info:
-        PaintOptions(**{field: value})
-    assert says in str(info.value)
-
-
 def test_paint_is_a_plain_function():
     """pp.paint is painting.api.paint, a plain function; the subpackage is pollard_pin.painting."""
     import types
@@ -102,59 +39,6 @@ def test_paint_is_a_plain_function():
 
     assert pp.paint is api.paint and isinstance(pp.paint, types.FunctionType)
     assert not callable(importlib.import_module("pollard_pin.painting"))
-
-
-def test_part_is_the_part_planners(robot, act):
-    """examples/parts/curved_panel.toml at film spacing σ: plan_surface, surface_film and
-    surface_report called directly give the same film and statistics (equal)."""
-    from pollard_pin.painting.film.part import surface_film
-    from pollard_pin.painting.plan.part import plan_surface
-    from pollard_pin.painting.report import surface_report
-
-    job = pp.load_job(Path(__file__).resolve().parents[2] / "examples" / "parts"
-                      / "curved_panel.toml")
-    r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma, compliance=False))
-    plan = plan_surface(robot, job, act)
-    pts, f, painted, eff = surface_film(plan, job.sigma)
-    direct = surface_report(plan, pts, f, painted, eff, act)
-    assert r.kind == "part" and np.array_equal(r.film.thickness, f.thickness)
-    assert np.array_equal(r.film.painted, painted) and r.film.efficiency == eff
-    assert r.report.thickness == direct["thickness"]
-    assert r.report.data["film_points"] == direct["film_points"]
-
-
-@pytest.mark.parametrize("fmt", ["csv", "parquet"])
-def test_write_holds_the_result(result, tmp_path, fmt):
-    """The table, path.csv and paint.json read back: the film's points and thickness, the
-    plan's path, the report (CSV's shortest round-trip floats: equal; asserted 1e-15
-    relative), film.ply's colour range in paint.json; a stale table of the other format
-    removed."""
-    other = "parquet" if fmt == "csv" else "csv"
-    (tmp_path / f"thickness.{other}").write_text("stale")
-    name = result.write(tmp_path, fmt)
-    assert name == tmp_path / f"thickness.{fmt}" and not (tmp_path / f"thickness.{other}").exists()
-    table = read_result(name)
-    flat = result.film.points.reshape(-1, 3)
-    for k, col in enumerate("xyz"):
-        np.testing.assert_allclose(table[col], flat[:, k], rtol=1e-15, atol=0)
-    np.testing.assert_allclose(table["thickness"], result.film.thickness, rtol=1e-15, atol=0)
-    path = from_csv(tmp_path / "path.csv")
-    np.testing.assert_allclose(path.poses, result.plan.trajectory.poses, rtol=1e-15, atol=0)
-    rep = json.loads((tmp_path / "paint.json").read_text(encoding="utf-8"))
-    assert rep["thickness"] == result.report.thickness and rep["grid"]["nu"] == len(
-        result.film.grid[0])
-    target = result.job.thickness
-    assert rep["film_ply"]["range"] == [target * 0.9, target * 1.1]
-    assert list(rep)[-1] == "pollard_pin"
-    assert {p.name for p in tmp_path.iterdir()} >= {"path.csv", "film.ply", "paint.json",
-                                                  "thickness.png", name.name}
-
-
-def test_write_refuses_a_format_and_writes_nothing(result, tmp_path):
-    out = tmp_path / "out"
-    with pytest.raises(InputError, match="format 'xlsx'"):
-        result.write(out, "xlsx")
-    assert not out.exists()
 
 
 def test_every_example_job_has_a_kind():
@@ -169,24 +53,6 @@ def test_every_example_job_has_a_kind():
     assert kinds["line_part.toml"] == "line part"
     assert {kinds[k] for k in kinds if k.endswith("plate.toml") or k == "curved_panel.toml"
             } == {"part"}
-
-
-def test_write_is_what_the_cli_writes(result, tmp_path):
-    """pollard-pin paint on the same job and motors: the same files, byte for byte, and the
-    same paint.json but for the timings."""
-    from pollard_pin.cli import main
-
-    job = Path(result.job.source)
-    assert main(["paint", "--job", str(job), "--out", str(tmp_path / "cli"),
-                 "--actuators", str(job.parent / "actuators.toml")]) == 0
-    result.write(tmp_path / "api")
-    for name in ("path.csv", "path.units.json", "thickness.csv", "thickness.units.json",
-                 "film.ply", "thickness.png"):
-        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "api" / name).read_bytes()
-    cli, api = (json.loads((tmp_path / d / "paint.json").read_text(encoding="utf-8"))
-                for d in ("cli", "api"))
-    assert cli.pop("timings").keys() == api.pop("timings").keys()
-    assert cli == api
 
 
 # --- hostile parts: a duplicated mesh, faces hidden, a table top ------------------------------

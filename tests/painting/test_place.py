@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from pollard_pin.errors import PollardError
-from pollard_pin.painting.api import PaintOptions, paint
+from pollard_pin.painting.api import paint
 from pollard_pin.painting.job import load_job
+from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.passes.program import pass_poses
 from pollard_pin.painting.passes.surface import surface_layout
 from pollard_pin.painting.place import PlaceError, PlaceOptions, place

@@ -17,9 +17,10 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
-from pollard_pin.painting.api import PaintOptions, paint
+from pollard_pin.painting.api import paint
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line.conveyor import Line
+from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.place import PlaceOptions, place
 from pollard_pin.painting.workpiece.mesh import load_job_part
 

@@ -1,48 +1,15 @@
-"""The numbers of paint.json (paint/report.py), a panel's, a part's and a line's: each against
-the plan, the film and the motor check it comes from, and the swept lower bound against the
-time the passes take."""
-import json
+"""The shared numbers of paint.json (painting/report.py), a part's and a line's: each against
+the plan, the film and the motor check it comes from; the invariants every report keeps (a
+still panel's report: tests/painting/kinds/test_panel.py)."""
 
 import numpy as np
 import pytest
 
 from pollard_pin.painting.film.part import surface_film
-from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.job import PartJob
 from pollard_pin.painting.plan.part import plan_surface
-from pollard_pin.painting.report import line_table, paint_report, surface_report
+from pollard_pin.painting.report import line_table, surface_report
 from pollard_pin.painting.workpiece.mesh import panel_part
-
-
-@pytest.fixture(scope="module")
-def report(plan, film, act):
-    return paint_report(plan, film[3], act)
-
-
-def test_report_is_plain_json(report):
-    """Only numbers, strings, lists and dicts, no NaN: json.dumps (strict) writes it."""
-    assert json.loads(json.dumps(report, allow_nan=False))["target"] == report["target"]
-
-
-def test_swept_lower_bound_is_the_time_on_the_passes(plan, report):
-    """Painting the swept strips (passes × their length × spacing) at the target takes
-    exactly as long as the passes at constant speed: film = flow/(speed·spacing) per coat."""
-    on_passes = sum(d for d, k in zip(plan.segments.duration, plan.segments.kind) if k == "pass")
-    assert report["swept_lower_bound"] == pytest.approx(on_passes, rel=1e-12)
-    assert report["lower_bound"] < report["swept_lower_bound"] < report["cycle_time"]
-    assert report["cycle_time"] == plan.trajectory.t[-1]
-
-
-def test_layout_film_and_motors_come_from_the_plan(plan, film, act, report):
-    assert report["thickness"] == film_stats(film[3].thickness, plan.job.thickness)
-    assert report["passes"] == len(plan.offsets) * plan.coats == len(report["turnarounds"]) + 1
-    assert report["samples"] == len(plan.trajectory)
-    assert set(report["motors"]) == set(act.names)
-    for i, name in enumerate(act.names):
-        assert report["motors"][name]["peak_torque"] == plan.ratios["peak_torque"][i]
-    steps = np.linalg.norm(np.diff(plan.trajectory.poses[:, :3], axis=0), axis=1)
-    assert report["integration"]["largest_step_over_sigma"] == steps.max() / plan.job.sigma
-    assert report["integration"]["largest_step_over_sigma"] <= 0.25 * (1 + 1e-9)
 
 
 @pytest.fixture(scope="module")

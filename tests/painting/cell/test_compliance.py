@@ -12,13 +12,13 @@ from cell_jobs import cell_job, panel_cell
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
-from pollard_pin.painting.api import PaintOptions
 from pollard_pin.painting.cell.compliance import cell_compliance, robot_deflection
 from pollard_pin.painting.cell.plan import plan_cell
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.film.cell import cell_panel_film
 from pollard_pin.painting.film.compliance import compliance_entry
 from pollard_pin.painting.film.line import line_film
+from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.plan.compliance import deflected_poses, program_deflection
 
 RECOIL = 3.0  # N
@@ -118,14 +118,3 @@ def test_without_stiffness_every_entry_says_so(robot, act, result):
     ours, per = cell_compliance(robot, result.plan, pts, f, soft)
     assert ours["stiffness"] is False and "stiffness' is missing" in ours["note"]
     assert len(per) == 2 and all(c["stiffness"] is False for c in per)
-
-
-def test_summary_line_names_the_worst_robot():
-    from pollard_pin.cli.paint import compliance_line
-
-    line = compliance_line({"recoil_n": 5.0, "stiffness": True, "standoff_error_m": 4.32e-4,
-                            "standoff_error_robot": "low", "lateral_error_m": 5.56e-4,
-                            "tilt_rad": 1.43e-3, "film_error": 1.66e-2})
-    assert line == ("compliance (weight, recoil 5 N): standoff error 432 µm (robot 'low'), "
-                    "lateral 556 µm, tilt 1.43 mrad; film changes by at most 1.7 % of the "
-                    "target")

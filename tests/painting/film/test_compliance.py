@@ -96,7 +96,7 @@ def test_without_stiffness_the_report_says_so(robot, act, small):
 def test_paint_reports_it(robot, act, small):
     """pollard_pin.paint: paint.json's ``compliance`` is compliance_entry's on its plan and
     film (equal); PaintOptions(compliance=False) leaves it out."""
-    from pollard_pin.painting.api import PaintOptions
+    from pollard_pin.painting.options import PaintOptions
 
     job = small[0]
     r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma))
@@ -138,17 +138,6 @@ def test_cli_without_stiffness_says_so(robot, tmp_path, capsys):
                  "--resolution", "0.01", "--no-compliance"]) == 0
     assert "compliance" not in capsys.readouterr().out
     assert "compliance" not in (tmp_path / "off" / "paint.json").read_text(encoding="utf-8")
-
-
-def test_summary_line_states_the_entry():
-    """The summary line of ``pollard-pin paint`` carries the entry's figures in its units."""
-    from pollard_pin.cli.paint import compliance_line
-
-    line = compliance_line({"recoil_n": 0.5, "stiffness": True, "standoff_error_m": 1.92e-4,
-                            "lateral_error_m": 2.16e-4, "tilt_rad": 5.58e-4,
-                            "film_error": 3.3e-3})
-    assert line == ("compliance (weight, recoil 0.5 N): standoff error 192 µm, lateral 216 µm, "
-                    "tilt 0.558 mrad; film changes by at most 0.33 % of the target")
 
 
 def test_the_film_thins_by_the_spots_divergence(robot, job, plan, film, act):

@@ -1,0 +1,31 @@
+"""The kinds of paint job, one module each (docs/model.md §20–§26), and THE table
+:func:`~pollard_pin.painting.api.paint` dispatches on: a new kind is a module defining a
+:class:`~.base.JobKind` (its recipe, report, summary lines and outputs) and one line here."""
+from __future__ import annotations
+
+from ..errors import JobKindError
+from . import cell, line_panel, line_part, panel, part
+from .base import JobKind
+
+# by name, in the order kind_of asks them
+KINDS: dict[str, JobKind] = {k.name: k for k in (
+    panel.KIND,
+    part.KIND,
+    line_panel.KIND,
+    line_part.KIND,
+    cell.PANEL,
+    cell.PART,
+)}
+
+
+def kind_of(job) -> JobKind:
+    """The kind in :data:`KINDS` that recognises ``job``; :class:`JobKindError` naming the
+    type of anything else."""
+    for kind in KINDS.values():
+        if kind.recognises(job):
+            return kind
+    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
+                       f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
+
+
+__all__ = ["KINDS", "JobKind", "kind_of"]

@@ -1,0 +1,66 @@
+"""How :func:`~pollard_pin.painting.api.paint` plans and integrates: its options, checked
+once."""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+from ..errors import InputError
+from .line.phases import SPEED_RESOLUTION
+
+
+@dataclass(frozen=True)
+class PaintOptions:
+    """How :func:`~pollard_pin.painting.api.paint` plans and integrates, validated once.
+
+    Parameters
+    ----------
+    resolution : float or None, optional
+        The film's point spacing [m] (a panel's grid, a part's film points), at most the
+        spray spot's σ; None: σ/3.
+    max_line_speed : bool, optional
+        A job on a line is planned at the fastest line speed that paints it instead of the
+        job's speed (docs/model.md §24; default False).
+    speed_resolution : float, optional
+        That search's relative bracket, in (0, 1) (default 0.01).
+    compliance : bool, optional
+        Report what the drives' compliance does to the gun and the film (docs/model.md
+        §27.7; a second film integration; default True).
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        A resolution that is not > 0, a flag that is not a bool, a bracket outside (0, 1).
+
+    Examples
+    --------
+    >>> import pollard_pin as pp
+    >>> pp.PaintOptions(resolution=0.004)
+    PaintOptions(resolution=0.004, max_line_speed=False, speed_resolution=0.01, compliance=True)
+    """
+
+    resolution: float | None = None
+    max_line_speed: bool = False
+    speed_resolution: float = SPEED_RESOLUTION
+    compliance: bool = True
+
+    def __post_init__(self):
+        r = self.resolution
+        if r is not None and (isinstance(r, bool) or not isinstance(r, numbers.Real)
+                              or not (math.isfinite(r) and r > 0)):
+            raise InputError(f"PaintOptions.resolution = {r!r}: expected a spacing > 0 [m] "
+                             "(or None for σ/3)")
+        if not isinstance(self.max_line_speed, bool):
+            raise InputError(f"PaintOptions.max_line_speed = {self.max_line_speed!r}: expected "
+                             "True or False")
+        s = self.speed_resolution
+        if isinstance(s, bool) or not isinstance(s, numbers.Real) or not 0 < s < 1:
+            raise InputError(f"PaintOptions.speed_resolution = {s!r}: expected a relative "
+                             "bracket in (0, 1)")
+        if not isinstance(self.compliance, bool):
+            raise InputError(f"PaintOptions.compliance = {self.compliance!r}: expected True or "
+                             "False")
+
+
+__all__ = ["PaintOptions"]

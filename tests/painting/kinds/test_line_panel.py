@@ -1,0 +1,35 @@
+"""A panel on a line (painting/kinds/line_panel.py): pp.paint's world path and film
+statistics are plan_line's, line_film's and line_report's at the job's speed (equal); the
+lines paint prints."""
+import numpy as np
+
+import pollard_pin as pp
+from pollard_pin.painting.kinds.line_panel import line_report, summary_lines
+from pollard_pin.painting.options import PaintOptions
+
+
+def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
+    """examples/line.toml: the world path and film statistics of plan_line + line_film +
+    line_report at the job's speed (equal)."""
+    from pollard_pin.painting.film.line import line_film
+
+    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
+    U, V, _, f = line_film(line_plan)
+    direct = line_report(line_plan, f, act, {"nu": len(U), "nv": len(V)})
+    assert r.kind == "line panel" and r.report.line["searched"] is False
+    assert np.array_equal(r.plan.trajectory.poses, line_plan.trajectory.poses)
+    assert r.report.thickness == direct["thickness"]
+    assert r.report.line["speed"] == direct["line"]["speed"] == line_job.line.speed
+
+
+def test_summary_lines(robot, line_job, act):
+    """The line's two lines first (the speed not searched), then the panel's."""
+    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
+    rep = r.report.data
+    lines = summary_lines(rep, act.names)
+    assert lines[0].startswith(f"line speed {rep['line']['speed']:.4g} m/s, upper bound")
+    assert f"{rep['line']['parts_per_hour']:.1f} parts per hour" in lines[1]
+    assert lines[2].startswith(f"passes {rep['passes']} (") and "relative to the part" in lines[2]
+    assert lines[4].startswith("motor peak torque") and len(lines) == 6
+    assert r.summary_lines()[:6] == lines  # then the gun body's clearance (no compliance)
+    assert not any(line.startswith("compliance") for line in r.summary_lines())

@@ -1,0 +1,50 @@
+"""The lines pollard-pin paint prints that several kinds share (painting/summary.py): one
+motor-use order for every kind of job, the compliance line in its units (a cell's naming
+the worst robot), the clearance line, and the closing lines only where the report has them."""
+from pollard_pin.painting.summary import (
+    clearance_line,
+    closing_lines,
+    compliance_line,
+    motor_use_line,
+)
+
+
+def test_one_motor_use_order():
+    rep = {"motors": {"a": {"peak_torque": 0.5, "rms_torque": 0.25, "speed": 0.125}}}
+    assert motor_use_line(rep, ["a"]) == "motor peak torque/RMS torque/speed use [%]: a 50/25/12"
+
+
+def test_summary_line_states_the_entry():
+    """The summary line of ``pollard-pin paint`` carries the entry's figures in its units."""
+    line = compliance_line({"recoil_n": 0.5, "stiffness": True, "standoff_error_m": 1.92e-4,
+                            "lateral_error_m": 2.16e-4, "tilt_rad": 5.58e-4,
+                            "film_error": 3.3e-3})
+    assert line == ("compliance (weight, recoil 0.5 N): standoff error 192 µm, lateral 216 µm, "
+                    "tilt 0.558 mrad; film changes by at most 0.33 % of the target")
+
+
+def test_summary_line_names_the_worst_robot():
+    line = compliance_line({"recoil_n": 5.0, "stiffness": True, "standoff_error_m": 4.32e-4,
+                            "standoff_error_robot": "low", "lateral_error_m": 5.56e-4,
+                            "tilt_rad": 1.43e-3, "film_error": 1.66e-2})
+    assert line == ("compliance (weight, recoil 5 N): standoff error 432 µm (robot 'low'), "
+                    "lateral 556 µm, tilt 1.43 mrad; film changes by at most 1.7 % of the "
+                    "target")
+
+
+CLEARANCE = {"min_clearance_m": 0.1456, "clearance": {"between_samples_m": 0.0044,
+                                                       "required_m": 0.01}}
+
+
+def test_the_clearance_line():
+    assert clearance_line(CLEARANCE) == ("gun body 145.6 mm from the part at its closest "
+                                         "(± 4.4 mm between samples; clearance 10 mm)")
+
+
+def test_closing_lines_only_where_the_report_has_them():
+    """No clearance and no compliance: nothing; a note of why no compliance: that line."""
+    assert closing_lines({}) == []
+    off = {"compliance": {"stiffness": False, "note": "not computed"}}
+    assert closing_lines(off) == ["compliance not computed"]
+    assert closing_lines({**CLEARANCE, **off}) == [clearance_line(CLEARANCE),
+                                                   "compliance not computed"]
