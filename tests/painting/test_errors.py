@@ -24,7 +24,7 @@ def test_family():
 def test_reach_error_names_the_sample_and_pose_the_ik_refuses(robot, plan, act):
     """motion() on poses of the plan, one moved 0.5 m further out (x): the error names that
     sample and that pose, one line, and the IK alone refuses the pose too."""
-    from pollard_pin.painting.plan.checks import motion
+    from pollard_pin.painting.checks.motion import motion
 
     tr = plan.trajectory
     poses = tr.poses[:10].copy()

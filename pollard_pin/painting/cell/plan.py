@@ -14,10 +14,10 @@ from functools import lru_cache
 import numpy as np
 
 from ...dynamics.motors import Actuators
-from ..errors import PlanError
+from ..errors import LineSpeedError, PlanError
 from ..job import PartJob
 from ..line.panel import line_clearance
-from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
+from ..line.phases import SPEED_RESOLUTION, fastest_line_speed
 from ..workpiece.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
 from .program import ZoneView, plan_zone
@@ -65,7 +65,7 @@ class CellPlan:
     speed: float
     part: Part | None = None
     timings: dict | None = None
-    clearance: object = None  # .cell.clearance.CellClearance, once checked
+    clearance: object = None  # .checks.cell_clearance.CellClearance, once checked
 
     @property
     def cycle(self) -> float:
@@ -126,7 +126,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
 
     Raises
     ------
-    pollard_pin.painting.line.phases.LineSpeedError
+    pollard_pin.painting.errors.LineSpeedError
         A robot cannot paint its zone at this speed (named), so the fastest speed is
         searched as for one robot.
     PlanError
@@ -208,11 +208,11 @@ def _with_clearance(robot, plan: CellPlan) -> CellPlan:
 
 
 def cell_clearance_of(robot, plan: CellPlan):
-    """:func:`.cell.clearance.cell_clearance` of the plan: the robots' programs on the clock,
+    """:func:`.checks.cell_clearance.cell_clearance` of the plan: the robots' programs on the clock,
     the part's (or panel's) mesh at t = 0 riding the line, the job's gun clearance."""
-    from ..plan.clearance import CLEARANCE, panel_mesh
+    from ..checks.cell_clearance import MovingPart, cell_clearance
+    from ..checks.clearance import CLEARANCE, panel_mesh
     from ..workpiece.panel import panel_frame
-    from .clearance import MovingPart, cell_clearance
 
     job = plan.job
     mesh = panel_mesh(panel_frame(job)) if plan.part is None else plan.part.mesh

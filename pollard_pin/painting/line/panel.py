@@ -15,9 +15,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...dynamics.motors import Actuators
+from ..checks.clearance import job_clearance, panel_mesh
+from ..errors import LineSpeedError
 from ..job import PaintJob, PartJob
 from ..passes.raster import Segments, raster_motion, raster_segments
-from ..plan.clearance import job_clearance, panel_mesh
 from ..plan.layout import panel_layout
 from ..plan.result import PlanResult
 from ..policy import MAX_STEP, STEP_SIGMA, first_guess
@@ -27,7 +28,6 @@ from .phases import (
     CATCH,
     SPEED_RESOLUTION,
     LineProgram,
-    LineSpeedError,
     LineTimes,
     Relative,
     fastest_line_speed,
@@ -131,9 +131,9 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
 
 
 def line_clearance(robot, plan):
-    """The gun body's :class:`.plan.clearance.Clearance` from the panel or part of a plan on
+    """The gun body's :class:`.checks.clearance.Clearance` from the panel or part of a plan on
     the line, seen from the part at rest (the world path less the line's displacement),
-    refused as a :class:`.plan.clearance.ClearanceError` (docs/model.md §25)."""
+    refused as a :class:`.checks.clearance.ClearanceError` (docs/model.md §25)."""
     tr = plan.trajectory
     rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -plan.speed, plan.direction)
     mesh = plan.part.mesh if isinstance(plan.job, PartJob) else panel_mesh(plan.frame)

@@ -16,9 +16,9 @@ import numpy as np
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
-from ..errors import BudgetError, PlanError, ReachError
+from ..checks.motion import fastest, motion, reach
+from ..errors import BudgetError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
-from ..plan.checks import fastest, motion, reach
 from ..policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
 from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
@@ -32,17 +32,6 @@ SPEED_TRIES = 12  # doublings/halvings bracketing the fastest speed
 _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
 
 
-class LineSpeedError(PlanError):
-    """No program paints the part at this line speed (its drift does not fit the reach, or
-    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
-    ``hint`` a speed [m/s] worth trying next (None: no guess)."""
-
-    def __init__(self, message: str, too_fast: bool, why: str = "",
-                 hint: float | None = None):
-        super().__init__(message)
-        self.too_fast = too_fast
-        self.why = why
-        self.hint = hint
 
 
 @dataclass(frozen=True)
@@ -493,7 +482,7 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
                         f"{fastest_speed:.4g} m/s (--max-line-speed)") from None
 
 
-__all__ = ["CATCH", "LineProgram", "LineSpeedError", "LineTimes", "Relative",
+__all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",
            "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
            "feasible_shifts", "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
            "plan_world", "track", "world_motion"]

@@ -28,6 +28,8 @@ from ...dynamics.averages import time_rms
 from ...dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ...dynamics.path import path_dynamics
 from ...paths.trajectory import Trajectory
+from ..checks.clearance import job_clearance, panel_mesh
+from ..checks.motion import fastest, motion, reach
 from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
@@ -43,8 +45,6 @@ from ..policy import (
     first_guess,
 )
 from ..workpiece.panel import PanelFrame
-from .checks import fastest, motion, reach
-from .clearance import job_clearance, panel_mesh
 from .layout import PanelLayout, panel_layout, path_times
 from .result import PlanResult
 
@@ -252,7 +252,7 @@ def _largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_ST
 def _reach_scale(robot, job: PaintJob, steps: int) -> float:
     """The bisection of :func:`largest_scale`: each try samples the whole raster at the job's
     speed with every turnaround and ramp at the duration search's first guess, reach only
-    (IK, margins, joint limits: :func:`.plan.checks.reach`, no dynamics)."""
+    (IK, margins, joint limits: :func:`.checks.motion.reach`, no dynamics)."""
     lo, hi = 0.0, 1.0
     for _ in range(steps):
         mid = 0.5 * (lo + hi)

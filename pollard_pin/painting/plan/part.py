@@ -5,7 +5,7 @@ part (the passes run EXTENSION σ past its edges) with the gun closed (``spray``
 passes open (1).
 
 Each turnaround and ramp is the shortest whose motors stay within UTILISATION of peak torque
-and speed (:func:`.plan.checks.fastest`); then the whole path is checked like ``run`` (reach,
+and speed (:func:`.checks.motion.fastest`); then the whole path is checked like ``run`` (reach,
 margins, joint limits) and against the motors' peak torque, speed and continuous (RMS)
 rating at CHECK_REFINE× its sampling.
 """
@@ -22,6 +22,8 @@ from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...model.values import clip
 from ...paths.trajectory import Trajectory
+from ..checks.clearance import job_clearance
+from ..checks.motion import fastest, motion
 from ..errors import BudgetError, PlanError, ReachError
 from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
@@ -36,8 +38,6 @@ from ..policy import (
 )
 from ..spray.occlusion import load_painted_part
 from ..workpiece.mesh import Part
-from .checks import fastest, motion
-from .clearance import job_clearance
 from .result import PlanResult
 
 
@@ -93,8 +93,8 @@ def _cause(exc: ReachError) -> str:
 
 def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool) -> ReachError:
     """The reach error of a still part, one line with what would paint it
-    (:func:`.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
-    from ..place import reach_hint
+    (:func:`.layout.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
+    from ..layout.place import reach_hint
 
     if not hints:
         return exc
@@ -151,7 +151,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
                  hints: bool = True) -> SurfacePlan:
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
     module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails
-    (out of reach, with ``hints``: what would paint it, :func:`.place.reach_hint`)."""
+    (out of reach, with ``hints``: what would paint it, :func:`.layout.place.reach_hint`)."""
     clock = [time.perf_counter()]
     part = load_painted_part(job) if part is None else part
     v = pass_speed(job, pass_spacing(job))

@@ -25,16 +25,16 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
-from ..analytic.taskspace import angles_from_rotation
-from ..errors import InputError
-from ..workspace.grid import reachable_box
-from ..workspace.options import CHUNK
-from ..workspace.reach import evaluate
-from .errors import PlanError
-from .job import PartJob
-from .passes.program import pass_poses
-from .passes.surface import surface_frame, surface_layout
-from .workpiece.mesh import MAX_ANGLE, Part, load_job_part, load_part, make_part, placement
+from ...analytic.taskspace import angles_from_rotation
+from ...errors import InputError
+from ...workspace.grid import reachable_box
+from ...workspace.options import CHUNK
+from ...workspace.reach import evaluate
+from ..errors import PlaceError, PlanError
+from ..job import PartJob
+from ..passes.program import pass_poses
+from ..passes.surface import surface_frame, surface_layout
+from ..workpiece.mesh import MAX_ANGLE, Part, load_job_part, load_part, make_part, placement
 
 # gun poses checked at every coarse position after the extreme ones
 SAMPLES = 400
@@ -44,8 +44,6 @@ VERIFY = 50
 _DIRS = np.array([d for d in np.ndindex(3, 3, 3) if any(d)], dtype=float) - 1.0
 
 
-class PlaceError(PlanError):
-    """No placement puts the part's gun poses within reach: one line saying by how much."""
 
 
 @dataclass(frozen=True)
@@ -131,7 +129,7 @@ class PlaceResult:
 
     def write(self, path: str | Path) -> Path:
         """Write the placed job as TOML (``paint --job`` reads it as is)."""
-        from ..io.job_file import write_job
+        from ...io.job_file import write_job
 
         return write_job(self.job, Path(path), f"placed by pollard-pin place: turned "
                          f"{self.turn:+g}° about the facing axis, margin "
@@ -411,4 +409,4 @@ def reach_hint(robot, job: PartJob, paints=None) -> str:
             "mm of margin; pollard-pin place writes that job)")
 
 
-__all__ = ["SAMPLES", "PlaceError", "PlaceOptions", "PlaceResult", "place", "reach_hint"]
+__all__ = ["SAMPLES", "PlaceOptions", "PlaceResult", "place", "reach_hint"]
