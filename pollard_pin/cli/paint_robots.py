@@ -31,7 +31,7 @@ def robot_count(text: str | None) -> int | str | None:
 
 def proposed_names(count) -> list[str]:
     """The folders a proposal of ``count`` robots may write (auto: up to MAX_ROBOTS), named
-    as :func:`pollard_pin.painting.layout.cell.propose_layout` names them."""
+    as :func:`pollard_pin.painting.cell.layout.propose_layout` names them."""
     from ..painting.cell.robots import MAX_ROBOTS
     from ..painting.layout.cell import LayoutOptions
 

@@ -89,7 +89,7 @@ def test_surface_samples_cover_every_face_within_delta(mesh):
 
 
 def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
-    from pollard_pin.painting.plan import clearance
+    from pollard_pin.painting.checks import clearance
 
     monkeypatch.setattr(clearance, "MAX_SURFACE_POINTS", 10)
     mesh = plate()

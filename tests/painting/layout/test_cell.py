@@ -9,11 +9,11 @@ import pytest
 from cell_split_jobs import check_zones, tall_panel
 
 from pollard_pin.errors import InputError
-from pollard_pin.painting.cell import layout as cell_layout
 from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot, base_footprint
 from pollard_pin.painting.cell.split import split_cell
 from pollard_pin.painting.errors import CellError, LineSpeedError
+from pollard_pin.painting.layout import cell as cell_layout
 from pollard_pin.painting.layout.cell import (
     LayoutOptions,
     fewest_robots,

@@ -18,7 +18,7 @@ from pollard_pin.painting.passes.surface import surface_layout
 from pollard_pin.painting.workpiece.mesh import load_job_part
 from pollard_pin.workspace.reach import evaluate
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 CURVED = ROOT / "examples" / "parts" / "curved_panel.toml"
 
 
