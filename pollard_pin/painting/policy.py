@@ -32,7 +32,7 @@ class PlannerPolicy:
         (default 0.25).
     max_path_samples : int, optional
         The budget of the path's samples, checked before anything is built: the final motor
-        check solves ``check_refine``× as many at ≈ 3.3 KB and 20 µs each (default 250 000:
+        check solves ``check_refine`` times as many at ≈ 3.3 KB and 20 µs each (default 250 000:
         ≈ 3.3 GB and 20 s), at least 2.
     max_passes : int, optional
         The budget of passes over all coats (the layout's cross-profile grid grows with their

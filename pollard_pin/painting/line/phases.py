@@ -276,7 +276,7 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     along ``e`` (docs/model.md §24): the turnarounds the shortest within
     ``policy.utilisation`` on the world path held at one world centre, the delay at the
     middle of the feasible shifts, the return the shortest, sampled every ``program.dt`` and
-    checked at ``policy.check_refine``× that."""
+    checked at ``policy.check_refine`` times that."""
     build, guess, dt, where = program.build, program.guess, program.dt, program.where
     passes, source = program.passes, program.source
     e = np.asarray(e, dtype=float)

@@ -15,7 +15,7 @@ trajectory, (docs/model.md §21). The film it leaves is
    does not, every turnaround and ramp is lengthened by one common factor (bisection) until
    it does, or the job is refused naming the motor and its RMS use.
 4. The whole trajectory is checked like ``run`` (reach, margins, joint limits) and against the
-   motors at ``check_refine``× its sampling, then the film is integrated over the panel.
+   motors at ``check_refine`` times its sampling, then the film is integrated over the panel.
 
 The knobs are the planner's :class:`..policy.PlannerPolicy` (``policy=``).
 """

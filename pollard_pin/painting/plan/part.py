@@ -7,7 +7,7 @@ passes open (1).
 Each turnaround and ramp is the shortest whose motors stay within the policy's
 ``utilisation`` of peak torque and speed (:func:`.checks.motion.fastest`); then the whole
 path is checked like ``run`` (reach, margins, joint limits) and against the motors' peak
-torque, speed and continuous (RMS) rating at ``check_refine``× its sampling (the knobs: the
+torque, speed and continuous (RMS) rating at ``check_refine`` times its sampling (the knobs: the
 planner's :class:`..policy.PlannerPolicy`, ``policy=``).
 """
 from __future__ import annotations
