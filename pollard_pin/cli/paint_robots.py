@@ -31,9 +31,9 @@ def robot_count(text: str | None) -> int | str | None:
 
 def proposed_names(count) -> list[str]:
     """The folders a proposal of ``count`` robots may write (auto: up to MAX_ROBOTS), named
-    as :func:`pollard_pin.painting.cell.layout.propose_layout` names them."""
-    from ..painting.cell.layout import LayoutOptions
+    as :func:`pollard_pin.painting.layout.cell.propose_layout` names them."""
     from ..painting.cell.robots import MAX_ROBOTS
+    from ..painting.layout.cell import LayoutOptions
 
     n = 0 if count is None else MAX_ROBOTS if count == "auto" else count
     return [f"{LayoutOptions().prefix}{i + 1}" for i in range(n)]
@@ -56,7 +56,7 @@ def paint_layout(count, robot, job, act, options):
     from dataclasses import replace
 
     from ..painting.api import paint
-    from ..painting.cell.layout import fewest_robots, propose_layout
+    from ..painting.layout.cell import fewest_robots, propose_layout
 
     if count == "auto":
         return fewest_robots(robot, job, act, options)

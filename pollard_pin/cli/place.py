@@ -1,4 +1,4 @@
-"""pollard-pin place: where a part fits the reach (pollard_pin.painting.place)."""
+"""pollard-pin place: where a part fits the reach (pollard_pin.painting.layout.place)."""
 from __future__ import annotations
 
 from .common import command, load_robot, model_args, name, nonnegative, positive, wrote
@@ -8,7 +8,7 @@ def run(args) -> int:
     from ..errors import InputError
     from ..io.atomic import check_outputs
     from ..painting.job import PartJob, load_job
-    from ..painting.place import PlaceOptions, place
+    from ..painting.layout.place import PlaceOptions, place
     from .common import UsageError, refuse_inputs
 
     check_outputs(args.out)

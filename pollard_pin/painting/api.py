@@ -117,11 +117,11 @@ def paint(robot, job, actuators: Actuators | None = None,
 
 def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
     """paint.json's ``compliance`` entry and its time (docs/model.md §27.7)."""
-    from .film.compliance import compliance_entry
+    from .checks.compliance import compliance_entry
 
     t0 = time.perf_counter()
     if hasattr(plan, "robots"):  # a cell: the worst over its robots, each robot's own
-        from .cell.compliance import cell_compliance
+        from .checks.cell_compliance import cell_compliance
 
         rep["compliance"], per = cell_compliance(robot, plan, film.points, film.thickness,
                                                  act, film.painted)

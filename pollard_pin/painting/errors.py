@@ -1,13 +1,44 @@
-"""The paint planner's errors, one line each.
+"""The paint planner's errors, one home, one line each.
 
-A job the planner cannot paint is a :class:`pollard_pin.errors.SolveError`, as a pose out of
-the kinematics' reach is (:class:`pollard_pin.kinematics.errors.UnreachablePoseError`): the
-job is a valid one and no program meets it. A value the planner cannot use (a film spacing,
-a job of another kind) is an :class:`pollard_pin.errors.InputError`.
+The rule: a value the planner cannot use (a key of a job file, a mesh, a film spacing, a job
+of another kind, a robot table) is an :class:`pollard_pin.errors.InputError`; a valid job that
+no program meets (out of reach, too fast for the motors, too close to the part, over a
+budget) is a :class:`pollard_pin.errors.SolveError`, a :class:`PlanError` here, as a pose out
+of the kinematics' reach is (:class:`pollard_pin.kinematics.errors.UnreachablePoseError`).
 """
 from __future__ import annotations
 
 from ..errors import InputError, SolveError
+
+# --- a value the planner cannot use ------------------------------------------------------
+
+
+class JobError(InputError):
+    """A paint job breaks a rule (one line: the file, the key, the value, the rule)."""
+
+
+class JobKindError(InputError):
+    """A job of a kind the planner does not handle (one line naming the kind)."""
+
+
+class MeshError(InputError):
+    """A part's mesh cannot be used: one line naming the file, the value and the rule."""
+
+
+class MeshFileError(MeshError):
+    """A mesh file whose content contradicts itself (indices, counts): one line."""
+
+
+class CellError(InputError):
+    """A ``[[robot]]`` table breaks a rule, or the robots cannot stand where they are put."""
+
+
+class ResolutionError(InputError):
+    """A film point spacing the film cannot be computed at (not > 0, over σ, or over the
+    budget of film points)."""
+
+
+# --- a valid job that no program meets -----------------------------------------------------
 
 
 class PlanError(SolveError):
@@ -23,19 +54,36 @@ class ReachError(PlanError):
         self.sample, self.pose = sample, pose
 
 
+class BudgetError(PlanError):
+    """A plan over its stated budget (samples, passes): one line with what it would need."""
+
+
+class ClearanceError(PlanError):
+    """The gun's body comes closer to the part than the clearance (one line: where)."""
+
+
+class PlaceError(PlanError):
+    """No placement puts the part's gun poses within reach: one line saying by how much."""
+
+
+class LineSpeedError(PlanError):
+    """No program paints the part at this line speed (its drift does not fit the reach, or
+    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
+    ``hint`` a speed [m/s] worth trying next (None: no guess)."""
+
+    def __init__(self, message: str, too_fast: bool, why: str = "",
+                 hint: float | None = None):
+        super().__init__(message)
+        self.too_fast = too_fast
+        self.why = why
+        self.hint = hint
+
+
 class ReportError(SolveError):
     """A report number breaks an invariant the model guarantees (a lower bound over the cycle,
     a transfer efficiency over 100 %): a bug, refused rather than printed."""
 
 
-class BudgetError(PlanError):
-    """A plan over its stated budget (samples, passes): one line with what it would need."""
-
-
-class ResolutionError(InputError):
-    """A film point spacing the film cannot be computed at (not > 0, over σ, or over the
-    budget of film points)."""
-
-
-class JobKindError(InputError):
-    """A job of a kind the planner does not handle (one line naming the kind)."""
+__all__ = ["BudgetError", "CellError", "ClearanceError", "JobError", "JobKindError",
+           "LineSpeedError", "MeshError", "MeshFileError", "PlaceError", "PlanError",
+           "ReachError", "ReportError", "ResolutionError"]

@@ -11,11 +11,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
 from .cell.robots import CellRobot, robots_from_tables
-from .errors import JobKindError
+from .errors import JobError, JobKindError
 from .line.conveyor import Line, line_from_table
 
 # Required and optional keys per table, in file order.
@@ -46,8 +45,6 @@ MAX_PART_COATS = 5
 MAX_RECOIL = 100.0
 
 
-class JobError(InputError):
-    """A paint job breaks a rule (one line: the file, the key, the value, the rule)."""
 
 
 @dataclass(frozen=True)
@@ -443,5 +440,5 @@ def job_kind(job: Any) -> str:
                        "or PartJob, from load_job)")
 
 
-__all__ = ["DIRECTIONS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "JobError",
-           "PaintJob", "PartJob", "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]
+__all__ = ["DIRECTIONS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "PaintJob",
+           "PartJob", "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]

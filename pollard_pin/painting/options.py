@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 from .line.phases import SPEED_RESOLUTION
+from .policy import DEFAULT_POLICY, PlannerPolicy
 
 
 @dataclass(frozen=True)
@@ -27,23 +28,29 @@ class PaintOptions:
     compliance : bool, optional
         Report what the drives' compliance does to the gun and the film (docs/model.md
         §27.7; a second film integration; default True).
+    policy : PlannerPolicy, optional
+        The planners' knobs: the motors' reserve, the sampling and the budgets (default:
+        the planners' own, ``PlannerPolicy()``).
 
     Raises
     ------
     pollard_pin.errors.InputError
-        A resolution that is not > 0, a flag that is not a bool, a bracket outside (0, 1).
+        A resolution that is not > 0, a flag that is not a bool, a bracket outside (0, 1),
+        a policy that is not a :class:`~pollard_pin.painting.policy.PlannerPolicy`.
 
     Examples
     --------
     >>> import pollard_pin as pp
-    >>> pp.PaintOptions(resolution=0.004)
-    PaintOptions(resolution=0.004, max_line_speed=False, speed_resolution=0.01, compliance=True)
+    >>> options = pp.PaintOptions(resolution=0.004)
+    >>> options.resolution, options.max_line_speed, options.policy.utilisation
+    (0.004, False, 0.97)
     """
 
     resolution: float | None = None
     max_line_speed: bool = False
     speed_resolution: float = SPEED_RESOLUTION
     compliance: bool = True
+    policy: PlannerPolicy = DEFAULT_POLICY
 
     def __post_init__(self):
         r = self.resolution
@@ -61,6 +68,8 @@ class PaintOptions:
         if not isinstance(self.compliance, bool):
             raise InputError(f"PaintOptions.compliance = {self.compliance!r}: expected True or "
                              "False")
+        if not isinstance(self.policy, PlannerPolicy):
+            raise InputError(f"PaintOptions.policy = {self.policy!r}: expected a PlannerPolicy")
 
 
 __all__ = ["PaintOptions"]

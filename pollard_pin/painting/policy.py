@@ -1,27 +1,89 @@
-"""The planners' policy, one home for panels, parts and lines (docs/model.md §21, §23, §24):
-the motors' reserve, the sampling of the duration searches and of the final check, the path's
-time step and the budgets checked before anything is built."""
+"""The planners' policy, one home for panels, parts, lines and cells (docs/model.md §21, §23,
+§24): the motors' reserve, the sampling of the duration searches and of the final check, the
+path's time step and the budgets checked before anything is built. The planners take it as
+an option (``policy=``), validated once; the defaults are the planners' own."""
 from __future__ import annotations
 
-UTILISATION = 0.97  # of peak torque and max speed: the planner's reserve for what it samples
-TURN_SAMPLES = 48  # per turnaround/ramp in the duration search
-CHECK_REFINE = 4  # the final motor check samples the path this many times more densely
-MAX_STEP = 0.002  # s: the trajectory's largest time step
-STEP_SIGMA = 0.25  # the gun moves at most this many σ per step (film integration, §20)
-# Budgets, checked before anything is built: the path's samples (the final motor check
-# solves CHECK_REFINE× as many at ≈ 3.3 KB and 20 µs each: ≈ 3.3 GB and 20 s) and the passes
-# over all coats (the layout's cross-profile grid grows with their square).
-MAX_PATH_SAMPLES = 250_000
-MAX_PASSES = 1000
-FIRST_DECELERATION = 10.0  # m/s²: the duration search starts from a reversal at this rate
+import numbers
+from dataclasses import dataclass, fields
+
+from ..checks import real
+from ..errors import InputError
 
 
-def first_guess(speed: float) -> float:
-    """The duration search's first turnaround/ramp duration [s] at pass ``speed`` [m/s]:
-    reversing at about FIRST_DECELERATION; the search then finds the shortest the motors
-    allow."""
-    return 4 * speed / FIRST_DECELERATION
+@dataclass(frozen=True)
+class PlannerPolicy:
+    """The knobs every paint planner reads, validated once (docs/model.md §21, §23, §24).
+
+    Parameters
+    ----------
+    utilisation : float, optional
+        The share of each motor's peak torque and max speed the planner may use where it
+        samples (its reserve for what it does not sample), in (0, 1] (default 0.97).
+    turn_samples : int, optional
+        Samples per turnaround or ramp in the duration search, at least 2 (default 48).
+    check_refine : int, optional
+        The final motor check samples the path this many times more densely, at least 1
+        (default 4).
+    max_step : float, optional
+        The trajectory's largest time step [s], > 0 (default 0.002).
+    step_sigma : float, optional
+        The gun moves at most this many σ per step (film integration, §20), > 0
+        (default 0.25).
+    max_path_samples : int, optional
+        The budget of the path's samples, checked before anything is built: the final motor
+        check solves ``check_refine`` times as many at ≈ 3.3 KB and 20 µs each (default 250 000:
+        ≈ 3.3 GB and 20 s), at least 2.
+    max_passes : int, optional
+        The budget of passes over all coats (the layout's cross-profile grid grows with their
+        square), at least 1 (default 1000).
+    first_deceleration : float, optional
+        The duration search starts from a reversal at this rate [m/s²], > 0 (default 10).
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        One line naming the field, the value and the rule.
+    """
+
+    utilisation: float = 0.97
+    turn_samples: int = 48
+    check_refine: int = 4
+    max_step: float = 0.002
+    step_sigma: float = 0.25
+    max_path_samples: int = 250_000
+    max_passes: int = 1000
+    first_deceleration: float = 10.0
+
+    def __post_init__(self):
+        least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.name in least:
+                if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+                    raise InputError(f"PlannerPolicy.{f.name} = {value!r}: is not an integer")
+                if value < least[f.name]:
+                    raise InputError(f"PlannerPolicy.{f.name} = {value!r}: must be >= "
+                                     f"{least[f.name]}")
+                object.__setattr__(self, f.name, int(value))
+            else:
+                high = 1.0 if f.name == "utilisation" else float("inf")
+                object.__setattr__(self, f.name, real(value, f"PlannerPolicy.{f.name}", 0.0,
+                                                      high, above=True))
+
+    def first_guess(self, speed: float) -> float:
+        """The duration search's first turnaround/ramp duration [s] at pass ``speed`` [m/s]:
+        reversing at about ``first_deceleration``; the search then finds the shortest the
+        motors allow."""
+        return 4 * speed / self.first_deceleration
+
+    def step(self, sigma: float, speed: float) -> float:
+        """The path's time step [s] for a spot of ``sigma`` [m] moving at ``speed`` [m/s]:
+        at most ``max_step``, and ``step_sigma`` σ of travel."""
+        return min(self.max_step, self.step_sigma * sigma / speed)
 
 
-__all__ = ["CHECK_REFINE", "FIRST_DECELERATION", "MAX_PASSES", "MAX_PATH_SAMPLES", "MAX_STEP",
-           "STEP_SIGMA", "TURN_SAMPLES", "UTILISATION", "first_guess"]
+DEFAULT_POLICY = PlannerPolicy()  # the planners' default, shared (it is frozen)
+
+
+__all__ = ["DEFAULT_POLICY", "PlannerPolicy"]

@@ -109,14 +109,14 @@ def hung(tmp_path_factory):
 
 def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path):
     """`run` of the hung robot's path.csv reads gravity +z from its metadata: its torques are
-    the planner's (the motor check of paint/plan/checks.py with the base's gravity), and far
+    the planner's (the motor check of painting/checks/motion.py with the base's gravity), and far
     from a default-gravity run's (the same file without its metadata)."""
     import shutil
 
     from pollard_pin.dynamics.motors import load_actuators, motor_torque
     from pollard_pin.painting.cell.frames import robot_model_in_base
     from pollard_pin.painting.cell.robots import CellRobot
-    from pollard_pin.painting.plan.checks import motion
+    from pollard_pin.painting.checks.motion import motion
 
     meta = json.loads((hung / "path.units.json").read_text())["metadata"]
     assert meta["gravity_base"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)  # round trip

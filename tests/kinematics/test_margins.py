@@ -21,7 +21,7 @@ from pollard_pin.kinematics.margins import (
     MarginError,
     Margins,
 )
-from pollard_pin.painting.plan.checks import ReachError, motion
+from pollard_pin.painting.checks.motion import ReachError, motion
 from pollard_pin.workspace.reach import REASONS, ReachOptions, evaluate
 
 EXAMPLES = pp.__path__[0] + "/../examples"

@@ -1,10 +1,11 @@
-"""The paint planner's errors (paint/errors.py): a plan that does not exist is in the solve
-family, as the kinematics' reach errors are, a value the planner cannot use in the input
-family; one line, and a reach error carries the sample and pose that failed (here, checked
-against the IK)."""
+"""The paint planner's errors (painting/errors.py, every one of them): a plan that does not
+exist is in the solve family, as the kinematics' reach errors are, a value the planner cannot
+use in the input family; one line, and a reach error carries the sample and pose that failed
+(here, checked against the IK)."""
 import numpy as np
 import pytest
 
+import pollard_pin.painting.errors as paint_errors
 from pollard_pin.errors import InputError, PollardError, SolveError
 from pollard_pin.kinematics.errors import KinematicsError, UnreachablePoseError
 from pollard_pin.kinematics.ik import inverse_kinematics
@@ -21,10 +22,46 @@ def test_family():
     assert (str(e), e.sample) == ("out of reach", 7) and e.pose.shape == (6,)
 
 
+INPUT = {"JobError", "JobKindError", "MeshError", "MeshFileError", "CellError",
+         "ResolutionError"}
+SOLVE = {"PlanError", "ReachError", "BudgetError", "ClearanceError", "PlaceError",
+         "LineSpeedError", "ReportError"}
+
+
+def test_every_paint_error_is_here_by_the_rule():
+    """The module's docstring rule: a value the planner cannot use is an InputError, a valid
+    job no program meets a SolveError (PlanError but for ReportError, a bug); every exception
+    class of pollard_pin.painting is defined in painting/errors.py."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import pollard_pin.painting as painting
+
+    assert set(paint_errors.__all__) == INPUT | SOLVE
+    for name in INPUT:
+        cls = getattr(paint_errors, name)
+        assert issubclass(cls, InputError) and not issubclass(cls, SolveError), name
+    for name in SOLVE:
+        cls = getattr(paint_errors, name)
+        assert issubclass(cls, SolveError) and not issubclass(cls, InputError), name
+        assert issubclass(cls, PlanError) == (name != "ReportError"), name
+    assert issubclass(paint_errors.MeshFileError, paint_errors.MeshError)
+    for info in pkgutil.walk_packages(painting.__path__, "pollard_pin.painting."):
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if inspect.isclass(obj) and issubclass(obj, BaseException):
+                assert obj.__module__ == "pollard_pin.painting.errors" or not \
+                    obj.__module__.startswith("pollard_pin.painting"), (info.name, name)
+    # the constructors kept their fields
+    e = paint_errors.LineSpeedError("too fast", True, "drift", 0.2)
+    assert (str(e), e.too_fast, e.why, e.hint) == ("too fast", True, "drift", 0.2)
+
+
 def test_reach_error_names_the_sample_and_pose_the_ik_refuses(robot, plan, act):
     """motion() on poses of the plan, one moved 0.5 m further out (x): the error names that
     sample and that pose, one line, and the IK alone refuses the pose too."""
-    from pollard_pin.painting.plan.checks import motion
+    from pollard_pin.painting.checks.motion import motion
 
     tr = plan.trajectory
     poses = tr.poses[:10].copy()

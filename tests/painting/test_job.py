@@ -5,7 +5,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pollard_pin.painting.job import JobError, job_from_dict, load_job
+from pollard_pin.painting.errors import JobError
+from pollard_pin.painting.job import job_from_dict, load_job
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "paint.toml"
 

@@ -19,9 +19,9 @@ from scipy.spatial import cKDTree
 
 from pollard_pin.painting.api import paint
 from pollard_pin.painting.job import load_job
+from pollard_pin.painting.layout.place import PlaceOptions, place
 from pollard_pin.painting.line.conveyor import Line
 from pollard_pin.painting.options import PaintOptions
-from pollard_pin.painting.place import PlaceOptions, place
 from pollard_pin.painting.workpiece.mesh import load_job_part
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "meshes"

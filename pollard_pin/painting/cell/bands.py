@@ -22,12 +22,13 @@ import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation
 from ...workspace.reach import evaluate
+from ..errors import CellError
 from ..job import PartJob
 from ..line.reach import ball_shift_range
 from ..passes.program import gun_frame
 from ..passes.raster import SPOT_RADIUS
 from ..passes.surface import EXTENSION, reference_axis
-from .robots import CellError, CellRobot
+from .robots import CellRobot
 
 STEP = 0.005  # m between grid points along the axis
 SHIFT_STEP = 0.01  # m between the shifts of the part tried along the line

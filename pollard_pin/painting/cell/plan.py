@@ -14,10 +14,11 @@ from functools import lru_cache
 import numpy as np
 
 from ...dynamics.motors import Actuators
-from ..errors import PlanError
+from ..errors import LineSpeedError, PlanError
 from ..job import PartJob
 from ..line.panel import line_clearance
-from ..line.phases import SPEED_RESOLUTION, LineSpeedError, fastest_line_speed
+from ..line.phases import SPEED_RESOLUTION, fastest_line_speed
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from .frames import panel_in_base, part_in_base, robot_model_in_base
 from .program import ZoneView, plan_zone
@@ -65,7 +66,7 @@ class CellPlan:
     speed: float
     part: Part | None = None
     timings: dict | None = None
-    clearance: object = None  # .cell.clearance.CellClearance, once checked
+    clearance: object = None  # .checks.cell_clearance.CellClearance, once checked
 
     @property
     def cycle(self) -> float:
@@ -99,7 +100,7 @@ def robot_part(standoff: float, part: Part, cr: CellRobot, facing) -> Part:
 
 def plan_cell(robot, job, act: Actuators, speed: float | None = None,
               part: Part | None = None, split: Split | None = None,
-              clearance: bool = True) -> CellPlan:
+              clearance: bool = True, policy: PlannerPolicy = DEFAULT_POLICY) -> CellPlan:
     """Every robot's program of a cell at one line speed (docs/model.md §26).
 
     Parameters
@@ -118,6 +119,8 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         The zones (default :func:`split_cell`'s).
     clearance : bool, optional
         Check the gun bodies' clearance from the part (default True).
+    policy : pollard_pin.painting.policy.PlannerPolicy, optional
+        The planner's reserve, sampling and budgets (default the planners' own).
 
     Returns
     -------
@@ -126,7 +129,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
 
     Raises
     ------
-    pollard_pin.painting.line.phases.LineSpeedError
+    pollard_pin.painting.errors.LineSpeedError
         A robot cannot paint its zone at this speed (named), so the fastest speed is
         searched as for one robot.
     PlanError
@@ -149,7 +152,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         try:
             view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
                             float(cr.origin @ axis))
-            plan = plan_zone(model, act, job_b, view, speed, part_b)
+            plan = plan_zone(model, act, job_b, view, speed, part_b, policy)
         except LineSpeedError as exc:
             raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
                                  exc.hint) from None
@@ -170,32 +173,37 @@ def _line_b(job, cr: CellRobot):
 
 
 def cell_planner(robot, job, act: Actuators, part: Part | None = None,
-                 split: Split | None = None):
+                 split: Split | None = None, policy: PlannerPolicy = DEFAULT_POLICY):
     """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
-    split made once, the bases first checked to stand apart (two base footprints)."""
+    split made once, the bases first checked to stand apart (two base footprints);
+    ``policy`` the planner's knobs."""
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
-    return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False)
+    return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False,
+                                        policy=policy)
 
 
 def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
-                   part: Part | None = None, split: Split | None = None):
+                   part: Part | None = None, split: Split | None = None,
+                   policy: PlannerPolicy = DEFAULT_POLICY):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which every robot
-    paints its zone, and that plan (the slowest robot sets it: docs/model.md §26.1)."""
-    speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split),
+    paints its zone, and that plan (the slowest robot sets it: docs/model.md §26.1);
+    ``policy`` the planner's knobs."""
+    speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split, policy),
                                      job.line.speed, job.source, resolution)
     return speed, _with_clearance(robot, plan)
 
 
 def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
-                  split: Split | None = None) -> CellPlan:
-    """The job's line speed planned; a speed no robot ordering can paint is refused naming
-    the fastest that works."""
+                  split: Split | None = None,
+                  policy: PlannerPolicy = DEFAULT_POLICY) -> CellPlan:
+    """The job's line speed planned (``policy``: the planner's knobs); a speed no robot
+    ordering can paint is refused naming the fastest that works."""
     from ..line.phases import plan_or_name_fastest
 
-    plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split), job.line.speed,
-                                job.source)
+    plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
+                                job.line.speed, job.source)
     return _with_clearance(robot, plan)
 
 
@@ -208,11 +216,11 @@ def _with_clearance(robot, plan: CellPlan) -> CellPlan:
 
 
 def cell_clearance_of(robot, plan: CellPlan):
-    """:func:`.cell.clearance.cell_clearance` of the plan: the robots' programs on the clock,
+    """:func:`.checks.cell_clearance.cell_clearance` of the plan: the robots' programs on the clock,
     the part's (or panel's) mesh at t = 0 riding the line, the job's gun clearance."""
-    from ..plan.clearance import CLEARANCE, panel_mesh
+    from ..checks.cell_clearance import MovingPart, cell_clearance
+    from ..checks.clearance import CLEARANCE, panel_mesh
     from ..workpiece.panel import panel_frame
-    from .clearance import MovingPart, cell_clearance
 
     job = plan.job
     mesh = panel_mesh(panel_frame(job)) if plan.part is None else plan.part.mesh

@@ -25,7 +25,7 @@ from ..passes.raster import raster_motion, raster_segments
 from ..passes.surface import pass_speed, surface_layout
 from ..plan.layout import panel_layout
 from ..plan.part import time_step
-from ..policy import MAX_STEP, STEP_SIGMA, first_guess
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import panel_frame
 from .zones import CLOSED, OPEN, ZoneRelative, seam_fractions, window, with_samples
 
@@ -91,13 +91,14 @@ def _panel_windows(seg, on, m: float) -> tuple:
     return tuple(out)
 
 
-def panel_program(job_b, view: ZoneView, e):
+def panel_program(job_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY):
     """(LineProgram, job, frame, offsets, horizontal, spacing, pass speed) of the panel job
-    in a robot's base frame (``job_b``), its raster clipped to its zone (``view``)."""
+    in a robot's base frame (``job_b``), its raster clipped to its zone (``view``);
+    ``policy`` the planner's knobs."""
     zone, runout, axis_b, offset = view.zone, view.runout, view.axis, view.offset
     horizontal = pass_direction(panel_frame(job_b), e)
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    frame, offsets, half, v, _, spacing = panel_layout(job_x)
+    frame, offsets, half, v, _, spacing = panel_layout(job_x, policy)
     ep, es = (frame.u, frame.v) if horizontal else (frame.v, frame.u)
     offsets = np.array(sorted(offsets, key=lambda o: -o * float(es @ e)))  # leading end first
     sign = _axis_sign(ep, axis_b, "passes")
@@ -115,8 +116,8 @@ def panel_program(job_b, view: ZoneView, e):
                             seg.start, seg.duration, seg.kind, program=seg,
                             windows=_panel_windows(seg, on, m))
 
-    guess = np.full(len(offsets) + 1, first_guess(v))
-    program = LineProgram(build, guess, min(MAX_STEP, STEP_SIGMA * job_x.sigma / v),
+    guess = np.full(len(offsets) + 1, policy.first_guess(v))
+    program = LineProgram(build, guess, policy.step(job_x.sigma, v),
                           track(frame.c + job_x.standoff * frame.n, e),
                           f"the passes ({v:.4g} m/s on the part)", job_x.source)
     return program, job_x, frame, offsets, horizontal, spacing, v
@@ -175,15 +176,15 @@ def _poses(layout, piece):
     return pass_poses(layout)[piece.index]
 
 
-def part_program(job_b, part_b, view: ZoneView, e):
+def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY):
     """(LineProgram, job, layout, pass speed) of the part (``part_b``, base frame) for one
-    robot, its passes clipped to its zone (``view``)."""
+    robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs."""
     horizontal = across_the_travel(part_b, e)
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part_b, job_x), e)
+    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
-    dt = time_step(job_x, full, v)  # the whole part's: every robot samples alike
+    dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike
     pieces, windows = zone_pieces(layout, full, view, job_x.standoff)
 
     def build(tau):
@@ -196,7 +197,7 @@ def part_program(job_b, part_b, view: ZoneView, e):
                             program=prog, windows=tuple(w))
 
     f = layout.frame
-    program = LineProgram(build, np.full(len(pieces) + 1, first_guess(v)), dt,
+    program = LineProgram(build, np.full(len(pieces) + 1, policy.first_guess(v)), dt,
                           track(f.centre + job_x.standoff * f.n, e),
                           f"the passes ({v:.4g} m/s on the part's surface)", job_x.source)
     return program, job_x, layout, v
@@ -216,17 +217,20 @@ def seamed(world, speed: float, e, dt: float):
     return traj, seam_fractions(t, spray, seams, 1e-9 * max(1.0, float(t[-1])))
 
 
-def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None):
+def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None,
+              policy: PlannerPolicy = DEFAULT_POLICY):
     """One robot's plan on the line at ``speed`` (a :class:`.line.panel.LinePlan` or
-    :class:`.line.part.LinePartPlan`, in its base frame), clearance not checked."""
+    :class:`.line.part.LinePartPlan`, in its base frame), clearance not checked; ``policy``
+    the planner's knobs."""
     clock = time.perf_counter()
     e = np.asarray(job_b.line.direction, float)
     one_coat(job_b)
     if part_b is None:
-        program, job_x, frame, offsets, horizontal, spacing, v = panel_program(job_b, view, e)
+        program, job_x, frame, offsets, horizontal, spacing, v = panel_program(job_b, view, e,
+                                                                               policy)
     else:
-        program, job_x, layout, v = part_program(job_b, part_b, view, e)
-    world = plan_world(robot, act, program, speed, e)
+        program, job_x, layout, v = part_program(job_b, part_b, view, e, policy)
+    world = plan_world(robot, act, program, speed, e, policy)
     traj, spray = seamed(world, speed, e, program.dt)
     common = {"trajectory": traj, "spray": spray, "ratios": world.ratios,
               "timings": {"plan": time.perf_counter() - clock}}

@@ -15,9 +15,9 @@ from typing import Any
 import numpy as np
 
 from ...analytic.taskspace import turn
-from ...errors import InputError
 from ...model.params import did_you_mean
 from ...model.values import fail, number
+from ..errors import CellError
 
 ROBOT_KEYS = ("name", "base", "rotation")
 MAX_ROBOTS = 16  # a booth holds 4-8 robots a zone; more is a slip
@@ -26,8 +26,6 @@ MAX_TURN = 360.0  # deg
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]{0,31}")  # a folder name on every system
 
 
-class CellError(InputError):
-    """A ``[[robot]]`` table breaks a rule, or the robots cannot stand where they are put."""
 
 
 @dataclass(frozen=True)
@@ -135,6 +133,6 @@ def check_spacing(robots: Sequence[CellRobot], least: float, source: str = "<pyt
 
 
 
-__all__ = ["CellError", "CellRobot", "MAX_ROBOTS", "ROBOT_KEYS", "base_footprint",
+__all__ = ["CellRobot", "MAX_ROBOTS", "ROBOT_KEYS", "base_footprint",
            "check_spacing", "robots_from_tables"]
 

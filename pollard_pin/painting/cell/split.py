@@ -14,11 +14,12 @@ import math
 
 import numpy as np
 
+from ..errors import CellError
 from ..job import PartJob
 from ..line.reach import reach_ball
 from ..passes.raster import SPOT_RADIUS
 from .bands import Band, Strokes, axis_name, job_strokes, robot_band
-from .robots import CellError, CellRobot
+from .robots import CellRobot
 from .zones import Split, Zone
 
 SAME_SIDE = math.cos(math.radians(60.0))  # two facings this close paint the same faces
@@ -195,7 +196,7 @@ def split_cell(robot, job, robots, part=None) -> Split:
 
     Raises
     ------
-    pollard_pin.painting.cell.robots.CellError
+    pollard_pin.painting.errors.CellError
         One line if a robot reaches none of the part (where the part passes it), or no split
         covers it (the region no robot reaches).
     """

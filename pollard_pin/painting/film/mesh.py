@@ -11,10 +11,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
+from ..errors import MeshError
 from ..spray.deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate, near_spot
 from ..spray.occlusion import in_spot, visible
 from ..spray.shadow_edges import shadow_edges
-from ..workpiece.mesh import MeshError, Part
+from ..workpiece.mesh import Part
 from .points import SurfacePoints
 
 

@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..workpiece.mesh import MeshError, Part
+from ..errors import MeshError
+from ..workpiece.mesh import Part
 from .points import SurfacePoints, lattice
 
 

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..workpiece.mesh import MeshError, Part
+from ..errors import MeshError
+from ..workpiece.mesh import Part
 
 # The planner's film grid spacing is σ/3 (film.film_resolution): fine enough for the ripple
 # between passes some 2σ apart (docs/model.md §21).

@@ -28,9 +28,10 @@ def paint(robot, job, act, options, res):
     part = checked_part(job, res) if isinstance(job, PartJob) else None
     t0 = time.perf_counter()
     if options.max_line_speed:
-        _, plan = max_cell_speed(robot, job, act, options.speed_resolution, part)
+        _, plan = max_cell_speed(robot, job, act, options.speed_resolution, part,
+                                 policy=options.policy)
     else:
-        plan = plan_cell_job(robot, job, act, part)
+        plan = plan_cell_job(robot, job, act, part, policy=options.policy)
     t1 = time.perf_counter()
     if part is None:
         U, V, pts, film = cell_panel_film(plan, res)

@@ -24,9 +24,10 @@ def line_plan(robot, job, act, options, part=None):
     part's), and the planning time [s]."""
     t0 = time.perf_counter()
     if options.max_line_speed:
-        _, plan = max_line_speed(robot, job, act, options.speed_resolution, part)
+        _, plan = max_line_speed(robot, job, act, options.speed_resolution, part,
+                                 policy=options.policy)
     else:
-        plan = plan_line_job(robot, job, act, part)
+        plan = plan_line_job(robot, job, act, part, policy=options.policy)
     return plan, time.perf_counter() - t0
 
 

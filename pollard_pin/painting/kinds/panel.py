@@ -21,7 +21,7 @@ from .base import JobKind
 def paint(robot, job, act, options, res):
     """(plan, film, report) of a still panel."""
     t0 = time.perf_counter()
-    plan = plan_paint(robot, job, act)
+    plan = plan_paint(robot, job, act, options.policy)
     t1 = time.perf_counter()
     U, V, pts, film = plan_film(plan, res)
     t2 = time.perf_counter()

@@ -18,7 +18,7 @@ def paint(robot, job, act, options, res):
     """(plan, film, report) of a still part."""
     part = checked_part(job, res)
     t0 = time.perf_counter()
-    plan = plan_surface(robot, job, act, part)
+    plan = plan_surface(robot, job, act, part, policy=options.policy)
     t1 = time.perf_counter()
     pts, film, painted, efficiency = surface_film(plan, res)
     t2 = time.perf_counter()

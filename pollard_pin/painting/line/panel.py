@@ -15,19 +15,19 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...dynamics.motors import Actuators
+from ..checks.clearance import job_clearance, panel_mesh
+from ..errors import LineSpeedError
 from ..job import PaintJob, PartJob
 from ..passes.raster import Segments, raster_motion, raster_segments
-from ..plan.clearance import job_clearance, panel_mesh
 from ..plan.layout import panel_layout
 from ..plan.result import PlanResult
-from ..policy import MAX_STEP, STEP_SIGMA, first_guess
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from ..workpiece.panel import PanelFrame
 from .phases import (
     CATCH,
     SPEED_RESOLUTION,
     LineProgram,
-    LineSpeedError,
     LineTimes,
     Relative,
     fastest_line_speed,
@@ -92,15 +92,15 @@ def panel_relative(frame, job, seg: Segments, horizontal: bool) -> Relative:
 
 
 def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part | None = None,
-              clearance: bool = True):
+              clearance: bool = True, policy: PlannerPolicy = DEFAULT_POLICY):
     """The raster program for a panel on the line at ``speed`` (default the job's); a
     [part] job goes to :func:`.line.part.plan_line_part` (``part``: its mesh, read once).
     ``clearance``: check the gun body's clearance (:func:`line_clearance`); the speed
-    searches leave it to the plan they return."""
+    searches leave it to the plan they return. ``policy``: the planner's knobs."""
     if isinstance(job, PartJob):
         from .part import plan_line_part
 
-        plan = plan_line_part(robot, job, act, speed, part)
+        plan = plan_line_part(robot, job, act, speed, part, policy)
         return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
@@ -110,7 +110,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
 
     horizontal = pass_direction(panel_frame(job), e)
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
-    frame, offsets, half_length, pass_speed, _, spacing = panel_layout(job_x)
+    frame, offsets, half_length, pass_speed, _, spacing = panel_layout(job_x, policy)
     es = frame.v if horizontal else frame.u
     offsets = np.array(sorted(offsets, key=lambda o: -o * float(es @ e)))  # leading end first
 
@@ -118,11 +118,11 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
         seg = raster_segments(offsets, half_length, pass_speed, tau[1:-1], (tau[0], tau[-1]))
         return panel_relative(frame, job_x, seg, horizontal)
 
-    guess = np.full(len(offsets) + 1, first_guess(pass_speed))  # ramps and turns
-    program = LineProgram(build, guess, min(MAX_STEP, STEP_SIGMA * job.sigma / pass_speed),
+    guess = np.full(len(offsets) + 1, policy.first_guess(pass_speed))  # ramps and turns
+    program = LineProgram(build, guess, policy.step(job.sigma, pass_speed),
                           track(frame.c + job.standoff * frame.n, e),
                           f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
-    world = plan_world(robot, act, program, speed, e)
+    world = plan_world(robot, act, program, speed, e, policy)
     plan = LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
                     offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
                     spray=world.spray, ratios=world.ratios,
@@ -131,9 +131,9 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
 
 
 def line_clearance(robot, plan):
-    """The gun body's :class:`.plan.clearance.Clearance` from the panel or part of a plan on
+    """The gun body's :class:`.checks.clearance.Clearance` from the panel or part of a plan on
     the line, seen from the part at rest (the world path less the line's displacement),
-    refused as a :class:`.plan.clearance.ClearanceError` (docs/model.md §25)."""
+    refused as a :class:`.checks.clearance.ClearanceError` (docs/model.md §25)."""
     tr = plan.trajectory
     rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -plan.speed, plan.direction)
     mesh = plan.part.mesh if isinstance(plan.job, PartJob) else panel_mesh(plan.frame)
@@ -141,30 +141,33 @@ def line_clearance(robot, plan):
         "while spraying" if plan.spray[i] > 0 else "with the gun closed"))
 
 
-def line_planner(robot, job, act: Actuators, part: Part | None = None):
+def line_planner(robot, job, act: Actuators, part: Part | None = None,
+                 policy: PlannerPolicy = DEFAULT_POLICY):
     """speed ↦ the job's plan on the line at that speed (a part's mesh, ``part`` if given,
-    read once)."""
+    read once; ``policy`` the planner's knobs)."""
     if part is None and isinstance(job, PartJob):
         from ..spray.occlusion import load_painted_part
 
         part = load_painted_part(job)
-    return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False)
+    return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False,
+                                        policy=policy)
 
 
 def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
-                   part: Part | None = None):
+                   part: Part | None = None, policy: PlannerPolicy = DEFAULT_POLICY):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
-    part is painted under the same checks, and its plan (docs/model.md §24,
+    part is painted under the same checks (``policy``'s), and its plan (docs/model.md §24,
     :func:`.line.phases.fastest_line_speed`)."""
-    speed, plan = fastest_line_speed(line_planner(robot, job, act, part), job.line.speed,
+    speed, plan = fastest_line_speed(line_planner(robot, job, act, part, policy), job.line.speed,
                                      job.source, resolution)
     return speed, replace(plan, clearance=line_clearance(robot, plan))
 
 
-def plan_line_job(robot, job, act: Actuators, part: Part | None = None):
-    """The job's line speed planned; a speed that cannot be painted is refused naming the
-    fastest that works (:func:`max_line_speed`)."""
-    plan = plan_or_name_fastest(line_planner(robot, job, act, part), job.line.speed,
+def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
+                  policy: PlannerPolicy = DEFAULT_POLICY):
+    """The job's line speed planned (``policy``: the planner's knobs); a speed that cannot be
+    painted is refused naming the fastest that works (:func:`max_line_speed`)."""
+    plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source)
     return replace(plan, clearance=line_clearance(robot, plan))
 

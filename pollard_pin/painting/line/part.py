@@ -21,7 +21,7 @@ from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SurfaceLayout, pass_speed, surface_frame, surface_layout
 from ..plan.part import SurfacePlan, time_step
 from ..plan.result import PlanResult
-from ..policy import first_guess
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.occlusion import load_painted_part
 from ..workpiece.mesh import Part
 from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
@@ -87,9 +87,11 @@ def part_relative(program: Program) -> Relative:
 
 
 def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = None,
-                   part: Part | None = None) -> LinePartPlan:
+                   part: Part | None = None,
+                   policy: PlannerPolicy = DEFAULT_POLICY) -> LinePartPlan:
     """The surface program for a part on the line at ``speed`` (default the job's), its
-    clearance not checked (:func:`.line.panel.plan_line` checks it)."""
+    clearance not checked (:func:`.line.panel.plan_line` checks it); ``policy`` the
+    planner's knobs."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     e = np.asarray(job.line.direction, float)
@@ -97,19 +99,19 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
     part = load_painted_part(job) if part is None else part
     horizontal = across_the_travel(part, e)
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part, job_x), e)
+    layout = leading_first(surface_layout(part, job_x, policy=policy), e)
     v = pass_speed(job_x, layout.spacing)
     pieces = pass_pieces(layout, v, 1)
-    dt = time_step(job_x, pieces, v)
+    dt = time_step(job_x, pieces, v, policy)
 
     def build(tau):
         return part_relative(build_program(pieces, tau))
 
     f = layout.frame
-    program = LineProgram(build, np.full(len(pieces) + 1, first_guess(v)), dt,
+    program = LineProgram(build, np.full(len(pieces) + 1, policy.first_guess(v)), dt,
                           track(f.centre + job.standoff * f.n, e),
                           f"the passes ({v:.4g} m/s on the part's surface)", job.source)
-    world = plan_world(robot, act, program, speed, e)
+    world = plan_world(robot, act, program, speed, e, policy)
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
                         world.times, v, trajectory=world.trajectory, spray=world.spray,
                         ratios=world.ratios, timings={"plan": time.perf_counter() - clock})

@@ -16,10 +16,10 @@ import numpy as np
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
-from ..errors import BudgetError, PlanError, ReachError
+from ..checks.motion import fastest, motion, reach
+from ..errors import BudgetError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
-from ..plan.checks import fastest, motion, reach
-from ..policy import CHECK_REFINE, MAX_PATH_SAMPLES, TURN_SAMPLES, UTILISATION
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
 
@@ -32,17 +32,6 @@ SPEED_TRIES = 12  # doublings/halvings bracketing the fastest speed
 _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
 
 
-class LineSpeedError(PlanError):
-    """No program paints the part at this line speed (its drift does not fit the reach, or
-    the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
-    ``hint`` a speed [m/s] worth trying next (None: no guess)."""
-
-    def __init__(self, message: str, too_fast: bool, why: str = "",
-                 hint: float | None = None):
-        super().__init__(message)
-        self.too_fast = too_fast
-        self.why = why
-        self.hint = hint
 
 
 @dataclass(frozen=True)
@@ -281,27 +270,30 @@ def one_coat(job) -> None:
                         "in one coat (the second would run back against the travel)")
 
 
-def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> World:
+def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
+               policy: PlannerPolicy = DEFAULT_POLICY) -> World:
     """The world path of the relative ``program`` (:class:`LineProgram`) at line ``speed``
-    along ``e`` (docs/model.md §24): the turnarounds the shortest within UTILISATION on the
-    world path held at one world centre, the delay at the middle of the feasible shifts, the
-    return the shortest, sampled every ``program.dt`` and checked at CHECK_REFINE× that."""
+    along ``e`` (docs/model.md §24): the turnarounds the shortest within
+    ``policy.utilisation`` on the world path held at one world centre, the delay at the
+    middle of the feasible shifts, the return the shortest, sampled every ``program.dt`` and
+    checked at ``policy.check_refine`` times that."""
     build, guess, dt, where = program.build, program.guess, program.dt, program.where
     passes, source = program.passes, program.source
     e = np.asarray(e, dtype=float)
-    slow_budget(speed, dt, source)
+    slow_budget(speed, dt, source, policy)
+    ns = policy.turn_samples
     rel = build(guess)
     shift = choose_shift(robot, rel, speed, e, where)
     # the wait and the passes alone, before the turnarounds are searched
     passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
-    samples_budget(shift / speed + passes_time, dt, source)
+    samples_budget(shift / speed + passes_time, dt, source, policy)
     centre = shift + _mid_along(rel, speed, e)
 
     def evaluate(tau):
         r = build(tau)
         x = centre - _mid_along(r, speed, e)
         pieces = r.not_passes()
-        u = np.linspace(0.0, 1.0 - 1e-12, TURN_SAMPLES)
+        u = np.linspace(0.0, 1.0 - 1e-12, ns)
         tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
         p, v, a = r.evaluate(tt)
         p, v = line_shift(p, v, tt + x / speed, speed, e)
@@ -309,10 +301,10 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> 
             m = motion(robot, act, p, v, a)
         except ReachError:
             return np.full(len(pieces), np.inf)
-        return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
+        return m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
 
     try:
-        rel = build(fastest(evaluate, np.asarray(guess, float), UTILISATION))
+        rel = build(fastest(evaluate, np.asarray(guess, float), policy.utilisation))
     except PlanError:
         # too fast or too slow by the drift's sign, as every other failure here: the
         # turnarounds fail on the reach where the program drifts out of it (§24)
@@ -323,15 +315,15 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e) -> 
                              "no turnaround keeps the path in reach and the motors within "
                              "ratings") from None
     delay = choose_shift(robot, rel, speed, e, where) / speed
-    back = _return_time(robot, act, rel, speed, e, delay)
+    back = _return_time(robot, act, rel, speed, e, delay, policy)
     times = LineTimes(delay, delay + rel.total, back)
-    samples_budget(times.total, dt, source)
+    samples_budget(times.total, dt, source, policy)
     steps = math.ceil((times.total - times.delay) / dt - 1e-9)  # the program's, on
     t = path_times(times, steps)
     poses, d, dd, spray = world_motion(rel, speed, e, times, t)
     traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
-    tf = path_times(times, CHECK_REFINE * steps)
+    tf = path_times(times, policy.check_refine * steps)
     drift = _drift_along(rel, speed, e)
     try:
         fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
@@ -370,27 +362,29 @@ def path_times(times: LineTimes, steps: int) -> np.ndarray:
     return t
 
 
-def samples_budget(duration: float, dt: float, source: str) -> None:
-    """A path of ``duration`` [s] sampled every ``dt`` within MAX_PATH_SAMPLES, else one
-    :class:`BudgetError` line."""
+def samples_budget(duration: float, dt: float, source: str,
+                   policy: PlannerPolicy = DEFAULT_POLICY) -> None:
+    """A path of ``duration`` [s] sampled every ``dt`` within ``policy.max_path_samples``,
+    else one :class:`BudgetError` line."""
     n = duration / dt + 1
-    if n > MAX_PATH_SAMPLES:
+    if n > policy.max_path_samples:
         raise BudgetError(f"{source}: the line's path needs {n:.3g} samples ({duration:.4g} s "
-                          f"at {dt:.3g} s), budget {MAX_PATH_SAMPLES:.3g}: a faster line, the "
-                          "part placed nearer the robot, a thinner film or more flow")
+                          f"at {dt:.3g} s), budget {policy.max_path_samples:.3g}: a faster "
+                          "line, the part placed nearer the robot, a thinner film or more flow")
 
 
-def slow_budget(speed: float, dt: float, source: str) -> None:
+def slow_budget(speed: float, dt: float, source: str,
+                policy: PlannerPolicy = DEFAULT_POLICY) -> None:
     """Before anything is planned: over the longest path the budget allows, the line must
     carry the part at least the SHIFT_STEP the program is placed to; slower, the wait alone
     breaks the budget wherever the part starts, and no speed search starts from there."""
-    longest = MAX_PATH_SAMPLES * dt
+    longest = policy.max_path_samples * dt
     if speed * longest < SHIFT_STEP:
         raise BudgetError(f"{source}: line.speed = {speed:.3g} m/s carries the part "
                           f"{speed * longest:.3g} m in the longest path the budget allows "
-                          f"({MAX_PATH_SAMPLES:.3g} samples, {longest:.4g} s): give at least "
-                          f"{SHIFT_STEP / longest:.3g} m/s, in m/s, or no [line] for a still "
-                          "part")
+                          f"({policy.max_path_samples:.3g} samples, {longest:.4g} s): give at "
+                          f"least {SHIFT_STEP / longest:.3g} m/s, in m/s, or no [line] for a "
+                          "still part")
 
 
 def _drift_along(rel: Relative, speed: float, e) -> float:
@@ -406,9 +400,10 @@ def _mid_along(rel: Relative, speed: float, e) -> float:
     return 0.5 * float(along.min() + along.max())
 
 
-def _return_time(robot, act, rel: Relative, speed: float, e, delay: float) -> float:
-    """The shortest return to the start pose (rest to rest) within UTILISATION."""
-    u = np.linspace(0.0, 1.0, TURN_SAMPLES)
+def _return_time(robot, act, rel: Relative, speed: float, e, delay: float,
+                 policy: PlannerPolicy) -> float:
+    """The shortest return to the start pose (rest to rest) within ``policy.utilisation``."""
+    u = np.linspace(0.0, 1.0, policy.turn_samples)
 
     def evaluate(tau):
         times = LineTimes(delay, delay + rel.total, float(tau[0]))
@@ -419,7 +414,7 @@ def _return_time(robot, act, rel: Relative, speed: float, e, delay: float) -> fl
             return np.array([np.inf])
         return np.array([m.utilisation.max()])
 
-    return float(fastest(evaluate, np.array([0.5]), UTILISATION)[0])
+    return float(fastest(evaluate, np.array([0.5]), policy.utilisation)[0])
 
 
 def fastest_line_speed(plan_at, start: float, source: str,
@@ -493,7 +488,7 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
                         f"{fastest_speed:.4g} m/s (--max-line-speed)") from None
 
 
-__all__ = ["CATCH", "LineProgram", "LineSpeedError", "LineTimes", "Relative",
+__all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",
            "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
            "feasible_shifts", "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
            "plan_world", "track", "world_motion"]

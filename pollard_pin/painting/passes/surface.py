@@ -46,7 +46,7 @@ import trimesh
 from scipy.ndimage import gaussian_filter1d
 
 from ..errors import BudgetError, PlanError
-from ..policy import MAX_PASSES
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from .raster import pass_offsets, ripple_spacing
 
@@ -263,12 +263,13 @@ def pass_speed(job, spacing: float) -> float:
     return job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
 
 
-def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
-                   min_smoothing: float = 0.0) -> SurfaceLayout:
+def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: float = 0.0,
+                   policy: PlannerPolicy = DEFAULT_POLICY) -> SurfaceLayout:
     """The passes over the painted faces of ``part`` for ``job`` (standoff, sigma, spacing,
     direction): see the module notes; the smoothing at least ``min_smoothing`` [m] (the
-    planner asks for more where the motors cannot follow). Raises :class:`PlanError` if no
-    smoothing in SMOOTHING lets the gun follow the surface."""
+    planner asks for more where the motors cannot follow); the passes within
+    ``policy.max_passes``. Raises :class:`PlanError` if no smoothing in SMOOTHING lets the
+    gun follow the surface."""
     frame = surface_frame(part, job.direction)
     mesh, normals = _painted_mesh(part)
     spacing = pass_spacing(job)
@@ -290,10 +291,10 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP,
                         f"film would be the spot's own profile): {why}")
     coats = job.coats or 1
     passes = (extent / spacing + 1) * coats
-    if passes > MAX_PASSES:  # before the cross profile, which grows with their square
+    if passes > policy.max_passes:  # before the cross profile, which grows with their square
         raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
                           f"{spacing:.3g} m over {extent:.3g} m of surface), budget "
-                          f"{MAX_PASSES}: a wider job.spacing or fewer coats")
+                          f"{policy.max_passes}: a wider job.spacing or fewer coats")
     try:
         offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
     except ValueError as exc:

@@ -1,2 +1,2 @@
-"""The planning: the checks along a program (reach, limits, motors), the panel's and the
-part's planners, the one plan result type (docs/model.md §21, §23)."""
+"""The planning: the panel's and the part's planners, the one plan result type
+(docs/model.md §21, §23); the checks they run are in :mod:`..checks`."""

@@ -1,7 +1,7 @@
 """A still panel's raster before the motors have their say (docs/model.md §21): the spacing,
 pass speed, coats and pass positions of a job (:func:`panel_layout`), and the path's sample
-times (:func:`path_times`), each within its budget (:mod:`..policy`), checked before anything
-is built."""
+times (:func:`path_times`), each within its budget (:class:`..policy.PlannerPolicy`),
+checked before anything is built."""
 from __future__ import annotations
 
 import math
@@ -12,7 +12,7 @@ import numpy as np
 from ..errors import BudgetError, PlanError
 from ..job import PaintJob
 from ..passes.raster import SPOT_RADIUS, Segments, pass_offsets, ripple_spacing
-from ..policy import MAX_PASSES, MAX_PATH_SAMPLES, MAX_STEP, STEP_SIGMA
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import PanelFrame, panel_frame
 
 
@@ -27,9 +27,10 @@ class PanelLayout(NamedTuple):
     spacing: float  # between passes [m]
 
 
-def panel_layout(job: PaintJob) -> PanelLayout:
-    """The job's :class:`PanelLayout` before the motors have their say, its budgets checked:
-    the raster's layout, shared with the moving line (paint/line/panel.py)."""
+def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> PanelLayout:
+    """The job's :class:`PanelLayout` before the motors have their say, its budgets
+    (``policy``'s) checked: the raster's layout, shared with the moving line
+    (painting/line/panel.py)."""
     frame = panel_frame(job)
     horizontal = job.direction == "horizontal"
     length, extent = (job.width, job.height) if horizontal else (job.height, job.width)
@@ -42,16 +43,16 @@ def panel_layout(job: PaintJob) -> PanelLayout:
         spacing = ripple_spacing(job.sigma)
     # pass_offsets' count, give or take the edges
     passes = (extent / spacing + 1) * coats if spacing > 0 else math.inf
-    if passes > MAX_PASSES:
+    if passes > policy.max_passes:
         raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
-                          f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {MAX_PASSES}: "
+                          f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {policy.max_passes}: "
                           "a wider spacing, fewer coats or a smaller panel")
     speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
     half_length = length / 2 + SPOT_RADIUS * job.sigma
     # the passes alone, before any turnaround: their samples bound the path's from below
     passing = passes * 2 * half_length / speed if speed > 0 else math.inf
-    check_samples(passing / min(MAX_STEP, STEP_SIGMA * job.sigma / speed) if speed > 0 else
-                   math.inf, passing, speed, job)
+    check_samples(passing / policy.step(job.sigma, speed) if speed > 0 else math.inf,
+                  passing, speed, job, policy)
     try:
         offsets = pass_offsets(extent, spacing, job.sigma)
     except ValueError as exc:  # name the job entries the spacing came from
@@ -62,22 +63,25 @@ def panel_layout(job: PaintJob) -> PanelLayout:
     return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
 
 
-def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace) -> np.ndarray:
-    """The path's sample times: steps of at most MAX_STEP and STEP_SIGMA·σ of gun travel,
-    within MAX_PATH_SAMPLES (checked before they are made)."""
-    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / speed)
+def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace,
+               policy: PlannerPolicy = DEFAULT_POLICY) -> np.ndarray:
+    """The path's sample times: steps of at most ``policy.max_step`` and
+    ``policy.step_sigma``·σ of gun travel, within ``policy.max_path_samples`` (checked before
+    they are made)."""
+    dt = policy.step(job.sigma, speed)
     n = math.ceil(seg.total / dt) + 1
-    check_samples(n, seg.total, speed, job)
+    check_samples(n, seg.total, speed, job, policy)
     return np.arange(0.0, seg.total, dt) if how is np.arange else np.linspace(0.0, seg.total, n)
 
 
-def check_samples(n: float, duration: float, speed: float, job: PaintJob) -> None:
-    if n > MAX_PATH_SAMPLES:
+def check_samples(n: float, duration: float, speed: float, job: PaintJob,
+                  policy: PlannerPolicy = DEFAULT_POLICY) -> None:
+    if n > policy.max_path_samples:
         fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
                "a thinner film, more flow or a smaller panel")
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
-                          f"at a gun speed of {speed:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
-                          f"{fix}")
+                          f"at a gun speed of {speed:.4g} m/s), budget "
+                          f"{policy.max_path_samples:.3g}: {fix}")
 
 
 __all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times"]

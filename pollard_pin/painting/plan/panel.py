@@ -5,16 +5,19 @@ trajectory, (docs/model.md §21). The film it leaves is
 1. Spacing: the widest whose interior ripple is ≤ PROFILE_TOLERANCE/2 (or the job's); the
    fewest passes whose cross profile stays within PROFILE_TOLERANCE up to the edges.
 2. Speed: film = flow/(speed·spacing) per coat. The fastest constant pass speed the motors
-   allow (every pass, peak torque and speed derated to UTILISATION) caps it: a target that
-   needs more is refused, naming the thinnest film per coat.
+   allow (every pass, peak torque and speed derated to the policy's ``utilisation``) caps
+   it: a target that needs more is refused, naming the thinnest film per coat.
 3. Turnarounds and ramps: each the shortest of its family (raster.py) whose motors stay within
-   UTILISATION of peak torque and speed (vectorised bisection, TURN_SAMPLES per piece). The
-   cycle repeats on a line, so each motor's RMS torque over it (``size``'s definition,
-   dynamics/averages.py) must also stay within UTILISATION of its continuous rating: if it
+   ``utilisation`` of peak torque and speed (vectorised bisection, ``turn_samples`` per
+   piece). The cycle repeats on a line, so each motor's RMS torque over it (``size``'s
+   definition, dynamics/averages.py) must also stay within ``utilisation`` of its
+   continuous rating: if it
    does not, every turnaround and ramp is lengthened by one common factor (bisection) until
    it does, or the job is refused naming the motor and its RMS use.
 4. The whole trajectory is checked like ``run`` (reach, margins, joint limits) and against the
-   motors at CHECK_REFINE× its sampling, then the film is integrated over the panel.
+   motors at ``check_refine`` times its sampling, then the film is integrated over the panel.
+
+The knobs are the planner's :class:`..policy.PlannerPolicy` (``policy=``).
 """
 from __future__ import annotations
 
@@ -28,6 +31,8 @@ from ...dynamics.averages import time_rms
 from ...dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ...dynamics.path import path_dynamics
 from ...paths.trajectory import Trajectory
+from ..checks.clearance import job_clearance, panel_mesh
+from ..checks.motion import fastest, motion, reach
 from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
@@ -36,15 +41,8 @@ from ..passes.raster import (
     raster_segments,
     task_motion,
 )
-from ..policy import (
-    CHECK_REFINE,
-    TURN_SAMPLES,
-    UTILISATION,
-    first_guess,
-)
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import PanelFrame
-from .checks import fastest, motion, reach
-from .clearance import job_clearance, panel_mesh
 from .layout import PanelLayout, panel_layout, path_times
 from .result import PlanResult
 
@@ -135,9 +133,11 @@ def _task(plan_frame, job, seg: Segments, t, horizontal):
 
 
 def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offsets,
-                   half_length: float, horizontal: bool) -> float:
+                   half_length: float, horizontal: bool,
+                   policy: PlannerPolicy = DEFAULT_POLICY) -> float:
     """The fastest constant speed [m/s] at which every pass keeps each motor within
-    UTILISATION of its peak torque and speed (uniform time scaling of the passes, §19)."""
+    ``policy.utilisation`` of its peak torque and speed (uniform time scaling of the passes,
+    §19)."""
     n = 64
     U = np.linspace(-half_length, half_length, n)
     length = 2 * half_length
@@ -152,14 +152,15 @@ def max_pass_speed(robot, act: Actuators, frame: PanelFrame, job: PaintJob, offs
     # reach and limits, with their messages; the motors' question is path_dynamics' below
     ik = replace(reach(robot, poses, d, dd), t=t)
     try:
-        scaling = uniform_min_duration(derated(act, UTILISATION), path_dynamics(robot, ik))
+        scaling = uniform_min_duration(derated(act, policy.utilisation), path_dynamics(robot, ik))
     except ActuatorError as exc:
         raise PlanError(f"the motors cannot hold the gun on the passes: {exc}") from None
     binding = max(scaling.by_limit["peak_torque"], scaling.by_limit["speed"])
     return math.inf if binding == 0 else float(t[-1] - t[0]) / binding
 
 
-def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
+def plan_paint(robot, job: PaintJob, act: Actuators,
+               policy: PlannerPolicy = DEFAULT_POLICY) -> PaintPlan:
     """The fastest raster program for a still panel that the motors and the workspace allow
     (docs/model.md §21): passes at the constant speed the target film needs, every ramp and
     turnaround as short as the motors allow.
@@ -172,6 +173,8 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
         A still panel's job (:func:`~pollard_pin.load_job`).
     act : Actuators
         The motor ratings the program must keep.
+    policy : pollard_pin.painting.policy.PlannerPolicy, optional
+        The planner's reserve, sampling and budgets (default the planners' own).
 
     Returns
     -------
@@ -193,9 +196,9 @@ def plan_paint(robot, job: PaintJob, act: Actuators) -> PaintPlan:
         raise JobKindError(f"{job.source}: plan_paint plans a still panel, not a {kind}: "
                            "paint it with pollard_pin.paint(robot, job)")
     try:
-        return _plan(robot, job, act)
+        return _plan(robot, job, act, policy)
     except ReachError as exc:
-        scale, _ = _largest_scale(robot, job, act)
+        scale, _ = _largest_scale(robot, job, act, policy=policy)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
                     f"{tuple(round(c, 4) for c in job.center)} fits")
@@ -222,25 +225,27 @@ LARGEST_TRIES = 12
 STEP_DOWN = 0.95
 
 
-def largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS) -> float:
+def largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS,
+                  policy: PlannerPolicy = DEFAULT_POLICY) -> float:
     """The largest scale s ∈ [0, 1) of the job's panel, same centre and proportions, whose
     :func:`printed_panel` (sides rounded down to the mm) :func:`plan_paint` plans (a float;
     :func:`pollard_pin.workspace.grid.largest_panel` is the workspace's rectangle): a
     bisection (to 2^-steps) over a crude raster checked for reach only, then the candidate
     planned in full and stepped down by STEP_DOWN until one plans (at most LARGEST_TRIES
-    plans); 0 if none does."""
-    return _largest_scale(robot, job, act, steps)[0]
+    plans); 0 if none does. ``policy``: the planner's (:class:`..policy.PlannerPolicy`)."""
+    return _largest_scale(robot, job, act, steps, policy)[0]
 
 
-def _largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS):
+def _largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_STEPS,
+                   policy: PlannerPolicy = DEFAULT_POLICY):
     """(scale, relative accuracy) of :func:`largest_scale`; (0, 0) if no scale plans."""
-    scale = _reach_scale(robot, job, steps)
+    scale = _reach_scale(robot, job, steps, policy)
     for k in range(LARGEST_TRIES if scale > 0 else 0):
         scaled = printed_panel(job, scale)
         if min(scaled.width, scaled.height) < MIN_PANEL_SIGMAS * job.sigma:
             break  # the job's own rule (job.py): a smaller panel is refused
         try:
-            _plan(robot, scaled, act)
+            _plan(robot, scaled, act, policy)
         except PlanError:
             scale *= STEP_DOWN
             continue
@@ -249,19 +254,19 @@ def _largest_scale(robot, job: PaintJob, act: Actuators, steps: int = LARGEST_ST
     return 0.0, 0.0
 
 
-def _reach_scale(robot, job: PaintJob, steps: int) -> float:
+def _reach_scale(robot, job: PaintJob, steps: int, policy: PlannerPolicy) -> float:
     """The bisection of :func:`largest_scale`: each try samples the whole raster at the job's
     speed with every turnaround and ramp at the duration search's first guess, reach only
-    (IK, margins, joint limits: :func:`.plan.checks.reach`, no dynamics)."""
+    (IK, margins, joint limits: :func:`.checks.motion.reach`, no dynamics)."""
     lo, hi = 0.0, 1.0
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
         scaled = replace(job, width=mid * job.width, height=mid * job.height)
         try:
-            frame, offsets, half_length, speed, coats, _ = panel_layout(scaled)
-            tau = first_guess(speed)
+            frame, offsets, half_length, speed, coats, _ = panel_layout(scaled, policy)
+            tau = policy.first_guess(speed)
             seg = raster_segments(offsets, half_length, speed, tau, (tau, tau), coats)
-            t = path_times(seg, scaled, speed, np.arange)
+            t = path_times(seg, scaled, speed, np.arange, policy)
             reach(robot, *_task(frame, scaled, seg, t, job.direction == "horizontal"))
             lo = mid
         except BudgetError:
@@ -271,13 +276,14 @@ def _reach_scale(robot, job: PaintJob, steps: int) -> float:
     return lo
 
 
-def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
+def _plan(robot, job: PaintJob, act: Actuators, policy: PlannerPolicy) -> PaintPlan:
     clock = {"start": time.perf_counter()}
-    lay = panel_layout(job)
+    lay = panel_layout(job, policy)
     frame, offsets, half_length, speed, coats, spacing = lay
     horizontal = job.direction == "horizontal"
     try:
-        vmax = max_pass_speed(robot, act, frame, job, offsets, half_length, horizontal)
+        vmax = max_pass_speed(robot, act, frame, job, offsets, half_length, horizontal,
+                              policy)
     except ReachError as exc:
         raise _reach_error(exc, "on a pass", frame, job) from None
     if speed > vmax:
@@ -298,15 +304,15 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
                         f"{film_per_coat * coats * 1e6:.4g} µm, not the target "
                         f"{job.thickness * 1e6:.4g} µm")
     clock["layout"] = time.perf_counter()
-    seg = _fastest_segments(robot, act, job, lay, horizontal)
-    seg = _within_rms(robot, act, job, lay, seg, horizontal)
+    seg = _fastest_segments(robot, act, job, lay, horizontal, policy)
+    seg = _within_rms(robot, act, job, lay, seg, horizontal, policy)
     clock["turns"] = time.perf_counter()
-    t = path_times(seg, job, speed)
+    t = path_times(seg, job, speed, policy=policy)
     n = len(t)
     poses, d, dd = _task(frame, job, seg, t, horizontal)
     traj = Trajectory(t, poses, d, dd, name="paint", derivatives="analytic",
                       curve=lambda times: _task(frame, job, seg, times, horizontal))
-    tf = np.linspace(0.0, seg.total, CHECK_REFINE * (n - 1) + 1)
+    tf = np.linspace(0.0, seg.total, policy.check_refine * (n - 1) + 1)
     try:
         fine = motion(robot, act, *_task(frame, job, seg, tf, horizontal))
     except ReachError as exc:
@@ -328,8 +334,11 @@ def _plan(robot, job: PaintJob, act: Actuators) -> PaintPlan:
                               "check": clock["check"] - clock["turns"]})
 
 
-def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool) -> Segments:
-    """Every turnaround and ramp at the shortest duration within UTILISATION (bisection)."""
+def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool,
+                      policy: PlannerPolicy) -> Segments:
+    """Every turnaround and ramp at the shortest duration within ``policy.utilisation``
+    (bisection)."""
+    n = policy.turn_samples
     frame, offsets, half_length, speed, coats, _ = lay
     seg = raster_segments(offsets, half_length, speed, 1.0, (1.0, 1.0), coats)
     pieces = np.array([i for i, k in enumerate(seg.kind) if k != "pass"])
@@ -340,17 +349,17 @@ def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool) -> Se
 
     def evaluate(tau):
         s = build(tau)
-        t = _sample_pieces(s, pieces, TURN_SAMPLES)
+        t = _sample_pieces(s, pieces, n)
         try:
             m = motion(robot, act, *_task(frame, job, s, t, horizontal))
         except ReachError as exc:
-            k = exc.sample // TURN_SAMPLES
+            k = exc.sample // n
             what = "ramp" if k in (0, len(pieces) - 1) else "turnaround"
             raise _reach_error(exc, f"in a {what} ({tau[k]:.3g} s)", frame, job) from None
-        return m.utilisation.reshape(len(pieces), TURN_SAMPLES, -1).max(axis=(1, 2))
+        return m.utilisation.reshape(len(pieces), n, -1).max(axis=(1, 2))
 
-    guess = np.full(len(pieces), first_guess(speed))
-    return build(fastest(evaluate, guess, UTILISATION))
+    guess = np.full(len(pieces), policy.first_guess(speed))
+    return build(fastest(evaluate, guess, policy.utilisation))
 
 
 RMS_DOUBLINGS = 6  # turnarounds and ramps at most 2^6 × their fastest for the RMS rating
@@ -362,24 +371,26 @@ def _rms_text(act: Actuators, use: np.ndarray, what: str) -> str:
             f"over {what} (docs/model.md §19): the cycle repeats, so it would overheat")
 
 
-def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments,
-                horizontal: bool) -> Segments:
+def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments, horizontal: bool,
+                policy: PlannerPolicy) -> Segments:
     """``seg`` with every turnaround and ramp × k, the smallest k ≥ 1 (doubling, then
     bisection) at which each motor's RMS torque over the cycle, sqrt(∫τm² dt / T), is within
-    UTILISATION of its continuous rating. The passes do not change with k: their ∫τm² is
-    computed once; the pieces' by the trapezoid rule on TURN_SAMPLES each."""
+    ``policy.utilisation`` of its continuous rating. The passes do not change with k: their
+    ∫τm² is computed once; the pieces' by the trapezoid rule on ``policy.turn_samples``
+    each."""
+    n, within = policy.turn_samples, policy.utilisation
     frame, offsets, half_length, speed, coats, _ = lay
     pieces = np.array([i for i, k in enumerate(seg.kind) if k != "pass"])
     passes = np.array([i for i, k in enumerate(seg.kind) if k == "pass"])
     base = seg.duration[pieces]
     cont = act.column("continuous_torque")
-    w = np.full(TURN_SAMPLES, 1.0 / (TURN_SAMPLES - 1))
+    w = np.full(n, 1.0 / (n - 1))
     w[[0, -1]] *= 0.5  # trapezoid weights on [0, 1]
 
     def square_integral(s: Segments, idx) -> np.ndarray:  # per motor ∫τm² dt over pieces idx
-        t = _sample_pieces(s, idx, TURN_SAMPLES)
+        t = _sample_pieces(s, idx, n)
         tm = motion(robot, act, *_task(frame, job, s, t, horizontal)).torque
-        per = np.einsum("s,psj->pj", w, tm.reshape(len(idx), TURN_SAMPLES, -1) ** 2)
+        per = np.einsum("s,psj->pj", w, tm.reshape(len(idx), n, -1) ** 2)
         return (per * s.duration[idx, None]).sum(axis=0)
 
     def build(k: float) -> Segments:
@@ -394,7 +405,7 @@ def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments,
         return np.sqrt((on_passes + square_integral(s, pieces)) / s.total) / cont
 
     u = use(1.0)
-    if u.max() <= UTILISATION:
+    if u.max() <= within:
         return seg
     advice = ("; paint fewer coats or a slower pass (job.speed with more coats), or choose "
               "stronger motors")
@@ -406,7 +417,7 @@ def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments,
             raise PlanError(_rms_text(act, u, f"the cycle with turnarounds and ramps {lo:g}× "
                                               "their fastest") + "; longer ones leave the "
                             "workspace" + advice) from None
-        if u_hi.max() <= UTILISATION:
+        if u_hi.max() <= within:
             break
         lo, hi, u = hi, 2 * hi, u_hi
     else:
@@ -414,7 +425,7 @@ def _within_rms(robot, act, job, lay: PanelLayout, seg: Segments,
                                           f"{lo:g}× their fastest") + advice)
     for _ in range(8):  # to 2^-8 of the bracket: between lo and hi every turnaround is in reach
         mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if use(mid).max() <= UTILISATION else (mid, hi)
+        lo, hi = (lo, mid) if use(mid).max() <= within else (mid, hi)
     return build(hi)
 
 

@@ -4,10 +4,11 @@ robot and its motors can run; its film is :mod:`.film.part`'s. The turnarounds l
 part (the passes run EXTENSION σ past its edges) with the gun closed (``spray`` 0), the
 passes open (1).
 
-Each turnaround and ramp is the shortest whose motors stay within UTILISATION of peak torque
-and speed (:func:`.plan.checks.fastest`); then the whole path is checked like ``run`` (reach,
-margins, joint limits) and against the motors' peak torque, speed and continuous (RMS)
-rating at CHECK_REFINE× its sampling.
+Each turnaround and ramp is the shortest whose motors stay within the policy's
+``utilisation`` of peak torque and speed (:func:`.checks.motion.fastest`); then the whole
+path is checked like ``run`` (reach, margins, joint limits) and against the motors' peak
+torque, speed and continuous (RMS) rating at ``check_refine`` times its sampling (the knobs: the
+planner's :class:`..policy.PlannerPolicy`, ``policy=``).
 """
 from __future__ import annotations
 
@@ -22,22 +23,14 @@ from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...model.values import clip
 from ...paths.trajectory import Trajectory
+from ..checks.clearance import job_clearance
+from ..checks.motion import fastest, motion
 from ..errors import BudgetError, PlanError, ReachError
 from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
-from ..policy import (
-    CHECK_REFINE,
-    MAX_PATH_SAMPLES,
-    MAX_STEP,
-    STEP_SIGMA,
-    TURN_SAMPLES,
-    UTILISATION,
-    first_guess,
-)
+from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.occlusion import load_painted_part
 from ..workpiece.mesh import Part
-from .checks import fastest, motion
-from .clearance import job_clearance
 from .result import PlanResult
 
 
@@ -91,37 +84,38 @@ def _cause(exc: ReachError) -> str:
     return clip(str(exc).split(": ")[0], 60)
 
 
-def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool) -> ReachError:
+def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool,
+             policy: PlannerPolicy) -> ReachError:
     """The reach error of a still part, one line with what would paint it
-    (:func:`.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
-    from ..place import reach_hint
+    (:func:`.layout.place.reach_hint`: vertical passes, a move, or by how much it misses)."""
+    from ..layout.place import reach_hint
 
     if not hints:
         return exc
 
     def paints(other) -> bool:
         try:
-            plan_surface(robot, other, act, part, hints=False)
+            plan_surface(robot, other, act, part, hints=False, policy=policy)
         except PlanError:
             return False
         return True
 
-    name, hint = Path(part.source).name, clip(reach_hint(robot, job, paints), 170)
+    name, hint = Path(part.source).name, clip(reach_hint(robot, job, paints, policy), 170)
     where = clip(str(exc), 250 - 2 - len(name) - 2 - len(hint))
     return ReachError(f"{name}: {where}; {hint}", exc.sample, exc.pose)
 
 
-def time_step(job, pieces, v: float) -> float:
-    """The path's time step [s]: STEP_SIGMA σ of the tip's travel, the tip moving up to
-    tip_rate × the spot's speed ``v`` (a convex part's stretch); the passes alone within the
-    sample budget."""
+def time_step(job, pieces, v: float, policy: PlannerPolicy = DEFAULT_POLICY) -> float:
+    """The path's time step [s]: ``policy.step_sigma`` σ of the tip's travel, the tip moving
+    up to tip_rate × the spot's speed ``v`` (a convex part's stretch); the passes alone within
+    the sample budget."""
     tip_rate = max(1.0, max(float(np.linalg.norm(p.d1(p.spline.t[5:-5])[:, :3], axis=1).max())
                             for p in pieces if p.kind == "pass"))
-    dt = min(MAX_STEP, STEP_SIGMA * job.sigma / (v * tip_rate))
+    dt = policy.step(job.sigma, v * tip_rate)
     swept = sum(p.duration for p in pieces)
-    if swept / dt > MAX_PATH_SAMPLES:
+    if swept / dt > policy.max_path_samples:
         raise BudgetError(f"{job.source}: the passes alone need {swept / dt:.3g} samples "
-                          f"({swept:.4g} s at {v:.4g} m/s), budget {MAX_PATH_SAMPLES:.3g}: "
+                          f"({swept:.4g} s at {v:.4g} m/s), budget {policy.max_path_samples:.3g}: "
                           "a thinner film, more flow or fewer coats")
     return dt
 
@@ -148,23 +142,24 @@ def _piece_name(program: Program, layout: SurfaceLayout, t: float) -> str:
 
 
 def plan_surface(robot, job, act: Actuators, part: Part | None = None,
-                 hints: bool = True) -> SurfacePlan:
+                 hints: bool = True, policy: PlannerPolicy = DEFAULT_POLICY) -> SurfacePlan:
     """The spray program over the job's part (read from ``job.mesh`` unless given): see the
-    module notes. Raises :class:`PlanError` (or :class:`ReachError`) naming where it fails
-    (out of reach, with ``hints``: what would paint it, :func:`.place.reach_hint`)."""
+    module notes; ``policy`` the planner's knobs. Raises :class:`PlanError` (or
+    :class:`ReachError`) naming where it fails (out of reach, with ``hints``: what would paint
+    it, :func:`.layout.place.reach_hint`)."""
     clock = [time.perf_counter()]
     part = load_painted_part(job) if part is None else part
     v = pass_speed(job, pass_spacing(job))
     coats = job.coats or 1
     smoothing = 0.0
     while True:  # the least smoothing whose passes the motors follow at speed v
-        layout = surface_layout(part, job, min_smoothing=smoothing)
+        layout = surface_layout(part, job, min_smoothing=smoothing, policy=policy)
         pieces = pass_pieces(layout, v, coats)
         try:
             use = _pass_use(robot, act, layout, pieces[:len(layout.passes)])
         except ReachError as exc:
-            raise _refusal(robot, job, act, part, exc, hints) from None
-        if use <= UTILISATION:
+            raise _refusal(robot, job, act, part, exc, hints, policy) from None
+        if use <= policy.utilisation:
             break
         wider = [w for w in SMOOTHING if w > layout.smoothing]
         if not wider:
@@ -173,44 +168,47 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
                             f"averaged over {layout.smoothing:g} m: a thinner coat (more "
                             "coats), a smaller standoff or a gentler part")
         smoothing = wider[0]
-    dt = time_step(job, pieces, v)
+    dt = time_step(job, pieces, v, policy)
+    ns = policy.turn_samples
     clock.append(time.perf_counter())
 
     def evaluate(taus):
         prog = build_program(pieces, taus)
         sel = [i for i, p in enumerate(prog.pieces) if p.kind != "pass"]
         start = prog.start
-        x = np.linspace(0.0, 1.0 - 1e-12, TURN_SAMPLES)
+        x = np.linspace(0.0, 1.0 - 1e-12, ns)
         t = np.concatenate([start[i] + prog.pieces[i].duration * x for i in sel])
         try:
             m = motion(robot, act, *prog.evaluate(t))
         except ReachError as exc:
-            k = exc.sample // TURN_SAMPLES
+            k = exc.sample // ns
             raise ReachError(f"the path leaves the reach "
                              f"{_where(prog, layout, t[exc.sample], exc.pose)} ({taus[k]:.3g} "
                              f"s; {_cause(exc)})", exc.sample, exc.pose) from None
-        return m.utilisation.reshape(len(sel), TURN_SAMPLES, -1).max(axis=(1, 2))
+        return m.utilisation.reshape(len(sel), ns, -1).max(axis=(1, 2))
 
     try:
-        taus = fastest(evaluate, np.full(len(pieces) + 1, first_guess(v)), UTILISATION)
+        taus = fastest(evaluate, np.full(len(pieces) + 1, policy.first_guess(v)),
+                       policy.utilisation)
     except ReachError as exc:
-        raise _refusal(robot, job, act, part, exc, hints) from None
+        raise _refusal(robot, job, act, part, exc, hints, policy) from None
     program = build_program(pieces, taus)
     clock.append(time.perf_counter())
     n = math.ceil(program.total / dt) + 1
-    if n > MAX_PATH_SAMPLES:
+    if n > policy.max_path_samples:
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({program.total:.4g} "
-                          f"s), budget {MAX_PATH_SAMPLES:.3g}: a thinner film or more flow")
+                          f"s), budget {policy.max_path_samples:.3g}: a thinner film or more "
+                          "flow")
     t = np.linspace(0.0, program.total, n)
     traj = Trajectory(t, *program.evaluate(t), name="paint", derivatives="analytic",
                       curve=program.evaluate)
-    tf = np.linspace(0.0, program.total, CHECK_REFINE * (n - 1) + 1)
+    tf = np.linspace(0.0, program.total, policy.check_refine * (n - 1) + 1)
     try:
         fine = motion(robot, act, *program.evaluate(tf))
     except ReachError as exc:
         raise _refusal(robot, job, act, part, ReachError(
             f"the path leaves the reach {_where(program, layout, tf[exc.sample], exc.pose)} "
-            f"({_cause(exc)})", exc.sample, exc.pose), hints) from None
+            f"({_cause(exc)})", exc.sample, exc.pose), hints, policy) from None
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf, fine.torque) / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}

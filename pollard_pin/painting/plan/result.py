@@ -15,7 +15,7 @@ from ...paths.trajectory import Trajectory
 class PlanResult:
     """A planned program: the ``job`` first, then each kind's layout and program; every kind
     has, by keyword, the robot's path ``trajectory`` (world), its trigger ``spray`` (N,) (1
-    sprays), the gun body's ``clearance`` from the part (``paint.plan.clearance.Clearance``),
+    sprays), the gun body's ``clearance`` from the part (``painting.checks.clearance.Clearance``),
     each motor's use ``ratios`` (peak_torque, rms_torque, speed: arrays over the
     motors, each over its rating) and ``timings`` [s]."""
 
@@ -24,7 +24,7 @@ class PlanResult:
     spray: np.ndarray = field(kw_only=True)
     ratios: dict = field(kw_only=True)
     timings: dict = field(default_factory=dict, kw_only=True)
-    clearance: Any = field(default=None, kw_only=True)  # plan.clearance.Clearance
+    clearance: Any = field(default=None, kw_only=True)  # checks.clearance.Clearance
 
     def motor_use(self, names) -> dict:
         """{motor name: {limit: use over its rating}}, paint.json's ``motors``."""

@@ -26,7 +26,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..workpiece.mesh import MeshError, Part, load_job_part
+from ..errors import MeshError
+from ..workpiece.mesh import Part, load_job_part
 from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate
 
 SPOT_SIGMAS = 5.0

@@ -24,15 +24,9 @@ import trimesh
 
 from ...analytic.taskspace import turn
 from ...model.values import read_bytes
+from ..errors import MeshError, MeshFileError
 from ..job import UNITS, PaintJob
-from .mesh_check import (
-    MeshError,
-    MeshFileError,
-    check_indices,
-    obj_absolute,
-    ply_counts,
-    unique_faces,
-)
+from .mesh_check import check_indices, obj_absolute, ply_counts, unique_faces
 from .panel import panel_frame
 
 FORMATS = ("stl", "obj", "ply")
@@ -259,6 +253,6 @@ def load_job_part(job) -> Part:
                      MAX_ANGLE if job.max_angle is None else job.max_angle)
 
 
-__all__ = ["FACING", "FORMATS", "MAX_ANGLE", "MAX_EXTENT", "MAX_FACES", "MeshError", "Part",
+__all__ = ["FACING", "FORMATS", "MAX_ANGLE", "MAX_EXTENT", "MAX_FACES", "Part",
            "UNITS", "load_job_part", "load_part", "make_part", "panel_part", "placement",
            "unit_length"]

@@ -17,17 +17,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import InputError
+from ..errors import MeshFileError
 
 OBJ_ELEMENTS = {b"v": 0, b"vt": 1, b"vn": 2}  # an f index's slots: vertex/texture/normal
 
 
-class MeshError(InputError):
-    """A part's mesh cannot be used: one line naming the file, the value and the rule."""
 
 
-class MeshFileError(MeshError):
-    """A mesh file whose content contradicts itself (indices, counts): one line."""
 
 
 def _obj_index(token: bytes, seen: int, source: str, line: int) -> int:
@@ -142,5 +138,5 @@ def unique_faces(faces: np.ndarray) -> tuple[np.ndarray, int]:
     return f[keep], len(f) - len(keep)
 
 
-__all__ = ["MeshError", "MeshFileError", "check_indices", "obj_absolute", "ply_counts",
+__all__ = ["check_indices", "obj_absolute", "ply_counts",
            "unique_faces"]

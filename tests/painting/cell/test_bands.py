@@ -8,7 +8,8 @@ from cell_split_jobs import plate_part, tall_panel
 from rotations import Rx, Ry, Rz
 
 from pollard_pin.painting.cell.bands import MARGIN, STEP, cell_axis, job_strokes, robot_band
-from pollard_pin.painting.cell.robots import CellError, CellRobot
+from pollard_pin.painting.cell.robots import CellRobot
+from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
 from pollard_pin.workspace.reach import evaluate
 

@@ -110,7 +110,7 @@ def test_turned_robots_are_planned_with_their_gravity(robot, act, cell):
 
 def test_bases_closer_than_two_footprints_are_refused(robot, act):
     """Two bases 0.1 m apart (each base's joints lie 85 mm from its origin)."""
-    from pollard_pin.painting.cell.robots import CellError
+    from pollard_pin.painting.errors import CellError
 
     tables = panel_cell([{"name": "low", "base": [0.0, 0.0, 0.0]},
                          {"name": "high", "base": [0.0, 0.1, 0.0]}])

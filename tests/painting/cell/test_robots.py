@@ -8,13 +8,13 @@ import pytest
 
 from pollard_pin.painting.cell.robots import (
     MAX_ROBOTS,
-    CellError,
     CellRobot,
     base_footprint,
     check_spacing,
     robots_from_tables,
 )
-from pollard_pin.painting.job import JobError, job_from_dict, job_kind
+from pollard_pin.painting.errors import CellError, JobError
+from pollard_pin.painting.job import job_from_dict, job_kind
 
 
 def _job(robots=None, line=True) -> dict:

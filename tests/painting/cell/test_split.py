@@ -8,8 +8,9 @@ import pytest
 from cell_split_jobs import check_zones, plate_part, tall_panel
 
 from pollard_pin.painting.cell.bands import Band, Strokes, job_strokes
-from pollard_pin.painting.cell.robots import CellError, CellRobot
+from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.cell.split import seams_between, split_cell
+from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
 
 LOW, HIGH = CellRobot("low"), CellRobot("high", (0.0, 0.75, 0.17))

@@ -7,13 +7,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pollard_pin.painting.errors import MeshError
 from pollard_pin.painting.film.mesh import mesh_film
 from pollard_pin.painting.film.points import surface_points
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.spray.deposition import Gun, film
 from pollard_pin.painting.spray.occlusion import visible
 from pollard_pin.painting.workpiece import shapes
-from pollard_pin.painting.workpiece.mesh import MeshError, make_part, panel_part
+from pollard_pin.painting.workpiece.mesh import make_part, panel_part
 from pollard_pin.painting.workpiece.panel import panel_frame
 
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "paint.toml"

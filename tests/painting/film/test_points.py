@@ -9,10 +9,11 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
+from pollard_pin.painting.errors import MeshError
 from pollard_pin.painting.film import points as fp_module
 from pollard_pin.painting.film.points import lattice, surface_points
 from pollard_pin.painting.workpiece import shapes
-from pollard_pin.painting.workpiece.mesh import MeshError, make_part
+from pollard_pin.painting.workpiece.mesh import make_part
 
 SIGMA = 0.010
 

@@ -4,7 +4,8 @@ from pathlib import Path
 import pytest
 
 from pollard_pin.model.params import read_toml
-from pollard_pin.painting.job import JobError, job_from_dict
+from pollard_pin.painting.errors import JobError
+from pollard_pin.painting.job import job_from_dict
 from pollard_pin.painting.line.conveyor import MAX_LINE_SPEED
 
 LINE = Path(__file__).resolve().parents[3] / "examples" / "line.toml"

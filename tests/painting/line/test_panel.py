@@ -5,9 +5,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from pollard_pin.painting.errors import LineSpeedError
 from pollard_pin.painting.line.panel import (
     CATCH,
-    LineSpeedError,
     line_shift,
     max_line_speed,
     plan_line,

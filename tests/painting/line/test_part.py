@@ -8,12 +8,12 @@ import pytest
 from line_parts import write_line_part
 
 from pollard_pin.analytic.taskspace import rotation
-from pollard_pin.painting.errors import PlanError
+from pollard_pin.painting.errors import LineSpeedError, PlanError
 from pollard_pin.painting.film.mesh import mesh_film
 from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line.panel import max_line_speed, plan_line
-from pollard_pin.painting.line.phases import CATCH, LineSpeedError, world_motion
+from pollard_pin.painting.line.phases import CATCH, world_motion
 from pollard_pin.painting.report import line_table
 from pollard_pin.painting.spray.deposition import gun_of
 

@@ -11,18 +11,13 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pollard_pin.painting.errors import PlanError
+from pollard_pin.painting.errors import LineSpeedError, PlanError
 from pollard_pin.painting.film.line import line_film
 from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line.panel import plan_line
-from pollard_pin.painting.line.phases import (
-    LineSpeedError,
-    Relative,
-    fastest_line_speed,
-    plan_or_name_fastest,
-)
+from pollard_pin.painting.line.phases import Relative, fastest_line_speed, plan_or_name_fastest
 from pollard_pin.painting.report import line_table
 
 

@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 from line_parts import LINE_PART_TOML
 
+from pollard_pin.painting.checks.motion import reach
 from pollard_pin.painting.errors import PlanError, ReachError
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line import phases
 from pollard_pin.painting.line.panel import plan_line_job
 from pollard_pin.painting.line.reach import PASS_SAMPLES, numbers, unreachable_passes
-from pollard_pin.painting.plan.checks import reach
 from pollard_pin.painting.workpiece import shapes
 
 

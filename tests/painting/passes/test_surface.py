@@ -118,17 +118,21 @@ def test_passes_are_timed_by_the_spots_footprint():
 
 
 def test_a_spacing_far_too_fine_is_refused_before_planning():
-    """0.10 m of surface at spacing 1e-5 m: (0.10/1e-5 + 1) = 1.0e4 passes > MAX_PASSES,
+    """0.10 m of surface at spacing 1e-5 m: (0.10/1e-5 + 1) = 1.0e4 passes > max_passes,
     refused with the figure (the cross profile of 1e4 passes took minutes)."""
     from dataclasses import replace
 
     from pollard_pin.painting.errors import BudgetError
-    from pollard_pin.painting.policy import MAX_PASSES
+    from pollard_pin.painting.policy import DEFAULT_POLICY, PlannerPolicy
 
     with pytest.raises(BudgetError) as exc:
         surface_layout(plate(), replace(JOB, spacing=1e-5))
     msg = str(exc.value)
-    assert "1e+04 passes" in msg and f"budget {MAX_PASSES}" in msg and "\n" not in msg, msg
+    assert "1e+04 passes" in msg and f"budget {DEFAULT_POLICY.max_passes}" in msg, msg
+    assert "\n" not in msg
+    # the budget is the policy's: a smaller one refuses the job's own spacing
+    with pytest.raises(BudgetError, match="budget 2: "):
+        surface_layout(plate(), JOB, policy=PlannerPolicy(max_passes=2))
 
 
 @pytest.mark.parametrize("facing", [(0.0, 0.0, 1.0), (0.0, 0.0, -1.0), (0.3, 0.0, -1.0)])

@@ -13,12 +13,12 @@ import pollard_pin as pp
 import pollard_pin.dynamics.inverse as inverse
 from pollard_pin.dynamics.averages import time_rms
 from pollard_pin.dynamics.motors import motor_load_of, motor_torque
+from pollard_pin.painting.checks.motion import motion, reach
 from pollard_pin.painting.errors import PlanError, ReachError
 from pollard_pin.painting.film.grid import plan_film
 from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.passes.raster import SPOT_RADIUS
 from pollard_pin.painting.plan import panel as planner
-from pollard_pin.painting.plan.checks import motion, reach
 from pollard_pin.painting.plan.layout import panel_layout
 from pollard_pin.painting.plan.panel import plan_paint
 from pollard_pin.run import run_pipeline

@@ -187,8 +187,8 @@ def test_faces_the_gun_cannot_see_are_not_painted():
 def test_a_part_wholly_hidden_is_one_line():
     """The slab behind a sheet turned away from the robot (normal +x, not painted itself):
     every face towards the robot is hidden."""
+    from pollard_pin.painting.errors import MeshError
     from pollard_pin.painting.spray.occlusion import painted_part
-    from pollard_pin.painting.workpiece.mesh import MeshError
 
     slab = _slab(0.70, 0.71)
     sheet = np.array([[0.60, -0.2, 0.0], [0.60, 0.2, 0.0], [0.60, 0.2, 0.4], [0.60, -0.2, 0.4]])

@@ -9,16 +9,11 @@ import trimesh
 from scipy.spatial.transform import Rotation
 
 from pollard_pin.errors import InputError
+from pollard_pin.painting.errors import MeshError
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.workpiece import mesh as mesh_module
 from pollard_pin.painting.workpiece import shapes
-from pollard_pin.painting.workpiece.mesh import (
-    MAX_ANGLE,
-    MeshError,
-    load_part,
-    make_part,
-    panel_part,
-)
+from pollard_pin.painting.workpiece.mesh import MAX_ANGLE, load_part, make_part, panel_part
 
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "paint.toml"
 

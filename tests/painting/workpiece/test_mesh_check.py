@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import trimesh
 
+from pollard_pin.painting.errors import MeshFileError
 from pollard_pin.painting.workpiece.mesh_check import (
-    MeshFileError,
     check_indices,
     obj_absolute,
     ply_counts,
@@ -114,7 +114,7 @@ def test_loader_reads_relative_obj_indices_as_the_file_means(tmp_path):
      "face 1 has vertex index -1, outside 0..3"),
 ])
 def test_loader_refuses_a_self_contradicting_file_in_one_line(tmp_path, name, data, says):
-    from pollard_pin.painting.workpiece.mesh import MeshError
+    from pollard_pin.painting.errors import MeshError
 
     with pytest.raises(MeshError) as exc:
         _load(tmp_path, name, data, facing=(0, 0, 1))

@@ -3,7 +3,7 @@
 The part's strokes are split into n equal zones stacked along the cell's axis (the first and
 last with today's run-on past the part's free edges, the others R = 4σ past each seam). A
 robot at the world origin, unturned, has its band along the axis at the part's depth
-(:mod:`.bands`, the strokes continued past the part); robot i is that robot moved along the
+(:mod:`.cell.bands`, the strokes continued past the part); robot i is that robot moved along the
 axis so that its band's middle is its zone's (run-outs included) middle, the bands' overlaps
 holding the seams' run-outs, and set ``spacing`` further down the line than robot i − 1
 (default: the tip's reach window along the line at the part's depth plus twice the base's
@@ -21,11 +21,11 @@ import numpy as np
 
 from ...errors import InputError
 from ...workspace.reach import evaluate
-from ..errors import BudgetError, PlanError
+from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
+from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
+from ..cell.split import split_cell
+from ..errors import BudgetError, CellError, PlanError
 from ..job import PartJob
-from .bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
-from .robots import MAX_ROBOTS, CellError, CellRobot, base_footprint, check_spacing
-from .split import split_cell
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
@@ -139,7 +139,7 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
 
     Raises
     ------
-    pollard_pin.painting.cell.robots.CellError
+    pollard_pin.painting.errors.CellError
         One line when n robots' bands cannot hold n equal zones with their run-outs (naming
         the fewest that can), or the job has robots or no line.
     """
@@ -209,7 +209,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
 
     Raises
     ------
-    pollard_pin.painting.cell.robots.CellError
+    pollard_pin.painting.errors.CellError
         One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
         paints the part.
     """

@@ -1,4 +1,4 @@
-"""The planner's motion check (paint/plan/checks.py): motor utilisation at rest, the duration
+"""The planner's motion check (painting/checks/motion.py): motor utilisation at rest, the duration
 bisection against a closed form, the joint-limit rule."""
 import numpy as np
 import pytest
@@ -7,7 +7,7 @@ import pytest
 def test_breakaway_counted_at_rest(robot, plan, act):
     """At the rest-to-rest ends every motor must overcome Coulomb friction in either
     direction: utilisation (|τ/N + Jm·N·q̈| + c)/peak there, not sign(0) = 0 (exact)."""
-    from pollard_pin.painting.plan.checks import motion
+    from pollard_pin.painting.checks.motion import motion
 
     tr = plan.trajectory
     ends = [0, len(tr) - 1]
@@ -24,7 +24,7 @@ def test_fastest_finds_the_smallest_feasible_durations():
     """Utilisation (c/τ)² per piece falls as τ grows: the smallest τ within ``target`` is
     c/√target. The bisection returns a feasible τ within its bracket (guess·2^k / 2^16) of it,
     each piece on its own."""
-    from pollard_pin.painting.plan.checks import fastest
+    from pollard_pin.painting.checks.motion import fastest
 
     c, target = np.array([0.05, 0.3, 1.7]), 0.97
     tau = fastest(lambda t: (c / t) ** 2, np.full(3, 0.1), target)
@@ -35,8 +35,8 @@ def test_fastest_finds_the_smallest_feasible_durations():
 
 
 def test_fastest_refuses_a_piece_no_duration_fixes():
+    from pollard_pin.painting.checks.motion import fastest
     from pollard_pin.painting.errors import PlanError
-    from pollard_pin.painting.plan.checks import fastest
 
     with pytest.raises(PlanError, match="the pass speed itself is too much"):
         fastest(lambda t: np.array([0.5, 1.2]) + 0 * t, np.ones(2), 0.97)
@@ -45,10 +45,10 @@ def test_fastest_refuses_a_piece_no_duration_fixes():
 def test_reach_names_the_first_joint_beyond_its_limits(robot, plan, act, monkeypatch):
     """A joint pushed past its upper limit is named with its first sample, its angle and how
     far off (kinematics.limits, the one rule); an angle 2π off a legal one is legal."""
-    import pollard_pin.painting.plan.checks as motion_module
+    import pollard_pin.painting.checks.motion as motion_module
     from pollard_pin.kinematics.limits import check_joint_limits
+    from pollard_pin.painting.checks.motion import motion, reach
     from pollard_pin.painting.errors import ReachError
-    from pollard_pin.painting.plan.checks import motion, reach
 
     tr = plan.trajectory
     pick = np.linspace(0, len(tr) - 1, 8).astype(int)

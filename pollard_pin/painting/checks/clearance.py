@@ -34,7 +34,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from ...analytic.taskspace import rotation
-from ..errors import PlanError
+from ..errors import ClearanceError
 from ..spray.gun_body import CLEARANCE, GunBody
 
 SURFACE_STEP = 0.004  # m: the surface samples' sub-triangle edges, at most (δ)
@@ -43,8 +43,6 @@ EXACT_POINTS = 512  # the spheres of lowest bound whose exact distance is comput
 COARSE_STRIDE = 16  # every this many samples set the ceiling of the bounded queries
 
 
-class ClearanceError(PlanError):
-    """The gun's body comes closer to the part than the clearance (one line: where)."""
 
 
 @dataclass(frozen=True)
@@ -192,5 +190,5 @@ def panel_mesh(frame) -> trimesh.Trimesh:
     return trimesh.Trimesh(corners, np.array([[0, 1, 2], [0, 2, 3]]), process=False)
 
 
-__all__ = ["Clearance", "ClearanceError", "between_samples", "body_points", "check_clearance",
+__all__ = ["Clearance", "between_samples", "body_points", "check_clearance",
            "clearance_of", "job_clearance", "least_distance", "panel_mesh", "surface_samples"]

@@ -12,12 +12,19 @@ import numpy as np
 
 from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
+from ..cell.frames import robot_model_in_base
 from ..film.cell import weighted_film, world_gun
-from ..film.compliance import drive_stiffness, film_error
 from ..film.mesh import mesh_film
-from ..plan.compliance import ProgramDeflection, deflected_poses, program_deflection
 from ..spray.deposition import gun_of
-from .frames import robot_model_in_base
+from .compliance import (
+    ProgramDeflection,
+    deflected_poses,
+    drive_stiffness,
+    film_error,
+    film_points,
+    program_deflection,
+    sprayed_errors,
+)
 
 
 @dataclass(frozen=True)
@@ -70,15 +77,10 @@ def film_site(cell, points) -> FilmSite:
 def _robot_entry(rp, d: ProgramDeflection, change, target: float, pts, painted) -> dict:
     """A robot's ``compliance``: its sprayed samples' worst standoff, lateral and tilt
     errors, and the largest film change its deflection alone makes."""
-    on = rp.plan.spray > 0
-    if not on.any():
+    if not (rp.plan.spray > 0).any():
         return {"sprayed": False}
-    i = int(np.flatnonzero(on)[np.argmax(np.abs(d.standoff[on]))])
     err, where = film_error(np.zeros_like(change), change, target, painted)
-    return {"standoff_error_m": float(np.abs(d.standoff[on]).max()),
-            "standoff_error_at_t": float(rp.plan.trajectory.t[i]),
-            "lateral_error_m": float(d.lateral[on].max()),
-            "tilt_rad": float(d.tilt[on].max()),
+    return {**sprayed_errors(d, rp.plan.spray, rp.plan.trajectory.t),
             "film_error": err, "film_error_at": [float(c) for c in pts[where]]}
 
 
@@ -94,7 +96,7 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
         return note, [note] * len(cell.robots)
     entry = {"recoil_n": recoil}
     site = film_site(cell, points)
-    pts = points.points if hasattr(points, "points") else np.asarray(points).reshape(-1, 3)
+    pts = film_points(points)
     deflected = np.zeros(len(pts))
     per = []
     for rp in cell.robots:

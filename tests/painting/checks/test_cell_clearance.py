@@ -2,7 +2,7 @@
 hand, refused just inside the clearance and passed just outside; the screened pair search
 against every capsule pair; the bound between samples against a finer replay on other
 robots' times; a rigid motion of everything changes nothing; the part against the gun's own
-check (paint/plan/clearance.py)."""
+check (painting/checks/clearance.py)."""
 import numpy as np
 import pytest
 import trimesh
@@ -11,9 +11,10 @@ from scipy.spatial.transform import Rotation
 from pollard_pin.errors import InputError
 from pollard_pin.kinematics.capsules import capsule_layout, link_capsules, segment_distance
 from pollard_pin.kinematics.ik import inverse_kinematics
-from pollard_pin.painting.cell.clearance import MovingPart, cell_clearance, pair_distance
 from pollard_pin.painting.cell.robots import CellRobot
-from pollard_pin.painting.plan.clearance import ClearanceError, clearance_of
+from pollard_pin.painting.checks.cell_clearance import MovingPart, cell_clearance, pair_distance
+from pollard_pin.painting.checks.clearance import clearance_of
+from pollard_pin.painting.errors import ClearanceError
 from pollard_pin.painting.spray.gun_body import gun_body
 
 NOZZLE = 0.004  # m: the nozzle capsule's radius, reaching this far ahead of the tip
@@ -117,7 +118,7 @@ def test_a_rigid_motion_of_everything_changes_nothing(robot, sway):
 
 def test_the_part_against_the_guns_own_check(robot, sway):
     """One robot before a moving plate: its nearest capsules are the gun's, so the least
-    distance to the part is the gun body's (paint/plan/clearance.py, on the poses in the
+    distance to the part is the gun body's (painting/checks/clearance.py, on the poses in the
     part's frame): same spheres, same figure (achieved 0); 145.6 mm at the 150 mm standoff
     (the nozzle's front sphere reaches 4.386 mm ahead of the tip)."""
     t, poses = sway
@@ -179,7 +180,7 @@ def test_the_parts_screen_keeps_the_nearest_link(robot, sway):
     """A block under a leg's elbow, nearer to it than to the gun: the screened search
     equals every capsule's spheres measured against it (§25's least_distance, no screen)."""
     from pollard_pin.kinematics.capsules import axis_spheres
-    from pollard_pin.painting.plan.clearance import least_distance
+    from pollard_pin.painting.checks.clearance import least_distance
     from pollard_pin.painting.spray.gun_body import AXIS_STEP
 
     t, poses = sway
@@ -200,7 +201,7 @@ def test_the_parts_screen_keeps_the_nearest_link(robot, sway):
 def test_blocks_of_the_union_change_nothing(robot, sway, monkeypatch):
     """The union of times taken 37 at a time (blocks overlapping by one step) gives the same
     least, time and bound between samples as one block."""
-    import pollard_pin.painting.cell.clearance as clearance
+    import pollard_pin.painting.checks.cell_clearance as clearance
 
     t, poses = sway
     a, b = facing(0.02)

@@ -14,7 +14,7 @@ batch IK under ``run``'s rules), carried to the world by its base (:class:`.robo
   found so far get the exact distance.
 - **The part.** The part's mesh (world at t = 0) rides the line, at ``velocity``·t. Each
   robot's capsules, in the part's frame, are covered by spheres along their axes (the gun
-  body's rule) and measured against the mesh by :func:`..plan.clearance.least_distance`:
+  body's rule) and measured against the mesh by :func:`.clearance.least_distance`:
   first the gun's capsules, whose least distance is a ceiling; then only the spheres whose
   distance to the mesh's bounding box may beat it.
 - **Between samples** a point of a robot moves at most its step's chord (relative to the
@@ -33,9 +33,10 @@ import trimesh
 
 from ...errors import InputError
 from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, segment_distance
-from ..plan.clearance import ClearanceError, least_distance
+from ..cell.robots import CellRobot
+from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .robots import CellRobot
+from .clearance import least_distance
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling
@@ -135,7 +136,7 @@ def _checked(member, i: int) -> tuple[CellRobot, np.ndarray, np.ndarray]:
 
 def _sample(robot, layout, member, i: int, margins) -> _Sampled:
     from ..errors import ReachError
-    from ..plan.checks import reach
+    from .motion import reach
 
     cell_robot, t, poses = _checked(member, i)
     try:
@@ -287,7 +288,7 @@ def cell_clearance(robot, members, part: MovingPart | None = None, required: flo
 
     Raises
     ------
-    pollard_pin.painting.plan.clearance.ClearanceError
+    pollard_pin.painting.errors.ClearanceError
         One line naming the two robots (or the robot and the part), the time and the
         distance, when a distance less what may lie between samples is under ``required``.
     """

@@ -10,15 +10,16 @@ import pytest
 
 from pollard_pin.errors import PollardError
 from pollard_pin.painting.api import paint
+from pollard_pin.painting.errors import PlaceError
 from pollard_pin.painting.job import load_job
+from pollard_pin.painting.layout.place import PlaceOptions, place
 from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.passes.program import pass_poses
 from pollard_pin.painting.passes.surface import surface_layout
-from pollard_pin.painting.place import PlaceError, PlaceOptions, place
 from pollard_pin.painting.workpiece.mesh import load_job_part
 from pollard_pin.workspace.reach import evaluate
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 CURVED = ROOT / "examples" / "parts" / "curved_panel.toml"
 
 

@@ -1,4 +1,4 @@
-"""A cell's proposed layout (paint/cell/layout.py, docs/model.md §26.5): the fewest robots
+"""A cell's proposed layout (painting/layout/cell.py, docs/model.md §26.5): the fewest robots
 whose bands hold equal zones, bases clear of each other along the line, every zone with its
 run-outs in its robot's band; the search for the fewest that paint."""
 import math
@@ -9,17 +9,17 @@ import pytest
 from cell_split_jobs import check_zones, tall_panel
 
 from pollard_pin.errors import InputError
-from pollard_pin.painting.cell import layout as cell_layout
 from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
-from pollard_pin.painting.cell.layout import (
+from pollard_pin.painting.cell.robots import CellRobot, base_footprint
+from pollard_pin.painting.cell.split import split_cell
+from pollard_pin.painting.errors import CellError, LineSpeedError
+from pollard_pin.painting.layout import cell as cell_layout
+from pollard_pin.painting.layout.cell import (
     LayoutOptions,
     fewest_robots,
     propose_layout,
     reference_band,
 )
-from pollard_pin.painting.cell.robots import CellError, CellRobot, base_footprint
-from pollard_pin.painting.cell.split import split_cell
-from pollard_pin.painting.line.phases import LineSpeedError
 
 BAND = 0.34  # m: one robot's band along z at the gun plane x = 0.55 (test_bands.py)
 

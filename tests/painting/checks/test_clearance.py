@@ -10,14 +10,9 @@ import trimesh
 
 from pollard_pin.analytic.taskspace import angles_from_rotation, rotation
 from pollard_pin.errors import InputError
-from pollard_pin.painting.errors import PlanError
-from pollard_pin.painting.job import JobError, job_from_dict, load_job
-from pollard_pin.painting.plan.clearance import (
-    ClearanceError,
-    check_clearance,
-    clearance_of,
-    surface_samples,
-)
+from pollard_pin.painting.checks.clearance import check_clearance, clearance_of, surface_samples
+from pollard_pin.painting.errors import ClearanceError, JobError, PlanError
+from pollard_pin.painting.job import job_from_dict, load_job
 from pollard_pin.painting.plan.part import plan_surface
 from pollard_pin.painting.spray.gun_body import GunBody
 from pollard_pin.painting.workpiece import shapes
@@ -94,7 +89,7 @@ def test_surface_samples_cover_every_face_within_delta(mesh):
 
 
 def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
-    from pollard_pin.painting.plan import clearance
+    from pollard_pin.painting.checks import clearance
 
     monkeypatch.setattr(clearance, "MAX_SURFACE_POINTS", 10)
     mesh = plate()

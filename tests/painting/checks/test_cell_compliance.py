@@ -1,5 +1,5 @@
-"""Compliance for a cell's robots (paint/cell/compliance.py, docs/model.md §26.6): a robot's
-deflection against stiffness_at projected by hand with its base-frame gravity, the cell's
+"""Compliance for a cell's robots (painting/checks/cell_compliance.py, docs/model.md §26.6):
+a robot's deflection against stiffness_at projected by hand with its base-frame gravity, the cell's
 film change against each robot's deflected film integrated on its own, a one-robot cell at
 the origin against today's line job, and paint.json's entries."""
 from dataclasses import replace
@@ -12,14 +12,17 @@ from cell_jobs import cell_job, panel_cell
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
-from pollard_pin.painting.cell.compliance import cell_compliance, robot_deflection
 from pollard_pin.painting.cell.plan import plan_cell
 from pollard_pin.painting.cell.robots import CellRobot
+from pollard_pin.painting.checks.cell_compliance import cell_compliance, robot_deflection
+from pollard_pin.painting.checks.compliance import (
+    compliance_entry,
+    deflected_poses,
+    program_deflection,
+)
 from pollard_pin.painting.film.cell import cell_panel_film
-from pollard_pin.painting.film.compliance import compliance_entry
 from pollard_pin.painting.film.line import line_film
 from pollard_pin.painting.options import PaintOptions
-from pollard_pin.painting.plan.compliance import deflected_poses, program_deflection
 
 RECOIL = 3.0  # N
 

@@ -25,16 +25,17 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
-from ..analytic.taskspace import angles_from_rotation
-from ..errors import InputError
-from ..workspace.grid import reachable_box
-from ..workspace.options import CHUNK
-from ..workspace.reach import evaluate
-from .errors import PlanError
-from .job import PartJob
-from .passes.program import pass_poses
-from .passes.surface import surface_frame, surface_layout
-from .workpiece.mesh import MAX_ANGLE, Part, load_job_part, load_part, make_part, placement
+from ...analytic.taskspace import angles_from_rotation
+from ...errors import InputError
+from ...workspace.grid import reachable_box
+from ...workspace.options import CHUNK
+from ...workspace.reach import evaluate
+from ..errors import PlaceError, PlanError
+from ..job import PartJob
+from ..passes.program import pass_poses
+from ..passes.surface import surface_frame, surface_layout
+from ..policy import DEFAULT_POLICY, PlannerPolicy
+from ..workpiece.mesh import MAX_ANGLE, Part, load_job_part, load_part, make_part, placement
 
 # gun poses checked at every coarse position after the extreme ones
 SAMPLES = 400
@@ -44,8 +45,6 @@ VERIFY = 50
 _DIRS = np.array([d for d in np.ndindex(3, 3, 3) if any(d)], dtype=float) - 1.0
 
 
-class PlaceError(PlanError):
-    """No placement puts the part's gun poses within reach: one line saying by how much."""
 
 
 @dataclass(frozen=True)
@@ -131,7 +130,7 @@ class PlaceResult:
 
     def write(self, path: str | Path) -> Path:
         """Write the placed job as TOML (``paint --job`` reads it as is)."""
-        from ..io.job_file import write_job
+        from ...io.job_file import write_job
 
         return write_job(self.job, Path(path), f"placed by pollard-pin place: turned "
                          f"{self.turn:+g}° about the facing axis, margin "
@@ -150,10 +149,10 @@ def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * k @ k
 
 
-def _gun_poses(part: Part, job: PartJob, samples: int):
+def _gun_poses(part: Part, job: PartJob, samples: int, policy: PlannerPolicy):
     """(all poses (N, 6) of the passes at the part's place, the ``samples`` checked, the
     extreme ones checked first)."""
-    layout = surface_layout(part, job)
+    layout = surface_layout(part, job, policy=policy)
     poses = np.concatenate(pass_poses(layout))
     ends = np.concatenate([[0, len(p.s) - 1] for p in layout.passes])
     starts = np.cumsum([0] + [len(p.s) for p in layout.passes[:-1]])
@@ -190,9 +189,9 @@ class _Fit:
     checked: np.ndarray
 
 
-def _coarse(robot, job, part, turn, box, opts: PlaceOptions) -> _Fit:
+def _coarse(robot, job, part, turn, box, opts: PlaceOptions, policy: PlannerPolicy) -> _Fit:
     """The best grid position of the turned part (its shift from the origin)."""
-    poses, checked, extreme = _gun_poses(part, job, opts.samples)
+    poses, checked, extreme = _gun_poses(part, job, opts.samples, policy)
     lo, hi, hb = box
     h = opts.step
     tlo, thi = poses[:, :3].min(0), poses[:, :3].max(0)
@@ -255,7 +254,8 @@ def _travel(robot, poses, shift, axis: int, sign: float, reach: float, tol: floa
     return float(lo)
 
 
-def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResult:
+def place(robot, job: PartJob, options: PlaceOptions | None = None,
+          policy: PlannerPolicy = DEFAULT_POLICY) -> PlaceResult:
     """The placement of the job's part with the most margin: the position, and a turn about
     the facing axis, that puts every gun pose of the part's passes (run-ons included) within
     reach with the most margin. What ``pollard-pin place`` does.
@@ -268,6 +268,8 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
         A part's job (:func:`~pollard_pin.load_job` on a job with ``[part]``).
     options : PlaceOptions or None, optional
         The search's grid, turns and samples.
+    policy : pollard_pin.painting.policy.PlannerPolicy, optional
+        The planners' knobs: the passes' budget (default the planners' own).
 
     Returns
     -------
@@ -291,16 +293,16 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None) -> PlaceResu
     base = load_part(job.mesh, job.unit, (0.0, 0.0, 0.0), job.rotation, job.facing,
                      MAX_ANGLE if job.max_angle is None else job.max_angle)
     first = _turned(job, base, 0.0)
-    poses0 = np.concatenate(pass_poses(surface_layout(first, job)))
+    poses0 = np.concatenate(pass_poses(surface_layout(first, job, policy=policy)))
     orient = np.median(poses0[:, 3:], axis=0)
     box = reachable_box(robot, orient)
     if box is None:
         raise PlaceError(f"{job.source}: no tool position is reachable with the gun along the "
                          "part's facing axis: a part facing the robot (part.facing)?")
-    fits = [_coarse(robot, job, first, 0.0, box, opts)]
+    fits = [_coarse(robot, job, first, 0.0, box, opts, policy)]
     for t in opts.turns[1:]:
         try:
-            fits.append(_coarse(robot, job, _turned(job, base, t), t, box, opts))
+            fits.append(_coarse(robot, job, _turned(job, base, t), t, box, opts, policy))
         except PlanError:  # passes the gun cannot follow at this turn: not a candidate
             continue
     top = max(f.margin for f in fits)
@@ -385,23 +387,24 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
             "line")
 
 
-def reach_hint(robot, job: PartJob, paints=None) -> str:
+def reach_hint(robot, job: PartJob, paints=None,
+               policy: PlannerPolicy = DEFAULT_POLICY) -> str:
     """What would bring a still part whose passes leave the reach within it: vertical passes
     where they reach as placed (and ``paints(vertical job)`` is true: the whole program
     holds), else the move to :func:`place`'s placement, else by how much the part misses
-    (taller or wider than the reach)."""
+    (taller or wider than the reach); ``policy`` the planner's."""
     if job.direction == "horizontal":
         vertical = replace(job, direction="vertical")
         part = load_job_part(job)
         try:
-            poses = np.concatenate(pass_poses(surface_layout(part, vertical)))
+            poses = np.concatenate(pass_poses(surface_layout(part, vertical, policy=policy)))
         except PlanError:
             poses = None
         if (poses is not None and evaluate(robot, poses)["reachable"].all()
                 and (paints is None or paints(vertical))):
             return 'direction = "vertical" paints it as placed'
     try:
-        r = place(robot, job, PlaceOptions(max_turn=0.0))
+        r = place(robot, job, PlaceOptions(max_turn=0.0), policy)
     except PlaceError as exc:
         return str(exc).split(": ", 1)[1]
     except PlanError:
@@ -411,4 +414,4 @@ def reach_hint(robot, job: PartJob, paints=None) -> str:
             "mm of margin; pollard-pin place writes that job)")
 
 
-__all__ = ["SAMPLES", "PlaceError", "PlaceOptions", "PlaceResult", "place", "reach_hint"]
+__all__ = ["SAMPLES", "PlaceOptions", "PlaceResult", "place", "reach_hint"]
