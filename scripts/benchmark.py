@@ -38,6 +38,7 @@ from bench_signals import signal_section
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.paths import ThesisTrajectory
 from pollard_pin.paths.curves import wait_then_strokes
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
@@ -281,7 +282,7 @@ def stiffness_section(robot, sizes, repeats: int) -> None:
     print(f"\nstiffness run, thesis path, one thread, best of {repeats} [µs/sample, wall / CPU]")
     with tempfile.TemporaryDirectory() as tmp:
         for n in sizes:
-            traj = pp.ThesisTrajectory(samples=n, home_pose=robot.params.home_pose)
+            traj = ThesisTrajectory(samples=n, home_pose=robot.params.home_pose)
             stages = {
                 "IK windows alone": lambda traj=traj: sum(1 for _ in solve_windows(
                     robot, traj, StreamOptions(workers=1), dynamics=False)),

@@ -165,9 +165,9 @@ class PaintResult:
     kind : str
         Its kind (``"panel"``, ``"part"``, ``"line panel"``, ``"line part"``).
     plan : object
-        The plan of that kind (a :class:`~pollard_pin.PaintPlan` for a still panel): its
-        ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and ``spray`` (the
-        gun's trigger per sample), passes, speed, cycle time.
+        The plan of that kind (a :class:`~pollard_pin.painting.plan.PaintPlan` for a still
+        panel): its ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and
+        ``spray`` (the gun's trigger per sample), passes, speed, cycle time.
     film : pollard_pin.painting.api.PaintFilm
         The film points and the thickness [m] at each.
     report : PaintReport
@@ -226,9 +226,10 @@ def paint(robot, job, actuators: Actuators | None = None,
     ``pollard_pin.paint(robot, job, ...)``.
 
     A job with ``[line]`` and ``[[robot]]`` tables (``job.robots``) is a cell: the part is
-    split into zones, one per robot (:func:`~pollard_pin.split_cell`), each robot's program
-    is planned in its own base frame on the cell's clock (:func:`~pollard_pin.plan_cell`),
-    the robots' clearance from each other and from the part is checked, and the film is that
+    split into zones, one per robot (:func:`~pollard_pin.painting.cell.split.split_cell`),
+    each robot's program is planned in its own base frame on the cell's clock
+    (:func:`~pollard_pin.painting.cell.plan.plan_cell`), the robots' clearance from each other
+    and from the part is checked, and the film is that
     of all robots together; ``result.kind`` is then ``"cell panel"`` or ``"cell part"``. To
     propose the robots' bases: :func:`~pollard_pin.propose_layout`,
     :func:`~pollard_pin.fewest_robots`.

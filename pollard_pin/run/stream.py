@@ -158,7 +158,7 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     robot : Robot
         The model.
     traj : Trajectory or ThesisTrajectory
-        The tool path; a :class:`~pollard_pin.ThesisTrajectory` is never held whole.
+        The tool path; a :class:`~pollard_pin.paths.ThesisTrajectory` is never held whole.
     path : str or pathlib.Path
         The table to write (CSV or Parquet).
     stream : StreamOptions or None, optional
@@ -188,7 +188,8 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     Examples
     --------
     >>> import pollard_pin as pp
-    >>> stats = pp.stream_run(pp.load(), pp.ThesisTrajectory(samples=10_001), "big.csv",
+    >>> from pollard_pin.paths import ThesisTrajectory
+    >>> stats = pp.stream_run(pp.load(), ThesisTrajectory(samples=10_001), "big.csv",
     ...                       pp.StreamOptions(chunk=4096, workers=2))
     >>> stats.samples, len(pp.read_result("big.csv"))
     (10001, 10001)

@@ -16,6 +16,7 @@ from pollard_pin.io.table import read_result
 from pollard_pin.io.trajectory import from_csv
 from pollard_pin.painting.api import PaintOptions, PaintResult
 from pollard_pin.painting.errors import JobKindError
+from pollard_pin.painting.plan import plan_paint
 from pollard_pin.painting.report import paint_report
 
 
@@ -76,10 +77,10 @@ def test_a_job_of_another_kind_is_named(robot, act, job):
     root = Path(__file__).resolve().parents[2]
     part = pp.load_job(root / "examples" / "parts" / "curved_panel.toml")
     with pytest.raises(JobKindError, match="not a part"):
-        pp.plan_paint(robot, part, act)
+        plan_paint(robot, part, act)
     line = pp.load_job(root / "examples" / "line.toml")
     with pytest.raises(JobKindError, match="not a line panel"):
-        pp.plan_paint(robot, line, act)
+        plan_paint(robot, line, act)
     with pytest.raises(InputError, match="no \\[line\\]"):
         pp.paint(robot, job, act, PaintOptions(max_line_speed=True))
 
