@@ -3,8 +3,7 @@ jet derivatives), ``jet`` (forward-mode Taylor jets), ``taskspace`` (pose conven
 Its modules import numpy and one another only, never Pinocchio (tests/analytic/test_closed_form.py
 loads them with Pinocchio hidden)."""
 from .closed_form import SingularPoseError, UnreachableError, WristSingularError, position_ik
-from .jet import Jet
 from .taskspace import TaskInputError
 
-__all__ = ["position_ik", "UnreachableError", "WristSingularError", "SingularPoseError", "Jet",
+__all__ = ["position_ik", "UnreachableError", "WristSingularError", "SingularPoseError",
            "TaskInputError"]

@@ -4,29 +4,24 @@ the closed-loop simulation, actuators and the fastest cycle; the drives as sprin
 :mod:`pollard_pin.dynamics.drives`."""
 from .control import (
     ComputedTorque,
-    Controller,
-    DesiredTrajectory,
     FeedforwardPD,
     Gains,
     PDGravity,
     desired_trajectory,
 )
 from .cycle import time_optimal_path
-from .forward import SimulationError, SimulationResult, forward_dynamics, replay_open_loop
-from .inverse import DynamicsResult, JointLosses, inverse_dynamics
+from .forward import SimulationError, forward_dynamics, replay_open_loop
+from .inverse import inverse_dynamics
 from .loads import JointLoads, joint_loads
-from .motors import Actuator, ActuatorError, Actuators, load_actuators
-from .path import PathDynamics
+from .motors import ActuatorError, Actuators, load_actuators
 from .plant import ModelMismatch, Plant, PlantError
-from .sizing import Sizing, actuator_sizing
+from .sizing import actuator_sizing
 from .timeopt import TimeOptimal
 from .tracking import MeasurementNoise, TrackingOptions, simulate_tracking
 from .tracking_result import TrackingResult
 
-__all__ = ["inverse_dynamics", "DynamicsResult", "JointLosses", "forward_dynamics",
-           "replay_open_loop", "SimulationResult", "SimulationError", "joint_loads", "JointLoads",
-           "desired_trajectory", "DesiredTrajectory", "Controller", "ComputedTorque",
-           "FeedforwardPD", "PDGravity", "Gains", "simulate_tracking", "TrackingOptions",
-           "MeasurementNoise", "TrackingResult", "Plant", "ModelMismatch", "PlantError",
-           "load_actuators", "Actuators", "Actuator", "ActuatorError", "actuator_sizing",
-           "Sizing", "time_optimal_path", "TimeOptimal", "PathDynamics"]
+__all__ = ["inverse_dynamics", "forward_dynamics", "replay_open_loop", "SimulationError",
+           "joint_loads", "JointLoads", "desired_trajectory", "ComputedTorque", "FeedforwardPD",
+           "PDGravity", "Gains", "simulate_tracking", "TrackingOptions", "MeasurementNoise",
+           "TrackingResult", "Plant", "ModelMismatch", "PlantError", "load_actuators", "Actuators",
+           "ActuatorError", "actuator_sizing", "time_optimal_path", "TimeOptimal"]

@@ -4,15 +4,13 @@ two cut spherical joints (docs/model.md §3–§5). The modules: ``params``, ``u
 from .build import (
     ACTUATED,
     PASSIVE,
-    Closure,
     ModelFileError,
     Robot,
     constraint_jacobian,
     constraint_residual,
     load,
 )
-from .params import Body, JointLimits, Leg, ParameterError, Params, load_params
+from .params import ParameterError, Params, load_params
 
 __all__ = ["load", "Robot", "ACTUATED", "PASSIVE", "constraint_residual", "constraint_jacobian",
-           "Closure", "ModelFileError", "load_params", "Params", "Leg", "Body", "JointLimits",
-           "ParameterError"]
+           "ModelFileError", "load_params", "Params", "ParameterError"]

@@ -88,7 +88,7 @@ def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
     from concurrent.futures import ThreadPoolExecutor
     from itertools import islice
 
-    from ..kinematics.errors import KinematicsError
+    from ..kinematics.errors import SAMPLE_ERRORS
 
     stream = StreamOptions() if stream is None else stream
     chunk, workers = stream.chunk, stream.workers
@@ -100,7 +100,7 @@ def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
             local.robot = worker_robot(robot)
         try:
             result = run_pipeline(getattr(local, "robot", robot), win, **options)
-        except KinematicsError as exc:
+        except SAMPLE_ERRORS as exc:  # the solve's errors and the input's say where
             raise exc.shifted(start - skip) from None
         cols = result.columns()
         return start, result, {k: v[skip:] for k, v in cols.items()} if skip else cols
@@ -184,6 +184,8 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     KinematicsError
         A sample the kinematics cannot solve (its number counted from the trajectory's
         start); nothing is written.
+    KinematicsInputError
+        A sample the kinematics cannot take (numbered the same way); nothing is written.
 
     Examples
     --------

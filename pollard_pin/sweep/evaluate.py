@@ -98,7 +98,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     >>> row["variant"], row["feasible"], row["failure_kind"]
     ('short leg 1', False, 'UnreachablePoseError')
     """
-    from ..kinematics.errors import ClosureError, KinematicsError
+    from ..kinematics.errors import SAMPLE_ERRORS, ClosureError
     from ..model.build import load
     from ..run import run_pipeline
 
@@ -119,7 +119,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
         robot = load(params)
         traj = _trajectory(spec["trajectory"], params.home_pose)
         result = run_pipeline(robot, traj, loads=True)
-    except KinematicsError as exc:
+    except SAMPLE_ERRORS as exc:
         return _failure(row, exc, exc.chain, exc.sample, exc.time)
     except ClosureError as exc:
         return _failure(row, exc, None if exc.leg is None else f"leg {exc.leg}")

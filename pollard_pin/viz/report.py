@@ -31,7 +31,7 @@ import math
 from dataclasses import replace
 
 from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis, result_loads
-from ..run import duty_figures
+from ..run.stats import duty_figures
 
 SIZING_FIELDS = (  # key, heading, unit
     ("peak_torque", "peak |τ|", "N·m"),

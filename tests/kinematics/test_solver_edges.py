@@ -334,7 +334,8 @@ def test_invalid_tolerance_is_rejected_up_front(robot, method, value):
     with pytest.raises(KinematicsInputError) as ei:
         ik(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, method=method, tol=value)
     e = ei.value
-    assert isinstance(e, ValueError) and isinstance(e, KinematicsError)
+    assert isinstance(e, ValueError) and isinstance(e, InputError)  # the rule: bad input
+    assert not isinstance(e, KinematicsError)  # nothing was solved (pollard_pin/errors.py)
     assert e.chain == "tol" and str(e).startswith(f"tol = {value!r}: ")
 
 

@@ -749,6 +749,7 @@ def _check_installed(venv, cwd):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     code = textwrap.dedent("""
         import json, numpy as np, pollard_pin
+        from pollard_pin.kinematics import tool_pose
         from pollard_pin.model.paths import models_dir
         r = pollard_pin.load()
         q = r.home()

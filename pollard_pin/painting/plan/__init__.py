@@ -2,6 +2,5 @@
 part's planners, the one plan result type (docs/model.md §21, §23)."""
 from .compliance import program_deflection
 from .panel import PaintPlan, plan_paint
-from .result import PlanResult
 
-__all__ = ["plan_paint", "PaintPlan", "PlanResult", "program_deflection"]
+__all__ = ["plan_paint", "PaintPlan", "program_deflection"]
