@@ -182,3 +182,51 @@ def test_make_docs_without_the_docs_extra_says_so_in_one_line():
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
     assert "sphinx" in lines[0] and "pip install -e '.[docs]'" in lines[0]
+
+
+def _layout_entries(guide: str) -> dict[str, str]:
+    """The guide's package layout map: {top-level entry ("painting/", "errors.py"): its text}."""
+    block = guide.split("## Package layout", 1)[1].split("```", 2)[1]
+    entries: dict[str, str] = {}
+    current = None
+    for line in block.splitlines():
+        m = re.match(r"^  (\w+(?:/|\.py))(?:\s|$)", line)
+        if m:
+            current = m.group(1)
+            entries[current] = line
+        elif current:
+            entries[current] += "\n" + line
+    return entries
+
+
+def _unmapped(folders, entries: dict[str, str]) -> list[str]:
+    """The package folders (relative, "painting/cell") the map does not show: a top-level
+    folder is an entry, a deeper one is named ("cell/") in its top-level folder's entry."""
+    missing = []
+    for folder in folders:
+        top, *rest = folder.split("/")
+        text = entries.get(f"{top}/")
+        if text is None or any(not re.search(rf"(?<![\w/]){re.escape(p)}/", text)
+                               for p in rest):
+            missing.append(folder)
+    return missing
+
+
+def test_every_package_folder_is_in_the_guides_layout_map():
+    """Every directory under pollard_pin/ with an ``__init__.py`` appears in docs/guide.md's
+    layout map (folders → map: the map may name what is planned)."""
+    package = ROOT / "pollard_pin"
+    folders = sorted(str(p.parent.relative_to(package)) for p in package.rglob("__init__.py")
+                     if p.parent != package)
+    assert "painting/cell" in folders and "dynamics/drives" in folders
+    entries = _layout_entries((DOCS / "guide.md").read_text(encoding="utf-8"))
+    missing = _unmapped(folders, entries)
+    assert not missing, f"package folders missing from docs/guide.md's layout map: {missing}"
+
+
+def test_the_layout_check_can_fail():
+    entries = {"painting/": "  painting/     api.py; spray/ deposition.py;\n  workpiece/ mesh.py",
+               "io/": "  io/  atomic.py"}
+    assert _unmapped(["painting/spray", "painting/workpiece", "io"], entries) == []
+    assert _unmapped(["painting/cell", "viz", "io/spray"], entries) == [
+        "painting/cell", "viz", "io/spray"]

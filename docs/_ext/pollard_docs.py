@@ -168,15 +168,20 @@ def _missing_reference(app, env, node, contnode):
     for full in candidates:
         for public in _public_targets(full):
             if public != target and public in domain.objects:
-                return _resolve(app, env, node, contnode, public)
+                resolved = _resolve(app, env, node, contnode, public)
+                if resolved is not None:
+                    return resolved
     if any(_exists(full) for full in candidates):
         if os.environ.get("POLLARD_DOCS_UNLISTED"):  # which package names the reference lacks
             print(f"unlisted: {target} (from {candidates[0]})", file=sys.stderr)
         return contnode
     # a name only the type checker imports (``if TYPE_CHECKING:``), as in annotations
     ends = [name for name in domain.objects if name.endswith("." + target.lstrip("."))]
-    if len(ends) == 1:
-        return _resolve(app, env, node, contnode, ends[0])
+    # an entry and its canonical alias (autodoc adds the defining module's name) are one
+    # object: the shorter, public name
+    objects = [_lookup(name) for name in ends]
+    if len(ends) == 1 or (len({id(o) for o in objects}) == 1 and _MISSING not in objects):
+        return _resolve(app, env, node, contnode, min(ends, key=len))
     return None
 
 

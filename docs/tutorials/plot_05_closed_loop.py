@@ -65,7 +65,7 @@ plt.show()
 # %%
 # The table
 # ---------
-# :meth:`TrackingResult.columns` is the ``pollard-pin simulate`` table: joint positions,
-# velocities and accelerations, applied torques, actual and desired tip, the errors and the
-# loop residual.
+# :meth:`pollard_pin.dynamics.TrackingResult.columns` is the ``pollard-pin simulate`` table:
+# joint positions, velocities and accelerations, applied torques, actual and desired tip, the
+# errors and the loop residual.
 print(list(res.columns())[-8:])

@@ -302,17 +302,18 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
 
     Raises :class:`UnreachableError` (chain, sample, shortfall) or :class:`WristSingularError`.
     The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
-    θ98 ± θ1110 is defined, and their derivatives from :func:`ik` are then not finite.
+    θ98 ± θ1110 is defined, and their derivatives from :func:`inverse_kinematics` are then
+    not finite.
 
     Parameters
     ----------
-    params : pollard_pin.Params
+    params : Params
         The robot's parameters (:func:`pollard_pin.load_params`).
-    poses : array_like, shape (N, 6) or (6,)
-        Tool poses (x, y, z [m], ψ, θ, φ [rad]), docs/model.md §2.
-    reference : array_like, shape (18,), optional
-        Angles the first sample is brought nearest to by whole turns (default: into (−π, π]);
-        the samples after it are unwrapped along the trajectory.
+    poses : ArrayLike
+        Tool poses (x, y, z [m], ψ, θ, φ [rad]; docs/model.md §2), (N, 6) or one (6,).
+    reference : ArrayLike, optional
+        (18,) angles the first sample is brought nearest to by whole turns (default: into
+        (−π, π]); the samples after it are unwrapped along the trajectory.
     wrist_margin : float, optional
         The smallest |sin θ1716| allowed, in [0, 1] (0: only an exactly singular wrist fails).
     """

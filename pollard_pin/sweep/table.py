@@ -33,11 +33,11 @@ def write_sweep_table(rows: Sequence[Mapping[str, Any]], path: str | Path,
 
     Parameters
     ----------
-    rows : sequence of mapping
+    rows : Sequence of Mapping
         The result rows (:func:`run_sweep`'s, :func:`evaluate_variant`'s).
     path : str or pathlib.Path
         The CSV file to write (all or nothing).
-    columns : sequence of str, optional
+    columns : Sequence of str, optional
         The columns, in order (default: the first row's keys).
     """
     import polars as pl
@@ -54,7 +54,7 @@ def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
 
     Parameters
     ----------
-    rows : sequence of mapping
+    rows : Sequence of Mapping
         The result rows (:func:`run_sweep`'s, :func:`evaluate_variant`'s).
     max_rows : int, optional
         At most this many variants are listed; a last line counts the rest.
