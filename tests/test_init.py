@@ -42,3 +42,20 @@ def test_moved_and_kept_are_apart_and_unknown_names_fail_as_usual():
     with pytest.raises(AttributeError, match="^module 'pollard_pin' has no attribute 'nope'$"):
         pp.nope  # noqa: B018
     assert not hasattr(pp, "plan_paint") and hasattr(pp, "paint")
+
+
+# A subpackage's public name that is also one of its modules' names hides the module
+# (``import pollard_pin.x.y as m`` gives the name): the command line's entry point, and
+# paint's place() beside its module (to move into painting/layout/).
+HIDING = {("pollard_pin.cli", "main"), ("pollard_pin.painting", "place")}
+
+
+def test_no_public_name_hides_a_module():
+    package = Path(pp.__file__).parent
+    hiding = set()
+    for init in sorted(package.rglob("__init__.py")):
+        name = ".".join(init.parent.relative_to(package.parent).parts)
+        modules = {p.stem for p in init.parent.glob("*.py")} | {
+            p.parent.name for p in init.parent.glob("*/__init__.py")}
+        hiding |= {(name, n) for n in importlib.import_module(name).__all__ if n in modules}
+    assert hiding == HIDING
