@@ -1,96 +1,121 @@
 """pollard-pin: a verified multibody model of the Pollard spray-painting parallel robot.
 
-Public API (imported lazily: ``pollard_pin.analytic.closed_form`` and
-``pollard_pin.crosscheck.euler_lagrange`` stay free of Pinocchio)::
+The names a user calls, imported here explicitly; everything else public is in its subpackage's
+``__all__`` (``pollard_pin.kinematics``, ``pollard_pin.dynamics``, ``pollard_pin.painting`` …)::
 
     robot = pollard_pin.load()                       # model, data, closures, geometry
     traj = pollard_pin.thesis_trajectory()           # docs/model.md §9 painting curve
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
     result = pollard_pin.paint(robot, pollard_pin.load_job("examples/paint.toml"))
     result.write("out", "csv")                       # what ``pollard-pin paint`` writes
+
+The thesis' closed form (``pollard_pin.analytic``) and the Euler–Lagrange cross-check
+(``pollard_pin.crosscheck.euler_lagrange``) do not need Pinocchio themselves (a test loads them
+with Pinocchio hidden); importing this package root loads it.
 """
 from __future__ import annotations
 
-import importlib
-
+from .dynamics.cycle import time_optimal_path
+from .dynamics.drives.stiffness import StiffnessOptions
+from .dynamics.forward import forward_dynamics
+from .dynamics.inverse import inverse_dynamics
+from .dynamics.loads import joint_loads
+from .dynamics.motors import Actuators, load_actuators
+from .dynamics.sizing import actuator_sizing
+from .dynamics.tracking import TrackingOptions, simulate_tracking
+from .errors import DestinationError, InputError, PollardError, SolveError
+from .io.table import read_result
+from .io.trajectory import from_csv, to_csv
+from .kinematics.closure import forward_kinematics
+from .kinematics.ik import IkOptions, inverse_kinematics
+from .kinematics.margins import Margins
+from .model.build import Robot, load
+from .model.params import Params, load_params
+from .painting import (
+    LayoutOptions,
+    PaintOptions,
+    PaintResult,
+    PlaceOptions,
+    fewest_robots,
+    job_from_dict,
+    load_job,
+    paint,
+    place,
+    propose_layout,
+)
+from .paths.curves import thesis_trajectory
+from .paths.trajectory import Trajectory
+from .run.pipeline import run_pipeline, write_run_table
+from .run.stiffness import stiffness
+from .run.stream import StreamOptions, stream_run
+from .sweep import load_grid, make_sweep, run_sweep
 from .version import __version__ as __version__
+from .viz.plots import write_figures
+from .viz.viewer import write_html
+from .workspace.grid import largest_panel, map_workspace
+from .workspace.options import WorkspaceOptions
 
-_API = {
-    "load": "model.build", "Robot": "model.build", "ACTUATED": "model.build",
-    "PASSIVE": "model.build", "ModelFileError": "model.build",
-    "constraint_residual": "model.build", "constraint_jacobian": "model.build",
-    "load_params": "model.params", "Params": "model.params", "ParameterError": "model.params",
-    "solve_closure": "kinematics.closure", "forward_kinematics": "kinematics.closure",
-    "tool_pose": "kinematics.closure",
-    "inverse_kinematics": "kinematics.ik", "IKResult": "kinematics.ik",
-    "IkOptions": "kinematics.ik",
-    "Margins": "kinematics.margins", "MarginError": "kinematics.margins",
-    "ClosureError": "kinematics.errors", "KinematicsError": "kinematics.errors",
-    "UnreachablePoseError": "kinematics.errors", "SingularityError": "kinematics.errors",
-    "BranchFlipError": "kinematics.errors",
-    "inverse_dynamics": "dynamics.inverse", "forward_dynamics": "dynamics.forward",
-    "replay_open_loop": "dynamics.forward", "joint_loads": "dynamics.loads",
-    "simulate_tracking": "dynamics.tracking", "desired_trajectory": "dynamics.control",
-    "ComputedTorque": "dynamics.control", "FeedforwardPD": "dynamics.control",
-    "PDGravity": "dynamics.control", "Gains": "dynamics.control",
-    "MeasurementNoise": "dynamics.tracking", "TrackingResult": "dynamics.tracking_result",
-    "TrackingOptions": "dynamics.tracking",
-    "FlexibleDrives": "dynamics.drives.flexible",
-    "Plant": "dynamics.plant", "ModelMismatch": "dynamics.plant", "PlantError": "dynamics.plant",
-    "JointLoads": "dynamics.loads",
-    "Trajectory": "paths.trajectory", "thesis_trajectory": "paths.curves",
-    "from_csv": "io.trajectory", "to_csv": "io.trajectory",
-    "TrajectoryError": "paths.trajectory", "smooth_random_trajectory": "paths.curves",
-    "thesis_curve": "paths.curves", "trajectory_curve": "paths.trajectory",
-    "QuinticHermite": "paths.splines", "RetimedCurve": "paths.const_accel",
-    "run_pipeline": "run", "write_run_table": "run", "RunResult": "run",
-    "stream_run": "run", "StreamOptions": "run", "read_result": "io.table",
-    "ThesisTrajectory": "paths.curves",
-    "load_actuators": "dynamics.motors", "Actuators": "dynamics.motors",
-    "ActuatorError": "dynamics.motors", "actuator_sizing": "dynamics.sizing",
-    "stiffness": "run.stiffness", "stream_stiffness": "run.stiffness",
-    "StiffnessRun": "run.stiffness", "StiffnessOptions": "dynamics.drives.stiffness",
-    "StiffnessResult": "dynamics.drives.stiffness", "StiffnessError": "dynamics.drives.stiffness",
-    "stiffness_at": "dynamics.drives.stiffness", "deflection_at": "dynamics.drives.stiffness",
-    "time_optimal_path": "dynamics.cycle", "TimeOptimal": "dynamics.timeopt",
-    "write_figures": "viz.plots", "write_html": "viz.viewer", "sizing_report": "viz.report",
-    "map_workspace": "workspace.grid", "largest_panel": "workspace.grid",
-    "WorkspaceOptions": "workspace.options",
-    "WorkspaceMap": "workspace.grid", "WorkspaceError": "workspace.grid",
-    "load_grid": "sweep", "make_sweep": "sweep", "run_sweep": "sweep",
-    "evaluate_variant": "sweep", "SweepError": "sweep",
-    "load_job": "painting.job", "job_from_dict": "painting.job", "PaintJob": "painting.job",
-    "JobError": "painting.errors",
-    "plan_paint": "painting.plan.panel", "plan_film": "painting.film.grid",
-    "PaintPlan": "painting.plan.panel",
-    "paint": "painting.api", "PaintOptions": "painting.options", "PaintResult": "painting.result",
-    "PaintReport": "painting.result", "JobKindError": "painting.errors",
-    "place": "painting.layout.place", "PlaceOptions": "painting.layout.place",
-    "PlaceResult": "painting.layout.place",
-    "PlaceError": "painting.errors",
-    "plan_cell": "painting.cell.plan", "CellPlan": "painting.cell.plan",
-    "Split": "painting.cell.zones",
-    "Zone": "painting.cell.zones",
-    "paint_report": "painting.kinds.panel", "PlanError": "painting.errors",
-    "Gun": "painting.spray.deposition",
-    "deposition_rate": "painting.spray.deposition", "film": "painting.spray.deposition",
-    "program_deflection": "painting.checks.compliance",
-    "compliance_entry": "painting.checks.compliance",
-    "split_cell": "painting.cell.split", "propose_layout": "painting.layout.cell",
-    "fewest_robots": "painting.layout.cell", "LayoutOptions": "painting.layout.cell",
-    "cell_clearance": "painting.checks.cell_clearance",
-    "CellClearance": "painting.checks.cell_clearance",
-    "MovingPart": "painting.checks.cell_clearance", "link_capsules": "kinematics.capsules",
+__all__ = [
+    # the exception root and its families (pollard_pin.errors)
+    "PollardError", "InputError", "SolveError", "DestinationError",
+    # the model
+    "load", "Robot", "load_params", "Params",
+    # trajectories and their files
+    "Trajectory", "thesis_trajectory", "from_csv", "to_csv", "read_result",
+    # kinematics
+    "inverse_kinematics", "forward_kinematics", "IkOptions", "Margins",
+    # dynamics, motors, the fastest cycle
+    "inverse_dynamics", "forward_dynamics", "joint_loads", "simulate_tracking",
+    "TrackingOptions", "load_actuators", "Actuators", "actuator_sizing", "time_optimal_path",
+    # whole runs
+    "run_pipeline", "write_run_table", "stream_run", "StreamOptions", "stiffness",
+    "StiffnessOptions",
+    # the workspace
+    "map_workspace", "largest_panel", "WorkspaceOptions",
+    # painting
+    "load_job", "job_from_dict", "paint", "PaintOptions", "PaintResult", "place",
+    "PlaceOptions", "propose_layout", "fewest_robots", "LayoutOptions",
+    # design sweeps, figures and the viewer page
+    "load_grid", "make_sweep", "run_sweep", "write_figures", "write_html",
+]
+
+# Names this root exported before it listed only the above: each is public in its subpackage,
+# and ``pollard_pin.<name>`` says where in one line (a pointer, not a resolver).
+_MOVED = {
+    **dict.fromkeys(("ACTUATED", "PASSIVE", "ModelFileError", "constraint_residual",
+                     "constraint_jacobian", "ParameterError"), "model"),
+    **dict.fromkeys(("solve_closure", "tool_pose", "IKResult", "MarginError", "ClosureError",
+                     "KinematicsError", "UnreachablePoseError", "SingularityError",
+                     "BranchFlipError", "link_capsules"), "kinematics"),
+    **dict.fromkeys(("replay_open_loop", "desired_trajectory", "ComputedTorque",
+                     "FeedforwardPD", "PDGravity", "Gains", "MeasurementNoise", "TrackingResult",
+                     "Plant", "ModelMismatch", "PlantError", "JointLoads", "ActuatorError",
+                     "TimeOptimal"), "dynamics"),
+    **dict.fromkeys(("FlexibleDrives", "StiffnessResult", "StiffnessError", "stiffness_at",
+                     "deflection_at"), "dynamics.drives"),
+    **dict.fromkeys(("TrajectoryError", "smooth_random_trajectory", "thesis_curve",
+                     "trajectory_curve", "QuinticHermite", "RetimedCurve", "ThesisTrajectory"),
+                    "paths"),
+    **dict.fromkeys(("RunResult", "stream_stiffness", "StiffnessRun"), "run"),
+    **dict.fromkeys(("sizing_report",), "viz"),
+    **dict.fromkeys(("WorkspaceMap", "WorkspaceError"), "workspace"),
+    **dict.fromkeys(("evaluate_variant", "SweepError"), "sweep"),
+    **dict.fromkeys(("PaintJob", "JobError", "PaintReport", "JobKindError", "PlaceResult",
+                     "PlaceError", "paint_report", "PlanError"), "painting"),
+    **dict.fromkeys(("plan_paint", "PaintPlan"), "painting.plan"),
+    **dict.fromkeys(("plan_film",), "painting.film"),
+    **dict.fromkeys(("program_deflection", "compliance_entry"), "painting.checks.compliance"),
+    # a cell's rooms read the job, which reads the cell's robots: public in their modules
+    **dict.fromkeys(("plan_cell", "CellPlan"), "painting.cell.plan"),
+    **dict.fromkeys(("Split", "Zone"), "painting.cell.zones"),
+    **dict.fromkeys(("split_cell",), "painting.cell.split"),
+    **dict.fromkeys(("cell_clearance", "CellClearance", "MovingPart"),
+                    "painting.checks.cell_clearance"),
+    **dict.fromkeys(("Gun", "deposition_rate", "film"), "painting.spray"),
 }
-
-__all__ = sorted(_API)
 
 
 def __getattr__(name: str):
-    if name in _API:
-        return getattr(importlib.import_module(f".{_API[name]}", __name__), name)
+    if name in _MOVED:
+        raise AttributeError(f"pollard_pin.{name} moved: use pollard_pin.{_MOVED[name]}.{name}")
     raise AttributeError(f"module 'pollard_pin' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(list(globals()) + __all__)

@@ -1,9 +1,31 @@
-"""The exception root and its families.
+"""The exception root and its families, and the one rule that sorts an error into a family.
 
-Every error the package raises on purpose derives from :class:`PollardError`, so a caller (and
-the CLI, which prints it as one line) catches one class. Each family also derives from the
-builtin it always was (``ValueError`` for bad input, ``RuntimeError`` for a solve that failed,
-``OSError`` for a destination), so code written against those keeps working.
+Every error the package raises on purpose derives from :class:`PollardError` through exactly
+one family, so a caller catches one class (the CLI prints any of them as one line and exits with
+status 2). The rule:
+
+- :class:`InputError`: the caller's value, file or option cannot be used as given: malformed,
+  out of its stated range, inconsistent with another value, naming something that does not
+  exist. It is decided from the input and its stated rules alone, before anything is solved;
+  the fix is a different input.
+- :class:`SolveError`: a valid request the computation could not carry out: the robot cannot
+  do it (a pose out of reach, a singularity, a joint limit, a branch flip, a paint job no
+  program meets) or a numerical method failed (no convergence, a simulation that left its
+  tolerance). It is found by solving; the limit is the robot's or the method's.
+- :class:`DestinationError`: an output destination that cannot be written.
+
+So a pose asked for that is out of reach is a :class:`SolveError`, whichever solver finds it
+(the closed form's ``UnreachableError`` and the kinematics' ``UnreachablePoseError`` alike):
+reach is a property of the model, found by solving its kinematics, and the same pose is
+reachable with other parameters; no rule of the value alone is broken. A parameter file whose
+own home pose is out of reach is an :class:`InputError` (``ParameterError``): the file
+contradicts itself. Malformed arguments of the kinematics (``KinematicsInputError``) are an
+:class:`InputError` that says where as the kinematics' solve errors do.
+
+Each family also derives from the builtin it always was (``ValueError`` for bad input,
+``RuntimeError`` for a solve that failed, ``OSError`` for a destination), so code written
+against those keeps working; an error that moved family keeps its old builtin as a second base
+(the closed form's ``UnreachableError`` is still a ``ValueError``).
 """
 from __future__ import annotations
 
@@ -26,3 +48,6 @@ class DestinationError(PollardError, OSError):
 
     def __str__(self) -> str:
         return self.args[0] if self.args else "cannot write the output"
+
+
+__all__ = ["PollardError", "InputError", "SolveError", "DestinationError"]

@@ -38,6 +38,7 @@ from bench_signals import signal_section
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
 from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.paths import ThesisTrajectory
 from pollard_pin.paths.curves import wait_then_strokes
 
 STAGES = ("position", "velocity", "acceleration", "analysis", "dynamics")
@@ -83,7 +84,8 @@ def pinocchio_batch(robot, traj):
 def pinocchio_threads(robot, traj, workers: int):
     """The pipeline as ``run`` drives it: windows of 4096 samples solved by ``workers`` threads
     (IK, singularity analysis, inverse dynamics with energies, output columns; no writing)."""
-    from pollard_pin.run import StreamOptions, solve_windows
+    from pollard_pin.run import StreamOptions
+    from pollard_pin.run.stream import solve_windows
 
     def run(timings):
         for _ in solve_windows(robot, traj, StreamOptions(workers=workers)):
@@ -274,14 +276,15 @@ def stiffness_section(robot, sizes, repeats: int) -> None:
     """The whole ``stiffness`` run (docs/model.md §27) in process, streamed to a CSV: the IK
     windows, the stiffness of each sample and the writing, one thread (target ≤ 20 µs per
     sample); beside it the IK windows alone. Best of ``repeats``, wall and CPU time."""
-    from pollard_pin.run import StreamOptions, solve_windows
+    from pollard_pin.run import StreamOptions
     from pollard_pin.run.stiffness import stream_stiffness
+    from pollard_pin.run.stream import solve_windows
 
     drives = pp.load_actuators(REPO / "examples" / "actuators.toml")
     print(f"\nstiffness run, thesis path, one thread, best of {repeats} [µs/sample, wall / CPU]")
     with tempfile.TemporaryDirectory() as tmp:
         for n in sizes:
-            traj = pp.ThesisTrajectory(samples=n, home_pose=robot.params.home_pose)
+            traj = ThesisTrajectory(samples=n, home_pose=robot.params.home_pose)
             stages = {
                 "IK windows alone": lambda traj=traj: sum(1 for _ in solve_windows(
                     robot, traj, StreamOptions(workers=1), dynamics=False)),

@@ -8,6 +8,7 @@ Prints the largest differences in joint motion, actuator torques and closure for
 import argparse
 
 import pollard_pin as pp
+from pollard_pin.viz import sizing_report
 
 
 def main():
@@ -18,7 +19,7 @@ def main():
     robot = pp.load()
     traj = pp.thesis_trajectory() if args.trajectory == "thesis" else pp.from_csv(args.trajectory)
     result = pp.run_pipeline(robot, traj)
-    cc = pp.sizing_report(robot, result)["cross_check"]
+    cc = sizing_report(robot, result)["cross_check"]
     th, mj = cc["thesis"], cc["mujoco"]
     print(f"{traj.name}: {len(traj)} samples")
     print(f"Pinocchio vs thesis: joint angles {th['joint_position_rad']['max_abs_diff']:.2e} rad, "

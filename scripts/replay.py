@@ -22,6 +22,7 @@ import numpy as np
 import pollard_pin as pp
 from pollard_pin.dynamics.forward import replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample, reduced_mass_matrix
+from pollard_pin.kinematics import solve_closure, tool_pose
 from pollard_pin.paths.curves import THESIS_DURATION, thesis_curve
 
 
@@ -39,7 +40,7 @@ def gravity_instability(robot) -> np.ndarray:
         for s in (1, -1):
             a = act.copy()
             a[j] += s * h
-            q = pp.solve_closure(robot, a, q_guess=q0)
+            q = solve_closure(robot, a, q_guess=q0)
             taus.append(inverse_dynamics_sample(robot, q, np.zeros(12), np.zeros(12))[0])
         H[:, j] = (taus[0] - taus[1]) / (2 * h)
     lam2 = np.linalg.eigvals(-np.linalg.solve(reduced_mass_matrix(robot, q0), H))
@@ -52,7 +53,7 @@ def drift(robot, sim, curve) -> np.ndarray:
     for k, q in enumerate(sim.q):
         if not np.all(np.isfinite(q)):
             break
-        out[k] = np.linalg.norm(pp.tool_pose(robot, q).translation - ref[k])
+        out[k] = np.linalg.norm(tool_pose(robot, q).translation - ref[k])
     return out
 
 

@@ -8,6 +8,7 @@ the same CSV as ``pollard-pin run`` and print the sizing report.
 import argparse
 
 import pollard_pin as pp
+from pollard_pin.viz import sizing_report
 from pollard_pin.viz.report import to_markdown
 
 
@@ -26,7 +27,7 @@ def main():
     dyn = result.dynamics
     print("peak |tau| per actuator [N·m]: "
           + ", ".join(f"{n} {abs(dyn.tau[:, i]).max():.4g}" for i, n in enumerate(robot.actuated)))
-    print(to_markdown(pp.sizing_report(robot, result, cross_check=False)))
+    print(to_markdown(sizing_report(robot, result, cross_check=False)))
 
 
 if __name__ == "__main__":

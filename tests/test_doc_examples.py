@@ -1,29 +1,27 @@
 """The ``Examples`` of the public names' docstrings run and print what they say (doctest).
 
-Every name of ``pollard_pin.__all__`` (and the methods of the public classes), and the
-cross-check modules, are searched for ``>>>`` examples; each docstring runs as one doctest in
-a temporary folder, so an example may write files. A wrong example fails with the doctest's
-report (expected vs got). Every public name's parameters must appear in its numpydoc
-``Parameters`` or ``Attributes`` section.
+Every public name (the top level's ``__all__`` and every subpackage's, tests/public_names.py;
+and the methods of the public classes), and the cross-check modules, are searched for ``>>>``
+examples; each docstring runs as one doctest in a temporary folder, so an example may write
+files. A wrong example fails with the doctest's report (expected vs got). Every public name's
+parameters must appear in its numpydoc ``Parameters`` or ``Attributes`` section.
 """
 import doctest
 import importlib
 import inspect
 
 import pytest
-
-import pollard_pin as pp
+from public_names import public_objects
 
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
 
 def _public_objects():
-    for name in pp.__all__:
-        obj = getattr(pp, name)
-        if name == "paint":  # the callable subpackage: its entry point holds the docstring
-            from pollard_pin.painting.api import paint as obj
+    """(name, object) of every public class and function (tests/public_names.py: the top
+    level's and every subpackage's ``__all__``), each once."""
+    for full, obj in public_objects().items():
         if inspect.isclass(obj) or inspect.isfunction(obj):
-            yield name, obj
+            yield full.removeprefix("pollard_pin."), obj
 
 
 # Modules whose every docstring example runs too: the engines the tests compare against.

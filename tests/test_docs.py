@@ -9,40 +9,78 @@ import sys
 from pathlib import Path
 
 import pytest
+from public_names import public_names, public_objects
 
 import pollard_pin
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
-# ".. autofunction:: load" (under currentmodule pollard_pin) or a full dotted name
-AUTODOC = re.compile(r"^\.\. auto(?:function|class|exception|data|module)::\s+(\S+)", re.M)
+# ".. autofunction:: load" (under the page's last ``currentmodule``) or a full dotted name
+AUTODOC = re.compile(r"^\.\. (auto(?:function|class|exception|data|module)|currentmodule)::"
+                     r"\s+(\S+)(\n\s+:no-members:)?", re.M)
 
 
 def _reference_targets() -> list[str]:
-    return [m.group(1) for page in sorted((DOCS / "reference").glob("*.rst"))
-            for m in AUTODOC.finditer(page.read_text(encoding="utf-8"))]
+    """The full dotted name of every autodoc entry of docs/reference/*.rst; an automodule
+    without ``:no-members:`` names its module and each member its ``__all__`` lists."""
+    import importlib
+
+    out = []
+    for page in sorted((DOCS / "reference").glob("*.rst")):
+        current = None
+        for m in AUTODOC.finditer(page.read_text(encoding="utf-8")):
+            kind, target = m.group(1), m.group(2)
+            if kind == "currentmodule":
+                current = target
+                continue
+            full = target if target.startswith("pollard_pin") or current is None \
+                else f"{current}.{target}"
+            out.append(full)
+            if kind == "automodule" and not m.group(3):
+                module = importlib.import_module(full)
+                out += [f"{full}.{n}" for n in getattr(module, "__all__", ())]
+    return out
+
+
+def _resolve(full: str):
+    """The object a full dotted name names, or None: attribute by attribute from the package,
+    importing a submodule only where no attribute has its name (``pollard_pin.paint`` is the
+    function, whatever folder an old install left)."""
+    import importlib
+
+    parts = full.split(".")
+    obj = importlib.import_module(parts[0])
+    for i, part in enumerate(parts[1:], 2):
+        if hasattr(obj, part):
+            obj = getattr(obj, part)
+            continue
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            return None
+    return obj
 
 
 def test_every_public_name_has_a_reference_entry():
-    documented = {target.rsplit(".", 1)[-1] for target in _reference_targets()}
-    missing = sorted(set(pollard_pin.__all__) - documented)
+    """Each public object (tests/public_names.py: the top level's and every subpackage's
+    ``__all__``) has an entry under one of its public names or its defining module's."""
+    documented = {id(_resolve(t)) for t in _reference_targets()}
+    missing = sorted(name for name, obj in public_objects().items()
+                     if id(obj) not in documented)
     assert not missing, f"public names missing from docs/reference/*.rst: {missing}"
+
+
+def test_the_reference_check_sees_subpackages():
+    names = public_names()
+    assert len(pollard_pin.__all__) <= 55 and len(names) > 150
+    assert "pollard_pin.dynamics.drives.stiffness_at" in names
+    assert "pollard_pin.painting.spray.Gun" in names
+    assert "pollard_pin.kinematics.KinematicsInputError" in names
 
 
 def test_every_reference_entry_exists():
     """A renamed or removed name fails here, before the build does."""
-    import importlib
-
-    stale = []
-    for target in _reference_targets():
-        full = target if target.startswith("pollard_pin") else f"pollard_pin.{target}"
-        module, _, name = full.rpartition(".")
-        try:
-            obj = importlib.import_module(full)
-        except ImportError:
-            obj = getattr(importlib.import_module(module), name, None)
-        if obj is None:
-            stale.append(target)
+    stale = [target for target in _reference_targets() if _resolve(target) is None]
     assert not stale, f"reference entries that name nothing: {stale}"
 
 
@@ -144,3 +182,51 @@ def test_make_docs_without_the_docs_extra_says_so_in_one_line():
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
     assert "sphinx" in lines[0] and "pip install -e '.[docs]'" in lines[0]
+
+
+def _layout_entries(guide: str) -> dict[str, str]:
+    """The guide's package layout map: {top-level entry ("painting/", "errors.py"): its text}."""
+    block = guide.split("## Package layout", 1)[1].split("```", 2)[1]
+    entries: dict[str, str] = {}
+    current = None
+    for line in block.splitlines():
+        m = re.match(r"^  (\w+(?:/|\.py))(?:\s|$)", line)
+        if m:
+            current = m.group(1)
+            entries[current] = line
+        elif current:
+            entries[current] += "\n" + line
+    return entries
+
+
+def _unmapped(folders, entries: dict[str, str]) -> list[str]:
+    """The package folders (relative, "painting/cell") the map does not show: a top-level
+    folder is an entry, a deeper one is named ("cell/") in its top-level folder's entry."""
+    missing = []
+    for folder in folders:
+        top, *rest = folder.split("/")
+        text = entries.get(f"{top}/")
+        if text is None or any(not re.search(rf"(?<![\w/]){re.escape(p)}/", text)
+                               for p in rest):
+            missing.append(folder)
+    return missing
+
+
+def test_every_package_folder_is_in_the_guides_layout_map():
+    """Every directory under pollard_pin/ with an ``__init__.py`` appears in docs/guide.md's
+    layout map (folders → map: the map may name what is planned)."""
+    package = ROOT / "pollard_pin"
+    folders = sorted(str(p.parent.relative_to(package)) for p in package.rglob("__init__.py")
+                     if p.parent != package)
+    assert "painting/cell" in folders and "dynamics/drives" in folders
+    entries = _layout_entries((DOCS / "guide.md").read_text(encoding="utf-8"))
+    missing = _unmapped(folders, entries)
+    assert not missing, f"package folders missing from docs/guide.md's layout map: {missing}"
+
+
+def test_the_layout_check_can_fail():
+    entries = {"painting/": "  painting/     api.py; spray/ deposition.py;\n  workpiece/ mesh.py",
+               "io/": "  io/  atomic.py"}
+    assert _unmapped(["painting/spray", "painting/workpiece", "io"], entries) == []
+    assert _unmapped(["painting/cell", "viz", "io/spray"], entries) == [
+        "painting/cell", "viz", "io/spray"]

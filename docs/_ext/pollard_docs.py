@@ -7,7 +7,8 @@
   model document itself links too (``thesis §4.1`` and other dotted numbers are the thesis').
 - A reference to a public name through the module that defines it
   (``pollard_pin.model.build.load``, ``.closure.solve_closure``, ``Margins``) resolves to its
-  entry under ``pollard_pin.*`` when it is the same object; a name of the package that the
+  entry under its public name (the top level's or its subpackage's ``__all__``) when it is the
+  same object; a name of the package that the
   reference does not list shows as code; a name that exists nowhere fails the build
   (``nitpicky``).
 - Docstrings, before napoleon reads them: ``|x|`` (an absolute value) is no substitution, and
@@ -118,24 +119,36 @@ def _docstrings(app, what, name, obj, options, lines):
 
 # -- public names reached through their defining module ---------------------------------------
 
-def _public_target(target: str) -> str | None:
-    """The ``pollard_pin.NAME[.rest]`` entry that ``target`` names, or None."""
+@functools.cache
+def _public_entries() -> dict[int, tuple[str, ...]]:
+    """{id(object): its public full names}: the top level's ``__all__``, then every
+    subpackage's (the names tests/public_names.py checks the reference for)."""
     import pollard_pin
 
-    parts = target.lstrip(".~").split(".")
-    for i, part in enumerate(parts):
-        if part not in pollard_pin.__all__ or part == "paint":
-            continue
-        public = getattr(pollard_pin, part)
-        if i > 0 and parts[0] == "pollard_pin":  # a full path: the same object, or nothing
-            try:
-                module = importlib.import_module(".".join(parts[:i]))
-            except ImportError:
-                return None
-            if getattr(module, part, None) is not public:
-                return None
-        return ".".join(["pollard_pin", *parts[i:]])
-    return None
+    names = [f"pollard_pin.{n}" for n in pollard_pin.__all__]
+    for init in sorted((ROOT / "pollard_pin").rglob("__init__.py")):
+        package = ".".join(init.parent.relative_to(ROOT).parts)
+        if package != "pollard_pin":
+            module = importlib.import_module(package)
+            names += [f"{package}.{n}" for n in getattr(module, "__all__", ())]
+    out: dict[int, tuple[str, ...]] = {}
+    for full in names:
+        obj = _lookup(full)
+        if obj is not _MISSING:
+            out[id(obj)] = out.get(id(obj), ()) + (full,)
+    return out
+
+
+def _public_targets(full: str) -> tuple[str, ...]:
+    """The public names of the object ``full`` names (``pollard_pin.model.build.load`` →
+    ``pollard_pin.load``; a class's member through its class's public name), or ()."""
+    parts = full.split(".")
+    for i in range(len(parts), 1, -1):
+        obj = _lookup(".".join(parts[:i]))
+        if obj is not _MISSING:
+            rest = parts[i:]
+            return tuple(".".join([p, *rest]) for p in _public_entries().get(id(obj), ()))
+    return ()
 
 
 def _missing_reference(app, env, node, contnode):
@@ -152,19 +165,23 @@ def _missing_reference(app, env, node, contnode):
     for full in candidates:
         if full != target and full in domain.objects:
             return _resolve(app, env, node, contnode, full)
-    public = _public_target(target)
-    if public is not None and public != target:
-        resolved = _resolve(app, env, node, contnode, public)
-        if resolved is not None:
-            return resolved
+    for full in candidates:
+        for public in _public_targets(full):
+            if public != target and public in domain.objects:
+                resolved = _resolve(app, env, node, contnode, public)
+                if resolved is not None:
+                    return resolved
     if any(_exists(full) for full in candidates):
         if os.environ.get("POLLARD_DOCS_UNLISTED"):  # which package names the reference lacks
             print(f"unlisted: {target} (from {candidates[0]})", file=sys.stderr)
         return contnode
     # a name only the type checker imports (``if TYPE_CHECKING:``), as in annotations
     ends = [name for name in domain.objects if name.endswith("." + target.lstrip("."))]
-    if len(ends) == 1:
-        return _resolve(app, env, node, contnode, ends[0])
+    # an entry and its canonical alias (autodoc adds the defining module's name) are one
+    # object: the shorter, public name
+    objects = [_lookup(name) for name in ends]
+    if len(ends) == 1 or (len({id(o) for o in objects}) == 1 and _MISSING not in objects):
+        return _resolve(app, env, node, contnode, min(ends, key=len))
     return None
 
 
@@ -200,6 +217,28 @@ def _candidates(target: str, module: str | None, cls: str | None) -> list[str]:
             out.append(f"{prefix}.{cls.split('.')[-1]}.{name}")
         out.append(f"{prefix}.{name}")
     return out
+
+
+_MISSING = object()
+
+
+def _lookup(full: str):
+    """The object a full dotted name names, or _MISSING: attribute by attribute from the
+    package, importing a submodule only where no attribute has its name."""
+    parts = full.split(".")
+    try:
+        obj = importlib.import_module(parts[0])
+    except ImportError:
+        return _MISSING
+    for i, part in enumerate(parts[1:], 2):
+        if hasattr(obj, part):
+            obj = getattr(obj, part)
+            continue
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            return _MISSING
+    return obj
 
 
 def _exists(full: str) -> bool:

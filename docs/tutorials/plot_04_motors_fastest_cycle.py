@@ -64,7 +64,7 @@ print(f"time-optimal (TOPP-RA): {report['time_optimal_duration']:.2f} s")
 # The time-optimal traversal
 # --------------------------
 # :func:`pollard_pin.time_optimal_path` gives the traversal itself (a
-# :class:`pollard_pin.TimeOptimal`): at each point s of the path (0 to 1), its time, path
+# :class:`pollard_pin.dynamics.TimeOptimal`): at each point s of the path (0 to 1), its time, path
 # rate ṡ and path acceleration s̈. The motors run at a peak torque or full speed most of
 # the time, which is what makes it the fastest.
 timing = pp.time_optimal_path(robot, act, traj)

@@ -18,10 +18,11 @@ tool and every link 10 % heavier than the controller believes.
 import matplotlib.pyplot as plt
 
 import pollard_pin as pp
+from pollard_pin.dynamics import Gains, MeasurementNoise, ModelMismatch
 
 robot = pp.load()
 traj = pp.thesis_trajectory(duration=10.0, samples=201)
-mismatch = pp.ModelMismatch(payload=0.05, mass_error=0.1)  # kg; +10 % on every link
+mismatch = ModelMismatch(payload=0.05, mass_error=0.1)  # kg; +10 % on every link
 
 runs = {}
 for controller in ("computed-torque", "feedforward-pd", "pd"):
@@ -35,11 +36,11 @@ for controller in ("computed-torque", "feedforward-pd", "pd"):
 # %%
 # Stiffer gains, noisy encoders
 # -----------------------------
-# :class:`pollard_pin.Gains` sets the natural frequency ω (rad/s) and damping ζ of the
-# error dynamics; :class:`pollard_pin.MeasurementNoise` adds encoder noise (rad), seeded.
+# :class:`pollard_pin.dynamics.Gains` sets the natural frequency ω (rad/s) and damping ζ of the
+# error dynamics; :class:`pollard_pin.dynamics.MeasurementNoise` adds encoder noise (rad), seeded.
 stiff = pp.simulate_tracking(robot, traj, pp.TrackingOptions(
-    "computed-torque", mismatch, gains=pp.Gains(wn=120.0, zeta=1.0),
-    noise=pp.MeasurementNoise(position=1e-5, seed=1)))
+    "computed-torque", mismatch, gains=Gains(wn=120.0, zeta=1.0),
+    noise=MeasurementNoise(position=1e-5, seed=1)))
 for line in stiff.summary_lines():
     print(line)
 
@@ -64,7 +65,7 @@ plt.show()
 # %%
 # The table
 # ---------
-# :meth:`TrackingResult.columns` is the ``pollard-pin simulate`` table: joint positions,
-# velocities and accelerations, applied torques, actual and desired tip, the errors and the
-# loop residual.
+# :meth:`pollard_pin.dynamics.TrackingResult.columns` is the ``pollard-pin simulate`` table:
+# joint positions, velocities and accelerations, applied torques, actual and desired tip, the
+# errors and the loop residual.
 print(list(res.columns())[-8:])

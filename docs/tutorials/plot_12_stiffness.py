@@ -23,6 +23,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pollard_pin as pp
+from pollard_pin.dynamics import ModelMismatch
+from pollard_pin.dynamics.drives import FlexibleDrives, deflection_at, stiffness_at
 
 base = """gear_ratio = 100.0
 rotor_inertia = 5e-6
@@ -59,17 +61,17 @@ print("k [N·m/rad]:", {n: float(v) for n, v in zip(actuators.names, k)})
 # about it, world axes): its change under a unit force is a column of the compliance C.
 home = np.array([[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])
 q = pp.inverse_kinematics(robot, home).q
-sag = pp.deflection_at(robot, q, k)[0]
-C = np.column_stack([pp.deflection_at(robot, q, k, np.eye(6)[i])[0] - sag for i in range(3)])
+sag = deflection_at(robot, q, k)[0]
+C = np.column_stack([deflection_at(robot, q, k, np.eye(6)[i])[0] - sag for i in range(3)])
 print("compliance C[:3, :3] [µm/N]:\n", (C[:3] * 1e6).round(2))
 print("sag under the weight: d =", (sag[:3] * 1e6).round(1), "µm, rotation",
       (sag[3:] * 1e3).round(3), "mrad")
 for axis, name in enumerate("xyz"):
     w = np.zeros(6)
     w[axis] = 5.0
-    d = pp.deflection_at(robot, q, k, w)[0] - sag
+    d = deflection_at(robot, q, k, w)[0] - sag
     print(f"5 N along {name}: the tip moves {np.linalg.norm(d[:3]) * 1e6:.0f} µm")
-at_home = pp.stiffness_at(robot, q, k)
+at_home = stiffness_at(robot, q, k)
 print("frequencies [Hz]:", at_home.frequencies[0].round(1))
 print(f"kmin = {at_home.kmin[0]:.0f} N/m = 1 / λmax(C[:3, :3]) = "
       f"{1 / np.linalg.eigvalsh((C[:3] + C[:3].T) / 2).max():.0f} N/m")
@@ -134,9 +136,9 @@ plt.show()
 short = pp.thesis_trajectory(duration=4.0, samples=201)
 rotors = actuators.joint_losses(robot.joint_names)
 rigid = pp.simulate_tracking(robot, short, pp.TrackingOptions(
-    "feedforward-pd", pp.ModelMismatch(losses=rotors), known_losses=rotors))
+    "feedforward-pd", ModelMismatch(losses=rotors), known_losses=rotors))
 flexible = pp.simulate_tracking(robot, short, pp.TrackingOptions(
-    "feedforward-pd", drives=pp.FlexibleDrives.from_actuators(actuators), known_losses=rotors))
+    "feedforward-pd", drives=FlexibleDrives.from_actuators(actuators), known_losses=rotors))
 for name, r in (("rigid", rigid), ("flexible", flexible)):
     s = r.summary()
     print(f"{name:8s} max tip error {s['max_tip_position_error'] * 1e6:.1f} µm, "

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..checks import real
-from ..errors import InputError
+from ..errors import SolveError
 from ..names import ACTUATED, BODIES, CHAINS, JOINTS, SPHERICAL, TREE_JOINTS  # noqa: F401
 from . import jet as J
 from .jet import Jet, value
@@ -33,10 +33,14 @@ _TARGETS = {"chain 0": "the wrist centre", "leg 1": "its attachment point",
             "leg 2": "its attachment point"}
 
 
-class UnreachableError(InputError):
+class UnreachableError(SolveError, ValueError):
     """The closed form of docs/model.md §7 has no solution (``kind == "unreachable"``) or the wrist
-    is
-    singular (``kind == "singular"``, subclass :class:`WristSingularError`).
+    is singular (``kind == "singular"``, subclass :class:`WristSingularError`).
+
+    A :class:`~pollard_pin.errors.SolveError`, as the kinematics'
+    :class:`~pollard_pin.kinematics.errors.UnreachablePoseError` is: the pose is a valid request
+    the robot cannot meet (the rule in :mod:`pollard_pin.errors`). Also a :class:`ValueError`,
+    as it was when it counted as bad input, so code catching that still catches it.
 
     Attributes: ``chain`` ("chain 0", "leg 1", "leg 2" or "wrist"), ``sample`` (first bad sample
     index), ``count`` (number of bad samples), ``ratio`` and ``shortfall``:
@@ -298,7 +302,20 @@ def position_ik(params, poses, reference=None, wrist_margin: float = 0.0) -> np.
 
     Raises :class:`UnreachableError` (chain, sample, shortfall) or :class:`WristSingularError`.
     The spherical-joint angles (last six) are a ZYZ decomposition: at θ109 = 0 or π only
-    θ98 ± θ1110 is defined, and their derivatives from :func:`ik` are then not finite.
+    θ98 ± θ1110 is defined, and their derivatives from :func:`inverse_kinematics` are then
+    not finite.
+
+    Parameters
+    ----------
+    params : Params
+        The robot's parameters (:func:`pollard_pin.load_params`).
+    poses : ArrayLike
+        Tool poses (x, y, z [m], ψ, θ, φ [rad]; docs/model.md §2), (N, 6) or one (6,).
+    reference : ArrayLike, optional
+        (18,) angles the first sample is brought nearest to by whole turns (default: into
+        (−π, π]); the samples after it are unwrapped along the trajectory.
+    wrist_margin : float, optional
+        The smallest |sin θ1716| allowed, in [0, 1] (0: only an exactly singular wrist fails).
     """
     q = _solve(params, as_poses(poses), _check_wrist_margin(wrist_margin))
     return make_continuous(np.stack([q[n] for n in JOINTS], axis=-1), reference)

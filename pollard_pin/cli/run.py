@@ -29,7 +29,8 @@ STREAM_WINDOW = 4096  # = pollard_pin.run.STREAM_CHUNK (not imported: --help sta
 
 def run(args) -> int:
     from ..io.table import table_files
-    from ..run import StreamOptions, stream_run, summary
+    from ..run import StreamOptions, stream_run
+    from ..run.stats import summary
 
     check_outputs(*table_files(args.out))  # the table and its units sidecar
     refuse_inputs(args, *table_files(args.out))

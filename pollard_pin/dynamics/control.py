@@ -72,8 +72,8 @@ class Gains:
 
     Examples
     --------
-    >>> import pollard_pin as pp
-    >>> pp.Gains(wn=120.0)
+    >>> from pollard_pin.dynamics import Gains
+    >>> Gains(wn=120.0)
     Gains(wn=120.0, zeta=1.0)
     """
 
@@ -149,7 +149,7 @@ def desired_trajectory(robot: Robot, trajectory, period: float = CONTROL_PERIOD,
     curve : Callable or None, optional
         ``curve(t) → (poses, rates, accelerations)``, the tool path between samples (default:
         the trajectory's own ``curve``, else the quintic Hermite spline through its samples,
-        :func:`~pollard_pin.trajectory_curve`).
+        :func:`~pollard_pin.paths.trajectory_curve`).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
         The joint losses the controller knows (default none).
     joint_limits : bool, optional
@@ -215,7 +215,7 @@ class ComputedTorque:
     robot : Robot
         The nominal model (the controller's).
     desired : pollard_pin.dynamics.control.DesiredTrajectory
-        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+        The reference at the control ticks (:func:`~pollard_pin.dynamics.desired_trajectory`).
     gains : Gains, optional
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
@@ -260,7 +260,7 @@ class FeedforwardPD:
     robot : Robot
         The nominal model (the controller's).
     desired : pollard_pin.dynamics.control.DesiredTrajectory
-        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+        The reference at the control ticks (:func:`~pollard_pin.dynamics.desired_trajectory`).
     gains : Gains, optional
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional
@@ -294,7 +294,7 @@ class PDGravity:
     robot : Robot
         The nominal model (the controller's).
     desired : pollard_pin.dynamics.control.DesiredTrajectory
-        The reference at the control ticks (:func:`~pollard_pin.desired_trajectory`).
+        The reference at the control ticks (:func:`~pollard_pin.dynamics.desired_trajectory`).
     gains : Gains, optional
         ω [rad/s] and ζ of the error dynamics (default ω = 60, ζ = 1).
     losses : pollard_pin.dynamics.inverse.JointLosses or None, optional

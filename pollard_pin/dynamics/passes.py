@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..kinematics.errors import KinematicsError
+from ..kinematics.errors import SAMPLE_ERRORS
 from ..paths.trajectory import trajectory_curve
 from .cycle import join, moving_segments, time_optimal_path
 from .motors import ActuatorError, Actuators
@@ -117,7 +117,7 @@ def _parts(robot, act, traj, stretches, chosen, options):
             try:
                 part = time_optimal_path(robot, act, traj.window(start, stop),
                                          replace(options, end_rates=True))
-            except (ActuatorError, KinematicsError) as exc:
+            except (ActuatorError, *SAMPLE_ERRORS) as exc:
                 kept.append(f"t = {traj.t[start]:.4g}…{traj.t[stop - 1]:.4g} s: {exc}")
         if part is None:
             run = (start if run is None else run[0], stop)

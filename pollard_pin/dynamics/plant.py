@@ -49,8 +49,8 @@ class ModelMismatch:
 
     Examples
     --------
-    >>> import pollard_pin as pp
-    >>> pp.ModelMismatch(payload=0.05, mass_error=0.1).payload
+    >>> from pollard_pin.dynamics import ModelMismatch
+    >>> ModelMismatch(payload=0.05, mass_error=0.1).payload
     0.05
     """
 

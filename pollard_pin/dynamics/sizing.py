@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics.errors import KinematicsError
+from ..kinematics.errors import SAMPLE_ERRORS
 from .averages import mean_weights
 from .cycle import time_optimal_path
 from .motors import (
@@ -135,7 +135,7 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
             timing, film = time_optimal_program(robot, act, traj)
         else:
             timing = time_optimal_path(robot, act, traj)
-    except (ActuatorError, KinematicsError) as exc:  # e.g. between the samples
+    except (ActuatorError, *SAMPLE_ERRORS) as exc:  # e.g. between the samples
         timing, error = None, str(exc)
     checks = _checks(given)
     per = {n: {"gear_ratio": act.units[j].gear_ratio, **checks[n]}

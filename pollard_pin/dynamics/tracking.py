@@ -371,7 +371,7 @@ def simulate_tracking(robot: Robot, trajectory,
     beyond ``options.loop_tolerance`` [m] (default 1e-5 m) or (``joint_limits``, the default)
     a joint leaves its limits: past either the motion is not the robot's (e.g. saturated
     torques let it fall). With ``joint_limits`` the reference must keep the limits too
-    (:func:`~pollard_pin.desired_trajectory`). Past 500,000 RK4 steps it refuses at once.
+    (:func:`~pollard_pin.dynamics.desired_trajectory`). Past 500,000 RK4 steps it refuses at once.
 
     Parameters
     ----------

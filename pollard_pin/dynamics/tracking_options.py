@@ -88,7 +88,7 @@ class TrackingOptions:
     baumgarte : tuple of float, optional
         The plant's loop stabilisation ``(Kp, Kd)``.
     desired : pollard_pin.dynamics.control.DesiredTrajectory or None, optional
-        A reference from :func:`~pollard_pin.desired_trajectory` with the same period (and
+        A reference from :func:`~pollard_pin.dynamics.desired_trajectory` with the same period (and
         ``known_losses``), reused.
     curve : Callable or None, optional
         The path between samples the reference follows.
@@ -108,14 +108,16 @@ class TrackingOptions:
     Raises
     ------
     pollard_pin.dynamics.control.ControlError
-        An unknown controller name, gains that are not a :class:`~pollard_pin.Gains`, a step
-        or period that is not > 0 or a step over the period, a bad torque limit or loop
-        tolerance, drives that are not a :class:`~pollard_pin.FlexibleDrives`.
+        An unknown controller name, gains that are not a
+        :class:`~pollard_pin.dynamics.Gains`, a step or period that is not > 0 or a step over
+        the period, a bad torque limit or loop tolerance, drives that are not a
+        :class:`~pollard_pin.dynamics.drives.FlexibleDrives`.
 
     Examples
     --------
     >>> import pollard_pin as pp
-    >>> opts = pp.TrackingOptions("pd", pp.ModelMismatch(payload=0.05), torque_limit=2.0)
+    >>> from pollard_pin.dynamics import ModelMismatch
+    >>> opts = pp.TrackingOptions("pd", ModelMismatch(payload=0.05), torque_limit=2.0)
     >>> opts.label, opts.step, opts.limits.tolist()
     ('pd', 0.001, [2.0, 2.0, 2.0, 2.0, 2.0, 2.0])
     """

@@ -60,9 +60,10 @@ def solve_closure(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None
     --------
     >>> import numpy as np
     >>> import pollard_pin as pp
+    >>> from pollard_pin.kinematics import solve_closure
     >>> robot = pp.load()
     >>> home = robot.home()
-    >>> q = pp.solve_closure(robot, home[robot.actuated_v])
+    >>> q = solve_closure(robot, home[robot.actuated_v])
     >>> bool(np.allclose(q, home, atol=1e-9))
     True
     """
@@ -161,8 +162,9 @@ def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
     Examples
     --------
     >>> import pollard_pin as pp
+    >>> from pollard_pin.kinematics import tool_pose
     >>> robot = pp.load()
-    >>> pp.tool_pose(robot, robot.home()).translation.round(3).tolist()  # docs/model.md §9
+    >>> tool_pose(robot, robot.home()).translation.round(3).tolist()  # docs/model.md §9
     [0.55, 0.0, 0.16]
     """
     pin.framesForwardKinematics(robot.model, robot.data, q)
@@ -173,8 +175,8 @@ def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray |
                        ) -> tuple[np.ndarray, np.ndarray]:
     """Forward kinematics: actuator angles to full configurations and tool poses.
 
-    Each sample closes the loops (:func:`~pollard_pin.solve_closure`) warm-started from the
-    previous one, so a trajectory stays on one assembly branch.
+    Each sample closes the loops (:func:`~pollard_pin.kinematics.solve_closure`) warm-started
+    from the previous one, so a trajectory stays on one assembly branch.
 
     Parameters
     ----------

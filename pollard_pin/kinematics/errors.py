@@ -4,7 +4,7 @@ from __future__ import annotations
 import copy
 import re
 
-from ..errors import SolveError
+from ..errors import InputError, SolveError
 
 _SAMPLE_WORDS = re.compile(r"\b(samples? )(\d+)(?:( and )(\d+))?")
 
@@ -19,10 +19,13 @@ class ClosureError(SolveError):
         self.residual = residual
 
 
-class KinematicsError(SolveError):
-    """IK failed at a sample: ``sample`` (index), ``time`` [s], ``chain`` (``"chain 0"``,
-    ``"leg 1"``, ``"leg 2"``, a joint or a margin) say where and ``amount`` how far off (in
-    the unit of the rule broken); ``detail`` is the message without the sample prefix."""
+class AtSample:
+    """Where a kinematics error happened, for the solve's errors (:class:`KinematicsError`) and
+    the input's (:class:`KinematicsInputError`) alike: ``sample`` (index), ``time`` [s],
+    ``chain`` (``"chain 0"``, ``"leg 1"``, ``"leg 2"``, a joint, a margin or an input column)
+    say where and ``amount`` how far off (in the unit of the rule broken); ``detail`` is the
+    message without the sample prefix. Not an exception itself: each error class adds its
+    family. :data:`SAMPLE_ERRORS` is what a caller that reports where catches."""
 
     def __init__(self, message: str, *, sample: int | None = None, time: float | None = None,
                  chain: str | None = None, amount: float | None = None):
@@ -32,7 +35,7 @@ class KinematicsError(SolveError):
         self.detail = message  # the message without the sample/time prefix
         self.sample, self.time, self.chain, self.amount = sample, time, chain, amount
 
-    def shifted(self, offset: int) -> KinematicsError:
+    def shifted(self, offset: int):
         """The same error for a window of a longer trajectory that starts at sample
         ``offset``: every sample number (attribute and message) counts from the full
         trajectory's start. Used by the streaming run (pollard_pin.run)."""
@@ -55,12 +58,19 @@ class KinematicsError(SolveError):
         return other
 
 
-class KinematicsInputError(KinematicsError, ValueError):
+class KinematicsError(AtSample, SolveError):
+    """IK failed at a sample of a valid trajectory (where: :class:`AtSample`): a pose out of
+    reach, a singularity, a joint limit, a branch flip."""
+
+
+class KinematicsInputError(AtSample, InputError):
     """An argument is invalid before any kinematics runs: empty or mis-shaped arrays, a
     non-finite or absurd pose component (``chain`` names the column, e.g. ``"d_psi"``),
     times that do not increase, a tolerance that is not > 0 (a bad margin is a
-    :class:`~.margins.MarginError` when the :class:`~.margins.Margins` is made). Both a
-    :class:`KinematicsError` (sample and time when known) and a :class:`ValueError`."""
+    :class:`~.margins.MarginError` when the :class:`~.margins.Margins` is made). An
+    :class:`~pollard_pin.errors.InputError` (so a :class:`ValueError`) that says where as a
+    :class:`KinematicsError` does (:class:`AtSample`), not a KinematicsError: nothing was
+    solved."""
 
 
 class JointLimitError(KinematicsError):
@@ -96,3 +106,8 @@ class BranchFlipError(KinematicsError):
     """The solution changed assembly branch between consecutive samples: a branch-defining sign
     (docs/model.md §7: the branch term of a circle equation, cos θ54, sin θ1716, cos θ76_i)
     changed, i.e. the motion passed through the boundary between two assembly modes."""
+
+
+# Every kinematics error that says where: what a caller that reports or renumbers the sample
+# catches (the solve's and the input's).
+SAMPLE_ERRORS = (KinematicsError, KinematicsInputError)

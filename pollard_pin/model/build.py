@@ -330,9 +330,10 @@ def constraint_residual(model, data, cmodels, cdatas, q) -> np.ndarray:
     --------
     >>> import numpy as np
     >>> import pollard_pin as pp
+    >>> from pollard_pin.model import constraint_residual
     >>> r = pp.load()
-    >>> res = pp.constraint_residual(r.model, r.data, r.constraint_models,
-    ...                              r.constraint_datas, r.home())
+    >>> res = constraint_residual(r.model, r.data, r.constraint_models,
+    ...                           r.constraint_datas, r.home())
     >>> bool(np.abs(res).max() < 1e-12)
     True
     """
@@ -374,14 +375,15 @@ def constraint_jacobian(model, data, cmodels, cdatas, q) -> np.ndarray:
     -------
     ndarray
         Shape (6, 12) [m/rad], world axes (``LOCAL_WORLD_ALIGNED``, docs/model.md §4):
-        the residual's rows, :func:`~pollard_pin.constraint_residual` order.
+        the residual's rows, :func:`~pollard_pin.model.constraint_residual` order.
 
     Examples
     --------
     >>> import pollard_pin as pp
+    >>> from pollard_pin.model import constraint_jacobian
     >>> r = pp.load()
-    >>> pp.constraint_jacobian(r.model, r.data, r.constraint_models, r.constraint_datas,
-    ...                        r.home()).shape
+    >>> constraint_jacobian(r.model, r.data, r.constraint_models, r.constraint_datas,
+    ...                     r.home()).shape
     (6, 12)
     """
     pin.computeJointJacobians(model, data, q)

@@ -43,8 +43,8 @@ def thesis_curve(t, duration: float = THESIS_DURATION,
 
     Examples
     --------
-    >>> import pollard_pin as pp
-    >>> poses, rates, acc = pp.thesis_curve([10.0])      # halfway: u = 0, the home pose
+    >>> from pollard_pin.paths import thesis_curve
+    >>> poses, rates, acc = thesis_curve([10.0])         # halfway: u = 0, the home pose
     >>> poses.round(6).tolist()
     [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]]
     """
@@ -152,12 +152,12 @@ class ThesisTrajectory:
     Examples
     --------
     >>> import numpy as np
-    >>> import pollard_pin as pp
-    >>> starts = [start for start, _ in pp.ThesisTrajectory(samples=10_001).windows(4096)]
+    >>> from pollard_pin.paths import ThesisTrajectory, thesis_trajectory
+    >>> starts = [start for start, _ in ThesisTrajectory(samples=10_001).windows(4096)]
     >>> starts
     [0, 4096, 8192]
-    >>> start, window = list(pp.ThesisTrajectory(samples=10_001).windows(4096))[1]
-    >>> whole = pp.thesis_trajectory(samples=10_001)
+    >>> start, window = list(ThesisTrajectory(samples=10_001).windows(4096))[1]
+    >>> whole = thesis_trajectory(samples=10_001)
     >>> bool(np.array_equal(window.poses, whole.poses[4096:8192]))
     True
     """
@@ -223,8 +223,8 @@ def smooth_random_trajectory(seed: int = 0, duration: float = 4.0, samples: int 
 
     Examples
     --------
-    >>> import pollard_pin as pp
-    >>> traj = pp.smooth_random_trajectory(seed=3, samples=101)
+    >>> from pollard_pin.paths import smooth_random_trajectory
+    >>> traj = smooth_random_trajectory(seed=3, samples=101)
     >>> traj.name, traj.poses[0].round(6).tolist()
     ('random3', [0.55, 0.0, 0.16, 0.0, 0.0, 0.0])
     """

@@ -22,8 +22,9 @@ class QuinticHermite:
     --------
     >>> import numpy as np
     >>> import pollard_pin as pp
+    >>> from pollard_pin.paths import QuinticHermite
     >>> traj = pp.thesis_trajectory(samples=401)
-    >>> spline = pp.QuinticHermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)
+    >>> spline = QuinticHermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)
     >>> t = np.linspace(0.0, 20.0, 3333)                  # mostly between the samples
     >>> bool(np.abs(spline(t)[0] - traj.curve(t)[0]).max() < 1e-7)     # 1.1e-9 m
     True

@@ -38,7 +38,7 @@ class Trajectory:
     curve : Callable or None, optional
         The exact path between the samples, ``curve(times) → (poses, rates,
         accelerations)``; None: the quintic Hermite spline through the samples
-        (:func:`~pollard_pin.trajectory_curve`).
+        (:func:`~pollard_pin.paths.trajectory_curve`).
     spray : ndarray or None, optional
         The paint gun's trigger per sample (N,), the fraction of its flow in [0, 1]; None: no
         gun.
@@ -120,8 +120,9 @@ def trajectory_curve(traj) -> Callable:
     --------
     >>> import numpy as np
     >>> import pollard_pin as pp
+    >>> from pollard_pin.paths import trajectory_curve
     >>> traj = pp.thesis_trajectory(samples=201)
-    >>> poses, rates, acc = pp.trajectory_curve(traj)([10.0])
+    >>> poses, rates, acc = trajectory_curve(traj)([10.0])
     >>> bool(np.allclose(poses[0], traj.poses[100]))
     True
     """

@@ -88,7 +88,7 @@ def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
     from concurrent.futures import ThreadPoolExecutor
     from itertools import islice
 
-    from ..kinematics.errors import KinematicsError
+    from ..kinematics.errors import SAMPLE_ERRORS
 
     stream = StreamOptions() if stream is None else stream
     chunk, workers = stream.chunk, stream.workers
@@ -100,7 +100,7 @@ def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
             local.robot = worker_robot(robot)
         try:
             result = run_pipeline(getattr(local, "robot", robot), win, **options)
-        except KinematicsError as exc:
+        except SAMPLE_ERRORS as exc:  # the solve's errors and the input's say where
             raise exc.shifted(start - skip) from None
         cols = result.columns()
         return start, result, {k: v[skip:] for k, v in cols.items()} if skip else cols
@@ -158,7 +158,7 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     robot : Robot
         The model.
     traj : Trajectory or ThesisTrajectory
-        The tool path; a :class:`~pollard_pin.ThesisTrajectory` is never held whole.
+        The tool path; a :class:`~pollard_pin.paths.ThesisTrajectory` is never held whole.
     path : str or pathlib.Path
         The table to write (CSV or Parquet).
     stream : StreamOptions or None, optional
@@ -184,11 +184,14 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     KinematicsError
         A sample the kinematics cannot solve (its number counted from the trajectory's
         start); nothing is written.
+    KinematicsInputError
+        A sample the kinematics cannot take (numbered the same way); nothing is written.
 
     Examples
     --------
     >>> import pollard_pin as pp
-    >>> stats = pp.stream_run(pp.load(), pp.ThesisTrajectory(samples=10_001), "big.csv",
+    >>> from pollard_pin.paths import ThesisTrajectory
+    >>> stats = pp.stream_run(pp.load(), ThesisTrajectory(samples=10_001), "big.csv",
     ...                       pp.StreamOptions(chunk=4096, workers=2))
     >>> stats.samples, len(pp.read_result("big.csv"))
     (10001, 10001)

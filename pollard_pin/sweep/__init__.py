@@ -48,9 +48,8 @@ The thesis trajectory is laid around each variant's own home pose (as ``pollard-
 """
 from .backends import run_sweep
 from .evaluate import FAILURE_COLUMNS, LOAD_METRICS, METRIC_COLUMNS, SweepError, evaluate_variant
-from .grid import Sweep, grid_variants, load_grid, make_sweep, trajectory_spec
+from .grid import load_grid, make_sweep
 from .table import summary, write_sweep_table
 
-__all__ = ["Sweep", "SweepError", "evaluate_variant", "make_sweep", "load_grid", "run_sweep",
-           "grid_variants", "trajectory_spec", "write_sweep_table", "summary", "METRIC_COLUMNS",
-           "FAILURE_COLUMNS", "LOAD_METRICS"]
+__all__ = ["SweepError", "evaluate_variant", "make_sweep", "load_grid", "run_sweep",
+           "write_sweep_table", "summary", "METRIC_COLUMNS", "FAILURE_COLUMNS", "LOAD_METRICS"]

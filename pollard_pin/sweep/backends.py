@@ -46,7 +46,7 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     Returns
     -------
     list of dict
-        One row per variant (:func:`~pollard_pin.evaluate_variant`'s), in variant order.
+        One row per variant (:func:`~pollard_pin.sweep.evaluate_variant`'s), in variant order.
 
     Raises
     ------

@@ -71,9 +71,9 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
 
     The function has no side effects and depends on nothing but ``spec``, so it gives the same
     row in any process or machine with the same pollard-pin installed. An invalid parameter set
-    (:class:`~pollard_pin.ParameterError`, e.g. an unreachable home pose) and a trajectory the
-    variant cannot follow (:class:`~pollard_pin.KinematicsError`,
-    :class:`~pollard_pin.ClosureError`, a singular linear system) give an infeasible row;
+    (:class:`~pollard_pin.model.ParameterError`, e.g. an unreachable home pose) and a trajectory the
+    variant cannot follow (:class:`~pollard_pin.kinematics.KinematicsError`,
+    :class:`~pollard_pin.kinematics.ClosureError`, a singular linear system) give an infeasible row;
     anything else is a bug and raises.
 
     Parameters
@@ -92,12 +92,13 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
     Examples
     --------
     >>> import pollard_pin as pp
+    >>> from pollard_pin.sweep import evaluate_variant
     >>> spec = pp.make_sweep(variants=[("short leg 1", {"leg1.x87": 0.31})], samples=201).specs()[0]
-    >>> row = pp.evaluate_variant(spec)
+    >>> row = evaluate_variant(spec)
     >>> row["variant"], row["feasible"], row["failure_kind"]
     ('short leg 1', False, 'UnreachablePoseError')
     """
-    from ..kinematics.errors import ClosureError, KinematicsError
+    from ..kinematics.errors import SAMPLE_ERRORS, ClosureError
     from ..model.build import load
     from ..run import run_pipeline
 
@@ -118,7 +119,7 @@ def evaluate_variant(spec: Mapping[str, Any]) -> dict[str, Any]:
         robot = load(params)
         traj = _trajectory(spec["trajectory"], params.home_pose)
         result = run_pipeline(robot, traj, loads=True)
-    except KinematicsError as exc:
+    except SAMPLE_ERRORS as exc:
         return _failure(row, exc, exc.chain, exc.sample, exc.time)
     except ClosureError as exc:
         return _failure(row, exc, None if exc.leg is None else f"leg {exc.leg}")

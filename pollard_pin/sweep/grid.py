@@ -146,7 +146,7 @@ def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
     -------
     pollard_pin.sweep.grid.Sweep
         The variants; ``specs()`` gives each one's plain-data spec for
-        :func:`~pollard_pin.evaluate_variant`, ``columns`` the result table's columns.
+        :func:`~pollard_pin.sweep.evaluate_variant`, ``columns`` the result table's columns.
 
     Raises
     ------

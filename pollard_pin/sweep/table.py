@@ -29,7 +29,17 @@ def _cell(value: Any) -> str:
 def write_sweep_table(rows: Sequence[Mapping[str, Any]], path: str | Path,
               columns: Sequence[str] | None = None) -> None:
     """The result table as CSV (polars, atomic write). Empty cells: not applicable or
-    infeasible; floats as their shortest exact repr, lists as JSON."""
+    infeasible; floats as their shortest exact repr, lists as JSON.
+
+    Parameters
+    ----------
+    rows : Sequence of Mapping
+        The result rows (:func:`run_sweep`'s, :func:`evaluate_variant`'s).
+    path : str or pathlib.Path
+        The CSV file to write (all or nothing).
+    columns : Sequence of str, optional
+        The columns, in order (default: the first row's keys).
+    """
     import polars as pl
 
     columns = list(columns or (rows[0].keys() if rows else ()))
@@ -40,7 +50,15 @@ def write_sweep_table(rows: Sequence[Mapping[str, Any]], path: str | Path,
 
 
 def summary(rows: Sequence[Mapping[str, Any]], max_rows: int = 20) -> str:
-    """A short text table: per variant the worst actuator torque and power, or the failure."""
+    """A short text table: per variant the worst actuator torque and power, or the failure.
+
+    Parameters
+    ----------
+    rows : Sequence of Mapping
+        The result rows (:func:`run_sweep`'s, :func:`evaluate_variant`'s).
+    max_rows : int, optional
+        At most this many variants are listed; a last line counts the rest.
+    """
     n_ok = sum(1 for r in rows if r["feasible"])
     lines = [f"{len(rows)} variants: {n_ok} feasible, {len(rows) - n_ok} infeasible"]
     width = min(48, max([len("variant")] + [len(str(r["variant"])) for r in rows]))

@@ -31,7 +31,7 @@ import math
 from dataclasses import replace
 
 from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis, result_loads
-from ..run import duty_figures
+from ..run.stats import duty_figures
 
 SIZING_FIELDS = (  # key, heading, unit
     ("peak_torque", "peak |τ|", "N·m"),
@@ -79,9 +79,10 @@ def sizing_report(robot, result, cross_check: bool = True) -> dict:
     Examples
     --------
     >>> import pollard_pin as pp
+    >>> from pollard_pin.viz import sizing_report
     >>> robot = pp.load()
     >>> result = pp.run_pipeline(robot, pp.thesis_trajectory(samples=201))
-    >>> report = pp.sizing_report(robot, result, cross_check=False)
+    >>> report = sizing_report(robot, result, cross_check=False)
     >>> round(report["sizing"]["actuators"]["theta21"]["peak_torque"], 2)    # N·m
     1.21
     """

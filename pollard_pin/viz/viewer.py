@@ -318,7 +318,7 @@ def write_html(path, robot, ik, **kwargs) -> Path:
         The model.
     ik : IKResult
         The joint motion to animate (:func:`~pollard_pin.inverse_kinematics`, or a
-        :class:`~pollard_pin.RunResult`'s ``ik``).
+        :class:`~pollard_pin.run.RunResult`'s ``ik``).
     **kwargs
         ``frames`` (bool: draw the tool and platform frames), ``fps`` (key frames per second
         of trajectory time, default 25), ``title`` (the page's), ``overlay`` (a callable

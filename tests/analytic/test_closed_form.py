@@ -1,11 +1,10 @@
 """The thesis' closed form (analytic/closed_form.py) against independent numbers:
 docs/model.md §9 home table, the numpy forward chain, finite differences. (Its Euler–Lagrange
 dynamics: tests/crosscheck/test_euler_lagrange.py.)"""
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from bare_modules import run_bare
 from thesis_curves import T_PROBE, TRAJECTORIES, painting_trajectory, sinusoid_trajectory
 
 from pollard_pin.analytic import jet as J
@@ -118,11 +117,24 @@ def test_actuation_jacobian_matches_finite_differences(p):
 
 
 def test_thesis_method_does_not_import_pinocchio():
-    # The closed form and the Euler–Lagrange cross-check are numpy only, and so independent
-    # of the Pinocchio pipeline they check.
-    code = ("import pollard_pin.crosscheck.euler_lagrange, pollard_pin.analytic.closed_form, "
-            "sys; assert 'pinocchio' not in sys.modules, 'pinocchio'")
-    subprocess.run([sys.executable, "-c", code], check=True)
+    """The closed form and the Euler–Lagrange cross-check are numpy only, and so independent
+    of the Pinocchio pipeline they check: with Pinocchio hidden and the package ``__init__``
+    files (the root imports every layer) bypassed, both load and solve the home pose."""
+    r = run_bare("import numpy as np\n"
+                 "from pollard_pin.analytic.closed_form import position_ik\n"
+                 "from pollard_pin.crosscheck.euler_lagrange import inverse_dynamics\n"
+                 "from pollard_pin.model.params import load_params\n"
+                 "q = position_ik(load_params(), [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])\n"
+                 "assert sys.modules['pinocchio'] is None and q.shape == (1, 18)\n"
+                 "assert not [m for m in sys.modules if m.startswith('pinocchio.')]\n")
+    assert r.returncode == 0, r.stderr
+
+
+def test_the_bare_check_can_fail():
+    """The same check on a module that does need Pinocchio (the model) fails."""
+    r = run_bare("import pollard_pin.model.build\n")
+    assert r.returncode == 1 and "ModuleNotFoundError" in r.stderr, r.stderr
+    assert "pinocchio" in r.stderr.strip().splitlines()[-1]
 
 
 def test_unreachable_chain0_reports_sample_and_shortfall(p):

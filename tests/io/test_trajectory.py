@@ -8,6 +8,7 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.io.trajectory import DERIVATIVE_TOLERANCE, from_csv, to_csv
+from pollard_pin.paths import smooth_random_trajectory
 from pollard_pin.paths.trajectory import Trajectory, TrajectoryError
 
 FIGURE8 = Path(__file__).resolve().parents[2] / "examples" / "figure8.csv"
@@ -64,7 +65,7 @@ def test_zero_derivatives_are_refused(tmp_path, figure8):
 def test_exact_derivatives_pass(tmp_path, samples):
     """Exact derivatives of a smooth curve pass, even sparsely sampled; the achieved mismatch
     is far below the tolerance. Reference: the analytic rates vs central differences."""
-    traj = pp.smooth_random_trajectory(samples=samples)
+    traj = smooth_random_trajectory(samples=samples)
     got = from_csv(_write(tmp_path / "exact.csv", traj))
     assert np.array_equal(got.d_poses, traj.d_poses)
     fd = np.gradient(traj.poses, traj.t, axis=0)[1:-1]

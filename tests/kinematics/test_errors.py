@@ -10,9 +10,14 @@ def test_families():
     for cls in (E.ClosureError, E.KinematicsError, E.UnreachablePoseError, E.SingularityError,
                 E.ClosureSingularError, E.BranchFlipError):
         assert issubclass(cls, SolveError) and not issubclass(cls, InputError), cls
-    # bad arguments are both a KinematicsError (sample, time) and a ValueError
-    assert issubclass(E.KinematicsInputError, E.KinematicsError)
+    # bad arguments are an InputError (so a ValueError) that says where as the solve's errors
+    # do (sample, time, chain: AtSample), not a KinematicsError: nothing was solved
+    assert issubclass(E.KinematicsInputError, InputError)
     assert issubclass(E.KinematicsInputError, ValueError)
+    assert not issubclass(E.KinematicsInputError, SolveError | E.KinematicsError)
+    assert issubclass(E.KinematicsInputError, E.AtSample) and issubclass(E.KinematicsError,
+                                                                          E.AtSample)
+    assert set(E.SAMPLE_ERRORS) == {E.KinematicsError, E.KinematicsInputError}
     assert issubclass(E.ClosureSingularError, E.ClosureError)
 
 
@@ -41,3 +46,11 @@ def test_shifted_moves_every_sample_number():
     assert str(s) == ("sample 1004 (t = 0.5 s): assembly branch flip between samples 1003 and "
                       "1004: sin θ1716 changed sign")
     assert e.sample == 4 and e.shifted(0) is e  # the original is left alone
+
+
+def test_an_input_error_says_where_and_shifts():
+    e = E.KinematicsInputError("d_psi is not finite", sample=3, time=0.25, chain="d_psi")
+    assert str(e) == "sample 3 (t = 0.25 s): d_psi is not finite" and e.chain == "d_psi"
+    s = e.shifted(100)
+    assert type(s) is E.KinematicsInputError and s.sample == 103
+    assert str(s) == "sample 103 (t = 0.25 s): d_psi is not finite"

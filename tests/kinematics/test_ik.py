@@ -22,9 +22,16 @@ from rotations import Rx, Ry, Rz
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T
+from pollard_pin.errors import InputError
 from pollard_pin.io.trajectory import from_csv, to_csv
-from pollard_pin.kinematics.errors import KinematicsError, SingularityError, UnreachablePoseError
+from pollard_pin.kinematics.errors import (
+    KinematicsError,
+    KinematicsInputError,
+    SingularityError,
+    UnreachablePoseError,
+)
 from pollard_pin.kinematics.singularity import WRIST_MARGIN
+from pollard_pin.model import constraint_jacobian
 from pollard_pin.names import SPHERICAL
 from pollard_pin.paths.curves import smooth_random_trajectory, thesis_trajectory
 from pollard_pin.paths.trajectory import TrajectoryError
@@ -292,7 +299,7 @@ def test_parallel_and_serial_singularity_margins(robot, which):
     traj = thesis_trajectory(samples=201)
     base = solve(robot, traj)
     # Independent σ_parallel at sample 0: smallest singular value of ∂(closure)/∂passive.
-    Jc = pp.constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
                                 robot.constraint_datas, base.q[0])
     s0 = np.linalg.svd(Jc[:, robot.passive_v], compute_uv=False)[-1]
     assert abs(s0 - base.sigma_parallel[0]) <= 1e-14  # achieves 5.6e-17
@@ -346,10 +353,11 @@ def test_non_finite_input_names_the_sample(robot, which, k, c, bad):
     traj = thesis_trajectory(samples=201)
     arrays = {n: getattr(traj, n).copy() for n in ("poses", "d_poses", "dd_poses")}
     arrays[which][k, c] = bad
-    with pytest.raises(KinematicsError) as ei:
+    with pytest.raises(KinematicsInputError) as ei:  # bad input, said where (errors.py's rule)
         pp.inverse_kinematics(robot, arrays["poses"], arrays["d_poses"], arrays["dd_poses"],
                               traj.t)
     e = ei.value
+    assert isinstance(e, InputError) and not isinstance(e, KinematicsError)
     assert e.sample == k and e.time == traj.t[k]
     assert f"sample {k}" in str(e) and str(bad) in str(e)
 

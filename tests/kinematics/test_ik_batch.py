@@ -4,7 +4,9 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.dynamics.inverse import inverse_dynamics
+from pollard_pin.kinematics import UnreachablePoseError
 from pollard_pin.kinematics.ik import inverse_kinematics_batch, inverse_kinematics_newton
+from pollard_pin.paths import smooth_random_trajectory
 
 FIELDS = ("q", "v", "a", "spherical", "d_spherical", "wrist_margin", "sigma_parallel",
           "sigma_serial")
@@ -16,7 +18,7 @@ def robot():
 
 
 @pytest.mark.parametrize("traj", [pp.thesis_trajectory(samples=801),
-                                  pp.smooth_random_trajectory(5, samples=301)],
+                                  smooth_random_trajectory(5, samples=301)],
                          ids=["thesis", "random"])
 def test_batch_equals_newton(robot, traj):
     args = (traj.poses, traj.d_poses, traj.dd_poses, traj.t)
@@ -45,7 +47,7 @@ def test_batch_reports_first_bad_sample_across_chunks(robot):
     traj = pp.thesis_trajectory(samples=401)
     poses = traj.poses.copy()
     poses[250:, 0] += 0.5  # out of reach from sample 250 on
-    with pytest.raises(pp.UnreachablePoseError) as ei:
+    with pytest.raises(UnreachablePoseError) as ei:
         inverse_kinematics_batch(robot, poses, traj.d_poses, traj.dd_poses, traj.t,
                                  options=pp.IkOptions(chunk=100))
     assert ei.value.sample == 250 and ei.value.time == pytest.approx(traj.t[250])

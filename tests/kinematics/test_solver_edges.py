@@ -49,6 +49,7 @@ from pollard_pin.kinematics.singularity import (
     check_margins,
     solve_stack,
 )
+from pollard_pin.model import constraint_jacobian
 from pollard_pin.paths.curves import thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
 
@@ -166,7 +167,7 @@ def test_solve_stack_isolates_singular_members():
 
 
 def test_actuator_velocity_map_names_the_singular_sample(robot):
-    Jc = np.stack([pp.constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+    Jc = np.stack([constraint_jacobian(robot.model, robot.data, robot.constraint_models,
                                           robot.constraint_datas, robot.q_reference)] * 4)
     p = robot.passive_v
     Jc[2][:, p[1]] = Jc[2][:, p[0]]  # two passive columns equal: Jc_p singular
@@ -181,7 +182,7 @@ def test_actuator_velocity_map_names_the_singular_sample(robot):
 
 
 def test_split_tree_torques_names_the_singular_sample(robot):
-    Jc0 = pp.constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+    Jc0 = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
                                  robot.constraint_datas, robot.q_reference)
     Jc = np.stack([Jc0] * 3)
     p = robot.passive_v
@@ -289,7 +290,7 @@ def test_margin_zero_still_rejects_the_exact_reach_limit(robot, method):
     res = pp.run_pipeline(robot, short, method=method, margins=ZERO_MARGINS)
     assert np.isfinite(res.dynamics.tau).all() and np.abs(res.dynamics.tau).max() < 10.0
     # Independent σ_serial at the last kept sample: SVD of J_tool N from Pinocchio.
-    Jc = pp.constraint_jacobian(robot.model, robot.data, robot.constraint_models,
+    Jc = constraint_jacobian(robot.model, robot.data, robot.constraint_models,
                                 robot.constraint_datas, res.ik.q[-1])
     N = actuator_velocity_map(Jc, robot.actuated_v, robot.passive_v)
     pin.computeJointJacobians(robot.model, robot.data, res.ik.q[-1])
@@ -333,7 +334,8 @@ def test_invalid_tolerance_is_rejected_up_front(robot, method, value):
     with pytest.raises(KinematicsInputError) as ei:
         ik(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t, method=method, tol=value)
     e = ei.value
-    assert isinstance(e, ValueError) and isinstance(e, KinematicsError)
+    assert isinstance(e, ValueError) and isinstance(e, InputError)  # the rule: bad input
+    assert not isinstance(e, KinematicsError)  # nothing was solved (pollard_pin/errors.py)
     assert e.chain == "tol" and str(e).startswith(f"tol = {value!r}: ")
 
 

@@ -749,10 +749,11 @@ def _check_installed(venv, cwd):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     code = textwrap.dedent("""
         import json, numpy as np, pollard_pin
+        from pollard_pin.kinematics import tool_pose
         from pollard_pin.model.paths import models_dir
         r = pollard_pin.load()
         q = r.home()
-        tip = pollard_pin.tool_pose(r, q).translation
+        tip = tool_pose(r, q).translation
         print(json.dumps(dict(file=pollard_pin.__file__, models=str(models_dir()), nq=r.model.nq,
                               tip=tip.tolist(), mass=r.params.total_mass)))
     """)
@@ -823,7 +824,7 @@ def test_load_refuses_a_urdf_stale_against_the_parameter_file(tmp_path, monkeypa
     assert pollard_pin.load().params.body("gun").mass == 0.035  # the copy is consistent
     toml = tmp_path / "pollard.toml"
     toml.write_text(toml.read_text().replace("mass = 0.035        # kg  m5", "mass = 0.05"))
-    with pytest.raises(pollard_pin.ModelFileError,
+    with pytest.raises(ModelFileError,
                        match=r"pollard\.urdf and pollard\.srdf do not match .*pollard\.toml: "
                              r"regenerate them from the parameters"):
         pollard_pin.load()

@@ -15,6 +15,7 @@ from pollard_pin.model.params import ParameterError, load_params, params_from_di
 from pollard_pin.model.paths import models_dir
 from pollard_pin.model.urdf import position_limits
 from pollard_pin.names import ACTUATED, TREE_JOINTS
+from pollard_pin.paths import smooth_random_trajectory
 
 URDF = models_dir() / "pollard.urdf"
 SRDF = models_dir() / "pollard.srdf"
@@ -99,7 +100,7 @@ def test_effort_and_velocity_are_twice_the_default_peaks(default_run, limits, gr
 
 @pytest.mark.parametrize("seed", range(4))
 def test_the_random_test_trajectories_stay_inside_too(robot, limits, seed):
-    traj = pollard_pin.smooth_random_trajectory(seed)
+    traj = smooth_random_trajectory(seed)
     ik = pollard_pin.inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t)
     lo = np.array([limits[n][0] for n in TREE_JOINTS])
     hi = np.array([limits[n][1] for n in TREE_JOINTS])

@@ -7,7 +7,8 @@ import pytest
 
 import pollard_pin as pp
 from pollard_pin.paths.curves import thesis_trajectory
-from pollard_pin.run import RunStats, StreamOptions, duty_figures, stream_run, summary
+from pollard_pin.run import StreamOptions, stream_run
+from pollard_pin.run.stats import RunStats, duty_figures, summary
 
 
 def test_summary_is_the_whole_runs(robot, tmp_path):

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
+from pollard_pin.dynamics import ActuatorError
 from pollard_pin.dynamics.drives.stiffness import DEFLECTION, FREQUENCIES, UNITS, StiffnessOptions
 from pollard_pin.io.table import read_result
 from pollard_pin.kinematics.errors import UnreachablePoseError
@@ -57,7 +58,7 @@ def test_write_is_the_command_table(robot, traj, tmp_path):
 def test_actuators_without_stiffness_are_named(robot, traj):
     act = pp.load_actuators(ROOT / "examples" / "actuators.toml")
     bare = replace(act, units=(replace(act.units[0], stiffness=None), *act.units[1:]))
-    with pytest.raises(pp.ActuatorError, match=r"'theta21\.stiffness' is missing"):
+    with pytest.raises(ActuatorError, match=r"'theta21\.stiffness' is missing"):
         stiffness(robot, traj, bare)
     assert np.array_equal(stiffness(robot, traj.window(0, 5), act).kmin,
                           stiffness(robot, traj.window(0, 5), act.stiffness()).kmin)

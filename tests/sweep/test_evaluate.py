@@ -8,6 +8,8 @@ import pytest
 from sweep_grid import SAMPLES
 
 import pollard_pin as pp
+from pollard_pin.kinematics import KinematicsError
+from pollard_pin.model import ParameterError
 from pollard_pin.names import ACTUATED
 from pollard_pin.run import run_pipeline
 from pollard_pin.sweep import METRIC_COLUMNS, evaluate_variant
@@ -37,7 +39,7 @@ def test_sweep_rows_equal_individual_runs(sweep, pool_rows):
             overrides = {"bodies.gun.com": [0.045, 0.0, 0.0]}  # the component key, by hand
         try:
             robot, result = _single_run(overrides)
-        except (pp.KinematicsError, pp.ParameterError) as exc:
+        except (KinematicsError, ParameterError) as exc:
             assert row["feasible"] is False
             assert row["failure_kind"] == type(exc).__name__
             assert row["failure"] == str(exc)

@@ -18,6 +18,7 @@ from poses import wrist_singular_pose  # tests/poses.py
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form
+from pollard_pin.dynamics import ActuatorError
 from pollard_pin.dynamics.inverse import inverse_dynamics_sample
 from pollard_pin.dynamics.motors import load_actuators, motor_torque
 from pollard_pin.dynamics.plant import ModelMismatch, perturbed_robot
@@ -211,5 +212,5 @@ def test_stiffness_columns_are_those_of_the_ik(robot):
     assert "kmin" not in evaluate(robot, poses[:3], ReachOptions(actuators=bare))
     part = replace(act, units=(*act.units[:4], replace(act.units[4], stiffness=None),
                                act.units[5]))
-    with pytest.raises(pp.ActuatorError, match=r"'theta1716\.stiffness' is missing"):
+    with pytest.raises(ActuatorError, match=r"'theta1716\.stiffness' is missing"):
         evaluate(robot, poses[:3], ReachOptions(actuators=part))

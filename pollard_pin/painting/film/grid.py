@@ -65,7 +65,7 @@ def plan_film(plan: PaintPlan, resolution: float | None = None):
     Parameters
     ----------
     plan : PaintPlan
-        From :func:`~pollard_pin.plan_paint`.
+        From :func:`~pollard_pin.painting.plan.plan_paint`.
     resolution : float or None, optional
         The grid spacing [m], at most σ (None: σ/3).
 

@@ -49,8 +49,8 @@ from .result import PlanResult
 
 @dataclass(frozen=True)
 class PaintPlan(PlanResult):
-    """A still panel's raster (:func:`~pollard_pin.plan_paint`; the gun sprays throughout:
-    ``spray`` all 1).
+    """A still panel's raster (:func:`~pollard_pin.painting.plan.plan_paint`; the gun sprays
+    throughout: ``spray`` all 1).
 
     Attributes
     ----------

@@ -81,10 +81,10 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     At the standoff, the spot's centre grows at flow / (2πσ²), and σ away by e^(−1/2) less:
 
     >>> import math
-    >>> import pollard_pin as pp
-    >>> gun = pp.Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
-    >>> rate = pp.deposition_rate(gun, [[0, 0, 0.15]], [[0, 0, -1]],
-    ...                           [[0, 0, 0], [0.01, 0, 0]], [0, 0, 1])
+    >>> from pollard_pin.painting.spray import Gun, deposition_rate
+    >>> gun = Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
+    >>> rate = deposition_rate(gun, [[0, 0, 0.15]], [[0, 0, -1]],
+    ...                        [[0, 0, 0], [0.01, 0, 0]], [0, 0, 1])
     >>> math.isclose(rate[0, 0], gun.flow / (2 * math.pi * gun.sigma**2), rel_tol=1e-12)
     True
     >>> math.isclose(rate[0, 1] / rate[0, 0], math.exp(-0.5), rel_tol=1e-12)
@@ -197,13 +197,13 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
 
     >>> import math
     >>> import numpy as np
-    >>> import pollard_pin as pp
-    >>> gun = pp.Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
+    >>> from pollard_pin.painting.spray import Gun, film
+    >>> gun = Gun(standoff=0.15, sigma=0.01, flow=1.5e-7)
     >>> t = np.linspace(-1.0, 1.0, 2001)
     >>> v = 0.5                                          # m/s, along x
     >>> tips = np.column_stack([v * t, 0 * t, 0 * t + 0.15])
     >>> axes = np.tile([0.0, 0.0, -1.0], (len(t), 1))
-    >>> f = pp.film(gun, t, tips, axes, [[0.0, 0.0, 0.0]], [0.0, 0.0, 1.0])
+    >>> f = film(gun, t, tips, axes, [[0.0, 0.0, 0.0]], [0.0, 0.0, 1.0])
     >>> math.isclose(f.thickness[0], gun.flow / (math.sqrt(2 * math.pi) * gun.sigma * v),
     ...              rel_tol=1e-9)
     True

@@ -16,6 +16,7 @@ from pollard_pin.dynamics.drives.stiffness import (
     reduced_mass_and_gravity,
     stiffness_at,
 )
+from pollard_pin.kinematics import tool_pose
 from pollard_pin.kinematics.closure import solve_closure
 from pollard_pin.kinematics.ik import inverse_kinematics
 
@@ -126,7 +127,7 @@ class _Equilibrium:
         self.p0, self.R0 = self._tool(q0)
 
     def _tool(self, q):
-        M = pp.tool_pose(self.robot, q)
+        M = tool_pose(self.robot, q)
         return M.translation.copy(), M.rotation.copy()
 
     def potential(self, dtheta, wrench):

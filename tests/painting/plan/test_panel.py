@@ -231,7 +231,7 @@ def _rms_use(robot, traj, act) -> np.ndarray:
 
 
 def test_the_planned_cycle_keeps_the_continuous_ratings(robot, act):
-    plan = pp.plan_paint(robot, _small_three_coats(), act)
+    plan = plan_paint(robot, _small_three_coats(), act)
     use = _rms_use(robot, plan.trajectory, act)
     assert use.max() <= 1.0 + 1e-3  # 0.970 (the planner's 97 %); 1.137 before
     assert np.abs(use - plan.ratios["rms_torque"]).max() < 2e-3  # its own figure: 4e-5 apart
@@ -250,7 +250,7 @@ def test_a_cycle_no_turnaround_can_cool_is_refused(robot, act):
                                         r"continuous \(RMS\) torque over the cycle with "
                                         r"turnarounds and ramps \d+× their fastest .*longer "
                                         r"ones leave the workspace"):
-        pp.plan_paint(robot, _small_three_coats(), weak)
+        plan_paint(robot, _small_three_coats(), weak)
 
 
 def test_the_cli_prints_the_rms_use(tmp_path, capsys):
