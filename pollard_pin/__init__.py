@@ -31,15 +31,14 @@ from .kinematics.ik import IkOptions, inverse_kinematics
 from .kinematics.margins import Margins
 from .model.build import Robot, load
 from .model.params import Params, load_params
+from .outputs import PaintResult, paint
 from .painting import (
     LayoutOptions,
     PaintOptions,
-    PaintResult,
     PlaceOptions,
     fewest_robots,
     job_from_dict,
     load_job,
-    paint,
     place,
     propose_layout,
 )

@@ -47,7 +47,7 @@ def test_moved_and_kept_are_apart_and_unknown_names_fail_as_usual():
 # A subpackage's public name that is also one of its modules' names hides the module
 # (``import pollard_pin.x.y as m`` gives the name): the command line's entry point, and
 # paint's place() beside its module (to move into painting/layout/).
-HIDING = {("pollard_pin.cli", "main"), ("pollard_pin.painting", "place")}
+HIDING = {("pollard_pin.cli", "main")}
 
 
 def test_no_public_name_hides_a_module():

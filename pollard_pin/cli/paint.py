@@ -35,7 +35,8 @@ def _actuators(args, job):
 
 def run(args) -> int:
     from ..io.atomic import all_or_nothing, check_outputs
-    from ..painting.api import film_spacing_of, paint
+    from ..outputs.result import paint
+    from ..painting.api import film_spacing_of
     from ..painting.job import load_job
     from ..painting.kinds.base import output_files
     from ..painting.options import PaintOptions

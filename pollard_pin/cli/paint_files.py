@@ -1,6 +1,6 @@
 """What ``paint`` says for every kind of job: the --resolution refusal and the 'wrote' line
-(the lines it prints: :meth:`pollard_pin.painting.result.PaintResult.summary_lines`; the
-files themselves: pollard_pin.io.paint_files)."""
+(the lines it prints: :meth:`pollard_pin.painting.result.PaintedJob.summary_lines`; the
+files themselves: pollard_pin.outputs.paint_files)."""
 from __future__ import annotations
 
 import sys

@@ -55,18 +55,19 @@ def paint_layout(count, robot, job, act, options):
     """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest."""
     from dataclasses import replace
 
-    from ..painting.api import paint
+    from ..outputs.result import PaintResult, paint
     from ..painting.layout.cell import fewest_robots, propose_layout
 
     if count == "auto":
-        return fewest_robots(robot, job, act, options)
+        robots, painted = fewest_robots(robot, job, act, options)
+        return robots, PaintResult.of(painted)
     robots = propose_layout(robot, job, count)
     return robots, paint(robot, replace(job, robots=robots), act, options)
 
 
 def write_layout(robots, out: Path, count, job) -> Path:
     """robots.toml in ``out`` (inside the command's all-or-nothing block), one line said."""
-    from ..io.robots_toml import write_robots
+    from ..outputs.robots_toml import write_robots
 
     how = "the fewest robots that paint" if count == "auto" else f"{count} robot(s)"
     path = write_robots(robots, out / "robots.toml", f"[[robot]] tables proposed by "

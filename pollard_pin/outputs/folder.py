@@ -37,7 +37,18 @@ def cell_inputs(folder) -> list[tuple[str, Path]]:
 
 
 def read_report(folder) -> PaintJson:
-    """DIR/paint.json through the schema (:func:`.schema.read_paint_json`)."""
+    """DIR/paint.json through the schema (:func:`.schema.read_paint_json`).
+
+    Parameters
+    ----------
+    folder : str or Path
+        A folder ``pollard-pin paint`` wrote.
+
+    Returns
+    -------
+    PaintJson
+        Its report; a malformed one is refused in one line.
+    """
     return read_paint_json(Path(folder) / "paint.json")
 
 

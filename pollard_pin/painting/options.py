@@ -1,4 +1,4 @@
-"""How :func:`~pollard_pin.painting.api.paint` plans and integrates: its options, checked
+"""How :func:`~pollard_pin.painting.api.paint_job` plans and integrates: its options, checked
 once."""
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from .policy import DEFAULT_POLICY, PlannerPolicy
 
 @dataclass(frozen=True)
 class PaintOptions:
-    """How :func:`~pollard_pin.painting.api.paint` plans and integrates, validated once.
+    """How :func:`~pollard_pin.painting.api.paint_job` plans and integrates, validated once.
 
     Parameters
     ----------

@@ -2,7 +2,7 @@
 module in ``pollard_pin.painting.kinds``): the invariants every report keeps, the gun body's
 clearance (docs/model.md §25), a part's report (§23: area-weighted film statistics over the
 painted faces, the largest incidence, the transfer efficiency; still or on a line) and the
-line table (§24). Computed here; the writers (pollard_pin.io.paint_files) only write them."""
+line table (§24). Computed here; the writers (pollard_pin.outputs.paint_files) only write them."""
 from __future__ import annotations
 
 import numpy as np

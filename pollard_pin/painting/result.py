@@ -1,10 +1,9 @@
-"""What :func:`~pollard_pin.painting.api.paint` returns: the film a plan leaves, the numbers
+"""What :func:`~pollard_pin.painting.api.paint_job` returns: the film a plan leaves, the numbers
 of ``paint.json`` and the result that holds them with the plan (docs/model.md §20–§26)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -95,8 +94,10 @@ class PaintReport:
 
 
 @dataclass(frozen=True)
-class PaintResult:
-    """What :func:`~pollard_pin.painting.api.paint` returns.
+class PaintedJob:
+    """A job planned, filmed and reported, before anything is written: what
+    :func:`~pollard_pin.painting.api.paint_job` returns (:func:`pollard_pin.paint` returns
+    it as a :class:`~pollard_pin.PaintResult`, which also writes itself).
 
     Attributes
     ----------
@@ -106,9 +107,9 @@ class PaintResult:
         Its kind (``"panel"``, ``"part"``, ``"line panel"``, ``"line part"``, ``"cell panel"``,
         ``"cell part"``: a name in ``pollard_pin.painting.kinds.KINDS``).
     plan : PaintPlan, SurfacePlan, LinePlan, LinePartPlan or CellPlan
-        The plan of that kind (a :class:`~pollard_pin.PaintPlan` for a still panel): its
-        ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and ``spray`` (the
-        gun's trigger per sample), passes, speed, cycle time.
+        The plan of that kind (a :class:`~pollard_pin.painting.plan.PaintPlan` for a still
+        panel): its ``trajectory`` (the program, a :class:`~pollard_pin.Trajectory`) and
+        ``spray`` (the gun's trigger per sample), passes, speed, cycle time.
     film : pollard_pin.painting.result.PaintFilm
         The film points and the thickness [m] at each.
     report : PaintReport
@@ -120,8 +121,7 @@ class PaintResult:
     painter : pollard_pin.painting.kinds.base.JobKind
         The kind that painted it: its summary lines, what it writes.
 
-    :meth:`write` writes what ``pollard-pin paint`` writes, :meth:`summary_lines` are the
-    lines it prints.
+    :meth:`summary_lines` are the lines ``pollard-pin paint`` prints.
     """
 
     job: PaintJob | PartJob
@@ -148,17 +148,5 @@ class PaintResult:
         rep = self.report.data
         return [*self.painter.summary_lines(rep, self.actuators.names), *closing_lines(rep)]
 
-    def write(self, folder: str | Path, format: str = "csv") -> Path:
-        """Write path.csv, thickness.csv|parquet, film.ply, paint.json and thickness.png in
-        ``folder``, every one or none, as ``pollard-pin paint`` does; the table's path."""
-        # the calls up the layers: paint's files are written by io's writers
-        if self.painter.outputs.per_robot:  # a folder per robot (docs/model.md §26)
-            from ..io.paint_cell_files import write_cell
 
-            return write_cell(self, Path(folder), format)
-        from ..io.paint_files import write_paint
-
-        return write_paint(self, Path(folder), format)
-
-
-__all__ = ["PaintFilm", "PaintReport", "PaintResult"]
+__all__ = ["PaintFilm", "PaintReport", "PaintedJob"]

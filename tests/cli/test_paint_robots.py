@@ -39,17 +39,17 @@ def test_jobs_that_cannot_take_a_layout(tmp_path, capsys, extra, words):
 
 
 def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatch):
-    import pollard_pin.painting.api as api
+    import pollard_pin.outputs.result as result
 
-    real, planned = api.paint, []
+    real, planned = result.paint_job, []
 
-    def paint(robot, job, actuators=None, options=None):
+    def paint_job(robot, job, actuators=None, options=None):
         # the proposal recorded, the job planned by one robot: the cell's own planning is
         # tested in tests/painting/cell/test_plan.py, and takes a minute
         planned.append(job.robots)
         return real(robot, replace(job, robots=()), actuators, options)
 
-    monkeypatch.setattr(api, "paint", paint)
+    monkeypatch.setattr(result, "paint_job", paint_job)
     out = tmp_path / "out"
     code, _, err = run_cli(["paint", "--job", LINE, "--out", out, "--robots", "1",
                             "--resolution", "0.005"], capsys)

@@ -12,6 +12,7 @@ import pollard_pin as pp
 from pollard_pin.errors import InputError, PollardError
 from pollard_pin.painting.errors import JobKindError
 from pollard_pin.painting.options import PaintOptions
+from pollard_pin.painting.plan import plan_paint
 
 
 def test_a_job_of_another_kind_is_named(robot, act, job):
@@ -23,21 +24,22 @@ def test_a_job_of_another_kind_is_named(robot, act, job):
     root = Path(__file__).resolve().parents[2]
     part = pp.load_job(root / "examples" / "parts" / "curved_panel.toml")
     with pytest.raises(JobKindError, match="not a part"):
-        pp.plan_paint(robot, part, act)
+        plan_paint(robot, part, act)
     line = pp.load_job(root / "examples" / "line.toml")
     with pytest.raises(JobKindError, match="not a line panel"):
-        pp.plan_paint(robot, line, act)
+        plan_paint(robot, line, act)
     with pytest.raises(InputError, match="no \\[line\\]"):
         pp.paint(robot, job, act, PaintOptions(max_line_speed=True))
 
 
 def test_paint_is_a_plain_function():
-    """pp.paint is painting.api.paint, a plain function; the subpackage is pollard_pin.painting."""
+    """pp.paint is a plain function (outputs/result.py: painting.api.paint_job's result as one
+    that writes itself); the subpackage is pollard_pin.painting, not callable."""
     import types
 
-    import pollard_pin.painting.api as api
+    import pollard_pin.outputs.result as result
 
-    assert pp.paint is api.paint and isinstance(pp.paint, types.FunctionType)
+    assert pp.paint is result.paint and isinstance(pp.paint, types.FunctionType)
     assert not callable(importlib.import_module("pollard_pin.painting"))
 
 

@@ -17,7 +17,7 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
-from pollard_pin.painting.api import paint
+from pollard_pin.outputs import paint
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.layout.place import PlaceOptions, place
 from pollard_pin.painting.line.conveyor import Line

@@ -1,5 +1,5 @@
 """The kinds of paint job, one module each (docs/model.md §20–§26), and THE table
-:func:`~pollard_pin.painting.api.paint` dispatches on: a new kind is a module defining a
+:func:`~pollard_pin.painting.api.paint_job` dispatches on: a new kind is a module defining a
 :class:`~.base.JobKind` (its recipe, report, summary lines and outputs) and one line here."""
 from __future__ import annotations
 
@@ -19,8 +19,18 @@ KINDS: dict[str, JobKind] = {k.name: k for k in (
 
 
 def kind_of(job) -> JobKind:
-    """The kind in :data:`KINDS` that recognises ``job``; :class:`JobKindError` naming the
-    type of anything else."""
+    """The kind in :data:`KINDS` that recognises ``job``.
+
+    Parameters
+    ----------
+    job : PaintJob or PartJob
+        From :func:`~pollard_pin.load_job`.
+
+    Raises
+    ------
+    JobKindError
+        Anything else, naming its type.
+    """
     for kind in KINDS.values():
         if kind.recognises(job):
             return kind

@@ -46,8 +46,8 @@ def world_tips(plan) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Outputs:
-    """What a kind's outputs differ in (the writers: pollard_pin.io.paint_files, a cell's
-    pollard_pin.io.paint_cell_files).
+    """What a kind's outputs differ in (the writers: pollard_pin.outputs.paint_files, a cell's
+    pollard_pin.outputs.paint_cell_files).
 
     Attributes
     ----------

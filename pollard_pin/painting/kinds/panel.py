@@ -39,9 +39,9 @@ def paint_report(plan: PaintPlan, f: Film, act: Actuators) -> dict:
     Parameters
     ----------
     plan : PaintPlan
-        From :func:`~pollard_pin.plan_paint`.
+        From :func:`~pollard_pin.painting.plan.plan_paint`.
     f : pollard_pin.painting.spray.deposition.Film
-        Its film (:func:`~pollard_pin.plan_film`).
+        Its film (:func:`~pollard_pin.painting.film.plan_film`).
     act : Actuators
         The motor ratings.
 

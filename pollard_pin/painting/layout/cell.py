@@ -196,7 +196,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     actuators : Actuators or None, optional
         The motor ratings (default: the job's file, else the package's).
     options : PaintOptions or None, optional
-        As for :func:`pollard_pin.painting.api.paint`.
+        As for :func:`pollard_pin.painting.api.paint_job`.
     layout : LayoutOptions or None, optional
         The spacing and the names.
 
@@ -204,8 +204,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     -------
     robots : tuple of CellRobot
         The proposed robots.
-    result : PaintResult
-        The cell's plan, film and report with them.
+    result : pollard_pin.painting.result.PaintedJob
+        The cell's plan, film and report with them (``pollard_pin.PaintResult.of(result)``
+        writes itself).
 
     Raises
     ------
@@ -213,7 +214,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
         paints the part.
     """
-    from ..api import paint
+    from ..api import paint_job
     from ..spray.occlusion import load_painted_part
 
     part = load_painted_part(job) if isinstance(job, PartJob) else None
@@ -227,7 +228,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     for n in range(first, last + 1):
         try:
             robots = propose_layout(robot, job, n, layout, part)
-            return robots, paint(robot, replace(job, robots=robots), actuators, options)
+            return robots, paint_job(robot, replace(job, robots=robots), actuators, options)
         except BudgetError:
             raise
         except (CellError, PlanError) as exc:

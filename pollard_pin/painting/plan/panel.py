@@ -189,7 +189,7 @@ def plan_paint(robot, job: PaintJob, act: Actuators,
         :func:`~pollard_pin.largest_panel`'s rectangle); a budget the job breaks.
     JobKindError
         A job of another kind (a part, a line): those are
-        :func:`~pollard_pin.painting.api.paint`'s.
+        :func:`~pollard_pin.painting.api.paint_job`'s.
     """
     kind = job_kind(job)
     if kind != "panel":

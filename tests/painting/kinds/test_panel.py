@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
+from pollard_pin.outputs import PaintResult
 from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.kinds.panel import paint_report, summary_lines
-from pollard_pin.painting.result import PaintResult
 
 
 @pytest.fixture(scope="module")

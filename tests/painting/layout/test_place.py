@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from pollard_pin.errors import PollardError
-from pollard_pin.painting.api import paint
+from pollard_pin.outputs import paint
 from pollard_pin.painting.errors import PlaceError
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.layout.place import PlaceOptions, place

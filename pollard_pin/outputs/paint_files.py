@@ -1,15 +1,15 @@
 """What ``paint`` writes for a panel or a part, still or on a line: path.csv (with the
 trigger), the film table, film.ply, paint.json and thickness.png, every one or none
-(:meth:`pollard_pin.painting.result.PaintResult.write` and the CLI)."""
+(:meth:`pollard_pin.PaintResult.write` and the CLI)."""
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
-from .atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
+from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder, remove_stale
+from .schema import PaintJson, dumps
 
 # The frame a line's film and figure are given in (its paint.json, table and film.ply)
 LINE_FRAME = "the part at its t = 0 pose, world coordinates"
@@ -28,9 +28,9 @@ def report_json(result) -> dict:
 
 
 def write_paint(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or none;
+    """Every output of a :class:`~pollard_pin.PaintResult` in ``out``, or none;
     the table's path."""
-    from .table import FORMATS
+    from ..io.table import FORMATS
 
     if fmt not in FORMATS:
         raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
@@ -64,11 +64,11 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A panel's outputs, still or on the line (the figure's tracks: the spot's panel
     coordinates, in the part's frame on a line)."""
     from ..film_scale import film_rgba as film_colours
+    from ..io.ply import write_film_ply
+    from ..io.table import write_table
+    from ..io.trajectory import to_csv
     from ..painting.film.ply_mesh import grid_mesh
     from ..viz.paint import write_thickness_png
-    from .ply import write_film_ply
-    from .table import write_table
-    from .trajectory import to_csv
 
     plan, f = result.plan, result.film
     job, tr, fr = plan.job, plan.trajectory, plan.frame
@@ -85,7 +85,7 @@ def _write_panel(result, name: Path, rep: dict, meta: dict, stale) -> Path:
         write_table(name, panel_table(U, V, f.points, thickness, fr.n), meta,
                     fmt=name.suffix[1:])
         with atomic_open(out / "paint.json") as fh:
-            fh.write(json.dumps(rep, indent=2) + "\n")
+            fh.write(dumps(PaintJson.from_dict(rep)))
         write_film_ply(out / "film.ply", f.points.reshape(-1, 3), grid_mesh(f.points, fr.n),
                        thickness, film_colours(thickness, job.thickness), comment)
         write_thickness_png(out / "thickness.png", U, V, thickness.reshape(len(V), len(U)),
@@ -99,11 +99,11 @@ def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
     """A part's outputs, still or on the line: the film table on the painted faces, film.ply
     the refined mesh (on a line: the part at its t = 0 pose, the world path in path.csv)."""
     from ..film_scale import film_rgba as film_colours
+    from ..io.ply import write_film_ply
+    from ..io.table import write_table
+    from ..io.trajectory import to_csv
     from ..painting.film.ply_mesh import refined_mesh
     from ..viz.paint_part import write_part_png
-    from .ply import write_film_ply
-    from .table import write_table
-    from .trajectory import to_csv
 
     plan, f = result.plan, result.film  # on a line: the world path, the part at t = 0
     comment = f"film: {LINE_FRAME}" if result.painter.outputs.part_frame else None
@@ -119,7 +119,7 @@ def _write_part(result, name: Path, rep: dict, meta: dict, stale) -> Path:
         to_csv(plan.trajectory, out / "path.csv", spray=plan.spray)
         write_table(name, table, meta, fmt=name.suffix[1:])
         with atomic_open(out / "paint.json") as fh:
-            fh.write(json.dumps(rep, indent=2) + "\n")
+            fh.write(dumps(PaintJson.from_dict(rep)))
         write_film_ply(out / "film.ply", pts.points[used], triangles, f.thickness[used],
                        film_colours(f.thickness[used], job.thickness), comment)
         write_part_png(out / "thickness.png", P, th, job.thickness, lay.frame.along,

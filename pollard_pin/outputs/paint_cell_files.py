@@ -5,12 +5,12 @@ thickness.png for the whole part (world at t = 0, all robots), paint.json; every
 none."""
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 
-from .atomic import all_or_nothing, atomic_open, make_folder, remove_stale
+from ..io.atomic import all_or_nothing, atomic_open, make_folder, remove_stale
+from .schema import PaintJson, dumps
 
 CELL_FRAME = "the part at its t = 0 pose, world coordinates; all robots"
 
@@ -19,8 +19,8 @@ def robot_metadata(rp) -> dict:
     """A robot's path.csv metadata: its base pose and gravity in its base frame (``run``,
     ``size``, ``simulate`` and ``stiffness`` check the program with that gravity, as
     ``paint`` did)."""
+    from ..io.trajectory import GRAVITY_KEY
     from ..painting.cell.frames import gravity_in_base
-    from .trajectory import GRAVITY_KEY
 
     cr = rp.robot
     return {"trajectory": rp.plan.trajectory.name, "derivatives": "analytic",
@@ -31,12 +31,12 @@ def robot_metadata(rp) -> dict:
 
 
 def write_cell(result, out: Path, fmt: str = "csv") -> Path:
-    """Every output of a cell's :class:`~pollard_pin.painting.result.PaintResult` in ``out``, or
+    """Every output of a cell's :class:`~pollard_pin.PaintResult` in ``out``, or
     none; the film table's path."""
     from ..errors import InputError
-    from .atomic import check_outputs
+    from ..io.atomic import check_outputs
+    from ..io.table import FORMATS, write_table
     from .paint_files import report_json
-    from .table import FORMATS, write_table
 
     if fmt not in FORMATS:
         raise InputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
@@ -61,7 +61,7 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
             write_table(out / rp.robot.name / "path.csv", cols, robot_metadata(rp), fmt="csv")
         write_table(name, table, meta, fmt=fmt)
         with atomic_open(out / "paint.json") as fh:
-            fh.write(json.dumps(rep, indent=2) + "\n")
+            fh.write(dumps(PaintJson.from_dict(rep)))
         ply()
         png()
         remove_stale(*stale)
@@ -70,11 +70,11 @@ def write_cell(result, out: Path, fmt: str = "csv") -> Path:
 
 def _panel(result, out: Path):
     from ..film_scale import film_rgba as film_colours
+    from ..io.ply import write_film_ply
     from ..painting.film.ply_mesh import grid_mesh
     from ..painting.workpiece.panel import panel_frame
     from ..viz.paint import write_thickness_png
     from .paint_files import panel_table
-    from .ply import write_film_ply
 
     job, f = result.job, result.film
     fr = panel_frame(job)
@@ -99,9 +99,9 @@ def _panel(result, out: Path):
 
 def _part(result, out: Path):
     from ..film_scale import film_rgba as film_colours
+    from ..io.ply import write_film_ply
     from ..painting.film.ply_mesh import refined_mesh
     from ..viz.paint_part import write_part_png
-    from .ply import write_film_ply
 
     cell, f = result.plan, result.film
     job, pts, painted = cell.job, f.points, f.painted

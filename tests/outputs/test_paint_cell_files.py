@@ -1,4 +1,4 @@
-"""What `pollard-pin paint` writes for a cell (io/paint_cell_files.py, docs/model.md §26): a
+"""What `pollard-pin paint` writes for a cell (outputs/paint_cell_files.py, docs/model.md §26): a
 folder per robot whose path.csv passes `run` and `size`, one film of all robots on the panel
 at t = 0 (its seam within the target), paint.json's line, robots and clearance, and a
 colliding layout refused in one line with nothing written."""

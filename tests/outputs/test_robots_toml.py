@@ -1,8 +1,8 @@
-"""A cell's [[robot]] tables written (io/robots_toml.py) read back by the job reader as the
+"""A cell's [[robot]] tables written (outputs/robots_toml.py) read back by the job reader as the
 same robots, bit for bit."""
 import tomllib
 
-from pollard_pin.io.robots_toml import write_robots
+from pollard_pin.outputs.robots_toml import write_robots
 from pollard_pin.painting.cell.robots import CellRobot, robots_from_tables
 
 

@@ -1,8 +1,8 @@
-"""What paint writes for a panel (io/paint_files.py): the table's part columns against an
+"""What paint writes for a panel (outputs/paint_files.py): the table's part columns against an
 independent integral."""
 import numpy as np
 
-from pollard_pin.io.paint_files import panel_table
+from pollard_pin.outputs.paint_files import panel_table
 
 
 def test_panel_table_areas_weight_the_film_as_the_trapezoid_rule():

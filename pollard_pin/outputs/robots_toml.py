@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .atomic import atomic_open, check_outputs
+from ..io.atomic import atomic_open, check_outputs
 
 
 def _number(x: float) -> str:
@@ -24,7 +24,17 @@ def robots_toml(robots, header: str = "") -> str:
 
 
 def write_robots(robots, path: str | Path, header: str = "") -> Path:
-    """Write the ``[[robot]]`` tables to ``path`` (all or nothing); the path."""
+    """Write the ``[[robot]]`` tables to ``path`` (all or nothing); the path.
+
+    Parameters
+    ----------
+    robots : sequence of CellRobot
+        The cell's robots (``paint --robots``' proposal).
+    path : str or Path
+        The TOML file (robots.toml).
+    header : str, optional
+        Comment lines written above the tables.
+    """
     check_outputs(path)
     text = robots_toml(robots, header)
     with atomic_open(path) as f:
