@@ -43,22 +43,17 @@ def run(args) -> int:
 
     out = Path(args.out)
     count = robot_count(args.robots)  # --robots N|auto: a proposed cell (§26.5)
-    files, stale = output_files(out, args.format)
+    check_outputs(folders=(out,))  # the destination itself, before the job is read
+    job = load_job(args.job)
+    check_job(count, job)
+    # the files, once: a cell writes a folder per robot (docs/model.md §26)
+    files, stale = output_files(out, args.format, [r.name for r in job.robots]
+                                or proposed_names(count))
     files = (*files, out / "robots.toml") if count is not None else files
     check_outputs(*files, folders=(out,))
-    job = load_job(args.job)
     refuse_inputs(args, *files, *stale, also=[
         ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
         ("the actuators", job.actuators)])
-    check_job(count, job)
-    names = [r.name for r in job.robots] or proposed_names(count)
-    if names:  # a cell writes a folder per robot (docs/model.md §26)
-        files, stale = output_files(out, args.format, names)
-        files = (*files, out / "robots.toml") if count is not None else files
-        check_outputs(*files, folders=(out,))
-        refuse_inputs(args, *files, *stale, also=[
-            ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
-            ("the actuators", job.actuators)])
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
