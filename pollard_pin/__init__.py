@@ -31,12 +31,11 @@ from .kinematics.ik import IkOptions, inverse_kinematics
 from .kinematics.margins import Margins
 from .model.build import Robot, load
 from .model.params import Params, load_params
-from .outputs import PaintResult, paint
+from .outputs import PaintResult, fewest_robots, paint
 from .painting import (
     LayoutOptions,
     PaintOptions,
     PlaceOptions,
-    fewest_robots,
     job_from_dict,
     load_job,
     place,

@@ -61,9 +61,8 @@ for r in pp.propose_layout(robot, job, 2):
 # The fewest robots that paint the part
 # -------------------------------------
 # ``fewest_robots`` tries the fewest whose reach bands hold the zones, then more if a plan is
-# refused, and returns the robots with the cell's painted job
-# (:class:`~pollard_pin.painting.result.PaintedJob`). An 8 mm film resolution keeps this page
-# quick; ``compliance=False`` leaves out the drives'
+# refused, and returns the robots with the cell's :class:`pollard_pin.PaintResult`. An 8 mm
+# film resolution keeps this page quick; ``compliance=False`` leaves out the drives'
 # springs' effect on the film (a second film integration).
 robots, result = pp.fewest_robots(robot, job, options=pp.PaintOptions(
     resolution=0.008, compliance=False))

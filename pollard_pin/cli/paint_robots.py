@@ -55,12 +55,11 @@ def paint_layout(count, robot, job, act, options):
     """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest."""
     from dataclasses import replace
 
-    from ..outputs.result import PaintResult, paint
-    from ..painting.layout.cell import fewest_robots, propose_layout
+    from ..outputs.result import fewest_robots, paint
+    from ..painting.layout.cell import propose_layout
 
     if count == "auto":
-        robots, painted = fewest_robots(robot, job, act, options)
-        return robots, PaintResult.of(painted)
+        return fewest_robots(robot, job, act, options)
     robots = propose_layout(robot, job, count)
     return robots, paint(robot, replace(job, robots=robots), act, options)
 

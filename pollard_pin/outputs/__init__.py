@@ -5,9 +5,9 @@ viewer's drawing of it), and the paint result that writes itself (:mod:`.result`
 :func:`~pollard_pin.paint`, :class:`~pollard_pin.PaintResult`) with its writers
 (:mod:`.paint_files`, a cell's :mod:`.paint_cell_files`, :mod:`.robots_toml`)."""
 from .folder import PaintFolderError, read_report
-from .result import PaintResult, paint, write_result
+from .result import PaintResult, fewest_robots, paint, write_result
 from .robots_toml import write_robots
 from .schema import PaintJson, dumps, read_paint_json
 
-__all__ = ["paint", "PaintResult", "write_result", "PaintJson", "read_paint_json", "dumps",
-           "read_report", "PaintFolderError", "write_robots"]
+__all__ = ["paint", "PaintResult", "fewest_robots", "write_result", "PaintJson",
+           "read_paint_json", "dumps", "read_report", "PaintFolderError", "write_robots"]

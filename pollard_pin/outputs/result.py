@@ -9,6 +9,8 @@ from pathlib import Path
 
 from ..dynamics.motors import Actuators
 from ..painting.api import paint_job
+from ..painting.layout.cell import LayoutOptions
+from ..painting.layout.cell import fewest_robots as fewest_painted
 from ..painting.options import PaintOptions
 from ..painting.result import PaintedJob
 from .paint_cell_files import write_cell
@@ -124,4 +126,34 @@ def paint(robot, job, actuators: Actuators | None = None,
     return PaintResult.of(paint_job(robot, job, actuators, options))
 
 
-__all__ = ["PaintResult", "paint", "write_result"]
+def fewest_robots(robot, job, actuators: Actuators | None = None,
+                  options: PaintOptions | None = None, layout: LayoutOptions | None = None):
+    """The fewest robots that paint the job and their cell's result, which writes itself:
+    :func:`pollard_pin.painting.layout.cell.fewest_robots` (docs/model.md §26.5), its
+    painted job returned as a :class:`PaintResult`.
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    job : PaintJob or pollard_pin.painting.job.PartJob
+        A job with ``[line]`` and no ``[[robot]]`` tables.
+    actuators : Actuators or None, optional
+        The motor ratings (default: the job's file, else the package's).
+    options : PaintOptions or None, optional
+        As for :func:`paint`.
+    layout : LayoutOptions or None, optional
+        The spacing and the names.
+
+    Returns
+    -------
+    robots : tuple of CellRobot
+        The proposed robots.
+    result : PaintResult
+        The cell's plan, film and report with them; ``result.write(folder)`` writes them.
+    """
+    robots, painted = fewest_painted(robot, job, actuators, options, layout)
+    return robots, PaintResult.of(painted)
+
+
+__all__ = ["PaintResult", "fewest_robots", "paint", "write_result"]

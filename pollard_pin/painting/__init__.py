@@ -10,7 +10,7 @@ from .api import paint_job
 from .errors import CellError, JobError, JobKindError, PlaceError, PlanError
 from .job import PaintJob, job_from_dict, load_job
 from .kinds.panel import paint_report
-from .layout.cell import LayoutOptions, fewest_robots, propose_layout
+from .layout.cell import LayoutOptions, propose_layout
 from .layout.place import PlaceOptions, PlaceResult, place
 from .options import PaintOptions
 from .policy import PlannerPolicy
@@ -18,5 +18,5 @@ from .result import PaintedJob, PaintReport
 
 __all__ = ["paint_job", "PaintOptions", "PaintedJob", "PaintReport", "PlannerPolicy", "load_job",
            "job_from_dict", "PaintJob", "place", "PlaceOptions", "PlaceResult",
-           "propose_layout", "fewest_robots", "LayoutOptions", "paint_report", "CellError",
+           "propose_layout", "LayoutOptions", "paint_report", "CellError",
            "JobError", "JobKindError", "PlaceError", "PlanError"]
