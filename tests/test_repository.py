@@ -238,3 +238,12 @@ def test_every_test_file_mirrors_a_module():
     # and the mirror rule is the one the check above uses
     assert _mirror(PACKAGE / "painting" / "plan.py") == ROOT / "tests" / "painting" / "test_plan.py"
     assert _mirror(PACKAGE / "errors.py") == ROOT / "tests" / "test_errors.py"
+
+
+def test_the_wheel_lists_every_package_folder():
+    """pyproject.toml names its packages one by one: every folder with an __init__.py is
+    among them, or a plain install leaves it out (and fails at its first import)."""
+    listed = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+                 ["packages"])
+    folders = {".".join(p.parent.relative_to(ROOT).parts) for p in PACKAGE.rglob("__init__.py")}
+    assert folders - listed == set(), f"package folders missing from pyproject: {folders - listed}"
