@@ -38,14 +38,13 @@ def test_panel_is_the_panel_planners(result, plan, film, act):
     assert result.report.motors == direct["motors"]
 
 
-def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
+def test_line_panel_is_the_line_planners(robot, line_job, line_plan, line_plan_film, act):
     """examples/line.toml: the world path and film statistics of plan_line + line_film +
     line_report at the job's speed (equal)."""
-    from pollard_pin.painting.film.line import line_film
     from pollard_pin.painting.report import line_report
 
     r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
-    U, V, _, f = line_film(line_plan)
+    U, V, _, f = line_plan_film
     direct = line_report(line_plan, f, act, {"nu": len(U), "nv": len(V)})
     assert r.kind == "line panel" and r.report.line["searched"] is False
     assert np.array_equal(r.plan.trajectory.poses, line_plan.trajectory.poses)
@@ -53,14 +52,14 @@ def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
     assert r.report.line["speed"] == direct["line"]["speed"] == line_job.line.speed
 
 
-def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, act):
+def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, line_part_film,
+                                        act):
     """A [part] on a [line]: the film of the plan seen from the part, surface_film's, and
     the report's statistics (equal)."""
-    from pollard_pin.painting.film.part import surface_film
     from pollard_pin.painting.report import line_part_report
 
     r = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False))
-    pts, f, painted, eff = surface_film(line_part_plan.in_part_frame())
+    pts, f, painted, eff = line_part_film
     direct = line_part_report(line_part_plan, pts, f, painted, eff, act)
     assert r.kind == "line part"
     assert np.array_equal(r.film.thickness, f.thickness)
@@ -104,17 +103,14 @@ def test_paint_is_a_plain_function():
     assert not callable(importlib.import_module("pollard_pin.painting"))
 
 
-def test_part_is_the_part_planners(robot, act):
+def test_part_is_the_part_planners(robot, act, curved_job, curved_plan):
     """examples/parts/curved_panel.toml at film spacing σ: plan_surface, surface_film and
     surface_report called directly give the same film and statistics (equal)."""
     from pollard_pin.painting.film.part import surface_film
-    from pollard_pin.painting.plan.part import plan_surface
     from pollard_pin.painting.report import surface_report
 
-    job = pp.load_job(Path(__file__).resolve().parents[2] / "examples" / "parts"
-                      / "curved_panel.toml")
+    job, plan = curved_job, curved_plan
     r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma, compliance=False))
-    plan = plan_surface(robot, job, act)
     pts, f, painted, eff = surface_film(plan, job.sigma)
     direct = surface_report(plan, pts, f, painted, eff, act)
     assert r.kind == "part" and np.array_equal(r.film.thickness, f.thickness)

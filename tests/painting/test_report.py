@@ -8,10 +8,7 @@ import pytest
 
 from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.film.stats import film_stats
-from pollard_pin.painting.job import PartJob
-from pollard_pin.painting.plan.part import plan_surface
 from pollard_pin.painting.report import line_table, paint_report, surface_report
-from pollard_pin.painting.workpiece.mesh import panel_part
 
 
 @pytest.fixture(scope="module")
@@ -46,11 +43,8 @@ def test_layout_film_and_motors_come_from_the_plan(plan, film, act, report):
 
 
 @pytest.fixture(scope="module")
-def part_report(robot, act, job):
-    part = panel_part(job)
-    pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
-                 sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
-    plan = plan_surface(robot, pj, act, part)
+def part_report(act, job, panel_part_plan):
+    plan = panel_part_plan  # the panel as two triangles (panel_part), by the surface planner
     pts, film, painted, te = surface_film(plan, job.sigma)
     return plan, surface_report(plan, pts, film, painted, te, act), pts, film
 
