@@ -3,16 +3,41 @@ per test session: every test that needs a plan, a film or an output folder of th
 and inputs takes it from here (loaded by tests/conftest.py). A test that plans with other
 inputs (another speed, a moved part, a patched knob) plans its own.
 
-These values are read, never written: plans and jobs are frozen dataclasses, their arrays
-and the films' are not written by any test, and an output folder's files are checked
-unchanged when the session ends (:func:`_unchanged`)."""
+These values are read, never written: plans and jobs are frozen dataclasses, the arrays of
+the plans and films are made read-only (:func:`_read_only`: a test writing into one fails),
+and an output folder's files are checked unchanged when the session ends
+(:func:`_unchanged`)."""
+import dataclasses
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
+
+
+def _read_only(value, seen=None):
+    """``value``, every numpy array reachable through its dataclass fields, tuples, lists and
+    dicts made read-only (a robot's model excepted)."""
+    seen = set() if seen is None else seen
+    if id(value) in seen:
+        return value
+    seen.add(id(value))
+    if isinstance(value, np.ndarray):
+        value.flags.writeable = False
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        if type(value).__name__ != "Robot":
+            for f in dataclasses.fields(value):
+                _read_only(getattr(value, f.name, None), seen)
+    elif isinstance(value, (list, tuple)):
+        for v in value:
+            _read_only(v, seen)
+    elif isinstance(value, dict):
+        for v in value.values():
+            _read_only(v, seen)
+    return value
 
 
 def _unchanged(folder: Path):
@@ -81,7 +106,7 @@ def plan(robot, job, act):
     """examples/paint.toml planned (plan_paint)."""
     import pollard_pin as pp
 
-    return pp.plan_paint(robot, job, act)
+    return _read_only(pp.plan_paint(robot, job, act))
 
 
 @pytest.fixture(scope="session")
@@ -89,7 +114,7 @@ def film(plan):
     """(U, V, points, Film) of :func:`plan` at the default grid (plan_film)."""
     import pollard_pin as pp
 
-    return pp.plan_film(plan)
+    return _read_only(pp.plan_film(plan))
 
 
 @pytest.fixture(scope="session")
@@ -97,7 +122,7 @@ def line_plan(robot, line_job, act):
     """examples/line.toml planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line
 
-    return plan_line(robot, line_job, act)
+    return _read_only(plan_line(robot, line_job, act))
 
 
 @pytest.fixture(scope="session")
@@ -105,7 +130,7 @@ def line_plan_film(line_plan):
     """(U, V, points, Film) of :func:`line_plan` at the default grid (line_film)."""
     from pollard_pin.painting.film.line import line_film
 
-    return line_film(line_plan)
+    return _read_only(line_film(line_plan))
 
 
 @pytest.fixture(scope="session")
@@ -114,7 +139,8 @@ def line_cell(robot, line_job, act):
     import pollard_pin as pp
     from pollard_pin.painting.cell.robots import CellRobot
 
-    return pp.plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act)
+    return _read_only(pp.plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)),
+                                   act))
 
 
 @pytest.fixture(scope="session")
@@ -122,7 +148,7 @@ def line_part_plan(robot, line_part_job, act):
     """:func:`line_part_job` planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line
 
-    return plan_line(robot, line_part_job, act)
+    return _read_only(plan_line(robot, line_part_job, act))
 
 
 @pytest.fixture(scope="session")
@@ -130,7 +156,7 @@ def line_part_film(line_part_plan):
     """surface_film of :func:`line_part_plan` seen from the part, at the default spacing."""
     from pollard_pin.painting.film.part import surface_film
 
-    return surface_film(line_part_plan.in_part_frame())
+    return _read_only(surface_film(line_part_plan.in_part_frame()))
 
 
 @pytest.fixture(scope="session")
@@ -138,7 +164,7 @@ def line_part_example_plan(robot, line_part_example_job, act):
     """examples/line_part.toml planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line
 
-    return plan_line(robot, line_part_example_job, act)
+    return _read_only(plan_line(robot, line_part_example_job, act))
 
 
 @pytest.fixture(scope="session")
@@ -146,7 +172,7 @@ def curved_plan(robot, curved_job, act):
     """examples/parts/curved_panel.toml planned (plan_surface)."""
     from pollard_pin.painting.plan.part import plan_surface
 
-    return plan_surface(robot, curved_job, act)
+    return _read_only(plan_surface(robot, curved_job, act))
 
 
 @pytest.fixture(scope="session")
@@ -155,7 +181,8 @@ def ribbed_plan(robot, act):
     import pollard_pin as pp
     from pollard_pin.painting.plan.part import plan_surface
 
-    return plan_surface(robot, pp.load_job(EXAMPLES / "parts" / "ribbed_plate.toml"), act)
+    job = pp.load_job(EXAMPLES / "parts" / "ribbed_plate.toml")
+    return _read_only(plan_surface(robot, job, act))
 
 
 @pytest.fixture(scope="session")
@@ -169,7 +196,7 @@ def panel_part_plan(robot, job, act):
     part = panel_part(job)
     pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
                  sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
-    return plan_surface(robot, pj, act, part)
+    return _read_only(plan_surface(robot, pj, act, part))
 
 
 # --- the CLI's output folders -------------------------------------------------------------
