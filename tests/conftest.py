@@ -1,5 +1,8 @@
-"""Shared fixtures: one loaded robot per session; ``slow`` tests run only with --runslow."""
+"""Session fixtures: one loaded robot, the examples planned once (tests/examples_planned.py);
+``slow`` tests run only with --runslow."""
 import pytest
+
+pytest_plugins = ["examples_planned"]
 
 
 def pytest_addoption(parser):

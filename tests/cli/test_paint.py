@@ -19,10 +19,10 @@ ACT = ROOT / "examples" / "actuators.toml"
 
 
 @pytest.fixture(scope="module")
-def painted(tmp_path_factory):
-    out = tmp_path_factory.mktemp("paint") / "out"
-    assert main(["paint", "--job", str(JOB), "--out", str(out)]) == 0
-    return out
+def painted(panel_painted):
+    """`paint --job examples/paint.toml --out DIR`, painted once per session
+    (tests/examples_planned.py): DIR."""
+    return panel_painted
 
 
 def test_outputs(painted):

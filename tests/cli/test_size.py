@@ -159,16 +159,15 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
     assert shares["switching"] < 0.15
 
 
-def test_a_paint_program_keeps_its_passes_and_its_spray_column(tmp_path, capsys):
-    """examples/paint.toml's program sprays throughout (its turnarounds too): ``--retime``
-    keeps every row, the spray column with it, at the planned times (seen: exact), and the
-    report's time-optimal cycle is the planned one, saying why (the gun-off stretches retimed:
-    tests/dynamics/test_passes.py)."""
-    assert _cli(["paint", "--job", ROOT / "examples" / "paint.toml", "--out", tmp_path],
-                capsys)[0] == 0
-    src = pp.from_csv(tmp_path / "path.csv")
+def test_a_paint_program_keeps_its_passes_and_its_spray_column(panel_painted, tmp_path,
+                                                               capsys):
+    """examples/paint.toml's program (`paint`'s path.csv: tests/examples_planned.py) sprays
+    throughout (its turnarounds too): ``--retime`` keeps every row, the spray column with it,
+    at the planned times (seen: exact), and the report's time-optimal cycle is the planned
+    one, saying why (the gun-off stretches retimed: tests/dynamics/test_passes.py)."""
+    src = pp.from_csv(panel_painted / "path.csv")
     out, rep = tmp_path / "rt.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--trajectory", tmp_path / "path.csv", "--quiet",
+    code, _, err = _cli(["size", "--trajectory", panel_painted / "path.csv", "--quiet",
                          "--actuators", EXAMPLE, "--retime", out, "--format", "json",
                          "--out", rep], capsys)
     assert code == 0, err

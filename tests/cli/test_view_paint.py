@@ -3,23 +3,19 @@ that is no film in one line, and frames the film it shows (cli/view.py, cli/view
 import json
 import os
 import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
 from cli_run import run_cli
 
-from pollard_pin.cli import main
 from pollard_pin.io.ply import read_film_ply, write_film_ply
-
-JOB = Path(__file__).resolve().parents[2] / "examples" / "paint.toml"
 
 
 @pytest.fixture(scope="module")
-def painted(tmp_path_factory):
-    out = tmp_path_factory.mktemp("paint") / "out"
-    assert main(["paint", "--job", str(JOB), "--out", str(out)]) == 0
-    return out
+def painted(panel_painted):
+    """`paint --job examples/paint.toml --out DIR`, painted once per session
+    (tests/examples_planned.py): DIR."""
+    return panel_painted
 
 
 def _copy(src, dst):

@@ -11,12 +11,11 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, ROOT
+from motor_model import EXAMPLE
 from motor_model import cli as _cli
 from retime_replay import read_retimed, replay
 from scipy.interpolate import BPoly
 
-from pollard_pin.cli import main
 from pollard_pin.dynamics import passes
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.dynamics.passes import spray_stretches, time_optimal_program
@@ -28,11 +27,10 @@ EDGE = 0.13 + 2 * 0.010  # m: the example panel's half width (y) and 2σ
 
 
 @pytest.fixture(scope="module")
-def planned_csv(tmp_path_factory):
-    out = tmp_path_factory.mktemp("paint")
-    assert main(["paint", "--job", str(ROOT / "examples" / "paint.toml"), "--out",
-                 str(out)]) == 0
-    return out / "path.csv"
+def planned_csv(panel_painted):
+    """path.csv of `paint --job examples/paint.toml`, painted once per session
+    (tests/examples_planned.py)."""
+    return panel_painted / "path.csv"
 
 
 @pytest.fixture(scope="module")

@@ -6,18 +6,12 @@ import numpy as np
 import pytest
 
 from pollard_pin.painting.film.part import surface_film
-from pollard_pin.painting.job import PartJob
-from pollard_pin.painting.plan.part import plan_surface
 from pollard_pin.painting.report import line_table, surface_report
-from pollard_pin.painting.workpiece.mesh import panel_part
 
 
 @pytest.fixture(scope="module")
-def part_report(robot, act, job):
-    part = panel_part(job)
-    pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
-                 sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
-    plan = plan_surface(robot, pj, act, part)
+def part_report(panel_part_plan, act, job):
+    plan = panel_part_plan  # the example panel as a two-triangle mesh, planned once
     pts, film, painted, te = surface_film(plan, job.sigma)
     return plan, surface_report(plan, pts, film, painted, te, act), pts, film
 

@@ -3,7 +3,6 @@ today's line job, a rigid motion of the whole scene leaves the film as it was, t
 film is the target's (and would not be if a robot sprayed past it), a robot turned about z
 on the far side of the line paints the part's back."""
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -13,7 +12,6 @@ from pollard_pin.painting.cell.plan import plan_cell, plan_cell_job
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.cell.zones import Split, Zone
 from pollard_pin.painting.film.cell import cell_panel_film
-from pollard_pin.painting.film.line import line_film
 
 
 @pytest.fixture(scope="module")
@@ -36,13 +34,15 @@ def seam_rows(cell, film, seam: float, half: float):
     return z[near], rows[near]
 
 
-def test_one_robot_at_the_origin_is_todays_line_job(robot, line_job, line_plan, act):
-    cell = plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act)
+def test_one_robot_at_the_origin_is_todays_line_job(line_job, line_plan, line_plan_film,
+                                                    line_cell):
+    cell = line_cell  # examples/line.toml as a cell of one robot at the origin
+    assert [rp.robot for rp in cell.robots] == [CellRobot("only")]
     p = cell.robots[0].plan
     assert np.array_equal(p.trajectory.t, line_plan.trajectory.t)
     assert np.array_equal(p.trajectory.poses, line_plan.trajectory.poses)
     assert np.array_equal(p.spray, line_plan.spray)
-    today = line_film(line_plan)[3].thickness
+    today = line_plan_film[3].thickness
     ours = cell_panel_film(cell)[3].thickness
     # the same samples and weights: equal (seen 0.0)
     assert np.abs(ours - today).max() <= 1e-12 * line_job.thickness

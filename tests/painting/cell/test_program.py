@@ -13,7 +13,6 @@ from pollard_pin.painting.cell.plan import plan_cell_job
 from pollard_pin.painting.cell.program import ClippedPass
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.film.cell import cell_part_film
-from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.spray.occlusion import load_painted_part
 
@@ -47,7 +46,7 @@ rotation = [0.0, 0.0, 180.0]
 
 
 def test_one_robot_at_the_origin_is_todays_line_part(robot, act, line_part_job,
-                                                     line_part_plan):
+                                                     line_part_plan, line_part_film):
     part = load_painted_part(line_part_job)
     job = replace(line_part_job, robots=(CellRobot("only"),))
     cell = plan_cell_job(robot, job, act, part)
@@ -56,7 +55,7 @@ def test_one_robot_at_the_origin_is_todays_line_part(robot, act, line_part_job,
     assert np.array_equal(p.trajectory.poses, line_part_plan.trajectory.poses)
     assert np.array_equal(p.spray, line_part_plan.spray)
     pts, f, painted, _ = cell_part_film(cell)
-    _, today, today_painted, _ = surface_film(line_part_plan.in_part_frame())
+    _, today, today_painted, _ = line_part_film
     assert np.array_equal(painted, today_painted)
     # the same samples, weights and points: equal (seen 0.0)
     assert np.abs(f.thickness - today.thickness).max() <= 1e-12 * job.thickness

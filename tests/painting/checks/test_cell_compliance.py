@@ -12,7 +12,6 @@ from cell_jobs import cell_job, panel_cell
 import pollard_pin as pp
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.dynamics.drives.stiffness import StiffnessOptions, stiffness_at
-from pollard_pin.painting.cell.plan import plan_cell
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.checks.cell_compliance import cell_compliance, robot_deflection
 from pollard_pin.painting.checks.compliance import (
@@ -21,7 +20,6 @@ from pollard_pin.painting.checks.compliance import (
     program_deflection,
 )
 from pollard_pin.painting.film.cell import cell_panel_film
-from pollard_pin.painting.film.line import line_film
 from pollard_pin.painting.options import PaintOptions
 
 RECOIL = 3.0  # N
@@ -101,11 +99,13 @@ def test_the_cells_film_change_is_each_robots_deflected_film_summed(robot, act, 
     assert worst["recoil_n"] == RECOIL and "compliance" in rep["timings"]
 
 
-def test_one_robot_at_the_origin_is_todays_line_job(robot, line_job, line_plan, act):
+def test_one_robot_at_the_origin_is_todays_line_job(robot, line_plan, line_plan_film,
+                                                    line_cell, act):
     """A cell of one robot at the origin: the compliance figures of today's line job, to
     round-off (seen equal: the same samples, poses and integration)."""
-    cell = plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act)
-    U, V, pts, f = line_film(line_plan)
+    cell = line_cell  # examples/line.toml as a cell of one robot at the origin
+    assert [rp.robot for rp in cell.robots] == [CellRobot("only")]
+    U, V, pts, f = line_plan_film
     today = compliance_entry(robot, line_plan, pts, f.thickness, act)
     ours, (mine,) = cell_compliance(robot, cell, pts, f.thickness, act)
     for key in ("standoff_error_m", "lateral_error_m", "tilt_rad", "film_error"):

@@ -114,9 +114,8 @@ def test_the_example_panel_and_line_keep_the_standoff_less_the_front_sphere(plan
                                                      abs=1e-9)  # achieves ~1e-16
 
 
-def test_the_example_parts_clearance_pinned(robot, act, line_part_plan):
-    job = load_job(ROOT / "examples" / "parts" / "ribbed_plate.toml")
-    c = plan_surface(robot, job, act).clearance
+def test_the_example_parts_clearance_pinned(ribbed_plan, line_part_plan):
+    c = ribbed_plan.clearance  # examples/parts/ribbed_plate.toml
     # the rib's top edge (15 mm high) beside pass 2: standoff − rib − the nozzle's sphere
     # at the tip's offset from the edge; figure of this code, rel 1e-6 (its bound 3 mm)
     assert c.distance == pytest.approx(0.13227581686404988, rel=1e-6)

@@ -236,20 +236,17 @@ def _window(plan, n=400):
 
 
 @pytest.mark.parametrize("kind", ["line panel", "part", "line part"])
-def test_every_kind_films_as_its_planner(robot, act, line_plan, line_part_plan, kind):
+def test_every_kind_films_as_its_planner(robot, act, line_plan, line_part_plan, ribbed_plan,
+                                         kind):
     """A line panel, a still part (examples/parts/ribbed_plate.toml), a part on a line: the
     rigid poses give the kind's own film (equal), the deflected ones a small change."""
-    from pathlib import Path
 
     from pollard_pin.painting.checks.compliance import deflected_poses, film_error, program_film
     from pollard_pin.painting.film.line import line_film
     from pollard_pin.painting.film.part import surface_film
-    from pollard_pin.painting.plan.part import plan_surface
 
-    if kind == "part":
-        root = Path(__file__).resolve().parents[3]
-        job = pp.load_job(root / "examples" / "parts" / "ribbed_plate.toml")
-        plan = _window(plan_surface(robot, job, act))
+    if kind == "part":  # examples/parts/ribbed_plate.toml
+        plan = _window(ribbed_plan)
     else:
         plan = _window(line_plan if kind == "line panel" else line_part_plan)
     sigma = plan.job.sigma

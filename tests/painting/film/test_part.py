@@ -2,7 +2,6 @@
 target and agrees with a brute-force sum of the deposition model with a per-pair segment
 test for shade."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,18 +9,12 @@ import pytest
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.film.stats import film_stats
-from pollard_pin.painting.job import load_job
-from pollard_pin.painting.plan.part import plan_surface
 from pollard_pin.painting.spray.deposition import gun_of
-
-ROOT = Path(__file__).resolve().parents[3]
 
 
 @pytest.fixture(scope="module")
-def curved(robot, act):
-    job = load_job(ROOT / "examples" / "parts" / "curved_panel.toml")
-    plan = plan_surface(robot, job, act)
-    return plan, surface_film(plan)
+def curved(curved_plan):
+    return curved_plan, surface_film(curved_plan)
 
 
 def test_curved_panel_film_within_target(curved):

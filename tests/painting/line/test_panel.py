@@ -1,5 +1,5 @@
 """A panel on a moving line (docs/model.md §24): the frames, the phases, the pass order, the
-delay, the fastest speed (fixtures line_job, line_plan: tests/painting/conftest.py)."""
+delay, the fastest speed (fixtures line_job, line_plan: tests/examples_planned.py)."""
 from dataclasses import replace
 
 import numpy as np

@@ -1,6 +1,6 @@
 """A part's mesh on a moving line (docs/model.md §24): the surface planner's passes as the
 relative program, the world path, the film in the part's frame, the fastest speed
-(fixtures line_part_job, line_part_plan: tests/painting/conftest.py)."""
+(fixtures line_part_job, line_part_plan: tests/examples_planned.py)."""
 from pathlib import Path
 
 import numpy as np

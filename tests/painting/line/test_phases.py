@@ -2,10 +2,10 @@
 interface and the fastest-speed search, against stand-in planners whose answers are known;
 where the job puts the part at t = 0 sets the wait, not the cycle: the examples' strip and
 part moved upstream give the same parts per hour, world program and film (fixtures
-line_job, line_plan: tests/painting/conftest.py). The world path of real plans is tested in
+line_job, line_plan, line_part_example_job, line_part_example_plan:
+tests/examples_planned.py). The world path of real plans is tested in
 test_panel.py (a panel) and test_part.py (a part)."""
 from dataclasses import replace
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -15,7 +15,6 @@ from pollard_pin.painting.errors import LineSpeedError, PlanError
 from pollard_pin.painting.film.line import line_film
 from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.film.stats import film_stats
-from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line.panel import plan_line
 from pollard_pin.painting.line.phases import Relative, fastest_line_speed, plan_or_name_fastest
 from pollard_pin.painting.report import line_table
@@ -104,29 +103,17 @@ def test_relative_program_interface():
 
 
 # --- the part placed further upstream ------------------------------------------------------------
-ROOT = Path(__file__).resolve().parents[3]
-
 UPSTREAM = (0.1, 0.3, 1.0)  # m
 
 
 @pytest.fixture(scope="module")
-def part_job():
-    return load_job(ROOT / "examples" / "line_part.toml")
-
-
-@pytest.fixture(scope="module")
-def part_plan(robot, part_job, act):
-    return plan_line(robot, part_job, act)
-
-
-@pytest.fixture(scope="module")
-def moved(robot, act, line_job, part_job):
+def moved(robot, act, line_job, line_part_example_job):
     """(kind, by) ↦ the example's plan ``by`` m upstream, each planned once."""
     plans = {}
 
     def plan(kind: str, by: float):
         if (kind, by) not in plans:
-            job = line_job if kind == "panel" else part_job
+            job = line_job if kind == "panel" else line_part_example_job
             plans[kind, by] = plan_line(robot, upstream(job, by), act)
         return plans[kind, by]
 
@@ -172,19 +159,21 @@ def test_panel_upstream_same_parts_per_hour(line_plan, moved, by):
 
 
 @pytest.mark.parametrize("by", UPSTREAM)
-def test_part_upstream_same_parts_per_hour(part_plan, moved, by):
-    same_cycle(part_plan, moved("part", by), by)
+def test_part_upstream_same_parts_per_hour(line_part_example_plan, moved, by):
+    same_cycle(line_part_example_plan, moved("part", by), by)
 
 
-def test_same_film_figures_upstream(line_job, line_plan, part_job, part_plan, moved):
+def test_same_film_figures_upstream(line_job, line_plan, line_part_example_job,
+                                    line_part_example_plan, moved):
     """The films themselves, 0.3 m upstream, at a coarse film resolution (the comparison,
     not the film, is tested): the same statistics to 1e-9 of the target."""
     res = 2 * line_job.sigma / 3
     a, b = line_film(line_plan, res)[3], line_film(moved("panel", 0.3), res)[3]
     assert np.abs(a.thickness - b.thickness).max() < 1e-9 * line_job.thickness  # ~1e-19 m
     (pts, fa, pa, ea), (_, fb, pb, eb) = (surface_film(p.in_part_frame(), res)
-                                          for p in (part_plan, moved("part", 0.3)))
+                                          for p in (line_part_example_plan, moved("part", 0.3)))
     assert np.array_equal(pa, pb) and ea == pytest.approx(eb, rel=1e-9)
-    sa, sb = (film_stats(f.thickness[pa], part_job.thickness, pts.areas[pa]) for f in (fa, fb))
+    sa, sb = (film_stats(f.thickness[pa], line_part_example_job.thickness, pts.areas[pa])
+              for f in (fa, fb))
     for key in ("min", "max", "mean", "within_5pct", "within_10pct"):
         assert sb[key] == pytest.approx(sa[key], rel=1e-9), key

@@ -1,28 +1,16 @@
 """The surface planner (paint/plan/part.py): its program is exact and C², a flat mesh paints
 as the panel planner does."""
-from pathlib import Path
-
 import numpy as np
-import pytest
 
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.painting.film.mesh import mesh_film
 from pollard_pin.painting.film.points import SurfacePoints
-from pollard_pin.painting.job import PartJob, load_job
-from pollard_pin.painting.plan.part import plan_surface
 from pollard_pin.painting.spray.deposition import gun_of
 from pollard_pin.painting.workpiece.mesh import panel_part
 
-ROOT = Path(__file__).resolve().parents[3]
 
-
-@pytest.fixture(scope="module")
-def curved(robot, act):
-    return plan_surface(robot, load_job(ROOT / "examples" / "parts" / "curved_panel.toml"), act)
-
-
-def test_program_is_c2_with_exact_derivatives(curved):
-    plan = curved
+def test_program_is_c2_with_exact_derivatives(curved_plan):
+    plan = curved_plan
     prog = plan.program
     # across every piece boundary: pose, rate, acceleration continuous
     for b in prog.start[1:]:
@@ -41,15 +29,14 @@ def test_program_is_c2_with_exact_derivatives(curved):
     assert np.all(tr.d_poses[[0, -1]] == 0) and np.all(tr.dd_poses[[0, -1]] == 0)
 
 
-def test_flat_mesh_paints_as_the_panel(robot, act, plan, film):
+def test_flat_mesh_paints_as_the_panel(plan, film, panel_part_plan):
     """The example panel as a two-triangle mesh: the surface planner's film on the panel
     planner's grid matches the panel planner's (same passes; the surface passes run on 3σ
     past the edges, the panel's 4σ: Φ(−3) = 0.13 % at the side edges)."""
     job = plan.job
-    part = panel_part(job)
-    pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
-                 sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
-    sp = plan_surface(robot, pj, act, part)
+    sp = panel_part_plan  # the panel as two triangles (panel_part), by the surface planner
+    part, pj = sp.part, sp.job
+    assert pj.mesh == "<panel>" and np.array_equal(part.vertices, panel_part(job).vertices)
     assert np.allclose(sorted(p.level for p in sp.layout.passes),
                        job.center[2] + np.sort(plan.offsets), atol=1e-9)
     U, V, grid, panel_film = film

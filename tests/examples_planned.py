@@ -1,0 +1,210 @@
+"""The shipped examples and the common test jobs, each planned (or painted by the CLI) once
+per test session: every test that needs a plan, a film or an output folder of the same job
+and inputs takes it from here (loaded by tests/conftest.py). A test that plans with other
+inputs (another speed, a moved part, a patched knob) plans its own.
+
+These values are read, never written: plans and jobs are frozen dataclasses, the arrays of
+the plans and films are made read-only (:func:`_read_only`: a test writing into one fails),
+and an output folder's files are checked unchanged when the session ends
+(:func:`_unchanged`)."""
+import dataclasses
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+
+
+def _read_only(value, seen=None):
+    """``value``, every numpy array reachable through its dataclass fields, tuples, lists and
+    dicts made read-only (a robot's model excepted)."""
+    seen = set() if seen is None else seen
+    if id(value) in seen:
+        return value
+    seen.add(id(value))
+    if isinstance(value, np.ndarray):
+        value.flags.writeable = False
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        if type(value).__name__ != "Robot":
+            for f in dataclasses.fields(value):
+                _read_only(getattr(value, f.name, None), seen)
+    elif isinstance(value, (list, tuple)):
+        for v in value:
+            _read_only(v, seen)
+    elif isinstance(value, dict):
+        for v in value.values():
+            _read_only(v, seen)
+    return value
+
+
+def _unchanged(folder: Path):
+    """Yield ``folder``; at the session's end, fail if a test changed anything in it."""
+    from cli_run import tree_state
+
+    before = tree_state(folder)
+    yield folder
+    assert tree_state(folder) == before, f"a test wrote into the session's folder {folder}"
+
+
+# --- the inputs ---------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def act():
+    """examples/actuators.toml."""
+    import pollard_pin as pp
+
+    return pp.load_actuators(EXAMPLES / "actuators.toml")
+
+
+@pytest.fixture(scope="session")
+def job():
+    """examples/paint.toml: a still panel."""
+    import pollard_pin as pp
+
+    return pp.load_job(EXAMPLES / "paint.toml")
+
+
+@pytest.fixture(scope="session")
+def line_job():
+    """examples/line.toml: a strip longer than the reach on a line (docs/model.md §24)."""
+    import pollard_pin as pp
+
+    return pp.load_job(EXAMPLES / "line.toml")
+
+
+@pytest.fixture(scope="session")
+def line_part_job(tmp_path_factory):
+    """A [part] on a [line] (docs/model.md §24): tests/line_parts.py's small strip."""
+    from line_parts import write_line_part
+
+    import pollard_pin as pp
+
+    return pp.load_job(write_line_part(tmp_path_factory.mktemp("line_part")))
+
+
+@pytest.fixture(scope="session")
+def line_part_example_job():
+    """examples/line_part.toml: the 0.90 m strip on a line."""
+    import pollard_pin as pp
+
+    return pp.load_job(EXAMPLES / "line_part.toml")
+
+
+@pytest.fixture(scope="session")
+def curved_job():
+    """examples/parts/curved_panel.toml: a still part."""
+    import pollard_pin as pp
+
+    return pp.load_job(EXAMPLES / "parts" / "curved_panel.toml")
+
+
+# --- plans and films, in this process -----------------------------------------------------
+@pytest.fixture(scope="session")
+def plan(robot, job, act):
+    """examples/paint.toml planned (plan_paint)."""
+    import pollard_pin as pp
+
+    return _read_only(pp.plan_paint(robot, job, act))
+
+
+@pytest.fixture(scope="session")
+def film(plan):
+    """(U, V, points, Film) of :func:`plan` at the default grid (plan_film)."""
+    import pollard_pin as pp
+
+    return _read_only(pp.plan_film(plan))
+
+
+@pytest.fixture(scope="session")
+def line_plan(robot, line_job, act):
+    """examples/line.toml planned at its line speed (plan_line)."""
+    from pollard_pin.painting.line.panel import plan_line
+
+    return _read_only(plan_line(robot, line_job, act))
+
+
+@pytest.fixture(scope="session")
+def line_plan_film(line_plan):
+    """(U, V, points, Film) of :func:`line_plan` at the default grid (line_film)."""
+    from pollard_pin.painting.film.line import line_film
+
+    return _read_only(line_film(line_plan))
+
+
+@pytest.fixture(scope="session")
+def line_cell(robot, line_job, act):
+    """examples/line.toml as a cell of one robot at the origin (plan_cell)."""
+    import pollard_pin as pp
+    from pollard_pin.painting.cell.robots import CellRobot
+
+    return _read_only(pp.plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)),
+                                   act))
+
+
+@pytest.fixture(scope="session")
+def line_part_plan(robot, line_part_job, act):
+    """:func:`line_part_job` planned at its line speed (plan_line)."""
+    from pollard_pin.painting.line.panel import plan_line
+
+    return _read_only(plan_line(robot, line_part_job, act))
+
+
+@pytest.fixture(scope="session")
+def line_part_film(line_part_plan):
+    """surface_film of :func:`line_part_plan` seen from the part, at the default spacing."""
+    from pollard_pin.painting.film.part import surface_film
+
+    return _read_only(surface_film(line_part_plan.in_part_frame()))
+
+
+@pytest.fixture(scope="session")
+def line_part_example_plan(robot, line_part_example_job, act):
+    """examples/line_part.toml planned at its line speed (plan_line)."""
+    from pollard_pin.painting.line.panel import plan_line
+
+    return _read_only(plan_line(robot, line_part_example_job, act))
+
+
+@pytest.fixture(scope="session")
+def curved_plan(robot, curved_job, act):
+    """examples/parts/curved_panel.toml planned (plan_surface)."""
+    from pollard_pin.painting.plan.part import plan_surface
+
+    return _read_only(plan_surface(robot, curved_job, act))
+
+
+@pytest.fixture(scope="session")
+def ribbed_plan(robot, act):
+    """examples/parts/ribbed_plate.toml planned (plan_surface)."""
+    import pollard_pin as pp
+    from pollard_pin.painting.plan.part import plan_surface
+
+    job = pp.load_job(EXAMPLES / "parts" / "ribbed_plate.toml")
+    return _read_only(plan_surface(robot, job, act))
+
+
+@pytest.fixture(scope="session")
+def panel_part_plan(robot, job, act):
+    """examples/paint.toml's panel as a two-triangle mesh (panel_part) planned by the surface
+    planner (plan_surface); the part is ``plan.part``."""
+    from pollard_pin.painting.job import PartJob
+    from pollard_pin.painting.plan.part import plan_surface
+    from pollard_pin.painting.workpiece.mesh import panel_part
+
+    part = panel_part(job)
+    pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
+                 sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
+    return _read_only(plan_surface(robot, pj, act, part))
+
+
+# --- the CLI's output folders -------------------------------------------------------------
+@pytest.fixture(scope="session")
+def panel_painted(tmp_path_factory):
+    """`pollard-pin paint --job examples/paint.toml --out DIR`: DIR."""
+    from pollard_pin.cli import main
+
+    out = tmp_path_factory.mktemp("paint") / "out"
+    assert main(["paint", "--job", str(EXAMPLES / "paint.toml"), "--out", str(out)]) == 0
+    yield from _unchanged(out)
