@@ -28,7 +28,7 @@ def write_robots(robots, path: str | Path, header: str = "") -> Path:
 
     Parameters
     ----------
-    robots : sequence of CellRobot
+    robots : tuple of CellRobot
         The cell's robots (``paint --robots``' proposal).
     path : str or Path
         The TOML file (robots.toml).
