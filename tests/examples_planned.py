@@ -104,17 +104,17 @@ def curved_job():
 @pytest.fixture(scope="session")
 def plan(robot, job, act):
     """examples/paint.toml planned (plan_paint)."""
-    import pollard_pin as pp
+    from pollard_pin.painting.plan import plan_paint
 
-    return _read_only(pp.plan_paint(robot, job, act))
+    return _read_only(plan_paint(robot, job, act))
 
 
 @pytest.fixture(scope="session")
 def film(plan):
     """(U, V, points, Film) of :func:`plan` at the default grid (plan_film)."""
-    import pollard_pin as pp
+    from pollard_pin.painting.film import plan_film
 
-    return _read_only(pp.plan_film(plan))
+    return _read_only(plan_film(plan))
 
 
 @pytest.fixture(scope="session")
@@ -136,11 +136,10 @@ def line_plan_film(line_plan):
 @pytest.fixture(scope="session")
 def line_cell(robot, line_job, act):
     """examples/line.toml as a cell of one robot at the origin (plan_cell)."""
-    import pollard_pin as pp
+    from pollard_pin.painting.cell.plan import plan_cell
     from pollard_pin.painting.cell.robots import CellRobot
 
-    return _read_only(pp.plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)),
-                                   act))
+    return _read_only(plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act))
 
 
 @pytest.fixture(scope="session")

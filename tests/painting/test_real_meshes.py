@@ -92,7 +92,9 @@ def test_paint(robot, placed, name, kind):
     if kind == "line":
         x, y, z = job.position
         job = replace(job, position=(x, y - UPSTREAM, z), line=LINE)
-    res = paint(robot, job, options=PaintOptions(resolution=RESOLUTION))
+    # compliance is not asserted here (tests/painting/checks/test_compliance.py checks it on
+    # the example parts): its second film integration is left out
+    res = paint(robot, job, options=PaintOptions(resolution=RESOLUTION, compliance=False))
     rep = res.report.data
     th = rep["thickness"]
     assert abs(th["mean"] / job.thickness - 1) < 0.05, th

@@ -78,7 +78,7 @@ def test_options_and_bad_counts(robot):
 def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     tried = []
 
-    def paint(robot, job, actuators=None, options=None):
+    def paint_job(robot, job, actuators=None, options=None):
         tried.append(len(job.robots))
         if len(job.robots) < 3:
             raise LineSpeedError("too fast for the motors", too_fast=True)
@@ -86,7 +86,7 @@ def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
 
     import pollard_pin.painting.api as api
 
-    monkeypatch.setattr(api, "paint", paint)
+    monkeypatch.setattr(api, "paint_job", paint_job)
     robots, result = fewest_robots(robot, tall_panel())
     assert (tried, len(robots), result) == ([2, 3], 3, "painted")
     tried.clear()

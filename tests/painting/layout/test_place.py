@@ -76,7 +76,7 @@ def test_placed_job_paints(robot, placed, tmp_path):
     job = load_job(path)
     assert job.position == result.job.position and Path(job.mesh).samefile(
         load_job(CURVED).mesh)
-    res = paint(robot, job, options=PaintOptions(resolution=0.01))
+    res = paint(robot, job, options=PaintOptions(resolution=0.01, compliance=False))
     th = res.report.thickness
     assert abs(th["mean"] / job.thickness - 1) < 0.05, th
 
