@@ -147,3 +147,21 @@ def test_bad_options(options, fragment):
 def test_panel_job_refused(robot):
     with pytest.raises(PollardError, match="expected a part's job"):
         place(robot, load_job(ROOT / "examples" / "paint.toml"))
+
+
+def test_a_side_longer_than_the_reach_is_said_alone(robot):
+    """The long strip (1.0 m of passes along y, 0.13 m across): wider than the reach's widest
+    extent, so no height would make it fit. The refusal says by how much the width exceeds
+    the reach, never the whole height as if the reach were nothing (it said "taller by 127 mm
+    (or wider by 390 mm)", the strip's full height)."""
+    job = replace(load_job(ROOT / "examples" / "line_part.toml"), line=None)
+    with pytest.raises(PlaceError) as exc:
+        place(robot, job, PlaceOptions(max_turn=0.0))
+    msg = str(exc.value)
+    assert "wider than the reach by" in msg and "taller" not in msg, msg
+    assert len(msg) <= 250 and "\n" not in msg
+    by = float(msg.split("reach by ")[1].split(" mm")[0])
+    width = float(msg.split("passes ")[1].split(" ×")[0])
+    reach = float(msg.split("reach at most ")[1].split(" ×")[0])
+    assert abs(by / 1e3 - (width - reach)) <= 0.01, msg  # said as the difference, ±1 cell
+    assert 0.1 < reach < width - 0.1, msg  # a reach, neither nothing nor the strip
