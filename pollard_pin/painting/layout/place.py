@@ -26,7 +26,9 @@ import numpy as np
 from scipy import ndimage
 
 from ...analytic.taskspace import angles_from_rotation
+from ...checks import file_path, instance
 from ...errors import InputError
+from ...model.build import check_robot
 from ...workspace.grid import reachable_box
 from ...workspace.options import CHUNK
 from ...workspace.reach import evaluate
@@ -132,7 +134,7 @@ class PlaceResult:
         """Write the placed job as TOML (``paint --job`` reads it as is)."""
         from ...io.job_file import write_job
 
-        return write_job(self.job, Path(path), f"placed by pollard-pin place: turned "
+        return write_job(self.job, file_path(path, "path"), f"placed by pollard-pin place: turned "
                          f"{self.turn:+g}° about the facing axis, margin "
                          f"{self.margin * 1e3:.0f} mm along every axis")
 
@@ -284,12 +286,11 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None,
     pollard_pin.errors.InputError
         A job that is not a part's, options of the wrong type.
     """
-    if not isinstance(job, PartJob):
-        raise InputError(f"place: a {type(job).__name__}, expected a part's job (PartJob, "
-                         "from load_job on a job with [part])")
+    check_robot(robot)
+    instance(job, "job", PartJob, "a part's job (PartJob, from load_job on a job with [part])")
     opts = PlaceOptions() if options is None else options
-    if not isinstance(opts, PlaceOptions):
-        raise InputError(f"options: a {type(opts).__name__}, expected PlaceOptions")
+    instance(opts, "options", PlaceOptions, "PlaceOptions or None")
+    instance(policy, "policy", PlannerPolicy, "PlannerPolicy")
     base = load_part(job.mesh, job.unit, (0.0, 0.0, 0.0), job.rotation, job.facing,
                      MAX_ANGLE if job.max_angle is None else job.max_angle)
     first = _turned(job, base, 0.0)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 from pollard_pin.errors import PollardError
 from pollard_pin.outputs import paint
@@ -16,6 +17,7 @@ from pollard_pin.painting.layout.place import PlaceOptions, place
 from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.passes.program import pass_poses
 from pollard_pin.painting.passes.surface import surface_layout
+from pollard_pin.painting.policy import DEFAULT_POLICY
 from pollard_pin.painting.workpiece.mesh import load_job_part
 from pollard_pin.workspace.reach import evaluate
 
@@ -165,3 +167,20 @@ def test_a_side_longer_than_the_reach_is_said_alone(robot):
     reach = float(msg.split("reach at most ")[1].split(" ×")[0])
     assert abs(by / 1e3 - (width - reach)) <= 0.01, msg  # said as the difference, ±1 cell
     assert 0.1 < reach < width - 0.1, msg  # a reach, neither nothing nor the strip
+
+
+@pytest.mark.parametrize("arg", ["robot", "job", "options", "policy"])
+@pytest.mark.parametrize("wrong", WRONG, ids=repr)
+def test_place_refuses_a_wrong_argument(robot, arg, wrong):
+    """place's robot, job, options and policy: None (where it is not the default), the wrong
+    types and NaN are one line naming the argument, before anything is solved."""
+    if wrong is None and arg in ("options", "policy"):
+        return
+    args = {"robot": robot, "job": load_job(CURVED), "options": None,
+            "policy": DEFAULT_POLICY, arg: wrong}
+    refused(lambda: place(args["robot"], args["job"], args["options"], args["policy"]), arg)
+
+
+@pytest.mark.parametrize("path", [v for v in WRONG if not isinstance(v, str)], ids=repr)
+def test_write_refuses_what_is_not_a_path(placed, path):
+    refused(lambda: placed[1].write(path), "path")
