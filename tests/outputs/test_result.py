@@ -125,3 +125,9 @@ def test_paint_refuses_a_wrong_argument(robot, arg, wrong):
             arg: wrong}
     refused(lambda: pp.paint(args["robot"], args["job"], None, args["options"]), arg)
     refused(lambda: pp.fewest_robots(args["robot"], args["job"], None, args["options"]), arg)
+
+
+@pytest.mark.parametrize("fmt", WRONG + ["xlsx"], ids=repr)
+def test_write_refuses_a_format_it_does_not_write(result, tmp_path, fmt):
+    refused(lambda: result.write(tmp_path / "out", fmt), "format")
+    assert not (tmp_path / "out").exists()
