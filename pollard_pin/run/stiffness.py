@@ -23,6 +23,8 @@ from ..dynamics.drives.stiffness import (
 from ..io.table import TableWriter, write_table
 from ..kinematics.margins import Margins
 from ..model.build import check_robot
+from ..paths.curves import ThesisTrajectory
+from ..paths.trajectory import Trajectory
 from .stream import StreamOptions, solve_windows
 
 
@@ -62,6 +64,8 @@ def stiffness_windows(robot, traj, drives, options: StiffnessOptions | None = No
     its checks are ``run``'s (errors name the sample counted from the start); ``drives``: see
     :func:`drive_stiffness`."""
     check_robot(robot)
+    instance(traj, "traj", (Trajectory, ThesisTrajectory), "a Trajectory (or the lazy thesis "
+             "curve)")
     k = drive_stiffness(drives)
     options = instance(options, "options", StiffnessOptions, "StiffnessOptions or None",
                        none=True) or StiffnessOptions()

@@ -80,11 +80,13 @@ def test_stats_start_empty():
 
 
 @pytest.mark.parametrize("arg, wrong", [
-    *(("robot", w) for w in WRONG), *(("options", w) for w in WRONG if w is not None),
+    *(("robot", w) for w in WRONG), *(("traj", w) for w in WRONG),
+    *(("options", w) for w in WRONG if w is not None),
     *(("margins", w) for w in WRONG if w is not None)], ids=repr)
 def test_a_wrong_argument_is_one_line(robot, arg, wrong):
-    """stiffness' robot, options and margins: one line naming the argument, nothing solved."""
-    args = {"robot": robot, "options": None, "margins": None, arg: wrong}
-    traj = pp.thesis_trajectory()
-    refused(lambda: stiffness(args["robot"], traj, K, args["options"],
+    """stiffness' robot, traj, options and margins: one line naming the argument, nothing
+    solved."""
+    args = {"robot": robot, "traj": pp.thesis_trajectory(), "options": None, "margins": None,
+            arg: wrong}
+    refused(lambda: stiffness(args["robot"], args["traj"], K, args["options"],
                               margins=args["margins"]), arg)
