@@ -1,10 +1,14 @@
-"""The value rules every layer shares (a real number, finite, within bounds), written once. No
-numpy: the CLI's argument types use them too. Each caller passes its own error family (a
-callable taking the one-line message), so a library error still speaks of values and units
-and the CLI adds the flag name."""
+"""The value rules every layer shares (a real number, finite, within bounds; an argument of
+the expected type; a file path), written once. No numpy: the CLI's argument types use them too.
+Each caller passes its own error family (a callable taking the one-line message), so a library
+error still speaks of values and units and the CLI adds the flag name. The public entry points
+check their arguments with these once, where they are called, so a user's mistake in Python is
+the same one line the CLI gives, never a traceback from deep inside."""
 from __future__ import annotations
 
 import math
+import os
+from pathlib import Path
 
 from .errors import InputError
 
@@ -37,3 +41,32 @@ def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
     if wrong is not None:
         raise error(f"{name} = {value!r}: {wrong}{why}")
     return x
+
+
+def _shown(value) -> str:
+    """``value`` short, for a one-line message."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def instance(value, name: str, kinds, expected: str, *, none: bool = False,
+             error=InputError):
+    """``value`` when it is one of ``kinds`` (or None, with ``none``); else
+    ``error("<name> = <value>: expected <expected>, got <type>")``."""
+    if (none and value is None) or isinstance(value, kinds):
+        return value
+    raise error(f"{name} = {_shown(value)}: expected {expected}, got {type(value).__name__}")
+
+
+def file_path(value, name: str, *, error=InputError) -> Path:
+    """``value`` (a str or an os.PathLike naming a file, not empty, no NUL) as a Path; else
+    ``error("<name> = <value>: ...")``."""
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str):
+        raise error(f"{name} = {_shown(value)}: expected a file path (str or pathlib.Path), "
+                    f"got {type(value).__name__}")
+    if not value or "\0" in value:
+        raise error(f"{name} = {_shown(value)}: " + ("an empty path" if not value else
+                                                      "a path with a NUL character"))
+    return Path(value)

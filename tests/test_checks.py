@@ -3,10 +3,11 @@ error family."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
-from pollard_pin.checks import problem, real
+from pollard_pin.checks import file_path, instance, problem, real
 from pollard_pin.errors import InputError
 
 
@@ -36,3 +37,31 @@ def test_real_speaks_through_the_callers_family():
     with pytest.raises(Mine, match=r"^w = -1: must be >= 0 \(a margin\)$"):
         real(-1, "w", 0.0, why=" (a margin)", error=Mine)
     assert real(3, "w", 0.0) == 3.0 and isinstance(real(3, "w"), float)
+
+
+def test_instance_names_the_argument_and_the_type():
+    assert instance(2, "n", int, "an int") == 2 and instance(None, "n", int, "", none=True) is None
+    with pytest.raises(InputError) as exc:
+        instance("x" * 500, "count", int, "a whole number")
+    msg = str(exc.value)
+    assert msg.startswith("count = 'xxx") and msg.endswith("expected a whole number, got str")
+    assert len(msg) < 120  # the value shown short
+    with pytest.raises(InputError, match="n = None: expected an int, got NoneType"):
+        instance(None, "n", int, "an int")
+
+
+class Refused(Exception):
+    pass
+
+
+@pytest.mark.parametrize("value, says", [
+    (None, "got NoneType"), (3, "got int"), (float("nan"), "got float"), (b"x", "got bytes"),
+    ("", "an empty path"), ("a\0b", "a NUL character"), ([1], "got list")])
+def test_file_path_refuses_what_names_no_file(value, says):
+    with pytest.raises(Refused) as exc:
+        file_path(value, "path", error=Refused)
+    assert str(exc.value).startswith("path = ") and says in str(exc.value)
+
+
+def test_file_path_takes_a_str_or_a_path():
+    assert file_path("a/b.toml", "p") == Path("a/b.toml") == file_path(Path("a/b.toml"), "p")

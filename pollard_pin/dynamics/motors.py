@@ -15,6 +15,7 @@ Along a path s ∈ [0, 1] the closed-loop joint torques are exactly τ = a(s)·s
 """
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path, instance
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, number, read_toml
@@ -209,8 +211,22 @@ def load_actuators(path: str | Path | None = None,
         from ..model.paths import models_dir
 
         path = models_dir() / "actuators.toml"
+    file_path(path, "path", error=ActuatorError)  # checked; the messages show it as given
+    if (not isinstance(names, (tuple, list)) or not names
+            or not all(isinstance(n, str) for n in names)):
+        raise ActuatorError(f"names = {names!r:.60}: expected a tuple of actuator names (str)")
     d = read_toml(path, "actuator file", ActuatorError)
     return actuators_from_dict(d, str(path), names)
+
+
+def as_actuators(value, name: str = "actuators") -> Actuators | None:
+    """The motor ratings an entry point was given: None as is (the default ratings), an
+    :class:`Actuators`, or a file path (str or Path) read by :func:`load_actuators`; anything
+    else one :class:`~pollard_pin.errors.InputError` line naming the argument ``name``."""
+    if isinstance(value, (str, os.PathLike)):
+        return load_actuators(value)
+    return instance(value, name, Actuators, "Actuators, an actuator file's path or None",
+                    none=True)
 
 
 # --- the motor model -------------------------------------------------------------------------

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from ..checks import instance
 from ..errors import InputError
 from ..names import ACTUATED, PASSIVE, TREE_JOINTS
 from .params import Params, load_params
@@ -256,6 +257,12 @@ def home_joint_values(params: Params) -> dict[str, float]:
 def generate(params: Params) -> tuple[str, str]:
     """URDF and SRDF text for these parameters."""
     return generate_urdf(params), generate_srdf(params, home_joint_values(params))
+
+
+def check_robot(robot, name: str = "robot") -> Robot:
+    """``robot`` when it is a :class:`Robot`; else one :class:`~pollard_pin.errors.InputError`
+    line naming the argument ``name`` (the public entry points' first check)."""
+    return instance(robot, name, Robot, "a Robot (pollard_pin.load())")
 
 
 def load(params: Params | str | Path | None = None) -> Robot:

@@ -321,7 +321,8 @@ def did_you_mean(word: str, choices) -> str:
     """`` (did you mean 'x'?)`` for the closest of ``choices`` to a misspelt ``word``, or ""."""
     import difflib
 
-    close = difflib.get_close_matches(word, list(choices), n=1)
+    # str(): a key built in Python may be any object (1, None); a file's is always a str
+    close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1)
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 

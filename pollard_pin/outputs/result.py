@@ -7,6 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from pathlib import Path
 
+from ..checks import file_path
 from ..dynamics.motors import Actuators
 from ..painting.api import paint_job
 from ..painting.layout.cell import LayoutOptions
@@ -42,7 +43,7 @@ class PaintResult(PaintedJob):
         """Write path.csv, thickness.csv|parquet, film.ply, paint.json and thickness.png in
         ``folder`` (a cell: each robot's path.csv in its own folder), every one or none, as
         ``pollard-pin paint`` does; the film table's path."""
-        return write_result(self, Path(folder), format)
+        return write_result(self, file_path(folder, "folder"), format)
 
 
 def write_result(result: PaintedJob, folder: Path, format: str = "csv") -> Path:
@@ -62,7 +63,7 @@ def write_result(result: PaintedJob, folder: Path, format: str = "csv") -> Path:
     return writer(result, Path(folder), format)
 
 
-def paint(robot, job, actuators: Actuators | None = None,
+def paint(robot, job, actuators: Actuators | str | Path | None = None,
           options: PaintOptions | None = None) -> PaintResult:
     """Plan the job (a panel or a part, still or on a line, painted by one robot or by a
     cell of several), integrate its film and compute its report (docs/model.md §20–§24,
@@ -83,9 +84,10 @@ def paint(robot, job, actuators: Actuators | None = None,
         The model (:func:`pollard_pin.load`).
     job : PaintJob or pollard_pin.painting.job.PartJob
         From :func:`~pollard_pin.load_job`.
-    actuators : Actuators or None, optional
-        The motor ratings the program must keep (default: the job's ``actuators`` file, else
-        the package's, ``examples/actuators.toml``).
+    actuators : Actuators or str or Path or None, optional
+        The motor ratings the program must keep, or an actuator file's path (read by
+        :func:`~pollard_pin.load_actuators`) (default: the job's ``actuators`` file, else the
+        package's, ``examples/actuators.toml``).
     options : PaintOptions or None, optional
         Film resolution, the line speed search.
 
@@ -138,7 +140,7 @@ def fewest_robots(robot, job, actuators: Actuators | None = None,
         The model (:func:`pollard_pin.load`).
     job : PaintJob or pollard_pin.painting.job.PartJob
         A job with ``[line]`` and no ``[[robot]]`` tables.
-    actuators : Actuators or None, optional
+    actuators : Actuators or str or Path or None, optional
         The motor ratings (default: the job's file, else the package's).
     options : PaintOptions or None, optional
         As for :func:`paint`.

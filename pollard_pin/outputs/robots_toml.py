@@ -5,20 +5,20 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..io.atomic import atomic_open, check_outputs
+from ..io.job_file import toml_value
 
 
-def _number(x: float) -> str:
-    return repr(float(x) + 0.0)  # TOML floats; no -0.0
+def _numbers(xs) -> str:
+    return toml_value([float(x) + 0.0 for x in xs])  # TOML floats; no -0.0
 
 
 def robots_toml(robots, header: str = "") -> str:
     """The ``[[robot]]`` tables of ``robots`` (CellRobots), ``header`` as comment lines."""
     lines = [f"# {h}" if h else "#" for h in header.splitlines()]
     for r in robots:
-        base = "base = [" + ", ".join(_number(c) for c in r.base) + "]"
-        turn = "rotation = [" + ", ".join(_number(c) for c in r.rotation) + "]"
+        base, turn = f"base = {_numbers(r.base)}", f"rotation = {_numbers(r.rotation)}"
         width = max(len(base), len(turn)) + 2
-        lines += ["", "[[robot]]", f'name = "{r.name}"', f"{base:<{width}}# m, world",
+        lines += ["", "[[robot]]", f"name = {toml_value(r.name)}", f"{base:<{width}}# m, world",
                   f"{turn:<{width}}# deg about world x, y, z (R = Rx·Ry·Rz)"]
     return "\n".join(lines).lstrip("\n") + "\n"
 

@@ -7,9 +7,11 @@ floor, ``pollard_pin.outputs.result``) returns the same as a result that writes 
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
-from ..dynamics.motors import Actuators
+from ..dynamics.motors import Actuators, as_actuators
 from ..errors import InputError
+from ..model.build import check_robot
 from .job import PartJob
 from .kinds import kind_of
 from .options import PaintOptions
@@ -33,7 +35,7 @@ def film_spacing_of(job, resolution: float | None = None) -> float:
     return (part_resolution if isinstance(job, PartJob) else film_resolution)(job, resolution)
 
 
-def paint_job(robot, job, actuators: Actuators | None = None,
+def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
               options: PaintOptions | None = None) -> PaintedJob:
     """Plan the job, integrate its film and compute its report, writing nothing: the
     computation of :func:`pollard_pin.paint` (which returns it as a
@@ -46,8 +48,10 @@ def paint_job(robot, job, actuators: Actuators | None = None,
         The model (:func:`pollard_pin.load`).
     job : PaintJob or pollard_pin.painting.job.PartJob
         From :func:`~pollard_pin.load_job`.
-    actuators : Actuators or None, optional
-        The motor ratings (default: the job's ``actuators`` file, else the package's).
+    actuators : Actuators or str or Path or None, optional
+        The motor ratings, or an actuator file's path (read by
+        :func:`~pollard_pin.load_actuators`) (default: the job's ``actuators`` file, else the
+        package's).
     options : PaintOptions or None, optional
         Film resolution, the line speed search, the planners' policy.
 
@@ -55,8 +59,15 @@ def paint_job(robot, job, actuators: Actuators | None = None,
     -------
     PaintedJob
         The plan, the film and the report.
+
+    Raises
+    ------
+    pollard_pin.errors.InputError
+        An argument of the wrong type (one line naming it), before anything is planned.
     """
+    check_robot(robot)
     kind = kind_of(job)
+    actuators = as_actuators(actuators)
     options = PaintOptions() if options is None else options
     if not isinstance(options, PaintOptions):
         raise InputError(f"options: a {type(options).__name__}, expected PaintOptions")

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path, instance
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
 from .cell.robots import CellRobot, robots_from_tables
@@ -291,8 +292,10 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
     >>> job.width, job.height, job.line is None
     (0.26, 0.12, True)
     """
+    instance(source, "source", str, "a str (what the messages call the job)")
     if not isinstance(d, Mapping):
-        raise JobError(f"{source}: expected the tables [panel], [gun] and [job]")
+        raise JobError(f"{source}: d = {d!r:.40}: a {type(d).__name__}, expected the tables "
+                       "[panel], [gun] and [job] (a dict)")
     tables = (*REQUIRED, "part", "line", "robot")
     for name in d:
         if name not in tables:
@@ -378,6 +381,13 @@ def _job_values(source: str, job: Mapping) -> dict:
     return values
 
 
+def check_job(job, name: str = "job") -> PaintJob | PartJob:
+    """``job`` when it is a paint job (a :class:`PaintJob` or :class:`PartJob`); else one
+    :class:`~pollard_pin.errors.InputError` line naming the argument ``name``."""
+    return instance(job, name, (PaintJob, PartJob), "a paint job (PaintJob or PartJob, from "
+                    "load_job)")
+
+
 def load_job(path: str | Path) -> PaintJob | PartJob:
     """Read and check a paint job file (format: ``examples/paint.toml``, or
     ``examples/parts/*.toml`` with a [part]). A relative ``job.actuators`` or ``part.mesh`` is
@@ -418,6 +428,7 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
     """
     from dataclasses import replace
 
+    file_path(path, "path", error=JobError)  # checked; the source is the path as given
     job = job_from_dict(read_toml(path, "paint job file", JobError), str(path))
     if job.actuators is not None and not Path(job.actuators).is_absolute():
         job = replace(job, actuators=str(Path(path).parent / job.actuators))

@@ -82,6 +82,22 @@ class PlannerPolicy:
         at most ``max_step``, and ``step_sigma`` σ of travel."""
         return min(self.max_step, self.step_sigma * sigma / speed)
 
+    def coarser(self, dt: float, speed_set: bool | None = None) -> str:
+        """What else takes fewer path samples at the time step ``dt`` [s], a shorter path
+        aside: a faster gun where the step is ``max_step`` (``job.speed`` where the job sets
+        it, ``speed_set``; a thinner film or more flow where it does not; None: either);
+        where the step is ``step_sigma`` σ of travel the gun's speed cancels out (samples =
+        path length / (``step_sigma`` σ)) and only a wider spray does."""
+        if dt < self.max_step:
+            return "a wider spray (gun.sigma)"
+        return {True: "a faster gun (job.speed)", False: "a thinner film, more flow"}.get(
+            speed_set, "a faster gun (a thinner film, more flow or job.speed)")
+
+    @property
+    def budget_fix(self) -> str:
+        """The budget's own knob, said last in a sample-budget refusal."""
+        return "or a larger policy.max_path_samples"
+
 
 DEFAULT_POLICY = PlannerPolicy()  # the planners' default, shared (it is frozen)
 

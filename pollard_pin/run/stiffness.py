@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..checks import instance
 from ..dynamics.drives.stiffness import (
     DEFLECTION,
     FREQUENCIES,
@@ -21,6 +22,9 @@ from ..dynamics.drives.stiffness import (
 )
 from ..io.table import TableWriter, write_table
 from ..kinematics.margins import Margins
+from ..model.build import check_robot
+from ..paths.curves import ThesisTrajectory
+from ..paths.trajectory import Trajectory
 from .stream import StreamOptions, solve_windows
 
 
@@ -59,8 +63,13 @@ def stiffness_windows(robot, traj, drives, options: StiffnessOptions | None = No
     :class:`~pollard_pin.paths.trajectory.Trajectory` or the lazy thesis curve). The IK and
     its checks are ``run``'s (errors name the sample counted from the start); ``drives``: see
     :func:`drive_stiffness`."""
+    check_robot(robot)
+    instance(traj, "traj", (Trajectory, ThesisTrajectory), "a Trajectory (or the lazy thesis "
+             "curve)")
     k = drive_stiffness(drives)
-    options = StiffnessOptions() if options is None else options
+    options = instance(options, "options", StiffnessOptions, "StiffnessOptions or None",
+                       none=True) or StiffnessOptions()
+    instance(margins, "margins", Margins, "Margins or None", none=True)
     for start, result, cols in solve_windows(robot, traj, stream, dynamics=False,
                                              margins=margins, joint_limits=joint_limits):
         m = len(cols["t"])  # the window without its overlap sample

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..model.build import check_robot
 from .lattice import AXES, COORD_DECIMALS, Grid, make_grid, parse_plane, reach_sphere
 from .options import (
     CHUNK,
@@ -175,6 +176,7 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
     >>> round(ws.summary["area"], 3), ws.rectangle.size            # m², (m, m)
     (0.189, (0.6, 0.25))
     """
+    check_robot(robot)
     o = WorkspaceOptions() if options is None else options
     if not isinstance(o, WorkspaceOptions):
         raise WorkspaceError(f"options must be a WorkspaceOptions, got {type(o).__name__}")

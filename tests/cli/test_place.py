@@ -48,3 +48,25 @@ def test_bad_inputs(tmp_path, capsys):
     _refused(["place", "--job", tmp_path / "none.toml"], capsys, tmp_path, "none.toml")
     _refused(["place", "--job", job, "--step", "0.5"], capsys, tmp_path,
              "--step: 0.5: expected a number in [0.001, 0.2]")
+
+
+def test_a_cell_job_is_placed_keeping_its_robots(tmp_path, capsys, monkeypatch):
+    """A part job with [[robot]] tables (a cell, on a line): placed as any part job (for the
+    robot at the world origin), written with the same robots, to a file or to stdout ('-')."""
+    curved = ROOT / "examples" / "parts" / "curved_panel.toml"
+    job = tmp_path / "cell.toml"
+    job.write_text(curved.read_text().replace('"curved_panel.stl"', '"{}"'.format(
+        (curved.parent / "curved_panel.stl").as_posix()))
+        + '\n[line]\nspeed = 0.03\ndirection = [0.0, 1.0, 0.0]\n\n[[robot]]\nname = "low"\n'
+        'base = [0.0, 0.0, 0.0]\n\n[[robot]]\nname = "high"\nbase = [0.0, 0.75, 0.17]\n')
+    monkeypatch.chdir(tmp_path)
+    for out in (tmp_path / "p.toml", "-"):
+        code, text, err = run_cli(["place", "--job", job, "--out", out, "--max-turn", "0"],
+                                  capsys)
+        assert code == 0 and "Traceback" not in err, err
+        if out == "-":  # the job, then the summary line
+            (tmp_path / "stdout.toml").write_text(text.split("\nposition [")[0])
+        placed = load_job(tmp_path / ("stdout.toml" if out == "-" else out))
+        given = load_job(job)
+        assert placed.robots == given.robots and len(placed.robots) == 2
+        assert placed.line == given.line and placed.position != given.position

@@ -3,11 +3,14 @@ scaling against a brute-force scan of durations, and the motors as joint losses.
 model against a ``run`` CSV and bad actuator files, through ``size``: tests/cli/test_size.py;
 the path's exact dynamics: tests/dynamics/test_path.py.)"""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from motor_model import EXAMPLE, NAMES, RATINGS
 from motor_model import motor as _motor
 from motor_model import rms as _rms
+from refusals import WRONG, refused
 
 import pollard_pin as pp
 from pollard_pin.dynamics import motors as A
@@ -117,3 +120,20 @@ def test_breakaway_friction_at_rest_counts_plus_or_minus_c(act):
     q_s = np.array([[0.0, 1.0], [1.0, 1.0], [-1.0, 1.0], [-2.0, 1.0]])
     np.testing.assert_array_equal(A.breakaway(q_s), [[1, 0], [1, 0], [1, 0], [0, 0]])
     np.testing.assert_array_equal(A.breakaway(q_s, at_rest=[0, 0, 0, 1])[:, 1], [0, 0, 0, 1])
+
+
+@pytest.mark.parametrize("wrong", [v for v in WRONG if v is not None and not isinstance(v, str)],
+                         ids=repr)
+def test_load_actuators_refuses_what_is_not_a_path(wrong):
+    refused(lambda: pp.load_actuators(wrong), "path")
+    refused(lambda: pp.load_actuators(None, names=wrong), "names")
+
+
+def test_as_actuators_reads_a_path_and_refuses_the_rest():
+    """An entry point's ``actuators``: None as is, Actuators as is, a path read by
+    load_actuators (str or Path), anything else one line naming the argument."""
+    act = pp.load_actuators(EXAMPLE)
+    assert A.as_actuators(None) is None and A.as_actuators(act) is act
+    assert A.as_actuators(str(EXAMPLE)) == act == A.as_actuators(Path(EXAMPLE))
+    for wrong in (3, float("nan"), [1, 2], {"a": 1}, b"bytes"):
+        refused(lambda w=wrong: A.as_actuators(w), "actuators")

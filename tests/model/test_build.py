@@ -25,11 +25,13 @@ import pytest
 from clean_run import run_clean
 
 import pollard_pin
+from pollard_pin.errors import InputError
 from pollard_pin.kinematics.closure import forward_kinematics, solve_closure, tool_pose
 from pollard_pin.kinematics.errors import ClosureError
 from pollard_pin.model.build import (
     ModelFileError,
     build,
+    check_robot,
     constraint_jacobian,
     constraint_residual,
     load,
@@ -848,3 +850,12 @@ def test_residual_and_jacobian_in_one_pass_and_the_constraint_vectors(robot):
         assert isinstance(r.constraint_models, pin.StdVec_RigidConstraintModel)
         assert isinstance(r.constraint_datas, pin.StdVec_RigidConstraintData)
         assert len(r.constraint_pairs) == 2
+
+
+def test_check_robot_names_the_argument(robot):
+    """The public entry points' first check: a Robot as is, anything else one InputError
+    line naming the argument."""
+    assert check_robot(robot) is robot
+    for wrong in (None, "robot", 3, float("nan")):
+        with pytest.raises(InputError, match=r"^robot = .*expected a Robot \(pollard_pin.load"):
+            check_robot(wrong)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 import pollard_pin as pp
 from pollard_pin.errors import InputError
@@ -93,3 +94,40 @@ def test_a_painted_job_becomes_a_result_that_writes(robot, result, tmp_path):
     ja, jb = (json.loads((tmp_path / d / "paint.json").read_text()) for d in "ab")
     assert {k: v for k, v in ja.items() if k != "timings"} == \
         {k: v for k, v in jb.items() if k != "timings"}
+
+
+@pytest.mark.parametrize("folder", [v for v in WRONG if not isinstance(v, str)])
+def test_write_refuses_what_is_not_a_folder(result, folder):
+    """write(None), write(3), write(nan)…: one line naming the folder, nothing written."""
+    refused(lambda: result.write(folder), "folder")
+
+
+def test_paint_takes_an_actuator_file(robot, result):
+    """pp.paint(robot, job, "actuators.toml"): the path is read as load_actuators reads it;
+    anything else where the ratings go is one line naming ``actuators``."""
+    job = pp.load_job(EXAMPLES / "paint.toml")
+    by_path = pp.paint(robot, job, str(EXAMPLES / "actuators.toml"),
+                       pp.PaintOptions(compliance=False))
+    assert by_path.actuators == result.actuators
+    assert by_path.report.cycle_time == result.report.cycle_time
+    for wrong in (3, float("nan"), [1, 2], {"a": 1}, b"bytes", job):
+        refused(lambda w=wrong: pp.paint(robot, job, w), "actuators")
+
+
+@pytest.mark.parametrize("arg", ["robot", "job", "options"])
+@pytest.mark.parametrize("wrong", WRONG, ids=repr)
+def test_paint_refuses_a_wrong_argument(robot, arg, wrong):
+    """pp.paint's and pp.fewest_robots' robot, job and options: None (but for the options,
+    which may be None), the wrong types and NaN are one line naming the argument."""
+    if arg == "options" and wrong is None:
+        return
+    args = {"robot": robot, "job": pp.load_job(EXAMPLES / "line.toml"), "options": None,
+            arg: wrong}
+    refused(lambda: pp.paint(args["robot"], args["job"], None, args["options"]), arg)
+    refused(lambda: pp.fewest_robots(args["robot"], args["job"], None, args["options"]), arg)
+
+
+@pytest.mark.parametrize("fmt", WRONG + ["xlsx"], ids=repr)
+def test_write_refuses_a_format_it_does_not_write(result, tmp_path, fmt):
+    refused(lambda: result.write(tmp_path / "out", fmt), "format")
+    assert not (tmp_path / "out").exists()

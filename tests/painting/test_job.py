@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 from pollard_pin.painting.errors import JobError
 from pollard_pin.painting.job import job_from_dict, load_job
@@ -168,3 +169,29 @@ def test_scale_scales_the_mesh(tmp_path):
     want = np.array([[0, 0, 0], [0, 10, 0], [0, 0, 10]]) * 0.0254 + [0.5, 0, 0]
     for v in parts:
         assert np.abs(v - want).max() < 1e-15  # achieved 0
+
+
+@pytest.mark.parametrize("wrong", [v for v in WRONG if not isinstance(v, str)], ids=repr)
+def test_load_job_refuses_what_is_not_a_path(wrong):
+    refused(lambda: load_job(wrong), "path")
+
+
+@pytest.mark.parametrize("wrong", [v for v in WRONG if not isinstance(v, dict)], ids=repr)
+def test_job_from_dict_refuses_what_is_not_tables(wrong):
+    refused(lambda: job_from_dict(wrong), "d")
+
+
+@pytest.mark.parametrize("key", [1, None, 2.5, ("panel",)], ids=repr)
+def test_a_key_that_is_not_a_string_is_one_line(key):
+    """{1: ...} at the top or in a table: one line naming the key (it was a TypeError from
+    difflib's did-you-mean)."""
+    good = {"panel": {"center": [0.7, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0], "width": 0.26,
+                      "height": 0.12}, "gun": {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7},
+            "job": {"thickness": 25e-6}}
+    refused(lambda: job_from_dict({**good, key: {}}), str(key))
+    refused(lambda: job_from_dict({**good, "gun": {**good["gun"], key: 1}}), str(key))
+
+
+@pytest.mark.parametrize("wrong", [v for v in WRONG if not isinstance(v, str)], ids=repr)
+def test_job_from_dict_refuses_a_source_that_is_not_a_string(wrong):
+    refused(lambda: job_from_dict({}, wrong), "source")

@@ -93,3 +93,14 @@ def test_every_planner_obeys_the_policy_it_is_given(robot):
             call()
         msg = str(exc.value)
         assert "budget 2" in msg or "budget 1:" in msg, msg
+
+
+@pytest.mark.parametrize("dt, speed_set, says", [
+    (0.002, False, "a thinner film, more flow"),  # the step is max_step: a faster gun helps
+    (0.002, True, "a faster gun (job.speed)"),
+    (0.002, None, "a faster gun (a thinner film, more flow or job.speed)"),
+    (0.001, False, "a wider spray (gun.sigma)"),  # step_sigma·σ: the speed cancels out
+    (0.001, True, "a wider spray (gun.sigma)"),
+])
+def test_the_sample_advice_follows_the_step(dt, speed_set, says):
+    assert PlannerPolicy().coarser(dt, speed_set) == says

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 import pollard_pin as pp
 from pollard_pin.dynamics import ActuatorError
@@ -76,3 +77,16 @@ def test_a_pose_out_of_reach_is_named_by_its_sample(robot, traj, tmp_path):
 def test_stats_start_empty():
     stats = StiffnessStats()
     assert stats.samples == 0 and stats.worst == {}
+
+
+@pytest.mark.parametrize("arg, wrong", [
+    *(("robot", w) for w in WRONG), *(("traj", w) for w in WRONG),
+    *(("options", w) for w in WRONG if w is not None),
+    *(("margins", w) for w in WRONG if w is not None)], ids=repr)
+def test_a_wrong_argument_is_one_line(robot, arg, wrong):
+    """stiffness' robot, traj, options and margins: one line naming the argument, nothing
+    solved."""
+    args = {"robot": robot, "traj": pp.thesis_trajectory(), "options": None, "margins": None,
+            arg: wrong}
+    refused(lambda: stiffness(args["robot"], args["traj"], K, args["options"],
+                              margins=args["margins"]), arg)

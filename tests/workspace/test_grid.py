@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 from pollard_pin.workspace.grid import WorkspaceError, largest_panel, map_workspace
 from pollard_pin.workspace.options import WorkspaceOptions
@@ -121,3 +122,8 @@ def test_bad_input(robot, kw, words):
     assert "\n" not in msg
     for w in words:
         assert w in msg, msg
+
+
+@pytest.mark.parametrize("wrong", WRONG, ids=repr)
+def test_a_wrong_robot_is_one_line(wrong):
+    refused(lambda: map_workspace(wrong, "x=0.55"), "robot")

@@ -34,8 +34,9 @@ def kind_of(job) -> JobKind:
     for kind in KINDS.values():
         if kind.recognises(job):
             return kind
-    raise JobKindError(f"cannot paint a {type(job).__name__}: expected a paint job of kind "
-                       f"{', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
+    shown = repr(job) if len(repr(job)) <= 40 else f"{repr(job)[:37]}..."
+    raise JobKindError(f"job = {shown}: cannot paint a {type(job).__name__}: expected a paint "
+                       f"job of kind {', '.join(KINDS)} (a PaintJob or PartJob, from load_job)")
 
 
 __all__ = ["KINDS", "JobKind", "kind_of"]

@@ -19,13 +19,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ...checks import instance
+from ...dynamics.motors import as_actuators
 from ...errors import InputError
+from ...model.build import check_robot
 from ...workspace.reach import evaluate
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
 from ..errors import BudgetError, CellError, PlanError
-from ..job import PartJob
+from ..job import PartJob, check_job
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
@@ -143,9 +146,12 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         One line when n robots' bands cannot hold n equal zones with their run-outs (naming
         the fewest that can), or the job has robots or no line.
     """
-    options = LayoutOptions() if options is None else options
+    check_robot(robot)
+    check_job(job)
+    options = instance(options, "options", LayoutOptions, "LayoutOptions or None",
+                       none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
-        raise CellError(f"robots = {n!r}: expected 1..{MAX_ROBOTS}")
+        raise CellError(f"n = {n!r}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
     if job.line is None:
         raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
     if job.robots:
@@ -193,8 +199,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         The model every robot shares (:func:`pollard_pin.load`).
     job : PaintJob or pollard_pin.painting.job.PartJob
         A job with ``[line]`` and no ``[[robot]]`` tables.
-    actuators : Actuators or None, optional
-        The motor ratings (default: the job's file, else the package's).
+    actuators : Actuators or str or Path or None, optional
+        The motor ratings or an actuator file's path (default: the job's file, else the
+        package's).
     options : PaintOptions or None, optional
         As for :func:`pollard_pin.painting.api.paint_job`.
     layout : LayoutOptions or None, optional
@@ -215,8 +222,14 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         paints the part.
     """
     from ..api import paint_job
+    from ..options import PaintOptions
     from ..spray.occlusion import load_painted_part
 
+    check_robot(robot)
+    check_job(job)
+    actuators = as_actuators(actuators)
+    instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
+    instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
     strokes = job_strokes(job, part)
     first = fewest_for(strokes, reference_band(robot, strokes).width)

@@ -26,7 +26,9 @@ import numpy as np
 from scipy import ndimage
 
 from ...analytic.taskspace import angles_from_rotation
+from ...checks import file_path, instance
 from ...errors import InputError
+from ...model.build import check_robot
 from ...workspace.grid import reachable_box
 from ...workspace.options import CHUNK
 from ...workspace.reach import evaluate
@@ -132,7 +134,7 @@ class PlaceResult:
         """Write the placed job as TOML (``paint --job`` reads it as is)."""
         from ...io.job_file import write_job
 
-        return write_job(self.job, Path(path), f"placed by pollard-pin place: turned "
+        return write_job(self.job, file_path(path, "path"), f"placed by pollard-pin place: turned "
                          f"{self.turn:+g}° about the facing axis, margin "
                          f"{self.margin * 1e3:.0f} mm along every axis")
 
@@ -284,12 +286,11 @@ def place(robot, job: PartJob, options: PlaceOptions | None = None,
     pollard_pin.errors.InputError
         A job that is not a part's, options of the wrong type.
     """
-    if not isinstance(job, PartJob):
-        raise InputError(f"place: a {type(job).__name__}, expected a part's job (PartJob, "
-                         "from load_job on a job with [part])")
+    check_robot(robot)
+    instance(job, "job", PartJob, "a part's job (PartJob, from load_job on a job with [part])")
     opts = PlaceOptions() if options is None else options
-    if not isinstance(opts, PlaceOptions):
-        raise InputError(f"options: a {type(opts).__name__}, expected PlaceOptions")
+    instance(opts, "options", PlaceOptions, "PlaceOptions or None")
+    instance(policy, "policy", PlannerPolicy, "PlannerPolicy")
     base = load_part(job.mesh, job.unit, (0.0, 0.0, 0.0), job.rotation, job.facing,
                      MAX_ANGLE if job.max_angle is None else job.max_angle)
     first = _turned(job, base, 0.0)
@@ -351,7 +352,9 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
     """How the part misses: the rectangle of its passes' tips (run-ons included) against
     the plane maps at the median orientation, every 3 cm of depth: taller than the tallest
     reachable rectangle of its width, wider than the widest of its height (the smaller
-    first); where it fits as a rectangle, the gun's tilt is what fails."""
+    first); a side longer than the reach's longest extent along it (at any depth, any extent
+    across) is said alone, by how much it exceeds that extent, since no change of the other
+    side makes it fit; where it fits as a rectangle, the gun's tilt is what fails."""
     frame = surface_frame(fit.part)
     u, v, n = frame.along, frame.across, frame.n
     tips = fit.poses[:, :3]
@@ -359,6 +362,7 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
     h = 0.01
     best = (0, 0)  # the tallest reachable rectangle at the passes' width, the widest at
     # their height (cells), over the depths
+    most = (0, 0)  # the reach's tallest and widest runs at any extent across (cells)
     wc, hc = (max(1, math.ceil(x / h - 1e-9)) for x in (width, height))
     lo, hi, hb = box  # the reachable box's corners in the frame (u, v, n) bound the scan
     corners = np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]]
@@ -374,8 +378,17 @@ def _missed(robot, fit: _Fit, orient, box, turns: int) -> str:
             tall_at_w = _runs(ndimage.binary_erosion(ok, np.ones((wc, 1), bool)), 1)
             wide_at_h = _runs(ndimage.binary_erosion(ok, np.ones((1, hc), bool)), 0)
             best = (max(best[0], tall_at_w), max(best[1], wide_at_h))
+            most = (max(most[0], _runs(ok, 1)), max(most[1], _runs(ok, 0)))
     tall, wide = height - best[0] * h, width - best[1] * h
     turned = f" at any of {turns} turns" if turns > 1 else ""
+    alone = [(x, what) for x, what in ((height - most[0] * h, "taller"),
+                                       (width - most[1] * h, "wider")) if x > 0]
+    if alone:  # a side longer than the reach along it: only shortening that side helps
+        said = " and ".join(f"{what} than the reach{turned} by {x * 1e3:.0f} mm" if i == 0 else
+                            f"{what} by {x * 1e3:.0f} mm" for i, (x, what) in enumerate(alone))
+        return (f"the part is {said} (passes {width:.3f} × {height:.3f} m, reach at most "
+                f"{most[1] * h:.2f} × {most[0] * h:.2f} m): a line or a cell of robots would "
+                "paint it")
     if tall > 0 and wide > 0:  # the passes' rectangle fits at no depth
         (x, what), (y, other) = sorted([(tall, "taller"), (wide, "wider")])
         return (f"the part is {what} than the reach{turned} by {x * 1e3:.0f} mm "

@@ -370,7 +370,9 @@ def samples_budget(duration: float, dt: float, source: str,
     if n > policy.max_path_samples:
         raise BudgetError(f"{source}: the line's path needs {n:.3g} samples ({duration:.4g} s "
                           f"at {dt:.3g} s), budget {policy.max_path_samples:.3g}: a faster "
-                          "line, the part placed nearer the robot, a thinner film or more flow")
+                          "line, the part placed nearer the robot, "
+                          f"{policy.coarser(dt)}, "
+                          f"{policy.budget_fix}")
 
 
 def slow_budget(speed: float, dt: float, source: str,

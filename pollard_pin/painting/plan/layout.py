@@ -77,11 +77,12 @@ def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace,
 def check_samples(n: float, duration: float, speed: float, job: PaintJob,
                   policy: PlannerPolicy = DEFAULT_POLICY) -> None:
     if n > policy.max_path_samples:
-        fix = ("fewer coats or a faster gun (job.speed)" if job.speed is not None else
-               "a thinner film, more flow or a smaller panel")
+        dt = policy.step(job.sigma, speed)
+        fix = (f"fewer coats or {policy.coarser(dt, True)}" if job.speed is not None else
+               f"{policy.coarser(dt, False)} or a smaller panel")
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({duration:.4g} s "
                           f"at a gun speed of {speed:.4g} m/s), budget "
-                          f"{policy.max_path_samples:.3g}: {fix}")
+                          f"{policy.max_path_samples:.3g}: {fix}, {policy.budget_fix}")
 
 
 __all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times"]

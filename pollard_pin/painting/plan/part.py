@@ -116,7 +116,8 @@ def time_step(job, pieces, v: float, policy: PlannerPolicy = DEFAULT_POLICY) -> 
     if swept / dt > policy.max_path_samples:
         raise BudgetError(f"{job.source}: the passes alone need {swept / dt:.3g} samples "
                           f"({swept:.4g} s at {v:.4g} m/s), budget {policy.max_path_samples:.3g}: "
-                          "a thinner film, more flow or fewer coats")
+                          f"{policy.coarser(dt, job.speed is not None)} or fewer coats, "
+                          f"{policy.budget_fix}")
     return dt
 
 
@@ -197,8 +198,9 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
     n = math.ceil(program.total / dt) + 1
     if n > policy.max_path_samples:
         raise BudgetError(f"{job.source}: the path needs {n:.3g} samples ({program.total:.4g} "
-                          f"s), budget {policy.max_path_samples:.3g}: a thinner film or more "
-                          "flow")
+                          f"s), budget {policy.max_path_samples:.3g}: "
+                          f"{policy.coarser(dt, job.speed is not None)}, "
+                          f"{policy.budget_fix}")
     t = np.linspace(0.0, program.total, n)
     traj = Trajectory(t, *program.evaluate(t), name="paint", derivatives="analytic",
                       curve=program.evaluate)

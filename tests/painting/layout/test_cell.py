@@ -7,6 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from cell_split_jobs import check_zones, tall_panel
+from refusals import WRONG, refused
 
 from pollard_pin.errors import InputError
 from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
@@ -117,3 +118,25 @@ def test_a_part_gets_the_layout_of_its_panel(robot, tmp_path):
     # each zone's need, and with it each base, moves by half the difference or less
     for a, b in zip(part, panel):
         assert np.allclose(a.base, b.base, atol=0.005 + 1e-9), (a, b)
+
+
+@pytest.mark.parametrize("arg, wrong", [
+    *((arg, w) for arg in ("robot", "job", "options") for w in WRONG
+      if not (arg == "options" and w is None)),
+    *(("n", w) for w in WRONG + [0, 17, 2.5, True, float("inf")] if w != 3)], ids=repr)
+def test_propose_layout_refuses_a_wrong_argument(robot, arg, wrong):
+    """propose_layout's robot, job, n and options: None (where it is not the default), the
+    wrong types, NaN and an n out of 1..16 are one line naming the argument, nothing solved."""
+    args = {"robot": robot, "job": tall_panel(), "n": 2, "options": None, arg: wrong}
+    refused(lambda: propose_layout(args["robot"], args["job"], args["n"], args["options"]),
+            arg)
+
+
+@pytest.mark.parametrize("arg", ["actuators", "layout"])
+@pytest.mark.parametrize("wrong", [v for v in WRONG if v is not None and not isinstance(v, str)],
+                         ids=repr)
+def test_fewest_robots_refuses_a_wrong_argument(robot, arg, wrong):
+    """fewest_robots' actuators and layout (its robot, job and options: tests/outputs/
+    test_result.py): one line naming the argument, before any planning."""
+    kwargs = {arg: wrong}
+    refused(lambda: fewest_robots(robot, tall_panel(), **kwargs), arg)

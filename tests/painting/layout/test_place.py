@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from refusals import WRONG, refused
 
 from pollard_pin.errors import PollardError
 from pollard_pin.outputs import paint
@@ -16,6 +17,7 @@ from pollard_pin.painting.layout.place import PlaceOptions, place
 from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.passes.program import pass_poses
 from pollard_pin.painting.passes.surface import surface_layout
+from pollard_pin.painting.policy import DEFAULT_POLICY
 from pollard_pin.painting.workpiece.mesh import load_job_part
 from pollard_pin.workspace.reach import evaluate
 
@@ -147,3 +149,38 @@ def test_bad_options(options, fragment):
 def test_panel_job_refused(robot):
     with pytest.raises(PollardError, match="expected a part's job"):
         place(robot, load_job(ROOT / "examples" / "paint.toml"))
+
+
+def test_a_side_longer_than_the_reach_is_said_alone(robot):
+    """The long strip (1.0 m of passes along y, 0.13 m across): wider than the reach's widest
+    extent, so no height would make it fit. The refusal says by how much the width exceeds
+    the reach, never the whole height as if the reach were nothing (it said "taller by 127 mm
+    (or wider by 390 mm)", the strip's full height)."""
+    job = replace(load_job(ROOT / "examples" / "line_part.toml"), line=None)
+    with pytest.raises(PlaceError) as exc:
+        place(robot, job, PlaceOptions(max_turn=0.0))
+    msg = str(exc.value)
+    assert "wider than the reach by" in msg and "taller" not in msg, msg
+    assert len(msg) <= 250 and "\n" not in msg
+    by = float(msg.split("reach by ")[1].split(" mm")[0])
+    width = float(msg.split("passes ")[1].split(" ×")[0])
+    reach = float(msg.split("reach at most ")[1].split(" ×")[0])
+    assert abs(by / 1e3 - (width - reach)) <= 0.01, msg  # said as the difference, ±1 cell
+    assert 0.1 < reach < width - 0.1, msg  # a reach, neither nothing nor the strip
+
+
+@pytest.mark.parametrize("arg", ["robot", "job", "options", "policy"])
+@pytest.mark.parametrize("wrong", WRONG, ids=repr)
+def test_place_refuses_a_wrong_argument(robot, arg, wrong):
+    """place's robot, job, options and policy: None (where it is not the default), the wrong
+    types and NaN are one line naming the argument, before anything is solved."""
+    if wrong is None and arg in ("options", "policy"):
+        return
+    args = {"robot": robot, "job": load_job(CURVED), "options": None,
+            "policy": DEFAULT_POLICY, arg: wrong}
+    refused(lambda: place(args["robot"], args["job"], args["options"], args["policy"]), arg)
+
+
+@pytest.mark.parametrize("path", [v for v in WRONG if not isinstance(v, str)], ids=repr)
+def test_write_refuses_what_is_not_a_path(placed, path):
+    refused(lambda: placed[1].write(path), "path")

@@ -10,6 +10,7 @@ from pollard_pin.painting.errors import BudgetError, PlanError
 from pollard_pin.painting.passes.raster import SPOT_RADIUS
 from pollard_pin.painting.plan.layout import panel_layout
 from pollard_pin.painting.plan.panel import plan_paint
+from pollard_pin.painting.policy import PlannerPolicy
 
 
 @pytest.mark.parametrize("coats", [1, 3])
@@ -51,3 +52,33 @@ def test_budgets_are_checked_before_the_path_is_built(robot, act, job, change, s
         plan_paint(robot, replace(job, **change), act)
     msg = str(err.value)
     assert says in msg and "budget" in msg and "\n" not in msg and len(msg) < 250, msg
+
+
+def _needs(msg: str) -> float:
+    return float(msg.split("needs ")[1].split(" samples")[0])
+
+
+def test_the_budget_advises_what_takes_fewer_samples(robot, act, job):
+    """Where the step is step_sigma·σ of gun travel the gun's speed cancels out (samples ≈ path
+    length / (step_sigma·σ)): four times the flow (a gun 4× faster) leaves the count within
+    1.5× (the turnarounds aside), so the refusal says a wider spray, not more flow; where the
+    step is max_step, four times the flow takes about 4× fewer and it says so."""
+    fine = PlannerPolicy(step_sigma=1e-4, max_path_samples=1000)
+    counts = []
+    for flow in (job.flow, 4 * job.flow):
+        with pytest.raises(BudgetError) as err:
+            plan_paint(robot, replace(job, flow=flow), act, fine)
+        msg = str(err.value)
+        assert "a wider spray (gun.sigma)" in msg and "flow" not in msg, msg
+        assert "policy.max_path_samples" in msg and len(msg) <= 250, msg
+        counts.append(_needs(msg))
+    assert counts[0] / counts[1] < 1.5, counts
+    coarse = PlannerPolicy(max_path_samples=1000)
+    counts = []
+    for flow in (job.flow, 4 * job.flow):
+        with pytest.raises(BudgetError) as err:
+            plan_paint(robot, replace(job, flow=flow, thickness=0.1), act, coarse)
+        msg = str(err.value)
+        assert "a thinner film, more flow" in msg and "gun.sigma" not in msg, msg
+        counts.append(_needs(msg))
+    assert counts[0] / counts[1] > 3.0, counts
