@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...errors import InputError
+from ...errors import InputError, say_less, without_asides
 from ...workspace.reach import evaluate
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
@@ -211,8 +211,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     Raises
     ------
     pollard_pin.painting.errors.CellError
-        One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
-        paints the part.
+        One line naming each count's first cause when no layout of up to ``AUTO_MORE`` more
+        robots paints the part.
     """
     from ..api import paint_job
     from ..spray.occlusion import load_painted_part
@@ -224,7 +224,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
     last = min(MAX_ROBOTS, first + AUTO_MORE)
-    why = ""
+    why = {}
     for n in range(first, last + 1):
         try:
             robots = propose_layout(robot, job, n, layout, part)
@@ -232,8 +232,14 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         except BudgetError:
             raise
         except (CellError, PlanError) as exc:
-            why = str(exc)
-    raise CellError(f"{job.source}: no layout of {first}…{last} robots paints the part: {why}")
+            why[n] = str(exc).removeprefix(f"{job.source}: ")
+    head = f"{job.source}: no layout of {first}…{last} robots paints the part: "
+    # each count's cause, said with less until the line holds them all (say_less)
+    causes = [why, {n: without_asides(w) for n, w in why.items()},
+              {n: without_asides(w).split("; ")[0] for n, w in why.items()},
+              {n: without_asides(w).split(": ")[0] for n, w in why.items()}]
+    raise CellError(say_less(*(head + "; ".join(f"{n} robots: {w}" for n, w in c.items())
+                               for c in causes), head + f"{last} robots: {causes[-1][last]}"))
 
 
 __all__ = ["AUTO_MORE", "LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",

@@ -30,6 +30,7 @@ import numpy as np
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ...dynamics.path import path_dynamics
+from ...errors import say_less
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance, panel_mesh
 from ..checks.motion import fastest, motion, reach
@@ -206,7 +207,8 @@ def plan_paint(robot, job: PaintJob, act: Actuators,
             fit = printed_panel(job, scale)  # the panel planned, as printed
             fits = (f"the largest panel that fits (same centre, proportions) is "
                     f"{fit.width:.3f} × {fit.height:.3f} m, planned in full")
-        raise PlanError(f"{exc}; {fits}") from None
+        first = ": ".join(str(exc).split(": ")[:2])  # where, and the kinematics' cause
+        raise PlanError(say_less(f"{exc}; {fits}", f"{first}; {fits}")) from None
 
 
 def printed_panel(job: PaintJob, scale: float) -> PaintJob:
