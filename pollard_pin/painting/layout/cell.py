@@ -26,6 +26,7 @@ from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
 from ..errors import BudgetError, CellError, PlanError
 from ..job import PartJob
+from ..progress import bar, showing
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
@@ -225,14 +226,16 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
                         "to stack zones over the part")
     last = min(MAX_ROBOTS, first + AUTO_MORE)
     why = {}
-    for n in range(first, last + 1):
-        try:
-            robots = propose_layout(robot, job, n, layout, part)
-            return robots, paint_job(robot, replace(job, robots=robots), actuators, options)
-        except BudgetError:
-            raise
-        except (CellError, PlanError) as exc:
-            why[n] = str(exc).removeprefix(f"{job.source}: ")
+    with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
+        for n in bar(range(first, last + 1), "layout search", unit="layout"):
+            try:
+                robots = propose_layout(robot, job, n, layout, part)
+                return robots, paint_job(robot, replace(job, robots=robots), actuators,
+                                         options)
+            except BudgetError:
+                raise
+            except (CellError, PlanError) as exc:
+                why[n] = str(exc).removeprefix(f"{job.source}: ")
     head = f"{job.source}: no layout of {first}…{last} robots paints the part: "
     # each count's cause, said with less until the line holds them all (say_less)
     causes = [why, {n: without_asides(w) for n, w in why.items()},

@@ -21,6 +21,7 @@ from ..checks.motion import fastest, motion, reach
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
+from ..progress import ticking
 from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
 
@@ -427,6 +428,15 @@ def fastest_line_speed(plan_at, start: float, source: str,
     speed), halved while too fast and doubled while too slow (or sent to the failure's
     ``hint``, the speed of no drift, if further) until one plans, then doubled until one
     fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
+    with ticking("line speed search", "plan") as tick:  # a bar on a terminal, if asked
+        def counted(speed: float):
+            tick()
+            return plan_at(speed)
+
+        return _fastest(counted, start, source, resolution)
+
+
+def _fastest(plan_at, start: float, source: str, resolution: float):
     s = start
     best = None
     slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
