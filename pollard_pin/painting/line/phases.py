@@ -429,11 +429,7 @@ def fastest_line_speed(plan_at, start: float, source: str,
     ``hint``, the speed of no drift, if further) until one plans, then doubled until one
     fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
     with ticking("line speed search", "plan") as tick:  # a bar on a terminal, if asked
-        def counted(speed: float):
-            tick()
-            return plan_at(speed)
-
-        return _fastest(counted, start, source, resolution)
+        return _fastest(lambda s: (tick(), plan_at(s))[1], start, source, resolution)
 
 
 def _fastest(plan_at, start: float, source: str, resolution: float):
