@@ -134,6 +134,7 @@ def test_a_terminal_sees_progress_bars_and_the_same_summary(tmp_path, capsys, mo
     code, out, err = run_cli(argv, capsys)
     assert code == 0, err
     assert "film:" in err and "compliance:" in err  # the film's and the compliance's bars
+    assert "planning: ramps and turnarounds:" in err  # the planner's searches
     lines = out.strip().splitlines()
     assert lines[0].startswith("passes 9 (horizontal)") and "film" in lines[2]
 

@@ -139,3 +139,17 @@ def test_a_part_gets_the_layout_of_its_panel(robot, tmp_path):
     # each zone's need, and with it each base, moves by half the difference or less
     for a, b in zip(part, panel):
         assert np.allclose(a.base, b.base, atol=0.005 + 1e-9), (a, b)
+
+
+def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch, capsys):
+    import sys
+
+    import pollard_pin.painting.api as api
+    from pollard_pin.painting.options import PaintOptions
+
+    monkeypatch.setattr(api, "paint_job", lambda *args, **kwargs: "painted")
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    fewest_robots(robot, tall_panel())  # a Python caller who did not ask: silent
+    assert capsys.readouterr().err == ""
+    fewest_robots(robot, tall_panel(), options=PaintOptions(progress=True))
+    assert "layout search" in capsys.readouterr().err
