@@ -29,6 +29,13 @@ against those keeps working; an error that moved family keeps its old builtin as
 """
 from __future__ import annotations
 
+import logging
+import re
+
+LONGEST_LINE = 250  # characters: the longest refusal; longer is said with less, never cut
+# what a message has of it: the command line prefixes "pollard-pin <command>: error: "
+MESSAGE_ROOM = LONGEST_LINE - len("pollard-pin workspace: error: ")
+
 
 class PollardError(Exception):
     """The root of the package's own errors: one line for the user, never a traceback."""
@@ -50,4 +57,27 @@ class DestinationError(PollardError, OSError):
         return self.args[0] if self.args else "cannot write the output"
 
 
-__all__ = ["PollardError", "InputError", "SolveError", "DestinationError"]
+def without_asides(text: str) -> str:
+    """``text`` without its asides in words (a parenthesis that starts with a letter and holds
+    more than one word: '(run-on included)', '(or wider by 40 mm; …)'); figures such as
+    '(0.1, 0.2, 0.3) m' and names such as '(part.facing)' stay."""
+    return re.sub(r" \((?=[a-z])[^()]* [^()]*\)", "", text)
+
+
+def say_less(*versions: str, width: int = MESSAGE_ROOM) -> str:
+    """The first of ``versions`` (the full message first, then shorter ones: fewer clauses,
+    never a cut word) of at most ``width`` characters (default :data:`MESSAGE_ROOM`: the
+    line's room after the command line's prefix), else the last; when the full one is not
+    it, the full one is logged (``-v`` shows it)."""
+    full = " ".join(versions[0].split())
+    for text in versions:
+        text = " ".join(text.split())
+        if len(text) <= width:
+            break
+    if text != full:
+        logging.getLogger("pollard_pin").info("in full: %s", full)
+    return text
+
+
+__all__ = ["LONGEST_LINE", "MESSAGE_ROOM", "PollardError", "InputError", "SolveError",
+           "DestinationError", "say_less", "without_asides"]

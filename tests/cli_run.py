@@ -19,7 +19,20 @@ def run_cli(argv, capsys):
     except SystemExit as exc:  # argparse
         code = exc.code
     out, err = capsys.readouterr()
+    check_refusal(err)
     return code, out, err
+
+
+LONGEST_REFUSAL = 250  # characters: a refusal says its first cause, where, and what to change
+
+
+def check_refusal(err: str) -> None:
+    """Every refusal line on standard error is at most LONGEST_REFUSAL characters and whole
+    (not cut short with "…")."""
+    for line in err.splitlines():
+        if ": error: " in line and line.startswith("pollard-pin "):
+            assert len(line) <= LONGEST_REFUSAL, f"refusal of {len(line)} characters: {line}"
+            assert not line.endswith("…"), f"refusal cut short: {line}"
 
 
 def run_and_size(path, actuators, capsys, tmp_path) -> dict:

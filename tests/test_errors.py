@@ -159,3 +159,24 @@ def test_the_rule_is_written_once():
     doc = errors.__doc__
     assert "InputError" in doc and "SolveError" in doc and "DestinationError" in doc
     assert "out of reach is a :class:`SolveError`" in " ".join(doc.split())
+
+
+def test_say_less_gives_the_first_version_within_the_longest_line(caplog):
+    from pollard_pin.errors import LONGEST_LINE, MESSAGE_ROOM, say_less
+
+    assert say_less("a" * LONGEST_LINE, "b", width=LONGEST_LINE) == "a" * LONGEST_LINE
+    full, short = "a" * (MESSAGE_ROOM + 1), "b" * MESSAGE_ROOM
+    assert say_less("fits  as\n it is", short) == "fits as it is"
+    with caplog.at_level("INFO", logger="pollard_pin"):
+        assert say_less(full, short, "c") == short
+    assert full in caplog.text  # the full story is logged (-v)
+    assert say_less(full, full + "d") == full + "d"  # none fits: the last, whole
+
+
+def test_without_asides_drops_the_words_and_keeps_figures_and_names():
+    from pollard_pin.errors import without_asides
+
+    text = ("pass 3 is 1.2 m (run-on included) at (0.1, 0.2) m: a part facing the robot "
+            "(part.facing)? (12 mm of margin)")
+    assert without_asides(text) == ("pass 3 is 1.2 m at (0.1, 0.2) m: a part facing the robot "
+                                    "(part.facing)? (12 mm of margin)")

@@ -14,10 +14,12 @@ import ctypes
 import errno
 import logging
 import os
+import re
 import signal
 import sys
 import threading
 
+from ..errors import LONGEST_LINE, say_less
 from ..io.atomic import STDOUT
 from ..version import __version__
 from . import (
@@ -96,12 +98,19 @@ def main(argv=None) -> int:
         if isinstance(exc, MemoryError):  # the hint only where there is a --samples to lower
             hint = ": fewer samples?" if hasattr(args, "samples") else ""
             message = f"not enough memory ({message}){hint}"
-        if _is_limit_error(exc) and hasattr(args, "ignore_limits"):
-            message += " (--ignore-limits waives the joint limits)"
+        limits = (" (--ignore-limits waives the joint limits)"
+                  if _is_limit_error(exc) and hasattr(args, "ignore_limits") else "")
         out = getattr(args, "out", None) or getattr(args, "html", None)
+        written = ("", "")
         if out and out != STDOUT:
-            message += f" (nothing written to {out})"
-        print(f"pollard-pin {args.command}: error: {message}", file=sys.stderr)
+            written = (f" (nothing written to {out})", " (nothing written)")
+        head = f"pollard-pin {args.command}: error: "
+        named = re.sub(r"^\S*/([^/\s]+): ", r"\1: ", message)  # a leading path: its name
+        # one line within LONGEST_LINE: the suffixes and the path's folders give way before
+        # the cause (say_less)
+        print(say_less(*(head + m + limits + w for m in (message, named) for w in written),
+                       head + named + limits, head + named, width=LONGEST_LINE),
+              file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:
         return _interrupted(args.command, isinstance(exc, _Terminated))

@@ -59,7 +59,8 @@ def run(args) -> int:
     res = spacing(film_spacing_of, job, args.resolution)
     act = _actuators(args, job)
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
-                           compliance=not args.no_compliance)
+                           compliance=not args.no_compliance,
+                           progress=True)  # bars when standard error is a terminal
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
         if count is None:
             result = paint(load_robot(args), job, act, options)

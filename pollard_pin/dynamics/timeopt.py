@@ -281,8 +281,8 @@ def time_optimal(act: Actuators, path: PathDynamics, options: Options | None = N
     if s_dot is None or (has_viscous and change > tol):
         raise ActuatorError(
             f"the time-optimal traversal with viscous friction did not converge in {it} "
-            f"TOPP-RA solves (ṡ(s) still changes by {change:.2g}, relative): the viscous "
-            "torque b·ωm at the motors' speeds is too close to their peak torque")
+            f"TOPP-RA solves (ṡ(s) changes by {change:.2g}): the viscous torque b·ωm at the "
+            "motors' speeds is too close to their peak torque")
     return _timing(act, path.take(slice(None, None, m)), s_dot, at_rest[::m], it, m)
 
 

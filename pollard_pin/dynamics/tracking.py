@@ -24,6 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import rotation
+from ..errors import say_less
 from ..kinematics.closure import close_loops, tool_pose
 from ..kinematics.errors import ClosureError, SingularityError
 from ..kinematics.kernels import rk4_step
@@ -180,7 +181,9 @@ def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_l
             why = "the plant left its joint limits: " + violation_text(
                 plant.robot.params, names[j], float(q[j]), excess)
     if why is not None:
-        raise SimulationError(f"simulation stopped at t = {t:.6g} s: {why}; {hint()}")
+        said = f"simulation stopped at t = {t:.6g} s: {why}"
+        raise SimulationError(say_less(f"{said}; {hint()}", f"{said}; {hint().split(': ')[-1]}",
+                                       said))
 
 
 class _Ticking:

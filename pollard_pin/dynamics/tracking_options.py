@@ -198,9 +198,9 @@ def check_steps(dt: float, control_period: float) -> None:
             raise ControlError(f"{name} must be > 0 s, got {value}")
     if dt > control_period * (1 + 1e-9):
         raise ControlError(
-            f"time step {dt:g} s is longer than the control period {control_period:g} s: each "
-            "control period is integrated in equal RK4 steps of at most the time step, so the "
-            "step would be the period; give a time step <= the control period")
+            f"time step {dt:g} s is longer than the control period {control_period:g} s (each "
+            "period is integrated in equal RK4 steps of at most the time step): give a time "
+            "step <= the control period")
 
 
 def integration_steps(duration: float, dt: float, control_period: float) -> int:

@@ -8,6 +8,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import pose_from_se3
+from ..errors import say_less
 from ..model.build import Robot, constraint_residual_jacobian
 from .errors import ClosureError, ClosureSingularError
 from .singularity import SIGMA_FLOOR, sigma_range, solve_small
@@ -123,11 +124,13 @@ def _check_regular(robot: Robot, q: np.ndarray, act: np.ndarray, Jp: np.ndarray
     if smin >= SIGMA_FLOOR * smax:
         return q
     angles = dict(zip(robot.actuated, act.round(6).tolist()))
-    raise ClosureSingularError(
+    why = (f"the passive-joint constraint Jacobian's smallest singular value {smin:.3g} is "
+           f"below the numerical floor {SIGMA_FLOOR:g} × σ_max (docs/model.md §12)")
+    raise ClosureSingularError(say_less(
         f"the loops close for actuator angles {angles} (rad) only on a parallel singularity: "
-        f"the passive-joint constraint Jacobian's smallest singular value {smin:.3g} is below "
-        f"the numerical floor {SIGMA_FLOOR:g} × σ_max (docs/model.md §12), so the passive "
-        "angles are not unique there", chain="parallel", sigma=smin,
+        f"{why}, so the passive angles are not unique there",
+        f"the loops close for these actuator angles only on a parallel singularity: {why}"),
+        chain="parallel", sigma=smin,
         amount=SIGMA_FLOOR * smax - smin)
 
 

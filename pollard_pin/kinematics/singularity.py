@@ -316,8 +316,7 @@ def floor_message(label, v, margin, limit, floor) -> str:
     if margin >= limit:
         return f"{label} {v:.4g} is below the margin {margin:g}"
     return (f"{label} {v:.4g} is at round-off level: below the numerical floor {limit:.3g} "
-            f"({floor:g} relative; results there would be dominated by round-off, "
-            "docs/model.md §12)")
+            f"({floor:g} relative, docs/model.md §12)")
 
 
 def check_margins(robot, r, margins: Margins):

@@ -15,6 +15,7 @@ from ..model.build import check_robot
 from .job import PartJob
 from .kinds import kind_of
 from .options import PaintOptions
+from .progress import showing
 from .result import PaintedJob, PaintFilm, PaintReport
 
 
@@ -76,9 +77,10 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
                          "table (speed, direction)")
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
-    plan, film, rep = kind.paint(robot, job, act, options, res)
-    if options.compliance and kind.compliance:  # docs/model.md §27.7
-        _compliance(robot, plan, film, act, rep)
+    with showing(options.progress):
+        plan, film, rep = kind.paint(robot, job, act, options, res)
+        if options.compliance and kind.compliance:  # docs/model.md §27.7
+            _compliance(robot, plan, film, act, rep)
     return PaintedJob(job, kind.name, plan, film, PaintReport.from_dict(kind.name, rep), act,
                        options, kind)
 

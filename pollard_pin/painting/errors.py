@@ -66,6 +66,11 @@ class PlaceError(PlanError):
     """No placement puts the part's gun poses within reach: one line saying by how much."""
 
 
+class LineReachError(PlanError):
+    """Passes out of one robot's reach at any place on the line (too tall or too long for the
+    reach): a cell of more robots may paint the part."""
+
+
 class LineSpeedError(PlanError):
     """No program paints the part at this line speed (its drift does not fit the reach, or
     the motors cannot follow): ``too_fast`` says which side, ``why`` in a few words,
@@ -85,5 +90,5 @@ class ReportError(SolveError):
 
 
 __all__ = ["BudgetError", "CellError", "ClearanceError", "JobError", "JobKindError",
-           "LineSpeedError", "MeshError", "MeshFileError", "PlaceError", "PlanError",
-           "ReachError", "ReportError", "ResolutionError"]
+           "LineReachError", "LineSpeedError", "MeshError", "MeshFileError", "PlaceError",
+           "PlanError", "ReachError", "ReportError", "ResolutionError"]

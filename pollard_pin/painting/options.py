@@ -31,6 +31,9 @@ class PaintOptions:
     policy : PlannerPolicy, optional
         The planners' knobs: the motors' reserve, the sampling and the budgets (default:
         the planners' own, ``PlannerPolicy()``).
+    progress : bool, optional
+        Progress bars on standard error over the long loops, when it is a terminal
+        (:mod:`pollard_pin.painting.progress`; default False: the command line sets it).
 
     Raises
     ------
@@ -51,6 +54,7 @@ class PaintOptions:
     speed_resolution: float = SPEED_RESOLUTION
     compliance: bool = True
     policy: PlannerPolicy = DEFAULT_POLICY
+    progress: bool = False
 
     def __post_init__(self):
         r = self.resolution
@@ -67,6 +71,9 @@ class PaintOptions:
                              "bracket in (0, 1)")
         if not isinstance(self.compliance, bool):
             raise InputError(f"PaintOptions.compliance = {self.compliance!r}: expected True or "
+                             "False")
+        if not isinstance(self.progress, bool):
+            raise InputError(f"PaintOptions.progress = {self.progress!r}: expected True or "
                              "False")
         if not isinstance(self.policy, PlannerPolicy):
             raise InputError(f"PaintOptions.policy = {self.policy!r}: expected a PlannerPolicy")

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import say_less, without_asides
 from ..model.build import check_robot
 from .lattice import AXES, COORD_DECIMALS, Grid, make_grid, parse_plane, reach_sphere
 from .options import (
@@ -259,8 +260,12 @@ def _missed(robot, orient, opts, what: str) -> WorkspaceError:
                               f"(psi, theta, phi) = {_deg(orient)} deg")
     lo, hi, h = box
     span = ", ".join(f"{a} ∈ [{lo[i]:.3f}, {hi[i]:.3f}]" for i, a in enumerate(AXES))
-    return WorkspaceError(f"{what}; at orientation (psi, theta, phi) = {_deg(orient)} deg the "
-                          f"reachable region spans {span} m (±{h:.2g} m)")
+    return WorkspaceError(say_less(
+        f"{what}; at orientation (psi, theta, phi) = {_deg(orient)} deg the reachable region "
+        f"spans {span} m (±{h:.2g} m)",
+        f"{what}; at orientation {_deg(orient)} deg the reachable region spans {span} m",
+        f"{without_asides(what)}; at orientation {_deg(orient)} deg the "
+        f"reachable region spans {span} m"))
 
 
 def _deg(orient) -> str:

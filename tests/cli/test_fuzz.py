@@ -776,7 +776,7 @@ CASES += [([*WS, *extra], says) for extra, says in [
     (["--plane", "x=inf"], "must be a finite number"),
     (["--plane", "x=1e9"], f"plane x = 1e+09 m misses the robot (its reach at this "
                            f"orientation is x ∈ [-0.74, 0.86] m at most); at orientation "
-                           f"(psi, theta, phi) = (0, 0, 0) deg the {REACHABLE_BOX}"),
+                           f"(0, 0, 0) deg the {REACHABLE_BOX}"),  # (said with less: 250)
     (["--plane", "z=-5"], "misses the robot"),
     (["--plane", "x=0.55", "--bounds", "y=5:6,z=5:6"], "no point of plane x = 0.55 m is "
                                                        "reachable within the bounds y ∈ [5, 6] "

@@ -280,3 +280,30 @@ def test_every_family_is_one_line_and_exit_2(monkeypatch, capsys, exc):
     code, out, err = run_cli(["info"], capsys)
     assert code == 2 and out == "", (code, out, err)
     assert err.splitlines() == [f"pollard-pin info: error: {exc}"], err
+
+
+def test_a_long_refusal_gives_way_its_suffix_then_its_folders_never_its_cause(
+        monkeypatch, capsys, tmp_path, caplog):
+    from pollard_pin.errors import LONGEST_LINE, SolveError
+
+    folder = "/tmp/" + "deep/" * 20
+    cause = "the cause, where it happened, and what to change " * 3
+
+    def fails(args):
+        raise SolveError(f"{folder}job.toml: {cause}")
+
+    monkeypatch.setattr("pollard_pin.painting.job.load_job", fails)
+    out = tmp_path / ("o" * 40)
+    code, _, err = run_cli(["paint", "--job", "j.toml", "--out", out], capsys)
+    assert code == 2
+    line, = err.splitlines()
+    assert len(line) <= LONGEST_LINE, line  # the folders and the output's name give way
+    assert line == f"pollard-pin paint: error: job.toml: {cause.strip()} (nothing written)"
+    cause *= 2  # then the suffix; the cause itself is never cut (too long: whole, a bug,
+    # which run_cli's check of every refusal catches)
+    with pytest.raises(AssertionError, match="refusal of 329 characters"):
+        run_cli(["paint", "--job", "j.toml", "--out", out], capsys)
+    cause = cause[:len(cause) // 2]
+    with caplog.at_level("INFO", logger="pollard_pin"):  # -v: the whole story
+        run_cli(["-v", "paint", "--job", "j.toml", "--out", out], capsys)
+    assert f"{folder}job.toml" in caplog.text and f"nothing written to {out}" in caplog.text

@@ -118,11 +118,25 @@ def test_summary_lines(tmp_path, capsys):
     code, out, err = run_cli(["paint", "--job", JOB, "--out", tmp_path / "p", "--format",
                            "parquet", "--resolution", "0.005"], capsys)
     assert code == 0, err
+    assert err.startswith("wrote ") and err.count("\n") == 1  # not a terminal: no bar
     lines = out.strip().splitlines()
     assert lines[0].startswith("passes 9 (horizontal)")
     assert "lower bound" in lines[1] and "film" in lines[2] and "theta21_1" in lines[3]
     t = read_result(tmp_path / "p" / "thickness.parquet")
     assert np.diff(np.unique(t["u"])).max() <= 0.005 * (1 + 1e-12)
+
+
+def test_a_terminal_sees_progress_bars_and_the_same_summary(tmp_path, capsys, monkeypatch):
+    import sys
+
+    argv = ["paint", "--job", JOB, "--out", tmp_path / "p", "--resolution", "0.005"]
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    code, out, err = run_cli(argv, capsys)
+    assert code == 0, err
+    assert "film:" in err and "compliance:" in err  # the film's and the compliance's bars
+    assert "planning: ramps and turnarounds:" in err  # the planner's searches
+    lines = out.strip().splitlines()
+    assert lines[0].startswith("passes 9 (horizontal)") and "film" in lines[2]
 
 
 def test_view_paint_overlay(painted, tmp_path, capsys):

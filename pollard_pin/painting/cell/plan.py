@@ -14,6 +14,7 @@ from functools import lru_cache
 import numpy as np
 
 from ...dynamics.motors import Actuators
+from ...errors import say_less, without_asides
 from ..errors import LineSpeedError, PlanError
 from ..job import PartJob
 from ..line.panel import line_clearance
@@ -154,10 +155,10 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
                             float(cr.origin @ axis))
             plan = plan_zone(model, act, job_b, view, speed, part_b, policy)
         except LineSpeedError as exc:
-            raise LineSpeedError(f"robot {cr.name!r}: {exc}", exc.too_fast, exc.why,
+            raise LineSpeedError(_robot_said(cr, exc), exc.too_fast, exc.why,
                                  exc.hint) from None
         except PlanError as exc:
-            raise PlanError(f"robot {cr.name!r}: {exc}") from None
+            raise PlanError(_robot_said(cr, exc)) from None
         if clearance:
             plan = replace(plan, clearance=line_clearance(model, plan))
         out.append(RobotPlan(cr, zone, plan))
@@ -229,6 +230,11 @@ def cell_clearance_of(robot, plan: CellPlan):
     required = CLEARANCE if job.clearance is None else job.clearance
     return cell_clearance(robot, members, MovingPart(mesh, tuple(float(c) for c in v)),
                           required)
+
+
+def _robot_said(cr, exc: Exception) -> str:
+    """A robot's refusal named, within the line's room (say_less)."""
+    return say_less(f"robot {cr.name!r}: {exc}", f"robot {cr.name!r}: {without_asides(str(exc))}")
 
 
 __all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",

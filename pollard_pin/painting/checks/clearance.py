@@ -34,6 +34,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from ...analytic.taskspace import rotation
+from ...errors import say_less
 from ..errors import ClearanceError
 from ..spray.gun_body import CLEARANCE, GunBody
 
@@ -165,11 +166,12 @@ def check_clearance(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None
         place = f" {where(c.sample)}" if where is not None else ""
         gap = (f"comes {c.distance * 1e3:.1f} mm from" if c.distance >= 0 else
                f"cuts {-c.distance * 1e3:.1f} mm into")
-        raise ClearanceError(
-            f"the gun's body {gap} the part at ({x[0]:.0f}, {x[1]:.0f}, {x[2]:.0f}) mm, t = "
-            f"{c.time:.3f} s{place}; clearance {required * 1e3:.3g} mm (± "
-            f"{c.between * 1e3:.1f} mm between samples): a larger standoff, or turn the part "
-            "so nothing stands taller than it")
+        said = (f"the gun's body {gap} the part at ({x[0]:.0f}, {x[1]:.0f}, {x[2]:.0f}) mm, "
+                f"t = {c.time:.3f} s{place}; clearance {required * 1e3:.3g} mm")
+        fix = "a larger standoff, or turn the part so nothing stands taller than it"
+        raise ClearanceError(say_less(
+            f"{said} (± {c.between * 1e3:.1f} mm between samples): {fix}", f"{said}: {fix}",
+            f"{said}: a larger standoff"))
     return c
 
 

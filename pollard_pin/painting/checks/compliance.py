@@ -29,6 +29,7 @@ from ..line.panel import LinePlan
 from ..line.part import LinePartPlan
 from ..plan.panel import PaintPlan
 from ..plan.part import SurfacePlan
+from ..progress import bar
 from ..spray.deposition import film, gun_of
 from .motion import reach
 
@@ -102,7 +103,7 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
         raise InputError(f"recoil = {recoil!r}: expected a force of 0 to {MAX_RECOIL:g} N")
     axes = rotation(poses)[:, :, 0]
     d = np.empty((n, 6))
-    for start in range(0, n, CHUNK):
+    for start in bar(range(0, n, CHUNK), "compliance"):
         sl = slice(start, start + CHUNK)
         try:
             q = reach(robot, poses[sl]).q

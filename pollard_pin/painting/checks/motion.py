@@ -13,6 +13,7 @@ from ...kinematics.errors import KinematicsError
 from ...kinematics.limits import check_joint_limits
 from ...kinematics.margins import Margins
 from ..errors import PlanError, ReachError
+from ..progress import bar
 
 
 @dataclass(frozen=True)
@@ -85,7 +86,7 @@ def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings:
         raise PlanError(f"no turnaround or ramp of up to {hi.max():.3g} s keeps every motor "
                         f"within {100 * target:.0f} % of its ratings: the pass speed itself "
                         "is too much for them")
-    for _ in range(iterations):
+    for _ in bar(range(iterations), "planning: ramps and turnarounds", unit="step"):
         mid = 0.5 * (lo + hi)
         ok = evaluate(mid) <= target
         lo, hi = np.where(ok, lo, mid), np.where(ok, mid, hi)

@@ -10,6 +10,7 @@ import numpy as np
 from ...analytic.taskspace import rotation
 from ...dynamics.averages import trapezoid_weights
 from ..errors import PlanError
+from ..progress import bar
 from ..spray.deposition import (
     BLOCK_ELEMENTS,
     Film,
@@ -54,7 +55,7 @@ def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
     p, s = p - origin, s - origin
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
-    for start in range(0, len(live), block):
+    for start in bar(range(0, len(live), block), "film"):
         i = live[start:start + block]
         k = near_spot(gun, p[i], a[i], s)
         r = deposition_rate(gun, p[i], a[i], s[k], n)

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
 from ..errors import MeshError
+from ..progress import bar
 from ..spray.deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate, near_spot
 from ..spray.occlusion import in_spot, visible
 from ..spray.shadow_edges import shadow_edges
@@ -83,7 +84,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     dark_t, dark_p = [], []  # the shaded pairs
     pairs = shaded = 0
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
-    for start in range(0, len(t), block):
+    for start in bar(range(0, len(t), block), "film"):
         sl = slice(start, start + block)
         live = np.flatnonzero(trig[sl] > 0)  # a closed trigger deposits nothing: skip it
         if not len(live):

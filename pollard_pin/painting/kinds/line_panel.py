@@ -8,7 +8,9 @@ import time
 import numpy as np
 
 from ...dynamics.motors import Actuators
+from ...errors import say_less, without_asides
 from ...version import __version__
+from ..errors import LineReachError
 from ..film.line import line_film, part_frame_positions
 from ..film.stats import film_stats
 from ..line.panel import LinePlan, max_line_speed, plan_line_job
@@ -23,11 +25,16 @@ def line_plan(robot, job, act, options, part=None):
     """The plan at the job's line speed or at the fastest (a panel's or, with ``part``, a
     part's), and the planning time [s]."""
     t0 = time.perf_counter()
-    if options.max_line_speed:
-        _, plan = max_line_speed(robot, job, act, options.speed_resolution, part,
-                                 policy=options.policy)
-    else:
-        plan = plan_line_job(robot, job, act, part, policy=options.policy)
+    try:
+        if options.max_line_speed:
+            _, plan = max_line_speed(robot, job, act, options.speed_resolution, part,
+                                     policy=options.policy)
+        else:
+            plan = plan_line_job(robot, job, act, part, policy=options.policy)
+    except LineReachError as exc:  # one robot's reach: a cell may paint it
+        said, cell = str(exc), ", or a cell of robots (paint --robots N|auto)"
+        raise LineReachError(say_less(said + cell, without_asides(said) + cell,
+                                      said)) from None
     return plan, time.perf_counter() - t0
 
 

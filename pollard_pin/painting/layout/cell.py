@@ -21,7 +21,7 @@ import numpy as np
 
 from ...checks import instance
 from ...dynamics.motors import as_actuators
-from ...errors import InputError
+from ...errors import InputError, say_less, without_asides
 from ...model.build import check_robot
 from ...workspace.reach import evaluate
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
@@ -29,6 +29,7 @@ from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
 from ..errors import BudgetError, CellError, PlanError
 from ..job import PartJob, check_job
+from ..progress import bar, showing
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
@@ -218,8 +219,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     Raises
     ------
     pollard_pin.painting.errors.CellError
-        One line naming the last reason when no layout of up to ``AUTO_MORE`` more robots
-        paints the part.
+        One line naming each count's first cause when no layout of up to ``AUTO_MORE`` more
+        robots paints the part.
     """
     from ..api import paint_job
     from ..options import PaintOptions
@@ -237,16 +238,24 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
     last = min(MAX_ROBOTS, first + AUTO_MORE)
-    why = ""
-    for n in range(first, last + 1):
-        try:
-            robots = propose_layout(robot, job, n, layout, part)
-            return robots, paint_job(robot, replace(job, robots=robots), actuators, options)
-        except BudgetError:
-            raise
-        except (CellError, PlanError) as exc:
-            why = str(exc)
-    raise CellError(f"{job.source}: no layout of {first}…{last} robots paints the part: {why}")
+    why = {}
+    with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
+        for n in bar(range(first, last + 1), "layout search", unit="layout"):
+            try:
+                robots = propose_layout(robot, job, n, layout, part)
+                return robots, paint_job(robot, replace(job, robots=robots), actuators,
+                                         options)
+            except BudgetError:
+                raise
+            except (CellError, PlanError) as exc:
+                why[n] = str(exc).removeprefix(f"{job.source}: ")
+    head = f"{job.source}: no layout of {first}…{last} robots paints the part: "
+    # each count's cause, said with less until the line holds them all (say_less)
+    causes = [why, {n: without_asides(w) for n, w in why.items()},
+              {n: without_asides(w).split("; ")[0] for n, w in why.items()},
+              {n: without_asides(w).split(": ")[0] for n, w in why.items()}]
+    raise CellError(say_less(*(head + "; ".join(f"{n} robots: {w}" for n, w in c.items())
+                               for c in causes), head + f"{last} robots: {causes[-1][last]}"))
 
 
 __all__ = ["AUTO_MORE", "LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",

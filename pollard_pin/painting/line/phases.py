@@ -15,11 +15,13 @@ import numpy as np
 
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
+from ...errors import say_less
 from ...paths.trajectory import Trajectory
 from ..checks.motion import fastest, motion, reach
-from ..errors import BudgetError, LineSpeedError, PlanError, ReachError
+from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
+from ..progress import ticking
 from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
 
@@ -220,7 +222,7 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
                             f"passes is in reach within {SHIFT_RANGE:g} m of travel: move the "
                             "part or the line")
         if bad:
-            raise PlanError(f"{out_of_reach(bad, n)}: turn, move or split the part")
+            raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
         along = poses[:, :3] @ e
         drift = float(along[-1] - along[0])
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "
@@ -328,8 +330,10 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     try:
         fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
     except ReachError as exc:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s the path leaves the workspace at "
-                             f"t = {tf[exc.sample]:.3f} s: {exc}", drift > 0,
+        said = f"at line speed {speed:.4g} m/s the path leaves the workspace at t = " \
+               f"{tf[exc.sample]:.3f} s"
+        raise LineSpeedError(say_less(f"{said}: {exc}", f"{said}: {str(exc).split(': ')[0]}",
+                                      said), drift > 0,
                              f"the path leaves the workspace at t = {tf[exc.sample]:.3f} s"
                              ) from None
     cyc = tf >= times.leave - 1e-12  # RMS over the repeating cycle, not the wait
@@ -426,6 +430,11 @@ def fastest_line_speed(plan_at, start: float, source: str,
     speed), halved while too fast and doubled while too slow (or sent to the failure's
     ``hint``, the speed of no drift, if further) until one plans, then doubled until one
     fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
+    with ticking("line speed search", "plan") as tick:  # a bar on a terminal, if asked
+        return _fastest(lambda s: (tick(), plan_at(s))[1], start, source, resolution)
+
+
+def _fastest(plan_at, start: float, source: str, resolution: float):
     s = start
     best = None
     slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
@@ -486,8 +495,10 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
             fastest_speed, _ = fastest_line_speed(plan_at, speed, source)
         except PlanError:
             raise exc from None
-        raise PlanError(f"{exc}; the fastest line speed that paints it is "
-                        f"{fastest_speed:.4g} m/s (--max-line-speed)") from None
+        fastest = f"the fastest line speed that paints it is {fastest_speed:.4g} m/s"
+        raise PlanError(say_less(f"{exc}; {fastest} (--max-line-speed)",
+                                 f"at line speed {speed:.4g} m/s {exc.why}; {fastest} "
+                                 "(--max-line-speed)")) from None
 
 
 __all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",

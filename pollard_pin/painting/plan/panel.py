@@ -30,6 +30,7 @@ import numpy as np
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import ActuatorError, Actuators, uniform_min_duration
 from ...dynamics.path import path_dynamics
+from ...errors import say_less, without_asides
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance, panel_mesh
 from ..checks.motion import fastest, motion, reach
@@ -206,7 +207,8 @@ def plan_paint(robot, job: PaintJob, act: Actuators,
             fit = printed_panel(job, scale)  # the panel planned, as printed
             fits = (f"the largest panel that fits (same centre, proportions) is "
                     f"{fit.width:.3f} × {fit.height:.3f} m, planned in full")
-        raise PlanError(f"{exc}; {fits}") from None
+        first = ": ".join(str(exc).split(": ")[:2])  # where, and the kinematics' cause
+        raise PlanError(say_less(f"{exc}; {fits}", f"{first}; {fits}")) from None
 
 
 def printed_panel(job: PaintJob, scale: float) -> PaintJob:
@@ -436,7 +438,8 @@ def _reach_error(exc: ReachError, where: str, frame: PanelFrame, job: PaintJob) 
         xyz = np.asarray(exc.pose[:3])
         p = xyz - frame.c - job.standoff * frame.n
         msg += f" at panel (u, v) = ({p @ frame.u * 1e3:.0f}, {p @ frame.v * 1e3:.0f}) mm"
-    return ReachError(f"{msg}: {exc}", exc.sample, exc.pose)
+    return ReachError(say_less(f"{msg}: {exc}", f"{msg}: {without_asides(str(exc))}",
+                               f"{msg}: {str(exc).split(': ')[0]}"), exc.sample, exc.pose)
 
 
 __all__ = ["PaintPlan", "derated", "largest_scale", "max_pass_speed", "plan_paint",

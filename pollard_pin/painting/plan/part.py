@@ -13,6 +13,7 @@ planner's :class:`..policy.PlannerPolicy`, ``policy=``).
 from __future__ import annotations
 
 import math
+import re
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,7 +22,7 @@ import numpy as np
 
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
-from ...model.values import clip
+from ...errors import say_less, without_asides
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance
 from ..checks.motion import fastest, motion
@@ -81,7 +82,7 @@ def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
 
 def _cause(exc: ReachError) -> str:
     """The kinematics' reason without its figures ('chain 0 cannot reach the wrist centre')."""
-    return clip(str(exc).split(": ")[0], 60)
+    return " ".join(re.split(r": | \[", str(exc))[0].split())  # (a joint's limits: its name)
 
 
 def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool,
@@ -100,9 +101,16 @@ def _refusal(robot, job, act, part: Part, exc: ReachError, hints: bool,
             return False
         return True
 
-    name, hint = Path(part.source).name, clip(reach_hint(robot, job, paints, policy), 170)
-    where = clip(str(exc), 250 - 2 - len(name) - 2 - len(hint))
-    return ReachError(f"{name}: {where}; {hint}", exc.sample, exc.pose)
+    name, hint = Path(part.source).name, reach_hint(robot, job, paints, policy)
+    where = str(exc)
+    # said with less: without the asides in words (the figures of a miss), then without the
+    # part point, then without the kinematics' cause
+    short = without_asides(hint)
+    pointless = re.sub(r" at part point \([^()]*\) m", "", where)
+    return ReachError(say_less(f"{name}: {where}; {hint}", f"{name}: {where}; {short}",
+                               f"{name}: {pointless}; {short}", f"{pointless}; {short}",
+                               f"{without_asides(where)}; {short}"),
+                      exc.sample, exc.pose)
 
 
 def time_step(job, pieces, v: float, policy: PlannerPolicy = DEFAULT_POLICY) -> float:

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
+from ..progress import bar
 
 # Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
 BLOCK_ELEMENTS = 1_000_000
@@ -216,7 +217,7 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     w, w2 = trapezoid_weights(t), coarse_weights(t)
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
-    for start in range(0, len(t), block):
+    for start in bar(range(0, len(t), block), "film"):
         sl = slice(start, start + block)
         k = near_spot(gun, p[sl], a[sl], s)
         r = deposition_rate(gun, p[sl], a[sl], s[k], n if n.ndim == 1 else n[k])

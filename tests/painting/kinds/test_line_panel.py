@@ -33,3 +33,28 @@ def test_summary_lines(robot, line_job, act):
     assert lines[4].startswith("motor peak torque") and len(lines) == 6
     assert r.summary_lines()[:6] == lines  # then the gun body's clearance (no compliance)
     assert not any(line.startswith("compliance") for line in r.summary_lines())
+
+
+def test_a_pass_out_of_one_robots_reach_names_a_cell(monkeypatch):
+    """A part too tall or too long for one robot on the line: the refusal says a cell may
+    paint it (--robots), within the line's room, the asides in words given way first."""
+    import pytest
+
+    import pollard_pin.painting.kinds.line_panel as kind
+    from pollard_pin.errors import MESSAGE_ROOM
+    from pollard_pin.painting.errors import LineReachError
+
+    said = ("all 19 passes out of reach at any place on the line: pass 10 is 0.561 m (run-on "
+            "included), at most 0.412 m of it in reach, 149 mm too tall for the reach: turn, "
+            "move or split the part")
+
+    def refuses(*args, **kwargs):
+        raise LineReachError(said)
+
+    monkeypatch.setattr(kind, "plan_line_job", refuses)
+    with pytest.raises(LineReachError) as info:
+        kind.line_plan(None, None, None, PaintOptions())
+    msg = str(info.value)
+    assert len(msg) <= MESSAGE_ROOM, msg
+    assert msg == said.replace(" (run-on included)", "") + (
+        ", or a cell of robots (paint --robots N|auto)"), msg

@@ -92,9 +92,31 @@ def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     assert (tried, len(robots), result) == ([2, 3], 3, "painted")
     tried.clear()
     monkeypatch.setattr(cell_layout, "AUTO_MORE", 0)
-    with pytest.raises(CellError, match=r"no layout of 2…2 robots paints the part: too fast"):
+    with pytest.raises(CellError,
+                       match=r"no layout of 2…2 robots paints the part: 2 robots: too fast"):
         fewest_robots(robot, tall_panel())
     assert tried == [2]
+
+
+def test_the_search_refusal_says_each_counts_first_cause_in_one_line(robot, monkeypatch):
+    from pollard_pin.errors import MESSAGE_ROOM
+
+    def paint_job(robot, job, actuators=None, options=None):
+        n = len(job.robots)
+        raise LineSpeedError(f"cause {n}: the motors of {n} robots (figures " + "x " * 60
+                             + f"); what to change {n}" + " y" * 60, too_fast=True)
+
+    import pollard_pin.painting.api as api
+
+    monkeypatch.setattr(api, "paint_job", paint_job)
+    monkeypatch.setattr(cell_layout, "AUTO_MORE", 2)
+    with pytest.raises(CellError) as err:
+        fewest_robots(robot, tall_panel())
+    said = str(err.value)
+    assert len(said) <= MESSAGE_ROOM, said
+    assert said.endswith("no layout of 2…4 robots paints the part: 2 robots: cause 2: the "
+                         "motors of 2 robots; 3 robots: cause 3: the motors of 3 robots; 4 "
+                         "robots: cause 4: the motors of 4 robots"), said  # no figures, no fix
 
 
 def test_a_cell_of_one_robot_is_proposed_where_it_reaches(robot):
@@ -140,3 +162,17 @@ def test_fewest_robots_refuses_a_wrong_argument(robot, arg, wrong):
     test_result.py): one line naming the argument, before any planning."""
     kwargs = {arg: wrong}
     refused(lambda: fewest_robots(robot, tall_panel(), **kwargs), arg)
+
+
+def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch, capsys):
+    import sys
+
+    import pollard_pin.painting.api as api
+    from pollard_pin.painting.options import PaintOptions
+
+    monkeypatch.setattr(api, "paint_job", lambda *args, **kwargs: "painted")
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    fewest_robots(robot, tall_panel())  # a Python caller who did not ask: silent
+    assert capsys.readouterr().err == ""
+    fewest_robots(robot, tall_panel(), options=PaintOptions(progress=True))
+    assert "layout search" in capsys.readouterr().err
