@@ -85,12 +85,11 @@ def _strict(share, check: dict) -> int:
     is within ±10 % of the target (True: the check's acceptance); else 0."""
     from ..painting.film.stats import misses
 
-    if share is True:
-        share = check["acceptance"]["min_share"]
-    if share is None or not misses(check, share):
+    if share is None or not misses(check, None if share is True else share):
         return 0
+    need = check["acceptance"]["min_share"] if share is True else share
     print(f"pollard-pin paint: --strict: {100 * (1 - check['outside_10pct']):.2f} % of the "
-          f"area within ±10 % of the target, under {100 * share:g} % (exit status "
+          f"area within ±10 % of the target, under {100 * need:g} % (exit status "
           f"{STRICT_STATUS}; the outputs are written)", file=sys.stderr)
     return STRICT_STATUS
 

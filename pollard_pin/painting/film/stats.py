@@ -54,8 +54,9 @@ def film_check(stats: dict, target: float, share: float = ACCEPTANCE_SHARE) -> d
 
 def misses(check: dict, share: float | None = None) -> bool:
     """Whether the film of ``check`` (:func:`film_check`) has less than ``share`` of its
-    area within ±10 % of the target (None: the check's own acceptance)."""
-    share = check["acceptance"]["min_share"] if share is None else share
+    area within ±10 % of the target (None: the check's own acceptance, its ``meets``)."""
+    if share is None:
+        return not check["meets"]
     return 1.0 - check["outside_10pct"] < share
 
 
