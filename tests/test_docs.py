@@ -167,6 +167,17 @@ def test_formats_page_names_every_key_the_readers_take():
     assert not missing, f"keys missing from docs/formats.md: {missing}"
 
 
+def test_readme_plot_table_lists_every_file_plot_writes():
+    """The README's table under ``plot`` lists each figure `pollard-pin plot` writes (the
+    trajectory's and the joint loads'), and no other."""
+    from pollard_pin.viz.plots import FIGURES, LOAD_FIGURES
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    table = text.split("* **`plot`**", 1)[1].split("* **`", 1)[0]
+    listed = set(re.findall(r"`(\w+)\.png`", table))
+    assert listed == set(FIGURES + LOAD_FIGURES)
+
+
 def test_citation_carries_the_version():
     cff = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
     assert re.search(r'^version: "(.*)"$', cff, re.M).group(1) == pollard_pin.__version__

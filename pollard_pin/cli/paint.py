@@ -2,11 +2,13 @@
 over a part's mesh (§23)."""
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from .common import (
     UsageError,
     command,
+    fraction,
     load_robot,
     model_args,
     name,
@@ -23,6 +25,10 @@ from .paint_robots import (
     robots_arg,
     write_layout,
 )
+
+# --strict's exit status when the film misses: distinct from 2 (a refusal, nothing written)
+# and from 1 (an uncaught error): the outputs are written, for the paint engineer to look at
+STRICT_STATUS = 3
 
 
 def _actuators(args, job):
@@ -72,7 +78,21 @@ def run(args) -> int:
             write_layout(robots, out, count, job)
     print("\n".join(result.summary_lines()))
     say_written(out, name, result.robot_folders)
-    return 0
+    return _strict(args.strict, result.report.data["film_check"])
+
+
+def _strict(share, check: dict) -> int:
+    """--strict SHARE: STRICT_STATUS, said on stderr, when less than ``share`` of the area
+    is within ±10 % of the target (True: the check's acceptance); else 0."""
+    from ..painting.film.stats import misses
+
+    if share is None or not misses(check, None if share is True else share):
+        return 0
+    need = check["acceptance"]["min_share"] if share is True else share
+    print(f"pollard-pin paint: --strict: {100 * (1 - check['outside_10pct']):.2f} % of the "
+          f"area within ±10 % of the target, under {100 * need:g} % (exit status "
+          f"{STRICT_STATUS}; the outputs are written)", file=sys.stderr)
+    return STRICT_STATUS
 
 
 def add_parser(sub, parents) -> None:
@@ -103,6 +123,11 @@ def add_parser(sub, parents) -> None:
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
                         "§24)")
+    p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
+                   metavar="SHARE",
+                   help="exit with status 3 (after writing the outputs) when less than SHARE "
+                        "of the painted area is within ±10 %% of the target (SHARE left "
+                        "out: the acceptance paint.json's film_check states, 0.99)")
     p.add_argument("--robots", type=robots_arg, default=None, metavar="N|auto",
                    help="a job with [line] and no [[robot]]: propose N robots (1..16) for the "
                         "part, stacked along the line (or auto: the fewest that paint it), "

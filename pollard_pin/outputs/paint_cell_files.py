@@ -13,6 +13,9 @@ from ..io.atomic import all_or_nothing, atomic_open, make_folder, remove_stale
 from .schema import PaintJson, dumps
 
 CELL_FRAME = "the part at its t = 0 pose, world coordinates; all robots"
+# a cell part's thickness.png: the line's direction, then the cell's axis the robots' zones
+# stack along (docs/model.md §26.2), whatever way the passes run
+CELL_PART_AXES = ("along the line [mm]", "across the line, along the cell's axis [mm]")
 
 
 def robot_metadata(rp) -> dict:
@@ -119,7 +122,7 @@ def _part(result, out: Path):
 
     def png():
         write_part_png(out / "thickness.png", P, th, job.thickness, e, axis,
-                       [_aims(rp) for rp in cell.robots])
+                       [_aims(rp) for rp in cell.robots], labels=CELL_PART_AXES)
 
     return table, ply, png
 
@@ -132,4 +135,4 @@ def _aims(rp) -> np.ndarray:
     return (p + rp.plan.job.standoff * a)[s > 0]
 
 
-__all__ = ["CELL_FRAME", "robot_metadata", "write_cell"]
+__all__ = ["CELL_FRAME", "CELL_PART_AXES", "robot_metadata", "write_cell"]

@@ -79,10 +79,24 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
     act = default_actuators(job) if actuators is None else actuators
     with showing(options.progress):
         plan, film, rep = kind.paint(robot, job, act, options, res)
+        rep = _with_film_check(rep)
         if options.compliance and kind.compliance:  # docs/model.md §27.7
             _compliance(robot, plan, film, act, rep)
     return PaintedJob(job, kind.name, plan, film, PaintReport.from_dict(kind.name, rep), act,
                        options, kind)
+
+
+def _with_film_check(rep: dict) -> dict:
+    """``rep`` with its ``film_check`` (the film against the acceptance) after its
+    ``target``."""
+    from .film.stats import film_check
+
+    out = {}
+    for k, v in rep.items():
+        out[k] = v
+        if k == "target":
+            out["film_check"] = film_check(rep["thickness"], rep["target"])
+    return out
 
 
 def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:

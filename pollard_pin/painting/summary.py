@@ -68,14 +68,26 @@ def compliance_line(c: dict) -> str:
             f"{100 * c['film_error']:.2g} % of the target")
 
 
+def film_miss_line(c: dict) -> str:
+    """paint.json's ``film_check`` in one warning line, for a film that misses its
+    acceptance."""
+    a = c["acceptance"]
+    return (f"warning: the film misses its acceptance: {100 * (1 - c['outside_10pct']):.2f} % "
+            f"of the area within ±{100 * a['band']:g} % of the target (needs "
+            f"{100 * a['min_share']:g} %), film {c['min_relative']:.3g}–"
+            f"{c['max_relative']:.3g} × the target")
+
+
 def closing_lines(rep: dict) -> list[str]:
     """The lines after a kind's own: the gun body's clearance where the report has one, the
-    compliance where it was computed."""
+    compliance where it was computed, a warning where the film misses its acceptance."""
     lines = [clearance_line(rep)] if "min_clearance_m" in rep else []
     if "compliance" in rep:
         lines.append(compliance_line(rep["compliance"]))
+    if "film_check" in rep and not rep["film_check"]["meets"]:
+        lines.append(film_miss_line(rep["film_check"]))
     return lines
 
 
-__all__ = ["clearance_line", "closing_lines", "compliance_line", "line_lines",
+__all__ = ["clearance_line", "closing_lines", "compliance_line", "film_miss_line", "line_lines",
            "motor_use_line", "part_summary_lines"]

@@ -10,13 +10,16 @@ import numpy as np
 
 from ..film_scale import FILM_CMAP, film_label, film_range
 
+# the axes' names of a still part's or a part's on a line (the layout's along and across)
+PASS_AXES = ("along the passes [mm]", "across the passes [mm]")
+
 
 def part_figure(points, thickness, target: float, along, across, tracks=(),
-                title: str = "Film thickness on the part"):
+                title: str = "Film thickness on the part", labels=PASS_AXES):
     """Scatter of the film ``points`` (P, 3) [m] projected on the unit ``along`` and
     ``across`` axes, coloured by ``thickness`` [m] on the film scale, with ``tracks`` (each
-    (K, 3) [m], the spray spot's centre along a pass) drawn over them. Artist gids: ``film``,
-    ``passes``."""
+    (K, 3) [m], the spray spot's centre along a pass) drawn over them; ``labels`` name the
+    two axes (x, y; a cell's: the line and across it). Artist gids: ``film``, ``passes``."""
     from matplotlib.figure import Figure
 
     pts = np.asarray(points, float)
@@ -37,8 +40,8 @@ def part_figure(points, thickness, target: float, along, across, tracks=(),
     if len(tracks):
         ax.legend(loc="upper right", fontsize=8)
     ax.set_aspect("equal")
-    ax.set_xlabel("along the passes [mm]")
-    ax.set_ylabel("across the passes [mm]")
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1])
     ax.set_title(title)
     return fig
 
@@ -50,4 +53,4 @@ def write_part_png(path, *args, dpi: int = 100, **kwargs) -> Path:
     return save_png(part_figure(*args, **kwargs), path, dpi)
 
 
-__all__ = ["part_figure", "write_part_png"]
+__all__ = ["PASS_AXES", "part_figure", "write_part_png"]

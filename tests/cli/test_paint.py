@@ -34,6 +34,9 @@ def test_outputs(painted):
         assert key in rep
     assert set(rep["thickness"]) >= {"mean", "min", "max", "std", "uniformity",
                                      "within_10pct"}
+    # the example meets the acceptance: nothing more printed (tests/painting/test_summary.py)
+    assert rep["film_check"]["meets"] is True and rep["film_check"]["outside_10pct"] == 0.0
+    assert list(rep)[list(rep).index("target") + 1] == "film_check"
     assert rep["job"]["gun"] == {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7}
     table = read_result(painted / "thickness.csv")
     assert list(table.columns) == ["x", "y", "z", "nx", "ny", "nz", "area", "u", "v",
@@ -394,3 +397,48 @@ def test_a_kept_clearance_is_reported(tmp_path, capsys):
                                                    abs=1e-9)  # achieves ~1e-16
     assert rep["clearance"]["required_m"] == 0.02
     assert rep["job"]["gun"]["clearance"] == 0.02
+
+
+def test_a_film_that_misses_is_said_and_strict_exits_3_after_writing(tmp_path, capsys):
+    """A plate with a rib 50 mm tall and 30 mm wide: the passes ride over the rib and leave
+    its feet thin (94.2 % of the area within ±10 % at the test's resolution): the summary
+    closes with a warning, paint.json's film_check says it, and --strict exits 3 (distinct
+    from 2, a refusal) with every output written."""
+    from pollard_pin.painting.workpiece import shapes
+
+    shapes.ribbed_plate(width=0.16, height=0.06, rib_height=0.05, rib_width=0.03,
+                        step=0.01).export(tmp_path / "rib.obj")
+    job = tmp_path / "rib.toml"
+    ribbed = (ROOT / "examples" / "parts" / "ribbed_plate.toml").read_text()
+    job.write_text(ribbed.replace("ribbed_plate.obj", "rib.obj"))
+    out = tmp_path / "out"
+    code, text, err = run_cli(["paint", "--job", job, "--out", out, "--resolution", "0.006",
+                               "--no-compliance", "--strict"], capsys)
+    assert code == 3, err
+    assert {p.name for p in out.iterdir()} >= {"path.csv", "thickness.csv", "film.ply",
+                                               "paint.json", "thickness.png"}
+    c = json.loads((out / "paint.json").read_text())["film_check"]
+    assert c["meets"] is False and c["acceptance"] == {"band": 0.1, "min_share": 0.99}
+    share = 1 - c["outside_10pct"]
+    assert 0.5 < share < 0.99 and c["min_relative"] < 0.9
+    warning = text.strip().splitlines()[-1]
+    assert warning.startswith("warning: the film misses its acceptance: "
+                              f"{100 * share:.2f} % of the area within ±10 %")
+    assert err.strip().splitlines()[-1] == (
+        f"pollard-pin paint: --strict: {100 * share:.2f} % of the area within ±10 % of the "
+        "target, under 99 % (exit status 3; the outputs are written)")
+    # a share the film meets: exit 0, the warning still printed
+    again = tmp_path / "again"
+    code, text2, err = run_cli(["paint", "--job", job, "--out", again, "--resolution",
+                                "0.006", "--no-compliance", "--strict", f"{share - 0.01}"],
+                               capsys)
+    assert code == 0, err
+    assert warning in text2
+
+
+@pytest.mark.parametrize("value", ["1.5", "-0.1", "x"])
+def test_a_strict_share_outside_0_1_is_refused(tmp_path, capsys, value):
+    code, _, err = run_cli(["paint", "--job", JOB, "--out", tmp_path / "o", "--strict",
+                            value], capsys)
+    assert code == 2 and "--strict" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "o").exists()

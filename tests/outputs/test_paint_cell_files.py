@@ -206,3 +206,55 @@ def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, capsys, tmp_
     # the median, not the worst: a few samples where the pieces meet differ by up to 6 %
     assert median_gap("sim") <= 1e-13  # seen 2.2e-16 of the peak
     assert median_gap("bare") >= 0.05  # seen 0.76 of the peak (the weight pulls the other way)
+
+
+PLATE_CELL = """
+[part]
+mesh = "plate.stl"
+position = [0.71, -0.3, 0.10]
+facing = [-1.0, 0.0, 0.0]
+
+[gun]
+standoff = 0.15
+sigma = 0.01
+flow = 1.5e-7
+
+[job]
+thickness = 25e-6
+
+[line]
+speed = 0.02
+direction = [0.0, 1.0, 0.0]
+
+[[robot]]
+name = "near"
+base = [0.0, 0.0, 0.0]
+"""
+
+
+def test_a_cell_parts_thickness_png_names_the_line_and_the_cells_axis(tmp_path, capsys,
+                                                                       monkeypatch):
+    """The figure's x is the line's direction and its y the cell's axis (not the passes',
+    which a still part's figure names): the writer says so."""
+    import trimesh
+
+    from pollard_pin.outputs.paint_cell_files import CELL_PART_AXES
+    from pollard_pin.viz import paint_part
+
+    trimesh.creation.box((0.02, 0.2, 0.1)).export(tmp_path / "plate.stl")
+    (tmp_path / "plate.toml").write_text(PLATE_CELL)
+    drawn, figure = [], paint_part.part_figure
+
+    def spy(points, thickness, target, along, across, *args, **kwargs):
+        drawn.append((np.asarray(along, float), np.asarray(across, float), kwargs))
+        return figure(points, thickness, target, along, across, *args, **kwargs)
+
+    monkeypatch.setattr(paint_part, "part_figure", spy)
+    code, _, err = run_cli(["paint", "--job", tmp_path / "plate.toml", "--out",
+                            tmp_path / "out", "--no-compliance"], capsys)
+    assert code == 0, err
+    (along, across, kwargs), = drawn
+    assert kwargs["labels"] == CELL_PART_AXES == ("along the line [mm]",
+                                                  "across the line, along the cell's axis [mm]")
+    assert np.array_equal(along, [0.0, 1.0, 0.0]) and abs(abs(across[2]) - 1) < 1e-12
+    assert (tmp_path / "out" / "thickness.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -48,3 +48,20 @@ def test_closing_lines_only_where_the_report_has_them():
     assert closing_lines(off) == ["compliance not computed"]
     assert closing_lines({**CLEARANCE, **off}) == [clearance_line(CLEARANCE),
                                                    "compliance not computed"]
+
+
+def test_a_film_that_misses_its_acceptance_is_said_after_the_rest():
+    """A film check that meets its acceptance adds nothing (the examples print what they
+    did); one that misses closes the summary with a warning line stating its figures."""
+    from pollard_pin.painting.summary import film_miss_line
+
+    check = {"outside_5pct": 0.5, "outside_10pct": 0.384, "min_relative": 1e-5,
+             "max_relative": 1.13, "acceptance": {"band": 0.1, "min_share": 0.99},
+             "meets": False}
+    line = film_miss_line(check)
+    assert line == ("warning: the film misses its acceptance: 61.60 % of the area within "
+                    "±10 % of the target (needs 99 %), film 1e-05–1.13 × the target")
+    assert closing_lines({**CLEARANCE, "film_check": check}) == [clearance_line(CLEARANCE),
+                                                                   line]
+    assert closing_lines({**CLEARANCE, "film_check": {**check, "meets": True}}) == [
+        clearance_line(CLEARANCE)]

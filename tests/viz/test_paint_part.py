@@ -30,3 +30,16 @@ def test_thickness_png_and_part_png_state_the_scale():
         film = next(a for a in ax.get_children() if a.get_gid() == "film")
         assert film.get_clim() == pytest.approx((22.5, 27.5), rel=1e-12)
         assert cax.get_ylabel() == film_label(TARGET)
+
+
+def test_the_axes_are_named_as_the_writer_says():
+    """A still part's or a line's: along and across the passes; a cell's its own names."""
+    from pollard_pin.viz.paint_part import PASS_AXES
+
+    pts = np.zeros((4, 3))
+    ax = part_figure(pts, np.full(4, TARGET), TARGET, [1, 0, 0], [0, 1, 0]).axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == PASS_AXES == ("along the passes [mm]",
+                                                               "across the passes [mm]")
+    ax = part_figure(pts, np.full(4, TARGET), TARGET, [1, 0, 0], [0, 1, 0],
+                     labels=("x [mm]", "y [mm]")).axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x [mm]", "y [mm]")

@@ -3,7 +3,7 @@ each figure against a direct numpy computation on a film built to have known sha
 import numpy as np
 import pytest
 
-from pollard_pin.painting.film.stats import film_stats
+from pollard_pin.painting.film.stats import ACCEPTANCE_SHARE, film_check, film_stats, misses
 
 TARGET = 25e-6
 
@@ -40,3 +40,30 @@ def test_areas_weigh_the_mean_std_and_shares():
     assert alike.keys() == plain.keys()
     for k in plain:
         assert alike[k] == pytest.approx(plain[k], rel=1e-15, abs=1e-30)
+
+
+def test_film_check_states_the_shares_outside_and_the_extremes():
+    """The 40-point film: 25 % of the area beyond ±10 % (the +20 % points), 50 % beyond
+    ±5 %, 0.92–1.2 × the target: it misses the acceptance; a film at 0.95–1.05 meets it."""
+    st = film_stats(film_with_shares(), TARGET)
+    c = film_check(st, TARGET)
+    assert (c["outside_5pct"], c["outside_10pct"]) == (0.5, 0.25)
+    assert c["min_relative"] == pytest.approx(0.92, rel=1e-12)  # achieved ~1e-16
+    assert c["max_relative"] == pytest.approx(1.2, rel=1e-12)
+    assert c["acceptance"] == {"band": 0.10, "min_share": ACCEPTANCE_SHARE}
+    assert c["meets"] is False and misses(c)
+    good = film_check(film_stats(TARGET * np.linspace(0.95, 1.05, 41), TARGET), TARGET)
+    assert good["meets"] is True and not misses(good) and good["outside_10pct"] == 0.0
+
+
+def test_the_acceptance_share_is_where_the_film_tips():
+    """99 % of the area within ±10 %: met; 98.9 %: missed; a stated share overrides it."""
+    areas = np.array([0.99, 0.01])
+    at = film_check(film_stats(TARGET * np.array([1.0, 0.5]), TARGET, areas), TARGET)
+    assert at["meets"] and not misses(at)
+    below = film_check(film_stats(TARGET * np.array([1.0, 0.5]), TARGET,
+                                  np.array([0.989, 0.011])), TARGET)
+    assert not below["meets"] and misses(below)
+    assert not misses(below, 0.98) and misses(at, 0.995)
+    assert film_check(film_stats(TARGET * np.array([1.0, 0.5]), TARGET, areas), TARGET,
+                      0.995)["meets"] is False
