@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
-from ...dynamics.drives.stiffness import check_stiffness, deflection_at
+from ...dynamics.drives.stiffness import StiffnessError, check_stiffness, deflection_at
 from ...dynamics.motors import ActuatorError, Actuators
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
@@ -89,7 +89,8 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
     KinematicsError
         A pose out of reach or singular, naming the sample (the IK is ``run``'s).
     StiffnessError
-        A stiffness missing or invalid.
+        A stiffness missing or invalid; a drive turned beyond the linear model's bound
+        (docs/model.md §27.2), naming the sample.
     """
     k = check_stiffness(stiffness)
     poses = np.asarray(trajectory.poses, dtype=float)
@@ -209,6 +210,12 @@ def drive_stiffness(job, act: Actuators) -> tuple[float, np.ndarray | None, dict
                               "note": f"not computed: {exc}"}
 
 
+def beyond_linear(entry: dict, exc: StiffnessError) -> dict:
+    """The report entry of a program whose drives turn beyond the linear model's bound
+    (docs/model.md §27.2): no figures, a ``note`` saying why."""
+    return {**entry, "stiffness": True, "note": f"not computed: {exc}"}
+
+
 def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
     """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
     paint under the weight and the job's recoil.
@@ -232,7 +239,8 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
     -------
     dict
         ``recoil_n`` [N]; ``stiffness`` (False, with a ``note``, when the actuators have
-        none); over the sprayed samples ``standoff_error_m`` [m] (at
+        none; True with a ``note`` and no figures when a drive turns beyond the linear
+        model's bound); over the sprayed samples ``standoff_error_m`` [m] (at
         ``standoff_error_at_t`` [s]), ``lateral_error_m`` [m], ``tilt_rad`` [rad]; over the
         painted points ``film_error``, the largest film change relative to the target, at
         ``film_error_at`` [m]; ``drive_stiffness`` [N·m/rad].
@@ -241,7 +249,10 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
     if k is None:
         return note
     entry = {"recoil_n": recoil}
-    d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
+    try:
+        d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
+    except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
+        return beyond_linear(entry, exc)
     T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection))
     err, where = film_error(thickness, T, plan.job.thickness, painted)
     return {**entry, "stiffness": True,
@@ -251,6 +262,6 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
             "drive_stiffness": [float(x) for x in k]}
 
 
-__all__ = ["CHUNK", "ProgramDeflection", "compliance_entry", "deflected_poses", "drive_stiffness",
-           "film_error", "film_points", "program_deflection", "program_film", "recoil_wrench",
-           "sprayed_errors"]
+__all__ = ["CHUNK", "ProgramDeflection", "beyond_linear", "compliance_entry", "deflected_poses",
+           "drive_stiffness", "film_error", "film_points", "program_deflection", "program_film",
+           "recoil_wrench", "sprayed_errors"]
