@@ -255,9 +255,8 @@ def check_linear(turn, t=None, first: int = 0) -> None:
     if len(bad):
         i = int(bad[0])
         when = "" if t is None else f" (t = {float(np.asarray(t).reshape(-1)[i]):.6g} s)"
-        raise StiffnessError(f"sample {first + i}{when}: a drive turns by {turn[i]:.3g} rad "
-                             f"under the load, beyond the linear model's {MAX_TURN:g} rad "
-                             "(docs/model.md §27.2): stiffer drives or a smaller load")
+        raise StiffnessError(f"sample {first + i}{when}: a drive turns by {turn[i]:.3g} rad, "
+                             f"beyond the linear model's {MAX_TURN:g} rad (docs/model.md §27.2)")
 
 
 def _deflection(J, k, W, tau_g):

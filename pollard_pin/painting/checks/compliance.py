@@ -17,7 +17,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
-from ...dynamics.drives.stiffness import StiffnessError, check_stiffness, deflection_at
+from ...dynamics.drives.stiffness import (
+    StiffnessError,
+    check_linear,
+    check_stiffness,
+    loaded_deflection,
+)
 from ...dynamics.motors import ActuatorError, Actuators
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
@@ -109,7 +114,8 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
             q = reach(robot, poses[sl]).q
         except ReachError as exc:  # the sample counted from the program's start
             raise ReachError(str(exc), start + exc.sample, exc.pose) from None
-        d[sl] = deflection_at(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
+        d[sl], turn = loaded_deflection(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
+        check_linear(turn, np.asarray(trajectory.t)[sl], start)  # the sample from the start
     along = np.einsum("ij,ij->i", d[:, :3], axes)
     turn = np.einsum("ij,ij->i", d[:, 3:], axes)
     lateral = np.linalg.norm(d[:, :3] - along[:, None] * axes, axis=1)
