@@ -37,6 +37,9 @@ MAX_WRENCH = 1e6  # N, N·m: beyond it a unit slip (the linear model is long gon
 # The largest drive turn |Δθᵢ| [rad] the linear model is used for: its relative error was
 # measured at ≤ 3.2 × max |Δθᵢ| against the nonlinear equilibrium, so ≈ 1 % here (§27.2).
 MAX_TURN = 3e-3
+# k [N·m/rad] outside it is a unit slip (the weight alone would turn a drive by ~10² rad, or
+# 1/k's squares leave float range); the examples' are 300 and 3000
+STIFFNESS_RANGE = (1e-3, 1e12)
 
 
 class StiffnessError(InputError):
@@ -79,8 +82,8 @@ class StiffnessOptions:
 
 
 def check_stiffness(k) -> np.ndarray:
-    """The six drive stiffnesses [N·m/rad] as an array, each finite and > 0
-    (:class:`StiffnessError` naming the first that is not)."""
+    """The six drive stiffnesses [N·m/rad] as an array, each finite, > 0 and within
+    :data:`STIFFNESS_RANGE` (:class:`StiffnessError` naming the first that is not)."""
     k = np.asarray(k, dtype=float).reshape(-1)
     if k.shape != (6,):
         raise StiffnessError(f"stiffness must be six numbers (one per actuator), got {k.size}")
@@ -89,6 +92,12 @@ def check_stiffness(k) -> np.ndarray:
         i = int(bad[0])
         raise StiffnessError(f"stiffness of actuator {i + 1} = {k[i]!r}: must be a finite "
                              "number > 0 N·m/rad")
+    lo, hi = STIFFNESS_RANGE
+    bad = np.flatnonzero((k < lo) | (k > hi))
+    if len(bad):
+        i = int(bad[0])
+        raise StiffnessError(f"stiffness of actuator {i + 1} = {float(k[i]):g}: must be {lo:g} to "
+                             f"{hi:g} N·m/rad")
     return k
 
 

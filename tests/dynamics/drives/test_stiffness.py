@@ -209,9 +209,9 @@ def test_linear_model_holds_to_a_percent_up_to_max_turn(q):
 
 def test_beyond_max_turn_is_one_line(robot, q):
     """deflection_at refuses a drive turn beyond MAX_TURN naming the sample, the turn and the
-    bound, without a numpy warning even for k = 1e-300; stiffness_at reports the turn
-    (max |K⁻¹(Jᵀ W − τ_g)|, equal to the reference's 1e-15) and leaves the refusal to
-    check_linear; the example drives under the weight turn by 0.3 mrad, well inside."""
+    bound, without a numpy warning even for k = 1e-3 (the softest taken); stiffness_at
+    reports the turn (max |K⁻¹(Jᵀ W − τ_g)|, equal to the reference's 1e-15) and leaves the
+    refusal to check_linear; the example drives under the weight turn by 0.3 mrad, well inside."""
     import warnings
 
     d, turn = loaded_deflection(robot, q, K)
@@ -222,7 +222,7 @@ def test_beyond_max_turn_is_one_line(robot, q):
     assert np.array_equal(deflection_at(robot, q, K), d)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        for k in (K / 1e3, np.full(6, 1e-300)):
+        for k in (K / 1e3, np.full(6, 1e-3)):
             with pytest.raises(StiffnessError) as err:
                 deflection_at(robot, q, k, t=[0.0, 0.5, 1.0, 1.5])
             msg = str(err.value)
@@ -281,6 +281,8 @@ def test_options_refuse_a_bad_wrench(wrench, words):
 @pytest.mark.parametrize("k, words", [
     ([1, 2, 3], "six numbers"), ([1, 1, 0, 1, 1, 1], "actuator 3"),
     ([1, 1, 1, 1, -2, 1], "actuator 5"), ([1, 1, 1, 1, 1, np.nan], "actuator 6"),
+    ([1, 1, 1, 1, 1, 1e-300], r"actuator 6 = 1e-300: must be 0\.001 to 1e\+12 N·m/rad"),
+    ([1, 1e13, 1, 1, 1, 1], "actuator 2 = 1e"), ([1e308] * 6, "actuator 1 = 1e"),
 ])
 def test_stiffness_must_be_positive(k, words):
     with pytest.raises(StiffnessError, match=words):
