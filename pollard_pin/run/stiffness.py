@@ -39,6 +39,8 @@ class StiffnessRun(StiffnessResult):
         (N, 6) the natural frequencies [Hz], ascending.
     kmin : numpy.ndarray
         (N,) the tip's stiffness in its softest direction [N/m].
+    turn : numpy.ndarray
+        (N,) the largest drive turn [rad] (at most the linear model's bound: refused beyond).
     """
 
     def write(self, path: str | Path, metadata: dict | None = None) -> None:

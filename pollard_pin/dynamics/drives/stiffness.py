@@ -233,8 +233,26 @@ def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
 def loaded_deflection(robot, q, k, wrench=None, t=None) -> tuple[np.ndarray, np.ndarray]:
     """(:func:`deflection_at`'s deflection (N, 6), the largest drive turn max |Δθᵢ| (N,)
     [rad]), unchecked against :data:`MAX_TURN`: for a caller that flags the samples beyond
-    it rather than refusing. Parameters and errors as :func:`deflection_at`'s but for the
-    turn."""
+    it rather than refusing (docs/model.md §27.2).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    q : numpy.ndarray
+        Configurations (N, 12) or (12,), loops closed.
+    k : ArrayLike
+        The six drives' stiffnesses [N·m/rad].
+    wrench : ArrayLike or None, optional
+        None, six numbers, or (N, 6) one per sample, as for :func:`deflection_at`.
+    t : ArrayLike or None, optional
+        The samples' times [s], for the error messages (default their indices).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The deflection (N, 6) [m, rad] and the largest drive turn (N,) [rad].
+    """
     k = check_stiffness(k)
     q, t = _configurations(robot, q, t)
     W = np.zeros(6) if wrench is None else np.asarray(wrench, dtype=float)
