@@ -24,6 +24,7 @@ def run(args) -> int:
     from ..dynamics.sizing import actuator_sizing
     from ..io.retime import write_retimed
     from ..io.table import table_files
+    from ..io.trajectory import carried_metadata
     from ..viz.torque_speed import to_json, to_markdown, write_torque_speed
 
     out = args.out or STDOUT
@@ -44,7 +45,9 @@ def run(args) -> int:
     written = []
     with all_or_nothing():  # every output or none; the report last (it may be a device)
         if args.retime is not None and sized.timing is not None:
-            retimed = write_retimed(result.trajectory, sized.timing, args.retime)
+            carried = ({} if args.trajectory == "thesis" else
+                       carried_metadata(args.trajectory))  # its robot's gravity goes on
+            retimed = write_retimed(result.trajectory, sized.timing, args.retime, carried)
             kept = ", the passes as planned" if sized.report.get("time_optimal_film") else ""
             written.append((args.retime, f" (time-optimal{kept}, "
                                          f"{sized.timing.duration:.4g} s, {len(retimed)} rows)"))

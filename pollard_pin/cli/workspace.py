@@ -3,10 +3,10 @@ and how strong it is there (docs/model.md §22). Writes DIR/workspace.csv (or .p
 DIR/workspace.json and, for a plane, DIR/workspace.png; nothing when anything fails."""
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
+from ..io.json_text import finite_json
 from ..model.values import parse_float
 from .common import (
     UsageError,
@@ -167,9 +167,9 @@ def run(args) -> int:
             with TableWriter(paths["table"], metadata, args.format) as writer:
                 ws = map_workspace(robot, None, options, sink=writer.write, progress=bar)
         ws.summary["metadata"].update(metadata)
+        text = finite_json(ws.summary, "workspace.json", indent=1, ensure_ascii=False)
         with atomic_open(paths["json"]) as f:
-            json.dump(ws.summary, f, indent=1, ensure_ascii=False)
-            f.write("\n")
+            f.write(text + "\n")
         if plane is not None:
             from ..viz.workspace import write_workspace_png
 
@@ -215,10 +215,14 @@ def summary_text(ws) -> str:
                      "reachable points")
     if "stiffness" in s:
         st = s["stiffness"]
+        sag = (f", sag {1e6 * st['sag']['min']:.4g} to {1e6 * st['sag']['max']:.4g} µm"
+               if "sag" in st else "")
+        beyond = st.get("sag_beyond_linear_points")
         lines.append(f"stiffness over the reachable points: kmin {st['kmin']['min']:.4g} to "
                      f"{st['kmin']['max']:.4g} N/m, f1 {st['f1']['min']:.4g} to "
-                     f"{st['f1']['max']:.4g} Hz, sag {1e6 * st['sag']['min']:.4g} to "
-                     f"{1e6 * st['sag']['max']:.4g} µm")
+                     f"{st['f1']['max']:.4g} Hz{sag}"
+                     + (f"; sag blank at {beyond:,} points where a drive turns beyond the "
+                        "linear model's bound (docs/model.md §27.2)" if beyond else ""))
     lines.append("points by reason: " + ", ".join(f"{r} {c:,}"
                                                   for r, c in s["reason_counts"].items()))
     return "\n".join(lines)

@@ -154,9 +154,12 @@ def _spraying(spray) -> int:
     return 0 if spray is None else int(np.count_nonzero(np.asarray(spray) > 0))
 
 
-def write_retimed(traj: Trajectory, timing: TimeOptimal, path) -> Trajectory:
+def write_retimed(traj: Trajectory, timing: TimeOptimal, path, carried: dict | None = None
+                  ) -> Trajectory:
     """Write ``traj`` retimed by ``timing`` in the ``run`` input format (every float64 exact),
-    atomically, with :func:`retime_metadata` in its sidecar; the retimed trajectory."""
+    atomically, with :func:`retime_metadata` in its sidecar, and ``carried`` (the source's
+    frame, robot and gravity: :func:`~pollard_pin.io.trajectory.carried_metadata`) with it;
+    the retimed trajectory."""
     from .table import write_table
 
     retimed = retimed_trajectory(traj, timing)
@@ -169,7 +172,7 @@ def write_retimed(traj: Trajectory, timing: TimeOptimal, path) -> Trajectory:
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
     if retimed.spray is not None:
         cols[SPRAY] = retimed.spray
-    write_table(path, cols, retime_metadata(traj, timing), fmt="csv")
+    write_table(path, cols, {**retime_metadata(traj, timing), **(carried or {})}, fmt="csv")
     return retimed
 
 

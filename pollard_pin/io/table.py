@@ -22,6 +22,7 @@ from ..errors import InputError
 from ..model.values import clip, open_regular, shorten
 from ..names import JOINTS
 from .atomic import STDOUT, OutputError, all_or_nothing, atomic_open, check_destination, is_special
+from .json_text import finite_json
 
 UNITS_KEY, META_KEY = "pollard_pin.units", "pollard_pin.metadata"
 FORMATS = ("csv", "parquet")
@@ -109,6 +110,7 @@ class TableWriter:
                  fmt: str | None = None):
         self.path, self.fmt = path, table_format(path, fmt)
         self.metadata = dict(metadata or {})
+        finite_json(self.metadata, f"{path}: metadata")  # refused before anything is written
         self.columns: list[str] | None = None
         self.rows = 0
         self._ctx = self._file = self._parquet = None
@@ -151,8 +153,9 @@ class TableWriter:
 
         table = pa.table({k: np.asarray(v, dtype=np.float64) for k, v in chunk.items()})
         if self._parquet is None:
-            schema = table.schema.with_metadata({UNITS_KEY: json.dumps(self.units()),
-                                                 META_KEY: json.dumps(self.metadata)})
+            schema = table.schema.with_metadata({
+                UNITS_KEY: json.dumps(self.units()),
+                META_KEY: finite_json(self.metadata, f"{self.path}: metadata")})
             self._parquet = pq.ParquetWriter(self._file, schema, compression="zstd")
         self._parquet.write_table(table.replace_schema_metadata(self._parquet.schema.metadata))
 
@@ -168,8 +171,8 @@ class TableWriter:
                 self._ctx.__exit__(kind, exc, tb)
             if kind is None and self.fmt == "csv" and self._sidecar():
                 with atomic_open(units_path(self.path)) as f:
-                    json.dump({"units": self.units(), "metadata": self.metadata}, f,
-                              indent=1, ensure_ascii=False)
+                    f.write(finite_json({"units": self.units(), "metadata": self.metadata},
+                                        f"{self.path}: metadata", indent=1, ensure_ascii=False))
                     f.write("\n")
         except BaseException as error:
             self._outputs.__exit__(type(error), error, error.__traceback__)

@@ -338,28 +338,54 @@ def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
 
 
 GRAVITY_KEY = "gravity_base"  # a path.csv's metadata: gravity in the robot's base [m/s²]
+# what a trajectory's sidecar says about the robot that runs it: carried on by every file that
+# carries the trajectory on (``size --retime``)
+CARRIED_KEYS = ("frame", "robot", GRAVITY_KEY)
+
+
+def _sidecar_metadata(path: str | Path) -> tuple[Path, dict]:
+    import json
+
+    from .table import units_path
+
+    side = units_path(path)
+    if not side.is_file():
+        return side, {}
+    try:
+        meta = json.loads(side.read_text(encoding="utf-8")).get("metadata") or {}
+    except (OSError, UnicodeDecodeError, ValueError, AttributeError) as exc:
+        raise TrajectoryError(f"{side}: unreadable units sidecar: {exc}") from None
+    return side, meta if isinstance(meta, dict) else {}
 
 
 def trajectory_gravity(path: str | Path):
     """The gravity [m/s²] a trajectory CSV's units sidecar records for the robot that runs it
     (a paint cell's turned robot, docs/model.md §26.1), checked (three finite numbers, 9.81
     m/s² ± 10 %); None when the file records none (gravity (0, 0, −9.81) then)."""
-    import json
-
     from ..model.gravity import check_gravity
-    from .table import units_path
 
-    side = units_path(path)
-    if not side.is_file():
-        return None
-    try:
-        meta = json.loads(side.read_text(encoding="utf-8")).get("metadata") or {}
-    except (OSError, UnicodeDecodeError, ValueError, AttributeError) as exc:
-        raise TrajectoryError(f"{side}: unreadable units sidecar: {exc}") from None
-    if not isinstance(meta, dict) or GRAVITY_KEY not in meta:
+    side, meta = _sidecar_metadata(path)
+    if GRAVITY_KEY not in meta:
         return None
     return check_gravity(meta[GRAVITY_KEY], f"{side}: metadata {GRAVITY_KEY!r}")
 
 
-__all__ = ["GRAVITY_KEY", "check_angle_wraps", "check_derivatives", "from_csv", "to_csv",
-           "trajectory_gravity"]
+def carried_metadata(path: str | Path) -> dict:
+    """The entries of a trajectory CSV's sidecar metadata that describe the robot running it
+    (:data:`CARRIED_KEYS`: its frame, its base, its gravity, the gravity checked), for a file
+    that carries the trajectory on (a retimed copy); empty when it records none.
+
+    Parameters
+    ----------
+    path : str or Path
+        The trajectory CSV.
+    """
+    _, meta = _sidecar_metadata(path)
+    out = {k: meta[k] for k in CARRIED_KEYS if k in meta}
+    if GRAVITY_KEY in out:
+        out[GRAVITY_KEY] = [float(c) for c in trajectory_gravity(path)]
+    return out
+
+
+__all__ = ["CARRIED_KEYS", "GRAVITY_KEY", "carried_metadata", "check_angle_wraps",
+           "check_derivatives", "from_csv", "to_csv", "trajectory_gravity"]

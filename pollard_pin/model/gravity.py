@@ -16,13 +16,26 @@ G_TOLERANCE = 0.10  # a gravity's magnitude within 10 % of 9.81 m/s² (a unit or
 def check_gravity(value, where: str) -> np.ndarray:
     """``value`` as a gravity vector [m/s²]: three finite numbers of magnitude 9.81 ± 10 %;
     :class:`~pollard_pin.errors.InputError` (one line naming ``where``) otherwise."""
+    if isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, (list, tuple)) and any(isinstance(c, (bool, np.bool_))
+                                                     for c in value)):
+        raise InputError(f"{where}: gravity {value!r}: expected three numbers [m/s²], not "
+                         "booleans")
     try:
         g = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise InputError(f"{where}: gravity {value!r}: expected three numbers [m/s²]") from None
+    if np.asarray(value).dtype == bool:
+        raise InputError(f"{where}: gravity {value!r}: expected three numbers [m/s²], not "
+                         "booleans")
     if g.shape != (3,) or not np.all(np.isfinite(g)):
         raise InputError(f"{where}: gravity {value!r}: expected three finite numbers [m/s²]")
-    norm, ref = float(np.linalg.norm(g)), float(np.linalg.norm(GRAVITY))
+    ref = float(np.linalg.norm(GRAVITY))
+    if np.abs(g).max() > 10 * ref:  # before any arithmetic: |g|² of 1e308 overflows
+        raise InputError(f"{where}: gravity {[float(c) for c in g]} has a component of "
+                         f"{np.abs(g).max():.4g} m/s², far off {ref:g} (at most "
+                         f"{G_TOLERANCE:.0%} off)")
+    norm = float(np.linalg.norm(g))
     if abs(norm - ref) > G_TOLERANCE * ref:
         raise InputError(f"{where}: gravity {[float(c) for c in g]} has magnitude {norm:.4g} "
                          f"m/s², {abs(norm - ref) / ref:.0%} off {ref:g} (at most "

@@ -20,6 +20,7 @@ from dataclasses import MISSING, dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
+from ..io.json_text import finite_json
 from ..io.table import ResultFileError
 from ..model.values import clip, open_regular, shorten
 
@@ -425,7 +426,7 @@ def dumps(report: PaintJson) -> str:
     report : PaintJson
         The report.
     """
-    return json.dumps(report.to_dict(), indent=2) + "\n"
+    return finite_json(report.to_dict(), "paint.json", indent=2) + "\n"
 
 
 def load_paint_json(path: str | Path) -> dict:

@@ -58,7 +58,7 @@ def clearance_line(rep: dict) -> str:
 
 def compliance_line(c: dict) -> str:
     """paint.json's ``compliance`` in one line (docs/model.md §27.7)."""
-    if not c["stiffness"]:
+    if not c["stiffness"] or "note" in c:  # not computed, or nothing to report
         return f"compliance {c['note']}"
     who = f" (robot '{c['standoff_error_robot']}')" if "standoff_error_robot" in c else ""
     return (f"compliance (weight, recoil {c['recoil_n']:.3g} N): standoff error "

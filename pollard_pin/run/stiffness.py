@@ -17,6 +17,7 @@ from ..dynamics.drives.stiffness import (
     UNITS,
     StiffnessOptions,
     StiffnessResult,
+    check_linear,
     check_stiffness,
     stiffness_at,
 )
@@ -42,6 +43,8 @@ class StiffnessRun(StiffnessResult):
         (N, 6) the natural frequencies [Hz], ascending.
     kmin : numpy.ndarray
         (N,) the tip's stiffness in its softest direction [N/m].
+    turn : numpy.ndarray
+        (N,) the largest drive turn [rad] (at most the linear model's bound: refused beyond).
     """
 
     def write(self, path: str | Path, metadata: dict | None = None) -> None:
@@ -62,7 +65,8 @@ def stiffness_windows(robot, traj, drives, options: StiffnessOptions | None = No
     """Yield ``(start, StiffnessResult)`` window by window along ``traj`` (a
     :class:`~pollard_pin.paths.trajectory.Trajectory` or the lazy thesis curve). The IK and
     its checks are ``run``'s (errors name the sample counted from the start); ``drives``: see
-    :func:`drive_stiffness`."""
+    :func:`drive_stiffness`. A drive turned beyond the linear model's bound is refused,
+    naming the sample (:func:`~pollard_pin.dynamics.drives.stiffness.check_linear`)."""
     check_robot(robot)
     instance(traj, "traj", (Trajectory, ThesisTrajectory), "a Trajectory (or the lazy thesis "
              "curve)")
@@ -73,7 +77,9 @@ def stiffness_windows(robot, traj, drives, options: StiffnessOptions | None = No
     for start, result, cols in solve_windows(robot, traj, stream, dynamics=False,
                                              margins=margins, joint_limits=joint_limits):
         m = len(cols["t"])  # the window without its overlap sample
-        yield start, stiffness_at(robot, result.ik.q[-m:], k, options, t=cols["t"])
+        r = stiffness_at(robot, result.ik.q[-m:], k, options, t=cols["t"])
+        check_linear(r.turn, r.t, start)
+        yield start, r
 
 
 def stiffness(robot, traj, drives, options: StiffnessOptions | None = None, *,
@@ -107,14 +113,15 @@ def stiffness(robot, traj, drives, options: StiffnessOptions | None = None, *,
     Raises
     ------
     StiffnessError
-        A stiffness missing, not finite or not positive (naming the actuator or the key).
+        A stiffness missing, not finite or not positive (naming the actuator or the key); a
+        drive turned beyond the linear model's bound, naming the sample.
     KinematicsError
         A pose out of reach or singular, naming the sample (as ``run``).
     """
     parts = [r for _, r in stiffness_windows(robot, traj, drives, options, margins=margins,
                                              joint_limits=joint_limits)]
     return StiffnessRun(*(np.concatenate([getattr(p, f) for p in parts])
-                             for f in ("t", "deflection", "frequencies", "kmin")))
+                             for f in ("t", "deflection", "frequencies", "kmin", "turn")))
 
 
 @dataclass
@@ -192,7 +199,8 @@ def stream_stiffness(robot, traj, drives, path: str | Path,
     Raises
     ------
     StiffnessError
-        A stiffness missing or invalid.
+        A stiffness missing or invalid; a drive turned beyond the linear model's bound, naming
+        the sample; nothing is written.
     KinematicsError
         A pose out of reach or singular, naming the sample; nothing is written.
     """

@@ -26,11 +26,11 @@ largest magnitude of the reference quantity.
 """
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import replace
 
 from ..crosscheck.compare import cross_check_mujoco, cross_check_thesis, result_loads
+from ..io.json_text import finite_json
 from ..run.stats import duty_figures
 
 SIZING_FIELDS = (  # key, heading, unit
@@ -113,7 +113,7 @@ report = sizing_report
 
 
 def to_json(rep: dict) -> str:
-    return json.dumps(rep, indent=2, ensure_ascii=False)
+    return finite_json(rep, "the sizing report", indent=2, ensure_ascii=False)
 
 
 def _agree_row(label, a, unit):

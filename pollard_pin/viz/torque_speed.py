@@ -3,16 +3,16 @@ envelopes), and its sizing as a Markdown table and JSON (docs/model.md §19; the
 :mod:`pollard_pin.dynamics.sizing`)."""
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from ..dynamics.sizing import CHECKS, Sizing
+from ..io.json_text import finite_json
 
 RATING = {"peak_torque": "peak", "rms_torque": "continuous", "speed": "max speed"}
 
 
 def to_json(rep: dict) -> str:
-    return json.dumps(rep, indent=2, ensure_ascii=False)
+    return finite_json(rep, "the torque-speed report", indent=2, ensure_ascii=False)
 
 
 def _table(rep: dict, prefix: str) -> list[str]:

@@ -116,6 +116,7 @@ class _Summary:
         self.counts = np.zeros(len(REASONS), dtype=np.int64)
         self.payload = [np.inf, -np.inf]
         self.ranges: dict = {}  # the stiffness columns' [min, max] (docs/model.md §27.6)
+        self.beyond_linear = 0  # reachable points whose sag is beyond the linear model
 
     def add(self, pts: np.ndarray, cols: dict) -> None:
         ok = cols["reason"] == 0
@@ -133,7 +134,10 @@ class _Summary:
                 if name in cols:
                     x = cols[name][ok]
                     lo, hi = self.ranges.get(name, (np.inf, -np.inf))
-                    self.ranges[name] = [min(lo, float(x.min())), max(hi, float(x.max()))]
+                    x = x[~np.isnan(x)]  # the sag beyond the linear model (§27.6): counted
+                    self.beyond_linear += int(ok.sum()) - len(x) if name == "sag" else 0
+                    if len(x):
+                        self.ranges[name] = [min(lo, float(x.min())), max(hi, float(x.max()))]
 
 
 def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
@@ -331,6 +335,8 @@ def _summary(robot, grid, orient, opts, totals: _Summary, rect, wall,
         out["stiffness"] = {name: {"min": lo, "max": hi, "unit": units[name]}
                             for name, (lo, hi) in totals.ranges.items()}
         out["stiffness"]["over"] = "reachable points"
+    if totals.beyond_linear:
+        out.setdefault("stiffness", {})["sag_beyond_linear_points"] = totals.beyond_linear
     from ..version import __version__
 
     out["metadata"] = {

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic import closed_form
-from ..dynamics.drives.stiffness import stiffness_at
+from ..dynamics.drives.stiffness import MAX_TURN, stiffness_at
 from ..dynamics.inverse import batched_rnea, split_tree_torques
 from ..dynamics.motors import Actuators
 from ..kinematics.ik_batch import kinematic_inverse, layout, point_rows
@@ -124,13 +124,17 @@ def has_stiffness(act: Actuators) -> bool:
 
 def stiffness_columns(robot, k, q: np.ndarray, ok: np.ndarray) -> dict:
     """kmin [N/m], f1 [Hz] and sag [m] (the tip's displacement under the weight, |d|) at the
-    points ``ok`` of the closed-form configurations q (N, 12), NaN elsewhere (docs/model.md
-    §27.6)."""
+    points ``ok`` of the closed-form configurations q (N, 12), NaN elsewhere; the sag is NaN
+    too where a drive turns beyond the linear model's bound, ``MAX_TURN`` (docs/model.md
+    §27.2, §27.6): a map flags it rather than refusing."""
     cols = {c: np.full(len(q), np.nan) for c in STIFFNESS_COLUMNS}
     if ok.any():
         r = stiffness_at(robot, q[ok], k)
         cols["kmin"][ok], cols["f1"][ok] = r.kmin, r.frequencies[:, 0]
-        cols["sag"][ok] = np.linalg.norm(r.deflection[:, :3], axis=1)
+        linear = r.turn <= MAX_TURN
+        sag = np.full(len(r), np.nan)
+        sag[linear] = np.linalg.norm(r.deflection[linear, :3], axis=1)
+        cols["sag"][ok] = sag
     return cols
 
 

@@ -110,3 +110,49 @@ def test_an_output_that_is_an_input_is_refused_and_left_alone(tmp_path, capsys):
         assert code == 2 and len(lines) == 1, (argv, err)
         assert "is one of the inputs" in lines[0] and "destroy" in lines[0], lines[0]
         assert victim.read_bytes() == before, argv
+
+
+@pytest.fixture(scope="module")
+def path_csv(tmp_path_factory):
+    """A 401-sample thesis trajectory CSV with its units sidecar."""
+    import pollard_pin as pp
+
+    folder = tmp_path_factory.mktemp("gravity")
+    pp.to_csv(pp.thesis_trajectory(samples=401), folder / "p.csv")
+    return folder / "p.csv"
+
+
+GRAVITY_COMMANDS = {  # every command that reads a trajectory's gravity_base (its out file)
+    "run": ["--out", "r.csv"], "size": ["--actuators", "ACT"], "simulate": ["--out", "s.csv"],
+    "stiffness": ["--actuators", "ACT", "--out", "st.csv"], "view": ["--html", "v.html"],
+    "plot": ["--out", "p.png"], "report": [],
+}
+
+
+@pytest.mark.parametrize("g, says", [([True, 0, -9.81], "not booleans"),
+                                     ([0, 0, -1e308], "component of 1e+308 m/s²")])
+@pytest.mark.parametrize("cmd", sorted(GRAVITY_COMMANDS))
+def test_a_bad_sidecar_gravity_is_exactly_one_line(path_csv, tmp_path, capsys, cmd, g, says):
+    """A sidecar's gravity_base of booleans (read as 1, 0 before) or of 1e308 (refused after a
+    numpy overflow warning: three lines) is one line in every command that reads it, exit 2,
+    nothing written."""
+    import json
+    import shutil
+    from pathlib import Path
+
+    from cli_run import run_cli
+
+    act = Path(__file__).resolve().parents[2] / "examples" / "actuators.toml"
+    path = tmp_path / "p.csv"
+    shutil.copy(path_csv, path)
+    side = json.loads(path_csv.with_name("p.units.json").read_text())
+    side["metadata"]["gravity_base"] = g
+    (tmp_path / "p.units.json").write_text(json.dumps(side))
+    extra = [str(act) if a == "ACT" else (str(tmp_path / a) if "." in a else a)
+             for a in GRAVITY_COMMANDS[cmd]]
+    code, _, err = run_cli([cmd, *extra, "--trajectory", path, "--quiet"], capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1, err
+    assert lines[0].startswith(f"pollard-pin {cmd}: error: ") and says in lines[0], lines[0]
+    assert "p.units.json: metadata 'gravity_base'" in lines[0]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.csv", "p.units.json"]

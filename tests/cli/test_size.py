@@ -264,3 +264,53 @@ def test_an_interrupt_inside_a_ctypes_call_is_one_line(monkeypatch, capsys):
         signal.signal(signal.SIGTERM, previous)
     code, out, err = _cli(["size", "--actuators", str(EXAMPLE)], capsys)
     assert (code, out, err) == (143, "", "pollard-pin size: terminated, nothing written\n")
+
+
+def test_retime_carries_the_trajectorys_gravity_and_robot(robot, tmp_path, capsys):
+    """A hung robot's path (gravity +z in its base, written by hand in the sidecar as a cell
+    writes it, with its frame and robot): ``size --retime`` writes them into the retimed
+    file's sidecar, and ``size`` of the retimed file sizes it under +z: its peak motor
+    torques are the library's on a model with that gravity (equal to 1e-12 relative; seen
+    identical) and far from a standard-gravity sizing of the same file (which is what the
+    retimed file used to get)."""
+    from pollard_pin.dynamics.motors import load_actuators
+    from pollard_pin.dynamics.sizing import actuator_sizing
+    from pollard_pin.model.gravity import with_gravity
+
+    path = tmp_path / "p.csv"
+    pp.to_csv(pp.thesis_trajectory(samples=401), path)
+    side = path.with_name("p.units.json")
+    meta = json.loads(side.read_text())
+    carried = {"frame": "robot 'under' base frame", "robot": {"name": "under"},
+               "gravity_base": [0.0, 0.0, 9.81]}
+    meta["metadata"].update(carried)
+    side.write_text(json.dumps(meta))
+    fast = tmp_path / "fast.csv"
+    code, _, err = _cli(["size", "--trajectory", str(path), "--actuators", str(EXAMPLE),
+                         "--retime", str(fast), "--out", str(tmp_path / "a.md"), "--quiet"],
+                        capsys)
+    assert code == 0, err
+    got = json.loads(fast.with_name("fast.units.json").read_text())["metadata"]
+    assert {k: got[k] for k in carried} == carried
+    reports = {}
+    for name, keep in (("fast", True), ("bare", False)):
+        if not keep:  # the retimed file without the carried keys: standard gravity
+            (tmp_path / "bare.csv").write_bytes(fast.read_bytes())
+            side = {**json.loads(fast.with_name("fast.units.json").read_text())}
+            side["metadata"] = {k: v for k, v in side["metadata"].items() if k not in carried}
+            (tmp_path / "bare.units.json").write_text(json.dumps(side))
+        code, out, err = _cli(["size", "--trajectory", str(tmp_path / f"{name}.csv"),
+                               "--actuators", str(EXAMPLE), "--format", "json", "--quiet"],
+                              capsys)
+        assert code == 0, err
+        assert ("gravity (0, 0, 9.81)" in err) is keep, err
+        reports[name] = json.loads(out)["actuators"]
+    hung = with_gravity(robot, [0.0, 0.0, 9.81])
+    lib = actuator_sizing(hung, pp.run_pipeline(hung, pp.from_csv(fast)),
+                          load_actuators(EXAMPLE)).report["actuators"]
+    for n in NAMES:
+        want = lib[n]["peak_motor_torque"]
+        assert reports["fast"][n]["peak_motor_torque"] == pytest.approx(want, rel=1e-12)
+    gap = max(abs(reports["bare"][n]["peak_motor_torque"] / lib[n]["peak_motor_torque"] - 1)
+              for n in NAMES)
+    assert gap > 0.1, gap

@@ -99,3 +99,31 @@ def test_bad_input_is_one_line_and_nothing_written(tmp_path, capsys, case, says)
     assert code == 2 and len(lines) == 1, err
     assert says in lines[0] and lines[0].startswith("pollard-pin stiffness: error"), lines[0]
     assert not out.exists() and not (tmp_path / "s.units.json").exists()
+
+
+@pytest.mark.parametrize("wrench, stiffness, turn", [
+    ("1e6,0,0,0,0,0", None, "81.8 rad"), ("1e4,0,0,0,0,0", None, "0.818 rad"),
+    ("0,0,0,1e5,0,0", None, "333 rad"), ("0,0,0,0,0,0", "1.0", "0.491 rad"),
+    ("0,0,0,0,0,0", "0.001", " rad"), ("0,0,0,0,0,0", "1e-300", "must be 0.001 to 1e+12"),
+])
+def test_beyond_the_linear_model_is_one_line(tmp_path, capsys, wrench, stiffness, turn):
+    """A load or drives far outside the linear model (docs/model.md §27.2: a drive turned by
+    more than 3 mrad, the model's error ≈ 1 % there) is refused in one line naming the sample,
+    the turn and the bound; nothing written (it used to print 40.9 m, 0.87 m, 22.7 m,
+    0.21 m, 2e299 m)."""
+    act = ACT
+    if stiffness is not None:
+        act = tmp_path / "act.toml"
+        text = ACT.read_text().replace("stiffness = 3000.0", f"stiffness = {stiffness}")
+        act.write_text(text.replace("stiffness = 300.0", f"stiffness = {stiffness}"))
+    out = tmp_path / "s.csv"
+    code, _, err = run_cli(["stiffness", *SHORT, "--actuators", act, f"--wrench={wrench}",
+                            "--out", out], capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1, err
+    assert len(lines[0].split(" (nothing written to ")[0]) <= 250, lines[0]
+    assert turn in lines[0], lines[0]
+    if stiffness != "1e-300":  # that one is out of the stiffnesses' range: a unit slip
+        assert "sample 0 (t = 0 s): a drive turns by" in lines[0], lines[0]
+        assert "beyond the linear model's 0.003 rad" in lines[0]
+    assert not out.exists() and not list(tmp_path.glob("s.*"))

@@ -116,3 +116,39 @@ def test_view_draws_the_reachable_cloud(tmp_path, capsys):
     code, _, err = run_cli(["view", "--samples", "51", "--quiet", "--html", str(html),
                          "--workspace", str(tmp_path)], capsys)
     assert code == 2 and "no workspace.csv" in err
+
+
+@pytest.mark.parametrize("k", ["0.001", "100.0"])
+def test_sag_beyond_the_linear_model_is_flagged(tmp_path, capsys, k):
+    """Drives so soft that the weight turns them beyond the linear model's bound (docs/model.md
+    §27.2) leave the sag blank (NaN) at those points, count them in workspace.json and say so
+    in the summary; workspace.json stays strict JSON; kmin and f1, the load-free figures,
+    stay. A stiffness out of range (1e-300, which used to write Infinity) is one line."""
+    act = tmp_path / "act.toml"
+    toml = (ROOT / "examples" / "actuators.toml").read_text()
+    wrist = "0.001" if k == "0.001" else "10.0"  # 30 × softer than the examples'
+    act.write_text(toml.replace("stiffness = 3000.0", f"stiffness = {k}")
+                   .replace("stiffness = 300.0", f"stiffness = {wrist}"))
+    out = tmp_path / "ws"
+    code, text, err = run_cli(["workspace", "--out", str(out), "--actuators", str(act),
+                               *COARSE], capsys)
+    assert code == 0, err
+    table = read_result(out / "workspace.csv")
+    ok = table["reachable"] == 1
+    blank = int(np.isnan(table["sag"][ok]).sum())
+    raw = (out / "workspace.json").read_text()
+    summary = json.loads(raw, parse_constant=lambda c: pytest.fail(f"{c} in workspace.json"))
+    assert 0 < blank == summary["stiffness"]["sag_beyond_linear_points"]
+    assert np.isfinite(table["kmin"][ok]).all() and np.isfinite(table["f1"][ok]).all()
+    assert f"sag blank at {blank:,} points" in text
+    if k == "0.001":
+        assert blank == ok.sum() and "sag" not in summary["stiffness"]
+    else:  # some points keep their sag, all of them within the bound's reach
+        assert blank < ok.sum() and summary["stiffness"]["sag"]["max"] < 0.01
+    act.write_text(toml.replace("stiffness = 3000.0", "stiffness = 1e-300"))
+    bad = tmp_path / "bad"
+    code, _, err = run_cli(["workspace", "--out", str(bad), "--actuators", str(act), *COARSE],
+                           capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and "= 1e-300: must be 0.001 to 1e+12" in err, err
+    assert not bad.exists()

@@ -136,3 +136,21 @@ def test_a_path_with_a_wait_holds_between_its_rows_per_segment(robot, tmp_path, 
         worst = max(worst, use.max())
     # seen 1.0008: a limit binds, none is broken
     assert 0.999 <= worst <= 1.002, worst
+
+
+def test_the_retimed_file_carries_its_sources_robot(traj, tmp_path):
+    """write_retimed puts ``carried`` (the source's frame, robot and gravity) in the retimed
+    sidecar beside the retiming's own keys, and the retimed file reads back with that
+    gravity; without it, none."""
+    from pollard_pin.io.table import read_result
+    from pollard_pin.io.trajectory import carried_metadata, trajectory_gravity
+
+    carried = {"frame": "base", "robot": {"name": "under"}, "gravity_base": [0.0, 0.0, 9.81]}
+    write_retimed(traj, _timing(traj), tmp_path / "r.csv", carried)
+    meta = read_result(tmp_path / "r.csv").metadata
+    assert {k: meta[k] for k in carried} == carried and meta["source"] == traj.name
+    assert carried_metadata(tmp_path / "r.csv") == carried
+    assert np.array_equal(trajectory_gravity(tmp_path / "r.csv"), [0.0, 0.0, 9.81])
+    write_retimed(traj, _timing(traj), tmp_path / "s.csv")
+    assert carried_metadata(tmp_path / "s.csv") == {}
+    assert trajectory_gravity(tmp_path / "s.csv") is None

@@ -66,3 +66,15 @@ def test_written_chunks_read_back_bit_for_bit_with_units(tmp_path, name):
     for k, v in cols.items():
         assert back[k].tobytes() == v.tobytes(), k  # the same bits, −0 included
         assert back.units[k] == column_unit(k)
+
+
+def test_non_finite_metadata_is_one_line_and_nothing_written(tmp_path):
+    """Metadata with a NaN or an infinity would make the sidecar (or Parquet's metadata)
+    invalid JSON: refused before anything is written, naming the key."""
+    from pollard_pin.io.json_text import NonFiniteError
+
+    for name in ("t.csv", "t.parquet"):
+        with pytest.raises(NonFiniteError, match=r"metadata: wrench\[3\] = inf"):
+            write_table(tmp_path / name, {"t": np.zeros(2)},
+                        {"wrench": [0.0, 0.0, 0.0, float("inf")]})
+    assert list(tmp_path.iterdir()) == []

@@ -118,3 +118,28 @@ def test_the_spray_column_is_read_with_the_samples_and_written_back(tmp_path, fi
     to_csv(got, tmp_path / "q.csv")  # its own spray, unless told otherwise
     assert (tmp_path / "q.csv").read_text() == (tmp_path / "p.csv").read_text()
     assert figure8.spray is None
+
+
+def test_carried_metadata_is_the_robots_entries_checked(tmp_path):
+    """carried_metadata: the sidecar's frame, robot and gravity_base (checked: booleans and
+    a gravity off by more than 10 % are one line), nothing else; none without a sidecar."""
+    import json
+
+    import pollard_pin as pp
+    from pollard_pin.errors import InputError
+    from pollard_pin.io.trajectory import carried_metadata
+
+    path = tmp_path / "p.csv"
+    pp.to_csv(pp.thesis_trajectory(samples=5), path)
+    side = path.with_name("p.units.json")
+    base = json.loads(side.read_text())
+    assert carried_metadata(path) == {}
+    base["metadata"].update(frame="f", robot={"name": "a"}, gravity_base=[0, 0, 9.81])
+    side.write_text(json.dumps(base))
+    assert carried_metadata(path) == {"frame": "f", "robot": {"name": "a"},
+                                      "gravity_base": [0.0, 0.0, 9.81]}
+    base["metadata"]["gravity_base"] = [True, 0, -9.81]
+    side.write_text(json.dumps(base))
+    with pytest.raises(InputError, match="gravity_base.*not booleans"):
+        carried_metadata(path)
+    assert carried_metadata(tmp_path / "none.csv") == {}

@@ -46,8 +46,20 @@ def test_gravities_within_ten_percent_pass(g):
                                     ([0.0, 0.0, float("inf")], "three finite numbers"),
                                     ([[0.0, 0.0, -9.81]], "three finite numbers"),
                                     ([0.0, "x", -9.81], "three numbers"),
+                                    ([True, 0, -9.81], "not booleans"),
+                                    ([0, 0, np.True_], "not booleans"),
+                                    (np.array([True, False, True]), "not booleans"),
+                                    (True, "not booleans"),
+                                    ([0.0, 0.0, -1e308], "component of 1e+308"),
+                                    ([1e200, 1e200, 1e200], "component of 1e+200"),
                                     (None, "three")])
 def test_bad_gravities_are_one_line(g, why):
-    with pytest.raises(InputError, match="^here: gravity") as info:
-        check_gravity(g, "here")
+    """Booleans are refused as everywhere else; a huge component before any arithmetic (its
+    square would overflow with a numpy warning)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(InputError, match="^here: gravity") as info:
+            check_gravity(g, "here")
     assert why in str(info.value) and "\n" not in str(info.value)

@@ -174,3 +174,14 @@ def test_load_checks_only_that_it_is_a_json_table(tmp_path):
     path = tmp_path / "paint.json"
     path.write_text('{"target": "thin", "robots": [1]}')
     assert load_paint_json(path) == {"target": "thin", "robots": [1]}
+
+
+def test_a_non_finite_figure_is_refused_naming_its_key():
+    """paint.json is strict JSON: a NaN or an infinity anywhere is one line naming the key
+    (json.dumps would have written Infinity)."""
+    from pollard_pin.io.json_text import NonFiniteError
+
+    rep = dict(GOOD, compliance={"stiffness": True, "standoff_error_m": float("inf")})
+    with pytest.raises(NonFiniteError, match=r"^paint\.json: compliance\.standoff_error_m = "
+                                             r"inf is not a finite number"):
+        dumps(PaintJson.from_dict(rep))

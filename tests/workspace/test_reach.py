@@ -214,3 +214,25 @@ def test_stiffness_columns_are_those_of_the_ik(robot):
                                act.units[5]))
     with pytest.raises(ActuatorError, match=r"'theta1716\.stiffness' is missing"):
         evaluate(robot, poses[:3], ReachOptions(actuators=part))
+
+
+def test_the_sag_is_blank_where_the_linear_model_ends(robot):
+    """stiffness_columns leaves the sag NaN exactly where a drive turns beyond MAX_TURN under
+    the weight (docs/model.md §27.2, §27.6), stiffness_at's figure elsewhere; kmin and f1
+    stay at every reachable point."""
+    from pollard_pin.dynamics.drives.stiffness import MAX_TURN, stiffness_at
+    from pollard_pin.workspace.reach import stiffness_columns
+
+    zs = np.linspace(-0.04, 0.27, 11)
+    poses = np.column_stack([np.full(11, 0.55), np.zeros(11), zs, np.zeros((11, 3))])
+    q = pp.inverse_kinematics(robot, poses).q
+    k = np.array([200.0, 200.0, 200.0, 20.0, 20.0, 20.0])  # 15 × softer than the examples'
+    ok = np.ones(11, dtype=bool)
+    cols = stiffness_columns(robot, k, q, ok)
+    ref = stiffness_at(robot, q, k)
+    beyond = ref.turn > MAX_TURN
+    assert beyond.any() and not beyond.all(), ref.turn
+    assert np.isnan(cols["sag"][beyond]).all()
+    assert np.array_equal(cols["sag"][~beyond], np.linalg.norm(ref.deflection[~beyond, :3],
+                                                                axis=1))
+    assert np.isfinite(cols["kmin"]).all() and np.isfinite(cols["f1"]).all()

@@ -5,9 +5,12 @@ from .stiffness import (
            StiffnessError,
            StiffnessOptions,
            StiffnessResult,
+           check_linear,
            deflection_at,
+           loaded_deflection,
            stiffness_at,
 )
 
-__all__ = ["stiffness_at", "deflection_at", "StiffnessOptions", "StiffnessResult",
+__all__ = ["stiffness_at", "deflection_at", "loaded_deflection", "check_linear",
+           "StiffnessOptions", "StiffnessResult",
            "StiffnessError", "FlexibleDrives"]

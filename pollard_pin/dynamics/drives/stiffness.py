@@ -34,6 +34,12 @@ UNITS = {"t": "s", **dict.fromkeys(DEFLECTION[:3], "m"), **dict.fromkeys(DEFLECT
          **dict.fromkeys(FREQUENCIES, "Hz"), "kmin": "N/m"}
 WRENCH = ("FX", "FY", "FZ", "MX", "MY", "MZ")
 MAX_WRENCH = 1e6  # N, N·m: beyond it a unit slip (the linear model is long gone anyway)
+# The largest drive turn |Δθᵢ| [rad] the linear model is used for: its relative error was
+# measured at ≤ 3.2 × max |Δθᵢ| against the nonlinear equilibrium, so ≈ 1 % here (§27.2).
+MAX_TURN = 3e-3
+# k [N·m/rad] outside it is a unit slip (the weight alone would turn a drive by ~10² rad, or
+# 1/k's squares leave float range); the examples' are 300 and 3000
+STIFFNESS_RANGE = (1e-3, 1e12)
 
 
 class StiffnessError(InputError):
@@ -76,8 +82,8 @@ class StiffnessOptions:
 
 
 def check_stiffness(k) -> np.ndarray:
-    """The six drive stiffnesses [N·m/rad] as an array, each finite and > 0
-    (:class:`StiffnessError` naming the first that is not)."""
+    """The six drive stiffnesses [N·m/rad] as an array, each finite, > 0 and within
+    :data:`STIFFNESS_RANGE` (:class:`StiffnessError` naming the first that is not)."""
     k = np.asarray(k, dtype=float).reshape(-1)
     if k.shape != (6,):
         raise StiffnessError(f"stiffness must be six numbers (one per actuator), got {k.size}")
@@ -86,6 +92,12 @@ def check_stiffness(k) -> np.ndarray:
         i = int(bad[0])
         raise StiffnessError(f"stiffness of actuator {i + 1} = {k[i]!r}: must be a finite "
                              "number > 0 N·m/rad")
+    lo, hi = STIFFNESS_RANGE
+    bad = np.flatnonzero((k < lo) | (k > hi))
+    if len(bad):
+        i = int(bad[0])
+        raise StiffnessError(f"stiffness of actuator {i + 1} = {float(k[i]):g}: must be {lo:g} to "
+                             f"{hi:g} N·m/rad")
     return k
 
 
@@ -104,12 +116,16 @@ class StiffnessResult:
         (N, 6) the natural frequencies [Hz], ascending.
     kmin : numpy.ndarray
         (N,) the tip's stiffness in its softest direction, 1 / λmax(C[:3, :3]) [N/m].
+    turn : numpy.ndarray or None
+        (N,) the largest drive turn max |Δθᵢ| [rad] under the load (the linear model holds
+        up to :data:`MAX_TURN`; :func:`check_linear`).
     """
 
     t: np.ndarray
     deflection: np.ndarray
     frequencies: np.ndarray
     kmin: np.ndarray
+    turn: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.t)
@@ -204,9 +220,38 @@ def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
     Raises
     ------
     StiffnessError
-        ``k`` or the wrench not finite, or of the wrong shape.
+        ``k`` or the wrench not finite, or of the wrong shape; a drive turned beyond
+        :data:`MAX_TURN` (:func:`check_linear`), naming the sample.
     SingularityError
         A singular configuration, naming its sample.
+    """
+    d, turn = loaded_deflection(robot, q, k, wrench, t)
+    check_linear(turn, t)
+    return d
+
+
+def loaded_deflection(robot, q, k, wrench=None, t=None) -> tuple[np.ndarray, np.ndarray]:
+    """(:func:`deflection_at`'s deflection (N, 6), the largest drive turn max |Δθᵢ| (N,)
+    [rad]), unchecked against :data:`MAX_TURN`: for a caller that flags the samples beyond
+    it rather than refusing (docs/model.md §27.2).
+
+    Parameters
+    ----------
+    robot : Robot
+        The model (:func:`pollard_pin.load`).
+    q : numpy.ndarray
+        Configurations (N, 12) or (12,), loops closed.
+    k : ArrayLike
+        The six drives' stiffnesses [N·m/rad].
+    wrench : ArrayLike or None, optional
+        None, six numbers, or (N, 6) one per sample, as for :func:`deflection_at`.
+    t : ArrayLike or None, optional
+        The samples' times [s], for the error messages (default their indices).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The deflection (N, 6) [m, rad] and the largest drive turn (N,) [rad].
     """
     k = check_stiffness(k)
     q, t = _configurations(robot, q, t)
@@ -219,10 +264,35 @@ def deflection_at(robot, q, k, wrench=None, t=None) -> np.ndarray:
     return _deflection(loop.J, k, W, holding_torques(robot, q, loop.S))
 
 
+def check_linear(turn, t=None, first: int = 0) -> None:
+    """Refuse (:class:`StiffnessError`, one line naming the first sample) a drive turn beyond
+    :data:`MAX_TURN`, where the linear model's error exceeds ≈ 1 % (docs/model.md §27.2).
+
+    Parameters
+    ----------
+    turn : ArrayLike
+        (N,) the largest drive turn per sample [rad] (non-finite counts as beyond).
+    t : ArrayLike or None, optional
+        The samples' times [s] (default their indices).
+    first : int, optional
+        The first sample's number in the message (a window's start).
+    """
+    turn = np.asarray(turn, dtype=float).reshape(-1)
+    bad = np.flatnonzero(~(turn <= MAX_TURN))
+    if len(bad):
+        i = int(bad[0])
+        when = "" if t is None else f" (t = {float(np.asarray(t).reshape(-1)[i]):.6g} s)"
+        raise StiffnessError(f"sample {first + i}{when}: a drive turns by {turn[i]:.3g} rad, "
+                             f"beyond the linear model's {MAX_TURN:g} rad (docs/model.md §27.2)")
+
+
 def _deflection(J, k, W, tau_g):
     # the springs' turn under the joint-space load, mapped to the tool (§27.2)
     load = (np.swapaxes(J, 1, 2) @ np.broadcast_to(W, (len(J), 6))[..., None])[..., 0] - tau_g
-    return (J @ (load / k)[..., None])[..., 0]
+    with np.errstate(over="ignore", invalid="ignore"):  # a huge turn: refused by its caller
+        dtheta = load / k
+        turn = np.abs(dtheta).max(axis=1)
+        return (J @ dtheta[..., None])[..., 0], np.where(np.isfinite(turn), turn, np.inf)
 
 
 def _configurations(robot, q, t):
@@ -267,7 +337,8 @@ def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
     Returns
     -------
     StiffnessResult
-        Per sample the deflection [m, rad], the six frequencies [Hz] and kmin [N/m].
+        Per sample the deflection [m, rad], the six frequencies [Hz], kmin [N/m] and the
+        largest drive turn [rad] (not refused here: :func:`check_linear`).
 
     Raises
     ------
@@ -285,11 +356,11 @@ def stiffness_at(robot, q, k, options: StiffnessOptions | None = None, t=None
     loop = _regular_maps(robot, q, t)
     J = loop.J
     Ma, tau_g = reduced_mass_and_gravity(robot, q, loop.S)
-    defl = _deflection(J, k, np.asarray(options.wrench), tau_g)
+    defl, turn = _deflection(J, k, np.asarray(options.wrench), tau_g)
     C = (J[:, :3, :] / k) @ np.swapaxes(J[:, :3, :], 1, 2)  # the force block of J K⁻¹ Jᵀ
     kmin = 1.0 / np.linalg.eigvalsh(C)[:, -1]
     # K u = ω² Mₐ u ⇔ (D Mₐ D) y = ω⁻² y with D = K^-½, u = D y: symmetric, batched (§27.3)
     s = 1.0 / np.sqrt(k)
     mu = np.linalg.eigvalsh(s[:, None] * Ma * s[None, :])[:, ::-1]
     freq = 1.0 / (2.0 * np.pi * np.sqrt(mu))
-    return StiffnessResult(t=t, deflection=defl, frequencies=freq, kmin=kmin)
+    return StiffnessResult(t=t, deflection=defl, frequencies=freq, kmin=kmin, turn=turn)

@@ -10,6 +10,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ...dynamics.drives.stiffness import StiffnessError
 from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
 from ..cell.frames import robot_model_in_base
@@ -18,6 +19,7 @@ from ..film.mesh import mesh_film
 from ..spray.deposition import gun_of
 from .compliance import (
     ProgramDeflection,
+    beyond_linear,
     deflected_poses,
     drive_stiffness,
     film_error,
@@ -89,7 +91,8 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
     """(paint.json's ``compliance`` for the cell, each robot's entry for ``robots[i]``)
     (docs/model.md §26.6): the worst standoff, lateral and tilt errors over the robots
     (naming the robot), and the film change of all robots deflected together relative to
-    the target over the painted points; without ``stiffness``, entries that say so."""
+    the target over the painted points; without ``stiffness``, or with a drive turned beyond
+    the linear model's bound (docs/model.md §27.2), entries that say so."""
     job = cell.job
     recoil, k, note = drive_stiffness(job, act)
     if k is None:
@@ -98,9 +101,14 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
     site = film_site(cell, points)
     pts = film_points(points)
     deflected = np.zeros(len(pts))
-    per = []
+    per, ds = [], []
     for rp in cell.robots:
-        d = robot_deflection(robot, rp, k, recoil)
+        try:
+            ds.append(robot_deflection(robot, rp, k, recoil))
+        except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
+            out = beyond_linear(entry, StiffnessError(f"robot '{rp.robot.name}': {exc}"))
+            return out, [out] * len(cell.robots)
+    for rp, d in zip(cell.robots, ds):
         mine = robot_film(job, deflected_robot(rp, d), site)
         change = mine - robot_film(job, rp, site)
         deflected += mine

@@ -17,7 +17,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...analytic.taskspace import angles_from_rotation, rotation
-from ...dynamics.drives.stiffness import check_stiffness, deflection_at
+from ...dynamics.drives.stiffness import (
+    StiffnessError,
+    check_linear,
+    check_stiffness,
+    loaded_deflection,
+)
 from ...dynamics.motors import ActuatorError, Actuators
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
@@ -90,7 +95,8 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
     KinematicsError
         A pose out of reach or singular, naming the sample (the IK is ``run``'s).
     StiffnessError
-        A stiffness missing or invalid.
+        A stiffness missing or invalid; a drive turned beyond the linear model's bound
+        (docs/model.md §27.2), naming the sample.
     """
     k = check_stiffness(stiffness)
     poses = np.asarray(trajectory.poses, dtype=float)
@@ -109,7 +115,8 @@ def program_deflection(robot, trajectory: Trajectory, stiffness, spray=None,
             q = reach(robot, poses[sl]).q
         except ReachError as exc:  # the sample counted from the program's start
             raise ReachError(str(exc), start + exc.sample, exc.pose) from None
-        d[sl] = deflection_at(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
+        d[sl], turn = loaded_deflection(robot, q, k, recoil_wrench(axes[sl], spray[sl], recoil))
+        check_linear(turn, np.asarray(trajectory.t)[sl], start)  # the sample from the start
     along = np.einsum("ij,ij->i", d[:, :3], axes)
     turn = np.einsum("ij,ij->i", d[:, 3:], axes)
     lateral = np.linalg.norm(d[:, :3] - along[:, None] * axes, axis=1)
@@ -210,6 +217,12 @@ def drive_stiffness(job, act: Actuators) -> tuple[float, np.ndarray | None, dict
                               "note": f"not computed: {exc}"}
 
 
+def beyond_linear(entry: dict, exc: StiffnessError) -> dict:
+    """The report entry of a program whose drives turn beyond the linear model's bound
+    (docs/model.md §27.2): no figures, a ``note`` saying why."""
+    return {**entry, "stiffness": True, "note": f"not computed: {exc}"}
+
+
 def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
     """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
     paint under the weight and the job's recoil.
@@ -233,7 +246,8 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
     -------
     dict
         ``recoil_n`` [N]; ``stiffness`` (False, with a ``note``, when the actuators have
-        none); over the sprayed samples ``standoff_error_m`` [m] (at
+        none; True with a ``note`` and no figures when a drive turns beyond the linear
+        model's bound); over the sprayed samples ``standoff_error_m`` [m] (at
         ``standoff_error_at_t`` [s]), ``lateral_error_m`` [m], ``tilt_rad`` [rad]; over the
         painted points ``film_error``, the largest film change relative to the target, at
         ``film_error_at`` [m]; ``drive_stiffness`` [N·m/rad].
@@ -242,7 +256,10 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
     if k is None:
         return note
     entry = {"recoil_n": recoil}
-    d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
+    try:
+        d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
+    except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
+        return beyond_linear(entry, exc)
     T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection))
     err, where = film_error(thickness, T, plan.job.thickness, painted)
     return {**entry, "stiffness": True,
@@ -252,6 +269,6 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
             "drive_stiffness": [float(x) for x in k]}
 
 
-__all__ = ["CHUNK", "ProgramDeflection", "compliance_entry", "deflected_poses", "drive_stiffness",
-           "film_error", "film_points", "program_deflection", "program_film", "recoil_wrench",
-           "sprayed_errors"]
+__all__ = ["CHUNK", "ProgramDeflection", "beyond_linear", "compliance_entry", "deflected_poses",
+           "drive_stiffness", "film_error", "film_points", "program_deflection", "program_film",
+           "recoil_wrench", "sprayed_errors"]

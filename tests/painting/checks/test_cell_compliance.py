@@ -121,3 +121,16 @@ def test_without_stiffness_every_entry_says_so(robot, act, result):
     ours, per = cell_compliance(robot, result.plan, pts, f, soft)
     assert ours["stiffness"] is False and "stiffness' is missing" in ours["note"]
     assert len(per) == 2 and all(c["stiffness"] is False for c in per)
+
+
+def test_drives_beyond_the_linear_model_are_flagged_for_every_entry(robot, act, result):
+    """Drives too soft for the linear model (docs/model.md §27.2): the cell's entry and each
+    robot's say so, naming the robot and the bound, with no figures; the plan stands."""
+    soft = replace(act, units=tuple(replace(u, stiffness=1.0) for u in act.units))
+    pts, f = result.film.points, result.film.thickness
+    ours, per = cell_compliance(robot, result.plan, pts, f, soft)
+    assert ours["stiffness"] is True and set(ours) == {"recoil_n", "stiffness", "note"}
+    name = result.plan.robots[0].robot.name
+    assert ours["note"].startswith(f"not computed: robot '{name}': sample ")
+    assert "beyond the linear model's 0.003 rad" in ours["note"]
+    assert per == [ours] * len(result.plan.robots)

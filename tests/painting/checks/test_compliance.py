@@ -259,3 +259,23 @@ def test_every_kind_films_as_its_planner(robot, act, line_plan, line_part_plan, 
     moved = program_film(plan, pts, deflected_poses(plan.trajectory.poses, d.deflection))
     err, _ = film_error(own.thickness, moved, plan.job.thickness)
     assert 1e-6 < err < 0.05  # a 400-sample piece: its film's edges move with the gun
+
+
+def test_drives_beyond_the_linear_model_are_flagged_not_refused(robot, act, small):
+    """Drives so soft (1 N·m/rad) that the weight turns one beyond the linear model's bound
+    (docs/model.md §27.2): the entry keeps ``stiffness`` true, gives no figures and a note
+    naming the sample and the bound; the summary line prints the note; program_deflection
+    alone refuses in one line."""
+    from pollard_pin.dynamics.drives.stiffness import StiffnessError
+    from pollard_pin.painting.summary import compliance_line
+
+    job, plan, pts, f = small
+    soft = replace(act, units=tuple(replace(u, stiffness=1.0) for u in act.units))
+    entry = compliance_entry(robot, plan, pts, f.thickness, soft)
+    assert entry["stiffness"] is True and entry["recoil_n"] == 5.0
+    assert set(entry) == {"recoil_n", "stiffness", "note"}
+    assert entry["note"].startswith("not computed: sample 0 (t = 0 s): a drive turns by ")
+    assert "beyond the linear model's 0.003 rad" in entry["note"]
+    assert compliance_line(entry) == f"compliance {entry['note']}"
+    with pytest.raises(StiffnessError, match="beyond the linear model"):
+        program_deflection(robot, plan.trajectory, soft.stiffness(), plan.spray, 5.0)
