@@ -203,10 +203,11 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
 
 
 def shift_window(lo: float, anchor: float) -> tuple[float, float]:
-    """The shifts [start, start + SHIFT_RANGE] searched along the line: from ``lo`` (the
-    part already riding the line), or, for a part that reaches the robot only after more
-    than half the range (a robot far down the line, ``anchor`` the program's world place
-    along the line at shift 0), centred on the shift that brings it there, −anchor."""
+    """The shifts [start, start + SHIFT_RANGE] searched along the line when the first
+    SHIFT_RANGE from ``lo`` (the part already riding the line) keep nothing in reach: for a
+    part that reaches the robot only after more than half that range (a robot far down the
+    line, ``anchor`` the program's world place along the line at shift 0), the range
+    centred on the shift that brings it there, −anchor; else the first range again."""
     here = -float(anchor)
     start = lo if here <= lo + SHIFT_RANGE / 2 else here - SHIFT_RANGE / 2
     return start, start + SHIFT_RANGE
@@ -220,8 +221,11 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     t = rel.coarse_times()
     poses = _drift(rel, speed, e, t)
     anchor = _mid_along(rel, speed, e)
-    lo, hi = shift_window(speed * CATCH, anchor)
-    found = feasible_shifts(robot, poses, e, lo, hi - lo, anchor=anchor)
+    lo, hi = speed * CATCH, speed * CATCH + SHIFT_RANGE
+    found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
+    if found is None and shift_window(lo, anchor) != (lo, hi):  # a robot far down the line
+        lo, hi = shift_window(lo, anchor)
+        found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
     if found is None:
         # each pass alone, no drift: a pass out of reach at every shift fails at any speed
         bad, n = unreachable_passes(robot, rel, e, lo, hi)
