@@ -75,9 +75,24 @@ def cell_robots(folder, report: PaintJson):
 
 def check_robot_files(folder, report: PaintJson, cells) -> None:
     """One line when a robot of paint.json (name, base, rotation, gravity) is not the robot
-    its DIR/<name>/path.csv records (:func:`.paint_cell_files.robot_metadata`): a base moved
+    its DIR/<name>/path.csv records (``robot_metadata`` of paint_cell_files.py): a base moved
     in one file, or robots' folders swapped, no longer draw as if they were what paint
-    planned."""
+    planned.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A cell's paint folder.
+    report : PaintJson
+        Its paint.json (:func:`read_report`).
+    cells : tuple of CellRobot
+        The report's robots (:func:`cell_robots`), in its order.
+
+    Raises
+    ------
+    PaintFolderError
+        A robot's sidecar unreadable or at odds with paint.json.
+    """
     import json
 
     from ..io.table import units_path
