@@ -14,10 +14,11 @@ import numpy as np
 from .common import STDOUT, UsageError, load_robot, say_notes, warnings_as_notes
 
 
-def cell_members(args, folder: Path, cells):
-    """The model and each robot's program solved (:class:`...viz.cell_view.CellMember`)."""
+def cell_members(args, folder: Path, cells, report):
+    """The model and each robot's program solved (:class:`...viz.cell_view.CellMember`), the
+    robots' files first checked against the ``report``'s robots."""
     from ..io.trajectory import from_csv
-    from ..outputs.folder import robot_paths
+    from ..outputs.folder import check_robot_files, robot_paths
     from ..run import run_pipeline
     from ..viz.cell_view import CellMember
     from .view_paint import paint_flag
@@ -26,6 +27,7 @@ def cell_members(args, folder: Path, cells):
     members = []
     with paint_flag():
         paths = robot_paths(folder, cells)
+        check_robot_files(folder, report, cells)
     for c, path in zip(cells, paths):
         with warnings_as_notes(args):
             traj = from_csv(path)
@@ -52,7 +54,7 @@ def view_cell(args, decorate=None) -> int:
         overlay = decorate(overlay)
     if args.frames:
         args.notes.append("--frames: a cell's view draws no frames")
-    robot, members = cell_members(args, folder, cells)
+    robot, members = cell_members(args, folder, cells, report)
     try:
         cell_key_samples(members, args.fps)
     except viewer.ViewerError as exc:

@@ -73,6 +73,70 @@ def cell_robots(folder, report: PaintJson):
     return robots_from_tables(str(Path(folder) / "paint.json"), tables)
 
 
+def check_robot_files(folder, report: PaintJson, cells) -> None:
+    """One line when a robot of paint.json (name, base, rotation, gravity) is not the robot
+    its DIR/<name>/path.csv records (``robot_metadata`` of paint_cell_files.py): a base moved
+    in one file, or robots' folders swapped, no longer draw as if they were what paint
+    planned.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A cell's paint folder.
+    report : PaintJson
+        Its paint.json (:func:`read_report`).
+    cells : tuple of CellRobot
+        The report's robots (:func:`cell_robots`), in its order.
+
+    Raises
+    ------
+    PaintFolderError
+        A robot's sidecar unreadable or at odds with paint.json.
+    """
+    import json
+
+    from ..io.table import units_path
+    from ..io.trajectory import GRAVITY_KEY
+
+    folder = Path(folder)
+    for c, entry in zip(cells, report.robots or ()):
+        side = units_path(folder / c.name / "path.csv")
+        try:
+            meta = json.loads(side.read_text(encoding="utf-8")).get("metadata") or {}
+            recorded = dict(meta.get("robot") or {}, gravity=meta.get(GRAVITY_KEY))
+        except (OSError, UnicodeDecodeError, ValueError, AttributeError, TypeError):
+            raise PaintFolderError(f"{folder}: robot {c.name!r}: {c.name}/{side.name} is "
+                                   "unreadable or records no robot") from None
+        said = {"name": c.name, "base": c.base, "rotation": c.rotation,
+                "gravity": entry.get(GRAVITY_KEY)}
+        for key, value in said.items():
+            if not _same(value, recorded.get(key)):
+                raise PaintFolderError(
+                    f"{folder}: robot {c.name!r}: paint.json's {key} {_short(value)} is not "
+                    f"its {c.name}/path.csv's {_short(recorded.get(key))}: the folder was "
+                    "edited or mixed")
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, str) or isinstance(b, str) or a is None or b is None:
+        return a == b
+    try:
+        x, y = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    return x.shape == y.shape == (3,) and bool(np.all(np.abs(x - y) <= 1e-9))
+
+
+def _short(value) -> str:
+    from ..model.values import clip
+
+    if value is None:
+        return "nothing"
+    if isinstance(value, (list, tuple)) and all(isinstance(v, (int, float)) for v in value):
+        return "[" + ", ".join(f"{float(v):.4g}" for v in value) + "]"
+    return clip(repr(value), 40)
+
+
 def robot_paths(folder, cells) -> list[Path]:
     """Each robot's DIR/<name>/path.csv, one line for one missing."""
     folder = Path(folder)
@@ -192,5 +256,5 @@ def check_film(where: Path, points, th, target: float, what: str, first: int) ->
 
 
 __all__ = ["CELL_FILES", "FILES", "FolderFilm", "PaintFolderError", "cell_inputs",
-           "cell_robots", "check_film", "conveyor", "film_tables", "is_cell", "paint_inputs",
-           "read_film", "read_report", "robot_paths"]
+           "cell_robots", "check_film", "check_robot_files", "conveyor", "film_tables",
+           "is_cell", "paint_inputs", "read_film", "read_report", "robot_paths"]

@@ -17,6 +17,16 @@ from pollard_pin.viz import meshcat_page, viewer
 TARGET = 25e-6
 ROBOTS = [{"name": "low", "base": [0.0, 0.0, 0.0], "rotation": [0.0, 0.0, 0.0]},
           {"name": "high", "base": [0.0, 0.75, 0.17], "rotation": [0.0, 0.0, 0.0]}]
+GRAVITY = [0.0, 0.0, -9.81]
+
+
+def _record_robot(path, r):
+    """What paint records in a robot's path.csv sidecar: the robot and its gravity
+    (outputs/paint_cell_files.py robot_metadata)."""
+    side = path.with_name("path.units.json")
+    units = json.loads(side.read_text())
+    units["metadata"].update(robot=dict(r), gravity_base=GRAVITY)
+    side.write_text(json.dumps(units))
 
 
 def _program(params, t0, n=61):
@@ -39,6 +49,7 @@ def folder(tmp_path_factory, robot):
         (out / r["name"]).mkdir()
         to_csv(_program(robot.params, t0), out / r["name"] / "path.csv",
                spray=np.ones(61))
+        _record_robot(out / r["name"] / "path.csv", r)
     part = trimesh.creation.box((0.01, 0.8, 0.35))
     part.apply_translation((0.705, -0.75, 0.16))
     th = np.full(len(part.vertices), TARGET)
@@ -46,7 +57,8 @@ def folder(tmp_path_factory, robot):
                    np.full((len(th), 4), 255, dtype=np.uint8))
     (out / "thickness.csv").write_text("x,y,z,thickness\n0,0,0,2.5e-5\n")
     report = {"job": {"part": {"mesh": "plate.stl"}}, "target": TARGET,
-              "line": {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}, "robots": ROBOTS}
+              "line": {"speed": 0.03, "direction": [0.0, 1.0, 0.0]},
+              "robots": [dict(r, gravity_base=GRAVITY) for r in ROBOTS]}
     (out / "paint.json").write_text(json.dumps(report))
     return out
 
@@ -99,4 +111,51 @@ def test_bad_cell_folders_are_one_line(folder, tmp_path, capsys, change, words):
     code, _, err = run_cli(["view", "--paint", bad, "--html", tmp_path / "p.html"], capsys)
     lines = err.strip().splitlines()
     assert code == 2 and len(lines) == 1 and words in lines[0], err
+    assert not (tmp_path / "p.html").exists()
+
+
+def _swap_folders(bad):
+    (bad / "low").rename(bad / "tmp")
+    (bad / "high").rename(bad / "low")
+    (bad / "tmp").rename(bad / "high")
+
+
+def _move_base(bad):
+    rep = json.loads((bad / "paint.json").read_text())
+    rep["robots"][1]["base"] = [0.0, 5.75, 0.17]  # 5 m down the line
+    (bad / "paint.json").write_text(json.dumps(rep))
+
+
+def _turn_base(bad):
+    rep = json.loads((bad / "paint.json").read_text())
+    rep["robots"][0]["rotation"] = [90.0, 0.0, 0.0]
+    (bad / "paint.json").write_text(json.dumps(rep))
+
+
+def _no_robot_recorded(bad):
+    side = bad / "high" / "path.units.json"
+    units = json.loads(side.read_text())
+    del units["metadata"]["robot"]
+    side.write_text(json.dumps(units))
+
+
+@pytest.mark.parametrize("tamper, words", [
+    (_swap_folders, "robot 'low': paint.json's name 'low' is not its low/path.csv's 'high'"),
+    (_move_base, "robot 'high': paint.json's base [0, 5.75, 0.17] is not its high/path.csv's "
+                 "[0, 0.75, 0.17]"),
+    (_turn_base, "robot 'low': paint.json's rotation [90, 0, 0] is not"),
+    (_no_robot_recorded, "robot 'high': paint.json's name 'high' is not its high/path.csv's "
+                         "nothing"),
+])
+def test_a_folder_at_odds_with_itself_is_one_line(folder, tmp_path, capsys, tamper, words):
+    # paint.json's robots are what each robot's path.csv records (name, base, rotation,
+    # gravity): a moved base or swapped folders once drew and exited 0
+    import shutil
+
+    bad = tmp_path / "bad"
+    shutil.copytree(folder, bad)
+    tamper(bad)
+    code, _, err = run_cli(["view", "--paint", bad, "--html", tmp_path / "p.html"], capsys)
+    lines = err.strip().replace(str(tmp_path), "DIR").splitlines()
+    assert code == 2 and len(lines) == 1 and len(lines[0]) <= 250 and words in lines[0], err
     assert not (tmp_path / "p.html").exists()

@@ -21,7 +21,7 @@ from ..line.panel import line_clearance
 from ..line.phases import SPEED_RESOLUTION, fastest_line_speed
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
-from .frames import panel_in_base, part_in_base, robot_model_in_base
+from .frames import check_panel_turn, panel_in_base, part_in_base, robot_model_in_base
 from .program import ZoneView, plan_zone
 from .robots import CellRobot, base_footprint, check_spacing
 from .split import split_cell
@@ -144,6 +144,8 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
     axis = np.asarray(split.axis, float)
     out = []
     for cr in robots:
+        if not isinstance(job, PartJob):
+            check_panel_turn(job, cr)
         zone = split.zone_of(cr.name)
         model = robot_model_in_base(robot, cr)
         is_part = isinstance(job, PartJob)

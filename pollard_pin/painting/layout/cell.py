@@ -25,7 +25,7 @@ from ...errors import InputError, say_less, without_asides
 from ...model.build import check_robot
 from ...workspace.reach import evaluate
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
-from ..cell.robots import MAX_ROBOTS, CellRobot, base_footprint, check_spacing
+from ..cell.robots import MAX_DISTANCE, MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
 from ..errors import BudgetError, CellError, PlanError
 from ..job import PartJob, check_job
@@ -176,9 +176,21 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     robots = tuple(CellRobot(f"{options.prefix}{i + 1}", _triple(
         ((a + b) / 2 - middle) * strokes.axis + i * spacing * strokes.direction))
         for i, (a, b) in enumerate(needs))
+    _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
     split_cell(robot, replace(job, robots=robots), robots, part)
     return robots
+
+
+def _check_bounds(robots, spacing: float, source: str) -> None:
+    """Refuse, in one line, a layout the job reader would refuse: a base beyond ±MAX_DISTANCE
+    in a coordinate (what is proposed must read back as a ``[[robot]]`` table)."""
+    for r in robots:
+        far = max(abs(c) for c in r.base)
+        if far > MAX_DISTANCE:
+            raise CellError(f"{source}: {len(robots)} robots {spacing:.3f} m apart along the "
+                            f"line put robot {r.name!r} at {far:.3f} m, beyond a base's "
+                            f"±{MAX_DISTANCE:g} m: fewer robots or a closer spacing")
 
 
 def _triple(v) -> tuple[float, float, float]:

@@ -204,6 +204,17 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
     return refine(xs[a], xs[a] - SHIFT_STEP), refine(xs[b], xs[b] + SHIFT_STEP)
 
 
+def shift_window(lo: float, anchor: float) -> tuple[float, float]:
+    """The shifts [start, start + SHIFT_RANGE] searched along the line when the first
+    SHIFT_RANGE from ``lo`` (the part already riding the line) keep nothing in reach: for a
+    part that reaches the robot only after more than half that range (a robot far down the
+    line, ``anchor`` the program's world place along the line at shift 0), the range
+    centred on the shift that brings it there, −anchor; else the first range again."""
+    here = -float(anchor)
+    start = lo if here <= lo + SHIFT_RANGE / 2 else here - SHIFT_RANGE / 2
+    return start, start + SHIFT_RANGE
+
+
 def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     """The line's shift speed·delay [m] at the middle of the shifts that keep the world
     program (coarse samples) in reach; :class:`LineSpeedError` if none does, a
@@ -211,16 +222,19 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     ``where`` (the gun's track) if none is ever in reach."""
     t = rel.coarse_times()
     poses = _drift(rel, speed, e, t)
-    found = feasible_shifts(robot, poses, e, speed * CATCH,
-                            anchor=_mid_along(rel, speed, e))
+    anchor = _mid_along(rel, speed, e)
+    lo, hi = speed * CATCH, speed * CATCH + SHIFT_RANGE
+    found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
+    if found is None and shift_window(lo, anchor) != (lo, hi):  # a robot far down the line
+        lo, hi = shift_window(lo, anchor)
+        found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
     if found is None:
         # each pass alone, no drift: a pass out of reach at every shift fails at any speed
-        bad, n = unreachable_passes(robot, rel, e, speed * CATCH,
-                                    speed * CATCH + SHIFT_RANGE)
+        bad, n = unreachable_passes(robot, rel, e, lo, hi)
         if len(bad) == n and all(b.nowhere for b in bad):
             raise PlanError(f"the part never comes within reach: {where}; none of its {n} "
-                            f"passes is in reach within {SHIFT_RANGE:g} m of travel: move the "
-                            "part or the line")
+                            f"passes is in reach within {lo:.3g}..{hi:.3g} m of travel: move "
+                            "the part or the line")
         if bad:
             raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
         along = poses[:, :3] @ e
@@ -504,4 +518,4 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
 __all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",
            "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
            "feasible_shifts", "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
-           "plan_world", "track", "world_motion"]
+           "plan_world", "shift_window", "track", "world_motion"]

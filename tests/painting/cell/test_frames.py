@@ -26,6 +26,41 @@ def test_the_panel_seen_from_a_base_is_the_world_panel():
     assert b.robots == ()
 
 
+@pytest.mark.parametrize("turn, swapped", [((90.0, 0.0, 0.0), True),
+                                            ((-90.0, 0.0, 0.0), True),
+                                            ((180.0, 0.0, 0.0), False),
+                                            ((0.0, 30.0, 45.0), False)])
+def test_the_base_frames_panel_is_the_world_rectangle(turn, swapped):
+    from pollard_pin.painting.cell.frames import check_panel_turn
+    from pollard_pin.painting.workpiece.panel import panel_frame
+
+    job = cell_job(panel_cell())
+    cr = CellRobot("t", (0.0, 0.6, 0.17), turn)
+    check_panel_turn(job, cr)
+    b = panel_in_base(job, cr)
+    assert (b.width, b.height) == ((job.height, job.width) if swapped else
+                                   (job.width, job.height))
+    w, fb = panel_frame(job), panel_frame(b)
+    corners = [(s * w.width / 2, t * w.height / 2) for s in (-1, 1) for t in (-1, 1)]
+    seen = [(s * fb.width / 2, t * fb.height / 2) for s in (-1, 1) for t in (-1, 1)]
+    world = sorted(map(tuple, np.round([w.world(np.array(u), np.array(v)) for u, v in corners],
+                                       12)))
+    based = sorted(map(tuple, np.round([cr.to_world(fb.world(np.array(u), np.array(v)))
+                                        for u, v in seen], 12)))
+    assert np.allclose(world, based, atol=1e-12)
+
+
+def test_a_base_turned_between_the_panels_edges_is_refused():
+    from pollard_pin.painting.cell.frames import check_panel_turn
+    from pollard_pin.painting.errors import CellError
+
+    job = cell_job(panel_cell())
+    with pytest.raises(CellError, match=r"'t'.*10° in its plane"):
+        check_panel_turn(job, TURNED)
+    with pytest.raises(CellError, match="its z along the panel's normal"):
+        check_panel_turn(job, CellRobot("n", (0.0, 0.0, 0.0), (0.0, 90.0, 0.0)))
+
+
 def test_the_part_seen_from_a_base_is_the_world_part():
     part = panel_part(cell_job(panel_cell()))
     b = part_in_base(part, TURNED)

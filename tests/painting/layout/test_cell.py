@@ -76,6 +76,39 @@ def test_options_and_bad_counts(robot):
         propose_layout(robot, placed, 2)
 
 
+def test_every_proposal_reads_back_or_is_refused_in_one_line(robot, tmp_path):
+    # robots.toml → load_job: what the project proposes, its job reader accepts (14 robots
+    # for the example cell once put one at y = 10.01 m, beyond the reader's ±10 m)
+    from pathlib import Path
+
+    from pollard_pin.outputs.robots_toml import robots_toml
+    from pollard_pin.painting.cell.robots import MAX_DISTANCE, MAX_ROBOTS
+    from pollard_pin.painting.job import load_job
+
+    text = (Path(__file__).resolve().parents[3] / "examples" / "cell.toml").read_text()
+    text = text[:text.index("[[robot]]")]
+    bare = tmp_path / "bare.toml"
+    bare.write_text(text)
+    job = load_job(bare)
+    read, refused = [], []
+    for n in range(1, MAX_ROBOTS + 1):
+        try:
+            robots = propose_layout(robot, job, n)
+        except CellError as exc:
+            msg = str(exc)
+            assert "\n" not in msg and len(msg) <= 250, msg
+            refused.append(n)
+            if n > 13:
+                assert f"±{MAX_DISTANCE:g} m" in msg
+            continue
+        placed = tmp_path / f"cell{n}.toml"
+        placed.write_text(text + robots_toml(robots))
+        assert load_job(placed).robots == robots
+        read.append(n)
+    # one robot's band is short of the panel; 14 robots 0.77 m apart pass y = 10 m
+    assert read == list(range(2, 14)) and refused == [1, *range(14, MAX_ROBOTS + 1)]
+
+
 def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     tried = []
 
