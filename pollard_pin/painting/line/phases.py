@@ -1,9 +1,9 @@
 """The world path of a paint program on a moving line, for a panel or a part alike
 (docs/model.md §24): the relative program behind :class:`Relative`, the line's phases (hold,
-catch up, program, slow down, return), the shift along the line that keeps it in reach, the
-turnarounds timed on the world path, every check on the world path, and the fastest line
-speed. ``line.py`` (a panel) and ``line_part.py`` (a part's mesh) only build their relative
-programs.
+catch up, program, slow down, return), the shift along the line that keeps it in reach (its
+scan in ``shifts.py``), the turnarounds timed on the world path, every check on the world path,
+and the fastest line speed. ``line.py`` (a panel) and ``line_part.py`` (a part's mesh) only
+build their relative programs.
 """
 from __future__ import annotations
 
@@ -17,18 +17,16 @@ from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...errors import say_less
 from ...paths.trajectory import Trajectory
-from ..checks.motion import fastest, motion, reach
+from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..progress import ticking
 from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
+from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
-SHIFT_RANGE = 2.0  # m: the line may carry the part this far before the program starts
-SHIFT_STEP = 0.005  # m: the scan of shifts along the line
-SHIFT_BISECT = 10  # bisection steps refining each end of the feasible shifts
 SPEED_RESOLUTION = 0.01  # relative: --max-line-speed's bisection stops at this bracket
 SPEED_TRIES = 12  # doublings/halvings bracketing the fastest speed
 _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
@@ -161,58 +159,6 @@ def _drift(rel: Relative, speed: float, e, t):
     """The program's world positions with no wait (shift 0): relative + speed·t·direction."""
     p, v, _ = rel.evaluate(t)
     return line_shift(p, v, t, speed, e)[0]
-
-
-def _fits(robot, poses, e, x) -> bool:
-    p = np.array(poses)
-    p[:, :3] += x * e
-    try:
-        reach(robot, p)
-    except ReachError:
-        return False
-    return True
-
-
-def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
-                    anchor: float = 0.0):
-    """The longest run of shifts x ∈ [lo, lo + span] along the line with every pose + x·e in
-    reach (scan at the x with x + ``anchor`` a multiple of SHIFT_STEP, ends refined by
-    bisection), or None. With ``anchor`` the poses' world place along e, the scanned places
-    are fixed in the world, wherever the job puts the part at t = 0."""
-    first = math.ceil((lo + anchor) / SHIFT_STEP - 1e-9)
-    last = math.floor((lo + span + anchor) / SHIFT_STEP + 1e-9)
-    xs = np.arange(first, last + 1) * SHIFT_STEP - anchor
-    if not len(xs):
-        return None
-    ok = np.array([_fits(robot, poses, e, x) for x in xs])
-    if not ok.any():
-        return None
-    # the longest run of True
-    edges = np.diff(np.concatenate([[0], ok.astype(int), [0]]))
-    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    k = int(np.argmax(stops - starts))
-    a, b = int(starts[k]), int(stops[k]) - 1
-
-    def refine(good, bad):
-        if bad < lo - 1e-15 or bad > lo + span + 1e-15:
-            return good
-        for _ in range(SHIFT_BISECT):
-            mid = 0.5 * (good + bad)
-            good, bad = (mid, bad) if _fits(robot, poses, e, mid) else (good, mid)
-        return good
-
-    return refine(xs[a], xs[a] - SHIFT_STEP), refine(xs[b], xs[b] + SHIFT_STEP)
-
-
-def shift_window(lo: float, anchor: float) -> tuple[float, float]:
-    """The shifts [start, start + SHIFT_RANGE] searched along the line when the first
-    SHIFT_RANGE from ``lo`` (the part already riding the line) keep nothing in reach: for a
-    part that reaches the robot only after more than half that range (a robot far down the
-    line, ``anchor`` the program's world place along the line at shift 0), the range
-    centred on the shift that brings it there, −anchor; else the first range again."""
-    here = -float(anchor)
-    start = lo if here <= lo + SHIFT_RANGE / 2 else here - SHIFT_RANGE / 2
-    return start, start + SHIFT_RANGE
 
 
 def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
@@ -517,5 +463,5 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
 
 __all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",
            "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
-           "feasible_shifts", "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
-           "plan_world", "shift_window", "track", "world_motion"]
+           "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
+           "plan_world", "track", "world_motion"]

@@ -11,6 +11,7 @@ from pollard_pin.painting.job import load_job
 from pollard_pin.painting.line import phases
 from pollard_pin.painting.line.panel import plan_line_job
 from pollard_pin.painting.line.reach import PASS_SAMPLES, numbers, unreachable_passes
+from pollard_pin.painting.line.shifts import SHIFT_RANGE
 from pollard_pin.painting.workpiece import shapes
 
 
@@ -76,7 +77,7 @@ def test_excess_against_the_planners_reach(robot, act, tmp_path):
     rel = relative_program(robot, job, act)
     e = np.asarray(job.line.direction)
     lo = job.line.speed * phases.CATCH
-    bad, n = unreachable_passes(robot, rel, e, lo, lo + phases.SHIFT_RANGE)
+    bad, n = unreachable_passes(robot, rel, e, lo, lo + SHIFT_RANGE)
     assert n == 19 and len(bad) == 19
     worst = max(bad, key=lambda b: b.excess)
     assert worst.side() == "top" and worst.ends[0] == 0.0
@@ -90,7 +91,7 @@ def test_excess_against_the_planners_reach(robot, act, tmp_path):
     assert poses[m, 2] < poses[-1, 2]  # from the bottom up
 
     def fits_somewhere(p):
-        for x in np.arange(lo, lo + phases.SHIFT_RANGE, 0.005):
+        for x in np.arange(lo, lo + SHIFT_RANGE, 0.005):
             q = p.copy()
             q[:, :3] += x * e
             try:
