@@ -127,7 +127,8 @@ def add_parser(sub, parents) -> None:
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "
                         "of the painted area is within ±10 %% of the target (SHARE left "
-                        "out: the acceptance paint.json's film_check states, 0.99)")
+                        "out: the acceptance paint.json's film_check states, 0.99; default: "
+                        "off, the exit status says nothing of the film)")
     p.add_argument("--robots", type=robots_arg, default=None, metavar="N|auto",
                    help="a job with [line] and no [[robot]]: propose N robots (1..16) for the "
                         "part, stacked along the line (or auto: the fewest that paint it), "

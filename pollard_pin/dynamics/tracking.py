@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -182,8 +183,11 @@ def _check_plant(plant: Plant, q: np.ndarray, residual: float, t: float, joint_l
                 plant.robot.params, names[j], float(q[j]), excess)
     if why is not None:
         said = f"simulation stopped at t = {t:.6g} s: {why}"
-        raise SimulationError(say_less(f"{said}; {hint()}", f"{said}; {hint().split(': ')[-1]}",
-                                       said))
+        bare = re.sub(r" \[[^\]]*\]", "", said)  # the joint's limits left out
+        h = hint()
+        raise SimulationError(say_less(f"{said}; {h}", f"{bare}; {h}",
+                                       f"{bare}; {h.split(': ')[0]}",
+                                       f"{said}; {h.split(': ')[-1]}", said))
 
 
 class _Ticking:

@@ -25,7 +25,7 @@ def test_family():
 INPUT = {"JobError", "JobKindError", "MeshError", "MeshFileError", "CellError",
          "ResolutionError"}
 SOLVE = {"PlanError", "ReachError", "BudgetError", "ClearanceError", "PlaceError",
-         "LineSpeedError", "ReportError"}
+         "LineSpeedError", "LineReachError", "ReportError"}
 
 
 def test_every_paint_error_is_here_by_the_rule():
