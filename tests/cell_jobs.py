@@ -37,3 +37,28 @@ def moved(tables: dict, turn_deg: float, shift) -> dict:
 
 def cell_job(tables: dict, source: str = "<cell test>"):
     return job_from_dict(tables, source)
+
+
+# A plate part riding the line past one robot at the origin (its mesh: plate.stl beside it)
+PLATE_CELL = """
+[part]
+mesh = "plate.stl"
+position = [0.71, -0.3, 0.10]
+facing = [-1.0, 0.0, 0.0]
+
+[gun]
+standoff = 0.15
+sigma = 0.01
+flow = 1.5e-7
+
+[job]
+thickness = 25e-6
+
+[line]
+speed = 0.02
+direction = [0.0, 1.0, 0.0]
+
+[[robot]]
+name = "near"
+base = [0.0, 0.0, 0.0]
+"""

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cell_jobs import panel_cell
+from cell_jobs import PLATE_CELL, panel_cell
 from cli_run import run_and_size, run_cli
 
 from pollard_pin.io.table import read_result
@@ -243,30 +243,6 @@ def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, capsys, tmp_
     # the median, not the worst: a few samples where the pieces meet differ by up to 6 %
     assert median_gap("sim") <= 1e-13  # seen 2.2e-16 of the peak
     assert median_gap("bare") >= 0.05  # seen 0.76 of the peak (the weight pulls the other way)
-
-
-PLATE_CELL = """
-[part]
-mesh = "plate.stl"
-position = [0.71, -0.3, 0.10]
-facing = [-1.0, 0.0, 0.0]
-
-[gun]
-standoff = 0.15
-sigma = 0.01
-flow = 1.5e-7
-
-[job]
-thickness = 25e-6
-
-[line]
-speed = 0.02
-direction = [0.0, 1.0, 0.0]
-
-[[robot]]
-name = "near"
-base = [0.0, 0.0, 0.0]
-"""
 
 
 def test_a_cell_parts_thickness_png_names_the_line_and_the_cells_axis(tmp_path, capsys,

@@ -8,6 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import trimesh
+from cell_jobs import PLATE_CELL
 
 from pollard_pin.painting.cell.plan import plan_cell_job
 from pollard_pin.painting.cell.program import ClippedPass
@@ -16,28 +17,7 @@ from pollard_pin.painting.film.cell import cell_part_film
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.spray.occlusion import load_painted_part
 
-PLATE = """
-[part]
-mesh = "plate.stl"
-position = [0.71, -0.3, 0.10]
-facing = [-1.0, 0.0, 0.0]
-
-[gun]
-standoff = 0.15
-sigma = 0.01
-flow = 1.5e-7
-
-[job]
-thickness = 25e-6
-
-[line]
-speed = 0.02
-direction = [0.0, 1.0, 0.0]
-
-[[robot]]
-name = "near"
-base = [0.0, 0.0, 0.0]
-
+PLATE = PLATE_CELL + """
 [[robot]]
 name = "far"
 base = [1.42, 0.3, 0.0]
