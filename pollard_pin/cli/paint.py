@@ -31,15 +31,8 @@ from .paint_robots import (
 STRICT_STATUS = 3
 
 
-def _actuators(args, job):
-    """--actuators, else the job's, else the package's (pollard_pin.paint's rule)."""
-    from ..dynamics.motors import load_actuators
-    from ..painting.api import default_actuators
-
-    return load_actuators(args.actuators) if args.actuators else default_actuators(job)
-
-
 def run(args) -> int:
+    from ..dynamics.motors import as_actuators
     from ..io.atomic import all_or_nothing, check_outputs
     from ..outputs.result import paint
     from ..painting.api import film_spacing_of
@@ -63,7 +56,9 @@ def run(args) -> int:
     if args.max_line_speed and job.line is None:
         raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
     res = spacing(film_spacing_of, job, args.resolution)
-    act = _actuators(args, job)
+    # --actuators read before any planning; None: paint's own rule (the job's, else the
+    # package's ratings)
+    act = as_actuators(args.actuators)
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
                            compliance=not args.no_compliance,
                            progress=True)  # bars when standard error is a terminal
