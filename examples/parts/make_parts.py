@@ -18,14 +18,28 @@ and for a conveyor (``examples/line_part.toml``, docs/model.md §24):
 
 * ``long_strip.stl`` (binary STL): a strip 0.90 m long (along y, longer than the reach) and
   0.10 m high, a cylinder section of radius 3 m convex towards the robot: the gun yaws by up
-  to ±8.6° from one end to the other.
+  to ±8.6° from one end to the other;
+* ``tall_plate.stl`` (binary STL, **in mm**): a flat plate 0.80 m long (along y) and 0.33 m
+  high, taller than one robot's band and longer than its reach, centred at z = 0.18 m: a cell
+  of two robots paints it riding the line (``examples/cell_part.toml``, docs/model.md §26).
 
 Read one with ``pollard_pin.painting.workpiece.mesh.load_part("examples/parts/curved_panel.stl")``.
 """
 import argparse
 from pathlib import Path
 
+import numpy as np
+
 from pollard_pin.painting.workpiece import shapes
+
+
+def tall_plate():
+    """The flat plate of examples/cell_part.toml, in mm."""
+    front = np.column_stack([np.full(41, shapes.FRONT_X), np.linspace(-0.40, 0.40, 41)])
+    mesh = shapes.extrude(front, front + [shapes.THICKNESS, 0.0], 0.33, 11, z0=0.18)
+    mesh.apply_scale(1000.0)
+    return mesh
+
 
 PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24, height=0.10),
          "bent_plate.ply": lambda: shapes.bent_plate(flat=0.12, wing=0.11, angle_deg=30.0,
@@ -34,7 +48,8 @@ PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24,
                                                          rib_height=0.015, rib_width=0.006,
                                                          step=0.01),
          "long_strip.stl": lambda: shapes.curved_panel(radius=3.0, width=0.90, height=0.10,
-                                                     step=0.01)}
+                                                     step=0.01),
+         "tall_plate.stl": tall_plate}
 
 
 def main(argv=None) -> int:
