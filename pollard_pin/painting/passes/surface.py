@@ -19,7 +19,8 @@ the turnarounds lie beyond, off the part.
 Spacing on the surface. The levels are chosen by the arc length w of the section across
 the passes (the plane e_p·x through the painted faces' centroid): level_k = e_s(w_k) with
 w_k spaced as on a flat panel of width the arc length (:func:`.passes.raster.pass_offsets`), so
-neighbouring passes lie ``spacing`` apart along the surface where it tilts across them.
+neighbouring passes lie ``spacing`` apart along the surface where it tilts across them; a
+pass beyond an edge lies on along the edge face's tangent, so the outer ones keep it too.
 (Exact for a part that is a prism along e_s, as the examples; to first order elsewhere.)
 
 Gun pose. The tip lies at standoff h along the normal: tip = S + h·N, spray axis −N. A
@@ -300,11 +301,12 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: fl
     except ValueError as exc:
         raise PlanError(f"{job.source}: {exc}") from None
     # arc w → the plane coordinate; a pass beyond an edge: the section at the edge moved on
-    # along the surface's tangent across the passes there
-    S_cross = cross[1]
-    t_lo = S_cross[0] - S_cross[1]
-    t_hi = S_cross[-1] - S_cross[-2]
-    t_lo, t_hi = t_lo / np.linalg.norm(t_lo), t_hi / np.linalg.norm(t_hi)
+    # along the surface's tangent across the passes there, the edge face's (as w counts arc
+    # and a pass runs on): a chord between samples would take a hidden wall's step (a lip
+    # narrower than the step at the edge) for the slope and bunch the outer passes
+    N_cross = cross[2]
+    t_lo = -_tangent(N_cross[0], frame.along, frame.across)
+    t_hi = _tangent(N_cross[-1], frame.along, frame.across)
     extension = EXTENSION * job.sigma
     lo, hi = c[0] + 1e-6, c[-1] - 1e-6
     raw = []

@@ -28,6 +28,41 @@ def plate(tilt_about_y=0.0, yaw=0.0, width=0.24, height=0.10):
     return make_part(np.array(corners), np.array(faces))
 
 
+def lipped_plate(lip=0.0005, rise=0.006, width=0.24, height=0.10):
+    """plate()'s rectangle (facing −x, centre (0.7, 0, 0.16)) with a lip ``lip`` wide along
+    its top and bottom edges standing ``rise`` nearer the robot, its walls hidden from it
+    (the edge of trimesh's featuretype.STL): narrower than a section sample, so only the
+    section's end sample lies on it."""
+    x, z0, y = 0.7, 0.16, width / 2
+    profile = [(x - rise, z0 - height / 2), (x - rise, z0 - height / 2 + lip),
+               (x, z0 - height / 2 + lip), (x, z0 + height / 2 - lip),
+               (x - rise, z0 + height / 2 - lip), (x - rise, z0 + height / 2)]
+    verts = np.array([(px, sy * y, pz) for px, pz in profile for sy in (-1.0, 1.0)])
+    faces = []
+    for k in range(len(profile) - 1):
+        a, b, c, d = 2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3  # (−y, +y) at k, then k + 1
+        faces += [[a, c, b], [b, c, d]]  # outward: −x on the flats, the walls away from them
+    return make_part(verts, np.array(faces))
+
+
+def test_outer_passes_keep_the_spacing_past_an_edge_lip():
+    """Every adjacent pair of passes lies the spacing apart across the lipped plate (its
+    faces all face the robot, so the surface distance is the step in z), the outer pair
+    beyond the edges included; the film from Gaussians at those levels stays within the
+    layout's 1 % over the plate. (The tangent from the section's last two samples took the
+    lip's 6 mm wall for the slope: the outer passes 2.2 mm past the edges, 6.8 mm from
+    their neighbours, +45 % film at the edges.)"""
+    lay = surface_layout(lipped_plate(), JOB)
+    levels = np.array([p.level for p in lay.passes])
+    assert abs(lay.extent - 0.10) < 1e-9  # the walls add no arc
+    assert levels[0] < 0.11 and levels[-1] > 0.21  # passes beyond both edges
+    assert np.abs(np.diff(levels) / lay.spacing - 1).max() < 1e-6
+    z = np.linspace(0.11, 0.21, 1001)
+    film = lay.spacing / (math.sqrt(2 * math.pi) * JOB.sigma) * np.exp(
+        -0.5 * ((z[:, None] - levels[None, :]) / JOB.sigma) ** 2).sum(1)
+    assert np.abs(film - 1).max() < 0.011  # pass_offsets' tolerance
+
+
 @pytest.mark.parametrize("tilt", [0.0, 30.0])
 def test_spacing_is_held_on_the_surface(tilt):
     """A plate pitched by θ across the passes: the planes step by spacing·cos θ in z so the
