@@ -58,9 +58,10 @@ def speeds_lines(rep: dict) -> list[str]:
         return []
     found = rep["timings"].get("speeds")
     took = "" if found is None else f", found in {found:.1f} s"
+    below, above = (sp[k].removeprefix(side) for k, side in (("min_bound", "too slow: "),
+                                                             ("max_bound", "too fast: ")))
     return [f"line speeds that paint it: {sp['min']:.4g}–{sp['max']:.4g} m/s (each end to "
-            f"{100 * sp['resolution']:.3g} %; slower: {sp['min_bound']}; faster: "
-            f"{sp['max_bound']}{took})"]
+            f"{100 * sp['resolution']:.3g} %{took}); below: {below}; above: {above}"]
 
 
 def clearance_line(rep: dict) -> str:

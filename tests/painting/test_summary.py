@@ -77,5 +77,5 @@ def test_the_speeds_line_only_when_stated():
                              "max_bound": "too fast: a motor at 104 % of its rating"}
     rep["timings"]["speeds"] = 41.23
     assert speeds_lines(rep) == [
-        "line speeds that paint it: 0.0031–0.04017 m/s (each end to 5 %; slower: budget "
-        "floor; faster: too fast: a motor at 104 % of its rating, found in 41.2 s)"]
+        "line speeds that paint it: 0.0031–0.04017 m/s (each end to 5 %, found in 41.2 s); "
+        "below: budget floor; above: a motor at 104 % of its rating"]
