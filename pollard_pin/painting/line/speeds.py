@@ -101,6 +101,7 @@ def _find(plan_at, start: float, source: str, resolution: float):
     slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
     why = {True: "", False: ""}
     binds = {True: "", False: ""}
+    slow_bound = ""
     for _ in range(2 * SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
         try:
             best = (s, plan_at(s))
@@ -112,7 +113,7 @@ def _find(plan_at, start: float, source: str, resolution: float):
             if exc.too_fast:
                 fast = s
             else:
-                slow = s
+                slow, slow_bound = s, _bound(exc)
         if fast < math.inf and slow > 0:
             if fast - slow <= resolution * slow:
                 break
@@ -129,7 +130,7 @@ def _find(plan_at, start: float, source: str, resolution: float):
         raise PlanError(say_less(said + tail, said, f"{source}: no line speed paints the part: "
                                  f"too slow at {slow:.4g} m/s, too fast at {fast:.4g} m/s"
                                  f"{tail}"))
-    return best[0], best[1], (slow, f"too slow:{why[False]}" if slow > 0 else "")
+    return best[0], best[1], (slow, slow_bound)
 
 
 def _climb(plan_at, lo: float, plan, resolution: float):

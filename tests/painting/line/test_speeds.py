@@ -120,12 +120,20 @@ def test_interval_found_to_the_resolution(start, resolution):
     assert within(got.low, 0.0031, resolution) and within(got.high, 0.0371, resolution,
                                                           inside=False)
     assert got.low_plan.speed == got.low and got.high_plan.speed == got.high
-    assert got.low_bound == "too slow: the program drifts -0.2 m, out of the reach"
+    assert got.low_bound == "too slow: the program drifts -0.2 m, out of the reach", start
     assert got.high_bound == "too fast: a motor at 104 % of its rating"
     assert got.resolution == resolution and len(calls) < 60
     assert got.said() == f"{got.low:.4g}–{got.high:.4g} m/s"
     assert got.table() == {"min": got.low, "max": got.high, "resolution": resolution,
                            "min_bound": got.low_bound, "max_bound": got.high_bound}
+
+
+def test_slow_end_bounded_by_the_first_failure():
+    """From 0.00995 m/s, just too slow: doubled to 0.0199, every speed bisected down paints,
+    so the slow end's bound is the first failure's, said as the others."""
+    got = line_speed_interval(runs([(0.01, 0.0371)], []), 0.00995, "j", 0.05)
+    assert within(got.low, 0.01, 0.05)
+    assert got.low_bound == "too slow: the program drifts -0.2 m, out of the reach"
 
 
 def test_interval_floored_by_the_budget():
