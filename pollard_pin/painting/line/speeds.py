@@ -267,8 +267,9 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
             found = line_speed_interval(plan_at, speed, source, SPEED_RESOLUTION,
                                         slow_resolution=INTERVAL_RESOLUTION)
         except PlanError as none:
-            raise PlanError(say_less(f"{exc}; {none}", f"at line speed {speed:.4g} m/s "
-                                     f"{exc.why}; {none}", str(none))) from None
+            said = str(none).removeprefix(f"{source}: ")
+            raise PlanError(say_less(f"{exc}; {said}", f"at line speed {speed:.4g} m/s "
+                                     f"{exc.why}; {said}", str(none))) from None
         paints = f"it paints at {found.said()} (--max-line-speed)"
         raise PlanError(say_less(f"{exc}; {paints}", f"at line speed {speed:.4g} m/s "
                                  f"{exc.why}; {paints}", f"line speed {speed:.4g} m/s: "

@@ -236,6 +236,7 @@ def test_no_speed_at_all_refuses_with_both_sides():
         plan_or_name_fastest(runs([(0.05, 0.04)], []), 0.03, "j.toml")
     msg = str(info.value)
     assert "no line speed paints the part" in msg and "binding: " in msg and len(msg) <= 250
+    assert msg.startswith("0.03 too slow; no line speed paints the part: too slow at "), msg
     assert not isinstance(info.value, LineSpeedError)
 
 
