@@ -241,17 +241,19 @@ def test_no_speed_at_all_refuses_with_both_sides():
 
 
 # --- a real job ----------------------------------------------------------------------------------
-def test_example_line_interval(robot, act, line_job):
-    """examples/line.toml: its speed 0.03 m/s inside the interval; just past each end
-    (resolution and a margin) plan_line itself refuses, each side's failure as stated."""
-    got = line_speed_interval(line_planner(robot, line_job, act), line_job.line.speed,
-                              line_job.source, 0.05)
+def test_example_line_interval(robot, act, line_job, line_plan):
+    """examples/line.toml: its speed 0.03 m/s inside the interval (to 10 %, its plan there
+    the fixture's); just past each end (the resolution and a margin) plan_line itself
+    refuses, each side's failure as stated."""
+    planner = line_planner(robot, line_job, act)
+    got = line_speed_interval(lambda s: line_plan if s == line_plan.speed else planner(s),
+                              line_job.line.speed, line_job.source, 0.1)
     assert got.low < line_job.line.speed < got.high
     assert got.low_plan.speed == got.low and got.high_plan.speed == got.high
     assert got.low_bound.startswith("too slow: ") and got.high_bound.startswith("too fast: ")
     with pytest.raises(LineSpeedError) as slow:
-        plan_line(robot, line_job, act, got.low / 1.06, clearance=False)
+        plan_line(robot, line_job, act, got.low / 1.11, clearance=False)
     assert not slow.value.too_fast
     with pytest.raises(LineSpeedError) as fast:
-        plan_line(robot, line_job, act, got.high * 1.06, clearance=False)
+        plan_line(robot, line_job, act, got.high * 1.11, clearance=False)
     assert fast.value.too_fast
