@@ -65,7 +65,8 @@ def line_section(robot) -> None:
     """Jobs on a moving line (docs/model.md §24): examples/line.toml (a panel) and
     examples/line_part.toml (a part's mesh), each planned at the job's speed (budget 20 s)
     with its film, and searched for the fastest speed with --max-line-speed (budget 120 s;
-    timed with the film at that speed, as the CLI runs it). One run each."""
+    timed with the film at that speed, as the CLI runs it), and the time --speeds adds (the
+    interval of speeds that paint, docs/model.md §24.1). One run each."""
     act = pp.load_actuators(REPO / "examples" / "actuators.toml")
     print("\npainting on a moving line, one run each [s]")
     for name in ("line.toml", "line_part.toml"):
@@ -79,6 +80,10 @@ def line_section(robot) -> None:
               f"{t['film']:5.2f}, {g['parts_per_hour']:.1f} parts/h; --max-line-speed "
               f"{search:5.1f}: {best['speed']:.4g} m/s (upper bound {best['upper_bound']:.4g}), "
               f"{best['parts_per_hour']:.1f} parts/h")
+        stated = pp.paint(robot, job, act, pp.PaintOptions(speeds=True, compliance=False))
+        sp = stated.report.line["speeds"]
+        print(f"  {name:<16s} --speeds {stated.report.timings['speeds']:5.1f} more: "
+              f"{sp['min']:.4g}–{sp['max']:.4g} m/s (each end to {100 * sp['resolution']:g} %)")
 
 
 def cell_section(robot) -> None:

@@ -53,13 +53,16 @@ def run(args) -> int:
     refuse_inputs(args, *files, *stale, also=[
         ("the job", args.job), ("the mesh", getattr(job, "mesh", None)),
         ("the actuators", job.actuators)])
-    if args.max_line_speed and job.line is None:
-        raise UsageError("--max-line-speed: the job has no [line] table (speed, direction)")
+    for flag in ("max_line_speed", "speeds"):
+        if getattr(args, flag) and job.line is None:
+            raise UsageError(f"--{flag.replace('_', '-')}: the job has no [line] table (speed, "
+                             "direction)")
     res = spacing(film_spacing_of, job, args.resolution)
     # --actuators read before any planning; None: paint's own rule (the job's, else the
     # package's ratings)
     act = as_actuators(args.actuators)
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
+                           speeds=args.speeds,
                            compliance=not args.no_compliance,
                            progress=True)  # bars when standard error is a terminal
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
@@ -118,6 +121,10 @@ def add_parser(sub, parents) -> None:
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
                         "§24)")
+    p.add_argument("--speeds", action="store_true",
+                   help="a job with [line]: also state the interval of line speeds that "
+                        "paint the part, each end to 5 %% and planned in full (paint.json's "
+                        "line.speeds; docs/model.md §24.1; ~10 more plans)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "

@@ -245,6 +245,29 @@ class Seam(Section):
     mean: float
 
 
+@dataclass(frozen=True)
+class LineSpeeds(Section):
+    """A line's ``line.speeds`` (``paint --speeds``): the line speeds that paint the job
+    (docs/model.md §24.1; painting.line.speeds.SpeedInterval).
+
+    Attributes
+    ----------
+    min, max : float
+        The slowest and the fastest speed found to paint [m/s], both planned in full.
+    resolution : float
+        The relative bracket each end was bisected to.
+    min_bound, max_bound : str
+        What stops the run beyond each end: ``"budget floor"`` (the path's sample budget),
+        ``"too slow: <why>"``, ``"too fast: <why>"`` or ``"searched no further"``.
+    """
+
+    min: float
+    max: float
+    resolution: float
+    min_bound: str
+    max_bound: str
+
+
 # the typed sections: attribute -> paint.json's key, in the order a panel's report has them
 KEYS = {"job": "job", "kind": "kind", "thickness": "thickness", "target": "target",
         "cycle_time": "cycle_time", "line": "line", "seams": "seams", "robots": "robots",
@@ -273,7 +296,9 @@ class PaintJson:
         The cycle [s].
     line : Mapping or None
         On a line: speed, direction, cycle, pitch, parts per hour … (read by the job's rule,
-        ``painting.line.conveyor.line_from_table``, where it moves a film).
+        ``painting.line.conveyor.line_from_table``, where it moves a film), and with
+        ``paint --speeds`` the speeds that paint the job (its ``speeds``, a
+        :class:`LineSpeeds`, checked).
     seams : tuple of Seam or None
         A cell's seams.
     robots : tuple of Mapping or None
@@ -396,6 +421,14 @@ def _robots(path, key, value) -> tuple:
     return tuple(_table(path, f"{key}[{i}]", r) for i, r in enumerate(_list(path, key, value)))
 
 
+def _line(path, key, value) -> Mapping:
+    """The line table as written, its ``speeds`` (when there) checked."""
+    table = _table(path, key, value)
+    if "speeds" in table:
+        LineSpeeds.from_dict(table["speeds"], f"{key}.speeds", path)
+    return table
+
+
 def _seams(path, key, value) -> tuple:
     return tuple(Seam.from_dict(s, f"{key}[{i}]", path)
                  for i, s in enumerate(_list(path, key, value)))
@@ -406,7 +439,7 @@ def _section(cls):
 
 
 _READ = {"job": _table, "kind": _text, "thickness": _section(Thickness),
-         "cycle_time": _number, "line": _table, "seams": _seams, "robots": _robots,
+         "cycle_time": _number, "line": _line, "seams": _seams, "robots": _robots,
          "clearance": _table, "motors": _motors,
          "film_points": _section(FilmPoints), "timings": _timings, "compliance": _table,
          "film_ply": _section(FilmPly), "version": _text}
@@ -469,6 +502,6 @@ def read_paint_json(path: str | Path) -> PaintJson:
     return PaintJson.from_dict(load_paint_json(path), path)
 
 
-__all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "MAX_REPORT_BYTES", "MotorUse",
+__all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "LineSpeeds", "MAX_REPORT_BYTES", "MotorUse",
            "PaintJson", "Seam", "Section", "Thickness", "check_grid", "dumps",
            "load_paint_json", "read_paint_json"]

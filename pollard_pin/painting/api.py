@@ -72,9 +72,10 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
     options = PaintOptions() if options is None else options
     if not isinstance(options, PaintOptions):
         raise InputError(f"options: a {type(options).__name__}, expected PaintOptions")
-    if options.max_line_speed and job.line is None:
-        raise InputError(f"{job.source}: max_line_speed: the {kind.name} job has no [line] "
-                         "table (speed, direction)")
+    for flag in ("max_line_speed", "speeds"):
+        if getattr(options, flag) and job.line is None:
+            raise InputError(f"{job.source}: {flag}: the {kind.name} job has no [line] "
+                             "table (speed, direction)")
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
     with showing(options.progress):

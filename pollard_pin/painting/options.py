@@ -7,7 +7,7 @@ import numbers
 from dataclasses import dataclass
 
 from ..errors import InputError
-from .line.phases import SPEED_RESOLUTION
+from .line.speeds import SPEED_RESOLUTION
 from .policy import DEFAULT_POLICY, PlannerPolicy
 
 
@@ -25,6 +25,10 @@ class PaintOptions:
         job's speed (docs/model.md §24; default False).
     speed_resolution : float, optional
         That search's relative bracket, in (0, 1) (default 0.01).
+    speeds : bool, optional
+        A job on a line also states the interval of line speeds that paint it, each end
+        to 5 % and planned in full (paint.json's ``line.speeds``, docs/model.md §24.1;
+        default False: it costs ~10 more plans).
     compliance : bool, optional
         Report what the drives' compliance does to the gun and the film (docs/model.md
         §27.7; a second film integration; default True).
@@ -52,6 +56,7 @@ class PaintOptions:
     resolution: float | None = None
     max_line_speed: bool = False
     speed_resolution: float = SPEED_RESOLUTION
+    speeds: bool = False
     compliance: bool = True
     policy: PlannerPolicy = DEFAULT_POLICY
     progress: bool = False
@@ -69,6 +74,8 @@ class PaintOptions:
         if isinstance(s, bool) or not isinstance(s, numbers.Real) or not 0 < s < 1:
             raise InputError(f"PaintOptions.speed_resolution = {s!r}: expected a relative "
                              "bracket in (0, 1)")
+        if not isinstance(self.speeds, bool):
+            raise InputError(f"PaintOptions.speeds = {self.speeds!r}: expected True or False")
         if not isinstance(self.compliance, bool):
             raise InputError(f"PaintOptions.compliance = {self.compliance!r}: expected True or "
                              "False")

@@ -67,7 +67,8 @@ class PaintReport:
         ``speed``).
     line : Mapping or None
         On a line: start delay, window, travel, cycle, pitch, parts per hour, the speed's
-        upper bound; None when still.
+        upper bound (with ``PaintOptions(speeds=True)`` the ``speeds`` that paint the job,
+        docs/model.md §24.1); None when still.
     timings : Mapping
         Seconds spent planning and integrating the film.
     data : Mapping

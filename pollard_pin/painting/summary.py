@@ -36,7 +36,8 @@ def part_summary_lines(rep: dict, names) -> list[str]:
 
 
 def line_lines(rep: dict) -> list[str]:
-    """The two lines ``paint`` prints of the line (a panel's or a part's)."""
+    """The lines ``paint`` prints of the line (a panel's or a part's): two, and the speeds
+    that paint it when stated."""
     ln = rep["line"]
     return [
         f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
@@ -45,7 +46,22 @@ def line_lines(rep: dict) -> list[str]:
         f"start delay {ln['start_delay']:.3f} s, window {ln['window'][0]:.3f}–"
         f"{ln['window'][1]:.3f} m along the line, cycle {ln['cycle']:.3f} s, pitch "
         f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour",
+        *speeds_lines(rep),
     ]
+
+
+def speeds_lines(rep: dict) -> list[str]:
+    """paint.json's ``line.speeds`` in one line, when stated (``paint --speeds``,
+    docs/model.md §24.1), else none."""
+    sp = rep["line"].get("speeds")
+    if sp is None:
+        return []
+    found = rep["timings"].get("speeds")
+    took = "" if found is None else f", found in {found:.1f} s"
+    below, above = (sp[k].removeprefix(side) for k, side in (("min_bound", "too slow: "),
+                                                             ("max_bound", "too fast: ")))
+    return [f"line speeds that paint it: {sp['min']:.4g}–{sp['max']:.4g} m/s (each end to "
+            f"{100 * sp['resolution']:.3g} %{took}); below: {below}; above: {above}"]
 
 
 def clearance_line(rep: dict) -> str:
@@ -90,4 +106,4 @@ def closing_lines(rep: dict) -> list[str]:
 
 
 __all__ = ["clearance_line", "closing_lines", "compliance_line", "film_miss_line", "line_lines",
-           "motor_use_line", "part_summary_lines"]
+           "motor_use_line", "part_summary_lines", "speeds_lines"]

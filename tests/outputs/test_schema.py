@@ -123,6 +123,11 @@ def _with(**changes):
      "('motors.theta21.speed' = None: must be a number)"),
     (_with(timings={"plan": "soon"}), "('timings.plan' = 'soon': must be a number)"),
     (_with(line=None), "('line' = None: must be a table)"),
+    (_with(line={"speed": 0.03, "speeds": {"min": 0.02, "max": "fast"}}),
+     "('line.speeds.max' = 'fast': must be a number)"),
+    (_with(line={"speed": 0.03, "speeds": {"min": 0.02, "max": 0.04, "resolution": 0.05,
+                                          "min_bound": "budget floor"}}),
+     "('line.speeds.max_bound' is missing)"),
     (_with(robots={"name": "a"}), "('robots' = {'name': 'a'}: must be a list)"),
     (_with(robots=[3]), "('robots[0]' = 3: must be a table)"),
     (_with(seams=[{"at": 0}]), "('seams[0].band_m' is missing)"),
@@ -185,3 +190,17 @@ def test_a_non_finite_figure_is_refused_naming_its_key():
     with pytest.raises(NonFiniteError, match=r"^paint\.json: compliance\.standoff_error_m = "
                                              r"inf is not a finite number"):
         dumps(PaintJson.from_dict(rep))
+
+
+def test_a_line_with_its_speeds_reads_back_the_same_text(tmp_path):
+    """``line.speeds`` (paint --speeds, docs/model.md §24.1) typed when read, the line table
+    kept as written."""
+    speeds = {"min": 0.0205, "max": 0.0343, "resolution": 0.05,
+              "min_bound": "too slow: a motor at 104 % of its rating",
+              "max_bound": "too fast: no turnaround keeps the path in reach"}
+    path = tmp_path / "paint.json"
+    path.write_text(_with(line={"speed": 0.03, "speeds": speeds}))
+    report = read_paint_json(path)
+    assert report.line["speeds"] == speeds
+    assert json.loads(dumps(report))["line"]["speeds"] == speeds
+    assert schema.LineSpeeds.from_dict(speeds, "line.speeds").to_dict() == speeds

@@ -30,6 +30,8 @@ def test_a_job_of_another_kind_is_named(robot, act, job):
         plan_paint(robot, line, act)
     with pytest.raises(InputError, match="no \\[line\\]"):
         pp.paint(robot, job, act, PaintOptions(max_line_speed=True))
+    with pytest.raises(InputError, match="speeds: the panel job has no \\[line\\]"):
+        pp.paint(robot, job, act, PaintOptions(speeds=True))
 
 
 def test_paint_is_a_plain_function():

@@ -11,6 +11,7 @@ from pollard_pin.painting.options import PaintOptions
 @pytest.mark.parametrize(("field", "value", "says"), [
     ("resolution", -1e-3, "-0.001"), ("resolution", float("nan"), "nan"),
     ("max_line_speed", 1, "True or False"), ("speed_resolution", 1.0, "(0, 1)"),
+    ("speeds", "yes", "True or False"),
 ])
 def test_options_are_checked_once(field, value, says):
     with pytest.raises(InputError, match=re.escape(f"PaintOptions.{field} = ")) as info:

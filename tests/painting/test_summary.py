@@ -1,11 +1,13 @@
 """The lines pollard-pin paint prints that several kinds share (painting/summary.py): one
 motor-use order for every kind of job, the compliance line in its units (a cell's naming
-the worst robot), the clearance line, and the closing lines only where the report has them."""
+the worst robot), the clearance line, the line speeds that paint (when stated), and the closing
+lines only where the report has them."""
 from pollard_pin.painting.summary import (
     clearance_line,
     closing_lines,
     compliance_line,
     motor_use_line,
+    speeds_lines,
 )
 
 
@@ -65,3 +67,15 @@ def test_a_film_that_misses_its_acceptance_is_said_after_the_rest():
                                                                    line]
     assert closing_lines({**CLEARANCE, "film_check": {**check, "meets": True}}) == [
         clearance_line(CLEARANCE)]
+
+
+def test_the_speeds_line_only_when_stated():
+    rep = {"line": {"speed": 0.03}, "timings": {"plan": 1.0}}
+    assert speeds_lines(rep) == []
+    rep["line"]["speeds"] = {"min": 0.0031, "max": 0.04017, "resolution": 0.05,
+                             "min_bound": "budget floor",
+                             "max_bound": "too fast: a motor at 104 % of its rating"}
+    rep["timings"]["speeds"] = 41.23
+    assert speeds_lines(rep) == [
+        "line speeds that paint it: 0.0031–0.04017 m/s (each end to 5 %, found in 41.2 s); "
+        "below: budget floor; above: a motor at 104 % of its rating"]

@@ -15,10 +15,16 @@ import numpy as np
 
 from ...dynamics.motors import Actuators
 from ...errors import say_less, without_asides
-from ..errors import LineSpeedError, PlanError
+from ..errors import BudgetError, LineSpeedError, PlanError
 from ..job import PartJob
 from ..line.panel import line_clearance
-from ..line.phases import SPEED_RESOLUTION, fastest_line_speed
+from ..line.speeds import (
+    INTERVAL_RESOLUTION,
+    SPEED_RESOLUTION,
+    SpeedInterval,
+    fastest_line_speed,
+    line_speed_interval,
+)
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from .frames import check_panel_turn, panel_in_base, part_in_base, robot_model_in_base
@@ -159,6 +165,8 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         except LineSpeedError as exc:
             raise LineSpeedError(_robot_said(cr, exc), exc.too_fast, exc.why,
                                  exc.hint) from None
+        except BudgetError as exc:  # a speed search's slow floor: kept apart (line.speeds)
+            raise BudgetError(_robot_said(cr, exc)) from None
         except PlanError as exc:
             raise PlanError(_robot_said(cr, exc)) from None
         if clearance:
@@ -198,12 +206,28 @@ def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     return speed, _with_clearance(robot, plan)
 
 
+def cell_speeds(robot, job, act: Actuators, plan: CellPlan | None = None,
+                part: Part | None = None, split: Split | None = None,
+                policy: PlannerPolicy = DEFAULT_POLICY,
+                resolution: float = INTERVAL_RESOLUTION) -> SpeedInterval:
+    """The line speeds at which every robot paints its zone
+    (:func:`.line.speeds.line_speed_interval` from the job's speed, each end to
+    ``resolution`` and its clearances checked, as :func:`max_cell_speed` checks its answer);
+    ``plan``: the cell's plan at a speed already made (its split kept), not made again."""
+    split = plan.split if plan is not None and split is None else split
+    plan_at = cell_planner(robot, job, act, part, split, policy)
+    return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
+                               else plan_at(s), job.line.speed, job.source, resolution,
+                               check=lambda p: _with_clearance(robot, p))
+
+
 def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
                   split: Split | None = None,
                   policy: PlannerPolicy = DEFAULT_POLICY) -> CellPlan:
     """The job's line speed planned (``policy``: the planner's knobs); a speed no robot
-    ordering can paint is refused naming the fastest that works."""
-    from ..line.phases import plan_or_name_fastest
+    ordering can paint is refused naming the interval that does
+    (:func:`.line.speeds.plan_or_name_fastest`)."""
+    from ..line.speeds import plan_or_name_fastest
 
     plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
                                 job.line.speed, job.source)
@@ -239,5 +263,5 @@ def _robot_said(cr, exc: Exception) -> str:
     return say_less(f"robot {cr.name!r}: {exc}", f"robot {cr.name!r}: {without_asides(str(exc))}")
 
 
-__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "max_cell_speed", "plan_cell",
-           "plan_cell_job", "robot_part"]
+__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds", "max_cell_speed",
+           "plan_cell", "plan_cell_job", "robot_part"]

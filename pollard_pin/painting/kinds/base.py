@@ -4,6 +4,7 @@ has a compliance report, and what it writes. The kinds themselves: one module ea
 ``pollard_pin.painting.kinds``, one line each in its table."""
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,6 +38,16 @@ def checked_part(job, resolution: float):
     part = load_painted_part(job)
     check_film_points(part, resolution)  # before planning: the budget of the film's points
     return part
+
+
+def with_speeds(rep: dict, options, find: Callable) -> None:
+    """With ``options.speeds``: ``rep``'s ``line.speeds`` (``find()``, a
+    :class:`~pollard_pin.painting.line.speeds.SpeedInterval`) and its time, ``timings.speeds``
+    (docs/model.md §24.1); else nothing."""
+    if options.speeds:
+        t0 = time.perf_counter()
+        rep["line"]["speeds"] = find().table()
+        rep["timings"]["speeds"] = time.perf_counter() - t0
 
 
 def world_tips(plan) -> np.ndarray:
@@ -106,4 +117,4 @@ class JobKind:
         return isinstance(job, PaintJob | PartJob) and job_kind(job) == self.name
 
 
-__all__ = ["JobKind", "Outputs", "checked_part", "output_files", "world_tips"]
+__all__ = ["JobKind", "Outputs", "checked_part", "output_files", "with_speeds", "world_tips"]

@@ -14,13 +14,14 @@ from ...dynamics.averages import trapezoid_weights
 from ...dynamics.motors import Actuators
 from ...version import __version__
 from ..cell.frames import gravity_in_base
-from ..cell.plan import max_cell_speed, plan_cell_job
+from ..cell.plan import cell_speeds, max_cell_speed, plan_cell_job
 from ..film.cell import cell_panel_film, cell_part_film
 from ..film.stats import film_stats
 from ..job import PartJob
 from ..report import check_report
 from ..result import PaintFilm
-from .base import JobKind, Outputs, checked_part
+from ..summary import speeds_lines
+from .base import JobKind, Outputs, checked_part, with_speeds
 
 
 def paint(robot, job, act, options, res):
@@ -51,6 +52,8 @@ def paint(robot, job, act, options, res):
     rep.update(timings={"plan": t1 - t0, "film": time.perf_counter() - t1},
                pollard_pin=__version__)
     rep["line"]["searched"] = options.max_line_speed
+    with_speeds(rep, options, lambda: cell_speeds(robot, job, act, plan, part,
+                                                   policy=options.policy))
     return plan, pf, rep
 
 
@@ -170,7 +173,7 @@ def summary_lines(rep: dict, names) -> list[str]:
         f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
         f"cycle {ln['cycle']:.3f} s (robot {ln['slowest_robot']!r}, the slowest), pitch "
         f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour; upper bound "
-        f"{ln['upper_bound']:.4g} m/s",
+        f"{ln['upper_bound']:.4g} m/s", *speeds_lines(rep),
         f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
         f"(target {rep['target'] * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area "
         f"within ±5 %, {100 * th['within_10pct']:.2f} % within ±10 %"]

@@ -13,12 +13,12 @@ from ...version import __version__
 from ..errors import LineReachError
 from ..film.line import line_film, part_frame_positions
 from ..film.stats import film_stats
-from ..line.panel import LinePlan, max_line_speed, plan_line_job
+from ..line.panel import LinePlan, line_speeds, max_line_speed, plan_line_job
 from ..report import check_report, clearance_entries, line_table
 from ..result import PaintFilm
 from ..spray.deposition import Film
 from ..summary import line_lines, motor_use_line
-from .base import JobKind, Outputs
+from .base import JobKind, Outputs, with_speeds
 
 
 def line_plan(robot, job, act, options, part=None):
@@ -47,6 +47,8 @@ def paint(robot, job, act, options, res):
     rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
                pollard_pin=__version__)
     rep["line"]["searched"] = options.max_line_speed
+    with_speeds(rep, options, lambda: line_speeds(robot, job, act, plan,
+                                                   policy=options.policy))
     return plan, PaintFilm(pts, film, res, grid=(U, V)), rep
 
 

@@ -8,10 +8,11 @@ import time
 from ...dynamics.motors import Actuators
 from ...version import __version__
 from ..film.part import surface_film
+from ..line.panel import line_speeds
 from ..report import check_report, line_table, surface_report
 from ..result import PaintFilm
 from ..summary import line_lines, part_summary_lines
-from .base import JobKind, Outputs, checked_part
+from .base import JobKind, Outputs, checked_part, with_speeds
 from .line_panel import line_plan
 
 
@@ -25,6 +26,8 @@ def paint(robot, job, act, options, res):
     rep.update(timings={"plan": planning, "film": time.perf_counter() - t0},
                pollard_pin=__version__)
     rep["line"]["searched"] = options.max_line_speed
+    with_speeds(rep, options, lambda: line_speeds(robot, job, act, plan, part,
+                                                   policy=options.policy))
     return plan, PaintFilm(pts, film, res, painted=painted, efficiency=efficiency), rep
 
 

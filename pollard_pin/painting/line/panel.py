@@ -26,17 +26,22 @@ from ..workpiece.mesh import Part
 from ..workpiece.panel import PanelFrame
 from .phases import (
     CATCH,
-    SPEED_RESOLUTION,
     LineProgram,
     LineTimes,
     Relative,
-    fastest_line_speed,
     line_shift,
     one_coat,
-    plan_or_name_fastest,
     plan_world,
     track,
     world_motion,
+)
+from .speeds import (
+    INTERVAL_RESOLUTION,
+    SPEED_RESOLUTION,
+    SpeedInterval,
+    fastest_line_speed,
+    line_speed_interval,
+    plan_or_name_fastest,
 )
 
 
@@ -157,22 +162,36 @@ def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
                    part: Part | None = None, policy: PlannerPolicy = DEFAULT_POLICY):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
     part is painted under the same checks (``policy``'s), and its plan (docs/model.md §24,
-    :func:`.line.phases.fastest_line_speed`)."""
+    :func:`.line.speeds.fastest_line_speed`)."""
     speed, plan = fastest_line_speed(line_planner(robot, job, act, part, policy), job.line.speed,
                                      job.source, resolution)
     return speed, replace(plan, clearance=line_clearance(robot, plan))
 
 
+def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
+                policy: PlannerPolicy = DEFAULT_POLICY,
+                resolution: float = INTERVAL_RESOLUTION) -> SpeedInterval:
+    """The line speeds that paint the panel or part (:func:`.line.speeds.line_speed_interval`
+    from the job's speed, each end to ``resolution`` and its clearance checked, as
+    :func:`max_line_speed` checks its answer); ``plan``: the job's plan at a speed already
+    made, not made again."""
+    plan_at = line_planner(robot, job, act, part, policy)
+    return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
+                               else plan_at(s), job.line.speed, job.source, resolution,
+                               check=lambda p: replace(p, clearance=line_clearance(robot, p)))
+
+
 def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
                   policy: PlannerPolicy = DEFAULT_POLICY):
     """The job's line speed planned (``policy``: the planner's knobs); a speed that cannot be
-    painted is refused naming the fastest that works (:func:`max_line_speed`)."""
+    painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source)
     return replace(plan, clearance=line_clearance(robot, plan))
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
-           "line_clearance", "line_planner", "line_shift", "max_line_speed", "panel_relative",
+           "line_clearance", "line_planner", "line_shift", "line_speeds", "max_line_speed",
+           "panel_relative",
            "part_length", "pass_direction", "plan_line", "plan_line_job", "relative_motion",
            "world_motion"]

@@ -1,9 +1,9 @@
 """The world path of a paint program on a moving line, for a panel or a part alike
 (docs/model.md §24): the relative program behind :class:`Relative`, the line's phases (hold,
 catch up, program, slow down, return), the shift along the line that keeps it in reach (its
-scan in ``shifts.py``), the turnarounds timed on the world path, every check on the world path,
-and the fastest line speed. ``line.py`` (a panel) and ``line_part.py`` (a part's mesh) only
-build their relative programs.
+scan in ``shifts.py``), the turnarounds timed on the world path, every check on the world path
+(the speeds that paint: ``speeds.py``). ``line.py`` (a panel) and ``line_part.py`` (a part's
+mesh) only build their relative programs.
 """
 from __future__ import annotations
 
@@ -21,14 +21,10 @@ from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
-from ..progress import ticking
-from .conveyor import MAX_LINE_SPEED
 from .reach import out_of_reach, unreachable_passes
 from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
-SPEED_RESOLUTION = 0.01  # relative: --max-line-speed's bisection stops at this bracket
-SPEED_TRIES = 12  # doublings/halvings bracketing the fastest speed
 _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
 
 
@@ -383,85 +379,5 @@ def _return_time(robot, act, rel: Relative, speed: float, e, delay: float,
     return float(fastest(evaluate, np.array([0.5]), policy.utilisation)[0])
 
 
-def fastest_line_speed(plan_at, start: float, source: str,
-                       resolution: float = SPEED_RESOLUTION):
-    """The fastest line speed [m/s] (within ``resolution``, relative) at which
-    ``plan_at(speed)`` plans, and that plan (docs/model.md §24): from ``start`` (the job's
-    speed), halved while too fast and doubled while too slow (or sent to the failure's
-    ``hint``, the speed of no drift, if further) until one plans, then doubled until one
-    fails, then bisected. Only :class:`LineSpeedError` counts as a failure."""
-    with ticking("line speed search", "plan") as tick:  # a bar on a terminal, if asked
-        return _fastest(lambda s: (tick(), plan_at(s))[1], start, source, resolution)
-
-
-def _fastest(plan_at, start: float, source: str, resolution: float):
-    s = start
-    best = None
-    slow, fast = 0.0, math.inf  # the fastest too slow and the slowest too fast tried
-    why = {True: "", False: ""}
-    for _ in range(2 * SPEED_TRIES):  # a speed that works: the drift ≈ the part's length
-        try:
-            best = (s, plan_at(s))
-            break
-        except LineSpeedError as exc:
-            why[exc.too_fast] = f" ({exc.why})" if exc.why else ""
-            hint = exc.hint
-            if exc.too_fast:
-                fast = s
-            else:
-                slow = s
-        if fast < math.inf and slow > 0:
-            if fast - slow <= resolution * slow:
-                break
-            s = 0.5 * (slow + fast)
-        elif fast == math.inf:  # too slow: on to the speed of no drift if it is further
-            s = max(2 * s, hint if hint is not None and hint < MAX_LINE_SPEED else 0.0)
-        else:
-            s = 0.5 * s
-    if best is None:
-        raise PlanError(f"{source}: no line speed paints the part: too slow at {slow:.4g} m/s"
-                        f"{why[False]}, too fast at {fast:.4g} m/s{why[True]}")
-    lo, plan = best
-    hi = None
-    for _ in range(SPEED_TRIES):
-        try:
-            s2 = 2 * lo if hi is None else hi
-            plan = plan_at(s2)
-            lo = s2
-        except LineSpeedError:
-            hi = s2
-            break
-    if hi is None:
-        return lo, plan
-    while (hi - lo) > resolution * lo:
-        mid = 0.5 * (lo + hi)
-        try:
-            plan = plan_at(mid)
-            lo = mid
-        except LineSpeedError:
-            hi = mid
-    if plan.speed != lo:
-        plan = plan_at(lo)
-    return lo, plan
-
-
-def plan_or_name_fastest(plan_at, speed: float, source: str):
-    """``plan_at(speed)``; a speed that cannot be painted is refused naming the fastest that
-    works (:func:`fastest_line_speed`)."""
-    try:
-        return plan_at(speed)
-    except LineSpeedError as exc:
-        try:
-            fastest_speed, _ = fastest_line_speed(plan_at, speed, source)
-        except PlanError:
-            raise exc from None
-        fastest = f"the fastest line speed that paints it is {fastest_speed:.4g} m/s"
-        raise PlanError(say_less(f"{exc}; {fastest} (--max-line-speed)",
-                                 f"at line speed {speed:.4g} m/s {exc.why}; {fastest} "
-                                 "(--max-line-speed)")) from None
-
-
-__all__ = ["CATCH", "LineProgram", "LineTimes", "Relative",
-           "SPEED_RESOLUTION", "World", "choose_shift", "fastest_line_speed",
-           "line_shift", "one_coat", "path_times", "plan_or_name_fastest",
-           "plan_world", "track", "world_motion"]
+__all__ = ["CATCH", "LineProgram", "LineTimes", "Relative", "World", "choose_shift",
+           "line_shift", "one_coat", "path_times", "plan_world", "track", "world_motion"]

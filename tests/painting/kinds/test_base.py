@@ -10,7 +10,7 @@ from pollard_pin.cli import main
 from pollard_pin.errors import PollardError
 from pollard_pin.painting import kinds
 from pollard_pin.painting.kinds import panel
-from pollard_pin.painting.kinds.base import JobKind, Outputs, output_files
+from pollard_pin.painting.kinds.base import JobKind, Outputs, output_files, with_speeds
 from pollard_pin.painting.options import PaintOptions
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -74,3 +74,23 @@ def test_a_new_kind_is_one_module_and_one_table_line(monkeypatch, robot, act, tm
     printed = capsys.readouterr().out.splitlines()
     assert printed == result.summary_lines() and printed[1].startswith("gun body")
     assert (tmp_path / "out" / "film.ply").is_file()
+
+
+def test_speeds_only_when_asked():
+    """With PaintOptions(speeds=True) the line table gains the interval's table and the
+    timings its time; without, the report is untouched and nothing is searched."""
+    from pollard_pin.painting.line.speeds import SpeedInterval
+
+    found = SpeedInterval(0.02, 0.04, 0.05, "budget floor", "too fast: drifts")
+
+    def find():
+        calls.append(1)
+        return found
+
+    calls = []
+    rep = {"line": {"speed": 0.03}, "timings": {"plan": 1.0}}
+    with_speeds(rep, PaintOptions(), find)
+    assert rep == {"line": {"speed": 0.03}, "timings": {"plan": 1.0}} and calls == []
+    with_speeds(rep, PaintOptions(speeds=True), find)
+    assert rep["line"]["speeds"] == found.table() and calls == [1]
+    assert rep["timings"]["speeds"] >= 0

@@ -8,7 +8,7 @@ from line_parts import LINE_PART_TOML
 from pollard_pin.painting.checks.motion import reach
 from pollard_pin.painting.errors import PlanError, ReachError
 from pollard_pin.painting.job import load_job
-from pollard_pin.painting.line import phases
+from pollard_pin.painting.line import phases, speeds
 from pollard_pin.painting.line.panel import plan_line_job
 from pollard_pin.painting.line.reach import PASS_SAMPLES, numbers, unreachable_passes
 from pollard_pin.painting.line.shifts import SHIFT_RANGE
@@ -30,7 +30,8 @@ def no_search(monkeypatch):
     def search(*args, **kwargs):
         raise AssertionError("a line speed was searched")
 
-    monkeypatch.setattr(phases, "fastest_line_speed", search)
+    monkeypatch.setattr(speeds, "fastest_line_speed", search)
+    monkeypatch.setattr(speeds, "line_speed_interval", search)
 
 
 @pytest.mark.parametrize("height, words", [(0.5, "mm too tall for the reach"),
