@@ -39,6 +39,7 @@ def run(args) -> int:
     from ..painting.job import load_job
     from ..painting.kinds.base import output_files
     from ..painting.options import PaintOptions
+    from ..painting.policy import PlannerPolicy
 
     out = Path(args.out)
     count = robot_count(args.robots)  # --robots N|auto: a proposed cell (§26.5)
@@ -59,8 +60,9 @@ def run(args) -> int:
     # --actuators read before any planning; None: paint's own rule (the job's, else the
     # package's ratings)
     act = as_actuators(args.actuators)
+    policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from)  # checked once
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
-                           compliance=not args.no_compliance,
+                           compliance=not args.no_compliance, policy=policy,
                            progress=True)  # bars when standard error is a terminal
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
         if count is None:
@@ -118,6 +120,13 @@ def add_parser(sub, parents) -> None:
                    help="a job with [line]: plan at the fastest line speed that paints the "
                         "part (bisection to 1 %%) instead of the job's speed (docs/model.md "
                         "§24)")
+    p.add_argument("--strokes", choices=("auto", "across", "along"), default="auto",
+                   help="a job with [line]: the strokes across the travel or along it; auto "
+                        "(default): of those that paint at the job's speed, the shortest "
+                        "cycle, per robot (a cell: across) (docs/model.md §24.2)")
+    p.add_argument("--step-from", choices=("leading", "trailing"), default="leading",
+                   help="a job with [line]: the end of the part the strokes across the "
+                        "travel step from (default: leading)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "

@@ -36,7 +36,8 @@ def part_summary_lines(rep: dict, names) -> list[str]:
 
 
 def line_lines(rep: dict) -> list[str]:
-    """The two lines ``paint`` prints of the line (a panel's or a part's)."""
+    """The lines ``paint`` prints of the line (a panel's or a part's): speed, cycle and the
+    strokes."""
     ln = rep["line"]
     return [
         f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
@@ -45,7 +46,17 @@ def line_lines(rep: dict) -> list[str]:
         f"start delay {ln['start_delay']:.3f} s, window {ln['window'][0]:.3f}–"
         f"{ln['window'][1]:.3f} m along the line, cycle {ln['cycle']:.3f} s, pitch "
         f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour",
-    ]
+    ] + ([strokes_line(rep["strokes"])] if "strokes" in rep else [])
+
+
+def strokes_line(strokes: dict, dwell: str | None = None) -> str:
+    """paint.json's ``strokes`` in one line (docs/model.md §24.2); ``dwell``: the waits
+    said otherwise (a cell's, per robot)."""
+    start = strokes.get("step_from")
+    where = f", stepping from the {start} end" if start else ""
+    waits = dwell if dwell is not None else (
+        f"{strokes['dwell_s']:.3f} s" if strokes["dwell_s"] else "none")
+    return f"strokes {strokes['direction']} the travel{where}; waits at the turnarounds {waits}"
 
 
 def clearance_line(rep: dict) -> str:
@@ -90,4 +101,4 @@ def closing_lines(rep: dict) -> list[str]:
 
 
 __all__ = ["clearance_line", "closing_lines", "compliance_line", "film_miss_line", "line_lines",
-           "motor_use_line", "part_summary_lines"]
+           "motor_use_line", "part_summary_lines", "strokes_line"]

@@ -95,10 +95,11 @@ class Relative:
     def trigger(self, t) -> np.ndarray:
         """The trigger (0 or 1) at program times ``t``."""
         t = np.asarray(t, dtype=float)
-        if not self.passes_only:
+        if not self.passes_only and "wait" not in self.kind:
             return np.ones(len(t))
         i = np.clip(np.searchsorted(self.start, t, side="right") - 1, 0, len(self.start) - 1)
-        return np.array([k == "pass" for k in self.kind], dtype=float)[i]
+        on = [k == "pass" if self.passes_only else k != "wait" for k in self.kind]
+        return np.array(on, dtype=float)[i]  # a slow line's wait shut (dwell.py)
 
 
 def line_shift(poses, d, t, speed: float, direction):
@@ -245,6 +246,11 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     slow_budget(speed, dt, source, policy)
     ns = policy.turn_samples
     rel = build(guess)
+    from .dwell import dwelled, slow
+
+    if slow(rel, speed, e):  # slower than the strokes' pace: wait at the turns (§24.1)
+        build = dwelled(build, speed, e)
+        rel = build(guess)
     shift = choose_shift(robot, rel, speed, e, where)
     # the wait and the passes alone, before the turnarounds are searched
     passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
@@ -263,7 +269,8 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
             m = motion(robot, act, p, v, a)
         except ReachError:
             return np.full(len(pieces), np.inf)
-        return m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
+        worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
+        return _per_tau(r, pieces, worst)
 
     try:
         rel = build(fastest(evaluate, np.asarray(guess, float), policy.utilisation))
@@ -307,6 +314,13 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
                              "of its peak torque or speed", drift > 0,
                              f"a motor at {100 * worst:.0f} % of its rating")
     return World(rel, times, traj, spray, ratios)
+
+
+def _per_tau(rel: Relative, pieces, worst) -> np.ndarray:
+    """The pieces' ``worst`` use per ramp or turnaround duration τ: consecutive pieces off
+    the passes share one (a slow line's turn halves and wait, dwell.py)."""
+    group = np.cumsum(np.diff(pieces, prepend=-2) > 1) - 1
+    return np.array([worst[group == g].max() for g in range(group[-1] + 1)])
 
 
 def path_times(times: LineTimes, steps: int) -> np.ndarray:
