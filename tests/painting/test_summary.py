@@ -6,6 +6,7 @@ from pollard_pin.painting.summary import (
     closing_lines,
     compliance_line,
     motor_use_line,
+    strokes_line,
 )
 
 
@@ -65,3 +66,16 @@ def test_a_film_that_misses_its_acceptance_is_said_after_the_rest():
                                                                    line]
     assert closing_lines({**CLEARANCE, "film_check": {**check, "meets": True}}) == [
         clearance_line(CLEARANCE)]
+
+
+def test_the_strokes_line():
+    """paint.json's strokes in one line (docs/model.md §24.2): a line's, a cell's waits."""
+    assert strokes_line({"direction": "across", "step_from": "leading", "dwell_s": 0.0}) == (
+        "strokes across the travel, stepping from the leading end; waits at the turnarounds "
+        "none")
+    assert strokes_line({"direction": "across", "step_from": "trailing", "dwell_s": 57.25}
+                        ).endswith("trailing end; waits at the turnarounds 57.250 s")
+    assert strokes_line({"direction": "along", "step_from": None, "dwell_s": 0.0}) == (
+        "strokes along the travel; waits at the turnarounds none")
+    assert strokes_line({"direction": "across", "step_from": "leading", "dwell_s": 1.0},
+                        "'low' 1.000 s, 'high' 2.000 s").endswith("'low' 1.000 s, 'high' 2.000 s")

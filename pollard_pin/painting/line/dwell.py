@@ -17,7 +17,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..passes.raster import RAMP_IN, RAMP_OUT
-from .phases import Relative
+from .phases import LineProgram, Relative
 
 _OUT, _IN = RAMP_OUT, RAMP_IN  # σ/τ over u/τ: travels 1/2, rate 1 → 0 (0 → 1)
 _OUT1, _OUT2, _IN1, _IN2 = _OUT.deriv(), _OUT.deriv(2), _IN.deriv(), _IN.deriv(2)
@@ -95,9 +95,19 @@ def dwelled(build, speed: float, e):
     return build_d
 
 
+def dwelling(program: LineProgram, speed: float, e) -> LineProgram:
+    """``program`` as :func:`.line.phases.plan_world` runs it at line ``speed`` along ``e``:
+    with the waits of :func:`dwelled` when the line is slower than its strokes' pace
+    (:func:`slow`, at its first turnaround durations), else as it is."""
+    if not slow(program.build(program.guess), speed, e):
+        return program
+    return replace(program, build=dwelled(program.build, speed, e))
+
+
 def dwell_time(rel: Relative) -> float:
     """The program's waits [s] in all."""
     return float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "wait"))
 
 
-__all__ = ["drift_along", "dwell_time", "dwelled", "slow", "wait_per_turn", "with_dwell"]
+__all__ = ["drift_along", "dwell_time", "dwelled", "dwelling", "slow", "wait_per_turn",
+           "with_dwell"]

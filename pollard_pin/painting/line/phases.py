@@ -246,11 +246,6 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     slow_budget(speed, dt, source, policy)
     ns = policy.turn_samples
     rel = build(guess)
-    from .dwell import dwelled, slow
-
-    if slow(rel, speed, e):  # slower than the strokes' pace: wait at the turns (§24.1)
-        build = dwelled(build, speed, e)
-        rel = build(guess)
     shift = choose_shift(robot, rel, speed, e, where)
     # the wait and the passes alone, before the turnarounds are searched
     passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
