@@ -9,11 +9,12 @@ from pollard_pin.painting.line.dwell import (
     drift_along,
     dwell_time,
     dwelled,
+    dwelling,
     slow,
     wait_per_turn,
     with_dwell,
 )
-from pollard_pin.painting.line.phases import Relative
+from pollard_pin.painting.line.phases import LineProgram, Relative
 from pollard_pin.painting.passes.raster import raster_segments
 
 E = np.array([0.0, 1.0, 0.0])  # the travel: the passes step along −y, leading end first
@@ -119,3 +120,16 @@ def test_a_zones_windows_follow_the_turns():
     mid = d.start + d.duration / 2
     assert list(d.trigger(mid)) == [0.0 if k == "wait" else float(
         w[0] <= dd / 2 <= w[1]) for k, w, dd in zip(d.kind, d.windows, d.duration)]
+
+
+def test_only_a_slow_line_dwells():
+    """At or above the strokes' pace the program is planned as it was (the same object);
+    below it, every turnaround durations the motors' search tries get their own wait."""
+    program = LineProgram(build, TAU, 0.002, "track", "passes", "<test>")
+    pace = 0.2 / build(TAU).total
+    assert dwelling(program, pace * 1.01, E) is program
+    slow_one = dwelling(program, 0.5 * pace, E)
+    for tau in (TAU, 0.5 * TAU, 2 * TAU):
+        rel = slow_one.build(tau)
+        assert rel.kind.count("wait") == len(OFFSETS) - 1
+        assert abs(drift_along(rel, 0.5 * pace, E)) < 1e-12
