@@ -17,10 +17,10 @@ import numpy as np
 
 from ...paths.trajectory import Trajectory
 from ..errors import PlanError
-from ..line.dwell import dwell_time, dwelling
+from ..line.dwell import dwell_time, plan_dwelling
 from ..line.panel import LinePlan, pass_direction, step_order
 from ..line.part import LinePartPlan, across_the_travel, leading_first
-from ..line.phases import LineProgram, one_coat, plan_world, track, world_motion
+from ..line.phases import LineProgram, one_coat, track, world_motion
 from ..line.strokes import Strokes
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
@@ -233,7 +233,7 @@ def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None,
                                                                                policy)
     else:
         program, job_x, layout, v = part_program(job_b, part_b, view, e, policy)
-    world = plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+    world = plan_dwelling(robot, act, program, speed, e, policy)
     traj, spray = seamed(world, speed, e, program.dt)
     common = {"trajectory": traj, "spray": spray, "ratios": world.ratios,
               "timings": {"plan": time.perf_counter() - clock}}

@@ -16,8 +16,10 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..errors import LineSpeedError
 from ..passes.raster import RAMP_IN, RAMP_OUT
-from .phases import LineProgram, Relative
+from ..policy import DEFAULT_POLICY, PlannerPolicy
+from .phases import LineProgram, Relative, plan_world
 
 _OUT, _IN = RAMP_OUT, RAMP_IN  # σ/τ over u/τ: travels 1/2, rate 1 → 0 (0 → 1)
 _OUT1, _OUT2, _IN1, _IN2 = _OUT.deriv(), _OUT.deriv(2), _IN.deriv(), _IN.deriv(2)
@@ -96,12 +98,31 @@ def dwelled(build, speed: float, e):
 
 
 def dwelling(program: LineProgram, speed: float, e) -> LineProgram:
-    """``program`` as :func:`.line.phases.plan_world` runs it at line ``speed`` along ``e``:
-    with the waits of :func:`dwelled` when the line is slower than its strokes' pace
-    (:func:`slow`, at its first turnaround durations), else as it is."""
-    if not slow(program.build(program.guess), speed, e):
-        return program
+    """``program`` with the waits of :func:`dwelled` at line ``speed`` along ``e``."""
     return replace(program, build=dwelled(program.build, speed, e))
+
+
+def plan_dwelling(robot, act, program: LineProgram, speed: float, e,
+                  policy: PlannerPolicy = DEFAULT_POLICY):
+    """:func:`.line.phases.plan_world` of ``program``, waiting at the turnarounds where the
+    line is too slow for it (docs/model.md §24.1): at once where the turns' own half pace
+    would not absorb the drift (:func:`wait_per_turn` > 0 at the first durations), else
+    only when the program as it is fails as too slow, so that whatever planned before the
+    waits plans as it did."""
+    rel = program.build(program.guess)
+    if not slow(rel, speed, e):
+        return plan_world(robot, act, program, speed, e, policy)
+    if wait_per_turn(rel, speed, e) > 0:
+        return plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+    try:
+        return plan_world(robot, act, program, speed, e, policy)
+    except LineSpeedError as exc:
+        if exc.too_fast:
+            raise
+        try:
+            return plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+        except LineSpeedError as again:  # still a slow line's failure, for the searches
+            raise LineSpeedError(str(again), False, again.why, exc.hint) from None
 
 
 def dwell_time(rel: Relative) -> float:
@@ -109,5 +130,5 @@ def dwell_time(rel: Relative) -> float:
     return float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "wait"))
 
 
-__all__ = ["drift_along", "dwell_time", "dwelled", "dwelling", "slow", "wait_per_turn",
-           "with_dwell"]
+__all__ = ["drift_along", "dwell_time", "dwelled", "dwelling", "plan_dwelling", "slow",
+           "wait_per_turn", "with_dwell"]

@@ -24,7 +24,7 @@ from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from ..workpiece.panel import PanelFrame
-from .dwell import dwell_time, dwelling
+from .dwell import dwell_time, plan_dwelling
 from .phases import (
     CATCH,
     SPEED_RESOLUTION,
@@ -35,7 +35,6 @@ from .phases import (
     line_shift,
     one_coat,
     plan_or_name_fastest,
-    plan_world,
     track,
     world_motion,
 )
@@ -138,7 +137,7 @@ def _plan_panel(robot, job, act, speed, policy, strokes: Strokes, clock) -> Line
     program = LineProgram(build, guess, policy.step(job.sigma, pass_speed),
                           track(frame.c + job.standoff * frame.n, e),
                           f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
-    world = plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+    world = plan_dwelling(robot, act, program, speed, e, policy)
     return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
                     offsets, spacing, pass_speed, world.relative,
                     replace(strokes, dwell=dwell_time(world.relative)),

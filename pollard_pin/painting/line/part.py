@@ -24,8 +24,8 @@ from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.occlusion import load_painted_part
 from ..workpiece.mesh import Part
-from .dwell import dwell_time, dwelling
-from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
+from .dwell import dwell_time, plan_dwelling
+from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, track
 from .strokes import Strokes, across, shortest
 
 
@@ -123,7 +123,7 @@ def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) ->
     program = LineProgram(build, np.full(len(pieces) + 1, policy.first_guess(v)), dt,
                           track(f.centre + job.standoff * f.n, e),
                           f"the passes ({v:.4g} m/s on the part's surface)", job.source)
-    world = plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+    world = plan_dwelling(robot, act, program, speed, e, policy)
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
                         world.times, v, replace(strokes, dwell=dwell_time(world.relative)),
                         trajectory=world.trajectory, spray=world.spray,

@@ -122,12 +122,39 @@ def test_a_zones_windows_follow_the_turns():
         w[0] <= dd / 2 <= w[1]) for k, w, dd in zip(d.kind, d.windows, d.duration)]
 
 
-def test_only_a_slow_line_dwells():
-    """At or above the strokes' pace the program is planned as it was (the same object);
-    below it, every turnaround durations the motors' search tries get their own wait."""
+def test_only_a_slow_line_dwells(monkeypatch):
+    """At or above the strokes' pace the program is planned as it is; far below, with the
+    waits at once; just below (the half-paced turns absorb the drift), as it is unless that
+    fails as too slow (what planned before the waits plans as it did, docs/model.md §24.1).
+    Every turnaround durations the motors' search tries get their own wait."""
+    from pollard_pin.painting.errors import LineSpeedError
+    from pollard_pin.painting.line import dwell
+
     program = LineProgram(build, TAU, 0.002, "track", "passes", "<test>")
     pace = 0.2 / build(TAU).total
-    assert dwelling(program, pace * 1.01, E) is program
+    tried = []
+
+    def plan_world(robot, act, prog, speed, e, policy):
+        waits = prog.build(prog.guess).kind.count("wait")
+        tried.append(waits)
+        if waits == 0 and fail:
+            raise LineSpeedError("drifts back", False, "", 0.5)
+        return waits
+
+    monkeypatch.setattr(dwell, "plan_world", plan_world)
+    fail = True
+    with pytest.raises(LineSpeedError):  # not slow: as it is, its failure its own
+        dwell.plan_dwelling(None, None, program, 1.01 * pace, E)
+    assert tried == [0]
+    tried.clear()
+    assert dwell.plan_dwelling(None, None, program, 0.5 * pace, E) == 4 and tried == [4]
+    tried.clear()
+    s = 0.99 * pace  # slow, but the half-paced turns absorb it: no wait of its own
+    assert wait_per_turn(build(TAU), s, E) == 0
+    assert dwell.plan_dwelling(None, None, program, s, E) == 4 and tried == [0, 4]
+    tried.clear()
+    fail = False
+    assert dwell.plan_dwelling(None, None, program, s, E) == 0 and tried == [0]
     slow_one = dwelling(program, 0.5 * pace, E)
     for tau in (TAU, 0.5 * TAU, 2 * TAU):
         rel = slow_one.build(tau)
