@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ...errors import say_less
+from ...errors import PollardError, say_less
 from ..errors import LineSpeedError, PlanError
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 
@@ -52,7 +52,9 @@ def shortest(plan_with, policy: PlannerPolicy = DEFAULT_POLICY):
     for s in ways:
         try:
             found.append(plan_with(s))
-        except PlanError as exc:
+        except PollardError as exc:  # a later strategy's bad input is only not a candidate
+            if not isinstance(exc, PlanError) and s == ways[0]:
+                raise
             first = exc if first is None else first
     if found:
         return min(found, key=lambda p: p.times.cycle)

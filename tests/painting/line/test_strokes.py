@@ -6,6 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from pollard_pin.errors import InputError
 from pollard_pin.painting.errors import LineReachError, LineSpeedError, PlanError
 from pollard_pin.painting.line.panel import plan_line
 from pollard_pin.painting.line.strokes import Strokes, candidates, shortest
@@ -33,6 +34,10 @@ def test_auto_keeps_the_shortest_cycle_that_paints():
     assert shortest(_plans({"across": 10.0, "along": 11.0})).strokes.direction == "across"
     out = shortest(_plans({"across": 30.0, "along": PlanError("out of reach")}))
     assert out.strokes.direction == "across"
+    out = shortest(_plans({"across": 30.0, "along": InputError("no layout that way")}))
+    assert out.strokes.direction == "across"  # a later strategy's bad input: no candidate
+    with pytest.raises(InputError):  # the first one's is the job's
+        shortest(_plans({"across": InputError("bad"), "along": 3.0}))
     with pytest.raises(LineSpeedError, match="^drifts$"):  # none: the first one's error
         shortest(_plans({"across": LineSpeedError("drifts", True), "along": PlanError("x")}))
 
