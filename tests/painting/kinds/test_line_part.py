@@ -26,4 +26,5 @@ def test_summary_lines_are_the_lines_then_a_parts(robot, line_part_job, act):
     rep = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False)).report.data
     lines = summary_lines(rep, act.names)
     assert lines == line_lines(rep) + part_summary_lines(rep, act.names)
-    assert lines[0].startswith("line speed") and lines[2].startswith("passes")
+    assert lines[0].startswith("line speed") and lines[2].startswith("strokes across the")
+    assert lines[3].startswith("passes")
