@@ -265,7 +265,7 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
         except ReachError:
             return np.full(len(pieces), np.inf)
         worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
-        return _per_tau(r, pieces, worst)
+        return _per_tau(pieces, worst)
 
     try:
         rel = build(fastest(evaluate, np.asarray(guess, float), policy.utilisation))
@@ -311,7 +311,7 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     return World(rel, times, traj, spray, ratios)
 
 
-def _per_tau(rel: Relative, pieces, worst) -> np.ndarray:
+def _per_tau(pieces, worst) -> np.ndarray:
     """The pieces' ``worst`` use per ramp or turnaround duration τ: consecutive pieces off
     the passes share one (a slow line's turn halves and wait, dwell.py)."""
     group = np.cumsum(np.diff(pieces, prepend=-2) > 1) - 1
