@@ -183,7 +183,9 @@ def part_painted(tmp_path_factory):
     folder = tmp_path_factory.mktemp("line_part")
     out = folder / "out"
     job = write_line_part(folder)
-    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007"]) == 0
+    # across the travel: auto keeps along for this short strip (a shorter cycle, §24.2)
+    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007",
+                 "--strokes", "across"]) == 0
     return out
 
 
