@@ -66,7 +66,7 @@ def line_section(robot) -> None:
     examples/line_part.toml (a part's mesh), each planned at the job's speed (budget 20 s)
     with its film, and searched for the fastest speed with --max-line-speed (budget 120 s;
     timed with the film at that speed, as the CLI runs it), and the time --speeds adds (the
-    interval of speeds that paint, docs/model.md §24.1). One run each."""
+    interval of speeds that paint, docs/model.md §24.3). One run each."""
     act = pp.load_actuators(REPO / "examples" / "actuators.toml")
     print("\npainting on a moving line, one run each [s]")
     for name in ("line.toml", "line_part.toml"):

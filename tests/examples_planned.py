@@ -144,10 +144,14 @@ def line_cell(robot, line_job, act):
 
 @pytest.fixture(scope="session")
 def line_part_plan(robot, line_part_job, act):
-    """:func:`line_part_job` planned at its line speed (plan_line)."""
+    """:func:`line_part_job` planned at its line speed (plan_line), its strokes across the
+    travel (``auto`` keeps along for this short strip: a shorter cycle, docs/model.md §24.2;
+    a cell, and so a cell of one robot, strokes across)."""
     from pollard_pin.painting.line.panel import plan_line
+    from pollard_pin.painting.policy import PlannerPolicy
 
-    return _read_only(plan_line(robot, line_part_job, act))
+    return _read_only(plan_line(robot, line_part_job, act,
+                                policy=PlannerPolicy(strokes="across")))
 
 
 @pytest.fixture(scope="session")

@@ -39,6 +39,7 @@ def run(args) -> int:
     from ..painting.job import load_job
     from ..painting.kinds.base import output_files
     from ..painting.options import PaintOptions
+    from ..painting.policy import PlannerPolicy
 
     out = Path(args.out)
     count = robot_count(args.robots)  # --robots N|auto: a proposed cell (§26.5)
@@ -61,9 +62,10 @@ def run(args) -> int:
     # --actuators read before any planning; None: paint's own rule (the job's, else the
     # package's ratings)
     act = as_actuators(args.actuators)
+    policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from)  # checked once
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
                            speeds=args.speeds,
-                           compliance=not args.no_compliance,
+                           compliance=not args.no_compliance, policy=policy,
                            progress=True)  # bars when standard error is a terminal
     with warnings_as_notes(args):  # a mesh repaired (repeated or zero-area faces dropped)
         if count is None:
@@ -124,7 +126,14 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--speeds", action="store_true",
                    help="a job with [line]: also state the interval of line speeds that "
                         "paint the part, each end to 5 %% and planned in full (paint.json's "
-                        "line.speeds; docs/model.md §24.1; ~10 more plans)")
+                        "line.speeds; docs/model.md §24.3; ~10 more plans)")
+    p.add_argument("--strokes", choices=("auto", "across", "along"), default="auto",
+                   help="a job with [line]: the strokes across the travel or along it; auto "
+                        "(default): of those that paint at the job's speed, the shortest "
+                        "cycle, per robot (a cell: across) (docs/model.md §24.2)")
+    p.add_argument("--step-from", choices=("leading", "trailing"), default="leading",
+                   help="a job with [line]: the end of the part the strokes across the "
+                        "travel step from (default: leading)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "

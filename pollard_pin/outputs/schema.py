@@ -73,9 +73,13 @@ def _list(path, key: str, value: Any) -> tuple:
     return tuple(value)
 
 
+def _text_or_none(path, key: str, value: Any):
+    return None if value is None else _text(path, key, value)
+
+
 # a section field's annotation -> its check (the annotations are strings: __future__)
 _CHECKS = {"float": _number, "float | None": _number, "int": _count, "str": _text,
-           "tuple[float, float]": _pair}
+           "str | None": _text_or_none, "tuple[float, float]": _pair}
 
 
 class Section:
@@ -248,7 +252,7 @@ class Seam(Section):
 @dataclass(frozen=True)
 class LineSpeeds(Section):
     """A line's ``line.speeds`` (``paint --speeds``): the line speeds that paint the job
-    (docs/model.md §24.1; painting.line.speeds.SpeedInterval).
+    (docs/model.md §24.3; painting.line.speeds.SpeedInterval).
 
     Attributes
     ----------
@@ -268,9 +272,30 @@ class LineSpeeds(Section):
     max_bound: str
 
 
+@dataclass(frozen=True)
+class Strokes(Section):
+    """paint.json's ``strokes`` (a cell: each robot's): the strategy planned on a line
+    (docs/model.md §24.2).
+
+    Attributes
+    ----------
+    direction : str
+        ``"across"`` or ``"along"`` the travel.
+    step_from : str or None
+        The end the strokes step from (``"leading"``, ``"trailing"``); None along the travel.
+    dwell_s : float
+        The waits at the turnarounds in all [s] (a line slower than the strokes' pace).
+    """
+
+    direction: str
+    step_from: str | None = None
+    dwell_s: float = 0.0
+
+
 # the typed sections: attribute -> paint.json's key, in the order a panel's report has them
 KEYS = {"job": "job", "kind": "kind", "thickness": "thickness", "target": "target",
-        "cycle_time": "cycle_time", "line": "line", "seams": "seams", "robots": "robots",
+        "cycle_time": "cycle_time", "line": "line", "strokes": "strokes", "seams": "seams",
+        "robots": "robots",
         "clearance": "clearance", "motors": "motors", "grid": "grid",
         "film_points": "film_points", "timings": "timings", "compliance": "compliance",
         "film_ply": "film_ply", "version": "pollard_pin"}
@@ -299,6 +324,8 @@ class PaintJson:
         ``painting.line.conveyor.line_from_table``, where it moves a film), and with
         ``paint --speeds`` the speeds that paint the job (its ``speeds``, a
         :class:`LineSpeeds`, checked).
+    strokes : Strokes or None
+        On a line (not a cell, whose robots each have theirs): the strokes' strategy.
     seams : tuple of Seam or None
         A cell's seams.
     robots : tuple of Mapping or None
@@ -332,6 +359,7 @@ class PaintJson:
     thickness: Thickness | None = None
     cycle_time: float | None = None
     line: Mapping | None = None
+    strokes: Strokes | None = None
     seams: tuple | None = None
     robots: tuple | None = None
     clearance: Mapping | None = None
@@ -418,7 +446,11 @@ def _timings(path, key, value) -> dict:
 
 
 def _robots(path, key, value) -> tuple:
-    return tuple(_table(path, f"{key}[{i}]", r) for i, r in enumerate(_list(path, key, value)))
+    out = tuple(_table(path, f"{key}[{i}]", r) for i, r in enumerate(_list(path, key, value)))
+    for i, r in enumerate(out):  # each robot's strategy checked, kept as written
+        if "strokes" in r:
+            Strokes.from_dict(r["strokes"], f"{key}[{i}].strokes", path)
+    return out
 
 
 def _line(path, key, value) -> Mapping:
@@ -439,11 +471,12 @@ def _section(cls):
 
 
 _READ = {"job": _table, "kind": _text, "thickness": _section(Thickness),
-         "cycle_time": _number, "line": _line, "seams": _seams, "robots": _robots,
+         "cycle_time": _number, "line": _line, "strokes": _section(Strokes),
+         "seams": _seams, "robots": _robots,
          "clearance": _table, "motors": _motors,
          "film_points": _section(FilmPoints), "timings": _timings, "compliance": _table,
          "film_ply": _section(FilmPly), "version": _text}
-_WRITE = {"thickness": Thickness.to_dict, "grid": Grid.to_dict,
+_WRITE = {"thickness": Thickness.to_dict, "strokes": Strokes.to_dict, "grid": Grid.to_dict,
           "film_points": FilmPoints.to_dict, "film_ply": FilmPly.to_dict,
           "motors": lambda m: {n: u.to_dict() for n, u in m.items()},
           "seams": lambda s: [x.to_dict() for x in s], "robots": list,
@@ -503,5 +536,5 @@ def read_paint_json(path: str | Path) -> PaintJson:
 
 
 __all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "LineSpeeds", "MAX_REPORT_BYTES", "MotorUse",
-           "PaintJson", "Seam", "Section", "Thickness", "check_grid", "dumps",
+           "PaintJson", "Seam", "Section", "Strokes", "Thickness", "check_grid", "dumps",
            "load_paint_json", "read_paint_json"]

@@ -27,7 +27,7 @@ class PaintOptions:
         That search's relative bracket, in (0, 1) (default 0.01).
     speeds : bool, optional
         A job on a line also states the interval of line speeds that paint it, each end
-        to 5 % and planned in full (paint.json's ``line.speeds``, docs/model.md §24.1;
+        to 5 % and planned in full (paint.json's ``line.speeds``, docs/model.md §24.3;
         default False: it costs ~10 more plans).
     compliance : bool, optional
         Report what the drives' compliance does to the gun and the film (docs/model.md

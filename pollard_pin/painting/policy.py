@@ -10,6 +10,10 @@ from dataclasses import dataclass, fields
 from ..checks import real
 from ..errors import InputError
 
+STROKES = ("auto", "across", "along")  # docs/model.md §24.2
+STEP_FROM = ("leading", "trailing")
+CHOICES = {"strokes": STROKES, "step_from": STEP_FROM}
+
 
 @dataclass(frozen=True)
 class PlannerPolicy:
@@ -39,6 +43,12 @@ class PlannerPolicy:
         square), at least 1 (default 1000).
     first_deceleration : float, optional
         The duration search starts from a reversal at this rate [m/s²], > 0 (default 10).
+    strokes : str, optional
+        On a line, the strokes' direction (docs/model.md §24.2): ``"across"`` the travel,
+        ``"along"`` it, or ``"auto"`` (default): of those that paint at the job's speed the
+        shortest cycle. A still part keeps its shorter raster.
+    step_from : str, optional
+        On a line, the end the strokes step from: ``"leading"`` (default) or ``"trailing"``.
 
     Raises
     ------
@@ -54,11 +64,22 @@ class PlannerPolicy:
     max_path_samples: int = 250_000
     max_passes: int = 1000
     first_deceleration: float = 10.0
+    strokes: str = "auto"
+    step_from: str = "leading"
 
     def __post_init__(self):
         least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1}
+        for name, allowed in CHOICES.items():
+            if getattr(self, name) not in allowed:
+                raise InputError(f"PlannerPolicy.{name} = {getattr(self, name)!r}: expected "
+                                 f"one of {', '.join(allowed)}")
+        if self.strokes == "along" and self.step_from == "trailing":
+            raise InputError("PlannerPolicy.step_from = 'trailing': strokes along the travel "
+                             "step across it, from no end of the part")
         for f in fields(self):
             value = getattr(self, f.name)
+            if f.name in CHOICES:
+                continue
             if f.name in least:
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral):
                     raise InputError(f"PlannerPolicy.{f.name} = {value!r}: is not an integer")
@@ -102,4 +123,4 @@ class PlannerPolicy:
 DEFAULT_POLICY = PlannerPolicy()  # the planners' default, shared (it is frozen)
 
 
-__all__ = ["DEFAULT_POLICY", "PlannerPolicy"]
+__all__ = ["CHOICES", "DEFAULT_POLICY", "PlannerPolicy", "STEP_FROM", "STROKES"]

@@ -68,7 +68,7 @@ class PaintReport:
     line : Mapping or None
         On a line: start delay, window, travel, cycle, pitch, parts per hour, the speed's
         upper bound (with ``PaintOptions(speeds=True)`` the ``speeds`` that paint the job,
-        docs/model.md §24.1); None when still.
+        docs/model.md §24.3); None when still.
     timings : Mapping
         Seconds spent planning and integrating the film.
     data : Mapping

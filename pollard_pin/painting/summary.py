@@ -36,8 +36,8 @@ def part_summary_lines(rep: dict, names) -> list[str]:
 
 
 def line_lines(rep: dict) -> list[str]:
-    """The lines ``paint`` prints of the line (a panel's or a part's): two, and the speeds
-    that paint it when stated."""
+    """The lines ``paint`` prints of the line (a panel's or a part's): speed, cycle, the
+    speeds that paint it when stated, and the strokes."""
     ln = rep["line"]
     return [
         f"line speed {ln['speed']:.4g} m/s{' (the fastest)' if ln['searched'] else ''}, "
@@ -47,12 +47,22 @@ def line_lines(rep: dict) -> list[str]:
         f"{ln['window'][1]:.3f} m along the line, cycle {ln['cycle']:.3f} s, pitch "
         f"{ln['min_pitch']:.3f} m, {ln['parts_per_hour']:.1f} parts per hour",
         *speeds_lines(rep),
-    ]
+    ] + ([strokes_line(rep["strokes"])] if "strokes" in rep else [])
+
+
+def strokes_line(strokes: dict, dwell: str | None = None) -> str:
+    """paint.json's ``strokes`` in one line (docs/model.md §24.2); ``dwell``: the waits
+    said otherwise (a cell's, per robot)."""
+    start = strokes.get("step_from")
+    where = f", stepping from the {start} end" if start else ""
+    waits = dwell if dwell is not None else (
+        f"{strokes['dwell_s']:.3f} s" if strokes["dwell_s"] else "none")
+    return f"strokes {strokes['direction']} the travel{where}; waits at the turnarounds {waits}"
 
 
 def speeds_lines(rep: dict) -> list[str]:
     """paint.json's ``line.speeds`` in one line, when stated (``paint --speeds``,
-    docs/model.md §24.1), else none."""
+    docs/model.md §24.3), else none."""
     sp = rep["line"].get("speeds")
     if sp is None:
         return []
@@ -106,4 +116,4 @@ def closing_lines(rep: dict) -> list[str]:
 
 
 __all__ = ["clearance_line", "closing_lines", "compliance_line", "film_miss_line", "line_lines",
-           "motor_use_line", "part_summary_lines", "speeds_lines"]
+           "motor_use_line", "part_summary_lines", "speeds_lines", "strokes_line"]

@@ -40,6 +40,8 @@ def _line_outputs(folder) -> dict:
 
 def test_outputs(painted):
     rep = _line_outputs(painted)
+    # auto: across the strip, leading end first (strokes along it are out of reach), no wait
+    assert rep["strokes"] == {"direction": "across", "step_from": "leading", "dwell_s": 0.0}
     assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
     table = read_result(painted / "thickness.csv")
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
@@ -109,6 +111,21 @@ def test_bad_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, wo
     _refused(job, tmp_path, capsys, words)
 
 
+@pytest.mark.parametrize("flags, words", [
+    (["--strokes", "along"], "strokes along the travel (forced): all 8 passes out of reach"),
+    (["--strokes", "along", "--step-from", "trailing"], "step across it, from no end"),
+    (["--strokes", "sideways"], "invalid choice: 'sideways'"),
+])
+def test_a_forced_strategy_that_cannot_paint_is_one_line(tmp_path, capsys, flags, words):
+    """--strokes/--step-from (docs/model.md §24.2): the 0.90 m strip is longer than the
+    reach, so strokes along it cannot paint; named, exit 2, nothing written."""
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", JOB, "--out", out, *flags], capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and words in lines[-1], err
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("flag", ["--max-line-speed", "--speeds"])
 def test_max_line_speed_needs_a_line(tmp_path, capsys, flag):
     out = tmp_path / "out"
@@ -169,7 +186,9 @@ def part_painted(tmp_path_factory):
     folder = tmp_path_factory.mktemp("line_part")
     out = folder / "out"
     job = write_line_part(folder)
-    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007"]) == 0
+    # across the travel: auto keeps along for this short strip (a shorter cycle, §24.2)
+    assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007",
+                 "--strokes", "across"]) == 0
     return out
 
 

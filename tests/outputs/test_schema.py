@@ -193,7 +193,7 @@ def test_a_non_finite_figure_is_refused_naming_its_key():
 
 
 def test_a_line_with_its_speeds_reads_back_the_same_text(tmp_path):
-    """``line.speeds`` (paint --speeds, docs/model.md §24.1) typed when read, the line table
+    """``line.speeds`` (paint --speeds, docs/model.md §24.3) typed when read, the line table
     kept as written."""
     speeds = {"min": 0.0205, "max": 0.0343, "resolution": 0.05,
               "min_bound": "too slow: a motor at 104 % of its rating",
@@ -204,3 +204,24 @@ def test_a_line_with_its_speeds_reads_back_the_same_text(tmp_path):
     assert report.line["speeds"] == speeds
     assert json.loads(dumps(report))["line"]["speeds"] == speeds
     assert schema.LineSpeeds.from_dict(speeds, "line.speeds").to_dict() == speeds
+
+
+def test_the_strokes_are_typed_and_a_robots_checked():
+    """paint.json's ``strokes`` (docs/model.md §24.2): a line's typed, written back as read;
+    a cell robot's checked where it stands."""
+    from pollard_pin.outputs.schema import Strokes
+
+    raw = json.loads(next(p for p in REPORTS if p.stem == "line").read_text(encoding="utf-8"))
+    raw["strokes"] = {"direction": "across", "step_from": "leading", "dwell_s": 12.5}
+    r = PaintJson.from_dict(raw)
+    assert r.strokes == Strokes("across", "leading", 12.5)
+    assert r.to_dict()["strokes"] == raw["strokes"] and "strokes" not in r.extra
+    along = PaintJson.from_dict({**raw, "strokes": {"direction": "along", "step_from": None}})
+    assert along.strokes == Strokes("along", None, 0.0)
+    assert along.to_dict()["strokes"] == {"direction": "along", "dwell_s": 0.0}
+    with pytest.raises(ResultFileError, match="strokes.dwell_s"):
+        PaintJson.from_dict({**raw, "strokes": {"direction": "across", "dwell_s": "long"}})
+    cell = json.loads(next(p for p in REPORTS if p.stem == "cell").read_text(encoding="utf-8"))
+    cell["robots"][1]["strokes"] = {"direction": "across", "wait": 1.0}
+    with pytest.raises(ResultFileError, match=r"robots\[1\].strokes.wait"):
+        PaintJson.from_dict(cell)

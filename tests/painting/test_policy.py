@@ -55,12 +55,24 @@ def test_defaults_are_the_planners_figures():
     ("turn_samples", True, "not an integer"), ("check_refine", 0, ">= 1"),
     ("max_step", -0.001, "> 0"), ("max_step", math.inf, "finite"), ("step_sigma", 0, "> 0"),
     ("max_path_samples", 1, ">= 2"), ("max_passes", 0, ">= 1"),
-    ("first_deceleration", 0.0, "> 0"), ("first_deceleration", None, "not a number")])
+    ("first_deceleration", 0.0, "> 0"), ("first_deceleration", None, "not a number"),
+    ("strokes", "diagonal", "one of auto, across, along"),
+    ("step_from", "middle", "one of leading, trailing"), ("strokes", None, "one of auto")])
 def test_a_bad_value_is_one_line(field, value, rule):
     with pytest.raises(InputError) as exc:
         PlannerPolicy(**{field: value})
     msg = str(exc.value)
     assert f"PlannerPolicy.{field}" in msg and rule in msg and "\n" not in msg, msg
+
+
+def test_strokes_along_step_from_no_end():
+    """Strokes along the travel step across it: a trailing end forced with them is refused
+    (docs/model.md §24.2); the defaults are auto from the leading end."""
+    assert (PlannerPolicy().strokes, PlannerPolicy().step_from) == ("auto", "leading")
+    with pytest.raises(InputError, match="^PlannerPolicy.step_from = 'trailing': strokes "
+                       "along the travel step across it"):
+        PlannerPolicy(strokes="along", step_from="trailing")
+    assert PlannerPolicy(strokes="auto", step_from="trailing").step_from == "trailing"
 
 
 def test_every_planner_obeys_the_policy_it_is_given(robot):

@@ -8,6 +8,7 @@ from pollard_pin.painting.summary import (
     compliance_line,
     motor_use_line,
     speeds_lines,
+    strokes_line,
 )
 
 
@@ -79,3 +80,16 @@ def test_the_speeds_line_only_when_stated():
     assert speeds_lines(rep) == [
         "line speeds that paint it: 0.0031–0.04017 m/s (each end to 5 %, found in 41.2 s); "
         "below: budget floor; above: a motor at 104 % of its rating"]
+
+
+def test_the_strokes_line():
+    """paint.json's strokes in one line (docs/model.md §24.2): a line's, a cell's waits."""
+    assert strokes_line({"direction": "across", "step_from": "leading", "dwell_s": 0.0}) == (
+        "strokes across the travel, stepping from the leading end; waits at the turnarounds "
+        "none")
+    assert strokes_line({"direction": "across", "step_from": "trailing", "dwell_s": 57.25}
+                        ).endswith("trailing end; waits at the turnarounds 57.250 s")
+    assert strokes_line({"direction": "along", "step_from": None, "dwell_s": 0.0}) == (
+        "strokes along the travel; waits at the turnarounds none")
+    assert strokes_line({"direction": "across", "step_from": "leading", "dwell_s": 1.0},
+                        "'low' 1.000 s, 'high' 2.000 s").endswith("'low' 1.000 s, 'high' 2.000 s")

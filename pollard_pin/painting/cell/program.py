@@ -17,9 +17,11 @@ import numpy as np
 
 from ...paths.trajectory import Trajectory
 from ..errors import PlanError
-from ..line.panel import LinePlan, pass_direction
+from ..line.dwell import dwell_time, plan_dwelling
+from ..line.panel import LinePlan, pass_direction, step_order
 from ..line.part import LinePartPlan, across_the_travel, leading_first
-from ..line.phases import LineProgram, one_coat, plan_world, track, world_motion
+from ..line.phases import LineProgram, one_coat, track, world_motion
+from ..line.strokes import Strokes
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
 from ..passes.surface import pass_speed, surface_layout
@@ -100,7 +102,7 @@ def panel_program(job_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLI
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
     frame, offsets, half, v, _, spacing = panel_layout(job_x, policy)
     ep, es = (frame.u, frame.v) if horizontal else (frame.v, frame.u)
-    offsets = np.array(sorted(offsets, key=lambda o: -o * float(es @ e)))  # leading end first
+    offsets = step_order(offsets, es, e, cell_strokes(policy))
     sign = _axis_sign(ep, axis_b, "passes")
     on, (a, b) = _limits(zone, runout, offset + float(frame.c @ axis_b), sign)
     a, b = max(a, -half), min(b, half)
@@ -181,7 +183,8 @@ def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAU
     robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs."""
     horizontal = across_the_travel(part_b, e)
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e)
+    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e,
+                           cell_strokes(policy).start)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike
@@ -230,16 +233,27 @@ def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None,
                                                                                policy)
     else:
         program, job_x, layout, v = part_program(job_b, part_b, view, e, policy)
-    world = plan_world(robot, act, program, speed, e, policy)
+    world = plan_dwelling(robot, act, program, speed, e, policy)
     traj, spray = seamed(world, speed, e, program.dt)
     common = {"trajectory": traj, "spray": spray, "ratios": world.ratios,
               "timings": {"plan": time.perf_counter() - clock}}
+    strokes = replace(cell_strokes(policy), dwell=dwell_time(world.relative))
     if part_b is None:
         return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
-                        offsets, spacing, v, world.relative, **common)
+                        offsets, spacing, v, world.relative, strokes, **common)
     return LinePartPlan(job_x, part_b, layout, world.relative.program, world.relative, e,
-                        speed, world.times, v, **common)
+                        speed, world.times, v, strokes, **common)
 
 
-__all__ = ["ClippedPass", "ZoneView", "panel_program", "part_program", "plan_zone", "seamed",
-           "zone_pieces"]
+def cell_strokes(policy: PlannerPolicy = DEFAULT_POLICY) -> Strokes:
+    """A cell's strokes (docs/model.md §26.1): across the travel (its zones stacked along
+    them), from the policy's end; strokes along the travel (zones stacked across it) are not
+    planned for a cell and are refused in one line."""
+    if policy.strokes == "along":
+        raise PlanError("strokes along the travel (forced): not planned for a cell, whose "
+                        "zones are stacked along strokes across the travel; use across or auto")
+    return Strokes("across", policy.step_from)
+
+
+__all__ = ["ClippedPass", "ZoneView", "cell_strokes", "panel_program", "part_program",
+           "plan_zone", "seamed", "zone_pieces"]

@@ -43,7 +43,7 @@ def checked_part(job, resolution: float):
 def with_speeds(rep: dict, options, find: Callable) -> None:
     """With ``options.speeds``: ``rep``'s ``line.speeds`` (``find()``, a
     :class:`~pollard_pin.painting.line.speeds.SpeedInterval`) and its time, ``timings.speeds``
-    (docs/model.md §24.1); else nothing."""
+    (docs/model.md §24.3); else nothing."""
     if options.speeds:
         t0 = time.perf_counter()
         rep["line"]["speeds"] = find().table()

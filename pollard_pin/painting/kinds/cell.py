@@ -20,7 +20,7 @@ from ..film.stats import film_stats
 from ..job import PartJob
 from ..report import check_report
 from ..result import PaintFilm
-from ..summary import speeds_lines
+from ..summary import speeds_lines, strokes_line
 from .base import JobKind, Outputs, checked_part, with_speeds
 
 
@@ -89,6 +89,7 @@ def _robot_entry(rp, act: Actuators, area: float, job, axis) -> dict:
             "upper_bound": float((plan.length + window[1] - window[0]) / bound) if bound > 0
             else math.inf,
             "motors": plan.motor_use(act.names),
+            "strokes": plan.strokes.to_dict(),
             "to_part_m": None if c is None else c.distance,
             "to_part_at_s": None if c is None else c.time}
 
@@ -179,6 +180,8 @@ def summary_lines(rep: dict, names) -> list[str]:
         f"within ±5 %, {100 * th['within_10pct']:.2f} % within ±10 %"]
     lines += [f"seam at {s['at']:.4f} m: film {s['min']:.4f}–{s['max']:.4f} of the target "
               f"within ±{s['band_m'] * 1e3:.0f} mm" for s in rep["seams"]]
+    waits = ", ".join(f"{r['name']!r} {r['strokes']['dwell_s']:.3f} s" for r in rep["robots"])
+    lines.append(strokes_line(rep["robots"][0]["strokes"], waits))
     for r in rep["robots"]:
         z = r["zone"]
         lo = "edge" if z["lo"] is None else f"{z['lo']:.4f}"

@@ -62,7 +62,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
         "thickness": th,
         "target": j.thickness,
         "cycle_time": plan.times.cycle,
-        "program_time": seg.total,
+        "program_time": plan.relative.total,  # a slow line's waits included
         "lower_bound": j.width * j.height * j.thickness / j.flow,
         "passes": len(plan.offsets),
         "spacing": plan.spacing,
@@ -75,6 +75,7 @@ def line_report(plan: LinePlan, f: Film, act: Actuators, grid: dict) -> dict:
         "motors": plan.motor_use(act.names),
         "motors_source": act.source,
         "line": line_table(plan),
+        "strokes": plan.strokes.to_dict(),
         "grid": grid,
         "integration": {"rule": "trapezoid over the sprayed path samples, in the part's "
                                 "frame",

@@ -38,8 +38,9 @@ def line_part_report(plan, points, f, painted, efficiency: float, act: Actuators
     report (§23) of the motion relative to the part, with the cycle and the line table."""
     rep = surface_report(plan.in_part_frame(), points, f, painted, efficiency, act)
     rep["cycle_time"] = plan.times.cycle
-    rep["program_time"] = plan.program.total
+    rep["program_time"] = plan.relative.total  # a slow line's waits included
     rep["line"] = line_table(plan)
+    rep["strokes"] = plan.strokes.to_dict()
     rep["integration"]["rule"] += ", in the part's frame"
     return check_report(rep, plan.job.source)
 

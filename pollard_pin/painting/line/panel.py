@@ -24,6 +24,7 @@ from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from ..workpiece.panel import PanelFrame
+from .dwell import dwell_time, plan_dwelling
 from .phases import (
     CATCH,
     LineProgram,
@@ -31,7 +32,6 @@ from .phases import (
     Relative,
     line_shift,
     one_coat,
-    plan_world,
     track,
     world_motion,
 )
@@ -43,6 +43,7 @@ from .speeds import (
     line_speed_interval,
     plan_or_name_fastest,
 )
+from .strokes import Strokes, across, shortest
 
 
 @dataclass(frozen=True)
@@ -61,6 +62,7 @@ class LinePlan(PlanResult):
     spacing: float
     pass_speed: float
     relative: Relative  # the program relative to the part (line/phases.py)
+    strokes: Strokes = Strokes()  # across or along the travel, from which end (§24.2)
 
     @property
     def length(self) -> float:
@@ -109,15 +111,28 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
         return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
-    e = np.asarray(job.line.direction, float)
     one_coat(job)
+    plan = shortest(lambda s: _plan_panel(robot, job, act, speed, policy, s, clock), policy)
+    return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+
+
+def step_order(offsets, es, e, strokes: Strokes) -> np.ndarray:
+    """The passes' offsets along ``es`` in painting order: from the part's leading end (the
+    furthest along the line ``e``) or its trailing end."""
+    side = -1.0 if strokes.start == "trailing" else 1.0
+    return np.array(sorted(offsets, key=lambda o: -side * o * float(es @ e)))
+
+
+def _plan_panel(robot, job, act, speed, policy, strokes: Strokes, clock) -> LinePlan:
+    """The panel's plan with ``strokes`` (:func:`plan_line`), clearance not checked."""
     from ..workpiece.panel import panel_frame
 
-    horizontal = pass_direction(panel_frame(job), e)
+    e = np.asarray(job.line.direction, float)
+    horizontal = across(strokes, pass_direction(panel_frame(job), e))
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
     frame, offsets, half_length, pass_speed, _, spacing = panel_layout(job_x, policy)
     es = frame.v if horizontal else frame.u
-    offsets = np.array(sorted(offsets, key=lambda o: -o * float(es @ e)))  # leading end first
+    offsets = step_order(offsets, es, e, strokes)
 
     def build(tau):
         seg = raster_segments(offsets, half_length, pass_speed, tau[1:-1], (tau[0], tau[-1]))
@@ -127,12 +142,12 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     program = LineProgram(build, guess, policy.step(job.sigma, pass_speed),
                           track(frame.c + job.standoff * frame.n, e),
                           f"the passes ({pass_speed:.4g} m/s on the part)", job.source)
-    world = plan_world(robot, act, program, speed, e, policy)
-    plan = LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
-                    offsets, spacing, pass_speed, world.relative, trajectory=world.trajectory,
-                    spray=world.spray, ratios=world.ratios,
+    world = plan_dwelling(robot, act, program, speed, e, policy)
+    return LinePlan(job_x, frame, world.relative.program, horizontal, e, speed, world.times,
+                    offsets, spacing, pass_speed, world.relative,
+                    replace(strokes, dwell=dwell_time(world.relative)),
+                    trajectory=world.trajectory, spray=world.spray, ratios=world.ratios,
                     timings={"plan": time.perf_counter() - clock})
-    return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
 
 
 def line_clearance(robot, plan):
@@ -194,4 +209,4 @@ __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION
            "line_clearance", "line_planner", "line_shift", "line_speeds", "max_line_speed",
            "panel_relative",
            "part_length", "pass_direction", "plan_line", "plan_line_job", "relative_motion",
-           "world_motion"]
+           "step_order", "world_motion"]

@@ -24,7 +24,9 @@ from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.occlusion import load_painted_part
 from ..workpiece.mesh import Part
-from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, plan_world, track
+from .dwell import dwell_time, plan_dwelling
+from .phases import LineProgram, LineTimes, Relative, line_shift, one_coat, track
+from .strokes import Strokes, across, shortest
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,7 @@ class LinePartPlan(PlanResult):
     speed: float  # line speed [m/s]
     times: LineTimes
     pass_speed: float
+    strokes: Strokes = Strokes()  # across or along the travel, from which end (§24.2)
 
     @property
     def length(self) -> float:
@@ -72,9 +75,12 @@ def across_the_travel(part: Part, direction) -> bool:
     return abs(e @ f.across) > abs(e @ f.along)
 
 
-def leading_first(layout: SurfaceLayout, direction) -> SurfaceLayout:
-    """The passes ordered from the end furthest along the line (the leading end)."""
+def leading_first(layout: SurfaceLayout, direction, start: str | None = "leading"
+                  ) -> SurfaceLayout:
+    """The passes ordered from the end furthest along the line (the leading end), or from
+    the other (``start`` "trailing")."""
     side = float(layout.frame.across @ np.asarray(direction, float))
+    side = -side if start == "trailing" else side
     order = sorted(layout.passes, key=lambda p: -p.level * side)
     return replace(layout, passes=tuple(order))
 
@@ -94,12 +100,18 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
     planner's knobs."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
-    e = np.asarray(job.line.direction, float)
     one_coat(job)
     part = load_painted_part(job) if part is None else part
-    horizontal = across_the_travel(part, e)
+    return shortest(lambda s: _plan_part(robot, job, act, speed, part, policy, s, clock),
+                    policy)
+
+
+def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) -> LinePartPlan:
+    """The part's plan with ``strokes`` (:func:`plan_line_part`)."""
+    e = np.asarray(job.line.direction, float)
+    horizontal = across(strokes, across_the_travel(part, e))
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part, job_x, policy=policy), e)
+    layout = leading_first(surface_layout(part, job_x, policy=policy), e, strokes.start)
     v = pass_speed(job_x, layout.spacing)
     pieces = pass_pieces(layout, v, 1)
     dt = time_step(job_x, pieces, v, policy)
@@ -111,9 +123,10 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
     program = LineProgram(build, np.full(len(pieces) + 1, policy.first_guess(v)), dt,
                           track(f.centre + job.standoff * f.n, e),
                           f"the passes ({v:.4g} m/s on the part's surface)", job.source)
-    world = plan_world(robot, act, program, speed, e, policy)
+    world = plan_dwelling(robot, act, program, speed, e, policy)
     return LinePartPlan(job_x, part, layout, world.relative.program, world.relative, e, speed,
-                        world.times, v, trajectory=world.trajectory, spray=world.spray,
+                        world.times, v, replace(strokes, dwell=dwell_time(world.relative)),
+                        trajectory=world.trajectory, spray=world.spray,
                         ratios=world.ratios, timings={"plan": time.perf_counter() - clock})
 
 

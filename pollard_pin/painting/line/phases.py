@@ -91,10 +91,11 @@ class Relative:
     def trigger(self, t) -> np.ndarray:
         """The trigger (0 or 1) at program times ``t``."""
         t = np.asarray(t, dtype=float)
-        if not self.passes_only:
+        if not self.passes_only and "wait" not in self.kind:
             return np.ones(len(t))
         i = np.clip(np.searchsorted(self.start, t, side="right") - 1, 0, len(self.start) - 1)
-        return np.array([k == "pass" for k in self.kind], dtype=float)[i]
+        on = [k == "pass" if self.passes_only else k != "wait" for k in self.kind]
+        return np.array(on, dtype=float)[i]  # a slow line's wait shut (dwell.py)
 
 
 def line_shift(poses, d, t, speed: float, direction):
@@ -259,7 +260,8 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
             m = motion(robot, act, p, v, a)
         except ReachError:
             return np.full(len(pieces), np.inf)
-        return m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
+        worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
+        return _per_tau(pieces, worst)
 
     try:
         rel = build(fastest(evaluate, np.asarray(guess, float), policy.utilisation))
@@ -303,6 +305,13 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
                              "of its peak torque or speed", drift > 0,
                              f"a motor at {100 * worst:.0f} % of its rating")
     return World(rel, times, traj, spray, ratios)
+
+
+def _per_tau(pieces, worst) -> np.ndarray:
+    """The pieces' ``worst`` use per ramp or turnaround duration τ: consecutive pieces off
+    the passes share one (a slow line's turn halves and wait, dwell.py)."""
+    group = np.cumsum(np.diff(pieces, prepend=-2) > 1) - 1
+    return np.array([worst[group == g].max() for g in range(group[-1] + 1)])
 
 
 def path_times(times: LineTimes, steps: int) -> np.ndarray:

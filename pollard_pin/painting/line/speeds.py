@@ -1,4 +1,4 @@
-"""The line speeds that paint a job (docs/model.md §24.1): the fastest (``--max-line-speed``),
+"""The line speeds that paint a job (docs/model.md §24.3): the fastest (``--max-line-speed``),
 the interval [v_min, v_max] around the job's speed, and the refusal of a speed that does not
 paint naming them. Every search runs over ``plan_at(speed)``, the whole job's plan at one
 speed (one robot, a cell, whichever stroke strategies it tries): only its
@@ -28,7 +28,7 @@ _CONSTRAINTS = (("turnaround", "reach and motors"), ("motor", "motors"), ("reach
 class SpeedInterval:
     """The line speeds that paint a job: the run [``low``, ``high``] m/s about the speed
     the search starts from, each end within ``resolution`` (relative) of the first speed
-    beyond it that does not paint, both ends planned in full (docs/model.md §24.1).
+    beyond it that does not paint, both ends planned in full (docs/model.md §24.3).
 
     Attributes
     ----------
@@ -199,7 +199,7 @@ def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution:
 def line_speed_interval(plan_at, start: float, source: str,
                         resolution: float = INTERVAL_RESOLUTION, check=None,
                         slow_resolution: float | None = None) -> SpeedInterval:
-    """The line speeds that paint the job (docs/model.md §24.1): the run of speeds about
+    """The line speeds that paint the job (docs/model.md §24.3): the run of speeds about
     ``start`` (the job's) that ``plan_at(speed)`` plans, each end bisected to ``resolution``
     (relative).
 

@@ -135,3 +135,26 @@ def test_an_upside_down_robot_paints_from_above(robot, act):
     assert np.allclose(p.direction, [0.0, -1.0, 0.0], atol=1e-15)  # the line in its base
     th = cell_panel_film(cell)[3].thickness / cell.job.thickness
     assert np.abs(th - 1).max() <= 0.05  # seen ±0.5 %
+
+
+def test_a_slow_line_waits_and_the_seam_holds(robot, act):
+    """The two-robot panel cell at a third of its speed (docs/model.md §24.1, §26): each
+    robot waits at its turnarounds, shut, and the seam still lays the target (the strokes
+    relative to the part are the same; seen |row − 1| ≤ 5e-5)."""
+    slow = plan_cell_job(robot, cell_job(panel_cell(speed=0.008)), act)
+    for rp in slow.robots:
+        assert rp.plan.strokes.dwell > 0 and rp.plan.relative.kind.count("wait") > 0
+    film = cell_panel_film(slow)
+    (seam,) = slow.split.seams()
+    _, rows = seam_rows(slow, film, seam, slow.split.runout)
+    assert np.abs(rows - 1).max() <= 5e-3
+    assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
+
+
+def test_strokes_along_are_refused_for_a_cell(robot, act):
+    from pollard_pin.painting.errors import PlanError
+    from pollard_pin.painting.policy import PlannerPolicy
+
+    with pytest.raises(PlanError, match=r"^strokes along the travel \(forced\): not planned "
+                       "for a cell"):
+        plan_cell(robot, cell_job(panel_cell()), act, policy=PlannerPolicy(strokes="along"))

@@ -81,3 +81,16 @@ def test_a_robot_on_the_far_side_paints_the_back(two_sided):
     # each face within ±5 % of the target (seen ±1 %)
     for side in (front, back):
         assert np.abs(th[side] - 1).max() <= 0.05
+
+
+def test_a_cells_strokes_run_across_from_the_policys_end():
+    from pollard_pin.painting.cell.program import cell_strokes
+    from pollard_pin.painting.errors import PlanError
+    from pollard_pin.painting.line.strokes import Strokes
+    from pollard_pin.painting.policy import PlannerPolicy
+
+    assert cell_strokes() == Strokes("across", "leading")
+    assert cell_strokes(PlannerPolicy(step_from="trailing")) == Strokes("across", "trailing")
+    assert cell_strokes(PlannerPolicy(strokes="across")) == Strokes("across", "leading")
+    with pytest.raises(PlanError, match="not planned for a cell"):
+        cell_strokes(PlannerPolicy(strokes="along"))

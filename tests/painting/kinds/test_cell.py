@@ -26,20 +26,24 @@ def test_a_seams_band_is_the_points_within_the_runout():
 
 
 def test_summary_lines():
-    """The line, the film, each seam, each robot (its zone's open ends: 'edge'), the gun
-    body's and the links' clearance, the robots' closest pair, the timing."""
+    """The line, the film, each seam, the strokes and each robot's waits, each robot (its
+    zone's open ends: 'edge'), the gun body's and the links' clearance, the robots' closest
+    pair, the timing."""
     from pollard_pin.painting.kinds.cell import summary_lines
 
     use = {"m": {"peak_torque": 0.5, "rms_torque": 0.25, "speed": 0.1}}
     robot = {"zone": {"lo": None, "hi": 0.2}, "start": 1.0, "program_time": 8.0,
-             "cycle": 9.0, "motors": use}
+             "cycle": 9.0, "motors": use,
+             "strokes": {"direction": "across", "step_from": "leading", "dwell_s": 0.0}}
     rep = {"line": {"speed": 0.03, "searched": True, "cycle": 9.0, "slowest_robot": "a",
                     "min_pitch": 0.27, "parts_per_hour": 400.0, "upper_bound": 0.05},
            "thickness": {"min": 24e-6, "max": 26e-6, "mean": 25e-6, "within_5pct": 0.99,
                          "within_10pct": 1.0},
            "target": 25e-6, "seams": [{"at": 0.2, "min": 0.95, "max": 1.05, "band_m": 0.04}],
            "robots": [{**robot, "name": "a"}, {**robot, "name": "b", "zone": {"lo": 0.2,
-                                                                             "hi": None}}],
+                                                                             "hi": None},
+                       "strokes": {"direction": "across", "step_from": "leading",
+                                   "dwell_s": 1.5}}],
            "clearance": {"gun_to_part_m": 0.14, "gun_robot": "a", "to_part_m": 0.05,
                          "robot": "b", "robot_at_s": 2.0, "between_robots_m": 0.3,
                          "pair": ["a", "b"], "pair_at_s": 3.0},
@@ -50,6 +54,8 @@ def test_summary_lines():
         "film 24–26 µm, mean 25 µm (target 25 µm), 99.00 % of the area within ±5 %, 100.00 % "
         "within ±10 %",
         "seam at 0.2000 m: film 0.9500–1.0500 of the target within ±40 mm",
+        "strokes across the travel, stepping from the leading end; waits at the turnarounds "
+        "'a' 0.000 s, 'b' 1.500 s",
         "robot 'a': zone edge..0.2000 m, starts 1.000 s, program 8.000 s, cycle 9.000 s, "
         "motors ≤ 50 % of peak torque, ≤ 25 % RMS",
         "robot 'b': zone 0.2000..edge m, starts 1.000 s, program 8.000 s, cycle 9.000 s, "

@@ -23,15 +23,18 @@ def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
 
 
 def test_summary_lines(robot, line_job, act):
-    """The line's two lines first (the speed not searched), then the panel's."""
+    """The line's three lines first (the speed not searched, the strokes), then the
+    panel's."""
     r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
     rep = r.report.data
     lines = summary_lines(rep, act.names)
     assert lines[0].startswith(f"line speed {rep['line']['speed']:.4g} m/s, upper bound")
     assert f"{rep['line']['parts_per_hour']:.1f} parts per hour" in lines[1]
-    assert lines[2].startswith(f"passes {rep['passes']} (") and "relative to the part" in lines[2]
-    assert lines[4].startswith("motor peak torque") and len(lines) == 6
-    assert r.summary_lines()[:6] == lines  # then the gun body's clearance (no compliance)
+    assert lines[2] == ("strokes across the travel, stepping from the leading end; waits at "
+                        "the turnarounds none")
+    assert lines[3].startswith(f"passes {rep['passes']} (") and "relative to the part" in lines[3]
+    assert lines[5].startswith("motor peak torque") and len(lines) == 7
+    assert r.summary_lines()[:7] == lines  # then the gun body's clearance (no compliance)
     assert not any(line.startswith("compliance") for line in r.summary_lines())
 
 

@@ -6,6 +6,7 @@ import numpy as np
 import pollard_pin as pp
 from pollard_pin.painting.kinds.line_part import line_part_report, summary_lines
 from pollard_pin.painting.options import PaintOptions
+from pollard_pin.painting.policy import PlannerPolicy
 from pollard_pin.painting.summary import line_lines, part_summary_lines
 
 
@@ -14,7 +15,8 @@ def test_line_part_is_the_line_planners(robot, line_part_job, line_part_plan, ac
     the report's statistics (equal)."""
     from pollard_pin.painting.film.part import surface_film
 
-    r = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False))
+    across = PaintOptions(compliance=False, policy=PlannerPolicy(strokes="across"))
+    r = pp.paint(robot, line_part_job, act, across)  # as the fixture's plan
     pts, f, painted, eff = surface_film(line_part_plan.in_part_frame())
     direct = line_part_report(line_part_plan, pts, f, painted, eff, act)
     assert r.kind == "line part"
@@ -26,4 +28,7 @@ def test_summary_lines_are_the_lines_then_a_parts(robot, line_part_job, act):
     rep = pp.paint(robot, line_part_job, act, PaintOptions(compliance=False)).report.data
     lines = summary_lines(rep, act.names)
     assert lines == line_lines(rep) + part_summary_lines(rep, act.names)
-    assert lines[0].startswith("line speed") and lines[2].startswith("passes")
+    # auto: the short strip's strokes along the travel, a shorter cycle than across it
+    assert lines[0].startswith("line speed") and lines[2] == (
+        "strokes along the travel; waits at the turnarounds none")
+    assert lines[3].startswith("passes")

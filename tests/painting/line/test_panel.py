@@ -85,12 +85,53 @@ def test_fastest_plans_and_five_percent_more_is_refused(robot, line_job, act):
         plan_line(robot, line_job, act, 1.05 * fastest_speed)
 
 
-def test_too_slow_and_too_fast_are_told_apart(robot, line_job, act):
-    """A failure's side is the drift's sign (a slow line fails on the motors too, at the
-    reach's edge), which --max-line-speed's bracketing needs."""
-    with pytest.raises(LineSpeedError) as slow:
-        plan_line(robot, line_job, act, 0.02)  # 104 % of a motor's peak: the reach's edge
-    assert not slow.value.too_fast
+def test_too_fast_is_told(robot, line_job, act):
+    """A failure's side is the drift's sign, which --max-line-speed's bracketing needs; a
+    slow line no longer fails (it waits at the turnarounds: test_a_slow_line_waits_...),
+    where 0.02 m/s was refused as too slow (104 % of a motor's peak at the reach's edge)."""
     with pytest.raises(LineSpeedError) as fast:
         plan_line(robot, line_job, act, 0.06)
     assert fast.value.too_fast
+
+
+@pytest.fixture(scope="module")
+def slow_plan(robot, line_job, act):
+    """examples/line.toml at 0.01 m/s, a third of its speed: refused before the dwell."""
+    return plan_line(robot, line_job, act, 0.01, clearance=False)
+
+
+def test_a_slow_line_waits_and_paints(slow_plan, line_plan):
+    """Slower than the strokes' pace the program waits at each turnaround (docs/model.md
+    §24.1): its world drift ≈ 0 (the world program starts and ends at the same place along
+    the line), its window no wider than at the job's speed, the gun shut in the waits."""
+    p = slow_plan
+    assert p.strokes.direction == "across" and p.strokes.start == "leading"
+    turns = p.relative.kind.count("wait")
+    assert turns == len(p.offsets) - 1 and p.strokes.dwell > 0
+    ends, _, _, _ = world_motion(p.relative, p.speed, p.direction, p.times,
+                                 np.array([p.times.delay, p.times.end]))
+    assert abs(float((ends[1, :3] - ends[0, :3]) @ p.direction)) < 1e-9
+    assert line_table(p)["window_length"] <= line_table(line_plan)["window_length"]
+    waits = [(s, s + d) for s, d, k in zip(p.relative.start, p.relative.duration,
+                                           p.relative.kind) if k == "wait"]
+    t = p.trajectory.t - p.times.delay
+    inside = np.zeros(len(t), bool)
+    for a, b in waits:
+        inside |= (t > a + 1e-9) & (t < b - 1e-9)
+    assert inside.sum() > 100 and p.spray[inside].max() == 0
+    r = p.ratios
+    assert r["peak_torque"].max() <= 1.0 and r["speed"].max() <= 1.0
+
+
+def test_a_slow_line_lays_the_job_speeds_film(slow_plan, line_plan_film):
+    """The film at 0.01 m/s is the film at the job's 0.03 m/s: the relative strokes are the
+    same and the waits are shut; within 1 % of the target (it achieves ≈ 0.01 %)."""
+    from pollard_pin.painting.film.line import line_film
+
+    U, V, _, slow = line_film(slow_plan)
+    U0, V0, _, job = line_plan_film
+    assert np.array_equal(U, U0) and np.array_equal(V, V0)
+    target = slow_plan.job.thickness
+    diff = np.abs(slow.thickness - job.thickness).max() / target
+    print(f"film at 0.01 m/s vs 0.03 m/s: {diff:.3g} of the target")
+    assert diff < 0.01

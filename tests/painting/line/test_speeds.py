@@ -1,4 +1,4 @@
-"""The line speeds that paint a job (paint/line/speeds.py, docs/model.md §24.1): the fastest
+"""The line speeds that paint a job (paint/line/speeds.py, docs/model.md §24.3): the fastest
 (--max-line-speed), the interval about the job's speed and the refusal naming it, against
 stand-in planners whose answers are known (runs of speeds set here, a gap, a budget's floor,
 two strategies), and the interval of examples/line.toml checked by plans just outside it."""
@@ -149,7 +149,7 @@ def test_interval_is_the_run_about_the_jobs_speed():
     """Two runs, [0.003, 0.007] and [0.011, 0.04] m/s: from 0.02 the run about it (the
     halving meets the gap at 0.01); from 0.005 the other; from a speed too slow for both,
     the first run it doubles into (0.004; 0.008 in the gap). Only the speeds tried are
-    planned: a gap the doubling or halving steps over is not seen (docs/model.md §24.1)."""
+    planned: a gap the doubling or halving steps over is not seen (docs/model.md §24.3)."""
     spans = [(0.003, 0.007), (0.011, 0.04)]
     about = line_speed_interval(runs(spans, []), 0.02, "j", 0.01)
     assert within(about.low, 0.011, 0.01) and within(about.high, 0.04, 0.01, inside=False)

@@ -1,0 +1,134 @@
+"""A slow line's dwell (docs/model.md §24.1): a line slower than the strokes' own pace carries
+the part less far than the program steps along it, so the program drifts against the travel
+and leaves the reach. The program then waits at each turnaround, at rest relative to the
+part (so riding the line at its speed), the gun closed, until the drift is ≈ 0.
+
+A turnaround of duration τ becomes three pieces: its first half run in τ (time σ(u) =
+τ·R_out(u/τ), rate 1 → 0, so the gun comes to rest relative to the part where the turn is
+furthest off it), the wait ("wait", the trigger closed) and its second half run in τ
+(σ = τ/2 + τ·R_in(u/τ), rate 0 → 1). The gun's track on the part is the turn's own; the
+pieces meet with equal poses, rates and accelerations (R's rate and its derivative match at
+both ends).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..errors import LineSpeedError
+from ..passes.raster import RAMP_IN, RAMP_OUT
+from ..policy import DEFAULT_POLICY, PlannerPolicy
+from .phases import LineProgram, Relative, plan_world
+
+_OUT, _IN = RAMP_OUT, RAMP_IN  # σ/τ over u/τ: travels 1/2, rate 1 → 0 (0 → 1)
+_OUT1, _OUT2, _IN1, _IN2 = _OUT.deriv(), _OUT.deriv(2), _IN.deriv(), _IN.deriv(2)
+
+
+def drift_along(rel: Relative, speed: float, e) -> float:
+    """The program's world drift along the line [m]: s·T + its relative travel along e."""
+    p, _, _ = rel.evaluate(np.array([0.0, rel.total]))
+    return speed * rel.total + float((p[1, :3] - p[0, :3]) @ np.asarray(e, float))
+
+
+def slow(rel: Relative, speed: float, e) -> bool:
+    """True when the line is slower than the program's own pace: its world drift
+    s·T − L < 0 (docs/model.md §24.1), so it needs a dwell."""
+    return drift_along(rel, speed, e) < 0.0
+
+
+def wait_per_turn(rel: Relative, speed: float, e) -> float:
+    """The wait [s] at each turnaround that brings the world drift to ≈ 0 once the
+    turnarounds are run at half pace: (−drift/s)/n − the turn's own extra τ (its mean), ≥ 0."""
+    turns = np.array([d for d, k in zip(rel.duration, rel.kind) if k == "turn"])
+    if not len(turns):
+        return 0.0
+    extra = -drift_along(rel, speed, e) / speed  # the relative time the line needs added
+    return max(0.0, extra / len(turns) - float(turns.mean()))
+
+
+def with_dwell(rel: Relative, wait: float) -> Relative:
+    """``rel`` with each turnaround split into its halves at half pace and a ``wait`` [s]
+    at rest between them (the trigger closed); a :class:`ZoneRelative`'s windows follow
+    (its turn's window for both halves, shut for the wait)."""
+    pieces = []  # (kind, duration, base start, base duration, part: 0 whole, 1, 2, 3)
+    windows = getattr(rel, "windows", None)
+    wins = []
+    for k, (s, d, kind) in enumerate(zip(rel.start, rel.duration, rel.kind)):
+        w = windows[k] if windows else None
+        if kind != "turn":
+            pieces += [(kind, d, s, d, 0)]
+            wins += [w]
+            continue
+        pieces += [("turn", d, s, d, 1), ("wait", wait, s, d, 2), ("turn", d, s, d, 3)]
+        wins += [w, (np.inf, -np.inf), w]
+    duration = np.array([p[1] for p in pieces], dtype=float)
+    start = np.concatenate([[0.0], np.cumsum(duration)[:-1]])
+    base_start = np.array([p[2] for p in pieces])
+    base_dur = np.array([p[3] for p in pieces])
+    part = np.array([p[4] for p in pieces])
+
+    def motion(t):
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        i = np.clip(np.searchsorted(start, t, side="right") - 1, 0, len(start) - 1)
+        u = np.clip(t - start[i], 0.0, duration[i])
+        tau = base_dur[i]
+        x = np.divide(u, tau, out=np.zeros_like(u), where=tau > 0)
+        sig, r1, r2 = u.copy(), np.ones_like(u), np.zeros_like(u)
+        for which, f, f1, f2, at in ((1, _OUT, _OUT1, _OUT2, 0.0), (3, _IN, _IN1, _IN2, 0.5)):
+            m = part[i] == which
+            sig[m] = tau[m] * (at + f(x[m]))
+            r1[m], r2[m] = f1(x[m]), f2(x[m]) / tau[m]
+        m = part[i] == 2
+        sig[m], r1[m] = 0.5 * tau[m], 0.0
+        p, v, a = rel.evaluate(base_start[i] + sig)
+        return p, v * r1[:, None], a * (r1 ** 2)[:, None] + v * r2[:, None]
+
+    out = replace(rel, motion=motion, start=start, duration=duration, kind=tuple(
+        p[0] for p in pieces))
+    return replace(out, windows=tuple(wins)) if windows else out
+
+
+def dwelled(build, speed: float, e):
+    """τ ↦ the relative program ``build(τ)`` with the wait that keeps its drift ≈ 0."""
+    def build_d(tau):
+        rel = build(tau)
+        return with_dwell(rel, wait_per_turn(rel, speed, e))
+    return build_d
+
+
+def dwelling(program: LineProgram, speed: float, e) -> LineProgram:
+    """``program`` with the waits of :func:`dwelled` at line ``speed`` along ``e``."""
+    return replace(program, build=dwelled(program.build, speed, e))
+
+
+def plan_dwelling(robot, act, program: LineProgram, speed: float, e,
+                  policy: PlannerPolicy = DEFAULT_POLICY):
+    """:func:`.line.phases.plan_world` of ``program``, waiting at the turnarounds where the
+    line is too slow for it (docs/model.md §24.1): at once where the turns' own half pace
+    would not absorb the drift (:func:`wait_per_turn` > 0 at the first durations), else
+    only when the program as it is fails as too slow, so that whatever planned before the
+    waits plans as it did."""
+    rel = program.build(program.guess)
+    if not slow(rel, speed, e):
+        return plan_world(robot, act, program, speed, e, policy)
+    if wait_per_turn(rel, speed, e) > 0:
+        return plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+    try:
+        return plan_world(robot, act, program, speed, e, policy)
+    except LineSpeedError as exc:
+        if exc.too_fast:
+            raise
+        try:
+            return plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
+        except LineSpeedError as again:  # still a slow line's failure, for the searches
+            raise LineSpeedError(str(again), False, again.why, exc.hint) from None
+
+
+def dwell_time(rel: Relative) -> float:
+    """The program's waits [s] in all."""
+    return float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "wait"))
+
+
+__all__ = ["drift_along", "dwell_time", "dwelled", "dwelling", "plan_dwelling", "slow",
+           "wait_per_turn", "with_dwell"]

@@ -1,0 +1,69 @@
+"""The strokes' direction on a line, a planned choice (paint/line/strokes.py, docs/model.md
+§24.2): auto keeps the shortest cycle of those that paint, a forced strategy that cannot
+paint is refused naming it; on examples/line.toml's strip and a short one."""
+from dataclasses import replace
+from types import SimpleNamespace
+
+import pytest
+
+from pollard_pin.errors import InputError
+from pollard_pin.painting.errors import LineReachError, LineSpeedError, PlanError
+from pollard_pin.painting.line.panel import plan_line
+from pollard_pin.painting.line.strokes import Strokes, candidates, shortest
+from pollard_pin.painting.policy import PlannerPolicy
+
+
+def test_candidates():
+    assert candidates() == (Strokes("across", "leading"), Strokes("along", None))
+    assert candidates(PlannerPolicy(strokes="across", step_from="trailing")) == (
+        Strokes("across", "trailing"),)
+    assert candidates(PlannerPolicy(strokes="along")) == (Strokes("along", None),)
+
+
+def _plans(cycles: dict):
+    def plan_with(s):
+        c = cycles[s.direction]
+        if isinstance(c, Exception):
+            raise c
+        return SimpleNamespace(strokes=s, times=SimpleNamespace(cycle=c))
+    return plan_with
+
+
+def test_auto_keeps_the_shortest_cycle_that_paints():
+    assert shortest(_plans({"across": 30.0, "along": 11.0})).strokes.direction == "along"
+    assert shortest(_plans({"across": 10.0, "along": 11.0})).strokes.direction == "across"
+    out = shortest(_plans({"across": 30.0, "along": PlanError("out of reach")}))
+    assert out.strokes.direction == "across"
+    out = shortest(_plans({"across": 30.0, "along": InputError("no layout that way")}))
+    assert out.strokes.direction == "across"  # a later strategy's bad input: no candidate
+    with pytest.raises(InputError):  # the first one's is the job's
+        shortest(_plans({"across": InputError("bad"), "along": 3.0}))
+    with pytest.raises(LineSpeedError, match="^drifts$"):  # none: the first one's error
+        shortest(_plans({"across": LineSpeedError("drifts", True), "along": PlanError("x")}))
+
+
+def test_a_forced_strategy_is_named_and_keeps_its_sense():
+    with pytest.raises(LineSpeedError, match=r"^strokes across the travel, stepping from the "
+                       r"trailing end \(forced\): drifts") as info:
+        shortest(_plans({"across": LineSpeedError("drifts", False, "why", 0.3)}),
+                 PlannerPolicy(strokes="across", step_from="trailing"))
+    assert (info.value.too_fast, info.value.why, info.value.hint) == (False, "why", 0.3)
+
+
+def test_along_a_part_longer_than_the_reach_is_refused(robot, line_job, act):
+    """examples/line.toml's 0.90 m strip: strokes along it are longer than the reach."""
+    with pytest.raises(LineReachError, match=r"^strokes along the travel \(forced\): .*out "
+                       "of reach"):
+        plan_line(robot, line_job, act, clearance=False, policy=PlannerPolicy(strokes="along"))
+
+
+def test_auto_picks_the_shorter_cycle(robot, line_job, act):
+    """A 0.30 m strip at 0.01 m/s: across it the program waits for the line (≈ 34 s), along
+    it the strokes are done as it passes (≈ 11 s); auto keeps along."""
+    job = replace(line_job, width=0.3)
+    across = plan_line(robot, job, act, 0.01, clearance=False,
+                       policy=PlannerPolicy(strokes="across"))
+    auto = plan_line(robot, job, act, 0.01, clearance=False)
+    assert across.strokes.direction == "across" and across.strokes.dwell > 0
+    assert auto.strokes == Strokes("along", None, 0.0)
+    assert auto.times.cycle < 0.5 * across.times.cycle
