@@ -17,6 +17,7 @@ from ...dynamics.motors import Actuators
 from ...errors import say_less, without_asides
 from ..errors import BudgetError, LineSpeedError, PlanError
 from ..job import PartJob
+from ..line.dwell import waiting_floor
 from ..line.panel import line_clearance
 from ..line.speeds import (
     INTERVAL_RESOLUTION,
@@ -207,6 +208,14 @@ def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     return speed, _with_clearance(robot, plan)
 
 
+def cell_waiting_floor(plan: CellPlan, policy: PlannerPolicy = DEFAULT_POLICY):
+    """Where every robot's program waits at its turnarounds, the line speed [m/s] down to
+    which the cell paints (the highest of the robots' budget floors,
+    :func:`.line.dwell.waiting_floor`); else None."""
+    floors = [waiting_floor(r.plan, policy) for r in plan.robots]
+    return None if any(f is None for f in floors) else max(floors)
+
+
 def cell_speeds(robot, job, act: Actuators, plan: CellPlan | None = None,
                 part: Part | None = None, split: Split | None = None,
                 policy: PlannerPolicy = DEFAULT_POLICY,
@@ -219,7 +228,8 @@ def cell_speeds(robot, job, act: Actuators, plan: CellPlan | None = None,
     plan_at = cell_planner(robot, job, act, part, split, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: _with_clearance(robot, p))
+                               check=lambda p: _with_clearance(robot, p),
+                               floor=lambda p: cell_waiting_floor(p, policy))
 
 
 def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
@@ -231,7 +241,8 @@ def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
     from ..line.speeds import plan_or_name_fastest
 
     plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
-                                job.line.speed, job.source)
+                                job.line.speed, job.source,
+                                floor=lambda p: cell_waiting_floor(p, policy))
     return _with_clearance(robot, plan)
 
 
@@ -264,5 +275,5 @@ def _robot_said(cr, exc: Exception) -> str:
     return say_less(f"robot {cr.name!r}: {exc}", f"robot {cr.name!r}: {without_asides(str(exc))}")
 
 
-__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds", "max_cell_speed",
-           "plan_cell", "plan_cell_job", "robot_part"]
+__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds",
+           "cell_waiting_floor", "max_cell_speed", "plan_cell", "plan_cell_job", "robot_part"]

@@ -130,5 +130,15 @@ def dwell_time(rel: Relative) -> float:
     return float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "wait"))
 
 
+def waiting_floor(plan, policy: PlannerPolicy = DEFAULT_POLICY) -> float | None:
+    """Where a line plan (a panel's or a part's) waits at its turnarounds, the line speed
+    [m/s] at which its path would reach ``policy.max_path_samples``: a slower line only
+    waits longer, the strokes and the world window the same (§24.1), its samples growing
+    as 1/speed, so it paints down to about there; else None."""
+    if dwell_time(plan.relative) <= 0:
+        return None
+    return plan.speed * len(plan.trajectory.t) / policy.max_path_samples
+
+
 __all__ = ["drift_along", "dwell_time", "dwelled", "dwelling", "plan_dwelling", "slow",
-           "wait_per_turn", "with_dwell"]
+           "wait_per_turn", "waiting_floor", "with_dwell"]

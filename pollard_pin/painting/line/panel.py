@@ -24,7 +24,7 @@ from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from ..workpiece.panel import PanelFrame
-from .dwell import dwell_time, plan_dwelling
+from .dwell import dwell_time, plan_dwelling, waiting_floor
 from .phases import (
     CATCH,
     LineProgram,
@@ -193,7 +193,8 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
     plan_at = line_planner(robot, job, act, part, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: replace(p, clearance=line_clearance(robot, p)))
+                               check=lambda p: replace(p, clearance=line_clearance(robot, p)),
+                               floor=lambda p: waiting_floor(p, policy))
 
 
 def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
@@ -201,7 +202,7 @@ def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
     """The job's line speed planned (``policy``: the planner's knobs); a speed that cannot be
     painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
-                                job.source)
+                                job.source, floor=lambda p: waiting_floor(p, policy))
     return replace(plan, clearance=line_clearance(robot, plan))
 
 

@@ -160,10 +160,21 @@ def _climb(plan_at, lo: float, plan, resolution: float):
     return lo, plan, bound
 
 
-def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution: float):
+def waits_bound(floor: float) -> str:
+    """The slow end's bound when its plan waits at the turnarounds (docs/model.md §24.3)."""
+    return f"waits: slower lines wait longer, down to the budget's floor ≈ {floor:.2g} m/s"
+
+
+def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution: float,
+             floor=None):
     """From ``hi`` that plans, down to the slowest that plans: halved until a speed fails
     (unless ``slow``, a speed known to fail, > 0), then bisected; a :class:`BudgetError`
-    fails as the budget's floor. (The slowest that plans, its plan, what fails below it.)"""
+    fails as the budget's floor. ``floor(plan)``: where a plan waits at its turnarounds,
+    the budget's floor it paints down to (else None): the search stops at the first such
+    plan, since a slower line only waits longer (§24.1). (The slowest that plans, its
+    plan, what fails below it.)"""
+    if floor is not None and (f := floor(plan)) is not None:
+        return hi, plan, waits_bound(f)
     bound = slow_bound if slow > 0 else "searched no further"
 
     def tried(s):
@@ -183,6 +194,8 @@ def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution:
                 slow = 0.5 * hi
                 break
             hi, plan = 0.5 * hi, p
+            if floor is not None and (f := floor(plan)) is not None:
+                return hi, plan, waits_bound(f)
         else:
             return hi, plan, bound
     fails = bound
@@ -198,7 +211,7 @@ def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution:
 
 def line_speed_interval(plan_at, start: float, source: str,
                         resolution: float = INTERVAL_RESOLUTION, check=None,
-                        slow_resolution: float | None = None) -> SpeedInterval:
+                        slow_resolution: float | None = None, floor=None) -> SpeedInterval:
     """The line speeds that paint the job (docs/model.md §24.3): the run of speeds about
     ``start`` (the job's) that ``plan_at(speed)`` plans, each end bisected to ``resolution``
     (relative).
@@ -229,6 +242,10 @@ def line_speed_interval(plan_at, start: float, source: str,
     slow_resolution : float or None, optional
         The slow end's bracket if another (default ``resolution``); the interval states the
         coarser.
+    floor : Callable or None, optional
+        ``floor(plan)`` → where the plan waits at its turnarounds, the sample budget's floor
+        [m/s] it paints down to (a slower line only waits longer), else None: the slow end
+        is then the first plan that waits, its bound saying so (not planned further).
 
     Returns
     -------
@@ -247,7 +264,8 @@ def line_speed_interval(plan_at, start: float, source: str,
 
         s, plan, (slow, slow_bound) = _find(planned, start, source, resolution)
         slow_res = resolution if slow_resolution is None else slow_resolution
-        low, low_plan, low_bound = _descend(planned, s, plan, slow, slow_bound, slow_res)
+        low, low_plan, low_bound = _descend(planned, s, plan, slow, slow_bound, slow_res,
+                                            floor)
         high, high_plan, high_bound = _climb(planned, s, plan, resolution)
     if check is not None:
         low_plan, high_plan = check(low_plan), check(high_plan)
@@ -255,22 +273,23 @@ def line_speed_interval(plan_at, start: float, source: str,
                          low_plan, high_plan)
 
 
-def plan_or_name_fastest(plan_at, speed: float, source: str):
+def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None):
     """``plan_at(speed)``; a speed that cannot be painted is refused naming the interval of
     speeds that do (:func:`line_speed_interval`: the fastest to :data:`SPEED_RESOLUTION`, as
-    ``--max-line-speed`` finds it, the slowest to :data:`INTERVAL_RESOLUTION`), or, if none
-    does, both sides and the constraint that binds each."""
+    ``--max-line-speed`` finds it, the slowest to :data:`INTERVAL_RESOLUTION`, ``floor`` as
+    there), or, if none does, both sides and the constraint that binds each."""
     try:
         return plan_at(speed)
     except LineSpeedError as exc:
         try:
             found = line_speed_interval(plan_at, speed, source, SPEED_RESOLUTION,
-                                        slow_resolution=INTERVAL_RESOLUTION)
+                                        slow_resolution=INTERVAL_RESOLUTION, floor=floor)
         except PlanError as none:
             said = str(none).removeprefix(f"{source}: ")
             raise PlanError(say_less(f"{exc}; {said}", f"at line speed {speed:.4g} m/s "
                                      f"{exc.why}; {said}", str(none))) from None
-        paints = f"it paints at {found.said()} (--max-line-speed)"
+        slower = " or slower" if found.low_bound.startswith("waits") else ""
+        paints = f"it paints at {found.said()}{slower} (--max-line-speed)"
         raise PlanError(say_less(f"{exc}; {paints}", f"at line speed {speed:.4g} m/s "
                                  f"{exc.why}; {paints}", f"line speed {speed:.4g} m/s: "
                                  f"{paints}")) from None
@@ -278,4 +297,4 @@ def plan_or_name_fastest(plan_at, speed: float, source: str):
 
 __all__ = ["BUDGET_FLOOR", "INTERVAL_RESOLUTION", "SPEED_RESOLUTION", "SPEED_TRIES",
            "SpeedInterval", "constraint", "fastest_line_speed", "line_speed_interval",
-           "plan_or_name_fastest"]
+           "plan_or_name_fastest", "waits_bound"]

@@ -7,6 +7,7 @@ from types import SimpleNamespace
 import pytest
 
 from pollard_pin.painting.errors import BudgetError, LineSpeedError, PlanError
+from pollard_pin.painting.line.dwell import dwell_time, waiting_floor
 from pollard_pin.painting.line.panel import line_planner, plan_line
 from pollard_pin.painting.line.speeds import (
     BUDGET_FLOOR,
@@ -14,6 +15,7 @@ from pollard_pin.painting.line.speeds import (
     fastest_line_speed,
     line_speed_interval,
     plan_or_name_fastest,
+    waits_bound,
 )
 
 
@@ -243,17 +245,42 @@ def test_no_speed_at_all_refuses_with_both_sides():
 # --- a real job ----------------------------------------------------------------------------------
 def test_example_line_interval(robot, act, line_job, line_plan):
     """examples/line.toml: its speed 0.03 m/s inside the interval (to 10 %, its plan there
-    the fixture's); just past each end (the resolution and a margin) plan_line itself
-    refuses, each side's failure as stated."""
+    the fixture's). Just past the fast end plan_line itself refuses as too fast; the slow end
+    is the first plan that waits at its turnarounds (docs/model.md §24.1), its bound naming
+    the budget's floor below it, and a slower line (0.8 of it) paints too, waiting longer."""
     planner = line_planner(robot, line_job, act)
     got = line_speed_interval(lambda s: line_plan if s == line_plan.speed else planner(s),
-                              line_job.line.speed, line_job.source, 0.1)
+                              line_job.line.speed, line_job.source, 0.1,
+                              floor=waiting_floor)
     assert got.low < line_job.line.speed < got.high
     assert got.low_plan.speed == got.low and got.high_plan.speed == got.high
-    assert got.low_bound.startswith("too slow: ") and got.high_bound.startswith("too fast: ")
-    with pytest.raises(LineSpeedError) as slow:
-        plan_line(robot, line_job, act, got.low / 1.11, clearance=False)
-    assert not slow.value.too_fast
+    assert got.low_bound.startswith("waits: ") and got.high_bound.startswith("too fast: ")
+    assert dwell_time(got.low_plan.relative) > 0 and dwell_time(line_plan.relative) == 0
+    floor = waiting_floor(got.low_plan)
+    assert f"≈ {floor:.2g} m/s" in got.low_bound and 0 < floor < got.low
+    slower = plan_line(robot, line_job, act, 0.8 * got.low, clearance=False)
+    assert dwell_time(slower.relative) > dwell_time(got.low_plan.relative)
     with pytest.raises(LineSpeedError) as fast:
         plan_line(robot, line_job, act, got.high * 1.11, clearance=False)
     assert fast.value.too_fast
+
+
+def test_a_plan_that_waits_ends_the_slow_search():
+    """The slow side stops at the first plan the floor callback says waits: no slower speed
+    is tried, and the bound names the floor it gave."""
+    tried = []
+
+    class Plan:
+        def __init__(self, s):
+            self.speed = s
+
+    def plan_at(s):
+        tried.append(s)
+        if s > 0.04:
+            raise LineSpeedError("too fast", True, "a motor at 104 % of its rating")
+        return Plan(s)
+
+    got = line_speed_interval(plan_at, 0.03, "j.toml", 0.05,
+                              floor=lambda p: 0.001 if p.speed < 0.02 else None)
+    assert got.low == 0.015 and min(tried) == 0.015
+    assert got.low_bound == waits_bound(0.001) and "0.001 m/s" in got.low_bound
