@@ -113,7 +113,7 @@ def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
             r["compliance"] = c
     else:
         rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
-                                             film.painted)
+                                             film.painted, getattr(film.film, "shade", None))
     rep["timings"]["compliance"] = time.perf_counter() - t0
 
 

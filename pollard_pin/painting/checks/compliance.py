@@ -152,12 +152,15 @@ def _moved(plan, poses):
                                                name=tr.name + ", deflected"))
 
 
-def program_film(plan, points, poses) -> np.ndarray:
+def program_film(plan, points, poses, shade=None) -> np.ndarray:
     """The film thickness [m] that ``plan``'s program leaves at ``points`` (a panel's grid
     (nv, nu, 3), a part's :class:`.film.points.SurfacePoints`) when the gun follows ``poses``
     (N, 6, world) at the plan's times and trigger: the integration the plan's own film uses
     (:func:`.film.grid.plan_film`, :func:`.film.line.line_film`,
-    :func:`.film.part.surface_film`), flattened as its thickness."""
+    :func:`.film.part.surface_film`), flattened as its thickness. ``shade``: a part's rigid
+    film's :class:`.film.mesh.Shade`, whose shadows the deflected film takes as they are
+    (docs/model.md §27.7: a deflection of tenths of a millimetre moves a shadow's edge by no
+    more; no ray is cast)."""
     moved = _moved(plan, poses)
     if isinstance(moved, LinePartPlan):
         moved = moved.in_part_frame()
@@ -165,7 +168,7 @@ def program_film(plan, points, poses) -> np.ndarray:
     gun = gun_of(plan.job)
     if isinstance(moved, SurfacePlan):
         return mesh_film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0], points,
-                         moved.part, moved.spray).thickness
+                         moved.part, moved.spray, shade=shade).thickness
     pts = np.asarray(points).reshape(-1, 3)
     if isinstance(moved, LinePlan):
         on = moved.spray > 0
@@ -223,7 +226,8 @@ def beyond_linear(entry: dict, exc: StiffnessError) -> dict:
     return {**entry, "stiffness": True, "note": f"not computed: {exc}"}
 
 
-def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
+def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None,
+                     shade=None) -> dict:
     """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
     paint under the weight and the job's recoil.
 
@@ -241,6 +245,8 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         The motor ratings; their ``stiffness`` gives the springs.
     painted : numpy.ndarray or None, optional
         The mask of points whose film counts (default all).
+    shade : pollard_pin.painting.film.mesh.Shade or None, optional
+        A part's rigid film's shadows, reused by the deflected film (default: cast again).
 
     Returns
     -------
@@ -260,7 +266,7 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
     except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
         return beyond_linear(entry, exc)
-    T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection))
+    T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection), shade)
     err, where = film_error(thickness, T, plan.job.thickness, painted)
     return {**entry, "stiffness": True,
             **sprayed_errors(d, plan.spray, plan.trajectory.t),
