@@ -43,7 +43,8 @@ class Shade:
     """Where the part shaded the points from the nozzle, chunk by chunk (:func:`mesh_film`'s
     chunks of ``points`` points and ``samples`` time samples): each chunk's shaded pairs as
     sorted keys sample × (chunk's points) + point and its shadow edges' ``cuts`` (where in
-    its step each switch lies, :func:`.spray.shadow_edges.shadow_edges`)."""
+    its step each switch lies, :func:`.spray.shadow_edges.shadow_edges`; empty: found again
+    by bisection)."""
 
     points: int
     samples: int
@@ -196,7 +197,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             del dt_, dp_
             fix_cuts = None
         else:
-            key, fix_cuts = given, shade.cuts[c]
+            key, fix_cuts = given, shade.cuts[c] if shade.cuts else None
         if len(key):
             fix, bound, m, cut = shadow_edges(gun, t, p, a, trig, s[idx], nc, part,
                                               key // len(idx), key % len(idx), intersector,
