@@ -290,8 +290,8 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         ``standoff_error_at_t`` [s]), ``lateral_error_m`` [m], ``tilt_rad`` [rad]; over the
         painted points ``film_error``, the largest film change relative to the target, at
         ``film_error_at`` [m] (given ``shade``: off the shadows' edges, which
-        ``shadow_edges`` reports apart, :func:`shadow_edge_entry`); ``drive_stiffness``
-        [N·m/rad].
+        ``shadow_edges`` reports apart where there are any, :func:`shadow_edge_entry`);
+        ``drive_stiffness`` [N·m/rad].
     """
     recoil, k, note = drive_stiffness(plan.job, act)
     if k is None:
@@ -313,7 +313,7 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
             **sprayed_errors(d, plan.spray, plan.trajectory.t),
             "film_error": err,
             "film_error_at": [float(c) for c in film_points(points)[where]],
-            **({"shadow_edges": edges} if edges else {}),
+            **({"shadow_edges": edges} if edges.get("points") else {}),
             "drive_stiffness": [float(x) for x in k]}
 
 

@@ -86,6 +86,7 @@ class MeshFilm:
     whole_part: bool  # the points cover every face of the part
     switches: int = 0
     shade: Shade | None = None  # where the points were shaded: reused by a moved path
+    robots: tuple = ()  # a cell's: each robot's own film, whose sum this is
 
     @property
     def transfer_efficiency(self) -> float | None:
