@@ -73,8 +73,8 @@ def _edges(c: dict) -> str:
     e = c.get("shadow_edges")
     if not e or not e["points"]:
         return ""
-    return (f"; {e['points']} points beside a shadow's edge, whose film the shadow's move "
-            f"changes by at most {100 * e['film_error']:.2g} %")
+    return (f"; {e['points']} points beside a shadow's edge (its move there counts) by at "
+            f"most {100 * e['film_error']:.2g} %")
 
 
 def film_miss_line(c: dict) -> str:
