@@ -27,6 +27,7 @@ from .mesh import Shade, film_chunks
 from .points import SurfacePoints
 
 EDGE_BLOCK = 1_000_000  # shaded pairs × neighbours per vectorised block (~100 MB)
+EDGE_PAIRS = 30_000_000  # pairs beside an edge kept at most (8 bytes each, sorted twice)
 
 
 def neighbours(points: SurfacePoints) -> tuple[np.ndarray, np.ndarray]:
@@ -65,9 +66,10 @@ class _ShadeIndex:
         return out
 
 
-def edge_pairs(index: _ShadeIndex, points: SurfacePoints) -> np.ndarray:
+def edge_pairs(index: _ShadeIndex, points: SurfacePoints) -> np.ndarray | None:
     """The pairs beside a shadow's edge, sorted keys sample × P + point: (k, q) where q or a
-    neighbour is shaded at sample k and the other is not (module docstring)."""
+    neighbour is shaded at sample k and the other is not (module docstring); None when they
+    number more than EDGE_PAIRS (memory bounded: the caller casts every ray instead)."""
     P = len(points.points)
     indptr, nb = neighbours(points)
     count = np.diff(indptr)
@@ -82,7 +84,9 @@ def edge_pairs(index: _ShadeIndex, points: SurfacePoints) -> np.ndarray:
             first = np.repeat(indptr[q] - np.r_[0, np.cumsum(rep)[:-1]], rep)
             other = nb[first + np.arange(len(kk))]
             lit = ~index.dark(kk, other)  # a neighbour on the other side of the edge
-            marked.append(np.r_[kk[lit] * P + qq[lit], kk[lit] * P + other[lit]])
+            marked.append(_unique(np.r_[kk[lit] * P + qq[lit], kk[lit] * P + other[lit]]))
+            if sum(len(m) for m in marked) > EDGE_PAIRS:
+                return None
     return _unique(np.concatenate(marked))
 
 
@@ -101,22 +105,29 @@ def _member(x, sorted_keys) -> np.ndarray:
 
 
 def moved_shade(gun, t, p, a, spray, points: SurfacePoints, part, shade: Shade,
-                intersector=None) -> tuple[Shade, np.ndarray]:
+                intersector=None) -> tuple[Shade | None, np.ndarray]:
     """(the shade of the path through tips ``p`` (T, 3), axes ``a``, at times ``t`` with
     trigger ``spray``, the points' edge film E (P,) [m] on it) from ``shade``, the shadows of
     the same points, times and trigger on a path nearby: the pairs beside an edge
     (:func:`edge_pairs`) tested again with a ray to this path's nozzles, every other pair's
-    verdict kept; the shadow edges in time to be found again (the shade carries no cuts)."""
+    verdict kept; the shadow edges in time to be found again (the shade carries no cuts).
+    (None, E = 0) when the pairs beside an edge are more than EDGE_PAIRS."""
     t = np.asarray(t, dtype=float)
     trig = np.asarray(spray, dtype=float)
     s, n = points.points, points.normals
     P = len(s)
     index = _ShadeIndex(points, int((trig > 0).sum()), shade)
     pair = edge_pairs(index, points)
+    if pair is None:
+        return None, np.zeros(P)
     k, q = pair // P, pair % P
     now = ~visible(part, p[k], s[q], n[q], intersector)
     w = trapezoid_weights(t) * trig
-    edge = np.bincount(q, weights=w[k] * pair_rate(gun, p[k], a[k], s[q], n[q]), minlength=P)
+    edge = np.zeros(P)
+    for i in range(0, len(k), EDGE_BLOCK):  # the rate's temporaries in blocks
+        kb, qb = k[i:i + EDGE_BLOCK], q[i:i + EDGE_BLOCK]
+        edge += np.bincount(qb, weights=w[kb] * pair_rate(gun, p[kb], a[kb], s[qb], n[qb]),
+                            minlength=P)
     keys = []
     for c, idx in enumerate(index.chunks):
         mine = index.chunk_of[q] == c
@@ -127,4 +138,4 @@ def moved_shade(gun, t, p, a, spray, points: SurfacePoints, part, shade: Shade,
     return Shade(shade.points, shade.samples, tuple(keys), ()), edge
 
 
-__all__ = ["EDGE_BLOCK", "edge_pairs", "moved_shade", "neighbours"]
+__all__ = ["EDGE_BLOCK", "EDGE_PAIRS", "edge_pairs", "moved_shade", "neighbours"]

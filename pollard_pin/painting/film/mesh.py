@@ -121,8 +121,9 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     subtracted from every position for the rate's matrix products (default: the points'
     mean); ``intersector``: the ray engine (default ``part.mesh.ray``). ``shade``: the
     :class:`Shade` of a film of the same points, times and trigger (a path moved by a
-    deflection of tenths of a millimetre, docs/model.md §27.7): its shaded pairs and shadow
-    edges are taken as they are, no ray is cast. Computed in chunks of points
+    deflection of tenths of a millimetre, docs/model.md §27.7): its shaded pairs are taken as
+    they are, no pair's ray is cast, and its shadow edges in time too where it carries their
+    cuts (else they are bisected again). Computed in chunks of points
     (:func:`film_chunks`); the film keeps its :class:`Shade` when its shaded pairs number at
     most SHADE_PAIRS."""
     t = np.asarray(t, dtype=float)

@@ -68,3 +68,15 @@ def test_reused_shadows_against_every_pair_tested_again(moved):
     assert (y[edge] < 0.007).mean() > 0.9
     change = np.abs(full - film.thickness) / target
     assert entry["film_error"] == pytest.approx(change[edge & painted].max(), abs=1e-4)
+
+
+def test_too_many_pairs_beside_an_edge_cast_every_ray(moved, monkeypatch):
+    """Beyond EDGE_PAIRS pairs beside an edge (memory), the deflected film casts every ray
+    again: the full film exactly, no point said apart."""
+    import pollard_pin.painting.film.edge_points as edge_points
+
+    plan, pts, film, painted, poses = moved
+    monkeypatch.setattr(edge_points, "EDGE_PAIRS", 10)
+    got, rest, entry = shadow_edge_entry(plan, pts, film.thickness, film.shade, poses, painted)
+    assert np.array_equal(got, program_film(plan, pts, poses))
+    assert rest.all() and entry == {"points": 0}
