@@ -1,9 +1,25 @@
+#!/usr/bin/env python
 """The paint sections of scripts/benchmark.py: a panel (docs/model.md §21), parts' meshes
 (§23) and jobs on a moving line (§24), each timed as the CLI runs it, in seconds, through
-the public painting API (``pollard_pin.paint``)."""
+the public painting API (``pollard_pin.paint``).
+
+Run alone it times issue 42's cases against their targets, each ``pollard-pin paint`` in a
+subprocess of its own (wall and CPU seconds, peak memory); figures only, no asserts:
+
+    python scripts/bench_paint.py [--quick]
+
+(a) examples/cell_part.toml, the two-robot line case, planned and filmed at its own speed
+(target 30 s); (b) the same with --max-line-speed (60 s); (c) its part with --robots auto
+(90 s); (d) examples/parts/ribbed_plate.toml's film at 1 mm, 65k points, with compliance
+(30 s); memory 2 GB for any. ``--quick``: (d) alone at 5 mm (seconds; the test's run).
+"""
 from __future__ import annotations
 
+import argparse
 import math
+import os
+import subprocess
+import sys
 import tempfile
 import time
 from dataclasses import replace
@@ -107,3 +123,80 @@ def cell_section(robot) -> None:
             best = fast.report.line
             print(f"  {name:<11s} --max-line-speed {time.perf_counter() - t0:5.1f}: "
                   f"{best['speed']:.4g} m/s, {best['parts_per_hour']:.1f} parts/h")
+
+
+# issue 42's cases: (name, job, extra arguments, target [s])
+CASES = (
+    ("(a) two-robot line case at its speed", "cell_part.toml", [], 30.0),
+    ("(b) its --max-line-speed", "cell_part.toml", ["--max-line-speed"], 60.0),
+    ("(c) its part with --robots auto", "cell_part.toml", ["--robots", "auto"], 90.0),
+    ("(d) ribbed plate film at 1 mm, compliance on", "parts/ribbed_plate.toml",
+     ["--resolution", "0.001"], 30.0),
+)
+QUICK = (("(d) ribbed plate film at 5 mm, compliance on (quick)", "parts/ribbed_plate.toml",
+          ["--resolution", "0.005"], 30.0),)
+MEMORY_TARGET_GB = 2.0
+
+
+def _without_robots(job: Path, folder: Path) -> Path:
+    """A copy of the job in ``folder`` without its [[robot]] tables (what --robots auto asks
+    for), its mesh named by its absolute path."""
+    import re
+
+    text = job.read_text()
+    cut = text.find("[[robot]]")
+    text = text if cut < 0 else text[:cut]
+    text = re.sub(r'(?m)^(mesh\s*=\s*)"([^"]+)"',
+                  lambda m: f'{m.group(1)}"{(job.parent / m.group(2)).resolve()}"', text)
+    out = folder / f"auto_{job.name}"
+    out.write_text(text)
+    return out
+
+
+def run_case(name: str, job: str, extra: list, target: float) -> None:
+    """``pollard-pin paint`` on one case in a subprocess: its wall and CPU seconds, peak
+    memory and the timings paint.json gives, or why it was refused."""
+    import json
+
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        path = REPO / "examples" / job
+        if "--robots" in extra:
+            path = _without_robots(path, tmp)
+        args = [sys.executable, "-m", "pollard_pin.cli", "paint", "--job", str(path),
+                "--out", str(tmp / "out"), *extra]
+        env = {**os.environ, "PYTHONPATH": str(REPO)}
+        t0 = time.perf_counter()
+        with open(tmp / "stdout", "w") as out, open(tmp / "stderr", "w") as err:
+            proc = subprocess.Popen(args, stdout=out, stderr=err, env=env, cwd=tmp)
+            _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t0
+        cpu = usage.ru_utime + usage.ru_stime
+        peak = usage.ru_maxrss / 1024 ** 2  # kB -> GB
+        code = os.waitstatus_to_exitcode(status)
+        report = tmp / "out" / "paint.json"
+        times = ""
+        if code == 0 and report.is_file():
+            t = json.loads(report.read_text()).get("timings", {})
+            times = ", ".join(f"{k} {v:.1f}" for k, v in t.items())
+        else:
+            lines = (tmp / "stderr").read_text().strip().splitlines()
+            times = f"exit {code}: {lines[-1] if lines else ''}"
+    verdict = "within" if wall <= target else "over"
+    print(f"  {name}: wall {wall:.1f} s, CPU {cpu:.1f} s ({verdict} the target {target:g} s "
+          f"by wall), peak memory {peak:.2f} GB (target {MEMORY_TARGET_GB:g}); {times}")
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="(d) alone at 5 mm: seconds")
+    args = ap.parse_args(argv)
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"issue 42's targets on {os.cpu_count()} cores, load average {load:.1f} at the "
+          "start (wall times grow with the load; the CPU seconds less so)")
+    for case in QUICK if args.quick else CASES:
+        run_case(*case)
+
+
+if __name__ == "__main__":
+    main()

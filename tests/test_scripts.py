@@ -45,3 +45,15 @@ def test_example_script_uses_public_api(name):
         if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
                 and node.value.id == "pp":
             assert not node.attr.startswith("_"), f"{name} uses pp.{node.attr}"
+
+
+def test_bench_paint_quick_runs(tmp_path):
+    """scripts/bench_paint.py --quick (issue 42's figures; no asserts of its own): the ribbed
+    plate's film at 5 mm with compliance, in a subprocess, prints its times and memory."""
+    env = {**os.environ, "PYTHONPATH": str(SCRIPTS.parent)}
+    r = subprocess.run([sys.executable, str(SCRIPTS / "bench_paint.py"), "--quick"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr
+    line = r.stdout.splitlines()[-1]
+    assert "ribbed plate film at 5 mm" in line and "peak memory" in line, r.stdout
+    assert "film " in line and "compliance " in line, line  # paint.json's timings: it painted

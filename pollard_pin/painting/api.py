@@ -109,12 +109,13 @@ def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
         from .checks.cell_compliance import cell_compliance
 
         rep["compliance"], per = cell_compliance(robot, plan, film.points, film.thickness,
-                                                 act, film.painted)
+                                                 act, film.painted,
+                                                 getattr(film.film, "robots", ()))
         for r, c in zip(rep["robots"], per):
             r["compliance"] = c
     else:
         rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
-                                             film.painted)
+                                             film.painted, getattr(film.film, "shade", None))
     rep["timings"]["compliance"] = time.perf_counter() - t0
 
 

@@ -91,7 +91,16 @@ def compliance_line(c: dict) -> str:
             f"{c['standoff_error_m'] * 1e6:.3g} µm{who}, lateral "
             f"{c['lateral_error_m'] * 1e6:.3g} µm, "
             f"tilt {c['tilt_rad'] * 1e3:.3g} mrad; film changes by at most "
-            f"{100 * c['film_error']:.2g} % of the target")
+            f"{100 * c['film_error']:.2g} % of the target{_edges(c)}")
+
+
+def _edges(c: dict) -> str:
+    """The points beside a shadow's edge, said apart (docs/model.md §27.7)."""
+    e = c.get("shadow_edges")
+    if not e or not e["points"]:
+        return ""
+    return (f"; {e['points']} points beside a shadow's edge (its move there counts) by at "
+            f"most {100 * e['film_error']:.2g} %")
 
 
 def film_miss_line(c: dict) -> str:

@@ -35,6 +35,19 @@ def test_summary_line_names_the_worst_robot():
                     "target")
 
 
+def test_summary_line_says_the_points_beside_a_shadows_edge_apart():
+    """The points beside a shadow's edge (docs/model.md §27.7) after the rest of the film;
+    none, nothing said."""
+    entry = {"recoil_n": 0.0, "stiffness": True, "standoff_error_m": 3.18e-5,
+             "lateral_error_m": 1.55e-4, "tilt_rad": 3.12e-4, "film_error": 1.53e-3,
+             "shadow_edges": {"points": 511, "film_error": 3.99e-3}}
+    assert compliance_line(entry).endswith(
+        "film changes by at most 0.15 % of the target; 511 points beside a shadow's edge "
+        "(its move there counts) by at most 0.4 %")
+    assert compliance_line({**entry, "shadow_edges": {"points": 0}}).endswith(
+        "0.15 % of the target")
+
+
 CLEARANCE = {"min_clearance_m": 0.1456, "clearance": {"between_samples_m": 0.0044,
                                                        "required_m": 0.01}}
 

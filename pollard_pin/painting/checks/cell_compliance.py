@@ -15,6 +15,7 @@ from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
 from ..cell.frames import robot_model_in_base
 from ..film.cell import weighted_film, world_gun
+from ..film.edge_points import moved_shade
 from ..film.mesh import mesh_film
 from ..spray.deposition import gun_of
 from .compliance import (
@@ -56,12 +57,17 @@ def deflected_robot(rp, d: ProgramDeflection):
     return replace(rp, plan=replace(rp.plan, trajectory=moved))
 
 
-def robot_film(job, rp, site: FilmSite) -> np.ndarray:
+def robot_film(job, rp, site: FilmSite, shade=None) -> np.ndarray:
     """The film [m] one robot's program leaves at the site's points, as the cell's film
-    integrates it (:func:`.film.cell.cell_panel_film`, :func:`.film.cell.cell_part_film`)."""
+    integrates it (:func:`.film.cell.cell_panel_film`, :func:`.film.cell.cell_part_film`);
+    on a part, given ``shade`` (the robot's rigid film's, :class:`.film.mesh.Shade`), its
+    shadows reused but beside their edges (:func:`.film.edge_points.moved_shade`)."""
     t, p, a, spray = world_gun(rp)
     if site.part is not None:
-        return mesh_film(gun_of(job), t, p, a, site.points, site.part, spray).thickness
+        if shade is not None:
+            shade = moved_shade(gun_of(job), t, p, a, spray, site.points, site.part, shade)[0]
+        return mesh_film(gun_of(job), t, p, a, site.points, site.part, spray,
+                         shade=shade).thickness
     flat = np.asarray(site.points).reshape(-1, 3)
     return weighted_film(gun_of(job), t, p, a, spray, flat, site.frame.n,
                          site.frame.c).thickness
@@ -86,13 +92,15 @@ def _robot_entry(rp, d: ProgramDeflection, change, target: float, pts, painted) 
             "film_error": err, "film_error_at": [float(c) for c in pts[where]]}
 
 
-def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
-                    ) -> tuple[dict, list]:
+def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None,
+                    films=()) -> tuple[dict, list]:
     """(paint.json's ``compliance`` for the cell, each robot's entry for ``robots[i]``)
     (docs/model.md §26.6): the worst standoff, lateral and tilt errors over the robots
     (naming the robot), and the film change of all robots deflected together relative to
     the target over the painted points; without ``stiffness``, or with a drive turned beyond
-    the linear model's bound (docs/model.md §27.2), entries that say so."""
+    the linear model's bound (docs/model.md §27.2), entries that say so. ``films``: a part
+    cell's per-robot rigid films (:class:`.film.mesh.MeshFilm`), whose thickness and
+    shadows the deflected films reuse (default: integrated again)."""
     job = cell.job
     recoil, k, note = drive_stiffness(job, act)
     if k is None:
@@ -108,9 +116,11 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
         except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
             out = beyond_linear(entry, StiffnessError(f"robot '{rp.robot.name}': {exc}"))
             return out, [out] * len(cell.robots)
-    for rp, d in zip(cell.robots, ds):
-        mine = robot_film(job, deflected_robot(rp, d), site)
-        change = mine - robot_film(job, rp, site)
+    rigid = list(films) if len(films) == len(cell.robots) else [None] * len(cell.robots)
+    for rp, d, own in zip(cell.robots, ds, rigid):
+        shade = None if own is None else own.shade
+        mine = robot_film(job, deflected_robot(rp, d), site, shade)
+        change = mine - (robot_film(job, rp, site) if own is None else own.thickness)
         deflected += mine
         per.append({**entry, "stiffness": True,
                     **_robot_entry(rp, d, change, job.thickness, pts, painted)})

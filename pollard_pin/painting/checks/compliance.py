@@ -27,6 +27,7 @@ from ...dynamics.motors import ActuatorError, Actuators
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
 from ..errors import JobKindError, ReachError
+from ..film.edge_points import moved_shade
 from ..film.line import part_frame_positions
 from ..film.mesh import mesh_film
 from ..job import MAX_RECOIL
@@ -39,6 +40,9 @@ from ..spray.deposition import film, gun_of
 from .motion import reach
 
 CHUNK = 4096  # samples per block: the IK's and the maps' arrays stay some 50 MB
+# a point whose edge film (film.edge_points) exceeds this share of the target is reported
+# apart, beside a shadow's edge (docs/model.md §27.7)
+EDGE_FLOOR = 1e-4
 
 
 @dataclass(frozen=True)
@@ -152,20 +156,32 @@ def _moved(plan, poses):
                                                name=tr.name + ", deflected"))
 
 
-def program_film(plan, points, poses) -> np.ndarray:
-    """The film thickness [m] that ``plan``'s program leaves at ``points`` (a panel's grid
-    (nv, nu, 3), a part's :class:`.film.points.SurfacePoints`) when the gun follows ``poses``
-    (N, 6, world) at the plan's times and trigger: the integration the plan's own film uses
-    (:func:`.film.grid.plan_film`, :func:`.film.line.line_film`,
-    :func:`.film.part.surface_film`), flattened as its thickness."""
+def _part_path(plan, poses) -> tuple:
+    """(gun, t, tips, axes, spray, part) of a part's plan (still or on a line) whose gun
+    follows ``poses`` (N, 6, world), as its film sees them (a line part: from the part)."""
     moved = _moved(plan, poses)
     if isinstance(moved, LinePartPlan):
         moved = moved.in_part_frame()
     tr = moved.trajectory
+    return (gun_of(plan.job), tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0],
+            moved.spray, moved.part)
+
+
+def program_film(plan, points, poses, shade=None) -> np.ndarray:
+    """The film thickness [m] that ``plan``'s program leaves at ``points`` (a panel's grid
+    (nv, nu, 3), a part's :class:`.film.points.SurfacePoints`) when the gun follows ``poses``
+    (N, 6, world) at the plan's times and trigger: the integration the plan's own film uses
+    (:func:`.film.grid.plan_film`, :func:`.film.line.line_film`,
+    :func:`.film.part.surface_film`), flattened as its thickness. ``shade``: a part's rigid
+    film's :class:`.film.mesh.Shade`, whose shadows the deflected film takes as they are
+    (docs/model.md §27.7: a deflection of tenths of a millimetre moves a shadow's edge by no
+    more; no ray is cast)."""
+    if isinstance(plan, (SurfacePlan, LinePartPlan)):
+        gun, t, p, a, spray, part = _part_path(plan, poses)
+        return mesh_film(gun, t, p, a, points, part, spray, shade=shade).thickness
+    moved = _moved(plan, poses)
+    tr = moved.trajectory
     gun = gun_of(plan.job)
-    if isinstance(moved, SurfacePlan):
-        return mesh_film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0], points,
-                         moved.part, moved.spray).thickness
     pts = np.asarray(points).reshape(-1, 3)
     if isinstance(moved, LinePlan):
         on = moved.spray > 0
@@ -177,6 +193,26 @@ def program_film(plan, points, poses) -> np.ndarray:
                     moved.frame.n, origin=moved.frame.c).thickness
     raise JobKindError(f"no film of a deflected program for a {type(plan).__name__}: a "
                        "panel's or a part's plan, still or on a line")
+
+
+def shadow_edge_entry(plan, points, thickness, shade, poses, painted=None) -> tuple:
+    """(the film of the program moved to ``poses``, the mask of points off every shadow's
+    edge, paint.json's ``shadow_edges``) (docs/model.md §27.7): the rigid film's ``shade``
+    reused, but for the pairs beside a shadow's edge, tested again
+    (:func:`.film.edge_points.moved_shade`); the painted points whose edge film exceeds
+    EDGE_FLOOR × target said apart from the rest: their number ``points`` and largest film
+    change ``film_error`` (relative to the target) at ``film_error_at`` [m]."""
+    gun, t, p, a, spray, part = _part_path(plan, poses)
+    target = plan.job.thickness
+    moved, E = moved_shade(gun, t, p, a, spray, points, part, shade)
+    full = mesh_film(gun, t, p, a, points, part, spray, shade=moved).thickness
+    edge = E > EDGE_FLOOR * target
+    mine = edge if painted is None else edge & painted
+    if not mine.any():
+        return full, ~edge, {"points": 0}
+    err, k = film_error(thickness, full, target, mine)
+    return full, ~edge, {"points": int(mine.sum()), "film_error": err,
+                         "film_error_at": [float(c) for c in film_points(points)[k]]}
 
 
 def film_points(points) -> np.ndarray:
@@ -223,7 +259,8 @@ def beyond_linear(entry: dict, exc: StiffnessError) -> dict:
     return {**entry, "stiffness": True, "note": f"not computed: {exc}"}
 
 
-def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None) -> dict:
+def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=None,
+                     shade=None) -> dict:
     """paint.json's ``compliance`` (docs/model.md §27.7): what the drives' springs do to the
     paint under the weight and the job's recoil.
 
@@ -241,6 +278,8 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         The motor ratings; their ``stiffness`` gives the springs.
     painted : numpy.ndarray or None, optional
         The mask of points whose film counts (default all).
+    shade : pollard_pin.painting.film.mesh.Shade or None, optional
+        A part's rigid film's shadows, reused by the deflected film (default: cast again).
 
     Returns
     -------
@@ -250,7 +289,9 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         model's bound); over the sprayed samples ``standoff_error_m`` [m] (at
         ``standoff_error_at_t`` [s]), ``lateral_error_m`` [m], ``tilt_rad`` [rad]; over the
         painted points ``film_error``, the largest film change relative to the target, at
-        ``film_error_at`` [m]; ``drive_stiffness`` [N·m/rad].
+        ``film_error_at`` [m] (given ``shade``: off the shadows' edges, which
+        ``shadow_edges`` reports apart where there are any, :func:`shadow_edge_entry`);
+        ``drive_stiffness`` [N·m/rad].
     """
     recoil, k, note = drive_stiffness(plan.job, act)
     if k is None:
@@ -260,15 +301,23 @@ def compliance_entry(robot, plan, points, thickness, act: Actuators, painted=Non
         d: ProgramDeflection = program_deflection(robot, plan.trajectory, k, plan.spray, recoil)
     except StiffnessError as exc:  # beyond the linear model: flagged, the plan stands
         return beyond_linear(entry, exc)
-    T = program_film(plan, points, deflected_poses(plan.trajectory.poses, d.deflection))
+    moved = deflected_poses(plan.trajectory.poses, d.deflection)
+    edges = {}
+    if shade is not None:  # the points beside a shadow's edge apart (docs/model.md §27.7)
+        T, rest, edges = shadow_edge_entry(plan, points, thickness, shade, moved, painted)
+        painted = rest if painted is None else painted & rest
+    else:
+        T = program_film(plan, points, moved)
     err, where = film_error(thickness, T, plan.job.thickness, painted)
     return {**entry, "stiffness": True,
             **sprayed_errors(d, plan.spray, plan.trajectory.t),
             "film_error": err,
             "film_error_at": [float(c) for c in film_points(points)[where]],
+            **({"shadow_edges": edges} if edges.get("points") else {}),
             "drive_stiffness": [float(x) for x in k]}
 
 
-__all__ = ["CHUNK", "ProgramDeflection", "beyond_linear", "compliance_entry", "deflected_poses",
-           "drive_stiffness", "film_error", "film_points", "program_deflection", "program_film",
-           "recoil_wrench", "sprayed_errors"]
+__all__ = ["CHUNK", "EDGE_FLOOR", "ProgramDeflection", "beyond_linear", "compliance_entry",
+           "deflected_poses", "drive_stiffness", "film_error", "film_points",
+           "program_deflection", "program_film", "recoil_wrench", "shadow_edge_entry",
+           "sprayed_errors"]

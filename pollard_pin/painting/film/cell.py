@@ -103,7 +103,7 @@ def cell_part_film(cell, resolution: float | None = None):
     f = MeshFilm(sum(x.thickness for x in films), sum(x.error_estimate for x in films),
                  sum(x.pairs for x in films), sum(x.shaded for x in films),
                  sum(x.sprayed for x in films), sum(x.landed for x in films),
-                 films[0].whole_part, sum(x.switches for x in films))
+                 films[0].whole_part, sum(x.switches for x in films), robots=tuple(films))
     efficiency = f.landed / f.sprayed if f.sprayed > 0 else float("nan")
     return pts, f, part.painted[pts.faces], efficiency
 

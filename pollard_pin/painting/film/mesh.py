@@ -6,6 +6,7 @@ a point's shade switches integrated apart (:mod:`.spray.shadow_edges`).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,11 +14,58 @@ import numpy as np
 from ...dynamics.averages import trapezoid_weights
 from ..errors import MeshError
 from ..progress import bar
-from ..spray.deposition import BLOCK_ELEMENTS, Gun, coarse_weights, deposition_rate, near_spot
+from ..spray.deposition import (
+    Gun,
+    coarse_weights,
+    deposition_rate,
+    may_reach,
+    near_spot,
+    spot_block,
+)
 from ..spray.occlusion import in_spot, visible
 from ..spray.shadow_edges import shadow_edges
 from ..workpiece.mesh import Part
 from .points import SurfacePoints
+
+# The film is computed over chunks of points near each other (docs/model.md §23): at most
+# CHUNK_POINTS (a chunk the spot does not reach in a block of samples is skipped whole) and
+# at most CHUNK_PAIRS points × sprayed samples, so a chunk's shaded pairs (8 bytes each) and
+# its shadow edges stay within ~0.5 GB whatever the part and the program's length. Samples go
+# BLOCK_SAMPLES at a time: the spot moves ≤ σ/4 a sample, so a block's cull widens by ≤ 4σ.
+CHUNK_POINTS = 8192
+CHUNK_PAIRS = 20_000_000
+BLOCK_SAMPLES = 16
+SHADE_PAIRS = 50_000_000  # shaded pairs kept for a moved path's film (8 bytes each): 0.4 GB
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class Shade:
+    """Where the part shaded the points from the nozzle, chunk by chunk (:func:`mesh_film`'s
+    chunks of ``points`` points and ``samples`` time samples): each chunk's shaded pairs as
+    sorted keys sample × (chunk's points) + point and its shadow edges' ``cuts`` (where in
+    its step each switch lies, :func:`.spray.shadow_edges.shadow_edges`; empty: found again
+    by bisection)."""
+
+    points: int
+    samples: int
+    keys: tuple
+    cuts: tuple
+
+
+def film_chunks(points: np.ndarray, samples: int) -> list[np.ndarray]:
+    """The points' indices (P,) cut into chunks of at most CHUNK_POINTS and CHUNK_PAIRS /
+    ``samples`` points, each a cube of the part's space (so a chunk lies together)."""
+    P = len(points)
+    size = int(max(1, min(CHUNK_POINTS, CHUNK_PAIRS // max(samples, 1))))
+    if P <= size:
+        return [np.arange(P)]
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    # cubes holding ~size points if the points filled the box's largest face evenly
+    span = np.sort(hi - lo)[::-1]
+    side = max(math.sqrt(span[0] * span[1] * size / P), span[0] * size / P, 1e-12)
+    cell = np.floor((points - lo) / side).astype(np.int64)
+    order = np.lexsort((cell[:, 2], cell[:, 1], cell[:, 0]))
+    return [order[i:i + size] for i in range(0, P, size)]
 
 
 @dataclass(frozen=True, eq=False)  # arrays: compared by identity
@@ -37,6 +85,8 @@ class MeshFilm:
     landed: float
     whole_part: bool  # the points cover every face of the part
     switches: int = 0
+    shade: Shade | None = None  # where the points were shaded: reused by a moved path
+    robots: tuple = ()  # a cell's: each robot's own film, whose sum this is
 
     @property
     def transfer_efficiency(self) -> float | None:
@@ -63,13 +113,19 @@ def _spray(spray, n: int) -> np.ndarray:
 
 
 def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
-              origin=None, intersector=None) -> MeshFilm:
+              origin=None, intersector=None, shade: Shade | None = None) -> MeshFilm:
     """Film at ``points`` (their own positions and normals) after the gun passes through the
     tips ``p`` (T, 3) with axes ``a`` (T, 3) at times ``t`` (T,), spraying ``spray`` (T,) ×
     flow (the trigger, in [0, 1]; None: 1 throughout). Pairs inside the spray spot whose
     segment to the nozzle crosses the part get nothing (:mod:`.spray.occlusion`). ``origin`` (3,):
     subtracted from every position for the rate's matrix products (default: the points'
-    mean); ``intersector``: the ray engine (default ``part.mesh.ray``)."""
+    mean); ``intersector``: the ray engine (default ``part.mesh.ray``). ``shade``: the
+    :class:`Shade` of a film of the same points, times and trigger (a path moved by a
+    deflection of tenths of a millimetre, docs/model.md §27.7): its shaded pairs are taken as
+    they are, no pair's ray is cast, and its shadow edges in time too where it carries their
+    cuts (else they are bisected again). Computed in chunks of points
+    (:func:`film_chunks`); the film keeps its :class:`Shade` when its shaded pairs number at
+    most SHADE_PAIRS."""
     t = np.asarray(t, dtype=float)
     p, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a))
     if not (p.shape == a.shape == (len(t), 3)):
@@ -79,45 +135,94 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     s, n = points.points, points.normals
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)
     w, w2 = trapezoid_weights(t) * trig, coarse_weights(t) * trig
+    W = np.column_stack([w, w2])
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
-    smooth, smooth2 = np.zeros(len(s)), np.zeros(len(s))  # the rule on the unshaded rate
-    dark_t, dark_p = [], []  # the shaded pairs
-    pairs = shaded = 0
-    block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
-    for start in bar(range(0, len(t), block), "film"):
-        sl = slice(start, start + block)
-        live = np.flatnonzero(trig[sl] > 0)  # a closed trigger deposits nothing: skip it
-        if not len(live):
-            continue
-        ps, as_ = p[sl][live], a[sl][live]
-        k = near_spot(gun, ps, as_, s)  # the rest get < 3e-18 of the spot's rate (§20)
-        r = deposition_rate(gun, ps - o, as_, s[k] - o, n[k])
-        ti, ri = np.nonzero(in_spot(gun, r))
-        pi = k[ri]
-        smooth[k] += w[sl][live] @ r
-        smooth2[k] += w2[sl][live] @ r
-        if len(ti):
-            vis = visible(part, ps[ti], s[pi], n[pi], intersector)
-            r[ti[~vis], ri[~vis]] = 0.0
-            dark_t.append(start + live[ti[~vis]])
-            dark_p.append(pi[~vis])
-            pairs, shaded = pairs + len(ti), shaded + int((~vis).sum())
-        total[k] += w[sl][live] @ r
-        coarse[k] += w2[sl][live] @ r
-    err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
-    if dark_t:
-        fix, bound, switches = shadow_edges(gun, t, p, a, trig, s, n, part,
-                                            np.concatenate(dark_t), np.concatenate(dark_p),
-                                            intersector)
-        total += fix
-        edge = bound > 0
-        if len(t) > 2:
-            err = np.where(edge, np.abs(smooth - smooth2) + bound, err)
-    else:
-        switches = 0
+    err = np.full(len(s), np.nan)
+    live = np.flatnonzero(trig > 0)  # a closed trigger deposits nothing: skipped
+    blocks = [live[i:i + BLOCK_SAMPLES] for i in range(0, len(live), BLOCK_SAMPLES)]
+    summary = [spot_block(p[b], a[b]) for b in blocks]
+    chunks = film_chunks(s, len(live))
+    if shade is not None and (shade.points, shade.samples, len(shade.keys)) != (
+            len(s), len(t), len(chunks)):
+        raise MeshError(f"a shade of {shade.points} points × {shade.samples} samples "
+                        f"({len(shade.keys)} chunks) for a film of {len(s)} × {len(t)} "
+                        f"({len(chunks)} chunks)")
+    keys, cuts = [], []
+    pairs = shaded = switches = 0
+    for c, idx in enumerate(bar(chunks, "film")):
+        sc, nc = s[idx] - o, n[idx]
+        centre = 0.5 * (sc.min(axis=0) + sc.max(axis=0))
+        radius = float(np.linalg.norm(sc - centre, axis=1).max())
+        acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
+        smooth = np.zeros((len(idx), 2))  # the same on the unshaded rate
+        dark_t, dark_p = [], []
+        given = None if shade is None else shade.keys[c]
+        for b, (pm, am, dp, da) in zip(blocks, summary):
+            if not may_reach(gun, pm - o, am, dp, da, centre, radius)[0]:
+                continue
+            ps, as_ = p[b] - o, a[b]
+            k = near_spot(gun, ps, as_, sc)  # the rest get < 3e-18 of the spot's rate (§20)
+            if not len(k):
+                continue
+            r = deposition_rate(gun, ps, as_, sc[k], nc[k])  # (samples, points)
+            part_sum = W[b].T @ r  # (2, points)
+            smooth[k] += part_sum.T
+            if given is None:
+                ti, ri = np.nonzero(in_spot(gun, r))
+                if len(ti):
+                    vis = visible(part, p[b[ti]], s[idx[k[ri]]], nc[k[ri]], intersector)
+                    pairs += len(ti)
+                    ti, ri = ti[~vis], ri[~vis]
+                    dark_t.append(b[ti].astype(np.int32))
+                    dark_p.append(k[ri].astype(np.int32))
+            else:  # the shaded pairs of this block, among the points near the spot
+                lo, hi = np.searchsorted(given, [b[0] * len(idx), (b[-1] + 1) * len(idx)])
+                kb = given[lo:hi]
+                col = np.full(len(idx), -1)
+                col[k] = np.arange(len(k))
+                row = np.searchsorted(b, kb // len(idx))
+                ci = col[kb % len(idx)]
+                inside = (ci >= 0) & (row < len(b))
+                inside[inside] &= b[row[inside]] == kb[inside] // len(idx)
+                ti, ri = row[inside], ci[inside]
+            if len(ti):
+                r[ti, ri] = 0.0
+                part_sum = W[b].T @ r
+            acc[k] += part_sum.T
+        chunk_total, chunk_coarse = acc[:, 0], acc[:, 1]
+        e = np.abs(chunk_total - chunk_coarse)
+        if given is None:
+            dt_, dp_ = (np.concatenate(x) if x else np.zeros(0, np.int32)
+                        for x in (dark_t, dark_p))
+            del dark_t, dark_p
+            key = dt_.astype(np.int64) * len(idx) + dp_  # sorted: sample, then point
+            del dt_, dp_
+            fix_cuts = None
+        else:
+            key, fix_cuts = given, shade.cuts[c] if shade.cuts else None
+        if len(key):
+            fix, bound, m, cut = shadow_edges(gun, t, p, a, trig, s[idx], nc, part,
+                                              key // len(idx), key % len(idx), intersector,
+                                              fix_cuts)
+            chunk_total = chunk_total + fix
+            edge = bound > 0
+            e = np.where(edge, np.abs(smooth[:, 0] - smooth[:, 1]) + bound, e)
+            switches += m
+        else:
+            cut = np.zeros(0)
+        shaded += len(key)
+        total[idx], coarse[idx], err[idx] = chunk_total, chunk_coarse, e
+        if shade is None and len(keys) == c and shaded <= SHADE_PAIRS:
+            keys.append(key)
+            cuts.append(cut)
+    if len(t) <= 2:
+        err = np.full(len(s), np.nan)
+    kept = shade if shade is not None else (
+        Shade(len(s), len(t), tuple(keys), tuple(cuts)) if len(keys) == len(chunks) else None)
     whole = np.array_equal(np.unique(points.covered), np.arange(len(part.faces)))
     return MeshFilm(total, err, pairs, shaded, float(gun.flow * w.sum()),
-                    float(total @ points.areas), bool(whole), switches)
+                    float(total @ points.areas), bool(whole), switches, kept)
 
 
-__all__ = ["MeshFilm", "mesh_film"]
+__all__ = ["BLOCK_SAMPLES", "CHUNK_PAIRS", "CHUNK_POINTS", "MeshFilm", "SHADE_PAIRS", "Shade",
+           "film_chunks", "mesh_film"]

@@ -110,21 +110,38 @@ def near_spot(gun: Gun, p, a, s) -> np.ndarray:
     each sample's widened by the tips' spread δp and the axes' δa). All points when the
     spray is wider than CULL_WIDEST."""
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
-    tan_c = CULL_SIGMAS * gun.sigma / gun.standoff
+    pm, am, dp, da = spot_block(p, a)
+    return np.flatnonzero(may_reach(gun, pm, am, dp, da, s))
+
+
+def spot_block(p, a) -> tuple:
+    """(mean tip (3,), mean axis (3,) unnormalised, the tips' spread δp, the axes' spread δa
+    [rad] about the normalised mean) of a block of samples: :func:`may_reach`'s summary."""
     am = a.mean(axis=0)
-    if tan_c > CULL_WIDEST or np.linalg.norm(am) < 0.5:
-        return np.arange(len(s))
-    am = am / np.linalg.norm(am)
     pm = p.mean(axis=0)
     dp = float(np.sqrt(((p - pm) ** 2).sum(axis=1).max()))
-    da = float(np.arccos(np.clip(a @ am, -1.0, 1.0)).max())
+    norm = np.linalg.norm(am)
+    da = float(np.arccos(np.clip(a @ (am / norm), -1.0, 1.0)).max()) if norm > 0 else np.pi
+    return pm, am, dp, da
+
+
+def may_reach(gun: Gun, pm, am, dp: float, da: float, s, radius=0.0) -> np.ndarray:
+    """(P,) True where a block of samples summarised by :func:`spot_block` may reach a point
+    of ``s`` (P, 3), or, with ``radius`` [m], any point within that distance of it (the
+    angle to it widened by arcsin((δp + radius)/r): a chunk of points in its bounding ball)."""
+    s = np.atleast_2d(np.asarray(s, dtype=float))
+    tan_c = CULL_SIGMAS * gun.sigma / gun.standoff
+    norm = np.linalg.norm(am)
+    if tan_c > CULL_WIDEST or norm < 0.5:
+        return np.ones(len(s), dtype=bool)
+    am = am / norm
     d = s - pm
     r = np.sqrt(np.einsum("ij,ij->i", d, d))
     with np.errstate(divide="ignore", invalid="ignore"):
         angle = np.arccos(np.clip((d @ am) / r, -1.0, 1.0))
-        spread = np.arcsin(np.clip(dp / r, 0.0, 1.0))  # angle(s − p_j, s − p̄) ≤ this
-    keep = (angle - da - spread <= math.atan(tan_c)) | (r <= gun.standoff / 4 + dp)
-    return np.flatnonzero(keep | ~np.isfinite(angle))
+        spread = np.arcsin(np.clip((dp + radius) / r, 0.0, 1.0))  # angle(s − p_j, s − p̄)
+    keep = (angle - da - spread <= math.atan(tan_c)) | (r <= gun.standoff / 4 + dp + radius)
+    return keep | ~np.isfinite(angle)
 
 
 def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
@@ -233,4 +250,4 @@ def gun_of(job) -> Gun:
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "gun_of", "near_spot", "pair_rate"]
+           "gun_of", "may_reach", "near_spot", "pair_rate", "spot_block"]

@@ -63,39 +63,74 @@ def _slope(t, f, j, side):
     return best, less
 
 
+SWITCH_BLOCK = 200_000  # switches per vectorised block: ~50 MB of temporaries
+
+
+def is_dark(key, T: int, P: int, k, q) -> np.ndarray:
+    """True where the pair (sample ``k``, point ``q``) is among the sorted pair keys ``key``
+    (sample × P + point) of a film with T samples and P points (k outside [0, T): False)."""
+    k, q = np.asarray(k, dtype=np.int64), np.asarray(q, dtype=np.int64)
+    if not len(key):
+        return np.zeros(k.shape, dtype=bool)
+    want = np.clip(k, 0, T - 1) * P + q
+    i = np.minimum(np.searchsorted(key, want), len(key) - 1)
+    return (k >= 0) & (k < T) & (key[i] == want)
+
+
 def shadow_edges(gun: Gun, t, p, a, trig, s, n, part: Part, shaded_sample, shaded_point,
-                 intersector=None):
-    """(correction (P,), bound (P,), switches): what to add to the trapezoid film at points
-    ``s`` (P, 3), normals ``n``, given the pairs (``shaded_sample``, ``shaded_point``) the
-    segment test found shaded (every other pair lit; samples with trigger 0 untested), and a
-    bound on what remains of the error at the shadow edges."""
+                 intersector=None, cuts=None):
+    """(correction (P,), bound (P,), switches, cuts): what to add to the trapezoid film at
+    points ``s`` (P, 3), normals ``n``, given the pairs (``shaded_sample``, ``shaded_point``)
+    the segment test found shaded (every other pair lit; samples with trigger 0 untested), a
+    bound on what remains of the error at the shadow edges, and where in its step each
+    switch lies (a fraction). ``cuts`` from an earlier call on the same pairs (a gun path
+    moved by a deflection, docs/model.md §27.7) places the switches there without a ray; the
+    switches are taken in blocks of SWITCH_BLOCK (bounded memory)."""
     T, P = len(t), len(s)
     correction, bound = np.zeros(P), np.zeros(P)
-    ks, qs = np.asarray(shaded_sample, int), np.asarray(shaded_point, int)
-    if not len(ks):
-        return correction, bound, 0
-    key = np.unique(ks * P + qs)
+    key = np.asarray(shaded_sample, np.int64) * P + np.asarray(shaded_point, np.int64)
+    if not np.all(key[1:] > key[:-1]):  # a film's pairs come sorted, sample by sample
+        key = np.unique(key)
+    if not len(key):
+        return correction, bound, 0, np.zeros(0)
+    ks, qs = key // P, key % P
     live = trig > 0
 
     def lit(k, q):  # tested (trigger open) and not found shaded
         ok = (k >= 0) & (k < T)
-        kk = np.clip(k, 0, T - 1)
-        return ok & live[kk] & ~np.isin(kk * P + q, key)
+        return ok & live[np.clip(k, 0, T - 1)] & ~is_dark(key, T, P, k, q)
 
     up, down = lit(ks + 1, qs), lit(ks - 1, qs)
-    k = np.r_[ks[up], ks[down] - 1]  # the step k → k + 1
-    q = np.r_[qs[up], qs[down]]
-    j = np.r_[ks[up] + 1, ks[down] - 1]  # its lit end
+    k_all = np.r_[ks[up], ks[down] - 1]  # the step k → k + 1
+    q_all = np.r_[qs[up], qs[down]]
+    j_all = np.r_[ks[up] + 1, ks[down] - 1]  # its lit end
+    del ks, qs, up, down
+    if cuts is not None and len(cuts) != len(k_all):
+        raise ValueError(f"{len(cuts)} switch cuts for {len(k_all)} switches")
+    out = np.empty(len(k_all))
+    for b in range(0, len(k_all), SWITCH_BLOCK):
+        sl = slice(b, b + SWITCH_BLOCK)
+        change, residual, out[sl] = _switches(
+            gun, t, p, a, trig, s[q_all[sl]], n[q_all[sl]], part, k_all[sl], q_all[sl],
+            j_all[sl], lit, intersector, None if cuts is None else cuts[sl])
+        correction += np.bincount(q_all[sl], weights=change, minlength=P)
+        bound += np.bincount(q_all[sl], weights=residual, minlength=P)
+    return correction, bound, len(k_all), out
+
+
+def _switches(gun, t, p, a, trig, sq, nq, part, k, q, j, lit, intersector, cut):
+    """(the film change, the bound on what remains, the cut) of each switch (step k → k + 1
+    at point q, lit at sample j) of :func:`shadow_edges`."""
+    T = len(t)
     left = j == k  # lit at the step's start
-    sq, nq = s[q], n[q]
-    # the switch by bisection: [lo, hi] holds it, lo with the start's state
-    lo, hi = np.zeros(len(k)), np.ones(len(k))
-    for _ in range(DEPTH):
-        mid = 0.5 * (lo + hi)
-        pm, am, _tr = _at(p, a, trig, k, mid)
-        same = visible(part, pm, sq, nq, intersector) == left
-        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
-    cut = 0.5 * (lo + hi)
+    if cut is None:  # the switch by bisection: [lo, hi] holds it, lo with the start's state
+        lo, hi = np.zeros(len(k)), np.ones(len(k))
+        for _ in range(DEPTH):
+            mid = 0.5 * (lo + hi)
+            pm, am, _tr = _at(p, a, trig, k, mid)
+            same = visible(part, pm, sq, nq, intersector) == left
+            lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+        cut = 0.5 * (lo + hi)
     a0, a1 = np.where(left, 0.0, cut), np.where(left, cut, 1.0)
     dt = t[k + 1] - t[k]
     lit_part = np.zeros(len(k))
@@ -116,10 +151,7 @@ def shadow_edges(gun: Gun, t, p, a, trig, s, n, part: Part, shaded_sample, shade
     end = np.where(chain, side * h ** 2 / 12.0 * d3, 0.0)
     residual = (np.abs(fj) * np.abs(dt) * 2.0 ** -DEPTH
                 + np.where(chain, h ** 2 / 12.0 * np.abs(d3 - d2), 0.0))
-    change = lit_part - 0.5 * dt * fj + end
-    correction += np.bincount(q, weights=change, minlength=P)
-    bound += np.bincount(q, weights=residual, minlength=P)
-    return correction, bound, len(k)
+    return lit_part - 0.5 * dt * fj + end, residual, cut
 
 
-__all__ = ["DEPTH", "shadow_edges"]
+__all__ = ["DEPTH", "SWITCH_BLOCK", "is_dark", "shadow_edges"]

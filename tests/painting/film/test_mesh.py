@@ -272,3 +272,46 @@ def test_the_cull_changes_no_film(monkeypatch):
     assert len(kept[0]) < 0.5 * len(sp.points)  # it culls, or the test proves nothing
     assert culled.shaded == dense.shaded > 0 and culled.pairs == dense.pairs
     assert np.abs(culled.thickness - dense.thickness).max() <= 1e-14 * dense.thickness.max()
+
+
+def test_a_film_in_chunks_is_the_film_in_one(ribbed, monkeypatch):
+    """Two passes over the rib, the points cut into chunks of 97 (18 chunks, some
+    skipped in a block): the same film, shaded pairs and shadow edges as in one chunk, to
+    round-off (achieved 0 to 1e-19 m, asserted 1e-12 of the film); the shade reused by the
+    same path gives the film again without a ray."""
+    import pollard_pin.painting.film.mesh as mesh
+
+    rib, _ = ribbed
+    sp = surface_points(rib, sigma=GUN.sigma)
+    t, p, a = _passes((-0.06, 0.06), (ZC - 0.009, ZC + 0.009))
+    one = mesh_film(GUN, t, p, a, sp, rib)
+    assert len(one.shade.keys) == 1 and one.switches > 0
+    monkeypatch.setattr(mesh, "CHUNK_POINTS", 97)
+    assert len(mesh.film_chunks(sp.points, len(t))) == -(-len(sp) // 97)
+    many = mesh_film(GUN, t, p, a, sp, rib)
+    assert len(many.shade.keys) == 18
+    top = one.thickness.max()
+    assert np.abs(many.thickness - one.thickness).max() < 1e-12 * top
+    assert (many.shaded, many.switches, many.pairs) == (one.shaded, one.switches, one.pairs)
+
+    def no_ray(*args, **kwargs):
+        raise AssertionError("a ray was cast")
+
+    monkeypatch.setattr(mesh, "visible", no_ray)
+    again = mesh_film(GUN, t, p, a, sp, rib, shade=many.shade)
+    assert np.abs(again.thickness - one.thickness).max() < 1e-12 * top
+    with pytest.raises(MeshError, match="chunks"):
+        mesh_film(GUN, t, p, a, sp, rib, shade=one.shade)
+
+
+def test_chunks_bound_the_pairs(monkeypatch):
+    """A chunk holds at most CHUNK_PAIRS points × sprayed samples (its shaded pairs' memory)
+    and CHUNK_POINTS points, every point in exactly one chunk."""
+    import pollard_pin.painting.film.mesh as mesh
+
+    pts = np.random.default_rng(1).random((5000, 3))
+    for samples in (1, 100, 10_000, 10 ** 7):
+        chunks = mesh.film_chunks(pts, samples)
+        assert all(len(c) * samples <= max(mesh.CHUNK_PAIRS, samples) for c in chunks)
+        assert all(len(c) <= mesh.CHUNK_POINTS for c in chunks)
+        assert np.array_equal(np.sort(np.concatenate(chunks)), np.arange(len(pts)))

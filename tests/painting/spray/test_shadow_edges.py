@@ -51,7 +51,7 @@ def test_film_behind_a_rib_is_the_exact_integral_to_its_edge():
     w[1:] += np.diff(t) / 2
     w[:-1] += np.diff(t) / 2
     samples = w @ (r * vis)
-    fix, bound, switches = shadow_edges(GUN, t, p, a, np.ones(len(t)), s, n, part,
+    fix, bound, switches, _ = shadow_edges(GUN, t, p, a, np.ones(len(t)), s, n, part,
                                         ti[~vis.ravel()], pi[~vis.ravel()])
     assert switches == len(yp)
     # where the segment meets the near wall's top, from the point moved eps off the plate
