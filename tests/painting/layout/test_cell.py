@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from cell_split_jobs import check_zones, tall_panel
+from cell_split_jobs import check_zones, door_part, tall_panel
 from refusals import WRONG, refused
 
 from pollard_pin.errors import InputError
@@ -209,3 +209,22 @@ def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch
     assert capsys.readouterr().err == ""
     fewest_robots(robot, tall_panel(), options=PaintOptions(progress=True))
     assert "layout search" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("height, n", [(0.33, 4), (0.47, 5)])
+def test_the_proposal_covers_bevelled_edges(robot, tmp_path, height, n):
+    # the bands lag their bases over a bevelled edge, so robots centred by the reference
+    # band left the run-on past an edge unreached for any count (before: "no robot reaches
+    # z 0.320…0.375 m")
+    from pollard_pin.painting.job import load_job
+    from pollard_pin.painting.spray.occlusion import load_painted_part
+
+    job = load_job(door_part(tmp_path, height=height))
+    part = load_painted_part(job)
+    robots = propose_layout(robot, job, n, part=part)
+    strokes = job_strokes(job, part)
+    split = split_cell(robot, replace(job, robots=robots), robots, part)
+    check_zones(robot, robots, split, strokes)  # every need held, the edges' run-ons too
+    lo, hi = strokes.needed(-math.inf, math.inf)
+    first, last = (robot_band(robot, r, strokes) for r in (robots[0], robots[-1]))
+    assert first.holding(lo=lo).lo <= lo and last.holding(hi=hi).hi >= hi
