@@ -7,8 +7,7 @@ import pytest
 from cell_split_jobs import door_part, plate_part, tall_panel
 from rotations import Rx, Ry, Rz
 
-from pollard_pin.painting.cell.bands import (
-    MARGIN, STEP, Band, cell_axis, job_strokes, robot_band)
+from pollard_pin.painting.cell.bands import MARGIN, STEP, Band, cell_axis, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
