@@ -61,5 +61,40 @@ def check_zones(robot, robots, split, strokes):
     assert all(a.lo < a.hi for a in z)
     for zone in z:
         band = robot_band(robot, by[zone.robot], strokes)
-        assert band.holds(*strokes.needed(zone.lo, zone.hi)), (zone, band)
+        need = strokes.needed(zone.lo, zone.hi)
+        assert band.holding(*need).holds(*need), (zone, band)
     return [min(b.hi, strokes.extent[1]) - max(b.lo, strokes.extent[0]) for b in z]
+
+
+def door_part(folder, height: float = 0.33, chamfer: float = 0.04, angle: float = 40.0):
+    """A door 0.8 m long (along y) and ``height`` high from z = 0.015 m, its top and bottom
+    edges bevelled ``angle`` degrees away from the robots over ``chamfer`` of surface
+    (:func:`pollard_pin.painting.workpiece.shapes.chamfered_plate`), written in mm, upstream
+    on a +y line: (the job file's path)."""
+    from pollard_pin.painting.workpiece.shapes import chamfered_plate
+
+    mesh = chamfered_plate(height=height, chamfer=chamfer, angle_deg=angle,
+                           z0=height / 2 + 0.015)
+    mesh.apply_scale(1000.0)
+    mesh.export(folder / "door.stl")
+    text = f"""
+[part]
+mesh = "door.stl"
+units = "mm"
+position = [0.0, -0.75, 0.0]
+facing = [-1.0, 0.0, 0.0]
+
+[gun]
+standoff = {GUN["standoff"]}
+sigma = {GUN["sigma"]}
+flow = {GUN["flow"]}
+
+[job]
+thickness = 25e-6
+
+[line]
+speed = {LINE["speed"]}
+direction = [0.0, 1.0, 0.0]
+"""
+    (folder / "door.toml").write_text(text)
+    return folder / "door.toml"

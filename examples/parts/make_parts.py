@@ -21,7 +21,11 @@ and for a conveyor (``examples/line_part.toml``, docs/model.md §24):
   to ±8.6° from one end to the other;
 * ``tall_plate.stl`` (binary STL, **in mm**): a flat plate 0.80 m long (along y) and 0.33 m
   high, taller than one robot's band and longer than its reach, centred at z = 0.18 m: a cell
-  of two robots paints it riding the line (``examples/cell_part.toml``, docs/model.md §26).
+  of two robots paints it riding the line (``examples/cell_part.toml``, docs/model.md §26);
+* ``curved_tall.stl`` (binary STL, **in mm**): a cylinder section of radius 1.5 m (axis
+  vertical), 0.80 m of arc along y and 0.33 m high, convex towards the robots, centred at
+  z = 0.18 m: the curved part of ``examples/cell_curved.toml``, its strokes yawing by up to
+  ±15° and 53 mm deeper at its ends than at its apex.
 
 Read one with ``pollard_pin.painting.workpiece.mesh.load_part("examples/parts/curved_panel.stl")``.
 """
@@ -41,6 +45,13 @@ def tall_plate():
     return mesh
 
 
+def curved_tall():
+    """The curved part of examples/cell_curved.toml, in mm."""
+    mesh = shapes.curved_panel(radius=1.5, width=0.80, height=0.33, step=0.02, z0=0.18)
+    mesh.apply_scale(1000.0)
+    return mesh
+
+
 PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24, height=0.10),
          "bent_plate.ply": lambda: shapes.bent_plate(flat=0.12, wing=0.11, angle_deg=30.0,
                                                       fillet=0.030, height=0.10),
@@ -49,7 +60,8 @@ PARTS = {"curved_panel.stl": lambda: shapes.curved_panel(radius=0.4, width=0.24,
                                                          step=0.01),
          "long_strip.stl": lambda: shapes.curved_panel(radius=3.0, width=0.90, height=0.10,
                                                      step=0.01),
-         "tall_plate.stl": tall_plate}
+         "tall_plate.stl": tall_plate,
+         "curved_tall.stl": curved_tall}
 
 
 def main(argv=None) -> int:

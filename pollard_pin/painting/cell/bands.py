@@ -16,7 +16,7 @@ checks every sample of the world path.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -179,12 +179,15 @@ def job_strokes(job, part=None, facing=None) -> Strokes:
 class Band:
     """A robot's band: the longest stretch [lo, hi] of the axis [m] (world, the part at
     t = 0) every stroke holds in reach at one shift along the line (empty: lo > hi); the
-    ``reached`` stretch, any point of any stroke at any shift (None: none)."""
+    ``reached`` stretch, any point of any stroke at any shift (None: none); ``grid`` (w, L):
+    the grid and the number of grid points held from each (every stretch it holds, from
+    which :meth:`holding` picks; None: only [lo, hi] known)."""
 
     robot: str
     lo: float
     hi: float
     reached: tuple[float, float] | None
+    grid: tuple | None = field(default=None, repr=False, compare=False)
 
     @property
     def empty(self) -> bool:
@@ -196,6 +199,29 @@ class Band:
 
     def holds(self, a: float, b: float) -> bool:
         return not self.empty and self.lo <= a and b <= self.hi
+
+    def holding(self, lo: float | None = None, hi: float | None = None) -> Band:
+        """The held stretch reaching down to ``lo`` (starting at or below it) and reaching
+        furthest up, or reaching up to ``hi`` and starting lowest: on a part whose strokes
+        bend at an edge the longest stretch may stop short of the edge while a shorter one
+        holds it (docs/model.md §26.2). Self if it already does, or no stretch does."""
+        if self.grid is None or self.empty or ((lo is None or self.lo <= lo) and
+                                               (hi is None or self.hi >= hi)):
+            return self
+        w, n = self.grid
+        j = np.arange(len(w))
+        end = np.where(n > 0, j + n - 1, -1)
+        ok = n > 0
+        if lo is not None:
+            ok &= w <= lo + 1e-9
+        if hi is not None:
+            ok &= w[np.maximum(end, 0)] >= hi - 1e-9
+        if not ok.any():
+            return self
+        # the furthest end among those starting low enough, then the lowest start for it
+        k = int(np.flatnonzero(ok)[0]) if lo is None else \
+            int(np.flatnonzero(ok & (end == end[ok].max()))[0])
+        return replace(self, lo=float(w[k]), hi=float(w[end[k]]))
 
 
 def base_poses(cell_robot: CellRobot, tips, spray, panel: bool, facing) -> np.ndarray:
@@ -269,9 +295,10 @@ def robot_band(robot, cell_robot: CellRobot, strokes: Strokes, margin: float = M
     j = int(np.argmax(longest))
     n = int(longest[j])
     reached = (float(w[seen].min()), float(w[seen].max())) if seen.any() else None
+    held = (w, longest)
     if n == 0:
-        return Band(cell_robot.name, math.inf, -math.inf, reached)
-    return Band(cell_robot.name, float(w[j]), float(w[j + n - 1]), reached)
+        return Band(cell_robot.name, math.inf, -math.inf, reached, held)
+    return Band(cell_robot.name, float(w[j]), float(w[j + n - 1]), reached, held)
 
 
 __all__ = ["Band", "CHUNK", "MARGIN", "MAX_STROKES", "SHIFT_STEP", "STEP", "Strokes",

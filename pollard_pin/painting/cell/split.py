@@ -26,6 +26,7 @@ SAME_SIDE = math.cos(math.radians(60.0))  # two facings this close paint the sam
 MIN_ZONE = 1.0  # σ: the shortest zone worth a robot
 BISECT = 1e-5  # m: the longest zone found to this
 WIDE_STEP = 0.01  # m: the grid saying where a robot reaches when it reaches none of the part
+EDGE_TOL = 1e-9  # m: a band ending on the edge's run-on, up to rounding, holds it
 
 
 def seen_facing(cell_robot: CellRobot) -> np.ndarray:
@@ -108,7 +109,7 @@ def seams_between(bands: list[Band], strokes: Strokes, least: float) -> list[flo
     e_lo, e_hi = strokes.extent
     R = strokes.runout
     need_lo, need_hi = strokes.needed(-math.inf, math.inf)
-    if bands[0].lo > need_lo or bands[-1].hi < need_hi:
+    if bands[0].lo > need_lo + EDGE_TOL or bands[-1].hi < need_hi - EDGE_TOL:
         return None
     A = [bands[i + 1].lo + R for i in range(len(bands) - 1)]  # seam i's lowest ...
     B = [bands[i].hi - R for i in range(len(bands) - 1)]  # ... and highest
@@ -132,11 +133,11 @@ def _why_not(source: str, bands: list[Band], strokes: Strokes, least: float) -> 
     name = axis_name(strokes.axis)
     lo, hi = strokes.needed(-math.inf, math.inf)
     R = strokes.runout
-    if bands[0].lo > lo:
+    if bands[0].lo > lo + EDGE_TOL:
         return CellError(f"{source}: no robot reaches {_span(name, lo, bands[0].lo)} (the "
                          f"part's edge {_mm(strokes.extent[0])} m and its run-on; the lowest "
                          f"band starts at {_mm(bands[0].lo)} m, robot {bands[0].robot!r})")
-    if bands[-1].hi < hi:
+    if bands[-1].hi < hi - EDGE_TOL:
         return CellError(f"{source}: no robot reaches {_span(name, bands[-1].hi, hi)} (the "
                          f"part's edge {_mm(strokes.extent[1])} m and its run-on; the highest "
                          f"band ends at {_mm(bands[-1].hi)} m, robot {bands[-1].robot!r})")
@@ -145,7 +146,7 @@ def _why_not(source: str, bands: list[Band], strokes: Strokes, least: float) -> 
             return CellError(f"{source}: no robot reaches {_span(name, a.hi, b.lo)} between "
                              f"robots {a.robot!r} (up to {_mm(a.hi)} m) and {b.robot!r} "
                              f"(from {_mm(b.lo)} m)")
-        if a.hi - b.lo < 2 * R:
+        if a.hi - b.lo < 2 * R - EDGE_TOL:
             return CellError(f"{source}: robots {a.robot!r} and {b.robot!r} overlap along "
                              f"{name} by {1e3 * (a.hi - b.lo):.0f} mm ({_mm(b.lo)}…"
                              f"{_mm(a.hi)} m), less than the {2e3 * R:.0f} mm a seam's "
@@ -165,6 +166,12 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
         if b.empty or b.hi < lo or b.lo > hi:
             raise _unreached(robot, r, strokes, source)
     bands.sort(key=lambda b: (b.lo + b.hi) / 2)
+    # the end robots hold the part's edges with their run-ons if any stretch of theirs does
+    # (the longest may stop short of an edge whose strokes bend: docs/model.md §26.2)
+    if len(bands) == 1:
+        bands[0] = bands[0].holding(lo, hi)
+    else:
+        bands[0], bands[-1] = bands[0].holding(lo=lo), bands[-1].holding(hi=hi)
     least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
     seams = seams_between(bands, strokes, least)
     if seams is None:

@@ -34,6 +34,8 @@ from ..progress import bar, showing
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
 AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
+EDGE_TRIES = 10  # bands computed at most to move a robot onto its zone (or its edge)
+EDGE_RATE = 0.2  # the slowest a band is taken to move with its base (edge moves ≤ 5× the gap)
 
 
 @dataclass(frozen=True)
@@ -69,10 +71,18 @@ class LayoutOptions:
                              "or digits")
 
 
-def zone_needs(strokes: Strokes, n: int) -> list[tuple[float, float]]:
-    """The stretches of the axis n equal zones need in reach, run-outs included."""
+def zone_needs(strokes: Strokes, n: int, ends: tuple[float, float] | None = None
+               ) -> list[tuple[float, float]]:
+    """The stretches of the axis n zones need in reach, run-outs included: equal zones, or
+    the first and last ``ends`` [m] long (n ≥ 2; two zones share the part in that ratio)
+    and the others equal."""
     e0, e1 = strokes.extent
-    cut = np.linspace(e0, e1, n + 1)
+    if ends is None or n < 2:
+        cut = np.linspace(e0, e1, n + 1)
+    elif n == 2:
+        cut = np.array([e0, e0 + (e1 - e0) * ends[0] / (ends[0] + ends[1]), e1])
+    else:
+        cut = np.concatenate([[e0], np.linspace(e0 + ends[0], e1 - ends[1], n - 1), [e1]])
     return [strokes.needed(-math.inf if i == 0 else float(cut[i]),
                            math.inf if i == n - 1 else float(cut[i + 1])) for i in range(n)]
 
@@ -173,13 +183,113 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     spacing = (options.spacing if options.spacing is not None else
                reach_window(robot, strokes, band) + 2 * foot)
     middle = (band.lo + band.hi) / 2
-    robots = tuple(CellRobot(f"{options.prefix}{i + 1}", _triple(
-        ((a + b) / 2 - middle) * strokes.axis + i * spacing * strokes.direction))
-        for i, (a, b) in enumerate(needs))
+
+    def placed(needs):
+        return tuple(CellRobot(f"{options.prefix}{i + 1}", _triple(
+            ((a + b) / 2 - middle) * strokes.axis + i * spacing * strokes.direction))
+            for i, (a, b) in enumerate(needs))
+
+    robots, held = cover_edges(robot, placed(needs), strokes, needs)
+    if not held and n >= 2:  # an edge's band is shorter than the reference's: end zones
+        ends = _edge_zones(robot, robots, strokes)  # that fit it, the rest shared
+        if ends is not None:
+            needs = zone_needs(strokes, n, ends)
+            if max(b - a for a, b in needs[1:-1] or [(0.0, 0.0)]) <= band.width + 1e-9:
+                robots = cover_edges(robot, placed(needs), strokes, needs)[0]
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
     split_cell(robot, replace(job, robots=robots), robots, part)
     return robots
+
+
+def _shortfall(band: Band, need: tuple[float, float]) -> float | None:
+    """How far [m along the axis] the band falls short of ``need``: < 0 below it (move
+    down), > 0 above it (move up), 0 if one stretch holds it, None if the band is too short
+    for it (its stretches reach both ends, none both)."""
+    a, b = need
+    if band.empty:
+        return None
+    w, n = band.grid
+    starts, ends = w[n > 0], w[np.flatnonzero(n > 0) + n[n > 0] - 1]
+    if starts.min() > a + 1e-9:
+        return a - float(starts.min())
+    if ends.max() < b - 1e-9:
+        return b - float(ends.max())
+    return 0.0 if band.holding(lo=a).hi >= b - 1e-9 else None
+
+
+def cover_edge(robot, cell_robot: CellRobot, strokes: Strokes, need: tuple[float, float],
+               tries: int = EDGE_TRIES, toward: float = 0.0) -> CellRobot | None:
+    """The robot moved along the cell's axis until one stretch of its band holds ``need``
+    (its zone with its run-outs, at an edge its run-on), or None if no move does within
+    ``tries`` bands. Where the strokes bend towards an edge (a chamfer, a rounded or scanned
+    edge) the gun stands off the surface along the turned normal and tilts, so the band
+    moves slower than its base there (docs/model.md §26.5): each move is the shortfall over
+    the rate seen so far, bisected once the need is bracketed. ``toward`` (±1): once it
+    holds, keep moving that way (bisecting, to STEP) while it still holds."""
+    axis = np.asarray(strokes.axis, float)
+    at, rate, last = 0.0, 1.0, None
+    low, high = -math.inf, math.inf  # moves known to need a move up / down
+    best = None
+    for _ in range(tries):
+        gap = _shortfall(robot_band(robot, _moved(cell_robot, at, axis), strokes), need)
+        if gap is None:  # the band is too short for the need here
+            if not toward or best is None:
+                break
+            gap = -toward * STEP  # gone too far past the edge: back
+        if gap == 0.0:
+            best = at
+            if not toward:
+                break
+        if gap > 0 or (gap == 0.0 and toward > 0):
+            low = at
+        else:
+            high = at
+        if math.isfinite(low) and math.isfinite(high):
+            if high - low <= STEP:
+                break
+            nxt = (low + high) / 2  # bracketed: bisect
+        else:
+            if gap == 0.0:  # holds: try as far again the way asked
+                gap = math.copysign(max(abs(last[0]) if last else 0.0, 4 * STEP), toward)
+            elif last is not None and last[0] and last[1] != gap:
+                rate = min(1.0, max(EDGE_RATE, abs(last[1] - gap) / abs(last[0])))
+            nxt = at + math.copysign(max(abs(gap / rate), STEP), gap)
+        last = (nxt - at, gap)
+        at = nxt
+    return None if best is None else _moved(cell_robot, best, axis)
+
+
+def _moved(cell_robot: CellRobot, by: float, axis) -> CellRobot:
+    return replace(cell_robot, base=_triple(cell_robot.origin + by * axis))
+
+
+def cover_edges(robot, robots: tuple[CellRobot, ...], strokes: Strokes,
+                needs: list[tuple[float, float]]) -> tuple[tuple[CellRobot, ...], bool]:
+    """Each robot moved so that its band holds its zone's need (:func:`cover_edge`; one
+    that cannot is left where it was), and whether all do: on a flat part none moves;
+    where the strokes bend towards an edge the band lags its base over the whole smoothed
+    corner, not only at the outermost robots."""
+    moved = [cover_edge(robot, r, strokes, need) for r, need in zip(robots, needs)]
+    return (tuple(r if m is None else m for r, m in zip(robots, moved)),
+            all(m is not None for m in moved))
+
+
+def _edge_zones(robot, robots, strokes: Strokes) -> tuple[float, float] | None:
+    """The longest first and last zones [m] the end robots' bands hold past the part's
+    edges with their run-ons and a seam's run-out (one grid step spare), each robot moved
+    onto its edge; None if an edge leaves no zone."""
+    lo, hi = strokes.needed(-math.inf, math.inf)
+    out = []
+    for r, need, low in ((robots[0], (lo, lo + STEP), True),
+                         (robots[-1], (hi - STEP, hi), False)):
+        at = cover_edge(robot, r, strokes, need, toward=1.0 if low else -1.0)
+        if at is None:
+            return None
+        band = robot_band(robot, at, strokes)
+        held = band.holding(lo=lo).hi - lo if low else hi - band.holding(hi=hi).lo
+        out.append(held - strokes.run_on - strokes.runout - STEP)
+    return None if min(out) <= strokes.runout else (out[0], out[1])
 
 
 def _check_bounds(robots, spacing: float, source: str) -> None:
@@ -270,5 +380,6 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
                                for c in causes), head + f"{last} robots: {causes[-1][last]}"))
 
 
-__all__ = ["AUTO_MORE", "LayoutOptions", "REFERENCE_STROKES", "fewest_for", "fewest_robots",
-           "propose_layout", "reach_window", "reference_band", "zone_needs"]
+__all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",
+           "cover_edge", "cover_edges", "fewest_for", "fewest_robots", "propose_layout",
+           "reach_window", "reference_band", "zone_needs"]

@@ -73,14 +73,37 @@ def _offset(front, distance: float) -> np.ndarray:
 
 
 def curved_panel(radius: float = 0.4, width: float = 0.24, height: float = 0.10,
-                 step: float = 0.005) -> trimesh.Trimesh:
+                 step: float = 0.005, z0: float = CENTRE_Z) -> trimesh.Trimesh:
     """A cylinder section (axis vertical), convex towards the robot, its apex at FRONT_X:
-    ``width`` is the arc length across y."""
+    ``width`` is the arc length across y, centred at height ``z0``."""
     half = width / 2 / radius
     k = int(math.ceil(width / step)) + 1
     ang = np.linspace(-half, half, k)
     front = np.column_stack([FRONT_X + radius * (1 - np.cos(ang)), radius * np.sin(ang)])
-    return extrude(front, _offset(front, THICKNESS), height, int(math.ceil(height / step)))
+    return extrude(front, _offset(front, THICKNESS), height, int(math.ceil(height / step)),
+                   z0)
+
+
+def chamfered_plate(length: float = 0.80, height: float = 0.33, chamfer: float = 0.04,
+                    angle_deg: float = 40.0, z0: float = 0.18,
+                    step: float = 0.01) -> trimesh.Trimesh:
+    """A flat plate at x = FRONT_X, ``length`` along y and ``height`` along z (centred at
+    height ``z0``), whose top and bottom ``chamfer`` [m of surface] bend away from the robot
+    by ``angle_deg``: a door's bevelled edges across a horizontal line's travel. The profile
+    is drawn in x–y and extruded, then turned +90° about x (y → z)."""
+    a = math.radians(angle_deg)
+    flat = height - 2 * chamfer * math.cos(a)
+    k = int(math.ceil(flat / step)) + 1
+    mid = np.column_stack([np.full(k, FRONT_X), np.linspace(-flat / 2, flat / 2, k)])
+    s = np.linspace(0.0, chamfer, int(math.ceil(chamfer / step)) + 1)[1:]
+    top = np.column_stack([FRONT_X + s * math.sin(a), flat / 2 + s * math.cos(a)])
+    bottom = np.column_stack([FRONT_X + s * math.sin(a), -flat / 2 - s * math.cos(a)])[::-1]
+    front = np.vstack([bottom, mid, top])
+    mesh = extrude(front, _offset(front, THICKNESS), length, int(math.ceil(length / step)),
+                   0.0)
+    mesh.vertices = mesh.vertices @ np.array([[1.0, 0, 0], [0, 0, 1.0], [0, -1.0, 0]]) \
+        + [0.0, 0.0, z0]  # (x, y, z) → (x, −z, y): +90° about x
+    return mesh
 
 
 def bent_plate(flat: float = 0.12, wing: float = 0.11, angle_deg: float = 30.0,
@@ -119,5 +142,5 @@ def ribbed_plate(width: float = 0.24, height: float = 0.10, rib_height: float = 
     return extrude(front, _offset(front, THICKNESS), height, int(math.ceil(height / step)))
 
 
-__all__ = ["CENTRE_Z", "FRONT_X", "THICKNESS", "bent_plate", "curved_panel", "extrude",
-           "ribbed_plate"]
+__all__ = ["CENTRE_Z", "FRONT_X", "THICKNESS", "bent_plate", "chamfered_plate", "curved_panel",
+           "extrude", "ribbed_plate"]

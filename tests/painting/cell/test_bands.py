@@ -4,10 +4,10 @@ import math
 
 import numpy as np
 import pytest
-from cell_split_jobs import plate_part, tall_panel
+from cell_split_jobs import door_part, plate_part, tall_panel
 from rotations import Rx, Ry, Rz
 
-from pollard_pin.painting.cell.bands import MARGIN, STEP, cell_axis, job_strokes, robot_band
+from pollard_pin.painting.cell.bands import MARGIN, STEP, Band, cell_axis, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
@@ -79,3 +79,46 @@ def test_the_axis_runs_across_the_travel_in_the_faces_plane():
     assert abs(a @ g) < 1e-15 and abs(a[2]) < 1e-15 and a[1] > 0
     with pytest.raises(CellError, match="runs along the painted faces' facing"):
         cell_axis(f, [1.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("shift", [-0.06, 0.06])
+def test_a_band_moves_with_its_base_on_a_flat_part(robot, tmp_path, shift):
+    strokes = job_strokes(load_job(plate_part(tmp_path)))
+    at = robot_band(robot, CellRobot("a"), strokes)
+    moved = robot_band(robot, CellRobot("b", (0.0, 0.0, shift)), strokes)
+    assert at.lo - shift > strokes.grid()[0][0]  # not cut by the grid's end
+    # both ends move by the base's shift, to the grid (achieved: exactly)
+    assert moved.lo - at.lo == pytest.approx(shift, abs=STEP)
+    assert moved.hi - at.hi == pytest.approx(shift, abs=STEP)
+
+
+def test_a_bevelled_edge_holds_a_shorter_stretch_than_the_longest(robot, tmp_path):
+    strokes = job_strokes(load_job(door_part(tmp_path)))
+    _, hi = strokes.needed(-math.inf, math.inf)
+    at = robot_band(robot, CellRobot("a"), strokes)
+    low = robot_band(robot, CellRobot("b", (0.0, 0.0, -0.06)), strokes)
+    # the gun stands 0.15 m off a 40° chamfer along its normal and tilts: lowering the base
+    # 60 mm moves the band's bottom by far less (the issue's 15 mm of 60)
+    assert 0.0 < at.lo - low.lo < 0.5 * 0.06, (at, low)
+    # raised 0.27 m: the longest stretch stops 5 mm short of the top edge's run-on, a
+    # shorter one holds it
+    raised = robot_band(robot, CellRobot("c", (0.0, 0.0, 0.27)), strokes)
+    edge = raised.holding(hi=hi)
+    assert raised.hi < hi <= edge.hi and edge.width < raised.width, (raised, edge)
+
+
+def test_holding_picks_the_stretch_reaching_an_end():
+    w = 0.01 * np.arange(10)
+    # held from each grid point: [0, 3] (4 points), then [1, 8] … [8, 8]
+    n = np.array([4, 8, 7, 6, 5, 4, 3, 2, 1, 0])
+    band = Band("r", 0.01, 0.08, (0.0, 0.08), (w, n))
+    assert band.holding() is band and band.holding(lo=0.05, hi=0.07) is band
+    down = band.holding(lo=0.0)
+    assert (down.lo, down.hi) == (0.0, pytest.approx(0.03))
+    assert band.holding(hi=0.085) is band  # none reaches it: unchanged
+    assert band.holding(lo=-0.01) is band
+    both = band.holding(lo=0.0, hi=0.025)
+    assert (both.lo, both.hi) == (0.0, pytest.approx(0.03))
+    assert band.holding(lo=0.0, hi=0.05) is band  # no stretch holds both ends
+    up = band.holding(hi=0.08)  # already held by the longest
+    assert up is band

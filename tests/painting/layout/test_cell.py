@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from cell_split_jobs import check_zones, tall_panel
+from cell_split_jobs import check_zones, door_part, tall_panel
 from refusals import WRONG, refused
 
 from pollard_pin.errors import InputError
@@ -17,9 +17,11 @@ from pollard_pin.painting.errors import CellError, LineSpeedError
 from pollard_pin.painting.layout import cell as cell_layout
 from pollard_pin.painting.layout.cell import (
     LayoutOptions,
+    cover_edge,
     fewest_robots,
     propose_layout,
     reference_band,
+    zone_needs,
 )
 
 BAND = 0.34  # m: one robot's band along z at the gun plane x = 0.55 (test_bands.py)
@@ -209,3 +211,57 @@ def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch
     assert capsys.readouterr().err == ""
     fewest_robots(robot, tall_panel(), options=PaintOptions(progress=True))
     assert "layout search" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("height, n", [(0.33, 4), (0.47, 5)])
+def test_the_proposal_covers_bevelled_edges(robot, tmp_path, height, n):
+    # the bands lag their bases over a bevelled edge, so robots centred by the reference
+    # band left the run-on past an edge unreached for any count (before: "no robot reaches
+    # z 0.320…0.375 m")
+    from pollard_pin.painting.job import load_job
+    from pollard_pin.painting.spray.occlusion import load_painted_part
+
+    job = load_job(door_part(tmp_path, height=height))
+    part = load_painted_part(job)
+    robots = propose_layout(robot, job, n, part=part)
+    strokes = job_strokes(job, part)
+    split = split_cell(robot, replace(job, robots=robots), robots, part)
+    check_zones(robot, robots, split, strokes)  # every need held, the edges' run-ons too
+    lo, hi = strokes.needed(-math.inf, math.inf)
+    first, last = (robot_band(robot, r, strokes) for r in (robots[0], robots[-1]))
+    assert first.holding(lo=lo).lo <= lo and last.holding(hi=hi).hi >= hi
+
+
+def test_cover_edge_moves_a_robot_by_its_shortfall_on_a_flat_part(robot, tmp_path):
+    from cell_split_jobs import plate_part
+
+    from pollard_pin.painting.job import load_job
+
+    strokes = job_strokes(load_job(plate_part(tmp_path, z=0.10)))  # z −0.07 … 0.27 m
+    lo, _ = strokes.needed(-math.inf, math.inf)
+    need = (lo, lo + 0.2)
+    at = robot_band(robot, CellRobot("a"), strokes)
+    assert at.lo > lo + 0.03  # the origin robot misses the edge's run-on by some 5 cm
+    moved = cover_edge(robot, CellRobot("a"), strokes, need)
+    band = robot_band(robot, moved, strokes)
+    assert band.holding(*need).holds(*need)
+    # on a flat part the band moves with the base: one move of the shortfall below the
+    # lowest point the robot reaches (it holds a short stretch from there), to the grid
+    assert moved.base[2] == pytest.approx(lo - at.reached[0], abs=STEP + 1e-9)
+    assert band.reached[0] == pytest.approx(at.reached[0] + moved.base[2], abs=STEP + 1e-9)
+    assert moved.base[:2] == (0.0, 0.0)
+    assert cover_edge(robot, CellRobot("a"), strokes, (lo, lo + 0.5)) is None  # too long
+
+
+def test_zone_needs_with_end_zones(robot):
+    strokes = job_strokes(tall_panel(height=0.34, z=0.17))  # extent 0 … 0.34 m
+    e0, e1 = strokes.extent
+    R, ro = strokes.runout, strokes.run_on
+    needs = zone_needs(strokes, 4, (0.05, 0.07))
+    cuts = [e0 + 0.05, e0 + 0.05 + (e1 - e0 - 0.12) / 2, e1 - 0.07]
+    assert needs[0] == pytest.approx((e0 - ro, cuts[0] + R), abs=1e-12)
+    assert needs[1] == pytest.approx((cuts[0] - R, cuts[1] + R), abs=1e-12)
+    assert needs[3] == pytest.approx((cuts[2] - R, e1 + ro), abs=1e-12)
+    two = zone_needs(strokes, 2, (0.1, 0.3))  # shared 1 : 3
+    assert two[0][1] == pytest.approx(e0 + (e1 - e0) / 4 + R, abs=1e-12)
+    assert zone_needs(strokes, 3) == zone_needs(strokes, 3, None)

@@ -155,3 +155,22 @@ def test_the_example_parts_load_and_are_what_make_parts_writes(tmp_path):
         front = part.vertices[np.unique(part.faces[part.painted])]
         assert np.abs(front.mean(axis=0) - [0.69, 0.0, 0.16]).max() < 0.02
         assert 0.0235 < part.painted_area < 0.025
+
+
+def test_the_cells_parts_in_mm_are_what_make_parts_writes(tmp_path):
+    import runpy
+
+    runpy.run_path(str(PARTS / "make_parts.py"), run_name="make_parts")["main"](
+        ["--out-dir", str(tmp_path)])
+    for name in ("tall_plate.stl", "curved_tall.stl"):
+        assert (PARTS / name).read_bytes() == (tmp_path / name).read_bytes(), name
+    # the curved part: a cylinder of radius 1.5 m (axis vertical, 2.2 m behind the apex at
+    # x = 0.70 m), 0.80 m of arc, 0.33 m high from z = 0.015 m, written in mm
+    v = load_part(PARTS / "curved_tall.stl", units="mm").vertices
+    r = np.hypot(v[:, 0] - 2.2, v[:, 1])
+    front = r > 1.5 - 1e-4
+    assert np.abs(r[front] - 1.5).max() < 1e-6 and front.sum() == len(v) / 2
+    assert np.abs(np.arctan2(v[front, 1], 2.2 - v[front, 0])).max() == pytest.approx(
+        0.4 / 1.5, rel=1e-6)
+    assert v[:, 2].min() == pytest.approx(0.015, abs=1e-6)
+    assert v[:, 2].max() == pytest.approx(0.345, abs=1e-6)

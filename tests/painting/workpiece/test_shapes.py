@@ -54,3 +54,21 @@ def test_ribbed_plate_rib():
     assert v[:, 0].min() == pytest.approx(shapes.FRONT_X - 0.015, abs=1e-12)
     top = np.abs(v[:, 0] - (shapes.FRONT_X - 0.015)) < 1e-12
     assert np.ptp(v[top, 1]) == pytest.approx(0.006, abs=1e-12)
+
+
+def test_chamfered_plate_bends_its_edges_away():
+    m = shapes.chamfered_plate(length=0.8, height=0.33, chamfer=0.04, angle_deg=40.0, z0=0.18)
+    assert m.is_watertight and m.is_winding_consistent and m.volume > 0
+    assert m.volume == pytest.approx(m.area / 2 * shapes.THICKNESS, rel=0.03)
+    lo, hi = m.bounds
+    assert lo == pytest.approx([shapes.FRONT_X, -0.4, 0.18 - 0.165], abs=1e-12)
+    assert hi[1:] == pytest.approx([0.4, 0.18 + 0.165], abs=1e-12)
+    # the front (towards −x): the flat face and two chamfers 40° off it, tilted up and down
+    n = m.face_normals
+    front = n[:, 0] < -0.5
+    tilt = np.degrees(np.arctan2(n[front, 2], -n[front, 0]))
+    assert set(np.round(tilt, 6)) == {-40.0, 0.0, 40.0}
+    assert np.all(np.abs(n[front, 1]) < 1e-12)  # a prism along the line (y)
+    # the chamfers reach 0.04 m of surface back: x = FRONT_X + 0.04 sin 40°
+    assert hi[0] == pytest.approx(shapes.FRONT_X + 0.04 * math.sin(math.radians(40))
+                                  + shapes.THICKNESS, abs=1e-3)
