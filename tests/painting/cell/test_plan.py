@@ -135,3 +135,28 @@ def test_an_upside_down_robot_paints_from_above(robot, act):
     assert np.allclose(p.direction, [0.0, -1.0, 0.0], atol=1e-15)  # the line in its base
     th = cell_panel_film(cell)[3].thickness / cell.job.thickness
     assert np.abs(th - 1).max() <= 0.05  # seen ±0.5 %
+
+
+def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell,
+                                                               monkeypatch):
+    # a refusal names the fastest speed by a search that starts at the refused speed: the
+    # planner refuses it again from memory, the same error, and plans every other speed
+    from pollard_pin.painting.cell import plan as cell_plan
+    from pollard_pin.painting.errors import LineSpeedError
+
+    calls = []
+
+    def plan(robot_, job, act_, speed, *args, **kw):
+        calls.append(speed)
+        if speed < 0.02:
+            raise LineSpeedError(f"at line speed {speed} m/s: too slow", False, "too slow")
+        return speed
+
+    monkeypatch.setattr(cell_plan, "plan_cell", plan)
+    plan_at = cell_plan.cell_planner(robot, cell.job, act, split=cell.split)
+    with pytest.raises(LineSpeedError) as first:
+        plan_at(0.01)
+    with pytest.raises(LineSpeedError) as again:
+        plan_at(0.01)
+    assert again.value is first.value and calls == [0.01]
+    assert plan_at(0.03) == plan_at(0.03) == 0.03 and calls == [0.01, 0.03, 0.03]
