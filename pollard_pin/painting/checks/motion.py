@@ -53,6 +53,13 @@ def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None 
     limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
     fails. A path's wait (its first LEADING_RUN or more samples the same) is solved once:
     the same result, the same sample named."""
+    ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
+    return _spread(ik, m, poses)
+
+
+def _solved(robot, poses, d_poses, dd_poses, margins):
+    """(IKResult of samples m.. only, m): :func:`reach` with its wait, samples 0..m the
+    same, solved at sample m alone."""
     from ...kinematics.ik import IkOptions, inverse_kinematics
 
     n = len(poses)
@@ -69,12 +76,19 @@ def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None 
         k = 0 if exc.sample is None else int(exc.sample)
         detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
         raise ReachError(detail, k, np.asarray(poses)[k]) from None
-    if m:
-        at = np.maximum(np.arange(n) - m, 0)
-        ik = replace(ik, **{f.name: getattr(ik, f.name)[at] for f in fields(ik)
-                            if isinstance(getattr(ik, f.name), np.ndarray)})
-        ik.t = np.arange(n, dtype=float)
-        ik.poses = np.asarray(poses, dtype=float)
+    return ik, m
+
+
+def _spread(ik, m: int, poses):
+    """The IKResult of every sample from :func:`_solved`'s (the wait's row repeated)."""
+    if not m:
+        return ik
+    n = m + len(ik)
+    at = np.maximum(np.arange(n) - m, 0)
+    ik = replace(ik, **{f.name: getattr(ik, f.name)[at] for f in fields(ik)
+                        if isinstance(getattr(ik, f.name), np.ndarray)})
+    ik.t = np.arange(n, dtype=float)
+    ik.poses = np.asarray(poses, dtype=float)
     return ik
 
 
@@ -82,11 +96,13 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
            margins: Margins | None = None) -> Motion:
     """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
     accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
-    joint leaves its limits (:func:`reach`)."""
+    joint leaves its limits (:func:`reach`). A wait is solved once (:func:`reach`)."""
     from ...dynamics.inverse import inverse_dynamics
 
-    ik = reach(robot, poses, d_poses, dd_poses, margins=margins)
-    tau = inverse_dynamics(robot, ik, energies=False).tau
+    ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
+    at = np.maximum(np.arange(m + len(ik)) - m, 0)
+    tau = inverse_dynamics(robot, ik, energies=False).tau[at]
+    ik = _spread(ik, m, poses)
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
     tm = motor_torque(act, tau, v, a)  # at rest |τm| already carries the breakaway c

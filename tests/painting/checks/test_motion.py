@@ -77,7 +77,7 @@ def test_a_wait_is_solved_once_with_the_same_result(robot):
     import pollard_pin as pp
     from pollard_pin.kinematics import KinematicsError
     from pollard_pin.kinematics.ik import inverse_kinematics
-    from pollard_pin.painting.checks.motion import LEADING_RUN, reach
+    from pollard_pin.painting.checks.motion import LEADING_RUN, motion, reach
     from pollard_pin.painting.errors import ReachError
 
     tr = pp.thesis_trajectory(samples=101)
@@ -92,6 +92,15 @@ def test_a_wait_is_solved_once_with_the_same_result(robot):
     for f in fields(ref):
         a, b = getattr(ref, f.name), getattr(got, f.name)
         assert (a is None and b is None) or np.array_equal(a, b), f.name
+    # and motion's dynamics, the wait's solved once too, equal every sample's
+    from pollard_pin.dynamics.inverse import inverse_dynamics
+    from pollard_pin.dynamics.motors import load_actuators
+
+    act = load_actuators()
+    tau = inverse_dynamics(robot, ref, energies=False).tau
+    mo = motion(robot, act, P, D, A)
+    assert np.array_equal(mo.tau, tau) and np.array_equal(mo.ik.q, ref.q)
+    assert mo.torque_ratio.max() > 0.01
 
     def named(P):  # the sample the brute force names
         try:
