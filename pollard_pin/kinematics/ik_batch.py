@@ -48,7 +48,23 @@ class Layout:
     tree: TreeArrays | None = None  # the same, as arrays for the compiled kernels
 
 
+_LAYOUTS: dict = {}  # id(robot) → (robot, its Layout): the last few robots', kept alive
+_LAYOUTS_KEPT = 8
+
+
 def layout(robot: Robot) -> Layout:
+    """The robot's :class:`Layout`, made once per robot (a plan asks ~1000 times; 1 ms each)."""
+    hit = _LAYOUTS.get(id(robot))
+    if hit is not None and hit[0] is robot:
+        return hit[1]
+    if len(_LAYOUTS) >= _LAYOUTS_KEPT:
+        _LAYOUTS.pop(next(iter(_LAYOUTS)))
+    lay = _layout(robot)
+    _LAYOUTS[id(robot)] = (robot, lay)
+    return lay
+
+
+def _layout(robot: Robot) -> Layout:
     model = robot.model
 
     def point(frame_name):
