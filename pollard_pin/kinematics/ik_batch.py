@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analytic import closed_form
-from ..analytic.taskspace import rotation, twist, twist_dot
+from ..analytic.taskspace import MAX_ABS_TASK, rotation, twist, twist_dot
 from ..model.build import TIP_FRAME, Robot
 from ..timing import Stopwatch
 from . import kernels
@@ -263,10 +263,16 @@ def reachable_sequences(robot: Robot, poses, margins: Margins | None = None) -> 
     residual, the margins and floors, finite results, the joint limits), the closed form's
     angles unwrapped within each sequence as alone; a sequence also fails where an
     assembly-branch sign takes both signs along it (a flip, :func:`.singularity.check_margins`).
+    A non-finite or absurd pose raises the
+    :class:`~pollard_pin.kinematics.KinematicsInputError` its sequence would
+    (the first such sequence's).
     """
     margins = as_margins(margins)
     poses = np.asarray(poses, dtype=float)
     S, N = poses.shape[:2]
+    bad = ~(np.abs(poses) <= MAX_ABS_TASK).all(axis=(1, 2))
+    if bad.any():  # the first such sequence's own input error, as alone
+        task_inputs(poses[int(np.argmax(bad))], None, None, None)
     # a screen: a few samples of each sequence through the closed form first (any failing
     # sample fails its sequence), the rest only for the sequences that pass it
     ok = np.ones(S, dtype=bool)

@@ -136,3 +136,12 @@ def test_reachable_sequences_judge_each_sequence_as_alone(robot):
     assert sum(ref) * len(base) > 4096
     assert np.array_equal(reachable_sequences(robot, seqs), ref)
     assert np.array_equal(reachable_sequences(robot, seqs[::-1]), ref[::-1])
+    # a non-finite pose: the input error of its sequence alone
+    from pollard_pin.kinematics import KinematicsInputError
+
+    seqs[5:, 7, 2] = np.nan
+    with pytest.raises(KinematicsInputError) as alone:
+        inverse_kinematics(robot, seqs[5])
+    with pytest.raises(KinematicsInputError) as stacked:
+        reachable_sequences(robot, seqs)
+    assert str(stacked.value) == str(alone.value) and stacked.value.sample == 7
