@@ -8,6 +8,7 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
+from ...analytic.taskspace import MAX_ABS_TASK
 from ...dynamics.motors import Actuators, motor_speed, motor_torque
 from ...kinematics.errors import KinematicsError
 from ...kinematics.limits import check_joint_limits
@@ -41,6 +42,8 @@ def _leading_run(*arrays) -> int:
         if a is None:
             continue
         a = np.asarray(a)
+        if not (np.abs(a[0]) <= MAX_ABS_TASK).all():
+            return 0  # an input error names its first sample: the IK sees them all
         same = (a == a[0]).all(axis=1)
         k = len(a) - 1 if same.all() else int(np.argmin(same)) - 1
         m = k if m is None else min(m, k)
