@@ -280,39 +280,43 @@ def reachable_sequences(robot: Robot, poses, margins: Margins | None = None) -> 
         ok = _closed_form_passes(robot, poses[:, np.linspace(0, N - 1, SCREEN).astype(int)],
                                  margins)[0].all(axis=1)
     good = np.flatnonzero(ok)
-    if not len(good):
-        return ok
-    passes, q18 = _closed_form_passes(robot, poses[good], margins)
-    ok[good] = passes.all(axis=1)
-    q18 = q18[ok[good]]
-    good = np.flatnonzero(ok)
-    if not len(good):
-        return ok
+    group = max(1, BATCH_CHUNK // N)  # sequences per batch: memory bounded by BATCH_CHUNK
+    for g in range(0, len(good), group):
+        seqs = good[g:g + group]
+        passes, q18 = _closed_form_passes(robot, poses[seqs], margins)
+        alive = passes.all(axis=1)
+        ok[seqs] = alive
+        if alive.any():
+            ok[seqs[alive]] = _solved_pass(robot, poses[seqs[alive]], q18[alive], margins)
+    return ok
+
+
+def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
+    """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
+    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
+    S, N = poses.shape[:2]
     q0 = np.concatenate([closed_form.make_continuous(q[:, :12]) for q in q18])
-    sub = poses[good].reshape(-1, 6)
-    zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), len(good))
-    tol, chunk = IK_TOL, BATCH_CHUNK
-    fine = []
-    for a in range(0, len(sub), chunk):
-        sl = slice(a, min(a + chunk, len(sub)))
-        r = _batch_block(robot, q0[sl], (sub[sl], zero[sl], zero[sl], t[sl]), tol, a,
+    sub = poses.reshape(-1, 6)
+    zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
+    fine, q = [], []
+    for a in range(0, len(sub), BATCH_CHUNK):
+        sl = slice(a, min(a + BATCH_CHUNK, len(sub)))
+        r = _batch_block(robot, q0[sl], (sub[sl], zero[sl], zero[sl], t[sl]), IK_TOL, a,
                          Stopwatch(None), strict=False)
         sph = [np.abs(np.sin(r.spherical[:, 3 * i - 2])) for i in (1, 2)]
         viol = margins.violations(wrist=r.wrist_margin, parallel=r.sigma_parallel,
                                   serial=r.sigma_serial, parallel_max=r.sigma_parallel_max,
                                   serial_max=r.sigma_serial_max, spherical=sph)
-        f = np.maximum(r.closure_residual, r.tool_error) <= tol
+        f = np.maximum(r.closure_residual, r.tool_error) <= IK_TOL
         f &= ~np.logical_or.reduce(list(viol.values()))
         for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
             f &= np.isfinite(arr).all(axis=1)
         f &= ~limit_violations(robot.params, r.q, robot.joint_names)[0].any(axis=1)
-        fine.append((f, r.q))
-    f = np.concatenate([x[0] for x in fine]).reshape(len(good), N)
-    signs = BranchQuantities(robot).signs(np.concatenate([x[1] for x in fine]))
-    signs = signs.reshape(len(good), N, -1)
+        fine.append(f)
+        q.append(r.q)
+    signs = BranchQuantities(robot).signs(np.concatenate(q)).reshape(S, N, -1)
     flip = ((signs > 0).any(axis=1) & (signs < 0).any(axis=1)).any(axis=1)
-    ok[good] = f.all(axis=1) & ~flip
-    return ok
+    return np.concatenate(fine).reshape(S, N).all(axis=1) & ~flip
 
 
 def _closed_form_passes(robot: Robot, poses, margins: Margins):

@@ -105,7 +105,7 @@ def test_stacked_energies_equal_pinocchios(robot):
 def test_reachable_sequences_judge_each_sequence_as_alone(robot):
     # 240 copies of the thesis path moved and turned at random, half of them far: each is
     # judged by inverse_kinematics + check_joint_limits alone (the brute force), and stacked
-    # (the survivors of the screen span more than one block of BATCH_CHUNK samples).
+    # (the survivors of the screen fill more than one batch of BATCH_CHUNK samples).
     from collections import Counter
 
     from pollard_pin.kinematics import KinematicsError
@@ -131,7 +131,7 @@ def test_reachable_sequences_judge_each_sequence_as_alone(robot):
         except KinematicsError as exc:
             ref.append(False)
             why[type(exc).__name__] += 1
-    # every kind of failure is among them, and enough pass to fill more than one block
+    # every kind of failure is among them, and enough pass to fill more than one batch
     assert set(why) == {"UnreachablePoseError", "SingularityError", "JointLimitError"}
     assert sum(ref) * len(base) > 4096
     assert np.array_equal(reachable_sequences(robot, seqs), ref)
