@@ -184,17 +184,19 @@ def cell_planner(robot, job, act: Actuators, part: Part | None = None,
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
-    failed = {}  # speed → its LineSpeedError: a refusal's search starts at the refused speed
+    # speed → its LineSpeedError's (message, too_fast, why, hint): a refusal's search starts
+    # at the refused speed (the words only: an error keeps its plan's frames alive)
+    failed = {}
 
     def plan_at(speed=None):
         key = job.line.speed if speed is None else float(speed)
         if key in failed:
-            raise failed[key]
+            raise LineSpeedError(*failed[key])
         try:
             return plan_cell(robot, job, act, speed, part, split, clearance=False,
                              policy=policy)
         except LineSpeedError as exc:
-            failed[key] = exc
+            failed[key] = (str(exc), exc.too_fast, exc.why, exc.hint)
             raise
 
     return plan_at

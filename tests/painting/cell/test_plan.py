@@ -158,5 +158,6 @@ def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell
         plan_at(0.01)
     with pytest.raises(LineSpeedError) as again:
         plan_at(0.01)
-    assert again.value is first.value and calls == [0.01]
+    assert calls == [0.01] and str(again.value) == str(first.value)
+    assert (again.value.too_fast, again.value.why, again.value.hint) == (False, "too slow", None)
     assert plan_at(0.03) == plan_at(0.03) == 0.03 and calls == [0.01, 0.03, 0.03]
