@@ -272,6 +272,55 @@ def workspace_section(robot, repeats: int) -> None:
               f"{1e6 * min(times) / n:8.2f}")
 
 
+def planner_section(robot, repeats: int) -> None:
+    """The line planner's inner stages (docs/model.md §24), best of ``repeats`` [ms]: the scan
+    of 400 shifts of a 200-pose pass along the line, stacked (line/shifts.py, one batch) and
+    shift by shift (reach() per shift, as first written); motion() of one 48-sample
+    turnaround (the turnaround and return searches call it ~30 times per plan); reach() of a
+    4000-sample path that first waits 3000 samples (the fine check's), and of the same
+    samples with no wait."""
+    from pollard_pin.dynamics.motors import load_actuators
+    from pollard_pin.painting.checks.motion import motion, reach
+    from pollard_pin.painting.errors import ReachError
+    from pollard_pin.painting.line.shifts import fits
+
+    act = load_actuators(REPO / "examples" / "actuators.toml")
+    e = np.array([0.0, 1.0, 0.0])
+    u = np.linspace(0.0, 1.0, 200)[:, None]
+    poses = np.hstack([0.5 + 0.0 * u, -0.9 + 0.4 * u, 0.1 - 0.1 * u, 0.2 * u, 0.0 * u,
+                       0.0 * u])
+    xs = np.arange(400) * 0.005
+
+    def one_by_one():
+        for x in xs:
+            p = poses.copy()
+            p[:, :3] += x * e
+            try:
+                reach(robot, p)
+            except ReachError:
+                pass
+
+    tr = pp.thesis_trajectory(samples=4000)
+    turn = (tr.poses[:48], tr.d_poses[:48], tr.dd_poses[:48])
+    wait = [np.concatenate([np.repeat(a[:1] * (k == 0), 3000, axis=0), a[:1000]])
+            for k, a in enumerate((tr.poses, tr.d_poses, tr.dd_poses))]
+    cases = {"reach scan, 400 shifts × 200 poses, stacked": lambda: fits(robot, poses, e, xs),
+             "reach scan, the same shift by shift": one_by_one,
+             "motion of a 48-sample turnaround": lambda: motion(robot, act, *turn),
+             "reach of 4000 samples, 3000 of them a wait": lambda: reach(robot, *wait),
+             "reach of 4000 samples, no wait": lambda: reach(robot, tr.poses, tr.d_poses,
+                                                             tr.dd_poses)}
+    print(f"\nline planner stages, best of {repeats} [ms]")
+    for label, fn in cases.items():
+        fn()  # warm-up
+        times = []
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t0)
+        print(f"  {label:<50s} {1e3 * min(times):9.1f}")
+
+
 def stiffness_section(robot, sizes, repeats: int) -> None:
     """The whole ``stiffness`` run (docs/model.md §27) in process, streamed to a CSV: the IK
     windows, the stiffness of each sample and the writing, one thread (target ≤ 20 µs per
@@ -490,6 +539,7 @@ def main(argv=None) -> int:
         parts_section(robot)
         line_section(robot)
         cell_section(robot)
+        planner_section(robot, 3)
     if not args.no_workspace:
         workspace_section(robot, args.repeats)
     if not args.no_stiffness:

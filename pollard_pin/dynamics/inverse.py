@@ -115,6 +115,9 @@ def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
 
 
 RNEA_THREADS = 2  # OpenMP threads of Pinocchio's batched RNEA
+# Fewer samples run on one thread: starting a thread team costs more than it saves there
+# (each sample's torques are the same on any thread).
+RNEA_TEAM_SAMPLES = 4096
 
 
 def batched_rnea(model, Q: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarray:
@@ -123,7 +126,7 @@ def batched_rnea(model, Q: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarr
     n = len(Q)
     tau = np.empty((model.nv, n), order="F")
     if n:
-        threads = rnea_threads()
+        threads = rnea_threads() if n >= RNEA_TEAM_SAMPLES else 1
         pool = pin.ModelPool(model, threads)
         pin.rneaInParallel(threads, pool, np.asfortranarray(Q.T), np.asfortranarray(V.T),
                            np.asfortranarray(A.T), tau)

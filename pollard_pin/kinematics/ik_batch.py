@@ -6,12 +6,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..analytic.taskspace import rotation, twist, twist_dot
+from ..analytic import closed_form
+from ..analytic.taskspace import MAX_ABS_TASK, rotation, twist, twist_dot
 from ..model.build import TIP_FRAME, Robot
 from ..timing import Stopwatch
 from . import kernels
 from .errors import UnreachablePoseError
 from .ik_common import (
+    BATCH_CHUNK,
+    IK_TOL,
     IkOptions,
     IKResult,
     KinematicFrames,
@@ -21,7 +24,9 @@ from .ik_common import (
     zyz,
     zyz_rates,
 )
-from .singularity import check_margins, conditioning, inverse_stack
+from .limits import limit_violations
+from .margins import Margins, as_margins
+from .singularity import BranchQuantities, check_margins, conditioning, inverse_stack
 from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
 
 
@@ -43,7 +48,23 @@ class Layout:
     tree: TreeArrays | None = None  # the same, as arrays for the compiled kernels
 
 
+_LAYOUTS: dict = {}  # id(robot) → (robot, its Layout): the last few robots', kept alive
+_LAYOUTS_KEPT = 8
+
+
 def layout(robot: Robot) -> Layout:
+    """The robot's :class:`Layout`, made once per robot (a plan asks ~1000 times; 1 ms each)."""
+    hit = _LAYOUTS.get(id(robot))
+    if hit is not None and hit[0] is robot:
+        return hit[1]
+    if len(_LAYOUTS) >= _LAYOUTS_KEPT:
+        _LAYOUTS.pop(next(iter(_LAYOUTS)))
+    lay = _layout(robot)
+    _LAYOUTS[id(robot)] = (robot, lay)
+    return lay
+
+
+def _layout(robot: Robot) -> Layout:
     model = robot.model
 
     def point(frame_name):
@@ -118,6 +139,7 @@ def point_drifts(lay: Layout, R, o, v, pos):
 
 
 POLISH_TOL = 1e-14  # m / rad: closed-form residual above which the Newton step is applied
+SCREEN = 8  # samples per sequence screened by the closed form before the rest (reach)
 
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
@@ -166,9 +188,10 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     return result
 
 
-def _batch_block(robot: Robot, q0, task, tol, start, clock) -> IKResult:
+def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True) -> IKResult:
     """One block of samples from its closed-form angles ``q0``; ``task``: its (poses,
-    d_poses, dd_poses, t), the first being sample ``start``."""
+    d_poses, dd_poses, t), the first being sample ``start``; not ``strict``: a residual above
+    ``tol`` is left in the result's residuals instead of raised."""
     poses, d_poses, dd_poses, t = task
     n = len(poses)
     model = robot.model
@@ -211,7 +234,7 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock) -> IKResult:
     if singular.any():
         v[singular] = a[singular] = np.nan
     err = np.abs(_residuals(R, pos, lay, P_des, R_des))
-    if not err.max() <= tol:
+    if strict and not err.max() <= tol:
         k = int(np.argmax(err.max(axis=1)))
         raise UnreachablePoseError(
             f"one Newton step from the closed form left a residual of {err[k].max():.3g} "
@@ -229,6 +252,83 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock) -> IKResult:
                       constraint_jacobian=K[:, :6])
     clock.lap("analysis")
     return result
+
+
+def reachable_sequences(robot: Robot, poses, margins: Margins | None = None) -> np.ndarray:
+    """Whether each of S sequences of N static tool poses, ``poses`` (S, N, 6), is in reach:
+    (S,) booleans, each what :func:`inverse_kinematics_batch` with ``margins`` (default
+    :class:`Margins`'s) followed by :func:`.limits.check_joint_limits` would say of that
+    sequence alone (no error raised: reach), with the sequences stacked into one batch. The
+    per-sample rules run on every sample (the closed form, the wrist margin, the Newton
+    residual, the margins and floors, finite results, the joint limits), the closed form's
+    angles unwrapped within each sequence as alone; a sequence also fails where an
+    assembly-branch sign takes both signs along it (a flip, :func:`.singularity.check_margins`).
+    A non-finite or absurd pose raises the
+    :class:`~pollard_pin.kinematics.KinematicsInputError` its sequence would
+    (the first such sequence's).
+    """
+    margins = as_margins(margins)
+    poses = np.asarray(poses, dtype=float)
+    S, N = poses.shape[:2]
+    bad = ~(np.abs(poses) <= MAX_ABS_TASK).all(axis=(1, 2))
+    if bad.any():  # the first such sequence's own input error, as alone
+        task_inputs(poses[int(np.argmax(bad))], None, None, None)
+    # a screen: a few samples of each sequence through the closed form first (any failing
+    # sample fails its sequence), the rest only for the sequences that pass it
+    ok = np.ones(S, dtype=bool)
+    if N > 2 * SCREEN:
+        ok = _closed_form_passes(robot, poses[:, np.linspace(0, N - 1, SCREEN).astype(int)],
+                                 margins)[0].all(axis=1)
+    good = np.flatnonzero(ok)
+    group = max(1, BATCH_CHUNK // N)  # sequences per batch: memory bounded by BATCH_CHUNK
+    for g in range(0, len(good), group):
+        seqs = good[g:g + group]
+        passes, q18 = _closed_form_passes(robot, poses[seqs], margins)
+        alive = passes.all(axis=1)
+        ok[seqs] = alive
+        if alive.any():
+            ok[seqs[alive]] = _solved_pass(robot, poses[seqs[alive]], q18[alive], margins)
+    return ok
+
+
+def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
+    """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
+    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
+    S, N = poses.shape[:2]
+    q0 = np.concatenate([closed_form.make_continuous(q[:, :12]) for q in q18])
+    sub = poses.reshape(-1, 6)
+    zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
+    fine, q = [], []
+    for a in range(0, len(sub), BATCH_CHUNK):
+        sl = slice(a, min(a + BATCH_CHUNK, len(sub)))
+        r = _batch_block(robot, q0[sl], (sub[sl], zero[sl], zero[sl], t[sl]), IK_TOL, a,
+                         Stopwatch(None), strict=False)
+        sph = [np.abs(np.sin(r.spherical[:, 3 * i - 2])) for i in (1, 2)]
+        viol = margins.violations(wrist=r.wrist_margin, parallel=r.sigma_parallel,
+                                  serial=r.sigma_serial, parallel_max=r.sigma_parallel_max,
+                                  serial_max=r.sigma_serial_max, spherical=sph)
+        f = np.maximum(r.closure_residual, r.tool_error) <= IK_TOL
+        f &= ~np.logical_or.reduce(list(viol.values()))
+        for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
+            f &= np.isfinite(arr).all(axis=1)
+        f &= ~limit_violations(robot.params, r.q, robot.joint_names)[0].any(axis=1)
+        fine.append(f)
+        q.append(r.q)
+    signs = BranchQuantities(robot).signs(np.concatenate(q)).reshape(S, N, -1)
+    flip = ((signs > 0).any(axis=1) & (signs < 0).any(axis=1)).any(axis=1)
+    return np.concatenate(fine).reshape(S, N).all(axis=1) & ~flip
+
+
+def _closed_form_passes(robot: Robot, poses, margins: Margins):
+    """Per sample of ``poses`` (S, N, 6): the closed form solves it and its wrist keeps the
+    margin (:func:`.ik_common.closed_form_angles`' rules), (S, N) booleans, and the closed
+    form's angles (S, N, 18)."""
+    S, N = poses.shape[:2]
+    q18, failed = closed_form.position_ik_masked(robot.params, poses.reshape(S * N, 6))
+    bad = np.logical_or.reduce(list(failed.values()))
+    bad |= margins.violations(wrist=np.abs(np.sin(q18[:, closed_form.JOINTS.index(
+        "theta1716")])))["wrist"]
+    return ~bad.reshape(S, N), q18.reshape(S, N, -1)
 
 
 def _spherical_batch(lay: Layout, R, omega):

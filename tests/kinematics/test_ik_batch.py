@@ -100,3 +100,48 @@ def test_stacked_energies_equal_pinocchios(robot):
         assert K[k] == pytest.approx(pin.computeKineticEnergy(m, robot.data), rel=1e-13)
         assert U[k] == pytest.approx(pin.computePotentialEnergy(m, robot.data, Q[k]),
                                      rel=1e-13, abs=1e-15)
+
+
+def test_reachable_sequences_judge_each_sequence_as_alone(robot):
+    # 240 copies of the thesis path moved and turned at random, half of them far: each is
+    # judged by inverse_kinematics + check_joint_limits alone (the brute force), and stacked
+    # (the survivors of the screen fill more than one batch of BATCH_CHUNK samples).
+    from collections import Counter
+
+    from pollard_pin.kinematics import KinematicsError
+    from pollard_pin.kinematics.ik import inverse_kinematics
+    from pollard_pin.kinematics.ik_batch import reachable_sequences
+    from pollard_pin.kinematics.limits import check_joint_limits
+
+    base = pp.thesis_trajectory(samples=61).poses
+    rng = np.random.default_rng(3)
+    seqs = []
+    for k in range(240):
+        s = 0.25 if k % 2 else 1.0
+        p = base.copy()
+        p[:, :3] += rng.normal(0.0, 0.12 * s, 3)
+        p[:, 3:] += rng.normal(0.0, 0.5 * s, 3)
+        seqs.append(p)
+    seqs = np.array(seqs)
+    ref, why = [], Counter()
+    for p in seqs:
+        try:
+            check_joint_limits(robot, inverse_kinematics(robot, p).q)
+            ref.append(True)
+        except KinematicsError as exc:
+            ref.append(False)
+            why[type(exc).__name__] += 1
+    # every kind of failure is among them, and enough pass to fill more than one batch
+    assert set(why) == {"UnreachablePoseError", "SingularityError", "JointLimitError"}
+    assert sum(ref) * len(base) > 4096
+    assert np.array_equal(reachable_sequences(robot, seqs), ref)
+    assert np.array_equal(reachable_sequences(robot, seqs[::-1]), ref[::-1])
+    # a non-finite pose: the input error of its sequence alone
+    from pollard_pin.kinematics import KinematicsInputError
+
+    seqs[5:, 7, 2] = np.nan
+    with pytest.raises(KinematicsInputError) as alone:
+        inverse_kinematics(robot, seqs[5])
+    with pytest.raises(KinematicsInputError) as stacked:
+        reachable_sequences(robot, seqs)
+    assert str(stacked.value) == str(alone.value) and stacked.value.sample == 7

@@ -101,6 +101,19 @@ def test_batched_rnea_equals_pinocchio(robot):
     assert batched_rnea(model, Q[:0], V[:0], A[:0]).shape == (0, model.nv)
 
 
+def test_batched_rnea_on_one_thread_or_a_team_alike(robot):
+    # fewer than RNEA_TEAM_SAMPLES samples run on one thread, more on the OpenMP team: each
+    # sample's torques are the same bits either way
+    from pollard_pin.dynamics.inverse import RNEA_TEAM_SAMPLES
+
+    n = RNEA_TEAM_SAMPLES + 5
+    Q, V, A = (RNG.uniform(-2, 2, (n, robot.model.nv)) for _ in range(3))
+    team = batched_rnea(robot.model, Q, V, A)
+    alone = np.concatenate([batched_rnea(robot.model, Q[k:k + 1000], V[k:k + 1000],
+                                         A[k:k + 1000]) for k in range(0, n, 1000)])
+    assert np.array_equal(team, alone)
+
+
 @pytest.fixture(scope="module")
 def ik_traj(robot):
     traj = pp.thesis_trajectory(samples=401)

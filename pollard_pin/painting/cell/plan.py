@@ -189,12 +189,27 @@ def cell_planner(robot, job, act: Actuators, part: Part | None = None,
                  split: Split | None = None, policy: PlannerPolicy = DEFAULT_POLICY):
     """speed ↦ the cell's plan at that speed (clearance left to the plan returned), the
     split made once, the bases first checked to stand apart (two base footprints);
-    ``policy`` the planner's knobs."""
+    ``policy`` the planner's knobs. A speed refused once is refused again without planning
+    (the plan is the same every time)."""
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
-    return lambda speed=None: plan_cell(robot, job, act, speed, part, split, clearance=False,
-                                        policy=policy)
+    # speed → its LineSpeedError's (message, too_fast, why, hint): a refusal's search starts
+    # at the refused speed (the words only: an error keeps its plan's frames alive)
+    failed = {}
+
+    def plan_at(speed=None):
+        key = job.line.speed if speed is None else float(speed)
+        if key in failed:
+            raise LineSpeedError(*failed[key])
+        try:
+            return plan_cell(robot, job, act, speed, part, split, clearance=False,
+                             policy=policy)
+        except LineSpeedError as exc:
+            failed[key] = (str(exc), exc.too_fast, exc.why, exc.hint)
+            raise
+
+    return plan_at
 
 
 def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,

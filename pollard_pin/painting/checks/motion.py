@@ -4,10 +4,11 @@ file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
+from ...analytic.taskspace import MAX_ABS_TASK
 from ...dynamics.motors import Actuators, motor_speed, motor_torque
 from ...kinematics.errors import KinematicsError
 from ...kinematics.limits import check_joint_limits
@@ -31,25 +32,66 @@ class Motion:
         return np.maximum(self.torque_ratio, self.speed_ratio)
 
 
+LEADING_RUN = 16  # identical first samples (a wait) at least this many are solved once
+
+
+def _leading_run(*arrays) -> int:
+    """m: samples 0..m of every array given (rows) are identical (0: none to spare)."""
+    m = None
+    for a in arrays:
+        if a is None:
+            continue
+        a = np.asarray(a)
+        if not (np.abs(a[0]) <= MAX_ABS_TASK).all():
+            return 0  # an input error names its first sample: the IK sees them all
+        same = (a == a[0]).all(axis=1)
+        k = len(a) - 1 if same.all() else int(np.argmin(same)) - 1
+        m = k if m is None else min(m, k)
+    return m or 0
+
+
 def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None = None):
     """The reach check alone (no dynamics, where the motors are not the question): IK of the
     tool poses (N, 6) under ``run``'s rules and ``margins`` (default ``run``'s), and the joint
     limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
-    fails."""
+    fails. A path's wait (its first LEADING_RUN or more samples the same) is solved once:
+    the same result, the same sample named."""
+    ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
+    return _spread(ik, m, poses)
+
+
+def _solved(robot, poses, d_poses, dd_poses, margins):
+    """(IKResult of samples m.. only, m): :func:`reach` with its wait, samples 0..m the
+    same, solved at sample m alone."""
     from ...kinematics.ik import IkOptions, inverse_kinematics
 
     n = len(poses)
+    m = _leading_run(poses, d_poses, dd_poses)
+    m = m if m >= LEADING_RUN else 0
+    tail = [None if a is None else np.asarray(a)[m:] for a in (poses, d_poses, dd_poses)]
     try:
-        ik = inverse_kinematics(robot, poses, d_poses, dd_poses, np.arange(n, dtype=float),
+        ik = inverse_kinematics(robot, *tail, np.arange(m, n, dtype=float),
                                 options=IkOptions(margins=margins))
+        check_joint_limits(robot, ik.q)
     except KinematicsError as exc:
+        if exc.sample is not None and exc.sample > 0:
+            exc = exc.shifted(m)  # its samples (a flip names two) on the whole path's count
         k = 0 if exc.sample is None else int(exc.sample)
         detail = re.sub(r"; \d+ samples fail in all", "", exc.detail)  # samples of a batch
         raise ReachError(detail, k, np.asarray(poses)[k]) from None
-    try:
-        check_joint_limits(robot, ik.q)
-    except KinematicsError as exc:
-        raise ReachError(exc.detail, exc.sample, np.asarray(poses)[exc.sample]) from None
+    return ik, m
+
+
+def _spread(ik, m: int, poses):
+    """The IKResult of every sample from :func:`_solved`'s (the wait's row repeated)."""
+    if not m:
+        return ik
+    n = m + len(ik)
+    at = np.maximum(np.arange(n) - m, 0)
+    ik = replace(ik, **{f.name: getattr(ik, f.name)[at] for f in fields(ik)
+                        if isinstance(getattr(ik, f.name), np.ndarray)})
+    ik.t = np.arange(n, dtype=float)
+    ik.poses = np.asarray(poses, dtype=float)
     return ik
 
 
@@ -57,11 +99,13 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
            margins: Margins | None = None) -> Motion:
     """IK, inverse dynamics and motor load of the tool poses (N, 6) with their rates and
     accelerations. Raises :class:`ReachError` (its ``sample``) where ``run`` would fail or a
-    joint leaves its limits (:func:`reach`)."""
+    joint leaves its limits (:func:`reach`). A wait is solved once (:func:`reach`)."""
     from ...dynamics.inverse import inverse_dynamics
 
-    ik = reach(robot, poses, d_poses, dd_poses, margins=margins)
-    tau = inverse_dynamics(robot, ik, energies=False).tau
+    ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
+    at = np.maximum(np.arange(m + len(ik)) - m, 0)
+    tau = inverse_dynamics(robot, ik, energies=False).tau[at]
+    ik = _spread(ik, m, poses)
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
     tm = motor_torque(act, tau, v, a)  # at rest |τm| already carries the breakaway c

@@ -7,22 +7,20 @@ import math
 
 import numpy as np
 
-from ..checks.motion import reach
-from ..errors import ReachError
+from ...kinematics.ik_batch import reachable_sequences
 
 SHIFT_RANGE = 2.0  # m: the line may carry the part this far before the program starts
 SHIFT_STEP = 0.005  # m: the scan of shifts along the line
 SHIFT_BISECT = 10  # bisection steps refining each end of the feasible shifts
 
 
-def _fits(robot, poses, e, x) -> bool:
-    p = np.array(poses)
-    p[:, :3] += x * e
-    try:
-        reach(robot, p)
-    except ReachError:
-        return False
-    return True
+def fits(robot, poses, e, xs) -> np.ndarray:
+    """Whether the poses shifted by x·e are in reach (:func:`.checks.motion.reach`), for every
+    x of ``xs``: (X,) booleans, the shifts stacked into one batch
+    (:func:`~pollard_pin.kinematics.ik_batch.reachable_sequences`), each judged as alone."""
+    p = np.repeat(np.asarray(poses, dtype=float)[None], len(xs), axis=0)
+    p[..., :3] += np.asarray(xs, dtype=float)[:, None, None] * np.asarray(e, dtype=float)
+    return reachable_sequences(robot, p)
 
 
 def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
@@ -36,7 +34,7 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
     xs = np.arange(first, last + 1) * SHIFT_STEP - anchor
     if not len(xs):
         return None
-    ok = np.array([_fits(robot, poses, e, x) for x in xs])
+    ok = fits(robot, poses, e, xs)
     if not ok.any():
         return None
     # the longest run of True
@@ -45,15 +43,15 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
     k = int(np.argmax(stops - starts))
     a, b = int(starts[k]), int(stops[k]) - 1
 
-    def refine(good, bad):
-        if bad < lo - 1e-15 or bad > lo + span + 1e-15:
-            return good
-        for _ in range(SHIFT_BISECT):
-            mid = 0.5 * (good + bad)
-            good, bad = (mid, bad) if _fits(robot, poses, e, mid) else (good, mid)
-        return good
-
-    return refine(xs[a], xs[a] - SHIFT_STEP), refine(xs[b], xs[b] + SHIFT_STEP)
+    # each end bisected between its last good and first bad shift, both ends in one batch
+    ends = [[xs[a], xs[a] - SHIFT_STEP], [xs[b], xs[b] + SHIFT_STEP]]
+    live = [lo - 1e-15 <= bad <= lo + span + 1e-15 for _, bad in ends]
+    for _ in range(SHIFT_BISECT if any(live) else 0):
+        mids = [0.5 * (good + bad) for good, bad in ends]
+        ok = fits(robot, poses, e, mids)
+        ends = [([m, bad] if fine else [good, m]) if on else [good, bad]
+                for (good, bad), m, fine, on in zip(ends, mids, ok, live)]
+    return ends[0][0], ends[1][0]
 
 
 def shift_window(lo: float, anchor: float) -> tuple[float, float]:
@@ -67,4 +65,4 @@ def shift_window(lo: float, anchor: float) -> tuple[float, float]:
     return start, start + SHIFT_RANGE
 
 
-__all__ = ["SHIFT_BISECT", "SHIFT_RANGE", "SHIFT_STEP", "feasible_shifts", "shift_window"]
+__all__ = ["SHIFT_BISECT", "SHIFT_RANGE", "SHIFT_STEP", "feasible_shifts", "fits", "shift_window"]

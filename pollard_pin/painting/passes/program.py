@@ -54,7 +54,15 @@ class PassPiece:
         return self.spline(s), self.d1(s) * rate, self.d2(s) * self.v ** 2
 
     def state(self, end: bool):
-        return tuple(x[0] for x in self.evaluate(np.array([self.duration if end else 0.0])))
+        """(pose, rate, acceleration) at the pass's start or ``end``: evaluated once (a
+        turnaround search builds the program ~30 times from the same passes)."""
+        states = self.__dict__.setdefault("_states", {})
+        if end not in states:
+            x = tuple(a[0] for a in self.evaluate(np.array([self.duration if end else 0.0])))
+            for a in x:
+                a.flags.writeable = False  # shared by every build
+            states[end] = x
+        return states[end]
 
 
 class Quintic:

@@ -158,3 +158,29 @@ def test_strokes_along_are_refused_for_a_cell(robot, act):
     with pytest.raises(PlanError, match=r"^strokes along the travel \(forced\): not planned "
                        "for a cell"):
         plan_cell(robot, cell_job(panel_cell()), act, policy=PlannerPolicy(strokes="along"))
+
+
+def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell,
+                                                               monkeypatch):
+    # a refusal names the fastest speed by a search that starts at the refused speed: the
+    # planner refuses it again from memory, the same error, and plans every other speed
+    from pollard_pin.painting.cell import plan as cell_plan
+    from pollard_pin.painting.errors import LineSpeedError
+
+    calls = []
+
+    def plan(robot_, job, act_, speed, *args, **kw):
+        calls.append(speed)
+        if speed < 0.02:
+            raise LineSpeedError(f"at line speed {speed} m/s: too slow", False, "too slow")
+        return speed
+
+    monkeypatch.setattr(cell_plan, "plan_cell", plan)
+    plan_at = cell_plan.cell_planner(robot, cell.job, act, split=cell.split)
+    with pytest.raises(LineSpeedError) as first:
+        plan_at(0.01)
+    with pytest.raises(LineSpeedError) as again:
+        plan_at(0.01)
+    assert calls == [0.01] and str(again.value) == str(first.value)
+    assert (again.value.too_fast, again.value.why, again.value.hint) == (False, "too slow", None)
+    assert plan_at(0.03) == plan_at(0.03) == 0.03 and calls == [0.01, 0.03, 0.03]

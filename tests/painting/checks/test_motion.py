@@ -67,3 +67,50 @@ def test_reach_names_the_first_joint_beyond_its_limits(robot, plan, act, monkeyp
     with pytest.raises(ReachError, match=rf"joint {robot.joint_names[j]} at .* by 0\.573°") as e:
         reach(robot, tr.poses[pick], tr.d_poses[pick], tr.dd_poses[pick])
     assert e.value.sample == 3
+
+
+def test_a_wait_is_solved_once_with_the_same_result(robot):
+    # a path that waits 40 samples at its first pose: reach solves the wait once, and its
+    # IKResult, or the sample a failure names, equal the IK of every sample (brute force)
+    from dataclasses import fields
+
+    import pollard_pin as pp
+    from pollard_pin.kinematics import KinematicsError
+    from pollard_pin.kinematics.ik import inverse_kinematics
+    from pollard_pin.painting.checks.motion import LEADING_RUN, motion, reach
+    from pollard_pin.painting.errors import ReachError
+
+    tr = pp.thesis_trajectory(samples=101)
+    wait = 40
+    assert wait >= LEADING_RUN
+    P = np.concatenate([np.repeat(tr.poses[:1], wait, axis=0), tr.poses])
+    D = np.concatenate([np.zeros((wait, 6)), tr.d_poses])
+    A = np.concatenate([np.zeros((wait, 6)), tr.dd_poses])
+    D[wait], A[wait] = 0.0, 0.0  # the path starts at rest
+    ref = inverse_kinematics(robot, P, D, A, np.arange(len(P), dtype=float))
+    got = reach(robot, P, D, A)
+    for f in fields(ref):
+        a, b = getattr(ref, f.name), getattr(got, f.name)
+        assert (a is None and b is None) or np.array_equal(a, b), f.name
+    # and motion's dynamics, the wait's solved once too, equal every sample's
+    from pollard_pin.dynamics.inverse import inverse_dynamics
+    from pollard_pin.dynamics.motors import load_actuators
+
+    act = load_actuators()
+    tau = inverse_dynamics(robot, ref, energies=False).tau
+    mo = motion(robot, act, P, D, A)
+    assert np.array_equal(mo.tau, tau) and np.array_equal(mo.ik.q, ref.q)
+    assert mo.torque_ratio.max() > 0.01
+
+    def named(P):  # the sample the brute force names
+        try:
+            inverse_kinematics(robot, P, D, A, np.arange(len(P), dtype=float))
+        except KinematicsError as exc:
+            return exc.sample
+
+    for bad in ([0, wait], [wait + 30], [wait + 60, wait + 70]):  # the wait, later ones
+        Q = P.copy()
+        Q[bad[0]:bad[-1] + 1, 0] += 1.0  # out of reach
+        with pytest.raises(ReachError) as e:
+            reach(robot, Q, D, A)
+        assert e.value.sample == named(Q) == bad[0]

@@ -18,3 +18,47 @@ def test_the_shift_search_follows_a_robot_far_down_the_line(robot):
     start, stop = shift_window(lo, -3.2)
     a, b = feasible_shifts(robot, poses, e, start, stop - start, anchor=-3.2)
     assert start < a <= 3.2 <= b < stop
+
+
+def test_the_stacked_scan_equals_the_scan_shift_by_shift(robot):
+    # a tilted pass of 40 poses, scanned along the line: the stacked judgement of every
+    # shift and the bisected ends equal those of reach() called shift by shift (the brute
+    # force, as the scan was first written)
+    import math
+
+    from pollard_pin.painting.checks.motion import reach
+    from pollard_pin.painting.errors import ReachError
+    from pollard_pin.painting.line.shifts import SHIFT_BISECT, SHIFT_STEP, fits
+
+    def alone(poses, e, x):
+        p = np.array(poses)
+        p[:, :3] += x * e
+        try:
+            reach(robot, p)
+        except ReachError:
+            return False
+        return True
+
+    e = np.array([0.0, 1.0, 0.0])
+    u = np.linspace(0.0, 1.0, 40)[:, None]
+    poses = np.hstack([0.5 + 0.0 * u, -0.9 + 0.4 * u, 0.1 - 0.1 * u, 0.2 * u,
+                       np.zeros_like(u), np.zeros_like(u)])
+    lo, span = 0.01, SHIFT_RANGE
+    xs = np.arange(math.ceil(lo / SHIFT_STEP - 1e-9),
+                   math.floor((lo + span) / SHIFT_STEP + 1e-9) + 1) * SHIFT_STEP
+    ok = np.array([alone(poses, e, x) for x in xs])
+    assert 10 < ok.sum() < len(xs) - 10  # in and out of reach along the scan
+    assert np.array_equal(fits(robot, poses, e, xs), ok)
+    edges = np.diff(np.concatenate([[0], ok.astype(int), [0]]))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    k = int(np.argmax(stops - starts))
+
+    def refine(good, bad):
+        for _ in range(SHIFT_BISECT):
+            mid = 0.5 * (good + bad)
+            good, bad = (mid, bad) if alone(poses, e, mid) else (good, mid)
+        return good
+
+    a, b = xs[starts[k]], xs[stops[k] - 1]
+    assert feasible_shifts(robot, poses, e, lo, span) == (refine(a, a - SHIFT_STEP),
+                                                         refine(b, b + SHIFT_STEP))

@@ -44,3 +44,26 @@ def test_gun_frame_of_a_vertical_axis_refers_to_world_x():
     assert np.abs(np.linalg.det(R) - 1.0).max() < 1e-12  # achieved 0
     with pytest.raises(PlanError, match="runs along the gun frame's reference axis"):
         gun_frame(np.array([[1.0, 0.0, 0.0]]), (1.0, 0.0, 0.0))
+
+
+def test_a_pass_end_state_is_evaluated_once_and_kept():
+    # the turnaround search builds the program many times: a pass's end states are those
+    # its spline gives there (evaluated afresh), kept read-only, the same arrays every build
+    from pollard_pin.painting.passes.program import PassPiece, build_program
+
+    s = np.linspace(0.0, 0.3, 12)
+    poses = np.column_stack([0.5 + 0.01 * np.sin(s), s, 0.1 * s ** 2, 0.2 * s, 0.0 * s,
+                             0.1 + 0.0 * s])
+    a, b = PassPiece(s, poses, 0.2, True, 0), PassPiece(s, poses[::-1], 0.2, False, 1)
+    for p in (a, b):
+        for end in (False, True):
+            fresh = p.evaluate(np.array([p.duration if end else 0.0]))
+            got = p.state(end)
+            assert all(np.array_equal(x[0], y) for x, y in zip(fresh, got))
+            assert p.state(end) is got and not got[0].flags.writeable
+    one, two = build_program([a, b], [0.5, 0.7, 0.5]), build_program([a, b], [0.4, 0.9, 0.6])
+    t = np.linspace(0.0, one.total, 50)
+    again = build_program([PassPiece(s, poses, 0.2, True, 0),
+                           PassPiece(s, poses[::-1], 0.2, False, 1)], [0.5, 0.7, 0.5])
+    assert all(np.array_equal(x, y) for x, y in zip(one.evaluate(t), again.evaluate(t)))
+    assert two.total != one.total
