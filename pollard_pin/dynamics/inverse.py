@@ -115,15 +115,20 @@ def stacked_energies(model, Q: np.ndarray, V: np.ndarray):
 
 
 RNEA_THREADS = 2  # OpenMP threads of Pinocchio's batched RNEA
+# Fewer samples run on one thread: a team's start and barrier cost more than the RNEA of a
+# short stack (≈ 5 µs a sample), and far more on a busy machine (a stream's 2-sample windows
+# took 20–30 ms each on two threads, 0.01 ms on one). The torques are the same bits either way.
+PARALLEL_SAMPLES = 10_000
 
 
 def batched_rnea(model, Q: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarray:
     """Open-tree RNEA torques (N, nv) of every sample: Pinocchio's ``rneaInParallel`` over a
-    model pool, one call for the whole stack (no Python loop over samples)."""
+    model pool, one call for the whole stack (no Python loop over samples); on
+    :data:`RNEA_THREADS` threads from :data:`PARALLEL_SAMPLES` samples, else on one."""
     n = len(Q)
     tau = np.empty((model.nv, n), order="F")
     if n:
-        threads = rnea_threads()
+        threads = rnea_threads() if n >= PARALLEL_SAMPLES else 1
         pool = pin.ModelPool(model, threads)
         pin.rneaInParallel(threads, pool, np.asfortranarray(Q.T), np.asfortranarray(V.T),
                            np.asfortranarray(A.T), tau)

@@ -197,10 +197,10 @@ def test_batched_rnea_in_a_child_forked_after_the_parent_ran_it(robot):
     the OpenMP team."""
     import time
 
-    from pollard_pin.dynamics.inverse import batched_rnea
+    from pollard_pin.dynamics.inverse import PARALLEL_SAMPLES, batched_rnea
 
     rng = np.random.default_rng(7)
-    Q, V, A = (rng.normal(size=(40, robot.model.nv)) for _ in range(3))
+    Q, V, A = (rng.normal(size=(PARALLEL_SAMPLES, robot.model.nv)) for _ in range(3))
     ref = batched_rnea(robot.model, Q, V, A)  # the parent starts its OpenMP team
     pid = os.fork()
     if pid == 0:  # child: exit status 0 only when the torques are identical

@@ -92,13 +92,18 @@ def test_block_inverse_random_and_singular():
 
 
 def test_batched_rnea_equals_pinocchio(robot):
+    """On one thread (a short stack) and on RNEA_THREADS (PARALLEL_SAMPLES or more): the same
+    torques, bit for bit."""
+    from pollard_pin.dynamics.inverse import PARALLEL_SAMPLES
+
     model, data = robot.model, robot.data
     n = 37
-    Q, V, A = (RNG.uniform(-2, 2, (n, model.nv)) for _ in range(3))
-    tau = batched_rnea(model, Q, V, A)
+    Q, V, A = (RNG.uniform(-2, 2, (PARALLEL_SAMPLES, model.nv)) for _ in range(3))
+    tau = batched_rnea(model, Q[:n], V[:n], A[:n])
     ref = np.array([pin.rnea(model, data, Q[k], V[k], A[k]) for k in range(n)])
     assert np.abs(tau - ref).max() <= 1e-12 * np.abs(ref).max()
     assert batched_rnea(model, Q[:0], V[:0], A[:0]).shape == (0, model.nv)
+    np.testing.assert_array_equal(batched_rnea(model, Q, V, A)[:n], tau)
 
 
 @pytest.fixture(scope="module")
