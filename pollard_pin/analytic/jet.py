@@ -213,16 +213,31 @@ def clip_unit(a):
     return Jet._make(np.clip(a.v, -1.0, 1.0), a.d, a.dd)
 
 
+def _stack(arrays, axis, shape=None):
+    """np.stack of float arrays broadcast to ``shape`` (default: their common shape), each
+    copied into its slot of one new array (np.broadcast_arrays and np.stack's own checks cost
+    more than the copy for the closed form's small stacks; the same values either way)."""
+    first = arrays[0].shape
+    if all(a.shape == first for a in arrays) and shape in (None, first):
+        return np.stack(arrays, axis)
+    sh = np.broadcast_shapes(*[a.shape for a in arrays]) if shape is None else shape
+    ax = axis % (len(sh) + 1)
+    out = np.empty(sh[:ax] + (len(arrays),) + sh[ax:])
+    slots = np.moveaxis(out, ax, 0)
+    for k, a in enumerate(arrays):
+        slots[k] = a
+    return out
+
+
 def stack(items, axis=-1):
     """np.stack with broadcasting; items may mix jets, arrays and scalars."""
     if not any(isinstance(i, Jet) for i in items):
-        return np.stack(np.broadcast_arrays(*[np.asarray(i, dtype=float) for i in items]), axis)
+        return _stack([np.asarray(i, dtype=float) for i in items], axis)
     jets = [i if isinstance(i, Jet) else Jet(i) for i in items]
     sv = np.broadcast_shapes(*[j.v.shape for j in jets])
 
     def part(arrays):
-        sh = np.broadcast_shapes(sv, *[a.shape for a in arrays])
-        return np.stack([np.broadcast_to(_pad(a, len(sh)), sh) for a in arrays], axis)
+        return _stack(arrays, axis, np.broadcast_shapes(sv, *[a.shape for a in arrays]))
 
     dd = None
     if not any(isinstance(i, Jet) and i.dd is None for i in items):
