@@ -213,16 +213,31 @@ def clip_unit(a):
     return Jet._make(np.clip(a.v, -1.0, 1.0), a.d, a.dd)
 
 
+def _stack(arrays, axis, shape=None):
+    """np.stack of float arrays broadcast to ``shape`` (default: their common shape), each
+    copied into its slot of one new array (np.broadcast_arrays and np.stack's own checks cost
+    more than the copy for the closed form's small stacks; the same values either way)."""
+    first = arrays[0].shape
+    if all(a.shape == first for a in arrays) and shape in (None, first):
+        return np.stack(arrays, axis)
+    sh = np.broadcast_shapes(*[a.shape for a in arrays]) if shape is None else shape
+    ax = axis % (len(sh) + 1)
+    out = np.empty(sh[:ax] + (len(arrays),) + sh[ax:])
+    lead = (slice(None),) * ax
+    for k, a in enumerate(arrays):
+        out[lead + (k,)] = a
+    return out
+
+
 def stack(items, axis=-1):
     """np.stack with broadcasting; items may mix jets, arrays and scalars."""
     if not any(isinstance(i, Jet) for i in items):
-        return np.stack(np.broadcast_arrays(*[np.asarray(i, dtype=float) for i in items]), axis)
+        return _stack([np.asarray(i, dtype=float) for i in items], axis)
     jets = [i if isinstance(i, Jet) else Jet(i) for i in items]
     sv = np.broadcast_shapes(*[j.v.shape for j in jets])
 
     def part(arrays):
-        sh = np.broadcast_shapes(sv, *[a.shape for a in arrays])
-        return np.stack([np.broadcast_to(_pad(a, len(sh)), sh) for a in arrays], axis)
+        return _stack(arrays, axis, np.broadcast_shapes(sv, *[a.shape for a in arrays]))
 
     dd = None
     if not any(isinstance(i, Jet) and i.dd is None for i in items):
@@ -260,6 +275,12 @@ def dot(a, b):
 
 def _rot(a, i, j):
     c, s = cos(a), sin(a)
+    if not isinstance(c, Jet):  # plain angles: fill the matrix (the values stack() gives)
+        c, s = np.asarray(c, dtype=float), np.asarray(s, dtype=float)
+        out = np.zeros(np.broadcast_shapes(c.shape, s.shape) + (3, 3))
+        out[..., 3 - i - j, 3 - i - j] = 1.0
+        out[..., i, i], out[..., i, j], out[..., j, i], out[..., j, j] = c, -s, s, c
+        return out
     z, o = 0.0, 1.0
     rows = [[o, z, z], [z, o, z], [z, z, o]]
     rows[i][i], rows[i][j], rows[j][i], rows[j][j] = c, -s, s, c
@@ -278,7 +299,7 @@ def rot(R, axis: int, a):
     c, s = c[..., None], s[..., None]
     cols = [R[..., :, k] for k in range(3)]
     cols[i], cols[j] = cols[i] * c + cols[j] * s, cols[j] * c - cols[i] * s
-    return stack(cols, -1)
+    return _mix(cols, -1)
 
 
 def rot_left(axis: int, a, R):
@@ -288,7 +309,15 @@ def rot_left(axis: int, a, R):
     c, s = c[..., None], s[..., None]
     rows = [R[..., k, :] for k in range(3)]
     rows[i], rows[j] = rows[i] * c - rows[j] * s, rows[i] * s + rows[j] * c
-    return stack(rows, -2)
+    return _mix(rows, -2)
+
+
+def _mix(parts, axis):
+    """stack(parts, axis) of a rotation's three rows or columns; plain arrays go straight to
+    :func:`_stack` (no jet to look for)."""
+    if any(isinstance(p, Jet) for p in parts):
+        return stack(parts, axis)
+    return _stack(parts, axis)
 
 
 def Rx(a):

@@ -14,7 +14,7 @@ URDF_PATH = ROOT / "models" / "pollard.urdf"
 SRDF_PATH = ROOT / "models" / "pollard.srdf"
 
 
-def test_cli_urdf_writes_the_same_text(tmp_path):
+def test_cli_urdf_writes_the_same_text(tmp_path, monkeypatch, capsys):
     exe = Path(sys.executable).with_name("pollard-pin")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "pollard_pin.cli"]
     out = subprocess.run(cmd + ["urdf", "--out", "tmp/x.urdf"], cwd=tmp_path,
@@ -24,11 +24,11 @@ def test_cli_urdf_writes_the_same_text(tmp_path):
     assert (tmp_path / "tmp/x.srdf").read_text() == SRDF_PATH.read_text()
     bad = tmp_path / "bad.toml"
     bad.write_text("[chain0\n")
-    out = subprocess.run(cmd + ["urdf", "--params", str(bad), "--out", "y.urdf"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=60)
-    assert out.returncode == 2
-    assert out.stderr.startswith("pollard-pin urdf: error: parameter file") and \
-        "is not valid TOML" in out.stderr, out.stderr
+    monkeypatch.chdir(tmp_path)  # the refusal in this process: the one run above is the end-to-end
+    code, _, err = run_cli(["urdf", "--params", bad, "--out", "y.urdf"], capsys)
+    assert code == 2
+    assert err.startswith("pollard-pin urdf: error: parameter file") and \
+        "is not valid TOML" in err, err
     assert not (tmp_path / "y.urdf").exists()
 
 

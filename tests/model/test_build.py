@@ -704,8 +704,13 @@ def _fresh_venv(wheel, venv):
     return venv
 
 
-def test_load_works_from_the_installed_wheel_in_a_fresh_venv(wheel, tmp_path):
-    _check_installed(_fresh_venv(wheel, tmp_path / "venv"), tmp_path)
+@pytest.fixture(scope="module")
+def fresh(wheel, tmp_path_factory):
+    """One fresh venv with the wheel (:func:`_fresh_venv`) for this module's tests: "venv"
+    its folder, "used" whether a command has run from it writably (a first-run test that
+    comes later builds its own)."""
+    return {"venv": _fresh_venv(wheel, tmp_path_factory.mktemp("fresh") / "venv"),
+            "used": False}
 
 
 def _read_only_namespace():
@@ -724,13 +729,15 @@ def _read_only_namespace():
     return None
 
 
-def test_first_run_of_a_read_only_install_with_a_read_only_home(wheel, tmp_path):
+def test_first_run_of_a_read_only_install_with_a_read_only_home(wheel, fresh, tmp_path):
     """A root install run by a user: the package and HOME read-only, never run before. It must
-    neither crash (numba's `cannot cache function … no locator available` did) nor compile."""
+    neither crash (numba's `cannot cache function … no locator available` did) nor compile.
+    Read-only, this run leaves the module's venv as it found it."""
     prefix = _read_only_namespace()
     if prefix is None:
         pytest.skip("no private mount namespace here (unshare -m) to make directories read-only")
-    venv, home, work = _fresh_venv(wheel, tmp_path / "venv"), tmp_path / "home", tmp_path / "w"
+    venv = fresh["venv"] if not fresh["used"] else _fresh_venv(wheel, tmp_path / "venv")
+    home, work = tmp_path / "home", tmp_path / "w"
     home.mkdir()
     work.mkdir()
     ro = " && ".join(f"mount --bind {d} {d} && mount -o remount,bind,ro {d}" for d in
@@ -745,6 +752,11 @@ def test_first_run_of_a_read_only_install_with_a_read_only_home(wheel, tmp_path)
     assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr
     assert "wrote run.csv (201 rows)" in out.stderr
     assert not any(home.iterdir()) and not (venv / "probe").exists()
+
+
+def test_load_works_from_the_installed_wheel_in_a_fresh_venv(fresh, tmp_path):
+    fresh["used"] = True
+    _check_installed(fresh["venv"], tmp_path)
 
 
 def _check_installed(venv, cwd):

@@ -163,13 +163,21 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"n = {n!r}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
+    return _propose(robot, job, n, options, part)
+
+
+def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
+    """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
+    reference band) if already at hand (:func:`fewest_robots` tries several n on one)."""
     if job.line is None:
         raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
     if job.robots:
         raise CellError(f"{job.source}: the job already places its {len(job.robots)} "
                         "robot(s) ([[robot]]): a layout is proposed for a job without them")
-    strokes = job_strokes(job, part)
-    band = reference_band(robot, strokes)
+    strokes, band = reference or (None, None)
+    if reference is None:
+        strokes = job_strokes(job, part)
+        band = reference_band(robot, strokes)
     needs = zone_needs(strokes, n)
     widest = max(b - a for a, b in needs)
     if widest > band.width + 1e-9:
@@ -355,7 +363,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
     strokes = job_strokes(job, part)
-    first = fewest_for(strokes, reference_band(robot, strokes).width)
+    reference = (strokes, reference_band(robot, strokes))
+    first = fewest_for(strokes, reference[1].width)
     if first is None:
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
@@ -364,7 +373,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
-                robots = propose_layout(robot, job, n, layout, part)
+                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference)
                 return robots, paint_job(robot, replace(job, robots=robots), actuators,
                                          options)
             except BudgetError:

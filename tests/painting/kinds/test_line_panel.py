@@ -2,19 +2,24 @@
 statistics are plan_line's, line_film's and line_report's at the job's speed (equal); the
 lines paint prints."""
 import numpy as np
+import pytest
 
 import pollard_pin as pp
 from pollard_pin.painting.kinds.line_panel import line_report, summary_lines
 from pollard_pin.painting.options import PaintOptions
 
 
-def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
+@pytest.fixture(scope="module")
+def paint_result(robot, line_job, act):
+    """pp.paint of examples/line.toml without compliance (read, never changed)."""
+    return pp.paint(robot, line_job, act, PaintOptions(compliance=False))
+
+
+def test_line_panel_is_the_line_planners(paint_result, line_job, line_plan, line_plan_film, act):
     """examples/line.toml: the world path and film statistics of plan_line + line_film +
     line_report at the job's speed (equal)."""
-    from pollard_pin.painting.film.line import line_film
-
-    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
-    U, V, _, f = line_film(line_plan)
+    r = paint_result
+    U, V, _, f = line_plan_film  # line_film(line_plan)
     direct = line_report(line_plan, f, act, {"nu": len(U), "nv": len(V)})
     assert r.kind == "line panel" and r.report.line["searched"] is False
     assert np.array_equal(r.plan.trajectory.poses, line_plan.trajectory.poses)
@@ -22,10 +27,10 @@ def test_line_panel_is_the_line_planners(robot, line_job, line_plan, act):
     assert r.report.line["speed"] == direct["line"]["speed"] == line_job.line.speed
 
 
-def test_summary_lines(robot, line_job, act):
+def test_summary_lines(paint_result, act):
     """The line's three lines first (the speed not searched, the strokes), then the
     panel's."""
-    r = pp.paint(robot, line_job, act, PaintOptions(compliance=False))
+    r = paint_result
     rep = r.report.data
     lines = summary_lines(rep, act.names)
     assert lines[0].startswith(f"line speed {rep['line']['speed']:.4g} m/s, upper bound")
