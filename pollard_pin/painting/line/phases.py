@@ -16,6 +16,7 @@ import numpy as np
 from ...dynamics.averages import time_rms
 from ...dynamics.motors import Actuators
 from ...errors import say_less
+from ...kinematics.ik_batch import reachable_sequences
 from ...paths.trajectory import Trajectory
 from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
@@ -180,6 +181,10 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
                             "the part or the line")
         if bad:
             raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
+        off = _off_passes_out(robot, rel, poses, t, e, lo, hi)
+        if off:  # no drift helps: refused as a plan, not as a line speed
+            raise PlanError(f"{off} leave the reach at any place on the line (the passes "
+                            "do not): move the robot or the part")
         along = poses[:, :3] @ e
         drift = float(along[-1] - along[0])
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "
@@ -188,6 +193,29 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
                              f"the program drifts {drift:+.3f} m, out of the reach",
                              speed - drift / rel.total)  # the speed of no drift
     return 0.5 * float(found[0] + found[1])
+
+
+def _off_passes_out(robot, rel: Relative, poses, t, e, lo: float, hi: float) -> str:
+    """The ramps and turnarounds (``poses`` at the coarse times ``t``) of which a sample is in
+    reach at no shift in [lo, hi] (every SHIFT_STEP·4), each sample judged alone, in words
+    ('' if none): whatever the line's speed, no shift keeps the program in reach."""
+    i = np.clip(np.searchsorted(rel.start, t, side="right") - 1, 0, len(rel.start) - 1)
+    off = np.array([rel.kind[k] != "pass" for k in i])
+    if not off.any():
+        return ""
+    xs = np.arange(lo, hi + 1e-12, 4 * SHIFT_STEP)
+    p = np.repeat(poses[off][None], len(xs), axis=0)  # (X, S, 6)
+    p[..., :3] += xs[:, None, None] * e
+    ok = reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(len(xs), -1).any(axis=0)
+    if ok.all():
+        return ""
+    before = np.cumsum([k == "pass" for k in rel.kind])  # passes up to each piece
+    n = int(before[-1])
+    gaps = {int(before[k]) for k in i[off][~ok]}  # 0 and n: the ramps, else a turnaround
+    turns = len(gaps - {0, n})
+    said = [f"{turns} of its {n - 1} turnarounds"] if turns else []
+    said += [f"its {w} ramp" for g, w in ((0, "first"), (n, "last")) if g in gaps]
+    return " and ".join(said)
 
 
 def track(centre, e) -> str:

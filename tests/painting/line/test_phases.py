@@ -32,6 +32,47 @@ def test_relative_program_interface():
     assert list(part.not_passes()) == [0, 2, 4]
 
 
+def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
+    """A program whose passes are in reach but some of whose turnarounds (or ramps) are at no
+    place on the line (a cell robot's turns past its seam, examples/cell_curved.toml) is
+    refused as a plan naming them, not as a line speed (no drift would help): a reach that
+    ends at z = −0.04 m, passes down to −0.03 m, the turn after the first pass and the
+    first ramp dipping to −0.05 m."""
+    from pollard_pin.painting.errors import LineSpeedError, PlanError
+    from pollard_pin.painting.line import phases
+
+    start, dur = np.arange(7.0), np.ones(7)
+    kind = ("ramp", "pass", "turn", "pass", "turn", "pass", "ramp")
+    low = {0: -0.05, 2: -0.05, 4: 0.2, 6: 0.2}  # each piece's z off the passes
+
+    def motion(t):
+        k = np.clip(np.floor(np.asarray(t, float)).astype(int), 0, 6)
+        p = np.zeros((len(k), 6))
+        p[:, 1] = -0.02 * k  # stepping against the travel
+        p[:, 2] = [low.get(int(j), -0.03) for j in k]
+        return p, np.zeros_like(p), np.zeros_like(p)
+
+    rel = Relative(motion, start, dur, kind, passes_only=True)
+    judged = []
+
+    def reachable(robot, poses):
+        judged.append(poses.shape)
+        return (np.asarray(poses)[..., 2] > -0.04).all(axis=-1)
+
+    monkeypatch.setattr(phases, "feasible_shifts", lambda *a, **k: None)
+    monkeypatch.setattr(phases, "unreachable_passes", lambda robot, rel, e, lo, hi: ([], 3))
+    monkeypatch.setattr(phases, "reachable_sequences", reachable)
+    e = np.array([0.0, 1.0, 0.0])
+    with pytest.raises(PlanError) as err:
+        phases.choose_shift(None, rel, 0.01, e, "track")
+    assert not isinstance(err.value, LineSpeedError)
+    assert "1 of its 2 turnarounds and its first ramp leave the reach" in str(err.value)
+    assert judged and all(s[1:] == (1, 6) for s in judged)  # each sample judged alone
+    low[0] = low[2] = 0.2  # all in reach: the drift's failure, as before
+    with pytest.raises(LineSpeedError):
+        phases.choose_shift(None, rel, 0.01, e, "track")
+
+
 # --- the part placed further upstream ------------------------------------------------------------
 UPSTREAM = (0.1, 0.3, 1.0)  # m
 
