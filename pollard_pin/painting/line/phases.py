@@ -183,8 +183,8 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
             raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
         off = _off_passes_out(robot, rel, poses, t, e, lo, hi)
         if off:  # no drift helps: refused as a plan, not as a line speed
-            raise PlanError(f"{off} leave the reach at any place on the line (the passes "
-                            "do not): move the robot or the part")
+            raise PlanError(f"no place on the line keeps {off} in reach (its passes each "
+                            "fit): move the robot or the part")
         along = poses[:, :3] @ e
         drift = float(along[-1] - along[0])
         raise LineSpeedError(f"at line speed {speed:.4g} m/s the program drifts "

@@ -66,7 +66,7 @@ def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
     with pytest.raises(PlanError) as err:
         phases.choose_shift(None, rel, 0.01, e, "track")
     assert not isinstance(err.value, LineSpeedError)
-    assert "1 of its 2 turnarounds and its first ramp leave the reach" in str(err.value)
+    assert "keeps 1 of its 2 turnarounds and its first ramp in reach" in str(err.value)
     assert judged and all(s[1:] == (1, 6) for s in judged)  # each sample judged alone
     low[0] = low[2] = 0.2  # all in reach: the drift's failure, as before
     with pytest.raises(LineSpeedError):
