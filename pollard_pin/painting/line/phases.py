@@ -181,7 +181,7 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
                             "the part or the line")
         if bad:
             raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
-        off = _off_passes_out(robot, rel, poses, t, e, lo, hi)
+        off = _off_passes_out(robot, rel, poses, t, e, lo, hi, anchor)
         if off:  # no drift helps: refused as a plan, not as a line speed
             raise PlanError(f"no place on the line keeps {off} in reach (its passes each "
                             "fit): move the robot or the part")
@@ -195,23 +195,34 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     return 0.5 * float(found[0] + found[1])
 
 
-def _off_passes_out(robot, rel: Relative, poses, t, e, lo: float, hi: float) -> str:
+def _in_reach_somewhere(robot, poses, e, xs) -> np.ndarray:
+    """Per pose, whether it is in reach at some shift of ``xs`` along e, each judged alone."""
+    p = np.repeat(np.asarray(poses, float)[None], len(xs), axis=0)  # (X, S, 6)
+    p[..., :3] += np.asarray(xs, float)[:, None, None] * e
+    return reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(len(xs), -1).any(axis=0)
+
+
+def _off_passes_out(robot, rel: Relative, poses, t, e, lo: float, hi: float,
+                    anchor: float = 0.0) -> str:
     """The ramps and turnarounds (``poses`` at the coarse times ``t``) of which a sample is in
-    reach at no shift in [lo, hi] (every SHIFT_STEP·4), each sample judged alone, in words
-    ('' if none): whatever the line's speed, no shift keeps the program in reach."""
+    reach at none of the shifts :func:`.shifts.feasible_shifts` scans in [lo, hi] (every
+    fourth first, the samples left out then at every one), each judged alone, in words ('' if
+    none): no shift scanned keeps the program in reach, whatever its drift."""
     i = np.clip(np.searchsorted(rel.start, t, side="right") - 1, 0, len(rel.start) - 1)
-    off = np.array([rel.kind[k] != "pass" for k in i])
-    if not off.any():
+    off = np.flatnonzero([rel.kind[k] != "pass" for k in i])
+    first = math.ceil((lo + anchor) / SHIFT_STEP - 1e-9)
+    xs = np.arange(first, math.floor((hi + anchor) / SHIFT_STEP + 1e-9) + 1) * SHIFT_STEP \
+        - anchor
+    if not len(off) or not len(xs):
         return ""
-    xs = np.arange(lo, hi + 1e-12, 4 * SHIFT_STEP)
-    p = np.repeat(poses[off][None], len(xs), axis=0)  # (X, S, 6)
-    p[..., :3] += xs[:, None, None] * e
-    ok = reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(len(xs), -1).any(axis=0)
-    if ok.all():
+    off = off[~_in_reach_somewhere(robot, poses[off], e, xs[::4])]
+    if len(off):
+        off = off[~_in_reach_somewhere(robot, poses[off], e, xs)]
+    if not len(off):
         return ""
     before = np.cumsum([k == "pass" for k in rel.kind])  # passes up to each piece
     n = int(before[-1])
-    gaps = {int(before[k]) for k in i[off][~ok]}  # 0 and n: the ramps, else a turnaround
+    gaps = {int(before[k]) for k in i[off]}  # 0 and n: the ramps, else a turnaround
     turns = len(gaps - {0, n})
     said = [f"{turns} of its {n - 1} turnarounds"] if turns else []
     said += [f"its {w} ramp" for g, w in ((0, "first"), (n, "last")) if g in gaps]
