@@ -22,7 +22,7 @@ from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
-from .reach import out_of_reach, unreachable_passes
+from .reach import ball_shift_range, out_of_reach, unreachable_passes
 from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
@@ -181,7 +181,7 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
                             "the part or the line")
         if bad:
             raise LineReachError(f"{out_of_reach(bad, n)}: turn, move or split the part")
-        off = _off_passes_out(robot, rel, poses, t, e, lo, hi, anchor)
+        off = _off_passes_out(robot, rel, t, e)
         if off:  # no drift helps: refused as a plan, not as a line speed
             raise PlanError(f"no place on the line keeps {off} in reach (its passes each "
                             "fit): move the robot or the part")
@@ -202,22 +202,24 @@ def _in_reach_somewhere(robot, poses, e, xs) -> np.ndarray:
     return reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(len(xs), -1).any(axis=0)
 
 
-def _off_passes_out(robot, rel: Relative, poses, t, e, lo: float, hi: float,
-                    anchor: float = 0.0) -> str:
-    """The ramps and turnarounds (``poses`` at the coarse times ``t``) of which a sample is in
-    reach at none of the shifts :func:`.shifts.feasible_shifts` scans in [lo, hi] (every
-    fourth first, the samples left out then at every one), each judged alone, in words ('' if
-    none): no shift scanned keeps the program in reach, whatever its drift."""
+def _off_passes_out(robot, rel: Relative, t, e) -> str:
+    """The ramps and turnarounds of ``rel`` (at the coarse times ``t``) of which a sample,
+    without the drift, is in reach at no shift along e at all (every SHIFT_STEP over the
+    reach ball's span, every fourth first), each judged alone, in words ('' if none): then
+    no line speed keeps the program in reach."""
     i = np.clip(np.searchsorted(rel.start, t, side="right") - 1, 0, len(rel.start) - 1)
     off = np.flatnonzero([rel.kind[k] != "pass" for k in i])
-    first = math.ceil((lo + anchor) / SHIFT_STEP - 1e-9)
-    xs = np.arange(first, math.floor((hi + anchor) / SHIFT_STEP + 1e-9) + 1) * SHIFT_STEP \
-        - anchor
-    if not len(off) or not len(xs):
+    if not len(off):
         return ""
-    off = off[~_in_reach_somewhere(robot, poses[off], e, xs[::4])]
+    poses = rel.evaluate(t[off])[0]
+    span = ball_shift_range(robot.params, poses[:, :3], e)
+    if span is None:
+        return ""  # nothing near the reach: the passes' own refusal covers it
+    xs = np.arange(span[0], span[1] + SHIFT_STEP, SHIFT_STEP)
+    off = off[~_in_reach_somewhere(robot, poses, e, xs[::4])]
     if len(off):
-        off = off[~_in_reach_somewhere(robot, poses[off], e, xs)]
+        poses = rel.evaluate(t[off])[0]
+        off = off[~_in_reach_somewhere(robot, poses, e, xs)]
     if not len(off):
         return ""
     before = np.cumsum([k == "pass" for k in rel.kind])  # passes up to each piece

@@ -5,6 +5,7 @@ hour, world program and film (fixtures line_job, line_plan, line_part_example_jo
 line_part_example_plan: tests/examples_planned.py). The world path of real plans is tested in
 test_panel.py (a panel) and test_part.py (a part)."""
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -53,6 +54,7 @@ def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
         return p, np.zeros_like(p), np.zeros_like(p)
 
     rel = Relative(motion, start, dur, kind, passes_only=True)
+    ROBOT = SimpleNamespace(params=None)  # noqa: N806 (the reach is the fake's below)
     judged = []
 
     def reachable(robot, poses):
@@ -62,15 +64,16 @@ def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
     monkeypatch.setattr(phases, "feasible_shifts", lambda *a, **k: None)
     monkeypatch.setattr(phases, "unreachable_passes", lambda robot, rel, e, lo, hi: ([], 3))
     monkeypatch.setattr(phases, "reachable_sequences", reachable)
+    monkeypatch.setattr(phases, "ball_shift_range", lambda params, points, e: (-0.1, 0.1))
     e = np.array([0.0, 1.0, 0.0])
     with pytest.raises(PlanError) as err:
-        phases.choose_shift(None, rel, 0.01, e, "track")
+        phases.choose_shift(ROBOT, rel, 0.01, e, "track")
     assert not isinstance(err.value, LineSpeedError)
     assert "keeps 1 of its 2 turnarounds and its first ramp in reach" in str(err.value)
     assert judged and all(s[1:] == (1, 6) for s in judged)  # each sample judged alone
     low[0] = low[2] = 0.2  # all in reach: the drift's failure, as before
     with pytest.raises(LineSpeedError):
-        phases.choose_shift(None, rel, 0.01, e, "track")
+        phases.choose_shift(ROBOT, rel, 0.01, e, "track")
 
 
 # --- the part placed further upstream ------------------------------------------------------------
