@@ -105,15 +105,12 @@ def dwelling(program: LineProgram, speed: float, e) -> LineProgram:
 def plan_dwelling(robot, act, program: LineProgram, speed: float, e,
                   policy: PlannerPolicy = DEFAULT_POLICY):
     """:func:`.line.phases.plan_world` of ``program``, waiting at the turnarounds where the
-    line is too slow for it (docs/model.md §24.1): at once where the turns' own half pace
-    would not absorb the drift (:func:`wait_per_turn` > 0 at the first durations), else
-    only when the program as it is fails as too slow, so that whatever planned before the
-    waits plans as it did."""
+    line is too slow for it (docs/model.md §24.1): only when the program as it is fails
+    as too slow (its drift beyond the reach's window, or what that brings), so that
+    whatever planned before the waits plans as it did."""
     rel = program.build(program.guess)
     if not slow(rel, speed, e):
         return plan_world(robot, act, program, speed, e, policy)
-    if wait_per_turn(rel, speed, e) > 0:
-        return plan_world(robot, act, dwelling(program, speed, e), speed, e, policy)
     try:
         return plan_world(robot, act, program, speed, e, policy)
     except LineSpeedError as exc:

@@ -123,9 +123,9 @@ def test_a_zones_windows_follow_the_turns():
 
 
 def test_only_a_slow_line_dwells(monkeypatch):
-    """At or above the strokes' pace the program is planned as it is; far below, with the
-    waits at once; just below (the half-paced turns absorb the drift), as it is unless that
-    fails as too slow (what planned before the waits plans as it did, docs/model.md §24.1).
+    """At or above the strokes' pace the program is planned as it is; below it, as it is
+    unless that fails as too slow, then with the waits (what planned before the waits plans
+    as it did, docs/model.md §24.1).
     Every turnaround durations the motors' search tries get their own wait."""
     from pollard_pin.painting.errors import LineSpeedError
     from pollard_pin.painting.line import dwell
@@ -147,7 +147,8 @@ def test_only_a_slow_line_dwells(monkeypatch):
         dwell.plan_dwelling(None, None, program, 1.01 * pace, E)
     assert tried == [0]
     tried.clear()
-    assert dwell.plan_dwelling(None, None, program, 0.5 * pace, E) == 4 and tried == [4]
+    assert wait_per_turn(build(TAU), 0.5 * pace, E) > 0
+    assert dwell.plan_dwelling(None, None, program, 0.5 * pace, E) == 4 and tried == [0, 4]
     tried.clear()
     s = 0.99 * pace  # slow, but the half-paced turns absorb it: no wait of its own
     assert wait_per_turn(build(TAU), s, E) == 0
@@ -155,6 +156,8 @@ def test_only_a_slow_line_dwells(monkeypatch):
     tried.clear()
     fail = False
     assert dwell.plan_dwelling(None, None, program, s, E) == 0 and tried == [0]
+    tried.clear()
+    assert dwell.plan_dwelling(None, None, program, 0.5 * pace, E) == 0 and tried == [0]
     slow_one = dwelling(program, 0.5 * pace, E)
     for tau in (TAU, 0.5 * TAU, 2 * TAU):
         rel = slow_one.build(tau)
