@@ -73,6 +73,18 @@ def median_stages(fn, repeats: int) -> dict:
     return {k: statistics.median(r.get(k, 0.0) for r in runs) for k in keys}
 
 
+def run_times(fn, repeats: int) -> list:
+    """``fn()`` once to warm up (imports, compiled kernels), then ``repeats`` timed calls:
+    their wall times [s]."""
+    fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return times
+
+
 def pinocchio_batch(robot, traj):
     def run(timings):
         ik = inverse_kinematics_batch(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
@@ -150,12 +162,7 @@ def loads_section(robot, n: int, repeats: int) -> None:
                  robot.params, traj.poses, traj.d_poses, traj.dd_poses)}
     print(f"\njoint loads, {n} samples, median of {repeats} runs [µs/sample]")
     for name, fn in paths.items():
-        fn()  # warm-up
-        times = []
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            fn()
-            times.append(time.perf_counter() - t0)
+        times = run_times(fn, repeats)
         print(f"  {name:<44s} {1e6 * statistics.median(times) / n:8.2f}")
 
 
@@ -312,13 +319,7 @@ def planner_section(robot, repeats: int) -> None:
                                                              tr.dd_poses)}
     print(f"\nline planner stages, best of {repeats} [ms]")
     for label, fn in cases.items():
-        fn()  # warm-up
-        times = []
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            fn()
-            times.append(time.perf_counter() - t0)
-        print(f"  {label:<50s} {1e3 * min(times):9.1f}")
+        print(f"  {label:<50s} {1e3 * min(run_times(fn, repeats)):9.1f}")
 
 
 def stiffness_section(robot, sizes, repeats: int) -> None:
