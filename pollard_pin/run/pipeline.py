@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..errors import InputError
 from ..io.table import write_table
 from ..kinematics.ik import IkOptions, IKResult, inverse_kinematics
 from ..kinematics.limits import check_joint_limits
@@ -94,6 +95,8 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
 
     Raises
     ------
+    InputError
+        ``traj`` is not a :class:`~pollard_pin.paths.trajectory.Trajectory`.
     KinematicsError
         A sample the kinematics cannot solve: out of reach, too close to a singularity, a
         branch flip, a joint out of its limits (the message names the sample, time and
@@ -109,6 +112,9 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     """
     from ..dynamics.inverse import inverse_dynamics
 
+    if not isinstance(traj, Trajectory):
+        raise InputError(f"run_pipeline: traj is {type(traj).__name__}, not a Trajectory "
+                         "(pollard_pin.thesis_trajectory, from_csv, …)")
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             options=IkOptions(method=method, margins=margins),
                             progress=progress)

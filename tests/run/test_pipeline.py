@@ -4,6 +4,7 @@ bit."""
 import numpy as np
 import pytest
 
+from pollard_pin.errors import InputError
 from pollard_pin.io.table import read_result
 from pollard_pin.names import SPHERICAL
 from pollard_pin.paths.curves import thesis_trajectory
@@ -47,3 +48,9 @@ def test_table_reads_back_bit_for_bit(result, tmp_path, name):
     assert list(back.columns) == list(cols) and back.metadata == {"k": 1}
     for n, col in cols.items():
         assert np.array_equal(back[n], col), n
+
+
+@pytest.mark.parametrize("traj", [None, "examples/figure8.csv", [[0.0] * 6]])
+def test_a_trajectory_that_is_not_one_is_one_line(robot, traj):
+    with pytest.raises(InputError, match="not a Trajectory"):
+        run_pipeline(robot, traj)
