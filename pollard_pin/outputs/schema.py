@@ -592,5 +592,5 @@ def read_paint_json(path: str | Path) -> PaintJson:
 
 
 __all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "LineSpeeds", "MAX_REPORT_BYTES", "MotorUse",
-           "PaintJson", "PaintUse", "Seam", "Section", "Strokes", "Thickness", "check_grid", "dumps",
-           "load_paint_json", "read_paint_json"]
+           "PaintJson", "PaintUse", "Seam", "Section", "Strokes", "Thickness", "check_grid",
+           "dumps", "load_paint_json", "read_paint_json"]
