@@ -116,12 +116,13 @@ def film_miss_line(c: dict) -> str:
 
 
 def closing_lines(rep: dict) -> list[str]:
-    """The lines after a kind's own: the paint used (docs/model.md §29), the gun body's
-    clearance where the report has one, the compliance where it was computed, a warning
-    where the film misses its acceptance."""
-    lines = [*material_lines(rep), *([clearance_line(rep)] if "min_clearance_m" in rep else [])]
+    """The lines after a kind's own: the gun body's clearance where the report has one, the
+    compliance where it was computed, the paint used (docs/model.md §29), a warning where the
+    film misses its acceptance."""
+    lines = [clearance_line(rep)] if "min_clearance_m" in rep else []
     if "compliance" in rep:
         lines.append(compliance_line(rep["compliance"]))
+    lines += material_lines(rep)
     if "film_check" in rep and not rep["film_check"]["meets"]:
         lines.append(film_miss_line(rep["film_check"]))
     return lines
