@@ -15,8 +15,10 @@ import math
 
 import numpy as np
 
+from .errors import ReportError
 from .film.grid import grid_areas
 from .film.stats import ACCEPTANCE_BAND
+from .report import SLACK
 
 # The painted area: where the film reaches this share of the target (the acceptance band's
 # lower edge, docs/model.md §21).
@@ -123,8 +125,13 @@ def _known(entry: dict) -> dict:
 
 def with_material(rep: dict, job, film) -> dict:
     """``rep`` with its ``paint`` (after ``film_check``, else at the end) and each cell
-    robot's ``paint``."""
+    robot's ``paint``; a :class:`ReportError` if more lands than is sprayed (beyond SLACK,
+    the film's integration error: a bug)."""
     entry, robots = material_entry(job, film, rep["cycle_time"])
+    if entry.get("overspray", 0.0) < -SLACK:
+        raise ReportError(f"{job.source}: internal error: {entry['dry_on_part_l']:.6g} L of "
+                          f"dry film on the part, more than the {entry['dry_sprayed_l']:.6g} L "
+                          "sprayed (a bug)")
     for r, e in zip(rep.get("robots", ()), robots):
         r["paint"] = e
     out = {}

@@ -234,6 +234,17 @@ def test_without_a_paint_table_the_dry_figures_only():
     assert len(material_lines({"paint": e})) == 1
 
 
+def test_more_landed_than_sprayed_is_a_bug_refused():
+    """The invariant every report keeps: on the part ≤ sprayed (within the report's SLACK)."""
+    from pollard_pin.painting.errors import ReportError
+
+    job = _job(0.2, 0.1)
+    rep = {"cycle_time": 1.0, "target": job.thickness}
+    assert with_material(rep, job, _flat(2e-6 * 1.005, 2e-6))["paint"]["overspray"] < 0
+    with pytest.raises(ReportError, match="more than the 0.002 L sprayed"):
+        with_material(rep, job, _flat(2e-6 * 1.02, 2e-6))
+
+
 def test_the_painted_area_is_where_the_film_reaches_the_share():
     """Of four equal points, the one below COVERED_SHARE × target is left out; on a part only
     the painted (target) points count."""
