@@ -152,11 +152,14 @@ def test_formats_page_names_every_key_the_readers_take():
     from pollard_pin.painting.job import OPTIONAL as JOB_OPTIONAL
     from pollard_pin.painting.job import PART_OPTIONAL, PART_REQUIRED, REQUIRED
     from pollard_pin.painting.line.conveyor import LINE_KEYS
+    from pollard_pin.painting.material import OPTIONAL as PAINT_OPTIONAL
+    from pollard_pin.painting.material import REQUIRED as PAINT_REQUIRED
 
     text = (DOCS / "formats.md").read_text(encoding="utf-8")
     tables = {name: REQUIRED[name] + JOB_OPTIONAL[name] for name in REQUIRED}
     tables |= {"part": PART_REQUIRED + PART_OPTIONAL, "line": LINE_KEYS,
-               "[robot]": ROBOT_KEYS, "actuators": KEYS + OPTIONAL}
+               "[robot]": ROBOT_KEYS, "actuators": KEYS + OPTIONAL,
+               "paint": PAINT_REQUIRED + PAINT_OPTIONAL}
     missing = []
     for table, keys in tables.items():
         # each table's keys are the rows of the table under its heading

@@ -292,13 +292,63 @@ class Strokes(Section):
     dwell_s: float = 0.0
 
 
+@dataclass(frozen=True)
+class PaintUse(Section):
+    """paint.json's ``paint``, and a cell robot's (its volumes and overspray only): the paint
+    the job uses (docs/model.md §29; painting.accounting). Volumes of dry film [L]; with the
+    job's ``[paint]`` table, liquid paint [L] and [kg] too.
+
+    Attributes
+    ----------
+    covered_share : float or None
+        The share of the target the painted area's film reaches.
+    painted_area_m2, target_area_m2 : float or None
+        The area of the target faces with film ≥ covered_share × target, and theirs [m²].
+    dry_sprayed_l, dry_on_part_l : float or None
+        The dry film volume sprayed (flow × spray-on time) and on the part (∫ film dA) [L].
+    overspray : float or None
+        1 − dry_on_part_l / dry_sprayed_l: the geometric overspray (None: nothing sprayed).
+    parts_per_hour : float or None
+        3600 s over the cycle.
+    solids, density, transfer_efficiency : float or None
+        The paint's volume solids, density [kg/m³] and the transfer efficiency used.
+    sprayed_l, sprayed_kg, on_part_l, on_part_kg : float or None
+        Liquid paint per part: sprayed (dry / (solids · transfer efficiency)) and on the part
+        (dry / solids).
+    sprayed_l_per_h, sprayed_kg_per_h, on_part_l_per_h, on_part_kg_per_h : float or None
+        The same per hour.
+    holds : str or None
+        Where the figures hold.
+    """
+
+    covered_share: float | None = None
+    painted_area_m2: float | None = None
+    target_area_m2: float | None = None
+    dry_sprayed_l: float | None = None
+    dry_on_part_l: float | None = None
+    overspray: float | None = None
+    parts_per_hour: float | None = None
+    solids: float | None = None
+    density: float | None = None
+    transfer_efficiency: float | None = None
+    sprayed_l: float | None = None
+    sprayed_kg: float | None = None
+    on_part_l: float | None = None
+    on_part_kg: float | None = None
+    sprayed_l_per_h: float | None = None
+    sprayed_kg_per_h: float | None = None
+    on_part_l_per_h: float | None = None
+    on_part_kg_per_h: float | None = None
+    holds: str | None = None
+
+
 # the typed sections: attribute -> paint.json's key, in the order a panel's report has them
 KEYS = {"job": "job", "kind": "kind", "thickness": "thickness", "target": "target",
         "cycle_time": "cycle_time", "line": "line", "strokes": "strokes", "seams": "seams",
         "robots": "robots",
         "clearance": "clearance", "motors": "motors", "grid": "grid",
         "film_points": "film_points", "timings": "timings", "compliance": "compliance",
-        "film_ply": "film_ply", "version": "pollard_pin"}
+        "film_ply": "film_ply", "paint": "paint", "version": "pollard_pin"}
 
 
 @dataclass(frozen=True)
@@ -345,6 +395,8 @@ class PaintJson:
         What the drives' springs do to the gun and the film (docs/model.md §27.7).
     film_ply : FilmPly or None
         What film.ply's colours mean.
+    paint : PaintUse or None
+        The paint the job uses (docs/model.md §29).
     version : str or None
         The package's version that wrote it (key ``pollard_pin``).
     extra : Mapping
@@ -369,6 +421,7 @@ class PaintJson:
     timings: Mapping | None = None
     compliance: Mapping | None = None
     film_ply: FilmPly | None = None
+    paint: PaintUse | None = None
     version: str | None = None
     extra: Mapping = field(default_factory=dict)
     order: tuple = ()
@@ -450,6 +503,8 @@ def _robots(path, key, value) -> tuple:
     for i, r in enumerate(out):  # each robot's strategy checked, kept as written
         if "strokes" in r:
             Strokes.from_dict(r["strokes"], f"{key}[{i}].strokes", path)
+        if "paint" in r:
+            PaintUse.from_dict(r["paint"], f"{key}[{i}].paint", path)
     return out
 
 
@@ -475,9 +530,10 @@ _READ = {"job": _table, "kind": _text, "thickness": _section(Thickness),
          "seams": _seams, "robots": _robots,
          "clearance": _table, "motors": _motors,
          "film_points": _section(FilmPoints), "timings": _timings, "compliance": _table,
-         "film_ply": _section(FilmPly), "version": _text}
+         "film_ply": _section(FilmPly), "paint": _section(PaintUse), "version": _text}
 _WRITE = {"thickness": Thickness.to_dict, "strokes": Strokes.to_dict, "grid": Grid.to_dict,
           "film_points": FilmPoints.to_dict, "film_ply": FilmPly.to_dict,
+          "paint": PaintUse.to_dict,
           "motors": lambda m: {n: u.to_dict() for n, u in m.items()},
           "seams": lambda s: [x.to_dict() for x in s], "robots": list,
           "timings": dict}
@@ -536,5 +592,5 @@ def read_paint_json(path: str | Path) -> PaintJson:
 
 
 __all__ = ["FilmPly", "FilmPoints", "Grid", "KEYS", "LineSpeeds", "MAX_REPORT_BYTES", "MotorUse",
-           "PaintJson", "Seam", "Section", "Strokes", "Thickness", "check_grid", "dumps",
-           "load_paint_json", "read_paint_json"]
+           "PaintJson", "PaintUse", "Seam", "Section", "Strokes", "Thickness", "check_grid",
+           "dumps", "load_paint_json", "read_paint_json"]

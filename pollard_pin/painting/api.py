@@ -12,6 +12,7 @@ from pathlib import Path
 from ..dynamics.motors import Actuators, as_actuators
 from ..errors import InputError
 from ..model.build import check_robot
+from .accounting import with_material
 from .job import PartJob
 from .kinds import kind_of
 from .options import PaintOptions
@@ -80,7 +81,7 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
     act = default_actuators(job) if actuators is None else actuators
     with showing(options.progress):
         plan, film, rep = kind.paint(robot, job, act, options, res)
-        rep = _with_film_check(rep)
+        rep = with_material(_with_film_check(rep), job, film)  # docs/model.md §29
         if options.compliance and kind.compliance:  # docs/model.md §27.7
             _compliance(robot, plan, film, act, rep)
     return PaintedJob(job, kind.name, plan, film, PaintReport.from_dict(kind.name, rep), act,

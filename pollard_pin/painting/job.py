@@ -17,6 +17,7 @@ from ..model.values import fail, integer, number, read_toml
 from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobError, JobKindError
 from .line.conveyor import Line, line_from_table
+from .material import Paint, paint_from_table
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
@@ -84,6 +85,9 @@ class PaintJob:
     recoil : float or None
         The spray's push back on the gun along its axis [N] (docs/model.md §27.7); None:
         none.
+    paint : pollard_pin.painting.material.Paint or None
+        The paint's solids, density and transfer efficiency (``[paint]``, docs/model.md
+        §29); None: the report gives the dry film volumes only.
     """
 
     center: tuple[float, float, float]
@@ -104,16 +108,18 @@ class PaintJob:
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
     recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
+    paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items()
-             if v is not None and k not in ("source", "robots")}
+             if v is not None and k not in ("source", "robots", "paint")}
         return {"panel": {k: d[k] for k in REQUIRED["panel"]},
                 "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {}),
-                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
+                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {}),
+                **({"paint": self.paint.to_dict()} if self.paint is not None else {})}
 
 
 @dataclass(frozen=True)
@@ -123,7 +129,8 @@ class PartJob:
     UNITS) or ``scale`` (the file's unit in m; :attr:`unit` is the one rule), ``position``
     [m] and ``rotation`` (rx, ry, rz) [deg]
     (``painting.workpiece.mesh.placement``), the painted faces' ``facing`` direction (None:
-    towards the robot) and ``max_angle`` [deg] (None: the default)."""
+    towards the robot) and ``max_angle`` [deg] (None: the default); ``paint`` the
+    ``[paint]`` table (:class:`~pollard_pin.painting.material.Paint`, docs/model.md §29)."""
 
     mesh: str
     position: tuple[float, float, float]
@@ -146,6 +153,7 @@ class PartJob:
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
     recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
+    paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
 
     @property
     def unit(self) -> float:
@@ -155,14 +163,15 @@ class PartJob:
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items()
-             if v is not None and k not in ("source", "robots")}
+             if v is not None and k not in ("source", "robots", "paint")}
         if self.scale is not None:  # the file names one of units and scale
             del d["units"]
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
                 "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {}),
-                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
+                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {}),
+                **({"paint": self.paint.to_dict()} if self.paint is not None else {})}
 
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
@@ -266,8 +275,8 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
     Parameters
     ----------
     d : Mapping
-        The tables: ``panel`` or ``part``, ``gun``, ``job``, optionally ``line`` and ``robot``
-        (a list of tables), keys and units as in a job file (docs/formats.md).
+        The tables: ``panel`` or ``part``, ``gun``, ``job``, optionally ``line``, ``robot``
+        (a list of tables) and ``paint``, keys and units as in a job file (docs/formats.md).
     source : str, optional
         What the messages call the job (a file name).
 
@@ -296,12 +305,17 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
     if not isinstance(d, Mapping):
         raise JobError(f"{source}: d = {d!r:.40}: a {type(d).__name__}, expected the tables "
                        "[panel], [gun] and [job] (a dict)")
-    tables = (*REQUIRED, "part", "line", "robot")
+    tables = (*REQUIRED, "part", "line", "robot", "paint")
     for name in d:
         if name not in tables:
             raise JobError(f"{source}: [{name}] is not a table of a paint job"
                            f"{did_you_mean(name, tables)}; expected [panel] or [part], [gun], "
                            "[job]")
+    if "paint" in d:  # the paint's solids and density (docs/model.md §29)
+        from dataclasses import replace
+
+        return replace(job_from_dict({k: v for k, v in d.items() if k != "paint"}, source),
+                       paint=paint_from_table(source, d["paint"]))
     if "robot" in d:  # a cell (docs/model.md §26): its robots paint the part as it passes
         from dataclasses import replace
 
@@ -399,7 +413,8 @@ def load_job(path: str | Path) -> PaintJob | PartJob:
         A TOML job: ``[panel]`` (centre, normal, width, height [m]) or ``[part]`` (mesh,
         units, position, rotation, facing, max_angle); ``[gun]`` (standoff, sigma [m], flow
         [m³/s]); ``[job]`` (thickness [m]; optional spacing, speed, direction, coats,
-        actuators); optional ``[line]`` (speed [m/s], direction) and ``[[robot]]`` tables.
+        actuators); optional ``[line]`` (speed [m/s], direction), ``[[robot]]`` and
+        ``[paint]`` (solids, density [kg/m³], transfer_efficiency) tables.
 
     Returns
     -------

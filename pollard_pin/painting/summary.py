@@ -3,6 +3,8 @@ its module in :mod:`pollard_pin.painting.kinds`): the motor use, a part's lines,
 the gun body's clearance and the compliance (docs/model.md §21, §23–§25, §27.7)."""
 from __future__ import annotations
 
+from .accounting import material_lines
+
 
 def motor_use_line(rep: dict, names) -> str:
     """Each motor's use of its ratings, one order for panels, parts and lines: peak torque,
@@ -115,10 +117,12 @@ def film_miss_line(c: dict) -> str:
 
 def closing_lines(rep: dict) -> list[str]:
     """The lines after a kind's own: the gun body's clearance where the report has one, the
-    compliance where it was computed, a warning where the film misses its acceptance."""
+    compliance where it was computed, the paint used (docs/model.md §29), a warning where the
+    film misses its acceptance."""
     lines = [clearance_line(rep)] if "min_clearance_m" in rep else []
     if "compliance" in rep:
         lines.append(compliance_line(rep["compliance"]))
+    lines += material_lines(rep)
     if "film_check" in rep and not rep["film_check"]["meets"]:
         lines.append(film_miss_line(rep["film_check"]))
     return lines

@@ -171,6 +171,10 @@ def test_view_paint_overlay(painted, tmp_path, capsys):
     (lambda t: t.replace("width = 0.26", "width = 0.6"), "the largest panel that fits"),
     (lambda t: t.replace("thickness = 25e-6", "thickness = 3e-6"),
      "thinnest film per coat"),
+    (lambda t: t.replace("solids = 0.45", "solids = 45"), "'paint.solids' = 45: must be a share"),
+    (lambda t: t.replace("density = 1300.0", "density = 1.3"), "1.2 g/cm³ is 1200 kg/m³"),
+    (lambda t: t.replace("transfer_efficiency =", "efficiency ="),
+     "'paint.efficiency' = 0.65: unknown key (did you mean 'transfer_efficiency'?)"),
 ])
 def test_bad_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
     job = tmp_path / "job.toml"

@@ -89,6 +89,34 @@ def test_a_report_computed_in_memory():
         PaintJson(target=25e-6, extra={"grid": {}})
 
 
+def test_the_paint_section_computed_and_read_back():
+    """paint.json's ``paint`` (docs/model.md §29) as a job computes it, with a [paint] table and
+    a cell's robots: written as json.dumps writes it, its keys typed (PaintUse), each
+    robot's checked and kept as written."""
+    from pollard_pin.painting.accounting import material_entry
+    from pollard_pin.painting.job import job_from_dict
+    from pollard_pin.painting.result import PaintFilm
+    from pollard_pin.painting.spray.deposition import Film
+
+    job = job_from_dict({"panel": {"center": [0.7, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0],
+                                   "width": 0.2, "height": 0.1},
+                         "gun": {"standoff": 0.15, "sigma": 0.01, "flow": 1.5e-7},
+                         "job": {"thickness": 25e-6},
+                         "paint": {"solids": 0.5, "density": 1200.0}})
+    robot = Film(np.full(4, 20e-6), np.zeros(4), np.float64(2e-6))
+    f = PaintFilm(np.zeros((2, 2, 3)), Film(np.full(4, 20e-6), np.zeros(4), np.float64(2e-6),
+                                            (robot,)), 0.01,
+                  grid=(np.array([-0.1, 0.1]), np.array([-0.05, 0.05])))
+    entry, robots = material_entry(job, f, np.float64(12.0))
+    rep = {"target": 25e-6, "paint": entry, "robots": [{"name": "a", "paint": robots[0]}]}
+    assert dumps(PaintJson.from_dict(rep)) == json.dumps(rep, indent=2) + "\n"
+    r = PaintJson.from_dict(json.loads(json.dumps(rep)))
+    assert isinstance(r.paint, schema.PaintUse) and r.paint.solids == 0.5
+    assert r.paint.overspray == pytest.approx(1 - 0.02 * 20e-6 / 2e-6)
+    assert r.paint.on_part_kg == pytest.approx(0.02 * 20e-6 / 0.5 * 1200.0)
+    assert r.robots[0]["paint"] == robots[0]
+
+
 GOOD = {"target": 2.5e-05, "grid": {"nu": 2, "nv": 2, "resolution": 0.1}}
 
 
@@ -137,6 +165,11 @@ def _with(**changes):
      "('film_ply.range' = [1]: must be a list of 2 numbers)"),
     (_with(pollard_pin=1), "('pollard_pin' = 1: must be a text)"),
     (_with(kind=["cell"]), "('kind' = ['cell']: must be a text)"),
+    (_with(paint={"dry_sprayed_l": "a lot"}), "('paint.dry_sprayed_l' = 'a lot': must be a "
+                                             "number)"),
+    (_with(paint={"litres": 1.0}), "('paint.litres' = 1.0: unknown key; paint holds "),
+    (_with(robots=[{"name": "a", "paint": {"overspray": None}}]),
+     "('robots[0].paint.overspray' = None: must be a number)"),
 ])
 def test_a_file_that_is_no_paint_report_is_one_line(tmp_path, text, says):
     path = tmp_path / "paint.json"

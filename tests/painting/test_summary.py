@@ -83,6 +83,25 @@ def test_a_film_that_misses_its_acceptance_is_said_after_the_rest():
         clearance_line(CLEARANCE)]
 
 
+def test_the_paint_used_after_the_compliance_before_a_warning():
+    """paint.json's ``paint`` (docs/model.md §29): its lines after the clearance and the
+    compliance, before a warning of a film that misses its acceptance."""
+    from pollard_pin.painting.accounting import material_lines
+    from pollard_pin.painting.summary import film_miss_line
+
+    paint = {"paint": {"covered_share": 0.9, "painted_area_m2": 0.03, "target_area_m2": 0.031,
+                       "dry_sprayed_l": 1.5e-3, "dry_on_part_l": 7.8e-4, "overspray": 0.48}}
+    check = {"outside_5pct": 0.5, "outside_10pct": 0.384, "min_relative": 1e-5,
+             "max_relative": 1.13, "acceptance": {"band": 0.1, "min_share": 0.99},
+             "meets": False}
+    off = {"compliance": {"stiffness": False, "note": "not computed"}}
+    lines = material_lines(paint)
+    assert lines == ["paint: 0.03 of 0.031 m² at ≥ 90 % of the target; dry film 0.0015 L "
+                     "sprayed, 0.00078 L on the part: geometric overspray 48.0 %"]
+    assert closing_lines({**CLEARANCE, **off, **paint, "film_check": check}) == [
+        clearance_line(CLEARANCE), "compliance not computed", *lines, film_miss_line(check)]
+
+
 def test_the_speeds_line_only_when_stated():
     rep = {"line": {"speed": 0.03}, "timings": {"plan": 1.0}}
     assert speeds_lines(rep) == []

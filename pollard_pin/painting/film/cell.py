@@ -61,19 +61,19 @@ def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
         r = deposition_rate(gun, p[i], a[i], s[k], n)
         total[k] += w[i] @ r
         coarse[k] += w2[i] @ r
-    return Film(total, np.abs(total - coarse))
+    return Film(total, np.abs(total - coarse), float(gun.flow * w.sum()))
 
 
 def cell_panel_film(cell, resolution: float | None = None):
     """(U, V, points (nv, nu, 3), Film) of a panel cell: the world panel's grid, the film of
-    every robot summed."""
+    every robot summed (each robot's own: its ``robot_films``)."""
     from ..workpiece.panel import panel_frame
 
     job = cell.job
     frame = panel_frame(job)
     U, V, pts = film_grid(frame, job, resolution)
     flat = pts.reshape(-1, 3)
-    total, err = np.zeros(len(flat)), np.zeros(len(flat))
+    total, err, films = np.zeros(len(flat)), np.zeros(len(flat)), []
     for rp in cell.robots:
         t, p, a, spray = world_gun(rp)
         pairs = float(len(flat)) * int((spray > 0).sum())
@@ -84,7 +84,8 @@ def cell_panel_film(cell, resolution: float | None = None):
         f = weighted_film(gun_of(job), t, p, a, spray, flat, frame.n, frame.c)
         total += f.thickness
         err += f.error_estimate
-    return U, V, pts, Film(total, err)
+        films.append(f)
+    return U, V, pts, Film(total, err, sum(f.sprayed for f in films), tuple(films))
 
 
 def cell_part_film(cell, resolution: float | None = None):

@@ -7,6 +7,7 @@ import numbers
 import numpy as np
 
 from ...analytic.taskspace import rotation
+from ...dynamics.averages import trapezoid_weights
 from ..errors import PlanError, ResolutionError
 from ..job import PaintJob
 from ..plan.panel import PaintPlan
@@ -57,6 +58,13 @@ def film_grid(plan_or_frame, job: PaintJob, resolution: float | None = None):
     V = np.linspace(-job.height / 2, job.height / 2, int(_axis_points(job.height, res)))
     UU, VV = np.meshgrid(U, V)
     return U, V, frame.world(UU, VV)
+
+
+def grid_areas(U, V) -> np.ndarray:
+    """Each grid point's share of the panel [m²] over the flattened grid (nv·nu,): the
+    trapezoid rule's weights along u times those along v (edges half, corners a quarter), so
+    Σ areas × film is the film's volume on the panel to the rule's error."""
+    return np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()
 
 
 def plan_film(plan: PaintPlan, resolution: float | None = None):

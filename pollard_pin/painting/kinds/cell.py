@@ -10,12 +10,12 @@ import time
 
 import numpy as np
 
-from ...dynamics.averages import trapezoid_weights
 from ...dynamics.motors import Actuators
 from ...version import __version__
 from ..cell.frames import gravity_in_base
 from ..cell.plan import cell_speeds, max_cell_speed, plan_cell_job
 from ..film.cell import cell_panel_film, cell_part_film
+from ..film.grid import grid_areas
 from ..film.stats import film_stats
 from ..job import PartJob
 from ..report import check_report
@@ -37,7 +37,7 @@ def paint(robot, job, act, options, res):
     if part is None:
         U, V, pts, film = cell_panel_film(plan, res)
         flat = pts.reshape(-1, 3)
-        areas = np.outer(trapezoid_weights(V), trapezoid_weights(U)).ravel()  # each point's share
+        areas = grid_areas(U, V)  # each point's share
         rep = cell_report(plan, flat, None, film.thickness, areas, act,
                           {"grid": {"nu": len(U), "nv": len(V), "resolution": res}})
         pf = PaintFilm(pts, film, res, grid=(U, V))

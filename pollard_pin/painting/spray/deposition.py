@@ -179,10 +179,14 @@ def coarse_weights(t) -> np.ndarray:
 class Film:
     """Film thickness [m] at each surface point, and the trapezoid rule's error estimate
     |T − T₂| (T₂: the rule on every second sample and the last, whose error is ≥ 4× larger)
-    [m]."""
+    [m]; ``sprayed`` the dry volume the gun sprayed over the samples integrated, flow × their
+    trapezoid weights [m³] (docs/model.md §29; nan: not given); ``robot_films`` a cell's
+    films of each robot, whose sum this is."""
 
     thickness: np.ndarray
     error_estimate: np.ndarray
+    sprayed: float = math.nan
+    robot_films: tuple = ()
 
 
 def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
@@ -241,7 +245,7 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
         total[k] += w[sl] @ r
         coarse[k] += w2[sl] @ r
     err = np.abs(total - coarse) if len(t) > 2 else np.full(len(s), np.nan)
-    return Film(total, err)
+    return Film(total, err, float(gun.flow * w.sum()))
 
 
 def gun_of(job) -> Gun:
