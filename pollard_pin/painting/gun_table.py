@@ -95,18 +95,38 @@ def job_spot(job) -> Spot:
     return job.spot if job.spot is not None else RoundGaussian(job.sigma)
 
 
+def spot_keys(spot: Spot | None, sigma: float | None = None,
+              apex: float | None = None) -> dict:
+    """The ``[gun]`` keys that say a spot: ``sigma`` alone for the round Gaussian (``spot``
+    None or a :class:`.spray.spots.RoundGaussian`), else ``model`` and the model's keys; then
+    ``apex`` unless None. What a job writes back and a calibration's ``gun.toml`` holds.
+
+    Parameters
+    ----------
+    spot : pollard_pin.painting.spray.Spot or None
+        The spot (None: the round Gaussian of ``sigma``).
+    sigma : float or None, optional
+        The round Gaussian's σ [m] when ``spot`` is None.
+    apex : float or None, optional
+        The spray cone's apex in front of the nozzle [m] (None: left out, 0).
+
+    Returns
+    -------
+    dict
+        {key: value} in the file's order.
+    """
+    if spot is None or type(spot) is RoundGaussian:
+        out = {"sigma": sigma if spot is None else spot.sigma}
+    else:
+        out = {"model": spot.name, **spot.params()}
+    return out if apex is None else {**out, "apex": apex}
+
+
 def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
     """The job's ``[gun]`` table as the file says it, from ``d`` (the job's entries, None
     left out): standoff, the model and its keys (only ``sigma`` for the round Gaussian),
     apex, flow, then the table's other ``keys`` present in ``d``."""
-    out = {"standoff": d["standoff"]}
-    if job.spot is None:
-        out["sigma"] = d["sigma"]
-    else:
-        out["model"] = job.spot.name
-        out.update(job.spot.params())
-    if job.apex is not None:
-        out["apex"] = job.apex
+    out = {"standoff": d["standoff"], **spot_keys(job.spot, d["sigma"], job.apex)}
     out["flow"] = d["flow"]
     out.update({k: d[k] for k in keys if k in d and k not in out
                 and k not in SPOT_KEYS + ("sigma",)})
@@ -114,4 +134,4 @@ def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
 
 
 __all__ = ["MAX_BETA", "MAX_ELONGATION", "MODEL_KEYS", "SPOT_KEYS", "gun_table", "job_spot",
-           "required_gun_keys", "spot_model", "spot_values"]
+           "required_gun_keys", "spot_keys", "spot_model", "spot_values"]

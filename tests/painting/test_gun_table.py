@@ -104,3 +104,14 @@ def test_the_smallest_panel_is_in_the_spots_width():
     job_from_dict(_job({"model": "beta", "radius": 0.3, "beta": 2.5}), "job.toml")
     with pytest.raises(JobError, match="smaller than the spray spot"):
         job_from_dict(_job({"model": "beta", "radius": 0.35, "beta": 2.5}), "job.toml")
+
+
+def test_spot_keys_read_back_as_the_spot():
+    """spot_keys gives a [gun] table's keys for a spot; the job they make has that spot."""
+    from pollard_pin.painting.gun_table import spot_keys
+
+    for spot in (RoundGaussian(0.012), EllipticGaussian(0.02, 0.008), BetaSpot(0.03, 2.5)):
+        keys = spot_keys(spot, apex=-0.04)
+        job = job_from_dict(_job(keys), "gun.toml")
+        assert job_spot(job) == spot and job.apex == -0.04
+    assert spot_keys(None, 0.01) == {"sigma": 0.01}
