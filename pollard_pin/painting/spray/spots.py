@@ -55,7 +55,7 @@ class Spot:
 
         Parameters
         ----------
-        h : array_like
+        h : float or ndarray
             Distances along the spray axis from the nozzle [m].
         standoff : float
             The reference standoff [m], where the factor is 1.
@@ -75,7 +75,7 @@ class Spot:
 
         Parameters
         ----------
-        u, v : array_like
+        u, v : float or ndarray
             Coordinates in the plane across the spray axis [m] (broadcast together).
 
         Returns
@@ -91,7 +91,7 @@ class Spot:
 
         Parameters
         ----------
-        x : array_like
+        x : float or ndarray
             Distance across the stroke [m].
         direction : {"along", "across"}, optional
             The stroke moves along or across the spot's long axis (module docstring).
@@ -109,7 +109,7 @@ class Spot:
 
         Parameters
         ----------
-        x : array_like
+        x : float or ndarray
             Distance across the stroke [m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -126,7 +126,7 @@ class Spot:
 
         Parameters
         ----------
-        k : array_like
+        k : float or ndarray
             Angular wavenumber [rad/m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -159,7 +159,7 @@ class Spot:
 
         Parameters
         ----------
-        spacing : array_like
+        spacing : float or ndarray
             Distance between passes [m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -412,6 +412,7 @@ class BetaSpot(Spot):
         return self.radius
 
 
+#: The spot models by name, as the job's ``[gun]`` ``model`` names them.
 SPOTS: dict[str, type[Spot]] = {c.name: c for c in (RoundGaussian, EllipticGaussian, BetaSpot)}
 
 
