@@ -104,6 +104,32 @@ class Spot:
         """
         raise NotImplementedError
 
+    def stripe_at(self, x, h, standoff: float, apex: float = 0.0,
+                  direction: str = "across") -> np.ndarray:
+        """The stripe [1/m] of a stroke at distance ``h`` along the axis: stripe(x/c)/c with
+        c = :meth:`scale` (the spread law; normal incidence, the stroke at that distance).
+
+        Parameters
+        ----------
+        x : float or ndarray
+            Distance across the stroke [m].
+        h : float
+            The nozzle's distance to the surface [m].
+        standoff : float
+            The reference standoff [m], where the spot is given.
+        apex : float, optional
+            The cone's apex in front of the nozzle [m].
+        direction : {"along", "across"}, optional
+            As in :meth:`stripe`.
+
+        Returns
+        -------
+        ndarray
+            A stroke at speed w with flow q leaves q·stripe_at(x)/w.
+        """
+        c = self.scale(h, standoff, apex)
+        return self.stripe(np.asarray(x, dtype=float) / c, direction) / c
+
     def stripe_cdf(self, x, direction: str = "across") -> np.ndarray:
         """∫_{−∞}^{x} stripe dx': the film beside the edge of a field of passes, relative.
 
