@@ -132,7 +132,7 @@ def _aims(rp) -> np.ndarray:
     from ..painting.film.cell import world_gun
 
     _, p, a, s = world_gun(rp)
-    return (p + rp.plan.job.standoff * a)[s > 0]
+    return (p + rp.plan.job.standoff * a[:, :, 0])[s > 0]
 
 
 __all__ = ["CELL_FRAME", "CELL_PART_AXES", "robot_metadata", "write_cell"]

@@ -16,13 +16,16 @@ from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
 from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobError, JobKindError
+from .gun_table import SPOT_KEYS, gun_table, required_gun_keys, spot_values
 from .line.conveyor import Line, line_from_table
+from .spray.spots import Spot
 
 # Required and optional keys per table, in file order.
 REQUIRED = {"panel": ("center", "normal", "width", "height"),
             "gun": ("standoff", "sigma", "flow"),
             "job": ("thickness",)}
-OPTIONAL = {"panel": (), "gun": ("clearance", "recoil"),
+OPTIONAL = {"panel": (),
+            "gun": ("clearance", "recoil", *(k for k in SPOT_KEYS if k != "sigma")),
             "job": ("spacing", "speed", "direction", "coats", "actuators")}
 # A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
 # replaces [panel].
@@ -60,11 +63,17 @@ class PaintJob:
     width, height : float
         Its size [m] along u = normal × v and v (world z projected onto the panel).
     standoff, sigma : float
-        The gun's distance to the panel and the spray spot's spread [m].
+        The gun's distance to the panel and the spray spot's spread [m] (its width,
+        :attr:`.spray.spots.Spot.width`, for a spot that is not the round Gaussian).
     flow : float
         Film volume deposited [m³/s].
     thickness : float
         The target film [m].
+    spot : pollard_pin.painting.spray.Spot or None
+        The spray pattern (``[gun]`` ``model``, docs/model.md §20); None: the round
+        Gaussian of ``sigma``.
+    apex : float or None
+        The spray cone's apex in front of the nozzle [m]; None: 0 (the nozzle).
     spacing, speed : float or None
         Pass spacing [m] and speed [m/s] (None: the planner's).
     direction : str
@@ -104,13 +113,15 @@ class PaintJob:
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
     recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
+    spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
+    apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items()
              if v is not None and k not in ("source", "robots")}
         return {"panel": {k: d[k] for k in REQUIRED["panel"]},
-                "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
+                "gun": gun_table(self, d, REQUIRED["gun"] + OPTIONAL["gun"]),
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {}),
                 **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
@@ -123,7 +134,8 @@ class PartJob:
     UNITS) or ``scale`` (the file's unit in m; :attr:`unit` is the one rule), ``position``
     [m] and ``rotation`` (rx, ry, rz) [deg]
     (``painting.workpiece.mesh.placement``), the painted faces' ``facing`` direction (None:
-    towards the robot) and ``max_angle`` [deg] (None: the default)."""
+    towards the robot) and ``max_angle`` [deg] (None: the default); the gun as
+    :class:`PaintJob`'s."""
 
     mesh: str
     position: tuple[float, float, float]
@@ -146,6 +158,8 @@ class PartJob:
     clearance: float | None = None  # gun body to part [m]; None: the default (§25)
     robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
     recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
+    spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
+    apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
 
     @property
     def unit(self) -> float:
@@ -159,7 +173,7 @@ class PartJob:
         if self.scale is not None:  # the file names one of units and scale
             del d["units"]
         return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
-                "gun": {k: d[k] for k in REQUIRED["gun"] + OPTIONAL["gun"] if k in d},
+                "gun": gun_table(self, d, REQUIRED["gun"] + OPTIONAL["gun"]),
                 "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
                 **({"line": self.line.to_dict()} if self.line is not None else {}),
                 **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {})}
@@ -248,6 +262,8 @@ def _check_table(source: str, d: Mapping, name: str) -> Mapping:
         _fail(source, name, table, f"must be a table [{name}]")
     required = PART_REQUIRED if name == "part" else REQUIRED[name]
     allowed = required + (PART_OPTIONAL if name == "part" else OPTIONAL[name])
+    if name == "gun":  # the keys its spray model needs (gun_table.py)
+        required = required_gun_keys(source, table)
     for k in table:
         if k not in allowed:
             _fail(source, f"{name}.{k}", table[k],
@@ -347,8 +363,9 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
 
 
 def _gun_values(source: str, gun: Mapping) -> dict:
-    values = {k: _positive(source, f"gun.{k}", gun[k], length=k != "flow")
-              for k in REQUIRED["gun"]}
+    values = {"standoff": _positive(source, "gun.standoff", gun["standoff"], length=True)}
+    values.update(spot_values(source, gun, values["standoff"], MAX_LENGTH))
+    values["flow"] = _positive(source, "gun.flow", gun["flow"])
     if "clearance" in gun:  # the gun body's least distance from the part (§25)
         values["clearance"] = _number(source, "gun.clearance", gun["clearance"], length=True)
         if values["clearance"] < 0:

@@ -157,14 +157,14 @@ def _moved(plan, poses):
 
 
 def _part_path(plan, poses) -> tuple:
-    """(gun, t, tips, axes, spray, part) of a part's plan (still or on a line) whose gun
+    """(gun, t, tips, rotations, spray, part) of a part's plan (still or on a line) whose gun
     follows ``poses`` (N, 6, world), as its film sees them (a line part: from the part)."""
     moved = _moved(plan, poses)
     if isinstance(moved, LinePartPlan):
         moved = moved.in_part_frame()
     tr = moved.trajectory
-    return (gun_of(plan.job), tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0],
-            moved.spray, moved.part)
+    return (gun_of(plan.job), tr.t, tr.poses[:, :3], rotation(tr.poses), moved.spray,
+            moved.part)
 
 
 def program_film(plan, points, poses, shade=None) -> np.ndarray:
@@ -186,10 +186,10 @@ def program_film(plan, points, poses, shade=None) -> np.ndarray:
     if isinstance(moved, LinePlan):
         on = moved.spray > 0
         return film(gun, tr.t[on], part_frame_positions(moved)[on],
-                    rotation(tr.poses[on])[:, :, 0], pts, moved.frame.n,
+                    rotation(tr.poses[on]), pts, moved.frame.n,
                     origin=moved.frame.c).thickness
     if isinstance(moved, PaintPlan):
-        return film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses)[:, :, 0], pts,
+        return film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses), pts,
                     moved.frame.n, origin=moved.frame.c).thickness
     raise JobKindError(f"no film of a deflected program for a {type(plan).__name__}: a "
                        "panel's or a part's plan, still or on a line")

@@ -24,13 +24,15 @@ from .mesh import MeshFilm, mesh_film
 
 
 def world_gun(rp) -> tuple:
-    """(t, tips (N, 3), axes (N, 3), spray (N,)) of a robot's plan (:class:`.cell.plan.
-    RobotPlan`) seen from the part at its t = 0 pose, world coordinates."""
+    """(t, tips (N, 3), gun rotations (N, 3, 3), spray (N,)) of a robot's plan
+    (:class:`.cell.plan.RobotPlan`) seen from the part at its t = 0 pose, world coordinates
+    (the rotations' first column the spray axis)."""
     plan, cr = rp.plan, rp.robot
     tr = plan.trajectory
     tips = tr.poses[:, :3] - plan.speed * tr.t[:, None] * plan.direction[None, :]
-    axes = rotation(tr.poses)[:, :, 0]
-    return tr.t, cr.to_world(tips), axes @ cr.R.T, plan.spray
+    R = rotation(tr.poses)  # each column turned as the axis always was, row by row
+    frames = np.stack([R[:, :, i] @ cr.R.T for i in range(3)], axis=2)
+    return tr.t, cr.to_world(tips), frames, plan.spray
 
 
 def run_weights(t, spray) -> tuple:

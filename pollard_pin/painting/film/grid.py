@@ -90,7 +90,7 @@ def plan_film(plan: PaintPlan, resolution: float | None = None):
         raise PlanError(f"the film map needs {pairs:.3g} point × sample pairs ({len(U)} × "
                         f"{len(V)} points, {len(tr.t)} path samples), budget "
                         f"{MAX_FILM_PAIRS:.3g}: a coarser film grid")
-    axes = rotation(tr.poses)[:, :, 0]
+    axes = rotation(tr.poses)  # the spot turns with the gun (docs/model.md §20)
     f: Film = film(gun_of(plan.job), tr.t, tr.poses[:, :3], axes, pts.reshape(-1, 3),
                    plan.frame.n, origin=plan.frame.c)
     return U, V, pts, f

@@ -31,7 +31,7 @@ def line_film(plan: LinePlan, resolution: float | None = None):
     if pairs > MAX_FILM_PAIRS:
         raise PlanError(f"the film map needs {pairs:.3g} point × sample pairs, budget "
                         f"{MAX_FILM_PAIRS:.3g}: a coarser film grid")
-    axes = rotation(tr.poses[on])[:, :, 0]
+    axes = rotation(tr.poses[on])  # the spot turns with the gun (docs/model.md §20)
     f = film(gun_of(plan.job), tr.t[on], part_frame_positions(plan)[on], axes,
              pts.reshape(-1, 3), plan.frame.n, origin=plan.frame.c)
     return U, V, pts, f

@@ -128,9 +128,10 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     most SHADE_PAIRS."""
     t = np.asarray(t, dtype=float)
     p, a = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a))
-    if not (p.shape == a.shape == (len(t), 3)):
-        raise MeshError(f"gun positions {p.shape} and axes {a.shape} must both be "
-                        f"({len(t)}, 3), one per time sample")
+    # a: the axes (T, 3) or the rotations (T, 3, 3) a spot that is not round needs (§20)
+    if not (p.shape == a.shape[:2] == (len(t), 3) and a.shape[2:] in ((), (3,))):
+        raise MeshError(f"gun positions {p.shape} and axes {a.shape} must be ({len(t)}, 3) "
+                        f"(axes: or ({len(t)}, 3, 3) rotations), one per time sample")
     trig = _spray(spray, len(t))
     s, n = points.points, points.normals
     o = s.mean(axis=0) if origin is None else np.asarray(origin, dtype=float)

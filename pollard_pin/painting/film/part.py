@@ -42,7 +42,7 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     on = plan.spray > 0
     faces = live_faces(plan.part, tr.poses[on, :3]) | plan.part.painted
     pts = surface_points(plan.part, resolution, sigma=job.sigma, faces=faces)
-    axes = rotation(tr.poses)[:, :, 0]
+    axes = rotation(tr.poses)  # the spot turns with the gun (docs/model.md §20)
     film: MeshFilm = mesh_film(gun_of(job), tr.t, tr.poses[:, :3], axes, pts, plan.part,
                                plan.spray)
     efficiency = film.landed / film.sprayed if film.sprayed > 0 else float("nan")

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from ...analytic.taskspace import angles_from_rotation
+from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame
 
 # σ: the spot's reach (docs/model.md §21): constant speed while within it of the panel
@@ -38,22 +39,38 @@ def ripple_spacing(sigma: float, tolerance: float = PROFILE_TOLERANCE / 2) -> fl
     return sigma * math.pi * math.sqrt(2.0 / math.log(2.0 / tolerance))
 
 
-def cross_profile(offsets, spacing: float, sigma: float, y) -> np.ndarray:
+def job_spacing(job, tolerance: float = PROFILE_TOLERANCE / 2) -> float:
+    """The widest spacing whose interior ripple stays within ``tolerance`` for the job's spot
+    across its passes (docs/model.md §21): :func:`ripple_spacing` for the round Gaussian
+    (``job.spot`` None), else the spot's own (:meth:`.spray.spots.Spot.spacing`)."""
+    if job.spot is None:
+        return ripple_spacing(job.sigma, tolerance)
+    return job.spot.spacing(tolerance, STROKES[job.direction])
+
+
+def cross_profile(offsets, spacing: float, sigma: float, y, spot=None,
+                  direction: str = "across") -> np.ndarray:
     """Film across passes at ``offsets`` relative to the interior film flow/(speed·spacing):
-    Σ_k Δ/(√(2π)σ)·exp(−(y − y_k)²/2σ²) (long passes, docs/model.md §21)."""
+    Σ_k Δ/(√(2π)σ)·exp(−(y − y_k)²/2σ²) (long passes, docs/model.md §21); with ``spot`` (a
+    :class:`.spray.spots.Spot`, its strokes ``direction``), Σ_k Δ·stripe(y − y_k)."""
     d = np.asarray(y, dtype=float)[:, None] - np.asarray(offsets)[None, :]
+    if spot is not None:
+        return spacing * spot.stripe(d, direction).sum(1)
     return spacing / (math.sqrt(2 * math.pi) * sigma) * np.exp(-0.5 * (d / sigma) ** 2).sum(1)
 
 
 def pass_offsets(extent: float, spacing: float, sigma: float,
-                 tolerance: float = PROFILE_TOLERANCE) -> np.ndarray:
-    """The fewest passes, centred and ``spacing`` apart, whose cross profile stays within
-    ``tolerance`` of 1 across [−extent/2, extent/2], edges included."""
+                 tolerance: float = PROFILE_TOLERANCE, spot=None,
+                 direction: str = "across") -> np.ndarray:
+    """The fewest passes, centred and ``spacing`` apart, whose cross profile (of the round
+    Gaussian of ``sigma``, or of ``spot`` in strokes ``direction``: :func:`cross_profile`)
+    stays within ``tolerance`` of 1 across [−extent/2, extent/2], edges included."""
     y = np.linspace(-extent / 2, extent / 2, max(3, int(math.ceil(extent / (sigma / 20))) + 1))
     n = max(1, int(math.floor(extent / spacing)))
     while True:
         offsets = (np.arange(n) - (n - 1) / 2) * spacing
-        if np.abs(cross_profile(offsets, spacing, sigma, y) - 1.0).max() <= tolerance:
+        if np.abs(cross_profile(offsets, spacing, sigma, y, spot, direction)
+                  - 1.0).max() <= tolerance:
             return offsets
         n += 1
         if n * spacing > extent + 40 * sigma:  # the ripple alone breaks the tolerance
@@ -194,5 +211,6 @@ def raster_motion(frame: PanelFrame, standoff: float, seg: Segments, t,
     return poses, d, dd
 
 
-__all__ = ["PROFILE_TOLERANCE", "SPOT_RADIUS", "Segments", "cross_profile", "pass_offsets",
+__all__ = ["PROFILE_TOLERANCE", "SPOT_RADIUS", "Segments", "cross_profile", "job_spacing",
+           "pass_offsets",
            "raster_motion", "raster_segments", "ripple_spacing", "task_motion"]

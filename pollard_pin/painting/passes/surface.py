@@ -48,8 +48,9 @@ from scipy.ndimage import gaussian_filter1d
 
 from ..errors import BudgetError, PlanError
 from ..policy import DEFAULT_POLICY, PlannerPolicy
+from ..spray.spots import STROKES
 from ..workpiece.mesh import Part
-from .raster import pass_offsets, ripple_spacing
+from .raster import job_spacing, pass_offsets
 
 SAMPLE_STEP = 1e-3  # m of surface between pass samples (σ/10 for the example gun)
 # m: the Gaussian averages of the normal tried along a pass, smallest first (a faceted mesh
@@ -255,7 +256,7 @@ def footprint(s, surf, tip, axis, across) -> np.ndarray:
 
 def pass_spacing(job) -> float:
     """The spacing on the surface: the job's, else the widest of ripple ≤ tolerance/2."""
-    return job.spacing if job.spacing is not None else ripple_spacing(job.sigma)
+    return job.spacing if job.spacing is not None else job_spacing(job)
 
 
 def pass_speed(job, spacing: float) -> float:
@@ -297,7 +298,8 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: fl
                           f"{spacing:.3g} m over {extent:.3g} m of surface), budget "
                           f"{policy.max_passes}: a wider job.spacing or fewer coats")
     try:
-        offsets = pass_offsets(extent, spacing, job.sigma) + extent / 2
+        offsets = pass_offsets(extent, spacing, job.sigma, spot=job.spot,
+                               direction=STROKES[job.direction]) + extent / 2
     except ValueError as exc:
         raise PlanError(f"{job.source}: {exc}") from None
     # arc w → the plane coordinate; a pass beyond an edge: the section at the edge moved on

@@ -11,8 +11,9 @@ import numpy as np
 
 from ..errors import BudgetError, PlanError
 from ..job import PaintJob
-from ..passes.raster import SPOT_RADIUS, Segments, pass_offsets, ripple_spacing
+from ..passes.raster import SPOT_RADIUS, Segments, job_spacing, pass_offsets
 from ..policy import DEFAULT_POLICY, PlannerPolicy
+from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame, panel_frame
 
 
@@ -40,7 +41,7 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
     elif job.speed is not None:
         spacing = job.flow * coats / (job.thickness * job.speed)
     else:
-        spacing = ripple_spacing(job.sigma)
+        spacing = job_spacing(job)
     # pass_offsets' count, give or take the edges
     passes = (extent / spacing + 1) * coats if spacing > 0 else math.inf
     if passes > policy.max_passes:
@@ -54,7 +55,8 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
     check_samples(passing / policy.step(job.sigma, speed) if speed > 0 else math.inf,
                   passing, speed, job, policy)
     try:
-        offsets = pass_offsets(extent, spacing, job.sigma)
+        offsets = pass_offsets(extent, spacing, job.sigma, spot=job.spot,
+                               direction=STROKES[job.direction])
     except ValueError as exc:  # name the job entries the spacing came from
         origin = ("job.spacing" if job.spacing is not None else
                   "job.speed" + (" and job.coats" if job.coats else "")

@@ -6,7 +6,12 @@ cos α = h/|d|, cos i = max(0, −d·n)/|d|; the film grows at
 
     dT/dt = flow / (2π σ(h)²) · exp(−ρ² / (2 σ(h)²)) · cos i / cos α        (h > 0)
 
-and the film is its time integral over the path (the gun sprays throughout). The integral is
+and the film is its time integral over the path (the gun sprays throughout). Any other spot
+(:mod:`.spray.spots`) replaces the Gaussian by flow·D(u/c, v/c)/c², c = h/standoff its
+scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to
+p + apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form. The
+elliptic spot turns with the gun: its callers pass the gun's rotations (T, 3, 3) where the
+others may pass the axes (T, 3) alone (:func:`gun_axes`). The integral is
 the trapezoid rule over the path's samples: for a spot crossing a point at constant speed its
 error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson summation, Δx the gun's travel per step), so
 Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9; :func:`film` also returns the difference
@@ -17,7 +22,8 @@ cone of half-angle atan(CULL_SIGMAS·σ/standoff) around some sample's axis, or 
 nozzle. For a point outside, tan θ ≥ c·k (k = σ/standoff, c = CULL_SIGMAS) and |d| > standoff/4,
 so its rate is below flow/(2πσ²) · 16 (1 + c²k²)^{3/2} exp(−c²/2) ≤ 3e-18 of the spot's centre
 (c = 10, c·k ≤ 4; the bound falls with θ beyond the cone): dropped, it changes no film by more
-than round-off.
+than round-off. Every spot culls by its own reach (c·σ = :attr:`.spots.Spot.reach`: 10 σ_long
+for the elliptic spot, the radius R for the β spot, beyond which it deposits exactly 0).
 """
 from __future__ import annotations
 
@@ -28,10 +34,11 @@ import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
 from ..progress import bar
+from .spots import REACH_SIGMAS, RoundGaussian, Spot
 
 # Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
 BLOCK_ELEMENTS = 1_000_000
-CULL_SIGMAS = 10.0  # the cone kept around the spray axis, in σ(h)/h (module docstring)
+CULL_SIGMAS = REACH_SIGMAS  # the cone kept around the spray axis, in σ(h)/h (module docstring)
 CULL_WIDEST = 4.0  # tan of the widest cone culled: a wider spray evaluates every point
 
 
@@ -43,15 +50,71 @@ class Gun:
     ----------
     standoff : float
         Nozzle to surface along the spray axis [m], where the spot has spread ``sigma``.
-    sigma : float
-        The spot's Gaussian spread at the standoff [m].
+    sigma : float or None
+        The spot's spread at the standoff [m]: the round Gaussian's σ, or for another
+        ``spot`` its :attr:`~.spots.Spot.width` (None: taken from ``spot``).
     flow : float
         Film volume deposited [m³/s] (flow × transfer efficiency × solids).
+    spot : pollard_pin.painting.spray.Spot or None, optional
+        The spray pattern at the standoff (None: the round Gaussian of ``sigma``).
+    apex : float, optional
+        The spray cone's apex in front of the nozzle [m] (negative: behind it), below the
+        standoff; the spot's size is ∝ the distance from it (default 0: the nozzle).
     """
 
     standoff: float
-    sigma: float
+    sigma: float | None
     flow: float
+    spot: Spot | None = None
+    apex: float = 0.0
+
+    def __post_init__(self):
+        if self.spot is None:
+            object.__setattr__(self, "spot", RoundGaussian(self.sigma))
+        elif self.sigma is None:
+            object.__setattr__(self, "sigma", self.spot.width)
+        elif self.sigma != self.spot.width:
+            raise ValueError(f"sigma = {self.sigma!r} m is not the spot's width "
+                             f"{self.spot.width!r} m (give sigma=None with a spot)")
+        if not (math.isfinite(self.apex) and self.apex < self.standoff):
+            raise ValueError(f"apex = {self.apex!r} m must lie before the standoff "
+                             f"{self.standoff!r} m")
+
+    @property
+    def peak_rate(self) -> float:
+        """The film's growth rate at the spot's centre at the standoff, normal incidence
+        [m/s]: flow × the spot's peak density."""
+        if type(self.spot) is RoundGaussian:
+            return self.flow / (2.0 * math.pi * self.sigma ** 2)
+        return self.flow * self.spot.peak
+
+
+def gun_axes(a) -> tuple:
+    """(spray axes (T, 3), the spot's u axes (T, 3) or None) of ``a``: the unit spray axes
+    (T, 3), or the gun's rotations (T, 3, 3) whose columns are the spray axis R·e_x and the
+    spot's u axis R·e_y (made orthogonal to the first: interpolated frames drift)."""
+    a = np.asarray(a, dtype=float)
+    if a.ndim != 3:
+        return np.atleast_2d(a), None
+    ax = np.ascontiguousarray(a[:, :, 0])
+    b = a[:, :, 1] - np.einsum("ij,ij->i", a[:, :, 1], ax)[:, None] * ax
+    return ax, b / np.linalg.norm(b, axis=1)[:, None]
+
+
+def _spot_axes(gun: Gun, a, b):
+    """The spot's (u, v) axes (T, 3) each, None for a round spot; a ValueError for a spot
+    that turns with the gun given the axes alone."""
+    if gun.spot.round:
+        return None
+    if b is None:
+        raise ValueError(f"the {gun.spot.name} spot turns with the gun about its axis: give "
+                         "the gun's rotations (T, 3, 3), not its spray axes alone")
+    return b, np.cross(a, b)
+
+
+def _source(gun: Gun, p, a):
+    """The spray's point source: the tips, or the cone's apex in front of them."""
+    return p + gun.apex * a if gun.apex else p
 
 
 def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
@@ -66,9 +129,10 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     Parameters
     ----------
     gun : Gun
-        Standoff, spread and flow.
+        Standoff, spot and flow.
     p, a : ndarray
-        Gun tips (T, 3) [m] and unit spray axes (T, 3).
+        Gun tips (T, 3) [m] and unit spray axes (T, 3), or the gun's rotations (T, 3, 3)
+        (:func:`gun_axes`; needed by a spot that is not round).
     s, n : ndarray
         Surface points (P, 3) [m] and unit normals ((P, 3) or (3,)) towards the gun.
 
@@ -91,7 +155,9 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     >>> math.isclose(rate[0, 1] / rate[0, 0], math.exp(-0.5), rel_tol=1e-12)
     True
     """
-    p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
+    p, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s))
+    a, b = gun_axes(a)
+    p = _source(gun, p, a)
     n = np.asarray(n, dtype=float)
     h = s @ a.T - np.einsum("ij,ij->i", p, a)[None, :]  # (P, T)
     d2 = (np.einsum("ij,ij->i", s, s)[:, None] + np.einsum("ij,ij->i", p, p)[None, :]
@@ -100,7 +166,11 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
         dn = (s @ n)[:, None] - (p @ n)[None, :]
     else:
         dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
-    return _rate(gun, h, d2, dn).T
+    axes = _spot_axes(gun, a, b)
+    if axes is None:
+        return _rate(gun, h, d2, dn).T
+    u, v = (s @ e.T - np.einsum("ij,ij->i", p, e)[None, :] for e in axes)
+    return _rate(gun, h, d2, dn, u, v).T
 
 
 def near_spot(gun: Gun, p, a, s) -> np.ndarray:
@@ -108,15 +178,18 @@ def near_spot(gun: Gun, p, a, s) -> np.ndarray:
     ``a`` (T, 3) may reach: a superset of those inside any sample's cone (module docstring)
     or within standoff/4 of a nozzle, found from the block's mean tip and axis (the angle to
     each sample's widened by the tips' spread δp and the axes' δa). All points when the
-    spray is wider than CULL_WIDEST."""
-    p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
+    spray is wider than CULL_WIDEST. ``a`` may be the rotations (T, 3, 3) (:func:`gun_axes`)."""
+    p, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s))
     pm, am, dp, da = spot_block(p, a)
     return np.flatnonzero(may_reach(gun, pm, am, dp, da, s))
 
 
 def spot_block(p, a) -> tuple:
     """(mean tip (3,), mean axis (3,) unnormalised, the tips' spread δp, the axes' spread δa
-    [rad] about the normalised mean) of a block of samples: :func:`may_reach`'s summary."""
+    [rad] about the normalised mean) of a block of samples: :func:`may_reach`'s summary.
+    ``a``: the axes (T, 3) or the rotations (T, 3, 3) (:func:`gun_axes`)."""
+    p = np.atleast_2d(np.asarray(p, dtype=float))
+    a = gun_axes(a)[0]
     am = a.mean(axis=0)
     pm = p.mean(axis=0)
     dp = float(np.sqrt(((p - pm) ** 2).sum(axis=1).max()))
@@ -128,40 +201,60 @@ def spot_block(p, a) -> tuple:
 def may_reach(gun: Gun, pm, am, dp: float, da: float, s, radius=0.0) -> np.ndarray:
     """(P,) True where a block of samples summarised by :func:`spot_block` may reach a point
     of ``s`` (P, 3), or, with ``radius`` [m], any point within that distance of it (the
-    angle to it widened by arcsin((δp + radius)/r): a chunk of points in its bounding ball)."""
+    angle to it widened by arcsin((δp + radius)/r): a chunk of points in its bounding ball).
+    The cone is the spot's: tan = reach/standoff, from the source (the apex: the block's
+    sources p_j + apex·a_j lie within |apex|·(δa + 1 − |ā|) more of their mean)."""
     s = np.atleast_2d(np.asarray(s, dtype=float))
-    tan_c = CULL_SIGMAS * gun.sigma / gun.standoff
+    throw = gun.standoff - gun.apex  # the source to the spot's reference plane
+    tan_c = gun.spot.reach / throw
     norm = np.linalg.norm(am)
     if tan_c > CULL_WIDEST or norm < 0.5:
         return np.ones(len(s), dtype=bool)
+    if gun.apex:
+        pm = pm + gun.apex * am
+        dp = dp + abs(gun.apex) * (da + 1.0 - norm)
     am = am / norm
     d = s - pm
     r = np.sqrt(np.einsum("ij,ij->i", d, d))
     with np.errstate(divide="ignore", invalid="ignore"):
         angle = np.arccos(np.clip((d @ am) / r, -1.0, 1.0))
         spread = np.arcsin(np.clip((dp + radius) / r, 0.0, 1.0))  # angle(s − p_j, s − p̄)
-    keep = (angle - da - spread <= math.atan(tan_c)) | (r <= gun.standoff / 4 + dp + radius)
+    keep = (angle - da - spread <= math.atan(tan_c)) | (r <= throw / 4 + dp + radius)
     return keep | ~np.isfinite(angle)
 
 
 def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
-    """dT/dt [m/s] pair by pair: gun tips ``p`` (K, 3), axes ``a`` (K, 3), points ``s``
-    (K, 3), normals ``n`` (K, 3): (K,), the rate of :func:`deposition_rate` for each pair."""
-    p, a, s, n = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s, n))
-    d = s - p
-    return _rate(gun, np.einsum("ij,ij->i", d, a), np.einsum("ij,ij->i", d, d),
-                 np.einsum("ij,ij->i", d, n))
+    """dT/dt [m/s] pair by pair: gun tips ``p`` (K, 3), axes ``a`` (K, 3) or rotations
+    (K, 3, 3), points ``s`` (K, 3), normals ``n`` (K, 3): (K,), the rate of
+    :func:`deposition_rate` for each pair."""
+    p, s, n = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s, n))
+    a, b = gun_axes(a)
+    d = s - _source(gun, p, a)
+    h, d2, dn = (np.einsum("ij,ij->i", d, x) for x in (a, d, n))
+    axes = _spot_axes(gun, a, b)
+    if axes is None:
+        return _rate(gun, h, d2, dn)
+    return _rate(gun, h, d2, dn, *(np.einsum("ij,ij->i", d, e) for e in axes))
 
 
-def _rate(gun: Gun, h, d2, dn) -> np.ndarray:
-    """The rate from h = d·a, d2 = |d|², dn = d·n (any one shape)."""
-    k = gun.sigma / gun.standoff  # σ(h) = k·h
+def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
+    """The rate from h = d·a, d2 = |d|², dn = d·n and, for a spot that is not round, the
+    spot coordinates u, v (any one shape)."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        sh2 = (k * h) ** 2
-        rho2 = np.maximum(d2 - h * h, 0.0)
-        # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
-        rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
-                * np.maximum(-dn, 0.0) / h)
+        if type(gun.spot) is RoundGaussian:
+            k = gun.sigma / (gun.standoff - gun.apex)  # σ(h) = k·h
+            sh2 = (k * h) ** 2
+            rho2 = np.maximum(d2 - h * h, 0.0)
+            # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
+            rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
+                    * np.maximum(-dn, 0.0) / h)
+        else:
+            c = h / (gun.standoff - gun.apex)  # the spot's scale
+            if u is None:
+                density = gun.spot.density(np.sqrt(np.maximum(d2 - h * h, 0.0)) / c, 0.0)
+            else:
+                density = gun.spot.density(u / c, v / c)
+            rate = gun.flow * density / (c * c) * np.maximum(-dn, 0.0) / h
     return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0)
 
 
@@ -194,11 +287,12 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     Parameters
     ----------
     gun : Gun
-        Standoff, spread and flow.
+        Standoff, spot and flow.
     t : ndarray
         Times (T,) [s].
     p, a : ndarray
-        Gun tips (T, 3) [m] and unit spray axes (T, 3).
+        Gun tips (T, 3) [m] and unit spray axes (T, 3), or the gun's rotations (T, 3, 3)
+        (:func:`gun_axes`; needed by a spot that is not round).
     s, n : ndarray
         Surface points (P, 3) [m] and unit normals ((P, 3) or (3,)) towards the gun.
     origin : ndarray or None, optional
@@ -245,9 +339,9 @@ def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
 
 
 def gun_of(job) -> Gun:
-    """The gun of a job, a panel's or a part's (its standoff, σ and flow)."""
-    return Gun(job.standoff, job.sigma, job.flow)
+    """The gun of a job, a panel's or a part's (its standoff, spot, flow and apex)."""
+    return Gun(job.standoff, job.sigma, job.flow, job.spot, job.apex or 0.0)
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "gun_of", "may_reach", "near_spot", "pair_rate", "spot_block"]
+           "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate", "spot_block"]

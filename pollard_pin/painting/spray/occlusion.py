@@ -29,6 +29,7 @@ import numpy as np
 from ..errors import MeshError
 from ..workpiece.mesh import Part, load_job_part
 from .deposition import BLOCK_ELEMENTS, Gun, deposition_rate
+from .spots import RoundGaussian
 
 SPOT_SIGMAS = 5.0
 RATE_FLOOR = math.exp(-SPOT_SIGMAS ** 2 / 2)
@@ -41,7 +42,9 @@ RAY_BLOCK = 500_000  # rays per intersector call (~100 MB of temporaries)
 def in_spot(gun: Gun, rate) -> np.ndarray:
     """True where a deposition ``rate`` [m/s] (any shape) is above RATE_FLOOR of the spot's
     centre at the standoff: the pairs worth a ray."""
-    return np.asarray(rate) > RATE_FLOOR * gun.flow / (2.0 * math.pi * gun.sigma ** 2)
+    if type(gun.spot) is RoundGaussian:
+        return np.asarray(rate) > RATE_FLOOR * gun.flow / (2.0 * math.pi * gun.sigma ** 2)
+    return np.asarray(rate) > RATE_FLOOR * gun.peak_rate
 
 
 def offset(part: Part) -> float:

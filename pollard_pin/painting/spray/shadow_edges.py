@@ -26,11 +26,12 @@ _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 9.0
 
 
 def _at(p, a, trig, k, lam):
-    """Tip, unit axis and trigger at fraction ``lam`` of the steps k → k + 1 (linear)."""
+    """Tip, unit axis (or rotation, its columns unit) and trigger at fraction ``lam`` of the
+    steps k → k + 1 (linear)."""
     lam = np.asarray(lam, dtype=float)
     pos = p[k] + lam[:, None] * (p[k + 1] - p[k])
-    ax = a[k] + lam[:, None] * (a[k + 1] - a[k])
-    ax /= np.linalg.norm(ax, axis=1)[:, None]
+    ax = a[k] + lam.reshape((-1,) + (1,) * (a.ndim - 1)) * (a[k + 1] - a[k])
+    ax /= np.linalg.norm(ax, axis=1, keepdims=True)
     return pos, ax, trig[k] + lam * (trig[k + 1] - trig[k])
 
 

@@ -28,6 +28,9 @@ import numpy as np
 from scipy import special
 
 DIRECTIONS = ("along", "across")
+# The job's pass direction → the stroke's direction to the spot's long axis (the gun's z):
+# horizontal passes move along the gun's y axis, vertical ones along its z axis.
+STROKES = {"horizontal": "across", "vertical": "along"}
 REACH_SIGMAS = 10.0  # a Gaussian's culling radius in σ (e^(−50) ≈ 2e-22 of its peak)
 
 
@@ -44,6 +47,7 @@ class Spot:
     Sizes are lengths [m] at the gun's standoff."""
 
     name: ClassVar[str] = ""
+    round: ClassVar[bool] = True  # the density depends on u² + v² alone
 
     def scale(self, h, standoff: float, apex: float = 0.0) -> np.ndarray:
         """The spot's size factor at distance ``h`` [m] along the axis: (h − apex)/(standoff −
@@ -208,6 +212,11 @@ class Spot:
         return self.spread("across")
 
     @property
+    def peak(self) -> float:
+        """The density at the spot's centre [1/m²]."""
+        return float(self.density(0.0, 0.0))
+
+    @property
     def reach(self) -> float:
         """Radius [m] at the standoff beyond which the density is 0 or below 1e-18 of its
         peak: the culling cone (docs/model.md §20)."""
@@ -307,6 +316,7 @@ class EllipticGaussian(Spot):
     sigma_long: float
     sigma_short: float
     name: ClassVar[str] = "elliptic"
+    round: ClassVar[bool] = False
 
     def __post_init__(self):
         _positive(self, "sigma_long")
@@ -416,4 +426,4 @@ def _positive(spot: Spot, key: str) -> None:
 
 
 __all__ = ["BetaSpot", "DIRECTIONS", "EllipticGaussian", "REACH_SIGMAS", "RoundGaussian",
-           "SPOTS", "Spot"]
+           "SPOTS", "STROKES", "Spot"]

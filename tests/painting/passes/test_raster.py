@@ -88,3 +88,43 @@ def test_segments_serpentine_over_the_offsets():
     assert U == pytest.approx(0, abs=1e-12)
     assert seg.duration[passes] == pytest.approx(0.2 / 0.25, rel=1e-15)
     assert seg.duration[0] == 0.4 and seg.duration[-1] == 0.5
+
+
+def test_the_spots_cross_profile_and_layout():
+    """cross_profile of a spot: the round Gaussian's stripe gives the Gaussian form (1e-14;
+    achieved 2e-16); the β spot's passes at its spacing meet the tolerance across the
+    extent, edges included, and one pass fewer does not."""
+    from pollard_pin.painting.spray.spots import BetaSpot, RoundGaussian
+
+    sigma = 0.01
+    d = ripple_spacing(sigma, 0.005)
+    off = pass_offsets(0.12, d, sigma, 0.01)
+    y = np.linspace(-0.06, 0.06, 1201)
+    gauss = cross_profile(off, d, sigma, y)
+    assert np.abs(cross_profile(off, d, sigma, y, RoundGaussian(sigma)) - gauss).max() < 1e-14
+    beta = BetaSpot(0.03, 2.5)
+    d = beta.spacing(0.005)
+    off = pass_offsets(0.12, d, beta.width, 0.01, spot=beta)
+    assert np.abs(cross_profile(off, d, beta.width, y, beta) - 1).max() <= 0.01
+    fewer = (np.arange(len(off) - 1) - (len(off) - 2) / 2) * d
+    assert np.abs(cross_profile(fewer, d, beta.width, y, beta) - 1).max() > 0.01
+
+
+def test_job_spacing_follows_the_spot_across_the_passes():
+    """The round Gaussian (spot None) keeps ripple_spacing exactly; the elliptic spot's
+    horizontal passes cross its long axis (σ_long), vertical ones its short; the β spot's
+    is its own ripple's."""
+    from types import SimpleNamespace
+
+    from pollard_pin.painting.passes.raster import job_spacing
+    from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian
+
+    def job(spot, direction="horizontal", sigma=0.01):
+        return SimpleNamespace(spot=spot, sigma=sigma, direction=direction)
+
+    assert job_spacing(job(None)) == ripple_spacing(0.01)
+    e = EllipticGaussian(0.02, 0.008)
+    assert job_spacing(job(e)) == pytest.approx(ripple_spacing(0.02), rel=1e-15)
+    assert job_spacing(job(e, "vertical")) == pytest.approx(ripple_spacing(0.008), rel=1e-15)
+    b = BetaSpot(0.03, 2.5)
+    assert job_spacing(job(b)) == b.spacing(0.005)

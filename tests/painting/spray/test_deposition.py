@@ -8,6 +8,7 @@ from scipy.special import erf, ndtri
 from scipy.stats import qmc
 
 from pollard_pin.painting.spray.deposition import Gun, coarse_weights, deposition_rate, film
+from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian, RoundGaussian
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7)
 
@@ -196,3 +197,165 @@ def test_film_of_the_kept_points_is_the_dense_film():
     dense = trapezoid_weights(t) @ deposition_rate(GUN, p, a, s, n)
     culled = film(GUN, t, p, a, s, n, origin=np.zeros(3)).thickness
     assert np.abs(culled - dense).max() <= 1e-14 * dense.max()
+
+
+# --- the spot models (docs/model.md §20) -----------------------------------------------------
+SPOTS = {"gaussian": RoundGaussian(0.010), "elliptic": EllipticGaussian(0.016, 0.006),
+         "beta": BetaSpot(0.025, 2.5)}
+
+
+def _frames(b, n: int, a=(0.0, 0.0, -1.0)) -> np.ndarray:
+    """(n, 3, 3) gun rotations spraying along ``a`` with the gun's y axis ``b``."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return np.tile(np.column_stack([a, b, np.cross(a, b)]), (n, 1, 1))
+
+
+def _stroke(gun: Gun, y, b=(1.0, 0.0, 0.0), speed=0.4, h=None, step=None):
+    """A straight stroke along x at height ``h`` (default: the standoff) above z = 0 (normal
+    +z), spraying −z, the gun's y axis ``b``; the film at (0, y, 0)."""
+    h = gun.standoff if h is None else h
+    half = 1.2 * (gun.spot.reach * (h - gun.apex) / (gun.standoff - gun.apex))
+    step = gun.sigma / 4 if step is None else step
+    n = int(round(2 * half / step)) + 1
+    x = np.linspace(-half, half, n)
+    p = np.column_stack([x, np.zeros(n), np.full(n, h)])
+    s = np.column_stack([np.zeros_like(y), y, np.zeros_like(y)])
+    return film(gun, (x + half) / speed, p, _frames(b, n), s, np.array([0.0, 0.0, 1.0]),
+                origin=np.zeros(3))
+
+
+@pytest.mark.parametrize("name, direction, b", [
+    ("gaussian", "across", (1.0, 0.0, 0.0)), ("elliptic", "across", (1.0, 0.0, 0.0)),
+    ("elliptic", "along", (0.0, 1.0, 0.0)), ("beta", "across", (1.0, 0.0, 0.0))])
+def test_a_straight_stroke_leaves_the_stripe(name, direction, b):
+    """q·stripe(y)/v for every model: the stroke along x moves along the gun's y axis b, so
+    with b = x it crosses the elliptic spot's long axis (the gun's z), with b = y it runs
+    along it. Gaussians at σ/4 steps: achieved 3e-15 of the peak, asserted 1e-12; the β spot
+    at σ/40 steps (its rim, (1 − r²/R²)^(β−1), leaves the trapezoid rule an error ~ step^β):
+    achieved 1e-6, asserted 1e-4."""
+    spot = SPOTS[name]
+    gun = Gun(0.15, None, 1.5e-7, spot=spot)
+    y = np.linspace(-0.95, 0.95, 27) * min(spot.reach, 3 * spot.width)
+    step = gun.sigma / (40 if name == "beta" else 4)
+    f = _stroke(gun, y, b, step=step)
+    exact = gun.flow * spot.stripe(y, direction) / 0.4
+    tol = 1e-4 if name == "beta" else 1e-12
+    assert np.abs(f.thickness - exact).max() < tol * exact.max()
+
+
+def test_the_elliptic_spot_turned_a_quarter_swaps_its_stripes():
+    """Turning the gun 90° about its axis (b: x → y) turns the stroke's profile from the
+    long stripe to the short one, and the films differ (by far more than the tolerance)."""
+    spot = SPOTS["elliptic"]
+    gun = Gun(0.15, None, 1.5e-7, spot=spot)
+    y = np.linspace(-0.02, 0.02, 21)
+    long_, short = (_stroke(gun, y, b).thickness for b in ((1.0, 0, 0), (0, 1.0, 0)))
+    for f, direction in ((long_, "across"), (short, "along")):
+        exact = gun.flow * spot.stripe(y, direction) / 0.4
+        assert np.abs(f - exact).max() < 1e-12 * exact.max()
+    assert np.abs(long_ - short).max() > 0.5 * short.max()
+
+
+@pytest.mark.parametrize("name", list(SPOTS))
+def test_the_spot_spreads_from_its_apex(name):
+    """At a distance h off the standoff the stroke leaves q·stripe(y/c)/(c·v),
+    c = (h − apex)/(standoff − apex): the cone law, with the apex 0.1 m behind the nozzle
+    and h = 0.2 m (c = 1.2). Same tolerances as the stroke at the standoff."""
+    spot = SPOTS[name]
+    gun = Gun(0.15, None, 1.5e-7, spot=spot, apex=-0.1)
+    c = spot.scale(0.2, gun.standoff, gun.apex)
+    assert c == pytest.approx(1.2, rel=1e-15)
+    y = np.linspace(-0.9, 0.9, 19) * min(spot.reach, 3 * spot.width)
+    step = gun.sigma / (40 if name == "beta" else 4)
+    f = _stroke(gun, y, h=0.2, step=step)
+    exact = gun.flow * spot.stripe(y / c) / (c * 0.4)
+    tol = 1e-4 if name == "beta" else 1e-12
+    assert np.abs(f.thickness - exact).max() < tol * exact.max()
+
+
+@pytest.mark.parametrize("tilt_deg", [0.0, 30.0])
+@pytest.mark.parametrize("name", list(SPOTS))
+def test_every_spot_conserves_the_flow(name, tilt_deg):
+    """∫ film dA over a large plane (tilted about y) = flow × time, the gun still at the
+    standoff spraying −z, its y axis turned 30° about the spray axis, the apex 5 cm behind the
+    nozzle. Gaussians (midpoint rule at σ/6): achieved 1e-15, asserted 1e-12; the β spot at
+    R/100 (its rim): achieved 2e-6, asserted 2e-4."""
+    spot = SPOTS[name]
+    gun = Gun(0.15, None, 1.5e-7, spot=spot, apex=-0.05)
+    tilt = math.radians(tilt_deg)
+    n_plane = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
+    e1 = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    e2 = np.array([0.0, 1.0, 0.0])
+    t = np.array([0.0, 0.5])
+    p = np.tile([0.0, 0.0, gun.standoff], (2, 1))
+    frames = _frames((math.cos(0.5), math.sin(0.5), 0.0), 2)
+    h = spot.radius / 100 if name == "beta" else gun.sigma / 6
+    half = 1.6 * spot.reach  # 1.6: the tilted plane stretches the spot by up to 1/cos 30°
+    g = np.arange(-half, half, h) + h / 2
+    G1, G2 = np.meshgrid(g, g)
+    s = G1.ravel()[:, None] * e1 + G2.ravel()[:, None] * e2
+    f = film(gun, t, p, frames, s, n_plane, origin=np.zeros(3))
+    volume = f.thickness.sum() * h * h
+    assert abs(volume / (gun.flow * 0.5) - 1) < (2e-4 if name == "beta" else 1e-12)
+
+
+def test_the_round_gaussians_fast_path_is_the_general_rate():
+    """The round Gaussian's own formula against the general rate of the same spot (an
+    elliptic Gaussian of equal axes, evaluated through its density), on a random scene with
+    an apex: equal to 5e-9 relative, pair by pair (achieved 5e-11, on rates of 1e-160 of the
+    peak, whose exponent is large; 6e-12 above 1e-10 of it: ρ² from |d|² − h² beside a nozzle
+    against u² + v²)."""
+    p, a, s, n = _scene(11, GUN, tips=30, points=500)
+    R = np.stack([a, np.cross(a, [0.0, 1.0, 0.0]), np.zeros_like(a)], axis=2)
+    R[:, :, 1] /= np.linalg.norm(R[:, :, 1], axis=1)[:, None]
+    R[:, :, 2] = np.cross(R[:, :, 0], R[:, :, 1])
+    fast = Gun(0.15, 0.01, 1.5e-7, apex=-0.02)
+    slow = Gun(0.15, None, 1.5e-7, spot=EllipticGaussian(0.01, 0.01), apex=-0.02)
+    r1, r2 = deposition_rate(fast, p, R, s, n), deposition_rate(slow, p, R, s, n)
+    assert r1.max() > 0 and (np.abs(r1 - r2) <= 5e-9 * r1 + 1e-300).all()  # + underflow
+    from pollard_pin.painting.spray.deposition import pair_rate
+
+    k = np.arange(30)
+    assert (np.abs(pair_rate(slow, p, R, s[k], n[k]) - r2[k, k]) <= 5e-9 * r2[k, k] + 1e-300).all()
+
+
+@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("name", ["elliptic", "beta"])
+def test_near_spot_keeps_every_point_each_spot_reaches(name, seed):
+    """The cull by the spot's reach: every point near_spot drops gets, from every tip, below
+    3e-18 of the spot's centre rate (the β spot: exactly 0), with an apex 3 cm behind the
+    nozzle and the gun turned at random about its axis."""
+    from pollard_pin.painting.spray.deposition import near_spot
+
+    gun = Gun(0.15, None, 1.5e-7, spot=SPOTS[name], apex=-0.03)
+    p, a, s, n = _scene(seed, gun)
+    rng = np.random.default_rng(seed)
+    b = np.cross(a, rng.normal(size=a.shape))
+    b /= np.linalg.norm(b, axis=1)[:, None]
+    R = np.stack([a, b, np.cross(a, b)], axis=2)
+    kept = near_spot(gun, p, R, s)
+    dropped = np.setdiff1d(np.arange(len(s)), kept)
+    assert 0 < len(dropped) and len(kept) < len(s)
+    rate = deposition_rate(gun, p, R, s[dropped], n[dropped])
+    assert rate.max(initial=0.0) <= (0.0 if name == "beta" else 3e-18 * gun.peak_rate)
+
+
+def test_a_turning_spot_needs_the_guns_rotations():
+    gun = Gun(0.15, None, 1.5e-7, spot=SPOTS["elliptic"])
+    with pytest.raises(ValueError, match="rotations"):
+        deposition_rate(gun, [[0, 0, 0.15]], [[0, 0, -1.0]], [[0, 0, 0]], [0, 0, 1.0])
+    # the round spots take either
+    beta = Gun(0.15, None, 1.5e-7, spot=SPOTS["beta"])
+    r1 = deposition_rate(beta, [[0, 0, 0.15]], [[0, 0, -1.0]], [[0.01, 0, 0]], [0, 0, 1.0])
+    r2 = deposition_rate(beta, [[0, 0, 0.15]], _frames((1.0, 0, 0), 1), [[0.01, 0, 0]],
+                         [0, 0, 1.0])
+    assert r1[0, 0] == r2[0, 0] > 0
+
+
+def test_the_gun_checks_its_spot():
+    assert Gun(0.15, 0.01, 1e-7).spot == RoundGaussian(0.01)
+    assert Gun(0.15, None, 1e-7, spot=SPOTS["beta"]).sigma == SPOTS["beta"].width
+    with pytest.raises(ValueError, match="not the spot's width"):
+        Gun(0.15, 0.01, 1e-7, spot=SPOTS["elliptic"])
+    with pytest.raises(ValueError, match="before the standoff"):
+        Gun(0.15, 0.01, 1e-7, apex=0.15)
