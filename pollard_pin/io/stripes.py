@@ -102,9 +102,9 @@ class Stripe:
 
     Parameters
     ----------
-    position : array_like
+    position : ndarray
         (N,) positions across the stripe [m], strictly monotone (stored rising).
-    thickness : array_like
+    thickness : ndarray
         (N,) the dry film at each position [m].
     standoff : float
         The gun's distance to the panel [m] (the spray axis normal to the panel).

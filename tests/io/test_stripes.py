@@ -113,3 +113,13 @@ def test_a_python_built_set_is_checked_the_same():
     with pytest.raises(StripeError, match="expected two 1-D columns"):
         Stripe(x, t[:-1], 0.2, 0.5, 2e-6, "across")
     assert StripeSet((good,), 1, 0.25).standoff == 0.25
+
+
+def test_the_formats_page_names_every_key():
+    from pollard_pin.io.stripes import STRIPE_KEYS, TOP_KEYS
+
+    text = (EXAMPLE.parents[2] / "docs" / "formats.md").read_text(encoding="utf-8")
+    section = text.split("### Measured stripes", 1)[1].split("\n## ", 1)[0]
+    top, stripe = section.split("`[[stripe]]`:", 1)
+    assert all(f"| `{k}`" in top for k in TOP_KEYS), TOP_KEYS
+    assert all(f"| `{k}`" in stripe for k in STRIPE_KEYS), STRIPE_KEYS

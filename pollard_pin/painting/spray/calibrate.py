@@ -118,8 +118,8 @@ class CalibrationFit:
         """The calibrated gun: the chosen spot at the reference standoff, its apex, and the
         dry film flow φ η q it deposits at the stripes' most common liquid flow q."""
         best = self.best
-        return Gun(self.standoff, best.spot.width, self.flow * self.stripes.solids
-                   * best.efficiency, spot=best.spot, apex=best.apex)
+        return Gun(self.standoff, None, self.flow * self.stripes.solids * best.efficiency,
+                   spot=best.spot, apex=best.apex)
 
 
 def stripe_data(stripes: StripeSet) -> list[StripeData]:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
+from ..gun_table import MAX_ELONGATION
 from .spots import SPOTS
 
 # The β spot's exponent: > 1 (a density falling to 0 at the rim); β → ∞ is the Gaussian,
@@ -28,7 +29,7 @@ from .spots import SPOTS
 BETA_BOUNDS = (1.0 + 1e-6, 60.0)
 BETA_START = 3.0
 SHAPE_NEAR = 0.01  # a shape this share of its interval from a bound tends to the bound
-RATIO_LOWEST = 0.01  # σ_short/σ_long: a spot 100 times longer than wide is a line
+RATIO_LOWEST = 1.0 / MAX_ELONGATION  # σ_short/σ_long: the longest spot a job takes
 MAX_EVALUATIONS = 300  # least squares iterations: a good fit takes 10-50
 UNDETERMINED = 0.5  # a size whose standard error is over half of it is not determined
 ILL_CONDITIONED = 1e12  # cond(JᵀJ) in scaled parameters beyond which they are not identified
