@@ -32,6 +32,7 @@ from .kinematics.margins import Margins
 from .model.build import Robot, load
 from .model.params import Params, load_params
 from .outputs import PaintResult, fewest_robots, paint
+from .outputs.calibration import CalibrateOptions, Calibration, calibrate
 from .painting import (
     LayoutOptions,
     PaintOptions,
@@ -73,6 +74,7 @@ __all__ = [
     # painting
     "load_job", "job_from_dict", "paint", "PaintOptions", "PaintResult", "place",
     "PlaceOptions", "propose_layout", "fewest_robots", "LayoutOptions",
+    "calibrate", "Calibration", "CalibrateOptions",  # the spray pattern from stripes
     # design sweeps, figures and the viewer page
     "load_grid", "make_sweep", "run_sweep", "write_figures", "write_html",
 ]

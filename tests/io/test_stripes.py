@@ -1,0 +1,125 @@
+"""Stripe files (io/stripes.py): the example reads back as written; every file or value a
+calibration cannot use is one StripeError line naming the stripe and what to measure."""
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pollard_pin.io.stripes import Stripe, StripeError, StripeSet, read_stripes
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "stripes" / "stripes.toml"
+TOP = 'solids = 0.45\n[[stripe]]\nfile = "s.csv"\nstandoff = 0.2\nspeed = 0.5\n' \
+      'flow = 2e-6\ndirection = "across"\n'
+
+
+def _csv(x, t) -> str:
+    return "position,thickness\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(x, t))
+
+
+def _good():
+    x = np.linspace(-0.1, 0.1, 101)
+    return x, 2e-5 * np.exp(-0.5 * (x / 0.02) ** 2)
+
+
+def test_the_example_reads_back():
+    s = read_stripes(EXAMPLE)
+    assert len(s.stripes) == 8 and s.solids == 0.45 and s.standoff == 0.2
+    assert {st.direction for st in s.stripes} == {"across", "along"}
+    assert {st.standoff for st in s.stripes} == {0.15, 0.25}
+    first = s.stripes[0]
+    assert len(first.position) == 301 and first.position[0] == -0.15
+    assert np.all(np.diff(first.position) > 0) and not first.position.flags.writeable
+    assert len(s.files) == 8 and all(f.is_file() for f in s.files)
+
+
+def test_a_stripe_scanned_the_other_way_is_stored_rising():
+    x, t = _good()
+    s = Stripe(x[::-1], t[::-1], 0.2, 0.5, 2e-6, "along")
+    assert np.array_equal(s.position, x) and np.array_equal(s.thickness, t)
+
+
+X, T = _good()
+BAD_CSV = [
+    ("non-monotone", _csv(np.r_[X[:50], X[51], X[50], X[52:]], T), "positions must rise"),
+    ("repeated", _csv(np.r_[X[:50], X[50], X[50], X[52:]], T), "line 53: position 0 m after 0 m"),
+    ("nan", _csv(X, np.r_[T[:10], np.nan, T[11:]]), "line 12: thickness is nan"),
+    ("text", _csv(X, T).replace(repr(float(T[5])), "abc"),
+     "line 7: thickness 'abc' is not a number"),
+    ("huge", _csv(X, np.r_[T[:10], 1e300, T[11:]]), "over 1 mm of dry film: thickness in µm?"),
+    ("mm", _csv(X * 1e3, T), "a pattern wider than 1 m: positions in mm? give metres"),
+    ("microns", _csv(X, T * 1e6), "thickness in µm? give metres"),
+    ("columns", "x,y\n0,1\n", "columns 'x,y': expected 'position,thickness'"),
+    ("few", _csv(X[:5], T[:5]), "5 points: measure at least 10"),
+    ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
+    ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
+    ("empty", "", "empty: a stripe is a CSV"),
+]
+
+
+@pytest.mark.parametrize("name, content, says", BAD_CSV, ids=[b[0] for b in BAD_CSV])
+def test_a_bad_stripe_file_is_one_line(tmp_path, name, content, says):
+    (tmp_path / "s.csv").write_bytes(content.encode("latin-1" if name == "latin1" else "utf-8"))
+    (tmp_path / "stripes.toml").write_text(TOP)
+    with pytest.raises(StripeError) as info:
+        read_stripes(tmp_path / "stripes.toml")
+    text = str(info.value)
+    assert says in text and "\n" not in text and "s.csv" in text, text
+
+
+BAD_TOML = [
+    ("unknown", TOP + "colour = 1\n", "stripe 1: unknown key 'colour'"),
+    ("unknown top", "solid = 0.4\n" + TOP, "unknown key 'solid' (did you mean 'solids'?)"),
+    ("no solids", TOP.replace("solids = 0.45\n", ""), "'solids' is missing"),
+    ("percent", TOP.replace("0.45", "45"), "solids = 45: must be the dry share"),
+    ("missing key", TOP.replace("speed = 0.5\n", ""), "'speed' is missing"),
+    ("direction", TOP.replace('"across"', '"acros"'), "(did you mean 'across'?)"),
+    ("standoff mm", TOP.replace("standoff = 0.2", "standoff = 200"), "in mm? give metres"),
+    ("speed", TOP.replace("speed = 0.5", "speed = 500"), "in mm/s? give m/s"),
+    ("flow", TOP.replace("flow = 2e-6", "flow = 120"), "in ml/min or l/min? give m³/s"),
+    ("negative", TOP.replace("speed = 0.5", "speed = -0.5"), "must be a finite number > 0"),
+    ("no stripes", "solids = 0.4\n", "no stripes"),
+    ("missing file", TOP.replace("s.csv", "none.csv"), "none.csv' does not exist"),
+    ("not toml", "solids = \n", "is not valid TOML"),
+]
+
+
+@pytest.mark.parametrize("name, text, says", BAD_TOML, ids=[b[0] for b in BAD_TOML])
+def test_a_bad_stripes_toml_is_one_line(tmp_path, name, text, says):
+    x, t = _good()
+    (tmp_path / "s.csv").write_text(_csv(x, t))
+    (tmp_path / "stripes.toml").write_text(text)
+    with pytest.raises(StripeError) as info:
+        read_stripes(tmp_path / "stripes.toml")
+    assert says in str(info.value) and "\n" not in str(info.value), str(info.value)
+
+
+def test_a_fifo_is_refused_not_waited_for(tmp_path):
+    os.mkfifo(tmp_path / "s.csv")
+    (tmp_path / "stripes.toml").write_text(TOP)
+    with pytest.raises(StripeError, match=r"not a regular file \(a FIFO\)"):
+        read_stripes(tmp_path / "stripes.toml")
+
+
+def test_a_python_built_set_is_checked_the_same():
+    x, t = _good()
+    good = Stripe(x, t, 0.2, 0.5, 2e-6, "across")
+    with pytest.raises(StripeError, match="solids = 1.5"):
+        StripeSet((good,), 1.5)
+    with pytest.raises(StripeError, match="no stripes"):
+        StripeSet((), 0.4)
+    with pytest.raises(StripeError, match="point 3: thickness is inf"):
+        Stripe(x, np.r_[t[:2], np.inf, t[3:]], 0.2, 0.5, 2e-6, "across")
+    with pytest.raises(StripeError, match="expected two 1-D columns"):
+        Stripe(x, t[:-1], 0.2, 0.5, 2e-6, "across")
+    assert StripeSet((good,), 1, 0.25).standoff == 0.25
+
+
+def test_the_formats_page_names_every_key():
+    from pollard_pin.io.stripes import STRIPE_KEYS, TOP_KEYS
+
+    text = (EXAMPLE.parents[2] / "docs" / "formats.md").read_text(encoding="utf-8")
+    section = text.split("### Measured stripes", 1)[1].split("\n## ", 1)[0]
+    top, stripe = section.split("`[[stripe]]`:", 1)
+    assert all(f"| `{k}`" in top for k in TOP_KEYS), TOP_KEYS
+    assert all(f"| `{k}`" in stripe for k in STRIPE_KEYS), STRIPE_KEYS
