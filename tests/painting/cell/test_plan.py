@@ -156,6 +156,47 @@ def test_a_slow_line_waits_and_the_seam_holds(robot, act):
     assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
 
 
+def test_just_below_the_pace_a_retry_adds_only_the_time_needed(robot, act, monkeypatch):
+    """Where a program as it is fails as too slow just below its pace (forced here: every
+    drift < 0 refused), the retry's turns add only the time the line needs (docs/model.md
+    §24.1): the turns' rate dips and they wait 0, the drift is 0 (half-paced turns would
+    have overshot by n·τ·s), it paints, its waits stated ≥ 0, the seam on target."""
+    from pollard_pin.painting.errors import LineSpeedError
+    from pollard_pin.painting.line import dwell
+
+    plain, tried = dwell.plan_world, []
+
+    def plan_world(robot_, act_, prog, speed, e, policy):
+        rel = prog.build(prog.guess)
+        tried.append(rel.kind.count("wait"))
+        if "wait" not in rel.kind and dwell.drift_along(rel, speed, e) < 0:
+            raise LineSpeedError("drifts back out of the reach", False, "drifts back")
+        return plain(robot_, act_, prog, speed, e, policy)
+
+    monkeypatch.setattr(dwell, "plan_world", plan_world)
+    slow = plan_cell_job(robot, cell_job(panel_cell(speed=0.0189)), act)  # paces ≈ 0.0191
+    assert tried.count(0) == 2 and len(tried) == 4  # each robot: as it is, then the retry
+    for rp in slow.robots:
+        rel, e = rp.plan.relative, rp.plan.direction
+        assert rp.plan.strokes.dwell == dwell.dwell_time(rel) >= 0.0
+        assert abs(dwell.drift_along(rel, slow.speed, e)) < 1e-9
+        base = [d for d, k in zip(rel.program.duration, rel.program.kind) if k == "turn"]
+        halves = [d for d, k in zip(rel.duration, rel.kind) if k == "turn"][::2]
+        waits = [d for d, k in zip(rel.duration, rel.kind) if k == "wait"]
+        assert min(waits) >= 0.0
+        # each turn adds the same share x of the time the line needs (2h + w − τ), the
+        # short ones stopping and waiting, the rest slowed only (τ/2 < h < τ, no wait)
+        added = [2 * h + w - b for h, w, b in zip(halves, waits, base)]
+        assert np.ptp(added) < 1e-9 and 0 < added[0] < max(base)
+        dipped = [b / 2 < h < b and w == 0 for h, w, b in zip(halves, waits, base)]
+        assert sum(dipped) >= len(base) // 2
+    film = cell_panel_film(slow)
+    (seam,) = slow.split.seams()
+    _, rows = seam_rows(slow, film, seam, slow.split.runout)
+    assert np.abs(rows - 1).max() <= 5e-3
+    assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
+
+
 def test_strokes_along_are_refused_for_a_cell(robot, act):
     from pollard_pin.painting.errors import PlanError
     from pollard_pin.painting.policy import PlannerPolicy
