@@ -41,7 +41,10 @@ def _line_outputs(folder) -> dict:
 def test_outputs(painted):
     rep = _line_outputs(painted)
     # auto: across the strip, leading end first (strokes along it are out of reach), no wait
+    why = rep["strokes"].pop("why")
     assert rep["strokes"] == {"direction": "across", "step_from": "leading", "dwell_s": 0.0}
+    assert why.startswith("auto: the shortest cycle that paints, ")  # and why not along:
+    assert "; along: strokes along" not in why and "; along: all 8 passes out of reach" in why
     assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
     table = read_result(painted / "thickness.csv")
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
