@@ -3,6 +3,7 @@ today's line job, a rigid motion of the whole scene leaves the film as it was, t
 film is the target's (and would not be if a robot sprayed past it), a robot turned about z
 on the far side of the line paints the part's back."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -197,13 +198,34 @@ def test_just_below_the_pace_a_retry_adds_only_the_time_needed(robot, act, monke
     assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
 
 
-def test_strokes_along_are_refused_for_a_cell(robot, act):
-    from pollard_pin.painting.errors import PlanError
+def test_strokes_along_in_a_cell_give_each_robot_whole_passes(robot, act):
+    """Forced along the travel (docs/model.md §24.2, §26.3): each robot paints the whole
+    passes whose level lies in its zone, every pass of the one-robot layout painted by
+    exactly one robot, so the seam lies between two passes and lays the target (a pass
+    doubled or dropped there would show ±50 % or more; seen 0.995–1.005, the ripple's)."""
+    from pollard_pin.painting.plan.layout import panel_layout
     from pollard_pin.painting.policy import PlannerPolicy
 
-    with pytest.raises(PlanError, match=r"^strokes along the travel \(forced\): not planned "
-                       "for a cell"):
-        plan_cell(robot, cell_job(panel_cell()), act, policy=PlannerPolicy(strokes="along"))
+    policy = PlannerPolicy(strokes="along")
+    cell = plan_cell(robot, cell_job(panel_cell()), act, policy=policy)
+    (seam,) = cell.split.seams()
+    levels = []
+    for rp in cell.robots:
+        p = rp.plan
+        assert (p.strokes.direction, p.strokes.start, p.strokes.why) == ("along", None, "forced")
+        t = p.trajectory.t  # passes along the +y travel, the gun open over the program
+        assert p.horizontal and p.spray[(t >= p.times.delay) & (t <= p.times.end)].min() == 1
+        z = p.frame.c[2] + rp.robot.base[2] + p.offsets * p.frame.v[2]  # world levels
+        assert (z < seam).all() if rp.robot.name == "low" else (z >= seam).all()
+        levels += list(z)
+    job = replace(cell.job, direction="horizontal")
+    frame, offsets = panel_layout(job)[:2]
+    assert sorted(levels) == pytest.approx(sorted(frame.c[2] + offsets * frame.v[2]),
+                                           abs=1e-12)
+    film = cell_panel_film(cell)
+    _, rows = seam_rows(cell, film, seam, 3 * cell.job.sigma)
+    assert np.abs(rows - 1).max() <= 1e-2
+    assert np.abs(film[3].thickness / cell.job.thickness - 1).max() <= 0.05
 
 
 def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell,
