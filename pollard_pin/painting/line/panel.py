@@ -116,7 +116,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     speed = job.line.speed if speed is None else float(speed)
     one_coat(job)
     return shortest(lambda s: _plan_panel(robot, job, act, speed, policy, s, clock), policy,
-                    check, clearance)
+                    check, clearance, job.source)
 
 
 def cleared(robot, plan):

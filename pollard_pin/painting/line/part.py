@@ -105,7 +105,7 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
     one_coat(job)
     part = load_painted_part(job) if part is None else part
     return shortest(lambda s: _plan_part(robot, job, act, speed, part, policy, s, clock),
-                    policy, check, always)
+                    policy, check, always, job.source)
 
 
 def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) -> LinePartPlan:

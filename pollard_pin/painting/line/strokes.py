@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from ...errors import PollardError, say_less
+from ...errors import PollardError, say_less, without_asides
 from ..errors import LineSpeedError, PlanError
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 
@@ -48,13 +48,13 @@ def across(strokes: Strokes, across_travel: bool) -> bool:
 
 
 def shortest(plan_with, policy: PlannerPolicy = DEFAULT_POLICY, check=None,
-             always: bool = False):
+             always: bool = False, source: str = ""):
     """``plan_with(strokes)`` for each of the policy's :func:`candidates`, the shortest
     cycle of those that plan and pass ``check`` (plan ↦ the plan checked, or a
     :class:`PlanError`: the gun's clearance), tried in order of cycle; ``check`` is run on
     the one kept when ``always``, else only where two or more planned (the choice then
-    depends on it). None: the first one's error (a forced one's named). The plan's
-    ``strokes.why`` says the choice."""
+    depends on it). None: the first one's error (a forced one's named, the job's
+    ``source`` that leads its words dropped). The plan's ``strokes.why`` says the choice."""
     found, first, said = [], None, []
     ways = candidates(policy)
     for s in ways:
@@ -83,7 +83,7 @@ def shortest(plan_with, policy: PlannerPolicy = DEFAULT_POLICY, check=None,
     if refused is not None:
         raise refused
     if len(ways) == 1 and policy.strokes != "auto":
-        raise named(first, ways[0])
+        raise named(first, ways[0], source)
     raise first
 
 
@@ -97,11 +97,14 @@ def _reason(exc: Exception, room: int = 100) -> str:
     return text if len(text) <= room else text[:room - 1] + "…"
 
 
-def named(exc: PlanError, strokes: Strokes) -> PlanError:
-    """``exc`` with the forced strategy said first (a :class:`LineSpeedError` keeps its
-    sense, so the speed search still reads it)."""
+def named(exc: PlanError, strokes: Strokes, source: str = "") -> PlanError:
+    """``exc`` with the forced strategy said first, the job's ``source`` that may lead its
+    words dropped (a :class:`LineSpeedError` keeps its sense, so the speed search still
+    reads it)."""
     said = f"{strokes.said()} (forced)"
-    text = say_less(f"{said}: {exc}", f"{said}: {str(exc).split(': ')[0]}", said)
+    words = str(exc).removeprefix(f"{source}: ") if source else str(exc)
+    text = say_less(f"{said}: {words}", f"{said}: {without_asides(words)}",
+                    f"{said}: {words.split(': ')[0]}", said)
     if isinstance(exc, LineSpeedError):
         return LineSpeedError(text, exc.too_fast, exc.why, exc.hint)
     try:

@@ -117,3 +117,20 @@ def test_auto_picks_the_shorter_cycle(robot, line_job, act):
                                 f"{auto.times.cycle:.2f} s; across from the leading end: "
                                 f"cycle {across.times.cycle:.2f} s")
     assert auto.times.cycle < 0.5 * across.times.cycle
+
+
+def test_a_forced_refusal_drops_the_jobs_source():
+    """A refusal that leads with the job's file (the sample budget's) keeps its words after
+    the forced strategy's name, not the file's name alone (seen: "… (forced): j.toml")."""
+    from pollard_pin.painting.errors import BudgetError
+
+    words = ("line.speed = 1e-05 m/s carries the part 0.005 m in the longest path the budget "
+             "allows (250000 samples, 500 s): give at least 1e-05 m/s, in m/s, or no [line] "
+             "for a still part")
+    with pytest.raises(BudgetError) as info:
+        shortest(_plans({"across": BudgetError(f"j.toml: {words}")}),
+                 PlannerPolicy(strokes="across", step_from="trailing"), source="j.toml")
+    said = str(info.value)
+    assert said.startswith("strokes across the travel, stepping from the trailing end "
+                           "(forced): line.speed = 1e-05 m/s carries the part 0.005 m")
+    assert "j.toml" not in said and len(said) <= 250
