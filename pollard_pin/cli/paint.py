@@ -129,8 +129,9 @@ def add_parser(sub, parents) -> None:
                         "line.speeds; docs/model.md §24.3; ~10 more plans)")
     p.add_argument("--strokes", choices=("auto", "across", "along"), default="auto",
                    help="a job with [line]: the strokes across the travel or along it; auto "
-                        "(default): of those that paint at the job's speed, the shortest "
-                        "cycle, per robot (a cell: across) (docs/model.md §24.2)")
+                        "(default): of those that paint at the job's speed and keep the "
+                        "gun's clearance, the shortest cycle (a cell: across; along, "
+                        "forced, gives each robot whole passes) (docs/model.md §24.2)")
     p.add_argument("--step-from", choices=("leading", "trailing"), default="leading",
                    help="a job with [line]: the end of the part the strokes across the "
                         "travel step from (default: leading)")

@@ -285,11 +285,15 @@ class Strokes(Section):
         The end the strokes step from (``"leading"``, ``"trailing"``); None along the travel.
     dwell_s : float
         The waits at the turnarounds in all [s] (a line slower than the strokes' pace).
+    why : str or None
+        Why this strategy: ``"forced"``, a cell's rule, or ``auto``'s comparison of the
+        strategies' cycles and refusals.
     """
 
     direction: str
     step_from: str | None = None
     dwell_s: float = 0.0
+    why: str | None = None
 
 
 @dataclass(frozen=True)

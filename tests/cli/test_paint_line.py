@@ -41,7 +41,10 @@ def _line_outputs(folder) -> dict:
 def test_outputs(painted):
     rep = _line_outputs(painted)
     # auto: across the strip, leading end first (strokes along it are out of reach), no wait
+    why = rep["strokes"].pop("why")
     assert rep["strokes"] == {"direction": "across", "step_from": "leading", "dwell_s": 0.0}
+    assert why.startswith("auto: the shortest cycle that paints, ")  # and why not along:
+    assert "; along: strokes along" not in why and "; along: all 8 passes out of reach" in why
     assert rep["thickness"]["within_5pct"] >= 0.99 and rep["thickness"]["within_10pct"] == 1
     table = read_result(painted / "thickness.csv")
     # the panel at its t = 0 pose, world coordinates: centred at y = −0.75
@@ -92,8 +95,12 @@ def _refused(job, tmp_path, capsys, words: str) -> None:
 @pytest.mark.parametrize("edit, words", [
     (lambda t: t.replace("direction = [0.0, 1.0, 0.0]", "direction = [0.0, 0.0, 0.0]"),
      "zero length"),
-    (lambda t: t.replace("speed = 0.03 ", "speed = 0.0 "), "must be > 0"),
-    (lambda t: t.replace("speed = 0.03 ", "speed = nan "), "must be a finite number"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = 0.0 "),
+     "must be > 0; a line speed is 0 < s ≤ 2 m/s"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = -0.01 "),
+     "'line.speed' = -0.01: must be > 0; a line speed is 0 < s ≤ 2 m/s"),
+    (lambda t: t.replace("speed = 0.03 ", "speed = nan "),
+     "must be a finite number; a line speed is 0 < s ≤ 2 m/s"),
     (lambda t: t.replace("speed = 0.03 ", "speed = 30.0 "), "must be at most 2 m/s"),
     (lambda t: t.replace("center = [0.70, -0.75, 0.16]", "center = [0.70, 2.5, 0.16]"),
      "never comes within reach"),

@@ -254,6 +254,10 @@ def test_the_strokes_are_typed_and_a_robots_checked():
     assert along.to_dict()["strokes"] == {"direction": "along", "dwell_s": 0.0}
     with pytest.raises(ResultFileError, match="strokes.dwell_s"):
         PaintJson.from_dict({**raw, "strokes": {"direction": "across", "dwell_s": "long"}})
+    why = {"direction": "along", "step_from": None, "dwell_s": 0.0, "why": "auto: …"}
+    assert PaintJson.from_dict({**raw, "strokes": why}).strokes.why == "auto: …"
+    with pytest.raises(ResultFileError, match="strokes.why"):
+        PaintJson.from_dict({**raw, "strokes": {"direction": "across", "why": 3}})
     cell = json.loads(next(p for p in REPORTS if p.stem == "cell").read_text(encoding="utf-8"))
     cell["robots"][1]["strokes"] = {"direction": "across", "wait": 1.0}
     with pytest.raises(ResultFileError, match=r"robots\[1\].strokes.wait"):

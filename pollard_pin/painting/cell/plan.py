@@ -29,7 +29,7 @@ from ..line.speeds import (
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
 from .frames import check_panel_turn, panel_in_base, part_in_base, robot_model_in_base
-from .program import ZoneView, cell_strokes, plan_zone
+from .program import ZoneView, plan_zone
 from .robots import CellRobot, base_footprint, check_spacing
 from .split import split_cell
 from .zones import Split, Zone
@@ -145,7 +145,6 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
     """
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
-    cell_strokes(policy)  # a forced strategy a cell does not plan: refused before the split
     robots = job.robots or (CellRobot("robot"),)
     if split is None:
         split = split_cell(robot, job, robots, part)

@@ -21,7 +21,7 @@ from ..line.dwell import dwell_time, plan_dwelling
 from ..line.panel import LinePlan, pass_direction, step_order
 from ..line.part import LinePartPlan, across_the_travel, leading_first
 from ..line.phases import LineProgram, one_coat, track, world_motion
-from ..line.strokes import Strokes
+from ..line.strokes import Strokes, across
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
 from ..passes.surface import pass_speed, surface_layout
@@ -62,13 +62,20 @@ class ClippedPass(PassPiece):
         return self.spline(s), self.d1(s) * rate, self.d2(s) * self.v ** 2
 
 
-def _axis_sign(along, axis_b, what: str) -> float:
+def _axis_sign(along, axis_b, what: str,
+               rule: str = "zones are stacked along the passes, across the travel") -> float:
     c = float(np.asarray(along) @ axis_b)
     if abs(c) < 1 - 1e-6:
         raise PlanError(f"the split's axis runs {math.degrees(math.acos(min(1, abs(c)))):.3g}° "
-                        f"off the {what}: zones are stacked along the passes, across the "
-                        "travel")
+                        f"off the {what}: {rule}")
     return 1.0 if c > 0 else -1.0
+
+
+def _in_zone(x_world: float, zone, tol: float = 1e-6) -> bool:
+    """A whole pass at ``x_world`` along the split's axis is the zone's (strokes along the
+    travel: a seam between two passes, the upper zone taking a pass on it or within ``tol``
+    [m] of it, whatever round-off each robot's base frame puts on its level)."""
+    return zone.lo - tol <= x_world < zone.hi - tol
 
 
 def _limits(zone, runout: float, offset: float, sign: float):
@@ -98,11 +105,31 @@ def panel_program(job_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLI
     in a robot's base frame (``job_b``), its raster clipped to its zone (``view``);
     ``policy`` the planner's knobs."""
     zone, runout, axis_b, offset = view.zone, view.runout, view.axis, view.offset
-    horizontal = pass_direction(panel_frame(job_b), e)
+    strokes = cell_strokes(policy)
+    horizontal = across(strokes, pass_direction(panel_frame(job_b), e))
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
     frame, offsets, half, v, _, spacing = panel_layout(job_x, policy)
     ep, es = (frame.u, frame.v) if horizontal else (frame.v, frame.u)
-    offsets = step_order(offsets, es, e, cell_strokes(policy))
+    offsets = step_order(offsets, es, e, strokes)
+    if strokes.direction == "along":  # whole passes, the zone's by their level
+        sign = _axis_sign(es, axis_b, "strokes' step", _ALONG_RULE)
+        at = float(frame.c @ axis_b) + offset
+        offsets = np.array([o for o in offsets if _in_zone(at + sign * o, zone)])
+        if not len(offsets):
+            raise PlanError(f"robot {zone.robot!r}: no pass of the panel lies in its zone")
+
+        def build_whole(tau):
+            seg = raster_segments(offsets, half, v, tau[1:-1], (tau[0], tau[-1]))
+            return ZoneRelative(lambda t: raster_motion(frame, job_x.standoff, seg, t,
+                                                        horizontal),
+                                seg.start, seg.duration, seg.kind, program=seg,
+                                windows=(OPEN,) * len(seg.kind))
+
+        program = LineProgram(build_whole, np.full(len(offsets) + 1, policy.first_guess(v)),
+                              policy.step(job_x.sigma, v),
+                              track(frame.c + job_x.standoff * frame.n, e),
+                              f"the passes ({v:.4g} m/s on the part)", job_x.source)
+        return program, job_x, frame, offsets, horizontal, spacing, v
     sign = _axis_sign(ep, axis_b, "passes")
     on, (a, b) = _limits(zone, runout, offset + float(frame.c @ axis_b), sign)
     a, b = max(a, -half), min(b, half)
@@ -172,6 +199,24 @@ def zone_pieces(layout, pieces, view: ZoneView, standoff: float):
     return out, windows
 
 
+def whole_pieces(layout, pieces, view: ZoneView, standoff: float):
+    """Strokes along the travel (docs/model.md §24.2, §26.3): the passes whose aim point's
+    middle lies in the zone, whole, in serpentine order, each one's trigger open
+    throughout (a seam lies between two passes, so no pass is shared)."""
+    zone, offset = view.zone, view.offset
+    kept = [p for p in pieces if _in_zone(float(np.median(_aim(
+        layout, p.index, standoff, view.axis))) + offset, zone)]
+    if not kept:
+        raise PlanError(f"robot {zone.robot!r}: no pass of the part lies in its zone")
+    out = []
+    for i, p in enumerate(kept):
+        forward = i % 2 == 0
+        if p.forward != forward:  # a dropped pass: the serpentine runs on
+            p = PassPiece(layout.passes[p.index].s, _poses(layout, p), p.v, forward, p.index)
+        out.append(p)
+    return out, [OPEN] * len(out)
+
+
 def _poses(layout, piece):
     from ..passes.program import pass_poses
 
@@ -181,14 +226,15 @@ def _poses(layout, piece):
 def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY):
     """(LineProgram, job, layout, pass speed) of the part (``part_b``, base frame) for one
     robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs."""
-    horizontal = across_the_travel(part_b, e)
+    strokes = cell_strokes(policy)
+    horizontal = across(strokes, across_the_travel(part_b, e))
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e,
-                           cell_strokes(policy).start)
+    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e, strokes.start)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike
-    pieces, windows = zone_pieces(layout, full, view, job_x.standoff)
+    pick = whole_pieces if strokes.direction == "along" else zone_pieces
+    pieces, windows = pick(layout, full, view, job_x.standoff)
 
     def build(tau):
         prog = build_program(pieces, tau)
@@ -246,14 +292,20 @@ def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None,
 
 
 def cell_strokes(policy: PlannerPolicy = DEFAULT_POLICY) -> Strokes:
-    """A cell's strokes (docs/model.md §26.1): across the travel (its zones stacked along
-    them), from the policy's end; strokes along the travel (zones stacked across it) are not
-    planned for a cell and are refused in one line."""
+    """A cell's strokes (docs/model.md §24.2, §26.1): across the travel (its zones stacked
+    along them, each stroke shared at a seam), from the policy's end; forced ``along`` the
+    travel, whole passes, each zone holding those whose level lies in it. The same for every
+    robot (a seam is invisible only between two halves of one raster), so ``auto`` keeps
+    across."""
     if policy.strokes == "along":
-        raise PlanError("strokes along the travel (forced): not planned for a cell, whose "
-                        "zones are stacked along strokes across the travel; use across or auto")
-    return Strokes("across", policy.step_from)
+        return Strokes("along", None, why="forced")
+    return Strokes("across", policy.step_from, why="forced" if policy.strokes == "across"
+                   else "auto: a cell's strokes run across the travel (along only when "
+                        "forced)")
+
+
+_ALONG_RULE = "with strokes along the travel the zones are stacked across the passes"
 
 
 __all__ = ["ClippedPass", "ZoneView", "cell_strokes", "panel_program", "part_program",
-           "plan_zone", "seamed", "zone_pieces"]
+           "plan_zone", "seamed", "whole_pieces", "zone_pieces"]

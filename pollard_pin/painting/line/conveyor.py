@@ -39,8 +39,12 @@ def line_from_table(source: str, table: Any, error=InputError) -> Line:
         if k not in table:
             raise error(f"{source}: 'line.{k}' is missing ([line] needs speed [m/s] and "
                         "direction [x, y, z])")
-    s = number(table["speed"], "line.speed", error, prefix, positive=True, limit=MAX_LINE_SPEED,
-               limit_rule=f"must be at most {MAX_LINE_SPEED:g} m/s (SI units: m/s, not mm/s)")
+    try:
+        s = number(table["speed"], "line.speed", error, prefix, positive=True,
+                   limit=MAX_LINE_SPEED,
+                   limit_rule=f"must be at most {MAX_LINE_SPEED:g} m/s (SI units: m/s, not mm/s)")
+    except error as exc:  # the interval said whatever the rule broken (0, NaN, −, too fast)
+        raise error(f"{exc}; a line speed is 0 < s ≤ {MAX_LINE_SPEED:g} m/s") from None
     d = table["direction"]
     if not isinstance(d, list) or len(d) != 3:
         fail(error, prefix, "line.direction", d, "must be a list of 3 numbers [x, y, z]")

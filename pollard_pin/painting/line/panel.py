@@ -103,17 +103,28 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     """The raster program for a panel on the line at ``speed`` (default the job's); a
     [part] job goes to :func:`.line.part.plan_line_part` (``part``: its mesh, read once).
     ``clearance``: check the gun body's clearance (:func:`line_clearance`); the speed
-    searches leave it to the plan they return. ``policy``: the planner's knobs."""
+    searches leave it to the plan they return, but where two stroke strategies plan,
+    ``auto`` checks it to choose (docs/model.md §24.2). ``policy``: the planner's knobs."""
+    def check(plan):
+        return cleared(robot, plan)
+
     if isinstance(job, PartJob):
         from .part import plan_line_part
 
-        plan = plan_line_part(robot, job, act, speed, part, policy)
-        return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+        return plan_line_part(robot, job, act, speed, part, policy, check, clearance)
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     one_coat(job)
-    plan = shortest(lambda s: _plan_panel(robot, job, act, speed, policy, s, clock), policy)
-    return replace(plan, clearance=line_clearance(robot, plan)) if clearance else plan
+    return shortest(lambda s: _plan_panel(robot, job, act, speed, policy, s, clock), policy,
+                    check, clearance, job.source)
+
+
+def cleared(robot, plan):
+    """``plan`` with its gun body's clearance checked (:func:`line_clearance`), unless it
+    already is (auto's choice checks it where two strategies plan, docs/model.md §24.2)."""
+    if plan.clearance is not None:
+        return plan
+    return replace(plan, clearance=line_clearance(robot, plan))
 
 
 def step_order(offsets, es, e, strokes: Strokes) -> np.ndarray:
@@ -180,7 +191,7 @@ def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     :func:`.line.speeds.fastest_line_speed`)."""
     speed, plan = fastest_line_speed(line_planner(robot, job, act, part, policy), job.line.speed,
                                      job.source, resolution)
-    return speed, replace(plan, clearance=line_clearance(robot, plan))
+    return speed, cleared(robot, plan)
 
 
 def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
@@ -193,7 +204,7 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
     plan_at = line_planner(robot, job, act, part, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: replace(p, clearance=line_clearance(robot, p)),
+                               check=lambda p: cleared(robot, p),
                                floor=lambda p: waiting_floor(p, policy))
 
 
@@ -203,11 +214,11 @@ def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
     painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source, floor=lambda p: waiting_floor(p, policy))
-    return replace(plan, clearance=line_clearance(robot, plan))
+    return cleared(robot, plan)
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
-           "line_clearance", "line_planner", "line_shift", "line_speeds", "max_line_speed",
-           "panel_relative",
+           "cleared", "line_clearance", "line_planner", "line_shift", "line_speeds",
+           "max_line_speed", "panel_relative",
            "part_length", "pass_direction", "plan_line", "plan_line_job", "relative_motion",
            "step_order", "world_motion"]

@@ -94,16 +94,18 @@ def part_relative(program: Program) -> Relative:
 
 def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = None,
                    part: Part | None = None,
-                   policy: PlannerPolicy = DEFAULT_POLICY) -> LinePartPlan:
-    """The surface program for a part on the line at ``speed`` (default the job's), its
-    clearance not checked (:func:`.line.panel.plan_line` checks it); ``policy`` the
-    planner's knobs."""
+                   policy: PlannerPolicy = DEFAULT_POLICY, check=None,
+                   always: bool = False) -> LinePartPlan:
+    """The surface program for a part on the line at ``speed`` (default the job's);
+    ``policy`` the planner's knobs; ``check`` (plan ↦ plan, its clearance checked: given by
+    :func:`.line.panel.plan_line`) run on the plan kept when ``always``, and to choose where
+    two stroke strategies plan (:func:`.line.strokes.shortest`)."""
     clock = time.perf_counter()
     speed = job.line.speed if speed is None else float(speed)
     one_coat(job)
     part = load_painted_part(job) if part is None else part
     return shortest(lambda s: _plan_part(robot, job, act, speed, part, policy, s, clock),
-                    policy)
+                    policy, check, always, job.source)
 
 
 def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) -> LinePartPlan:

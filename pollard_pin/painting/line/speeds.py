@@ -286,6 +286,8 @@ def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None):
                                         slow_resolution=INTERVAL_RESOLUTION, floor=floor)
         except PlanError as none:
             said = str(none).removeprefix(f"{source}: ")
+            if isinstance(none, BudgetError):  # halved down to the floor, none painting
+                said = "no slower line paints it, down to the sample budget's floor"
             raise PlanError(say_less(f"{exc}; {said}", f"at line speed {speed:.4g} m/s "
                                      f"{exc.why}; {said}", str(none))) from None
         slower = " or slower" if found.low_bound.startswith("waits") else ""

@@ -3,6 +3,7 @@ today's line job, a rigid motion of the whole scene leaves the film as it was, t
 film is the target's (and would not be if a robot sprayed past it), a robot turned about z
 on the far side of the line paints the part's back."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -156,13 +157,75 @@ def test_a_slow_line_waits_and_the_seam_holds(robot, act):
     assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
 
 
-def test_strokes_along_are_refused_for_a_cell(robot, act):
-    from pollard_pin.painting.errors import PlanError
+def test_just_below_the_pace_a_retry_adds_only_the_time_needed(robot, act, monkeypatch):
+    """Where a program as it is fails as too slow just below its pace (forced here: every
+    drift < 0 refused), the retry's turns add only the time the line needs (docs/model.md
+    §24.1): the turns' rate dips and they wait 0, the drift is 0 (half-paced turns would
+    have overshot by n·τ·s), it paints, its waits stated ≥ 0, the seam on target."""
+    from pollard_pin.painting.errors import LineSpeedError
+    from pollard_pin.painting.line import dwell
+
+    plain, tried = dwell.plan_world, []
+
+    def plan_world(robot_, act_, prog, speed, e, policy):
+        rel = prog.build(prog.guess)
+        tried.append(rel.kind.count("wait"))
+        if "wait" not in rel.kind and dwell.drift_along(rel, speed, e) < 0:
+            raise LineSpeedError("drifts back out of the reach", False, "drifts back")
+        return plain(robot_, act_, prog, speed, e, policy)
+
+    monkeypatch.setattr(dwell, "plan_world", plan_world)
+    slow = plan_cell_job(robot, cell_job(panel_cell(speed=0.0189)), act)  # paces ≈ 0.0191
+    assert tried.count(0) == 2 and len(tried) == 4  # each robot: as it is, then the retry
+    for rp in slow.robots:
+        rel, e = rp.plan.relative, rp.plan.direction
+        assert rp.plan.strokes.dwell == dwell.dwell_time(rel) >= 0.0
+        assert abs(dwell.drift_along(rel, slow.speed, e)) < 1e-9
+        base = [d for d, k in zip(rel.program.duration, rel.program.kind) if k == "turn"]
+        halves = [d for d, k in zip(rel.duration, rel.kind) if k == "turn"][::2]
+        waits = [d for d, k in zip(rel.duration, rel.kind) if k == "wait"]
+        assert min(waits) >= 0.0
+        # each turn adds the same share x of the time the line needs (2h + w − τ), the
+        # short ones stopping and waiting, the rest slowed only (τ/2 < h < τ, no wait)
+        added = [2 * h + w - b for h, w, b in zip(halves, waits, base)]
+        assert np.ptp(added) < 1e-9 and 0 < added[0] < max(base)
+        dipped = [b / 2 < h < b and w == 0 for h, w, b in zip(halves, waits, base)]
+        assert sum(dipped) >= len(base) // 2
+    film = cell_panel_film(slow)
+    (seam,) = slow.split.seams()
+    _, rows = seam_rows(slow, film, seam, slow.split.runout)
+    assert np.abs(rows - 1).max() <= 5e-3
+    assert np.abs(film[3].thickness / slow.job.thickness - 1).max() <= 0.05
+
+
+def test_strokes_along_in_a_cell_give_each_robot_whole_passes(robot, act):
+    """Forced along the travel (docs/model.md §24.2, §26.3): each robot paints the whole
+    passes whose level lies in its zone, every pass of the one-robot layout painted by
+    exactly one robot, so the seam lies between two passes and lays the target (a pass
+    doubled or dropped there would show ±50 % or more; seen 0.995–1.005, the ripple's)."""
+    from pollard_pin.painting.plan.layout import panel_layout
     from pollard_pin.painting.policy import PlannerPolicy
 
-    with pytest.raises(PlanError, match=r"^strokes along the travel \(forced\): not planned "
-                       "for a cell"):
-        plan_cell(robot, cell_job(panel_cell()), act, policy=PlannerPolicy(strokes="along"))
+    policy = PlannerPolicy(strokes="along")
+    cell = plan_cell(robot, cell_job(panel_cell()), act, policy=policy)
+    (seam,) = cell.split.seams()
+    levels = []
+    for rp in cell.robots:
+        p = rp.plan
+        assert (p.strokes.direction, p.strokes.start, p.strokes.why) == ("along", None, "forced")
+        t = p.trajectory.t  # passes along the +y travel, the gun open over the program
+        assert p.horizontal and p.spray[(t >= p.times.delay) & (t <= p.times.end)].min() == 1
+        z = p.frame.c[2] + rp.robot.base[2] + p.offsets * p.frame.v[2]  # world levels
+        assert (z < seam).all() if rp.robot.name == "low" else (z >= seam).all()
+        levels += list(z)
+    job = replace(cell.job, direction="horizontal")
+    frame, offsets = panel_layout(job)[:2]
+    assert sorted(levels) == pytest.approx(sorted(frame.c[2] + offsets * frame.v[2]),
+                                           abs=1e-12)
+    film = cell_panel_film(cell)
+    _, rows = seam_rows(cell, film, seam, 3 * cell.job.sigma)
+    assert np.abs(rows - 1).max() <= 1e-2
+    assert np.abs(film[3].thickness / cell.job.thickness - 1).max() <= 0.05
 
 
 def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell,

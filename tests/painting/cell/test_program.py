@@ -85,12 +85,13 @@ def test_a_robot_on_the_far_side_paints_the_back(two_sided):
 
 def test_a_cells_strokes_run_across_from_the_policys_end():
     from pollard_pin.painting.cell.program import cell_strokes
-    from pollard_pin.painting.errors import PlanError
     from pollard_pin.painting.line.strokes import Strokes
     from pollard_pin.painting.policy import PlannerPolicy
 
-    assert cell_strokes() == Strokes("across", "leading")
-    assert cell_strokes(PlannerPolicy(step_from="trailing")) == Strokes("across", "trailing")
-    assert cell_strokes(PlannerPolicy(strokes="across")) == Strokes("across", "leading")
-    with pytest.raises(PlanError, match="not planned for a cell"):
-        cell_strokes(PlannerPolicy(strokes="along"))
+    auto = "auto: a cell's strokes run across the travel (along only when forced)"
+    assert cell_strokes() == Strokes("across", "leading", why=auto)
+    assert cell_strokes(PlannerPolicy(step_from="trailing")) == Strokes("across", "trailing",
+                                                                        why=auto)
+    assert cell_strokes(PlannerPolicy(strokes="across")) == Strokes("across", "leading",
+                                                                    why="forced")
+    assert cell_strokes(PlannerPolicy(strokes="along")) == Strokes("along", None, why="forced")

@@ -21,6 +21,8 @@ def _raw():
     ({"speed": -0.1, "direction": [0.0, 1.0, 0.0]}, "must be > 0"),
     ({"speed": 30.0, "direction": [0.0, 1.0, 0.0]}, f"at most {MAX_LINE_SPEED:g} m/s"),
     ({"speed": float("inf"), "direction": [0.0, 1.0, 0.0]}, "finite"),
+    ({"speed": float("nan"), "direction": [0.0, 1.0, 0.0]}, "'line.speed' = nan: must be a "
+                                                          "finite number"),
     ({"speed": 0.03, "direction": [0.0, 1.0]}, "a list of 3 numbers"),
     ({"speed": 0.03}, "'line.direction' is missing"),
     ({"speed": 0.03, "direction": [0.0, 1.0, 0.0], "pitch": 1}, "unknown key"),
@@ -32,6 +34,8 @@ def test_bad_line_tables(line, words):
     with pytest.raises(JobError, match="line") as info:
         job_from_dict(d, "j.toml")
     assert words in str(info.value) and "\n" not in str(info.value)
+    if "'line.speed' =" in str(info.value):  # a bad speed names the interval of speeds
+        assert str(info.value).endswith(f"; a line speed is 0 < s ≤ {MAX_LINE_SPEED:g} m/s")
 
 
 def test_line_table_read(line_job):

@@ -163,3 +163,56 @@ def test_only_a_slow_line_dwells(monkeypatch):
         rel = slow_one.build(tau)
         assert rel.kind.count("wait") == len(OFFSETS) - 1
         assert abs(drift_along(rel, 0.5 * pace, E)) < 1e-12
+
+
+def test_just_below_the_pace_the_turns_add_only_what_the_line_needs():
+    """At 0.99 of the pace the line needs less than the half-paced turns' own τ each: the
+    turns wait 0 and their rate dips only to c = (τ − x)/(τ + x) (docs/model.md §24.1), so
+    the drift is 0, not the half-paced turns' surplus (before: +n·τ·s − |drift|)."""
+    from pollard_pin.painting.line.dwell import turn_timing
+
+    base = build(TAU)
+    pace = 0.2 / base.total
+    s = 0.99 * pace
+    x = -drift_along(base, s, E) / s / (len(OFFSETS) - 1)  # each turn's share, by hand
+    assert 0 < x < 0.12
+    waits, dips = turn_timing(base, s, E)
+    assert np.all(waits == 0.0)
+    assert dips == pytest.approx(np.full(len(OFFSETS) - 1, (0.12 - x) / (0.12 + x)),
+                                 rel=1e-12)
+    rel = dwelled(build, s, E)(TAU)
+    assert abs(drift_along(rel, s, E)) < 1e-12
+    assert rel.total == pytest.approx(0.2 / s, rel=1e-12)
+    assert dwell_time(rel) == 0.0
+    half = with_dwell(base, 0.0)  # half-paced with no wait: the surplus the dip avoids
+    assert drift_along(half, s, E) > 0.1 * s * 0.12
+    # far below the pace the turns stop and wait, as before
+    w, d = turn_timing(base, 0.5 * pace, E)
+    assert np.all(d == 0) and np.all(w == wait_per_turn(base, 0.5 * pace, E)) and w[0] > 0
+
+
+def test_a_dipped_turn_keeps_its_track_and_joins_c2():
+    base = build(TAU)
+    c = 0.4
+    rel = with_dwell(base, 0.0, c)
+    k = rel.kind.index("turn")
+    h = 0.12 / (1 + c)
+    assert rel.duration[k] == pytest.approx(h) and rel.duration[k + 1] == 0.0
+    tb = base.start[base.kind.index("turn")]
+    x = np.linspace(0.0, 1.0, 11)
+    S = x ** 3 - x ** 4 / 2  # ∫ smoothstep, independently
+    p, _, _ = rel.evaluate(rel.start[k] + h * x)
+    q, _, _ = base.evaluate(tb + h * (x - (1 - c) * S))
+    assert np.abs(p - q).max() < 1e-12
+    p, _, _ = rel.evaluate(rel.start[k + 2] + h * x)
+    q, _, _ = base.evaluate(tb + 0.06 + h * (c * x + (1 - c) * S))
+    assert np.abs(p - q).max() < 1e-12
+    # the halves meet the turn's middle at rate c relative to the part, and join C²
+    _, vb, _ = base.evaluate(np.array([tb + 0.06]))
+    _, v, _ = rel.evaluate(np.array([rel.start[k + 2]]))
+    assert np.abs(v - c * vb).max() < 1e-12
+    eps = 1e-7
+    before, after = rel.evaluate(rel.start[1:] - eps), rel.evaluate(rel.start[1:] + eps)
+    peak = [np.abs(y).max() for y in rel.evaluate(np.linspace(0, rel.total, 4001))]
+    for b, a, top in zip(before, after, peak):
+        assert np.abs(b - a).max() < 1e-4 * top

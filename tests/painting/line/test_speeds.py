@@ -242,6 +242,23 @@ def test_no_speed_at_all_refuses_with_both_sides():
     assert not isinstance(info.value, LineSpeedError)
 
 
+
+def test_too_fast_down_to_the_budget_floor_says_so():
+    """Every speed too fast (strokes stepping from the trailing end drift s·T + L > 0):
+    halved down to the sample budget's floor, the refusal keeps the job's speed's failure and
+    says no slower line paints it (it read the floor's own words, as if to go faster)."""
+    def plan_at(s):
+        if s < 1e-4:
+            raise BudgetError(f"j.toml: line.speed = {s:.3g} m/s carries the part too little")
+        raise LineSpeedError(f"at line speed {s:.4g} m/s the program drifts +1.985 m", True,
+                             "the program drifts +1.985 m")
+
+    with pytest.raises(PlanError) as info:
+        plan_or_name_fastest(plan_at, 0.03, "j.toml")
+    assert str(info.value) == ("at line speed 0.03 m/s the program drifts +1.985 m; no slower "
+                               "line paints it, down to the sample budget's floor")
+    assert not isinstance(info.value, (LineSpeedError, BudgetError))
+
 # --- a real job ----------------------------------------------------------------------------------
 def test_example_line_interval(robot, act, line_job, line_plan):
     """examples/line.toml: its speed 0.03 m/s inside the interval (to 10 %, its plan there

@@ -1,7 +1,7 @@
 """The strokes' direction on a line, a planned choice (paint/line/strokes.py, docs/model.md
 §24.2): auto keeps the shortest cycle of those that paint, a forced strategy that cannot
 paint is refused naming it; on examples/line.toml's strip and a short one."""
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from types import SimpleNamespace
 
 import pytest
@@ -20,13 +20,60 @@ def test_candidates():
     assert candidates(PlannerPolicy(strokes="along")) == (Strokes("along", None),)
 
 
+@dataclass(frozen=True)
+class _Plan:
+    strokes: Strokes
+    times: SimpleNamespace
+    clearance: object = None
+
+
 def _plans(cycles: dict):
     def plan_with(s):
         c = cycles[s.direction]
         if isinstance(c, Exception):
             raise c
-        return SimpleNamespace(strokes=s, times=SimpleNamespace(cycle=c))
+        return _Plan(s, SimpleNamespace(cycle=c))
     return plan_with
+
+
+def _clear(refused: set, seen: list):
+    """A clearance check refusing the strategies named in ``refused``."""
+    from pollard_pin.painting.errors import ClearanceError
+
+    def check(plan):
+        seen.append(plan.strokes.direction)
+        if plan.strokes.direction in refused:
+            raise ClearanceError(f"{plan.strokes.direction}: the gun body 3 mm from the part")
+        return replace(plan, clearance="ok")
+    return check
+
+
+def test_auto_chooses_among_the_strategies_that_pass_the_clearance():
+    """The shortest cycle refused by the clearance: auto keeps the other, says why; the
+    check is run only where the choice depends on it (two planned) unless ``always``."""
+    seen = []
+    out = shortest(_plans({"across": 30.0, "along": 11.0}), check=_clear({"along"}, seen))
+    assert out.strokes.direction == "across" and out.clearance == "ok"
+    assert seen == ["along", "across"]
+    assert out.strokes.why.startswith("auto: the shortest cycle that paints, 30.00 s; along: "
+                                      "along: the gun body 3 mm")
+    seen.clear()
+    out = shortest(_plans({"across": 30.0, "along": 11.0}), check=_clear(set(), seen))
+    assert out.strokes.direction == "along" and seen == ["along"]
+    assert out.strokes.why == ("auto: the shortest cycle that paints, 11.00 s; across from the "
+                               "leading end: cycle 30.00 s")
+    seen.clear()
+    out = shortest(_plans({"across": 30.0, "along": PlanError("out of reach")}),
+                   check=_clear(set(), seen))
+    assert seen == [] and out.clearance is None  # one planned: left to the plan's own check
+    assert out.strokes.why.endswith("; along: out of reach")
+    from pollard_pin.painting.errors import ClearanceError
+    with pytest.raises(ClearanceError, match="^along: the gun"):  # both refused: the shortest's
+        shortest(_plans({"across": 30.0, "along": 11.0}),
+                 check=_clear({"along", "across"}, []))
+    forced = shortest(_plans({"across": 30.0}), PlannerPolicy(strokes="across"),
+                      check=_clear(set(), seen), always=True)
+    assert forced.clearance == "ok" and forced.strokes.why == "forced"
 
 
 def test_auto_keeps_the_shortest_cycle_that_paints():
@@ -65,5 +112,25 @@ def test_auto_picks_the_shorter_cycle(robot, line_job, act):
                        policy=PlannerPolicy(strokes="across"))
     auto = plan_line(robot, job, act, 0.01, clearance=False)
     assert across.strokes.direction == "across" and across.strokes.dwell > 0
-    assert auto.strokes == Strokes("along", None, 0.0)
+    assert replace(auto.strokes, why="") == Strokes("along", None, 0.0)
+    assert auto.strokes.why == ("auto: the shortest cycle that paints, "
+                                f"{auto.times.cycle:.2f} s; across from the leading end: "
+                                f"cycle {across.times.cycle:.2f} s")
     assert auto.times.cycle < 0.5 * across.times.cycle
+
+
+def test_a_forced_refusal_drops_the_jobs_source():
+    """A refusal that leads with the job's file (the sample budget's) keeps its words after
+    the forced strategy's name, not the file's name alone (seen: "… (forced): j.toml")."""
+    from pollard_pin.painting.errors import BudgetError
+
+    words = ("line.speed = 1e-05 m/s carries the part 0.005 m in the longest path the budget "
+             "allows (250000 samples, 500 s): give at least 1e-05 m/s, in m/s, or no [line] "
+             "for a still part")
+    with pytest.raises(BudgetError) as info:
+        shortest(_plans({"across": BudgetError(f"j.toml: {words}")}),
+                 PlannerPolicy(strokes="across", step_from="trailing"), source="j.toml")
+    said = str(info.value)
+    assert said.startswith("strokes across the travel, stepping from the trailing end "
+                           "(forced): line.speed = 1e-05 m/s carries the part 0.005 m")
+    assert "j.toml" not in said and len(said) <= 250
