@@ -50,6 +50,7 @@ UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
 CONSTRAINTS = ("home", "reach", "motors_static", "plan", "motors", "clearance", "film")
 FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
+REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
 
 
@@ -252,10 +253,13 @@ def _binding_of(message: str) -> str:
 
 
 def _kmin(robot, plans, actuators) -> float:
-    """The least kmin [N/m] over the programs' samples (at most :data:`KMIN_SAMPLES` each)."""
+    """The least kmin [N/m] over the programs' samples (at most :data:`KMIN_SAMPLES` each);
+    0 when a motor's catalogue entry has no stiffness."""
     from ..analytic.closed_form import position_ik_masked
     from ..dynamics.drives.stiffness import stiffness_at
 
+    if any(u.stiffness is None for u in actuators.units):
+        return 0.0
     k = actuators.stiffness()
     least = math.inf
     for traj in plans:
@@ -287,7 +291,8 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
         figures["full_s"] = time.perf_counter() - t0
         binding = _binding_of(str(exc))
         cons["plan"] = 1.0
-        cons.setdefault(binding, 1.0) if binding != "plan" else None
+        if binding != "plan":  # the refusal names it: off by more than the screen saw
+            cons[binding] = max(cons.get(binding, 0.0), 0.0) + REFUSED
         return _infeasible("full", design, n, cons, binding, figures, str(exc).split("\n")[0],
                            motor_use=screened.objectives["motor_use"])
     data = result.report.data

@@ -101,3 +101,15 @@ def test_full_evaluation_reproduced_by_paint(strip, tmp_path):
     robots = pp.job_from_dict({**STRIP, "robot": [{"name": "robot1", "base": [0, 0, 0]}]})
     assert robots.robots  # the job reader takes [[robot]] tables
     assert robot.params.total_mass == pytest.approx(ev.objectives["moving_mass"])
+
+
+def test_context_travels_to_workers(example):
+    """A Dask or process worker gets the context pickled: it evaluates the same."""
+    import pickle
+
+    space, ctx = example
+    back = pickle.loads(pickle.dumps(ctx))
+    v = {**baseline_values(space), "robots": 2}
+    a, b = evaluate(v, ctx, "screen"), evaluate(v, back, "screen")
+    assert a.constraints == b.constraints and a.objectives == b.objectives
+    assert back.space.fingerprint() == space.fingerprint()

@@ -44,3 +44,14 @@ def test_holding_torques_over_the_ratings(case):
                                             continuous_torque=u.continuous_torque / 100)
                                     for u in act.units))
     assert motors(robot, weak, poses)[0] > 0
+
+
+def test_screen_and_planner_agree_one_robot_is_too_few(case):
+    """The screen says the thesis robot needs two for the door; the planner's layout refuses
+    one robot, naming two."""
+    from pollard_pin.painting.errors import CellError
+    from pollard_pin.painting.layout.cell import propose_layout
+
+    robot, strokes, ref = case
+    with pytest.raises(CellError, match="at least 2 robots"):
+        propose_layout(robot, pp.load_job("examples/design/job.toml"), 1)
