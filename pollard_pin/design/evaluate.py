@@ -91,6 +91,15 @@ class Evaluation:
     robots_toml: str | None = None
     message: str | None = None
 
+    def objective_vector(self) -> tuple[float, ...]:
+        """The objectives in :data:`OBJECTIVES` order (senses: :data:`SENSES`)."""
+        return tuple(float(self.objectives[k]) for k in OBJECTIVES)
+
+    def constraint_vector(self) -> tuple[float, ...]:
+        """The constraints in :data:`CONSTRAINTS` order, ≤ 0 holds; one not computed at this
+        level is 0 (an optimiser's constraint function: any > 0 is infeasible)."""
+        return tuple(float(self.constraints.get(k, 0.0)) for k in CONSTRAINTS)
+
 
 @dataclass(frozen=True, eq=False)
 class DesignContext:

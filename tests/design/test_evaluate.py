@@ -56,6 +56,11 @@ def test_screen_thesis_needs_two_robots(example):
     two = evaluate({**base, "robots": 2}, ctx, "screen")
     assert two.feasible and two.binding is None and two.objectives["robots"] == 2
     assert two.objectives["moving_mass"] == pytest.approx(2 * one.objectives["moving_mass"])
+    assert one.objective_vector() == tuple(one.objectives[k] for k in OBJECTIVES)
+    c = one.constraint_vector()
+    assert len(c) == len(CONSTRAINTS) and c[CONSTRAINTS.index("reach")] > 0
+    assert c[CONSTRAINTS.index("film")] == 0.0  # not computed by the screen
+    assert max(two.constraint_vector()) <= 0
 
 
 def test_screen_scaled_design_alone(example):
