@@ -43,11 +43,14 @@ from .build import Design, actuators_toml, build, params_toml
 from .screen import held_poses, motors, reach
 from .space import DesignSpace
 
+#: The objectives a design is judged by, in the order of :meth:`Evaluation.objective_vector`.
 OBJECTIVES = ("parts_per_hour", "robots", "motor_use", "kmin", "moving_mass")
+#: Each objective's sense: "max" or "min".
 SENSES = {"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
           "moving_mass": "min"}
 UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
+#: The constraints, in the order of :meth:`Evaluation.constraint_vector` (≤ 0 holds).
 CONSTRAINTS = ("home", "reach", "motors_static", "plan", "motors", "clearance", "film")
 FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
 REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
@@ -226,20 +229,27 @@ def _screen(values, ctx: DesignContext):
         figures["screen_s"] = time.perf_counter() - t0
         return None, None, _infeasible("screen", None, n, {"home": 1.0}, "home", figures,
                                        str(exc))
-    robot = load(design.params)
     if design.price is not None:
         figures["price"] = design.price * n
     cons = {"home": -1.0}
-    if ctx.strokes is not None:
-        o = _back_offset(ctx, space.place_back(values))
-        strokes = replace(ctx.strokes, samples=tuple((w, tips + o, ax) for w, tips, ax
-                                                     in ctx.strokes.samples))
-        cons["reach"], more, band = reach(robot, strokes, n)
-        figures.update(more)
-        poses = None if band.empty else held_poses(robot, strokes, band)
-        if poses is not None:
-            cons["motors_static"], more = motors(robot, design.actuators, poses)
+    back = space.place_back(values)
+    try:
+        robot = load(design.params)
+        if ctx.strokes is not None:
+            o = _back_offset(ctx, back)
+            strokes = replace(ctx.strokes, samples=tuple((w, tips + o, ax) for w, tips, ax
+                                                         in ctx.strokes.samples))
+            cons["reach"], more, band = reach(robot, strokes, n)
             figures.update(more)
+            poses = None if band.empty else held_poses(robot, strokes, band)
+            if poses is not None:
+                cons["motors_static"], more = motors(robot, design.actuators, poses)
+                figures.update(more)
+    except PollardError as exc:  # a model the package cannot build or solve: said
+        figures["screen_s"] = time.perf_counter() - t0
+        cons["reach"] = max(cons.get("reach", 0.0), 0.0) + REFUSED
+        return design, None, _infeasible("screen", design, n, cons, "reach", figures,
+                                         str(exc).split("\n")[0])
     figures["screen_s"] = time.perf_counter() - t0
     binding = next((k for k in CONSTRAINTS if cons.get(k, -1.0) > 0), None)
     use = max(figures.get("static_peak_use", 0.0), figures.get("static_rated_use", 0.0))
