@@ -118,3 +118,13 @@ def test_context_travels_to_workers(example):
     a, b = evaluate(v, ctx, "screen"), evaluate(v, back, "screen")
     assert a.constraints == b.constraints and a.objectives == b.objectives
     assert back.space.fingerprint() == space.fingerprint()
+
+
+def test_moved_job_moves_the_part_only():
+    from pollard_pin.design.evaluate import moved_job
+
+    panel = pp.job_from_dict(STRIP)
+    m = moved_job(panel, [0.3, 0.0, 0.0])
+    assert m.center == pytest.approx((1.0, -0.5, 0.16)) and m.normal == panel.normal
+    part = pp.load_job("examples/line_part.toml")
+    assert moved_job(part, [0.1, 0.0, 0.2]).position == pytest.approx((0.1, -0.75, 0.2))
