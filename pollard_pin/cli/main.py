@@ -23,6 +23,7 @@ from ..errors import LONGEST_LINE, say_less
 from ..io.atomic import STDOUT
 from ..version import __version__
 from . import (
+    design,
     export,
     info,
     paint,
@@ -49,7 +50,7 @@ docs/model.md for the model and its conventions.
 """
 
 COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, place, export,
-            workspace, stiffness)
+            workspace, stiffness, design)
 
 
 def build_parser() -> argparse.ArgumentParser:
