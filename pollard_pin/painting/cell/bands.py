@@ -233,14 +233,14 @@ def base_poses(cell_robot: CellRobot, tips, spray, panel: bool, facing) -> np.nd
     return np.concatenate([tb, ang], axis=-1)
 
 
-def _shifts(params, tips_b, e_b) -> np.ndarray:
+def _shifts(params, tips_b, e_b, step: float = SHIFT_STEP) -> np.ndarray:
     """The shifts along the line (base-frame unit ``e_b``) at which some tip can be in the
-    reach ball, SHIFT_STEP apart (empty: none)."""
+    reach ball, ``step`` apart (empty: none)."""
     span = ball_shift_range(params, tips_b, e_b)
     if span is None:
         return np.empty(0)
     a, b = span
-    return a + SHIFT_STEP * np.arange(int((b - a) / SHIFT_STEP) + 1)
+    return a + step * np.arange(int((b - a) / step) + 1)
 
 
 def _runs(ok: np.ndarray) -> np.ndarray:
@@ -271,17 +271,19 @@ def distinct(tips, spray, e, most: int = MAX_STROKES) -> list[int]:
 
 
 def robot_band(robot, cell_robot: CellRobot, strokes: Strokes, margin: float = MARGIN,
-               step: float = STEP, most: int = MAX_STROKES) -> Band:
+               step: float = STEP, most: int = MAX_STROKES,
+               shift_step: float = SHIFT_STEP) -> Band:
     """The band of ``cell_robot`` (``robot``: the model, its reach rules) over ``strokes``,
     on the grid of :meth:`Strokes.grid` (``margin``, ``step``), at most ``most`` distinct
-    strokes checked."""
+    strokes checked, the part shifted along the line ``shift_step`` [m] apart (a coarser
+    grid: the design's screen, docs/model.md §29.3)."""
     w, tips, spray = strokes.grid(margin, step)
     e_b = cell_robot.direction_to_base(strokes.direction)
     longest = np.full(len(w), np.iinfo(int).max)
     seen = np.zeros(len(w), dtype=bool)
     for k in distinct(tips, spray, strokes.direction, most):
         poses = base_poses(cell_robot, tips[k], spray[k], strokes.panel, strokes.facing)
-        xs = _shifts(robot.params, poses[:, :3], e_b)
+        xs = _shifts(robot.params, poses[:, :3], e_b, shift_step)
         if not len(xs):
             longest[:] = 0
             continue

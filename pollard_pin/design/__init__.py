@@ -1,0 +1,22 @@
+"""Design the robot for a paint job (docs/model.md §29): the design space (lengths, joint
+ranges, motors from a catalogue, the number of robots), one design made concrete under the
+mass model, and its evaluation: a cheap screen, then the full paint plan."""
+from .build import Design, build
+from .catalogue import Catalogue, CatalogueError, Motor, load_catalogue
+from .evaluate import (
+    CONSTRAINTS,
+    OBJECTIVES,
+    SENSES,
+    DesignContext,
+    Evaluation,
+    baseline_values,
+    design_files,
+    evaluate,
+    prepare,
+)
+from .space import DesignSpace, ScaleGroup, SpaceError, Variable, load_space, space_from_dict
+
+__all__ = ["CONSTRAINTS", "Catalogue", "CatalogueError", "Design", "DesignContext",
+           "DesignSpace", "Evaluation", "Motor", "OBJECTIVES", "SENSES", "ScaleGroup",
+           "SpaceError", "Variable", "baseline_values", "build", "design_files", "evaluate",
+           "load_catalogue", "load_space", "prepare", "space_from_dict"]

@@ -1,0 +1,103 @@
+"""One design judged (design/evaluate.py, docs/model.md §29.3): the screen's verdicts on the
+example, and one full evaluation of a small line job shared by the module."""
+import math
+
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.design import (
+    CONSTRAINTS,
+    OBJECTIVES,
+    SENSES,
+    baseline_values,
+    evaluate,
+    load_catalogue,
+    load_space,
+    prepare,
+    space_from_dict,
+)
+from pollard_pin.errors import InputError
+
+STRIP = {"panel": {"center": [0.70, -0.5, 0.16], "normal": [-1.0, 0.0, 0.0], "width": 0.30,
+                   "height": 0.10},
+         "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7},
+         "job": {"thickness": 25e-6}, "line": {"speed": 0.03, "direction": [0.0, 1.0, 0.0]}}
+
+
+@pytest.fixture(scope="module")
+def example():
+    space = load_space("examples/design/space.toml")
+    return space, prepare("examples/design/job.toml", space)
+
+
+@pytest.fixture(scope="module")
+def strip():
+    """A 0.30 × 0.10 m strip at 0.03 m/s, one robot with the shipped motors: planned once."""
+    cat = load_catalogue("examples/design/motors.toml")
+    space = space_from_dict({"robots": 1, "motors": {
+        "base": ["theta21", "theta21_1", "theta21_2"],
+        "wrist": ["theta1615", "theta1716", "theta1817"]}}, catalogue=cat)
+    ctx = prepare(pp.job_from_dict(STRIP), space)
+    values = baseline_values(space)
+    return space, ctx, values, evaluate(values, ctx)
+
+
+def test_objectives_documented():
+    assert set(SENSES) == set(OBJECTIVES) and set(SENSES.values()) == {"max", "min"}
+    assert CONSTRAINTS[0] == "home"
+
+
+def test_screen_thesis_needs_two_robots(example):
+    space, ctx = example
+    base = baseline_values(space)
+    one = evaluate(base, ctx, "screen")
+    assert one.level == "screen" and not one.feasible and one.binding == "reach"
+    assert one.constraints["reach"] > 0 and one.figures["robots_needed"] == 2
+    two = evaluate({**base, "robots": 2}, ctx, "screen")
+    assert two.feasible and two.binding is None and two.objectives["robots"] == 2
+    assert two.objectives["moving_mass"] == pytest.approx(2 * one.objectives["moving_mass"])
+
+
+def test_screen_scaled_design_alone(example):
+    space, ctx = example
+    v = {**baseline_values(space), "scale.arms": 1.6, "scale.links": 1.6, "place.back": 0.3,
+         "motor.base": 2}
+    ev = evaluate(v, ctx, "screen")
+    assert ev.feasible and ev.figures["robots_needed"] == 1
+    assert ev.figures["band_m"] >= 0.38 + 2 * 0.04 - 1e-9
+    # standing at the origin the longer robot reaches less of the door
+    close = evaluate({**v, "place.back": 0.0}, ctx, "screen")
+    assert close.binding == "reach" and close.figures["band_m"] < ev.figures["band_m"]
+
+
+def test_unreachable_home_is_infeasible_not_raised(example):
+    space, ctx = example
+    ev = evaluate({**baseline_values(space), "scale.links": 0.5}, ctx, "screen")
+    assert not ev.feasible and ev.binding == "home" and "home pose" in ev.message
+    with pytest.raises(InputError, match="level"):
+        evaluate({}, ctx, "fast")
+
+
+def test_full_evaluation_of_a_strip(strip):
+    space, ctx, values, ev = strip
+    assert ev.level == "full" and ev.feasible, ev.message
+    assert all(v <= 0 for v in ev.constraints.values())
+    o = ev.objectives
+    assert set(o) == set(OBJECTIVES) and all(math.isfinite(x) for x in o.values())
+    assert o["robots"] == 1 and 0 < o["motor_use"] <= 1 and o["parts_per_hour"] > 0
+    # kmin of the shipped drives over the program: the workspace map's order (kN/m)
+    assert 1e3 < o["kmin"] < 1e6
+    assert ev.figures["film_within_5pct"] >= 0.99
+    assert "[[robot]]" in ev.robots_toml and "[chain0]" in ev.params_toml
+    assert "[theta21]" in ev.actuators_toml
+
+
+def test_full_evaluation_reproduced_by_paint(strip, tmp_path):
+    """paint with the design's files and robots gives the evaluation's figures."""
+    space, ctx, values, ev = strip
+    (tmp_path / "p.toml").write_text(ev.params_toml, encoding="utf-8")
+    (tmp_path / "a.toml").write_text(ev.actuators_toml, encoding="utf-8")
+    robot = pp.load(pp.load_params(tmp_path / "p.toml"))
+    robots = pp.job_from_dict({**STRIP, "robot": [{"name": "robot1", "base": [0, 0, 0]}]})
+    assert robots.robots  # the job reader takes [[robot]] tables
+    assert robot.params.total_mass == pytest.approx(ev.objectives["moving_mass"])

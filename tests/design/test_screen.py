@@ -1,0 +1,46 @@
+"""The design's screen (design/screen.py, docs/model.md §29.3): its coarse band against the
+planner's own reference band, and the holding torques against the motors' ratings."""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import pollard_pin as pp
+from pollard_pin.design.screen import held_poses, motors, reach
+from pollard_pin.dynamics.motors import load_actuators
+from pollard_pin.painting.cell.bands import job_strokes
+from pollard_pin.painting.layout.cell import reference_band
+
+
+@pytest.fixture(scope="module")
+def case():
+    robot = pp.load()
+    strokes = job_strokes(pp.load_job("examples/design/job.toml"))
+    return robot, strokes, reference_band(robot, strokes)
+
+
+def test_screen_band_agrees_with_the_planners(case):
+    robot, strokes, ref = case
+    middle = replace(strokes, samples=(strokes.samples[len(strokes.samples) // 2],))
+    off, fig, band = reach(robot, middle, 1)
+    # the planner's band at 5 mm steps: 0.30 m; the screen's at 20 mm, shifts 50 mm apart
+    assert abs(band.width - ref.width) <= 0.03 and abs(band.lo - ref.lo) <= 0.03
+    assert fig["robots_needed"] == 2  # the thesis robot takes two for the 0.38 m door
+    assert off == pytest.approx(0.38 + 2 * 0.04 - band.width)  # one zone: the door + run-ons
+    assert reach(robot, middle, 2)[0] < 0
+
+
+def test_holding_torques_over_the_ratings(case):
+    robot, strokes, ref = case
+    poses = held_poses(robot, strokes, ref)
+    assert poses.shape == (3, 6)
+    np.testing.assert_allclose(poses[:, 0], 0.55, atol=1e-9)  # the tip at the standoff
+    act = load_actuators()
+    off, fig = motors(robot, act, poses)
+    # the weight alone takes a fraction of the base motors' peak (paint's plans reach 97 %
+    # with the accelerations)
+    assert 0.05 < fig["static_peak_use"] < 1.0 and off < 0
+    weak = replace(act, units=tuple(replace(u, peak_torque=u.peak_torque / 100,
+                                            continuous_torque=u.continuous_torque / 100)
+                                    for u in act.units))
+    assert motors(robot, weak, poses)[0] > 0

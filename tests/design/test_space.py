@@ -1,0 +1,96 @@
+"""The design space (design/space.py, docs/model.md §29.2): the example, the variables the
+optimiser samples, the fingerprint, and each refusal in one line."""
+import copy
+
+import pytest
+
+from pollard_pin.design.catalogue import load_catalogue
+from pollard_pin.design.space import SpaceError, load_space, space_from_dict
+
+
+@pytest.fixture(scope="module")
+def cat():
+    return load_catalogue("examples/design/motors.toml")
+
+
+BASE = {"robots": [1, 3], "bounds": {"leg1.x87": [0.3, 0.4]},
+        "scale": [{"name": "arms", "keys": ["chain0.x32", "leg1.x43", "leg2.x43"],
+                   "range": [1.0, 1.5]}],
+        "motors": {"base": ["theta21", "theta21_1", "theta21_2"]}}
+
+
+def space(cat, **change):
+    d = copy.deepcopy(BASE)
+    d.update(change)
+    return space_from_dict(d, "S.toml", catalogue=cat)
+
+
+def test_example_space():
+    sp = load_space("examples/design/space.toml")
+    names = [v.name for v in sp.variables()]
+    assert names == ["limits.theta21.upper", "scale.arms", "scale.links", "motor.base",
+                     "ratio.base", "motor.wrist", "ratio.wrist", "place.back", "robots"]
+    assert sp.robots == (1, 3) and sp.back == (0.0, 0.4)
+    assert sp.fingerprint() == load_space("examples/design/space.toml").fingerprint()
+
+
+def test_variables_and_values(cat):
+    sp = space(cat)
+    v = {x.name: x for x in sp.variables()}
+    assert (v["leg1.x87"].low, v["leg1.x87"].high, v["leg1.x87"].kind) == (0.3, 0.4, "float")
+    assert v["motor.base"].kind == "categorical" and v["motor.base"].choices == cat.names
+    assert v["ratio.base"].choices == (50.0, 100.0, 160.0)
+    # actuators not grouped get one choice each
+    assert "motor.theta1615" in v and "motor.theta1817" in v
+    assert (v["robots"].low, v["robots"].high, v["robots"].kind) == (1, 3, "int")
+    o = sp.overrides({"leg1.x87": 0.31, "scale.arms": 1.2})
+    assert o == {"leg1.x87": 0.31, "chain0.x32": pytest.approx(0.396),
+                 "leg1.x43": pytest.approx(0.396), "leg2.x43": pytest.approx(0.396)}
+    m = sp.motors({"motor.base": 1, "ratio.base": 2})
+    assert m["theta21_2"][0].name == "S40" and m["theta21_2"][1] == 160.0
+    assert m["theta1615"][0].name == "S20"  # index 0 by default
+    # a ratio the motor does not offer: the nearest it does (W5: 50, 100)
+    assert sp.motors({"motor.base": 4, "ratio.base": 2})["theta21"][1] == 100.0
+    with pytest.raises(SpaceError, match="motor.base"):
+        sp.motors({"motor.base": 6})
+    with pytest.raises(SpaceError, match="robots"):
+        sp.robot_count({"robots": 4})
+
+
+def test_fingerprint_changes_with_the_space(cat):
+    assert space(cat).fingerprint() == space(cat).fingerprint()
+    assert space(cat).fingerprint() != space(cat, robots=2).fingerprint()
+    assert space(cat).fingerprint() != space(cat, bounds={"leg1.x87": [0.3, 0.41]}).fingerprint()
+
+
+@pytest.mark.parametrize("change, match", [
+    ({"bounds": {"leg1.x78": [0.3, 0.4]}}, "names no parameter.*leg1.x87"),
+    ({"bounds": {"leg1.x87": [-0.1, 0.4]}}, "below zero"),
+    ({"bounds": {"leg1.x87": [0.4, 0.4]}}, "empty bound"),
+    ({"bounds": {"leg1.x87": [0.4]}}, r"\[low, high\]"),
+    ({"bounds": {"bodies.gun.mass": [0.1, 0.2]}}, "mass model"),
+    ({"bounds": {"home.tip": [0.1, 0.2]}}, "a list"),
+    ({"bounds": {"limits.theta21.effort": [1, 2]}}, "motor sets it"),
+    ({"robots": [0, 3]}, "robots"),
+    ({"robots": 17}, "robots"),
+    ({"scale": [{"keys": ["chain0.x32"], "range": [0.0, 1.0]}]}, "below zero"),
+    ({"scale": [{"keys": ["chain0.x32"], "range": [1.2, 1.0]}]}, "empty bound"),
+    ({"motors": {"a": ["theta43"]}}, "not an actuator"),
+    ({"place": {"back": [-0.1, 0.2]}}, "place.back"),
+    ({"robot": 2}, "unknown key.*robots"),
+    # the legs' links far too short: the home pose out of reach at every corner
+    ({"bounds": {"leg1.x87": [0.05, 0.1], "leg2.x87": [0.05, 0.1]}}, "home pose is unreachable"),
+])
+def test_refusals_are_one_line(cat, change, match):
+    with pytest.raises(SpaceError, match=match) as e:
+        space(cat, **change)
+    assert "\n" not in str(e.value) and len(str(e.value)) <= 250
+
+
+def test_catalogue_is_read_beside_the_space(tmp_path):
+    (tmp_path / "S.toml").write_text('catalogue = "none.toml"\nrobots = 1\n')
+    with pytest.raises(Exception, match="none.toml"):
+        load_space(tmp_path / "S.toml")
+    (tmp_path / "S.toml").write_text('robots = 1\n')
+    with pytest.raises(SpaceError, match="catalogue"):
+        load_space(tmp_path / "S.toml")
