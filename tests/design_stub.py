@@ -2,7 +2,9 @@
 pollard_pin.design.evaluate (``prepare``, ``evaluate``, ``OBJECTIVES``) and of a design space
 (``variables``, ``fingerprint``, ``baseline``), over closed-form figures, so that a study of
 dozens of designs takes a fraction of a second. Its params.toml moves chain0.x32 within a
-range the model accepts, so the written files read back through the model's own loader.
+range the model accepts, so the written files read back through the model's own loader. As
+the real evaluator, its ``level="full"`` screens first and gives the screen's evaluation for a
+design it rejects, and a categorical variable's value is an index into its choices.
 
 ``STUB_DELAY`` (seconds, an environment variable) makes every evaluation that slow: a study
 then stays busy long enough to be stopped.
@@ -54,14 +56,14 @@ class StubSpace:
     def variables(self):
         return [Variable("chain0.x32", 0.30, 0.36, "float", unit="m"),
                 Variable("y", 0.0, 1.0, "float", unit="1"),
-                Variable("motor", 0, 0, "categorical", tuple(MOTORS)),
+                Variable("motor", 0, len(MOTORS) - 1, "categorical", tuple(MOTORS)),
                 Variable("robots", 1, 3, "int", unit="1")]
 
     def fingerprint(self) -> str:
         return hashlib.sha256(json.dumps(["stub", self.shift]).encode()).hexdigest()[:16]
 
     def baseline(self):
-        return {"chain0.x32": 0.33, "y": 0.5, "motor": "medium", "robots": 2}
+        return {"chain0.x32": 0.33, "y": 0.5, "motor": 1, "robots": 2}  # motor: an index
 
 
 @dataclass(frozen=True)
@@ -72,6 +74,10 @@ class StubJob:
         return {"line": {"speed": self.speed}}
 
 
+def baseline_values(space):
+    return space.baseline()
+
+
 def prepare(job, space):
     return {"speed": job.speed, "shift": space.shift}
 
@@ -79,7 +85,8 @@ def prepare(job, space):
 def figures(values: dict, ctx: dict) -> tuple[dict, dict]:
     """(objectives, screen constraints) of a design, closed form."""
     x = (values["chain0.x32"] - 0.30) / 0.06  # 0..1
-    y, n, m = values["y"], values["robots"], MOTORS[values["motor"]]
+    y, n = values["y"], values["robots"]
+    m = list(MOTORS.values())[values["motor"]]  # the evaluator takes a choice's index
     objectives = {"parts_per_hour": 100.0 * n * (0.5 + x) * (1.0 + ctx["shift"]),
                   "robots": float(n), "motor_use": 0.3 + 0.6 * x * (1.2 - m) + 0.2 * y,
                   "kmin": 1e5 * (1.0 - 0.5 * x) * (0.5 + y), "moving_mass": 2.0 + 3 * x + 6 * m
@@ -93,6 +100,8 @@ def evaluate(values, ctx, level="screen"):
     if delay:
         time.sleep(delay)
     objectives, constraints = figures(values, ctx)
+    if level == "full" and constraints["reach"] > 0:  # the full level screens first
+        level = "screen"
     if level == "full":
         constraints["motors"] = objectives["motor_use"] - 1.0  # the full plan's motor check
     binding = max(constraints, key=constraints.get)

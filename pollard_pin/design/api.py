@@ -13,7 +13,7 @@ from types import SimpleNamespace
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
 from .front import choose, non_dominated, rank_key
-from .result import DesignResult
+from .result import DesignResult, shown
 from .storage import check_study_file, job_fingerprint, open_study
 from .study import (
     EVALUATION,
@@ -32,39 +32,6 @@ def default_evaluator():
     from . import evaluate
 
     return evaluate
-
-
-def baseline_values(space, variables) -> dict:
-    """The thesis robot as a design: every variable at today's value (a choice: the nearest,
-    or the first when choices are not numbers), clipped into its bounds.
-
-    Parameters
-    ----------
-    space : DesignSpace
-        The design space (its ``baseline()`` when it has one).
-    variables : Sequence
-        Its variables.
-
-    Returns
-    -------
-    dict
-        name → value.
-    """
-    if hasattr(space, "baseline"):
-        return dict(space.baseline())
-    values = {}
-    for v in variables:
-        today = getattr(v, "today", None)
-        if v.kind == "categorical":
-            choices = list(v.choices)
-            try:
-                values[v.name] = min(choices, key=lambda c: abs(float(c) - float(today)))
-            except (TypeError, ValueError):
-                values[v.name] = today if today in choices else choices[0]
-            continue
-        value = (v.low + v.high) / 2 if today is None else min(max(today, v.low), v.high)
-        values[v.name] = int(round(value)) if v.kind == "int" else float(value)
-    return values
 
 
 def _as_job(job):
@@ -98,15 +65,13 @@ def trial_rows(study, variables, names: Sequence[str]) -> list[dict]:
             continue  # cut short by a stop: never finished
         a = t.user_attrs.get(EVALUATION, {})
         objectives = a.get("objectives") or {}
-        seconds = a.get("seconds") or {}
         rows.append({"trial": t.number, "state": "complete" if complete else "error",
                      "level": a.get("level"), "feasible": bool(a.get("feasible")),
                      "binding": a.get("binding") or t.user_attrs.get("error"),
                      **{n: objectives.get(n) for n in names},
-                     **{v.name: t.params.get(v.name) for v in variables},
+                     **shown(variables, t.params),
                      **{f"c_{k}": c for k, c in sorted((a.get("constraints") or {}).items())},
-                     "seconds_screen": seconds.get("screen"),
-                     "seconds_full": seconds.get("full")})
+                     "seconds": a.get("seconds")})
     return rows
 
 
@@ -202,6 +167,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
         study.sampler = sampler(options, finished(study)[0])
         run_study(study, variables, ctx, ev.evaluate, names, options, report)
         rows = trial_rows(study, variables, names)
+        params = {t.number: dict(t.params) for t in study.get_trials(deepcopy=False)}
     finally:
         if hasattr(report, "close"):
             report.close()
@@ -211,8 +177,8 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     if not candidates:
         raise _no_front(rows)
     front_idx = non_dominated(candidates)
-    designs = [{v.name: candidates[i][v.name] for v in variables} for i in front_idx]
-    base = baseline_values(space, variables)
+    designs = [params[candidates[i]["trial"]] for i in front_idx]
+    base = ev.baseline_values(space)
     outcomes = _replan(ctx, ev.evaluate, [*designs, base], options)
     notes, front = [], []
     for i, values, outcome in zip(front_idx, designs, outcomes):

@@ -25,21 +25,16 @@ POLL = 0.2
 
 @dataclass(frozen=True)
 class Outcome:
-    """One design's evaluations: the screen's, and the full one's when the screen passed
-    (``full`` None otherwise); ``seconds``: the wall time of each, by level."""
+    """One design's evaluation: ``final``, the full one, or the screen's when the screen
+    rejected the design (or only the screen was asked for); ``seconds``, its wall time."""
 
-    screen: Any
-    full: Any
-    seconds: dict
-
-    @property
-    def final(self):
-        """The evaluation that judges the design: the full one, else the screen's."""
-        return self.full if self.full is not None else self.screen
+    final: Any
+    seconds: float
 
 
 def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> Outcome:
-    """Screen the design; plan it in full when it passes and ``full``.
+    """Screen the design, and plan it in full when it passes and ``full`` (the evaluator's
+    ``level="full"`` screens first and stops there when the screen rejects the design).
 
     Parameters
     ----------
@@ -48,24 +43,18 @@ def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> O
     ctx : object
         The prepared context (:func:`pollard_pin.design.evaluate.prepare`'s).
     evaluate : Callable
-        ``evaluate(values, ctx, level)`` → an evaluation with ``feasible``.
+        ``evaluate(values, ctx, level)`` → an evaluation with ``level`` and ``feasible``.
     full : bool, optional
         Plan a design that passes the screen in full (default True).
 
     Returns
     -------
     Outcome
-        The screen's evaluation, the full one (or None) and their times [s].
+        The evaluation that judges the design, and its time [s].
     """
     t0 = time.perf_counter()
-    screen = evaluate(dict(values), ctx, level="screen")
-    seconds = {"screen": time.perf_counter() - t0}
-    result = None
-    if full and screen.feasible:
-        t0 = time.perf_counter()
-        result = evaluate(dict(values), ctx, level="full")
-        seconds["full"] = time.perf_counter() - t0
-    return Outcome(screen, result, seconds)
+    found = evaluate(dict(values), ctx, level="full" if full else "screen")
+    return Outcome(found, time.perf_counter() - t0)
 
 
 class Runner:

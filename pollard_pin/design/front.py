@@ -18,15 +18,11 @@ import math
 from collections.abc import Mapping, Sequence
 
 from ..errors import InputError
+from .evaluate import SENSES as OBJECTIVE_SENSES
 
 MOTOR_USE_LIMIT = 0.9  # the margin a chosen design keeps on its busiest motor
-# The objectives, their senses (+1: more is better) and units, in the study's order.
-SENSES = {"parts_per_hour": 1, "robots": -1, "motor_use": -1, "kmin": 1, "moving_mass": -1}
-UNITS = {"parts_per_hour": "1/h", "robots": "1", "motor_use": "1", "kmin": "N/m",
-         "moving_mass": "kg"}
-LABELS = {"parts_per_hour": "parts/h", "robots": "robots", "motor_use": "motor use",
-          "kmin": "kmin", "moving_mass": "moving mass"}
-
+# The objectives' senses as signs (+1: more is better), in the study's order
+SENSES = {n: 1 if s == "max" else -1 for n, s in OBJECTIVE_SENSES.items()}
 
 def dominates(a: Mapping, b: Mapping, senses: Mapping[str, int] = SENSES) -> bool:
     """Whether objectives ``a`` dominate ``b`` (no worse in any, better in one)."""

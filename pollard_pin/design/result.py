@@ -3,15 +3,28 @@ re-planned in full, the thesis robot as the baseline, the chosen design and its 
 :meth:`DesignResult.write`, which writes what ``pollard-pin design`` writes."""
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..checks import file_path
-from .front import SENSES, UNITS, gains
+from .evaluate import UNITS
+from .front import SENSES, gains
 
 # The files of the chosen design (robots.toml for a cell only), then the study's tables
 DESIGN_FILES = ("params.toml", "actuators.toml", "robots.toml")
 TABLES = ("front.csv", "front.units.json", "trials.parquet", "front.png")
+
+
+def shown(variables, values: Mapping) -> dict:
+    """A design's values as its tables show them: a categorical's choice (a motor's name, a
+    gear ratio), not its index."""
+    out = {}
+    for v in variables:
+        value = values.get(v.name)
+        out[v.name] = (v.choices[int(value)] if v.kind == "categorical" and value is not None
+                       else value)
+    return out
 
 
 @dataclass(frozen=True)
@@ -27,7 +40,8 @@ class DesignResult:
     trials : tuple of dict
         One row per evaluation: ``trial``, ``state``, ``level``, ``feasible``, ``binding``,
         each variable, each objective (None where the design has no figure), each constraint
-        as ``c_<name>`` and the times ``seconds_screen``, ``seconds_full``.
+        as ``c_<name>`` and the evaluation's wall time ``seconds``; a categorical variable's
+        choice (not its index).
     front : tuple of dict
         The front's designs re-planned in full, in the order of
         :func:`~pollard_pin.design.front.rank_key`: ``design`` (1, 2, …), ``trial``,
@@ -90,7 +104,7 @@ class DesignResult:
             rows.append({"design": d["design"], "trial": d.get("trial"),
                          "feasible": bool(d.get("feasible", True)),
                          **{n: obj.get(n) for n in self.objectives},
-                         **{v.name: d["values"].get(v.name) for v in self.variables}})
+                         **shown(self.variables, d["values"])})
         return rows
 
     def baseline_row(self) -> dict:
@@ -100,8 +114,8 @@ class DesignResult:
         """Each table column's unit."""
         units = {"design": "1 (0: the thesis robot)", "trial": "1", "feasible": "1",
                  "state": "", "level": "", "binding": "", "error": "",
-                 "seconds_screen": "s", "seconds_full": "s",
-                 **{n: UNITS.get(n, "") for n in self.objectives}}
+                 "seconds": "s",
+                 **{n: UNITS.get(n) or "1" for n in self.objectives}}
         for v in self.variables:
             units[v.name] = getattr(v, "unit", None) or ("choice" if v.kind == "categorical"
                                                          else "as models/pollard.toml")

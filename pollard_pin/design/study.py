@@ -34,7 +34,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import signal
+import threading
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -128,8 +130,8 @@ def suggest(trial, variables) -> dict:
     """The trial's values of the design variables (optuna's distributions, one per kind)."""
     values = {}
     for v in variables:
-        if v.kind == "categorical":
-            values[v.name] = trial.suggest_categorical(v.name, list(v.choices))
+        if v.kind == "categorical":  # an index into the choices, as the evaluator takes it
+            values[v.name] = trial.suggest_categorical(v.name, list(range(len(v.choices))))
         elif v.kind == "int":
             values[v.name] = trial.suggest_int(v.name, int(v.low), int(v.high))
         else:
@@ -139,18 +141,27 @@ def suggest(trial, variables) -> dict:
 
 @contextlib.contextmanager
 def _signals_held():
-    """SIGINT and SIGTERM held back while a result is written to the database: the study
-    stays consistent, and the signal is handled the moment the write is done."""
-    held = {signal.SIGINT, signal.SIGTERM}
-    try:
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
-    except (AttributeError, ValueError, OSError):  # no sigmask here: write unprotected
+    """SIGINT and SIGTERM held back while the study's database is written: the study stays
+    consistent, and the signal's own handler runs the moment the write is done. (Python runs
+    handlers in the main thread whichever thread the signal reached, so a thread's signal
+    mask would not hold them: the handlers are swapped instead.)"""
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
+    caught: list[int] = []
+    held = (signal.SIGINT, signal.SIGTERM)
+    old = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in held}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for s, handler in old.items():
+            signal.signal(s, handler)
+        for s in dict.fromkeys(caught):
+            handler = old[s]
+            if callable(handler):
+                handler(s, None)
+            elif handler == signal.SIG_DFL:
+                os.kill(os.getpid(), s)
 
 
 def plain(value):
@@ -191,9 +202,8 @@ def record(study, trial, outcome: Outcome | BaseException, names: Sequence[str])
         constraints["evaluation"] = 0.0 if feasible else 1.0
         attrs = {"level": ev.level, "feasible": feasible, "binding": ev.binding,
                  "objectives": objectives, "constraints": constraints,
-                 "figures": plain(dict(ev.figures or {})), "seconds": plain(outcome.seconds),
-                 "screen_binding": outcome.screen.binding}
-        if feasible and outcome.full is not None:
+                 "figures": plain(dict(ev.figures or {})), "seconds": outcome.seconds}
+        if feasible and ev.level == "full":
             attrs["files"] = {n: t for n, t in zip(FILES, (ev.params_toml, ev.actuators_toml,
                                                           ev.robots_toml)) if t}
         trial.set_user_attr(EVALUATION, attrs)  # one write: every write is a commit
@@ -285,13 +295,16 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
         try:
             while done < options.trials or inflight:
                 while len(inflight) < runner.capacity and done + len(inflight) < options.trials:
-                    with _signals_held():  # asked and noted at once: a stop fails it
+                    # every database write with the signals held: a stop between two
+                    # leaves the study consistent (and the trial noted, to be failed)
+                    with _signals_held():
                         trial = study.ask()
                         inflight[trial.number] = trial
-                    runner.submit(trial.number, suggest(trial, variables),
-                                  not options.screen_only)
+                        values = suggest(trial, variables)
+                    runner.submit(trial.number, values, not options.screen_only)
                 for key, outcome in runner.done():
-                    ok = record(study, inflight.pop(key), outcome, names)
+                    ok = record(study, inflight[key], outcome, names)
+                    del inflight[key]
                     done += 1
                     feasible += ok
                     if isinstance(outcome, BaseException):
@@ -305,9 +318,10 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
                     if report is not None:
                         report(done, options.trials, feasible, best)
         except BaseException:
-            for number in list(inflight):  # cut short: failed, so the study is consistent
-                with _signals_held():
-                    study.tell(number, state=optuna.trial.TrialState.FAIL)
+            with _signals_held():  # cut short: failed, so the study is consistent
+                for number in inflight:
+                    with contextlib.suppress(RuntimeError, ValueError):  # told already
+                        study.tell(number, state=optuna.trial.TrialState.FAIL)
             raise
 
 

@@ -1,13 +1,11 @@
 """pollard_pin.design (design/api.py): the front of every evaluation, re-planned, the baseline
 and the chosen design, against the stand-in's closed-form figures."""
 import itertools
-from dataclasses import dataclass
 
 import design_stub as stub
 import pytest
 from design_runs import run_stub, stub_result  # noqa: F401 — the shared study
 
-from pollard_pin.design.api import baseline_values
 from pollard_pin.design.front import SENSES, dominates, rank_key
 from pollard_pin.errors import SolveError
 
@@ -48,23 +46,6 @@ def test_the_thesis_robot_is_the_baseline(stub_result):  # noqa: F811
     assert lines[1].startswith("thesis robot: 200 parts/h, 2 robots")
     assert len(lines) == 2 + len(stub_result.front)
     assert lines[2].startswith("design 1 (chosen): ") and "(-1)" in lines[2]  # one robot fewer
-
-
-@dataclass(frozen=True)
-class Today(stub.Variable):
-    today: object = None
-
-
-def test_baseline_values_from_todays_values_or_the_nearest_choice():
-    space = object()  # no baseline() of its own: each variable's today
-    got = baseline_values(space, [Today("a", 0.1, 0.2, "float", today=0.5),
-                                  Today("n", 1, 4, "int", today=2.4),
-                                  Today("r", 0, 0, "categorical", (50.0, 100.0, 160.0),
-                                        today=120.0),
-                                  Today("m", 0, 0, "categorical", ("x", "y"), today="y"),
-                                  Today("b", 0.25, 0.75, "float")])
-    # clipped into the bounds, rounded, the nearest choice, the choice itself, the middle
-    assert got == {"a": 0.2, "n": 2, "r": 100.0, "m": "y", "b": 0.5}
 
 
 def test_pick_chooses_a_front_row(tmp_path):

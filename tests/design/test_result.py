@@ -2,6 +2,7 @@
 the model's own loaders, the front and every evaluation with units, the plot; all or none."""
 import tomllib
 
+import design_stub as stub
 import pytest
 from design_runs import run_stub, stub_result  # noqa: F401 — the shared study
 
@@ -33,7 +34,7 @@ def test_front_and_trials_tables_with_units(stub_result, tmp_path):  # noqa: F81
         stub_result.baseline["objectives"]["parts_per_hour"])  # row 0: the thesis robot
     for row, d in zip(front[1:], stub_result.front):
         assert row["kmin"] == pytest.approx(d["objectives"]["kmin"])
-        assert row["motor"] == d["values"]["motor"]
+        assert row["motor"] == tuple(stub.MOTORS)[d["values"]["motor"]]  # the choice, shown
     assert units["kmin"] == "N/m" and units["parts_per_hour"] == "1/h"
     assert units["moving_mass"] == "kg" and units["chain0.x32"] == "m"
     trials, tunits = read_rows(folder / "trials.parquet")

@@ -90,7 +90,8 @@ def test_a_local_pool_gives_a_study_of_the_same_designs(tmp_path):
     result = run_stub(tmp_path / "pool.db", 8, workers=2)
     assert len(result.trials) == 8
     for row in result.trials:  # each judged as the stand-in judges it, whichever process
-        objectives, _ = stub.figures(row, {"shift": 0.0})
+        values = {**row, "motor": tuple(stub.MOTORS).index(row["motor"])}  # shown: the name
+        objectives, _ = stub.figures(values, {"shift": 0.0})
         if row["feasible"]:
             assert row["kmin"] == pytest.approx(objectives["kmin"])
 
@@ -132,10 +133,12 @@ def test_sigterm_stops_within_a_second_and_keeps_every_finished_evaluation(tmp_p
         stopped = time.monotonic() - t0
     finally:
         proc.kill()
-    assert proc.returncode != 0
+    assert proc.returncode != 0, proc.stderr.read().decode()[-2000:]
+    err = proc.stderr.read().decode()
+    assert "KeyboardInterrupt" in err, err[-2000:]
     assert stopped < 1.0 + 2.0  # a second, and the interpreter's exit on a loaded machine
     trials = _trials(path)
-    assert not [t for t in trials if t.state == optuna.trial.TrialState.RUNNING]
+    assert not [t for t in trials if t.state == optuna.trial.TrialState.RUNNING], err[-2000:]
     done = [t for t in trials if t.state == optuna.trial.TrialState.COMPLETE]
     assert done and all(EVALUATION in t.user_attrs for t in done)
 
