@@ -95,6 +95,14 @@ def name(text: str) -> str:
     return text
 
 
+def scheduler_address(text: str) -> str:
+    """A Dask scheduler's address, not empty (no --dask is the local pool)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty address; give the scheduler's, e.g. "
+                                         "tcp://127.0.0.1:8786")
+    return text.strip()
+
+
 def count(minimum: int, maximum: int | None = None):
     def parse(text: str) -> int:
         digits = text.strip().lstrip("+")

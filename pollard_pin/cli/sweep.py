@@ -1,7 +1,6 @@
 """pollard-pin sweep: design sweeps."""
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 import time
@@ -15,6 +14,7 @@ from .common import (
     name,
     progress,
     refuse_inputs,
+    scheduler_address,
     warnings_as_notes,
     wrote,
 )
@@ -48,14 +48,6 @@ def run(args) -> int:
     return 0
 
 
-def _address(text: str) -> str:
-    """A Dask scheduler's address, not empty (no --dask is the local pool)."""
-    if not text.strip():
-        raise argparse.ArgumentTypeError("an empty address; give the scheduler's, e.g. "
-                                         "tcp://127.0.0.1:8786")
-    return text.strip()
-
-
 def add_parser(sub, parents) -> None:
     p = command(sub, parents, "sweep",
                 "design sweep: parameter variants over a trajectory → CSV", run)
@@ -65,7 +57,7 @@ def add_parser(sub, parents) -> None:
                    help="output CSV ('-': standard output)")
     p.add_argument("--workers", type=count(1), default=None,
                    help="local processes (1 = serial; default: all cores)")
-    p.add_argument("--dask", type=_address, metavar="ADDRESS", default=None,
+    p.add_argument("--dask", type=scheduler_address, metavar="ADDRESS", default=None,
                    help="run on this Dask scheduler (needs pollard-pin[cluster]; default: "
                         "local processes)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -1,0 +1,231 @@
+"""``pollard_pin.design``: search the design space for the robots that paint a job, and give
+back the front, the baseline and the chosen design (:func:`design`; the CLI is a thin layer
+over it)."""
+from __future__ import annotations
+
+import sys
+import time
+from collections import Counter
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from types import SimpleNamespace
+
+from ..errors import InputError, SolveError
+from .backends import failure, make_runner
+from .front import choose, non_dominated, rank_key
+from .result import DesignResult, shown
+from .storage import check_study_file, job_fingerprint, open_study
+from .study import (
+    EVALUATION,
+    DesignOptions,
+    close_stale,
+    finished,
+    objectives_of,
+    run_study,
+    sampler,
+)
+
+
+def default_evaluator():
+    """The design evaluator: ``prepare``, ``evaluate`` and ``OBJECTIVES``
+    (:mod:`pollard_pin.design.evaluate`)."""
+    from . import evaluate
+
+    return evaluate
+
+
+def _as_job(job):
+    if isinstance(job, (str, Path)):
+        from ..painting.job import load_job
+
+        return load_job(job)
+    return job
+
+
+def _as_space(space):
+    if isinstance(space, (str, Path)):
+        from .space import load_space
+
+        return load_space(space)
+    if isinstance(space, Mapping):
+        from .space import space_from_dict
+
+        return space_from_dict(space)
+    return space
+
+
+def trial_rows(study, variables, names: Sequence[str]) -> list[dict]:
+    """One row per evaluation the study holds (complete, or failed with an error)."""
+    import optuna
+
+    rows = []
+    for t in study.get_trials(deepcopy=False):
+        complete = t.state == optuna.trial.TrialState.COMPLETE
+        if not complete and "error" not in t.user_attrs:
+            continue  # cut short by a stop: never finished
+        a = t.user_attrs.get(EVALUATION, {})
+        objectives = a.get("objectives") or {}
+        rows.append({"trial": t.number, "state": "complete" if complete else "error",
+                     "level": a.get("level"), "feasible": bool(a.get("feasible")),
+                     "binding": a.get("binding") or t.user_attrs.get("error"),
+                     **{n: objectives.get(n) for n in names},
+                     **shown(variables, t.params),
+                     **{f"c_{k}": c for k, c in sorted((a.get("constraints") or {}).items())},
+                     "seconds": a.get("seconds")})
+    return rows
+
+
+def _replan(ctx, evaluate, designs: list[dict], options: DesignOptions) -> list:
+    """Each design evaluated again (in full unless ``screen_only``), in parallel; the
+    outcomes (or exceptions) in input order."""
+    out: list = [None] * len(designs)
+    pending, inflight = list(enumerate(designs)), 0
+    with make_runner(ctx, evaluate, options.workers, options.dask) as runner:
+        while pending or inflight:
+            while pending and inflight < runner.capacity:
+                k, values = pending.pop(0)
+                runner.submit(k, values, not options.screen_only)
+                inflight += 1
+            for k, outcome in runner.done():
+                out[k], inflight = outcome, inflight - 1
+    return out
+
+
+def _design_row(k: int, trial, values: dict, outcome, names) -> dict | None:
+    if isinstance(outcome, BaseException) or not outcome.final.feasible:
+        return None
+    ev = outcome.final
+    return {"design": k, "trial": trial, "values": values, "feasible": True,
+            "level": ev.level, "objectives": {n: float(ev.objectives[n]) for n in names},
+            "figures": dict(ev.figures or {}), "binding": ev.binding,
+            "files": {n: t for n, t in (("params.toml", ev.params_toml),
+                                        ("actuators.toml", ev.actuators_toml),
+                                        ("robots.toml", ev.robots_toml)) if t}}
+
+
+def _no_front(rows: list[dict]) -> SolveError:
+    binding = Counter(r["binding"] for r in rows if not r["feasible"] and r["binding"])
+    most = (f"; the binding constraint most often: {binding.most_common(1)[0][0]} "
+            f"({binding.most_common(1)[0][1]} of {len(rows)})" if binding else "")
+    return SolveError(f"no design of the space paints the job in {len(rows)} evaluations"
+                      f"{most}")
+
+
+def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
+           progress: Callable | None = None) -> DesignResult:
+    """Search the design space for the robots that paint ``job`` (docs/model.md §31): an
+    NSGA-II study over the space's variables, every design screened and, when it passes,
+    planned in full; the front re-planned in full; the thesis robot as the baseline.
+
+    Parameters
+    ----------
+    job : PaintJob or PartJob or str or Path
+        The paint job (a job file's path is read by :func:`~pollard_pin.load_job`).
+    space : DesignSpace or str or Path or Mapping
+        The design space (a path: :func:`~pollard_pin.design.space.load_space`).
+    options : DesignOptions or None, optional
+        Trials, workers or Dask, the study file, ``resume``, ``pick``.
+    evaluator : object or None, optional
+        ``prepare(job, space)``, ``evaluate(values, ctx, level)`` and ``OBJECTIVES`` (default:
+        :mod:`pollard_pin.design.evaluate`).
+    progress : Callable or None, optional
+        ``progress(done, total, feasible, best)`` after each evaluation (default: a bar on a
+        terminal when ``options.progress``).
+
+    Returns
+    -------
+    DesignResult
+        ``result.write(folder)`` writes the chosen design's files, the tables and the plot.
+
+    Raises
+    ------
+    pollard_pin.design.storage.StudyFileError
+        A study file that cannot be used (another job or space, damaged, a FIFO …).
+    SolveError
+        No feasible design in the study's evaluations (naming the constraint that binds most
+        often), too many evaluations that raised.
+    KeyboardInterrupt
+        SIGINT or SIGTERM: the study file keeps every finished evaluation.
+    """
+    t0 = time.perf_counter()
+    options = DesignOptions() if options is None else options
+    if not isinstance(options, DesignOptions):
+        raise InputError(f"options: expected DesignOptions, got {type(options).__name__}")
+    ev = default_evaluator() if evaluator is None else evaluator
+    job, space = _as_job(job), _as_space(space)
+    names = tuple(ev.OBJECTIVES)
+    if options.study is not None:  # its refusals before the work, and before any write
+        check_study_file(options.study, options.resume)
+    ctx = ev.prepare(job, space)
+    variables = list(space.variables())
+    study, close = open_study(options.study, job=job_fingerprint(job), space=space.fingerprint(),
+                       objectives=objectives_of(names), sampler=None, resume=options.resume)
+    report = progress if progress is not None else (_bar(options) if options.progress
+                                                    else None)
+    try:
+        close_stale(study)
+        study.sampler = sampler(options, finished(study)[0])
+        run_study(study, variables, ctx, ev.evaluate, names, options, report)
+        rows = trial_rows(study, variables, names)
+        params = {t.number: dict(t.params) for t in study.get_trials(deepcopy=False)}
+    finally:
+        if hasattr(report, "close"):
+            report.close()
+        close()
+    level = "screen" if options.screen_only else "full"
+    candidates = [r for r in rows if r["feasible"] and r["level"] == level]
+    if not candidates:
+        raise _no_front(rows)
+    front_idx = non_dominated(candidates)
+    designs = [params[candidates[i]["trial"]] for i in front_idx]
+    base = ev.baseline_values(space)
+    outcomes = _replan(ctx, ev.evaluate, [*designs, base], options)
+    notes, front = [], []
+    for i, values, outcome in zip(front_idx, designs, outcomes):
+        row = _design_row(0, candidates[i]["trial"], values, outcome, names)
+        if row is None:
+            why = (failure(outcome) if isinstance(outcome, BaseException)
+                   else outcome.final.binding)
+            notes.append(f"trial {candidates[i]['trial']} left the front on re-planning: {why}")
+        else:
+            front.append(row)
+    if not front:
+        raise SolveError("no front design stayed feasible when re-planned: " + "; ".join(notes))
+    keep = non_dominated([d["objectives"] for d in front])
+    front = sorted((front[i] for i in keep), key=lambda d: rank_key(d["objectives"]))
+    for k, d in enumerate(front, start=1):
+        d["design"] = k
+    chosen = choose([d["objectives"] for d in front], options.pick)
+    b = outcomes[-1]
+    if isinstance(b, BaseException):
+        baseline = {"values": base, "feasible": False, "objectives": None,
+                    "binding": failure(b)}
+    else:
+        fb = b.final
+        baseline = {"values": base, "feasible": bool(fb.feasible), "binding": fb.binding,
+                    "objectives": ({n: float(fb.objectives[n]) for n in names}
+                                   if fb.feasible else None)}
+    return DesignResult(tuple(variables), names, tuple(rows), tuple(front), baseline, chosen,
+                        None if options.study is None else str(options.study),
+                        time.perf_counter() - t0, tuple(notes))
+
+
+def _bar(options: DesignOptions):
+    """A tqdm bar on a terminal: evaluations done, feasible, best so far."""
+    from tqdm import tqdm
+
+    from .study import best_text
+
+    state = SimpleNamespace(bar=None)
+
+    def report(done, total, feasible, best):
+        if state.bar is None:
+            state.bar = tqdm(total=total, initial=done, desc="design", unit="design",
+                             disable=None, leave=False, file=sys.stderr)
+        state.bar.update(done - state.bar.n)
+        state.bar.set_postfix_str(f"feasible {feasible}, best {best_text(best)}",
+                                  refresh=False)
+
+    report.close = lambda: state.bar is not None and state.bar.close()
+    return report
+

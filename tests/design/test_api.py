@@ -1,0 +1,68 @@
+"""pollard_pin.design (design/api.py): the front of every evaluation, re-planned, the baseline
+and the chosen design, against the stand-in's closed-form figures."""
+import itertools
+
+import design_stub as stub
+import pytest
+from design_runs import run_stub, stub_result  # noqa: F401 — the shared study
+
+from pollard_pin.design.front import SENSES, dominates, rank_key
+from pollard_pin.errors import SolveError
+
+
+def test_the_front_is_non_dominated_over_every_evaluation(stub_result):  # noqa: F811
+    feasible = [r for r in stub_result.trials if r["feasible"]]
+    assert feasible and stub_result.front
+    for d in stub_result.front:  # brute force: no evaluation beats a front design
+        assert not any(dominates({n: r[n] for n in SENSES}, d["objectives"]) for r in feasible)
+    for a, b in itertools.permutations(stub_result.front, 2):
+        assert not dominates(a["objectives"], b["objectives"])
+    # every feasible evaluation is on the front or beaten by a front design (or its equal)
+    front = [d["objectives"] for d in stub_result.front]
+    for r in feasible:
+        o = {n: r[n] for n in SENSES}
+        assert o in front or any(dominates(f, o) for f in front)
+
+
+def test_front_designs_are_replanned_in_full_and_ranked(stub_result):  # noqa: F811
+    keys = [rank_key(d["objectives"]) for d in stub_result.front]
+    assert keys == sorted(keys)
+    assert [d["design"] for d in stub_result.front] == list(range(1, len(keys) + 1))
+    for d in stub_result.front:
+        objectives, constraints = stub.figures(d["values"], {"shift": 0.0})
+        assert d["level"] == "full"
+        assert d["objectives"] == pytest.approx(objectives)
+        assert all(v <= 0 for v in constraints.values())
+    assert stub_result.chosen == 0  # the rule's design is the first row
+
+
+def test_the_thesis_robot_is_the_baseline(stub_result):  # noqa: F811
+    b = stub_result.baseline
+    assert b["values"] == stub.StubSpace().baseline()
+    objectives, _ = stub.figures(b["values"], {"shift": 0.0})
+    assert b["feasible"] and b["objectives"] == pytest.approx(objectives)
+    lines = stub_result.summary_lines()
+    assert lines[0].startswith("40 evaluations, ")
+    assert lines[1].startswith("thesis robot: 200 parts/h, 2 robots")
+    assert len(lines) == 2 + len(stub_result.front)
+    assert lines[2].startswith("design 1 (chosen): ") and "(-1)" in lines[2]  # one robot fewer
+
+
+def test_pick_chooses_a_front_row(tmp_path):
+    result = run_stub(None, 12, pick=2)
+    assert result.chosen == 1 and result.design["design"] == 2
+
+
+def test_a_space_with_no_feasible_design_names_the_binding_constraint():
+    impossible = type("Impossible", (), {
+        "OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+        "evaluate": staticmethod(lambda values, ctx, level="screen": stub.Evaluation(
+            level, False, {}, {"reach": 1.0, "motors": -1.0}, "reach"))})
+    from pollard_pin.design.api import design
+    from pollard_pin.design.study import DesignOptions
+
+    with pytest.raises(SolveError, match=r"no design of the space paints the job in 5 "
+                                         r"evaluations; the binding constraint most often: "
+                                         r"reach \(5 of 5\)"):
+        design(stub.StubJob(), stub.StubSpace(), DesignOptions(trials=5, workers=1),
+               evaluator=impossible)

@@ -1,0 +1,65 @@
+"""Where a study's designs are evaluated (design/backends.py): in this process, on a local
+pool, on a Dask cluster, each design's outcome is the same; the screen gates the full plan."""
+import design_stub as stub
+import pytest
+
+from pollard_pin.design.backends import SerialRunner, failure, make_runner, run_design
+from pollard_pin.errors import InputError, SolveError
+
+CTX = {"speed": 0.012, "shift": 0.0}
+GOOD = {"chain0.x32": 0.35, "y": 0.5, "motor": 0, "robots": 1}
+BAD = {"chain0.x32": 0.30, "y": 0.1, "motor": 0, "robots": 1}  # out of reach
+
+
+def _all(runner, designs):
+    for k, values in enumerate(designs):
+        runner.submit(k, values)
+    out = {}
+    while len(out) < len(designs):
+        out.update(runner.done())
+    return [out[k] for k in range(len(designs))]
+
+
+def test_the_screen_gates_the_full_plan():
+    good, bad = run_design(GOOD, CTX, stub.evaluate), run_design(BAD, CTX, stub.evaluate)
+    assert good.final.level == "full" and good.final.feasible and good.seconds >= 0
+    assert bad.final.level == "screen" and bad.final.binding == "reach"
+    assert run_design(GOOD, CTX, stub.evaluate, full=False).final.level == "screen"
+
+
+def test_pool_and_dask_give_the_serial_outcomes():
+    from distributed import LocalCluster
+
+    designs = [dict(GOOD, y=y) for y in (0.1, 0.5, 0.9)] + [BAD]
+    serial = _all(SerialRunner(CTX, stub.evaluate), designs)
+    with make_runner(CTX, stub.evaluate, workers=2) as pool:
+        pooled = _all(pool, designs)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster:
+        with make_runner(CTX, stub.evaluate, dask=cluster.scheduler_address) as runner:
+            assert runner.capacity == 4
+            dasked = _all(runner, designs)
+    for a, b, c in zip(serial, pooled, dasked):
+        assert a.final == b.final == c.final
+
+
+def _raises(values, ctx, level="screen"):
+    raise SolveError("cannot reach")
+
+
+def test_an_evaluation_that_raises_comes_back_as_its_exception():
+    (outcome,) = _all(SerialRunner(CTX, _raises), [GOOD])
+    assert isinstance(outcome, SolveError) and failure(outcome) == "cannot reach"
+    assert failure(ZeroDivisionError("x")) == "ZeroDivisionError: x"
+
+
+def test_bad_runner_options_are_one_line():
+    with pytest.raises(InputError, match="workers = 0"):
+        make_runner(CTX, stub.evaluate, workers=0)
+    with pytest.raises(InputError, match="an empty scheduler address"):
+        make_runner(CTX, stub.evaluate, dask=" ")
+    import dask
+
+    with dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}), \
+            pytest.raises(SolveError, match="cannot connect to the Dask scheduler"):
+        make_runner(CTX, stub.evaluate, dask="tcp://127.0.0.1:1")

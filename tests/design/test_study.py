@@ -1,0 +1,152 @@
+"""The study (design/study.py): every finished evaluation is stored as it finishes, a stopped
+study resumes where it stopped and loses nothing, SIGTERM stops it within a second."""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import design_stub as stub
+import optuna
+import pytest
+from design_runs import run_stub
+
+from pollard_pin.design.api import design
+from pollard_pin.design.study import EVALUATION, DesignOptions, finished
+from pollard_pin.errors import InputError, SolveError
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _trials(path):
+    study = optuna.load_study(study_name="pollard-pin design",
+                              storage=f"sqlite:///{path}")
+    return study.get_trials()
+
+
+def _stop_after(n):
+    def report(done, total, feasible, best):
+        if done >= n:
+            raise KeyboardInterrupt
+    return report
+
+
+def test_a_stopped_study_resumes_and_loses_nothing(tmp_path):
+    path = tmp_path / "study.db"
+    with pytest.raises(KeyboardInterrupt):
+        design(stub.StubJob(), stub.StubSpace(),
+               DesignOptions(trials=9, workers=1, study=path, population=4), evaluator=stub,
+               progress=_stop_after(4))
+    first = [t for t in _trials(path) if t.state == optuna.trial.TrialState.COMPLETE]
+    assert len(first) == 4  # each stored the moment it finished
+    result = run_stub(path, 9, resume=True, population=4)
+    trials = _trials(path)
+    done = [t for t in trials if t.state == optuna.trial.TrialState.COMPLETE]
+    assert len(done) == 9 == len(result.trials)
+    assert not [t for t in trials if t.state == optuna.trial.TrialState.RUNNING]
+    for old in first:  # the first run's evaluations, kept as they were
+        again = trials[old.number]
+        assert (again.params, again.values) == (old.params, old.values)
+        assert again.user_attrs[EVALUATION] == old.user_attrs[EVALUATION]
+    # resumed without more trials: nothing is evaluated again
+    assert len(run_stub(path, 9, resume=True, population=4).trials) == 9
+    assert len(_trials(path)) == len(trials)
+
+
+def test_each_trial_stores_its_evaluation_and_constraints(tmp_path):
+    path = tmp_path / "study.db"
+    run_stub(path, 6)
+    for t in _trials(path):
+        found = t.user_attrs[EVALUATION]
+        values = {**t.params}
+        objectives, constraints = stub.figures(values, {"shift": 0.0, "speed": 0.012})
+        assert found["feasible"] == (constraints["reach"] <= 0 and
+                                     objectives["motor_use"] <= 1.0)
+        assert t.constraints["reach"] == pytest.approx(constraints["reach"])
+        assert found["level"] == ("full" if constraints["reach"] <= 0 else "screen")
+        if found["feasible"]:
+            assert t.values[0] == pytest.approx(objectives["parts_per_hour"])
+            assert "params.toml" in found["files"]
+
+
+def _broken(values, ctx, level="screen"):
+    raise ZeroDivisionError("a bug")
+
+
+def test_evaluations_that_raise_fail_their_trial_then_stop_the_study(tmp_path):
+    broken = type("Broken", (), {"OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+                                 "evaluate": staticmethod(_broken)})
+    with pytest.raises(SolveError, match="10 design evaluations raised; the first: "
+                                         "ZeroDivisionError: a bug"):
+        design(stub.StubJob(), stub.StubSpace(),
+               DesignOptions(trials=50, workers=1, study=tmp_path / "s.db"), evaluator=broken)
+    study = optuna.load_study(study_name="pollard-pin design",
+                              storage=f"sqlite:///{tmp_path / 's.db'}")
+    assert finished(study) == (10, 0, 10)
+
+
+def test_a_local_pool_gives_a_study_of_the_same_designs(tmp_path):
+    result = run_stub(tmp_path / "pool.db", 8, workers=2)
+    assert len(result.trials) == 8
+    for row in result.trials:  # each judged as the stand-in judges it, whichever process
+        values = {**row, "motor": tuple(stub.MOTORS).index(row["motor"])}  # shown: the name
+        objectives, _ = stub.figures(values, {"shift": 0.0})
+        if row["feasible"]:
+            assert row["kmin"] == pytest.approx(objectives["kmin"])
+
+
+def test_options_are_checked_once():
+    with pytest.raises(InputError, match="trials: must be an integer >= 1"):
+        DesignOptions(trials=0)
+    with pytest.raises(InputError, match="resume: needs a study file"):
+        DesignOptions(resume=True)
+    with pytest.raises(InputError, match="seed"):
+        DesignOptions(seed=1.5)
+
+
+# SIGTERM raised as the command line raises it (pollard_pin.cli.main): an exception that
+# unwinds the study, not the end of the process on the spot
+SCRIPT = """
+import signal, sys
+sys.path[:0] = [{root!r}, {tests!r}]
+def stop(signum, frame):
+    raise KeyboardInterrupt
+signal.signal(signal.SIGTERM, stop)
+from design_runs import run_stub
+run_stub({path!r}, 10000, workers=2)
+"""
+
+
+def test_sigterm_stops_within_a_second_and_keeps_every_finished_evaluation(tmp_path):
+    path = tmp_path / "study.db"
+    code = SCRIPT.format(root=str(ROOT), tests=str(ROOT / "tests"), path=str(path))
+    env = {**os.environ, "STUB_DELAY": "0.05"}
+    proc = subprocess.Popen([sys.executable, "-c", code], env=env, stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not _some_finished(path):
+            time.sleep(0.2)
+        proc.send_signal(signal.SIGTERM)
+        t0 = time.monotonic()
+        proc.wait(timeout=10)
+        stopped = time.monotonic() - t0
+    finally:
+        proc.kill()
+    assert proc.returncode != 0, proc.stderr.read().decode()[-2000:]
+    err = proc.stderr.read().decode()
+    assert "KeyboardInterrupt" in err, err[-2000:]
+    assert stopped < 1.0 + 2.0  # a second, and the interpreter's exit on a loaded machine
+    trials = _trials(path)
+    assert not [t for t in trials if t.state == optuna.trial.TrialState.RUNNING], err[-2000:]
+    done = [t for t in trials if t.state == optuna.trial.TrialState.COMPLETE]
+    assert done and all(EVALUATION in t.user_attrs for t in done)
+
+
+def _some_finished(path):
+    if not path.is_file():
+        return False
+    try:
+        return sum(t.state == optuna.trial.TrialState.COMPLETE for t in _trials(path)) >= 2
+    except Exception:  # noqa: BLE001 — being created
+        return False

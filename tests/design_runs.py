@@ -1,0 +1,21 @@
+"""Design studies of the stand-in evaluator (tests/design_stub.py) shared by the design tests:
+run once per session, in this process (workers=1), each stored in its own study file."""
+import design_stub as stub
+import pytest
+
+from pollard_pin.design.api import design
+from pollard_pin.design.study import DesignOptions
+
+
+def run_stub(study, trials: int, *, resume: bool = False, space=None, **options):
+    """The stand-in's study in the file ``study`` (None: in memory), this process."""
+    return design(stub.StubJob(), space or stub.StubSpace(),
+                  DesignOptions(trials=trials, workers=options.pop("workers", 1), study=study,
+                                resume=resume, population=options.pop("population", 8),
+                                **options), evaluator=stub)
+
+
+@pytest.fixture(scope="session")
+def stub_result():
+    """A 40-design study of the stand-in, in memory (the stored studies: test_study.py)."""
+    return run_stub(None, 40)
