@@ -23,11 +23,8 @@ from ..errors import LONGEST_LINE, say_less
 from ..io.atomic import STDOUT
 from ..version import __version__
 from . import (
-<<<<<<< HEAD
     calibrate,
-=======
     design,
->>>>>>> hY
     export,
     info,
     paint,
@@ -54,11 +51,7 @@ docs/model.md for the model and its conventions.
 """
 
 COMMANDS = (urdf, info, run, sweep, view, plot, report, size, simulate, paint, place, export,
-<<<<<<< HEAD
-            workspace, stiffness, calibrate)
-=======
-            workspace, stiffness, design)
->>>>>>> hY
+            workspace, stiffness, calibrate, design)
 
 
 def build_parser() -> argparse.ArgumentParser:
