@@ -45,9 +45,13 @@ from .space import DesignSpace
 
 #: The objectives a design is judged by, in the order of :meth:`Evaluation.objective_vector`.
 OBJECTIVES = ("parts_per_hour", "robots", "motor_use", "kmin", "moving_mass")
+class _Senses(dict):
+    """Each objective of :data:`OBJECTIVES` → its sense, "max" or "min" (a dict)."""
+
+
 #: Each objective's sense: "max" or "min".
-SENSES = {"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
-          "moving_mass": "min"}
+SENSES = _Senses({"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
+          "moving_mass": "min"})
 UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
 #: The constraints, in the order of :meth:`Evaluation.constraint_vector` (≤ 0 holds).
