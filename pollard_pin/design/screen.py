@@ -50,8 +50,10 @@ def reach(robot, strokes: Strokes, robots: int) -> tuple[float, dict, object]:
                       most=SCREEN_STROKES, shift_step=SCREEN_SHIFT)
     need = max(b - a for a, b in zone_needs(strokes, robots))
     fewest = fewest_for(strokes, band.width)
-    return need - band.width, {"band_m": band.width, "band_lo_m": band.lo if not band.empty
-                               else math.nan, "robots_needed": fewest or 0}, band
+    fig = {"band_m": band.width, "robots_needed": fewest or 0}
+    if not band.empty:  # where it starts along the axis (none: no NaN in a table)
+        fig["band_lo_m"] = band.lo
+    return need - band.width, fig, band
 
 
 def panel_reach(robot, job) -> tuple[float, dict]:
