@@ -40,14 +40,18 @@ from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
 from .build import Design, actuators_toml, build, params_toml
-from .screen import held_poses, motors, reach
+from .screen import held_poses, motors, panel_reach, reach
 from .space import DesignSpace
 
 #: The objectives a design is judged by, in the order of :meth:`Evaluation.objective_vector`.
 OBJECTIVES = ("parts_per_hour", "robots", "motor_use", "kmin", "moving_mass")
+class _Senses(dict):
+    """Each objective of :data:`OBJECTIVES` → its sense, "max" or "min" (a dict)."""
+
+
 #: Each objective's sense: "max" or "min".
-SENSES = {"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
-          "moving_mass": "min"}
+SENSES = _Senses({"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
+          "moving_mass": "min"})
 UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
 #: The constraints, in the order of :meth:`Evaluation.constraint_vector` (≤ 0 holds).
@@ -245,6 +249,9 @@ def _screen(values, ctx: DesignContext):
             if poses is not None:
                 cons["motors_static"], more = motors(robot, design.actuators, poses)
                 figures.update(more)
+        elif not isinstance(ctx.job, PartJob):  # a still panel: its poses in reach
+            cons["reach"], more = panel_reach(robot, ctx.job)
+            figures.update(more)
     except PollardError as exc:  # a model the package cannot build or solve: said
         figures["screen_s"] = time.perf_counter() - t0
         cons["reach"] = max(cons.get("reach", 0.0), 0.0) + REFUSED
