@@ -55,7 +55,7 @@ class Spot:
 
         Parameters
         ----------
-        h : array_like
+        h : float or ndarray
             Distances along the spray axis from the nozzle [m].
         standoff : float
             The reference standoff [m], where the factor is 1.
@@ -75,7 +75,7 @@ class Spot:
 
         Parameters
         ----------
-        u, v : array_like
+        u, v : float or ndarray
             Coordinates in the plane across the spray axis [m] (broadcast together).
 
         Returns
@@ -91,7 +91,7 @@ class Spot:
 
         Parameters
         ----------
-        x : array_like
+        x : float or ndarray
             Distance across the stroke [m].
         direction : {"along", "across"}, optional
             The stroke moves along or across the spot's long axis (module docstring).
@@ -104,12 +104,38 @@ class Spot:
         """
         raise NotImplementedError
 
+    def stripe_at(self, x, h, standoff: float, apex: float = 0.0,
+                  direction: str = "across") -> np.ndarray:
+        """The stripe [1/m] of a stroke at distance ``h`` along the axis: stripe(x/c)/c with
+        c = :meth:`scale` (the spread law; normal incidence, the stroke at that distance).
+
+        Parameters
+        ----------
+        x : float or ndarray
+            Distance across the stroke [m].
+        h : float
+            The nozzle's distance to the surface [m].
+        standoff : float
+            The reference standoff [m], where the spot is given.
+        apex : float, optional
+            The cone's apex in front of the nozzle [m].
+        direction : {"along", "across"}, optional
+            As in :meth:`stripe`.
+
+        Returns
+        -------
+        ndarray
+            A stroke at speed w with flow q leaves q·stripe_at(x)/w.
+        """
+        c = self.scale(h, standoff, apex)
+        return self.stripe(np.asarray(x, dtype=float) / c, direction) / c
+
     def stripe_cdf(self, x, direction: str = "across") -> np.ndarray:
         """∫_{−∞}^{x} stripe dx': the film beside the edge of a field of passes, relative.
 
         Parameters
         ----------
-        x : array_like
+        x : float or ndarray
             Distance across the stroke [m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -126,7 +152,7 @@ class Spot:
 
         Parameters
         ----------
-        k : array_like
+        k : float or ndarray
             Angular wavenumber [rad/m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -159,7 +185,7 @@ class Spot:
 
         Parameters
         ----------
-        spacing : array_like
+        spacing : float or ndarray
             Distance between passes [m].
         direction : {"along", "across"}, optional
             As in :meth:`stripe`.
@@ -412,6 +438,7 @@ class BetaSpot(Spot):
         return self.radius
 
 
+#: The spot models by name, as the job's ``[gun]`` ``model`` names them.
 SPOTS: dict[str, type[Spot]] = {c.name: c for c in (RoundGaussian, EllipticGaussian, BetaSpot)}
 
 

@@ -89,6 +89,24 @@ def test_scale_law():
 
 
 @pytest.mark.parametrize("spot", CASES, ids=IDS)
+def test_stripe_at_another_distance_is_the_scaled_stripe(spot):
+    """At c = 1.5 (h = 0.25 m, apex 0.05 m behind a 0.15 m standoff): ∫ dy of the scaled
+    density D(u/c, v/c)/c² (adaptive quadrature, 1e-8 of the peak; achieved ~1e-13),
+    integrating to 1."""
+    c = spot.scale(0.25, 0.15, -0.05)
+    assert c == pytest.approx(1.5, rel=1e-15)
+    L = c * _extent(spot)
+    for x in np.linspace(-0.9 * L, 0.9 * L, 7):
+        got = integrate.quad(lambda y, x=x: spot.density(y / c, x / c) / c**2, -L, L,
+                             points=[0.0], limit=200, epsabs=0, epsrel=1e-13)[0]
+        want = spot.stripe_at(x, 0.25, 0.15, -0.05)
+        assert abs(want - got) < 1e-8 * spot.stripe_at(0.0, 0.25, 0.15, -0.05)
+    total = integrate.quad(lambda x: spot.stripe_at(x, 0.25, 0.15, -0.05), -L, L,
+                           points=[0.0], limit=200)[0]
+    assert abs(total - 1) < 1e-9
+
+
+@pytest.mark.parametrize("spot", CASES, ids=IDS)
 def test_reach_bounds_the_density(spot):
     """Beyond reach the density is 0 or below 1e-18 of its peak, in every direction."""
     phi = np.linspace(0, 2 * math.pi, 73)
