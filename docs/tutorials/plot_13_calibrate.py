@@ -92,11 +92,9 @@ from pollard_pin.painting.spray import EllipticGaussian  # noqa: E402
 h, v = 0.25, 0.5
 x = np.linspace(-0.12, 0.12, 481)
 g = cal.gun
-s_fit = float(g.spot.scale(h, g.standoff, g.apex))
-fitted = g.flow / v * g.spot.stripe(x / s_fit, "across") / s_fit
+fitted = g.flow / v * g.spot.stripe_at(x, h, g.standoff, g.apex, "across")
 true = EllipticGaussian(0.030, 0.012)
-s_true = float(true.scale(h, 0.20, 0.02))
-made = 0.60 * 0.45 * 1.5e-6 / v * true.stripe(x / s_true, "across") / s_true
+made = 0.60 * 0.45 * 1.5e-6 / v * true.stripe_at(x, h, 0.20, 0.02, "across")
 fig2, ax = plt.subplots(figsize=(6, 3))
 ax.plot(x * 1e3, made * 1e6, label="the pattern the stripes were made from")
 ax.plot(x * 1e3, fitted * 1e6, "--", label="calibrated")
