@@ -249,6 +249,9 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
             f"{f.name}: {f.why}" for f in fits))
     chosen = min(usable, key=lambda f: getattr(f, CRITERION))
     notes += [f"{name} not tried: {why}" for name, why in skipped.items()]
+    if chosen.efficiency > 1.0:
+        notes.append(f"transfer efficiency fitted at {chosen.efficiency:.3f}, over 1: more paint "
+                     "on the panels than sprayed; check the flows, speeds and solids")
     if chosen.rms_share > POOR_FIT:
         notes.append(f"the {chosen.name} spot leaves a residual of {chosen.rms_share:.1%} of "
                      "the peak: no model describes these stripes well (a pattern with two "

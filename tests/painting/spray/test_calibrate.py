@@ -176,3 +176,9 @@ def test_a_poor_fit_is_noted():
                                       + RoundGaussian(0.012).stripe(x + 0.02)) / 2
     fit = fit_stripes(StripeSet((_one(x, t),), 0.45))
     assert any("no model describes these stripes well" in n for n in fit.notes), fit.notes
+
+
+def test_an_efficiency_over_one_is_noted():
+    fit = fit_stripes(StripeSet((_one(X, GOOD * 1.05 / 0.6),), 0.45))
+    assert fit.best.efficiency == pytest.approx(1.05, rel=1e-3)
+    assert any("transfer efficiency fitted at 1.050, over 1" in n for n in fit.notes)
