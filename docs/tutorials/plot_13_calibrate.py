@@ -46,11 +46,16 @@ for f in cal.fit.fits:
 # %%
 # Each stripe against its fit
 # ---------------------------
-# What ``fits.png`` shows: the measured film and the fitted models', stripe by stripe.
-from pollard_pin.viz.calibration import fits_figure  # noqa: E402
-
-fig = fits_figure(cal.fit)
-fig  # noqa: B018
+# What ``fits.png`` shows (:func:`pollard_pin.viz.calibration.fits_figure`): the measured
+# film and the chosen model's, stripe by stripe, against the position from the fitted centre.
+best = cal.fit.best
+fig, axes = plt.subplots(2, 4, figsize=(12, 5), constrained_layout=True)
+for ax, d, s, c in zip(axes.flat, cal.fit.data(), cal.fit.stripes.stripes, best.offsets):
+    ax.plot((d.x - c) * 1e3, d.t * 1e6, ".", ms=2, color="0.4")
+    ax.plot((d.x - c) * 1e3, best.thickness(d, d.x, c) * 1e6, color="C3")
+    ax.set_title(f"{s.standoff * 1e3:.0f} mm, {s.speed} m/s, {s.direction}", fontsize=8)
+fig.supxlabel("position − centre [mm]")
+fig.supylabel("dry film [µm]")
 
 # %%
 # The gun
@@ -87,11 +92,9 @@ from pollard_pin.painting.spray import EllipticGaussian  # noqa: E402
 h, v = 0.25, 0.5
 x = np.linspace(-0.12, 0.12, 481)
 g = cal.gun
-s_fit = float(g.spot.scale(h, g.standoff, g.apex))
-fitted = g.flow / v * g.spot.stripe(x / s_fit, "across") / s_fit
+fitted = g.flow / v * g.spot.stripe_at(x, h, g.standoff, g.apex, "across")
 true = EllipticGaussian(0.030, 0.012)
-s_true = float(true.scale(h, 0.20, 0.02))
-made = 0.60 * 0.45 * 1.5e-6 / v * true.stripe(x / s_true, "across") / s_true
+made = 0.60 * 0.45 * 1.5e-6 / v * true.stripe_at(x, h, 0.20, 0.02, "across")
 fig2, ax = plt.subplots(figsize=(6, 3))
 ax.plot(x * 1e3, made * 1e6, label="the pattern the stripes were made from")
 ax.plot(x * 1e3, fitted * 1e6, "--", label="calibrated")

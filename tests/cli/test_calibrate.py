@@ -105,6 +105,9 @@ BAD = [
     ("mm", ONE, _csv(X * 1e3, T), "positions in mm? give metres"),
     ("flow", ONE.replace("1.5e-6", "150"), _csv(X, T), "in ml/min or l/min? give m³/s"),
     ("efficiency", ONE, _csv(X, T * 3), "more paint than was sprayed"),
+    ("swapped", ONE + ONE.split("\n", 1)[1].replace("s.csv", "w.csv").replace("across",
+                                                                              "along"),
+     _csv(X, T), "the 'along' stripes are wider than the 'across' ones"),
 ]
 FLAGS = {"elliptic one direction": ["--model", "elliptic"],
          "spread one standoff": ["--spread", "fit"]}
@@ -118,6 +121,8 @@ def test_a_bad_stripe_is_one_line_and_nothing_written(tmp_path, capsys, name, to
     else:
         (tmp_path / "s.csv").write_bytes(csv.encode("latin-1" if name == "another format"
                                                     else "utf-8"))
+    # a stripe twice as wide, for the directions swapped
+    (tmp_path / "w.csv").write_text(_csv(X, 0.5 * T[np.arange(301) // 2 + 75]))
     before = tree_state(tmp_path)
     code, text, err = run_cli(["calibrate", "--stripes", tmp_path / "stripes.toml", "--out",
                                tmp_path / "out", *FLAGS.get(name, [])], capsys)

@@ -36,6 +36,8 @@ END_SHARE = 0.05  # an end of the stripe holds at most this share of its peak (b
 MIN_ACROSS = 5  # points above half the peak: fewer cannot show the spot's shape
 EFFICIENCY_MAX = 1.1  # the stripes' own η beyond this: the flow, solids or speed are off
 EFFICIENCY_MIN = 0.02  # below: almost no paint landed, or the flow is in other units
+SWAPPED = 1.05  # 'along' stripes this much wider than 'across' ones: the labels swapped
+POOR_FIT = 0.05  # a chosen model's residual RMS beyond this share of the peak is noted
 
 
 @dataclass(frozen=True)
@@ -232,6 +234,11 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
         scale = s.standoff / h0  # the start: a cone from the nozzle
         var.setdefault(s.direction, []).append(v / scale ** 2)
     spread = {k: math.sqrt(float(np.mean(v))) for k, v in var.items()}
+    if len(spread) == 2 and spread["along"] > SWAPPED * spread["across"]:
+        raise StripeError(f"{stripes.source}: the 'along' stripes are wider than the 'across' "
+                          f"ones ({spread['along'] * 1e3:.3g} against "
+                          f"{spread['across'] * 1e3:.3g} mm σ at {h0:g} m): a stroke along "
+                          "the long axis shows the short size; directions swapped?")
     eta0 = float(np.mean([np.trapezoid(d.t, d.x) / d.amount for d in data]))
     fits = tuple(fit_model(m, data, h0, [c for c, _ in moments], spread, fit_apex=fit_apex,
                            efficiency=options.efficiency, efficiency0=eta0)
@@ -242,6 +249,13 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
             f"{f.name}: {f.why}" for f in fits))
     chosen = min(usable, key=lambda f: getattr(f, CRITERION))
     notes += [f"{name} not tried: {why}" for name, why in skipped.items()]
+    if chosen.efficiency > 1.0:
+        notes.append(f"transfer efficiency fitted at {chosen.efficiency:.3f}, over 1: more paint "
+                     "on the panels than sprayed; check the flows, speeds and solids")
+    if chosen.rms_share > POOR_FIT:
+        notes.append(f"the {chosen.name} spot leaves a residual of {chosen.rms_share:.1%} of "
+                     "the peak: no model describes these stripes well (a pattern with two "
+                     "peaks, a fan with horns?); look at fits.png")
     counts = Counter(s.flow for s in stripes.stripes)
     flow = max(counts, key=lambda q: (counts[q], -q))
     return CalibrationFit(stripes=stripes, standoff=h0, flow=flow, fits=fits, skipped=skipped,

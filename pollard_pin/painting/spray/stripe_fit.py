@@ -107,8 +107,8 @@ class ModelFit:
 
 
 def _stripe(spot, d: StripeData, x, offset, apex, efficiency, h0) -> np.ndarray:
-    s = float(spot.scale(d.standoff, h0, apex))
-    return efficiency * d.amount / s * spot.stripe((x - offset) / s, d.direction)
+    return efficiency * d.amount * spot.stripe_at(x - offset, d.standoff, h0, apex,
+                                                  d.direction)
 
 
 def fit_variables(name: str, spread: dict, width: float) -> list[tuple]:

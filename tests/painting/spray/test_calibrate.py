@@ -156,3 +156,29 @@ def test_the_gun_is_the_chosen_spot_with_the_dry_flow():
     assert gun.spot == fit.best.spot and gun.apex == fit.best.apex
     assert gun.standoff == 0.20
     assert gun.flow == pytest.approx(1.5e-6 * 0.45 * fit.best.efficiency, rel=1e-12)
+
+
+def test_directions_swapped_are_one_line():
+    stripes = make_stripes(ELLIPTIC, 9, speeds=(0.4,))
+    swapped = replace(stripes, stripes=tuple(
+        replace(s, direction={"along": "across", "across": "along"}[s.direction])
+        for s in stripes.stripes))
+    with pytest.raises(StripeError, match="the 'along' stripes are wider than the 'across' "
+                                          r"ones \(32.5 against 18.7 mm σ at 0.2 m\): a "
+                                          "stroke along the long axis shows the short size"):
+        fit_stripes(swapped)
+
+
+def test_a_poor_fit_is_noted():
+    """A pattern of two peaks (a fan with horns) fits no model to the noise: said."""
+    x = np.linspace(-0.15, 0.15, 301)
+    t = 0.6 * 0.45 * 1.5e-6 / 0.5 * (RoundGaussian(0.012).stripe(x - 0.02)
+                                      + RoundGaussian(0.012).stripe(x + 0.02)) / 2
+    fit = fit_stripes(StripeSet((_one(x, t),), 0.45))
+    assert any("no model describes these stripes well" in n for n in fit.notes), fit.notes
+
+
+def test_an_efficiency_over_one_is_noted():
+    fit = fit_stripes(StripeSet((_one(X, GOOD * 1.05 / 0.6),), 0.45))
+    assert fit.best.efficiency == pytest.approx(1.05, rel=1e-3)
+    assert any("transfer efficiency fitted at 1.050, over 1" in n for n in fit.notes)
