@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from pollard_pin.io.job_file import write_job
 from pollard_pin.painting.errors import JobError
 from pollard_pin.painting.job import job_from_dict, load_job
 from pollard_pin.painting.material import Paint, paint_from_table
@@ -72,6 +73,7 @@ def test_every_kind_takes_it_and_writes_it_back(name, tmp_path):
     assert job.to_dict()["paint"] == job.paint.to_dict()
     back = job_from_dict(json.loads(json.dumps(job.to_dict())), str(path))
     assert back.paint == job.paint
+    assert load_job(write_job(job, tmp_path / "written.toml")).paint == job.paint  # place's
 
 
 def test_the_examples_carry_their_paint():
