@@ -9,7 +9,7 @@ Euler–Lagrange (numpy only) and the MuJoCo peer. Medians over repeats; prints 
                                 [--big 1000001]
                                 [--no-loads] [--no-simulate] [--no-size]
                                 [--no-startup] [--startup-source DIR] [--no-paint]
-                                [--no-workspace] [--no-stiffness]
+                                [--no-workspace] [--no-stiffness] [--design-trials N]
 """
 from __future__ import annotations
 
@@ -464,6 +464,66 @@ def mujoco_marginal(sizes: tuple[int, int], repeats: int) -> None:
           f"{1e6 * (best[large] - best[small]) / (large - small):.2f} µs/sample")
 
 
+def design_section(trials: int, repeats: int) -> None:
+    """The design study (docs/model.md §29) on examples/design/: a screened evaluation [ms]
+    (median over ``repeats`` random designs), a full one [s] (the study's chosen design), a
+    ``trials``-evaluation study on every core with its counts, and the same study on a Dask
+    LocalCluster of one worker, then two: the speed-up."""
+    import random
+    import tempfile
+
+    from pollard_pin.design import baseline_values, evaluate, load_space, prepare
+    from pollard_pin.design.api import design
+    from pollard_pin.design.study import DesignOptions
+
+    job = pp.load_job(REPO / "examples" / "design" / "job.toml")
+    space = load_space(REPO / "examples" / "design" / "space.toml")
+    ctx = prepare(job, space)
+    rng = random.Random(0)
+    designs = [baseline_values(space)] + [
+        {v.name: (rng.randint(0, len(v.choices) - 1) if v.kind == "categorical" else
+                  rng.randint(int(v.low), int(v.high)) if v.kind == "int" else
+                  rng.uniform(v.low, v.high)) for v in space.variables()}
+        for _ in range(max(1, repeats - 1))]
+    screen = [min(run_times(lambda d=d: evaluate(d, ctx, "screen"), 1)) for d in designs]
+    print(f"\ndesign study, examples/design (job.toml, space.toml)\n"
+          f"  screened evaluation, median of {len(screen)} designs [ms]"
+          f"{1e3 * statistics.median(screen):12.1f}")
+
+    def study(**options):
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            result = design(job, space, DesignOptions(trials=trials, population=8,
+                                                      study=Path(tmp) / "study.db",
+                                                      **options))
+            return result, time.perf_counter() - t0
+
+    try:
+        result, wall = study()
+    except pp.PollardError as exc:
+        print(f"  study of {trials}: {exc}")
+        return
+    print(f"  study of {trials} evaluations, {os.cpu_count()} local processes [s]"
+          f"{wall:12.1f}  ({result.feasible} feasible, front of {len(result.front)})")
+    t0 = time.perf_counter()
+    full = evaluate(result.design["values"], ctx, "full")
+    print(f"  full evaluation of the chosen design [s]{time.perf_counter() - t0:12.1f}"
+          f"  (feasible: {full.feasible})")
+    try:
+        from distributed import LocalCluster
+    except ImportError:
+        print("  dask speed-up skipped: no dask.distributed")
+        return
+    walls = {}
+    for n in (1, 2):
+        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                          dashboard_address=None) as cluster:
+            walls[n] = study(dask=cluster.scheduler_address)[1]
+        print(f"  the same study on a Dask LocalCluster, {n} worker{'s' * (n > 1)} [s]"
+              f"{walls[n]:12.1f}")
+    print(f"  Dask speed-up, two workers over one {walls[1] / walls[2]:12.2f}x")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, nargs="+", default=[2001, 20001])
@@ -485,6 +545,8 @@ def main(argv=None) -> int:
     ap.add_argument("--no-paint", action="store_true", help="skip the paint-planning section")
     ap.add_argument("--no-workspace", action="store_true", help="skip the workspace-map section")
     ap.add_argument("--no-stiffness", action="store_true", help="skip the stiffness section")
+    ap.add_argument("--design-trials", type=int, default=24, metavar="N",
+                    help="the design section's study size (0: skip the section)")
     args = ap.parse_args(argv)
 
     print(f"machine: {machine()}")
@@ -545,6 +607,8 @@ def main(argv=None) -> int:
         workspace_section(robot, args.repeats)
     if not args.no_stiffness:
         stiffness_section(robot, args.samples, args.repeats)
+    if args.design_trials:
+        design_section(args.design_trials, args.repeats)
     if not args.no_cli:
         sizes = (min(args.samples), max(args.samples))
         if sizes[0] == sizes[1]:

@@ -29,9 +29,10 @@ from .study import (
 def default_evaluator():
     """The design evaluator: ``prepare``, ``evaluate`` and ``OBJECTIVES``
     (:mod:`pollard_pin.design.evaluate`)."""
-    from . import evaluate
+    import importlib
 
-    return evaluate
+    # the module, not the package's ``evaluate`` (the function of that name)
+    return importlib.import_module(f"{__package__}.evaluate")
 
 
 def _as_job(job):
@@ -76,15 +77,15 @@ def trial_rows(study, variables, names: Sequence[str]) -> list[dict]:
 
 
 def _replan(ctx, evaluate, designs: list[dict], options: DesignOptions) -> list:
-    """Each design evaluated again (in full unless ``screen_only``), in parallel; the
-    outcomes (or exceptions) in input order."""
+    """Each design planned in full, in parallel; the outcomes (or exceptions) in input
+    order."""
     out: list = [None] * len(designs)
     pending, inflight = list(enumerate(designs)), 0
     with make_runner(ctx, evaluate, options.workers, options.dask) as runner:
         while pending or inflight:
             while pending and inflight < runner.capacity:
                 k, values = pending.pop(0)
-                runner.submit(k, values, not options.screen_only)
+                runner.submit(k, values, True)
                 inflight += 1
             for k, outcome in runner.done():
                 out[k], inflight = outcome, inflight - 1
@@ -115,7 +116,9 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
            progress: Callable | None = None) -> DesignResult:
     """Search the design space for the robots that paint ``job`` (docs/model.md §31): an
     NSGA-II study over the space's variables, every design screened and, when it passes,
-    planned in full; the front re-planned in full; the thesis robot as the baseline.
+    planned in full, so that every front design is judged by its full plan (a study run with
+    ``screen_only`` plans its front in full at the end); the thesis robot (the study's first
+    design) as the baseline.
 
     Parameters
     ----------
@@ -126,8 +129,8 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     options : DesignOptions or None, optional
         Trials, workers or Dask, the study file, ``resume``, ``pick``.
     evaluator : object or None, optional
-        ``prepare(job, space)``, ``evaluate(values, ctx, level)`` and ``OBJECTIVES`` (default:
-        :mod:`pollard_pin.design.evaluate`).
+        ``prepare(job, space)``, ``evaluate(values, ctx, level)``, ``baseline_values(space)``
+        and ``OBJECTIVES`` (default: :mod:`pollard_pin.design.evaluate`).
     progress : Callable or None, optional
         ``progress(done, total, feasible, best)`` after each evaluation (default: a bar on a
         terminal when ``options.progress``).
@@ -158,56 +161,89 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
         check_study_file(options.study, options.resume)
     ctx = ev.prepare(job, space)
     variables = list(space.variables())
+    base = ev.baseline_values(space)
     study, close = open_study(options.study, job=job_fingerprint(job), space=space.fingerprint(),
                        objectives=objectives_of(names), sampler=None, resume=options.resume)
     report = progress if progress is not None else (_bar(options) if options.progress
                                                     else None)
     try:
         close_stale(study)
+        if not study.trials:  # the thesis robot is the study's first design
+            study.enqueue_trial(base)
         study.sampler = sampler(options, finished(study)[0])
         run_study(study, variables, ctx, ev.evaluate, names, options, report)
         rows = trial_rows(study, variables, names)
-        params = {t.number: dict(t.params) for t in study.get_trials(deepcopy=False)}
+        stored = {t.number: (dict(t.params), t.user_attrs.get(EVALUATION, {}))
+                  for t in study.get_trials(deepcopy=False)}
     finally:
         if hasattr(report, "close"):
             report.close()
         close()
-    level = "screen" if options.screen_only else "full"
-    candidates = [r for r in rows if r["feasible"] and r["level"] == level]
-    if not candidates:
-        raise _no_front(rows)
-    front_idx = non_dominated(candidates)
-    designs = [params[candidates[i]["trial"]] for i in front_idx]
-    base = ev.baseline_values(space)
-    outcomes = _replan(ctx, ev.evaluate, [*designs, base], options)
-    notes, front = [], []
-    for i, values, outcome in zip(front_idx, designs, outcomes):
-        row = _design_row(0, candidates[i]["trial"], values, outcome, names)
-        if row is None:
-            why = (failure(outcome) if isinstance(outcome, BaseException)
-                   else outcome.final.binding)
-            notes.append(f"trial {candidates[i]['trial']} left the front on re-planning: {why}")
-        else:
-            front.append(row)
-    if not front:
-        raise SolveError("no front design stayed feasible when re-planned: " + "; ".join(notes))
+    front, notes = _front(rows, stored, ctx, ev.evaluate, names, options)
     keep = non_dominated([d["objectives"] for d in front])
     front = sorted((front[i] for i in keep), key=lambda d: rank_key(d["objectives"]))
     for k, d in enumerate(front, start=1):
         d["design"] = k
     chosen = choose([d["objectives"] for d in front], options.pick)
-    b = outcomes[-1]
-    if isinstance(b, BaseException):
-        baseline = {"values": base, "feasible": False, "objectives": None,
-                    "binding": failure(b)}
-    else:
-        fb = b.final
-        baseline = {"values": base, "feasible": bool(fb.feasible), "binding": fb.binding,
-                    "objectives": ({n: float(fb.objectives[n]) for n in names}
-                                   if fb.feasible else None)}
+    baseline = _baseline(base, rows, stored, ctx, ev.evaluate, names, options)
     return DesignResult(tuple(variables), names, tuple(rows), tuple(front), baseline, chosen,
                         None if options.study is None else str(options.study),
                         time.perf_counter() - t0, tuple(notes))
+
+
+def _front(rows, stored, ctx, evaluate, names, options) -> tuple[list[dict], list[str]]:
+    """The front's designs, each judged by a full plan: the study's own full evaluations
+    (from the database), or, for a study judged by the screen alone, the front re-planned in
+    full now (a design that fails it leaves the front, with a note)."""
+    level = "screen" if options.screen_only else "full"
+    candidates = [r for r in rows if r["feasible"] and r["level"] == level]
+    if not candidates:
+        raise _no_front(rows)
+    trials = [candidates[i]["trial"] for i in non_dominated(candidates)]
+    if not options.screen_only:
+        return [_stored_row(n, *stored[n], names) for n in trials], []
+    designs = [stored[n][0] for n in trials]
+    front, notes = [], []
+    for n, values, outcome in zip(trials, designs, _replan(ctx, evaluate, designs, options)):
+        row = _design_row(0, n, values, outcome, names)
+        if row is None:
+            why = (failure(outcome) if isinstance(outcome, BaseException)
+                   else outcome.final.binding)
+            notes.append(f"trial {n} left the front when planned in full: {why}")
+        else:
+            front.append(row)
+    if not front:
+        raise SolveError("no front design stayed feasible when planned in full: "
+                         + "; ".join(notes))
+    return front, notes
+
+
+def _stored_row(trial: int, values: dict, found: dict, names) -> dict:
+    return {"design": 0, "trial": trial, "values": values, "feasible": True,
+            "level": found["level"], "objectives": {n: found["objectives"][n] for n in names},
+            "figures": found.get("figures") or {}, "binding": None,
+            "files": found.get("files") or {}}
+
+
+def _baseline(base, rows, stored, ctx, evaluate, names, options) -> dict:
+    """The thesis robot's row: its evaluation in the study (its first design), planned in
+    full now if the study only screened it and it passed (or if the study lacks it)."""
+    trial = next((n for n, (values, found) in stored.items()
+                  if values == base and found), None)
+    found = stored[trial][1] if trial is not None else None
+    if found is not None and (found["level"] == "full" or not found["feasible"]):
+        return {"values": base, "trial": trial, "feasible": bool(found["feasible"]),
+                "binding": found.get("binding"),
+                "objectives": ({n: found["objectives"][n] for n in names}
+                               if found["feasible"] else None)}
+    (b,) = _replan(ctx, evaluate, [base], options)
+    if isinstance(b, BaseException):
+        return {"values": base, "trial": trial, "feasible": False, "objectives": None,
+                "binding": failure(b)}
+    fb = b.final
+    return {"values": base, "trial": trial, "feasible": bool(fb.feasible),
+            "binding": fb.binding, "objectives": ({n: float(fb.objectives[n]) for n in names}
+                                                  if fb.feasible else None)}
 
 
 def _bar(options: DesignOptions):

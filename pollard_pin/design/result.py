@@ -1,6 +1,6 @@
 """What a design study gives back (:class:`DesignResult`): every evaluation, the Pareto front
-re-planned in full, the thesis robot as the baseline, the chosen design and its files, and
-:meth:`DesignResult.write`, which writes what ``pollard-pin design`` writes."""
+(each design judged by its full plan), the thesis robot as the baseline, the chosen design and
+its files, and :meth:`DesignResult.write`, which writes what ``pollard-pin design`` writes."""
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -43,7 +43,7 @@ class DesignResult:
         as ``c_<name>`` and the evaluation's wall time ``seconds``; a categorical variable's
         choice (not its index).
     front : tuple of dict
-        The front's designs re-planned in full, in the order of
+        The front's designs, each judged by its full plan, in the order of
         :func:`~pollard_pin.design.front.rank_key`: ``design`` (1, 2, …), ``trial``,
         ``values``, ``objectives``, ``figures``, ``files`` (name → TOML text).
     baseline : dict
@@ -56,7 +56,7 @@ class DesignResult:
     seconds : float
         The wall time of this run [s].
     notes : tuple of str
-        What the reader should know (designs dropped on re-planning …).
+        What the reader should know (designs dropped when planned in full …).
     """
 
     variables: tuple
@@ -108,6 +108,7 @@ class DesignResult:
         return rows
 
     def baseline_row(self) -> dict:
+        """The thesis robot as front.csv's row 0."""
         return {"design": 0, "trial": None, **self.baseline}
 
     def units(self) -> dict:

@@ -56,6 +56,7 @@ def test_pick_chooses_a_front_row(tmp_path):
 def test_a_space_with_no_feasible_design_names_the_binding_constraint():
     impossible = type("Impossible", (), {
         "OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+        "baseline_values": staticmethod(stub.baseline_values),
         "evaluate": staticmethod(lambda values, ctx, level="screen": stub.Evaluation(
             level, False, {}, {"reach": 1.0, "motors": -1.0}, "reach"))})
     from pollard_pin.design.api import design

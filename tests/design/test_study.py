@@ -76,6 +76,7 @@ def _broken(values, ctx, level="screen"):
 
 def test_evaluations_that_raise_fail_their_trial_then_stop_the_study(tmp_path):
     broken = type("Broken", (), {"OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+                                 "baseline_values": staticmethod(stub.baseline_values),
                                  "evaluate": staticmethod(_broken)})
     with pytest.raises(SolveError, match="10 design evaluations raised; the first: "
                                          "ZeroDivisionError: a bug"):
