@@ -27,8 +27,8 @@ LITRE = 1e-3  # m³
 HOUR = 3600.0  # s
 # Where the figures hold (paint.json's paint.holds).
 HOLDS = ("the film model's: paint on the part = the film's integral over its points (a flat "
-         "panel: exact to the film's integration; a part: over its facets); electrostatic "
-         "wrap and bounce are not modelled")
+         "panel: exact to the grid's quadrature, second order where the panel cuts the spot; "
+         "a part: over its facets); electrostatic wrap and bounce are not modelled")
 
 
 def point_areas(film) -> np.ndarray:
