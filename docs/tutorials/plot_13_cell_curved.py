@@ -93,7 +93,7 @@ xyz = film.points.points[on]
 deviation = (film.thickness[on] / rep.target - 1) * 100
 split = result.plan.split
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.6), width_ratios=(2, 1))
-sc = ax1.scatter(xyz[:, 1], xyz[:, 2], c=deviation, cmap="RdBu_r", vmin=-2, vmax=2, s=4)
+sc = ax1.scatter(xyz[:, 1], xyz[:, 2], c=deviation, cmap="RdBu_r", vmin=-2, vmax=2, s=9)
 for w in split.seams():
     ax1.axhline(w, color="k", ls="--", lw=0.8)
 fig.colorbar(sc, ax=ax1, label="film − target [%]")
