@@ -15,6 +15,7 @@ with Pinocchio hidden); importing this package root loads it.
 """
 from __future__ import annotations
 
+from . import design  # the design package, callable: pollard_pin.design(job, space, options)
 from .dynamics.cycle import time_optimal_path
 from .dynamics.drives.stiffness import StiffnessOptions
 from .dynamics.forward import forward_dynamics
@@ -77,6 +78,7 @@ __all__ = [
     "calibrate", "Calibration", "CalibrateOptions",  # the spray pattern from stripes
     # design sweeps, figures and the viewer page
     "load_grid", "make_sweep", "run_sweep", "write_figures", "write_html",
+    "design",  # the robot designed for a paint job (a callable package: docs/model.md §29)
 ]
 
 # Names this root exported before it listed only the above: each is public in its subpackage,

@@ -27,6 +27,18 @@ def shown(variables, values: Mapping) -> dict:
     return out
 
 
+def variable_unit(v) -> str:
+    """A design variable's unit in the tables: its own (``unit``) if it has one, else by its
+    kind and name (a bound's: models/pollard.toml's, m or deg)."""
+    if getattr(v, "unit", None):
+        return v.unit
+    if v.kind == "categorical":
+        return "choice"
+    return {"scale.": "1 (factor)", "place.": "m", "robots": "1"}.get(
+        next((p for p in ("scale.", "place.") if v.name.startswith(p)), v.name),
+        "as models/pollard.toml (m, deg)")
+
+
 @dataclass(frozen=True)
 class DesignResult:
     """A finished design study.
@@ -114,12 +126,9 @@ class DesignResult:
     def units(self) -> dict:
         """Each table column's unit."""
         units = {"design": "1 (0: the thesis robot)", "trial": "1", "feasible": "1",
-                 "state": "", "level": "", "binding": "", "error": "",
-                 "seconds": "s",
+                 "state": "", "level": "", "binding": "", "error": "", "seconds": "s",
+                 **{v.name: variable_unit(v) for v in self.variables},
                  **{n: UNITS.get(n) or "1" for n in self.objectives}}
-        for v in self.variables:
-            units[v.name] = getattr(v, "unit", None) or ("choice" if v.kind == "categorical"
-                                                         else "as models/pollard.toml")
         for row in self.trials:
             units.update({c: "1 (≤ 0: met)" for c in row if c.startswith("c_")})
         return units

@@ -62,3 +62,35 @@ def test_the_help_names_the_rule_and_the_outputs():
     for part in ("--resume", "--dask ADDRESS", "--pick N", "front.csv", "trials.parquet",
                  "study.db", "within motor use 0.9 the fewest robots"):
         assert part in text, part
+
+
+@pytest.fixture
+def stand_in(monkeypatch):
+    """The command over the stand-in evaluator (tests/design_stub.py): its job, its space."""
+    import design_stub as stub
+
+    from pollard_pin.design import api
+
+    monkeypatch.setattr(api, "default_evaluator", lambda: stub)
+    monkeypatch.setattr(api, "_as_job", lambda job: stub.StubJob())
+    monkeypatch.setattr(api, "_as_space", lambda space: stub.StubSpace())
+    return stub
+
+
+def test_a_study_writes_the_chosen_design_and_resumes(tmp_path, capsys, stand_in):
+    argv = _argv(tmp_path, "--trials", "12", "--workers", "1", "--population", "4")
+    code, out, err = run_cli(argv, capsys)
+    assert code == 0, err
+    lines = out.splitlines()
+    assert lines[0].startswith("12 evaluations, ") and lines[1].startswith("thesis robot: ")
+    assert lines[2].startswith("design 1 (chosen): ")
+    names = {p.name for p in (tmp_path / "out").iterdir()}
+    assert {"params.toml", "actuators.toml", "front.csv", "front.units.json",
+            "trials.parquet", "front.png", "study.db"} <= names
+    assert "wrote " in err and "chosen: design 1" in err
+    # resumed to 16: the 12 kept, 4 more; --pick 2 writes the second row's files
+    code, out, err = run_cli([*argv[:-6], "--trials", "16", "--workers", "1", "--population",
+                              "4", "--resume", "--pick", "2"], capsys)
+    assert code == 0, err
+    assert out.splitlines()[0].startswith("16 evaluations, ")
+    assert "chosen: design 2" in err and "design 2 (chosen): " in out

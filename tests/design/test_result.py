@@ -37,6 +37,7 @@ def test_front_and_trials_tables_with_units(stub_result, tmp_path):  # noqa: F81
         assert row["motor"] == tuple(stub.MOTORS)[d["values"]["motor"]]  # the choice, shown
     assert units["kmin"] == "N/m" and units["parts_per_hour"] == "1/h"
     assert units["moving_mass"] == "kg" and units["chain0.x32"] == "m"
+    assert units["robots"] == "1"  # the objective's, not the variable's
     trials, tunits = read_rows(folder / "trials.parquet")
     assert [r["trial"] for r in trials] == [r["trial"] for r in stub_result.trials]
     assert sum(r["feasible"] for r in trials) == stub_result.feasible
@@ -64,3 +65,15 @@ def test_a_one_robot_pick_writes_no_robots_file(tmp_path):
     picked = run_stub(None, 30, pick=ones[0])
     folder = picked.write(tmp_path / "one")
     assert not (folder / "robots.toml").exists()
+
+
+def test_variable_units_by_kind_and_name():
+    from pollard_pin.design.result import variable_unit
+    from pollard_pin.design.space import Variable
+
+    assert [variable_unit(v) for v in (
+        Variable("scale.arms", 1.0, 1.8, "float"), Variable("place.back", 0.0, 0.4, "float"),
+        Variable("robots", 1, 3, "int"), Variable("motor.base", 0, 4, "categorical", ("a",)),
+        Variable("chain0.x32", 0.3, 0.5, "float"))] == [
+        "1 (factor)", "m", "1", "choice", "as models/pollard.toml (m, deg)"]
+    assert variable_unit(stub.Variable("y", 0, 1, "float", unit="rad")) == "rad"  # its own
