@@ -91,6 +91,12 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     >>> math.isclose(rate[0, 1] / rate[0, 0], math.exp(-0.5), rel_tol=1e-12)
     True
     """
+    return rate_and_height(gun, p, a, s, n)[0]
+
+
+def rate_and_height(gun: Gun, p, a, s, n) -> tuple[np.ndarray, np.ndarray]:
+    """(:func:`deposition_rate` (T, P), each tip's height (p − s)·n above each point's
+    tangent plane (T, P) [m]), from the same products."""
     p, a, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, a, s))
     n = np.asarray(n, dtype=float)
     h = s @ a.T - np.einsum("ij,ij->i", p, a)[None, :]  # (P, T)
@@ -100,7 +106,7 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
         dn = (s @ n)[:, None] - (p @ n)[None, :]
     else:
         dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
-    return _rate(gun, h, d2, dn).T
+    return _rate(gun, h, d2, dn).T, -dn.T
 
 
 def near_spot(gun: Gun, p, a, s) -> np.ndarray:
@@ -127,8 +133,9 @@ def spot_block(p, a) -> tuple:
 
 def may_reach(gun: Gun, pm, am, dp: float, da: float, s, radius=0.0) -> np.ndarray:
     """(P,) True where a block of samples summarised by :func:`spot_block` may reach a point
-    of ``s`` (P, 3), or, with ``radius`` [m], any point within that distance of it (the
-    angle to it widened by arcsin((δp + radius)/r): a chunk of points in its bounding ball)."""
+    of ``s`` (P, 3), or, with ``radius`` [m] (one, or (P,)), any point within that distance
+    of it (the angle to it widened by arcsin((δp + radius)/r): a chunk of points in its
+    bounding ball)."""
     s = np.atleast_2d(np.asarray(s, dtype=float))
     tan_c = CULL_SIGMAS * gun.sigma / gun.standoff
     norm = np.linalg.norm(am)
@@ -156,13 +163,22 @@ def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
 def _rate(gun: Gun, h, d2, dn) -> np.ndarray:
     """The rate from h = d·a, d2 = |d|², dn = d·n (any one shape)."""
     k = gun.sigma / gun.standoff  # σ(h) = k·h
+    h, d2, dn = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (h, d2, dn)))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        sh2 = (k * h) ** 2
-        rho2 = np.maximum(d2 - h * h, 0.0)
+        sh2 = k * h
+        sh2 *= sh2
+        rho2 = d2 - h * h
+        np.maximum(rho2, 0.0, out=rho2)
+        rho2 *= -0.5
+        rho2 /= sh2
+        g = np.exp(rho2, out=rho2)  # exp(−ρ²/(2σ(h)²))
+        rate = gun.flow / (2.0 * math.pi) / sh2
+        rate *= g
         # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
-        rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
-                * np.maximum(-dn, 0.0) / h)
-    return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0)
+        rate *= np.maximum(-dn, 0.0)
+        rate /= h
+        rate[~((h > 0) & (rate < math.inf))] = 0.0  # NaN and inf (h → 0) too: nothing
+    return rate
 
 
 def coarse_weights(t) -> np.ndarray:
@@ -250,4 +266,4 @@ def gun_of(job) -> Gun:
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "gun_of", "may_reach", "near_spot", "pair_rate", "spot_block"]
+           "gun_of", "may_reach", "near_spot", "pair_rate", "rate_and_height", "spot_block"]
