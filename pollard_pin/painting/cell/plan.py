@@ -25,6 +25,7 @@ from ..line.speeds import (
     SpeedInterval,
     fastest_line_speed,
     line_speed_interval,
+    remembering,
 )
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.mesh import Part
@@ -193,22 +194,10 @@ def cell_planner(robot, job, act: Actuators, part: Part | None = None,
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
-    # speed → its LineSpeedError's (message, too_fast, why, hint): a refusal's search starts
-    # at the refused speed (the words only: an error keeps its plan's frames alive)
-    failed = {}
-
-    def plan_at(speed=None):
-        key = job.line.speed if speed is None else float(speed)
-        if key in failed:
-            raise LineSpeedError(*failed[key])
-        try:
-            return plan_cell(robot, job, act, speed, part, split, clearance=False,
-                             policy=policy)
-        except LineSpeedError as exc:
-            failed[key] = (str(exc), exc.too_fast, exc.why, exc.hint)
-            raise
-
-    return plan_at
+    # a refusal's search starts at the refused speed: refused again without planning
+    memo = remembering(lambda speed: plan_cell(robot, job, act, speed, part, split,
+                                               clearance=False, policy=policy))
+    return lambda speed=None: memo(job.line.speed if speed is None else float(speed))
 
 
 def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,

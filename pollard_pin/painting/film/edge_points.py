@@ -57,8 +57,11 @@ class _ShadeIndex:
 
     def dark(self, k, q) -> np.ndarray:
         out = np.zeros(len(k), dtype=bool)
+        cq = self.chunk_of[q]
+        order = np.argsort(cq, kind="stable")  # the pairs chunk by chunk, in their order
+        ends = np.searchsorted(cq[order], np.arange(len(self.chunks) + 1))
         for c in range(len(self.chunks)):
-            sel = np.flatnonzero(self.chunk_of[q] == c)
+            sel = order[ends[c]:ends[c + 1]]
             if not len(sel):
                 continue
             out[sel] = _member(k[sel] * len(self.chunks[c]) + self.local[q[sel]],

@@ -17,12 +17,11 @@ from ..progress import bar
 from ..spray.deposition import (
     Gun,
     coarse_weights,
-    deposition_rate,
     may_reach,
-    near_spot,
+    rate_and_height,
     spot_block,
 )
-from ..spray.occlusion import in_spot, visible
+from ..spray.occlusion import in_spot, open_pairs, visible
 from ..spray.shadow_edges import shadow_edges
 from ..workpiece.mesh import Part
 from .points import SurfacePoints
@@ -112,6 +111,27 @@ def _spray(spray, n: int) -> np.ndarray:
     return s
 
 
+def _balls(s, groups) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding balls' centres (G, 3) and radii (G,) of groups of the points ``s``."""
+    ball = []
+    for idx in groups:
+        sc = s[idx]
+        centre = 0.5 * (sc.min(axis=0) + sc.max(axis=0))
+        ball.append((centre, float(np.linalg.norm(sc - centre, axis=1).max())))
+    return np.array([c for c, _ in ball]).reshape(-1, 3), np.array([r for _, r in ball])
+
+
+def _reach(gun: Gun, s, o, chunks, summary) -> np.ndarray:
+    """(blocks, chunks) True where a block of samples (:func:`.spray.deposition.spot_block`'s
+    ``summary``, positions less ``o``) may reach a chunk of the points ``s`` (its bounding
+    ball): each block's test of every chunk at once."""
+    centres, radii = _balls(s - o, chunks)
+    out = np.zeros((len(summary), len(chunks)), dtype=bool)
+    for j, (pm, am, dp, da) in enumerate(summary):
+        out[j] = may_reach(gun, pm, am, dp, da, centres, radii)
+    return out
+
+
 def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
               origin=None, intersector=None, shade: Shade | None = None) -> MeshFilm:
     """Film at ``points`` (their own positions and normals) after the gun passes through the
@@ -141,7 +161,8 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     err = np.full(len(s), np.nan)
     live = np.flatnonzero(trig > 0)  # a closed trigger deposits nothing: skipped
     blocks = [live[i:i + BLOCK_SAMPLES] for i in range(0, len(live), BLOCK_SAMPLES)]
-    summary = [spot_block(p[b], a[b]) for b in blocks]
+    po = p - o  # the tips for the rate's products
+    summary = [spot_block(po[b], a[b]) for b in blocks]
     chunks = film_chunks(s, len(live))
     if shade is not None and (shade.points, shade.samples, len(shade.keys)) != (
             len(s), len(t), len(chunks)):
@@ -150,29 +171,30 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
                         f"({len(chunks)} chunks)")
     keys, cuts = [], []
     pairs = shaded = switches = 0
+    reach = _reach(gun, s, o, chunks, summary)
     for c, idx in enumerate(bar(chunks, "film")):
-        sc, nc = s[idx] - o, n[idx]
-        centre = 0.5 * (sc.min(axis=0) + sc.max(axis=0))
-        radius = float(np.linalg.norm(sc - centre, axis=1).max())
+        sc, nc, faces = s[idx] - o, n[idx], points.faces[idx]
         acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
         smooth = np.zeros((len(idx), 2))  # the same on the unshaded rate
         dark_t, dark_p = [], []
         given = None if shade is None else shade.keys[c]
-        for b, (pm, am, dp, da) in zip(blocks, summary):
-            if not may_reach(gun, pm - o, am, dp, da, centre, radius)[0]:
-                continue
-            ps, as_ = p[b] - o, a[b]
-            k = near_spot(gun, ps, as_, sc)  # the rest get < 3e-18 of the spot's rate (§20)
+        for j in np.flatnonzero(reach[:, c]):
+            b = blocks[j]
+            ps, as_ = po[b], a[b]
+            # near_spot: the rest get < 3e-18 of the spot's rate (§20)
+            k = np.flatnonzero(may_reach(gun, *summary[j], sc))
             if not len(k):
                 continue
-            r = deposition_rate(gun, ps, as_, sc[k], nc[k])  # (samples, points)
+            r, height = rate_and_height(gun, ps, as_, sc[k], nc[k])  # (samples, points)
             part_sum = W[b].T @ r  # (2, points)
             smooth[k] += part_sum.T
             if given is None:
-                ti, ri = np.nonzero(in_spot(gun, r))
+                spot = in_spot(gun, r)
+                pairs += int(np.count_nonzero(spot))
+                ti, ri = np.nonzero(spot & ~open_pairs(part, faces[k], height))
                 if len(ti):
-                    vis = visible(part, p[b[ti]], s[idx[k[ri]]], nc[k[ri]], intersector)
-                    pairs += len(ti)
+                    q = idx[k[ri]]
+                    vis = visible(part, p[b[ti]], s[q], n[q], intersector)
                     ti, ri = ti[~vis], ri[~vis]
                     dark_t.append(b[ti].astype(np.int32))
                     dark_p.append(k[ri].astype(np.int32))

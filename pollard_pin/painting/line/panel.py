@@ -42,6 +42,7 @@ from .speeds import (
     fastest_line_speed,
     line_speed_interval,
     plan_or_name_fastest,
+    remembering,
 )
 from .strokes import Strokes, across, shortest
 
@@ -180,8 +181,10 @@ def line_planner(robot, job, act: Actuators, part: Part | None = None,
         from ..spray.occlusion import load_painted_part
 
         part = load_painted_part(job)
-    return lambda speed=None: plan_line(robot, job, act, speed, part, clearance=False,
-                                        policy=policy)
+    # a refusal's search starts at the refused speed: refused again without planning
+    memo = remembering(lambda speed: plan_line(robot, job, act, speed, part, clearance=False,
+                                               policy=policy))
+    return lambda speed=None: memo(job.line.speed if speed is None else float(speed))
 
 
 def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,

@@ -92,6 +92,25 @@ def _fastest(plan_at, start: float, source: str, resolution: float):
     return lo, plan
 
 
+def remembering(plan_at):
+    """``plan_at`` (speed ↦ plan) with a memory of the speeds it refused: a speed refused
+    once (a :class:`LineSpeedError`) is refused again in the same words without planning
+    (the plan is the same every time)."""
+    failed = {}  # speed → its refusal's (message, too_fast, why, hint)
+
+    def plan(speed):
+        key = float(speed)
+        if key in failed:
+            raise LineSpeedError(*failed[key])
+        try:
+            return plan_at(speed)
+        except LineSpeedError as exc:  # the words only: an error keeps its plan's frames
+            failed[key] = (str(exc), exc.too_fast, exc.why, exc.hint)
+            raise
+
+    return plan
+
+
 def _find(plan_at, start: float, source: str, resolution: float):
     """(a speed that plans, its plan, the fastest too slow tried or 0 and its bound): from
     ``start``, halved while too fast, doubled (or sent to the hint) while too slow, bisected
@@ -299,4 +318,4 @@ def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None):
 
 __all__ = ["BUDGET_FLOOR", "INTERVAL_RESOLUTION", "SPEED_RESOLUTION", "SPEED_TRIES",
            "SpeedInterval", "constraint", "fastest_line_speed", "line_speed_interval",
-           "plan_or_name_fastest", "waits_bound"]
+           "plan_or_name_fastest", "remembering", "waits_bound"]

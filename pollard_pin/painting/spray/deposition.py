@@ -155,6 +155,12 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     >>> math.isclose(rate[0, 1] / rate[0, 0], math.exp(-0.5), rel_tol=1e-12)
     True
     """
+    return rate_and_height(gun, p, a, s, n)[0]
+
+
+def rate_and_height(gun: Gun, p, a, s, n) -> tuple[np.ndarray, np.ndarray]:
+    """(:func:`deposition_rate` (T, P), each source's height (p − s)·n above each point's
+    tangent plane (T, P) [m]), from the same products."""
     p, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s))
     a, b = gun_axes(a)
     p = _source(gun, p, a)
@@ -168,9 +174,9 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
         dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
     axes = _spot_axes(gun, a, b)
     if axes is None:
-        return _rate(gun, h, d2, dn).T
+        return _rate(gun, h, d2, dn).T, -dn.T
     u, v = (s @ e.T - np.einsum("ij,ij->i", p, e)[None, :] for e in axes)
-    return _rate(gun, h, d2, dn, u, v).T
+    return _rate(gun, h, d2, dn, u, v).T, -dn.T
 
 
 def near_spot(gun: Gun, p, a, s) -> np.ndarray:
@@ -200,10 +206,10 @@ def spot_block(p, a) -> tuple:
 
 def may_reach(gun: Gun, pm, am, dp: float, da: float, s, radius=0.0) -> np.ndarray:
     """(P,) True where a block of samples summarised by :func:`spot_block` may reach a point
-    of ``s`` (P, 3), or, with ``radius`` [m], any point within that distance of it (the
-    angle to it widened by arcsin((δp + radius)/r): a chunk of points in its bounding ball).
-    The cone is the spot's: tan = reach/standoff, from the source (the apex: the block's
-    sources p_j + apex·a_j lie within |apex|·(δa + 1 − |ā|) more of their mean)."""
+    of ``s`` (P, 3), or, with ``radius`` [m] (one, or (P,)), any point within that distance
+    of it (the angle to it widened by arcsin((δp + radius)/r): a chunk of points in its
+    bounding ball). The cone is the spot's: tan = reach/standoff, from the source (the apex:
+    the block's sources p_j + apex·a_j lie within |apex|·(δa + 1 − |ā|) more of their mean)."""
     s = np.atleast_2d(np.asarray(s, dtype=float))
     throw = gun.standoff - gun.apex  # the source to the spot's reference plane
     tan_c = gun.spot.reach / throw
@@ -240,22 +246,31 @@ def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
 def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
     """The rate from h = d·a, d2 = |d|², dn = d·n and, for a spot that is not round, the
     spot coordinates u, v (any one shape)."""
+    h, d2, dn = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (h, d2, dn)))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        if type(gun.spot) is RoundGaussian:
+        if type(gun.spot) is RoundGaussian:  # in place: the film's hot loop
             k = gun.sigma / (gun.standoff - gun.apex)  # σ(h) = k·h
-            sh2 = (k * h) ** 2
-            rho2 = np.maximum(d2 - h * h, 0.0)
-            # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
-            rate = (gun.flow / (2.0 * math.pi) / sh2 * np.exp(-0.5 * rho2 / sh2)
-                    * np.maximum(-dn, 0.0) / h)
+            sh2 = k * h
+            sh2 *= sh2
+            rho2 = d2 - h * h
+            np.maximum(rho2, 0.0, out=rho2)
+            rho2 *= -0.5
+            rho2 /= sh2
+            g = np.exp(rho2, out=rho2)  # exp(−ρ²/(2σ(h)²))
+            rate = gun.flow / (2.0 * math.pi) / sh2
+            rate *= g
         else:
             c = h / (gun.standoff - gun.apex)  # the spot's scale
             if u is None:
                 density = gun.spot.density(np.sqrt(np.maximum(d2 - h * h, 0.0)) / c, 0.0)
             else:
                 density = gun.spot.density(u / c, v / c)
-            rate = gun.flow * density / (c * c) * np.maximum(-dn, 0.0) / h
-    return np.where(h > 0, np.nan_to_num(rate, nan=0.0, posinf=0.0), 0.0)
+            rate = gun.flow * density / (c * c)
+        # cos i / cos α = (−d·n / |d|) / (h / |d|) = −d·n / h
+        rate *= np.maximum(-dn, 0.0)
+        rate /= h
+        rate[~((h > 0) & (rate < math.inf))] = 0.0  # NaN and inf (h → 0) too: nothing
+    return rate
 
 
 def coarse_weights(t) -> np.ndarray:
@@ -348,4 +363,5 @@ def gun_of(job) -> Gun:
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate", "spot_block"]
+           "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate", "rate_and_height",
+           "spot_block"]

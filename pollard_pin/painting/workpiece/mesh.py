@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import trimesh
+from scipy.spatial import ConvexHull, QhullError
 
 from ...analytic.taskspace import turn
 from ...model.values import read_bytes
@@ -44,6 +45,7 @@ MAX_ANGLE = 45.0
 # (examples/paint.toml's panel normal).
 FACING = (-1.0, 0.0, 0.0)
 DEGENERATE = 1e-12  # of the part's size squared: faces of smaller area are dropped
+RISE_PRODUCTS = 50_000_000  # faces × hull vertices for Part.rise (~0.2 s): beyond, not computed
 
 
 def _frozen(x, dtype=float) -> np.ndarray:
@@ -77,6 +79,28 @@ class Part:
     def size(self) -> float:
         """The largest side of the bounding box [m]."""
         return float(np.ptp(self.vertices, axis=0).max())
+
+    @cached_property  # asked by every block of the film's ray tests
+    def rise(self) -> np.ndarray:
+        """(F,) how far [m] the part rises above each face's plane, along its outward normal:
+        the largest (v − v₀)·n over the vertices of its convex hull (all vertices of a flat
+        part), ≥ 0 up to round-off; 0 where the plane supports the whole part (a convex
+        part's faces, the back of a plate, a rib's top), inf where not computed (more than
+        RISE_PRODUCTS face × hull vertex products)."""
+        v = self.vertices[np.unique(self.faces)]
+        try:
+            v = v[ConvexHull(v).vertices]
+        except (QhullError, ValueError):  # a flat part: every vertex counts
+            pass
+        out = np.full(len(self.faces), np.inf)
+        if len(self.faces) * len(v) <= RISE_PRODUCTS:
+            base = np.einsum("ij,ij->i", self.vertices[self.faces[:, 0]], self.normals)
+            block = max(1, 1_000_000 // len(v))  # (block × hull) products: ~8 MB each
+            for start in range(0, len(self.faces), block):
+                sl = slice(start, start + block)
+                out[sl] = (self.normals[sl] @ v.T).max(axis=1) - base[sl]
+        out.flags.writeable = False
+        return out
 
 
 def _vector(source: str, name: str, value, unit: str) -> np.ndarray:
@@ -254,5 +278,5 @@ def load_job_part(job) -> Part:
 
 
 __all__ = ["FACING", "FORMATS", "MAX_ANGLE", "MAX_EXTENT", "MAX_FACES", "Part",
-           "UNITS", "load_job_part", "load_part", "make_part", "panel_part", "placement",
-           "unit_length"]
+           "RISE_PRODUCTS", "UNITS", "load_job_part", "load_part", "make_part", "panel_part",
+           "placement", "unit_length"]

@@ -11,7 +11,7 @@ from pollard_pin.painting.errors import MeshError
 from pollard_pin.painting.film.mesh import mesh_film
 from pollard_pin.painting.film.points import surface_points
 from pollard_pin.painting.job import load_job
-from pollard_pin.painting.spray.deposition import Gun, film
+from pollard_pin.painting.spray.deposition import Gun, film, near_spot
 from pollard_pin.painting.spray.occlusion import visible
 from pollard_pin.painting.workpiece import shapes
 from pollard_pin.painting.workpiece.mesh import make_part, panel_part
@@ -266,8 +266,10 @@ def test_the_cull_changes_no_film(monkeypatch):
     sp = surface_points(part, sigma=GUN.sigma)
     t, p, a = _passes((-0.24, 0.24), (ZC - 0.009, ZC + 0.009))
     culled = mesh_film(GUN, t, p, a, sp, part)
-    kept = [mf.near_spot(GUN, p[:40], a[:40], sp.points)]
-    monkeypatch.setattr(mf, "near_spot", lambda gun, p, a, s: np.arange(len(s)))
+    kept = [near_spot(GUN, p[:40], a[:40], sp.points)]
+    # every block reaches every chunk and every point of it
+    monkeypatch.setattr(mf, "may_reach", lambda gun, pm, am, dp, da, s, radius=0.0: np.ones(
+        len(np.atleast_2d(s)), dtype=bool))
     dense = mesh_film(GUN, t, p, a, sp, part)
     assert len(kept[0]) < 0.5 * len(sp.points)  # it culls, or the test proves nothing
     assert culled.shaded == dense.shaded > 0 and culled.pairs == dense.pairs
@@ -350,3 +352,29 @@ def test_an_elliptic_spot_turns_with_the_gun(ribbed):
     part = make_part(plate.vertices, plate.faces)
     f = mesh_film(gun, ts, ps, R[:2], surface_points(part, 0.0015, faces="all"), part)
     assert f.shaded > 0.1 * f.pairs and abs(f.transfer_efficiency - 1) < 0.02
+
+
+def test_a_convex_part_casts_no_ray_and_the_film_is_the_same(monkeypatch):
+    """A closed 0.10 m box (convex: every face's plane has the part behind it, Part.rise 0),
+    two passes over its front face: no pair in the spot needs a ray
+    (:func:`.spray.occlusion.open_pairs`), and the film, pairs and shade are those of every
+    pair cast as a ray, bit for bit."""
+    import trimesh
+
+    import pollard_pin.painting.film.mesh as mf
+
+    box = trimesh.creation.box(bounds=[[X0, -0.05, ZC - 0.05], [X0 + 0.02, 0.05, ZC + 0.05]])
+    part = make_part(box.vertices, box.faces)
+    sp = surface_points(part, sigma=GUN.sigma, faces="all")
+    t, p, a = _passes((-0.04, 0.04), (ZC - 0.009, ZC + 0.009))
+    rays = []
+    monkeypatch.setattr(mf, "visible", lambda *args, **kw: rays.append(len(args[1])) or
+                        visible(*args, **kw))
+    fast = mesh_film(GUN, t, p, a, sp, part)
+    assert rays == [] and fast.pairs > 10_000 and fast.shaded == 0
+    monkeypatch.setattr(mf, "open_pairs", lambda part, faces, height: np.zeros(
+        np.shape(height), dtype=bool))
+    cast = mesh_film(GUN, t, p, a, sp, part)
+    assert sum(rays) == cast.pairs == fast.pairs and cast.shaded == 0
+    assert np.array_equal(cast.thickness, fast.thickness)
+    assert np.array_equal(cast.error_estimate, fast.error_estimate, equal_nan=True)

@@ -359,3 +359,20 @@ def test_the_gun_checks_its_spot():
         Gun(0.15, 0.01, 1e-7, spot=SPOTS["elliptic"])
     with pytest.raises(ValueError, match="before the standoff"):
         Gun(0.15, 0.01, 1e-7, apex=0.15)
+
+
+def test_rate_and_height_are_the_rate_and_each_tips_height():
+    """rate_and_height: deposition_rate exactly, and (p − s)·n pair by pair (to 1e-15 m)."""
+    from pollard_pin.painting.spray.deposition import rate_and_height
+
+    rng = np.random.default_rng(5)
+    p = rng.normal(size=(7, 3)) * 0.1 + [0, 0, 0.15]
+    a = rng.normal(size=(7, 3)) * 0.1 + [0, 0, -1]
+    a /= np.linalg.norm(a, axis=1)[:, None]
+    s = rng.normal(size=(9, 3)) * 0.05
+    n = rng.normal(size=(9, 3)) * 0.2 + [0, 0, 1]
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    rate, height = rate_and_height(GUN, p, a, s, n)
+    assert np.array_equal(rate, deposition_rate(GUN, p, a, s, n))
+    want = np.array([[(p[j] - s[k]) @ n[k] for k in range(9)] for j in range(7)])
+    assert height.shape == (7, 9) and np.abs(height - want).max() < 1e-15

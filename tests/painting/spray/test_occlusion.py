@@ -202,3 +202,46 @@ def test_a_part_wholly_hidden_is_one_line():
     msg = str(exc.value)
     assert "all 2 faces within 45° of facing are hidden" in msg and "\n" not in msg, msg
     assert len(msg) <= 250
+
+
+def test_open_pairs_are_lit_and_need_no_ray(rib_part):
+    """Random points on every face of the ribbed plate, a gun pass straight and 25° askew:
+    every pair open_pairs calls lit is lit by the brute-force segment test, it marks some
+    pairs (the rib's top and the plate's back, which the part lies behind) and not the
+    plate's front beside the rib; visible with the points' faces gives every verdict of
+    visible without them."""
+    from pollard_pin.painting.spray.occlusion import open_pairs, visible
+
+    rng = np.random.default_rng(11)
+    s, fi = trimesh.sample.sample_surface(rib_part.mesh, 600, seed=rng)
+    n = rib_part.normals[fi]
+    tri = rib_part.vertices[rib_part.faces]
+    marked = 0
+    for tilt in (0.0, 25.0):
+        p, a = _gun_pass(tilt_deg=tilt)
+        k, q = np.divmod(np.arange(len(p) * len(s)), len(s))
+        height = np.einsum("ij,ij->i", p[k] - s[q], n[q])
+        sure = open_pairs(rib_part, fi[q], height)
+        grid = open_pairs(rib_part, fi, (p @ n.T) - np.einsum("ij,ij->i", s, n))
+        assert np.array_equal(grid.ravel(), sure)  # one rule, pair by pair or every pair
+        o = s[q[sure]] + offset(rib_part) * n[q[sure]]
+        assert not _segment_blocked(o, p[k[sure]], tri).any()
+        assert np.array_equal(visible(rib_part, p[k], s[q], n[q], faces=fi[q]),
+                              visible(rib_part, p[k], s[q], n[q]))
+        marked += int(sure.sum())
+        assert not sure[rib_part.rise[fi[q]] > 1e-3].any()
+    assert marked > 1000
+
+
+def test_a_box_opens_every_pair_facing_the_gun():
+    """A closed slab (convex): every pair whose nozzle lies in front of the point's face
+    by more than offset/2 is open, those behind are not."""
+    from pollard_pin.painting.spray.occlusion import open_pairs
+
+    m = _slab(0.60, 0.61)
+    part = make_part(m.vertices, m.faces)
+    assert np.all(np.abs(part.rise) < 1e-15)
+    faces = np.arange(len(part.faces))
+    eps = offset(part)
+    got = open_pairs(part, faces, np.array([[eps], [0.49 * eps], [-1.0]]) * np.ones(len(faces)))
+    assert got[0].all() and not got[1:].any()

@@ -174,3 +174,37 @@ def test_the_cells_parts_in_mm_are_what_make_parts_writes(tmp_path):
         0.4 / 1.5, rel=1e-6)
     assert v[:, 2].min() == pytest.approx(0.015, abs=1e-6)
     assert v[:, 2].max() == pytest.approx(0.345, abs=1e-6)
+
+
+def test_rise_is_the_height_of_the_part_above_each_face():
+    """Part.rise against every vertex's height above each face's plane (not the hull's): 0
+    on a box (convex), the rib's height over the plate's front and 0 on the rib's top and
+    on the face furthest along +x, 0 on a flat sheet (no hull: every vertex counts); over the face
+    budget it is not computed (inf)."""
+    def brute(part):
+        v0 = part.vertices[part.faces[:, 0]]
+        return np.array([((part.vertices - v0[f]) @ part.normals[f]).max()
+                         for f in range(len(part.faces))])
+
+    box = trimesh.creation.box(bounds=[[0.6, -0.05, 0.1], [0.62, 0.05, 0.2]])
+    part = make_part(box.vertices, box.faces)
+    assert np.abs(part.rise).max() < 1e-15 and np.abs(brute(part)).max() < 1e-15
+    m = shapes.ribbed_plate(step=0.02)
+    part = make_part(m.vertices, m.faces)
+    want = brute(part)
+    assert np.abs(part.rise - want).max() < 1e-12
+    front = np.abs(part.normals @ [-1.0, 0, 0] - 1) < 1e-9
+    assert want[front].max() > 0.01 and (np.abs(want[front]) < 1e-12).any()
+    back = part.vertices[part.faces].min(axis=1)[:, 0] >= part.vertices[:, 0].max() - 1e-12
+    assert back.any() and (np.abs(want[back]) < 1e-12).all()
+    sheet = make_part([[0.7, -0.05, 0.1], [0.7, 0.05, 0.1], [0.7, 0.05, 0.2],
+                       [0.7, -0.05, 0.2]], [[0, 2, 1], [0, 3, 2]])
+    assert np.abs(sheet.rise).max() < 1e-15
+    import pollard_pin.painting.workpiece.mesh as mm
+
+    old = mm.RISE_PRODUCTS
+    try:
+        mm.RISE_PRODUCTS = 10
+        assert np.isinf(make_part(box.vertices, box.faces).rise).all()
+    finally:
+        mm.RISE_PRODUCTS = old
