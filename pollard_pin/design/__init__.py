@@ -21,7 +21,7 @@ __all__ = ["CONSTRAINTS", "Catalogue", "CatalogueError", "Design", "DesignContex
            "SpaceError", "Variable", "baseline_values", "build", "design_files", "evaluate",
            "load_catalogue", "load_space", "prepare", "space_from_dict"]
 
-# The study (docs/model.md §29.4): ``pollard_pin.design(job, space, options)`` runs one
+# The study (docs/model.md §29.5): ``pollard_pin.design(job, space, options)`` runs one
 # (:func:`.api.design`). The package itself is callable, so that the call and the subpackage
 # share the name without one hiding the other (``import pollard_pin.design as d`` stays it).
 import sys  # noqa: E402

@@ -40,16 +40,24 @@ from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
 from .build import Design, actuators_toml, build, params_toml
-from .screen import held_poses, motors, reach
+from .screen import held_poses, motors, panel_reach, reach
 from .space import DesignSpace
 
+#: The objectives a design is judged by, in the order of :meth:`Evaluation.objective_vector`.
 OBJECTIVES = ("parts_per_hour", "robots", "motor_use", "kmin", "moving_mass")
-SENSES = {"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
-          "moving_mass": "min"}
+class _Senses(dict):
+    """Each objective of :data:`OBJECTIVES` → its sense, "max" or "min" (a dict)."""
+
+
+#: Each objective's sense: "max" or "min".
+SENSES = _Senses({"parts_per_hour": "max", "robots": "min", "motor_use": "min", "kmin": "max",
+          "moving_mass": "min"})
 UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
+#: The constraints, in the order of :meth:`Evaluation.constraint_vector` (≤ 0 holds).
 CONSTRAINTS = ("home", "reach", "motors_static", "plan", "motors", "clearance", "film")
 FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
+REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
 
 
@@ -89,6 +97,15 @@ class Evaluation:
     actuators_toml: str | None = None
     robots_toml: str | None = None
     message: str | None = None
+
+    def objective_vector(self) -> tuple[float, ...]:
+        """The objectives in :data:`OBJECTIVES` order (senses: :data:`SENSES`)."""
+        return tuple(float(self.objectives[k]) for k in OBJECTIVES)
+
+    def constraint_vector(self) -> tuple[float, ...]:
+        """The constraints in :data:`CONSTRAINTS` order, ≤ 0 holds; one not computed at this
+        level is 0 (an optimiser's constraint function: any > 0 is infeasible)."""
+        return tuple(float(self.constraints.get(k, 0.0)) for k in CONSTRAINTS)
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,20 +233,30 @@ def _screen(values, ctx: DesignContext):
         figures["screen_s"] = time.perf_counter() - t0
         return None, None, _infeasible("screen", None, n, {"home": 1.0}, "home", figures,
                                        str(exc))
-    robot = load(design.params)
     if design.price is not None:
         figures["price"] = design.price * n
     cons = {"home": -1.0}
-    if ctx.strokes is not None:
-        o = _back_offset(ctx, space.place_back(values))
-        strokes = replace(ctx.strokes, samples=tuple((w, tips + o, ax) for w, tips, ax
-                                                     in ctx.strokes.samples))
-        cons["reach"], more, band = reach(robot, strokes, n)
-        figures.update(more)
-        poses = None if band.empty else held_poses(robot, strokes, band)
-        if poses is not None:
-            cons["motors_static"], more = motors(robot, design.actuators, poses)
+    back = space.place_back(values)
+    try:
+        robot = load(design.params)
+        if ctx.strokes is not None:
+            o = _back_offset(ctx, back)
+            strokes = replace(ctx.strokes, samples=tuple((w, tips + o, ax) for w, tips, ax
+                                                         in ctx.strokes.samples))
+            cons["reach"], more, band = reach(robot, strokes, n)
             figures.update(more)
+            poses = None if band.empty else held_poses(robot, strokes, band)
+            if poses is not None:
+                cons["motors_static"], more = motors(robot, design.actuators, poses)
+                figures.update(more)
+        elif not isinstance(ctx.job, PartJob):  # a still panel: its poses in reach
+            cons["reach"], more = panel_reach(robot, ctx.job)
+            figures.update(more)
+    except PollardError as exc:  # a model the package cannot build or solve: said
+        figures["screen_s"] = time.perf_counter() - t0
+        cons["reach"] = max(cons.get("reach", 0.0), 0.0) + REFUSED
+        return design, None, _infeasible("screen", design, n, cons, "reach", figures,
+                                         str(exc).split("\n")[0])
     figures["screen_s"] = time.perf_counter() - t0
     binding = next((k for k in CONSTRAINTS if cons.get(k, -1.0) > 0), None)
     use = max(figures.get("static_peak_use", 0.0), figures.get("static_rated_use", 0.0))
@@ -252,10 +279,13 @@ def _binding_of(message: str) -> str:
 
 
 def _kmin(robot, plans, actuators) -> float:
-    """The least kmin [N/m] over the programs' samples (at most :data:`KMIN_SAMPLES` each)."""
+    """The least kmin [N/m] over the programs' samples (at most :data:`KMIN_SAMPLES` each);
+    0 when a motor's catalogue entry has no stiffness."""
     from ..analytic.closed_form import position_ik_masked
     from ..dynamics.drives.stiffness import stiffness_at
 
+    if any(u.stiffness is None for u in actuators.units):
+        return 0.0
     k = actuators.stiffness()
     least = math.inf
     for traj in plans:
@@ -287,7 +317,8 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
         figures["full_s"] = time.perf_counter() - t0
         binding = _binding_of(str(exc))
         cons["plan"] = 1.0
-        cons.setdefault(binding, 1.0) if binding != "plan" else None
+        if binding != "plan":  # the refusal names it: off by more than the screen saw
+            cons[binding] = max(cons.get(binding, 0.0), 0.0) + REFUSED
         return _infeasible("full", design, n, cons, binding, figures, str(exc).split("\n")[0],
                            motor_use=screened.objectives["motor_use"])
     data = result.report.data

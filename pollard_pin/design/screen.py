@@ -5,6 +5,8 @@
   :func:`pollard_pin.painting.cell.bands.robot_band`, with the workspace map's per-pose checks:
   the closed-form IK, the joint limits and the singularity margins), against what the
   design's number of robots needs (:func:`pollard_pin.painting.layout.cell.zone_needs`);
+* **reach** of a still panel (no line): the share of its gun poses, over the panel and its
+  run-on on the same grid, that the workspace map's checks refuse;
 * **motors**: the torques that hold the robot still (the weight alone) at the band's ends and
   middle on the middle stroke, over the chosen motors' ratings through their gears: above the
   peak torque anywhere, or above the continuous torque on average, no program can keep them.
@@ -48,8 +50,29 @@ def reach(robot, strokes: Strokes, robots: int) -> tuple[float, dict, object]:
                       most=SCREEN_STROKES, shift_step=SCREEN_SHIFT)
     need = max(b - a for a, b in zone_needs(strokes, robots))
     fewest = fewest_for(strokes, band.width)
-    return need - band.width, {"band_m": band.width, "band_lo_m": band.lo if not band.empty
-                               else math.nan, "robots_needed": fewest or 0}, band
+    fig = {"band_m": band.width, "robots_needed": fewest or 0}
+    if not band.empty:  # where it starts along the axis (none: no NaN in a table)
+        fig["band_lo_m"] = band.lo
+    return need - band.width, fig, band
+
+
+def panel_reach(robot, job) -> tuple[float, dict]:
+    """(constraint: the share of a still panel's gun poses out of reach, figures): the gun
+    at the standoff over the panel and its run-on, :data:`SCREEN_STEP` apart, spraying along
+    −n (the workspace map's checks, docs/model.md §22)."""
+    from ..painting.passes.raster import SPOT_RADIUS
+    from ..painting.workpiece.panel import panel_frame
+
+    f = panel_frame(job)
+    run = SPOT_RADIUS * job.sigma
+    U, V = (np.linspace(-(d / 2 + run), d / 2 + run,
+                        max(2, int(math.ceil((d + 2 * run) / SCREEN_STEP)) + 1))
+            for d in (job.width, job.height))
+    tips = f.world(*np.meshgrid(U, V), offset=job.standoff).reshape(-1, 3)
+    spray = np.tile(-f.n, (len(tips), 1))
+    poses = base_poses(CellRobot("reference"), tips, spray, True, f.n)
+    share = float((evaluate(robot, poses)["reachable"] > 0).mean())
+    return 1.0 - share, {"reached_share": share}
 
 
 def held_poses(robot, strokes: Strokes, band) -> np.ndarray | None:
@@ -93,4 +116,5 @@ def motors(robot, actuators, poses: np.ndarray) -> tuple[float, dict]:
     return use - 1.0, {"static_peak_use": peak, "static_rated_use": rated}
 
 
-__all__ = ["SCREEN_STEP", "SCREEN_STROKES", "held_poses", "motors", "reach", "screen_margin"]
+__all__ = ["SCREEN_STEP", "SCREEN_STROKES", "held_poses", "motors", "panel_reach", "reach",
+           "screen_margin"]

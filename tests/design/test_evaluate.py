@@ -56,6 +56,11 @@ def test_screen_thesis_needs_two_robots(example):
     two = evaluate({**base, "robots": 2}, ctx, "screen")
     assert two.feasible and two.binding is None and two.objectives["robots"] == 2
     assert two.objectives["moving_mass"] == pytest.approx(2 * one.objectives["moving_mass"])
+    assert one.objective_vector() == tuple(one.objectives[k] for k in OBJECTIVES)
+    c = one.constraint_vector()
+    assert len(c) == len(CONSTRAINTS) and c[CONSTRAINTS.index("reach")] > 0
+    assert c[CONSTRAINTS.index("film")] == 0.0  # not computed by the screen
+    assert max(two.constraint_vector()) <= 0
 
 
 def test_screen_scaled_design_alone(example):
@@ -101,3 +106,25 @@ def test_full_evaluation_reproduced_by_paint(strip, tmp_path):
     robots = pp.job_from_dict({**STRIP, "robot": [{"name": "robot1", "base": [0, 0, 0]}]})
     assert robots.robots  # the job reader takes [[robot]] tables
     assert robot.params.total_mass == pytest.approx(ev.objectives["moving_mass"])
+
+
+def test_context_travels_to_workers(example):
+    """A Dask or process worker gets the context pickled: it evaluates the same."""
+    import pickle
+
+    space, ctx = example
+    back = pickle.loads(pickle.dumps(ctx))
+    v = {**baseline_values(space), "robots": 2}
+    a, b = evaluate(v, ctx, "screen"), evaluate(v, back, "screen")
+    assert a.constraints == b.constraints and a.objectives == b.objectives
+    assert back.space.fingerprint() == space.fingerprint()
+
+
+def test_moved_job_moves_the_part_only():
+    from pollard_pin.design.evaluate import moved_job
+
+    panel = pp.job_from_dict(STRIP)
+    m = moved_job(panel, [0.3, 0.0, 0.0])
+    assert m.center == pytest.approx((1.0, -0.5, 0.16)) and m.normal == panel.normal
+    part = pp.load_job("examples/line_part.toml")
+    assert moved_job(part, [0.1, 0.0, 0.2]).position == pytest.approx((0.1, -0.75, 0.2))

@@ -44,3 +44,31 @@ def test_holding_torques_over_the_ratings(case):
                                             continuous_torque=u.continuous_torque / 100)
                                     for u in act.units))
     assert motors(robot, weak, poses)[0] > 0
+
+
+def test_screen_and_planner_agree_one_robot_is_too_few(case):
+    """The screen says the thesis robot needs two for the door; the planner's layout refuses
+    one robot, naming two."""
+    from pollard_pin.painting.errors import CellError
+    from pollard_pin.painting.layout.cell import propose_layout
+
+    robot, strokes, ref = case
+    with pytest.raises(CellError, match="at least 2 robots"):
+        propose_layout(robot, pp.load_job("examples/design/job.toml"), 1)
+
+
+def test_still_panel_reach_agrees_with_the_planner(case):
+    from pollard_pin.design.screen import panel_reach
+    from pollard_pin.painting.errors import PlanError
+
+    robot = case[0]
+    off, fig = panel_reach(robot, pp.load_job("examples/paint.toml"))
+    assert off == 0.0 and fig["reached_share"] == 1.0  # the example paints
+    big = pp.job_from_dict({
+        "panel": {"center": [0.70, 0.0, 0.16], "normal": [-1.0, 0.0, 0.0], "width": 0.9,
+                  "height": 0.5},
+        "gun": {"standoff": 0.15, "sigma": 0.010, "flow": 1.5e-7}, "job": {"thickness": 25e-6}})
+    off, fig = panel_reach(robot, big)
+    assert 0.5 < off < 1.0  # most of a 0.9 × 0.5 m panel is beyond the 0.6 × 0.25 m rectangle
+    with pytest.raises(PlanError, match="reach"):
+        pp.paint(robot, big)

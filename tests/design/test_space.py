@@ -94,3 +94,13 @@ def test_catalogue_is_read_beside_the_space(tmp_path):
     (tmp_path / "S.toml").write_text('robots = 1\n')
     with pytest.raises(SpaceError, match="catalogue"):
         load_space(tmp_path / "S.toml")
+
+
+def test_reference_design_from_a_partial_file(cat, tmp_path):
+    (tmp_path / "base.toml").write_text("[chain0]\nx32 = 0.35\n", encoding="utf-8")
+    sp = space_from_dict({**BASE, "params": "base.toml"}, "S.toml", tmp_path, catalogue=cat)
+    assert sp.reference["chain0"]["x32"] == 0.35
+    assert sp.overrides({"scale.arms": 2.0})["chain0.x32"] == pytest.approx(0.70)
+    with pytest.raises(Exception, match="unknown key"):
+        (tmp_path / "bad.toml").write_text("[chain0]\nx33 = 0.35\n", encoding="utf-8")
+        space_from_dict({**BASE, "params": "bad.toml"}, "S.toml", tmp_path, catalogue=cat)
