@@ -96,3 +96,19 @@ def test_fingerprints_follow_the_content():
     assert fingerprint({"a": 1}) != fingerprint({"a": 2})
     assert job_fingerprint(stub.StubJob()) == job_fingerprint(stub.StubJob())
     assert job_fingerprint(stub.StubJob()) != job_fingerprint(stub.StubJob(speed=0.02))
+
+
+def test_optuna_missing_gives_one_line(tmp_path):
+    import subprocess
+    import sys
+
+    code = ("import sys; sys.modules['optuna'] = None\nfrom pollard_pin.cli import main\n"
+            f"sys.exit(main(['design', '--job', 'j.toml', '--space', 's.toml', '--out', "
+            f"{str(tmp_path / 'out')!r}]))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.strip().splitlines() == [
+        "pollard-pin design: error: pollard-pin design needs optuna: pip install "
+        "'pollard-pin[design]' (nothing written to " + str(tmp_path / "out") + ")"]
+    assert not (tmp_path / "out").exists()
