@@ -182,8 +182,15 @@ class StripeSet:
 def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
     """(position, thickness) of a stripe CSV, every data rule checked (:func:`check_profile`,
     each point named by its line)."""
-    data = read_bytes(path, f"{where}: file", StripeError, MAX_CSV_BYTES)
     name = path.name
+    try:  # read_bytes' own refusal of a large file would name the stripe as its kind
+        large = path.stat().st_size > MAX_CSV_BYTES
+    except OSError:  # read_bytes says why
+        large = False
+    if large:
+        _fail(name, f"over {MAX_CSV_BYTES >> 20} MiB: a profile of 100,000 points is ~3 MB; "
+                    "one scan per file")
+    data = read_bytes(path, f"{where}: file", StripeError, MAX_CSV_BYTES)
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -194,6 +201,10 @@ def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
     if not rows:
         _fail(name, f"empty: a stripe is a CSV with the columns {', '.join(COLUMNS)}")
     header = [c.strip() for c in rows[0][1]]
+    for sep in (";", "\t"):
+        if len(header) == 1 and sep in header[0]:
+            _fail(name, f"line {rows[0][0]}: cells separated by {sep!r}: write a "
+                        "comma-separated CSV (position,thickness), decimal points")
     if sorted(header) != sorted(COLUMNS):
         _fail(name, f"line {rows[0][0]}: columns {shorten(','.join(header), 40)}: expected "
                     f"'position,thickness' (m, m; another format or other units?)")
@@ -232,7 +243,7 @@ def stripes_from_dict(d: Mapping, folder: Path, source: str = "<python>") -> Str
     if not isinstance(tables, list) or not all(isinstance(t, Mapping) for t in tables):
         _fail(source, "'stripe' must be [[stripe]] tables (file, standoff, speed, flow, "
                       "direction)")
-    stripes, files = [], []
+    stripes, files, seen = [], [], {}
     for i, t in enumerate(tables, 1):
         where = f"{source}: stripe {i}"
         for k in t:
@@ -246,6 +257,10 @@ def stripes_from_dict(d: Mapping, folder: Path, source: str = "<python>") -> Str
         if not isinstance(t["file"], str) or not t["file"]:
             _fail(where, f"file = {shorten(t['file'])}: must be the CSV's name (a string)")
         path = folder / file_path(t["file"], "file", error=StripeError)
+        if path.resolve() in seen:
+            _fail(where, f"file {shorten(t['file'], 60)} again (stripe {seen[path.resolve()]} "
+                         "has it): one [[stripe]] per scan")
+        seen[path.resolve()] = i
         position, thickness = read_profile(path, where)
         stripes.append(Stripe(position, thickness, t["standoff"], t["speed"], t["flow"],
                               t["direction"], source=f"{where} ({path.name})"))

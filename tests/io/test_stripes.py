@@ -54,6 +54,8 @@ BAD_CSV = [
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
     ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
     ("empty", "", "empty: a stripe is a CSV"),
+    ("semicolons", _csv(X, T).replace(",", ";"), "line 1: cells separated by ';': write a comma"),
+    ("tabs", _csv(X, T).replace(",", "\t"), "line 1: cells separated by '\\t': write a comma"),
 ]
 
 
@@ -81,6 +83,8 @@ BAD_TOML = [
     ("no stripes", "solids = 0.4\n", "no stripes"),
     ("missing file", TOP.replace("s.csv", "none.csv"), "none.csv' does not exist"),
     ("not toml", "solids = \n", "is not valid TOML"),
+    ("twice", TOP + TOP.split("\n", 1)[1].replace('"s.csv"', '"./s.csv"'),
+     "stripe 2: file './s.csv' again (stripe 1 has it)"),
 ]
 
 
@@ -123,3 +127,27 @@ def test_the_formats_page_names_every_key():
     top, stripe = section.split("`[[stripe]]`:", 1)
     assert all(f"| `{k}`" in top for k in TOP_KEYS), TOP_KEYS
     assert all(f"| `{k}`" in stripe for k in STRIPE_KEYS), STRIPE_KEYS
+
+
+def test_a_large_file_is_refused_unread_in_one_line(tmp_path):
+    (tmp_path / "stripes.toml").write_text(TOP)
+    with open(tmp_path / "s.csv", "wb") as f:  # sparse: nothing to write
+        f.truncate((16 << 20) + 1)
+    with pytest.raises(StripeError) as info:
+        read_stripes(tmp_path / "stripes.toml")
+    assert str(info.value) == ("s.csv: over 16 MiB: a profile of 100,000 points is ~3 MB; one "
+                               "scan per file")
+
+
+def test_what_a_spreadsheet_writes_reads_the_same(tmp_path):
+    x, t = _good()
+    plain = _csv(x, t)
+    rows = [r.split(",") for r in plain.splitlines()]
+    quoted = "\r\n".join(f'"{b}","{a}"' for a, b in rows) + "\r\n"  # CRLF, quoted, swapped
+    for i, text in enumerate([plain, "\ufeff" + quoted, "# scan 3\n\n" + plain]):
+        folder = tmp_path / str(i)
+        folder.mkdir()
+        (folder / "s.csv").write_bytes(text.encode("utf-8"))
+        (folder / "stripes.toml").write_text(TOP)
+        got = read_stripes(folder / "stripes.toml").stripes[0]
+        assert np.array_equal(got.position, x) and np.array_equal(got.thickness, t), i
