@@ -108,9 +108,11 @@ BAD = [
     ("swapped", ONE + ONE.split("\n", 1)[1].replace("s.csv", "w.csv").replace("across",
                                                                               "along"),
      _csv(X, T), "the 'along' stripes are wider than the 'across' ones"),
+    ("efficiency given", ONE, _csv(X, T),
+     "efficiency 0.3 given, but the stripes hold 0.6 of the paint sprayed"),
 ]
 FLAGS = {"elliptic one direction": ["--model", "elliptic"],
-         "spread one standoff": ["--spread", "fit"]}
+         "spread one standoff": ["--spread", "fit"], "efficiency given": ["--efficiency", "0.3"]}
 
 
 @pytest.mark.parametrize("name, toml, csv, says", BAD, ids=[b[0] for b in BAD])

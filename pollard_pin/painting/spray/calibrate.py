@@ -36,6 +36,7 @@ END_SHARE = 0.05  # an end of the stripe holds at most this share of its peak (b
 MIN_ACROSS = 5  # points above half the peak: fewer cannot show the spot's shape
 EFFICIENCY_MAX = 1.1  # the stripes' own η beyond this: the flow, solids or speed are off
 EFFICIENCY_MIN = 0.02  # below: almost no paint landed, or the flow is in other units
+GIVEN_AGREES = 1.1  # a given efficiency within this factor of the stripes' own η
 SWAPPED = 1.05  # 'along' stripes this much wider than 'across' ones: the labels swapped
 POOR_FIT = 0.05  # a chosen model's residual RMS beyond this share of the peak is noted
 
@@ -240,6 +241,12 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
                           f"{spread['across'] * 1e3:.3g} mm σ at {h0:g} m): a stroke along "
                           "the long axis shows the short size; directions swapped?")
     eta0 = float(np.mean([np.trapezoid(d.t, d.x) / d.amount for d in data]))
+    given = options.efficiency
+    if given is not None and not 1 / GIVEN_AGREES <= given / eta0 <= GIVEN_AGREES:
+        # the spot integrates to 1: a stripe's film holds η φ q / v whatever its shape
+        raise StripeError(f"{stripes.source}: efficiency {given:.4g} given, but the stripes "
+                          f"hold {eta0:.3g} of the paint sprayed: check flows, speeds and "
+                          "solids, or let the fit find it")
     fits = tuple(fit_model(m, data, h0, [c for c, _ in moments], spread, fit_apex=fit_apex,
                            efficiency=options.efficiency, efficiency0=eta0)
                  for m in models if m not in skipped and m in SPOTS)
