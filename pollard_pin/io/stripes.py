@@ -13,6 +13,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -49,7 +50,7 @@ def _fail(where: str, what: str) -> None:
 
 def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> float:
     """A positive finite number at most ``high`` (beyond: the unit slip ``slip`` named)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         _fail(where, f"{key} = {shorten(value)}: must be a number [{unit}]")
     try:
         v = float(value)
@@ -60,6 +61,17 @@ def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> fl
     if v > high:
         _fail(where, f"{key} = {shorten(value)}: over {high:g} {unit}: {slip}")
     return v
+
+
+def _column(where: str, key: str, values) -> np.ndarray:
+    """A profile's column as floats: real numbers only (a complex one is no reading)."""
+    try:
+        a = np.asarray(values)
+        if a.dtype.kind not in "iuf":
+            raise TypeError
+        return np.array(a, dtype=float)
+    except (TypeError, ValueError):
+        _fail(where, f"{key} = {shorten(values, 30)}: expected an array of real numbers [m]")
 
 
 def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
@@ -128,8 +140,7 @@ class Stripe:
 
     def __post_init__(self):
         where = self.source
-        x = np.array(self.position, dtype=float)
-        t = np.array(self.thickness, dtype=float)
+        x, t = (_column(where, k, getattr(self, k)) for k in COLUMNS)
         check_profile(where, x, t)
         if x[-1] < x[0]:  # scanned the other way: stored rising
             x, t = x[::-1].copy(), t[::-1].copy()
@@ -169,7 +180,7 @@ class StripeSet:
                          "standoff, speed, flow, direction)")
         object.__setattr__(self, "stripes", stripes)
         solids = self.solids
-        if isinstance(solids, bool) or not isinstance(solids, (int, float)) \
+        if isinstance(solids, (bool, np.bool_)) or not isinstance(solids, numbers.Real) \
                 or not 0 < float(solids) <= 1:
             _fail(where, f"solids = {shorten(solids)}: must be the dry share of the paint's "
                          "volume, in (0, 1] (a percentage? give 0.45 for 45 %)")

@@ -4,14 +4,17 @@
 ``calibration.json`` (every model tried) and ``fits.png`` (each stripe against its fit)."""
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..checks import file_path
+from ..errors import InputError
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder
 from ..io.job_file import toml_value
 from ..io.json_text import finite_json
 from ..io.stripes import StripeSet, read_stripes
+from ..model.values import shorten
 from ..painting.gun_table import spot_keys
 from ..painting.spray.calibrate import CRITERION, CalibrateOptions, CalibrationFit, fit_stripes
 from ..painting.spray.deposition import Gun
@@ -182,6 +185,9 @@ def calibrate(stripes, options: CalibrateOptions | None = None) -> Calibration:
     >>> cal.fit.chosen, cal.gun.standoff                      # doctest: +SKIP
     ('elliptic', 0.2)
     """
+    if not isinstance(stripes, (StripeSet, str, os.PathLike)):
+        raise InputError(f"stripes = {shorten(stripes, 40)}: expected a STRIPES.toml's path "
+                         "or a StripeSet (pollard_pin.io.stripes)")
     if not isinstance(stripes, StripeSet):
         stripes = read_stripes(stripes)
     return Calibration(fit_stripes(stripes, options))

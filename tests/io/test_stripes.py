@@ -151,3 +151,18 @@ def test_what_a_spreadsheet_writes_reads_the_same(tmp_path):
         (folder / "stripes.toml").write_text(TOP)
         got = read_stripes(folder / "stripes.toml").stripes[0]
         assert np.array_equal(got.position, x) and np.array_equal(got.thickness, t), i
+
+
+def test_a_column_of_other_things_than_real_numbers_is_one_line():
+    x, t = _good()
+    for bad, says in ((x.astype(str), "position = "), (x + 0j, "position = "),
+                      (["a"] * len(x), "position = ")):
+        with pytest.raises(StripeError, match=f"^<python>: {says}.*: expected an array of "
+                                              "real numbers"):
+            Stripe(bad, t, 0.2, 0.5, 2e-6, "across")
+    # numpy's scalars are numbers: a value read from an array is taken
+    s = Stripe(x, t, np.float32(0.2), np.int64(1), np.float64(2e-6), "across")
+    assert (s.standoff, s.speed) == (pytest.approx(0.2), 1.0)
+    assert StripeSet((s,), np.float64(0.45)).solids == 0.45
+    with pytest.raises(StripeError, match="speed = np.True_: must be a number"):
+        Stripe(x, t, 0.2, np.bool_(True), 2e-6, "across")

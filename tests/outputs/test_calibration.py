@@ -94,3 +94,10 @@ def test_a_panel_job_painted_with_the_gun_toml_gets_the_true_film(robot):
     print(f"panel job: fitted against true film {worst:.2e} of the target")
     assert worst < 0.01, worst
     assert abs(true.thickness.mean() / job.thickness - 1) < 0.02  # the true film on target
+
+
+@pytest.mark.parametrize("stripes", [None, {"solids": 0.45}, 3])
+def test_what_is_not_stripes_is_refused_in_one_line(stripes):
+    with pytest.raises(pp.errors.InputError,
+                       match=r"^stripes = .*: expected a STRIPES.toml's path or a StripeSet"):
+        calibrate(stripes)
