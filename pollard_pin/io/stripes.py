@@ -258,6 +258,9 @@ def stripes_from_dict(d: Mapping, folder: Path, source: str = "<python>") -> Str
     for i, t in enumerate(tables, 1):
         where = f"{source}: stripe {i}"
         for k in t:
+            if k in TOP_KEYS and k != "standoff":  # the paint's: one per calibration
+                _fail(where, f"{k} is the paint's, given once at the top: calibrate stripes of "
+                             "another paint on their own")
             if k not in STRIPE_KEYS:
                 _fail(where, f"unknown key {shorten(k, 30)}{did_you_mean(k, STRIPE_KEYS)}; "
                              f"[[stripe]] takes {', '.join(STRIPE_KEYS)}")

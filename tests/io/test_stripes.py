@@ -83,6 +83,8 @@ BAD_TOML = [
     ("no stripes", "solids = 0.4\n", "no stripes"),
     ("missing file", TOP.replace("s.csv", "none.csv"), "none.csv' does not exist"),
     ("not toml", "solids = \n", "is not valid TOML"),
+    ("solids per stripe", TOP + "solids = 0.5\n",
+     "stripe 1: solids is the paint's, given once at the top"),
     ("twice", TOP + TOP.split("\n", 1)[1].replace('"s.csv"', '"./s.csv"'),
      "stripe 2: file './s.csv' again (stripe 1 has it)"),
 ]
