@@ -29,6 +29,7 @@ TOP_KEYS = ("solids", "standoff", "stripe")
 STRIPE_KEYS = ("file", "standoff", "speed", "flow", "direction")
 COLUMNS = ("position", "thickness")
 DIRECTIONS = ("across", "along")  # the stroke, against the pattern's long axis
+MAX_STRIPES = 64  # each adds an unknown (its centre): 32 take ~7 s CPU to fit; 4-16 suffice
 MIN_POINTS = 10  # a profile of fewer points cannot show a spot's shape
 MAX_CSV_BYTES = 16 << 20  # a profilometer scan of 100,000 points is ~3 MB
 # Unit slips: beyond these a value is in other units (mm for m, mm/s for m/s, l/min for m³/s)
@@ -178,6 +179,9 @@ class StripeSet:
         if not stripes or not all(isinstance(s, Stripe) for s in stripes):
             _fail(where, "no stripes: list each measured stripe as a [[stripe]] table (file, "
                          "standoff, speed, flow, direction)")
+        if len(stripes) > MAX_STRIPES:
+            _fail(where, f"{len(stripes)} stripes: at most {MAX_STRIPES} (4-16 calibrate a "
+                         "gun: two standoffs, both directions); split them or average repeats")
         object.__setattr__(self, "stripes", stripes)
         solids = self.solids
         if isinstance(solids, (bool, np.bool_)) or not isinstance(solids, numbers.Real) \

@@ -119,6 +119,9 @@ def test_a_python_built_set_is_checked_the_same():
     with pytest.raises(StripeError, match="expected two 1-D columns"):
         Stripe(x, t[:-1], 0.2, 0.5, 2e-6, "across")
     assert StripeSet((good,), 1, 0.25).standoff == 0.25
+    assert len(StripeSet((good,) * 64, 0.4).stripes) == 64
+    with pytest.raises(StripeError, match="65 stripes: at most 64"):
+        StripeSet((good,) * 65, 0.4)
 
 
 def test_the_formats_page_names_every_key():
