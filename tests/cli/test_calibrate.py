@@ -108,6 +108,8 @@ BAD = [
     ("swapped", ONE + ONE.split("\n", 1)[1].replace("s.csv", "w.csv").replace("across",
                                                                               "along"),
      _csv(X, T), "the 'along' stripes are wider than the 'across' ones"),
+    ("far standoff", "standoff = 0.01\n" + ONE, _csv(X, T),
+     "standoff = 0.01 m, beyond the stripes' 0.2-0.2 m by over ×1.5: measure stripes near it"),
     ("efficiency given", ONE, _csv(X, T),
      "efficiency 0.3 given, but the stripes hold 0.6 of the paint sprayed"),
 ]

@@ -37,6 +37,7 @@ MIN_ACROSS = 5  # points above half the peak: fewer cannot show the spot's shape
 EFFICIENCY_MAX = 1.1  # the stripes' own η beyond this: the flow, solids or speed are off
 EFFICIENCY_MIN = 0.02  # below: almost no paint landed, or the flow is in other units
 GIVEN_AGREES = 1.1  # a given efficiency within this factor of the stripes' own η
+EXTRAPOLATE = 1.5  # the reference standoff at most this factor beyond the stripes' ones
 SWAPPED = 1.05  # 'along' stripes this much wider than 'across' ones: the labels swapped
 POOR_FIT = 0.05  # a chosen model's residual RMS beyond this share of the peak is noted
 
@@ -211,6 +212,11 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
     data = stripe_data(stripes)
     h0 = reference_standoff(stripes)
     standoffs = sorted({s.standoff for s in stripes.stripes})
+    if not standoffs[0] / EXTRAPOLATE <= h0 <= standoffs[-1] * EXTRAPOLATE:
+        # the spread law extrapolated that far (below the apex: a spot of negative size)
+        raise StripeError(f"{stripes.source}: standoff = {h0:g} m, beyond the stripes' "
+                          f"{standoffs[0]:g}-{standoffs[-1]:g} m by over ×{EXTRAPOLATE:g}: "
+                          "measure stripes near it, or give one between")
     notes = []
     if options.spread == "fit" and len(standoffs) < 2:
         raise StripeError(f"{stripes.source}: a spread law needs stripes at two standoffs "
