@@ -90,6 +90,7 @@ BAD = [
      "line 101: thickness is nan: measure that point again"),
     ("negative", ONE, _csv(X, T - 2e-6 * (np.abs(X - 0.1) < 0.003)),
      "below zero beyond the noise"),
+    ("negated", ONE, _csv(X, -T), "s.csv): no film: every reading is ≤ 0"),
     ("narrow", ONE, _csv(X[100:200], T[100:200] + PEAK * 0.4 * (X[100:200] < -0.03)),
      "the scan is narrower than the pattern; measure wider"),
     ("elliptic one direction", ONE, _csv(X, T),

@@ -144,7 +144,10 @@ def check_stripe(s, solids: float) -> tuple[float, float]:
     x, t, where = s.position, s.thickness, s.source
     sigma = noise(t)
     peak = float(t.max())
-    if peak <= NOISE_SIGMAS * sigma or peak <= 0:
+    if peak <= 0:
+        raise StripeError(f"{where}: no film: every reading is ≤ 0 (the thickness column "
+                          "negated, or the bare panel's?): measure a stripe that holds paint")
+    if peak <= NOISE_SIGMAS * sigma:
         raise StripeError(f"{where}: no film above the noise (peak {peak * 1e6:.3g} µm, noise "
                           f"±{sigma * 1e6:.2g} µm): measure a stripe that holds paint")
     floor = NOISE_SIGMAS * sigma + 0.01 * peak
