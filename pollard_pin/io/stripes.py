@@ -211,8 +211,13 @@ def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
     except UnicodeDecodeError:
         _fail(name, f"not UTF-8 text (another format?): a stripe is a CSV with the columns "
                     f"{', '.join(COLUMNS)}")
-    rows = [(i + 1, r) for i, r in enumerate(csv.reader(io.StringIO(text)))
-            if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
+    reader, rows = csv.reader(io.StringIO(text)), []
+    try:
+        for r in reader:  # line_num: a quoted cell may span lines
+            if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#"):
+                rows.append((reader.line_num, r))
+    except csv.Error as exc:  # a cell over the csv module's limit (128 kB), a NUL
+        _fail(name, f"line {reader.line_num}: not CSV ({exc})")
     if not rows:
         _fail(name, f"empty: a stripe is a CSV with the columns {', '.join(COLUMNS)}")
     header = [c.strip() for c in rows[0][1]]

@@ -54,6 +54,8 @@ BAD_CSV = [
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
     ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
     ("empty", "", "empty: a stripe is a CSV"),
+    ("long cell", _csv(X, T).replace(repr(float(T[5])), "1" * 200_000),
+     "line 7: not CSV (field larger than field limit (131072))"),
     ("semicolons", _csv(X, T).replace(",", ";"), "line 1: cells separated by ';': write a comma"),
     ("tabs", _csv(X, T).replace(",", "\t"), "line 1: cells separated by '\\t': write a comma"),
 ]
