@@ -105,8 +105,9 @@ def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
                      f"{MAX_SPAN:g} m: positions in mm? give metres")
     peak = float(np.max(np.abs(thickness)))
     if peak > MAX_THICKNESS:
+        unit = "mm" if peak < 1.0 else "µm"  # 10-100 µm of film: 0.01-0.1 mm, 10-100 µm
         _fail(where, f"thickness up to {peak:.4g} m, over {MAX_THICKNESS * 1e3:g} mm of dry "
-                     "film: thickness in µm? give metres")
+                     f"film: thickness in {unit}? give metres")
 
 
 @dataclass(frozen=True, eq=False)

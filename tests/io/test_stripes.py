@@ -49,6 +49,7 @@ BAD_CSV = [
     ("huge", _csv(X, np.r_[T[:10], 1e300, T[11:]]), "over 1 mm of dry film: thickness in µm?"),
     ("mm", _csv(X * 1e3, T), "a pattern wider than 1 m: positions in mm? give metres"),
     ("microns", _csv(X, T * 1e6), "thickness in µm? give metres"),
+    ("millimetres", _csv(X, T * 1e3), "up to 0.02 m, over 1 mm of dry film: thickness in mm?"),
     ("columns", "x,y\n0,1\n", "columns 'x,y': expected 'position,thickness'"),
     ("few", _csv(X[:5], T[:5]), "5 points: measure at least 10"),
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
