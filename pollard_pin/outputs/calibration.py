@@ -4,6 +4,7 @@
 ``calibration.json`` (every model tried) and ``fits.png`` (each stripe against its fit)."""
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -79,13 +80,14 @@ class Calibration:
             models.append({
                 "model": f.name, "chosen": f.name == fit.chosen, "usable": f.usable,
                 **({"why": f.why} if f.why else {}),
-                "params": f.params, "errors": {k: v for k, v in f.errors.items()
+                "params": f.params, "errors": {k: _finite(v) for k, v in f.errors.items()
                                                if k in f.params},
-                "apex": f.apex, "apex_error": f.errors.get("apex"),
-                "efficiency": f.efficiency, "efficiency_error": f.errors.get("efficiency"),
+                "apex": f.apex, "apex_error": _finite(f.errors.get("apex")),
+                "efficiency": f.efficiency,
+                "efficiency_error": _finite(f.errors.get("efficiency")),
                 "aic": f.aic, "bic": f.bic, "rms_share": f.rms_share, "points": f.points,
                 "parameters": f.k,
-                "stripes": [{"offset": o, "offset_error": e, "rms_share": r}
+                "stripes": [{"offset": o, "offset_error": _finite(e), "rms_share": r}
                             for o, e, r in zip(f.offsets, f.offset_errors, f.stripe_rms)]})
         return {
             "stripes": [{"source": s.source, "standoff": s.standoff, "speed": s.speed,
@@ -145,6 +147,11 @@ class Calibration:
                 f.write(data + "\n")
             write_fits_png(folder / "fits.png", self.fit)
         return folder
+
+
+def _finite(x):
+    """A standard error for JSON: null where JᵀJ gave none (an unusable fit's NaN)."""
+    return x if x is None or math.isfinite(x) else None
 
 
 def _pm(key: str, value: float, error: float, length: bool) -> str:
