@@ -13,6 +13,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,6 +29,7 @@ TOP_KEYS = ("solids", "standoff", "stripe")
 STRIPE_KEYS = ("file", "standoff", "speed", "flow", "direction")
 COLUMNS = ("position", "thickness")
 DIRECTIONS = ("across", "along")  # the stroke, against the pattern's long axis
+MAX_STRIPES = 64  # each adds an unknown (its centre): 32 take ~7 s CPU to fit; 4-16 suffice
 MIN_POINTS = 10  # a profile of fewer points cannot show a spot's shape
 MAX_CSV_BYTES = 16 << 20  # a profilometer scan of 100,000 points is ~3 MB
 # Unit slips: beyond these a value is in other units (mm for m, mm/s for m/s, l/min for m³/s)
@@ -49,7 +51,7 @@ def _fail(where: str, what: str) -> None:
 
 def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> float:
     """A positive finite number at most ``high`` (beyond: the unit slip ``slip`` named)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         _fail(where, f"{key} = {shorten(value)}: must be a number [{unit}]")
     try:
         v = float(value)
@@ -60,6 +62,17 @@ def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> fl
     if v > high:
         _fail(where, f"{key} = {shorten(value)}: over {high:g} {unit}: {slip}")
     return v
+
+
+def _column(where: str, key: str, values) -> np.ndarray:
+    """A profile's column as floats: real numbers only (a complex one is no reading)."""
+    try:
+        a = np.asarray(values)
+        if a.dtype.kind not in "iuf":
+            raise TypeError
+        return np.array(a, dtype=float)
+    except (TypeError, ValueError):
+        _fail(where, f"{key} = {shorten(values, 30)}: expected an array of real numbers [m]")
 
 
 def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
@@ -92,8 +105,9 @@ def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
                      f"{MAX_SPAN:g} m: positions in mm? give metres")
     peak = float(np.max(np.abs(thickness)))
     if peak > MAX_THICKNESS:
+        unit = "mm" if peak < 1.0 else "µm"  # 10-100 µm of film: 0.01-0.1 mm, 10-100 µm
         _fail(where, f"thickness up to {peak:.4g} m, over {MAX_THICKNESS * 1e3:g} mm of dry "
-                     "film: thickness in µm? give metres")
+                     f"film: thickness in {unit}? give metres")
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,8 +142,7 @@ class Stripe:
 
     def __post_init__(self):
         where = self.source
-        x = np.array(self.position, dtype=float)
-        t = np.array(self.thickness, dtype=float)
+        x, t = (_column(where, k, getattr(self, k)) for k in COLUMNS)
         check_profile(where, x, t)
         if x[-1] < x[0]:  # scanned the other way: stored rising
             x, t = x[::-1].copy(), t[::-1].copy()
@@ -167,9 +180,12 @@ class StripeSet:
         if not stripes or not all(isinstance(s, Stripe) for s in stripes):
             _fail(where, "no stripes: list each measured stripe as a [[stripe]] table (file, "
                          "standoff, speed, flow, direction)")
+        if len(stripes) > MAX_STRIPES:
+            _fail(where, f"{len(stripes)} stripes: at most {MAX_STRIPES} (4-16 calibrate a "
+                         "gun: two standoffs, both directions); split them or average repeats")
         object.__setattr__(self, "stripes", stripes)
         solids = self.solids
-        if isinstance(solids, bool) or not isinstance(solids, (int, float)) \
+        if isinstance(solids, (bool, np.bool_)) or not isinstance(solids, numbers.Real) \
                 or not 0 < float(solids) <= 1:
             _fail(where, f"solids = {shorten(solids)}: must be the dry share of the paint's "
                          "volume, in (0, 1] (a percentage? give 0.45 for 45 %)")
@@ -182,18 +198,34 @@ class StripeSet:
 def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
     """(position, thickness) of a stripe CSV, every data rule checked (:func:`check_profile`,
     each point named by its line)."""
-    data = read_bytes(path, f"{where}: file", StripeError, MAX_CSV_BYTES)
     name = path.name
+    try:  # read_bytes' own refusal of a large file would name the stripe as its kind
+        large = path.stat().st_size > MAX_CSV_BYTES
+    except OSError:  # read_bytes says why
+        large = False
+    if large:
+        _fail(name, f"over {MAX_CSV_BYTES >> 20} MiB: a profile of 100,000 points is ~3 MB; "
+                    "one scan per file")
+    data = read_bytes(path, f"{where}: file", StripeError, MAX_CSV_BYTES)
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
         _fail(name, f"not UTF-8 text (another format?): a stripe is a CSV with the columns "
                     f"{', '.join(COLUMNS)}")
-    rows = [(i + 1, r) for i, r in enumerate(csv.reader(io.StringIO(text)))
-            if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
+    reader, rows = csv.reader(io.StringIO(text)), []
+    try:
+        for r in reader:  # line_num: a quoted cell may span lines
+            if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#"):
+                rows.append((reader.line_num, r))
+    except csv.Error as exc:  # a cell over the csv module's limit (128 kB), a NUL
+        _fail(name, f"line {reader.line_num}: not CSV ({exc})")
     if not rows:
         _fail(name, f"empty: a stripe is a CSV with the columns {', '.join(COLUMNS)}")
     header = [c.strip() for c in rows[0][1]]
+    for sep in (";", "\t"):
+        if len(header) == 1 and sep in header[0]:
+            _fail(name, f"line {rows[0][0]}: cells separated by {sep!r}: write a "
+                        "comma-separated CSV (position,thickness), decimal points")
     if sorted(header) != sorted(COLUMNS):
         _fail(name, f"line {rows[0][0]}: columns {shorten(','.join(header), 40)}: expected "
                     f"'position,thickness' (m, m; another format or other units?)")
@@ -232,10 +264,13 @@ def stripes_from_dict(d: Mapping, folder: Path, source: str = "<python>") -> Str
     if not isinstance(tables, list) or not all(isinstance(t, Mapping) for t in tables):
         _fail(source, "'stripe' must be [[stripe]] tables (file, standoff, speed, flow, "
                       "direction)")
-    stripes, files = [], []
+    stripes, files, seen = [], [], {}
     for i, t in enumerate(tables, 1):
         where = f"{source}: stripe {i}"
         for k in t:
+            if k in TOP_KEYS and k != "standoff":  # the paint's: one per calibration
+                _fail(where, f"{k} is the paint's, given once at the top: calibrate stripes of "
+                             "another paint on their own")
             if k not in STRIPE_KEYS:
                 _fail(where, f"unknown key {shorten(k, 30)}{did_you_mean(k, STRIPE_KEYS)}; "
                              f"[[stripe]] takes {', '.join(STRIPE_KEYS)}")
@@ -246,6 +281,10 @@ def stripes_from_dict(d: Mapping, folder: Path, source: str = "<python>") -> Str
         if not isinstance(t["file"], str) or not t["file"]:
             _fail(where, f"file = {shorten(t['file'])}: must be the CSV's name (a string)")
         path = folder / file_path(t["file"], "file", error=StripeError)
+        if path.resolve() in seen:
+            _fail(where, f"file {shorten(t['file'], 60)} again (stripe {seen[path.resolve()]} "
+                         "has it): one [[stripe]] per scan")
+        seen[path.resolve()] = i
         position, thickness = read_profile(path, where)
         stripes.append(Stripe(position, thickness, t["standoff"], t["speed"], t["flow"],
                               t["direction"], source=f"{where} ({path.name})"))

@@ -4,14 +4,18 @@
 ``calibration.json`` (every model tried) and ``fits.png`` (each stripe against its fit)."""
 from __future__ import annotations
 
+import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..checks import file_path
+from ..errors import InputError
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder
 from ..io.job_file import toml_value
 from ..io.json_text import finite_json
 from ..io.stripes import StripeSet, read_stripes
+from ..model.values import shorten
 from ..painting.gun_table import spot_keys
 from ..painting.spray.calibrate import CRITERION, CalibrateOptions, CalibrationFit, fit_stripes
 from ..painting.spray.deposition import Gun
@@ -76,13 +80,14 @@ class Calibration:
             models.append({
                 "model": f.name, "chosen": f.name == fit.chosen, "usable": f.usable,
                 **({"why": f.why} if f.why else {}),
-                "params": f.params, "errors": {k: v for k, v in f.errors.items()
+                "params": f.params, "errors": {k: _finite(v) for k, v in f.errors.items()
                                                if k in f.params},
-                "apex": f.apex, "apex_error": f.errors.get("apex"),
-                "efficiency": f.efficiency, "efficiency_error": f.errors.get("efficiency"),
+                "apex": f.apex, "apex_error": _finite(f.errors.get("apex")),
+                "efficiency": f.efficiency,
+                "efficiency_error": _finite(f.errors.get("efficiency")),
                 "aic": f.aic, "bic": f.bic, "rms_share": f.rms_share, "points": f.points,
                 "parameters": f.k,
-                "stripes": [{"offset": o, "offset_error": e, "rms_share": r}
+                "stripes": [{"offset": o, "offset_error": _finite(e), "rms_share": r}
                             for o, e, r in zip(f.offsets, f.offset_errors, f.stripe_rms)]})
         return {
             "stripes": [{"source": s.source, "standoff": s.standoff, "speed": s.speed,
@@ -144,6 +149,11 @@ class Calibration:
         return folder
 
 
+def _finite(x):
+    """A standard error for JSON: null where JᵀJ gave none (an unusable fit's NaN)."""
+    return x if x is None or math.isfinite(x) else None
+
+
 def _pm(key: str, value: float, error: float, length: bool) -> str:
     if length:
         return f"{key} {value * 1e3:.4g} ± {error * 1e3:.2g} mm"
@@ -182,6 +192,9 @@ def calibrate(stripes, options: CalibrateOptions | None = None) -> Calibration:
     >>> cal.fit.chosen, cal.gun.standoff                      # doctest: +SKIP
     ('elliptic', 0.2)
     """
+    if not isinstance(stripes, (StripeSet, str, os.PathLike)):
+        raise InputError(f"stripes = {shorten(stripes, 40)}: expected a STRIPES.toml's path "
+                         "or a StripeSet (pollard_pin.io.stripes)")
     if not isinstance(stripes, StripeSet):
         stripes = read_stripes(stripes)
     return Calibration(fit_stripes(stripes, options))

@@ -90,6 +90,7 @@ BAD = [
      "line 101: thickness is nan: measure that point again"),
     ("negative", ONE, _csv(X, T - 2e-6 * (np.abs(X - 0.1) < 0.003)),
      "below zero beyond the noise"),
+    ("negated", ONE, _csv(X, -T), "s.csv): no film: every reading is ≤ 0"),
     ("narrow", ONE, _csv(X[100:200], T[100:200] + PEAK * 0.4 * (X[100:200] < -0.03)),
      "the scan is narrower than the pattern; measure wider"),
     ("elliptic one direction", ONE, _csv(X, T),
@@ -108,9 +109,13 @@ BAD = [
     ("swapped", ONE + ONE.split("\n", 1)[1].replace("s.csv", "w.csv").replace("across",
                                                                               "along"),
      _csv(X, T), "the 'along' stripes are wider than the 'across' ones"),
+    ("far standoff", "standoff = 0.01\n" + ONE, _csv(X, T),
+     "standoff = 0.01 m, beyond the stripes' 0.2-0.2 m by over ×1.5: measure stripes near it"),
+    ("efficiency given", ONE, _csv(X, T),
+     "efficiency 0.3 given, but the stripes hold 0.6 of the paint sprayed"),
 ]
 FLAGS = {"elliptic one direction": ["--model", "elliptic"],
-         "spread one standoff": ["--spread", "fit"]}
+         "spread one standoff": ["--spread", "fit"], "efficiency given": ["--efficiency", "0.3"]}
 
 
 @pytest.mark.parametrize("name, toml, csv, says", BAD, ids=[b[0] for b in BAD])

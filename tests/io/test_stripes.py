@@ -49,11 +49,16 @@ BAD_CSV = [
     ("huge", _csv(X, np.r_[T[:10], 1e300, T[11:]]), "over 1 mm of dry film: thickness in µm?"),
     ("mm", _csv(X * 1e3, T), "a pattern wider than 1 m: positions in mm? give metres"),
     ("microns", _csv(X, T * 1e6), "thickness in µm? give metres"),
+    ("millimetres", _csv(X, T * 1e3), "up to 0.02 m, over 1 mm of dry film: thickness in mm?"),
     ("columns", "x,y\n0,1\n", "columns 'x,y': expected 'position,thickness'"),
     ("few", _csv(X[:5], T[:5]), "5 points: measure at least 10"),
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
     ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
     ("empty", "", "empty: a stripe is a CSV"),
+    ("long cell", _csv(X, T).replace(repr(float(T[5])), "1" * 200_000),
+     "line 7: not CSV (field larger than field limit (131072))"),
+    ("semicolons", _csv(X, T).replace(",", ";"), "line 1: cells separated by ';': write a comma"),
+    ("tabs", _csv(X, T).replace(",", "\t"), "line 1: cells separated by '\\t': write a comma"),
 ]
 
 
@@ -81,6 +86,10 @@ BAD_TOML = [
     ("no stripes", "solids = 0.4\n", "no stripes"),
     ("missing file", TOP.replace("s.csv", "none.csv"), "none.csv' does not exist"),
     ("not toml", "solids = \n", "is not valid TOML"),
+    ("solids per stripe", TOP + "solids = 0.5\n",
+     "stripe 1: solids is the paint's, given once at the top"),
+    ("twice", TOP + TOP.split("\n", 1)[1].replace('"s.csv"', '"./s.csv"'),
+     "stripe 2: file './s.csv' again (stripe 1 has it)"),
 ]
 
 
@@ -113,6 +122,9 @@ def test_a_python_built_set_is_checked_the_same():
     with pytest.raises(StripeError, match="expected two 1-D columns"):
         Stripe(x, t[:-1], 0.2, 0.5, 2e-6, "across")
     assert StripeSet((good,), 1, 0.25).standoff == 0.25
+    assert len(StripeSet((good,) * 64, 0.4).stripes) == 64
+    with pytest.raises(StripeError, match="65 stripes: at most 64"):
+        StripeSet((good,) * 65, 0.4)
 
 
 def test_the_formats_page_names_every_key():
@@ -123,3 +135,42 @@ def test_the_formats_page_names_every_key():
     top, stripe = section.split("`[[stripe]]`:", 1)
     assert all(f"| `{k}`" in top for k in TOP_KEYS), TOP_KEYS
     assert all(f"| `{k}`" in stripe for k in STRIPE_KEYS), STRIPE_KEYS
+
+
+def test_a_large_file_is_refused_unread_in_one_line(tmp_path):
+    (tmp_path / "stripes.toml").write_text(TOP)
+    with open(tmp_path / "s.csv", "wb") as f:  # sparse: nothing to write
+        f.truncate((16 << 20) + 1)
+    with pytest.raises(StripeError) as info:
+        read_stripes(tmp_path / "stripes.toml")
+    assert str(info.value) == ("s.csv: over 16 MiB: a profile of 100,000 points is ~3 MB; one "
+                               "scan per file")
+
+
+def test_what_a_spreadsheet_writes_reads_the_same(tmp_path):
+    x, t = _good()
+    plain = _csv(x, t)
+    rows = [r.split(",") for r in plain.splitlines()]
+    quoted = "\r\n".join(f'"{b}","{a}"' for a, b in rows) + "\r\n"  # CRLF, quoted, swapped
+    for i, text in enumerate([plain, "\ufeff" + quoted, "# scan 3\n\n" + plain]):
+        folder = tmp_path / str(i)
+        folder.mkdir()
+        (folder / "s.csv").write_bytes(text.encode("utf-8"))
+        (folder / "stripes.toml").write_text(TOP)
+        got = read_stripes(folder / "stripes.toml").stripes[0]
+        assert np.array_equal(got.position, x) and np.array_equal(got.thickness, t), i
+
+
+def test_a_column_of_other_things_than_real_numbers_is_one_line():
+    x, t = _good()
+    for bad, says in ((x.astype(str), "position = "), (x + 0j, "position = "),
+                      (["a"] * len(x), "position = ")):
+        with pytest.raises(StripeError, match=f"^<python>: {says}.*: expected an array of "
+                                              "real numbers"):
+            Stripe(bad, t, 0.2, 0.5, 2e-6, "across")
+    # numpy's scalars are numbers: a value read from an array is taken
+    s = Stripe(x, t, np.float32(0.2), np.int64(1), np.float64(2e-6), "across")
+    assert (s.standoff, s.speed) == (pytest.approx(0.2), 1.0)
+    assert StripeSet((s,), np.float64(0.45)).solids == 0.45
+    with pytest.raises(StripeError, match="speed = np.True_: must be a number"):
+        Stripe(x, t, 0.2, np.bool_(True), 2e-6, "across")

@@ -1,6 +1,7 @@
 """The calibration that writes itself (outputs/calibration.py), issue 44's check: a panel
 painted with the gun fitted to noisy stripes gets the film the true pattern gives, within a
 few per cent of the target; gun.toml, calibration.json and fits.png are written all or none."""
+import dataclasses
 import json
 import math
 import tomllib
@@ -94,3 +95,25 @@ def test_a_panel_job_painted_with_the_gun_toml_gets_the_true_film(robot):
     print(f"panel job: fitted against true film {worst:.2e} of the target")
     assert worst < 0.01, worst
     assert abs(true.thickness.mean() / job.thickness - 1) < 0.02  # the true film on target
+
+
+@pytest.mark.parametrize("stripes", [None, {"solids": 0.45}, 3])
+def test_what_is_not_stripes_is_refused_in_one_line(stripes):
+    with pytest.raises(pp.errors.InputError,
+                       match=r"^stripes = .*: expected a STRIPES.toml's path or a StripeSet"):
+        calibrate(stripes)
+
+
+def test_an_unusable_fit_without_errors_writes_them_null(cal, tmp_path):
+    # a model whose JᵀJ was singular has NaN standard errors: calibration.json once refused
+    # them, and with them the chosen model's gun
+    other = next(f for f in cal.fit.fits if f.name != cal.fit.chosen)
+    nan = dataclasses.replace(other, usable=False, why="singular",
+                              errors={k: math.nan for k in other.errors},
+                              offset_errors=(math.nan,) * len(other.offsets))
+    fits = tuple(nan if f is other else f for f in cal.fit.fits)
+    broken = Calibration(dataclasses.replace(cal.fit, fits=fits))
+    data = json.loads((broken.write(tmp_path / "o") / "calibration.json").read_text())
+    got = next(m for m in data["models"] if m["model"] == other.name)
+    assert set(got["errors"].values()) == {None} and got["stripes"][0]["offset_error"] is None
+    assert got["apex_error"] is None and not got["usable"]

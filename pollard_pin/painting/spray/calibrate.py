@@ -36,6 +36,8 @@ END_SHARE = 0.05  # an end of the stripe holds at most this share of its peak (b
 MIN_ACROSS = 5  # points above half the peak: fewer cannot show the spot's shape
 EFFICIENCY_MAX = 1.1  # the stripes' own η beyond this: the flow, solids or speed are off
 EFFICIENCY_MIN = 0.02  # below: almost no paint landed, or the flow is in other units
+GIVEN_AGREES = 1.1  # a given efficiency within this factor of the stripes' own η
+EXTRAPOLATE = 1.5  # the reference standoff at most this factor beyond the stripes' ones
 SWAPPED = 1.05  # 'along' stripes this much wider than 'across' ones: the labels swapped
 POOR_FIT = 0.05  # a chosen model's residual RMS beyond this share of the peak is noted
 
@@ -142,7 +144,10 @@ def check_stripe(s, solids: float) -> tuple[float, float]:
     x, t, where = s.position, s.thickness, s.source
     sigma = noise(t)
     peak = float(t.max())
-    if peak <= NOISE_SIGMAS * sigma or peak <= 0:
+    if peak <= 0:
+        raise StripeError(f"{where}: no film: every reading is ≤ 0 (the thickness column "
+                          "negated, or the bare panel's?): measure a stripe that holds paint")
+    if peak <= NOISE_SIGMAS * sigma:
         raise StripeError(f"{where}: no film above the noise (peak {peak * 1e6:.3g} µm, noise "
                           f"±{sigma * 1e6:.2g} µm): measure a stripe that holds paint")
     floor = NOISE_SIGMAS * sigma + 0.01 * peak
@@ -210,6 +215,11 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
     data = stripe_data(stripes)
     h0 = reference_standoff(stripes)
     standoffs = sorted({s.standoff for s in stripes.stripes})
+    if not standoffs[0] / EXTRAPOLATE <= h0 <= standoffs[-1] * EXTRAPOLATE:
+        # the spread law extrapolated that far (below the apex: a spot of negative size)
+        raise StripeError(f"{stripes.source}: standoff = {h0:g} m, beyond the stripes' "
+                          f"{standoffs[0]:g}-{standoffs[-1]:g} m by over ×{EXTRAPOLATE:g}: "
+                          "measure stripes near it, or give one between")
     notes = []
     if options.spread == "fit" and len(standoffs) < 2:
         raise StripeError(f"{stripes.source}: a spread law needs stripes at two standoffs "
@@ -240,6 +250,12 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
                           f"{spread['across'] * 1e3:.3g} mm σ at {h0:g} m): a stroke along "
                           "the long axis shows the short size; directions swapped?")
     eta0 = float(np.mean([np.trapezoid(d.t, d.x) / d.amount for d in data]))
+    given = options.efficiency
+    if given is not None and not 1 / GIVEN_AGREES <= given / eta0 <= GIVEN_AGREES:
+        # the spot integrates to 1: a stripe's film holds η φ q / v whatever its shape
+        raise StripeError(f"{stripes.source}: efficiency {given:.4g} given, but the stripes "
+                          f"hold {eta0:.3g} of the paint sprayed: check flows, speeds and "
+                          "solids, or let the fit find it")
     fits = tuple(fit_model(m, data, h0, [c for c, _ in moments], spread, fit_apex=fit_apex,
                            efficiency=options.efficiency, efficiency0=eta0)
                  for m in models if m not in skipped and m in SPOTS)

@@ -28,8 +28,10 @@ from .spots import SPOTS
 # which the Gaussian model fits
 BETA_BOUNDS = (1.0 + 1e-6, 60.0)
 BETA_START = 3.0
-SHAPE_NEAR = 0.01  # a shape this share of its interval from a bound tends to the bound
+SHAPE_NEAR = 0.01  # a shape this share of its interval from its upper bound tends to it
 RATIO_LOWEST = 1.0 / MAX_ELONGATION  # σ_short/σ_long: the longest spot a job takes
+LIMITS = {"ratio": "a round spot: the gaussian model's",  # a shape at its upper bound
+          "beta": "a Gaussian profile: the gaussian model's"}
 MAX_EVALUATIONS = 300  # least squares iterations: a good fit takes 10-50
 UNDETERMINED = 0.5  # a size whose standard error is over half of it is not determined
 ILL_CONDITIONED = 1e12  # cond(JᵀJ) in scaled parameters beyond which they are not identified
@@ -257,11 +259,15 @@ def _unusable(res, cond, names, theta, lo, hi, params, errors) -> str:
     if not np.isfinite(cond) or cond > ILL_CONDITIONED:
         return "its parameters are not identifiable from these stripes (JᵀJ singular)"
     # on a bound to a millionth of the interval (lsmr's active_mask is not exact); a shape
-    # (β, the ratio) within a hundredth of it tends to its limit: the Gaussian, a round spot
+    # (β, the ratio) within a hundredth of its upper bound tends to its limit there: the
+    # Gaussian, a round spot (β near 1, a flat disc, is a shape of its own)
     near = np.array([SHAPE_NEAR if n in ("beta", "ratio") else 1e-6 for n in names])
-    at = np.flatnonzero(np.minimum(res.x - lo, hi - res.x) <= near * (hi - lo))
+    at = np.flatnonzero((res.x - lo <= 1e-6 * (hi - lo)) | (hi - res.x <= near * (hi - lo)))
     if len(at):
-        return f"{names[at[0]]} rests on its bound ({theta[at[0]]:.4g})"
+        i = at[0]
+        if names[i] in LIMITS and hi[i] - res.x[i] <= near[i] * (hi[i] - lo[i]):
+            return f"{names[i]} → {theta[i]:.4g}, {LIMITS[names[i]]}"
+        return f"{names[i]} rests on its bound ({theta[i]:.4g})"
     vague = [p for p in params if not errors[p] < UNDETERMINED * abs(params[p])]
     if vague:
         p = vague[0]

@@ -8,7 +8,7 @@ import pytest
 from stripe_sets import make_stripes
 
 from pollard_pin.painting.spray.calibrate import stripe_data
-from pollard_pin.painting.spray.spots import EllipticGaussian, RoundGaussian
+from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian, RoundGaussian
 from pollard_pin.painting.spray.stripe_fit import fit_model, fit_variables, spot_params
 
 SPREAD = {"across": 0.03, "along": 0.012}
@@ -48,7 +48,7 @@ def test_the_ratio_carries_sigma_short_and_its_error():
 
 def test_a_beta_spot_on_gaussian_stripes_does_not_count():
     fit = _fit(RoundGaussian(0.02), "beta", noise=0.2e-6, seed=1)
-    assert not fit.usable and fit.why, fit
+    assert not fit.usable and fit.why.startswith("beta → ") and "gaussian model's" in fit.why, fit
     good = _fit(RoundGaussian(0.02), "gaussian", noise=0.2e-6, seed=1)
     assert good.usable and good.why == "" and good.bic < fit.bic
 
@@ -62,3 +62,13 @@ def test_the_starts_come_from_the_measured_spreads():
     assert beta["radius"] / math.sqrt(2 * (beta["beta"] + 1)) == pytest.approx(0.02)
     with pytest.raises(KeyError):
         fit_variables("square", SPREAD, 0.03)
+
+
+def test_a_flat_beta_spot_counts():
+    # β = 1.5, a flat-topped disc: near β's lower bound, not its Gaussian limit (β → 60); the
+    # 1 % of (1, 60] that marks a Gaussian-like β once refused every β below 1.59
+    fit = _fit(BetaSpot(0.06, 1.5), "beta", noise=0.2e-6, seed=2)
+    assert fit.usable and fit.why == "", fit.why
+    assert abs(fit.params["beta"] - 1.5) < 3.5 * fit.errors["beta"] < 0.1
+    gauss = _fit(BetaSpot(0.06, 1.5), "gaussian", noise=0.2e-6, seed=2)
+    assert fit.bic < gauss.bic - 100
