@@ -8,6 +8,7 @@ without ``model`` reads, plans and writes as it always did.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import fields
 from typing import Any
@@ -122,6 +123,29 @@ def spot_keys(spot: Spot | None, sigma: float | None = None,
     return out if apex is None else {**out, "apex": apex}
 
 
+def check_spot(job, limit: float) -> None:
+    """A job's ``spot``, ``sigma`` and ``apex`` held to the ``[gun]`` table's rules (a job
+    built in Python; a file's job passes by :func:`spot_values` already): its spot None or a
+    :class:`.spray.spots.Spot` within the model's bounds, its sigma None or the spot's width
+    (None: set to it), its apex before the standoff; one :class:`JobError` line. A round
+    Gaussian spot becomes None (the job the file of its ``sigma`` reads)."""
+    spot, source = job.spot, job.source
+    if spot is None and job.apex is None:
+        return
+    if spot is not None and not isinstance(spot, Spot):
+        fail(JobError, f"{source}: ", "spot", spot, "must be a spray spot (RoundGaussian, "
+             "EllipticGaussian, BetaSpot of pollard_pin.painting.spray) or None")
+    sigma = job.sigma if spot is None or job.sigma is not None else spot.width
+    standoff = job.standoff if isinstance(job.standoff, int | float) else math.inf
+    values = spot_values(source, spot_keys(spot, sigma, job.apex), standoff, limit)
+    if spot is not None and sigma != values["sigma"]:
+        fail(JobError, f"{source}: ", "sigma", sigma,
+             f"is not the {spot.name} spot's width {values['sigma']!r} m (a job's sigma is "
+             "its spot's width, Spot.width: give sigma=None with a spot)")
+    object.__setattr__(job, "sigma", sigma)
+    object.__setattr__(job, "spot", values["spot"])
+
+
 def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
     """The job's ``[gun]`` table as the file says it, from ``d`` (the job's entries, None
     left out): standoff, the model and its keys (only ``sigma`` for the round Gaussian),
@@ -133,5 +157,5 @@ def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
     return out
 
 
-__all__ = ["MAX_BETA", "MAX_ELONGATION", "MODEL_KEYS", "SPOT_KEYS", "gun_table", "job_spot",
-           "required_gun_keys", "spot_keys", "spot_model", "spot_values"]
+__all__ = ["MAX_BETA", "MAX_ELONGATION", "MODEL_KEYS", "SPOT_KEYS", "check_spot", "gun_table",
+           "job_spot", "required_gun_keys", "spot_keys", "spot_model", "spot_values"]

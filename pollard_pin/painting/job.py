@@ -16,7 +16,7 @@ from ..model.params import did_you_mean
 from ..model.values import fail, integer, number, read_toml
 from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobError, JobKindError
-from .gun_table import SPOT_KEYS, gun_table, required_gun_keys, spot_values
+from .gun_table import SPOT_KEYS, check_spot, gun_table, required_gun_keys, spot_values
 from .line.conveyor import Line, line_from_table
 from .material import Paint, paint_from_table
 from .spray.spots import Spot
@@ -65,7 +65,8 @@ class PaintJob:
         Its size [m] along u = normal × v and v (world z projected onto the panel).
     standoff, sigma : float
         The gun's distance to the panel and the spray spot's spread [m] (its width,
-        :attr:`.spray.spots.Spot.width`, for a spot that is not the round Gaussian).
+        :attr:`.spray.spots.Spot.width`, for a spot that is not the round Gaussian; None
+        with a spot: set to its width, another value refused).
     flow : float
         Film volume deposited [m³/s].
     thickness : float
@@ -121,6 +122,9 @@ class PaintJob:
     spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
     apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
 
+    def __post_init__(self):
+        check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
+
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
         d = {k: v for k, v in asdict(self).items()
@@ -168,6 +172,9 @@ class PartJob:
     paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
     spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
     apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
+
+    def __post_init__(self):
+        check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
 
     @property
     def unit(self) -> float:

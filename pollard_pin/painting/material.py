@@ -22,6 +22,10 @@ OPTIONAL = ("transfer_efficiency",)
 # these bounds a value is a unit slip (1.2 meant as g/cm³, 1.2e6 as g/m³).
 MIN_DENSITY = 300.0
 MAX_DENSITY = 5000.0
+# The least share (solids, transfer efficiency): a thinned clear coat has ~15 % solids, an air
+# gun ~20 % efficiency; below 5 %, a slip (0.0045 for 0.45) that would print litres by the
+# thousand.
+MIN_SHARE = 0.05
 
 
 @dataclass(frozen=True)
@@ -58,19 +62,22 @@ class Paint:
 
 
 def _share(source: str, key: str, value: Any) -> float:
-    """A share in (0, 1]; a value in (1, 100] is said to be a per cent."""
+    """A share in [MIN_SHARE, 1]; a value from 100·MIN_SHARE up is said not to be a per cent."""
     v = number(value, key, JobError, f"{source}: ", positive=True)
     if v > 1:
-        hint = f" ({v:g} % is {v / 100:g})" if v <= 100 else ""
-        fail(JobError, f"{source}: ", key, value, f"must be a share in (0, 1], not a per "
-                                                  f"cent{hint}")
+        hint = ("" if v < 100 * MIN_SHARE else ", not a per cent" if v > 100 else
+                f", not a per cent ({v:g} % is {v / 100:g})")
+        fail(JobError, f"{source}: ", key, value, f"must be a share in (0, 1]{hint}")
+    if v < MIN_SHARE:
+        fail(JobError, f"{source}: ", key, value, f"must be at least {MIN_SHARE:g} (no paint "
+                                                  f"or gun has less than {100 * MIN_SHARE:g} %)")
     return v
 
 
 def paint_from_table(source: str, table: Any) -> Paint:
     """The job's ``[paint]`` table checked: one :class:`JobError` line naming ``source``, the
-    key and the rule for a missing or unknown key, a share outside (0, 1] (a per cent) or a
-    density outside MIN_DENSITY..MAX_DENSITY kg/m³ (g/cm³).
+    key and the rule for a missing or unknown key, a share outside [MIN_SHARE, 1] (a per cent)
+    or a density outside MIN_DENSITY..MAX_DENSITY kg/m³ (g/cm³).
 
     Parameters
     ----------
@@ -115,4 +122,4 @@ def paint_from_table(source: str, table: Any) -> Paint:
     return Paint(solids, density, te)
 
 
-__all__ = ["MAX_DENSITY", "MIN_DENSITY", "Paint", "paint_from_table"]
+__all__ = ["MAX_DENSITY", "MIN_DENSITY", "MIN_SHARE", "Paint", "paint_from_table"]

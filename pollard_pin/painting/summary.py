@@ -28,8 +28,8 @@ def part_summary_lines(rep: dict, names) -> list[str]:
         f"film {th['min'] * 1e6:.4g}–{th['max'] * 1e6:.4g} µm, mean {th['mean'] * 1e6:.4g} µm "
         f"(target {target * 1e6:.4g} µm), {100 * th['within_5pct']:.2f} % of the area within "
         f"±5 %, {100 * th['within_10pct']:.2f} % within ±10 %",
-        f"largest incidence {rep['largest_incidence_deg']:.3g}°, transfer efficiency "
-        f"{100 * rep['transfer_efficiency']:.1f} %",
+        f"largest incidence {rep['largest_incidence_deg']:.3g}°, geometric transfer efficiency "
+        f"{100 * rep['transfer_efficiency']:.1f} % (on the part / sprayed)",
         motor_use_line(rep, names),
         f"planned in {rep['timings']['plan']:.2f} s, film in {rep['timings']['film']:.2f} s "
         f"({rep['film_points']['painted']} painted film points, {rep['samples']} path "

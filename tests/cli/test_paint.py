@@ -175,6 +175,18 @@ def test_view_paint_overlay(painted, tmp_path, capsys):
     (lambda t: t.replace("density = 1300.0", "density = 1.3"), "1.2 g/cm³ is 1200 kg/m³"),
     (lambda t: t.replace("transfer_efficiency =", "efficiency ="),
      "'paint.efficiency' = 0.65: unknown key (did you mean 'transfer_efficiency'?)"),
+    (lambda t: t.replace("[paint] ", "[[paint]] "), "'paint' = [{'solids': 0.45"),
+    (lambda t: t.replace("transfer_efficiency = 0.65", "transfer_efficiency = 1.5"),
+     "'paint.transfer_efficiency' = 1.5: must be a share in (0, 1] "),
+    (lambda t: t.replace("sigma = 0.010", 'model = "beta"\nradius = 0.03\nbeta = 2.0\n'
+                                          "sigma = 0.010"),
+     "'gun.sigma' = 0.01: is not a key of model 'beta'"),
+    (lambda t: t.replace("sigma = 0.010", "sigma = 0.010\nsigma_long = 0.02"),
+     "'gun.sigma_long' = 0.02: is not a key of model 'gaussian'"),
+    (lambda t: t.replace("sigma = 0.010", 'model = "beta"\nradius = 0.03\nbeta = 1' + 400 * "0"),
+     "'gun.beta' = 1e+400"),
+    (lambda t: t.replace("sigma = 0.010", "sigma = 0.010\napex = 0.15"),
+     "'gun.apex' = 0.15: must lie before the standoff (0.15 m)"),
 ])
 def test_bad_jobs_are_one_line_and_write_nothing(tmp_path, capsys, edit, words):
     job = tmp_path / "job.toml"

@@ -178,6 +178,7 @@ def test_a_file_that_is_no_paint_report_is_one_line(tmp_path, text, says):
         read_paint_json(path)
     message = str(err.value)
     assert message.startswith(f"{path}: ") and says in message and "\n" not in message
+    assert len(message) - len(str(path)) <= 200, message  # paint's 19 keys listed in part
 
 
 def test_no_file_a_folder_a_fifo_and_a_huge_file_are_one_line(tmp_path, monkeypatch):

@@ -115,3 +115,33 @@ def test_spot_keys_read_back_as_the_spot():
         job = job_from_dict(_job(keys), "gun.toml")
         assert job_spot(job) == spot and job.apex == -0.04
     assert spot_keys(None, 0.01) == {"sigma": 0.01}
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"spot": BetaSpot(0.03, 2.0)}, ["'sigma' = 0.01", "not the beta spot's width 0.01224",
+                                     "sigma=None"]),
+    ({"spot": RoundGaussian(0.02)}, ["'sigma' = 0.01", "gaussian spot's width 0.02"]),
+    ({"spot": "beta"}, ["'spot' = 'beta'", "must be a spray spot"]),
+    ({"spot": EllipticGaussian(0.02, 0.002), "sigma": None}, ["'gun.sigma_short'", "1/5"]),
+    ({"spot": BetaSpot(0.03, 5000.0), "sigma": None}, ["'gun.beta'", "at most 1000"]),
+    ({"apex": 0.2}, ["'gun.apex' = 0.2", "before the standoff (0.15 m)"]),
+])
+@pytest.mark.parametrize("part", [False, True])
+def test_a_python_job_with_a_spot_is_checked_when_made(changes, words, part):
+    """A job built in Python (dataclasses.replace) meets the [gun] rules when it is made, one
+    JobError line (not a ValueError from the gun when it paints); sigma=None takes the
+    spot's width, and a round Gaussian spot is the job of its sigma."""
+    from dataclasses import replace
+
+    job = job_from_dict(_job({"sigma": 0.01}, part), "job.toml")
+    with pytest.raises(JobError) as info:
+        replace(job, **changes)
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith("job.toml: ") and len(msg) <= 250, msg
+    for w in words:
+        assert w in msg, (w, msg)
+    beta = replace(job, spot=BetaSpot(0.03, 2.0), sigma=None)
+    assert beta.sigma == BetaSpot(0.03, 2.0).width == gun_of(beta).sigma
+    assert beta == job_from_dict(_job({"model": "beta", "radius": 0.03, "beta": 2.0}, part),
+                                 "job.toml")
+    assert replace(job, spot=RoundGaussian(0.01)) == job

@@ -37,6 +37,9 @@ def test_the_table_read_once_frozen():
     ({"solids": 0.45, "density": 1300, "transfer_efficiency": 0},
      ["'paint.transfer_efficiency'", "must be > 0"]),
     ({"solids": 0.0, "density": 1300}, ["'paint.solids'", "must be > 0"]),
+    ({"solids": 0.0045, "density": 1300}, ["'paint.solids' = 0.0045", "at least 0.05"]),
+    ({"solids": 0.45, "density": 1300, "transfer_efficiency": 1e-9},
+     ["'paint.transfer_efficiency'", "at least 0.05"]),
     ({"solids": 1.5e3, "density": 1300}, ["'paint.solids'", "not a per cent"]),
     ({"solids": math.nan, "density": 1300}, ["'paint.solids'", "finite"]),
     ({"solids": True, "density": 1300}, ["'paint.solids'", "must be a number"]),
@@ -88,3 +91,16 @@ def test_a_bad_table_in_a_file_names_the_file(tmp_path):
         "density = 1300.0", "density = 1.3"), encoding="utf-8")
     with pytest.raises(JobError, match=r"job\.toml: 'paint\.density' = 1\.3: .*g/cm³"):
         load_job(path)
+
+
+@pytest.mark.parametrize("value", [1.5, 2.0, 4.99])
+def test_a_share_just_above_1_is_not_called_a_per_cent(value):
+    """1.5 is no per cent of a paint (1.5 % solids or efficiency is none): the rule alone,
+    no "1.5 % is 0.015"; from 5 up the per cent is said."""
+    for key in ("solids", "transfer_efficiency"):
+        with pytest.raises(JobError) as info:
+            paint_from_table("job.toml", {"solids": 0.45, "density": 1300, key: value})
+        msg = str(info.value)
+        assert msg.endswith("must be a share in (0, 1]") and "per cent" not in msg, msg
+    with pytest.raises(JobError, match=r"not a per cent \(5 % is 0.05\)"):
+        paint_from_table("job.toml", {"solids": 5, "density": 1300})

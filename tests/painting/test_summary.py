@@ -125,3 +125,21 @@ def test_the_strokes_line():
         "strokes along the travel; waits at the turnarounds none")
     assert strokes_line({"direction": "across", "step_from": "leading", "dwell_s": 1.0},
                         "'low' 1.000 s, 'high' 2.000 s").endswith("'low' 1.000 s, 'high' 2.000 s")
+
+
+def test_a_parts_share_that_lands_is_not_called_the_paints_transfer_efficiency():
+    """A part's top-level transfer_efficiency (on the part / sprayed, the geometry's) is said
+    as the geometric one, apart from [paint]'s transfer efficiency on the paint line."""
+    from pollard_pin.painting.summary import part_summary_lines
+
+    th = {"min": 24e-6, "max": 26e-6, "mean": 25e-6, "within_5pct": 1.0, "within_10pct": 1.0}
+    rep = {"passes": 5, "direction": "horizontal", "spacing": 0.018, "speed": 0.3,
+           "tip_speed_range": [0.29, 0.31], "coats": 1, "normal_smoothing": 0.01,
+           "cycle_time": 8.0, "lower_bound": 4.0, "thickness": th, "target": 25e-6,
+           "largest_incidence_deg": 12.8, "transfer_efficiency": 0.552,
+           "motors": {"a": {"peak_torque": 0.5, "rms_torque": 0.25, "speed": 0.125}},
+           "timings": {"plan": 1.0, "film": 1.0}, "film_points": {"painted": 10},
+           "samples": 100}
+    lines = part_summary_lines(rep, ["a"])
+    assert ("largest incidence 12.8°, geometric transfer efficiency 55.2 % (on the part / "
+            "sprayed)") in lines
