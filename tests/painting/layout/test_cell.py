@@ -78,10 +78,34 @@ def test_options_and_bad_counts(robot):
         propose_layout(robot, placed, 2)
 
 
-def test_every_proposal_reads_back_or_is_refused_in_one_line(robot, tmp_path):
+def _bands_remembered(monkeypatch):
+    """robot_band remembered by its arguments in the layout and the split (it is a function
+    of them: the same bands, computed once). Sixteen layouts of one job share a reference
+    band, and the split of each layout asks again for the bands its proposal just moved."""
+    import hashlib
+    import pickle
+
+    from pollard_pin.painting.cell import split as cell_split
+
+    band, seen = cell_layout.robot_band, {}
+
+    def remembered(robot, cell_robot, strokes, **options):
+        key = (cell_robot, hashlib.sha1(pickle.dumps(strokes)).digest(),
+               tuple(sorted(options.items())))
+        if key not in seen:
+            seen[key] = band(robot, cell_robot, strokes, **options)
+        return seen[key]
+
+    monkeypatch.setattr(cell_layout, "robot_band", remembered)
+    monkeypatch.setattr(cell_split, "robot_band", remembered)
+
+
+def test_every_proposal_reads_back_or_is_refused_in_one_line(robot, tmp_path, monkeypatch):
     # robots.toml → load_job: what the project proposes, its job reader accepts (14 robots
     # for the example cell once put one at y = 10.01 m, beyond the reader's ±10 m)
     from pathlib import Path
+
+    _bands_remembered(monkeypatch)
 
     from pollard_pin.outputs.robots_toml import robots_toml
     from pollard_pin.painting.cell.robots import MAX_DISTANCE, MAX_ROBOTS
