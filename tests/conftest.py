@@ -34,6 +34,9 @@ HEAVY_FIRST = (
     "cli/test_fuzz_output.py",
     "outputs/test_paint_cell_files.py",
     "cli/test_paint_robots.py",
+    "painting/layout/test_place.py",
+    "outputs/test_result.py",
+    "test_doc_examples.py",
 )
 
 
