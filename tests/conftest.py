@@ -14,7 +14,40 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "slow: long test, skipped unless --runslow is given")
 
 
+# The files whose tests take longest (each tens of CPU seconds: they plan paint jobs, search
+# line speeds, build a venv), heaviest first. `make test` hands whole files to its workers in
+# collection order (--dist loadfile --no-loadscope-reorder): these go first, so that the many
+# quick files fill in behind them and neither worker is left with a long file at the end.
+# Only the order changes; a file missing here runs after them, as collected.
+HEAVY_FIRST = (
+    "cli/test_paint_line.py",
+    "painting/layout/test_cell.py",
+    "model/test_build.py",
+    "painting/cell/test_plan.py",
+    "painting/line/test_speeds.py",
+    "cli/test_paint.py",
+    "painting/plan/test_panel.py",
+    "dynamics/test_timeopt.py",
+    "painting/line/test_part.py",
+    "painting/line/test_panel.py",
+    "cli/test_main.py",
+    "cli/test_fuzz_output.py",
+    "outputs/test_paint_cell_files.py",
+    "cli/test_paint_robots.py",
+    "painting/layout/test_place.py",
+    "outputs/test_result.py",
+    "test_doc_examples.py",
+)
+
+
+def _heavy_rank(item) -> int:
+    path = item.path.as_posix()
+    return next((i for i, name in enumerate(HEAVY_FIRST) if path.endswith("/tests/" + name)),
+                len(HEAVY_FIRST))
+
+
 def pytest_collection_modifyitems(config, items):
+    items.sort(key=_heavy_rank)  # stable: within a file, and past the list, as collected
     if config.getoption("--runslow"):
         return
     skip = pytest.mark.skip(reason="slow: run with --runslow")

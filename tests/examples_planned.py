@@ -6,8 +6,15 @@ inputs (another speed, a moved part, a patched knob) plans its own.
 These values are read, never written: plans and jobs are frozen dataclasses, the arrays of
 the plans and films are made read-only (:func:`_read_only`: a test writing into one fails),
 and an output folder's files are checked unchanged when the session ends
-(:func:`_unchanged`)."""
+(:func:`_unchanged`).
+
+Under pytest-xdist each worker is a process with its own session fixtures: :func:`_once`
+makes each plan (and output folder) once per run, in the first worker that asks; the others
+read its pickle (the same numbers: a plan is deterministic)."""
 import dataclasses
+import fcntl
+import os
+import pickle
 from dataclasses import replace
 from pathlib import Path
 
@@ -49,6 +56,36 @@ def _unchanged(folder: Path):
     assert tree_state(folder) == before, f"a test wrote into the session's folder {folder}"
 
 
+def run_folder(tmp_path_factory) -> Path:
+    """The folder common to this run's workers (pytest-xdist: their base temp folders'
+    parent), else this session's base temp folder."""
+    base = tmp_path_factory.getbasetemp()
+    return base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+
+
+def _once(tmp_path_factory, name: str, make):
+    """``make()`` once per run: the first worker to ask makes it and pickles it into
+    :func:`run_folder`, the others wait for it (a file lock) and read the pickle. A value
+    that does not pickle (or without cloudpickle) is made by each worker."""
+    root = run_folder(tmp_path_factory)
+    path = root / f"once-{name}.pickle"
+    with open(root / f"once-{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if path.exists():
+            return pickle.loads(path.read_bytes())
+        value = make()
+        try:  # cloudpickle (dask's) pickles a line plan's closures by value
+            import cloudpickle
+
+            data = cloudpickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception:  # no cloudpickle, or something in it does not pickle
+            return value
+        part = path.with_suffix(".part")
+        part.write_bytes(data)
+        part.replace(path)
+        return value
+
+
 # --- the inputs ---------------------------------------------------------------------------
 @pytest.fixture(scope="session")
 def act():
@@ -81,7 +118,9 @@ def line_part_job(tmp_path_factory):
 
     import pollard_pin as pp
 
-    return pp.load_job(write_line_part(tmp_path_factory.mktemp("line_part")))
+    # one file for the run: its path is the job's source, in the plans the workers read
+    return pp.load_job(_once(tmp_path_factory, "line_part_job",
+                             lambda: write_line_part(tmp_path_factory.mktemp("line_part"))))
 
 
 @pytest.fixture(scope="session")
@@ -102,94 +141,100 @@ def curved_job():
 
 # --- plans and films, in this process -----------------------------------------------------
 @pytest.fixture(scope="session")
-def plan(robot, job, act):
+def plan(robot, job, act, tmp_path_factory):
     """examples/paint.toml planned (plan_paint)."""
     from pollard_pin.painting.plan import plan_paint
 
-    return _read_only(plan_paint(robot, job, act))
+    return _read_only(_once(tmp_path_factory, "plan", lambda: plan_paint(robot, job, act)))
 
 
 @pytest.fixture(scope="session")
-def film(plan):
+def film(plan, tmp_path_factory):
     """(U, V, points, Film) of :func:`plan` at the default grid (plan_film)."""
     from pollard_pin.painting.film import plan_film
 
-    return _read_only(plan_film(plan))
+    return _read_only(_once(tmp_path_factory, "film", lambda: plan_film(plan)))
 
 
 @pytest.fixture(scope="session")
-def line_plan(robot, line_job, act):
+def line_plan(robot, line_job, act, tmp_path_factory):
     """examples/line.toml planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line
 
-    return _read_only(plan_line(robot, line_job, act))
+    return _read_only(_once(tmp_path_factory, "line_plan",
+                            lambda: plan_line(robot, line_job, act)))
 
 
 @pytest.fixture(scope="session")
-def line_plan_film(line_plan):
+def line_plan_film(line_plan, tmp_path_factory):
     """(U, V, points, Film) of :func:`line_plan` at the default grid (line_film)."""
     from pollard_pin.painting.film.line import line_film
 
-    return _read_only(line_film(line_plan))
+    return _read_only(_once(tmp_path_factory, "line_plan_film", lambda: line_film(line_plan)))
 
 
 @pytest.fixture(scope="session")
-def line_cell(robot, line_job, act):
+def line_cell(robot, line_job, act, tmp_path_factory):
     """examples/line.toml as a cell of one robot at the origin (plan_cell)."""
     from pollard_pin.painting.cell.plan import plan_cell
     from pollard_pin.painting.cell.robots import CellRobot
 
-    return _read_only(plan_cell(robot, replace(line_job, robots=(CellRobot("only"),)), act))
+    return _read_only(_once(tmp_path_factory, "line_cell", lambda: plan_cell(
+        robot, replace(line_job, robots=(CellRobot("only"),)), act)))
 
 
 @pytest.fixture(scope="session")
-def line_part_plan(robot, line_part_job, act):
+def line_part_plan(robot, line_part_job, act, tmp_path_factory):
     """:func:`line_part_job` planned at its line speed (plan_line), its strokes across the
     travel (``auto`` keeps along for this short strip: a shorter cycle, docs/model.md §24.2;
     a cell, and so a cell of one robot, strokes across)."""
     from pollard_pin.painting.line.panel import plan_line
     from pollard_pin.painting.policy import PlannerPolicy
 
-    return _read_only(plan_line(robot, line_part_job, act,
-                                policy=PlannerPolicy(strokes="across")))
+    return _read_only(_once(tmp_path_factory, "line_part_plan", lambda: plan_line(
+        robot, line_part_job, act, policy=PlannerPolicy(strokes="across"))))
 
 
 @pytest.fixture(scope="session")
-def line_part_film(line_part_plan):
+def line_part_film(line_part_plan, tmp_path_factory):
     """surface_film of :func:`line_part_plan` seen from the part, at the default spacing."""
     from pollard_pin.painting.film.part import surface_film
 
-    return _read_only(surface_film(line_part_plan.in_part_frame()))
+    return _read_only(_once(tmp_path_factory, "line_part_film",
+                            lambda: surface_film(line_part_plan.in_part_frame())))
 
 
 @pytest.fixture(scope="session")
-def line_part_example_plan(robot, line_part_example_job, act):
+def line_part_example_plan(robot, line_part_example_job, act, tmp_path_factory):
     """examples/line_part.toml planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line
 
-    return _read_only(plan_line(robot, line_part_example_job, act))
+    return _read_only(_once(tmp_path_factory, "line_part_example_plan",
+                            lambda: plan_line(robot, line_part_example_job, act)))
 
 
 @pytest.fixture(scope="session")
-def curved_plan(robot, curved_job, act):
+def curved_plan(robot, curved_job, act, tmp_path_factory):
     """examples/parts/curved_panel.toml planned (plan_surface)."""
     from pollard_pin.painting.plan.part import plan_surface
 
-    return _read_only(plan_surface(robot, curved_job, act))
+    return _read_only(_once(tmp_path_factory, "curved_plan",
+                            lambda: plan_surface(robot, curved_job, act)))
 
 
 @pytest.fixture(scope="session")
-def ribbed_plan(robot, act):
+def ribbed_plan(robot, act, tmp_path_factory):
     """examples/parts/ribbed_plate.toml planned (plan_surface)."""
     import pollard_pin as pp
     from pollard_pin.painting.plan.part import plan_surface
 
     job = pp.load_job(EXAMPLES / "parts" / "ribbed_plate.toml")
-    return _read_only(plan_surface(robot, job, act))
+    return _read_only(_once(tmp_path_factory, "ribbed_plan",
+                            lambda: plan_surface(robot, job, act)))
 
 
 @pytest.fixture(scope="session")
-def panel_part_plan(robot, job, act):
+def panel_part_plan(robot, job, act, tmp_path_factory):
     """examples/paint.toml's panel as a two-triangle mesh (panel_part) planned by the surface
     planner (plan_surface); the part is ``plan.part``."""
     from pollard_pin.painting.job import PartJob
@@ -199,7 +244,8 @@ def panel_part_plan(robot, job, act):
     part = panel_part(job)
     pj = PartJob(mesh="<panel>", position=(0.0, 0.0, 0.0), standoff=job.standoff,
                  sigma=job.sigma, flow=job.flow, thickness=job.thickness, source="panel")
-    return _read_only(plan_surface(robot, pj, act, part))
+    return _read_only(_once(tmp_path_factory, "panel_part_plan",
+                            lambda: plan_surface(robot, pj, act, part)))
 
 
 # --- the CLI's output folders -------------------------------------------------------------
@@ -208,6 +254,9 @@ def panel_painted(tmp_path_factory):
     """`pollard-pin paint --job examples/paint.toml --out DIR`: DIR."""
     from pollard_pin.cli import main
 
-    out = tmp_path_factory.mktemp("paint") / "out"
-    assert main(["paint", "--job", str(EXAMPLES / "paint.toml"), "--out", str(out)]) == 0
-    yield from _unchanged(out)
+    def paint():
+        out = tmp_path_factory.mktemp("paint") / "out"
+        assert main(["paint", "--job", str(EXAMPLES / "paint.toml"), "--out", str(out)]) == 0
+        return out
+
+    yield from _unchanged(_once(tmp_path_factory, "panel_painted", paint))

@@ -34,9 +34,9 @@ def test_area_converges_on_finer_grids(robot):
 def test_volume_streams_and_equals_the_stacked_planes(robot):
     """A coarse volume, streamed chunk by chunk: its volume is the sum over its x-slices of
     the plane maps' areas times the step (the grids coincide point for point)."""
-    h = 0.04
+    h = 0.06
     chunks = []
-    vol = map_workspace(robot, None, WorkspaceOptions(volume=True, resolution=h, chunk=5000),
+    vol = map_workspace(robot, None, WorkspaceOptions(volume=True, resolution=h, chunk=1000),
                         sink=chunks.append)
     assert vol.columns is None and len(chunks) > 1
     assert sum(len(c["x"]) for c in chunks) == vol.grid.size

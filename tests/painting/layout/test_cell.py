@@ -27,6 +27,34 @@ from pollard_pin.painting.layout.cell import (
 BAND = 0.34  # m: one robot's band along z at the gun plane x = 0.55 (test_bands.py)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def bands_remembered():
+    """robot_band remembered by its arguments in the layout and the split, for this module
+    (it is a function of them: the same bands, computed once). Layouts of one job share a
+    reference band, the split of a layout asks again for the bands its proposal just moved,
+    and several tests lay out the same panel."""
+    import hashlib
+    import pickle
+
+    from pollard_pin.painting.cell import split as cell_split
+
+    band, seen = cell_layout.robot_band, {}
+
+    def remembered(robot, cell_robot, strokes, **options):
+        key = (id(robot), cell_robot, hashlib.sha1(pickle.dumps(strokes)).digest(),
+               tuple(sorted(options.items())))
+        if key not in seen:
+            seen[key] = got = band(robot, cell_robot, strokes, **options)
+            for a in got.grid or ():  # read-only: a caller writing into one fails
+                a.flags.writeable = False
+        return seen[key]
+
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(cell_layout, "robot_band", remembered)
+        m.setattr(cell_split, "robot_band", remembered)
+        yield
+
+
 @pytest.mark.parametrize("height, fewest", [(0.24, 1), (0.34, 2), (0.6, 3), (1.0, 4)])
 def test_the_fewest_robots_whose_bands_hold_the_zones(robot, height, fewest):
     job = tall_panel(height=height, z=height / 2)
