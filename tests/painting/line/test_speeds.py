@@ -301,3 +301,27 @@ def test_a_plan_that_waits_ends_the_slow_search():
                               floor=lambda p: 0.001 if p.speed < 0.02 else None)
     assert got.low == 0.015 and min(tried) == 0.015
     assert got.low_bound == waits_bound(0.001) and "0.001 m/s" in got.low_bound
+
+
+def test_a_refused_speed_is_refused_again_without_planning():
+    """remembering: a speed refused once is refused again in the same words (message,
+    side, why, hint) without a second plan; a speed that plans is planned every time."""
+    from pollard_pin.painting.errors import LineSpeedError
+    from pollard_pin.painting.line.speeds import remembering
+
+    calls = []
+
+    def plan_at(speed):
+        calls.append(speed)
+        if speed > 1.0:
+            raise LineSpeedError(f"too fast at {speed}", True, "the reach", 0.5)
+        return speed
+
+    memo = remembering(plan_at)
+    said = []
+    for _ in range(2):
+        with pytest.raises(LineSpeedError) as exc:
+            memo(2.0)
+        said.append((str(exc.value), exc.value.too_fast, exc.value.why, exc.value.hint))
+    assert calls == [2.0] and said[0] == said[1] == ("too fast at 2.0", True, "the reach", 0.5)
+    assert memo(0.5) == memo(0.5) == 0.5 and calls == [2.0, 0.5, 0.5]
