@@ -121,7 +121,8 @@ GOOD = 0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.02) ** 2) / (math.sqrt(2
     (GOOD + 0.3 * GOOD.max() * (X < -0.09), "still 30% of its peak at the left end"),
     (0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.08) ** 2) / (math.sqrt(2 * math.pi) * 0.08),
      "at the left end (-0.1 m): the scan is narrower than the pattern; measure wider"),
-    (GOOD * 0, "no film above the noise"),
+    (GOOD * 0, "no film: every reading is ≤ 0"),
+    (np.random.default_rng(0).normal(0.0, 0.2e-6, X.shape), "no film above the noise"),
     (GOOD * 3, "more paint than was sprayed (transfer efficiency"),
     (GOOD * 0.01, "almost none of the paint"),
     (0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.0008) ** 2)
