@@ -226,9 +226,10 @@ def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
         if len(header) == 1 and sep in header[0]:
             _fail(name, f"line {rows[0][0]}: cells separated by {sep!r}: write a "
                         "comma-separated CSV (position,thickness), decimal points")
-    if sorted(header) != sorted(COLUMNS):
+    # other columns (a profilometer's own: time, flags) are ignored; ours once each
+    if any(header.count(c) != 1 for c in COLUMNS):
         _fail(name, f"line {rows[0][0]}: columns {shorten(','.join(header), 40)}: expected "
-                    f"'position,thickness' (m, m; another format or other units?)")
+                    f"'position,thickness' once each (m, m; another format or other units?)")
     cols = {c: header.index(c) for c in COLUMNS}
     lines, values = [], []
     for line, r in rows[1:]:
