@@ -183,3 +183,22 @@ def test_an_efficiency_over_one_is_noted():
     fit = fit_stripes(StripeSet((_one(X, GOOD * 1.05 / 0.6),), 0.45))
     assert fit.best.efficiency == pytest.approx(1.05, rel=1e-3)
     assert any("transfer efficiency fitted at 1.050, over 1" in n for n in fit.notes)
+
+
+def test_no_model_fitting_is_one_short_line(monkeypatch):
+    import pollard_pin.painting.spray.calibrate as module
+    from pollard_pin.errors import SolveError
+
+    real_fit = module.fit_model
+
+    def unusable(*args, **kw):
+        fit = real_fit(*args, **kw)
+        return replace(fit, usable=False, why=f"{fit.name}'s sizes = 0.03 ± 2.2e+05: not "
+                                               "determined by these stripes")
+
+    monkeypatch.setattr(module, "fit_model", unusable)
+    with pytest.raises(SolveError) as info:
+        fit_stripes(make_stripes(EllipticGaussian(0.03, 0.012), 5, speeds=(0.4,)))
+    text = str(info.value)
+    assert text.startswith("no spot model fits the stripes: gaussian: gaussian's sizes = ")
+    assert text.endswith("; nor elliptic or beta") and len(text) < 160, text
