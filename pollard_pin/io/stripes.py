@@ -85,7 +85,8 @@ def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
         _fail(where, f"position {position.shape} and thickness {thickness.shape}: expected "
                      "two 1-D columns of one length")
     if len(position) < MIN_POINTS:
-        _fail(where, f"{len(position)} points: measure at least {MIN_POINTS} across the "
+        n = len(position)
+        _fail(where, f"{n} point{'s' * (n != 1)}: measure at least {MIN_POINTS} across the "
                      "stripe, from bare panel to bare panel")
     for name, col in zip(COLUMNS, (position, thickness)):
         bad = ~np.isfinite(col)

@@ -54,6 +54,7 @@ BAD_CSV = [
     ("column twice", _csv(X, T).replace("thickness\n", "thickness,thickness\n", 1),
      "columns 'position,thickness,thickness': expected 'position,thickness' once each"),
     ("few", _csv(X[:5], T[:5]), "5 points: measure at least 10"),
+    ("one", _csv(X[:1], T[:1]), "s.csv: 1 point: measure at least 10"),
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
     ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
     ("empty", "", "empty: a stripe is a CSV"),
