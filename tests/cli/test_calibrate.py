@@ -173,7 +173,7 @@ def test_the_example_stripes_are_what_the_script_makes(tmp_path, capsys):
 
 @pytest.mark.parametrize("where, says", [
     ("full", "gun.toml: cannot write: no space left on device"),
-    ("dangling", "a dangling symbolic link")])  # a FIFO waits 2 s: tests/io's
+    ("dangling", "a dangling symbolic link")])  # a FIFO waits 2 s: test_fuzz_output's
 def test_an_output_that_cannot_be_written_leaves_all_as_it_was(tmp_path, capsys, where, says):
     # the stripes are refused first if bad: these are good (one, round), the outputs not
     (tmp_path / "stripes.toml").write_text(ONE)
