@@ -85,7 +85,8 @@ def check_profile(where: str, position: np.ndarray, thickness: np.ndarray,
         _fail(where, f"position {position.shape} and thickness {thickness.shape}: expected "
                      "two 1-D columns of one length")
     if len(position) < MIN_POINTS:
-        _fail(where, f"{len(position)} points: measure at least {MIN_POINTS} across the "
+        n = len(position)
+        _fail(where, f"{n} point{'s' * (n != 1)}: measure at least {MIN_POINTS} across the "
                      "stripe, from bare panel to bare panel")
     for name, col in zip(COLUMNS, (position, thickness)):
         bad = ~np.isfinite(col)
@@ -226,9 +227,10 @@ def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:
         if len(header) == 1 and sep in header[0]:
             _fail(name, f"line {rows[0][0]}: cells separated by {sep!r}: write a "
                         "comma-separated CSV (position,thickness), decimal points")
-    if sorted(header) != sorted(COLUMNS):
+    # other columns (a profilometer's own: time, flags) are ignored; ours once each
+    if any(header.count(c) != 1 for c in COLUMNS):
         _fail(name, f"line {rows[0][0]}: columns {shorten(','.join(header), 40)}: expected "
-                    f"'position,thickness' (m, m; another format or other units?)")
+                    f"'position,thickness' once each (m, m; another format or other units?)")
     cols = {c: header.index(c) for c in COLUMNS}
     lines, values = [], []
     for line, r in rows[1:]:

@@ -104,9 +104,9 @@ class Calibration:
         fit, best = self.fit, self.fit.best
         sizes = ", ".join(_pm(k, v, best.errors[k], k != "beta")
                           for k, v in best.params.items())
-        lines = [f"{best.name} spot chosen by BIC among "
-                 f"{', '.join(f.name for f in fit.fits if f.usable)}: {sizes} at "
-                 f"{fit.standoff * 1e3:.4g} mm"]
+        how = (f"chosen by BIC among {', '.join(f.name for f in fit.fits if f.usable)}"
+               if len(fit.fits) > 1 else "(the model asked)")
+        lines = [f"{best.name} spot {how}: {sizes} at {fit.standoff * 1e3:.4g} mm"]
         spread = (_pm("apex", best.apex, best.errors["apex"], True) if "apex" in best.errors
                   else "apex 0 mm (not fitted)")
         eta = (f"transfer efficiency {best.efficiency:.4f} ± {best.errors['efficiency']:.2g}"

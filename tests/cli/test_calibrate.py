@@ -169,3 +169,23 @@ def test_the_example_stripes_are_what_the_script_makes(tmp_path, capsys):
                                              if p.suffix in (".csv", ".toml"))
     for name in made:
         assert (tmp_path / name).read_bytes() == (EXAMPLE / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("where, says", [
+    ("full", "gun.toml: cannot write: no space left on device"),
+    ("dangling", "a dangling symbolic link")])  # a FIFO waits 2 s: test_fuzz_output's
+def test_an_output_that_cannot_be_written_leaves_all_as_it_was(tmp_path, capsys, where, says):
+    # the stripes are refused first if bad: these are good (one, round), the outputs not
+    (tmp_path / "stripes.toml").write_text(ONE)
+    (tmp_path / "s.csv").write_text(_csv(X, T + 1e-8 * np.cos(X * 7e3)))
+    out = tmp_path / "out"
+    if where == "dangling":
+        out.symlink_to(tmp_path / "nowhere")
+    else:
+        out.mkdir()
+        (out / "gun.toml").symlink_to("/dev/full")
+    before = tree_state(tmp_path)
+    code, text, err = run_cli(["calibrate", "--stripes", tmp_path / "stripes.toml", "--out",
+                               out], capsys)
+    assert code == 2 and says in err and len(err.strip().splitlines()) == 1, err
+    assert tree_state(tmp_path) == before

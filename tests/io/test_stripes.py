@@ -51,7 +51,10 @@ BAD_CSV = [
     ("microns", _csv(X, T * 1e6), "thickness in µm? give metres"),
     ("millimetres", _csv(X, T * 1e3), "up to 0.02 m, over 1 mm of dry film: thickness in mm?"),
     ("columns", "x,y\n0,1\n", "columns 'x,y': expected 'position,thickness'"),
+    ("column twice", _csv(X, T).replace("thickness\n", "thickness,thickness\n", 1),
+     "columns 'position,thickness,thickness': expected 'position,thickness' once each"),
     ("few", _csv(X[:5], T[:5]), "5 points: measure at least 10"),
+    ("one", _csv(X[:1], T[:1]), "s.csv: 1 point: measure at least 10"),
     ("ragged", _csv(X, T) + "0.2\n", "1 cells, expected 2"),
     ("latin1", "position,thickness\n0,\xe9\n", "not UTF-8 text (another format?)"),
     ("empty", "", "empty: a stripe is a CSV"),
@@ -152,7 +155,9 @@ def test_what_a_spreadsheet_writes_reads_the_same(tmp_path):
     plain = _csv(x, t)
     rows = [r.split(",") for r in plain.splitlines()]
     quoted = "\r\n".join(f'"{b}","{a}"' for a, b in rows) + "\r\n"  # CRLF, quoted, swapped
-    for i, text in enumerate([plain, "\ufeff" + quoted, "# scan 3\n\n" + plain]):
+    extra = "".join(f"{i},{r},ok\n" for i, r in enumerate(plain.splitlines()))  # ignored
+    extra = "point,position,thickness,flag" + extra.split("position,thickness,ok", 1)[1]
+    for i, text in enumerate([plain, "\ufeff" + quoted, "# scan 3\n\n" + plain, extra]):
         folder = tmp_path / str(i)
         folder.mkdir()
         (folder / "s.csv").write_bytes(text.encode("utf-8"))

@@ -117,3 +117,10 @@ def test_an_unusable_fit_without_errors_writes_them_null(cal, tmp_path):
     got = next(m for m in data["models"] if m["model"] == other.name)
     assert set(got["errors"].values()) == {None} and got["stripes"][0]["offset_error"] is None
     assert got["apex_error"] is None and not got["usable"]
+
+
+def test_a_model_asked_is_not_said_chosen():
+    from pollard_pin.painting.spray.calibrate import CalibrateOptions
+
+    one = calibrate(make_stripes(TRUE, 11, speeds=(0.4,)), CalibrateOptions(model="gaussian"))
+    assert one.summary_lines()[0].startswith("gaussian spot (the model asked): sigma ")

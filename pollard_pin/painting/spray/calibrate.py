@@ -261,8 +261,10 @@ def fit_stripes(stripes: StripeSet, options: CalibrateOptions | None = None) -> 
                  for m in models if m not in skipped and m in SPOTS)
     usable = [f for f in fits if f.usable]
     if not usable:
-        raise SolveError("no spot model fits the stripes: " + "; ".join(
-            f"{f.name}: {f.why}" for f in fits))
+        whys = "; ".join(f"{f.name}: {f.why}" for f in fits)
+        if len(whys) > 150:  # one line: the first model's reason (calibration.json: none)
+            whys = f"{fits[0].name}: {fits[0].why}; nor {' or '.join(f.name for f in fits[1:])}"
+        raise SolveError(f"no spot model fits the stripes: {whys}")
     chosen = min(usable, key=lambda f: getattr(f, CRITERION))
     notes += [f"{name} not tried: {why}" for name, why in skipped.items()]
     if chosen.efficiency > 1.0:

@@ -121,7 +121,8 @@ GOOD = 0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.02) ** 2) / (math.sqrt(2
     (GOOD + 0.3 * GOOD.max() * (X < -0.09), "still 30% of its peak at the left end"),
     (0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.08) ** 2) / (math.sqrt(2 * math.pi) * 0.08),
      "at the left end (-0.1 m): the scan is narrower than the pattern; measure wider"),
-    (GOOD * 0, "no film above the noise"),
+    (GOOD * 0, "no film: every reading is ≤ 0"),
+    (np.random.default_rng(0).normal(0.0, 0.2e-6, X.shape), "no film above the noise"),
     (GOOD * 3, "more paint than was sprayed (transfer efficiency"),
     (GOOD * 0.01, "almost none of the paint"),
     (0.6 * 0.45 * 1.5e-6 / 0.5 * np.exp(-0.5 * (X / 0.0008) ** 2)
@@ -182,3 +183,22 @@ def test_an_efficiency_over_one_is_noted():
     fit = fit_stripes(StripeSet((_one(X, GOOD * 1.05 / 0.6),), 0.45))
     assert fit.best.efficiency == pytest.approx(1.05, rel=1e-3)
     assert any("transfer efficiency fitted at 1.050, over 1" in n for n in fit.notes)
+
+
+def test_no_model_fitting_is_one_short_line(monkeypatch):
+    import pollard_pin.painting.spray.calibrate as module
+    from pollard_pin.errors import SolveError
+
+    real_fit = module.fit_model
+
+    def unusable(*args, **kw):
+        fit = real_fit(*args, **kw)
+        return replace(fit, usable=False, why=f"{fit.name}'s sizes = 0.03 ± 2.2e+05: not "
+                                               "determined by these stripes")
+
+    monkeypatch.setattr(module, "fit_model", unusable)
+    with pytest.raises(SolveError) as info:
+        fit_stripes(make_stripes(EllipticGaussian(0.03, 0.012), 5, speeds=(0.4,)))
+    text = str(info.value)
+    assert text.startswith("no spot model fits the stripes: gaussian: gaussian's sizes = ")
+    assert text.endswith("; nor elliptic or beta") and len(text) < 160, text
