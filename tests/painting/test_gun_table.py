@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from pollard_pin.painting.errors import JobError
-from pollard_pin.painting.gun_table import MAX_BETA, MAX_ELONGATION, job_spot
+from pollard_pin.painting.gun_table import MAX_APEX, MAX_BETA, MAX_ELONGATION, job_spot
 from pollard_pin.painting.job import job_from_dict, load_job
 from pollard_pin.painting.spray.deposition import gun_of
 from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian, RoundGaussian
@@ -86,6 +86,7 @@ def test_each_model_reads_and_writes_back(gun, spot, part):
     ({"model": "beta", "radius": 0.03, "beta": math.nan}, ["'gun.beta'", "finite"]),
     ({"model": "beta", "radius": 0.03, "beta": True}, ["'gun.beta'", "must be a number"]),
     ({"sigma": 0.01, "apex": 0.15}, ["'gun.apex'", "before the standoff"]),
+    ({"sigma": 0.01, "apex": 0.1499999}, ["'gun.apex'", f"at most {MAX_APEX:g} of it"]),
     ({"sigma": 0.01, "apex": "x"}, ["'gun.apex'", "must be a number"]),
     ({"sigma": 0.01, "apex": -50.0}, ["'gun.apex'", "at most 10 m"]),
 ])
