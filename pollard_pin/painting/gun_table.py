@@ -31,6 +31,9 @@ MAX_ELONGATION = 5.0
 # spot's size, ∝ (h − apex), would change tenfold over a tenth of the way (a standoff error of
 # a tenth of a millimetre a visible film error); the calibration fits it within the same bound.
 MAX_APEX = 0.9
+# The spot's width at most this share of its flight (standoff − apex): a spray spreads its 1σ
+# by well under 45° (a wide fan's ~35°); beyond, a size given in mm (10 for 0.010 m).
+MAX_SPREAD = 1.0
 
 
 def spot_model(source: str, gun: Mapping) -> str:
@@ -54,7 +57,7 @@ def spot_values(source: str, gun: Mapping, standoff: float, limit: float) -> dic
     model's keys are present; one :class:`JobError` line per broken rule (another model's
     key, a size that is not a positive length below ``limit`` [m], β outside (1, MAX_BETA],
     sigma_short above sigma_long or below 1/MAX_ELONGATION of it, the apex beyond MAX_APEX of
-    the standoff)."""
+    the standoff, a width beyond MAX_SPREAD of the spray's flight)."""
     model = spot_model(source, gun)
     for k in gun:
         if k in SPOT_KEYS[1:-1] and k not in MODEL_KEYS[model]:
@@ -92,6 +95,12 @@ def spot_values(source: str, gun: Mapping, standoff: float, limit: float) -> dic
                  f"must lie before the standoff ({standoff:g} m), at most {MAX_APEX:g} of it: "
                  "the spray cone's apex, in front of the nozzle (negative: behind it)")
         values["apex"] = apex
+    throw = standoff - values.get("apex", 0.0)  # the spray's flight from its apex to the spot
+    if spot.width > MAX_SPREAD * throw:
+        k = MODEL_KEYS[model][0]
+        fail(JobError, f"{source}: ", f"gun.{k}", gun[k],
+             f"makes a spot {spot.width:.4g} m wide, wider than the {throw:.4g} m it flies to "
+             "the standoff (over 45° at 1σ; SI units: metres, not mm)")
     return values
 
 
@@ -161,5 +170,6 @@ def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
     return out
 
 
-__all__ = ["MAX_APEX", "MAX_BETA", "MAX_ELONGATION", "MODEL_KEYS", "SPOT_KEYS", "check_spot",
-           "gun_table", "job_spot", "required_gun_keys", "spot_keys", "spot_model", "spot_values"]
+__all__ = ["MAX_APEX", "MAX_BETA", "MAX_ELONGATION", "MAX_SPREAD", "MODEL_KEYS", "SPOT_KEYS",
+           "check_spot", "gun_table", "job_spot", "required_gun_keys", "spot_keys", "spot_model",
+           "spot_values"]
