@@ -77,17 +77,6 @@ def _text_or_none(path, key: str, value: Any):
     return None if value is None else _text(path, key, value)
 
 
-def _names(names, width: int = 100) -> str:
-    """The names joined, whole ones up to ``width`` characters, then "…" (a refusal stays
-    one short line: paint holds 19 keys)."""
-    out = ""
-    for n in names:
-        if len(out) + len(n) + 2 > width:
-            return out + ", …"
-        out = f"{out}, {n}" if out else n
-    return out
-
-
 # a section field's annotation -> its check (the annotations are strings: __future__)
 _CHECKS = {"float": _number, "float | None": _number, "int": _count, "str": _text,
            "str | None": _text_or_none, "tuple[float, float]": _pair}
@@ -106,7 +95,7 @@ class Section:
         for k in table:
             if k not in names:
                 _bad(path, f"{key}.{k}", table[k], f"unknown key; {key} holds "
-                                                     f"{_names(names)}")
+                                                     f"{clip(', '.join(names), 100)}")  # paint: 19
         args = {}
         for f in fields(cls):
             if f.name in table:

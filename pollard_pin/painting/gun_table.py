@@ -27,6 +27,13 @@ MAX_BETA = 1000.0  # beyond, the β spot is a Gaussian of σ = R/√(2(β + 1)) 
 # stroke crosses the short axis, whose trapezoid error 2·exp(−2π²(σ_short/step)²) is 6e-6 at
 # 5:1 (1.4e-2 at 8:1; docs/model.md §20)
 MAX_ELONGATION = 5.0
+# The apex at most this share of the standoff in front of the nozzle: nearer the surface the
+# spot's size, ∝ (h − apex), would change tenfold over a tenth of the way (a standoff error of
+# a tenth of a millimetre a visible film error); the calibration fits it within the same bound.
+MAX_APEX = 0.9
+# The spot's width at most this share of its flight (standoff − apex): a spray spreads its 1σ
+# by well under 45° (a wide fan's ~35°); beyond, a size given in mm (10 for 0.010 m).
+MAX_SPREAD = 1.0
 
 
 def spot_model(source: str, gun: Mapping) -> str:
@@ -49,8 +56,8 @@ def spot_values(source: str, gun: Mapping, standoff: float, limit: float) -> dic
     ``sigma``) and ``apex`` (None: 0) from a ``[gun]`` table whose keys are known and whose
     model's keys are present; one :class:`JobError` line per broken rule (another model's
     key, a size that is not a positive length below ``limit`` [m], β outside (1, MAX_BETA],
-    sigma_short above sigma_long or below 1/MAX_ELONGATION of it, the apex at or beyond the
-    standoff)."""
+    sigma_short above sigma_long or below 1/MAX_ELONGATION of it, the apex beyond MAX_APEX of
+    the standoff, a width beyond MAX_SPREAD of the spray's flight)."""
     model = spot_model(source, gun)
     for k in gun:
         if k in SPOT_KEYS[1:-1] and k not in MODEL_KEYS[model]:
@@ -83,11 +90,17 @@ def spot_values(source: str, gun: Mapping, standoff: float, limit: float) -> dic
     if "apex" in gun:
         apex = number(gun["apex"], "gun.apex", JobError, f"{source}: ", limit=limit,
                       limit_rule=f"must be at most {limit:g} m from the nozzle")
-        if not apex < standoff:
+        if not apex <= MAX_APEX * standoff:
             fail(JobError, f"{source}: ", "gun.apex", gun["apex"],
-                 f"must lie before the standoff ({standoff:g} m): the spray cone's apex, in "
-                 "front of the nozzle (negative: behind it)")
+                 f"must lie before the standoff ({standoff:g} m), at most {MAX_APEX:g} of it: "
+                 "the spray cone's apex, in front of the nozzle (negative: behind it)")
         values["apex"] = apex
+    throw = standoff - values.get("apex", 0.0)  # the spray's flight from its apex to the spot
+    if spot.width > MAX_SPREAD * throw:
+        k = MODEL_KEYS[model][0]
+        fail(JobError, f"{source}: ", f"gun.{k}", gun[k],
+             f"makes a spot {spot.width:.4g} m wide, wider than the {throw:.4g} m it flies to "
+             "the standoff (over 45° at 1σ; SI units: metres, not mm)")
     return values
 
 
@@ -157,5 +170,6 @@ def gun_table(job, d: Mapping, keys: tuple[str, ...]) -> dict:
     return out
 
 
-__all__ = ["MAX_BETA", "MAX_ELONGATION", "MODEL_KEYS", "SPOT_KEYS", "check_spot", "gun_table",
-           "job_spot", "required_gun_keys", "spot_keys", "spot_model", "spot_values"]
+__all__ = ["MAX_APEX", "MAX_BETA", "MAX_ELONGATION", "MAX_SPREAD", "MODEL_KEYS", "SPOT_KEYS",
+           "check_spot", "gun_table", "job_spot", "required_gun_keys", "spot_keys", "spot_model",
+           "spot_values"]

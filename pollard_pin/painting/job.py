@@ -18,7 +18,7 @@ from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobError, JobKindError
 from .gun_table import SPOT_KEYS, check_spot, gun_table, required_gun_keys, spot_values
 from .line.conveyor import Line, line_from_table
-from .material import Paint, paint_from_table
+from .material import Paint, check_paint, paint_from_table
 from .spray.spots import Spot
 
 # Required and optional keys per table, in file order.
@@ -124,6 +124,7 @@ class PaintJob:
 
     def __post_init__(self):
         check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
+        check_paint(self)  # a Paint made in Python meets [paint]'s rules (material.py)
 
     def to_dict(self) -> dict:
         """The job as the file would say it (None entries left out)."""
@@ -175,6 +176,7 @@ class PartJob:
 
     def __post_init__(self):
         check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
+        check_paint(self)  # a Paint made in Python meets [paint]'s rules (material.py)
 
     @property
     def unit(self) -> float:

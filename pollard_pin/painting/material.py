@@ -122,4 +122,17 @@ def paint_from_table(source: str, table: Any) -> Paint:
     return Paint(solids, density, te)
 
 
-__all__ = ["MAX_DENSITY", "MIN_DENSITY", "MIN_SHARE", "Paint", "paint_from_table"]
+def check_paint(job) -> None:
+    """A job's ``paint`` held to the ``[paint]`` table's rules (a job built in Python; a file's
+    passes by :func:`paint_from_table` already): None or a :class:`Paint` whose values the
+    table would take; one :class:`JobError` line naming the job's source."""
+    paint = job.paint
+    if paint is None:
+        return
+    if not isinstance(paint, Paint):
+        fail(JobError, f"{job.source}: ", "paint", paint, "must be a Paint (solids, density, "
+             "transfer_efficiency; pollard_pin.painting.material) or None")
+    paint_from_table(job.source, paint.to_dict())
+
+
+__all__ = ["MAX_DENSITY", "MIN_DENSITY", "MIN_SHARE", "Paint", "check_paint", "paint_from_table"]

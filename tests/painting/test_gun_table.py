@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from pollard_pin.painting.errors import JobError
-from pollard_pin.painting.gun_table import MAX_BETA, MAX_ELONGATION, job_spot
+from pollard_pin.painting.gun_table import MAX_APEX, MAX_BETA, MAX_ELONGATION, job_spot
 from pollard_pin.painting.job import job_from_dict, load_job
 from pollard_pin.painting.spray.deposition import gun_of
 from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian, RoundGaussian
@@ -86,6 +86,12 @@ def test_each_model_reads_and_writes_back(gun, spot, part):
     ({"model": "beta", "radius": 0.03, "beta": math.nan}, ["'gun.beta'", "finite"]),
     ({"model": "beta", "radius": 0.03, "beta": True}, ["'gun.beta'", "must be a number"]),
     ({"sigma": 0.01, "apex": 0.15}, ["'gun.apex'", "before the standoff"]),
+    ({"sigma": 0.01, "apex": 0.1499999}, ["'gun.apex'", f"at most {MAX_APEX:g} of it"]),
+    ({"sigma": 5}, ["'gun.sigma' = 5", "makes a spot 5 m wide", "0.15 m", "not mm"]),
+    ({"model": "elliptic", "sigma_long": 0.2, "sigma_short": 0.1},
+     ["'gun.sigma_long' = 0.2", "wider than the 0.15 m"]),
+    ({"model": "beta", "radius": 0.4, "beta": 2.0, "apex": 0.05},
+     ["'gun.radius' = 0.4", "makes a spot 0.1633 m wide", "the 0.1 m it flies"]),
     ({"sigma": 0.01, "apex": "x"}, ["'gun.apex'", "must be a number"]),
     ({"sigma": 0.01, "apex": -50.0}, ["'gun.apex'", "at most 10 m"]),
 ])

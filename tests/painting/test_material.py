@@ -104,3 +104,21 @@ def test_a_share_just_above_1_is_not_called_a_per_cent(value):
         assert msg.endswith("must be a share in (0, 1]") and "per cent" not in msg, msg
     with pytest.raises(JobError, match=r"not a per cent \(5 % is 0.05\)"):
         paint_from_table("job.toml", {"solids": 5, "density": 1300})
+
+
+@pytest.mark.parametrize("paint, words", [
+    (Paint(45, 1300.0), "'paint.solids' = 45: must be a share in (0, 1], not a per cent"),
+    (Paint(0.45, 1.2), "'paint.density' = 1.2: must be within 300..5000 kg/m³"),
+    (Paint(0.45, 1300.0, 65), "'paint.transfer_efficiency' = 65"),
+    (Paint("0.45", 1300.0), "'paint.solids' = '0.45': must be a number"),
+    ({"solids": 0.45, "density": 1300.0}, "'paint' = {'solids': 0.45"),
+])
+def test_a_python_jobs_paint_is_checked_when_made(paint, words):
+    """A job given its paint in Python (dataclasses.replace) meets [paint]'s rules when it is
+    made: one JobError line naming the job's source, before anything is planned."""
+    job = load_job(EXAMPLES / "paint.toml")
+    with pytest.raises(JobError) as info:
+        dataclasses.replace(job, paint=paint)
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith(f"{job.source}: ") and words in msg, msg
+    assert dataclasses.replace(job, paint=Paint(0.5, 1200.0, 0.6)).paint.efficiency == 0.6

@@ -27,6 +27,7 @@ from ...dynamics.motors import ActuatorError, Actuators
 from ...errors import InputError
 from ...paths.trajectory import Trajectory
 from ..errors import JobKindError, ReachError
+from ..film.cell import weighted_film
 from ..film.edge_points import moved_shade
 from ..film.line import part_frame_positions
 from ..film.mesh import mesh_film
@@ -184,10 +185,8 @@ def program_film(plan, points, poses, shade=None) -> np.ndarray:
     gun = gun_of(plan.job)
     pts = np.asarray(points).reshape(-1, 3)
     if isinstance(moved, LinePlan):
-        on = moved.spray > 0
-        return film(gun, tr.t[on], part_frame_positions(moved)[on],
-                    rotation(tr.poses[on]), pts, moved.frame.n,
-                    origin=moved.frame.c).thickness
+        return weighted_film(gun, tr.t, part_frame_positions(moved), rotation(tr.poses),
+                             moved.spray, pts, moved.frame.n, moved.frame.c).thickness
     if isinstance(moved, PaintPlan):
         return film(gun, tr.t, tr.poses[:, :3], rotation(tr.poses), pts,
                     moved.frame.n, origin=moved.frame.c).thickness

@@ -2,7 +2,7 @@
 of the plan seen from the part (:meth:`.line.part.LinePartPlan.in_part_frame`).
 
 The film is integrated in the part's frame: the gun's world positions minus the line's
-displacement, over the samples where the gun sprays; the grid (a part: its film points) is
+displacement, over each run of samples where the gun sprays; the grid (a part: its film points) is
 the part at its t = 0 pose, in world coordinates.
 """
 from __future__ import annotations
@@ -12,7 +12,8 @@ import numpy as np
 from ...analytic.taskspace import rotation
 from ..errors import PlanError
 from ..line.panel import LinePlan
-from ..spray.deposition import film, gun_of
+from ..spray.deposition import gun_of
+from .cell import weighted_film
 from .grid import MAX_FILM_PAIRS, film_grid
 
 
@@ -31,9 +32,11 @@ def line_film(plan: LinePlan, resolution: float | None = None):
     if pairs > MAX_FILM_PAIRS:
         raise PlanError(f"the film map needs {pairs:.3g} point × sample pairs, budget "
                         f"{MAX_FILM_PAIRS:.3g}: a coarser film grid")
-    axes = rotation(tr.poses[on])  # the spot turns with the gun (docs/model.md §20)
-    f = film(gun_of(plan.job), tr.t[on], part_frame_positions(plan)[on], axes,
-             pts.reshape(-1, 3), plan.frame.n, origin=plan.frame.c)
+    # each run of open trigger integrated apart: a wait with the trigger shut sprays nothing
+    # (the rule over the sprayed samples alone would spray through it); the spot turns with
+    # the gun (docs/model.md §20)
+    f = weighted_film(gun_of(plan.job), tr.t, part_frame_positions(plan), rotation(tr.poses),
+                      plan.spray, pts.reshape(-1, 3), plan.frame.n, plan.frame.c)
     return U, V, pts, f
 
 
