@@ -27,6 +27,7 @@ HEAVY_FIRST = (
     "model/test_build.py",
     "cli/test_paint.py",
     "cli/test_size.py",
+    "painting/line/test_phases.py",
     "painting/layout/test_cell.py",
     "painting/plan/test_panel.py",
     "painting/line/test_panel.py",
