@@ -1,9 +1,9 @@
 """Design the robot for a paint job (docs/model.md §29): the design space (lengths, joint
 ranges, motors from a catalogue, the number of robots), one design made concrete under the
 mass model, and its evaluation: a cheap screen, then the full paint plan."""
-from .build import Design, build
 from .catalogue import Catalogue, CatalogueError, Motor, load_catalogue
-from .evaluate import (
+from .concrete import Design, build
+from .evaluation import (
     CONSTRAINTS,
     OBJECTIVES,
     SENSES,

@@ -28,11 +28,11 @@ from .study import (
 
 def default_evaluator():
     """The design evaluator: ``prepare``, ``evaluate`` and ``OBJECTIVES``
-    (:mod:`pollard_pin.design.evaluate`)."""
+    (:mod:`pollard_pin.design.evaluation`)."""
     import importlib
 
     # the module, not the package's ``evaluate`` (the function of that name)
-    return importlib.import_module(f"{__package__}.evaluate")
+    return importlib.import_module(f"{__package__}.evaluation")
 
 
 def _as_job(job):
@@ -130,7 +130,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
         Trials, workers or Dask, the study file, ``resume``, ``pick``.
     evaluator : object or None, optional
         ``prepare(job, space)``, ``evaluate(values, ctx, level)``, ``baseline_values(space)``
-        and ``OBJECTIVES`` (default: :mod:`pollard_pin.design.evaluate`).
+        and ``OBJECTIVES`` (default: :mod:`pollard_pin.design.evaluation`).
     progress : Callable or None, optional
         ``progress(done, total, feasible, best)`` after each evaluation (default: a bar on a
         terminal when ``options.progress``).

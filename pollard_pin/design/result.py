@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..checks import file_path
-from .evaluate import UNITS
+from .evaluation import UNITS
 from .front import SENSES, gains
 
 # The files of the chosen design (robots.toml for a cell only), then the study's tables

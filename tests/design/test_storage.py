@@ -109,6 +109,6 @@ def test_optuna_missing_gives_one_line(tmp_path):
                        timeout=120)
     assert r.returncode == 2, r.stderr
     assert r.stderr.strip().splitlines() == [
-        "pollard-pin design: error: pollard-pin design needs optuna: pip install "
-        "'pollard-pin[design]' (nothing written to " + str(tmp_path / "out") + ")"]
+        "pollard-pin design: error: pollard-pin design needs optuna: pip install optuna "
+        "(nothing written to " + str(tmp_path / "out") + ")"]
     assert not (tmp_path / "out").exists()

@@ -39,7 +39,7 @@ from ..painting.cell.bands import job_strokes
 from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
-from .build import Design, actuators_toml, build, params_toml
+from .concrete import Design, actuators_toml, build, params_toml
 from .screen import held_poses, motors, panel_reach, reach
 from .space import DesignSpace
 

@@ -1,4 +1,4 @@
-"""One design judged (design/evaluate.py, docs/model.md §29.3): the screen's verdicts on the
+"""One design judged (design/evaluation.py, docs/model.md §29.3): the screen's verdicts on the
 example, and one full evaluation of a small line job shared by the module."""
 import math
 
@@ -121,7 +121,7 @@ def test_context_travels_to_workers(example):
 
 
 def test_moved_job_moves_the_part_only():
-    from pollard_pin.design.evaluate import moved_job
+    from pollard_pin.design.evaluation import moved_job
 
     panel = pp.job_from_dict(STRIP)
     m = moved_job(panel, [0.3, 0.0, 0.0])
