@@ -21,22 +21,9 @@ __all__ = ["CONSTRAINTS", "Catalogue", "CatalogueError", "Design", "DesignContex
            "SpaceError", "Variable", "baseline_values", "build", "design_files", "evaluate",
            "load_catalogue", "load_space", "prepare", "space_from_dict"]
 
-# The study (docs/model.md §29.5): ``pollard_pin.design(job, space, options)`` runs one
-# (:func:`.api.design`). The package itself is callable, so that the call and the subpackage
-# share the name without one hiding the other (``import pollard_pin.design as d`` stays it).
-import sys  # noqa: E402
-
+# The study (docs/model.md §29.5): ``pollard_pin.design(job, space, options)``.
+from .api import design  # noqa: E402
 from .result import DesignResult  # noqa: E402
 from .study import DesignOptions  # noqa: E402
 
-__all__ += ["DesignOptions", "DesignResult"]
-
-
-class _CallablePackage(type(sys)):
-    def __call__(self, job, space, options=None, **kwargs):
-        from .api import design
-
-        return design(job, space, options, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallablePackage
+__all__ += ["DesignOptions", "DesignResult", "design"]

@@ -357,7 +357,7 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
     Parameters
     ----------
     values : Mapping
-        A value per :meth:`~pollard_pin.design.space.DesignSpace.variables` (keys left out:
+        A value per :meth:`~pollard_pin.synthesis.space.DesignSpace.variables` (keys left out:
         the middle of their bounds, motor and ratio 0, the fewest robots).
     ctx : DesignContext
         From :func:`prepare`.
