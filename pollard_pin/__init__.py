@@ -15,7 +15,6 @@ with Pinocchio hidden); importing this package root loads it.
 """
 from __future__ import annotations
 
-from . import design  # the design package, callable: pollard_pin.design(job, space, options)
 from .dynamics.cycle import time_optimal_path
 from .dynamics.drives.stiffness import StiffnessOptions
 from .dynamics.forward import forward_dynamics
@@ -49,6 +48,7 @@ from .run.pipeline import run_pipeline, write_run_table
 from .run.stiffness import stiffness
 from .run.stream import StreamOptions, stream_run
 from .sweep import load_grid, make_sweep, run_sweep
+from .synthesis import design
 from .version import __version__ as __version__
 from .viz.plots import write_figures
 from .viz.viewer import write_html
@@ -78,7 +78,7 @@ __all__ = [
     "calibrate", "Calibration", "CalibrateOptions",  # the spray pattern from stripes
     # design sweeps, figures and the viewer page
     "load_grid", "make_sweep", "run_sweep", "write_figures", "write_html",
-    "design",  # the robot designed for a paint job (a callable package: docs/model.md §29)
+    "design",  # the robot designed for a paint job (docs/model.md §29; options: synthesis)
 ]
 
 # Names this root exported before it listed only the above: each is public in its subpackage,

@@ -472,9 +472,9 @@ def design_section(trials: int, repeats: int) -> None:
     import random
     import tempfile
 
-    from pollard_pin.design import baseline_values, evaluate, load_space, prepare
-    from pollard_pin.design.api import design
-    from pollard_pin.design.study import DesignOptions
+    from pollard_pin.synthesis import baseline_values, evaluate, load_space, prepare
+    from pollard_pin.synthesis.api import design
+    from pollard_pin.synthesis.study import DesignOptions
 
     job = pp.load_job(REPO / "examples" / "design" / "job.toml")
     space = load_space(REPO / "examples" / "design" / "space.toml")

@@ -70,7 +70,7 @@ RANKS = [
     ("pollard_pin.crosscheck", 6),
     ("pollard_pin.run", 7), ("pollard_pin.viz", 8),
     ("pollard_pin.outputs", 9),  # paint's outputs: written, read back, the result that writes
-    ("pollard_pin.sweep", 10), ("pollard_pin.design", 10),
+    ("pollard_pin.sweep", 10), ("pollard_pin.synthesis", 10),
     ("pollard_pin.cli", 11), ("pollard_pin", 12),
 ]
 def _rank(module: str) -> int:

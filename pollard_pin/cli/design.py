@@ -1,6 +1,6 @@
 """pollard-pin design: search link lengths, joint ranges, motors and the number of robots for
 the robots that paint a job (docs/model.md §31); a thin layer over
-:func:`pollard_pin.design.api.design`."""
+:func:`pollard_pin.synthesis.api.design`."""
 from __future__ import annotations
 
 import signal
@@ -23,10 +23,10 @@ STUDY = "study.db"
 
 
 def run(args) -> int:
-    from ..design.api import design
-    from ..design.storage import check_study_file, require_optuna
-    from ..design.study import DesignOptions, finished
     from ..io.atomic import check_outputs
+    from ..synthesis.api import design
+    from ..synthesis.storage import check_study_file, require_optuna
+    from ..synthesis.study import DesignOptions, finished
 
     out = Path(args.out)
     require_optuna()  # the extra, before anything else: a missing one is the only line
@@ -66,7 +66,7 @@ def run(args) -> int:
 
 def _kept(path: Path, finished) -> str:
     """How many finished evaluations the study file holds (or "all" if it cannot say)."""
-    from ..design.storage import STUDY_NAME, require_optuna
+    from ..synthesis.storage import STUDY_NAME, require_optuna
 
     optuna = require_optuna()
     try:

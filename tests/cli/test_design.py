@@ -39,8 +39,8 @@ def test_a_study_file_that_cannot_be_used_is_one_line(tmp_path, capsys, make, sa
 
 
 def test_a_held_study_needs_resume(tmp_path, capsys):
-    import design_stub as stub
-    from design_runs import run_stub
+    import synthesis_stub as stub
+    from synthesis_runs import run_stub
 
     (tmp_path / "out").mkdir()
     run_stub(tmp_path / "out" / "study.db", 2)
@@ -66,10 +66,10 @@ def test_the_help_names_the_rule_and_the_outputs():
 
 @pytest.fixture
 def stand_in(monkeypatch):
-    """The command over the stand-in evaluator (tests/design_stub.py): its job, its space."""
-    import design_stub as stub
+    """The command over the stand-in evaluator (tests/synthesis_stub.py): its job, its space."""
+    import synthesis_stub as stub
 
-    from pollard_pin.design import api
+    from pollard_pin.synthesis import api
 
     monkeypatch.setattr(api, "default_evaluator", lambda: stub)
     monkeypatch.setattr(api, "_as_job", lambda job: stub.StubJob())

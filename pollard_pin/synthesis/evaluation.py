@@ -39,7 +39,7 @@ from ..painting.cell.bands import job_strokes
 from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
-from .build import Design, actuators_toml, build, params_toml
+from .concrete import Design, actuators_toml, build, params_toml
 from .screen import held_poses, motors, panel_reach, reach
 from .space import DesignSpace
 
@@ -357,7 +357,7 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
     Parameters
     ----------
     values : Mapping
-        A value per :meth:`~pollard_pin.design.space.DesignSpace.variables` (keys left out:
+        A value per :meth:`~pollard_pin.synthesis.space.DesignSpace.variables` (keys left out:
         the middle of their bounds, motor and ratio 0, the fewest robots).
     ctx : DesignContext
         From :func:`prepare`.

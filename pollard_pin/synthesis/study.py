@@ -24,7 +24,7 @@ most of them cheap (an infeasible design is rejected in milliseconds), which is 
 evaluations go. Optuna stores the generation of each trial in the database, so a resumed study
 continues the same generation.
 
-A study runs :func:`~pollard_pin.design.backends.run_design` for each design (the screen, then
+A study runs :func:`~pollard_pin.synthesis.backends.run_design` for each design (the screen, then
 the full plan of a design that passes it) and ``tell``s the result at once: a killed run loses
 only the designs being evaluated. The trial's user attributes hold the evaluation's level,
 feasibility, binding constraint, objectives, figures and times, and a feasible full design's
@@ -79,7 +79,7 @@ class DesignOptions:
     resume : bool
         Continue the study in ``study`` (started with the same job and space).
     pick : int or None
-        The front row to choose, from 1 (None: :func:`~pollard_pin.design.front.choose`).
+        The front row to choose, from 1 (None: :func:`~pollard_pin.synthesis.front.choose`).
     screen_only : bool
         Judge designs by the screen alone (no full plan): a quick look, not an answer.
     progress : bool or Callable
@@ -262,7 +262,7 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
     Parameters
     ----------
     study : optuna.Study
-        From :func:`~pollard_pin.design.storage.open_study`.
+        From :func:`~pollard_pin.synthesis.storage.open_study`.
     variables : Sequence
         The design variables (``name``, ``low``, ``high``, ``kind``, ``choices``).
     ctx : object

@@ -1,10 +1,11 @@
-"""The front, the chosen design and the gains (design/front.py), against brute force."""
+"""The front, the chosen design and the gains (synthesis/front.py), against brute force."""
 import itertools
 import random
 
 import pytest
 
-from pollard_pin.design.front import (
+from pollard_pin.errors import InputError
+from pollard_pin.synthesis.front import (
     MOTOR_USE_LIMIT,
     SENSES,
     choose,
@@ -13,7 +14,6 @@ from pollard_pin.design.front import (
     non_dominated,
     rank_key,
 )
-from pollard_pin.errors import InputError
 
 
 def _rows(n, seed=3):

@@ -1,5 +1,5 @@
-"""A stand-in design evaluator for the study's tests (tests/design/): the interface of
-pollard_pin.design.evaluate (``prepare``, ``evaluate``, ``OBJECTIVES``) and of a design space
+"""A stand-in design evaluator for the study's tests (tests/synthesis/): the interface of
+pollard_pin.synthesis.evaluation (``prepare``, ``evaluate``, ``OBJECTIVES``) and of a design space
 (``variables``, ``fingerprint``, ``baseline``), over closed-form figures, so that a study of
 dozens of designs takes a fraction of a second. Its params.toml moves chain0.x32 within a
 range the model accepts, so the written files read back through the model's own loader. As

@@ -1,12 +1,12 @@
-"""One design made concrete (design/build.py): the mass model's bodies, the chosen motors, and
+"""One design made concrete (synthesis/concrete.py): the mass model's bodies, the chosen motors, and
 files every command reads back."""
 import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.design import baseline_values, build, load_space
-from pollard_pin.design.build import actuators_toml, params_toml
 from pollard_pin.dynamics.motors import load_actuators
+from pollard_pin.synthesis import baseline_values, build, load_space
+from pollard_pin.synthesis.concrete import actuators_toml, params_toml
 
 
 @pytest.fixture(scope="module")

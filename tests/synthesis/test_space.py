@@ -1,11 +1,11 @@
-"""The design space (design/space.py, docs/model.md §31.2): the example, the variables the
+"""The design space (synthesis/space.py, docs/model.md §31.2): the example, the variables the
 optimiser samples, the fingerprint, and each refusal in one line."""
 import copy
 
 import pytest
 
-from pollard_pin.design.catalogue import load_catalogue
-from pollard_pin.design.space import SpaceError, load_space, space_from_dict
+from pollard_pin.synthesis.catalogue import load_catalogue
+from pollard_pin.synthesis.space import SpaceError, load_space, space_from_dict
 
 
 @pytest.fixture(scope="module")

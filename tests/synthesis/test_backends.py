@@ -1,10 +1,10 @@
-"""Where a study's designs are evaluated (design/backends.py): in this process, on a local
+"""Where a study's designs are evaluated (synthesis/backends.py): in this process, on a local
 pool, on a Dask cluster, each design's outcome is the same; the screen gates the full plan."""
-import design_stub as stub
 import pytest
+import synthesis_stub as stub
 
-from pollard_pin.design.backends import SerialRunner, failure, make_runner, run_design
 from pollard_pin.errors import InputError, SolveError
+from pollard_pin.synthesis.backends import SerialRunner, failure, make_runner, run_design
 
 CTX = {"speed": 0.012, "shift": 0.0}
 GOOD = {"chain0.x32": 0.35, "y": 0.5, "motor": 0, "robots": 1}

@@ -1,4 +1,4 @@
-"""The study (design/study.py): every finished evaluation is stored as it finishes, a stopped
+"""The study (synthesis/study.py): every finished evaluation is stored as it finishes, a stopped
 study resumes where it stopped and loses nothing, SIGTERM stops it within a second."""
 import os
 import signal
@@ -7,14 +7,14 @@ import sys
 import time
 from pathlib import Path
 
-import design_stub as stub
 import optuna
 import pytest
-from design_runs import run_stub
+import synthesis_stub as stub
+from synthesis_runs import run_stub
 
-from pollard_pin.design.api import design
-from pollard_pin.design.study import EVALUATION, DesignOptions, finished
 from pollard_pin.errors import InputError, SolveError
+from pollard_pin.synthesis.api import design
+from pollard_pin.synthesis.study import EVALUATION, DesignOptions, finished
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -114,7 +114,7 @@ sys.path[:0] = [{root!r}, {tests!r}]
 def stop(signum, frame):
     raise KeyboardInterrupt
 signal.signal(signal.SIGTERM, stop)
-from design_runs import run_stub
+from synthesis_runs import run_stub
 run_stub({path!r}, 10000, workers=2)
 """
 

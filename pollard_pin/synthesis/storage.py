@@ -239,7 +239,6 @@ def require_optuna():
     try:
         import optuna
     except ImportError:
-        raise ImportError("pollard-pin design needs optuna: pip install 'pollard-pin[design]'"
-                          ) from None
+        raise ImportError("pollard-pin design needs optuna: pip install optuna") from None
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     return optuna

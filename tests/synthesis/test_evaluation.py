@@ -1,11 +1,12 @@
-"""One design judged (design/evaluate.py, docs/model.md §31.3): the screen's verdicts on the
+"""One design judged (synthesis/evaluation.py, docs/model.md §31.3): the screen's verdicts on the
 example, and one full evaluation of a small line job shared by the module."""
 import math
 
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.design import (
+from pollard_pin.errors import InputError
+from pollard_pin.synthesis import (
     CONSTRAINTS,
     OBJECTIVES,
     SENSES,
@@ -16,7 +17,6 @@ from pollard_pin.design import (
     prepare,
     space_from_dict,
 )
-from pollard_pin.errors import InputError
 
 STRIP = {"panel": {"center": [0.70, -0.5, 0.16], "normal": [-1.0, 0.0, 0.0], "width": 0.30,
                    "height": 0.10},
@@ -121,7 +121,7 @@ def test_context_travels_to_workers(example):
 
 
 def test_moved_job_moves_the_part_only():
-    from pollard_pin.design.evaluate import moved_job
+    from pollard_pin.synthesis.evaluation import moved_job
 
     panel = pp.job_from_dict(STRIP)
     m = moved_job(panel, [0.3, 0.0, 0.0])

@@ -70,7 +70,7 @@ def build(values: Mapping[str, Any], space: DesignSpace, check_home: bool = True
     ------
     pollard_pin.model.overrides.ParameterError
         A parameter out of its rule, or the home pose out of reach (one line).
-    pollard_pin.design.space.SpaceError
+    pollard_pin.synthesis.space.SpaceError
         An index or a robot count out of its range.
     """
     d = space.design_dict(values)

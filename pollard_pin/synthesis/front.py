@@ -18,7 +18,7 @@ import math
 from collections.abc import Mapping, Sequence
 
 from ..errors import InputError
-from .evaluate import SENSES as OBJECTIVE_SENSES
+from .evaluation import SENSES as OBJECTIVE_SENSES
 
 MOTOR_USE_LIMIT = 0.9  # the margin a chosen design keeps on its busiest motor
 # The objectives' senses as signs (+1: more is better), in the study's order

@@ -1,9 +1,9 @@
 """Design the robot for a paint job (docs/model.md §31): the design space (lengths, joint
 ranges, motors from a catalogue, the number of robots), one design made concrete under the
 mass model, and its evaluation: a cheap screen, then the full paint plan."""
-from .build import Design, build
 from .catalogue import Catalogue, CatalogueError, Motor, load_catalogue
-from .evaluate import (
+from .concrete import Design, build
+from .evaluation import (
     CONSTRAINTS,
     OBJECTIVES,
     SENSES,
@@ -21,22 +21,9 @@ __all__ = ["CONSTRAINTS", "Catalogue", "CatalogueError", "Design", "DesignContex
            "SpaceError", "Variable", "baseline_values", "build", "design_files", "evaluate",
            "load_catalogue", "load_space", "prepare", "space_from_dict"]
 
-# The study (docs/model.md §31.5): ``pollard_pin.design(job, space, options)`` runs one
-# (:func:`.api.design`). The package itself is callable, so that the call and the subpackage
-# share the name without one hiding the other (``import pollard_pin.design as d`` stays it).
-import sys  # noqa: E402
-
+# The study (docs/model.md §31.5): ``pollard_pin.design(job, space, options)``.
+from .api import design  # noqa: E402
 from .result import DesignResult  # noqa: E402
 from .study import DesignOptions  # noqa: E402
 
-__all__ += ["DesignOptions", "DesignResult"]
-
-
-class _CallablePackage(type(sys)):
-    def __call__(self, job, space, options=None, **kwargs):
-        from .api import design
-
-        return design(job, space, options, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallablePackage
+__all__ += ["DesignOptions", "DesignResult", "design"]

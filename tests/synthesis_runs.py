@@ -1,10 +1,10 @@
-"""Design studies of the stand-in evaluator (tests/design_stub.py) shared by the design tests:
+"""Design studies of the stand-in evaluator (tests/synthesis_stub.py) shared by the design tests:
 run once per session, in this process (workers=1), each stored in its own study file."""
-import design_stub as stub
 import pytest
+import synthesis_stub as stub
 
-from pollard_pin.design.api import design
-from pollard_pin.design.study import DesignOptions
+from pollard_pin.synthesis.api import design
+from pollard_pin.synthesis.study import DesignOptions
 
 
 def run_stub(study, trials: int, *, resume: bool = False, space=None, **options):

@@ -1,16 +1,16 @@
-"""What a design study writes (design/result.py): the chosen design's files, read back through
+"""What a design study writes (synthesis/result.py): the chosen design's files, read back through
 the model's own loaders, the front and every evaluation with units, the plot; all or none."""
 import tomllib
 
-import design_stub as stub
 import pytest
-from design_runs import run_stub, stub_result  # noqa: F401 — the shared study
+import synthesis_stub as stub
+from synthesis_runs import run_stub, stub_result  # noqa: F401 — the shared study
 
-from pollard_pin.design.result import DESIGN_FILES
-from pollard_pin.design.table import read_rows
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.io.atomic import OutputError
 from pollard_pin.model.params import load_params
+from pollard_pin.synthesis.result import DESIGN_FILES
+from pollard_pin.synthesis.table import read_rows
 
 
 def test_the_chosen_design_reads_back_through_the_models_loaders(stub_result, tmp_path):  # noqa: F811
@@ -68,8 +68,8 @@ def test_a_one_robot_pick_writes_no_robots_file(tmp_path):
 
 
 def test_variable_units_by_kind_and_name():
-    from pollard_pin.design.result import variable_unit
-    from pollard_pin.design.space import Variable
+    from pollard_pin.synthesis.result import variable_unit
+    from pollard_pin.synthesis.space import Variable
 
     assert [variable_unit(v) for v in (
         Variable("scale.arms", 1.0, 1.8, "float"), Variable("place.back", 0.0, 0.4, "float"),

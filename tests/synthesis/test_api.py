@@ -1,13 +1,13 @@
-"""pollard_pin.design (design/api.py): the front of every evaluation, re-planned, the baseline
+"""pollard_pin.synthesis (synthesis/api.py): the front of every evaluation, re-planned, the baseline
 and the chosen design, against the stand-in's closed-form figures."""
 import itertools
 
-import design_stub as stub
 import pytest
-from design_runs import run_stub, stub_result  # noqa: F401 — the shared study
+import synthesis_stub as stub
+from synthesis_runs import run_stub, stub_result  # noqa: F401 — the shared study
 
-from pollard_pin.design.front import SENSES, dominates, rank_key
 from pollard_pin.errors import SolveError
+from pollard_pin.synthesis.front import SENSES, dominates, rank_key
 
 
 def test_the_front_is_non_dominated_over_every_evaluation(stub_result):  # noqa: F811
@@ -59,8 +59,8 @@ def test_a_space_with_no_feasible_design_names_the_binding_constraint():
         "baseline_values": staticmethod(stub.baseline_values),
         "evaluate": staticmethod(lambda values, ctx, level="screen": stub.Evaluation(
             level, False, {}, {"reach": 1.0, "motors": -1.0}, "reach"))})
-    from pollard_pin.design.api import design
-    from pollard_pin.design.study import DesignOptions
+    from pollard_pin.synthesis.api import design
+    from pollard_pin.synthesis.study import DesignOptions
 
     with pytest.raises(SolveError, match=r"no design of the space paints the job in 5 "
                                          r"evaluations; the binding constraint most often: "

@@ -438,7 +438,7 @@ def load_space(path: str | Path) -> DesignSpace:
     ------
     SpaceError
         As :func:`space_from_dict`, or an unreadable file.
-    pollard_pin.design.catalogue.CatalogueError
+    pollard_pin.synthesis.catalogue.CatalogueError
         A bad catalogue.
     """
     path = Path(path)

@@ -41,7 +41,7 @@ def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> O
     values : Mapping
         The design variables' values (name → value).
     ctx : object
-        The prepared context (:func:`pollard_pin.design.evaluate.prepare`'s).
+        The prepared context (:func:`pollard_pin.synthesis.evaluation.prepare`'s).
     evaluate : Callable
         ``evaluate(values, ctx, level)`` → an evaluation with ``level`` and ``feasible``.
     full : bool, optional

@@ -1,4 +1,4 @@
-"""``pollard_pin.design``: search the design space for the robots that paint a job, and give
+"""``pollard_pin.synthesis``: search the design space for the robots that paint a job, and give
 back the front, the baseline and the chosen design (:func:`design`; the CLI is a thin layer
 over it)."""
 from __future__ import annotations
@@ -28,11 +28,11 @@ from .study import (
 
 def default_evaluator():
     """The design evaluator: ``prepare``, ``evaluate`` and ``OBJECTIVES``
-    (:mod:`pollard_pin.design.evaluate`)."""
+    (:mod:`pollard_pin.synthesis.evaluation`)."""
     import importlib
 
     # the module, not the package's ``evaluate`` (the function of that name)
-    return importlib.import_module(f"{__package__}.evaluate")
+    return importlib.import_module(f"{__package__}.evaluation")
 
 
 def _as_job(job):
@@ -125,12 +125,12 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     job : PaintJob or PartJob or str or Path
         The paint job (a job file's path is read by :func:`~pollard_pin.load_job`).
     space : DesignSpace or str or Path or Mapping
-        The design space (a path: :func:`~pollard_pin.design.space.load_space`).
+        The design space (a path: :func:`~pollard_pin.synthesis.space.load_space`).
     options : DesignOptions or None, optional
         Trials, workers or Dask, the study file, ``resume``, ``pick``.
     evaluator : object or None, optional
         ``prepare(job, space)``, ``evaluate(values, ctx, level)``, ``baseline_values(space)``
-        and ``OBJECTIVES`` (default: :mod:`pollard_pin.design.evaluate`).
+        and ``OBJECTIVES`` (default: :mod:`pollard_pin.synthesis.evaluation`).
     progress : Callable or None, optional
         ``progress(done, total, feasible, best)`` after each evaluation (default: a bar on a
         terminal when ``options.progress``).
@@ -142,7 +142,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
 
     Raises
     ------
-    pollard_pin.design.storage.StudyFileError
+    pollard_pin.synthesis.storage.StudyFileError
         A study file that cannot be used (another job or space, damaged, a FIFO …).
     SolveError
         No feasible design in the study's evaluations (naming the constraint that binds most

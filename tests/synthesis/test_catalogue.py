@@ -1,8 +1,8 @@
-"""The motor catalogue (design/catalogue.py, docs/model.md §31.2)."""
+"""The motor catalogue (synthesis/catalogue.py, docs/model.md §31.2)."""
 import pytest
 
-from pollard_pin.design.catalogue import CatalogueError, catalogue_from_dict, load_catalogue
 from pollard_pin.dynamics.motors import load_actuators
+from pollard_pin.synthesis.catalogue import CatalogueError, catalogue_from_dict, load_catalogue
 
 MOTOR = {"rated_torque": 0.02, "peak_torque": 0.05, "speed": 500.0, "rotor_inertia": 5e-6,
          "mass": 0.25, "ratios": [100, 50]}

@@ -1,4 +1,4 @@
-"""The design's screen (design/screen.py, docs/model.md §31.3): its coarse band against the
+"""The design's screen (synthesis/screen.py, docs/model.md §31.3): its coarse band against the
 planner's own reference band, and the holding torques against the motors' ratings."""
 from dataclasses import replace
 
@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import pollard_pin as pp
-from pollard_pin.design.screen import held_poses, motors, reach
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.painting.cell.bands import job_strokes
 from pollard_pin.painting.layout.cell import reference_band
+from pollard_pin.synthesis.screen import held_poses, motors, reach
 
 
 @pytest.fixture(scope="module")
@@ -58,8 +58,8 @@ def test_screen_and_planner_agree_one_robot_is_too_few(case):
 
 
 def test_still_panel_reach_agrees_with_the_planner(case):
-    from pollard_pin.design.screen import panel_reach
     from pollard_pin.painting.errors import PlanError
+    from pollard_pin.synthesis.screen import panel_reach
 
     robot = case[0]
     off, fig = panel_reach(robot, pp.load_job("examples/paint.toml"))

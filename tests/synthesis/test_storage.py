@@ -1,19 +1,19 @@
-"""The study file (design/storage.py): refused in one line, with nothing written, when it is
+"""The study file (synthesis/storage.py): refused in one line, with nothing written, when it is
 a FIFO, another format, damaged, another study, or not to be resumed; fingerprints."""
 import os
 import sqlite3
 
-import design_stub as stub
 import pytest
-from design_runs import run_stub
+import synthesis_stub as stub
+from synthesis_runs import run_stub
 
-from pollard_pin.design.storage import (
+from pollard_pin.synthesis.storage import (
     StudyFileError,
     check_study_file,
     fingerprint,
     job_fingerprint,
 )
-from pollard_pin.design.study import DesignOptions
+from pollard_pin.synthesis.study import DesignOptions
 
 
 def _listing(folder):
@@ -71,7 +71,7 @@ def test_resuming_with_another_space_or_job_is_refused(tmp_path):
     before = path.stat().st_mtime_ns, _listing(tmp_path)
     with pytest.raises(StudyFileError, match="started with another space"):
         run_stub(path, 8, resume=True, space=stub.StubSpace(shift=0.5))
-    from pollard_pin.design.api import design
+    from pollard_pin.synthesis.api import design
 
     with pytest.raises(StudyFileError, match="started with another job"):
         design(stub.StubJob(speed=0.02), stub.StubSpace(),
@@ -109,6 +109,6 @@ def test_optuna_missing_gives_one_line(tmp_path):
                        timeout=120)
     assert r.returncode == 2, r.stderr
     assert r.stderr.strip().splitlines() == [
-        "pollard-pin design: error: pollard-pin design needs optuna: pip install "
-        "'pollard-pin[design]' (nothing written to " + str(tmp_path / "out") + ")"]
+        "pollard-pin design: error: pollard-pin design needs optuna: pip install optuna "
+        "(nothing written to " + str(tmp_path / "out") + ")"]
     assert not (tmp_path / "out").exists()

@@ -1,11 +1,11 @@
-"""A design study's tables (design/table.py): text and empty cells, units beside or inside,
+"""A design study's tables (synthesis/table.py): text and empty cells, units beside or inside,
 read back as written."""
 import json
 
 import pytest
 
-from pollard_pin.design.table import read_rows, write_rows
 from pollard_pin.io.table import UNITS_KEY
+from pollard_pin.synthesis.table import read_rows, write_rows
 
 ROWS = [{"design": 1, "motor": "small", "kmin": 1.5e4, "binding": None},
         {"design": 2, "motor": "large", "kmin": None, "binding": "reach", "extra": 0.1}]

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..checks import file_path
-from .evaluate import UNITS
+from .evaluation import UNITS
 from .front import SENSES, gains
 
 # The files of the chosen design (robots.toml for a cell only), then the study's tables
@@ -56,7 +56,7 @@ class DesignResult:
         choice (not its index).
     front : tuple of dict
         The front's designs, each judged by its full plan, in the order of
-        :func:`~pollard_pin.design.front.rank_key`: ``design`` (1, 2, …), ``trial``,
+        :func:`~pollard_pin.synthesis.front.rank_key`: ``design`` (1, 2, …), ``trial``,
         ``values``, ``objectives``, ``figures``, ``files`` (name → TOML text).
     baseline : dict
         The thesis robot (every variable at today's value or nearest choice): ``values``,
