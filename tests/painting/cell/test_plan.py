@@ -77,7 +77,8 @@ def test_each_robot_sprays_only_its_zone(cell):
     from pollard_pin.painting.film.cell import world_gun
 
     for rp in cell.robots:
-        _, p, a, s = world_gun(rp)
+        _, p, R, s = world_gun(rp)
+        a = R[:, :, 0]  # the spray axis
         aim = (p + rp.plan.job.standoff * a) @ np.asarray(cell.split.axis)
         on = s > 0
         assert aim[on].min() >= rp.zone.lo - 1e-9 and aim[on].max() <= rp.zone.hi + 1e-9
