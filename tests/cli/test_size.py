@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -215,6 +216,24 @@ def test_toppra_missing_gives_one_line(tmp_path):
     assert not (tmp_path / "never.md").exists()
 
 
+def catches_term(proc, within=120.0):
+    """Wait until the process catches SIGTERM (the command line's handlers are installed, so
+    the imports are done), then a moment more; on a busy machine the imports alone may take
+    seconds. Without /proc, a fixed 2 s."""
+    status = Path(f"/proc/{proc.pid}/status")
+    if not status.exists():
+        time.sleep(2.0)
+        return
+    end = time.monotonic() + within
+    while time.monotonic() < end and proc.poll() is None:
+        caught = next((int(line.split()[1], 16) for line in status.read_text().splitlines()
+                       if line.startswith("SigCgt:")), 0)
+        if caught >> (signal.SIGTERM - 1) & 1:
+            break
+        time.sleep(0.05)
+    time.sleep(0.3)
+
+
 @pytest.mark.parametrize("signum, code, word", [(signal.SIGTERM, 143, "terminated"),
                                                 (signal.SIGINT, 130, "interrupted")])
 def test_size_stops_on_a_signal_with_one_line(tmp_path, signum, code, word):
@@ -227,7 +246,7 @@ def test_size_stops_on_a_signal_with_one_line(tmp_path, signum, code, word):
          "long.csv"), "--actuators", str(EXAMPLE), "--quiet", "--out", str(out / "r.md"),
          "--retime", str(out / "fast.csv")], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
         env=env, start_new_session=True)  # Ctrl-C goes to the process alone
-    time.sleep(2.0)  # past the imports, into the work
+    catches_term(proc)  # past the imports (the command's handlers are in), into the work
     assert proc.poll() is None, proc.communicate()
     sent = time.monotonic()
     proc.send_signal(signum)
