@@ -89,6 +89,11 @@ def commands(cli: Path, work: Path) -> None:
     # paint --robots auto: a proposed cell planned, its [[robot]] tables written (§26.5)
     sh([cli, "paint", "--job", ex / "line.toml", "--robots", "auto", "--out", "cell"], work)
     need(work / "cell" / "robots.toml", "paint --robots auto")
+    # calibrate the spray from the example stripes; its gun.toml is a [gun] table (§30)
+    sh([cli, "calibrate", "--stripes", ex / "stripes" / "stripes.toml", "--out", "cal"], work)
+    gun = (work / "cal" / "gun.toml").read_text() if (work / "cal" / "gun.toml").exists() else ""
+    if "[gun]" not in gun or "model" not in gun:
+        sys.exit(f"check_install: calibrate wrote no gun.toml with a [gun] model: {gun[:200]!r}")
     # an extra that is not installed: one line and exit 2
     out = sh([cli, "export", "--format", "mjcf", "--out", "p.xml"], work, ok=(2,))
     if len(out.stderr.strip().splitlines()) != 1 or "mujoco" not in out.stderr:
