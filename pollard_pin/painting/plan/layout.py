@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import BudgetError, PlanError
 from ..job import PaintJob
-from ..passes.raster import SPOT_RADIUS, Segments, job_spacing, pass_offsets
+from ..passes.raster import Segments, job_spacing, pass_offsets, spot_runon
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame, panel_frame
@@ -49,7 +49,7 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
                           f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {policy.max_passes}: "
                           "a wider spacing, fewer coats or a smaller panel")
     speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    half_length = length / 2 + SPOT_RADIUS * job.sigma
+    half_length = length / 2 + spot_runon(job.sigma, job.spot)
     # the passes alone, before any turnaround: their samples bound the path's from below
     passing = passes * 2 * half_length / speed if speed > 0 else math.inf
     check_samples(passing / policy.step(job.sigma, speed) if speed > 0 else math.inf,
