@@ -11,7 +11,14 @@ import numpy as np
 
 from ..errors import BudgetError, PlanError
 from ..job import PaintJob
-from ..passes.raster import Segments, job_spacing, pass_offsets, spot_runon
+from ..passes.raster import (
+    PROFILE_TOLERANCE,
+    Segments,
+    job_spacing,
+    pass_offsets,
+    ripple_spacing,
+    spot_runon,
+)
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame, panel_frame
@@ -65,6 +72,26 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
     return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
 
 
+def spot_too_fine(job: PaintJob, speed: float, spacing: float, vmax: float) -> str | None:
+    """Why a gun too slow for the target is the spot's doing, or None: a spot whose stripe
+    needs passes closer than the Gaussian of its width for the ripple rule (docs/model.md
+    §21: a β spot's steep rim), so a faster gun; and the spacing the motors would allow, with
+    its ripple (the job's ``spacing`` trades ripple for speed)."""
+    if job.spot is None or job.spacing is not None or job.speed is not None:
+        return None
+    if spacing >= ripple_spacing(job.sigma, PROFILE_TOLERANCE / 2) * (1 - 1e-9):
+        return None
+    tol = PROFILE_TOLERANCE / 2
+    wider = spacing * speed / vmax  # film ∝ 1/(speed·spacing): the motors' pass
+    what = ", ".join(f"{k} {v:.4g}" for k, v in job.spot.params().items() if k != "radius")
+    ripple = float(job.spot.ripple(wider, STROKES[job.direction]))
+    gauss = ripple_spacing(job.sigma)
+    return (f"the {job.spot.name} spot ({what}) needs passes {spacing * 1e3:.4g} mm apart "
+            f"for ±{tol * 100:g} % ripple (a Gaussian of its width: {gauss * 1e3:.3g} mm)"
+            f", so {speed:.4g} m/s; the motors allow {vmax:.4g}: job.spacing "
+            f"{wider * 1e3:.4g} mm (ripple ±{ripple * 100:.2g} %) or a lower flow")
+
+
 def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace,
                policy: PlannerPolicy = DEFAULT_POLICY) -> np.ndarray:
     """The path's sample times: steps of at most ``policy.max_step`` and
@@ -87,4 +114,4 @@ def check_samples(n: float, duration: float, speed: float, job: PaintJob,
                           f"{policy.max_path_samples:.3g}: {fix}, {policy.budget_fix}")
 
 
-__all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times"]
+__all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times", "spot_too_fine"]

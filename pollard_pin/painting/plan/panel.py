@@ -44,7 +44,7 @@ from ..passes.raster import (
 )
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import PanelFrame
-from .layout import PanelLayout, panel_layout, path_times
+from .layout import PanelLayout, panel_layout, path_times, spot_too_fine
 from .result import PlanResult
 
 
@@ -292,6 +292,9 @@ def _plan(robot, job: PaintJob, act: Actuators, policy: PlannerPolicy) -> PaintP
         # Film per coat = flow/(speed·spacing): the motors' fastest pass sets the thinnest
         # coat; more coats only make each one thinner still.
         per_coat = job.flow / (vmax * spacing)
+        cause = spot_too_fine(job, speed, spacing, vmax)
+        if cause is not None:
+            raise PlanError(cause)
         most = math.floor(job.thickness / per_coat * (1 + 1e-9))
         hint = (f"; at most {most} coat(s) of this target" if most >= 1 else
                 f"; a target below that cannot be painted at spacing {spacing * 1e3:.4g} mm")
