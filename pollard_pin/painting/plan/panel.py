@@ -364,9 +364,11 @@ def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool,
         return m.utilisation.reshape(len(pieces), n, -1).max(axis=(1, 2))
 
     guess = np.full(len(pieces), policy.first_guess(speed))
-    return build(fastest(evaluate, guess, policy.utilisation))
+    # a fast pass's first guess may run out of reach (a ramp runs v·τ/2 on): halved
+    return build(fastest(evaluate, guess, policy.utilisation, halvings=GUESS_HALVINGS))
 
 
+GUESS_HALVINGS = 4  # the ramps' and turnarounds' first guess halved at most 4× to come in reach
 RMS_DOUBLINGS = 6  # turnarounds and ramps at most 2^6 × their fastest for the RMS rating
 
 
