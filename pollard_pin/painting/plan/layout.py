@@ -72,24 +72,29 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
     return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
 
 
-def spot_too_fine(job: PaintJob, speed: float, spacing: float, vmax: float) -> str | None:
-    """Why a gun too slow for the target is the spot's doing, or None: a spot whose stripe
+def spot_too_fine(job: PaintJob, speed: float, spacing: float,
+                  vmax: float | None = None) -> str | None:
+    """Why a gun too fast for the robot is the spot's doing, or None: a spot whose stripe
     needs passes closer than the Gaussian of its width for the ripple rule (docs/model.md
-    §21: a β spot's steep rim), so a faster gun; and the spacing the motors would allow, with
-    its ripple (the job's ``spacing`` trades ripple for speed)."""
+    §21: a β spot's steep rim), so a faster gun. With the motors' fastest pass ``vmax``
+    [m/s], the spacing they would allow and its ripple (the job's ``spacing`` trades ripple
+    for speed); without, the cause of ramps and turnarounds out of reach."""
+    tol = PROFILE_TOLERANCE / 2
     if job.spot is None or job.spacing is not None or job.speed is not None:
         return None
-    if spacing >= ripple_spacing(job.sigma, PROFILE_TOLERANCE / 2) * (1 - 1e-9):
+    gauss = ripple_spacing(job.sigma, tol)
+    if spacing >= gauss * (1 - 1e-9):
         return None
-    tol = PROFILE_TOLERANCE / 2
-    wider = spacing * speed / vmax  # film ∝ 1/(speed·spacing): the motors' pass
     what = ", ".join(f"{k} {v:.4g}" for k, v in job.spot.params().items() if k != "radius")
+    why = (f"the {job.spot.name} spot ({what}) needs passes {spacing * 1e3:.4g} mm apart "
+           f"for ±{tol * 100:g} % ripple")
+    if vmax is None:
+        return f"{why}, so {speed:.4g} m/s: a wider job.spacing or a lower flow"
+    wider = spacing * speed / vmax  # film ∝ 1/(speed·spacing): the motors' pass
     ripple = float(job.spot.ripple(wider, STROKES[job.direction]))
-    gauss = ripple_spacing(job.sigma)
-    return (f"the {job.spot.name} spot ({what}) needs passes {spacing * 1e3:.4g} mm apart "
-            f"for ±{tol * 100:g} % ripple (a Gaussian of its width: {gauss * 1e3:.3g} mm)"
-            f", so {speed:.4g} m/s; the motors allow {vmax:.4g}: job.spacing "
-            f"{wider * 1e3:.4g} mm (ripple ±{ripple * 100:.2g} %) or a lower flow")
+    return (f"{why} (a Gaussian of its width: {gauss * 1e3:.3g} mm), so {speed:.4g} m/s; "
+            f"the motors allow {vmax:.4g}: job.spacing {wider * 1e3:.4g} mm (ripple "
+            f"±{ripple * 100:.2g} %) or a lower flow")
 
 
 def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace,

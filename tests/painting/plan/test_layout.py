@@ -166,5 +166,16 @@ def test_a_gun_too_slow_for_a_steep_beta_spot_says_the_spot_is_why(job):
     y = np.linspace(0.0, wider, 401)[:, None] - wider * np.arange(-10, 11)[None, :]
     brute = np.abs(wider * ((1 - (y / 0.06) ** 2).clip(0) / (0.06 * 4 / 3)).sum(1) - 1).max()
     assert f"(ripple ±{brute * 100:.2g} %)" in msg
+    # ramps out of reach at that speed: the spot is named as their cause too
+    msg = spot_too_fine(j, lay.speed, lay.spacing)
+    assert msg.startswith("the beta spot (beta 1.5) needs passes 9.195 mm apart")
+    assert msg.endswith(f"so {lay.speed:.4g} m/s: a wider job.spacing or a lower flow")
     gauss = panel_layout(job)
     assert spot_too_fine(job, gauss.speed, gauss.spacing, 0.1) is None
+    assert spot_too_fine(job, gauss.speed, gauss.spacing) is None
+    oval = EllipticGaussian(0.03, 0.01)  # a Gaussian's stripe: its spacing is the rule's
+    je = replace(j, spot=oval, sigma=oval.width)
+    assert spot_too_fine(je, 1.0, panel_layout(je).spacing) is None
+    four = BetaSpot(0.06, 4.0)  # 28.4 mm, finer than the Gaussian of its width (34.4 mm)
+    j4 = replace(j, spot=four, sigma=four.width)
+    assert "needs passes 28.42 mm apart" in spot_too_fine(j4, 1.0, panel_layout(j4).spacing)
