@@ -203,7 +203,8 @@ def plan_paint(robot, job: PaintJob, act: Actuators,
         where = str(exc).split(": ")[0]
         cause = None if " on a pass" in where else spot_too_fine(job, lay.speed, lay.spacing)
         if cause is not None:  # a smaller panel needs the same speed
-            raise PlanError(f"{where}: {cause}") from None
+            raise PlanError(say_less(f"{where}: {cause}",
+                                     f"{where.split(' at panel')[0]}: {cause}")) from None
         scale, _ = _largest_scale(robot, job, act, policy=policy)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
