@@ -89,7 +89,9 @@ def spot_too_fine(job: PaintJob, speed: float, spacing: float,
     why = (f"the {job.spot.name} spot ({what}) needs passes {spacing * 1e3:.4g} mm apart "
            f"for ±{tol * 100:g} % ripple")
     if vmax is None:
-        return f"{why}, so {speed:.4g} m/s: a wider job.spacing or a lower flow"
+        most = job.spot.spacing(PROFILE_TOLERANCE, STROKES[job.direction])  # the layout's ±1 %
+        return (f"{why}, so {speed:.4g} m/s: a lower flow or job.spacing up to "
+                f"{most * 1e3:.4g} mm (±{PROFILE_TOLERANCE * 100:g} %)")
     wider = spacing * speed / vmax  # film ∝ 1/(speed·spacing): the motors' pass
     ripple = float(job.spot.ripple(wider, STROKES[job.direction]))
     return (f"{why} (a Gaussian of its width: {gauss * 1e3:.3g} mm), so {speed:.4g} m/s; "

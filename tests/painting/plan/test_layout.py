@@ -169,7 +169,8 @@ def test_a_gun_too_slow_for_a_steep_beta_spot_says_the_spot_is_why(job):
     # ramps out of reach at that speed: the spot is named as their cause too
     msg = spot_too_fine(j, lay.speed, lay.spacing)
     assert msg.startswith("the beta spot (beta 1.5) needs passes 9.195 mm apart")
-    assert msg.endswith(f"so {lay.speed:.4g} m/s: a wider job.spacing or a lower flow")
+    assert msg.endswith(f"so {lay.speed:.4g} m/s: a lower flow or job.spacing up to "
+                        "13.24 mm (±1 %)")
     gauss = panel_layout(job)
     assert spot_too_fine(job, gauss.speed, gauss.spacing, 0.1) is None
     assert spot_too_fine(job, gauss.speed, gauss.spacing) is None
