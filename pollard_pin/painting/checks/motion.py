@@ -113,6 +113,9 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
                   np.abs(motor_speed(act, v)) / act.column("max_speed"))
 
 
+GUESS_HALVINGS = 4  # the planners' ramps' and turnarounds' first guess halved at most 4× for reach
+
+
 def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings: int = 12,
             halvings: int = 0):
     """Smallest durations τ (one per piece, vectorised bisection) with

@@ -33,7 +33,7 @@ from ...dynamics.path import path_dynamics
 from ...errors import say_less, without_asides
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance, panel_mesh
-from ..checks.motion import fastest, motion, reach
+from ..checks.motion import GUESS_HALVINGS, fastest, motion, reach
 from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
@@ -374,7 +374,6 @@ def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool,
     return build(fastest(evaluate, guess, policy.utilisation, halvings=GUESS_HALVINGS))
 
 
-GUESS_HALVINGS = 4  # the ramps' and turnarounds' first guess halved at most 4× to come in reach
 RMS_DOUBLINGS = 6  # turnarounds and ramps at most 2^6 × their fastest for the RMS rating
 
 
