@@ -26,7 +26,7 @@ from ..errors import CellError
 from ..job import PartJob
 from ..line.reach import ball_shift_range
 from ..passes.program import gun_frame
-from ..passes.raster import SPOT_RADIUS
+from ..passes.raster import spot_runon
 from ..passes.surface import EXTENSION, reference_axis
 from .robots import CellRobot
 
@@ -45,7 +45,8 @@ class Strokes:
     ``axis``, ``facing`` and ``direction`` (the line's) are world unit vectors; ``samples``
     holds per stroke (w (K,) increasing, tips (K, 3), spray axes (K, 3)) at its own samples;
     ``extent`` = (lo, hi) the painted faces along the axis [m]; ``run_on`` the free edge's
-    run-on [m] (today's rule: 4σ on a panel, 3σ on a part), ``runout`` R = 4σ past a seam;
+    run-on [m] (4σ on a panel, 3σ on a part, within a finite spot's reach:
+    :func:`.passes.raster.spot_runon`), ``runout`` R = 4σ (so bounded) past a seam;
     ``panel``: the gun's roll referred to base z (a panel's frame), else to
     :func:`.passes.surface.reference_axis` of the facing."""
 
@@ -136,8 +137,8 @@ def panel_strokes(job) -> Strokes:
         aim = frame.c + U[:, None] * ep + o * es
         samples.append((aim @ axis, aim + job.standoff * frame.n, np.tile(-frame.n, (3, 1))))
     return Strokes(axis, frame.n.copy(), e, tuple(samples),
-                   (float(corners.min()), float(corners.max())), SPOT_RADIUS * job.sigma,
-                   SPOT_RADIUS * job.sigma, True)
+                   (float(corners.min()), float(corners.max())),
+                   spot_runon(job.sigma, job.spot), spot_runon(job.sigma, job.spot), True)
 
 
 def part_strokes(job: PartJob, part=None) -> Strokes:
@@ -161,8 +162,9 @@ def part_strokes(job: PartJob, part=None) -> Strokes:
         samples.append((w[keep], p.tip[order][keep], p.axis[order][keep]))
     ext = part.vertices[part.faces[part.painted]].reshape(-1, 3) @ axis
     return Strokes(axis, np.asarray(part.facing, float), e, tuple(samples),
-                   (float(ext.min()), float(ext.max())), EXTENSION * job.sigma,
-                   SPOT_RADIUS * job.sigma, False)
+                   (float(ext.min()), float(ext.max())),
+                   spot_runon(job.sigma, job.spot, EXTENSION), spot_runon(job.sigma, job.spot),
+                   False)
 
 
 def job_strokes(job, part=None, facing=None) -> Strokes:

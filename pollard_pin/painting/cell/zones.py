@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import PlanError
 from ..line.phases import Relative
-from ..passes.raster import SPOT_RADIUS
+from ..passes.raster import SPOT_RADIUS, spot_runon
 from ..passes.surface import EXTENSION
 
 OPEN = (-math.inf, math.inf)  # a piece's trigger window open throughout
@@ -95,10 +95,11 @@ class Split:
 
 def seam_runout(job) -> float:
     """R [m]: the run-on past a seam, the planner's free-edge rule (a panel's SPOT_RADIUS σ,
-    a part's EXTENSION σ), so a seam is crossed as an edge is."""
+    a part's EXTENSION σ, within a finite spot's reach: :func:`.passes.raster.spot_runon`), so a
+    seam is crossed as an edge is."""
     from ..job import PartJob
 
-    return (EXTENSION if isinstance(job, PartJob) else SPOT_RADIUS) * job.sigma
+    return spot_runon(job.sigma, job.spot, EXTENSION if isinstance(job, PartJob) else SPOT_RADIUS)
 
 
 def window(lo: float, hi: float, start: float, rate: float, duration: float) -> tuple:

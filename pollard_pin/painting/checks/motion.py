@@ -113,15 +113,30 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
                   np.abs(motor_speed(act, v)) / act.column("max_speed"))
 
 
-def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings: int = 12):
+GUESS_HALVINGS = 4  # the planners' ramps' and turnarounds' first guess halved at most 4× for reach
+
+
+def fastest(evaluate, guess, target: float, iterations: int = 16, max_doublings: int = 12,
+            halvings: int = 0):
     """Smallest durations τ (one per piece, vectorised bisection) with
     ``evaluate(τ)`` (per-piece peak utilisation) ≤ ``target``; ``guess`` (P,) starts the
     bracket, doubled until feasible. Utilisation must fall as τ grows (acceleration-bound
-    pieces); raises :class:`PlanError` if a piece is not feasible at any tried duration."""
+    pieces); raises :class:`PlanError` if a piece is not feasible at any tried duration.
+    A guess whose ``evaluate`` raises :class:`ReachError` (pieces that run on out of reach:
+    shorter ones travel less) is halved, at most ``halvings`` times; out of reach while
+    doubling for the motors is raised (docs/model.md §21)."""
     hi = np.array(guess, dtype=float)
+    for left in range(halvings, -1, -1):
+        try:
+            util = evaluate(hi)
+            break
+        except ReachError:
+            if not left:
+                raise
+            hi = hi / 2
     lo = np.zeros_like(hi)
-    for _ in range(max_doublings):
-        ok = evaluate(hi) <= target
+    for i in range(max_doublings):
+        ok = (util if i == 0 else evaluate(hi)) <= target
         if ok.all():
             break
         lo = np.where(ok, lo, hi)

@@ -33,6 +33,29 @@ DEGREE = 7  # coefficients per segment polynomial (degree 6)
 
 
 # --- pass layout -----------------------------------------------------------------------------
+def spot_runon(sigma: float, spot=None, sigmas: float = SPOT_RADIUS) -> float:
+    """How far [m] past a painted edge the passes run on (docs/model.md §21): ``sigmas``·σ,
+    σ the spot's width, but never beyond the reach of a finite spot (the β spot's R at the
+    standoff, c = 1: it deposits nothing beyond), since past it the gun paints nothing.
+
+    Parameters
+    ----------
+    sigma : float
+        The spot's width σ [m] (the job's ``sigma``).
+    spot : Spot or None, optional
+        The job's spot (:mod:`.spray.spots`); None: the round Gaussian of ``sigma``.
+    sigmas : float, optional
+        The run-on in σ (a panel's SPOT_RADIUS, a part's ``EXTENSION``).
+
+    Returns
+    -------
+    float
+        The run-on [m]: min(sigmas·σ, reach); the Gaussians' reach (10σ) never binds.
+    """
+    run = sigmas * sigma
+    return run if spot is None else min(run, spot.reach)
+
+
 def ripple_spacing(sigma: float, tolerance: float = PROFILE_TOLERANCE / 2) -> float:
     """Largest spacing whose interior ripple, 2·exp(−2π²σ²/Δ²) (Poisson summation of the
     passes' Gaussian profiles), stays within ``tolerance``."""
@@ -212,5 +235,5 @@ def raster_motion(frame: PanelFrame, standoff: float, seg: Segments, t,
 
 
 __all__ = ["PROFILE_TOLERANCE", "SPOT_RADIUS", "Segments", "cross_profile", "job_spacing",
-           "pass_offsets",
+           "pass_offsets", "spot_runon",
            "raster_motion", "raster_segments", "ripple_spacing", "task_motion"]

@@ -50,7 +50,7 @@ from ..errors import BudgetError, PlanError
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.spots import STROKES
 from ..workpiece.mesh import Part
-from .raster import job_spacing, pass_offsets
+from .raster import job_spacing, pass_offsets, spot_runon
 
 SAMPLE_STEP = 1e-3  # m of surface between pass samples (σ/10 for the example gun)
 # m: the Gaussian averages of the normal tried along a pass, smallest first (a faceted mesh
@@ -309,7 +309,7 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: fl
     N_cross = cross[2]
     t_lo = -_tangent(N_cross[0], frame.along, frame.across)
     t_hi = _tangent(N_cross[-1], frame.along, frame.across)
-    extension = EXTENSION * job.sigma
+    extension = spot_runon(job.sigma, job.spot, EXTENSION)
     lo, hi = c[0] + 1e-6, c[-1] - 1e-6
     raw = []
     for off in offsets:

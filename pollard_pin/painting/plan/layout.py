@@ -11,7 +11,14 @@ import numpy as np
 
 from ..errors import BudgetError, PlanError
 from ..job import PaintJob
-from ..passes.raster import SPOT_RADIUS, Segments, job_spacing, pass_offsets
+from ..passes.raster import (
+    PROFILE_TOLERANCE,
+    Segments,
+    job_spacing,
+    pass_offsets,
+    ripple_spacing,
+    spot_runon,
+)
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame, panel_frame
@@ -49,7 +56,7 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
                           f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {policy.max_passes}: "
                           "a wider spacing, fewer coats or a smaller panel")
     speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    half_length = length / 2 + SPOT_RADIUS * job.sigma
+    half_length = length / 2 + spot_runon(job.sigma, job.spot)
     # the passes alone, before any turnaround: their samples bound the path's from below
     passing = passes * 2 * half_length / speed if speed > 0 else math.inf
     check_samples(passing / policy.step(job.sigma, speed) if speed > 0 else math.inf,
@@ -63,6 +70,33 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
                   if job.speed is not None else "the ripple rule")
         raise PlanError(f"{job.source}: {origin}: {exc}") from None
     return PanelLayout(frame, offsets, half_length, speed, coats, spacing)
+
+
+def spot_too_fine(job: PaintJob, speed: float, spacing: float,
+                  vmax: float | None = None) -> str | None:
+    """Why a gun too fast for the robot is the spot's doing, or None: a spot whose stripe
+    needs passes closer than the Gaussian of its width for the ripple rule (docs/model.md
+    §21: a β spot's steep rim), so a faster gun. With the motors' fastest pass ``vmax``
+    [m/s], the spacing they would allow and its ripple (the job's ``spacing`` trades ripple
+    for speed); without, the cause of ramps and turnarounds out of reach."""
+    tol = PROFILE_TOLERANCE / 2
+    if job.spot is None or job.spacing is not None or job.speed is not None:
+        return None
+    gauss = ripple_spacing(job.sigma, tol)
+    if spacing >= gauss * (1 - 1e-9):
+        return None
+    what = ", ".join(f"{k} {v:.4g}" for k, v in job.spot.params().items() if k != "radius")
+    why = (f"the {job.spot.name} spot ({what}) needs passes {spacing * 1e3:.4g} mm apart "
+           f"for ±{tol * 100:g} % ripple")
+    if vmax is None:
+        most = job.spot.spacing(PROFILE_TOLERANCE, STROKES[job.direction])  # the layout's ±1 %
+        return (f"{why}, so {speed:.4g} m/s: a lower flow or job.spacing up to "
+                f"{most * 1e3:.4g} mm (±{PROFILE_TOLERANCE * 100:g} %)")
+    wider = spacing * speed / vmax  # film ∝ 1/(speed·spacing): the motors' pass
+    ripple = float(job.spot.ripple(wider, STROKES[job.direction]))
+    return (f"{why} (a Gaussian of its width: {gauss * 1e3:.3g} mm), so {speed:.4g} m/s; "
+            f"the motors allow {vmax:.4g}: job.spacing {wider * 1e3:.4g} mm (ripple "
+            f"±{ripple * 100:.2g} %) or a lower flow")
 
 
 def path_times(seg: Segments, job: PaintJob, speed: float, how=np.linspace,
@@ -87,4 +121,4 @@ def check_samples(n: float, duration: float, speed: float, job: PaintJob,
                           f"{policy.max_path_samples:.3g}: {fix}, {policy.budget_fix}")
 
 
-__all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times"]
+__all__ = ["PanelLayout", "check_samples", "panel_layout", "path_times", "spot_too_fine"]

@@ -33,7 +33,7 @@ from ...dynamics.path import path_dynamics
 from ...errors import say_less, without_asides
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance, panel_mesh
-from ..checks.motion import fastest, motion, reach
+from ..checks.motion import GUESS_HALVINGS, fastest, motion, reach
 from ..errors import BudgetError, JobKindError, PlanError, ReachError
 from ..job import MIN_PANEL_SIGMAS, PaintJob, job_kind
 from ..passes.raster import (
@@ -44,7 +44,7 @@ from ..passes.raster import (
 )
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import PanelFrame
-from .layout import PanelLayout, panel_layout, path_times
+from .layout import PanelLayout, panel_layout, path_times, spot_too_fine
 from .result import PlanResult
 
 
@@ -199,6 +199,12 @@ def plan_paint(robot, job: PaintJob, act: Actuators,
     try:
         return _plan(robot, job, act, policy)
     except ReachError as exc:
+        lay = panel_layout(job, policy)
+        where = str(exc).split(": ")[0]
+        cause = None if " on a pass" in where else spot_too_fine(job, lay.speed, lay.spacing)
+        if cause is not None:  # a smaller panel needs the same speed
+            raise PlanError(say_less(f"{where}: {cause}",
+                                     f"{where.split(' at panel')[0]}: {cause}")) from None
         scale, _ = _largest_scale(robot, job, act, policy=policy)
         if scale == 0:
             fits = (f"no {job.width / job.height:.3g}:1 panel centred at "
@@ -292,6 +298,9 @@ def _plan(robot, job: PaintJob, act: Actuators, policy: PlannerPolicy) -> PaintP
         # Film per coat = flow/(speed·spacing): the motors' fastest pass sets the thinnest
         # coat; more coats only make each one thinner still.
         per_coat = job.flow / (vmax * spacing)
+        cause = spot_too_fine(job, speed, spacing, vmax)
+        if cause is not None:
+            raise PlanError(cause)
         most = math.floor(job.thickness / per_coat * (1 + 1e-9))
         hint = (f"; at most {most} coat(s) of this target" if most >= 1 else
                 f"; a target below that cannot be painted at spacing {spacing * 1e3:.4g} mm")
@@ -361,7 +370,8 @@ def _fastest_segments(robot, act, job, lay: PanelLayout, horizontal: bool,
         return m.utilisation.reshape(len(pieces), n, -1).max(axis=(1, 2))
 
     guess = np.full(len(pieces), policy.first_guess(speed))
-    return build(fastest(evaluate, guess, policy.utilisation))
+    # a fast pass's first guess may run out of reach (a ramp runs v·τ/2 on): halved
+    return build(fastest(evaluate, guess, policy.utilisation, halvings=GUESS_HALVINGS))
 
 
 RMS_DOUBLINGS = 6  # turnarounds and ramps at most 2^6 × their fastest for the RMS rating

@@ -25,7 +25,7 @@ from ...dynamics.motors import Actuators
 from ...errors import say_less, without_asides
 from ...paths.trajectory import Trajectory
 from ..checks.clearance import job_clearance
-from ..checks.motion import fastest, motion
+from ..checks.motion import GUESS_HALVINGS, fastest, motion
 from ..errors import BudgetError, PlanError, ReachError
 from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SMOOTHING, SurfaceLayout, pass_spacing, pass_speed, surface_layout
@@ -198,7 +198,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
 
     try:
         taus = fastest(evaluate, np.full(len(pieces) + 1, policy.first_guess(v)),
-                       policy.utilisation)
+                       policy.utilisation, halvings=GUESS_HALVINGS)
     except ReachError as exc:
         raise _refusal(robot, job, act, part, exc, hints, policy) from None
     program = build_program(pieces, taus)

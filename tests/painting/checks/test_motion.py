@@ -42,6 +42,31 @@ def test_fastest_refuses_a_piece_no_duration_fixes():
         fastest(lambda t: np.array([0.5, 1.2]) + 0 * t, np.ones(2), 0.97)
 
 
+def test_fastest_halves_a_first_guess_out_of_reach():
+    """A piece that runs on v·τ/2 (a ramp) leaves the workspace past τ = 0.3 s, and the motors
+    need τ ≥ c/√target: a first guess of 1 s out of reach is halved (to 0.25 s) and the
+    search finds the motors' shortest; without halvings, or when the motors need a piece
+    longer than the reach allows, the reach error is the refusal."""
+    from pollard_pin.painting.checks.motion import fastest
+    from pollard_pin.painting.errors import ReachError
+
+    def evaluate(c):
+        def ev(t):
+            if np.any(t > 0.3):
+                raise ReachError("the ramp leaves the workspace", 0)
+            return (c / t) ** 2
+        return ev
+
+    c, target = np.array([0.05, 0.2]), 0.97
+    tau = fastest(evaluate(c), np.ones(2), target, halvings=4)
+    exact = c / np.sqrt(target)
+    assert np.all(tau >= exact) and np.all(tau - exact <= 0.25 / 2 ** 16)
+    with pytest.raises(ReachError):
+        fastest(evaluate(c), np.ones(2), target)
+    with pytest.raises(ReachError):  # the motors need 0.41 s, the reach allows 0.3
+        fastest(evaluate(np.array([0.4])), np.ones(1), target, halvings=4)
+
+
 def test_reach_names_the_first_joint_beyond_its_limits(robot, plan, act, monkeypatch):
     """A joint pushed past its upper limit is named with its first sample, its angle and how
     far off (kinematics.limits, the one rule); an angle 2π off a legal one is legal."""

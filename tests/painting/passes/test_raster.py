@@ -11,6 +11,7 @@ from pollard_pin.painting.passes.raster import (
     raster_motion,
     raster_segments,
     ripple_spacing,
+    spot_runon,
     task_motion,
 )
 
@@ -128,3 +129,19 @@ def test_job_spacing_follows_the_spot_across_the_passes():
     assert job_spacing(job(e, "vertical")) == pytest.approx(ripple_spacing(0.008), rel=1e-15)
     b = BetaSpot(0.03, 2.5)
     assert job_spacing(job(b)) == b.spacing(0.005)
+
+
+def test_the_run_on_stops_where_a_finite_spot_deposits_nothing():
+    """The run-on past an edge is k·σ, but never past a β spot's reach R, beyond which its
+    film is exactly 0 (brute force: the stripe there); the Gaussians keep k·σ bit for bit."""
+    from pollard_pin.painting.spray.spots import BetaSpot, EllipticGaussian, RoundGaussian
+
+    steep = BetaSpot(0.06, 1.5)  # σ = 26.8 mm: 4σ = 107 mm, 3σ = 80 mm, both past R
+    assert spot_runon(steep.width, steep) == 0.06
+    assert spot_runon(steep.width, steep, 3.0) == 0.06
+    assert steep.stripe(np.linspace(0.06, 0.2, 50)).max() == 0.0
+    narrow = BetaSpot(0.06, 20.0)  # 4σ = 37 mm < R
+    assert spot_runon(narrow.width, narrow) == 4.0 * narrow.width
+    for spot in (None, RoundGaussian(0.01), EllipticGaussian(0.02, 0.01)):
+        sigma = 0.01 if spot is None else spot.width
+        assert spot_runon(sigma, spot) == 4.0 * sigma

@@ -2,6 +2,7 @@
 film per coat is the target's share, the passes are the spacing apart and cover the panel, a
 spacing too wide names the job entry it came from, and the budgets stop a job before its path
 is built."""
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -10,7 +11,7 @@ import pytest
 from pollard_pin.painting.errors import BudgetError, PlanError
 from pollard_pin.painting.film.grid import film_grid
 from pollard_pin.painting.passes.raster import SPOT_RADIUS
-from pollard_pin.painting.plan.layout import panel_layout
+from pollard_pin.painting.plan.layout import panel_layout, spot_too_fine
 from pollard_pin.painting.plan.panel import plan_paint
 from pollard_pin.painting.policy import PlannerPolicy
 from pollard_pin.painting.spray.deposition import film, gun_of
@@ -129,3 +130,53 @@ def test_each_spot_paints_the_panel_within_the_band(job, name, direction):
     if name == "elliptic":
         short = direction == "vertical"
         assert lay.spacing == pytest.approx(1.8151 * (0.006 if short else 0.014), rel=1e-4)
+
+
+def test_a_beta_spot_runs_on_no_further_than_its_footprint(job):
+    """The β spot deposits nothing beyond R (docs/model.md §20), so its passes run on R past
+    the panel's edges, not the Gaussian rule's 4σ (at β = 1.5, 4σ = 1.79 R: the calibrated
+    gun's ramps once left the workspace 0.64 m past the edge); a Gaussian keeps 4σ."""
+    spot = BetaSpot(0.06, 1.5)
+    j = replace(job, width=0.19, height=0.09, standoff=0.2, flow=4.05e-7, spot=spot,
+                sigma=spot.width)
+    lay = panel_layout(j)
+    assert SPOT_RADIUS * j.sigma > 1.7 * 0.06
+    assert lay.half_length == pytest.approx(0.19 / 2 + 0.06, rel=1e-15)
+    # β = 12: 4σ = 4R/√26 < R, the Gaussian-like rule binds
+    wide = BetaSpot(0.06, 12.0)
+    lay = panel_layout(replace(j, spot=wide, sigma=wide.width))
+    assert lay.half_length == pytest.approx(0.19 / 2 + 4 * 0.06 / math.sqrt(26), rel=1e-12)
+
+
+def test_a_gun_too_slow_for_a_steep_beta_spot_says_the_spot_is_why(job):
+    """At β = 1.5 the ripple rule needs passes 9.2 mm apart (a 120 mm-wide spot; the
+    Gaussian of its width: 48.7 mm), so the target's gun speed is 1.76 m/s: the refusal
+    names the spot and the spacing the motors would allow with its ripple (brute force
+    below); a Gaussian job is left to the general refusal."""
+    spot = BetaSpot(0.06, 1.5)
+    j = replace(job, width=0.19, height=0.09, standoff=0.2, flow=4.05e-7, spot=spot,
+                sigma=spot.width)
+    lay = panel_layout(j)
+    assert lay.spacing == pytest.approx(9.195e-3, rel=1e-3)
+    msg = spot_too_fine(j, lay.speed, lay.spacing, 1.701)
+    assert msg.startswith("the beta spot (beta 1.5) needs passes 9.195 mm apart for ±0.5 %")
+    assert len("pollard-pin paint: error: " + msg) <= 250
+    wider = lay.spacing * lay.speed / 1.701
+    assert f"job.spacing {wider * 1e3:.4g} mm" in msg
+    y = np.linspace(0.0, wider, 401)[:, None] - wider * np.arange(-10, 11)[None, :]
+    brute = np.abs(wider * ((1 - (y / 0.06) ** 2).clip(0) / (0.06 * 4 / 3)).sum(1) - 1).max()
+    assert f"(ripple ±{brute * 100:.2g} %)" in msg
+    # ramps out of reach at that speed: the spot is named as their cause too
+    msg = spot_too_fine(j, lay.speed, lay.spacing)
+    assert msg.startswith("the beta spot (beta 1.5) needs passes 9.195 mm apart")
+    assert msg.endswith(f"so {lay.speed:.4g} m/s: a lower flow or job.spacing up to "
+                        "13.24 mm (±1 %)")
+    gauss = panel_layout(job)
+    assert spot_too_fine(job, gauss.speed, gauss.spacing, 0.1) is None
+    assert spot_too_fine(job, gauss.speed, gauss.spacing) is None
+    oval = EllipticGaussian(0.03, 0.01)  # a Gaussian's stripe: its spacing is the rule's
+    je = replace(j, spot=oval, sigma=oval.width)
+    assert spot_too_fine(je, 1.0, panel_layout(je).spacing) is None
+    four = BetaSpot(0.06, 4.0)  # 28.4 mm, finer than the Gaussian of its width (34.4 mm)
+    j4 = replace(j, spot=four, sigma=four.width)
+    assert "needs passes 28.42 mm apart" in spot_too_fine(j4, 1.0, panel_layout(j4).spacing)
