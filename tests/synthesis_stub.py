@@ -74,7 +74,7 @@ class StubJob:
         return {"line": {"speed": self.speed}}
 
 
-def baseline_values(space):
+def baseline_values(space, ctx=None):
     return space.baseline()
 
 

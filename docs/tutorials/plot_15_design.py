@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import pollard_pin as pp
-from pollard_pin.design import (
+from pollard_pin.synthesis import (
     DesignOptions,
     baseline_values,
     build,

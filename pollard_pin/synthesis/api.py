@@ -129,7 +129,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     options : DesignOptions or None, optional
         Trials, workers or Dask, the study file, ``resume``, ``pick``.
     evaluator : object or None, optional
-        ``prepare(job, space)``, ``evaluate(values, ctx, level)``, ``baseline_values(space)``
+        ``prepare(job, space)``, ``evaluate(values, ctx, level)``, ``baseline_values(space, ctx)``
         and ``OBJECTIVES`` (default: :mod:`pollard_pin.synthesis.evaluation`).
     progress : Callable or None, optional
         ``progress(done, total, feasible, best)`` after each evaluation (default: a bar on a
@@ -161,7 +161,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
         check_study_file(options.study, options.resume)
     ctx = ev.prepare(job, space)
     variables = list(space.variables())
-    base = ev.baseline_values(space)
+    base = ev.baseline_values(space, ctx)
     study, close = open_study(options.study, job=job_fingerprint(job), space=space.fingerprint(),
                        objectives=objectives_of(names), sampler=None, resume=options.resume)
     report = progress if progress is not None else (_bar(options) if options.progress

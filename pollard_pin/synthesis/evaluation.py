@@ -383,15 +383,18 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
     return _full(values, design, robot, ctx, ev)
 
 
-def baseline_values(space: DesignSpace) -> dict[str, Any]:
+def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dict[str, Any]:
     """The values of the reference design (every factor 1, every bounded key at the
     reference's value, in the space or not, standing at the origin) with the catalogue motor
-    and ratio nearest the shipped actuators; the fewest robots the space allows.
+    and ratio nearest the shipped actuators; the fewest robots the space allows, or with
+    ``ctx``, the fewest whose screen it passes (the thesis robot as the cell it paints in).
 
     Parameters
     ----------
     space : DesignSpace
         The design space.
+    ctx : DesignContext or None, optional
+        The job's context (:func:`prepare`): the robot count from the screen.
 
     Returns
     -------
@@ -415,6 +418,11 @@ def baseline_values(space: DesignSpace) -> dict[str, Any]:
         values["place.back"] = space.back[0]
     if space.robots[0] < space.robots[1]:
         values["robots"] = space.robots[0]
+        counts = range(space.robots[0], space.robots[1] + 1) if ctx is not None else ()
+        for n in counts:  # the screen is cheap (docs/model.md §31.3)
+            if evaluate({**values, "robots": n}, ctx, level="screen").feasible:
+                values["robots"] = n
+                break
     return values
 
 

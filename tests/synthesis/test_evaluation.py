@@ -63,6 +63,17 @@ def test_screen_thesis_needs_two_robots(example):
     assert max(two.constraint_vector()) <= 0
 
 
+def test_the_baseline_is_the_thesis_robot_in_the_cell_it_paints_in(example):
+    """The study's first row: with the context, the fewest robots whose screen passes (two for
+    the door, as the screen's own count says), not the space's lower bound."""
+    space, ctx = example
+    assert baseline_values(space)["robots"] == space.robots[0] == 1
+    base = baseline_values(space, ctx)
+    assert base["robots"] == evaluate(baseline_values(space), ctx, "screen").figures[
+        "robots_needed"] == 2
+    assert evaluate(base, ctx, "screen").feasible
+
+
 def test_screen_scaled_design_alone(example):
     space, ctx = example
     v = {**baseline_values(space), "scale.arms": 1.6, "scale.links": 1.6, "place.back": 0.3,
