@@ -119,8 +119,8 @@ from pollard_pin.painting.film.cell import world_gun  # noqa: E402
 
 fig, ax = plt.subplots(figsize=(8, 3.4))
 for rp, colour in zip(result.plan.robots, ("tab:blue", "tab:orange")):
-    _, tip, axis, spray = world_gun(rp)
-    aim = tip + job.standoff * axis
+    _, tip, frames, spray = world_gun(rp)  # frames[:, :, 0]: the spray axis
+    aim = tip + job.standoff * frames[:, :, 0]
     open_ = spray > 0
     ax.plot(aim[open_, 1], aim[open_, 2], ".", ms=1, color=colour,
             label=f"{rp.robot.name} (zone {rp.zone.lo:.3g} … {rp.zone.hi:.3g} m)")
