@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from .schema import PaintJson, check_grid, load_paint_json, read_paint_json
+from .schema import PaintJson, load_paint_json, read_paint_json
+from .sections import check_grid
 
 FILES = ("path.csv", "path.units.json", "paint.json", "thickness.csv", "thickness.units.json",
          "thickness.parquet", "film.ply")

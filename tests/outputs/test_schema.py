@@ -12,17 +12,9 @@ import pytest
 
 from pollard_pin.film_scale import film_range
 from pollard_pin.io.table import ResultFileError
-from pollard_pin.outputs import schema
-from pollard_pin.outputs.schema import (
-    FilmPly,
-    Grid,
-    MotorUse,
-    PaintJson,
-    Thickness,
-    dumps,
-    load_paint_json,
-    read_paint_json,
-)
+from pollard_pin.outputs import schema, sections
+from pollard_pin.outputs.schema import PaintJson, dumps, load_paint_json, read_paint_json
+from pollard_pin.outputs.sections import FilmPly, Grid, MotorUse, Thickness
 
 REPORTS = sorted((Path(__file__).resolve().parents[1] / "data" / "paint_reports").glob("*.json"))
 NAMES = [p.stem for p in REPORTS]
@@ -111,7 +103,7 @@ def test_the_paint_section_computed_and_read_back():
     rep = {"target": 25e-6, "paint": entry, "robots": [{"name": "a", "paint": robots[0]}]}
     assert dumps(PaintJson.from_dict(rep)) == json.dumps(rep, indent=2) + "\n"
     r = PaintJson.from_dict(json.loads(json.dumps(rep)))
-    assert isinstance(r.paint, schema.PaintUse) and r.paint.solids == 0.5
+    assert isinstance(r.paint, sections.PaintUse) and r.paint.solids == 0.5
     assert r.paint.overspray == pytest.approx(1 - 0.02 * 20e-6 / 2e-6)
     assert r.paint.on_part_kg == pytest.approx(0.02 * 20e-6 / 0.5 * 1200.0)
     assert r.robots[0]["paint"] == robots[0]
@@ -237,13 +229,13 @@ def test_a_line_with_its_speeds_reads_back_the_same_text(tmp_path):
     report = read_paint_json(path)
     assert report.line["speeds"] == speeds
     assert json.loads(dumps(report))["line"]["speeds"] == speeds
-    assert schema.LineSpeeds.from_dict(speeds, "line.speeds").to_dict() == speeds
+    assert sections.LineSpeeds.from_dict(speeds, "line.speeds").to_dict() == speeds
 
 
 def test_the_strokes_are_typed_and_a_robots_checked():
     """paint.json's ``strokes`` (docs/model.md §24.2): a line's typed, written back as read;
     a cell robot's checked where it stands."""
-    from pollard_pin.outputs.schema import Strokes
+    from pollard_pin.outputs.sections import Strokes
 
     raw = json.loads(next(p for p in REPORTS if p.stem == "line").read_text(encoding="utf-8"))
     raw["strokes"] = {"direction": "across", "step_from": "leading", "dwell_s": 12.5}

@@ -57,7 +57,7 @@ class SpeedInterval:
         return f"{self.low:.4g}–{self.high:.4g} m/s"
 
     def table(self) -> dict:
-        """paint.json's ``line.speeds`` (:class:`pollard_pin.outputs.schema.LineSpeeds`)."""
+        """paint.json's ``line.speeds`` (:class:`pollard_pin.outputs.sections.LineSpeeds`)."""
         return {"min": self.low, "max": self.high, "resolution": self.resolution,
                 "min_bound": self.low_bound, "max_bound": self.high_bound}
 
