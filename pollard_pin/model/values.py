@@ -99,7 +99,7 @@ def read_bytes(path: str | Path, what: str, error: type[Exception],
     except OSError as exc:
         raise error(f"{what} {shown} cannot be read: {exc.strerror or exc}") from None
     if limit is not None and len(data) > limit:
-        raise error(f"{what} {shown} is over {limit / 2**20:.4g} MiB: not a {what}")
+        raise error(f"{what} {shown} is over {limit / 2**20:.4g} MiB, the limit")
     return data
 
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..gun_table import MAX_ELONGATION
+from ..gun_table import MAX_APEX, MAX_ELONGATION
 from .spots import SPOTS
 
 # The β spot's exponent: > 1 (a density falling to 0 at the rim); β → ∞ is the Gaussian,
@@ -173,7 +173,7 @@ def fit_model(name: str, data: list[StripeData], h0: float, centres, spread: dic
     n_shape = len(unknowns)
     hmin = min(d.standoff for d in data)
     if fit_apex:  # apex below the nearest standoff; a virtual apex behind the nozzle may be
-        unknowns.append(("apex", 0.0, h0, -10.0 * h0, 0.9 * min(hmin, h0)))
+        unknowns.append(("apex", 0.0, h0, -10.0 * h0, MAX_APEX * min(hmin, h0)))
     if efficiency is None:  # > 1 allowed here: the stripes' own integrals were checked
         unknowns.append(("efficiency", efficiency0, 1.0, 1e-4, 10.0))
     for i, (d, c) in enumerate(zip(data, centres)):
