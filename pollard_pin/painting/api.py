@@ -17,7 +17,7 @@ from .job import PartJob
 from .kinds import kind_of
 from .options import PaintOptions
 from .progress import showing
-from .result import PaintedJob, PaintFilm, PaintReport
+from .result import PaintedJob, PaintReport
 
 
 def default_actuators(job) -> Actuators:
@@ -83,7 +83,9 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
         plan, film, rep = kind.paint(robot, job, act, options, res)
         rep = with_material(_with_film_check(rep), job, film)  # docs/model.md §29
         if options.compliance and kind.compliance:  # docs/model.md §27.7
-            _compliance(robot, plan, film, act, rep)
+            t0 = time.perf_counter()
+            kind.compliance(robot, plan, film, act, rep)
+            rep["timings"]["compliance"] = time.perf_counter() - t0
     return PaintedJob(job, kind.name, plan, film, PaintReport.from_dict(kind.name, rep), act,
                        options, kind)
 
@@ -99,25 +101,6 @@ def _with_film_check(rep: dict) -> dict:
         if k == "target":
             out["film_check"] = film_check(rep["thickness"], rep["target"])
     return out
-
-
-def _compliance(robot, plan, film: PaintFilm, act, rep: dict) -> None:
-    """paint.json's ``compliance`` entry and its time (docs/model.md §27.7)."""
-    from .checks.compliance import compliance_entry
-
-    t0 = time.perf_counter()
-    if hasattr(plan, "robots"):  # a cell: the worst over its robots, each robot's own
-        from .checks.cell_compliance import cell_compliance
-
-        rep["compliance"], per = cell_compliance(robot, plan, film.points, film.thickness,
-                                                 act, film.painted,
-                                                 getattr(film.film, "robots", ()))
-        for r, c in zip(rep["robots"], per):
-            r["compliance"] = c
-    else:
-        rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
-                                             film.painted, getattr(film.film, "shade", None))
-    rep["timings"]["compliance"] = time.perf_counter() - t0
 
 
 __all__ = ["default_actuators", "film_spacing_of", "paint_job"]

@@ -50,6 +50,15 @@ def with_speeds(rep: dict, options, find: Callable) -> None:
         rep["timings"]["speeds"] = time.perf_counter() - t0
 
 
+def robot_compliance(robot, plan, film, act, rep: dict) -> None:
+    """``rep``'s ``compliance``: what one robot's drive springs do to the gun and the film
+    (docs/model.md §27.7; ``film`` a :class:`~pollard_pin.painting.result.PaintFilm`)."""
+    from ..checks.compliance import compliance_entry
+
+    rep["compliance"] = compliance_entry(robot, plan, film.points, film.thickness, act,
+                                         film.painted, getattr(film.film, "shade", None))
+
+
 def world_tips(plan) -> np.ndarray:
     """The gun's tips (N, 3) of a still program: the part does not move."""
     return plan.trajectory.poses[:, :3]
@@ -94,8 +103,9 @@ class JobKind:
         dict): plan, integrate the film, compute ``paint.json``'s numbers.
     summary_lines : Callable
         ``summary_lines(report, motor_names)`` → the lines ``pollard-pin paint`` prints.
-    compliance : bool
-        Whether ``paint`` adds the compliance report (docs/model.md §27.7).
+    compliance : Callable or None
+        ``compliance(robot, plan, film, actuators, report)`` adds the compliance report to
+        the report dict (docs/model.md §27.7); None (or False): the kind has none.
     outputs : Outputs
         What its written files differ in.
     recognise : Callable or None
@@ -106,7 +116,7 @@ class JobKind:
     name: str
     paint: Callable
     summary_lines: Callable
-    compliance: bool = True
+    compliance: Callable | None = robot_compliance
     outputs: Outputs = Outputs()
     recognise: Callable | None = None
 
@@ -117,4 +127,5 @@ class JobKind:
         return isinstance(job, PaintJob | PartJob) and job_kind(job) == self.name
 
 
-__all__ = ["JobKind", "Outputs", "checked_part", "output_files", "with_speeds", "world_tips"]
+__all__ = ["JobKind", "Outputs", "checked_part", "output_files", "robot_compliance",
+           "with_speeds", "world_tips"]

@@ -26,7 +26,11 @@ def test_every_example_job_is_of_exactly_one_kind():
         assert kinds.kind_of(job) is kind
         names.append(kind.name)
     assert names == ["panel", "line panel", "line part", "cell panel", "part"]
-    assert [k.compliance for k in kinds.KINDS.values()] == [True] * 6
+    from pollard_pin.painting.kinds import cell
+    from pollard_pin.painting.kinds.base import robot_compliance
+
+    assert [k.compliance for k in kinds.KINDS.values()] == [robot_compliance] * 4 + \
+        [cell.compliance] * 2
 
 
 def test_anything_else_is_one_line_naming_the_kinds():
@@ -57,7 +61,7 @@ def quick_lines(rep: dict, names) -> list[str]:
 
 
 # a still panel's recipe, its own lines, no compliance report, for jobs named quick.toml
-QUICK = JobKind("quick", panel.paint, quick_lines, compliance=False,
+QUICK = JobKind("quick", panel.paint, quick_lines, compliance=None,
                 recognise=lambda job: Path(job.source).name == "quick.toml")
 
 
