@@ -104,8 +104,10 @@ def _refused(job, tmp_path, capsys, words: str) -> None:
     (lambda t: t.replace("speed = 0.03 ", "speed = 30.0 "), "must be at most 2 m/s"),
     (lambda t: t.replace("center = [0.70, -0.75, 0.16]", "center = [0.70, 2.5, 0.16]"),
      "never comes within reach"),
-    (lambda t: t.replace("speed = 0.03 ", "speed = 0.05 "),
-     "; it paints at 0.0"),  # the interval, to 1 % (tests/painting/line/test_speeds.py)
+    # the interval, to 1 % (tests/painting/line/test_speeds.py); twice a speed that paints
+    # (0.03375 m/s), so every speed its fast end's bisection tries fails, early in the plan
+    (lambda t: t.replace("speed = 0.03 ", "speed = 0.0675 "),
+     "; it paints at 0.0"),
     # refused before any reach is checked or speed searched (143 s of search otherwise)
     (lambda t: t.replace("speed = 0.03 ", "speed = 1e-12 "),
      "carries the part 5e-10 m in the longest path the budget allows"),

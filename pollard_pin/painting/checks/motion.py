@@ -4,7 +4,8 @@ file, and the motor model of docs/model.md §19 (docs/model.md §21)."""
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -21,11 +22,19 @@ from ..progress import bar
 class Motion:
     """Joint motion and motor load of a batch of tool poses (not necessarily one path)."""
 
-    ik: object  # IKResult
+    solved: object  # IKResult of the distinct samples (a wait's once: :func:`reach`)
     tau: np.ndarray  # (N, 6) actuator torques
     torque: np.ndarray  # (N, 6) motor torques τm (§19)
     torque_ratio: np.ndarray  # (N, 6) |τm| / peak torque, with breakaway ±c at rest
     speed_ratio: np.ndarray  # (N, 6) |ωm| / max speed
+    wait: int = 0  # samples 0..wait are the same (solved once)
+    poses: np.ndarray | None = field(default=None, repr=False)
+
+    @cached_property
+    def ik(self):
+        """The IKResult of every sample, made when asked (a long wait's (N, 6, 12)
+        Jacobians are hundreds of MB the checks never read)."""
+        return _spread(self.solved, self.wait, self.poses)
 
     @property
     def utilisation(self) -> np.ndarray:
@@ -103,14 +112,15 @@ def motion(robot, act: Actuators, poses, d_poses, dd_poses, *,
     from ...dynamics.inverse import inverse_dynamics
 
     ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
-    at = np.maximum(np.arange(m + len(ik)) - m, 0)
-    tau = inverse_dynamics(robot, ik, energies=False).tau[at]
-    ik = _spread(ik, m, poses)
+    at = np.maximum(np.arange(m + len(ik)) - m, 0) if m else slice(None)
+    tau = inverse_dynamics(robot, ik, energies=False).tau
     ia = robot.actuated_v
     v, a = ik.v[:, ia], ik.a[:, ia]
     tm = motor_torque(act, tau, v, a)  # at rest |τm| already carries the breakaway c
-    return Motion(ik, tau, tm, np.abs(tm) / act.column("peak_torque"),
-                  np.abs(motor_speed(act, v)) / act.column("max_speed"))
+    # row by row, so the distinct samples' figures spread over the wait are every sample's
+    return Motion(ik, tau[at], tm[at], (np.abs(tm) / act.column("peak_torque"))[at],
+                  (np.abs(motor_speed(act, v)) / act.column("max_speed"))[at], m,
+                  None if not m else np.asarray(poses))
 
 
 GUESS_HALVINGS = 4  # the planners' ramps' and turnarounds' first guess halved at most 4× for reach

@@ -188,13 +188,16 @@ def line_planner(robot, job, act: Actuators, part: Part | None = None,
 
 
 def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUTION,
-                   part: Part | None = None, policy: PlannerPolicy = DEFAULT_POLICY):
+                   part: Part | None = None, policy: PlannerPolicy = DEFAULT_POLICY,
+                   plan=None):
     """The fastest line speed [m/s] (within ``resolution``, relative) at which the panel or
     part is painted under the same checks (``policy``'s), and its plan (docs/model.md §24,
-    :func:`.line.speeds.fastest_line_speed`)."""
-    speed, plan = fastest_line_speed(line_planner(robot, job, act, part, policy), job.line.speed,
-                                     job.source, resolution)
-    return speed, cleared(robot, plan)
+    :func:`.line.speeds.fastest_line_speed`); ``plan``: the job's plan at a speed already
+    made (as :func:`line_speeds` takes it), not made again."""
+    plan_at = line_planner(robot, job, act, part, policy)
+    speed, found = fastest_line_speed(lambda s: plan if plan is not None and s == plan.speed
+                                      else plan_at(s), job.line.speed, job.source, resolution)
+    return speed, cleared(robot, found)
 
 
 def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,

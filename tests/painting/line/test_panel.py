@@ -77,8 +77,9 @@ def test_never_within_reach(robot, line_job, act):
         plan_line(robot, job, act)
 
 
-def test_fastest_plans_and_five_percent_more_is_refused(robot, line_job, act):
-    fastest_speed, plan = max_line_speed(robot, line_job, act)
+def test_fastest_plans_and_five_percent_more_is_refused(robot, line_job, act, line_plan):
+    # the search starts from the job's speed: its plan the fixture's, not made again
+    fastest_speed, plan = max_line_speed(robot, line_job, act, plan=line_plan)
     assert plan.speed == fastest_speed
     assert line_table(plan)["upper_bound"] > fastest_speed
     with pytest.raises(LineSpeedError):
@@ -92,12 +93,6 @@ def test_too_fast_is_told(robot, line_job, act):
     with pytest.raises(LineSpeedError) as fast:
         plan_line(robot, line_job, act, 0.06)
     assert fast.value.too_fast
-
-
-@pytest.fixture(scope="module")
-def slow_plan(robot, line_job, act):
-    """examples/line.toml at 0.01 m/s, a third of its speed: refused before the dwell."""
-    return plan_line(robot, line_job, act, 0.01, clearance=False)
 
 
 def test_a_slow_line_waits_and_paints(slow_plan, line_plan):

@@ -260,11 +260,12 @@ def test_too_fast_down_to_the_budget_floor_says_so():
     assert not isinstance(info.value, (LineSpeedError, BudgetError))
 
 # --- a real job ----------------------------------------------------------------------------------
-def test_example_line_interval(robot, act, line_job, line_plan):
+def test_example_line_interval(robot, act, line_job, line_plan, slow_plan):
     """examples/line.toml: its speed 0.03 m/s inside the interval (to 10 %, its plan there
     the fixture's). Just past the fast end plan_line itself refuses as too fast; the slow end
     is the first plan that waits at its turnarounds (docs/model.md §24.1), its bound naming
-    the budget's floor below it, and a slower line (0.8 of it) paints too, waiting longer."""
+    the budget's floor below it, and a slower line (0.01 m/s, the package's ``slow_plan``,
+    tests/painting/line/conftest.py) paints too, waiting longer."""
     planner = line_planner(robot, line_job, act)
     got = line_speed_interval(lambda s: line_plan if s == line_plan.speed else planner(s),
                               line_job.line.speed, line_job.source, 0.1,
@@ -275,7 +276,8 @@ def test_example_line_interval(robot, act, line_job, line_plan):
     assert dwell_time(got.low_plan.relative) > 0 and dwell_time(line_plan.relative) == 0
     floor = waiting_floor(got.low_plan)
     assert f"≈ {floor:.2g} m/s" in got.low_bound and 0 < floor < got.low
-    slower = plan_line(robot, line_job, act, 0.8 * got.low, clearance=False)
+    slower = slow_plan
+    assert floor < slower.speed < 0.8 * got.low
     assert dwell_time(slower.relative) > dwell_time(got.low_plan.relative)
     with pytest.raises(LineSpeedError) as fast:
         plan_line(robot, line_job, act, got.high * 1.11, clearance=False)
