@@ -19,8 +19,7 @@ def motor(cols, name, ratings=None):
     r = (ratings or RATINGS)[name]
     n, qd, qdd = r["gear_ratio"], cols[f"d_{name}"], cols[f"dd_{name}"]
     rest = cols[f"tau_{name}"] / n + r["rotor_inertia"] * n * qdd + r["viscous"] * n * qd
-    friction = np.array([r["coulomb"] * (1 if v > 0 or (v == 0 and x >= 0) else -1)
-                         for v, x in zip(qd, rest)])
+    friction = r["coulomb"] * np.where((qd > 0) | ((qd == 0) & (rest >= 0)), 1.0, -1.0)
     return rest + friction, n * qd
 
 

@@ -5,7 +5,9 @@ actuator file is one line, and it checks every destination before the work. (The
 tests/dynamics/test_sizing.py, test_motors.py, test_timeopt.py.) SIGTERM and Ctrl-C stop it
 promptly with one line and nothing written, an interrupt inside a ctypes call too (cli/main.py;
 below)."""
+import contextlib
 import ctypes
+import io
 import json
 import math
 import os
@@ -17,12 +19,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import check_refusal
 from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
 from motor_model import cli as _cli
 from motor_model import motor as _motor
 from motor_model import rms as _rms
 
 import pollard_pin as pp
+from pollard_pin.cli import main
 from pollard_pin.cli import size as size_cli
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.io.table import read_result
@@ -40,13 +44,27 @@ def test_size_checks_destinations_before_the_work(tmp_path, capsys, extra):
     assert code == 2 and len(err.strip().splitlines()) == 1, err
 
 
-def test_motor_quantities_match_a_run_csv(tmp_path, capsys):
-    run_csv, rep = tmp_path / "run.csv", tmp_path / "size.json"
+@pytest.fixture(scope="module")
+def thesis_sized(tmp_path_factory):
+    """``size`` of the thesis curve at SAMPLES samples with every output (the JSON report,
+    ``--retime``, ``--plot``), run once per module: (exit code, stderr, folder)."""
+    folder = tmp_path_factory.mktemp("thesis")
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        code = main(["size", "--samples", str(SAMPLES), "--quiet", "--actuators", str(EXAMPLE),
+                     "--retime", str(folder / "fast.csv"), "--format", "json", "--out",
+                     str(folder / "r.json"), "--plot", str(folder / "fig")])
+    check_refusal(stderr.getvalue())
+    return code, stderr.getvalue(), folder
+
+
+def test_motor_quantities_match_a_run_csv(tmp_path, capsys, thesis_sized):
+    run_csv = tmp_path / "run.csv"
     common = ["--samples", str(SAMPLES), "--quiet"]
     assert _cli(["run", *common, "--out", str(run_csv)], capsys)[0] == 0
-    code, _, err = _cli(["size", *common, "--actuators", str(EXAMPLE), "--format", "json",
-                         "--out", str(rep)], capsys)
+    code, err, folder = thesis_sized  # size, same samples: its report (--format json)
     assert code == 0, err
+    rep = folder / "r.json"
     cols = read_result(run_csv).columns
     report = json.loads(rep.read_text())
     t = cols["t"]
@@ -127,13 +145,12 @@ def test_bad_actuator_files_give_one_line(tmp_path, capsys, text, message):
     assert not out.exists()
 
 
-def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys):
-    retimed, replay, rep = tmp_path / "fast.csv", tmp_path / "replay.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--samples", "801", "--quiet", "--actuators",
-                         str(EXAMPLE), "--retime", str(retimed), "--format", "json",
-                         "--out", str(rep), "--plot", str(tmp_path / "fig")], capsys)
+def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys,
+                                                                thesis_sized):
+    code, err, folder = thesis_sized  # size --samples 801 --retime … --plot …
+    retimed, replay, rep = folder / "fast.csv", tmp_path / "replay.csv", folder / "r.json"
     assert code == 0, err
-    assert (tmp_path / "fig" / "torque_speed.png").stat().st_size > 10_000
+    assert (folder / "fig" / "torque_speed.png").stat().st_size > 10_000
     assert _cli(["run", "--trajectory", str(retimed), "--quiet", "--out", str(replay)],
                 capsys)[0] == 0
     report = json.loads(rep.read_text())
@@ -292,8 +309,7 @@ def test_retime_carries_the_trajectorys_gravity_and_robot(robot, tmp_path, capsy
     torques are the library's on a model with that gravity (equal to 1e-12 relative; seen
     identical) and far from a standard-gravity sizing of the same file (which is what the
     retimed file used to get)."""
-    from pollard_pin.dynamics.motors import load_actuators
-    from pollard_pin.dynamics.sizing import actuator_sizing
+    from pollard_pin.dynamics.motors import load_actuators, motor_load_of
     from pollard_pin.model.gravity import with_gravity
 
     path = tmp_path / "p.csv"
@@ -325,11 +341,13 @@ def test_retime_carries_the_trajectorys_gravity_and_robot(robot, tmp_path, capsy
         assert ("gravity (0, 0, 9.81)" in err) is keep, err
         reports[name] = json.loads(out)["actuators"]
     hung = with_gravity(robot, [0.0, 0.0, 9.81])
-    lib = actuator_sizing(hung, pp.run_pipeline(hung, pp.from_csv(fast)),
-                          load_actuators(EXAMPLE)).report["actuators"]
+    act = load_actuators(EXAMPLE)
+    run = pp.run_pipeline(hung, pp.from_csv(fast))
+    # the library's peak motor torques on that model (what actuator_sizing reports of the
+    # given motion: its motor_load_of, without solving the time-optimal cycle again)
+    lib = dict(zip(act.names, motor_load_of(hung, act, run.ik, run.dynamics).peak_torque))
     for n in NAMES:
-        want = lib[n]["peak_motor_torque"]
+        want = float(lib[n])
         assert reports["fast"][n]["peak_motor_torque"] == pytest.approx(want, rel=1e-12)
-    gap = max(abs(reports["bare"][n]["peak_motor_torque"] / lib[n]["peak_motor_torque"] - 1)
-              for n in NAMES)
+    gap = max(abs(reports["bare"][n]["peak_motor_torque"] / lib[n] - 1) for n in NAMES)
     assert gap > 0.1, gap

@@ -7,16 +7,19 @@ The kept stretches are compared row by row with the source file; the retimed one
 between their rows by the definition the file's metadata states (tests/retime_replay.py),
 along the source path rebuilt by scipy's Bernstein polynomials through its rows (not the
 package's spline), with the pipeline's inverse dynamics."""
+import contextlib
+import io
 from dataclasses import replace
 
 import numpy as np
 import pytest
+from cli_run import check_refusal
 from motor_model import EXAMPLE
-from motor_model import cli as _cli
 from retime_replay import read_retimed, replay
 from scipy.interpolate import BPoly
 
-from pollard_pin.dynamics import passes
+from pollard_pin.cli import main
+from pollard_pin.dynamics import passes, sizing
 from pollard_pin.dynamics.motors import load_actuators
 from pollard_pin.dynamics.passes import spray_stretches, time_optimal_program
 from pollard_pin.io.retime import retimed_trajectory
@@ -42,10 +45,36 @@ def turns_off(planned_csv, tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def solved(robot, turns_off):
-    traj = from_csv(turns_off)
-    timing, summary = time_optimal_program(robot, load_actuators(EXAMPLE), traj)
-    return traj, timing, summary
+def size_retime(turns_off, tmp_path_factory):
+    """``size --retime`` of the program, run once per module: (exit code, stderr, the retimed
+    file, the report, and the :class:`~pollard_pin.dynamics.sizing.Sizing` the command
+    computed, recorded on its way: the library's ``time_optimal_program`` of the program)."""
+    folder = tmp_path_factory.mktemp("size")
+    out, report, seen = folder / "rt.csv", folder / "r.md", []
+    real = sizing.actuator_sizing
+
+    def recorded(*args, **kwargs):
+        seen.append(real(*args, **kwargs))
+        return seen[-1]
+
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with pytest.MonkeyPatch.context() as mp, contextlib.redirect_stdout(stdout), \
+            contextlib.redirect_stderr(stderr):
+        mp.setattr(sizing, "actuator_sizing", recorded)
+        code = main([str(a) for a in ("size", "--trajectory", turns_off, "--quiet",
+                                      "--actuators", EXAMPLE, "--retime", out, "--out",
+                                      report)])
+    check_refusal(stderr.getvalue())
+    return code, stderr.getvalue(), out, report, seen
+
+
+@pytest.fixture(scope="module")
+def solved(turns_off, size_retime):
+    """The program, and its ``time_optimal_program`` (timing, film summary): what ``size``
+    computed of it (the same call: actuator_sizing of a spraying trajectory)."""
+    sized = size_retime[-1]
+    assert len(sized) == 1 and sized[0].timing is not None
+    return from_csv(turns_off), sized[0].timing, sized[0].report["time_optimal_film"]
 
 
 def _tiny(spray, poses=None):
@@ -130,13 +159,11 @@ def _source_curve(traj):
 
 
 def test_the_retimed_file_keeps_the_film_and_replays_within_the_ratings(
-        robot, turns_off, tmp_path, capsys):
+        robot, turns_off, size_retime):
     """``size --retime``: the file's spray column equals the source's on the kept stretches,
     and its gun-off stretches, replayed densely between their rows by the stated definition,
     use at most the ratings (seen 1.00013)."""
-    out = tmp_path / "rt.csv"
-    code, _, err = _cli(["size", "--trajectory", turns_off, "--quiet", "--actuators", EXAMPLE,
-                         "--retime", out, "--out", tmp_path / "r.md"], capsys)
+    code, err, out, report_path, _ = size_retime
     assert code == 0, err
     cols, meta = read_retimed(out)
     src = from_csv(turns_off)
@@ -154,7 +181,7 @@ def test_the_retimed_file_keeps_the_film_and_replays_within_the_ratings(
         worst = max(worst, use.max())
     assert kinds == ["arc_length", "planned"] * 9 + ["arc_length"]
     assert 0.99 <= worst <= 1.002, worst
-    report = (tmp_path / "r.md").read_text()
+    report = report_path.read_text()
     assert "the passes (gun on) as planned" in report
     assert "it changes the painting speed, so the film" in report  # the uniform scaling
 

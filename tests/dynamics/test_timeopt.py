@@ -26,6 +26,21 @@ def act():
     return M.load_actuators(EXAMPLE)
 
 
+@pytest.fixture(scope="module")
+def thesis_timing(robot, act):
+    """The default time-optimal traversal of the thesis curve at ``samples`` samples, solved
+    once per module (the replays between the samples and the grid's convergence share it)."""
+    solved = {}
+
+    def timing(samples):
+        if samples not in solved:
+            traj = pp.thesis_trajectory(samples=samples)
+            solved[samples] = traj, pp.time_optimal_path(robot, act, traj)
+        return solved[samples]
+
+    return timing
+
+
 def _dense(curve, t0, T, timing, theta, in_s=False):
     """The retimed motion at the fractions ``theta`` of every interval's duration (``in_s``:
     of its length in s), rebuilt on ``curve`` with s̈ constant per interval; on the timing's
@@ -69,10 +84,9 @@ THETA = (np.arange(10) + 0.3) / 10  # 10 points per interval, none a check point
 
 
 @pytest.mark.parametrize("samples", [201, 801])
-def test_thesis_curve_holds_between_samples(robot, act, samples):
-    traj = pp.thesis_trajectory(samples=samples)
+def test_thesis_curve_holds_between_samples(robot, act, thesis_timing, samples):
+    traj, timing = thesis_timing(samples)
     curve = partial(thesis_curve, duration=20.0)
-    timing = pp.time_optimal_path(robot, act, traj)
     use = _replay(robot, curve, 0.0, 20.0, timing, THETA)
     # within 1.002 between the samples, and a limit is used (no slack bought with it)
     assert use.max() <= 1.002 and use.max() >= 0.999, use.max()
@@ -97,16 +111,26 @@ def test_thesis_curve_holds_between_samples(robot, act, samples):
         np.testing.assert_allclose(got, want, rtol=1e-7, atol=1e-9 * np.abs(want).max())
 
 
-def test_figure8_csv_holds_between_samples(robot, act):
+@pytest.fixture(scope="module")
+def figure8_sized(robot, act):
+    """examples/figure8.csv and its sizing (whose traversal is ``time_optimal_path``'s of it),
+    once per module."""
+    from pollard_pin.dynamics.sizing import actuator_sizing
+
+    traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
+    return traj, actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
+
+
+def test_figure8_csv_holds_between_samples(robot, act, figure8_sized):
     """examples/figure8.csv has exact rates and accelerations: between its samples the path
     is the quintic Hermite through them, checked here against the analytic figure eight."""
-    traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
+    traj, sized = figure8_sized
     curve = figure_eight()
     t = np.linspace(0, 6, 3001)
     for got, exact in zip(quintic_hermite(traj.t, traj.poses, traj.d_poses, traj.dd_poses)(t),
                           curve(t)):  # seen 1e-14 m, 2e-12 m/s, 7e-10 m/s²
         np.testing.assert_allclose(got, exact, rtol=0, atol=1e-7)
-    timing = pp.time_optimal_path(robot, act, traj)
+    timing = sized.timing  # time_optimal_path(robot, act, traj), as the sizing solves it
     use = _replay(robot, curve, 0.0, 6.0, timing, THETA)
     assert 0.999 <= use.max() <= 1.002, use.max()
 
@@ -202,7 +226,8 @@ def test_a_path_that_does_not_move_has_no_time_optimal_cycle(robot, act):
         pp.time_optimal_path(robot, act, pp.Trajectory(t, poses, zero, zero))
 
 
-def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, tmp_path):
+def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, figure8_sized,
+                                                                    tmp_path):
     """size on figure8.csv, then on its own retimed output (written and read back, verified
     within ratings at its samples): the same path, so the same shortest cycle, to TOPP-RA's
     own gap (seen 0.5711 s both, < 0.01 %; 0.5717 s then 0.6238 s, 9 %, when the samples' times
@@ -211,8 +236,7 @@ def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, t
     0.8 % apart then); the grid's own convergence is tested on the thesis curve below."""
     from pollard_pin.dynamics.sizing import actuator_sizing
 
-    traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
-    first = actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
+    traj, first = figure8_sized
     pp.to_csv(retimed_trajectory(traj, first.timing), tmp_path / "fast.csv")
     fast = pp.from_csv(tmp_path / "fast.csv")
     assert fast.t[-1] == pytest.approx(first.timing.duration, rel=1e-12)
@@ -227,7 +251,8 @@ def test_the_duration_does_not_depend_on_how_the_samples_are_timed(robot, act, t
     assert first.timing.duration == pytest.approx(fine.duration, rel=0.02)
 
 
-def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, monkeypatch):
+def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, thesis_timing,
+                                                                   monkeypatch):
     """TOPP-RA's grid on arc length is a property of the path (docs/model.md §19): the thesis
     curve gives one cycle at 201 and 801 samples, and the default grid is within 1 % of 4× its
     points (seen 7.6736 s against 7.6422 s, 0.41 %). With as many grid points as samples, 801
@@ -237,8 +262,9 @@ def test_thesis_cycle_converges_on_arc_length_whatever_the_samples(robot, act, m
         traj = pp.thesis_trajectory(samples=samples)
         return pp.time_optimal_path(robot, act, traj).duration
 
-    default = cycle(801)
-    gap = abs(cycle(201) / default - 1)
+    # the default grid's cycles: those the replays above check (solved once, default grid)
+    default = thesis_timing(801)[1].duration
+    gap = abs(thesis_timing(201)[1].duration / default - 1)
     assert gap <= 1e-3, gap
     # 4× the grid: its density (and 4× the samples, which was the grid before)
     monkeypatch.setattr(TO, "GRID_DENSITY", 4 * getattr(TO, "GRID_DENSITY", 1), raising=False)

@@ -14,16 +14,44 @@ from pollard_pin.workspace.grid import WorkspaceError, largest_panel, map_worksp
 from pollard_pin.workspace.options import WorkspaceOptions
 from pollard_pin.workspace.reach import REASONS, evaluate
 
+BOUNDS = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
+
+
+@pytest.fixture(scope="module")
+def bounded(robot):
+    """The summary of the plane x = 0.55 m within BOUNDS at the resolution h, mapped once per
+    module (the convergence and the bound tests share the grids)."""
+    summaries = {}
+
+    def summary(h):
+        if h not in summaries:
+            summaries[h] = map_workspace(robot, "x=0.55", WorkspaceOptions(
+                resolution=h, bounds=BOUNDS)).summary
+        return summaries[h]
+
+    return summary
+
+
+@pytest.fixture(scope="module")
+def panels(robot):
+    """``largest_panel`` of the plane x = 0.55 m at the resolution h, once per module."""
+    found = {}
+
+    def panel(h):
+        if h not in found:
+            found[h] = largest_panel(robot, "x=0.55", WorkspaceOptions(resolution=h))
+        return found[h]
+
+    return panel
+
 
 # --- the grid and its figures -----------------------------------------------------------------
-def test_area_converges_on_finer_grids(robot):
+def test_area_converges_on_finer_grids(bounded):
     """Refining the grid (the coarse points are a subset of the fine ones): the area's error
     against the finest grid shrinks with h, within half a perimeter's worth of boundary cells
     (seen: 0.0051, 0.0018, 0.0004, 0.0003 m² at h = 20, 10, 5, 2.5 mm)."""
-    bounds = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
     steps = (0.02, 0.01, 0.005, 0.0025)
-    areas = {h: map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=h, bounds=bounds))
-             .summary["area"] for h in steps + (0.00125,)}
+    areas = {h: bounded(h)["area"] for h in steps + (0.00125,)}
     errs = [abs(areas[h] - areas[0.00125]) for h in steps]
     perimeter = 2 * (0.6 + 0.34)  # m, of the region (its bounding box)
     for h, e in zip(steps, errs):
@@ -51,8 +79,8 @@ def test_volume_streams_and_equals_the_stacked_planes(robot):
     assert math.isclose(total, vol.summary["volume"], rel_tol=1e-12)
 
 
-def test_largest_panel_is_reachable_and_maximal(robot):
-    rect = largest_panel(robot, "x=0.55", WorkspaceOptions(resolution=0.01))
+def test_largest_panel_is_reachable_and_maximal(robot, panels):
+    rect = panels(0.01)
     ys = np.arange(rect.low[1], rect.high[1] + 1e-9, 0.01)
     zs = np.arange(rect.low[2], rect.high[2] + 1e-9, 0.01)
     Y, Z = np.meshgrid(ys, zs)
@@ -63,12 +91,12 @@ def test_largest_panel_is_reachable_and_maximal(robot):
 
 
 @pytest.mark.parametrize("h", [0.005, 0.01, 0.02])
-def test_the_reported_rectangle_has_reachable_corners_and_edges(robot, h):
+def test_the_reported_rectangle_has_reachable_corners_and_edges(robot, panels, h):
     """The panel the map reports, ``size`` about ``centre``, re-checked at 7 samples per grid
     step along its four edges (corners included): all reachable. Its size was points × h,
     half a cell past the corner points on each side (at 5 mm its top corners were out of a
     leg's reach); it is now (points − 1) × h, corner point to corner point."""
-    rect = largest_panel(robot, "x=0.55", WorkspaceOptions(resolution=h))
+    rect = panels(h)
     assert rect.axes == ("y", "z")
     assert rect.size == pytest.approx(tuple((n - 1) * h for n in rect.points), abs=1e-9)
     (y0, z0), (sy, sz) = rect.centre[1:], rect.size
@@ -92,14 +120,12 @@ def test_a_coarse_map_states_what_it_does_not_know(robot):
     assert ws.summary["area"] == 100.0 and ws.summary["area_bound"] >= 100.0
 
 
-def test_the_area_bound_holds_against_a_fine_grid(robot):
+def test_the_area_bound_holds_against_a_fine_grid(bounded):
     """area ± area_bound (the cells of points with a mixed neighbourhood) holds the area of a
     grid 8-16× finer (seen: errors 6.5 % and 4.6 % of the bound at h = 20 and 10 mm)."""
-    bounds = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
-    fine = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=0.00125,
-                                                             bounds=bounds)).summary["area"]
+    fine = bounded(0.00125)["area"]
     for h in (0.02, 0.01):
-        s = map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=h, bounds=bounds)).summary
+        s = bounded(h)
         assert abs(s["area"] - fine) <= s["area_bound"], (h, s["area"], fine, s["area_bound"])
         assert s["area_bound"] < 0.5 * s["area"]
 
