@@ -1,6 +1,6 @@
 """The film a part's plan leaves (docs/model.md §23): film points on the painted faces and on
-every face the gun lies in front of, the film with shadows and the trigger, the transfer
-efficiency."""
+every face a gun tip lies in front of and sees, the film with shadows and the trigger, the
+transfer efficiency."""
 from __future__ import annotations
 
 import numpy as np
@@ -76,11 +76,12 @@ def seen_from_tips(part: Part, tips, faces=None, intersector=None) -> np.ndarray
 
 
 def surface_film(plan: SurfacePlan, resolution: float | None = None):
-    """(film points on the painted faces and on every face any tip lies in front of, their
-    film :class:`.film.mesh.MeshFilm`, the painted mask over the points, the transfer
+    """(film points on the painted faces and on every face a tip lies in front of and sees,
+    their film :class:`.film.mesh.MeshFilm`, the painted mask over the points, the transfer
     efficiency): the film of the plan's path with shadows and the trigger. Faces behind every
-    tip get exactly nothing (:func:`live_faces`), so the volume landed on the points is the
-    volume landed on the part."""
+    tip get exactly nothing (:func:`live_faces`), faces dark from every tip at their probes
+    only what pairs outside the spot would bring (:func:`seen_from_tips`, docs/model.md §23),
+    so the volume landed on the points is the volume landed on the part."""
     job = plan.job
     tr = plan.trajectory
     on = plan.spray > 0
