@@ -4,6 +4,7 @@ transfer efficiency."""
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ...analytic.taskspace import rotation
 from ..plan.part import SurfacePlan
@@ -12,11 +13,12 @@ from ..spray.occlusion import visible
 from ..workpiece.mesh import Part
 from .grid import film_spacing
 from .mesh import MeshFilm, mesh_film
-from .points import surface_points
+from .points import lattice, surface_points
 
-PROBES = 7  # probe points a face: its centroid, corners and edges' midpoints
-PROBE_PULL = 0.05  # of the way from a corner or midpoint towards the centroid
-TIP_BLOCK = 256  # tips a face tries at a time, nearest first
+PROBE_PULL = 0.05  # of the way from a lattice point towards the face's centroid
+NEAR_TIPS = 16  # tips every face tries first, all faces at once: those nearest its centroid
+TIP_BLOCK = 256  # tips a face still dark tries first, nearest first (then twice as many)
+PAIR_BLOCK = 1_000_000  # (probe, tip) pairs at most per ray test (~100 MB of temporaries)
 
 
 def part_resolution(job, resolution: float | None = None) -> float:
@@ -36,42 +38,76 @@ def live_faces(part: Part, tips) -> np.ndarray:
     return ahead > level
 
 
-def face_probes(part: Part, faces) -> np.ndarray:
-    """(K, PROBES, 3) the probe points of faces ``faces`` (K,): the centroid, the corners and
-    the edges' midpoints, each pulled PROBE_PULL of the way towards the centroid (off the
-    edges, where a neighbouring wall grazes the ray)."""
-    v = part.vertices[part.faces[np.asarray(faces, dtype=np.int64)]]
-    c = v.mean(axis=1, keepdims=True)
-    pts = np.concatenate([c, v, (v + np.roll(v, -1, axis=1)) / 2], axis=1)
-    return pts + PROBE_PULL * (c - pts)
+def face_probes(part: Part, faces, spacing: float | None = None) -> tuple:
+    """(probes (M, 3), owner (M,)) of faces ``faces`` (K,): each face's centroid (the first
+    K rows, in order) and the points of its lattice cut n = max(2, ⌈longest edge / spacing⌉)
+    times (:func:`.film.points.lattice`; n = 2 without ``spacing``: the corners and the
+    edges' midpoints), each pulled PROBE_PULL of the way towards the centroid (off the
+    edges, where a neighbouring wall grazes the ray); ``owner``: the index into ``faces``
+    of each probe's face."""
+    faces = np.asarray(faces, dtype=np.int64)
+    tri = part.vertices[part.faces[faces]]
+    c = tri.mean(axis=1)
+    n = np.full(len(faces), 2.0)
+    if spacing is not None:
+        edges = np.linalg.norm(tri - np.roll(tri, -1, axis=1), axis=2).max(axis=1)
+        n = np.maximum(2.0, np.ceil(edges / spacing - 1e-9))
+    pts, owner = [c], [np.arange(len(faces))]
+    for m in np.unique(n):
+        sel = np.flatnonzero(n == m)
+        bary, _ = lattice(int(m))
+        p = np.einsum("kc,fcx->fkx", bary, tri[sel])
+        pts.append((p + PROBE_PULL * (c[sel, None, :] - p)).reshape(-1, 3))
+        owner.append(np.repeat(sel, len(bary)))
+    return np.concatenate(pts), np.concatenate(owner)
 
 
-def seen_from_tips(part: Part, tips, faces=None, intersector=None) -> np.ndarray:
-    """(F,) True for the faces (``faces`` (F,) bool, default all) that some tip lies in front
-    of and that see one (:func:`.spray.occlusion.visible`) from one of their probe points
-    (:func:`face_probes`): the tips nearest the face's centroid are tried first, TIP_BLOCK at
-    a time, and a face is kept at its first lit probe. A face none of whose probes sees any
-    tip in front of it is dark (the inside of a box behind its front, docs/model.md §23)."""
-    tips = np.asarray(tips, dtype=float)
+def seen_from_tips(part: Part, tips, faces=None, spacing: float | None = None,
+                   intersector=None) -> np.ndarray:
+    """(F,) True for the faces (``faces`` (F,) bool, default all) that one of their probe
+    points (:func:`face_probes` at ``spacing`` [m]) sees (:func:`.spray.occlusion.visible`)
+    from some tip that lies in front of the face. First every face at once with its
+    NEAR_TIPS tips nearest its centroid; then each face still dark with every tip in front
+    of it, nearest first, TIP_BLOCK at a time and twice as many each time, to its first lit
+    pair. A face none of whose probes sees any tip in front of it is dark (the inside of a
+    box behind its front, docs/model.md §23)."""
+    tips = np.asarray(tips, dtype=float).reshape(-1, 3)
     F = len(part.faces)
     idx = np.flatnonzero(np.ones(F, dtype=bool) if faces is None else faces)
     out = np.zeros(F, dtype=bool)
     if not len(idx) or not len(tips):
         return out
-    probes = face_probes(part, idx)
-    for k, f in enumerate(idx):
-        n = part.normals[f]
-        c = probes[k, 0]
-        front = tips[tips @ n > part.vertices[part.faces[f, 0]] @ n]
-        front = front[np.argsort(np.einsum("ij,ij->i", front - c, front - c), kind="stable")]
-        for start in range(0, len(front), TIP_BLOCK):
-            p = front[start:start + TIP_BLOCK]
-            pp = np.repeat(p, PROBES, axis=0)
-            ss = np.tile(probes[k], (len(p), 1))
-            if visible(part, pp, ss, np.broadcast_to(n, ss.shape), intersector,
-                       faces=np.full(len(ss), f)).any():
-                out[f] = True
-                break
+    probes, owner = face_probes(part, idx, spacing)
+    n = part.normals[idx]
+    level = np.einsum("ij,ij->i", part.vertices[part.faces[idx, 0]], n)
+    near = cKDTree(tips).query(probes[:len(idx)], k=min(NEAR_TIPS, len(tips)))[1]
+    near = near.reshape(len(idx), -1)
+    lit = np.zeros(len(idx), dtype=bool)
+    step = max(1, PAIR_BLOCK // near.shape[1])
+    for start in range(0, len(probes), step):  # every face at once, its nearest tips
+        j = np.repeat(np.arange(start, min(start + step, len(probes))), near.shape[1])
+        k = owner[j]
+        t = near[k, np.tile(np.arange(near.shape[1]), len(j) // near.shape[1])]
+        front = np.einsum("ij,ij->i", tips[t], n[k]) > level[k]
+        j, k, t = j[front], k[front], t[front]
+        vis = visible(part, tips[t], probes[j], n[k], intersector, faces=idx[k])
+        lit[k[vis]] = True
+    order = np.argsort(owner, kind="stable")
+    ends = np.searchsorted(owner[order], np.arange(len(idx) + 1))
+    for k in np.flatnonzero(~lit):  # the rest: every tip in front, nearest first
+        pk = probes[order[ends[k]:ends[k + 1]]]
+        front = tips[tips @ n[k] > level[k]]
+        front = front[np.argsort(np.einsum("ij,ij->i", front - pk[0], front - pk[0]),
+                                 kind="stable")]
+        start, block = 0, TIP_BLOCK
+        while start < len(front) and not lit[k]:
+            p = front[start:start + block]
+            pp, ss = np.repeat(p, len(pk), axis=0), np.tile(pk, (len(p), 1))
+            lit[k] = visible(part, pp, ss, np.broadcast_to(n[k], ss.shape), intersector,
+                             faces=np.full(len(ss), idx[k])).any()
+            start += block
+            block = min(2 * block, max(TIP_BLOCK, PAIR_BLOCK // len(pk)))
+    out[idx[lit]] = True
     return out
 
 
@@ -96,5 +132,5 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     return pts, film, plan.part.painted[pts.faces], efficiency
 
 
-__all__ = ["PROBES", "PROBE_PULL", "TIP_BLOCK", "face_probes", "live_faces", "part_resolution",
-           "seen_from_tips", "surface_film"]
+__all__ = ["NEAR_TIPS", "PAIR_BLOCK", "PROBE_PULL", "TIP_BLOCK", "face_probes", "live_faces",
+           "part_resolution", "seen_from_tips", "surface_film"]
