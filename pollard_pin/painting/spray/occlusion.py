@@ -166,13 +166,17 @@ def occlusion(part: Part, gun: Gun, p, a, s, n, intersector=None, origin=None) -
 
 def seen_faces(part: Part, standoff: float, intersector=None) -> np.ndarray:
     """(F,) True for the faces ``part.painted`` chose whose centroid sees a nozzle at
-    ``standoff`` along the face's normal (:func:`visible`): a face behind another part, or
-    the inside of a box's far wall, is not painted."""
+    ``standoff`` along the face's normal and beyond it, out of the part's bounding box
+    (:func:`visible`): the gun reaches its standoff along its axis from outside the part, so a
+    face behind another part, the inside of a box's far wall or of a drawer behind its front
+    (whose standoff point lies inside the part) is not painted."""
     idx = np.flatnonzero(part.painted)
     centroid = part.vertices[part.faces[idx]].mean(axis=1)
     n = part.normals[idx]
+    # beyond the box: a centroid lies in it, and its diagonal is at most √3 × its largest side
+    reach = max(standoff, 2.0 * part.size)
     out = np.zeros(len(part.faces), dtype=bool)
-    out[idx] = visible(part, centroid + standoff * n, centroid, n, intersector)
+    out[idx] = visible(part, centroid + reach * n, centroid, n, intersector)
     return out
 
 
