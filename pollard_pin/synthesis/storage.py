@@ -148,8 +148,8 @@ def open_study(path: str | Path | None, *, job: str, space: str,
     -------
     tuple of (optuna.Study, callable)
         The study, with the user attributes ``format``, ``job``, ``space`` and
-        ``objectives``, and ``close()``, which closes the file (its write-ahead log is then
-        folded into it).
+        ``objectives``, and ``close()``, which closes the file (:func:`close_study`: its
+        write-ahead log folded into it, none left beside it).
 
     Raises
     ------
@@ -177,7 +177,7 @@ def open_study(path: str | Path | None, *, job: str, space: str,
             study = optuna.create_study(storage=storage, study_name=STUDY_NAME,
                                         directions=directions, sampler=sampler)
             _label(study, job, space, named)
-            return study, storage.engine.dispose
+            return study, lambda: close_study(storage.engine, path)
         study = optuna.load_study(storage=storage, study_name=STUDY_NAME, sampler=sampler)
     except (KeyError, ValueError, RuntimeError) as exc:  # no such study, another version
         raise StudyFileError(f"{path}: not a {FORMAT!r} database ({_short(exc)})") from None
@@ -188,9 +188,35 @@ def open_study(path: str | Path | None, *, job: str, space: str,
     try:
         _check_label(path, study.user_attrs, job, space, named)
     except StudyFileError:
-        storage.engine.dispose()  # closed: no log files are left beside it
+        close_study(storage.engine, path)  # closed: no log files are left beside it
         raise
-    return study, storage.engine.dispose
+    return study, lambda: close_study(storage.engine, path)
+
+
+def close_study(engine, path: str | Path) -> None:
+    """Close the study's connections and fold its write-ahead log into the file: a
+    checkpoint, then the rollback journal (which SQLite deletes after each commit), so that
+    the folder holds ``study.db`` alone, no ``-wal`` or ``-shm`` beside it; a study reopened
+    writes ahead again (:func:`_fast_commits`). Another process still holding the file (its
+    log then stays until it closes) is no error.
+
+    Parameters
+    ----------
+    engine : sqlalchemy.engine.Engine
+        The study storage's engine.
+    path : str or Path
+        The study file.
+    """
+    engine.dispose()
+    try:
+        con = sqlite3.connect(str(path), timeout=5)
+        try:
+            con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+            con.execute("PRAGMA journal_mode=DELETE")
+        finally:
+            con.close()
+    except sqlite3.Error:
+        pass
 
 
 def _check_label(path: Path, attrs: dict, job: str, space: str, named: list) -> None:
