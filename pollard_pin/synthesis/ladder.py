@@ -196,6 +196,7 @@ def first_generation(variables: Sequence, base: Mapping, ctx, evaluate: Callable
     if count < 1 or not designs:
         return [], "no ladder"
     passed = screened(designs, variables, ctx, evaluate, workers, dask)
+    passed = [(v, ev) for v, ev in passed if v != dict(base)]  # the thesis robot: first already
     chosen = seeds(passed, count)
     fewest = min((ev.objectives["robots"] for _, ev in passed), default=None)
     return chosen, (f"the ladder: {len(designs)} designs screened, {len(passed)} passed"

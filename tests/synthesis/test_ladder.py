@@ -112,6 +112,10 @@ def test_the_ladder_finds_the_one_robot_design_the_random_start_misses():
     assert best["objectives"]["robots"] == 1 and _in_slab(best["values"])
     assert best["trial"] < 8  # the first generation: the thesis robot, then the seeds
     assert laddered.baseline["values"] == BASE  # the thesis robot stays the first design
+    # the ladder's thesis robot (every factor 1, at the origin: two robots) is not a seed: the
+    # first generation's designs are distinct
+    first = [tuple(r[k] for k in BASE) for r in laddered.trials if r["trial"] < 8]
+    assert len(first) == 8 == len(set(first))
 
 
 def test_a_resumed_study_does_not_enqueue_the_ladder_again(tmp_path):
