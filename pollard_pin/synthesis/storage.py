@@ -167,6 +167,10 @@ def open_study(path: str | Path | None, *, job: str, space: str,
         return study, lambda: None
     path = Path(path)
     check_study_file(path, resume)
+    if resume:  # refused before the file is opened for writing: it stays as it was
+        attrs = _label_of(path)
+        if attrs is not None:
+            _check_label(path, attrs, job, space, named)
     make_folder(path.parent)
     url = f"sqlite:///{path.resolve()}"
     try:
@@ -188,7 +192,7 @@ def open_study(path: str | Path | None, *, job: str, space: str,
     try:
         _check_label(path, study.user_attrs, job, space, named)
     except StudyFileError:
-        close_study(storage.engine, path)  # closed: no log files are left beside it
+        storage.engine.dispose()  # closed: no log files are left beside it
         raise
     return study, lambda: close_study(storage.engine, path)
 
@@ -217,6 +221,23 @@ def close_study(engine, path: str | Path) -> None:
             con.close()
     except sqlite3.Error:
         pass
+
+
+def _label_of(path: Path) -> dict | None:
+    """The study's user attributes read from the file alone (None: not there to read, e.g.
+    still in the log of a killed run: optuna's loader then reads them)."""
+    try:
+        con = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro&immutable=1", uri=True)
+        try:
+            rows = con.execute("SELECT a.key, a.value_json FROM study_user_attributes a JOIN "
+                               "studies s ON s.study_id = a.study_id WHERE s.study_name = ?",
+                               (STUDY_NAME,)).fetchall()
+        finally:
+            con.close()
+        attrs = {k: json.loads(v) for k, v in rows}
+    except (sqlite3.Error, ValueError):
+        return None
+    return attrs if "format" in attrs else None
 
 
 def _check_label(path: Path, attrs: dict, job: str, space: str, named: list) -> None:
