@@ -465,10 +465,11 @@ def mujoco_marginal(sizes: tuple[int, int], repeats: int) -> None:
 
 
 def design_section(trials: int, repeats: int) -> None:
-    """The design study (docs/model.md §29) on examples/design/: a screened evaluation [ms]
-    (median over ``repeats`` random designs), a full one [s] (the study's chosen design), a
-    ``trials``-evaluation study on every core with its counts, and the same study on a Dask
-    LocalCluster of one worker, then two: the speed-up."""
+    """The design study (docs/model.md §31) on examples/design/: a screened evaluation [ms]
+    (median over ``repeats`` random designs), a ``trials``-evaluation study on every core
+    with its counts and its chosen design's figures, a full evaluation's CPU time (the chosen
+    design), the 200-evaluation projection on two cores from those and the screen's pass
+    rate, and the same study on a Dask LocalCluster of one worker, then two: the speed-up."""
     import random
     import tempfile
 
@@ -505,10 +506,24 @@ def design_section(trials: int, repeats: int) -> None:
         return
     print(f"  study of {trials} evaluations, {os.cpu_count()} local processes [s]"
           f"{wall:12.1f}  ({result.feasible} feasible, front of {len(result.front)})")
-    t0 = time.perf_counter()
+    o = result.design["objectives"]
+    print(f"  the chosen design: {o['robots']:.0f} robot(s), {o['parts_per_hour']:.1f} parts/h, "
+          f"motor use {o['motor_use']:.3f}, kmin {o['kmin']:.0f} N/m, "
+          f"{o['moving_mass']:.2f} kg")
+    t0 = time.process_time()
     full = evaluate(result.design["values"], ctx, "full")
-    print(f"  full evaluation of the chosen design [s]{time.perf_counter() - t0:12.1f}"
+    full_cpu = time.process_time() - t0
+    print(f"  full evaluation of the chosen design, CPU [s]{full_cpu:12.1f}"
           f"  (feasible: {full.feasible})")
+    # the 200-evaluation projection (docs/model.md §31.5): the ladder's screens, the screen for
+    # every design, the full plan for the share that passes it, on two cores
+    from pollard_pin.synthesis.ladder import ladder
+
+    rungs = len(ladder(space.variables(), baseline_values(space, ctx)))
+    passed = sum(r["level"] == "full" for r in result.trials) / max(1, len(result.trials))
+    minutes = ((rungs + 200) * statistics.median(screen) + 200 * passed * full_cpu) / 2 / 60
+    print(f"  screen pass rate {passed:.2f}; the ladder {rungs} screens; 200 evaluations on "
+          f"2 cores, projected [min]{minutes:12.1f}")
     try:
         from distributed import LocalCluster
     except ImportError:

@@ -113,8 +113,9 @@ fig.tight_layout()
 # The screen (``level="screen"``) rejects what cannot work, in milliseconds: the robot's band
 # along the cell's axis over the door's middle stroke (the planner's own rule: closed-form IK,
 # joint limits, singularity margins, on a coarse grid), against what one robot's zone needs
-# (the door and two 4σ run-ons), and the torques that hold the robot still against the motors'
-# ratings. ``prepare`` builds what every evaluation shares.
+# (the door, two 4σ run-ons and, past them, the run-on of the program's turnarounds and ramps:
+# the planner's own raster, ``turn_runon``), and the torques that hold the robot still against
+# the motors' ratings. ``prepare`` builds what every evaluation shares.
 ctx = prepare(job, space)
 
 
@@ -186,12 +187,17 @@ print("\n".join(ev.actuators_toml.splitlines()[:10]))
 # %%
 # A study
 # -------
-# ``pp.design(job, space, options)`` searches the space with optuna's NSGA-II, the thesis
-# robot as its first design (the baseline row). Every design is screened and, when it passes,
-# planned in full; ``DesignOptions(screen_only=True)`` judges the study by the screen alone
-# and plans only its front in full at the end. ``study="DIR/study.db"`` keeps every finished
-# evaluation in a SQLite file (``resume=True`` continues it); ``result.write(DIR)`` writes the
-# chosen design's files, ``front.csv``, ``trials.parquet`` and ``front.png``. The command line
+# ``pp.design(job, space, options)`` searches the space with optuna's NSGA-II, the thesis robot as
+# its first design (the baseline row). NSGA-II's first generation would be random, and one-robot
+# designs are a thin slab of the space (both factors near 1.7, a strong enough base motor, about 0.3
+# m back), so a new study first screens a *ladder* (every length factor together in 9 steps, the
+# place in 5, each catalogue motor of a group in turn, the robot count up to the first the screen
+# passes: milliseconds each) and starts with the best it passes, the fewest robots first
+# (docs/model.md §31.5). Every design is screened and, when it passes, planned in full;
+# ``DesignOptions(screen_only=True)`` judges the study by the screen alone and plans only its front
+# in full at the end. ``study="DIR/study.db"`` keeps every finished evaluation in a SQLite file
+# (``resume=True`` continues it); ``result.write(DIR)`` writes the chosen design's files,
+# ``front.csv``, ``trials.parquet`` and ``front.png``. The command line
 # does the same, on every core::
 #
 #     pollard-pin design --job examples/design/job.toml --space examples/design/space.toml \
@@ -199,9 +205,10 @@ print("\n".join(ev.actuators_toml.splitlines()[:10]))
 #
 # Here a quick look that fits this page: the space narrowed to one robot, one length factor
 # in [1.7, 1.8] for the arms and the links together, 0.3–0.4 m back, and a catalogue of two
-# motors (S100 behind 100:1, W5 behind 50:1) for the base and for the wrist; 12 designs
-# screened in this process, then the front planned in full. The example's whole space takes a
-# few hundred evaluations (docs/model.md §31.5).
+# motors (S100 behind 100:1, W5 behind 50:1) for the base and for the wrist; its ladder
+# screened, then 12 designs screened in this process (the thesis robot and the ladder's best
+# 11), then the front planned in full. On the example's whole space the ladder's first
+# generation already holds the one-robot designs (docs/model.md §31.5).
 folder = Path(tempfile.mkdtemp())
 text = (EXAMPLES / "motors.toml").read_text()
 two = [t for t in text.split("\n[motors.") if t.startswith(("S100]", "W5]"))]
@@ -234,9 +241,10 @@ print(sorted(p.name for p in out.iterdir()))
 print((out / "front.csv").read_text().splitlines()[0])
 
 # %%
-# Every evaluation of the study in the plane of its two continuous variables: here the screen
-# refuses most designs for their motors (``motors_static``: a W5 at the base, or three S100,
-# 2.7 kg, riding on the platform), before any plan. A design
+# Every evaluation of the study in the plane of its two continuous variables: the ladder's
+# designs the screen passed, and the thesis robot it refuses (its band); the screen refuses a
+# design for its motors (``motors_static``: a W5 at the base, or three S100, 2.7 kg, riding
+# on the platform) before any plan. A design
 # that passes the screen may still be refused by the full plan: the study's note above names
 # it and why; the front holds only designs judged by their full plan.
 fig, ax = plt.subplots(figsize=(7.5, 3.6))

@@ -13,12 +13,14 @@ from types import SimpleNamespace
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
 from .front import choose, non_dominated, rank_key
+from .ladder import first_generation
 from .result import DesignResult, shown
 from .storage import check_study_file, job_fingerprint, open_study
 from .study import (
     EVALUATION,
     DesignOptions,
     close_stale,
+    enqueue,
     finished,
     objectives_of,
     run_study,
@@ -115,7 +117,9 @@ def _no_front(rows: list[dict]) -> SolveError:
 def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
            progress: Callable | None = None) -> DesignResult:
     """Search the design space for the robots that paint ``job`` (docs/model.md §31): an
-    NSGA-II study over the space's variables, every design screened and, when it passes,
+    NSGA-II study over the space's variables, started with the thesis robot and the best
+    designs of a screened ladder (:mod:`~pollard_pin.synthesis.ladder`), every design
+    screened and, when it passes,
     planned in full, so that every front design is judged by its full plan (a study run with
     ``screen_only`` plans its front in full at the end); the thesis robot (the study's first
     design) as the baseline.
@@ -168,8 +172,13 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
                                                     else None)
     try:
         close_stale(study)
-        if not study.trials:  # the thesis robot is the study's first design
-            study.enqueue_trial(base)
+        if not study.trials:  # the thesis robot is the study's first design, then the ladder's
+            first, line = ([], None) if not options.ladder else first_generation(
+                variables, base, ctx, ev.evaluate, min(options.population, options.trials) - 1,
+                options.workers, options.dask)
+            enqueue(study, [base, *first])
+            if line is not None:
+                study.set_user_attr("ladder", line)
         study.sampler = sampler(options, finished(study)[0])
         run_study(study, variables, ctx, ev.evaluate, names, options, report)
         rows = trial_rows(study, variables, names)

@@ -40,7 +40,7 @@ from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
 from .concrete import Design, actuators_toml, build, params_toml
-from .screen import held_poses, motors, panel_reach, reach
+from .screen import held_poses, motors, panel_reach, reach, turn_runon
 from .space import DesignSpace
 
 #: The objectives a design is judged by, in the order of :meth:`Evaluation.objective_vector`.
@@ -120,7 +120,9 @@ class DesignContext:
     space : DesignSpace
         The design space.
     strokes : pollard_pin.painting.cell.bands.Strokes or None
-        The job's middle stroke, the screen's reach envelope (None: a job without a line).
+        The job's middle stroke, the screen's reach envelope, its run-on and run-out
+        lengthened by the turnarounds' (:func:`~pollard_pin.synthesis.screen.turn_runon`;
+        None: a job without a line).
     options : PaintOptions
         How the full evaluation paints.
     """
@@ -165,7 +167,9 @@ def prepare(job, space: DesignSpace, options: PaintOptions | None = None) -> Des
     strokes = None
     if job.line is not None:  # the screen's envelope: the middle stroke (docs/model.md §31.3)
         strokes = job_strokes(job)
-        strokes = replace(strokes, samples=(strokes.samples[len(strokes.samples) // 2],))
+        run = turn_runon(job)  # the turnarounds' and ramps' run-on past the passes' ends
+        strokes = replace(strokes, samples=(strokes.samples[len(strokes.samples) // 2],),
+                          run_on=strokes.run_on + run, runout=strokes.runout + run)
     return DesignContext(job, space, strokes, options)
 
 
@@ -344,10 +348,15 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
     objectives = _objectives(design, n, parts_per_hour=float(pph), motor_use=max(uses),
                              kmin=kmin)
     text = None if robots is None else robots_toml(
-        robots, f"[[robot]] tables of a design of pollard-pin design for {ctx.job.source}\n"
+        robots, f"[[robot]] tables of a design of pollard-pin design for {_job_name(ctx.job)}\n"
         "(docs/model.md §31): add them to the job to plan with them")
     return Evaluation("full", binding is None, objectives, cons, binding, figures,
                       *_files(design), text)
+
+
+def _job_name(job) -> str:
+    """The job by its file's name (the folder a design is written to moves with it)."""
+    return Path(str(job.source)).name or str(job.source)
 
 
 def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"

@@ -4,7 +4,9 @@
   (:data:`SCREEN_STEP`; the paint planner's own band rule,
   :func:`pollard_pin.painting.cell.bands.robot_band`, with the workspace map's per-pose checks:
   the closed-form IK, the joint limits and the singularity margins), against what the
-  design's number of robots needs (:func:`pollard_pin.painting.layout.cell.zone_needs`);
+  design's number of robots needs (:func:`pollard_pin.painting.layout.cell.zone_needs`), the
+  run-on of a panel's turnarounds and ramps past its passes' ends included
+  (:func:`turn_runon`: the planner's own raster geometry at its first duration);
 * **reach** of a still panel (no line): the share of its gun poses, over the panel and its
   run-on on the same grid, that the workspace map's checks refuse;
 * **motors**: the torques that hold the robot still (the weight alone) at the band's ends and
@@ -21,13 +23,33 @@ import numpy as np
 
 from ..painting.cell.bands import Strokes, base_poses, robot_band
 from ..painting.cell.robots import CellRobot
+from ..painting.job import PartJob
 from ..painting.layout.cell import fewest_for, zone_needs
 from ..painting.line.reach import ball_shift_range, reach_ball
+from ..painting.passes.raster import raster_segments
+from ..painting.plan.layout import panel_layout
+from ..painting.policy import DEFAULT_POLICY, PlannerPolicy
 from ..workspace.reach import evaluate, holding_torques, kinematic_matrices
 
 SCREEN_STEP = 0.02  # m between the band's grid points (the planner's: 0.005)
 SCREEN_SHIFT = 0.05  # m between the part's shifts along the line (the planner's: 0.01)
 SCREEN_STROKES = 1  # distinct stroke shapes checked (the planner's reference band: 5)
+TURN_SAMPLES = 400  # samples of the turnaround and ramps whose furthest reach is taken
+
+
+def turn_runon(job, policy: PlannerPolicy = DEFAULT_POLICY) -> float:
+    """How far [m] a panel's gun runs past its passes' ends at a turnaround or a ramp: the
+    planner's raster (:func:`pollard_pin.painting.passes.raster.raster_segments`, its pass
+    speed and spacing) with every turnaround and ramp at the duration search's first guess
+    (:meth:`~pollard_pin.painting.policy.PlannerPolicy.first_guess`), the longest the search
+    keeps when the motors allow it (docs/model.md §31.3); a part's program: 0 (not screened)."""
+    if isinstance(job, PartJob):
+        return 0.0
+    lay = panel_layout(job, policy)
+    tau = policy.first_guess(lay.speed)
+    seg = raster_segments([0.0, lay.spacing], 0.0, lay.speed, [tau], (tau, tau))
+    u = seg.evaluate(np.linspace(0.0, seg.total, TURN_SAMPLES))[0]
+    return float(np.abs(u).max())  # past the pass's end (its half length here 0)
 
 
 def screen_margin(robot, strokes: Strokes) -> float:
@@ -117,4 +139,4 @@ def motors(robot, actuators, poses: np.ndarray) -> tuple[float, dict]:
 
 
 __all__ = ["SCREEN_STEP", "SCREEN_STROKES", "held_poses", "motors", "panel_reach", "reach",
-           "screen_margin"]
+           "screen_margin", "turn_runon"]

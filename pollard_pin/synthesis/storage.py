@@ -148,8 +148,8 @@ def open_study(path: str | Path | None, *, job: str, space: str,
     -------
     tuple of (optuna.Study, callable)
         The study, with the user attributes ``format``, ``job``, ``space`` and
-        ``objectives``, and ``close()``, which closes the file (its write-ahead log is then
-        folded into it).
+        ``objectives``, and ``close()``, which closes the file (:func:`close_study`: its
+        write-ahead log folded into it, none left beside it).
 
     Raises
     ------
@@ -167,6 +167,10 @@ def open_study(path: str | Path | None, *, job: str, space: str,
         return study, lambda: None
     path = Path(path)
     check_study_file(path, resume)
+    if resume:  # refused before the file is opened for writing: it stays as it was
+        attrs = _label_of(path)
+        if attrs is not None:
+            _check_label(path, attrs, job, space, named)
     make_folder(path.parent)
     url = f"sqlite:///{path.resolve()}"
     try:
@@ -177,7 +181,7 @@ def open_study(path: str | Path | None, *, job: str, space: str,
             study = optuna.create_study(storage=storage, study_name=STUDY_NAME,
                                         directions=directions, sampler=sampler)
             _label(study, job, space, named)
-            return study, storage.engine.dispose
+            return study, lambda: close_study(storage.engine, path)
         study = optuna.load_study(storage=storage, study_name=STUDY_NAME, sampler=sampler)
     except (KeyError, ValueError, RuntimeError) as exc:  # no such study, another version
         raise StudyFileError(f"{path}: not a {FORMAT!r} database ({_short(exc)})") from None
@@ -190,7 +194,50 @@ def open_study(path: str | Path | None, *, job: str, space: str,
     except StudyFileError:
         storage.engine.dispose()  # closed: no log files are left beside it
         raise
-    return study, storage.engine.dispose
+    return study, lambda: close_study(storage.engine, path)
+
+
+def close_study(engine, path: str | Path) -> None:
+    """Close the study's connections and fold its write-ahead log into the file: a
+    checkpoint, then the rollback journal (which SQLite deletes after each commit), so that
+    the folder holds ``study.db`` alone, no ``-wal`` or ``-shm`` beside it; a study reopened
+    writes ahead again (:func:`_fast_commits`). Another process still holding the file (its
+    log then stays until it closes) is no error.
+
+    Parameters
+    ----------
+    engine : sqlalchemy.engine.Engine
+        The study storage's engine.
+    path : str or Path
+        The study file.
+    """
+    engine.dispose()
+    try:
+        con = sqlite3.connect(str(path), timeout=5)
+        try:
+            con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+            con.execute("PRAGMA journal_mode=DELETE")
+        finally:
+            con.close()
+    except sqlite3.Error:
+        pass
+
+
+def _label_of(path: Path) -> dict | None:
+    """The study's user attributes read from the file alone (None: not there to read, e.g.
+    still in the log of a killed run: optuna's loader then reads them)."""
+    try:
+        con = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro&immutable=1", uri=True)
+        try:
+            rows = con.execute("SELECT a.key, a.value_json FROM study_user_attributes a JOIN "
+                               "studies s ON s.study_id = a.study_id WHERE s.study_name = ?",
+                               (STUDY_NAME,)).fetchall()
+        finally:
+            con.close()
+        attrs = {k: json.loads(v) for k, v in rows}
+    except (sqlite3.Error, ValueError):
+        return None
+    return attrs if "format" in attrs else None
 
 
 def _check_label(path: Path, attrs: dict, job: str, space: str, named: list) -> None:

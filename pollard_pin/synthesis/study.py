@@ -84,6 +84,9 @@ class DesignOptions:
         Judge designs by the screen alone (no full plan): a quick look, not an answer.
     progress : bool or Callable
         A progress bar on a terminal (True), or ``progress(done, total, feasible, best)``.
+    ladder : bool
+        Start a new study with the screened ladder's best designs after the thesis robot
+        (:mod:`~pollard_pin.synthesis.ladder`; False: NSGA-II's random first generation).
     """
 
     trials: int = 200
@@ -96,6 +99,7 @@ class DesignOptions:
     pick: int | None = None
     screen_only: bool = False
     progress: bool | Callable = False
+    ladder: bool = True
 
     def __post_init__(self):
         for name, low in (("trials", 1), ("population", 2), ("workers", 1), ("pick", 1)):
@@ -162,6 +166,14 @@ def _signals_held():
                 handler(s, None)
             elif handler == signal.SIG_DFL:
                 os.kill(os.getpid(), s)
+
+
+def enqueue(study, designs: Sequence[Mapping]) -> None:
+    """Put ``designs`` first in the study's queue (optuna's waiting trials, stored: a resumed
+    study evaluates those it has not), each write with the signals held."""
+    for values in designs:
+        with _signals_held():
+            study.enqueue_trial(dict(values))
 
 
 def plain(value):

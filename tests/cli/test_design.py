@@ -87,6 +87,7 @@ def test_a_study_writes_the_chosen_design_and_resumes(tmp_path, capsys, stand_in
     names = {p.name for p in (tmp_path / "out").iterdir()}
     assert {"params.toml", "actuators.toml", "front.csv", "front.units.json",
             "trials.parquet", "front.png", "study.db"} <= names
+    assert not [n for n in names if n.startswith("study.db-")]  # no -wal, no -shm left
     assert "wrote " in err and "chosen: design 1" in err
     # resumed to 16: the 12 kept, 4 more; --pick 2 writes the second row's files
     code, out, err = run_cli([*argv[:-6], "--trials", "16", "--workers", "1", "--population",

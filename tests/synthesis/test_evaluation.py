@@ -75,15 +75,24 @@ def test_the_baseline_is_the_thesis_robot_in_the_cell_it_paints_in(example):
 
 
 def test_screen_scaled_design_alone(example):
+    """×1.7 standing 0.3 m back paints the door alone (its full plan: one robot), ×1.6 does
+    not: its band holds the door and its run-ons, not the turnarounds past them, where the
+    planner refuses it."""
+    from pollard_pin.synthesis.screen import turn_runon
+
     space, ctx = example
-    v = {**baseline_values(space), "scale.arms": 1.6, "scale.links": 1.6, "place.back": 0.3,
-         "motor.base": 2}
+    v = {**baseline_values(space), "scale.arms": 1.7, "scale.links": 1.7, "place.back": 0.3,
+         "motor.base": 2, "robots": 1}
     ev = evaluate(v, ctx, "screen")
     assert ev.feasible and ev.figures["robots_needed"] == 1
-    assert ev.figures["band_m"] >= 0.38 + 2 * 0.04 - 1e-9
+    run = turn_runon(ctx.job)
+    assert ev.figures["band_m"] >= 0.38 + 2 * 0.04 + 2 * run - 1e-9
     # standing at the origin the longer robot reaches less of the door
     close = evaluate({**v, "place.back": 0.0}, ctx, "screen")
     assert close.binding == "reach" and close.figures["band_m"] < ev.figures["band_m"]
+    short = evaluate({**v, "scale.arms": 1.6, "scale.links": 1.6}, ctx, "screen")
+    assert short.binding == "reach" and short.figures["robots_needed"] == 2
+    assert 0.38 + 2 * 0.04 - 1e-9 <= short.figures["band_m"] < 0.38 + 2 * 0.04 + 2 * run
 
 
 def test_unreachable_home_is_infeasible_not_raised(example):
@@ -105,6 +114,9 @@ def test_full_evaluation_of_a_strip(strip):
     assert 1e3 < o["kmin"] < 1e6
     assert ev.figures["film_within_5pct"] >= 0.99
     assert "[[robot]]" in ev.robots_toml and "[chain0]" in ev.params_toml
+    # the job by its name, not where it was (the written folder moves)
+    assert f"pollard-pin design for {ctx.job.source}" in ev.robots_toml.splitlines()[0]
+    assert "/" not in ev.robots_toml.splitlines()[0].split(" for ")[1]
     assert "[theta21]" in ev.actuators_toml
 
 

@@ -72,3 +72,17 @@ def test_still_panel_reach_agrees_with_the_planner(case):
     assert 0.5 < off < 1.0  # most of a 0.9 × 0.5 m panel is beyond the 0.6 × 0.25 m rectangle
     with pytest.raises(PlanError, match="reach"):
         pp.paint(robot, big)
+
+
+def test_turnaround_runon_is_the_planners_raster():
+    """A panel's gun runs past its passes' ends by the ramp's v·τ/2 (the turnaround's quintic
+    x − 2x³ + x⁴ peaks at 5/16 v·τ), τ the duration search's first guess 4v/10 s."""
+    from pollard_pin.painting.plan.layout import panel_layout
+    from pollard_pin.synthesis.screen import turn_runon
+
+    job = pp.load_job("examples/design/job.toml")
+    v = panel_layout(job).speed
+    tau = 4 * v / 10.0
+    assert turn_runon(job) == pytest.approx(max(v * tau / 2, 5 / 16 * v * tau), rel=1e-4)
+    assert 0.015 < turn_runon(job) < 0.03  # some 2 cm at the door's 0.33 m/s
+    assert turn_runon(pp.load_job("examples/line_part.toml")) == 0.0
