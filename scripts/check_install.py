@@ -74,7 +74,9 @@ def commands(cli: Path, work: Path) -> None:
     for f in ("stiff.csv", "part_stiff.parquet"):
         need(work / f, "stiffness")
     sh([cli, "urdf", "--out", "p.urdf"], work)
-    sh([cli, "info"], work)
+    info = sh([cli, "info"], work)
+    if "total mass 0.9200 kg" not in info.stdout:
+        sys.exit(f"check_install: info does not say the model's mass: {info.stdout[:200]!r}")
     sh([cli, "report", "--no-cross-check"], work)
     sh([cli, "simulate", "--duration", "2", "--out", "sim.csv"], work)
     sh([cli, "simulate", "--trajectory", ex / "figure8.csv", "--actuators",
@@ -84,7 +86,9 @@ def commands(cli: Path, work: Path) -> None:
     sh([cli, "plot", "--out", "plots"], work)
     sh([cli, "view", "--html", "v.html"], work)
     sh([cli, "view", "--paint", "part", "--html", "paint.html"], work)
-    for f in ("sim.csv", "flex.csv", "sweep.csv", "v.html", "paint.html", "p.urdf"):
+    # the figures from the installed package (tests/model/test_build.py leaves plot to here)
+    for f in ("sim.csv", "flex.csv", "sweep.csv", "v.html", "paint.html", "p.urdf",
+              "plots/actuators.png"):
         need(work / f, f)
     # paint --robots auto: a proposed cell planned, its [[robot]] tables written (§26.5)
     sh([cli, "paint", "--job", ex / "line.toml", "--robots", "auto", "--out", "cell"], work)

@@ -14,31 +14,53 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "slow: long test, skipped unless --runslow is given")
 
 
-# The files whose tests take longest (each tens of CPU seconds: they plan paint jobs, search
-# line speeds, build a venv), heaviest first. `make test` hands whole files to its workers in
-# collection order (--dist loadfile --no-loadscope-reorder): these go first, so that the many
-# quick files fill in behind them and neither worker is left with a long file at the end.
-# Only the order changes; a file missing here runs after them, as collected.
+# The files whose tests take longest (each over 4 s: they plan paint jobs, search line speeds,
+# build a venv), longest first. `make test` hands whole files to its workers in collection
+# order (--dist loadfile --no-loadscope-reorder), the next file to whichever worker is short of
+# work: these go first (longest processing time first), so that the end of the run is files
+# of a few seconds and both workers finish together. Only the order changes; a file missing
+# here runs after them, as collected. The order: `--durations=0` of a whole run, summed per
+# file (session plans land in the first file that asks for them).
 HEAVY_FIRST = (
     "cli/test_paint_line.py",
+    "painting/cell/test_plan.py",
     "outputs/test_paint_cell_files.py",
     "dynamics/test_timeopt.py",
-    "painting/cell/test_plan.py",
-    "model/test_build.py",
     "cli/test_paint.py",
     "cli/test_size.py",
     "painting/line/test_phases.py",
     "painting/layout/test_cell.py",
-    "painting/plan/test_panel.py",
+    "painting/test_real_meshes.py",
     "painting/line/test_panel.py",
+    "dynamics/test_passes.py",
     "painting/line/test_speeds.py",
-    "painting/line/test_part.py",
+    "painting/checks/test_cell_compliance.py",
+    "model/test_build.py",
+    "painting/plan/test_panel.py",
+    "cli/test_fuzz.py",
+    "io/test_retime.py",
+    "test_scripts.py",
     "cli/test_fuzz_output.py",
-    "cli/test_main.py",
-    "cli/test_paint_robots.py",
+    "workspace/test_grid.py",
+    "painting/line/test_part.py",
+    "test_docs.py",
+    "dynamics/test_cycle.py",
     "painting/layout/test_place.py",
-    "outputs/test_result.py",
+    "cli/test_main.py",
+    "cli/test_view.py",
     "test_doc_examples.py",
+    "sweep/test_backends.py",
+    "painting/cell/test_program.py",
+    "cli/test_workspace.py",
+    "outputs/test_result.py",
+    "test_repository.py",
+    "run/test_stream.py",
+    "synthesis/test_study.py",
+    "viz/test_viewer.py",
+    "cli/test_place.py",
+    "painting/line/test_strokes.py",
+    "cli/test_paint_robots.py",
+    "painting/spray/test_occlusion.py",
 )
 
 

@@ -248,6 +248,15 @@ def panel_part_plan(robot, job, act, tmp_path_factory):
                             lambda: plan_surface(robot, pj, act, part)))
 
 
+@pytest.fixture(scope="session")
+def panel_result(robot, job, act, tmp_path_factory):
+    """examples/paint.toml painted with examples/actuators.toml (pp.paint, its default
+    options)."""
+    import pollard_pin as pp
+
+    return _read_only(_once(tmp_path_factory, "panel_result", lambda: pp.paint(robot, job, act)))
+
+
 # --- the CLI's output folders -------------------------------------------------------------
 @pytest.fixture(scope="session")
 def panel_painted(tmp_path_factory):

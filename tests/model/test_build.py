@@ -759,58 +759,64 @@ def test_load_works_from_the_installed_wheel_in_a_fresh_venv(fresh, tmp_path):
     _check_installed(fresh["venv"], tmp_path)
 
 
+# The README's commands from the installed package, in one interpreter (the console script
+# runs `info`): an interpreter per command cost 1.2 s of imports each. `plot` is left to
+# scripts/check_install.py (`make install-check`, CI's next step), which runs every command
+# through the console script of a plain install and checks plots/actuators.png.
+INSTALLED_COMMANDS = (
+    (["run", "--samples", "401", "--out", "r.csv"], "r.csv"),
+    (["report", "--samples", "401", "--no-cross-check", "--out", "rep.md"], "rep.md"),
+    (["view", "--samples", "401", "--html", "p.html"], "p.html"),
+    (["run", "--samples", "401", "--loads", "--out", "loads.parquet"], "loads.parquet"),
+    (["size", "--actuators", str(REPO / "examples" / "actuators.toml"), "--samples", "401",
+      "--format", "json", "--out", "size.json"], "size.json"),
+    (["simulate", "--duration", "1", "--samples", "51", "--quiet", "--out", "sim.csv"],
+     "sim.csv"),
+)
+
+
 def _check_installed(venv, cwd):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    cli = subprocess.run([str(venv / "bin" / "pollard-pin"), "info"], cwd=cwd, env=env,
+                         capture_output=True, text=True, timeout=300)
+    assert cli.returncode == 0 and "Traceback" not in cli.stderr, cli.stderr
+    assert "total mass 0.9200 kg" in cli.stdout
     code = textwrap.dedent("""
-        import json, numpy as np, pollard_pin
+        import contextlib, io, json, sys, numpy as np, pollard_pin, pollard_pin as pp
+        from pollard_pin.cli import main
         from pollard_pin.kinematics import tool_pose
         from pollard_pin.model.paths import models_dir
         r = pollard_pin.load()
         q = r.home()
         tip = tool_pose(r, q).translation
+        codes = []
+        for argv in json.loads(sys.argv[1]):
+            with contextlib.redirect_stdout(io.StringIO()):
+                codes.append(main(argv))
+        # the CSV run and the Parquet run (with joint loads) read back
+        a, b = pp.read_result("r.csv"), pp.read_result("loads.parquet")
         print(json.dumps(dict(file=pollard_pin.__file__, models=str(models_dir()), nq=r.model.nq,
-                              tip=tip.tolist(), mass=r.params.total_mass)))
+                              tip=tip.tolist(), mass=r.params.total_mass, codes=codes,
+                              rows=[len(a), len(b)],
+                              loads=sum(c.startswith("F_") for c in b.columns),
+                              dtau=float(np.abs(a["tau_theta21"] - b["tau_theta21"]).max()))))
     """)
-    out = subprocess.run([str(venv / "bin" / "python"), "-c", code], cwd=cwd, env=env,
-                         capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
+    argv = json.dumps([args for args, _ in INSTALLED_COMMANDS])
+    out = subprocess.run([str(venv / "bin" / "python"), "-c", code, argv], cwd=cwd, env=env,
+                         capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr
     res = json.loads(out.stdout)
     site = str(_site_packages(venv).resolve())
     assert str(Path(res["file"]).resolve()).startswith(site), res["file"]
     assert str(Path(res["models"]).resolve()).startswith(site), res["models"]
     assert res["nq"] == 12 and abs(res["mass"] - 0.92) <= 1e-14
     assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-13
-    # Every command the README shows works from the installed package (plots included).
-    short = ["--samples", "401"]
-    for args, made in ((["info"], None), (["run", *short, "--out", "r.csv"], "r.csv"),
-                       (["plot", *short, "--out", "figs"], "figs/actuators.png"),
-                       (["report", *short, "--no-cross-check", "--out", "rep.md"], "rep.md"),
-                       (["view", *short, "--html", "p.html"], "p.html"),
-                       (["run", *short, "--loads", "--out", "loads.parquet"], "loads.parquet"),
-                       (["size", "--actuators", str(REPO / "examples" / "actuators.toml"),
-                         *short, "--format", "json", "--out", "size.json"], "size.json"),
-                       (["simulate", "--duration", "1", "--samples", "51", "--quiet",
-                         "--out", "sim.csv"], "sim.csv")):
-        cli = subprocess.run([str(venv / "bin" / "pollard-pin"), *args], cwd=cwd, env=env,
-                             capture_output=True, text=True, timeout=300)
-        assert cli.returncode == 0 and "Traceback" not in cli.stderr, (args, cli.stderr)
-        if made is None:
-            assert "total mass 0.9200 kg" in cli.stdout
-        else:
-            assert (Path(cwd) / made).stat().st_size > 0, (args, made)
+    # Every command the README shows works from the installed package.
+    for (args, made), status in zip(INSTALLED_COMMANDS, res["codes"], strict=True):
+        assert status == 0, (args, out.stderr)
+        assert (Path(cwd) / made).stat().st_size > 0, (args, made)
     # The Parquet run (with joint loads) and the CSV run read back through the installed API
     # (polars and pyarrow resolved there) and agree on the torques.
-    code = textwrap.dedent("""
-        import json, numpy as np, pollard_pin as pp
-        a, b = pp.read_result("r.csv"), pp.read_result("loads.parquet")
-        print(json.dumps(dict(rows=[len(a), len(b)],
-                              loads=sum(c.startswith("F_") for c in b.columns),
-                              dtau=float(np.abs(a["tau_theta21"] - b["tau_theta21"]).max()))))
-    """)
-    out = subprocess.run([str(venv / "bin" / "python"), "-c", code], cwd=cwd, env=env,
-                         capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    res = json.loads(out.stdout)
     assert res["rows"] == [401, 401] and res["loads"] == 36 and res["dtau"] <= 1e-12, res
     assert json.loads((Path(cwd) / "size.json").read_text())["actuators"].keys() >= {"theta21"}
 

@@ -20,10 +20,10 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 @pytest.fixture(scope="module")
-def result(robot):
-    """examples/paint.toml painted with examples/actuators.toml."""
-    return pp.paint(robot, pp.load_job(EXAMPLES / "paint.toml"),
-                    pp.load_actuators(EXAMPLES / "actuators.toml"))
+def result(panel_result):
+    """examples/paint.toml painted with examples/actuators.toml, once per session
+    (tests/examples_planned.py)."""
+    return panel_result
 
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])

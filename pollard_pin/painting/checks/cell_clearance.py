@@ -27,9 +27,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 
 from ...errors import InputError
 from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, segment_distance
@@ -37,6 +37,9 @@ from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
 from .clearance import least_distance
+
+if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
+    import trimesh
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling

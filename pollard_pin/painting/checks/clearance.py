@@ -28,15 +28,18 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 from scipy.spatial import cKDTree
 
 from ...analytic.taskspace import rotation
 from ...errors import say_less
 from ..errors import ClearanceError
 from ..spray.gun_body import CLEARANCE, GunBody
+
+if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
+    import trimesh
 
 SURFACE_STEP = 0.004  # m: the surface samples' sub-triangle edges, at most (δ)
 MAX_SURFACE_POINTS = 400_000  # δ grows until the samples fit (≈ 10 MB of k-d tree)
@@ -121,6 +124,8 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii):
     pair = np.unique(np.concatenate([
         i * len(tri) + np.unique(owner[np.asarray(f, int)]) for i, f in enumerate(near)]))
     who, face = order[pair // len(tri)], pair % len(tri)
+    import trimesh
+
     closest = trimesh.triangles.closest_point(tri[face], flat[who])
     dist = np.linalg.norm(closest - flat[who], axis=1) - radii[who % len(radii)]
     j = int(np.argmin(dist))
@@ -189,6 +194,8 @@ def panel_mesh(frame) -> trimesh.Trimesh:
     """A panel (:class:`.workpiece.panel.PanelFrame`) as two triangles."""
     corners = frame.world(np.array([-1, 1, 1, -1]) * frame.width / 2,
                           np.array([-1, -1, 1, 1]) * frame.height / 2)
+    import trimesh
+
     return trimesh.Trimesh(corners, np.array([[0, 1, 2], [0, 2, 3]]), process=False)
 
 

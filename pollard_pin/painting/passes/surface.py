@@ -43,7 +43,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import trimesh
 from scipy.ndimage import gaussian_filter1d
 
 from ..errors import BudgetError, PlanError
@@ -132,6 +131,8 @@ def surface_frame(part: Part, direction: str = "horizontal") -> SurfaceFrame:
 
 
 def _painted_mesh(part: Part):
+    import trimesh
+
     idx = np.flatnonzero(part.painted)
     return trimesh.Trimesh(part.vertices, part.faces[idx], process=False), part.normals[idx]
 
@@ -140,6 +141,8 @@ def section(part_mesh, normals, frame_n, along, across, level: float, step: floa
     """The section of the painted faces by the plane across·x = level, as a graph over
     ``along``: (coordinate c (J,), surface points (J, 3), normals (J, 3), on (J,) covered by
     a face, arc length (J,)), or None if the plane misses them."""
+    import trimesh
+
     with np.errstate(all="ignore"):
         lines, faces = trimesh.intersections.mesh_plane(
             part_mesh, across, level * across, return_faces=True)

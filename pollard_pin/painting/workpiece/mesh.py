@@ -18,9 +18,9 @@ import warnings
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 from scipy.spatial import ConvexHull, QhullError
 
 from ...analytic.taskspace import turn
@@ -29,6 +29,9 @@ from ..errors import MeshError, MeshFileError
 from ..job import UNITS, PaintJob
 from .mesh_check import check_indices, obj_absolute, ply_counts, unique_faces
 from .panel import panel_frame
+
+if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
+    import trimesh
 
 FORMATS = ("stl", "obj", "ply")
 # Faces beyond this make the film (≥ 3 points a face) and the shadows slow for no gain: the
@@ -160,6 +163,8 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
                       stacklevel=3)
     f, cross, area2 = f[keep], cross[keep], area2[keep]
     normals = cross / area2[:, None]
+    import trimesh
+
     mesh = trimesh.Trimesh(v, f, process=False)
     if mesh.is_watertight and mesh.is_winding_consistent and mesh.volume < 0:
         f, normals = f[:, ::-1], -normals  # wound clockwise seen from outside: turn over
@@ -192,6 +197,8 @@ def _read_mesh(data: bytes, ext: str, src: str):
         data = obj_absolute(data, src)
     elif ext == "ply":
         ply_counts(data, src)
+    import trimesh
+
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")

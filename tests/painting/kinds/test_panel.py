@@ -7,15 +7,15 @@ import json
 import numpy as np
 import pytest
 
-import pollard_pin as pp
 from pollard_pin.outputs import PaintResult
 from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.kinds.panel import paint_report, summary_lines
 
 
 @pytest.fixture(scope="module")
-def result(robot, job, act) :
-    return pp.paint(robot, job, act)
+def result(panel_result):
+    """pp.paint of examples/paint.toml, painted once per session (tests/examples_planned.py)."""
+    return panel_result
 
 
 def test_panel_is_the_panel_planners(result, plan, film, act):

@@ -1,6 +1,5 @@
 """A still part's mesh (painting/kinds/part.py): pp.paint's film and report are
 plan_surface's, surface_film's and surface_report's (equal); the lines paint prints."""
-from pathlib import Path
 
 import numpy as np
 
@@ -9,17 +8,15 @@ from pollard_pin.painting.kinds import part
 from pollard_pin.painting.options import PaintOptions
 
 
-def test_part_is_the_part_planners(robot, act):
-    """examples/parts/curved_panel.toml at film spacing σ: plan_surface, surface_film and
-    surface_report called directly give the same film and statistics (equal)."""
+def test_part_is_the_part_planners(robot, act, curved_job, curved_plan):
+    """examples/parts/curved_panel.toml at film spacing σ: plan_surface (the session's
+    curved_plan, tests/examples_planned.py), surface_film and surface_report called directly
+    give the same film and statistics (equal)."""
     from pollard_pin.painting.film.part import surface_film
-    from pollard_pin.painting.plan.part import plan_surface
     from pollard_pin.painting.report import surface_report
 
-    job = pp.load_job(Path(__file__).resolve().parents[3] / "examples" / "parts"
-                      / "curved_panel.toml")
+    job, plan = curved_job, curved_plan
     r = pp.paint(robot, job, act, PaintOptions(resolution=job.sigma, compliance=False))
-    plan = plan_surface(robot, job, act)
     pts, f, painted, eff = surface_film(plan, job.sigma)
     direct = surface_report(plan, pts, f, painted, eff, act)
     assert r.kind == "part" and np.array_equal(r.film.thickness, f.thickness)
