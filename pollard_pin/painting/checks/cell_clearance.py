@@ -43,6 +43,7 @@ if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: 
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling
+BLOCK = 2048  # samples a block of the distances to the part (their arrays stay in cache)
 
 
 @dataclass(frozen=True)
@@ -176,18 +177,16 @@ def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
     (the union of its capsules' boxes) are measured."""
     rr = r1[:, None] + r2[None, :]
-    coarse = (segment_distance(a1[::COARSE, :, None], b1[::COARSE, :, None],
-                               a2[::COARSE, None], b2[::COARSE, None]) - rr).min(axis=(1, 2))
-    where = int(np.argmin(coarse)) * COARSE
-    best = float(coarse.min())
+    best, where = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1, r2)
+    where *= COARSE
     for lo in range(0, len(a1), CHUNK):
         sl = slice(lo, lo + CHUNK)
-        box1, box2 = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
+        (lo1, hi1), (lo2, hi2) = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
         # boxes apart by g hold capsules at least g apart; capsules that cut into each
         # other (best < 0) have touching boxes (g = 0)
         cut = max(best, 0.0)
-        near1 = _box_gap(box1, box2[:, :, 0].min(axis=1), box2[:, :, 1].max(axis=1)) <= cut
-        near2 = _box_gap(box2, box1[:, :, 0].min(axis=1), box1[:, :, 1].max(axis=1)) <= cut
+        near1 = _box_gap(lo1, hi1, lo2.min(axis=1), hi2.max(axis=1)) <= cut
+        near2 = _box_gap(lo2, hi2, lo1.min(axis=1), hi1.max(axis=1)) <= cut
         n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
         if len(n) == 0:
             continue
@@ -198,14 +197,38 @@ def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     return best, where
 
 
-def _boxes(a, b, r) -> np.ndarray:
-    """Each capsule's bounding box (N, L, 2, 3): lower and upper corners."""
-    return np.stack([np.minimum(a, b) - r[:, None], np.maximum(a, b) + r[:, None]], axis=2)
+def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
+    """(the least distance between two robots' capsules over the samples (ends (M, L, 3)
+    each), the first sample where it lies). Only the capsule pairs whose bounding spheres
+    (the segment's midpoint, half its length plus r) may come within the best of each
+    sample's closest pair of spheres are measured: a pair left out lies farther apart than
+    one measured, so neither the least nor its first sample changes."""
+    rr = r1[:, None] + r2[None, :]
+    c1, c2 = (a1 + b1) / 2, (a2 + b2) / 2
+    h1 = np.linalg.norm(b1 - a1, axis=2) / 2 + r1
+    h2 = np.linalg.norm(b2 - a2, axis=2) / 2 + r2
+    gap = np.linalg.norm(c1[:, :, None] - c2[:, None], axis=3) - h1[:, :, None] - h2[:, None]
+    # the closest spheres' capsules of each sample: an achieved distance, a ceiling
+    m = np.arange(len(gap))
+    i, j = np.unravel_index(gap.reshape(len(gap), -1).argmin(axis=1), gap.shape[1:])
+    ceiling = float((segment_distance(a1[m, i], b1[m, i], a2[m, j], b2[m, j])
+                     - rr[i, j]).min())
+    # round-off (~1e-16 m) kept far below the margin; a pair cutting in (gap ≤ 0) kept
+    n, i, j = np.nonzero(gap <= max(ceiling, 0.0) + 1e-9)
+    d = segment_distance(a1[n, i], b1[n, i], a2[n, j], b2[n, j]) - rr[i, j]
+    k = int(np.argmin(d))  # n ascends: the first sample of the least
+    return float(d[k]), int(n[k])
 
 
-def _box_gap(boxes, lo, hi) -> np.ndarray:
-    """The distance (N, L) of each box from the box lo–hi of its sample (each (N, 3))."""
-    out = np.maximum(np.maximum(lo[:, None] - boxes[:, :, 1], boxes[:, :, 0] - hi[:, None]), 0)
+def _boxes(a, b, r) -> tuple[np.ndarray, np.ndarray]:
+    """Each capsule's bounding box: its lower and upper corners (N, L, 3) each."""
+    return np.minimum(a, b) - r[:, None], np.maximum(a, b) + r[:, None]
+
+
+def _box_gap(lower, upper, lo, hi) -> np.ndarray:
+    """The distance (N, L) of each box (corners ``lower``, ``upper``) from the box lo–hi of
+    its sample (each (N, 3))."""
+    out = np.maximum(np.maximum(lo[:, None] - upper, lower - hi[:, None]), 0)
     return np.linalg.norm(out, axis=2)
 
 
@@ -240,28 +263,45 @@ def _spheres(a, b, layout, caps: np.ndarray):
 
 
 def _to_part(s: _Sampled, layout, part: MovingPart):
-    """(distance, time, between) of one robot against the moving part."""
-    shift = s.t[:, None] * np.asarray(part.velocity, float)  # the part's travel
-    a, b = s.a - shift[:, None], s.b - shift[:, None]  # in the part's frame at t = 0
-    best, (n, _), _, less = least_distance(part.mesh, *_spheres(a, b, layout,
-                                                                 np.flatnonzero(layout.gun)))
-    others = np.flatnonzero(~layout.gun)
+    """(distance, time, between) of one robot against the moving part (taken BLOCK samples
+    at a time: every quantity is a sample's own, so the blocks only keep the arrays small)."""
+    v = np.asarray(part.velocity, float)
+    gun, others = np.flatnonzero(layout.gun), np.flatnonzero(~layout.gun)
     owner, _, radii = axis_spheres(layout.a[others], layout.b[others], layout.r[others],
                                    AXIS_STEP)
     rho = np.zeros(len(others))
     np.maximum.at(rho, owner, radii)  # each capsule's largest sphere
-    mid = (a[:, others] + b[:, others]) / 2
     lo, hi = part.mesh.bounds  # a sphere's distance from the box: a lower bound
-    lower = (np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - rho
-             - np.linalg.norm(b[:, others] - a[:, others], axis=2) / 2)
-    near = lower < best
+    centres, lower, chords = [], [], []
+    for start in range(0, len(s.t), BLOCK):
+        a, b = _in_part(s, v, slice(start, start + BLOCK))  # in the part's frame at t = 0
+        c, r = _spheres(a, b, layout, gun)
+        centres.append(c)
+        ao, bo = a[:, others], b[:, others]
+        mid = (ao + bo) / 2
+        lower.append(np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - rho
+                     - np.linalg.norm(bo - ao, axis=2) / 2)
+        if start:  # the step from the last block's last sample
+            a0, b0 = _in_part(s, v, slice(start - 1, start))
+            a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
+        if len(a) > 1:
+            chords.append(_chords(a, b))
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r)
+    near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
-        d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(a[rows], b[rows], layout, caps))
+        d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
+                                                                 caps))
         if d < best:
             best, n, less = d, int(rows[k]), l2
-    between = float(_chords(a, b).max()) / 2 if len(s.t) > 1 else 0.0
+    between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0
     return best, float(s.t[n]), less + between
+
+
+def _in_part(s: _Sampled, v: np.ndarray, rows):
+    """The capsule ends of samples ``rows`` in the part's frame at t = 0 (less its travel)."""
+    shift = s.t[rows, None] * v
+    return s.a[rows] - shift[:, None], s.b[rows] - shift[:, None]
 
 
 def cell_clearance(robot, members, part: MovingPart | None = None, required: float = 0.0,

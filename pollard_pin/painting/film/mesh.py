@@ -18,10 +18,10 @@ from ..spray.deposition import (
     Gun,
     coarse_weights,
     may_reach,
-    rate_and_height,
+    sources,
     spot_block,
 )
-from ..spray.occlusion import in_spot, open_pairs, visible
+from ..spray.occlusion import in_spot, offset, visible
 from ..spray.shadow_edges import shadow_edges
 from ..workpiece.mesh import Part
 from .points import SurfacePoints
@@ -163,6 +163,8 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     blocks = [live[i:i + BLOCK_SAMPLES] for i in range(0, len(live), BLOCK_SAMPLES)]
     po = p - o  # the tips for the rate's products
     summary = [spot_block(po[b], a[b]) for b in blocks]
+    src = {}  # each block's sources, made once for every chunk it meets
+    eps = offset(part)
     chunks = film_chunks(s, len(live))
     if shade is not None and (shade.points, shade.samples, len(shade.keys)) != (
             len(s), len(t), len(chunks)):
@@ -173,25 +175,29 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     pairs = shaded = switches = 0
     reach = _reach(gun, s, o, chunks, summary)
     for c, idx in enumerate(bar(chunks, "film")):
-        sc, nc, faces = s[idx] - o, n[idx], points.faces[idx]
+        sc, nc = s[idx] - o, n[idx]
+        # a pair needs no ray where its face lies low (occlusion.open_pairs)
+        low = np.asarray(part.rise)[points.faces[idx]] <= eps / 4
         acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
         smooth = np.zeros((len(idx), 2))  # the same on the unshaded rate
         dark_t, dark_p = [], []
         given = None if shade is None else shade.keys[c]
         for j in np.flatnonzero(reach[:, c]):
             b = blocks[j]
-            ps, as_ = po[b], a[b]
             # near_spot: the rest get < 3e-18 of the spot's rate (§20)
             k = np.flatnonzero(may_reach(gun, *summary[j], sc))
             if not len(k):
                 continue
-            r, height = rate_and_height(gun, ps, as_, sc[k], nc[k])  # (samples, points)
+            if j not in src:
+                src[j] = sources(gun, po[b], a[b])
+            r, height = src[j].rate_and_height(gun, sc[k], nc[k])  # (samples, points)
             part_sum = W[b].T @ r  # (2, points)
-            smooth[k] += part_sum.T
+            if given is None or len(given):  # the unshaded sums: for the shadow edges
+                smooth[k] += part_sum.T
             if given is None:
                 spot = in_spot(gun, r)
                 pairs += int(np.count_nonzero(spot))
-                ti, ri = np.nonzero(spot & ~open_pairs(part, faces[k], height))
+                ti, ri = np.nonzero(spot & ~(low[k] & (height > eps / 2)))
                 if len(ti):
                     q = idx[k[ri]]
                     vis = visible(part, p[b[ti]], s[q], n[q], intersector)

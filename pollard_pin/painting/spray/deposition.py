@@ -161,22 +161,47 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
 def rate_and_height(gun: Gun, p, a, s, n) -> tuple[np.ndarray, np.ndarray]:
     """(:func:`deposition_rate` (T, P), each source's height (p − s)·n above each point's
     tangent plane (T, P) [m]), from the same products."""
-    p, s = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, s))
+    return sources(gun, p, a).rate_and_height(gun, s, n)
+
+
+@dataclass(frozen=True, eq=False)  # arrays: compared by identity
+class Sources:
+    """A block of samples' spray sources (:func:`sources`): what :func:`rate_and_height`
+    needs of them, made once for every set of points the block meets."""
+
+    p: np.ndarray  # (T, 3) the sources (the tips, or the cone's apex in front of them)
+    a: np.ndarray  # (T, 3) the unit spray axes
+    pa: np.ndarray  # (T,) p·a
+    pp: np.ndarray  # (T,) p·p
+    axes: tuple | None  # the spot's (u, v) axes (T, 3) each with their p·u, p·v; None: round
+
+    def rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`rate_and_height` of these sources at points ``s`` (P, 3), normals ``n``."""
+        s = np.atleast_2d(np.asarray(s, dtype=float))
+        p, a = self.p, self.a
+        n = np.asarray(n, dtype=float)
+        h = s @ a.T - self.pa[None, :]  # (P, T)
+        d2 = np.einsum("ij,ij->i", s, s)[:, None] + self.pp[None, :] - 2.0 * s @ p.T
+        if n.ndim == 1:
+            dn = (s @ n)[:, None] - (p @ n)[None, :]
+        else:
+            dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
+        if self.axes is None:
+            return _rate(gun, h, d2, dn).T, -dn.T
+        u, v = (s @ e.T - pe[None, :] for e, pe in self.axes)
+        return _rate(gun, h, d2, dn, u, v).T, -dn.T
+
+
+def sources(gun: Gun, p, a) -> Sources:
+    """The :class:`Sources` of tips ``p`` (T, 3) spraying along ``a`` (the unit axes (T, 3)
+    or the gun's rotations (T, 3, 3), :func:`gun_axes`)."""
+    p = np.atleast_2d(np.asarray(p, dtype=float))
     a, b = gun_axes(a)
     p = _source(gun, p, a)
-    n = np.asarray(n, dtype=float)
-    h = s @ a.T - np.einsum("ij,ij->i", p, a)[None, :]  # (P, T)
-    d2 = (np.einsum("ij,ij->i", s, s)[:, None] + np.einsum("ij,ij->i", p, p)[None, :]
-          - 2.0 * s @ p.T)
-    if n.ndim == 1:
-        dn = (s @ n)[:, None] - (p @ n)[None, :]
-    else:
-        dn = np.einsum("ij,ij->i", s, n)[:, None] - n @ p.T
     axes = _spot_axes(gun, a, b)
-    if axes is None:
-        return _rate(gun, h, d2, dn).T, -dn.T
-    u, v = (s @ e.T - np.einsum("ij,ij->i", p, e)[None, :] for e in axes)
-    return _rate(gun, h, d2, dn, u, v).T, -dn.T
+    if axes is not None:
+        axes = tuple((e, np.einsum("ij,ij->i", p, e)) for e in axes)
+    return Sources(p, a, np.einsum("ij,ij->i", p, a), np.einsum("ij,ij->i", p, p), axes)
 
 
 def near_spot(gun: Gun, p, a, s) -> np.ndarray:
@@ -363,5 +388,5 @@ def gun_of(job) -> Gun:
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate", "rate_and_height",
-           "spot_block"]
+           "Sources", "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate",
+           "rate_and_height", "sources", "spot_block"]
