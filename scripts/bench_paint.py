@@ -6,12 +6,13 @@ the public painting API (``pollard_pin.paint``).
 Run alone it times issue 42's cases against their targets, each ``pollard-pin paint`` in a
 subprocess of its own (wall and CPU seconds, peak memory); figures only, no asserts:
 
-    python scripts/bench_paint.py [--quick]
+    python scripts/bench_paint.py [--quick] [--case a|b|c|d]
 
 (a) examples/cell_part.toml, the two-robot line case, planned and filmed at its own speed
 (target 30 s); (b) the same with --max-line-speed (60 s); (c) its part with --robots auto
 (90 s); (d) examples/parts/ribbed_plate.toml's film at 1 mm, 65k points, with compliance
-(30 s); memory 2 GB for any. ``--quick``: (d) alone at 5 mm (seconds; the test's run).
+(30 s); memory 2 GB for any. ``--quick``: (d) alone at 5 mm (seconds; the test's run);
+``--case``: that case alone.
 """
 from __future__ import annotations
 
@@ -190,11 +191,13 @@ def run_case(name: str, job: str, extra: list, target: float) -> None:
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="(d) alone at 5 mm: seconds")
+    ap.add_argument("--case", choices=list("abcd"), help="that case alone")
     args = ap.parse_args(argv)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"issue 42's targets on {os.cpu_count()} cores, load average {load:.1f} at the "
           "start (wall times grow with the load; the CPU seconds less so)")
-    for case in QUICK if args.quick else CASES:
+    cases = QUICK if args.quick else CASES
+    for case in cases if args.case is None else [c for c in cases if c[0][1] == args.case]:
         run_case(*case)
 
 

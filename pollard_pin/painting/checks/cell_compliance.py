@@ -98,9 +98,10 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
     (docs/model.md §26.6): the worst standoff, lateral and tilt errors over the robots
     (naming the robot), and the film change of all robots deflected together relative to
     the target over the painted points; without ``stiffness``, or with a drive turned beyond
-    the linear model's bound (docs/model.md §27.2), entries that say so. ``films``: a part
-    cell's per-robot rigid films (:class:`.film.mesh.MeshFilm`), whose thickness and
-    shadows the deflected films reuse (default: integrated again)."""
+    the linear model's bound (docs/model.md §27.2), entries that say so. ``films``: the
+    cell's per-robot rigid films (a part's :class:`.film.mesh.MeshFilm`, a panel's
+    :class:`.spray.deposition.Film`), whose thickness (and a part's shadows) the deflected
+    films reuse (default: integrated again)."""
     job = cell.job
     recoil, k, note = drive_stiffness(job, act)
     if k is None:
@@ -118,7 +119,7 @@ def cell_compliance(robot, cell, points, thickness, act: Actuators, painted=None
             return out, [out] * len(cell.robots)
     rigid = list(films) if len(films) == len(cell.robots) else [None] * len(cell.robots)
     for rp, d, own in zip(cell.robots, ds, rigid):
-        shade = None if own is None else own.shade
+        shade = getattr(own, "shade", None)  # a part's; a panel has none
         mine = robot_film(job, deflected_robot(rp, d), site, shade)
         change = mine - (robot_film(job, rp, site) if own is None else own.thickness)
         deflected += mine

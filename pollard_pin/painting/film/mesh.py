@@ -16,12 +16,13 @@ from ..errors import MeshError
 from ..progress import bar
 from ..spray.deposition import (
     Gun,
+    Reach,
     coarse_weights,
     may_reach,
     sources,
     spot_block,
 )
-from ..spray.occlusion import in_spot, offset, visible
+from ..spray.occlusion import in_spot, open_pairs, visible
 from ..spray.shadow_edges import shadow_edges
 from ..workpiece.mesh import Part
 from .points import SurfacePoints
@@ -163,8 +164,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     blocks = [live[i:i + BLOCK_SAMPLES] for i in range(0, len(live), BLOCK_SAMPLES)]
     po = p - o  # the tips for the rate's products
     summary = [spot_block(po[b], a[b]) for b in blocks]
-    src = {}  # each block's sources, made once for every chunk it meets
-    eps = offset(part)
+    src, cull = {}, {}  # each block's sources and cone, made once for every chunk it meets
     chunks = film_chunks(s, len(live))
     if shade is not None and (shade.points, shade.samples, len(shade.keys)) != (
             len(s), len(t), len(chunks)):
@@ -175,9 +175,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     pairs = shaded = switches = 0
     reach = _reach(gun, s, o, chunks, summary)
     for c, idx in enumerate(bar(chunks, "film")):
-        sc, nc = s[idx] - o, n[idx]
-        # a pair needs no ray where its face lies low (occlusion.open_pairs)
-        low = np.asarray(part.rise)[points.faces[idx]] <= eps / 4
+        sc, nc, faces = s[idx] - o, n[idx], points.faces[idx]
         acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
         smooth = np.zeros((len(idx), 2))  # the same on the unshaded rate
         dark_t, dark_p = [], []
@@ -185,7 +183,9 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
         for j in np.flatnonzero(reach[:, c]):
             b = blocks[j]
             # near_spot: the rest get < 3e-18 of the spot's rate (§20)
-            k = np.flatnonzero(may_reach(gun, *summary[j], sc))
+            if j not in cull:
+                cull[j] = Reach(gun, *summary[j])
+            k = np.flatnonzero(cull[j].keep(sc))
             if not len(k):
                 continue
             if j not in src:
@@ -197,7 +197,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             if given is None:
                 spot = in_spot(gun, r)
                 pairs += int(np.count_nonzero(spot))
-                ti, ri = np.nonzero(spot & ~(low[k] & (height > eps / 2)))
+                ti, ri = np.nonzero(spot & ~open_pairs(part, faces[k], height))
                 if len(ti):
                     q = idx[k[ri]]
                     vis = visible(part, p[b[ti]], s[q], n[q], intersector)

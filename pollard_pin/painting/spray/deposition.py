@@ -235,23 +235,42 @@ def may_reach(gun: Gun, pm, am, dp: float, da: float, s, radius=0.0) -> np.ndarr
     of it (the angle to it widened by arcsin((δp + radius)/r): a chunk of points in its
     bounding ball). The cone is the spot's: tan = reach/standoff, from the source (the apex:
     the block's sources p_j + apex·a_j lie within |apex|·(δa + 1 − |ā|) more of their mean)."""
-    s = np.atleast_2d(np.asarray(s, dtype=float))
-    throw = gun.standoff - gun.apex  # the source to the spot's reference plane
-    tan_c = gun.spot.reach / throw
-    norm = np.linalg.norm(am)
-    if tan_c > CULL_WIDEST or norm < 0.5:
-        return np.ones(len(s), dtype=bool)
-    if gun.apex:
-        pm = pm + gun.apex * am
-        dp = dp + abs(gun.apex) * (da + 1.0 - norm)
-    am = am / norm
-    d = s - pm
-    r = np.sqrt(np.einsum("ij,ij->i", d, d))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        angle = np.arccos(np.clip((d @ am) / r, -1.0, 1.0))
-        spread = np.arcsin(np.clip((dp + radius) / r, 0.0, 1.0))  # angle(s − p_j, s − p̄)
-    keep = (angle - da - spread <= math.atan(tan_c)) | (r <= throw / 4 + dp + radius)
-    return keep | ~np.isfinite(angle)
+    return Reach(gun, pm, am, dp, da).keep(s, radius)
+
+
+class Reach:
+    """:func:`may_reach` of one block of samples (:func:`spot_block`'s summary ``pm``,
+    ``am``, ``dp``, ``da``), its cone made once for every set of points it is asked about."""
+
+    def __init__(self, gun: Gun, pm, am, dp: float, da: float):
+        self.throw = gun.standoff - gun.apex  # the source to the spot's reference plane
+        tan_c = gun.spot.reach / self.throw
+        norm = np.linalg.norm(am)
+        self.everywhere = bool(tan_c > CULL_WIDEST or norm < 0.5)
+        if gun.apex and not self.everywhere:
+            pm = pm + gun.apex * am
+            dp = dp + abs(gun.apex) * (da + 1.0 - norm)
+        self.pm, self.dp, self.da = pm, dp, da
+        self.am = am if self.everywhere else am / norm
+        self.cone = math.atan(tan_c)
+
+    def keep(self, s, radius=0.0) -> np.ndarray:
+        """(P,) True where the block may reach a point of ``s`` (P, 3) (or a ball of
+        ``radius`` about it): :func:`may_reach`."""
+        s = np.atleast_2d(np.asarray(s, dtype=float))
+        if self.everywhere:
+            return np.ones(len(s), dtype=bool)
+        d = s - self.pm
+        r = np.sqrt(np.einsum("ij,ij->i", d, d))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            angle = d @ self.am
+            angle /= r
+            np.arccos(np.minimum(np.maximum(angle, -1.0), 1.0), out=angle)
+            spread = (self.dp + radius) / r  # angle(s − p_j, s − p̄)
+            np.arcsin(np.minimum(np.maximum(spread, 0.0), 1.0), out=spread)
+        keep = (angle - self.da - spread <= self.cone) | (r <= self.throw / 4 + self.dp
+                                                          + radius)
+        return keep | ~np.isfinite(angle)
 
 
 def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
@@ -321,6 +340,12 @@ class Film:
     sprayed: float = math.nan
     robot_films: tuple = ()
 
+    @property
+    def robots(self) -> tuple:
+        """A cell's films of each robot (``robot_films``), by the name a part's
+        :class:`.film.mesh.MeshFilm` gives them: the compliance check reuses them."""
+        return self.robot_films
+
 
 def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
     """Film at surface points ``s`` (P, 3), normals ``n``, after the gun passes through the
@@ -388,5 +413,5 @@ def gun_of(job) -> Gun:
 
 
 __all__ = ["CULL_SIGMAS", "Film", "Gun", "coarse_weights", "deposition_rate", "film",
-           "Sources", "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate",
+           "Reach", "Sources", "gun_axes", "gun_of", "may_reach", "near_spot", "pair_rate",
            "rate_and_height", "sources", "spot_block"]
