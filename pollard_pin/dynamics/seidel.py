@@ -29,9 +29,6 @@ def lean_toppra():
     if _LEAN:
         return _LEAN[0]
     toppra = load_toppra()
-    from toppra import exceptions
-    from toppra.algorithm import ParameterizationReturnCode as codes
-    from toppra.constants import MAX_TRIES, SMALL, TINY
 
     class Lean(toppra.algorithm.TOPPRA):
         def compute_controllable_sets(self, sdmin, sdmax):
@@ -57,62 +54,6 @@ def lean_toppra():
                 lo, hi = K[i, 0], K[i, 1]
             solver.close_solver()
             return K
-
-        def compute_parameterization(self, sd_start, sd_end, return_data=False):
-            # toppra 0.6.10's, its forward pass with Python floats (the same IEEE operations
-            # in the same order); a failure as toppra's: None, None, None (and K)
-            if sd_end < 0 or sd_start < 0:
-                raise exceptions.BadInputVelocities(
-                    f"Negative path velocities: path velocities must be positive: "
-                    f"({sd_start}, {sd_end})")
-            data = self._problem_data
-            K = self.compute_controllable_sets(sd_end, sd_end)
-            failed = (None, None, None, K) if return_data else (None, None, None)
-            if np.isnan(K).any():
-                data.return_code = codes.FailUncontrollable
-                return failed
-            data.K = K
-            x_start = sd_start ** 2
-            if x_start + SMALL < K[0, 0] or K[0, 1] + SMALL < x_start:
-                data.return_code = codes.FailUncontrollable
-                return failed
-            solver, n = self.solver_wrapper, self._N
-            stages = solver.get_no_stages()
-            deltas = solver.get_deltas()
-            xs, us = np.zeros(stages + 1), np.zeros(stages)
-            xs[0] = x_start
-            extra = solver.get_no_vars() - 2
-            v_vec = np.zeros((stages, extra))
-            low, high = K[:, 0].tolist(), K[:, 1].tolist()
-            step = deltas.tolist() if hasattr(deltas, "tolist") else list(deltas)
-            forward = self._forward_step
-            tries, i, x = 0, 0, xs[0]
-            solver.setup_solver()
-            while i < n:
-                res = forward(i, x, (low[i + 1], high[i + 1]))
-                u = res[0]
-                if u != u:  # NaN: toppra's retry, x a little lower
-                    if tries < MAX_TRIES:
-                        x = xs[i] = max(xs[i] - TINY, 0.999 * xs[i])
-                        tries += 1
-                        continue
-                    xs[i + 1:] = np.nan
-                    break
-                tries = 0
-                us[i] = u
-                x_next = x + 2 * step[i] * u
-                x_next = max(x_next - TINY, 0.9999 * x_next)
-                x = xs[i + 1] = min(high[i + 1], max(low[i + 1], x_next))
-                if extra:
-                    v_vec[i] = res[2:]
-                i += 1
-            solver.close_solver()
-            sd_vec, sdd_vec = np.sqrt(xs), np.copy(us)
-            data.sd_vec, data.sdd_vec = sd_vec, sdd_vec
-            data.return_code = codes.ErrUnknown if np.isnan(sd_vec).any() else codes.Ok
-            if return_data:
-                return sdd_vec, sd_vec, v_vec, K
-            return sdd_vec, sd_vec, v_vec
 
         def _forward_step(self, i, x, K_next):
             if x != x:
