@@ -24,7 +24,6 @@ from ..paths.trajectory import trajectory_curve
 from .motors import ActuatorError, Actuators, motor_coefficients, motor_speed
 from .motors import utilisation as motor_utilisation
 from .path import PathDynamics, path_dynamics_at
-from .seidel import lean_toppra, load_toppra
 
 PER_INTERVAL = 4  # check points per interval to start with
 TARGET = 1.001  # worst verified utilisation between samples accepted (the promise: 1.002)
@@ -112,6 +111,17 @@ class TimeOptimal:
                 path.q_s * sdd + path.q_ss * sd**2)
 
 
+def _toppra():
+    try:
+        import toppra
+        import toppra.algorithm
+        import toppra.constraint
+    except ImportError as exc:
+        raise ImportError(f"the time-optimal cycle needs TOPP-RA ({exc}): pip install "
+                          "'toppra>=0.6.10,<0.7' (a core dependency of pollard-pin)") from None
+    return toppra
+
+
 @contextlib.contextmanager
 def _quiet(logger_name: str):
     logger = logging.getLogger(logger_name)
@@ -177,8 +187,61 @@ def _rows(act: Actuators, dense: PathDynamics, s: np.ndarray, m: int, at_rest, s
     return A, B, C, xbound
 
 
+_LEAN = []  # the TOPPRA subclass below, made once toppra is imported
+
+
+def _lean_toppra():
+    """toppra's TOPPRA (0.6.x) with its two per-stage loops' Python overhead cut: the
+    controllable sets and the forward step call the Seidel solver with the very arguments
+    toppra's own code passes, so the result is the same to the bit; what goes is a fresh
+    array, a NaN test by ``.any()`` and a logging check per call (a third of a solve)."""
+    if _LEAN:
+        return _LEAN[0]
+    toppra = _toppra()
+
+    class Lean(toppra.algorithm.TOPPRA):
+        def compute_controllable_sets(self, sdmin, sdmax):
+            assert sdmin <= sdmax and 0 <= sdmin
+            n, solver = self._N, self.solver_wrapper
+            K = np.zeros((n + 1, 2))
+            K[n] = [sdmin ** 2, sdmax ** 2]
+            solver.setup_solver()
+            upper = np.zeros(solver.get_no_vars())
+            upper[0], upper[1] = 1e-9, -1
+            lower = -upper
+            solve = solver.solve_stagewise_optim
+            lo, hi = K[n, 0], K[n, 1]
+            nan = np.nan
+            for i in range(n - 1, -1, -1):
+                x_up = solve(i, None, upper, nan, nan, lo, hi)[1]
+                x_lo = solve(i, None, lower, nan, nan, lo, hi)[1]
+                if x_lo < 0:
+                    x_lo = 0.0
+                K[i, 0], K[i, 1] = x_lo, x_up
+                if x_lo != x_lo or x_up != x_up:  # NaN: toppra's own early return
+                    return K
+                lo, hi = K[i, 0], K[i, 1]
+            solver.close_solver()
+            return K
+
+        def _forward_step(self, i, x, K_next):
+            if x != x:
+                return np.array([np.nan, np.nan])
+            solver = self.solver_wrapper
+            if getattr(self, "_lean_deltas", None) is None:
+                self._lean_deltas = np.asarray(solver.get_deltas())
+                self._lean_g = np.zeros(solver.get_no_vars())
+                self._lean_g[1] = -1
+            g = self._lean_g
+            g[0] = -2 * self._lean_deltas[i]
+            return solver.solve_stagewise_optim(i, None, g, x, x, K_next[0], K_next[1])
+
+    _LEAN.append(Lean)
+    return Lean
+
+
 def _constraint(A, B, C, xbound):
-    toppra = load_toppra()
+    toppra = _toppra()
 
     class Rows(toppra.constraint.LinearConstraint):
         def __init__(self):
@@ -219,7 +282,7 @@ def time_optimal(act: Actuators, path: PathDynamics, options: Options | None = N
     ``s_dot_guess`` (at the points of ``path``) starts that iteration nearer its end;
     ``tight`` (n − 1,) scales each interval's ratings (default 1).
     """
-    toppra = load_toppra()
+    toppra = _toppra()
     options = options or Options(per_interval=1)
     m, tol = options.per_interval, options.tol
     s_dot_start, s_dot_end = options.s_dot_start, options.s_dot_end
@@ -245,7 +308,7 @@ def time_optimal(act: Actuators, path: PathDynamics, options: Options | None = N
     step, it, change = 1.0, 0, np.inf
     while it < options.max_iterations and step >= 1.0 / 64:
         it += 1
-        solver = lean_toppra()(
+        solver = _lean_toppra()(
             [_constraint(*_rows(act, path, s, m, at_rest, s_dot_v, tight))], dummy,
             gridpoints=s,
             solver_wrapper="seidel")
