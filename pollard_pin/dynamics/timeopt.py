@@ -187,59 +187,6 @@ def _rows(act: Actuators, dense: PathDynamics, s: np.ndarray, m: int, at_rest, s
     return A, B, C, xbound
 
 
-_LEAN = []  # the TOPPRA subclass below, made once toppra is imported
-
-
-def _lean_toppra():
-    """toppra's TOPPRA (0.6.x) with its two per-stage loops' Python overhead cut: the
-    controllable sets and the forward step call the Seidel solver with the very arguments
-    toppra's own code passes, so the result is the same to the bit; what goes is a fresh
-    array, a NaN test by ``.any()`` and a logging check per call (a third of a solve)."""
-    if _LEAN:
-        return _LEAN[0]
-    toppra = _toppra()
-
-    class Lean(toppra.algorithm.TOPPRA):
-        def compute_controllable_sets(self, sdmin, sdmax):
-            assert sdmin <= sdmax and 0 <= sdmin
-            n, solver = self._N, self.solver_wrapper
-            K = np.zeros((n + 1, 2))
-            K[n] = [sdmin ** 2, sdmax ** 2]
-            solver.setup_solver()
-            upper = np.zeros(solver.get_no_vars())
-            upper[0], upper[1] = 1e-9, -1
-            lower = -upper
-            solve = solver.solve_stagewise_optim
-            lo, hi = K[n, 0], K[n, 1]
-            nan = np.nan
-            for i in range(n - 1, -1, -1):
-                x_up = solve(i, None, upper, nan, nan, lo, hi)[1]
-                x_lo = solve(i, None, lower, nan, nan, lo, hi)[1]
-                if x_lo < 0:
-                    x_lo = 0.0
-                K[i, 0], K[i, 1] = x_lo, x_up
-                if x_lo != x_lo or x_up != x_up:  # NaN: toppra's own early return
-                    return K
-                lo, hi = K[i, 0], K[i, 1]
-            solver.close_solver()
-            return K
-
-        def _forward_step(self, i, x, K_next):
-            if x != x:
-                return np.array([np.nan, np.nan])
-            solver = self.solver_wrapper
-            if getattr(self, "_lean_deltas", None) is None:
-                self._lean_deltas = np.asarray(solver.get_deltas())
-                self._lean_g = np.zeros(solver.get_no_vars())
-                self._lean_g[1] = -1
-            g = self._lean_g
-            g[0] = -2 * self._lean_deltas[i]
-            return solver.solve_stagewise_optim(i, None, g, x, x, K_next[0], K_next[1])
-
-    _LEAN.append(Lean)
-    return Lean
-
-
 def _constraint(A, B, C, xbound):
     toppra = _toppra()
 
@@ -308,7 +255,7 @@ def time_optimal(act: Actuators, path: PathDynamics, options: Options | None = N
     step, it, change = 1.0, 0, np.inf
     while it < options.max_iterations and step >= 1.0 / 64:
         it += 1
-        solver = _lean_toppra()(
+        solver = toppra.algorithm.TOPPRA(
             [_constraint(*_rows(act, path, s, m, at_rest, s_dot_v, tight))], dummy,
             gridpoints=s,
             solver_wrapper="seidel")
