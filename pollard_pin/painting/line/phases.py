@@ -299,8 +299,8 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
         p, v = line_shift(p, v, tt + x / speed, speed, e)
         try:
             m = motion(robot, act, p, v, a)
-        except ReachError:
-            return np.full(len(pieces), np.inf)
+        except ReachError:  # per τ, as below: a slow line's turn halves and wait share one
+            return _per_tau(pieces, np.full(len(pieces), np.inf))
         worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
         return _per_tau(pieces, worst)
 

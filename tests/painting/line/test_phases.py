@@ -76,6 +76,44 @@ def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
         phases.choose_shift(ROBOT, rel, 0.01, e, "track")
 
 
+def test_a_dwelling_program_out_of_reach_is_judged_per_turnaround(monkeypatch):
+    """On a slow line a turnaround is two halves and a wait (dwell.py), three pieces sharing
+    one τ: a try whose path leaves the reach is infinite once per τ, as a try in reach is
+    (the search compares it with the guess, one entry per τ), and ends as a line speed
+    refusal, not a shape error."""
+    from pollard_pin.painting.errors import LineSpeedError
+    from pollard_pin.painting.line import phases
+    from pollard_pin.painting.line.phases import LineProgram
+    from pollard_pin.painting.policy import DEFAULT_POLICY
+
+    kind = ("ramp", "pass", "turn", "wait", "turn", "pass", "ramp")
+    start, dur = np.arange(7.0), np.ones(7)
+
+    def motion(t):
+        p = np.zeros((len(np.atleast_1d(t)), 6))
+        return p, np.zeros_like(p), np.zeros_like(p)
+
+    rel = Relative(motion, start, dur, kind, passes_only=True)
+    tried = []
+
+    def fastest(evaluate, guess, utilisation):
+        got = evaluate(guess)
+        tried.append((len(guess), got.shape))
+        raise phases.PlanError("no τ")
+
+    def unreachable(*a, **k):
+        raise phases.ReachError("out of reach", 0)
+
+    monkeypatch.setattr(phases, "choose_shift", lambda *a, **k: 0.0)
+    monkeypatch.setattr(phases, "motion", unreachable)
+    monkeypatch.setattr(phases, "fastest", fastest)
+    program = LineProgram(lambda tau: rel, np.ones(3), 0.01, "track", "2 passes", "job")
+    with pytest.raises(LineSpeedError):
+        phases.plan_world(SimpleNamespace(params=None), None, program, 0.01,
+                          np.array([0.0, 1.0, 0.0]), DEFAULT_POLICY)
+    assert tried == [(3, (3,))]  # ramp, turn + wait + turn, ramp: 3 τ, not 5 pieces
+
+
 # --- the part placed further upstream ------------------------------------------------------------
 UPSTREAM = (0.1, 0.3, 1.0)  # m
 
