@@ -205,6 +205,24 @@ def line_part_film(line_part_plan, tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
+def line_part_cell(robot, line_part_job, act, tmp_path_factory):
+    """:func:`line_part_job` as a cell of one robot at the origin (plan_cell_job) and its
+    film (cell_part_film): (job, plan, (points, film, painted mask, transfer efficiency))."""
+    from pollard_pin.painting.cell.plan import plan_cell_job
+    from pollard_pin.painting.cell.robots import CellRobot
+    from pollard_pin.painting.film.cell import cell_part_film
+    from pollard_pin.painting.spray.occlusion import load_painted_part
+
+    job = replace(line_part_job, robots=(CellRobot("only"),))
+
+    def make():
+        cell = plan_cell_job(robot, job, act, load_painted_part(line_part_job))
+        return cell, cell_part_film(cell)
+
+    return (job, *_read_only(_once(tmp_path_factory, "line_part_cell", make)))
+
+
+@pytest.fixture(scope="session")
 def line_part_example_plan(robot, line_part_example_job, act, tmp_path_factory):
     """examples/line_part.toml planned at its line speed (plan_line)."""
     from pollard_pin.painting.line.panel import plan_line

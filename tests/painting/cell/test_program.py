@@ -3,7 +3,6 @@ cell of one robot at the origin is today's line part; a clipped pass is its pare
 over its arc; a robot turned 180° about z on the far side of the line paints the back of a
 two-sided plate with its own program, in its base frame."""
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -12,7 +11,6 @@ from cell_jobs import PLATE_CELL
 
 from pollard_pin.painting.cell.plan import plan_cell_job
 from pollard_pin.painting.cell.program import ClippedPass
-from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.film.cell import cell_part_film
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.spray.occlusion import load_painted_part
@@ -25,16 +23,13 @@ rotation = [0.0, 0.0, 180.0]
 """
 
 
-def test_one_robot_at_the_origin_is_todays_line_part(robot, act, line_part_job,
-                                                     line_part_plan, line_part_film):
-    part = load_painted_part(line_part_job)
-    job = replace(line_part_job, robots=(CellRobot("only"),))
-    cell = plan_cell_job(robot, job, act, part)
+def test_one_robot_at_the_origin_is_todays_line_part(line_part_cell, line_part_plan,
+                                                     line_part_film):
+    job, cell, (pts, f, painted, _) = line_part_cell
     p = cell.robots[0].plan
     assert np.array_equal(p.trajectory.t, line_part_plan.trajectory.t)
     assert np.array_equal(p.trajectory.poses, line_part_plan.trajectory.poses)
     assert np.array_equal(p.spray, line_part_plan.spray)
-    pts, f, painted, _ = cell_part_film(cell)
     _, today, today_painted, _ = line_part_film
     assert np.array_equal(painted, today_painted)
     # the same samples, weights and points: equal (seen 0.0)

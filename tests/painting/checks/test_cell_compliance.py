@@ -136,19 +136,12 @@ def test_drives_beyond_the_linear_model_are_flagged_for_every_entry(robot, act, 
     assert per == [ours] * len(result.plan.robots)
 
 
-def test_a_part_cell_reuses_each_robots_rigid_film(robot, act, line_part_job):
+def test_a_part_cell_reuses_each_robots_rigid_film(robot, act, line_part_cell):
     """A part cell of one robot (examples/line_part.toml's): the compliance with each
     robot's rigid film and shadows reused (docs/model.md §27.7: tested again beside the
     shadows' edges) against everything integrated again with every ray cast: the same film
     error to 1e-4 of the target (the flat part casts no shadow on itself: achieved 0)."""
-    from pollard_pin.painting.cell.plan import plan_cell_job
-    from pollard_pin.painting.cell.robots import CellRobot
-    from pollard_pin.painting.film.cell import cell_part_film
-    from pollard_pin.painting.spray.occlusion import load_painted_part
-
-    job = replace(line_part_job, robots=(CellRobot("only"),))
-    cell = plan_cell_job(robot, job, act, load_painted_part(line_part_job))
-    pts, f, painted, _ = cell_part_film(cell)
+    _, cell, (pts, f, painted, _) = line_part_cell
     assert len(f.robots) == 1 and f.robots[0].shade is not None
     reused, per = cell_compliance(robot, cell, pts, f.thickness, act, painted, f.robots)
     again, per_again = cell_compliance(robot, cell, pts, f.thickness, act, painted)
