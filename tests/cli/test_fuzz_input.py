@@ -266,8 +266,8 @@ CASES += [
     (["view", "--html", "out.html", "--paint", "paint_deep"],
      "paint_deep/paint.json: not a paint report (maximum recursion depth exceeded"),
     (["view", "--html", "out.html", "--paint", "paint_big"],
-     "paint_big/thickness.csv: not the film of paint.json's 1.111e+399 (a 400-digit integer) "
-     "× 2 grid"),
+     "paint_big/paint.json: not a paint report ('grid.nu' = 1.111e+399 (a 400-digit integer): "
+     "must be a count of at most 1e+15)"),
 ]
 
 # numbers on the command line: Python's float() and int() take more than a user means
