@@ -173,9 +173,11 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     try:
         close_stale(study)
         if not study.trials:  # the thesis robot is the study's first design, then the ladder's
+            # on this machine's cores even with --dask: a screen (ms) is shorter than a
+            # cluster's round trip, and 500 of them queued there took minutes
             first, line = ([], None) if not options.ladder else first_generation(
                 variables, base, ctx, ev.evaluate, min(options.population, options.trials) - 1,
-                options.workers, options.dask)
+                options.workers)
             enqueue(study, [base, *first])
             if line is not None:
                 study.set_user_attr("ladder", line)

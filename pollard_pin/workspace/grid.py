@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import time
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -245,26 +244,8 @@ def reachable_box(robot, orientation, options: ReachOptions | None = None,
                   cells: int = COARSE_CELLS):
     """(low (3,), high (3,), step) [m]: the bounding box of the reachable points of a coarse
     volume grid (``cells`` points across the reach sphere), or None if none is reachable.
-    The true box may exceed it by up to one step. Kept per robot (its model never changes
-    after loading): every plane a map misses, and every turn a placement tries, asks again."""
+    The true box may exceed it by up to one step."""
     options = ReachOptions() if options is None else options
-    if options.actuators is not None:  # the actuators are no key: solved afresh
-        return _reachable_box(robot, orientation, options, cells)
-    boxes = _BOXES.get(id(robot))
-    if boxes is None:
-        boxes = _BOXES[id(robot)] = {}
-        weakref.finalize(robot, _BOXES.pop, id(robot), None)  # forgotten with the robot
-    key = (tuple(float(a) for a in orientation), options.margins, options.length_scale, cells)
-    if key not in boxes:
-        boxes[key] = _reachable_box(robot, orientation, options, cells)
-    box = boxes[key]
-    return None if box is None else (box[0].copy(), box[1].copy(), box[2])
-
-
-_BOXES: dict[int, dict] = {}  # id(robot) → {(orientation, margins, scale, cells): box}
-
-
-def _reachable_box(robot, orientation, options: ReachOptions, cells: int):
     _, radius = reach_sphere(robot.params, orientation)
     h = 2.0 * radius / (cells - 1)
     grid = make_grid(robot.params, orientation, h)
