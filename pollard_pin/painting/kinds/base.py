@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -116,7 +116,8 @@ class JobKind:
     name: str
     paint: Callable
     summary_lines: Callable
-    compliance: Callable | None = robot_compliance
+    # a factory, not a class attribute: a function there would read as a method
+    compliance: Callable | None = field(default_factory=lambda: robot_compliance)
     outputs: Outputs = Outputs()
     recognise: Callable | None = None
 
