@@ -48,7 +48,7 @@ def dry_volumes(film, areas=None) -> tuple[float, float, list]:
     if hasattr(f, "landed"):  # a part's MeshFilm: its own sums
         return f.landed, f.sprayed, [(r.landed, r.sprayed) for r in f.robots]
     return (float(f.thickness @ areas), float(f.sprayed),
-            [(float(r.thickness @ areas), float(r.sprayed)) for r in f.robot_films])
+            [(float(r.thickness @ areas), float(r.sprayed)) for r in f.robots])
 
 
 def _share(on: float, sprayed: float) -> float | None:

@@ -68,7 +68,7 @@ def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
 
 def cell_panel_film(cell, resolution: float | None = None):
     """(U, V, points (nv, nu, 3), Film) of a panel cell: the world panel's grid, the film of
-    every robot summed (each robot's own: its ``robot_films``)."""
+    every robot summed (each robot's own: its ``robots``)."""
     from ..workpiece.panel import panel_frame
 
     job = cell.job

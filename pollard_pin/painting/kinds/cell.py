@@ -210,13 +210,15 @@ def summary_lines(rep: dict, names) -> list[str]:
 
 # a folder per robot for its path.csv; the film: the part at its t = 0 pose, all robots
 OUTPUTS = Outputs(per_robot=True, part_frame=True)
+
+
 def compliance(robot, plan, film, act, rep: dict) -> None:
     """``rep``'s ``compliance``, the worst over the cell's robots, and each robot's own in its
     entry (docs/model.md §27.7)."""
     from ..checks.cell_compliance import cell_compliance
 
     rep["compliance"], per = cell_compliance(robot, plan, film.points, film.thickness, act,
-                                             film.painted, getattr(film.film, "robots", ()))
+                                             film.painted, film.film.robots)
     for r, c in zip(rep["robots"], per):
         r["compliance"] = c
 

@@ -332,19 +332,14 @@ class Film:
     """Film thickness [m] at each surface point, and the trapezoid rule's error estimate
     |T − T₂| (T₂: the rule on every second sample and the last, whose error is ≥ 4× larger)
     [m]; ``sprayed`` the dry volume the gun sprayed over the samples integrated, flow × their
-    trapezoid weights [m³] (docs/model.md §29; nan: not given); ``robot_films`` a cell's
-    films of each robot, whose sum this is."""
+    trapezoid weights [m³] (docs/model.md §29; nan: not given); ``robots`` a cell's
+    films of each robot, whose sum this is (the name a part's :class:`.film.mesh.MeshFilm`
+    gives them too: the compliance check reuses them)."""
 
     thickness: np.ndarray
     error_estimate: np.ndarray
     sprayed: float = math.nan
-    robot_films: tuple = ()
-
-    @property
-    def robots(self) -> tuple:
-        """A cell's films of each robot (``robot_films``), by the name a part's
-        :class:`.film.mesh.MeshFilm` gives them: the compliance check reuses them."""
-        return self.robot_films
+    robots: tuple = ()
 
 
 def film(gun: Gun, t, p, a, s, n, origin=None) -> Film:
