@@ -2,9 +2,14 @@
 ``pollard_pin.__all__`` and every subpackage's ``__all__`` (the command line's excepted: its
 reference is docs/cli.rst, written from the parser)."""
 import importlib
+import sys
 from pathlib import Path
 
 import pollard_pin
+
+# the dotted-name rule the site's reference links use too
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "docs" / "_ext"))
+from dotted import MISSING, lookup  # noqa: E402,F401
 
 PACKAGE = Path(pollard_pin.__file__).resolve().parent
 NOT_API = ("pollard_pin.cli",)

@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from public_names import public_names, public_objects
+from public_names import MISSING, lookup, public_names, public_objects
 
 import pollard_pin
 
@@ -42,29 +42,10 @@ def _reference_targets() -> list[str]:
     return out
 
 
-def _resolve(full: str):
-    """The object a full dotted name names, or None: attribute by attribute from the package,
-    importing a submodule only where no attribute has its name (``pollard_pin.paint`` is the
-    function, whatever folder an old install left)."""
-    import importlib
-
-    parts = full.split(".")
-    obj = importlib.import_module(parts[0])
-    for i, part in enumerate(parts[1:], 2):
-        if hasattr(obj, part):
-            obj = getattr(obj, part)
-            continue
-        try:
-            obj = importlib.import_module(".".join(parts[:i]))
-        except ImportError:
-            return None
-    return obj
-
-
 def test_every_public_name_has_a_reference_entry():
     """Each public object (tests/public_names.py: the top level's and every subpackage's
     ``__all__``) has an entry under one of its public names or its defining module's."""
-    documented = {id(_resolve(t)) for t in _reference_targets()}
+    documented = {id(lookup(t)) for t in _reference_targets()}
     missing = sorted(name for name, obj in public_objects().items()
                      if id(obj) not in documented)
     assert not missing, f"public names missing from docs/reference/*.rst: {missing}"
@@ -80,7 +61,7 @@ def test_the_reference_check_sees_subpackages():
 
 def test_every_reference_entry_exists():
     """A renamed or removed name fails here, before the build does."""
-    stale = [target for target in _reference_targets() if _resolve(target) is None]
+    stale = [target for target in _reference_targets() if lookup(target) is MISSING]
     assert not stale, f"reference entries that name nothing: {stale}"
 
 

@@ -28,6 +28,7 @@ from pathlib import Path
 from cli_text import cli_reference
 from docutils import nodes
 from docutils.statemachine import StringList
+from dotted import MISSING, lookup
 from sphinx.util.docutils import SphinxDirective
 from sphinx.util.nodes import nested_parse_with_titles
 
@@ -133,8 +134,8 @@ def _public_entries() -> dict[int, tuple[str, ...]]:
             names += [f"{package}.{n}" for n in getattr(module, "__all__", ())]
     out: dict[int, tuple[str, ...]] = {}
     for full in names:
-        obj = _lookup(full)
-        if obj is not _MISSING:
+        obj = lookup(full)
+        if obj is not MISSING:
             out[id(obj)] = out.get(id(obj), ()) + (full,)
     return out
 
@@ -144,8 +145,8 @@ def _public_targets(full: str) -> tuple[str, ...]:
     ``pollard_pin.load``; a class's member through its class's public name), or ()."""
     parts = full.split(".")
     for i in range(len(parts), 1, -1):
-        obj = _lookup(".".join(parts[:i]))
-        if obj is not _MISSING:
+        obj = lookup(".".join(parts[:i]))
+        if obj is not MISSING:
             rest = parts[i:]
             return tuple(".".join([p, *rest]) for p in _public_entries().get(id(obj), ()))
     return ()
@@ -179,8 +180,8 @@ def _missing_reference(app, env, node, contnode):
     ends = [name for name in domain.objects if name.endswith("." + target.lstrip("."))]
     # an entry and its canonical alias (autodoc adds the defining module's name) are one
     # object: the shorter, public name
-    objects = [_lookup(name) for name in ends]
-    if len(ends) == 1 or (len({id(o) for o in objects}) == 1 and _MISSING not in objects):
+    objects = [lookup(name) for name in ends]
+    if len(ends) == 1 or (len({id(o) for o in objects}) == 1 and MISSING not in objects):
         return _resolve(app, env, node, contnode, min(ends, key=len))
     return None
 
@@ -217,28 +218,6 @@ def _candidates(target: str, module: str | None, cls: str | None) -> list[str]:
             out.append(f"{prefix}.{cls.split('.')[-1]}.{name}")
         out.append(f"{prefix}.{name}")
     return out
-
-
-_MISSING = object()
-
-
-def _lookup(full: str):
-    """The object a full dotted name names, or _MISSING: attribute by attribute from the
-    package, importing a submodule only where no attribute has its name."""
-    parts = full.split(".")
-    try:
-        obj = importlib.import_module(parts[0])
-    except ImportError:
-        return _MISSING
-    for i, part in enumerate(parts[1:], 2):
-        if hasattr(obj, part):
-            obj = getattr(obj, part)
-            continue
-        try:
-            obj = importlib.import_module(".".join(parts[:i]))
-        except ImportError:
-            return _MISSING
-    return obj
 
 
 def _exists(full: str) -> bool:
