@@ -401,9 +401,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
 
 
 def _search_refusal(source: str, causes: dict, first: int, speed: float | None) -> str:
-    """The layout search's refusal, one line: the counts tried and each one's cause, said
-    with less (its figure, fewer words, its constraint alone) until the line holds them all;
-    the counts whose bands are too narrow said together."""
+    """The layout search's refusal, one line: the counts tried and each one's cause, the
+    longest said with less (its figure, fewer words, its constraint alone) until the line
+    holds them all; the counts whose bands are too narrow said together."""
     last = max(causes)
     head = (f"{source}: no cell of {'1–' if last > 1 else ''}{last} robots paints the part "
             + (f"at {speed:.4g} m/s: " if speed is not None else "at any line speed: "))
@@ -415,7 +415,16 @@ def _search_refusal(source: str, causes: dict, first: int, speed: float | None) 
         rows.insert(0, ("1" if first == 2 else f"1–{first - 1}",
                         c.said.replace("band ", more, 1), c.short.replace("band ", more, 1),
                         c.binding))
-    return say_less(*(head + "; ".join(f"{r[0]} {r[k]}" for r in rows) for k in (1, 2, 3)))
+    # one cause at a time said with less: each in fewer words (the longest first) before any
+    # is its constraint alone
+    said, versions = [1] * len(rows), []
+    while True:
+        versions.append(head + "; ".join(f"{r[0]} {r[k]}" for r, k in zip(rows, said)))
+        left = [i for i, k in enumerate(said) if k < 3]
+        if not left:
+            return say_less(*versions)
+        i = max(left, key=lambda i: (-said[i], len(rows[i][said[i]]), -i))
+        said[i] += 1
 
 
 __all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",

@@ -239,12 +239,14 @@ def test_the_search_refusal_carries_each_counts_cause(robot, as_doors):
 
 def test_the_search_refusal_says_less_to_fit_the_line(robot, as_doors):
     """A job's path long enough that the figures do not fit: each count's cause in fewer
-    words, then its constraint alone; every count still named."""
+    words, then its constraint alone (the longest first), as far as the room asks; every
+    count still named."""
     from pollard_pin.errors import MESSAGE_ROOM
 
     for room, tail in ((160, "1 band 80 mm short; 2 bottom band 40 mm short; 3 turnarounds out "
                              "of reach; 4 motor 126 %"),
-                       (100, "1 band; 2 band; 3 reach; 4 motors")):
+                       (100, "1 band; 2 band; 3 reach; 4 motor 126 %"),
+                       (96, "1 band; 2 band; 3 reach; 4 motors")):
         job = replace(tall_panel(), source="/" + "d" * (MESSAGE_ROOM - room) + "/j.toml")
         said = str(search_refused(robot, job))
         assert said.endswith(tail) and len(said) <= MESSAGE_ROOM, (room, said)
