@@ -153,6 +153,12 @@ def fewest_robots(robot, job, actuators: Actuators | None = None,
         The proposed robots.
     result : PaintResult
         The cell's plan, film and report with them; ``result.write(folder)`` writes them.
+
+    Raises
+    ------
+    pollard_pin.painting.LayoutSearchError
+        No count tried paints the part: one line naming each count's cause; its ``causes``
+        maps each count to its :class:`~pollard_pin.painting.causes.Cause`.
     """
     robots, painted = fewest_painted(robot, job, actuators, options, layout)
     return robots, PaintResult.of(painted)

@@ -7,7 +7,7 @@ imported here, the rooms' own in their subpackages (``kinds``, ``checks``, ``lay
 ``plan``, ``film``, ``spray`` …).
 """
 from .api import paint_job
-from .errors import CellError, JobError, JobKindError, PlaceError, PlanError
+from .errors import CellError, JobError, JobKindError, LayoutSearchError, PlaceError, PlanError
 from .job import PaintJob, job_from_dict, load_job
 from .kinds.panel import paint_report
 from .layout.cell import LayoutOptions, propose_layout
@@ -19,4 +19,4 @@ from .result import PaintedJob, PaintReport
 __all__ = ["paint_job", "PaintOptions", "PaintedJob", "PaintReport", "PlannerPolicy", "load_job",
            "job_from_dict", "PaintJob", "place", "PlaceOptions", "PlaceResult",
            "propose_layout", "LayoutOptions", "paint_report", "CellError",
-           "JobError", "JobKindError", "PlaceError", "PlanError"]
+           "JobError", "JobKindError", "LayoutSearchError", "PlaceError", "PlanError"]

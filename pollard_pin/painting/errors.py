@@ -33,6 +33,17 @@ class CellError(InputError):
     """A ``[[robot]]`` table breaks a rule, or the robots cannot stand where they are put."""
 
 
+class LayoutSearchError(CellError):
+    """No proposed cell of the robot counts tried paints the part (``--robots auto``):
+    ``causes`` maps each count to why it failed
+    (:class:`pollard_pin.painting.causes.Cause`: the constraint that binds, its figure),
+    ``speed`` the line speed [m/s] tried (None: any, ``max_line_speed``)."""
+
+    def __init__(self, message: str, causes: dict, speed: float | None = None):
+        super().__init__(message)
+        self.causes, self.speed = dict(causes), speed
+
+
 class ResolutionError(InputError):
     """A film point spacing the film cannot be computed at (not > 0, over σ, or over the
     budget of film points)."""
@@ -90,5 +101,6 @@ class ReportError(SolveError):
 
 
 __all__ = ["BudgetError", "CellError", "ClearanceError", "JobError", "JobKindError",
-           "LineReachError", "LineSpeedError", "MeshError", "MeshFileError", "PlaceError",
-           "PlanError", "ReachError", "ReportError", "ResolutionError"]
+           "LayoutSearchError", "LineReachError", "LineSpeedError", "MeshError",
+           "MeshFileError", "PlaceError", "PlanError", "ReachError", "ReportError",
+           "ResolutionError"]

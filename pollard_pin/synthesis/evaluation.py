@@ -35,6 +35,7 @@ from ..errors import InputError, PollardError
 from ..model.build import load
 from ..model.overrides import ParameterError
 from ..outputs.result import paint
+from ..painting.causes import binding_of
 from ..painting.cell.bands import job_strokes
 from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
@@ -270,18 +271,6 @@ def _screen(values, ctx: DesignContext):
     return design, robot, ev
 
 
-def _binding_of(message: str) -> str:
-    """The constraint a planner's refusal names (``plan`` when it names none of them)."""
-    m = message.lower()
-    for word, name in (("clearance", "clearance"), ("closer than", "clearance"),
-                       ("apart", "clearance"), ("torque", "motors"), ("motor", "motors"),
-                       ("rating", "motors"), ("reach", "reach"), ("limit", "reach"),
-                       ("singular", "reach"), ("film", "film")):
-        if word in m:
-            return name
-    return "plan"
-
-
 def _kmin(robot, plans, actuators) -> float:
     """The least kmin [N/m] over the programs' samples (at most :data:`KMIN_SAMPLES` each);
     0 when a motor's catalogue entry has no stiffness."""
@@ -319,7 +308,7 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
         result = paint(robot, job, design.actuators, ctx.options)
     except PollardError as exc:  # the planner's refusal (a SolveError, a CellError): said
         figures["full_s"] = time.perf_counter() - t0
-        binding = _binding_of(str(exc))
+        binding = binding_of(str(exc))
         cons["plan"] = 1.0
         if binding != "plan":  # the refusal names it: off by more than the screen saw
             cons[binding] = max(cons.get(binding, 0.0), 0.0) + REFUSED

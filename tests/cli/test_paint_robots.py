@@ -1,6 +1,7 @@
 """`pollard-pin paint --robots N|auto` (docs/model.md §26.5): bad counts and jobs refused in
 one line with nothing written; a proposal written as DIR/robots.toml beside the outputs,
-read back as the robots planned."""
+read back as the robots planned; a search that finds no cell refused naming each count."""
+import re
 import tomllib
 from dataclasses import replace
 from pathlib import Path
@@ -58,3 +59,28 @@ def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatc
     robots = robots_from_tables("robots.toml", tomllib.loads(text)["robot"])
     assert [robots] == planned and len(robots) == 1
     assert (out / "paint.json").exists() and "proposed 1 robot(s): robot1 at" in err
+
+
+def test_a_search_that_finds_no_cell_names_each_count_and_its_cause(tmp_path, capsys,
+                                                                      monkeypatch):
+    """--robots auto with no count painting: one line naming each count tried and why
+    (docs/model.md §26.5), exit 2, nothing written."""
+    import pollard_pin.painting.api as api
+    from pollard_pin.painting.errors import PlanError
+
+    def paint_job(robot, job, actuators=None, options=None):
+        n = len(job.robots)
+        raise PlanError(f"robot 'robot{n}': no place on the line keeps its first ramp in reach"
+                        if n < 3 else "no line speed paints the part: too slow at 0.02 m/s "
+                        "(a motor at 131 % of its rating), too fast at 0.03 m/s (a motor at "
+                        "126 % of its rating); binding: slow (motors), fast (motors)")
+
+    monkeypatch.setattr(api, "paint_job", paint_job)
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", LINE, "--out", out, "--robots", "auto"], capsys)
+    assert code == 2 and err.count("\n") == 1 and not out.exists(), err
+    # the job's folders and the outputs' name as long as the line allows
+    said = re.sub(r" \(nothing written[^()]*\)\n$", "", err.replace(f"{LINE.parent}/", ""))
+    assert said == ("pollard-pin paint: error: line.toml: no cell of 1–3 robots paints the part "
+                    "at 0.03 m/s: 1 first ramp out of reach; 2 first ramp out of reach; 3 motor "
+                    "131 % at any speed"), err

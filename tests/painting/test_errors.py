@@ -23,7 +23,7 @@ def test_family():
 
 
 INPUT = {"JobError", "JobKindError", "MeshError", "MeshFileError", "CellError",
-         "ResolutionError"}
+         "LayoutSearchError", "ResolutionError"}
 SOLVE = {"PlanError", "ReachError", "BudgetError", "ClearanceError", "PlaceError",
          "LineSpeedError", "LineReachError", "ReportError"}
 
@@ -56,6 +56,10 @@ def test_every_paint_error_is_here_by_the_rule():
     # the constructors kept their fields
     e = paint_errors.LineSpeedError("too fast", True, "drift", 0.2)
     assert (str(e), e.too_fast, e.why, e.hint) == ("too fast", True, "drift", 0.2)
+    causes = {3: "a cause"}
+    e = paint_errors.LayoutSearchError("no cell", causes, 0.024)
+    assert (str(e), e.causes, e.speed) == ("no cell", causes, 0.024) and e.causes is not causes
+    assert issubclass(paint_errors.LayoutSearchError, paint_errors.CellError)
 
 
 def test_reach_error_names_the_sample_and_pose_the_ik_refuses(robot, plan, act):

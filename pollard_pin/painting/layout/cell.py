@@ -21,13 +21,14 @@ import numpy as np
 
 from ...checks import instance
 from ...dynamics.motors import as_actuators
-from ...errors import InputError, say_less, without_asides
+from ...errors import InputError, say_less
 from ...model.build import check_robot
 from ...workspace.reach import evaluate
+from ..causes import cause_of
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from ..cell.robots import MAX_DISTANCE, MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
-from ..errors import BudgetError, CellError, PlanError
+from ..errors import BudgetError, CellError, LayoutSearchError, PlanError
 from ..job import PartJob, check_job
 from ..progress import bar, showing
 
@@ -179,14 +180,9 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
         strokes = job_strokes(job, part)
         band = reference_band(robot, strokes)
     needs = zone_needs(strokes, n)
-    widest = max(b - a for a, b in needs)
-    if widest > band.width + 1e-9:
-        least = fewest_for(strokes, band.width)
-        more = (f"at least {least} robots" if least is not None else
-                f"more than {MAX_ROBOTS} robots")
-        raise CellError(f"{job.source}: {n} robot(s) cannot paint the part: each zone needs "
-                        f"{widest:.3f} m along {axis_name(strokes.axis)} with its run-outs, a "
-                        f"robot's band is {band.width:.3f} m ({more})")
+    narrow = _too_narrow(strokes, band, n)
+    if narrow:
+        raise CellError(f"{job.source}: {narrow}")
     foot = base_footprint(robot.model)
     spacing = (options.spacing if options.spacing is not None else
                reach_window(robot, strokes, band) + 2 * foot)
@@ -208,6 +204,19 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
     check_spacing(robots, 2 * foot, job.source)
     split_cell(robot, replace(job, robots=robots), robots, part)
     return robots
+
+
+def _too_narrow(strokes: Strokes, band: Band, n: int) -> str:
+    """Why n robots' bands cannot hold n equal zones with their run-outs, naming the fewest
+    that can ('' if they can)."""
+    widest = max(b - a for a, b in zone_needs(strokes, n))
+    if widest <= band.width + 1e-9:
+        return ""
+    least = fewest_for(strokes, band.width)
+    more = f"at least {least} robots" if least is not None else f"more than {MAX_ROBOTS} robots"
+    return (f"{n} robot(s) cannot paint the part: each zone needs {widest:.3f} m along "
+            f"{axis_name(strokes.axis)} with its run-outs, a robot's band is {band.width:.3f} m "
+            f"({more})")
 
 
 def _shortfall(band: Band, need: tuple[float, float]) -> float | None:
@@ -322,7 +331,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
     motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
     every zone, which cures a motor or reach refusal at once or not at all (a line too slow
-    for the programs' drift gets worse).
+    for the programs' drift gets worse). Each count's failure is sorted by
+    :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure).
 
     Parameters
     ----------
@@ -348,9 +358,14 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
 
     Raises
     ------
+    pollard_pin.painting.errors.LayoutSearchError
+        No layout of up to ``AUTO_MORE`` more robots paints the part: one line naming the
+        counts tried (from 1) and each one's cause, said with less until it fits
+        ("3 bottom band 40 mm short of the run-on; 4 turnarounds out of reach; 5 motor 126 %
+        at any speed"); its ``causes`` holds each count's
+        :class:`~pollard_pin.painting.causes.Cause`.
     pollard_pin.painting.errors.CellError
-        One line naming each count's first cause when no layout of up to ``AUTO_MORE`` more
-        robots paints the part.
+        The job has robots or no line, or no count up to MAX_ROBOTS has bands wide enough.
     """
     from ..api import paint_job
     from ..options import PaintOptions
@@ -369,7 +384,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
     last = min(MAX_ROBOTS, first + AUTO_MORE)
-    why = {}
+    # the counts whose bands are too narrow, then each count planned: why each failed
+    causes = {n: cause_of(_too_narrow(strokes, reference[1], n)) for n in range(1, first)}
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
@@ -379,14 +395,36 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
             except BudgetError:
                 raise
             except (CellError, PlanError) as exc:
-                why[n] = str(exc).removeprefix(f"{job.source}: ")
-    head = f"{job.source}: no layout of {first}…{last} robots paints the part: "
-    # each count's cause, said with less until the line holds them all (say_less)
-    causes = [why, {n: without_asides(w) for n, w in why.items()},
-              {n: without_asides(w).split("; ")[0] for n, w in why.items()},
-              {n: without_asides(w).split(": ")[0] for n, w in why.items()}]
-    raise CellError(say_less(*(head + "; ".join(f"{n} robots: {w}" for n, w in c.items())
-                               for c in causes), head + f"{last} robots: {causes[-1][last]}"))
+                causes[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
+    speed = None if getattr(options, "max_line_speed", False) else job.line.speed
+    raise LayoutSearchError(_search_refusal(job.source, causes, first, speed), causes, speed)
+
+
+def _search_refusal(source: str, causes: dict, first: int, speed: float | None) -> str:
+    """The layout search's refusal, one line: the counts tried and each one's cause, the
+    longest said with less (its figure, fewer words, its constraint alone) until the line
+    holds them all; the counts whose bands are too narrow said together."""
+    last = max(causes)
+    head = (f"{source}: no cell of {'1–' if last > 1 else ''}{last} robots paints the part "
+            + (f"at {speed:.4g} m/s: " if speed is not None else "at any line speed: "))
+    rows = [(str(n), causes[n].said, causes[n].short, causes[n].binding)
+            for n in range(first, last + 1)]
+    if first > 1:  # the narrowest shortfall, the fewest robots' (first − 1)
+        c = causes[first - 1]
+        more = "band ≥ " if first > 2 else "band "
+        rows.insert(0, ("1" if first == 2 else f"1–{first - 1}",
+                        c.said.replace("band ", more, 1), c.short.replace("band ", more, 1),
+                        c.binding))
+    # one cause at a time said with less: each in fewer words (the longest first) before any
+    # is its constraint alone
+    said, versions = [1] * len(rows), []
+    while True:
+        versions.append(head + "; ".join(f"{r[0]} {r[k]}" for r, k in zip(rows, said)))
+        left = [i for i, k in enumerate(said) if k < 3]
+        if not left:
+            return say_less(*versions)
+        i = max(left, key=lambda i: (-said[i], len(rows[i][said[i]]), -i))
+        said[i] += 1
 
 
 __all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",

@@ -13,7 +13,7 @@ from pollard_pin.errors import InputError
 from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot, base_footprint
 from pollard_pin.painting.cell.split import split_cell
-from pollard_pin.painting.errors import CellError, LineSpeedError
+from pollard_pin.painting.errors import CellError, LayoutSearchError, LineSpeedError, PlanError
 from pollard_pin.painting.layout import cell as cell_layout
 from pollard_pin.painting.layout.cell import (
     LayoutOptions,
@@ -155,8 +155,8 @@ def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     assert (tried, len(robots), result) == ([2, 3], 3, "painted")
     tried.clear()
     monkeypatch.setattr(cell_layout, "AUTO_MORE", 0)
-    with pytest.raises(CellError,
-                       match=r"no layout of 2…2 robots paints the part: 2 robots: too fast"):
+    with pytest.raises(CellError, match=r"no cell of 1–2 robots paints the part at 0.012 m/s: "
+                                        r"1 band \d+ mm short; 2 too fast"):
         fewest_robots(robot, tall_panel())
     assert tried == [2]
 
@@ -177,9 +177,79 @@ def test_the_search_refusal_says_each_counts_first_cause_in_one_line(robot, monk
         fewest_robots(robot, tall_panel())
     said = str(err.value)
     assert len(said) <= MESSAGE_ROOM, said
-    assert said.endswith("no layout of 2…4 robots paints the part: 2 robots: cause 2: the "
-                         "motors of 2 robots; 3 robots: cause 3: the motors of 3 robots; 4 "
-                         "robots: cause 4: the motors of 4 robots"), said  # no figures, no fix
+    assert said.endswith("no cell of 1–4 robots paints the part at 0.012 m/s: 1 band 80 mm "
+                         "short; 2 cause 2: the motors of 2 robots; 3 cause 3: the motors of 3 "
+                         "robots; 4 cause 4: the motors of 4 robots"), said  # no figures, no fix
+
+
+# each count's refusal as the planner words it (the three cabinet doors of issue 42), and
+# what the search's line says of it
+DOOR_REFUSALS = {
+    2: (CellError, "<python>: no robot reaches z -0.015…0.025 m (the part's edge 0.015 m and "
+        "its run-on; the lowest band starts at 0.025 m, robot 'robot1')",
+        "band", "bottom band 40 mm short of the run-on"),
+    3: (PlanError, "robot 'robot1': no place on the line keeps 23 of its 46 turnarounds and "
+        "its first ramp in reach (its passes each fit): move the robot or the part", "reach",
+        "23 of 46 turnarounds and first ramp out of reach"),
+    4: (PlanError, "<python>: no line speed paints the part: too slow at 0.03394 m/s (a motor "
+        "at 126 % of its rating), too fast at 0.03413 m/s (a motor at 126 % of its rating); "
+        "binding: slow (motors), fast (motors)", "motors", "motor 126 % at any speed"),
+}
+
+
+@pytest.fixture
+def as_doors(monkeypatch):
+    """paint_job refusing each count (2–4 robots tried on the tall panel) as a door's was."""
+    import pollard_pin.painting.api as api
+
+    def paint_job(robot, job, actuators=None, options=None):
+        kind, said = DOOR_REFUSALS[len(job.robots)][:2]
+        raise kind(said)
+
+    monkeypatch.setattr(api, "paint_job", paint_job)
+    monkeypatch.setattr(cell_layout, "AUTO_MORE", 2)
+
+
+def search_refused(robot, job=None) -> LayoutSearchError:
+    with pytest.raises(LayoutSearchError) as err:
+        fewest_robots(robot, job or tall_panel())
+    return err.value
+
+
+def test_the_search_refusal_names_each_count_and_its_cause(robot, as_doors):
+    refusal = search_refused(robot)
+    assert str(refusal) == (
+        "<python>: no cell of 1–4 robots paints the part at 0.012 m/s: 1 band 80 mm short; 2 "
+        "bottom band 40 mm short of the run-on; 3 23 of 46 turnarounds and first ramp out of "
+        "reach; 4 motor 126 % at any speed"), str(refusal)
+    assert isinstance(refusal, CellError)  # caught as before
+
+
+def test_the_search_refusal_carries_each_counts_cause(robot, as_doors):
+    refusal = search_refused(robot)
+    causes = refusal.causes
+    assert sorted(causes) == [1, 2, 3, 4] and refusal.speed == 0.012
+    assert (causes[1].binding, causes[1].said) == ("band", "band 80 mm short")
+    assert "each zone needs 0.420 m along z" in causes[1].message  # the proposal's own refusal
+    for n, (_, said, binding, words) in DOOR_REFUSALS.items():
+        assert (causes[n].binding, causes[n].said) == (binding, words), n
+        assert causes[n].message == said.removeprefix("<python>: "), n
+    assert causes[3].robot == "robot1" and causes[2].robot is None
+
+
+def test_the_search_refusal_says_less_to_fit_the_line(robot, as_doors):
+    """A job's path long enough that the figures do not fit: each count's cause in fewer
+    words, then its constraint alone (the longest first), as far as the room asks; every
+    count still named."""
+    from pollard_pin.errors import MESSAGE_ROOM
+
+    for room, tail in ((160, "1 band 80 mm short; 2 bottom band 40 mm short; 3 turnarounds out "
+                             "of reach; 4 motor 126 %"),
+                       (100, "1 band; 2 band; 3 reach; 4 motor 126 %"),
+                       (96, "1 band; 2 band; 3 reach; 4 motors")):
+        job = replace(tall_panel(), source="/" + "d" * (MESSAGE_ROOM - room) + "/j.toml")
+        said = str(search_refused(robot, job))
+        assert said.endswith(tail) and len(said) <= MESSAGE_ROOM, (room, said)
 
 
 def test_a_cell_of_one_robot_is_proposed_where_it_reaches(robot):
