@@ -23,5 +23,16 @@ def motor(cols, name, ratings=None):
     return rest + friction, n * qd
 
 
+def run_columns(robot, traj) -> dict:
+    """``pollard_pin.run_pipeline(robot, traj).columns()`` less the energies: the same IK,
+    joint limits and torques (inverse_dynamics' energies are K and U, which no replay reads:
+    a third of a long replay's time)."""
+    import pollard_pin as pp
+    from pollard_pin.dynamics.inverse import inverse_dynamics
+
+    run = pp.run_pipeline(robot, traj, dynamics=False)
+    return {**run.columns(), **inverse_dynamics(robot, run.ik, energies=False).columns()}
+
+
 def rms(t, y):
     return math.sqrt(np.trapezoid(y * y, t) / (t[-1] - t[0]))

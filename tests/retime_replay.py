@@ -8,7 +8,7 @@ import json
 
 import numpy as np
 import pytest
-from motor_model import NAMES, RATINGS
+from motor_model import NAMES, RATINGS, run_columns
 from motor_model import motor as _motor
 
 import pollard_pin as pp
@@ -80,7 +80,7 @@ def replay(robot, cols, meta, curve, n=1_000_001):
     ud = SD / s_u
     udd = (A - s_uu * ud**2) / s_u
     traj = pp.Trajectory(T, p, pu * ud[:, None], puu * (ud**2)[:, None] + pu * udd[:, None])
-    run = pp.run_pipeline(robot, traj).columns()
+    run = run_columns(robot, traj)
     use = []
     for name in NAMES:
         tau_m, w_m = _motor(run, name)

@@ -6,7 +6,7 @@ from functools import partial
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
+from motor_model import EXAMPLE, NAMES, RATINGS, ROOT, run_columns
 from motor_model import motor as _motor
 from thesis_curves import figure_eight
 
@@ -69,8 +69,9 @@ def _dense(curve, t0, T, timing, theta, in_s=False):
 
 def _replay(robot, curve, t0, T, timing, theta, ratings=None, in_s=False):
     """Worst motor use (max of |τm|/peak, |ωm|/max speed) of :func:`_dense`, solved by the
-    pipeline, the motor model written out here."""
-    cols = pp.run_pipeline(robot, _dense(curve, t0, T, timing, theta, in_s)).columns()
+    pipeline (its energies left out: motor_model.run_columns), the motor model written out
+    here."""
+    cols = run_columns(robot, _dense(curve, t0, T, timing, theta, in_s))
     ratings = ratings or RATINGS
     use = []
     for name in NAMES:
