@@ -118,7 +118,9 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     efficiency): the film of the plan's path with shadows and the trigger. Faces behind every
     tip get exactly nothing (:func:`live_faces`), faces dark from every tip at their probes
     only what pairs outside the spot would bring (:func:`seen_from_tips`, docs/model.md §23),
-    so the volume landed on the points is the volume landed on the part."""
+    so the volume landed on the points is the volume landed on the part. The faces not
+    painted, whose film counts only in that volume, take points COARSE_SIGMAS × σ apart
+    (:func:`.film.points.strips`; the painted faces the lattice at ``resolution``)."""
     job = plan.job
     tr = plan.trajectory
     on = plan.spray > 0

@@ -11,6 +11,9 @@ A point on an edge shared by faces of the same normal (the two triangles of a fl
 one point carrying both shares; where the normals differ (a crease, a facet of a curved
 part) it stays one point per face, each with its face's normal. Normals are the flat faces'
 own (no vertex interpolation): a curved part is painted as the facets its mesh gives.
+
+Faces whose film only the volume landed needs (not painted) may take :func:`strips` instead,
+whose points grow with a face's area rather than with its longest edge squared.
 """
 from __future__ import annotations
 
