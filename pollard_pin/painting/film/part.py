@@ -19,6 +19,7 @@ PROBE_PULL = 0.05  # of the way from a lattice point towards the face's centroid
 NEAR_TIPS = 16  # tips every face tries first, all faces at once: those nearest its centroid
 TIP_BLOCK = 256  # tips a face still dark tries first, nearest first (then twice as many)
 PAIR_BLOCK = 1_000_000  # (probe, tip) pairs at most per ray test (~100 MB of temporaries)
+COARSE_SIGMAS = 1.0  # film point spacing on the faces not painted, in spot σ (§23)
 
 
 def part_resolution(job, resolution: float | None = None) -> float:
@@ -117,14 +118,19 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     efficiency): the film of the plan's path with shadows and the trigger. Faces behind every
     tip get exactly nothing (:func:`live_faces`), faces dark from every tip at their probes
     only what pairs outside the spot would bring (:func:`seen_from_tips`, docs/model.md §23),
-    so the volume landed on the points is the volume landed on the part."""
+    so the volume landed on the points is the volume landed on the part. The faces not
+    painted, whose film counts only in that volume, take points COARSE_SIGMAS × σ apart
+    (:func:`.film.points.strips`; the painted faces the lattice at ``resolution``)."""
     job = plan.job
     tr = plan.trajectory
     on = plan.spray > 0
     tips = tr.poses[on, :3]
     live = live_faces(plan.part, tips) & ~plan.part.painted
-    faces = seen_from_tips(plan.part, tips, live) | plan.part.painted
-    pts = surface_points(plan.part, resolution, sigma=job.sigma, faces=faces)
+    seen = seen_from_tips(plan.part, tips, live)
+    # the faces not painted count only in the landed volume: points σ apart (§23)
+    pts = surface_points(plan.part, resolution, sigma=job.sigma, faces=seen | plan.part.painted,
+                         coarse=(seen, max(COARSE_SIGMAS * job.sigma,
+                                           part_resolution(job, resolution))))
     axes = rotation(tr.poses)  # the spot turns with the gun (docs/model.md §20)
     film: MeshFilm = mesh_film(gun_of(job), tr.t, tr.poses[:, :3], axes, pts, plan.part,
                                plan.spray)
@@ -132,5 +138,5 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
     return pts, film, plan.part.painted[pts.faces], efficiency
 
 
-__all__ = ["NEAR_TIPS", "PAIR_BLOCK", "PROBE_PULL", "TIP_BLOCK", "face_probes", "live_faces",
-           "part_resolution", "seen_from_tips", "surface_film"]
+__all__ = ["COARSE_SIGMAS", "NEAR_TIPS", "PAIR_BLOCK", "PROBE_PULL", "TIP_BLOCK", "face_probes",
+           "live_faces", "part_resolution", "seen_from_tips", "surface_film"]

@@ -11,6 +11,9 @@ A point on an edge shared by faces of the same normal (the two triangles of a fl
 one point carrying both shares; where the normals differ (a crease, a facet of a curved
 part) it stays one point per face, each with its face's normal. Normals are the flat faces'
 own (no vertex interpolation): a curved part is painted as the facets its mesh gives.
+
+Faces whose film only the volume landed needs (not painted) may take :func:`strips` instead,
+whose points grow with a face's area rather than with its longest edge squared.
 """
 from __future__ import annotations
 
@@ -78,6 +81,39 @@ def _subdivisions(part: Part, tri, resolution: float) -> np.ndarray:
     return n
 
 
+def strips(tri, spacing: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(points (K, 3), owner (K,), share (K,)) of the triangles ``tri`` (F, 3, 3) cut in
+    strips across their longest side (docs/model.md §23): with A the corner facing the
+    shortest edge BC, x(u, v) = A + u·(B − A) + u·v·(C − B) over the unit square, whose area
+    element is 2u du dv of the triangle's; the midpoint rule in u (m = ⌈longest of AB, AC /
+    spacing⌉ cells) and in v (k = ⌈BC / spacing⌉): each point the centre of its cell (none
+    on an edge of the triangle), no point of the triangle further than ``spacing`` from one,
+    a sliver L long taking m·k points where the lattice takes (m + 1)(m + 2)/2; each point's
+    ``share`` of its triangle's area, summing to 1 (the rule is exact for 2u), second order
+    in the spacing for a smooth film."""
+    tri = np.asarray(tri, dtype=float)
+    edge = np.linalg.norm(np.roll(tri, -1, axis=1) - tri, axis=2)  # edge i: corner i → i+1
+    a = (np.argmin(edge, axis=1) + 2) % 3  # the corner facing the shortest edge
+    f = np.arange(len(tri))
+    A, B, C = tri[f, a], tri[f, (a + 1) % 3], tri[f, (a + 2) % 3]
+    with np.errstate(over="ignore"):
+        m = np.maximum(1.0, np.ceil(np.maximum(edge[f, a], edge[f, (a + 2) % 3]) / spacing
+                                    - 1e-9)).astype(int)
+        k = np.maximum(1.0, np.ceil(edge[f, (a + 1) % 3] / spacing - 1e-9)).astype(int)
+    pts, owner, share = [], [], []
+    for mm, kk in np.unique(np.column_stack([m, k]), axis=0):
+        sel = np.flatnonzero((m == mm) & (k == kk))
+        u, v = (np.arange(mm) + 0.5) / mm, (np.arange(kk) + 0.5) / kk
+        wu, wv = np.full(mm, 1.0 / mm), np.full(kk, 1.0 / kk)
+        uu, vv = (x.ravel() for x in np.meshgrid(u, v, indexing="ij"))
+        w = (2.0 * u * wu)[:, None] * wv[None, :]
+        pts.append((A[sel, None] + uu[None, :, None] * (B - A)[sel, None]
+                    + (uu * vv)[None, :, None] * (C - B)[sel, None]).reshape(-1, 3))
+        owner.append(np.repeat(sel, len(uu)))
+        share.append(np.tile(w.ravel(), len(sel)))
+    return np.concatenate(pts), np.concatenate(owner), np.concatenate(share)
+
+
 def check_film_points(part: Part, resolution: float) -> None:
     """:class:`MeshError` if the painted faces alone need more than MAX_POINTS film points
     at ``resolution`` [m]: the budget checked before a plan is made (the film also takes the
@@ -86,11 +122,14 @@ def check_film_points(part: Part, resolution: float) -> None:
 
 
 def surface_points(part: Part, resolution: float | None = None, sigma: float | None = None,
-                   faces="painted") -> SurfacePoints:
+                   faces="painted", coarse=None) -> SurfacePoints:
     """Film points on ``part`` no further apart than ``resolution`` [m] (default
     SIGMA_FRACTION × ``sigma``, the spray spot's σ) along any face's lattice, on the
     ``faces``: "painted" (the part's painted faces), "all" (every face: for the transfer
-    efficiency) or a boolean mask / index array."""
+    efficiency) or a boolean mask / index array. ``coarse``: None, or (a mask (F,) of faces,
+    a spacing [m] ≥ ``resolution``): those of ``faces`` take instead the points of their
+    :func:`strips` at that spacing (faces whose film only the transfer efficiency needs,
+    docs/model.md §23)."""
     if resolution is None:
         if sigma is None:
             raise MeshError("film points need a resolution [m] or the spray spot's σ")
@@ -108,7 +147,21 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
     tri = part.vertices[part.faces[idx]]  # (F, 3, 3)
     n = _subdivisions(part, tri, resolution).astype(int)
     pts, nrm, area, face = [], [], [], []
-    for m in np.unique(n):
+    if coarse is not None:
+        mask, spacing = coarse
+        if not (math.isfinite(spacing) and spacing >= resolution):
+            raise MeshError(f"coarse film point spacing {spacing!r} m must be at least the "
+                            f"resolution {resolution:.4g} m")
+        few = np.asarray(mask, dtype=bool)[idx]
+        if few.any():
+            at, owner, share = strips(tri[few], spacing)
+            k = idx[few][owner]
+            pts.append(at)
+            nrm.append(part.normals[k])
+            area.append(part.areas[k] * share)
+            face.append(k)
+        n = np.where(few, 0, n)
+    for m in np.unique(n[n > 0]):
         sel = n == m
         bary, share = lattice(int(m))
         t = tri[sel]
@@ -129,5 +182,5 @@ def surface_points(part: Part, resolution: float | None = None, sigma: float | N
     return SurfacePoints(*arrays, float(resolution))
 
 
-__all__ = ["MAX_POINTS", "SIGMA_FRACTION", "SurfacePoints", "check_film_points", "lattice",
-           "surface_points"]
+__all__ = ["MAX_POINTS", "SIGMA_FRACTION", "SurfacePoints", "check_film_points",
+           "lattice", "strips", "surface_points"]

@@ -119,3 +119,60 @@ def test_the_budget_checked_before_planning_is_the_painted_points(part, monkeypa
         built = refuses(lambda: surface_points(part, 0.004, faces="painted"))
         assert refuses(lambda: fp_module.check_film_points(part, 0.004)) == built
         assert built == (budget < count - 50)
+
+
+def test_strips_cover_each_face_within_the_spacing():
+    """A sliver 0.76 m long and 13 mm wide and a right triangle 0.1 m a side cut in strips:
+    the shares sum to 1 (achieved ~1e-16), every point lies inside its triangle, every point
+    of the triangle within the spacing of a strip point, linear and quadratic functions
+    integrate to O(spacing²), and the sliver takes m·k = 77 × 2 points where the lattice
+    would take (m + 1)(m + 2)/2 = 3081."""
+    tri = np.array([[[0.0, 0.0, 0.0], [0.76, 0.0, 0.0], [0.76, 0.013, 0.0]],
+                    [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0]]])
+    area = np.array([0.5 * 0.76 * 0.013, 0.5 * 0.1 * 0.1])
+    for spacing in (0.01, 0.005):
+        at, owner, share = fp_module.strips(tri, spacing)
+        np.testing.assert_allclose(np.bincount(owner, weights=share), 1.0, rtol=1e-13)
+        assert (share > 0).all() and (np.abs(at[:, 2]) == 0).all()
+        for f in (0, 1):
+            inside = trimesh.triangles.points_to_barycentric(
+                np.repeat(tri[f:f + 1], np.count_nonzero(owner == f), axis=0), at[owner == f])
+            assert inside.min() > 0
+            rng = np.random.default_rng(f)
+            r = rng.random((4000, 2))
+            r = np.where(r.sum(axis=1, keepdims=True) > 1, 1 - r, r)
+            x = tri[f, 0] + r[:, :1] * (tri[f, 1] - tri[f, 0]) + r[:, 1:] * (tri[f, 2] - tri[f, 0])
+            dist, _ = cKDTree(at[owner == f]).query(x)
+            assert dist.max() < spacing
+            # a linear function: the trapezoid rule on u·f(u), to O((spacing / longest)²)
+            lin = share[owner == f] @ (at[owner == f] @ [0.3, -1.7, 0.0])
+            want = tri[f].mean(axis=0) @ [0.3, -1.7, 0.0]
+            longest = np.linalg.norm(tri[f] - np.roll(tri[f], -1, axis=0), axis=1).max()
+            assert 0 < abs(lin / want - 1) < 2 * (spacing / longest) ** 2  # 1.3×, 0.5× it
+        quad = (share[owner == 1] * area[1]) @ at[owner == 1, 0] ** 2  # ∫x² = 0.1⁴/12
+        assert 0 < abs(quad / (0.1 ** 4 / 12) - 1) < 2 * (spacing / 0.1) ** 2
+    # m = ⌈76.01⌉, k = ⌈1.3⌉
+    assert np.count_nonzero(fp_module.strips(tri[:1], 0.01)[1] == 0) == 77 * 2
+
+
+def test_coarse_faces_take_strip_points():
+    """surface_points with ``coarse``: the lattice faces keep their points exactly; the
+    coarse ones get their strip points, their areas summing to the faces' (~1e-16, asserted
+    1e-13); the sliver has a few hundred points where the lattice gives it 52,901."""
+    v = np.array([[0.7, 0.0, 0.0], [0.7, 0.76, 0.0], [0.7, 0.76, 0.12], [0.7, 0.0, 0.12],
+                  [0.713, 0.0, 0.12], [0.713, 0.76, 0.12]])
+    # the front (two faces, facing −x) and its top edge, a sliver 13 mm wide (facing +z)
+    part = make_part(v, [[0, 2, 1], [0, 3, 2], [3, 5, 2], [3, 4, 5]], facing=(-1.0, 0.0, 0.0),
+                     max_angle=45.0)
+    front, top = part.painted, ~part.painted
+    h = SIGMA / 3
+    fine = surface_points(part, h, faces="all")
+    sp = surface_points(part, h, faces="all", coarse=(top, SIGMA))
+    on_f, on_c = front[fine.faces], front[sp.faces]
+    np.testing.assert_array_equal(sp.points[on_c], fine.points[on_f])
+    np.testing.assert_array_equal(sp.areas[on_c], fine.areas[on_f])
+    assert abs(sp.areas[~on_c].sum() / part.areas[top].sum() - 1) < 1e-13
+    assert np.count_nonzero(~on_f) > 50_000 and np.count_nonzero(~on_c) < 1000
+    assert (np.abs(sp.points[~on_c, 2] - 0.12) < 1e-15).all()
+    with pytest.raises(MeshError, match="coarse film point spacing 0.001 m must be at least"):
+        surface_points(part, h, faces="all", coarse=(top, 0.001))
