@@ -10,8 +10,9 @@ subprocess of its own (wall and CPU seconds, peak memory); figures only, no asse
 
 (a) examples/cell_part.toml, the two-robot line case, planned and filmed at its own speed
 (target 30 s); (b) the same with --max-line-speed (60 s); (c) its part with --robots auto
-(90 s); (d) examples/parts/ribbed_plate.toml's film at 1 mm with compliance (65k film points when the issue set it;
-50k since faces not painted take points σ apart, docs/model.md §23) (30 s); memory 2 GB for any. ``--quick``: (d) alone at 5 mm (seconds; the test's run);
+(90 s); (d) examples/parts/ribbed_plate.toml's film at 1 mm with compliance (30 s: 65k film
+points when the target was set, 50k since faces not painted take points σ apart, docs/model.md
+§23); memory 2 GB for any. ``--quick``: (d) alone at 5 mm (seconds; the test's run);
 ``--case``: that case alone.
 """
 from __future__ import annotations
