@@ -145,6 +145,8 @@ def _find(plan_at, start: float, source: str, resolution: float):
         said = f"{source}: no line speed paints the part: too slow at {slow:.4g} m/s" \
                f"{why[False]}, too fast at {fast:.4g} m/s{why[True]}"
         named = [f"{w} ({b})" for w, b in (("slow", binds[False]), ("fast", binds[True])) if b]
+        if binds[False] and binds[False] == binds[True]:  # no speed moves it off: say so
+            named = [f"{binds[False]} on both sides"]
         tail = f"; binding: {', '.join(named)}" if named else ""
         raise PlanError(say_less(said + tail, said, f"{source}: no line speed paints the part: "
                                  f"too slow at {slow:.4g} m/s, too fast at {fast:.4g} m/s"

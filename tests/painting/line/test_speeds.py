@@ -201,6 +201,17 @@ def test_no_speed_names_the_binding_constraints():
     assert msg.endswith("; binding: slow (reach), fast (motors)") and len(msg) <= 250
 
 
+def test_the_same_binding_on_both_sides_is_said_once():
+    """A motor over its rating whether too slow or too fast (a drawer's program): no line
+    speed moves it off, and the refusal says so."""
+    with pytest.raises(PlanError) as info:
+        line_speed_interval(runs([(0.05, 0.04)], [], slow_why="a motor at 304 % of its rating",
+                                 fast_why="a motor at 304 % of its rating"), 0.03, "j.toml")
+    msg = str(info.value)
+    assert msg.startswith("j.toml: no line speed paints the part: too slow at ")
+    assert msg.endswith("; binding: motors on both sides") and len(msg) <= 250
+
+
 @pytest.mark.parametrize("why, named", [
     ("the program drifts -0.349 m, out of the reach", "reach"),
     ("the path leaves the workspace at t = 3.000 s", "reach"),
