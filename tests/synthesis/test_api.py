@@ -103,3 +103,14 @@ def test_a_searched_front_is_planned_again_exactly():
         assert o in front or any(dominates(f, o) for f in front)
     assert result.baseline["feasible"] and result.baseline["objectives"] == pytest.approx(
         stub.figures(result.baseline["values"], {"shift": 0.0})[0])
+
+
+def test_a_screened_front_is_planned_in_full():
+    """DesignOptions(screen_only=True): every design judged by the screen alone, the front
+    and the baseline planned in full at the end."""
+    result = run_stub(None, 16, screen_only=True)
+    assert {r["level"] for r in result.trials} == {"screen"}
+    assert result.front and all(d["level"] == "full" for d in result.front)
+    for d in result.front:
+        assert d["objectives"] == pytest.approx(stub.figures(d["values"], {"shift": 0.0})[0])
+    assert result.baseline["feasible"]
