@@ -8,11 +8,14 @@ from pollard_pin.synthesis.study import DesignOptions
 
 
 def run_stub(study, trials: int, *, resume: bool = False, space=None, **options):
-    """The stand-in's study in the file ``study`` (None: in memory), this process."""
+    """The stand-in's study in the file ``study`` (None: in memory), this process; every
+    design planned exactly unless ``search`` is given (a SearchFidelity)."""
+    options.setdefault("search", None)
+    evaluator = options.pop("evaluator", stub)
     return design(stub.StubJob(), space or stub.StubSpace(),
                   DesignOptions(trials=trials, workers=options.pop("workers", 1), study=study,
                                 resume=resume, population=options.pop("population", 8),
-                                **options), evaluator=stub)
+                                **options), evaluator=evaluator)
 
 
 @pytest.fixture(scope="session")

@@ -4,7 +4,10 @@ pollard_pin.synthesis.evaluation (``prepare``, ``evaluate``, ``OBJECTIVES``) and
 dozens of designs takes a fraction of a second. Its params.toml moves chain0.x32 within a
 range the model accepts, so the written files read back through the model's own loader. As
 the real evaluator, its ``level="full"`` screens first and gives the screen's evaluation for a
-design it rejects, and a categorical variable's value is an index into its choices.
+design it rejects, and a categorical variable's value is an index into its choices. With a
+context prepared with a search fidelity, its ``level="full"`` also checks the film (y at most
+SEARCH_FILM) and its ``level="search"`` is the full level without it (the coarser check
+passes every design): the study's front must be planned again exactly.
 
 ``STUB_DELAY`` (seconds, an environment variable) makes every evaluation that slow: a study
 then stays busy long enough to be stopped.
@@ -22,6 +25,7 @@ OBJECTIVES = ("parts_per_hour", "robots", "motor_use", "kmin", "moving_mass")
 ROOT = Path(__file__).resolve().parent.parent
 ACTUATORS = (ROOT / "examples" / "actuators.toml").read_text(encoding="utf-8")
 MOTORS = {"small": 0.4, "medium": 0.7, "large": 1.1}  # kg
+SEARCH_FILM = 0.9  # y above it fails the exact film check the search's coarser one passes
 
 
 @dataclass(frozen=True)
@@ -78,8 +82,8 @@ def baseline_values(space, ctx=None):
     return space.baseline()
 
 
-def prepare(job, space):
-    return {"speed": job.speed, "shift": space.shift}
+def prepare(job, space, search=None):
+    return {"speed": job.speed, "shift": space.shift, "search": search}
 
 
 def figures(values: dict, ctx: dict) -> tuple[dict, dict]:
@@ -100,15 +104,22 @@ def evaluate(values, ctx, level="screen"):
     if delay:
         time.sleep(delay)
     objectives, constraints = figures(values, ctx)
-    if level == "full" and constraints["reach"] > 0:  # the full level screens first
+    if level == "search" and ctx.get("search") is None:  # no search fidelity: planned exactly
+        level = "full"
+    if level in ("search", "full") and constraints["reach"] > 0:  # they screen first
         level = "screen"
-    if level == "full":
+    if level in ("search", "full"):
         constraints["motors"] = objectives["motor_use"] - 1.0  # the full plan's motor check
+    if level == "full" and ctx.get("search") is not None:  # the film, judged exactly: a
+        constraints["film"] = values["y"] - SEARCH_FILM  # y above SEARCH_FILM fails it
     binding = max(constraints, key=constraints.get)
     feasible = all(v <= 0 for v in constraints.values())
     params = f"[chain0]\nx32 = {values['chain0.x32']!r}\n"
     robots = ("".join(f"[[robot]]\nname = \"r{i}\"\nbase = [0.0, {0.4 * i}, 0.0]\n"
                       for i in range(values["robots"])) if values["robots"] > 1 else None)
+    seen = {"cycle_time": 10.0 / (0.5 + values["y"])}
+    if level == "search":
+        seen["fidelity"] = "search"
     return Evaluation(level, feasible, objectives if feasible or level == "screen" else {},
-                      constraints, binding if not feasible else None,
-                      {"cycle_time": 10.0 / (0.5 + values["y"])}, params, ACTUATORS, robots)
+                      constraints, binding if not feasible else None, seen, params, ACTUATORS,
+                      robots)

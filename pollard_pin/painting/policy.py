@@ -49,6 +49,12 @@ class PlannerPolicy:
         shortest cycle. A still part keeps its shorter raster.
     step_from : str, optional
         On a line, the end the strokes step from: ``"leading"`` (default) or ``"trailing"``.
+    clearance_stride : int, optional
+        The clearance checks (docs/model.md §25, §26.4) take every this many of the path's
+        samples (and its last), at least 1 (default 1: every sample). A larger stride is
+        cheaper and more cautious: the least distance is over fewer samples, and the bound
+        on what lies between them grows with the stride (the design study's search,
+        docs/model.md §31.5).
 
     Raises
     ------
@@ -66,9 +72,11 @@ class PlannerPolicy:
     first_deceleration: float = 10.0
     strokes: str = "auto"
     step_from: str = "leading"
+    clearance_stride: int = 1
 
     def __post_init__(self):
-        least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1}
+        least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1,
+                 "clearance_stride": 1}
         for name, allowed in CHOICES.items():
             if getattr(self, name) not in allowed:
                 raise InputError(f"PlannerPolicy.{name} = {getattr(self, name)!r}: expected "

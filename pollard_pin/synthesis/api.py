@@ -87,7 +87,7 @@ def _replan(ctx, evaluate, designs: list[dict], options: DesignOptions) -> list:
         while pending or inflight:
             while pending and inflight < runner.capacity:
                 k, values = pending.pop(0)
-                runner.submit(k, values, True)
+                runner.submit(k, values, "full")
                 inflight += 1
             for k, outcome in runner.done():
                 out[k], inflight = outcome, inflight - 1
@@ -163,7 +163,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     names = tuple(ev.OBJECTIVES)
     if options.study is not None:  # its refusals before the work, and before any write
         check_study_file(options.study, options.resume)
-    ctx = ev.prepare(job, space)
+    ctx = ev.prepare(job, space, search=options.search)
     variables = list(space.variables())
     base = ev.baseline_values(space, ctx)
     study, close = open_study(options.study, job=job_fingerprint(job), space=space.fingerprint(),
@@ -204,29 +204,31 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
 
 def _front(rows, stored, ctx, evaluate, names, options) -> tuple[list[dict], list[str]]:
     """The front's designs, each judged by a full plan: the study's own full evaluations
-    (from the database), or, for a study judged by the screen alone, the front re-planned in
-    full now (a design that fails it leaves the front, with a note)."""
-    level = "screen" if options.screen_only else "full"
-    candidates = [r for r in rows if r["feasible"] and r["level"] == level]
+    (from the database); a design the study judged by the screen alone or by the search's
+    cheaper checks is planned in full now (one that fails it leaves the front, with a note,
+    and the designs it hid are considered in turn)."""
+    levels = ("screen",) if options.screen_only else ("search", "full")
+    candidates = [r for r in rows if r["feasible"] and r["level"] in levels]
     if not candidates:
         raise _no_front(rows)
-    trials = [candidates[i]["trial"] for i in non_dominated(candidates)]
-    if not options.screen_only:
-        return [_stored_row(n, *stored[n], names) for n in trials], []
-    designs = [stored[n][0] for n in trials]
-    front, notes = [], []
-    for n, values, outcome in zip(trials, designs, _replan(ctx, evaluate, designs, options)):
-        row = _design_row(0, n, values, outcome, names)
-        if row is None:
-            why = (failure(outcome) if isinstance(outcome, BaseException)
-                   else outcome.final.binding)
-            notes.append(f"trial {n} left the front when planned in full: {why}")
-        else:
-            front.append(row)
-    if not front:
-        raise SolveError("no front design stayed feasible when planned in full: "
-                         + "; ".join(notes))
-    return front, notes
+    planned: dict[int, dict] = {}
+    notes: list[str] = []
+    while True:
+        pool = [r for r in candidates if r["trial"] not in planned or planned[r["trial"]]]
+        if not pool:
+            raise SolveError("no front design stayed feasible when planned in full: "
+                             + "; ".join(notes))
+        trials = [pool[i]["trial"] for i in non_dominated(pool)]
+        todo = [n for n in trials if n not in planned and stored[n][1].get("level") != "full"]
+        if not todo:
+            return [planned.get(n) or _stored_row(n, *stored[n], names) for n in trials], notes
+        designs = [stored[n][0] for n in todo]
+        for n, values, outcome in zip(todo, designs, _replan(ctx, evaluate, designs, options)):
+            planned[n] = _design_row(0, n, values, outcome, names) or {}
+            if not planned[n]:
+                why = (failure(outcome) if isinstance(outcome, BaseException)
+                       else outcome.final.binding)
+                notes.append(f"trial {n} left the front when planned in full: {why}")
 
 
 def _stored_row(trial: int, values: dict, found: dict, names) -> dict:
@@ -238,11 +240,13 @@ def _stored_row(trial: int, values: dict, found: dict, names) -> dict:
 
 def _baseline(base, rows, stored, ctx, evaluate, names, options) -> dict:
     """The thesis robot's row: its evaluation in the study (its first design), planned in
-    full now if the study only screened it and it passed (or if the study lacks it)."""
+    full now if the study only screened it and it passed, or judged it by the search's
+    checks (or if the study lacks it)."""
     trial = next((n for n, (values, found) in stored.items()
                   if values == base and found), None)
     found = stored[trial][1] if trial is not None else None
-    if found is not None and (found["level"] == "full" or not found["feasible"]):
+    if found is not None and (found["level"] == "full" or (found["level"] == "screen"
+                                                            and not found["feasible"])):
         return {"values": base, "trial": trial, "feasible": bool(found["feasible"]),
                 "binding": found.get("binding"),
                 "objectives": ({n: found["objectives"][n] for n in names}

@@ -3,9 +3,10 @@ Dask cluster. The optimiser stays in this process (optuna's ask/tell); each runn
 designs (:meth:`Runner.submit`) and hands back those that finished (:meth:`Runner.done`), in
 the order they finish, so that every one is stored the moment it is known.
 
-What runs is :func:`run_design`: the screen, then the full evaluation of a design that passes
-it ("cheap first, exact last"), a plain module-level function of the design's values, the
-prepared context and the evaluator, so that a pool or a Dask worker can run it.
+What runs is :func:`run_design`: the screen, then the search's or the full evaluation of a
+design that passes it ("cheap first, exact last"), a plain module-level function of the
+design's values, the prepared context and the evaluator, so that a pool or a Dask worker can
+run it.
 """
 from __future__ import annotations
 
@@ -25,16 +26,18 @@ POLL = 0.2
 
 @dataclass(frozen=True)
 class Outcome:
-    """One design's evaluation: ``final``, the full one, or the screen's when the screen
-    rejected the design (or only the screen was asked for); ``seconds``, its wall time."""
+    """One design's evaluation: ``final``, the search's or the full one, or the screen's when
+    the screen rejected the design (or only the screen was asked for); ``seconds``, its wall
+    time."""
 
     final: Any
     seconds: float
 
 
-def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> Outcome:
-    """Screen the design, and plan it in full when it passes and ``full`` (the evaluator's
-    ``level="full"`` screens first and stops there when the screen rejects the design).
+def run_design(values: Mapping, ctx, evaluate: Callable, level: str = "full") -> Outcome:
+    """Screen the design, and plan it when it passes and ``level`` asks for it (the
+    evaluator's ``level="search"`` and ``"full"`` screen first and stop there when the screen
+    rejects the design).
 
     Parameters
     ----------
@@ -44,8 +47,8 @@ def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> O
         The prepared context (:func:`pollard_pin.synthesis.evaluation.prepare`'s).
     evaluate : Callable
         ``evaluate(values, ctx, level)`` → an evaluation with ``level`` and ``feasible``.
-    full : bool, optional
-        Plan a design that passes the screen in full (default True).
+    level : str, optional
+        ``"screen"``, ``"search"`` (planned at the search's fidelity) or ``"full"`` (default).
 
     Returns
     -------
@@ -53,18 +56,18 @@ def run_design(values: Mapping, ctx, evaluate: Callable, full: bool = True) -> O
         The evaluation that judges the design, and its time [s].
     """
     t0 = time.perf_counter()
-    found = evaluate(dict(values), ctx, level="full" if full else "screen")
+    found = evaluate(dict(values), ctx, level=level)
     return Outcome(found, time.perf_counter() - t0)
 
 
 class Runner:
-    """Runs :func:`run_design` for submitted designs: ``submit(key, values, full)``,
+    """Runs :func:`run_design` for submitted designs: ``submit(key, values, level)``,
     ``done()`` → [(key, Outcome or the exception it raised)], ``capacity`` designs in
     flight at once, ``close()`` (stops what is still running)."""
 
     capacity = 1
 
-    def submit(self, key: int, values: Mapping, full: bool = True) -> None:
+    def submit(self, key: int, values: Mapping, level: str = "full") -> None:
         raise NotImplementedError
 
     def done(self) -> list[tuple[int, Any]]:
@@ -86,14 +89,14 @@ class SerialRunner(Runner):
     def __init__(self, ctx, evaluate: Callable):
         self.ctx, self.evaluate, self.queue = ctx, evaluate, []
 
-    def submit(self, key, values, full=True):
-        self.queue.append((key, values, full))
+    def submit(self, key, values, level="full"):
+        self.queue.append((key, values, level))
 
     def done(self):
         if not self.queue:
             return []
-        key, values, full = self.queue.pop(0)
-        return [(key, _guarded(run_design, values, self.ctx, self.evaluate, full))]
+        key, values, level = self.queue.pop(0)
+        return [(key, _guarded(run_design, values, self.ctx, self.evaluate, level))]
 
 
 def _guarded(fn, *args):
@@ -114,8 +117,8 @@ def _init_worker(ctx, evaluate) -> None:
     _WORKER.update(ctx=ctx, evaluate=evaluate)
 
 
-def _pool_task(values, full):
-    return run_design(values, _WORKER["ctx"], _WORKER["evaluate"], full)
+def _pool_task(values, level):
+    return run_design(values, _WORKER["ctx"], _WORKER["evaluate"], level)
 
 
 class PoolRunner(Runner):
@@ -137,8 +140,8 @@ class PoolRunner(Runner):
                                         initializer=_init_worker, initargs=(ctx, evaluate))
         self.futures: dict = {}
 
-    def submit(self, key, values, full=True):
-        self.futures[self.pool.submit(_pool_task, dict(values), full)] = key
+    def submit(self, key, values, level="full"):
+        self.futures[self.pool.submit(_pool_task, dict(values), level)] = key
 
     def done(self):
         from concurrent.futures import FIRST_COMPLETED, wait
@@ -195,8 +198,8 @@ class DaskRunner(Runner):
         self.evaluate, self.retries, self.futures = evaluate, retries, {}
         self.wait = distributed.wait
 
-    def submit(self, key, values, full=True):
-        fut = self.client.submit(run_design, dict(values), self.ctx, self.evaluate, full,
+    def submit(self, key, values, level="full"):
+        fut = self.client.submit(run_design, dict(values), self.ctx, self.evaluate, level,
                                  pure=False, retries=self.retries)
         self.futures[fut] = key
 

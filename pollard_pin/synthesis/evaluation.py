@@ -41,6 +41,7 @@ from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
 from ..painting.options import PaintOptions
 from .concrete import Design, actuators_toml, build, params_toml
+from .fidelity import SearchFidelity
 from .screen import held_poses, motors, panel_reach, reach, turn_runon
 from .space import DesignSpace
 
@@ -60,6 +61,7 @@ CONSTRAINTS = ("home", "reach", "motors_static", "plan", "motors", "clearance", 
 FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
 REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
+LEVELS = ("screen", "search", "full")
 
 
 @dataclass(frozen=True)
@@ -69,7 +71,8 @@ class Evaluation:
     Attributes
     ----------
     level : str
-        ``"screen"`` or ``"full"``: how far it was taken.
+        ``"screen"``, ``"search"`` or ``"full"``: how far it was taken (``"search"``: planned,
+        its checks at the search's fidelity).
     feasible : bool
         Every constraint ≤ 0.
     objectives : dict
@@ -126,15 +129,19 @@ class DesignContext:
         None: a job without a line).
     options : PaintOptions
         How the full evaluation paints.
+    search : SearchFidelity or None
+        How the search's evaluations (``level="search"``) plan (None: as the full ones).
     """
 
     job: Any
     space: DesignSpace
     strokes: Any
     options: PaintOptions = field(default_factory=PaintOptions)
+    search: SearchFidelity | None = None
 
 
-def prepare(job, space: DesignSpace, options: PaintOptions | None = None) -> DesignContext:
+def prepare(job, space: DesignSpace, options: PaintOptions | None = None,
+            search: SearchFidelity | None = None) -> DesignContext:
     """The :class:`DesignContext` of a job (a file's path, or a loaded job) and a space.
 
     Parameters
@@ -145,6 +152,8 @@ def prepare(job, space: DesignSpace, options: PaintOptions | None = None) -> Des
         The design space.
     options : PaintOptions or None, optional
         How the full evaluation paints (default: no compliance pass, the film at σ/3).
+    search : SearchFidelity or None, optional
+        How the search's evaluations plan (default None: as the full ones).
 
     Returns
     -------
@@ -171,7 +180,10 @@ def prepare(job, space: DesignSpace, options: PaintOptions | None = None) -> Des
         run = turn_runon(job)  # the turnarounds' and ramps' run-on past the passes' ends
         strokes = replace(strokes, samples=(strokes.samples[len(strokes.samples) // 2],),
                           run_on=strokes.run_on + run, runout=strokes.runout + run)
-    return DesignContext(job, space, strokes, options)
+    if search is not None and not isinstance(search, SearchFidelity):
+        raise InputError(f"search: expected a SearchFidelity or None, got "
+                         f"{type(search).__name__}")
+    return DesignContext(job, space, strokes, options, search)
 
 
 def moved_job(job, offset):
@@ -198,7 +210,7 @@ def _objectives(design: Design | None, n: int, **known) -> dict[str, float]:
 
 
 def _infeasible(level, design, n, constraints, binding, figures, message=None, **known):
-    files = _files(design) if design is not None and level == "full" else (None, None)
+    files = _files(design) if design is not None and level != "screen" else (None, None)
     return Evaluation(level, False, _objectives(design, n, **known), constraints, binding,
                       figures, *files, None, message)
 
@@ -290,11 +302,14 @@ def _kmin(robot, plans, actuators) -> float:
     return least if math.isfinite(least) else 0.0
 
 
-def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluation
-          ) -> Evaluation:
+def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluation,
+          level: str = "full") -> Evaluation:
     from ..outputs.robots_toml import robots_toml
 
     t0 = time.perf_counter()
+    options = ctx.options
+    if level == "search":  # the same plan, cheaper checks (docs/model.md §31.5)
+        options = ctx.search.options(options, ctx.job.sigma)
     job, n = ctx.job, design.robots
     figures = dict(screened.figures)
     cons = dict(screened.constraints)
@@ -305,14 +320,14 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
             robots = tuple(replace(r, base=tuple(float(c) for c in np.subtract(r.base, o)))
                            for r in propose_layout(robot, moved_job(job, o), n))
             job = replace(job, robots=robots)
-        result = paint(robot, job, design.actuators, ctx.options)
+        result = paint(robot, job, design.actuators, options)
     except PollardError as exc:  # the planner's refusal (a SolveError, a CellError): said
         figures["full_s"] = time.perf_counter() - t0
         binding = binding_of(str(exc))
         cons["plan"] = 1.0
         if binding != "plan":  # the refusal names it: off by more than the screen saw
             cons[binding] = max(cons.get(binding, 0.0), 0.0) + REFUSED
-        return _infeasible("full", design, n, cons, binding, figures, str(exc).split("\n")[0],
+        return _infeasible(level, design, n, cons, binding, figures, str(exc).split("\n")[0],
                            motor_use=screened.objectives["motor_use"])
     data = result.report.data
     uses = [u for m in data["motors"].values() for u in m.values()]
@@ -339,7 +354,7 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
     text = None if robots is None else robots_toml(
         robots, f"[[robot]] tables of a design of pollard-pin design for {_job_name(ctx.job)}\n"
         "(docs/model.md §31): add them to the job to plan with them")
-    return Evaluation("full", binding is None, objectives, cons, binding, figures,
+    return Evaluation(level, binding is None, objectives, cons, binding, figures,
                       *_files(design), text)
 
 
@@ -361,7 +376,9 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
         From :func:`prepare`.
     level : str, optional
         ``"screen"``: the cheap checks only; ``"full"`` (default): the screen, then, if it
-        passes, the paint plan, film, motors, cycle and kmin.
+        passes, the paint plan, film, motors, cycle and kmin; ``"search"``: as ``"full"``,
+        its checks at ``ctx.search``'s fidelity (:class:`SearchFidelity`; an evaluation of
+        level ``"search"``), or exactly ``"full"`` when the context has none.
 
     Returns
     -------
@@ -373,12 +390,13 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
     pollard_pin.errors.InputError
         ``level`` unknown, or values out of the space's ranges (an index, a robot count).
     """
-    if level not in ("screen", "full"):
-        raise InputError(f"level = {level!r}: expected 'screen' or 'full'")
+    if level not in LEVELS:
+        raise InputError(f"level = {level!r}: expected 'screen', 'search' or 'full'")
     design, robot, ev = _screen(values, ctx)
     if level == "screen" or not ev.feasible:
         return ev
-    return _full(values, design, robot, ctx, ev)
+    return _full(values, design, robot, ctx, ev,
+                 "search" if level == "search" and ctx.search is not None else "full")
 
 
 def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dict[str, Any]:
@@ -424,5 +442,5 @@ def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dic
     return values
 
 
-__all__ = ["CONSTRAINTS", "DesignContext", "Evaluation", "OBJECTIVES", "SENSES", "UNITS",
-           "baseline_values", "design_files", "evaluate", "moved_job", "prepare"]
+__all__ = ["CONSTRAINTS", "DesignContext", "Evaluation", "LEVELS", "OBJECTIVES", "SENSES",
+           "UNITS", "baseline_values", "design_files", "evaluate", "moved_job", "prepare"]

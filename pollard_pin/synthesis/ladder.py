@@ -115,7 +115,7 @@ def screened(designs: Sequence[dict], variables: Sequence, ctx, evaluate: Callab
             while pending and len(inflight) < runner.capacity:
                 k, values = pending.pop(0)
                 inflight[k] = values
-                runner.submit(k, values, False)
+                runner.submit(k, values, "screen")
             for k, outcome in runner.done():
                 values = inflight.pop(k)
                 if isinstance(outcome, BaseException):

@@ -44,6 +44,7 @@ from typing import Any
 
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
+from .fidelity import SearchFidelity
 from .front import SENSES
 from .storage import require_optuna
 
@@ -87,6 +88,11 @@ class DesignOptions:
     ladder : bool
         Start a new study with the screened ladder's best designs after the thesis robot
         (:mod:`~pollard_pin.synthesis.ladder`; False: NSGA-II's random first generation).
+    search : SearchFidelity or None
+        How the search plans a design that passes the screen (default
+        :class:`~pollard_pin.synthesis.evaluation.SearchFidelity`: the film on a coarser grid,
+        the clearance over fewer samples); the front and the baseline are planned again
+        exactly before they are reported. None: every design planned exactly.
     """
 
     trials: int = 200
@@ -100,6 +106,7 @@ class DesignOptions:
     screen_only: bool = False
     progress: bool | Callable = False
     ladder: bool = True
+    search: SearchFidelity | None = SearchFidelity()
 
     def __post_init__(self):
         for name, low in (("trials", 1), ("population", 2), ("workers", 1), ("pick", 1)):
@@ -115,6 +122,15 @@ class DesignOptions:
                              f"{self.seed!r}")
         if self.resume and self.study is None:
             raise InputError("DesignOptions.resume: needs a study file to resume")
+        if self.search is not None and not isinstance(self.search, SearchFidelity):
+            raise InputError(f"DesignOptions.search: expected a SearchFidelity or None, got "
+                             f"{type(self.search).__name__}")
+
+    @property
+    def stage(self) -> str:
+        """The level the study judges designs at: ``"screen"`` (``screen_only``),
+        ``"search"`` (a search fidelity) or ``"full"``."""
+        return "screen" if self.screen_only else "full" if self.search is None else "search"
 
 
 def objectives_of(names: Sequence[str]) -> list[tuple[str, str]]:
@@ -215,7 +231,7 @@ def record(study, trial, outcome: Outcome | BaseException, names: Sequence[str])
         attrs = {"level": ev.level, "feasible": feasible, "binding": ev.binding,
                  "objectives": objectives, "constraints": constraints,
                  "figures": plain(dict(ev.figures or {})), "seconds": outcome.seconds}
-        if feasible and ev.level == "full":
+        if feasible and ev.level != "screen":
             attrs["files"] = {n: t for n, t in zip(FILES, (ev.params_toml, ev.actuators_toml,
                                                           ev.robots_toml)) if t}
         trial.set_user_attr(EVALUATION, attrs)  # one write: every write is a commit
@@ -313,7 +329,7 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
                         trial = study.ask()
                         inflight[trial.number] = trial
                         values = suggest(trial, variables)
-                    runner.submit(trial.number, values, not options.screen_only)
+                    runner.submit(trial.number, values, options.stage)
                 for key, outcome in runner.done():
                     ok = record(study, inflight[key], outcome, names)
                     del inflight[key]

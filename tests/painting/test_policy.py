@@ -42,6 +42,7 @@ def test_defaults_are_the_planners_figures():
     assert (p.utilisation, p.turn_samples, p.check_refine, p.max_step, p.step_sigma,
             p.max_path_samples, p.max_passes, p.first_deceleration) == (
         0.97, 48, 4, 0.002, 0.25, 250_000, 1000, 10.0)
+    assert p.clearance_stride == 1  # every sample: the planners' own check
     # the time step: max_step, or step_sigma σ of travel if that is shorter
     assert p.step(0.01, 0.1) == 0.002 and p.step(0.01, 2.0) == 0.25 * 0.01 / 2.0
     with pytest.raises(AttributeError):
@@ -55,6 +56,7 @@ def test_defaults_are_the_planners_figures():
     ("turn_samples", True, "not an integer"), ("check_refine", 0, ">= 1"),
     ("max_step", -0.001, "> 0"), ("max_step", math.inf, "finite"), ("step_sigma", 0, "> 0"),
     ("max_path_samples", 1, ">= 2"), ("max_passes", 0, ">= 1"),
+    ("clearance_stride", 0, ">= 1"), ("clearance_stride", 2.0, "not an integer"),
     ("first_deceleration", 0.0, "> 0"), ("first_deceleration", None, "not a number"),
     ("strokes", "diagonal", "one of auto, across, along"),
     ("step_from", "middle", "one of leading, trailing"), ("strokes", None, "one of auto")])

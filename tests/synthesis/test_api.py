@@ -67,3 +67,50 @@ def test_a_space_with_no_feasible_design_names_the_binding_constraint():
                                          r"reach \(5 of 5\)"):
         design(stub.StubJob(), stub.StubSpace(), DesignOptions(trials=5, workers=1),
                evaluator=impossible)
+
+
+def test_a_searched_front_is_planned_again_exactly():
+    """A study at the search's fidelity (the stand-in's: the film unchecked) plans its front
+    exactly before reporting it: a front design the exact film check refuses (y above
+    SEARCH_FILM) leaves it, with a note, and the designs it hid take its place; the front is
+    that of the exactly feasible designs, by brute force."""
+    from pollard_pin.synthesis.evaluation import SearchFidelity
+
+    calls = []
+
+    def counted(values, ctx, level="screen"):
+        calls.append(level)
+        return stub.evaluate(values, ctx, level)
+
+    ev = type("Counted", (), {"OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+                              "baseline_values": staticmethod(stub.baseline_values),
+                              "evaluate": staticmethod(counted)})
+    result = run_stub(None, 40, search=SearchFidelity(), evaluator=ev)
+    searched = [r for r in result.trials if r["feasible"]]
+    assert searched and {r["level"] for r in result.trials} == {"screen", "search"}
+    assert calls.count("full") == len(result.notes) + len(result.front) + 1  # and baseline
+    assert any(r["y"] > stub.SEARCH_FILM for r in searched)  # the search let them through
+    assert result.notes and all("left the front when planned in full: film" in n
+                                for n in result.notes)
+    for d in result.front:
+        objectives, _ = stub.figures(d["values"], {"shift": 0.0})
+        assert d["level"] == "full" and "fidelity" not in d["figures"]
+        assert d["values"]["y"] <= stub.SEARCH_FILM and d["objectives"] == pytest.approx(
+            objectives)
+    exact = [{n: r[n] for n in SENSES} for r in searched if r["y"] <= stub.SEARCH_FILM]
+    front = [d["objectives"] for d in result.front]
+    for o in exact:  # every exactly feasible design is on the front or beaten by it
+        assert o in front or any(dominates(f, o) for f in front)
+    assert result.baseline["feasible"] and result.baseline["objectives"] == pytest.approx(
+        stub.figures(result.baseline["values"], {"shift": 0.0})[0])
+
+
+def test_a_screened_front_is_planned_in_full():
+    """DesignOptions(screen_only=True): every design judged by the screen alone, the front
+    and the baseline planned in full at the end."""
+    result = run_stub(None, 16, screen_only=True)
+    assert {r["level"] for r in result.trials} == {"screen"}
+    assert result.front and all(d["level"] == "full" for d in result.front)
+    for d in result.front:
+        assert d["objectives"] == pytest.approx(stub.figures(d["values"], {"shift": 0.0})[0])
+    assert result.baseline["feasible"]

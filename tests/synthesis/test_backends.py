@@ -24,7 +24,7 @@ def test_the_screen_gates_the_full_plan():
     good, bad = run_design(GOOD, CTX, stub.evaluate), run_design(BAD, CTX, stub.evaluate)
     assert good.final.level == "full" and good.final.feasible and good.seconds >= 0
     assert bad.final.level == "screen" and bad.final.binding == "reach"
-    assert run_design(GOOD, CTX, stub.evaluate, full=False).final.level == "screen"
+    assert run_design(GOOD, CTX, stub.evaluate, level="screen").final.level == "screen"
 
 
 def test_pool_and_dask_give_the_serial_outcomes():

@@ -61,7 +61,7 @@ def _evaluate(values, ctx, level="screen"):
 
 def _evaluator(calls):
     return SimpleNamespace(OBJECTIVES=stub.OBJECTIVES, evaluate=_evaluate,
-                           prepare=lambda job, space: {"calls": calls},
+                           prepare=lambda job, space, search=None: {"calls": calls},
                            baseline_values=lambda space, ctx=None: dict(BASE))
 
 

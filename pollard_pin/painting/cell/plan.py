@@ -172,7 +172,8 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         except PlanError as exc:
             raise PlanError(_robot_said(cr, exc)) from None
         if clearance:
-            plan = replace(plan, clearance=line_clearance(model, plan))
+            plan = replace(plan, clearance=line_clearance(model, plan,
+                                                          policy.clearance_stride))
         out.append(RobotPlan(cr, zone, plan))
     world_part = cell_part(job, part, split) if isinstance(job, PartJob) else None
     return CellPlan(job, split, tuple(out), speed, world_part,
@@ -208,7 +209,7 @@ def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     ``policy`` the planner's knobs."""
     speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split, policy),
                                      job.line.speed, job.source, resolution)
-    return speed, _with_clearance(robot, plan)
+    return speed, _with_clearance(robot, plan, policy.clearance_stride)
 
 
 def cell_waiting_floor(plan: CellPlan, policy: PlannerPolicy = DEFAULT_POLICY):
@@ -231,7 +232,8 @@ def cell_speeds(robot, job, act: Actuators, plan: CellPlan | None = None,
     plan_at = cell_planner(robot, job, act, part, split, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: _with_clearance(robot, p),
+                               check=lambda p: _with_clearance(robot, p,
+                                                               policy.clearance_stride),
                                floor=lambda p: cell_waiting_floor(p, policy))
 
 
@@ -246,28 +248,34 @@ def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
     plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
                                 job.line.speed, job.source,
                                 floor=lambda p: cell_waiting_floor(p, policy))
-    return _with_clearance(robot, plan)
+    return _with_clearance(robot, plan, policy.clearance_stride)
 
 
-def _with_clearance(robot, plan: CellPlan) -> CellPlan:
+def _with_clearance(robot, plan: CellPlan, stride: int = 1) -> CellPlan:
     """Each robot's gun body from the part (today's check), then every pair of robots and
-    every robot's links against the moving part along the clock (docs/model.md §26.4)."""
+    every robot's links against the moving part along the clock (docs/model.md §26.4); every
+    ``stride``-th sample of each program (:attr:`.policy.PlannerPolicy.clearance_stride`)."""
     robots = tuple(replace(r, plan=replace(r.plan, clearance=line_clearance(
-        robot_model_in_base(robot, r.robot), r.plan))) for r in plan.robots)
-    return replace(plan, robots=robots, clearance=cell_clearance_of(robot, plan))
+        robot_model_in_base(robot, r.robot), r.plan, stride))) for r in plan.robots)
+    return replace(plan, robots=robots, clearance=cell_clearance_of(robot, plan, stride))
 
 
-def cell_clearance_of(robot, plan: CellPlan):
-    """:func:`.checks.cell_clearance.cell_clearance` of the plan: the robots' programs on the clock,
-    the part's (or panel's) mesh at t = 0 riding the line, the job's gun clearance."""
+def cell_clearance_of(robot, plan: CellPlan, stride: int = 1):
+    """:func:`.checks.cell_clearance.cell_clearance` of the plan: the robots' programs on the clock
+    (every ``stride``-th sample of each, :func:`.checks.clearance.strided`), the part's (or
+    panel's) mesh at t = 0 riding the line, the job's gun clearance."""
     from ..checks.cell_clearance import MovingPart, cell_clearance
-    from ..checks.clearance import CLEARANCE, panel_mesh
+    from ..checks.clearance import CLEARANCE, panel_mesh, strided
     from ..workpiece.panel import panel_frame
 
     job = plan.job
     mesh = panel_mesh(panel_frame(job)) if plan.part is None else plan.part.mesh
     v = plan.speed * np.asarray(job.line.direction, float)
-    members = [(r.robot, r.plan.trajectory.t, r.plan.trajectory.poses) for r in plan.robots]
+    members = []
+    for r in plan.robots:
+        tr = r.plan.trajectory
+        k = strided(len(tr.t), stride)
+        members.append((r.robot, tr.t[k], tr.poses[k]))
     required = CLEARANCE if job.clearance is None else job.clearance
     return cell_clearance(robot, members, MovingPart(mesh, tuple(float(c) for c in v)),
                           required)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -180,14 +180,26 @@ def check_clearance(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None
     return c
 
 
-def job_clearance(robot, job, mesh, poses, t, where=None) -> Clearance:
+def strided(n: int, stride: int = 1) -> np.ndarray:
+    """The samples a clearance check takes of ``n``: every ``stride``-th and the last
+    (:attr:`.policy.PlannerPolicy.clearance_stride`)."""
+    return np.unique(np.append(np.arange(0, n, stride), n - 1)) if n else np.arange(0)
+
+
+def job_clearance(robot, job, mesh, poses, t, where=None, stride: int = 1) -> Clearance:
     """:func:`check_clearance` of a planned path (poses in the part's frame) with the
-    robot's gun body and the job's ``gun.clearance`` (default CLEARANCE)."""
+    robot's gun body and the job's ``gun.clearance`` (default CLEARANCE), over every
+    ``stride``-th sample (:func:`strided`; the bound between samples is theirs)."""
     from ..spray.gun_body import gun_body
 
     required = CLEARANCE if getattr(job, "clearance", None) is None else job.clearance
-    return check_clearance(mesh, poses, t, gun_body(getattr(robot, "params", None)),
-                           required, where)
+    body = gun_body(getattr(robot, "params", None))
+    if stride == 1:
+        return check_clearance(mesh, poses, t, body, required, where)
+    k = strided(len(t), stride)
+    c = check_clearance(mesh, np.asarray(poses)[k], np.asarray(t)[k], body, required,
+                        None if where is None else (lambda i: where(int(k[i]))))
+    return replace(c, sample=int(k[c.sample]))
 
 
 def panel_mesh(frame) -> trimesh.Trimesh:
@@ -200,4 +212,5 @@ def panel_mesh(frame) -> trimesh.Trimesh:
 
 
 __all__ = ["Clearance", "between_samples", "body_points", "check_clearance",
-           "clearance_of", "job_clearance", "least_distance", "panel_mesh", "surface_samples"]
+           "clearance_of", "job_clearance", "least_distance", "panel_mesh", "strided",
+           "surface_samples"]

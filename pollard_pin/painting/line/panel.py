@@ -107,7 +107,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     searches leave it to the plan they return, but where two stroke strategies plan,
     ``auto`` checks it to choose (docs/model.md §24.2). ``policy``: the planner's knobs."""
     def check(plan):
-        return cleared(robot, plan)
+        return cleared(robot, plan, policy.clearance_stride)
 
     if isinstance(job, PartJob):
         from .part import plan_line_part
@@ -120,12 +120,13 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
                     check, clearance, job.source)
 
 
-def cleared(robot, plan):
-    """``plan`` with its gun body's clearance checked (:func:`line_clearance`), unless it
-    already is (auto's choice checks it where two strategies plan, docs/model.md §24.2)."""
+def cleared(robot, plan, stride: int = 1):
+    """``plan`` with its gun body's clearance checked (:func:`line_clearance`, every
+    ``stride``-th sample), unless it already is (auto's choice checks it where two strategies
+    plan, docs/model.md §24.2)."""
     if plan.clearance is not None:
         return plan
-    return replace(plan, clearance=line_clearance(robot, plan))
+    return replace(plan, clearance=line_clearance(robot, plan, stride))
 
 
 def step_order(offsets, es, e, strokes: Strokes) -> np.ndarray:
@@ -162,15 +163,16 @@ def _plan_panel(robot, job, act, speed, policy, strokes: Strokes, clock) -> Line
                     timings={"plan": time.perf_counter() - clock})
 
 
-def line_clearance(robot, plan):
+def line_clearance(robot, plan, stride: int = 1):
     """The gun body's :class:`.checks.clearance.Clearance` from the panel or part of a plan on
     the line, seen from the part at rest (the world path less the line's displacement),
-    refused as a :class:`.checks.clearance.ClearanceError` (docs/model.md §25)."""
+    refused as a :class:`.checks.clearance.ClearanceError` (docs/model.md §25); every
+    ``stride``-th sample (:attr:`.policy.PlannerPolicy.clearance_stride`)."""
     tr = plan.trajectory
     rel, _ = line_shift(tr.poses, tr.d_poses, tr.t, -plan.speed, plan.direction)
     mesh = plan.part.mesh if isinstance(plan.job, PartJob) else panel_mesh(plan.frame)
     return job_clearance(robot, plan.job, mesh, rel, tr.t, lambda i: (
-        "while spraying" if plan.spray[i] > 0 else "with the gun closed"))
+        "while spraying" if plan.spray[i] > 0 else "with the gun closed"), stride)
 
 
 def line_planner(robot, job, act: Actuators, part: Part | None = None,
@@ -197,7 +199,7 @@ def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     plan_at = line_planner(robot, job, act, part, policy)
     speed, found = fastest_line_speed(lambda s: plan if plan is not None and s == plan.speed
                                       else plan_at(s), job.line.speed, job.source, resolution)
-    return speed, cleared(robot, found)
+    return speed, cleared(robot, found, policy.clearance_stride)
 
 
 def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
@@ -210,7 +212,7 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
     plan_at = line_planner(robot, job, act, part, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: cleared(robot, p),
+                               check=lambda p: cleared(robot, p, policy.clearance_stride),
                                floor=lambda p: waiting_floor(p, policy))
 
 
@@ -220,7 +222,7 @@ def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
     painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source, floor=lambda p: waiting_floor(p, policy))
-    return cleared(robot, plan)
+    return cleared(robot, plan, policy.clearance_stride)
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",

@@ -335,7 +335,7 @@ def _plan(robot, job: PaintJob, act: Actuators, policy: PlannerPolicy) -> PaintP
     if ratios["rms_torque"].max() > 1.0:  # the search's samples missed it: say so, never pass
         raise PlanError(_rms_text(act, ratios["rms_torque"], "the planned cycle"))
     clear = job_clearance(robot, job, panel_mesh(frame), poses, t, lambda i: "in a " + str(
-        seg.kind[int(np.searchsorted(seg.start, t[i], "right") - 1)]))
+        seg.kind[int(np.searchsorted(seg.start, t[i], "right") - 1)]), policy.clearance_stride)
     clock["check"] = time.perf_counter()
     return PaintPlan(job, frame, seg, offsets, spacing, speed, coats, half_length, vmax,
                      horizontal, trajectory=traj, spray=np.ones(n), ratios=ratios,

@@ -230,7 +230,7 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
                             f"{v:.4g} m/s: more coats of a thinner film, or a wider "
                             "spacing")
     clear = job_clearance(robot, job, part.mesh, traj.poses, t,
-                          lambda i: _piece_name(program, layout, t[i]))
+                          lambda i: _piece_name(program, layout, t[i]), policy.clearance_stride)
     clock.append(time.perf_counter())
     return SurfacePlan(job, part, layout, program, v, coats, trajectory=traj,
                        spray=program.spray(t), ratios=ratios, clearance=clear,

@@ -253,3 +253,18 @@ def test_a_speed_refused_once_is_refused_again_without_planning(robot, act, cell
     assert calls == [0.01] and str(again.value) == str(first.value)
     assert (again.value.too_fast, again.value.why, again.value.hint) == (False, "too slow", None)
     assert plan_at(0.03) == plan_at(0.03) == 0.03 and calls == [0.01, 0.03, 0.03]
+
+
+def test_a_clearance_stride_sees_the_pair_no_closer_within_its_bound(robot, cell):
+    """PlannerPolicy.clearance_stride = 4 (the design study's search, docs/model.md §31.5):
+    the robots' least distance over every 4th sample of the clock is never below the one
+    over every sample (the plan's own check), and less its bound between samples it is at
+    most that."""
+    from pollard_pin.painting.cell.plan import cell_clearance_of
+
+    every = cell.clearance
+    fourth = cell_clearance_of(robot, cell, 4)
+    assert fourth.pair == every.pair and fourth.robots_between > every.robots_between
+    assert fourth.between_robots - fourth.robots_between <= every.between_robots <= \
+        fourth.between_robots + 1e-12
+    assert fourth.to_part - fourth.part_between <= every.to_part + 1e-12

@@ -10,7 +10,13 @@ import trimesh
 
 from pollard_pin.analytic.taskspace import angles_from_rotation, rotation
 from pollard_pin.errors import InputError
-from pollard_pin.painting.checks.clearance import check_clearance, clearance_of, surface_samples
+from pollard_pin.painting.checks.clearance import (
+    check_clearance,
+    clearance_of,
+    job_clearance,
+    strided,
+    surface_samples,
+)
 from pollard_pin.painting.errors import ClearanceError, JobError, PlanError
 from pollard_pin.painting.job import job_from_dict, load_job
 from pollard_pin.painting.plan.part import plan_surface
@@ -106,6 +112,34 @@ def test_a_close_pass_is_refused_naming_the_place():
     msg = str(e.value)
     assert "comes 7.6 mm from the part" in msg and "(700, " in msg and "on pass" in msg
     assert "clearance 10 mm" in msg and len(msg) <= 250 and "\n" not in msg
+
+
+def test_a_stride_takes_every_kth_sample_and_its_bound_holds():
+    """PlannerPolicy.clearance_stride: the gun dips to 30 mm from the plate at sample 21 of
+    41; every 4th sample (and the last) sees 20 and 24, never closer than every sample, and
+    their bound between samples covers the dip; a refusal names the path's own sample."""
+    assert strided(41, 4).tolist() == list(range(0, 41, 4))
+    assert strided(42, 4).tolist() == [*range(0, 42, 4), 41] and strided(5, 1).tolist() == [
+        0, 1, 2, 3, 4]
+    k = np.arange(41)
+    depth = 0.03 + 0.001 * np.abs(k - 21)  # the tip's distance from the plate [m]
+    tips = np.column_stack([0.7 - depth, np.linspace(-0.1, 0.1, 41), np.zeros(41)])
+    poses, t = poses_along([1, 0, 0], tips), 0.1 * k
+    every = job_clearance(None, None, plate(), poses, t)
+    fourth = job_clearance(None, None, plate(), poses, t, stride=4)
+    assert every.sample == 21 and every.distance == pytest.approx(0.03 - NOZZLE_SPHERE,
+                                                                    abs=1e-9)
+    assert fourth.sample == 20 and fourth.time == t[20]
+    assert fourth.distance == pytest.approx(0.031 - NOZZLE_SPHERE, abs=1e-9)
+    assert fourth.distance - fourth.between <= every.distance < fourth.distance
+    assert fourth.between > every.between  # chords 4 samples long
+    with pytest.raises(ClearanceError, match="at sample 20; clearance 40 mm"):
+        job = job_from_dict({"panel": {"center": [0.7, 0, 0], "normal": [-1, 0, 0],
+                                       "width": 0.2, "height": 0.1},
+                             "gun": {"standoff": 0.05, "sigma": 0.01, "flow": 1e-7,
+                                     "clearance": 0.04},
+                             "job": {"thickness": 2.5e-5}})
+        job_clearance(None, job, plate(), poses, t, lambda i: f"at sample {i}", stride=4)
 
 
 def test_the_example_panel_and_line_keep_the_standoff_less_the_front_sphere(plan, line_plan):
