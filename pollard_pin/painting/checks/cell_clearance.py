@@ -36,7 +36,7 @@ from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, 
 from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .clearance import least_distance
+from .clearance import least_distance, surface_index
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
@@ -262,9 +262,10 @@ def _spheres(a, b, layout, caps: np.ndarray):
     return a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner]), radii
 
 
-def _to_part(s: _Sampled, layout, part: MovingPart):
+def _to_part(s: _Sampled, layout, part: MovingPart, index):
     """(distance, time, between) of one robot against the moving part (taken BLOCK samples
-    at a time: every quantity is a sample's own, so the blocks only keep the arrays small)."""
+    at a time: every quantity is a sample's own, so the blocks only keep the arrays small);
+    ``index``: the part's mesh's :class:`.clearance.SurfaceIndex`, made once for all."""
     v = np.asarray(part.velocity, float)
     gun, others = np.flatnonzero(layout.gun), np.flatnonzero(~layout.gun)
     owner, _, radii = axis_spheres(layout.a[others], layout.b[others], layout.r[others],
@@ -286,12 +287,12 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
             a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
         if len(a) > 1:
             chords.append(_chords(a, b))
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r)
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
         d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
-                                                                 caps))
+                                                                 caps), index)
         if d < best:
             best, n, less = d, int(rows[k]), l2
     between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0
@@ -351,8 +352,9 @@ def cell_clearance(robot, members, part: MovingPart | None = None, required: flo
                              "between samples): move a base further along the line")
     near = (None, None, None, None)
     if part is not None:
+        index = surface_index(part.mesh)  # one mesh for every robot
         for s in sampled:
-            dp, tp, bp = _to_part(s, layout, part)
+            dp, tp, bp = _to_part(s, layout, part, index)
             if near[0] is None or dp - bp < near[0] - near[3]:
                 near = (dp, s.name, tp, bp)
         if near[0] - near[3] < required:
