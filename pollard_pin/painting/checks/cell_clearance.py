@@ -36,7 +36,7 @@ from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, 
 from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .clearance import least_distance
+from .clearance import least_distance, surface_index
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
@@ -168,7 +168,7 @@ def _chords(a, b, shift=None) -> np.ndarray:
     da, db = np.diff(a, axis=0), np.diff(b, axis=0)
     if shift is not None:
         da, db = da - shift[:, None], db - shift[:, None]
-    return np.maximum(np.linalg.norm(da, axis=2), np.linalg.norm(db, axis=2)).max(axis=1)
+    return np.maximum(_norm(da), _norm(db)).max(axis=1)
 
 
 def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
@@ -185,8 +185,8 @@ def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
         # boxes apart by g hold capsules at least g apart; capsules that cut into each
         # other (best < 0) have touching boxes (g = 0)
         cut = max(best, 0.0)
-        near1 = _box_gap(lo1, hi1, lo2.min(axis=1), hi2.max(axis=1)) <= cut
-        near2 = _box_gap(lo2, hi2, lo1.min(axis=1), hi1.max(axis=1)) <= cut
+        near1 = _box_gap(lo1, hi1, *_union(lo2, hi2)) <= cut
+        near2 = _box_gap(lo2, hi2, *_union(lo1, hi1)) <= cut
         n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
         if len(n) == 0:
             continue
@@ -205,9 +205,9 @@ def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     one measured, so neither the least nor its first sample changes."""
     rr = r1[:, None] + r2[None, :]
     c1, c2 = (a1 + b1) / 2, (a2 + b2) / 2
-    h1 = np.linalg.norm(b1 - a1, axis=2) / 2 + r1
-    h2 = np.linalg.norm(b2 - a2, axis=2) / 2 + r2
-    gap = np.linalg.norm(c1[:, :, None] - c2[:, None], axis=3) - h1[:, :, None] - h2[:, None]
+    h1 = _norm(b1 - a1) / 2 + r1
+    h2 = _norm(b2 - a2) / 2 + r2
+    gap = _norm(c1[:, :, None] - c2[:, None]) - h1[:, :, None] - h2[:, None]
     # the closest spheres' capsules of each sample: an achieved distance, a ceiling
     m = np.arange(len(gap))
     i, j = np.unravel_index(gap.reshape(len(gap), -1).argmin(axis=1), gap.shape[1:])
@@ -229,7 +229,24 @@ def _box_gap(lower, upper, lo, hi) -> np.ndarray:
     """The distance (N, L) of each box (corners ``lower``, ``upper``) from the box lo–hi of
     its sample (each (N, 3))."""
     out = np.maximum(np.maximum(lo[:, None] - upper, lower - hi[:, None]), 0)
-    return np.linalg.norm(out, axis=2)
+    return _norm(out)
+
+
+def _union(lower, upper) -> tuple[np.ndarray, np.ndarray]:
+    """The box (N, 3) corners holding every box (N, L, 3) of a sample: min and max over L,
+    taken capsule by capsule (exact, and faster than a reduction over the middle axis)."""
+    lo, hi = lower[:, 0].copy(), upper[:, 0].copy()
+    for k in range(1, lower.shape[1]):
+        np.minimum(lo, lower[:, k], out=lo)
+        np.maximum(hi, upper[:, k], out=hi)
+    return lo, hi
+
+
+def _norm(x) -> np.ndarray:
+    """|x| over the last axis (of 3): numpy's norm, summed as it sums, (x₀² + x₁²) + x₂², to
+    the bit, without a reduction over an axis of three."""
+    s = x * x
+    return np.sqrt((s[..., 0] + s[..., 1]) + s[..., 2])
 
 
 def _robots(members: Sequence[_Sampled], r: np.ndarray):
@@ -262,9 +279,10 @@ def _spheres(a, b, layout, caps: np.ndarray):
     return a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner]), radii
 
 
-def _to_part(s: _Sampled, layout, part: MovingPart):
+def _to_part(s: _Sampled, layout, part: MovingPart, index):
     """(distance, time, between) of one robot against the moving part (taken BLOCK samples
-    at a time: every quantity is a sample's own, so the blocks only keep the arrays small)."""
+    at a time: every quantity is a sample's own, so the blocks only keep the arrays small);
+    ``index``: the part's mesh's :class:`.clearance.SurfaceIndex`, made once for all."""
     v = np.asarray(part.velocity, float)
     gun, others = np.flatnonzero(layout.gun), np.flatnonzero(~layout.gun)
     owner, _, radii = axis_spheres(layout.a[others], layout.b[others], layout.r[others],
@@ -279,19 +297,18 @@ def _to_part(s: _Sampled, layout, part: MovingPart):
         centres.append(c)
         ao, bo = a[:, others], b[:, others]
         mid = (ao + bo) / 2
-        lower.append(np.linalg.norm(mid - np.clip(mid, lo, hi), axis=2) - rho
-                     - np.linalg.norm(bo - ao, axis=2) / 2)
+        lower.append(_norm(mid - np.clip(mid, lo, hi)) - rho - _norm(bo - ao) / 2)
         if start:  # the step from the last block's last sample
             a0, b0 = _in_part(s, v, slice(start - 1, start))
             a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
         if len(a) > 1:
             chords.append(_chords(a, b))
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r)
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
         d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
-                                                                 caps))
+                                                                 caps), index)
         if d < best:
             best, n, less = d, int(rows[k]), l2
     between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0
@@ -351,8 +368,9 @@ def cell_clearance(robot, members, part: MovingPart | None = None, required: flo
                              "between samples): move a base further along the line")
     near = (None, None, None, None)
     if part is not None:
+        index = surface_index(part.mesh)  # one mesh for every robot
         for s in sampled:
-            dp, tp, bp = _to_part(s, layout, part)
+            dp, tp, bp = _to_part(s, layout, part, index)
             if near[0] is None or dp - bp < near[0] - near[3]:
                 near = (dp, s.name, tp, bp)
         if near[0] - near[3] < required:

@@ -100,14 +100,38 @@ def body_points(poses, body: GunBody):
     return poses[:, None, :3] - offs[None, :, None] * axis[:, None, :], radii
 
 
-def least_distance(mesh: trimesh.Trimesh, centres, radii):
-    """The least of |c − mesh| − r found over the spheres of centres ``centres`` (N, K, 3)
-    and radii ``radii`` (K,) (module notes 1–3): (that distance, the index (n, k) of its
-    sphere, the mesh's closest point there, how much less the least over all may be)."""
-    tri = np.asarray(mesh.triangles, float)
+@dataclass(frozen=True, eq=False)  # arrays and trees: compared by identity
+class SurfaceIndex:
+    """A mesh's surface samples as :func:`least_distance` asks them (module note 1): its
+    ``triangles`` (F, 3, 3), the ``samples`` with their ``owner`` faces and δ, and their
+    k-d trees (``distinct``: of the distinct samples, for the nearest; ``every``: of all,
+    for the faces near a point). Made once by :func:`surface_index` for every set of
+    spheres measured against the same mesh."""
+
+    triangles: np.ndarray
+    samples: np.ndarray
+    owner: np.ndarray
+    delta: float
+    distinct: cKDTree
+    every: cKDTree
+
+
+def surface_index(mesh: trimesh.Trimesh) -> SurfaceIndex:
+    """The :class:`SurfaceIndex` of a mesh."""
     samples, owner, delta = surface_samples(mesh.vertices, mesh.faces)
     # an unbalanced tree of distinct points answers the far queries several times faster
     tree = cKDTree(np.unique(samples, axis=0), balanced_tree=False, compact_nodes=False)
+    return SurfaceIndex(np.asarray(mesh.triangles, float), samples, owner, delta, tree,
+                        cKDTree(samples))
+
+
+def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | None = None):
+    """The least of |c − mesh| − r found over the spheres of centres ``centres`` (N, K, 3)
+    and radii ``radii`` (K,) (module notes 1–3): (that distance, the index (n, k) of its
+    sphere, the mesh's closest point there, how much less the least over all may be).
+    ``index``: the mesh's :class:`SurfaceIndex` if already made (default: made here)."""
+    index = surface_index(mesh) if index is None else index
+    tri, owner, delta, tree = index.triangles, index.owner, index.delta, index.distinct
     coarse, _ = tree.query(centres[::COARSE_STRIDE])
     ceiling = float((coarse - radii).min())  # an achieved upper bound of the least
     approx = np.column_stack([tree.query(centres[:, k], distance_upper_bound=ceiling + r
@@ -119,7 +143,7 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii):
     if len(order) == 0:  # no sphere within the ceiling + δ: only round-off can do this
         order = np.array([int(np.argmin(np.where(np.isfinite(approx), approx, coarse.max())))])
     # a face within d ≤ d̃ of c has one of its own samples within d̃ + δ
-    near = cKDTree(samples).query_ball_point(flat[order], np.minimum(
+    near = index.every.query_ball_point(flat[order], np.minimum(
         approx.ravel()[order], ceiling + radii[order % len(radii)]) + delta)
     pair = np.unique(np.concatenate([
         i * len(tri) + np.unique(owner[np.asarray(f, int)]) for i, f in enumerate(near)]))
@@ -211,6 +235,6 @@ def panel_mesh(frame) -> trimesh.Trimesh:
     return trimesh.Trimesh(corners, np.array([[0, 1, 2], [0, 2, 3]]), process=False)
 
 
-__all__ = ["Clearance", "between_samples", "body_points", "check_clearance",
+__all__ = ["Clearance", "SurfaceIndex", "between_samples", "body_points", "check_clearance",
            "clearance_of", "job_clearance", "least_distance", "panel_mesh", "strided",
-           "surface_samples"]
+           "surface_index", "surface_samples"]

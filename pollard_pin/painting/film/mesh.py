@@ -35,6 +35,7 @@ from .points import SurfacePoints
 CHUNK_POINTS = 8192
 CHUNK_PAIRS = 20_000_000
 BLOCK_SAMPLES = 16
+GROUP_POINTS = 32  # a chunk's points tested by balls of about this many before one by one
 SHADE_PAIRS = 50_000_000  # shaded pairs kept for a moved path's film (8 bytes each): 0.4 GB
 
 
@@ -122,6 +123,35 @@ def _balls(s, groups) -> tuple[np.ndarray, np.ndarray]:
     return np.array([c for c, _ in ball]).reshape(-1, 3), np.array([r for _, r in ball])
 
 
+def film_groups(s, chunks, size: int = GROUP_POINTS) -> tuple:
+    """Each chunk's points cut into cubes of about ``size`` points (the chunks' rule,
+    :func:`film_chunks`): (per chunk its points' group (global ids), the groups' bounding
+    balls' centres (G, 3) and radii (G,))."""
+    labels, balls, radii, first = [], [], [], 0
+    for idx in chunks:
+        sc = s[idx]
+        lo, hi = sc.min(axis=0), sc.max(axis=0)
+        span = np.sort(hi - lo)[::-1]
+        side = max(math.sqrt(span[0] * span[1] * size / len(idx)), span[0] * size / len(idx),
+                   1e-12)
+        _, g = np.unique(np.floor((sc - lo) / side).astype(np.int64), axis=0,
+                         return_inverse=True)
+        g = g.ravel()
+        n = int(g.max()) + 1
+        c = np.zeros((n, 3))
+        lower, upper = np.full((n, 3), np.inf), np.full((n, 3), -np.inf)
+        np.minimum.at(lower, g, sc)
+        np.maximum.at(upper, g, sc)
+        c = 0.5 * (lower + upper)
+        r = np.zeros(n)
+        np.maximum.at(r, g, np.linalg.norm(sc - c[g], axis=1))
+        labels.append(g + first)
+        balls.append(c)
+        radii.append(r)
+        first += n
+    return labels, np.concatenate(balls), np.concatenate(radii)
+
+
 def _reach(gun: Gun, s, o, chunks, summary) -> np.ndarray:
     """(blocks, chunks) True where a block of samples (:func:`.spray.deposition.spot_block`'s
     ``summary``, positions less ``o``) may reach a chunk of the points ``s`` (its bounding
@@ -174,6 +204,8 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     keys, cuts = [], []
     pairs = shaded = switches = 0
     reach = _reach(gun, s, o, chunks, summary)
+    groups, centres, radii = film_groups(s - o, chunks)
+    held = {}  # each block's groups that may hold a point it reaches
     for c, idx in enumerate(bar(chunks, "film")):
         sc, nc, faces = s[idx] - o, n[idx], points.faces[idx]
         acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
@@ -185,7 +217,12 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             # near_spot: the rest get < 3e-18 of the spot's rate (§20)
             if j not in cull:
                 cull[j] = Reach(gun, *summary[j])
-            k = np.flatnonzero(cull[j].keep(sc))
+                held[j] = cull[j].holds(centres, radii)
+            # keep's test, point by point, on the points of the groups that may hold one
+            near = np.flatnonzero(held[j][groups[c]])
+            if not len(near):
+                continue
+            k = near[cull[j].keep(sc[near])]
             if not len(k):
                 continue
             if j not in src:

@@ -161,8 +161,8 @@ def plan_dwelling(robot, act, program: LineProgram, speed: float, e,
     rel = program.build(program.guess)
     if not slow(rel, speed, e):
         return plan_world(robot, act, program, speed, e, policy)
-    try:
-        return plan_world(robot, act, program, speed, e, policy)
+    try:  # a too slow failure tries the waits whatever it was: screened (plan_world)
+        return plan_world(robot, act, program, speed, e, policy, screen=True)
     except LineSpeedError as exc:
         if exc.too_fast:
             raise

@@ -271,12 +271,17 @@ def one_coat(job) -> None:
 
 
 def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
-               policy: PlannerPolicy = DEFAULT_POLICY) -> World:
+               policy: PlannerPolicy = DEFAULT_POLICY, screen: bool = False) -> World:
     """The world path of the relative ``program`` (:class:`LineProgram`) at line ``speed``
     along ``e`` (docs/model.md §24): the turnarounds the shortest within
     ``policy.utilisation`` on the world path held at one world centre, the delay at the
     middle of the feasible shifts, the return the shortest, sampled every ``program.dt`` and
-    checked at ``policy.check_refine`` times that."""
+    checked at ``policy.check_refine`` times that. ``screen``: for a caller to whom a too
+    slow line's failure says no more than its side (:func:`.line.dwell.plan_dwelling`'s
+    first try), the motors are first checked at the path's own samples (with
+    ``check_refine`` a power of two, every ``check_refine``-th of the check's, bit for
+    bit): over their ratings there, the path is refused without the finer check, which
+    would refuse it too."""
     build, guess, dt, where = program.build, program.guess, program.dt, program.where
     passes, source = program.passes, program.source
     e = np.asarray(e, dtype=float)
@@ -326,6 +331,9 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
     tf = path_times(times, policy.check_refine * steps)
     drift = _drift_along(rel, speed, e)
+    r = policy.check_refine  # a power of two: the check's times hold the path's, bit for bit
+    if screen and drift <= 0 and r > 1 and r & (r - 1) == 0:
+        _screen(robot, act, (poses, d, dd), speed)
     try:
         fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
     except ReachError as exc:
@@ -346,6 +354,21 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
                              "of its peak torque or speed", drift > 0,
                              f"a motor at {100 * worst:.0f} % of its rating")
     return World(rel, times, traj, spray, ratios)
+
+
+def _screen(robot, act: Actuators, path, speed: float) -> None:
+    """The motors along ``path`` (poses, rates, accelerations at the path's own samples), a
+    too slow line's :class:`LineSpeedError` where they are over their ratings (a path out
+    of reach there is left to the check)."""
+    try:
+        m = motion(robot, act, *path)
+    except ReachError:
+        return
+    worst = max(float(m.torque_ratio.max()), float(m.speed_ratio.max()))
+    if worst > 1.0:
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs at least "
+                             f"{100 * worst:.0f} % of its peak torque or speed", False,
+                             f"a motor at {100 * worst:.0f} % of its rating")
 
 
 def _per_tau(pieces, worst) -> np.ndarray:

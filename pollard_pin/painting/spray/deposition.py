@@ -40,6 +40,7 @@ from .spots import REACH_SIGMAS, RoundGaussian, Spot
 BLOCK_ELEMENTS = 1_000_000
 CULL_SIGMAS = REACH_SIGMAS  # the cone kept around the spray axis, in σ(h)/h (module docstring)
 CULL_WIDEST = 4.0  # tan of the widest cone culled: a wider spray evaluates every point
+HOLD_PAD = 1e-9  # rad and m: Reach.holds' margin over round-off (a ball's test a superset)
 
 
 @dataclass(frozen=True)
@@ -271,6 +272,26 @@ class Reach:
         keep = (angle - self.da - spread <= self.cone) | (r <= self.throw / 4 + self.dp
                                                           + radius)
         return keep | ~np.isfinite(angle)
+
+    def holds(self, centres, radii) -> np.ndarray:
+        """(G,) True where :meth:`keep` may keep a point of a ball (``centres`` (G, 3),
+        ``radii`` (G,)), wherever in it the point lies; False only where it keeps none. A
+        point of a ball at r₀ from the block's mean tip lies at r ≥ r₀ − ρ and within
+        arcsin(ρ/r₀) of its direction, so its angle is at least the centre's less that and
+        its own spread at most arcsin(δp/(r₀ − ρ)); HOLD_PAD covers round-off."""
+        c = np.atleast_2d(np.asarray(centres, dtype=float))
+        if self.everywhere:
+            return np.ones(len(c), dtype=bool)
+        d = c - self.pm
+        r = np.sqrt(np.einsum("ij,ij->i", d, d))
+        near = r - radii  # the ball's least distance from the mean tip
+        with np.errstate(divide="ignore", invalid="ignore"):
+            angle = np.arccos(np.clip(d @ self.am / r, -1.0, 1.0))
+            half = np.arcsin(np.clip(radii / r, 0.0, 1.0))
+            spread = np.arcsin(np.clip(self.dp / near, 0.0, 1.0))
+        hold = ((angle - half - self.da - spread <= self.cone + HOLD_PAD)
+                | (near <= self.throw / 4 + self.dp + HOLD_PAD))
+        return hold | (near <= HOLD_PAD) | ~np.isfinite(angle)
 
 
 def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:

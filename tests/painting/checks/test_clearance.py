@@ -94,6 +94,26 @@ def test_surface_samples_cover_every_face_within_delta(mesh):
     assert set(np.unique(owner)) == set(range(len(mesh.faces)))
 
 
+def test_a_surface_index_made_once_measures_as_one_made_each_time():
+    """least_distance given the mesh's SurfaceIndex (made once for several sets of spheres)
+    answers exactly as made inside for each set, and against trimesh's closest point."""
+    from pollard_pin.painting.checks.clearance import least_distance, surface_index
+
+    mesh = shapes.bent_plate(step=0.02)
+    index = surface_index(mesh)
+    rng = np.random.default_rng(3)
+    lo, hi = mesh.bounds
+    for _ in range(3):
+        centres = rng.uniform(lo - 0.05, hi + 0.05, (40, 3, 3))
+        radii = np.array([0.002, 0.005, 0.01])
+        own = least_distance(mesh, centres, radii)
+        given = least_distance(mesh, centres, radii, index)
+        assert own[:2] == given[:2] and np.array_equal(own[2], given[2]) and own[3] == given[3]
+        _, dist, _ = trimesh.proximity.closest_point(mesh, centres.reshape(-1, 3))
+        brute = float((dist.reshape(40, 3) - radii).min())
+        assert given[0] - given[3] - 1e-12 <= brute <= given[0] + 1e-12
+
+
 def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
     from pollard_pin.painting.checks import clearance
 

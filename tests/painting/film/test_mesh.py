@@ -276,6 +276,32 @@ def test_the_cull_changes_no_film(monkeypatch):
     assert np.abs(culled.thickness - dense.thickness).max() <= 1e-14 * dense.thickness.max()
 
 
+def test_the_groups_cull_changes_no_bit(ribbed, monkeypatch):
+    """The chunks' points tested ball by ball before one by one (film_groups,
+    Reach.holds): the film, its error, pairs and shade the same to the bit as with every
+    group's points tested one by one; every point lies in its group's ball."""
+    import pollard_pin.painting.film.mesh as mesh
+    from pollard_pin.painting.spray.deposition import Reach
+
+    rib, _ = ribbed
+    sp = surface_points(rib, sigma=GUN.sigma)
+    t, p, a = _passes((-0.06, 0.06), (ZC - 0.009, ZC + 0.009))
+    monkeypatch.setattr(mesh, "CHUNK_POINTS", 400)  # chunks wider than the spot
+    chunks = mesh.film_chunks(sp.points, len(t))
+    groups, centres, radii = mesh.film_groups(sp.points, chunks, 8)
+    for idx, g in zip(chunks, groups):
+        assert np.all(np.linalg.norm(sp.points[idx] - centres[g], axis=1) <= radii[g])
+    assert len(centres) > 4 * len(chunks)
+    grouped = mesh_film(GUN, t, p, a, sp, rib)
+    monkeypatch.setattr(Reach, "holds", lambda self, c, r: np.ones(len(c), dtype=bool))
+    every = mesh_film(GUN, t, p, a, sp, rib)
+    assert np.array_equal(grouped.thickness, every.thickness)
+    assert np.array_equal(grouped.error_estimate, every.error_estimate, equal_nan=True)
+    assert (grouped.pairs, grouped.shaded, grouped.switches) == (
+        every.pairs, every.shaded, every.switches) and grouped.shaded > 0
+    assert all(np.array_equal(x, y) for x, y in zip(grouped.shade.keys, every.shade.keys))
+
+
 def test_a_film_in_chunks_is_the_film_in_one(ribbed, monkeypatch):
     """Two passes over the rib, the points cut into chunks of 97 (18 chunks, some
     skipped in a block): the same film, shaded pairs and shadow edges as in one chunk, to

@@ -118,6 +118,23 @@ def test_a_dwelling_program_out_of_reach_is_judged_per_turnaround(monkeypatch):
 UPSTREAM = (0.1, 0.3, 1.0)  # m
 
 
+@pytest.mark.parametrize("refine", [2, 4, 8])
+def test_the_paths_samples_are_the_checks_own(refine):
+    """path_times(times, steps) is, bit for bit, every ``refine``-th of path_times(times,
+    refine × steps), refine a power of two (plan_world's screen checks the motors there
+    first): delays, ends and step counts at random."""
+    from pollard_pin.painting.line.phases import LineTimes, path_times
+
+    rng = np.random.default_rng(refine)
+    for _ in range(300):
+        delay = float(rng.choice([0.0, rng.uniform(0, 100)]))
+        end = delay + float(rng.uniform(0.5, 100))
+        times = LineTimes(delay, end, float(rng.uniform(0.1, 3)))
+        steps = int(rng.integers(1, 50_000))
+        t, tf = path_times(times, steps), path_times(times, refine * steps)
+        assert np.isin(t, tf).all()
+
+
 @pytest.fixture(scope="module")
 def moved(robot, act, line_job, line_part_example_job):
     """(kind, by) ↦ the example's plan ``by`` m upstream, each planned once."""

@@ -186,6 +186,30 @@ def test_near_spot_keeps_every_point_the_spray_reaches(seed, sigma):
     assert rate.max(initial=0.0) <= 3e-18 * centre
 
 
+@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("apex", [0.0, -0.05])
+def test_a_ball_reach_does_not_hold_holds_no_kept_point(seed, apex):
+    """Reach.holds is False only for balls none of whose points Reach.keep keeps: balls of
+    1 to 60 mm about random centres, each filled with points (its surface and inside),
+    the keep of every point against the ball's answer; some balls are held and some not."""
+    from pollard_pin.painting.spray.deposition import Reach, spot_block
+
+    gun = Gun(standoff=0.15, sigma=0.01, flow=1.5e-7, apex=apex)
+    rng = np.random.default_rng(seed)
+    p, a, _, _ = _scene(seed, gun)
+    reach = Reach(gun, *spot_block(p[:16], a[:16]))
+    centres = np.column_stack([rng.uniform(-0.6, 0.6, (400, 2)), rng.uniform(-0.2, 0.2, 400)])
+    radii = rng.uniform(0.001, 0.06, 400)
+    u = rng.standard_normal((400, 64, 3))
+    u /= np.linalg.norm(u, axis=2, keepdims=True)
+    scale = np.where(np.arange(64) < 32, 1.0, rng.uniform(0, 1, 64))  # surface, inside
+    pts = centres[:, None] + radii[:, None, None] * scale[None, :, None] * u
+    held = reach.holds(centres, radii)
+    kept = reach.keep(pts.reshape(-1, 3)).reshape(400, 64).any(axis=1)
+    assert not (kept & ~held).any()
+    assert held.any() and not held.all() and kept.any()
+
+
 def test_film_of_the_kept_points_is_the_dense_film():
     """film() (each block on the points near_spot keeps) against the trapezoid rule over
     the dense rate of every pair: equal to 1e-14 of the largest film (achieved 1.5e-16, the
