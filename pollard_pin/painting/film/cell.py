@@ -91,17 +91,15 @@ def cell_panel_film(cell, resolution: float | None = None):
 
 
 def cell_part_film(cell, resolution: float | None = None):
-    """(film points, :class:`.film.mesh.MeshFilm` summed over the robots, painted mask,
-    transfer efficiency) of a part cell: the world part at t = 0 (``cell.part``), every
-    robot's film with shadows and its trigger."""
-    from .part import live_faces
-    from .points import surface_points
+    """(film points (:func:`.film.part.film_points` of every robot's tips), the
+    :class:`.film.mesh.MeshFilm` summed over the robots, painted mask, transfer efficiency)
+    of a part cell: the world part at t = 0 (``cell.part``), every robot's film with shadows
+    and its trigger."""
+    from .part import film_points
 
     job, part = cell.job, cell.part
     guns = [world_gun(rp) for rp in cell.robots]
-    tips = np.concatenate([p[s > 0] for _, p, _, s in guns])
-    faces = live_faces(part, tips) | part.painted
-    pts = surface_points(part, resolution, sigma=job.sigma, faces=faces)
+    pts = film_points(part, np.concatenate([p[s > 0] for _, p, _, s in guns]), job, resolution)
     films = [mesh_film(gun_of(job), t, p, a, pts, part, s) for t, p, a, s in guns]
     f = MeshFilm(sum(x.thickness for x in films), sum(x.error_estimate for x in films),
                  sum(x.pairs for x in films), sum(x.shaded for x in films),

@@ -112,25 +112,28 @@ def seen_from_tips(part: Part, tips, faces=None, spacing: float | None = None,
     return out
 
 
+def film_points(part: Part, tips, job, resolution: float | None = None):
+    """The film points of a part that gun tips ``tips`` (T, 3; the part's frame) spray: on
+    the painted faces, and on every face a tip lies in front of and sees (:func:`live_faces`,
+    :func:`seen_from_tips`, docs/model.md §23), so the volume landed on the points is the
+    volume landed on the part. The faces not painted, whose film counts only in that volume,
+    take points COARSE_SIGMAS × σ apart (:func:`.film.points.strips`); the painted faces the
+    lattice at ``resolution``. One rule for a robot's film and a cell's."""
+    live = live_faces(part, tips) & ~part.painted
+    seen = seen_from_tips(part, tips, live)
+    return surface_points(part, resolution, sigma=job.sigma, faces=seen | part.painted,
+                          coarse=(seen, max(COARSE_SIGMAS * job.sigma,
+                                            part_resolution(job, resolution))))
+
+
 def surface_film(plan: SurfacePlan, resolution: float | None = None):
-    """(film points on the painted faces and on every face a tip lies in front of and sees,
-    their film :class:`.film.mesh.MeshFilm`, the painted mask over the points, the transfer
-    efficiency): the film of the plan's path with shadows and the trigger. Faces behind every
-    tip get exactly nothing (:func:`live_faces`), faces dark from every tip at their probes
-    only what pairs outside the spot would bring (:func:`seen_from_tips`, docs/model.md §23),
-    so the volume landed on the points is the volume landed on the part. The faces not
-    painted, whose film counts only in that volume, take points COARSE_SIGMAS × σ apart
-    (:func:`.film.points.strips`; the painted faces the lattice at ``resolution``)."""
+    """(film points (:func:`film_points`), their film :class:`.film.mesh.MeshFilm`, the
+    painted mask over the points, the transfer efficiency): the film of the plan's path with
+    shadows and the trigger. Faces behind every tip get exactly nothing, faces dark from every
+    tip at their probes only what pairs outside the spot would bring."""
     job = plan.job
     tr = plan.trajectory
-    on = plan.spray > 0
-    tips = tr.poses[on, :3]
-    live = live_faces(plan.part, tips) & ~plan.part.painted
-    seen = seen_from_tips(plan.part, tips, live)
-    # the faces not painted count only in the landed volume: points σ apart (§23)
-    pts = surface_points(plan.part, resolution, sigma=job.sigma, faces=seen | plan.part.painted,
-                         coarse=(seen, max(COARSE_SIGMAS * job.sigma,
-                                           part_resolution(job, resolution))))
+    pts = film_points(plan.part, tr.poses[plan.spray > 0, :3], job, resolution)
     axes = rotation(tr.poses)  # the spot turns with the gun (docs/model.md §20)
     film: MeshFilm = mesh_film(gun_of(job), tr.t, tr.poses[:, :3], axes, pts, plan.part,
                                plan.spray)
@@ -139,4 +142,4 @@ def surface_film(plan: SurfacePlan, resolution: float | None = None):
 
 
 __all__ = ["COARSE_SIGMAS", "NEAR_TIPS", "PAIR_BLOCK", "PROBE_PULL", "TIP_BLOCK", "face_probes",
-           "live_faces", "part_resolution", "seen_from_tips", "surface_film"]
+           "film_points", "live_faces", "part_resolution", "seen_from_tips", "surface_film"]

@@ -168,12 +168,12 @@ def test_just_below_the_pace_a_retry_adds_only_the_time_needed(robot, act, monke
 
     plain, tried = dwell.plan_world, []
 
-    def plan_world(robot_, act_, prog, speed, e, policy):
+    def plan_world(robot_, act_, prog, speed, e, policy, screen=False):
         rel = prog.build(prog.guess)
         tried.append(rel.kind.count("wait"))
         if "wait" not in rel.kind and dwell.drift_along(rel, speed, e) < 0:
             raise LineSpeedError("drifts back out of the reach", False, "drifts back")
-        return plain(robot_, act_, prog, speed, e, policy)
+        return plain(robot_, act_, prog, speed, e, policy, screen=screen)
 
     monkeypatch.setattr(dwell, "plan_world", plan_world)
     slow = plan_cell_job(robot, cell_job(panel_cell(speed=0.0189)), act)  # paces ≈ 0.0191
