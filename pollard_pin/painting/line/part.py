@@ -2,10 +2,12 @@
 (§23) across the travel, leading end first, one coat, as the line's relative program; the
 world path, its checks and the fastest speed are :mod:`.line.phases`' as for a panel.
 
-The pass layout is the still part's (:func:`.passes.surface.surface_layout` at its least smoothing):
-the still planner widens the normal's averaging where the motors cannot follow the passes,
-which needs the passes in reach, and a part longer than the reach is never all in reach at
-one pose; on the line a pass the motors cannot follow is refused on the world path instead.
+The pass layout is the still part's (:func:`.passes.surface.surface_layout`), its normal's
+averaging the least the motors follow on the passes alone, each moved along the line into the
+robot's base plane, where the line's window lies (:func:`pass_use`): a part longer than the
+reach is never all in reach at one pose, as the still planner's rule needs. A step the passes
+cross (a handle proud of a drawer's front) then takes a wider averaging instead of a motor
+over its rating at every line speed; the world path's checks still decide.
 """
 from __future__ import annotations
 
@@ -16,9 +18,11 @@ import numpy as np
 
 from ...dynamics.motors import Actuators
 from ...paths.trajectory import Trajectory
+from ..checks.motion import motion
+from ..errors import ReachError
 from ..job import PartJob
 from ..passes.program import Program, build_program, pass_pieces
-from ..passes.surface import SurfaceLayout, pass_speed, surface_frame, surface_layout
+from ..passes.surface import SMOOTHING, SurfaceLayout, pass_speed, surface_frame, surface_layout
 from ..plan.part import SurfacePlan, time_step
 from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
@@ -108,14 +112,43 @@ def plan_line_part(robot, job: PartJob, act: Actuators, speed: float | None = No
                     policy, check, always, job.source)
 
 
+def pass_use(robot, act: Actuators, layout: SurfaceLayout, pieces, speed: float, e
+             ) -> float | None:
+    """The motors' peak utilisation on the passes alone (``pieces``' first len(passes), at
+    their samples), each pass moved along the line ``e`` to have its middle in the robot's base
+    plane (e·x = 0, where the line's window lies) and the line's ``speed`` added to its rate
+    (docs/model.md §24); None where a pass is out of reach there (the world path says it)."""
+    e = np.asarray(e, dtype=float)
+    ev = []
+    for p in pieces[:len(layout.passes)]:
+        q, d, a = p.evaluate(np.linspace(0.0, p.duration, len(layout.passes[p.index].s)))
+        q, d = np.array(q, dtype=float), np.array(d, dtype=float)
+        q[:, :3] -= float(q[:, :3].mean(axis=0) @ e) * e
+        d[:, :3] += speed * e
+        ev.append((q, d, a))
+    try:
+        m = motion(robot, act, *(np.concatenate([x[i] for x in ev]) for i in range(3)))
+    except ReachError:
+        return None
+    return float(m.utilisation.max())
+
+
 def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) -> LinePartPlan:
     """The part's plan with ``strokes`` (:func:`plan_line_part`)."""
     e = np.asarray(job.line.direction, float)
     horizontal = across(strokes, across_the_travel(part, e))
     job_x = replace(job, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part, job_x, policy=policy), e, strokes.start)
-    v = pass_speed(job_x, layout.spacing)
-    pieces = pass_pieces(layout, v, 1)
+    smoothing = 0.0
+    while True:  # the least averaging whose passes the motors follow (pass_use)
+        layout = leading_first(surface_layout(part, job_x, min_smoothing=smoothing,
+                                              policy=policy), e, strokes.start)
+        v = pass_speed(job_x, layout.spacing)
+        pieces = pass_pieces(layout, v, 1)
+        use = pass_use(robot, act, layout, pieces, speed, e)
+        wider = [w for w in SMOOTHING if w > layout.smoothing]
+        if use is None or use <= policy.utilisation or not wider:
+            break
+        smoothing = wider[0]
     dt = time_step(job_x, pieces, v, policy)
 
     def build(tau):
@@ -132,5 +165,5 @@ def _plan_part(robot, job, act, speed, part, policy, strokes: Strokes, clock) ->
                         ratios=world.ratios, timings={"plan": time.perf_counter() - clock})
 
 
-__all__ = ["LinePartPlan", "across_the_travel", "leading_first", "part_relative",
+__all__ = ["LinePartPlan", "across_the_travel", "leading_first", "part_relative", "pass_use",
            "plan_line_part"]

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from line_parts import write_line_part
+from line_parts import LINE_PART_TOML, write_line_part
 
 from pollard_pin.analytic.taskspace import rotation
 from pollard_pin.painting.errors import LineSpeedError, PlanError
@@ -146,3 +146,36 @@ def test_a_slow_line_waits_at_the_turnarounds(robot, act):
     mid = rel.start[waits] + rel.duration[waits] / 2
     assert rel.trigger(mid).max() == 0
     assert p.ratios["peak_torque"].max() <= 1.0 and p.ratios["speed"].max() <= 1.0
+
+
+def test_a_step_across_the_passes_widens_the_averaging(robot, act, tmp_path):
+    """A 0.30 × 0.12 m front with a bar 4 cm proud of it, 1 cm tall, across the vertical
+    passes (a drawer's handle, issue 42): at the least averaging the tip jumps 4 cm in depth
+    within a few mm of the pass, and the motors need over twice their rating on the passes,
+    whatever the line's speed; the line planner averages wider, until the passes alone are
+    within the utilisation, and the world path holds."""
+    import trimesh
+
+    from pollard_pin.painting.line.part import pass_use
+    from pollard_pin.painting.passes.program import pass_pieces
+    from pollard_pin.painting.passes.surface import SMOOTHING, pass_speed, surface_layout
+    from pollard_pin.painting.policy import DEFAULT_POLICY
+
+    front = trimesh.creation.box(bounds=[[0.70, -0.15, 0.10], [0.72, 0.15, 0.22]])
+    bar = trimesh.creation.box(bounds=[[0.66, -0.06, 0.155], [0.70, 0.06, 0.165]])
+    trimesh.util.concatenate([front, bar]).export(tmp_path / "strip.stl")
+    (tmp_path / "job.toml").write_text(LINE_PART_TOML)
+    job = load_job(tmp_path / "job.toml")
+    plan = plan_line(robot, job, act, clearance=False)
+    assert plan.job.direction == "vertical"
+    assert plan.layout.smoothing > SMOOTHING[0]
+    r = plan.ratios
+    assert r["peak_torque"].max() <= 1.0 and r["speed"].max() <= 1.0
+    e = np.asarray(job.line.direction, float)
+    v = pass_speed(plan.job, plan.layout.spacing)
+    use = pass_use(robot, act, plan.layout, pass_pieces(plan.layout, v, 1), 0.03, e)
+    assert use <= DEFAULT_POLICY.utilisation
+    least = surface_layout(plan.part, plan.job)  # the least averaging the gun follows
+    assert least.smoothing < plan.layout.smoothing
+    for speed in (0.0, 0.03):  # the step, not the line, needs the wider averaging
+        assert pass_use(robot, act, least, pass_pieces(least, v, 1), speed, e) > 2.0

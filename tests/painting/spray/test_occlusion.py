@@ -184,6 +184,28 @@ def test_faces_the_gun_cannot_see_are_not_painted():
     assert np.array_equal(seen_faces(part, 0.15), part.painted)
 
 
+def test_a_wall_deeper_than_the_standoff_behind_the_front_is_not_painted():
+    """A drawer's front (x 0.60–0.61, 0.4 × 0.1 m) and, 0.39 m behind it, its box's back wall
+    (x 1.00–1.01), both facing the robot: the wall's −x face lies wholly behind the front but
+    further behind it than the 0.15 m standoff, so a nozzle at the standoff alone sees it
+    (nothing between); the gun would stand inside the drawer. The ray runs on out of the part's
+    box and meets the front: only the front's two −x triangles are painted."""
+    from pollard_pin.painting.spray.occlusion import painted_part, seen_faces, visible
+
+    m = trimesh.util.concatenate([_slab(0.60, 0.61, half=0.2), _slab(1.00, 1.01, half=0.2)])
+    part = make_part(m.vertices, m.faces)
+    centre = part.vertices[part.faces].mean(axis=1)
+    facing = part.normals @ [-1.0, 0.0, 0.0] > 0.99
+    front, wall = facing & (centre[:, 0] < 0.65), facing & (centre[:, 0] > 0.95)
+    assert front.sum() == 2 and wall.sum() == 2 and np.array_equal(part.painted, front | wall)
+    at_standoff = visible(part, centre[wall] + 0.15 * part.normals[wall], centre[wall],
+                          part.normals[wall])
+    assert at_standoff.all()  # the standoff point lies between the two: not enough
+    assert np.array_equal(seen_faces(part, 0.15), front)
+    assert np.array_equal(painted_part(part, 0.15).painted, front)
+    assert painted_part(part, 0.15).painted_area == pytest.approx(0.4 * 0.1, rel=1e-12)
+
+
 def test_a_part_wholly_hidden_is_one_line():
     """The slab behind a sheet turned away from the robot (normal +x, not painted itself):
     every face towards the robot is hidden."""
