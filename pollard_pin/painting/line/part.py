@@ -23,7 +23,7 @@ from ..errors import ReachError
 from ..job import PartJob
 from ..passes.program import Program, build_program, pass_pieces
 from ..passes.surface import SMOOTHING, SurfaceLayout, pass_speed, surface_frame, surface_layout
-from ..plan.part import SurfacePlan, time_step
+from ..plan.part import SurfacePlan, pass_samples, time_step
 from ..plan.result import PlanResult
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.occlusion import load_painted_part
@@ -120,8 +120,7 @@ def pass_use(robot, act: Actuators, layout: SurfaceLayout, pieces, speed: float,
     (docs/model.md §24); None where a pass is out of reach there (the world path says it)."""
     e = np.asarray(e, dtype=float)
     ev = []
-    for p in pieces[:len(layout.passes)]:
-        q, d, a = p.evaluate(np.linspace(0.0, p.duration, len(layout.passes[p.index].s)))
+    for q, d, a in pass_samples(layout, pieces[:len(layout.passes)]):
         q, d = np.array(q, dtype=float), np.array(d, dtype=float)
         q[:, :3] -= float(q[:, :3].mean(axis=0) @ e) * e
         d[:, :3] += speed * e

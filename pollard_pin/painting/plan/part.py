@@ -60,10 +60,16 @@ class SurfacePlan(PlanResult):
         return self.part.painted_area * self.job.thickness / self.job.flow
 
 
+def pass_samples(layout: SurfaceLayout, pieces) -> list:
+    """Each pass piece's (poses, rates, accelerations) at its pass's surface samples: where
+    the motors are judged on the passes alone (the still planner's and the line's)."""
+    return [p.evaluate(np.linspace(0, p.duration, len(layout.passes[p.index].s)))
+            for p in pieces]
+
+
 def _pass_use(robot, act, layout: SurfaceLayout, pieces) -> float:
     """The motors' peak utilisation over one coat's passes (at their samples)."""
-    ev = [p.evaluate(np.linspace(0, p.duration, len(layout.passes[p.index].s)))
-          for p in pieces]
+    ev = pass_samples(layout, pieces)
     poses, d, dd = (np.concatenate([e[i] for e in ev]) for i in range(3))
     try:
         m = motion(robot, act, poses, d, dd)
@@ -239,4 +245,4 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
                                 "check": clock[3] - clock[2]})
 
 
-__all__ = ["SurfacePlan", "plan_surface", "time_step"]
+__all__ = ["SurfacePlan", "pass_samples", "plan_surface", "time_step"]
