@@ -60,11 +60,7 @@ def film_chunks(points: np.ndarray, samples: int) -> list[np.ndarray]:
     size = int(max(1, min(CHUNK_POINTS, CHUNK_PAIRS // max(samples, 1))))
     if P <= size:
         return [np.arange(P)]
-    lo, hi = points.min(axis=0), points.max(axis=0)
-    # cubes holding ~size points if the points filled the box's largest face evenly
-    span = np.sort(hi - lo)[::-1]
-    side = max(math.sqrt(span[0] * span[1] * size / P), span[0] * size / P, 1e-12)
-    cell = np.floor((points - lo) / side).astype(np.int64)
+    cell = _cubes(points, size)
     order = np.lexsort((cell[:, 2], cell[:, 1], cell[:, 0]))
     return [order[i:i + size] for i in range(0, P, size)]
 
@@ -113,43 +109,45 @@ def _spray(spray, n: int) -> np.ndarray:
     return s
 
 
+def _cubes(points: np.ndarray, size: int) -> np.ndarray:
+    """Each point's cube (P, 3) of cubes holding ~``size`` points if the points filled their
+    box's largest face evenly: the chunks' and their groups' one rule."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    span = np.sort(hi - lo)[::-1]
+    side = max(math.sqrt(span[0] * span[1] * size / len(points)),
+               span[0] * size / len(points), 1e-12)
+    return np.floor((points - lo) / side).astype(np.int64)
+
+
+def _bounding_balls(s, labels, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding balls' centres (n, 3) and radii (n,) of the points ``s`` labelled
+    ``labels`` (0..n−1): the centre the middle of the group's box."""
+    lower, upper = np.full((n, 3), np.inf), np.full((n, 3), -np.inf)
+    np.minimum.at(lower, labels, s)
+    np.maximum.at(upper, labels, s)
+    centres = 0.5 * (lower + upper)
+    radii = np.zeros(n)
+    np.maximum.at(radii, labels, np.linalg.norm(s - centres[labels], axis=1))
+    return centres, radii
+
+
 def _balls(s, groups) -> tuple[np.ndarray, np.ndarray]:
     """The bounding balls' centres (G, 3) and radii (G,) of groups of the points ``s``."""
-    ball = []
-    for idx in groups:
-        sc = s[idx]
-        centre = 0.5 * (sc.min(axis=0) + sc.max(axis=0))
-        ball.append((centre, float(np.linalg.norm(sc - centre, axis=1).max())))
-    return np.array([c for c, _ in ball]).reshape(-1, 3), np.array([r for _, r in ball])
+    labels = np.repeat(np.arange(len(groups)), [len(g) for g in groups])
+    return _bounding_balls(s[np.concatenate(groups)], labels, len(groups))
 
 
 def film_groups(s, chunks, size: int = GROUP_POINTS) -> tuple:
     """Each chunk's points cut into cubes of about ``size`` points (the chunks' rule,
     :func:`film_chunks`): (per chunk its points' group (global ids), the groups' bounding
     balls' centres (G, 3) and radii (G,))."""
-    labels, balls, radii, first = [], [], [], 0
+    labels, first = [], 0
     for idx in chunks:
-        sc = s[idx]
-        lo, hi = sc.min(axis=0), sc.max(axis=0)
-        span = np.sort(hi - lo)[::-1]
-        side = max(math.sqrt(span[0] * span[1] * size / len(idx)), span[0] * size / len(idx),
-                   1e-12)
-        _, g = np.unique(np.floor((sc - lo) / side).astype(np.int64), axis=0,
-                         return_inverse=True)
-        g = g.ravel()
-        n = int(g.max()) + 1
-        c = np.zeros((n, 3))
-        lower, upper = np.full((n, 3), np.inf), np.full((n, 3), -np.inf)
-        np.minimum.at(lower, g, sc)
-        np.maximum.at(upper, g, sc)
-        c = 0.5 * (lower + upper)
-        r = np.zeros(n)
-        np.maximum.at(r, g, np.linalg.norm(sc - c[g], axis=1))
-        labels.append(g + first)
-        balls.append(c)
-        radii.append(r)
-        first += n
-    return labels, np.concatenate(balls), np.concatenate(radii)
+        _, g = np.unique(_cubes(s[idx], size), axis=0, return_inverse=True)
+        labels.append(g.ravel() + first)
+        first = int(labels[-1].max()) + 1
+    centres, radii = _bounding_balls(s[np.concatenate(chunks)], np.concatenate(labels), first)
+    return labels, centres, radii
 
 
 def _reach(gun: Gun, s, o, chunks, summary) -> np.ndarray:
