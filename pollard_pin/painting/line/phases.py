@@ -348,11 +348,8 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
               "rms_torque": time_rms(tf[cyc], fine.torque[cyc])
               / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
-    worst = max(float(ratios["peak_torque"].max()), float(ratios["speed"].max()))
-    if worst > 1.0:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {100 * worst:.0f} % "
-                             "of its peak torque or speed", drift > 0,
-                             f"a motor at {100 * worst:.0f} % of its rating")
+    _motors_within(max(float(ratios["peak_torque"].max()), float(ratios["speed"].max())),
+                   speed, drift > 0)
     return World(rel, times, traj, spray, ratios)
 
 
@@ -364,10 +361,15 @@ def _screen(robot, act: Actuators, path, speed: float) -> None:
         m = motion(robot, act, *path)
     except ReachError:
         return
-    worst = max(float(m.torque_ratio.max()), float(m.speed_ratio.max()))
+    _motors_within(float(m.utilisation.max()), speed, False, "at least ")
+
+
+def _motors_within(worst: float, speed: float, too_fast: bool, least: str = "") -> None:
+    """The :class:`LineSpeedError` of a path whose motors' ``worst`` use is over 1 (``least``:
+    "at least " where only some samples were checked)."""
     if worst > 1.0:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs at least "
-                             f"{100 * worst:.0f} % of its peak torque or speed", False,
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {least}"
+                             f"{100 * worst:.0f} % of its peak torque or speed", too_fast,
                              f"a motor at {100 * worst:.0f} % of its rating")
 
 
