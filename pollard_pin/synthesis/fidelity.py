@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from ..checks import real
 from ..errors import InputError
 from ..painting.options import PaintOptions
 
@@ -39,9 +40,8 @@ class SearchFidelity:
     check_refine: int = 1
 
     def __post_init__(self):
-        f = self.film
-        if isinstance(f, bool) or not isinstance(f, (int, float)) or not 0 < f <= 1:
-            raise InputError(f"SearchFidelity.film = {f!r}: expected a spacing in σ in (0, 1]")
+        object.__setattr__(self, "film", real(self.film, "SearchFidelity.film", 0.0, 1.0,
+                                              above=True, why=" (a spacing in σ in (0, 1])"))
         for name in ("clearance_stride", "check_refine"):
             c = getattr(self, name)
             if isinstance(c, bool) or not isinstance(c, int) or c < 1:

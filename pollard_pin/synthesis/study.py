@@ -90,7 +90,7 @@ class DesignOptions:
         (:mod:`~pollard_pin.synthesis.ladder`; False: NSGA-II's random first generation).
     search : SearchFidelity or None
         How the search plans a design that passes the screen (default
-        :class:`~pollard_pin.synthesis.evaluation.SearchFidelity`: the film on a coarser grid,
+        :class:`~pollard_pin.synthesis.SearchFidelity`: the film on a coarser grid,
         the clearance over fewer samples); the front and the baseline are planned again
         exactly before they are reported. None: every design planned exactly.
     """
