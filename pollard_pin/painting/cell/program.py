@@ -20,7 +20,13 @@ from ..errors import PlanError
 from ..line.dwell import dwell_time, plan_dwelling
 from ..line.panel import LinePlan, pass_direction, step_order
 from ..line.part import LinePartPlan, across_the_travel, leading_first
-from ..line.phases import LineProgram, one_coat, track, world_motion
+from ..line.phases import (
+    LineProgram,
+    one_coat,
+    track,
+    world_motion,
+    world_motion_reusing,
+)
 from ..line.strokes import Strokes, across
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
@@ -259,8 +265,10 @@ def seamed(world, speed: float, e, dt: float):
     seams = times.delay + rel.seam_times()
     if not len(seams):
         return world.trajectory, world.spray
-    t = with_samples(world.trajectory.t, seams, 1e-6 * dt)
-    poses, d, dd, spray = world_motion(rel, speed, e, times, t)
+    tr = world.trajectory
+    t = with_samples(tr.t, seams, 1e-6 * dt)
+    poses, d, dd, spray = world_motion_reusing(rel, speed, e, times, t, (tr.t, (
+        tr.poses, tr.d_poses, tr.dd_poses, world.spray)))
     traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
     return traj, seam_fractions(t, spray, seams, 1e-9 * max(1.0, float(t[-1])))

@@ -27,6 +27,7 @@ from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
 _RISE = SMOOTHSTEP.integ(lbnd=0.0)  # ∫ smoothstep: travels 1/2 over [0, 1]
+_RATE, _ACCEL = SMOOTHSTEP.deriv(), SMOOTHSTEP.deriv(2)  # made once: a search calls ~50 times
 
 
 
@@ -133,14 +134,14 @@ def world_motion(rel: Relative, speed: float, e, times: LineTimes, t):
     poses[before] = r0[0]
     poses[before, :3] += g[:, None] * e
     d[before, :3] = (speed * SMOOTHSTEP(x))[:, None] * e
-    dd[before, :3] = (speed / CATCH * SMOOTHSTEP.deriv()(x))[:, None] * e
+    dd[before, :3] = (speed / CATCH * _RATE(x))[:, None] * e
     slow = (t > E) & (t <= E + CATCH)
     x = (t[slow] - E) / CATCH
     g = speed * E + speed * CATCH * (x - _RISE(x))
     poses[slow] = r1[0]
     poses[slow, :3] += g[:, None] * e
     d[slow, :3] = (speed * (1 - SMOOTHSTEP(x)))[:, None] * e
-    dd[slow, :3] = (-speed / CATCH * SMOOTHSTEP.deriv()(x))[:, None] * e
+    dd[slow, :3] = (-speed / CATCH * _RATE(x))[:, None] * e
     back = t > E + CATCH
     if back.any():  # the whole pose, angles too: a part's gun turns between its passes
         a, b = r1[0].copy(), r0[0].copy()
@@ -148,9 +149,28 @@ def world_motion(rel: Relative, speed: float, e, times: LineTimes, t):
         b[:3] += hold * e
         x = np.clip((t[back] - E - CATCH) / times.back, 0.0, 1.0)
         poses[back] = a + SMOOTHSTEP(x)[:, None] * (b - a)
-        d[back] = (SMOOTHSTEP.deriv()(x) / times.back)[:, None] * (b - a)
-        dd[back] = (SMOOTHSTEP.deriv(2)(x) / times.back ** 2)[:, None] * (b - a)
+        d[back] = (_RATE(x) / times.back)[:, None] * (b - a)
+        dd[back] = (_ACCEL(x) / times.back ** 2)[:, None] * (b - a)
     return poses, d, dd, spray
+
+
+def world_motion_reusing(rel: Relative, speed: float, e, times: LineTimes, t, known):
+    """:func:`world_motion` at times ``t``, the rows of ``known`` = (its times, increasing;
+    (poses, rates, accelerations, spray) there) taken where a time of ``t`` is one of them bit
+    for bit, the rest evaluated: each row of :func:`world_motion` is its time's alone, so the
+    result is the same to the bit (a path's samples among its 4× finer check's, a seam's
+    samples among the path's)."""
+    t = np.asarray(t, dtype=float)
+    at, rows = np.asarray(known[0], dtype=float), known[1]
+    k = np.minimum(np.searchsorted(at, t), len(at) - 1)
+    hit = at[k] == t
+    out = [np.empty((len(t),) + np.shape(a)[1:]) for a in rows]
+    for o, a in zip(out, rows):
+        o[hit] = np.asarray(a)[k[hit]]
+    if not hit.all():
+        for o, a in zip(out, world_motion(rel, speed, e, times, t[~hit])):
+            o[~hit] = a
+    return tuple(out)
 
 
 def _drift(rel: Relative, speed: float, e, t):
@@ -166,7 +186,7 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     ``where`` (the gun's track) if none is ever in reach."""
     t = rel.coarse_times()
     poses = _drift(rel, speed, e, t)
-    anchor = _mid_along(rel, speed, e)
+    anchor = _mid(poses, e)  # _mid_along's, from the same poses
     lo, hi = speed * CATCH, speed * CATCH + SHIFT_RANGE
     found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
     if found is None and shift_window(lo, anchor) != (lo, hi):  # a robot far down the line
@@ -293,9 +313,10 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
     samples_budget(shift / speed + passes_time, dt, source, policy)
     centre = shift + _mid_along(rel, speed, e)
+    built = {np.asarray(guess, dtype=float).tobytes(): rel}  # the search starts at the guess
 
     def evaluate(tau):
-        r = build(tau)
+        r = built.pop(np.asarray(tau).tobytes(), None) or build(tau)
         x = centre - _mid_along(r, speed, e)
         pieces = r.not_passes()
         u = np.linspace(0.0, 1.0 - 1e-12, ns)
@@ -326,16 +347,22 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     samples_budget(times.total, dt, source, policy)
     steps = math.ceil((times.total - times.delay) / dt - 1e-9)  # the program's, on
     t = path_times(times, steps)
-    poses, d, dd, spray = world_motion(rel, speed, e, times, t)
-    traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
-                      curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
     tf = path_times(times, policy.check_refine * steps)
     drift = _drift_along(rel, speed, e)
     r = policy.check_refine  # a power of two: the check's times hold the path's, bit for bit
-    if screen and drift <= 0 and r > 1 and r & (r - 1) == 0:
+    screened = screen and drift <= 0 and r > 1 and r & (r - 1) == 0
+    if screened:  # the path first: the screen may refuse it before the finer samples
+        poses, d, dd, spray = world_motion(rel, speed, e, times, t)
+    else:  # the path's samples among the check's
+        checked = world_motion(rel, speed, e, times, tf)
+        poses, d, dd, spray = world_motion_reusing(rel, speed, e, times, t, (tf, checked))
+    traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
+                      curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
+    if screened:
         _screen(robot, act, (poses, d, dd), speed)
+        checked = world_motion(rel, speed, e, times, tf)
     try:
-        fine = motion(robot, act, *world_motion(rel, speed, e, times, tf)[:3])
+        fine = motion(robot, act, *checked[:3])
     except ReachError as exc:
         said = f"at line speed {speed:.4g} m/s the path leaves the workspace at t = " \
                f"{tf[exc.sample]:.3f} s"
@@ -433,7 +460,12 @@ def _drift_along(rel: Relative, speed: float, e) -> float:
 
 def _mid_along(rel: Relative, speed: float, e) -> float:
     """The middle, along the line, of the program's world extent at shift 0."""
-    along = _drift(rel, speed, e, rel.coarse_times())[:, :3] @ e
+    return _mid(_drift(rel, speed, e, rel.coarse_times()), e)
+
+
+def _mid(poses, e) -> float:
+    """The middle of ``poses``' extent along e."""
+    along = poses[:, :3] @ e
     return 0.5 * float(along.min() + along.max())
 
 
@@ -455,4 +487,5 @@ def _return_time(robot, act, rel: Relative, speed: float, e, delay: float,
 
 
 __all__ = ["CATCH", "LineProgram", "LineTimes", "Relative", "World", "choose_shift",
-           "line_shift", "one_coat", "path_times", "plan_world", "track", "world_motion"]
+           "line_shift", "one_coat", "path_times", "plan_world", "track", "world_motion",
+           "world_motion_reusing"]

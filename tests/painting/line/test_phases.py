@@ -206,3 +206,45 @@ def test_same_film_figures_upstream(line_job, line_plan, line_part_example_job,
               for f in (fa, fb))
     for key in ("min", "max", "mean", "within_5pct", "within_10pct"):
         assert sb[key] == pytest.approx(sa[key], rel=1e-9), key
+
+
+def test_world_motion_reusing_takes_known_rows_and_evaluates_the_rest():
+    """world_motion_reusing gives world_motion's own arrays at the times asked, bit for bit
+    (the hold, catch-up, program, slow-down and return alike), evaluating the program only
+    at the times not among the known ones: the path's samples from its 4× finer check, a
+    seam's samples inserted among the path's."""
+    from pollard_pin.painting.line.phases import (
+        LineTimes,
+        path_times,
+        world_motion,
+        world_motion_reusing,
+    )
+
+    start, dur = np.array([0.0, 1.0, 3.0, 4.0, 6.0]), np.array([1.0, 2.0, 1.0, 2.0, 1.0])
+    kind = ("ramp", "pass", "turn", "pass", "ramp")
+    asked = []
+
+    def motion(t):
+        asked.append(len(t))
+        p = np.column_stack([np.sin(t), np.cos(0.3 * t), t ** 2 / 7, 0.1 * t, np.exp(-t),
+                             np.sqrt(1 + t)])
+        return p, np.cos(p), np.sin(p)
+
+    rel = Relative(motion, start, dur, kind, passes_only=True)
+    e = np.array([0.0, 0.6, 0.8])
+    times = LineTimes(3.3, 3.3 + rel.total, 1.7)
+    t, tf = path_times(times, 997), path_times(times, 4 * 997)
+    fine = world_motion(rel, 0.02, e, times, tf)
+    asked.clear()
+    got = world_motion_reusing(rel, 0.02, e, times, t, (tf, fine))
+    assert asked == []  # the path's samples all known: the program not evaluated
+    want = world_motion(rel, 0.02, e, times, t)
+    for a, b in zip(got, want):
+        assert a.shape == b.shape and a.tobytes() == b.tobytes()
+    seams = np.array([4.1234567, 7.5, 9.99])  # new samples among the path's
+    t2 = np.unique(np.concatenate([t, seams]))
+    asked.clear()
+    got = world_motion_reusing(rel, 0.02, e, times, t2, (t, want))
+    assert sum(asked) == 2 + len(seams)  # the program's ends and the new samples alone
+    for a, b in zip(got, world_motion(rel, 0.02, e, times, t2)):
+        assert a.tobytes() == b.tobytes()
