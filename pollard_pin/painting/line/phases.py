@@ -317,12 +317,15 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
 
     def evaluate(tau):
         r = built.pop(np.asarray(tau).tobytes(), None) or build(tau)
-        x = centre - _mid_along(r, speed, e)
         pieces = r.not_passes()
         u = np.linspace(0.0, 1.0 - 1e-12, ns)
         tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
-        p, v, a = r.evaluate(tt)
-        p, v = line_shift(p, v, tt + x / speed, speed, e)
+        ct, n = r.coarse_times(), len(tt)
+        # the samples and _mid_along's coarse times in one evaluation (row by row the same)
+        p, v, a = r.evaluate(np.concatenate([tt, ct]))
+        x = centre - _mid(line_shift(p[n:], v[n:], ct, speed, e)[0], e)
+        p, v = line_shift(p[:n], v[:n], tt + x / speed, speed, e)
+        a = a[:n]
         try:
             m = motion(robot, act, p, v, a)
         except ReachError:  # per τ, as below: a slow line's turn halves and wait share one
