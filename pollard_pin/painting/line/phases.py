@@ -22,7 +22,7 @@ from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
-from .reach import ball_shift_range, out_of_reach, unreachable_passes
+from .reach import ball_shift_range, coarse_to_fine, out_of_reach, unreachable_passes
 from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
 CATCH = 0.5  # s: the robot speeds up to (and down from) the line's speed over this time
@@ -216,16 +216,25 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
 
 
 def _in_reach_somewhere(robot, poses, e, xs) -> np.ndarray:
-    """Per pose, whether it is in reach at some shift of ``xs`` along e, each judged alone."""
-    p = np.repeat(np.asarray(poses, float)[None], len(xs), axis=0)  # (X, S, 6)
-    p[..., :3] += np.asarray(xs, float)[:, None, None] * e
-    return reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(len(xs), -1).any(axis=0)
+    """Per pose, whether it is in reach at some shift of ``xs`` along e, each judged alone
+    (the shifts coarse to fine, a pose found no longer tried)."""
+    poses, xs = np.asarray(poses, float), np.asarray(xs, float)
+    found = np.zeros(len(poses), dtype=bool)
+    for cols in coarse_to_fine(len(xs)):
+        todo = np.flatnonzero(~found)
+        if not len(todo):
+            break
+        p = np.repeat(poses[None, todo], len(cols), axis=0)  # (X', S', 6)
+        p[..., :3] += xs[cols][:, None, None] * e
+        found[todo] = reachable_sequences(robot, p.reshape(-1, 1, 6)).reshape(
+            len(cols), -1).any(axis=0)
+    return found
 
 
 def _off_passes_out(robot, rel: Relative, t, e) -> str:
     """The ramps and turnarounds of ``rel`` (at the coarse times ``t``) of which a sample,
     without the drift, is in reach at no shift along e at all (every SHIFT_STEP over the
-    reach ball's span, every fourth first), each judged alone, in words ('' if none): then
+    reach ball's span, coarse to fine), each judged alone, in words ('' if none): then
     no line speed keeps the program in reach."""
     i = np.clip(np.searchsorted(rel.start, t, side="right") - 1, 0, len(rel.start) - 1)
     off = np.flatnonzero([rel.kind[k] != "pass" for k in i])
@@ -236,10 +245,7 @@ def _off_passes_out(robot, rel: Relative, t, e) -> str:
     if span is None:
         return ""  # nothing near the reach: the passes' own refusal covers it
     xs = np.arange(span[0], span[1] + SHIFT_STEP, SHIFT_STEP)
-    off = off[~_in_reach_somewhere(robot, poses, e, xs[::4])]
-    if len(off):
-        poses = rel.evaluate(t[off])[0]
-        off = off[~_in_reach_somewhere(robot, poses, e, xs)]
+    off = off[~_in_reach_somewhere(robot, poses, e, xs)]  # every fourth among the first
     if not len(off):
         return ""
     before = np.cumsum([k == "pass" for k in rel.kind])  # passes up to each piece

@@ -99,6 +99,19 @@ def _ball_shifts(params, points, e, lo: float, hi: float, most: int) -> np.ndarr
     return a + np.arange(0.0, b - a + step / 2, step)
 
 
+def coarse_to_fine(n: int, coarsest: int = 16) -> list[np.ndarray]:
+    """The indices 0..n−1 in rounds, every ``coarsest``-th first (a power of two), then the
+    middles of the gaps left, halving: each index once. A scan that drops what an early
+    round settles (a pass all in reach at some shift, a sample in reach somewhere) tries
+    the rest in full."""
+    out = [np.arange(0, n, coarsest)]
+    s = coarsest
+    while s > 1:
+        out.append(np.arange(s // 2, n, s))
+        s //= 2
+    return [r for r in out if len(r)]
+
+
 def _longest_run(ok: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The longest run of True along the last axis of ``ok``: its length and its start."""
     best = np.zeros(ok.shape[:-1], dtype=int)
@@ -126,12 +139,22 @@ def unreachable_passes(robot, rel, e, lo: float, hi: float) -> tuple[list[PassRe
         np.diff(poses[..., :3], axis=1), axis=2), axis=1)], axis=1)  # (P, K) arc length
     rise = poses[:, -1, 2] - poses[:, 0, 2]
     if len(xs):
-        shifted = np.repeat(poses[:, None], len(xs), axis=1)  # (P, X, K, 6)
-        shifted[..., :3] += xs[None, :, None, None] * e
-        flat = shifted.reshape(-1, 6)
-        ok = np.concatenate([evaluate(robot, flat[i:i + CHUNK])["reachable"] > 0
-                             for i in range(0, len(flat), CHUNK)])
-        run, first = _longest_run(ok.reshape(len(pieces), len(xs), PASS_SAMPLES))
+        ok = np.zeros((len(pieces), len(xs), PASS_SAMPLES), dtype=bool)
+        live = np.ones(len(pieces), dtype=bool)  # not yet all in reach at a shift tried
+        for cols in coarse_to_fine(len(xs)):
+            rows = np.flatnonzero(live)
+            if not len(rows):
+                break
+            shifted = np.repeat(poses[rows, None], len(cols), axis=1)  # (P', X', K, 6)
+            shifted[..., :3] += xs[cols][None, :, None, None] * e
+            flat = shifted.reshape(-1, 6)
+            got = np.concatenate([evaluate(robot, flat[i:i + CHUNK])["reachable"] > 0
+                                  for i in range(0, len(flat), CHUNK)])
+            ok[np.ix_(rows, cols)] = got.reshape(len(rows), len(cols), PASS_SAMPLES)
+            live[rows] = ~ok[np.ix_(rows, cols)].all(axis=2).any(axis=1)
+        # a pass all in reach at some shift is not reported, whatever its other shifts say;
+        # every other pass was tried at every shift
+        run, first = _longest_run(ok)
     else:
         run = first = np.zeros((len(pieces), 1), dtype=int)
     best = np.argmax(run, axis=1)
@@ -183,4 +206,4 @@ def out_of_reach(passes: list[PassReach], total: int) -> str:
 
 
 __all__ = ["CHUNK", "MAX_POSES", "PASS_SAMPLES", "PassReach", "SCAN_STEP", "ball_shift_range",
-           "numbers", "out_of_reach", "reach_ball", "unreachable_passes"]
+           "coarse_to_fine", "numbers", "out_of_reach", "reach_ball", "unreachable_passes"]

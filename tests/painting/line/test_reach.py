@@ -162,3 +162,25 @@ def test_out_of_reach_says_why():
         "passes 1, 3–4 of 5" + head + "no part of pass 3 (0.200 m, its middle at (0.700, "
         "-0.900, 0.160) m at t = 0) is ever in reach")
     assert not one.nowhere and one.side() == "both ends"
+
+
+@pytest.mark.parametrize("coarsest", [1, 2, 16])
+def test_coarse_to_fine_tries_every_index_once(coarsest):
+    """The scans' rounds (unreachable_passes, the turnarounds' reach in phases.py): every
+    index of 0..n−1 exactly once, every ``coarsest``-th in the first round, each round's
+    indices the middles of the gaps the rounds before left."""
+    from pollard_pin.painting.line.reach import coarse_to_fine
+
+    for n in list(range(0, 40)) + [401, 1000]:
+        rounds = coarse_to_fine(n, coarsest)
+        flat = np.concatenate(rounds) if rounds else np.empty(0, int)
+        assert sorted(flat.tolist()) == list(range(n))  # each once
+        assert all(len(r) for r in rounds)
+        if n:
+            assert rounds[0].tolist() == list(range(0, n, coarsest))
+        seen = set()
+        for r in rounds:  # each index halfway between two of the rounds before (or the end)
+            step = min((b - a for a, b in zip(sorted(seen), sorted(seen)[1:])), default=None)
+            if seen and step is not None:
+                assert all((i - step // 2) in seen for i in r.tolist())
+            seen |= set(r.tolist())
