@@ -144,7 +144,27 @@ def hung(tmp_path_factory):
     return folder / "out" / "under"
 
 
-def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path):
+@pytest.fixture(scope="module")
+def hung_run(hung, tmp_path_factory):
+    """`run --quiet` of the hung robot's path.csv, once per module (the gravity and the
+    simulation tests read it): (exit code, standard error, its run.csv)."""
+    import contextlib
+    import io
+
+    from cli_run import check_refusal
+
+    from pollard_pin.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    path = tmp_path_factory.mktemp("hung_run") / "run.csv"
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(["run", "--trajectory", str(hung / "path.csv"), "--out", str(path),
+                     "--quiet"])
+    check_refusal(err.getvalue())
+    return code, err.getvalue(), path
+
+
+def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, hung_run, capsys, tmp_path):
     """`run` of the hung robot's path.csv reads gravity +z from its metadata: its torques are
     the planner's (the motor check of painting/checks/motion.py with the base's gravity), and far
     from a default-gravity run's (the same file without its metadata)."""
@@ -157,12 +177,11 @@ def test_a_hung_robots_path_runs_with_its_gravity(robot, hung, capsys, tmp_path)
 
     meta = json.loads((hung / "path.units.json").read_text())["metadata"]
     assert meta["gravity_base"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)  # round trip
-    code, _, err = run_cli(["run", "--trajectory", hung / "path.csv", "--out",
-                            tmp_path / "run.csv", "--quiet"], capsys)
+    code, err, run_csv = hung_run  # `run` of hung / "path.csv"
     assert code == 0, err
     notes = [s for s in err.splitlines() if "gravity" in s]
     assert len(notes) == 1 and notes[0].startswith("note: gravity (0, ") and "9.81" in notes[0]
-    run = read_result(tmp_path / "run.csv")
+    run = read_result(run_csv)
     assert run.metadata["options"]["gravity"] == pytest.approx([0.0, 0.0, 9.81], abs=1e-12)
     tr = from_csv(hung / "path.csv")
     act = load_actuators(ACT)
@@ -215,7 +234,8 @@ def test_a_bad_gravity_is_one_line(hung, capsys, tmp_path, g, why):
     assert not (tmp_path / "run.csv").exists() and not (tmp_path / "size.md").exists()
 
 
-def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, capsys, tmp_path):
+def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, hung_run, capsys,
+                                                      tmp_path):
     """`simulate` (computed torque, no actuators) of the hung robot's path.csv: its torques are
     `run`'s at the median sample (the controller's model and plant both carry gravity +z);
     the same file without its metadata simulates under −z, far from them."""
@@ -226,12 +246,15 @@ def test_a_hung_robots_path_simulates_with_its_gravity(robot, hung, capsys, tmp_
     tables = {}
     for name, path in (("run", hung / "path.csv"), ("sim", hung / "path.csv"),
                        ("bare", bare)):
-        cmd = "run" if name == "run" else "simulate"
-        code, _, err = run_cli([cmd, "--trajectory", path, "--out", tmp_path / f"out_{name}.csv",
-                                "--quiet"], capsys)
+        if name == "run":  # `run --quiet` of hung / "path.csv": the module's
+            code, err, out = hung_run
+        else:
+            out = tmp_path / f"out_{name}.csv"
+            code, _, err = run_cli(["simulate", "--trajectory", path, "--out", out, "--quiet"],
+                                   capsys)
         assert code == 0, err
         assert ("note: gravity (0, 0, 9.81)" in err) is (name != "bare"), err
-        tables[name] = read_result(tmp_path / f"out_{name}.csv").columns
+        tables[name] = read_result(out).columns
     names = [f"tau_{n}" for n in robot.actuated]
     want = np.column_stack([tables["run"][n] for n in names])
     scale = np.abs(want).max()
