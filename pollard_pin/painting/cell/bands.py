@@ -36,7 +36,6 @@ MARGIN = 0.1  # m: the strokes continued this far past the part's extent along t
 MAX_STROKES = 24  # distinct stroke shapes checked at most (evenly chosen, ends included)
 CHUNK = 50_000  # poses per call of the workspace rules
 SAME = 1e-6  # m: two strokes the same shape up to a shift along the line
-BENT_ANGLE = 10.0  # deg: a spray axis turned further from the facing bends the strokes
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,9 +48,7 @@ class Strokes:
     run-on [m] (4σ on a panel, 3σ on a part, within a finite spot's reach:
     :func:`.passes.raster.spot_runon`), ``runout`` R = 4σ (so bounded) past a seam;
     ``panel``: the gun's roll referred to base z (a panel's frame), else to
-    :func:`.passes.surface.reference_axis` of the facing; ``room`` [m] a seam keeps past
-    its run-outs where it can, for the ramps and turnarounds beyond (:func:`ramp_room`;
-    0 unless the strokes bend towards an edge)."""
+    :func:`.passes.surface.reference_axis` of the facing."""
 
     axis: np.ndarray
     facing: np.ndarray
@@ -61,7 +58,6 @@ class Strokes:
     run_on: float
     runout: float
     panel: bool
-    room: float = 0.0
 
     def needed(self, lo: float, hi: float) -> tuple[float, float]:
         """The stretch of the axis a zone [lo, hi] (±inf: a free edge) needs in reach: R past
@@ -149,7 +145,7 @@ def part_strokes(job: PartJob, part=None) -> Strokes:
     """A part's surface passes on the line (:func:`.passes.surface.surface_layout`, run
     across the travel); ``part`` its painted mesh if already read."""
     from ..line.part import across_the_travel
-    from ..passes.surface import pass_speed, surface_layout
+    from ..passes.surface import surface_layout
     from ..spray.occlusion import load_painted_part
 
     part = load_painted_part(job) if part is None else part
@@ -165,23 +161,10 @@ def part_strokes(job: PartJob, part=None) -> Strokes:
         keep = np.concatenate([[True], np.diff(w) > 1e-9])
         samples.append((w[keep], p.tip[order][keep], p.axis[order][keep]))
     ext = part.vertices[part.faces[part.painted]].reshape(-1, 3) @ axis
-    f = np.asarray(part.facing, float) / np.linalg.norm(part.facing)
-    bent = min(float((-p.axis @ f).min()) for p in layout.passes) < math.cos(
-        math.radians(BENT_ANGLE))
     return Strokes(axis, np.asarray(part.facing, float), e, tuple(samples),
                    (float(ext.min()), float(ext.max())),
                    spot_runon(job.sigma, job.spot, EXTENSION), spot_runon(job.sigma, job.spot),
-                   False, ramp_room(pass_speed(job_x, layout.spacing)) if bent else 0.0)
-
-
-def ramp_room(speed: float, policy=None) -> float:
-    """How far [m] a ramp runs past its pass's end at the duration search's first guess:
-    v·τ/2 at pass ``speed`` v, τ = ``policy.first_guess(v)`` (a turnaround overshoots
-    0.31·v·τ); the room a seam keeps past its run-outs where the strokes bend
-    (docs/model.md §26.2)."""
-    from ..policy import DEFAULT_POLICY
-
-    return speed * (policy or DEFAULT_POLICY).first_guess(speed) / 2
+                   False)
 
 
 def job_strokes(job, part=None, facing=None) -> Strokes:
@@ -322,6 +305,6 @@ def robot_band(robot, cell_robot: CellRobot, strokes: Strokes, margin: float = M
     return Band(cell_robot.name, float(w[j]), float(w[j + n - 1]), reached, held)
 
 
-__all__ = ["BENT_ANGLE", "Band", "CHUNK", "MARGIN", "MAX_STROKES", "SHIFT_STEP", "STEP",
-           "Strokes", "axis_name", "base_poses", "cell_axis", "distinct", "job_strokes",
-           "panel_strokes", "part_strokes", "ramp_room", "robot_band"]
+__all__ = ["Band", "CHUNK", "MARGIN", "MAX_STROKES", "SHIFT_STEP", "STEP", "Strokes",
+           "axis_name", "base_poses", "cell_axis", "distinct", "job_strokes", "panel_strokes",
+           "part_strokes", "robot_band"]

@@ -19,12 +19,12 @@ from ...paths.trajectory import Trajectory
 from ..errors import PlanError
 from ..line.dwell import dwell_time, plan_dwelling
 from ..line.panel import LinePlan, pass_direction, step_order
-from ..line.part import LinePartPlan, across_the_travel, leading_first, pass_use
+from ..line.part import LinePartPlan, across_the_travel, leading_first
 from ..line.phases import LineProgram, one_coat, track, world_motion
 from ..line.strokes import Strokes, across
 from ..passes.program import PassPiece, build_program, pass_pieces
 from ..passes.raster import raster_motion, raster_segments
-from ..passes.surface import SMOOTHING, pass_speed, surface_layout
+from ..passes.surface import pass_speed, surface_layout
 from ..plan.layout import panel_layout
 from ..plan.part import time_step
 from ..policy import DEFAULT_POLICY, PlannerPolicy
@@ -223,31 +223,18 @@ def _poses(layout, piece):
     return pass_poses(layout)[piece.index]
 
 
-def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY,
-                 motors=None):
+def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY):
     """(LineProgram, job, layout, pass speed) of the part (``part_b``, base frame) for one
-    robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs;
-    ``motors`` (robot, actuators, line speed): the averaging widened until the motors
-    follow the zone's passes, as a line job's (:func:`.line.part.pass_use`)."""
+    robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs."""
     strokes = cell_strokes(policy)
     horizontal = across(strokes, across_the_travel(part_b, e))
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    pick = whole_pieces if strokes.direction == "along" else zone_pieces
-    smoothing = 0.0
-    while True:  # the least averaging whose zone's passes the motors follow (§24)
-        layout = leading_first(surface_layout(part_b, job_x, min_smoothing=smoothing,
-                                              policy=policy), e, strokes.start)
-        v = pass_speed(job_x, layout.spacing)
-        full = pass_pieces(layout, v, 1)
-        pieces, windows = pick(layout, full, view, job_x.standoff)
-        wider = [w for w in SMOOTHING if w > layout.smoothing]
-        if motors is None or not wider:
-            break
-        use = pass_use(*motors[:2], layout, pieces, motors[2], e)
-        if use is None or use <= policy.utilisation:
-            break
-        smoothing = wider[0]
+    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e, strokes.start)
+    v = pass_speed(job_x, layout.spacing)
+    full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike
+    pick = whole_pieces if strokes.direction == "along" else zone_pieces
+    pieces, windows = pick(layout, full, view, job_x.standoff)
 
     def build(tau):
         prog = build_program(pieces, tau)
@@ -291,8 +278,7 @@ def plan_zone(robot, act, job_b, view: ZoneView, speed: float, part_b=None,
         program, job_x, frame, offsets, horizontal, spacing, v = panel_program(job_b, view, e,
                                                                                policy)
     else:
-        program, job_x, layout, v = part_program(job_b, part_b, view, e, policy,
-                                                 (robot, act, speed))
+        program, job_x, layout, v = part_program(job_b, part_b, view, e, policy)
     world = plan_dwelling(robot, act, program, speed, e, policy)
     traj, spray = seamed(world, speed, e, program.dt)
     common = {"trajectory": traj, "spray": spray, "ratios": world.ratios,

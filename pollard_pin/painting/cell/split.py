@@ -111,12 +111,9 @@ def seams_between(bands: list[Band], strokes: Strokes, least: float) -> list[flo
     need_lo, need_hi = strokes.needed(-math.inf, math.inf)
     if bands[0].lo > need_lo + EDGE_TOL or bands[-1].hi < need_hi - EDGE_TOL:
         return None
-    for room in dict.fromkeys((strokes.room, 0.0)):  # room past the run-outs if it fits
-        A = [bands[i + 1].lo + R + room for i in range(len(bands) - 1)]  # seam i's lowest
-        B = [bands[i].hi - R - room for i in range(len(bands) - 1)]  # ... and highest
-        if _longest_zone_ok(e_hi - e_lo, A, B, e_lo, e_hi, least) is not None:
-            break
-    else:
+    A = [bands[i + 1].lo + R for i in range(len(bands) - 1)]  # seam i's lowest ...
+    B = [bands[i].hi - R for i in range(len(bands) - 1)]  # ... and highest
+    if _longest_zone_ok(e_hi - e_lo, A, B, e_lo, e_hi, least) is None:
         return None
     lo, hi = 0.0, e_hi - e_lo
     while hi - lo > BISECT:

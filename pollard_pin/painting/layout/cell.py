@@ -36,8 +36,6 @@ WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the 
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
 AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
 EDGE_TRIES = 10  # bands computed at most to move a robot onto its zone (or its edge)
-DEPTHS = (0.0, 0.03, -0.03, 0.06)  # m towards the part tried for room past a seam
-ROOM_ROUNDS = 3  # splits made at most to keep room past the seams (with_room)
 EDGE_RATE = 0.2  # the slowest a band is taken to move with its base (edge moves ≤ 5× the gap)
 
 
@@ -195,88 +193,16 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
             ((a + b) / 2 - middle) * strokes.axis + i * spacing * strokes.direction))
             for i, (a, b) in enumerate(needs))
 
-    first = placed(needs)
-    robots, held = cover_edges(robot, first, strokes, needs)
+    robots, held = cover_edges(robot, placed(needs), strokes, needs)
     if not held and n >= 2:  # an edge's band is shorter than the reference's: end zones
         ends = _edge_zones(robot, robots, strokes)  # that fit it, the rest shared
         if ends is not None:
             needs = zone_needs(strokes, n, ends)
             if max(b - a for a, b in needs[1:-1] or [(0.0, 0.0)]) <= band.width + 1e-9:
                 robots = cover_edges(robot, placed(needs), strokes, needs)[0]
-    if strokes.room:  # bent strokes: room past the seams for the ramps and turnarounds
-        chain = stacked(robot, strokes, band, strokes.room, n)
-        if chain is not None and len(chain) == n:
-            robots = placed_as(chain, spacing, strokes, options.prefix)
-        robots = with_room(robot, job, robots, strokes, strokes.room, part)
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
     split_cell(robot, replace(job, robots=robots), robots, part)
-    return robots
-
-
-def stacked(robot, strokes: Strokes, band: Band, room: float, most: int = MAX_ROBOTS
-            ) -> list[CellRobot] | None:
-    """Robots stacked from the part's upper edge down (docs/model.md §26.5), each as low as
-    it can be while holding the top of its need: the first holds the edge's run-on, each
-    next one up to the seam above it plus R and ``room``, the seam as low as the band
-    above allows (its start plus R and ``room``), until one holds the lower edge's run-on;
-    top first, at the origin's place along the line. None if a band makes no progress or
-    more than ``most`` are needed. Where the strokes bend the bands shrink towards the
-    edge, so the zones there are shorter than equal ones."""
-    axis = np.asarray(strokes.axis, float)
-    lo, top = strokes.needed(-math.inf, math.inf)
-    out = []
-    while len(out) < most:
-        guess = CellRobot("robot", _triple((top - band.hi) * axis))
-        at = cover_edge(robot, guess, strokes, (top - STEP, top), toward=-1.0)
-        if at is None:
-            return None
-        held = robot_band(robot, at, strokes).holding(hi=top)
-        out.append(at)
-        if held.lo <= lo + 1e-9:
-            return out
-        nxt = held.lo + 2 * (strokes.runout + room)
-        if nxt >= top - STEP:
-            return None
-        top = nxt
-    return None
-
-
-def placed_as(chain, spacing: float, strokes: Strokes, prefix: str) -> tuple[CellRobot, ...]:
-    """The ``chain`` (top first) named bottom first and spaced along the line."""
-    e = np.asarray(strokes.direction, float)
-    return tuple(CellRobot(f"{prefix}{i + 1}", _triple(np.asarray(r.base) + i * spacing * e))
-                 for i, r in enumerate(reversed(chain)))
-
-
-def with_room(robot, job, robots: tuple[CellRobot, ...], strokes: Strokes, room: float,
-              part=None, rounds: int = ROOM_ROUNDS) -> tuple[CellRobot, ...]:
-    """The robots each moved (:func:`cover_edge`) until its band holds the zone the split
-    gives it with ``room`` [m] past each seam's run-out (its free edges as they are), the
-    split made again after each round, at most ``rounds`` rounds; a round whose split
-    fails keeps the robots of the one before. The split balances the zones and may put a
-    seam where a band ends: a ramp or turnaround past it would leave the reach."""
-    for _ in range(rounds):
-        try:
-            split = split_cell(robot, replace(job, robots=robots), robots, part)
-        except CellError:
-            break
-        out = []
-        for r in robots:
-            z = split.zone_of(r.name)
-            a, b = strokes.needed(z.lo, z.hi)
-            need = (a - (room if math.isfinite(z.lo) else 0.0),
-                    b + (room if math.isfinite(z.hi) else 0.0))
-            m = None
-            if _shortfall(robot_band(robot, r, strokes), need) != 0.0:
-                for d in DEPTHS:  # nearer the part or further: the tilted gun at a bevel
-                    m = cover_edge(robot, _deeper(r, d, strokes), strokes, need)
-                    if m is not None:
-                        break
-            out.append(r if m is None else m)
-        if tuple(out) == robots:
-            break
-        robots = tuple(out)
     return robots
 
 
@@ -349,14 +275,6 @@ def cover_edge(robot, cell_robot: CellRobot, strokes: Strokes, need: tuple[float
         last = (nxt - at, gap)
         at = nxt
     return None if best is None else _moved(cell_robot, best, axis)
-
-
-def _deeper(cell_robot: CellRobot, by: float, strokes: Strokes) -> CellRobot:
-    """The robot moved ``by`` [m] towards the part (against its faces' facing)."""
-    if not by:
-        return cell_robot
-    f = np.asarray(strokes.facing, float)
-    return _moved(cell_robot, -by, f / np.linalg.norm(f))
 
 
 def _moved(cell_robot: CellRobot, by: float, axis) -> CellRobot:
@@ -510,6 +428,5 @@ def _search_refusal(source: str, causes: dict, first: int, speed: float | None) 
 
 
 __all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",
-           "ROOM_ROUNDS", "cover_edge", "cover_edges", "fewest_for", "fewest_robots",
-           "placed_as", "propose_layout", "reach_window", "reference_band", "stacked", "with_room",
-           "zone_needs"]
+           "cover_edge", "cover_edges", "fewest_for", "fewest_robots", "propose_layout",
+           "reach_window", "reference_band", "zone_needs"]
