@@ -36,7 +36,7 @@ from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, 
 from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .clearance import least_distance, surface_index
+from .clearance import least_distance, may_come_within, surface_index, travelled
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
@@ -171,14 +171,21 @@ def _chords(a, b, shift=None) -> np.ndarray:
     return np.maximum(_norm(da), _norm(db)).max(axis=1)
 
 
-def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
+def pair_distance(a1, b1, a2, b2, r1, r2, way=None) -> tuple[float, int]:
     """The least distance [m] between two robots' capsules over the samples (ends (N, L, 3)
     each, radii (L,)) and its sample. Every pair at every COARSE-th sample sets a ceiling;
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
-    (the union of its capsules' boxes) are measured."""
+    (the union of its capsules' boxes) are measured. ``way`` (N,): how far the two robots'
+    points may move apart or together (:func:`.clearance.travelled` of both robots' steps),
+    to measure only the samples it cannot prove beyond the ceiling (default None: every
+    sample); the answer is the same either way."""
     rr = r1[:, None] + r2[None, :]
-    best, where = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1, r2)
+    best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1,
+                                 r2)
     where *= COARSE
+    if way is not None:  # a sample left out is further than the ceiling: not the least
+        keep = np.flatnonzero(may_come_within(known, way, COARSE, best))
+        a1, b1, a2, b2 = a1[keep], b1[keep], a2[keep], b2[keep]
     for lo in range(0, len(a1), CHUNK):
         sl = slice(lo, lo + CHUNK)
         (lo1, hi1), (lo2, hi2) = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
@@ -194,15 +201,17 @@ def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
         k = int(np.argmin(d))
         if d[k] < best:
             best, where = float(d[k]), lo + int(n[k])
+            where = where if way is None else int(keep[where])
     return best, where
 
 
-def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
+def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
     """(the least distance between two robots' capsules over the samples (ends (M, L, 3)
-    each), the first sample where it lies). Only the capsule pairs whose bounding spheres
-    (the segment's midpoint, half its length plus r) may come within the best of each
-    sample's closest pair of spheres are measured: a pair left out lies farther apart than
-    one measured, so neither the least nor its first sample changes."""
+    each), the first sample where it lies, a lower bound (M,) of each sample's). Only the
+    capsule pairs whose bounding spheres (the segment's midpoint, half its length plus r)
+    may come within the best of each sample's closest pair of spheres are measured: a pair
+    left out lies farther apart than one measured, so neither the least nor its first sample
+    changes; its spheres' gap bounds its distance below."""
     rr = r1[:, None] + r2[None, :]
     c1, c2 = (a1 + b1) / 2, (a2 + b2) / 2
     h1 = _norm(b1 - a1) / 2 + r1
@@ -214,10 +223,13 @@ def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     ceiling = float((segment_distance(a1[m, i], b1[m, i], a2[m, j], b2[m, j])
                      - rr[i, j]).min())
     # round-off (~1e-16 m) kept far below the margin; a pair cutting in (gap ≤ 0) kept
-    n, i, j = np.nonzero(gap <= max(ceiling, 0.0) + 1e-9)
+    measured = gap <= max(ceiling, 0.0) + 1e-9
+    n, i, j = np.nonzero(measured)
     d = segment_distance(a1[n, i], b1[n, i], a2[n, j], b2[n, j]) - rr[i, j]
     k = int(np.argmin(d))  # n ascends: the first sample of the least
-    return float(d[k]), int(n[k])
+    known = np.where(measured, np.inf, gap).reshape(len(gap), -1).min(axis=1)
+    np.minimum.at(known, n, d)
+    return float(d[k]), int(n[k]), known
 
 
 def _boxes(a, b, r) -> tuple[np.ndarray, np.ndarray]:
@@ -263,7 +275,7 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
         ends = [_at(m, uu) for m in members]
         chords = [_chords(a, b) for a, b in ends]
         for i, j in pairs:
-            d, k = pair_distance(*ends[i], *ends[j], r, r)
+            d, k = pair_distance(*ends[i], *ends[j], r, r, travelled(chords[i] + chords[j]))
             if d < least[i, j][0]:
                 least[i, j] = (d, float(uu[k]))
             if len(uu) > 1:
@@ -303,12 +315,14 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
             a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
         if len(a) > 1:
             chords.append(_chords(a, b))
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index)
+    # a sphere's step is at most its capsule's chord (relative to the part)
+    way = travelled(np.concatenate(chords) if chords else [])
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index, way)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
         d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
-                                                                 caps), index)
+                                                                 caps), index, way[rows])
         if d < best:
             best, n, less = d, int(rows[k]), l2
     between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0
