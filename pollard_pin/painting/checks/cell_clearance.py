@@ -171,20 +171,24 @@ def _chords(a, b, shift=None) -> np.ndarray:
     return np.maximum(_norm(da), _norm(db)).max(axis=1)
 
 
-def pair_distance(a1, b1, a2, b2, r1, r2, way=None) -> tuple[float, int]:
+def pair_distance(a1, b1, a2, b2, r1, r2, steps=None) -> tuple[float, int]:
     """The least distance [m] between two robots' capsules over the samples (ends (N, L, 3)
     each, radii (L,)) and its sample. Every pair at every COARSE-th sample sets a ceiling;
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
-    (the union of its capsules' boxes) are measured. ``way`` (N,): how far the two robots'
-    points may move apart or together (:func:`.clearance.travelled` of both robots' steps),
-    to measure only the samples it cannot prove beyond the ceiling (default None: every
-    sample); the answer is the same either way."""
+    (the union of its capsules' boxes) are measured. ``steps`` (N − 1,): how far the two
+    robots' points may move apart or together in each step (the sum of both robots' largest
+    step, :func:`_chords`), to measure only the samples the way travelled cannot prove beyond
+    the ceiling, and not a sample the same as the one before (default None: every sample);
+    the answer is the same either way (docs/model.md §26.4)."""
     rr = r1[:, None] + r2[None, :]
     best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1,
                                  r2)
     where *= COARSE
-    if way is not None:  # a sample left out is further than the ceiling: not the least
-        keep = np.flatnonzero(may_come_within(known, way, COARSE, best))
+    if steps is not None:  # a sample left out is further than the ceiling: not the least,
+        # or a repeat of the one before (no step): measured the same, so not the first least
+        keep = may_come_within(known, travelled(steps), COARSE, best)
+        keep[1:] &= np.asarray(steps) > 0
+        keep = np.flatnonzero(keep)
         a1, b1, a2, b2 = a1[keep], b1[keep], a2[keep], b2[keep]
     for lo in range(0, len(a1), CHUNK):
         sl = slice(lo, lo + CHUNK)
@@ -194,15 +198,28 @@ def pair_distance(a1, b1, a2, b2, r1, r2, way=None) -> tuple[float, int]:
         cut = max(best, 0.0)
         near1 = _box_gap(lo1, hi1, *_union(lo2, hi2)) <= cut
         near2 = _box_gap(lo2, hi2, *_union(lo1, hi1)) <= cut
-        n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
+        n, i, j = _pairs(near1, near2)
         if len(n) == 0:
             continue
         d = segment_distance(a1[sl][n, i], b1[sl][n, i], a2[sl][n, j], b2[sl][n, j]) - rr[i, j]
         k = int(np.argmin(d))
         if d[k] < best:
             best, where = float(d[k]), lo + int(n[k])
-            where = where if way is None else int(keep[where])
+            where = where if steps is None else int(keep[where])
     return best, where
+
+
+def _pairs(near1, near2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(n, i, j): every capsule i of near1 (N, L1) with every j of near2 (N, L2) at each
+    sample n, in the order of ``np.nonzero(near1[:, :, None] & near2[:, None, :])``, built
+    from the two lists alone (not the N × L1 × L2 array)."""
+    n1, i1 = np.nonzero(near1)
+    n2, j2 = np.nonzero(near2)
+    counts = np.bincount(n2, minlength=len(near2))
+    rep = counts[n1]  # each (n, i) with every j of its sample
+    start = np.cumsum(counts) - counts  # where each sample's j's begin in j2
+    within = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
+    return np.repeat(n1, rep), np.repeat(i1, rep), j2[np.repeat(start[n1], rep) + within]
 
 
 def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
@@ -275,7 +292,7 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
         ends = [_at(m, uu) for m in members]
         chords = [_chords(a, b) for a, b in ends]
         for i, j in pairs:
-            d, k = pair_distance(*ends[i], *ends[j], r, r, travelled(chords[i] + chords[j]))
+            d, k = pair_distance(*ends[i], *ends[j], r, r, chords[i] + chords[j])
             if d < least[i, j][0]:
                 least[i, j] = (d, float(uu[k]))
             if len(uu) > 1:

@@ -13,7 +13,7 @@ from pollard_pin.kinematics.capsules import capsule_layout, link_capsules, segme
 from pollard_pin.kinematics.ik import inverse_kinematics
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.checks.cell_clearance import MovingPart, cell_clearance, pair_distance
-from pollard_pin.painting.checks.clearance import clearance_of, travelled
+from pollard_pin.painting.checks.clearance import clearance_of
 from pollard_pin.painting.errors import ClearanceError
 from pollard_pin.painting.spray.gun_body import gun_body
 
@@ -72,8 +72,7 @@ def test_the_screened_search_finds_every_pairs_least(robot, sway):
                  - r[:, None] - r[None, :]).min(axis=(1, 2))
         assert d == pytest.approx(every.min(), abs=1e-12) and k == int(np.argmin(every))
         # the samples the way travelled proves beyond the ceiling skipped: the same answer
-        assert pair_distance(a, b, a2, b2, r, r, travelled(steps(a, b) + steps(a2, b2))) == (
-            d, k)
+        assert pair_distance(a, b, a2, b2, r, r, steps(a, b) + steps(a2, b2)) == (d, k)
         cuts += d < 0
     assert cuts == 2
 
@@ -98,11 +97,23 @@ def test_the_pairs_skip_finds_a_dip_between_coarse_samples():
     shift = np.zeros((48, 1, 3))
     shift[:, 0, 0] = gap + 0.02
     a2, b2, r = a1 + shift, b1 + shift, np.full(3, 0.01)
-    way = travelled(steps(a1, b1) + steps(a2, b2))
+    moves = steps(a1, b1) + steps(a2, b2)
     every = pair_distance(a1, b1, a2, b2, r, r)
-    assert pair_distance(a1, b1, a2, b2, r, r, way) == every
+    assert pair_distance(a1, b1, a2, b2, r, r, moves) == every
     assert every[1] == 8 and every[0] == pytest.approx(0.04, abs=1e-12)
-    assert pair_distance(a1, b1, a2, b2, r, r, way / 2)[1] == 32  # the wrong bound: caught
+    assert pair_distance(a1, b1, a2, b2, r, r, moves / 2)[1] == 32  # the wrong bound: caught
+    # held still at the least: from sample 5 to 12 (its first sample, 5), then from 5 to 40
+    # (the coarse sample 16 is the one named, as without the skip); samples the same as the
+    # one before are not measured
+    for end in (12, 40):
+        held = np.minimum(k, 5) + np.maximum(k - end, 0)  # the sample whose place each takes
+        h1, h2 = a1[held], a2[held]
+        h2[:, :, 0] = 0.05 + 0.03 * np.abs(held - 5)[:, None] + 0.02
+        moves = steps(h1, h1 + [0.0, 0.3, 0.0]) + steps(h2, h2 + [0.0, 0.3, 0.0])
+        every = pair_distance(h1, h1 + [0.0, 0.3, 0.0], h2, h2 + [0.0, 0.3, 0.0], r, r)
+        assert every[1] == (5 if end == 12 else 16) and (moves == 0).sum() == end - 5
+        assert pair_distance(h1, h1 + [0.0, 0.3, 0.0], h2, h2 + [0.0, 0.3, 0.0], r, r,
+                             moves) == every
 
 
 def test_the_skip_answers_as_every_sample_measured(robot, sway, monkeypatch):
