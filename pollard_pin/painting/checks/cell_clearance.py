@@ -43,6 +43,7 @@ if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: 
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling
+LEVELS = (8, 4, 2, 1)  # the spacings measured in turn between the coarse samples
 BLOCK = 2048  # samples a block of the distances to the part (their arrays stay in cache)
 
 
@@ -171,42 +172,75 @@ def _chords(a, b, shift=None) -> np.ndarray:
     return np.maximum(_norm(da), _norm(db)).max(axis=1)
 
 
-def pair_distance(a1, b1, a2, b2, r1, r2, steps=None) -> tuple[float, int]:
+def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
+                  below: float = math.inf) -> tuple[float, int]:
     """The least distance [m] between two robots' capsules over the samples (ends (N, L, 3)
     each, radii (L,)) and its sample. Every pair at every COARSE-th sample sets a ceiling;
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
     (the union of its capsules' boxes) are measured. ``steps`` (N − 1,): how far the two
     robots' points may move apart or together in each step (the sum of both robots' largest
-    step, :func:`_chords`), to measure only the samples the way travelled cannot prove beyond
-    the ceiling, and not a sample the same as the one before (default None: every sample);
-    the answer is the same either way (docs/model.md §26.4)."""
+    step, :func:`_chords`), to measure the samples between the coarse ones at halving
+    spacings (LEVELS), only those the way travelled from the samples measured cannot prove
+    beyond the least so far (or ``below``), and not a sample the same as the one before
+    (default None: every sample); the answer is the same either way (docs/model.md §26.4).
+    ``below``: only a least under it is sought (default inf); with none, a distance found,
+    at least ``below``, and its sample."""
     rr = r1[:, None] + r2[None, :]
     best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1,
                                  r2)
-    where *= COARSE
-    if steps is not None:  # a sample left out is further than the ceiling: not the least,
-        # or a repeat of the one before (no step): measured the same, so not the first least
-        keep = may_come_within(known, travelled(steps), COARSE, best)
-        keep[1:] &= np.asarray(steps) > 0
-        keep = np.flatnonzero(keep)
-        a1, b1, a2, b2 = a1[keep], b1[keep], a2[keep], b2[keep]
-    for lo in range(0, len(a1), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        (lo1, hi1), (lo2, hi2) = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
+    ceiling, where = best, where * COARSE
+    ends = (a1, b1, a2, b2, r1, r2, rr)
+    if steps is None:
+        rows = np.arange(len(a1))
+        least = _row_least(ends, rows, max(best, 0.0))
+    else:
+        way = travelled(steps)
+        # a sample the same as the one before measures the same: not the first least
+        fresh = np.concatenate([[True], np.asarray(steps) > 0])
+        at, low, done = np.arange(0, len(a1), COARSE), known, []
+        for spacing in LEVELS:
+            rows = np.arange(spacing, len(a1), 2 * spacing)
+            rows = rows[fresh[rows]]
+            # a sample left out is further than the least so far: not the least
+            rows = rows[may_come_within(low, at, way, min(best, below), rows)]
+            if len(rows) == 0:
+                continue
+            cut = max(min(best, below), 0.0)
+            least = _row_least(ends, rows, cut)
+            best = min(best, float(least.min()))
+            done.append((rows, least))
+            # a pair not measured is further than the cut
+            order = np.argsort(np.concatenate([at, rows]), kind="stable")
+            at = np.concatenate([at, rows])[order]
+            low = np.concatenate([low, np.minimum(least, cut)])[order]
+        rows = np.concatenate([r for r, _ in done]) if done else np.arange(0)
+        least = np.concatenate([d for _, d in done]) if done else np.zeros(0)
+    if len(rows) and least.min() < ceiling:  # else the coarse samples' first least
+        best = float(least.min())
+        where = int(rows[least == least.min()].min())
+    return best, where
+
+
+def _row_least(ends, rows, cut: float) -> np.ndarray:
+    """The least distance between the two robots at each sample of ``rows`` (R,) over the
+    capsule pairs whose bounding boxes come within ``cut`` of the other robot's (inf where
+    none does); ``ends`` (a1, b1, a2, b2, r1, r2, r1 + r2 of each pair). Taken CHUNK samples
+    at a time."""
+    a1, b1, a2, b2, r1, r2, rr = ends
+    out = np.full(len(rows), np.inf)
+    for lo in range(0, len(rows), CHUNK):
+        k = rows[lo:lo + CHUNK]
+        e1, f1, e2, f2 = a1[k], b1[k], a2[k], b2[k]
+        (lo1, hi1), (lo2, hi2) = _boxes(e1, f1, r1), _boxes(e2, f2, r2)
         # boxes apart by g hold capsules at least g apart; capsules that cut into each
         # other (best < 0) have touching boxes (g = 0)
-        cut = max(best, 0.0)
         near1 = _box_gap(lo1, hi1, *_union(lo2, hi2)) <= cut
         near2 = _box_gap(lo2, hi2, *_union(lo1, hi1)) <= cut
         n, i, j = _pairs(near1, near2)
-        if len(n) == 0:
-            continue
-        d = segment_distance(a1[sl][n, i], b1[sl][n, i], a2[sl][n, j], b2[sl][n, j]) - rr[i, j]
-        k = int(np.argmin(d))
-        if d[k] < best:
-            best, where = float(d[k]), lo + int(n[k])
-            where = where if steps is None else int(keep[where])
-    return best, where
+        if len(n):
+            np.minimum.at(out, lo + n, segment_distance(e1[n, i], f1[n, i], e2[n, j],
+                                                        f2[n, j]) - rr[i, j])
+    return out
 
 
 def _pairs(near1, near2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -292,7 +326,8 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
         ends = [_at(m, uu) for m in members]
         chords = [_chords(a, b) for a, b in ends]
         for i, j in pairs:
-            d, k = pair_distance(*ends[i], *ends[j], r, r, chords[i] + chords[j])
+            d, k = pair_distance(*ends[i], *ends[j], r, r, chords[i] + chords[j],
+                                 least[i, j][0])  # a least not under the last: no use
             if d < least[i, j][0]:
                 least[i, j] = (d, float(uu[k]))
             if len(uu) > 1:

@@ -140,21 +140,22 @@ def travelled(steps) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.asarray(steps, float))])
 
 
-def may_come_within(known, way, stride: int, limit) -> np.ndarray:
-    """The samples (N, ...) whose distance may be at most ``limit`` (broadcast over the
-    trailing axes), proven from lower bounds ``known`` (M, ...) of the distances at every
-    ``stride``-th sample (M = ⌈N/stride⌉) and the way ``way`` (N,) of :func:`travelled`: a
-    distance falls by at most the way travelled, so sample n's is at least the larger of
-    known[j] − (way[n] − way[sj]) and known[j + 1] − (way[s(j + 1)] − way[n]), j = ⌊n/s⌋
-    (docs/model.md §26.4). A sample left out is more than ``limit`` + SLACK away."""
-    known, way = np.asarray(known, float), np.asarray(way, float)
-    n = np.arange(len(way))
-    j = n // stride
+def may_come_within(known, at, way, limit, rows=None) -> np.ndarray:
+    """Which samples (``rows``, default all; (R, ...)) may come within ``limit`` (broadcast
+    over the trailing axes), proven from lower bounds ``known`` (M, ...) of the distances at
+    the samples ``at`` (M,), ascending from 0, and the way ``way`` (N,) of :func:`travelled`:
+    a distance falls by at most the way travelled, so sample n's is at least the larger of
+    known[i] − (way[n] − way[at[i]]) and known[i + 1] − (way[at[i + 1]] − way[n]), at[i] ≤ n
+    < at[i + 1] (docs/model.md §26.4). A sample left out is more than ``limit`` + SLACK
+    away."""
+    known, way, at = np.asarray(known, float), np.asarray(way, float), np.asarray(at)
+    n = np.arange(len(way)) if rows is None else np.asarray(rows)
+    i = np.searchsorted(at, n, side="right") - 1
+    after = np.minimum(i + 1, len(at) - 1)  # past the last: no later one
     shape = (-1,) + (1,) * (known.ndim - 1)
-    low = known[j] - (way - way[j * stride]).reshape(shape)
-    after = np.minimum(j + 1, len(known) - 1)  # the last coarse sample: no later one
-    later = known[after] - (way[after * stride] - way).reshape(shape)
-    low = np.where((j + 1 < len(known)).reshape(shape), np.maximum(low, later), low)
+    low = known[i] - (way[n] - way[at[i]]).reshape(shape)
+    later = known[after] - (way[at[after]] - way[n]).reshape(shape)
+    low = np.where((i + 1 < len(at)).reshape(shape), np.maximum(low, later), low)
     return low <= np.asarray(limit, float) + SLACK
 
 
@@ -175,7 +176,8 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
     if way is None:
         ask = np.ones(centres.shape[:2], bool)
     else:  # d̃ is 1-Lipschitz in c: the coarse samples' d̃ bound the others'
-        ask = may_come_within(coarse, way, COARSE_STRIDE, bound)
+        ask = may_come_within(coarse, np.arange(0, len(centres), COARSE_STRIDE), way,
+                              bound)
     approx = np.full(centres.shape[:2], math.inf)
     for k in range(len(radii)):
         rows = np.flatnonzero(ask[:, k])

@@ -142,11 +142,11 @@ def test_the_skip_answers_as_every_sample_measured(robot, sway, monkeypatch):
     monkeypatch.setattr(cc, "may_come_within", counted)
     monkeypatch.setattr(clearance, "may_come_within", counted)
     skipped = [cell_clearance(robot, m, part) for m, part in cases]
-    assert len(kept) == 6 and max(kept) < 0.5  # pairs, guns, links: skipped (0.32 at most)
+    assert len(kept) == 9 and max(kept) < 0.5  # the pair (4 levels), guns, links: skipped
 
-    def everywhere(known, way, stride, limit):
-        return np.ones((len(way),) + np.broadcast_shapes(np.shape(known)[1:],
-                                                         np.shape(limit)), bool)
+    def everywhere(known, at, way, limit, rows=None):
+        return np.ones((len(way) if rows is None else len(rows),) + np.broadcast_shapes(
+            np.shape(known)[1:], np.shape(limit)), bool)
 
     monkeypatch.setattr(cc, "may_come_within", everywhere)
     monkeypatch.setattr(clearance, "may_come_within", everywhere)

@@ -162,10 +162,10 @@ def test_a_stride_takes_every_kth_sample_and_its_bound_holds():
         job_clearance(None, job, plate(), poses, t, lambda i: f"at sample {i}", stride=4)
 
 
-def asked_everywhere(known, way, stride, limit):
+def asked_everywhere(known, at, way, limit, rows=None):
     """A stand-in for clearance.may_come_within that proves nothing: every sample asked."""
-    return np.ones((len(way),) + np.broadcast_shapes(np.shape(known)[1:], np.shape(limit)),
-                   bool)
+    return np.ones((len(way) if rows is None else len(rows),) + np.broadcast_shapes(
+        np.shape(known)[1:], np.shape(limit)), bool)
 
 
 def dip_path():
@@ -189,10 +189,11 @@ def test_may_come_within_keeps_every_sample_within_the_limit():
     d = np.linalg.norm(x - [0.05, 0.0, 0.0], axis=2)
     steps = np.linalg.norm(np.diff(x, axis=0), axis=2).max(axis=1)
     limit = np.quantile(d, 0.2, axis=0)  # each point's own
-    keep = may_come_within(d[::8], travelled(steps), 8, limit)
+    keep = may_come_within(d[::8], np.arange(0, 203, 8), travelled(steps), limit)
     assert keep.shape == d.shape and keep[d <= limit].all()
     assert 0.2 < keep.mean() < 0.9  # some left out, each more than the limit away
-    assert not may_come_within(d[::8], travelled(steps) / 2, 8, limit)[d <= limit].all()
+    assert not may_come_within(d[::8], np.arange(0, 203, 8), travelled(steps) / 2,
+                               limit)[d <= limit].all()
 
 
 def test_the_skip_answers_as_every_sample_asked(monkeypatch):
