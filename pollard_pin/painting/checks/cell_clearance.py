@@ -36,7 +36,7 @@ from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, 
 from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .clearance import least_distance, may_come_within, surface_index, travelled
+from .clearance import SLACK, least_distance, may_come_within, surface_index, travelled
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
@@ -44,6 +44,7 @@ if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling
 LEVELS = (8, 4, 2, 1)  # the spacings measured in turn between the coarse samples
+PAIRS = 1 << 18  # capsule pairs measured at a time between the coarse samples (≈ 60 MB)
 BLOCK = 2048  # samples a block of the distances to the part (their arrays stay in cache)
 
 
@@ -197,7 +198,7 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
         way = travelled(steps)
         # a sample the same as the one before measures the same: not the first least
         fresh = np.concatenate([[True], np.asarray(steps) > 0])
-        at, low, done = np.arange(0, len(a1), COARSE), known, []
+        at, low, done = np.arange(0, len(a1), COARSE), known.min(axis=(1, 2)), []
         for spacing in LEVELS:
             rows = np.arange(spacing, len(a1), 2 * spacing)
             rows = rows[fresh[rows]]
@@ -205,20 +206,51 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
             rows = rows[may_come_within(low, at, way, min(best, below), rows)]
             if len(rows) == 0:
                 continue
-            cut = max(min(best, below), 0.0)
-            least = _row_least(ends, rows, cut)
+            limit = min(best, below)
+            least = _pairs_least(ends, rows, known, way, limit)
             best = min(best, float(least.min()))
             done.append((rows, least))
-            # a pair not measured is further than the cut
+            # a pair not measured is further than the limit
             order = np.argsort(np.concatenate([at, rows]), kind="stable")
             at = np.concatenate([at, rows])[order]
-            low = np.concatenate([low, np.minimum(least, cut)])[order]
+            low = np.concatenate([low, np.minimum(least, limit)])[order]
         rows = np.concatenate([r for r, _ in done]) if done else np.arange(0)
         least = np.concatenate([d for _, d in done]) if done else np.zeros(0)
     if len(rows) and least.min() < ceiling:  # else the coarse samples' first least
         best = float(least.min())
         where = int(rows[least == least.min()].min())
     return best, where
+
+
+def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
+    """The least distance between the two robots at each sample of ``rows`` (R,, none a
+    coarse sample) over the capsule pairs that may come within ``limit`` there (inf where
+    none may): a pair's distance falls by at most the way between the coarse samples around
+    it, so a pair whose lower bounds ``known`` (M, L1, L2) at both, less that way, are past
+    the limit is not measured in between (docs/model.md §26.4). Exact where under the
+    limit; ``ends`` (a1, b1, a2, b2, r1, r2, r1 + r2 of each pair). Taken about PAIRS
+    capsule pairs at a time."""
+    a1, b1, a2, b2, _, _, rr = ends
+    start = np.arange(len(known)) * COARSE
+    stop = np.minimum(start + COARSE, len(way) - 1)  # the next coarse sample, or the last
+    bound = known.copy()  # a pair's least lower bound at the two coarse samples
+    bound[:-1] = np.maximum(known[:-1], known[1:])
+    may = bound - (way[stop] - way[start])[:, None, None] <= limit + SLACK
+    p, i, j = np.nonzero(may)  # the pairs of each interval, in its order
+    counts = np.bincount(p, minlength=len(known))
+    first = np.cumsum(counts) - counts
+    per = counts[rows // COARSE]  # each row's pairs
+    out = np.full(len(rows), np.inf)
+    cuts = np.searchsorted(np.cumsum(per), np.arange(PAIRS, per.sum(), PAIRS))
+    for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(rows)]):
+        c = per[lo:hi]
+        row = np.repeat(np.arange(lo, hi), c)
+        k = np.repeat(first[rows[lo:hi] // COARSE], c) + np.arange(c.sum()) - np.repeat(
+            np.cumsum(c) - c, c)
+        n, ii, jj = rows[row], i[k], j[k]
+        np.minimum.at(out, row, segment_distance(a1[n, ii], b1[n, ii], a2[n, jj], b2[n, jj])
+                      - rr[ii, jj])
+    return out
 
 
 def _row_least(ends, rows, cut: float) -> np.ndarray:
@@ -258,7 +290,7 @@ def _pairs(near1, near2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
     """(the least distance between two robots' capsules over the samples (ends (M, L, 3)
-    each), the first sample where it lies, a lower bound (M,) of each sample's). Only the
+    each), the first sample where it lies, a lower bound (M, L1, L2) of each pair's). Only the
     capsule pairs whose bounding spheres (the segment's midpoint, half its length plus r)
     may come within the best of each sample's closest pair of spheres are measured: a pair
     left out lies farther apart than one measured, so neither the least nor its first sample
@@ -278,8 +310,8 @@ def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
     n, i, j = np.nonzero(measured)
     d = segment_distance(a1[n, i], b1[n, i], a2[n, j], b2[n, j]) - rr[i, j]
     k = int(np.argmin(d))  # n ascends: the first sample of the least
-    known = np.where(measured, np.inf, gap).reshape(len(gap), -1).min(axis=1)
-    np.minimum.at(known, n, d)
+    known = np.where(measured, np.inf, gap)
+    known[n, i, j] = d
     return float(d[k]), int(n[k]), known
 
 
