@@ -11,7 +11,9 @@ batch IK under ``run``'s rules), carried to the world by its base (:class:`.robo
   capsules are apart by the distance of their axis segments less both radii
   (:func:`...kinematics.capsules.segment_distance`). Only the capsule pairs whose bounding
   spheres (the segment's midpoint, half its length plus r) come within the best distance
-  found so far get the exact distance.
+  found so far get the exact distance. Between the coarse samples a sample, or a capsule
+  pair there, that the way its capsules travelled proves farther than the least is not
+  measured (:func:`.clearance.may_come_within`): the same answer, to the bit.
 - **The part.** The part's mesh (world at t = 0) rides the line, at ``velocity``·t. Each
   robot's capsules, in the part's frame, are covered by spheres along their axes (the gun
   body's rule) and measured against the mesh by :func:`.clearance.least_distance`:
@@ -182,8 +184,10 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
     robots' points may move apart or together in each step (the sum of both robots' largest
     step, :func:`_chords`), to measure the samples between the coarse ones at halving
     spacings (LEVELS), only those the way travelled from the samples measured cannot prove
-    beyond the least so far (or ``below``), and not a sample the same as the one before
-    (default None: every sample); the answer is the same either way (docs/model.md §26.4).
+    beyond the least so far (or ``below``), there only the capsule pairs it cannot prove so
+    (:func:`_pairs_least`, instead of the boxes), and not a sample the same as the one
+    before (default None: every sample); the answer is the same either way (docs/model.md
+    §26.4).
     ``below``: only a least under it is sought (default inf); with none, a distance found,
     at least ``below``, and its sample."""
     rr = r1[:, None] + r2[None, :]
@@ -223,8 +227,8 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
 
 
 def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
-    """The least distance between the two robots at each sample of ``rows`` (R,, none a
-    coarse sample) over the capsule pairs that may come within ``limit`` there (inf where
+    """The least distance between the two robots at each sample of ``rows`` (R,), none a
+    coarse sample, over the capsule pairs that may come within ``limit`` there (inf where
     none may): a pair's distance falls by at most the way between the coarse samples around
     it, so a pair whose lower bounds ``known`` (M, L1, L2) at both, less that way, are past
     the limit is not measured in between (docs/model.md §26.4). Exact where under the
