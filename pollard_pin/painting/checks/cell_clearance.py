@@ -11,7 +11,9 @@ batch IK under ``run``'s rules), carried to the world by its base (:class:`.robo
   capsules are apart by the distance of their axis segments less both radii
   (:func:`...kinematics.capsules.segment_distance`). Only the capsule pairs whose bounding
   spheres (the segment's midpoint, half its length plus r) come within the best distance
-  found so far get the exact distance.
+  found so far get the exact distance. Between the coarse samples a sample, or a capsule
+  pair there, that the way its capsules travelled proves farther than the least is not
+  measured (:func:`.clearance.may_come_within`): the same answer, to the bit.
 - **The part.** The part's mesh (world at t = 0) rides the line, at ``velocity``·t. Each
   robot's capsules, in the part's frame, are covered by spheres along their axes (the gun
   body's rule) and measured against the mesh by :func:`.clearance.least_distance`:
@@ -36,13 +38,15 @@ from ...kinematics.capsules import axis_spheres, capsule_layout, link_capsules, 
 from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
-from .clearance import least_distance, surface_index
+from .clearance import SLACK, least_distance, may_come_within, surface_index, travelled
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
 COARSE = 16  # every this many samples, every capsule pair sets the ceiling
+LEVELS = (8, 4, 2, 1)  # the spacings measured in turn between the coarse samples
+PAIRS = 1 << 18  # capsule pairs measured at a time between the coarse samples (≈ 60 MB)
 BLOCK = 2048  # samples a block of the distances to the part (their arrays stay in cache)
 
 
@@ -171,38 +175,130 @@ def _chords(a, b, shift=None) -> np.ndarray:
     return np.maximum(_norm(da), _norm(db)).max(axis=1)
 
 
-def pair_distance(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
+def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
+                  below: float = math.inf) -> tuple[float, int]:
     """The least distance [m] between two robots' capsules over the samples (ends (N, L, 3)
     each, radii (L,)) and its sample. Every pair at every COARSE-th sample sets a ceiling;
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
-    (the union of its capsules' boxes) are measured."""
+    (the union of its capsules' boxes) are measured. ``steps`` (N − 1,): how far the two
+    robots' points may move apart or together in each step (the sum of both robots' largest
+    step, :func:`_chords`), to measure the samples between the coarse ones at halving
+    spacings (LEVELS), only those the way travelled from the samples measured cannot prove
+    beyond the least so far (or ``below``), there only the capsule pairs it cannot prove so
+    (:func:`_pairs_least`, instead of the boxes), and not a sample the same as the one
+    before (default None: every sample); the answer is the same either way (docs/model.md
+    §26.4).
+    ``below``: only a least under it is sought (default inf); with none, a distance found,
+    at least ``below``, and its sample."""
     rr = r1[:, None] + r2[None, :]
-    best, where = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1, r2)
-    where *= COARSE
-    for lo in range(0, len(a1), CHUNK):
-        sl = slice(lo, lo + CHUNK)
-        (lo1, hi1), (lo2, hi2) = _boxes(a1[sl], b1[sl], r1), _boxes(a2[sl], b2[sl], r2)
-        # boxes apart by g hold capsules at least g apart; capsules that cut into each
-        # other (best < 0) have touching boxes (g = 0)
-        cut = max(best, 0.0)
-        near1 = _box_gap(lo1, hi1, *_union(lo2, hi2)) <= cut
-        near2 = _box_gap(lo2, hi2, *_union(lo1, hi1)) <= cut
-        n, i, j = np.nonzero(near1[:, :, None] & near2[:, None, :])
-        if len(n) == 0:
-            continue
-        d = segment_distance(a1[sl][n, i], b1[sl][n, i], a2[sl][n, j], b2[sl][n, j]) - rr[i, j]
-        k = int(np.argmin(d))
-        if d[k] < best:
-            best, where = float(d[k]), lo + int(n[k])
+    best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1,
+                                 r2)
+    ceiling, where = best, where * COARSE
+    ends = (a1, b1, a2, b2, r1, r2, rr)
+    if steps is None:
+        rows = np.arange(len(a1))
+        least = _row_least(ends, rows, max(best, 0.0))
+    else:
+        way = travelled(steps)
+        # a sample the same as the one before measures the same: not the first least
+        fresh = np.concatenate([[True], np.asarray(steps) > 0])
+        at, low, done = np.arange(0, len(a1), COARSE), known.min(axis=(1, 2)), []
+        for spacing in LEVELS:
+            rows = np.arange(spacing, len(a1), 2 * spacing)
+            rows = rows[fresh[rows]]
+            # a sample left out is further than the least so far: not the least
+            rows = rows[may_come_within(low, at, way, min(best, below), rows)]
+            if len(rows) == 0:
+                continue
+            limit = min(best, below)
+            least = _pairs_least(ends, rows, known, way, limit)
+            best = min(best, float(least.min()))
+            done.append((rows, least))
+            # a pair not measured is further than the limit
+            order = np.argsort(np.concatenate([at, rows]), kind="stable")
+            at = np.concatenate([at, rows])[order]
+            low = np.concatenate([low, np.minimum(least, limit)])[order]
+        rows = np.concatenate([r for r, _ in done]) if done else np.arange(0)
+        least = np.concatenate([d for _, d in done]) if done else np.zeros(0)
+    if len(rows) and least.min() < ceiling:  # else the coarse samples' first least
+        best = float(least.min())
+        where = int(rows[least == least.min()].min())
     return best, where
 
 
-def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
+def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
+    """The least distance between the two robots at each sample of ``rows`` (R,), none a
+    coarse sample, over the capsule pairs that may come within ``limit`` there (inf where
+    none may): a pair's distance falls by at most the way between the coarse samples around
+    it, so a pair whose lower bounds ``known`` (M, L1, L2) at both, less that way, are past
+    the limit is not measured in between (docs/model.md §26.4). Exact where under the
+    limit; ``ends`` (a1, b1, a2, b2, r1, r2, r1 + r2 of each pair). Taken about PAIRS
+    capsule pairs at a time."""
+    a1, b1, a2, b2, _, _, rr = ends
+    start = np.arange(len(known)) * COARSE
+    stop = np.minimum(start + COARSE, len(way) - 1)  # the next coarse sample, or the last
+    bound = known.copy()  # a pair's least lower bound at the two coarse samples
+    bound[:-1] = np.maximum(known[:-1], known[1:])
+    may = bound - (way[stop] - way[start])[:, None, None] <= limit + SLACK
+    p, i, j = np.nonzero(may)  # the pairs of each interval, in its order
+    counts = np.bincount(p, minlength=len(known))
+    first = np.cumsum(counts) - counts
+    per = counts[rows // COARSE]  # each row's pairs
+    out = np.full(len(rows), np.inf)
+    cuts = np.searchsorted(np.cumsum(per), np.arange(PAIRS, per.sum(), PAIRS))
+    for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(rows)]):
+        c = per[lo:hi]
+        row = np.repeat(np.arange(lo, hi), c)
+        k = np.repeat(first[rows[lo:hi] // COARSE], c) + np.arange(c.sum()) - np.repeat(
+            np.cumsum(c) - c, c)
+        n, ii, jj = rows[row], i[k], j[k]
+        np.minimum.at(out, row, segment_distance(a1[n, ii], b1[n, ii], a2[n, jj], b2[n, jj])
+                      - rr[ii, jj])
+    return out
+
+
+def _row_least(ends, rows, cut: float) -> np.ndarray:
+    """The least distance between the two robots at each sample of ``rows`` (R,) over the
+    capsule pairs whose bounding boxes come within ``cut`` of the other robot's (inf where
+    none does); ``ends`` (a1, b1, a2, b2, r1, r2, r1 + r2 of each pair). Taken CHUNK samples
+    at a time."""
+    a1, b1, a2, b2, r1, r2, rr = ends
+    out = np.full(len(rows), np.inf)
+    for lo in range(0, len(rows), CHUNK):
+        k = rows[lo:lo + CHUNK]
+        e1, f1, e2, f2 = a1[k], b1[k], a2[k], b2[k]
+        (lo1, hi1), (lo2, hi2) = _boxes(e1, f1, r1), _boxes(e2, f2, r2)
+        # boxes apart by g hold capsules at least g apart; capsules that cut into each
+        # other (best < 0) have touching boxes (g = 0)
+        near1 = _box_gap(lo1, hi1, *_union(lo2, hi2)) <= cut
+        near2 = _box_gap(lo2, hi2, *_union(lo1, hi1)) <= cut
+        n, i, j = _pairs(near1, near2)
+        if len(n):
+            np.minimum.at(out, lo + n, segment_distance(e1[n, i], f1[n, i], e2[n, j],
+                                                        f2[n, j]) - rr[i, j])
+    return out
+
+
+def _pairs(near1, near2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(n, i, j): every capsule i of near1 (N, L1) with every j of near2 (N, L2) at each
+    sample n, in the order of ``np.nonzero(near1[:, :, None] & near2[:, None, :])``, built
+    from the two lists alone (not the N × L1 × L2 array)."""
+    n1, i1 = np.nonzero(near1)
+    n2, j2 = np.nonzero(near2)
+    counts = np.bincount(n2, minlength=len(near2))
+    rep = counts[n1]  # each (n, i) with every j of its sample
+    start = np.cumsum(counts) - counts  # where each sample's j's begin in j2
+    within = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
+    return np.repeat(n1, rep), np.repeat(i1, rep), j2[np.repeat(start[n1], rep) + within]
+
+
+def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
     """(the least distance between two robots' capsules over the samples (ends (M, L, 3)
-    each), the first sample where it lies). Only the capsule pairs whose bounding spheres
-    (the segment's midpoint, half its length plus r) may come within the best of each
-    sample's closest pair of spheres are measured: a pair left out lies farther apart than
-    one measured, so neither the least nor its first sample changes."""
+    each), the first sample where it lies, a lower bound (M, L1, L2) of each pair's). Only the
+    capsule pairs whose bounding spheres (the segment's midpoint, half its length plus r)
+    may come within the best of each sample's closest pair of spheres are measured: a pair
+    left out lies farther apart than one measured, so neither the least nor its first sample
+    changes; its spheres' gap bounds its distance below."""
     rr = r1[:, None] + r2[None, :]
     c1, c2 = (a1 + b1) / 2, (a2 + b2) / 2
     h1 = _norm(b1 - a1) / 2 + r1
@@ -214,10 +310,13 @@ def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int]:
     ceiling = float((segment_distance(a1[m, i], b1[m, i], a2[m, j], b2[m, j])
                      - rr[i, j]).min())
     # round-off (~1e-16 m) kept far below the margin; a pair cutting in (gap ≤ 0) kept
-    n, i, j = np.nonzero(gap <= max(ceiling, 0.0) + 1e-9)
+    measured = gap <= max(ceiling, 0.0) + 1e-9
+    n, i, j = np.nonzero(measured)
     d = segment_distance(a1[n, i], b1[n, i], a2[n, j], b2[n, j]) - rr[i, j]
     k = int(np.argmin(d))  # n ascends: the first sample of the least
-    return float(d[k]), int(n[k])
+    known = np.where(measured, np.inf, gap)
+    known[n, i, j] = d
+    return float(d[k]), int(n[k]), known
 
 
 def _boxes(a, b, r) -> tuple[np.ndarray, np.ndarray]:
@@ -263,7 +362,8 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
         ends = [_at(m, uu) for m in members]
         chords = [_chords(a, b) for a, b in ends]
         for i, j in pairs:
-            d, k = pair_distance(*ends[i], *ends[j], r, r)
+            d, k = pair_distance(*ends[i], *ends[j], r, r, chords[i] + chords[j],
+                                 least[i, j][0])  # a least not under the last: no use
             if d < least[i, j][0]:
                 least[i, j] = (d, float(uu[k]))
             if len(uu) > 1:
@@ -303,12 +403,14 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
             a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
         if len(a) > 1:
             chords.append(_chords(a, b))
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index)
+    # a sphere's step is at most its capsule's chord (relative to the part)
+    way = travelled(np.concatenate(chords) if chords else [])
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index, way)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
         d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
-                                                                 caps), index)
+                                                                 caps), index, way[rows])
         if d < best:
             best, n, less = d, int(rows[k]), l2
     between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0

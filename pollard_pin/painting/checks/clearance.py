@@ -18,6 +18,12 @@ samples, found so:
    The least of them is the figure; the least bound left unchecked says how much less the
    true least over the spheres may be (0 when none is below).
 
+Step 2 skips what it can prove (:func:`may_come_within`): a point that moves at most m
+from one sample to another changes its distance from anything fixed by at most m, so a
+sphere whose distance at the neighbouring coarse samples, less the way it may travel from
+there, is still past the query's bound is answered "past it" (inf) without a query: the
+answer the query gives, so every figure is the one of asking every sample.
+
 What lies between the samples may come closer, by at most ``between`` (in the result): that
 bound plus half the largest chord a body point travels in one time step (|Δtip| +
 reach·|Δaxis|). A path refused is one line naming the time, what the gun does there, the
@@ -25,6 +31,7 @@ point on the part [mm] and the distance found against the clearance.
 """
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -45,6 +52,7 @@ SURFACE_STEP = 0.004  # m: the surface samples' sub-triangle edges, at most (δ)
 MAX_SURFACE_POINTS = 400_000  # δ grows until the samples fit (≈ 10 MB of k-d tree)
 EXACT_POINTS = 512  # the spheres of lowest bound whose exact distance is computed
 COARSE_STRIDE = 16  # every this many samples set the ceiling of the bounded queries
+SLACK = 1e-9  # m: a proven bound must clear a limit by this (round-off is ~1e-15 m)
 
 
 
@@ -125,17 +133,56 @@ def surface_index(mesh: trimesh.Trimesh) -> SurfaceIndex:
                         cKDTree(samples))
 
 
-def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | None = None):
+def travelled(steps) -> np.ndarray:
+    """The way travelled (N,) from the first sample, summing ``steps`` (N − 1,), each a bound
+    of how far any point moves in its step: the way between samples n < m, travelled[m] −
+    travelled[n], bounds how far a point moves between them (docs/model.md §26.4)."""
+    return np.concatenate([[0.0], np.cumsum(np.asarray(steps, float))])
+
+
+def may_come_within(known, at, way, limit, rows=None) -> np.ndarray:
+    """Which samples (``rows``, default all; (R, ...)) may come within ``limit`` (broadcast
+    over the trailing axes), proven from lower bounds ``known`` (M, ...) of the distances at
+    the samples ``at`` (M,), ascending from 0, and the way ``way`` (N,) of :func:`travelled`:
+    a distance falls by at most the way travelled, so sample n's is at least the larger of
+    known[i] − (way[n] − way[at[i]]) and known[i + 1] − (way[at[i + 1]] − way[n]), at[i] ≤ n
+    < at[i + 1] (docs/model.md §26.4). A sample left out is more than ``limit`` + SLACK
+    away."""
+    known, way, at = np.asarray(known, float), np.asarray(way, float), np.asarray(at)
+    n = np.arange(len(way)) if rows is None else np.asarray(rows)
+    i = np.searchsorted(at, n, side="right") - 1
+    after = np.minimum(i + 1, len(at) - 1)  # past the last: no later one
+    shape = (-1,) + (1,) * (known.ndim - 1)
+    low = known[i] - (way[n] - way[at[i]]).reshape(shape)
+    later = known[after] - (way[at[after]] - way[n]).reshape(shape)
+    low = np.where((i + 1 < len(at)).reshape(shape), np.maximum(low, later), low)
+    return low <= np.asarray(limit, float) + SLACK
+
+
+def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | None = None,
+                   way=None):
     """The least of |c − mesh| − r found over the spheres of centres ``centres`` (N, K, 3)
     and radii ``radii`` (K,) (module notes 1–3): (that distance, the index (n, k) of its
     sphere, the mesh's closest point there, how much less the least over all may be).
-    ``index``: the mesh's :class:`SurfaceIndex` if already made (default: made here)."""
+    ``index``: the mesh's :class:`SurfaceIndex` if already made (default: made here);
+    ``way`` (N,): the way any centre travels (:func:`travelled`), to skip the queries it
+    proves past their bound (module notes; default None: every sphere asked). The answer is
+    the same either way."""
     index = surface_index(mesh) if index is None else index
     tri, owner, delta, tree = index.triangles, index.owner, index.delta, index.distinct
     coarse, _ = tree.query(centres[::COARSE_STRIDE])
     ceiling = float((coarse - radii).min())  # an achieved upper bound of the least
-    approx = np.column_stack([tree.query(centres[:, k], distance_upper_bound=ceiling + r
-                                         + delta)[0] for k, r in enumerate(radii)])
+    bound = ceiling + radii + delta  # a query's: a sphere further off cannot hold the least
+    if way is None:
+        ask = np.ones(centres.shape[:2], bool)
+    else:  # d̃ is 1-Lipschitz in c: the coarse samples' d̃ bound the others'
+        ask = may_come_within(coarse, np.arange(0, len(centres), COARSE_STRIDE), way,
+                              bound)
+    approx = np.full(centres.shape[:2], math.inf)
+    for k in range(len(radii)):
+        rows = np.flatnonzero(ask[:, k])
+        if len(rows):
+            approx[rows, k] = tree.query(centres[rows, k], distance_upper_bound=bound[k])[0]
     lower = (approx - delta - radii).ravel()  # inf: at least the ceiling
     flat = centres.reshape(-1, 3)
     order = np.argsort(lower)
@@ -145,8 +192,9 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
     # a face within d ≤ d̃ of c has one of its own samples within d̃ + δ
     near = index.every.query_ball_point(flat[order], np.minimum(
         approx.ravel()[order], ceiling + radii[order % len(radii)]) + delta)
-    pair = np.unique(np.concatenate([
-        i * len(tri) + np.unique(owner[np.asarray(f, int)]) for i, f in enumerate(near)]))
+    sizes = np.fromiter(map(len, near), int, len(near))
+    pair = np.unique(np.repeat(np.arange(len(near)) * len(tri), sizes)
+                     + owner[np.fromiter(itertools.chain.from_iterable(near), int, sizes.sum())])
     who, face = order[pair // len(tri)], pair % len(tri)
     import trimesh
 
@@ -154,7 +202,8 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
     dist = np.linalg.norm(closest - flat[who], axis=1) - radii[who % len(radii)]
     j = int(np.argmin(dist))
     best = float(dist[j])
-    rest = np.sort(lower)[len(order)]if len(lower) > len(order) else math.inf
+    rest = (np.partition(lower, len(order))[len(order)] if len(lower) > len(order) else
+            math.inf)
     floor = min(best, float(rest), ceiling if np.isinf(lower).any() else math.inf)
     return best, divmod(int(who[j]), len(radii)), closest[j], best - floor
 
@@ -178,7 +227,10 @@ def clearance_of(mesh: trimesh.Trimesh, poses, t, body: GunBody | None = None,
     body = GunBody() if body is None else body
     poses = np.asarray(poses, float)
     centres, radii = body_points(poses, body)
-    best, (i, _), point, less = least_distance(mesh, centres, radii)
+    offs = body.axis_points()[0]  # a centre's step is at most the axis ends' (affine in it)
+    ends = centres[:, [int(np.argmin(offs)), int(np.argmax(offs))]]
+    way = travelled(np.linalg.norm(np.diff(ends, axis=0), axis=2).max(axis=1))
+    best, (i, _), point, less = least_distance(mesh, centres, radii, way=way)
     return Clearance(best, less + between_samples(poses, body), float(required), i, float(t[i]),
                      tuple(float(c) for c in point), tuple(float(c) for c in poses[i, :3]))
 
@@ -236,5 +288,5 @@ def panel_mesh(frame) -> trimesh.Trimesh:
 
 
 __all__ = ["Clearance", "SurfaceIndex", "between_samples", "body_points", "check_clearance",
-           "clearance_of", "job_clearance", "least_distance", "panel_mesh", "strided",
-           "surface_index", "surface_samples"]
+           "clearance_of", "job_clearance", "least_distance", "may_come_within", "panel_mesh",
+           "strided", "surface_index", "surface_samples", "travelled"]

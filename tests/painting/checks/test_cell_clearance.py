@@ -71,8 +71,86 @@ def test_the_screened_search_finds_every_pairs_least(robot, sway):
         every = (segment_distance(a[:, :, None], b[:, :, None], a2[:, None], b2[:, None])
                  - r[:, None] - r[None, :]).min(axis=(1, 2))
         assert d == pytest.approx(every.min(), abs=1e-12) and k == int(np.argmin(every))
+        # the samples the way travelled proves beyond the ceiling skipped: the same answer
+        assert pair_distance(a, b, a2, b2, r, r, steps(a, b) + steps(a2, b2)) == (d, k)
         cuts += d < 0
     assert cuts == 2
+
+
+def steps(a, b):
+    """The farthest a capsule point moves in each step (N − 1,): at an end (ends (N, L, 3))."""
+    move = [np.linalg.norm(np.diff(x, axis=0), axis=2) for x in (a, b)]
+    return np.maximum(*move).max(axis=1)
+
+
+def test_the_pairs_skip_finds_a_dip_between_coarse_samples():
+    """Two robots of three parallel capsules (r 10 mm, 0.6 m apart), the second the
+    first's copy shifted along x stepping 30 mm a sample: 40 mm apart at sample 8 (between
+    the coarse samples 0 and 16, 280 mm), 50 mm at the coarse sample 32. The search skipping
+    what the way travelled proves beyond the ceiling finds sample 8, as every sample
+    measured does; a way half as long would miss it."""
+    k = np.arange(48)
+    gap = np.minimum(0.04 + 0.03 * np.abs(k - 8), 0.05 + 0.03 * np.abs(k - 32))
+    a1 = np.tile(np.array([[0.0, 0.0, z] for z in (0.0, 0.6, 1.2)]), (48, 1, 1))
+    a1[:, :, 1] += 0.005 * np.sin(k)[:, None]  # a sway along the capsules
+    b1 = a1 + [0.0, 0.3, 0.0]
+    shift = np.zeros((48, 1, 3))
+    shift[:, 0, 0] = gap + 0.02
+    a2, b2, r = a1 + shift, b1 + shift, np.full(3, 0.01)
+    moves = steps(a1, b1) + steps(a2, b2)
+    every = pair_distance(a1, b1, a2, b2, r, r)
+    assert pair_distance(a1, b1, a2, b2, r, r, moves) == every
+    assert every[1] == 8 and every[0] == pytest.approx(0.04, abs=1e-12)
+    assert pair_distance(a1, b1, a2, b2, r, r, moves / 2)[1] == 32  # the wrong bound: caught
+    # held still at the least: from sample 5 to 12 (its first sample, 5), then from 5 to 40
+    # (the coarse sample 16 is the one named, as without the skip); samples the same as the
+    # one before are not measured
+    for end in (12, 40):
+        held = np.minimum(k, 5) + np.maximum(k - end, 0)  # the sample whose place each takes
+        h1, h2 = a1[held], a2[held]
+        h2[:, :, 0] = 0.05 + 0.03 * np.abs(held - 5)[:, None] + 0.02
+        moves = steps(h1, h1 + [0.0, 0.3, 0.0]) + steps(h2, h2 + [0.0, 0.3, 0.0])
+        every = pair_distance(h1, h1 + [0.0, 0.3, 0.0], h2, h2 + [0.0, 0.3, 0.0], r, r)
+        assert every[1] == (5 if end == 12 else 16) and (moves == 0).sum() == end - 5
+        assert pair_distance(h1, h1 + [0.0, 0.3, 0.0], h2, h2 + [0.0, 0.3, 0.0], r, r,
+                             moves) == every
+
+
+def test_the_skip_answers_as_every_sample_measured(robot, sway, monkeypatch):
+    """Two swaying robots and a moving plate (and a block under a leg): the cell's clearance
+    skipping the samples the way travelled proves beyond the ceilings is, to the bit, the
+    one of every sample measured (robot pairs, the gun's spheres, the other links')."""
+    from pollard_pin.painting.checks import cell_clearance as cc
+    from pollard_pin.painting.checks import clearance
+
+    t, poses = sway
+    plate = trimesh.creation.box((0.01, 0.5, 0.3))
+    plate.apply_translation((0.55 + 0.15 + 0.005, -0.2, 0.16))
+    block = trimesh.creation.box((0.1, 0.1, 0.1))  # under leg 1's elbow
+    block.apply_translation((0.3, -0.25, -0.12))
+    cell = [CellRobot("low"), CellRobot("high", (0.1, 0.75, 0.17))]
+    members = [(c, t, poses) for c in cell]
+    cases = [(members, MovingPart(plate, (0.0, 0.05, 0.0))),
+             (members[:1], MovingPart(block, (0.0, 0.01, 0.0)))]
+    real, kept = cc.may_come_within, []
+
+    def counted(*args):
+        keep = real(*args)
+        kept.append(keep.mean())
+        return keep
+
+    monkeypatch.setattr(cc, "may_come_within", counted)
+    monkeypatch.setattr(clearance, "may_come_within", counted)
+    skipped = [cell_clearance(robot, m, part) for m, part in cases]
+    assert len(kept) == 9 and max(kept) < 0.5  # the pair (4 levels), guns, links: skipped
+
+    def everywhere(known, at, way, limit, rows=None):
+        return np.ones((len(way) if rows is None else len(rows),) + np.broadcast_shapes(
+            np.shape(known)[1:], np.shape(limit)), bool)
+
+    monkeypatch.setattr(cc, "may_come_within", everywhere)
+    monkeypatch.setattr(clearance, "may_come_within", everywhere)
+    assert [cell_clearance(robot, m, part) for m, part in cases] == skipped
 
 
 def test_the_bound_between_samples_holds(robot, sway):

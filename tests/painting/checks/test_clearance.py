@@ -162,6 +162,80 @@ def test_a_stride_takes_every_kth_sample_and_its_bound_holds():
         job_clearance(None, job, plate(), poses, t, lambda i: f"at sample {i}", stride=4)
 
 
+def asked_everywhere(known, at, way, limit, rows=None):
+    """A stand-in for clearance.may_come_within that proves nothing: every sample asked."""
+    return np.ones((len(way) if rows is None else len(rows),) + np.broadcast_shapes(
+        np.shape(known)[1:], np.shape(limit)), bool)
+
+
+def dip_path():
+    """48 samples of a gun normal to the plate stepping 30 mm a sample towards and away from
+    it: 40 mm off at sample 8 (between the coarse samples 0 and 16, 280 mm off), 50 mm at
+    the coarse sample 32 (the ceiling of the bounded queries)."""
+    k = np.arange(48)
+    depth = np.minimum(0.04 + 0.03 * np.abs(k - 8), 0.05 + 0.03 * np.abs(k - 32))
+    tips = np.column_stack([0.7 - depth, np.linspace(-0.05, 0.05, 48), np.zeros(48)])
+    return poses_along([1, 0, 0], tips), 0.1 * k
+
+
+def test_may_come_within_keeps_every_sample_within_the_limit():
+    """Points walking about a fixed point: every sample whose distance is at most the limit
+    is kept, from the distances at every 8th sample and the way travelled; some are left
+    out; with half the way travelled one within the limit is lost."""
+    from pollard_pin.painting.checks.clearance import may_come_within, travelled
+
+    rng = np.random.default_rng(5)
+    x = np.cumsum(rng.normal(scale=0.01, size=(203, 4, 3)), axis=0)  # 4 points, 203 samples
+    d = np.linalg.norm(x - [0.05, 0.0, 0.0], axis=2)
+    steps = np.linalg.norm(np.diff(x, axis=0), axis=2).max(axis=1)
+    limit = np.quantile(d, 0.2, axis=0)  # each point's own
+    keep = may_come_within(d[::8], np.arange(0, 203, 8), travelled(steps), limit)
+    assert keep.shape == d.shape and keep[d <= limit].all()
+    assert 0.2 < keep.mean() < 0.9  # some left out, each more than the limit away
+    assert not may_come_within(d[::8], np.arange(0, 203, 8), travelled(steps) / 2,
+                               limit)[d <= limit].all()
+
+
+def test_the_skip_answers_as_every_sample_asked(monkeypatch):
+    """clearance_of asks the k-d tree only what the way travelled cannot prove past the
+    bound (module notes): on a dip between coarse samples, a raster over the ribbed plate and
+    random jumps, the Clearance (figure, sample, point, bound) is the one of every sphere
+    asked, to the bit; a way half as long would miss the dip."""
+    from pollard_pin.painting.checks import clearance
+
+    rib = load_part(ROOT / "examples" / "parts" / "ribbed_plate.obj").mesh
+    u = np.linspace(0.0, 6 * np.pi, 900)  # three strokes up and down across the rib
+    raster = np.column_stack([0.58 + 0.01 * np.sin(5 * u), 0.1 * np.sin(u),
+                              np.linspace(0.1, 0.2, 900)])
+    rng = np.random.default_rng(3)
+    jumps = np.column_stack([rng.uniform(0.55, 0.66, 300), rng.uniform(-0.1, 0.1, 300),
+                             rng.uniform(0.1, 0.2, 300)])
+    paths = [(plate(), *dip_path()),
+             (rib, poses_along([1, 0, 0], raster), np.arange(900.0)),
+             (rib, np.vstack([poses_along(a, t[None]) for a, t in zip(
+                 [1.0, 0.0, 0.0] + rng.normal(scale=0.3, size=(300, 3)), jumps)]),
+              np.arange(300.0))]
+    real, asked = clearance.may_come_within, []
+
+    def counted(*args):
+        keep = real(*args)
+        asked.append(keep.mean())
+        return keep
+
+    for mesh, poses, t in paths:
+        monkeypatch.setattr(clearance, "may_come_within", counted)
+        skipped = clearance_of(mesh, poses, t)
+        monkeypatch.setattr(clearance, "may_come_within", asked_everywhere)
+        assert clearance_of(mesh, poses, t) == skipped
+    assert asked[0] < 0.6 and asked[1] < 0.2  # the skip did skip (0.48, 0.06)
+    monkeypatch.setattr(clearance, "may_come_within", real)
+    dip = clearance_of(plate(), *dip_path())
+    assert dip.sample == 8 and dip.distance == pytest.approx(0.04 - NOZZLE_SPHERE, abs=1e-9)
+    way = clearance.travelled
+    monkeypatch.setattr(clearance, "travelled", lambda steps: way(steps) / 2)
+    assert clearance_of(plate(), *dip_path()).sample == 32  # the wrong bound is caught
+
+
 def test_the_example_panel_and_line_keep_the_standoff_less_the_front_sphere(plan, line_plan):
     for p in (plan, line_plan):  # the gun normal to the panel: by hand
         assert p.clearance.distance == pytest.approx(p.job.standoff - NOZZLE_SPHERE,
