@@ -2,7 +2,7 @@
 step and the velocity and acceleration systems, with no Python loop over samples."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -170,21 +170,32 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     n = len(poses)
     q0 = closed_form_angles(robot, poses, t, margins)
     clock.lap("position")
-    parts = []
+    result = None
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
         task = (poses[sl], d_poses[sl], dd_poses[sl], t[sl])
-        parts.append(_batch_block(robot, q0[sl], task, options.tol, start, clock))
+        part = _batch_block(robot, q0[sl], task, options.tol, start, clock)
+        result = part if n <= chunk else gather(result, part, sl, poses, t)
         if progress is not None:
             progress(sl.stop, n)
-    if len(parts) == 1:
-        result = parts[0]
-    else:
-        result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
-                                 if f != "joint_names" else parts[0].joint_names)
-                             for f in IKResult.__dataclass_fields__})
     check_margins(robot, result, margins)
     clock.lap("analysis")
+    return result
+
+
+def gather(result: IKResult | None, part: IKResult, sl: slice, poses, t) -> IKResult:
+    """``part``, the block of samples ``sl``, written in place into ``result`` (None at the
+    first block: made then, with room for every sample of ``poses`` and ``t``, which it
+    holds whole). The same arrays, bit for bit, as concatenating the blocks, without keeping
+    them all until the end."""
+    if result is None:
+        n = len(t)
+        result = replace(part, t=t, poses=poses, **{
+            f: np.empty((n, *a.shape[1:]), a.dtype) for f, a in vars(part).items()
+            if isinstance(a, np.ndarray) and f not in ("t", "poses")})
+    for f, a in vars(part).items():
+        if isinstance(a, np.ndarray) and f not in ("t", "poses"):
+            getattr(result, f)[sl] = a
     return result
 
 
