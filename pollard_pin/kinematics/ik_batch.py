@@ -308,7 +308,7 @@ def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
     sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
     S, N = poses.shape[:2]
-    q0 = np.concatenate([closed_form.make_continuous(q[:, :12]) for q in q18])
+    q0 = continuous_sequences(q18[:, :, :12]).reshape(S * N, -1)
     sub = poses.reshape(-1, 6)
     zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
     fine, q = [], []
@@ -330,6 +330,15 @@ def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     signs = BranchQuantities(robot).signs(np.concatenate(q)).reshape(S, N, -1)
     flip = ((signs > 0).any(axis=1) & (signs < 0).any(axis=1)).any(axis=1)
     return np.concatenate(fine).reshape(S, N).all(axis=1) & ~flip
+
+
+def continuous_sequences(q) -> np.ndarray:
+    """:func:`.closed_form.make_continuous` of each of S sequences of angles ``q`` (S, N, J),
+    (S, N, J): one call over the sequences side by side as columns (each column's turns and
+    unwrapping are its own), bit for bit each sequence's alone."""
+    S, N, J = q.shape
+    side = np.ascontiguousarray(np.swapaxes(q, 0, 1)).reshape(N, S * J)
+    return np.swapaxes(closed_form.make_continuous(side).reshape(N, S, J), 0, 1)
 
 
 def _closed_form_passes(robot: Robot, poses, margins: Margins):

@@ -170,3 +170,17 @@ def test_gather_equals_the_blocks_concatenated(robot):
         want = np.concatenate([getattr(p, f.name) for p in parts])
         assert got.shape == want.shape and got.dtype == want.dtype, f.name
         assert got.tobytes() == want.tobytes(), f.name
+
+
+def test_continuous_sequences_equal_each_sequence_alone():
+    # One call over S sequences side by side: bit for bit make_continuous of each alone (the
+    # old path), with whole turns to take off the first sample and wraps to unwrap.
+    from pollard_pin.analytic.closed_form import make_continuous
+    from pollard_pin.kinematics.ik_batch import continuous_sequences
+
+    rng = np.random.default_rng(5)
+    q = np.cumsum(rng.normal(0.0, 1.2, (7, 40, 12)), axis=1) + rng.normal(0.0, 9.0, (7, 1, 12))
+    want = np.stack([make_continuous(s) for s in q])
+    got = continuous_sequences(q)
+    assert got.shape == want.shape and got.tobytes() == np.ascontiguousarray(want).tobytes()
+    assert not np.array_equal(want, q)  # turns and wraps were taken off
