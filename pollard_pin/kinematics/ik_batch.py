@@ -46,6 +46,8 @@ class Layout:
     # others), when the tool is moved by exactly as many joints as it has rows; else None.
     blocks: tuple[np.ndarray, ...] | None = None
     tree: TreeArrays | None = None  # the same, as arrays for the compiled kernels
+    wrist_q: int = -1  # θ1716's configuration index
+    joint_names: tuple[str, ...] = ()  # the robot's, looked up once
 
 
 _LAYOUTS: dict = {}  # id(robot) → (robot, its Layout): the last few robots', kept alive
@@ -88,7 +90,7 @@ def _layout(robot: Robot) -> Layout:
                         [3 * i for i in range(len(closures)) for _ in range(2)] + [rows],
                         [1.0, -1.0] * len(closures) + [1.0])
     return Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
-                   tuple(joints), blocks, tree)
+                   tuple(joints), blocks, tree, fr.wrist_q, robot.joint_names)
 
 
 def kinematic_inverse(K: np.ndarray, lay: Layout) -> np.ndarray:
@@ -259,9 +261,9 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
                                           K_inv=K_inv)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
-                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
+                      wrist_margin=np.abs(np.sin(q[:, lay.wrist_q])),
                       sigma_parallel=sp, sigma_serial=ss, sigma_parallel_max=sp_max,
-                      sigma_serial_max=ss_max, joint_names=robot.joint_names,
+                      sigma_serial_max=ss_max, joint_names=lay.joint_names,
                       constraint_jacobian=K[:, :6])
     clock.lap("analysis")
     return result
