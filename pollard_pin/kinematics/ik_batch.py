@@ -2,7 +2,7 @@
 step and the velocity and acceleration systems, with no Python loop over samples."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -46,6 +46,8 @@ class Layout:
     # others), when the tool is moved by exactly as many joints as it has rows; else None.
     blocks: tuple[np.ndarray, ...] | None = None
     tree: TreeArrays | None = None  # the same, as arrays for the compiled kernels
+    wrist_q: int = -1  # θ1716's configuration index
+    joint_names: tuple[str, ...] = ()  # the robot's, looked up once
 
 
 _LAYOUTS: dict = {}  # id(robot) → (robot, its Layout): the last few robots', kept alive
@@ -88,7 +90,7 @@ def _layout(robot: Robot) -> Layout:
                         [3 * i for i in range(len(closures)) for _ in range(2)] + [rows],
                         [1.0, -1.0] * len(closures) + [1.0])
     return Layout(closures, tip, fr.platform_joint, fr.link_joints, fr.spherical_offset,
-                   tuple(joints), blocks, tree)
+                   tuple(joints), blocks, tree, fr.wrist_q, robot.joint_names)
 
 
 def kinematic_inverse(K: np.ndarray, lay: Layout) -> np.ndarray:
@@ -170,21 +172,32 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     n = len(poses)
     q0 = closed_form_angles(robot, poses, t, margins)
     clock.lap("position")
-    parts = []
+    result = None
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
         task = (poses[sl], d_poses[sl], dd_poses[sl], t[sl])
-        parts.append(_batch_block(robot, q0[sl], task, options.tol, start, clock))
+        part = _batch_block(robot, q0[sl], task, options.tol, start, clock)
+        result = part if n <= chunk else gather(result, part, sl, poses, t)
         if progress is not None:
             progress(sl.stop, n)
-    if len(parts) == 1:
-        result = parts[0]
-    else:
-        result = IKResult(**{f: (np.concatenate([getattr(p, f) for p in parts])
-                                 if f != "joint_names" else parts[0].joint_names)
-                             for f in IKResult.__dataclass_fields__})
     check_margins(robot, result, margins)
     clock.lap("analysis")
+    return result
+
+
+def gather(result: IKResult | None, part: IKResult, sl: slice, poses, t) -> IKResult:
+    """``part``, the block of samples ``sl``, written in place into ``result`` (None at the
+    first block: made then, with room for every sample of ``poses`` and ``t``, which it
+    holds whole). The same arrays, bit for bit, as concatenating the blocks, without keeping
+    them all until the end."""
+    if result is None:
+        n = len(t)
+        result = replace(part, t=t, poses=poses, **{
+            f: np.empty((n, *a.shape[1:]), a.dtype) for f, a in vars(part).items()
+            if isinstance(a, np.ndarray) and f not in ("t", "poses")})
+    for f, a in vars(part).items():
+        if isinstance(a, np.ndarray) and f not in ("t", "poses"):
+            getattr(result, f)[sl] = a
     return result
 
 
@@ -233,7 +246,9 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
     a = matvec(K_inv, rhs_a)
     if singular.any():
         v[singular] = a[singular] = np.nan
-    err = np.abs(_residuals(R, pos, lay, P_des, R_des))
+    # re-measured at the returned configuration: where no sample moved, that is the closed
+    # form's, whose residuals are already at hand (the same numbers)
+    err = np.abs(_residuals(R, pos, lay, P_des, R_des) if len(moved) else rhs[:, :, 0])
     if strict and not err.max() <= tol:
         k = int(np.argmax(err.max(axis=1)))
         raise UnreachablePoseError(
@@ -246,9 +261,9 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
                                           K_inv=K_inv)
     result = IKResult(t=t, poses=poses, q=q, v=v, a=a, spherical=sph, d_spherical=dsph,
                       closure_residual=err[:, :6].max(axis=1), tool_error=err[:, 6:].max(axis=1),
-                      wrist_margin=np.abs(np.sin(q[:, robot.idx_q("theta1716")])),
+                      wrist_margin=np.abs(np.sin(q[:, lay.wrist_q])),
                       sigma_parallel=sp, sigma_serial=ss, sigma_parallel_max=sp_max,
-                      sigma_serial_max=ss_max, joint_names=robot.joint_names,
+                      sigma_serial_max=ss_max, joint_names=lay.joint_names,
                       constraint_jacobian=K[:, :6])
     clock.lap("analysis")
     return result
@@ -295,7 +310,7 @@ def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
     sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
     S, N = poses.shape[:2]
-    q0 = np.concatenate([closed_form.make_continuous(q[:, :12]) for q in q18])
+    q0 = continuous_sequences(q18[:, :, :12]).reshape(S * N, -1)
     sub = poses.reshape(-1, 6)
     zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
     fine, q = [], []
@@ -317,6 +332,15 @@ def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     signs = BranchQuantities(robot).signs(np.concatenate(q)).reshape(S, N, -1)
     flip = ((signs > 0).any(axis=1) & (signs < 0).any(axis=1)).any(axis=1)
     return np.concatenate(fine).reshape(S, N).all(axis=1) & ~flip
+
+
+def continuous_sequences(q) -> np.ndarray:
+    """:func:`.closed_form.make_continuous` of each of S sequences of angles ``q`` (S, N, J),
+    (S, N, J): one call over the sequences side by side as columns (each column's turns and
+    unwrapping are its own), bit for bit each sequence's alone."""
+    S, N, J = q.shape
+    side = np.ascontiguousarray(np.swapaxes(q, 0, 1)).reshape(N, S * J)
+    return np.swapaxes(closed_form.make_continuous(side).reshape(N, S, J), 0, 1)
 
 
 def _closed_form_passes(robot: Robot, poses, margins: Margins):

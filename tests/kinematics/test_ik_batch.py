@@ -145,3 +145,42 @@ def test_reachable_sequences_judge_each_sequence_as_alone(robot):
     with pytest.raises(KinematicsInputError) as stacked:
         reachable_sequences(robot, seqs)
     assert str(stacked.value) == str(alone.value) and stacked.value.sample == 7
+
+
+def test_gather_equals_the_blocks_concatenated(robot):
+    # The blocks written in place into one result: bit for bit the old path's concatenation
+    # of the blocks' fields (every sample, every field, the arrays' shapes and dtypes).
+    from dataclasses import fields
+
+    from pollard_pin.kinematics.ik_batch import gather
+
+    traj = smooth_random_trajectory(4, samples=250)
+    args = (traj.poses, traj.d_poses, traj.dd_poses, traj.t)
+    cuts = [0, 97, 194, 250]
+    parts = [inverse_kinematics_batch(robot, *(x[a:b] for x in args))
+             for a, b in zip(cuts, cuts[1:])]
+    result = None
+    for (a, b), part in zip(zip(cuts, cuts[1:]), parts):
+        result = gather(result, part, slice(a, b), traj.poses, traj.t)
+    for f in fields(result):
+        got = getattr(result, f.name)
+        if f.name == "joint_names":
+            assert got == robot.joint_names
+            continue
+        want = np.concatenate([getattr(p, f.name) for p in parts])
+        assert got.shape == want.shape and got.dtype == want.dtype, f.name
+        assert got.tobytes() == want.tobytes(), f.name
+
+
+def test_continuous_sequences_equal_each_sequence_alone():
+    # One call over S sequences side by side: bit for bit make_continuous of each alone (the
+    # old path), with whole turns to take off the first sample and wraps to unwrap.
+    from pollard_pin.analytic.closed_form import make_continuous
+    from pollard_pin.kinematics.ik_batch import continuous_sequences
+
+    rng = np.random.default_rng(5)
+    q = np.cumsum(rng.normal(0.0, 1.2, (7, 40, 12)), axis=1) + rng.normal(0.0, 9.0, (7, 1, 12))
+    want = np.stack([make_continuous(s) for s in q])
+    got = continuous_sequences(q)
+    assert got.shape == want.shape and got.tobytes() == np.ascontiguousarray(want).tobytes()
+    assert not np.array_equal(want, q)  # turns and wraps were taken off
