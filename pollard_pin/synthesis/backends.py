@@ -119,9 +119,10 @@ _OPENBLAS_SETTERS = ("scipy_openblas_set_num_threads64_", "scipy_openblas_set_nu
 
 def one_blas_thread() -> int:
     """One BLAS thread in this process: the pool's workers are one per core already, and a
-    BLAS pool in each of them only competes for the cores (its spinning threads cost ~9 %
-    of a study's CPU time). The variables for libraries loaded from now on; the OpenBLAS
-    libraries already loaded (a forked worker inherits its parent's numpy) told directly.
+    BLAS pool in each of them only competes for the cores (its threads cost 6–9 % of an
+    evaluation's CPU time, the figures the same to the bit). The variables for libraries
+    loaded from now on; the OpenBLAS libraries already loaded (a forked worker inherits its
+    parent's numpy) told directly.
 
     Returns
     -------
