@@ -27,6 +27,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from bench_design import design_breakdown
 from bench_paint import (  # scripts/, beside this
     cell_section,
     line_section,
@@ -470,7 +471,9 @@ def design_section(trials: int, repeats: int) -> None:
     with its counts and its chosen design's figures, a full evaluation's and a search
     evaluation's CPU time (the chosen design, docs/model.md §31.5), the 200-evaluation
     projection on two cores from those, the screen's pass rate and the front planned again in
-    full, and the same study on a Dask LocalCluster of one worker, then two: the speed-up."""
+    full, and the same study on a Dask LocalCluster of one worker, then two: the speed-up;
+    first, where an evaluation's time goes for one, two and three robots
+    (scripts/bench_design.py)."""
     import random
     import tempfile
 
@@ -484,6 +487,7 @@ def design_section(trials: int, repeats: int) -> None:
     from pollard_pin.synthesis.api import design
     from pollard_pin.synthesis.study import DesignOptions
 
+    design_breakdown()
     job = pp.load_job(REPO / "examples" / "design" / "job.toml")
     space = load_space(REPO / "examples" / "design" / "space.toml")
     ctx = prepare(job, space)

@@ -3,6 +3,7 @@ back the front, the baseline and the chosen design (:func:`design`; the CLI is a
 over it)."""
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from collections import Counter
@@ -78,19 +79,20 @@ def trial_rows(study, variables, names: Sequence[str]) -> list[dict]:
     return rows
 
 
-def _replan(ctx, evaluate, designs: list[dict], options: DesignOptions) -> list:
-    """Each design planned in full, in parallel; the outcomes (or exceptions) in input
-    order."""
+def _replan(runner, designs: list[dict]) -> list:
+    """Each design planned in full on ``runner`` (the study's, still open), in parallel;
+    the outcomes (or exceptions) in input order. The most robots first (the longest plans:
+    the last to finish is then a short one, not a worker idle beside a long one)."""
     out: list = [None] * len(designs)
-    pending, inflight = list(enumerate(designs)), 0
-    with make_runner(ctx, evaluate, options.workers, options.dask) as runner:
-        while pending or inflight:
-            while pending and inflight < runner.capacity:
-                k, values = pending.pop(0)
-                runner.submit(k, values, "full")
-                inflight += 1
-            for k, outcome in runner.done():
-                out[k], inflight = outcome, inflight - 1
+    pending = sorted(enumerate(designs), key=lambda kv: -float(kv[1].get("robots", 1)))
+    inflight = 0
+    while pending or inflight:
+        while pending and inflight < runner.capacity:
+            k, values = pending.pop(0)
+            runner.submit(k, values, "full")
+            inflight += 1
+        for k, outcome in runner.done():
+            out[k], inflight = outcome, inflight - 1
     return out
 
 
@@ -170,6 +172,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
                        objectives=objectives_of(names), sampler=None, resume=options.resume)
     report = progress if progress is not None else (_bar(options) if options.progress
                                                     else None)
+    stack = contextlib.ExitStack()  # the study's runner, open until the front is planned
     try:
         close_stale(study)
         if not study.trials:  # the thesis robot is the study's first design, then the ladder's
@@ -182,36 +185,49 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
             if line is not None:
                 study.set_user_attr("ladder", line)
         study.sampler = sampler(options, finished(study)[0])
-        run_study(study, variables, ctx, ev.evaluate, names, options, report)
+        runner = stack.enter_context(make_runner(ctx, ev.evaluate, options.workers,
+                                                 options.dask))
+        run_study(study, variables, ctx, ev.evaluate, names, options, report, runner)
         rows = trial_rows(study, variables, names)
         stored = {t.number: (dict(t.params), t.user_attrs.get(EVALUATION, {}))
                   for t in study.get_trials(deepcopy=False)}
+    except BaseException:
+        stack.close()
+        raise
     finally:
         if hasattr(report, "close"):
             report.close()
         close()
-    front, notes = _front(rows, stored, ctx, ev.evaluate, names, options)
+    with stack:
+        trial = next((n for n, (values, found) in stored.items() if values == base and found),
+                     None)
+        front, notes, outcomes = _front(rows, stored, runner, names, options, trial)
+        baseline = _baseline(base, trial, stored, runner, names, outcomes)
     keep = non_dominated([d["objectives"] for d in front])
     front = sorted((front[i] for i in keep), key=lambda d: rank_key(d["objectives"]))
     for k, d in enumerate(front, start=1):
         d["design"] = k
     chosen = choose([d["objectives"] for d in front], options.pick)
-    baseline = _baseline(base, rows, stored, ctx, ev.evaluate, names, options)
     return DesignResult(tuple(variables), names, tuple(rows), tuple(front), baseline, chosen,
                         None if options.study is None else str(options.study),
                         time.perf_counter() - t0, tuple(notes))
 
 
-def _front(rows, stored, ctx, evaluate, names, options) -> tuple[list[dict], list[str]]:
+def _front(rows, stored, runner, names, options, base: int | None = None
+           ) -> tuple[list[dict], list[str], dict]:
     """The front's designs, each judged by a full plan: the study's own full evaluations
     (from the database); a design the study judged by the screen alone or by the search's
     cheaper checks is planned in full now (one that fails it leaves the front, with a note,
-    and the designs it hid are considered in turn)."""
+    and the designs it hid are considered in turn); the notes; the outcomes of the plans
+    made, by trial. The baseline's trial ``base``, if it needs a full plan
+    (:func:`_needs_plan`), is planned with the first of them (on the same workers, not
+    after them)."""
     levels = ("screen",) if options.screen_only else ("search", "full")
     candidates = [r for r in rows if r["feasible"] and r["level"] in levels]
     if not candidates:
         raise _no_front(rows)
     planned: dict[int, dict] = {}
+    outcomes: dict[int, object] = {}
     notes: list[str] = []
     while True:
         pool = [r for r in candidates if r["trial"] not in planned or planned[r["trial"]]]
@@ -221,9 +237,14 @@ def _front(rows, stored, ctx, evaluate, names, options) -> tuple[list[dict], lis
         trials = [pool[i]["trial"] for i in non_dominated(pool)]
         todo = [n for n in trials if n not in planned and stored[n][1].get("level") != "full"]
         if not todo:
-            return [planned.get(n) or _stored_row(n, *stored[n], names) for n in trials], notes
-        designs = [stored[n][0] for n in todo]
-        for n, values, outcome in zip(todo, designs, _replan(ctx, evaluate, designs, options)):
+            return ([planned.get(n) or _stored_row(n, *stored[n], names) for n in trials],
+                    notes, outcomes)
+        also = [base] if base is not None and base not in todo and base not in outcomes \
+            and _needs_plan(stored[base][1]) else []
+        designs = [stored[n][0] for n in todo + also]
+        outcomes.update(zip(todo + also, _replan(runner, designs)))
+        for n, values in zip(todo, designs):
+            outcome = outcomes[n]
             planned[n] = _design_row(0, n, values, outcome, names) or {}
             if not planned[n]:
                 why = (failure(outcome) if isinstance(outcome, BaseException)
@@ -238,20 +259,25 @@ def _stored_row(trial: int, values: dict, found: dict, names) -> dict:
             "files": found.get("files") or {}}
 
 
-def _baseline(base, rows, stored, ctx, evaluate, names, options) -> dict:
-    """The thesis robot's row: its evaluation in the study (its first design), planned in
-    full now if the study only screened it and it passed, or judged it by the search's
-    checks (or if the study lacks it)."""
-    trial = next((n for n, (values, found) in stored.items()
-                  if values == base and found), None)
+def _needs_plan(found: dict) -> bool:
+    """Whether the baseline's stored evaluation ``found`` is not its answer: the study only
+    screened it and it passed, or judged it by the search's checks."""
+    return not (found["level"] == "full" or (found["level"] == "screen"
+                                             and not found["feasible"]))
+
+
+def _baseline(base, trial, stored, runner, names, outcomes: dict) -> dict:
+    """The thesis robot's row: its evaluation in the study (its first design, ``trial``),
+    planned in full if the study only screened it and it passed, or judged it by the
+    search's checks (or if the study lacks it); a plan the front made (``outcomes``, by
+    trial) is not made again."""
     found = stored[trial][1] if trial is not None else None
-    if found is not None and (found["level"] == "full" or (found["level"] == "screen"
-                                                            and not found["feasible"])):
+    if found is not None and not _needs_plan(found):
         return {"values": base, "trial": trial, "feasible": bool(found["feasible"]),
                 "binding": found.get("binding"),
                 "objectives": ({n: found["objectives"][n] for n in names}
                                if found["feasible"] else None)}
-    (b,) = _replan(ctx, evaluate, [base], options)
+    (b,) = [outcomes[trial]] if trial in outcomes else _replan(runner, [base])
     if isinstance(b, BaseException):
         return {"values": base, "trial": trial, "feasible": False, "objectives": None,
                 "binding": failure(b)}

@@ -201,6 +201,41 @@ def _back_offset(ctx: DesignContext, back: float) -> np.ndarray:
     return -back * np.asarray(ctx.strokes.facing, float)
 
 
+def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int):
+    """The job a design paints (docs/model.md §31.3): a line job with its ``n`` robots
+    proposed as ``paint --robots N`` does, where the robot stands (the part moved for
+    ``place.back``), then their bases moved back there; a job without a line as it is.
+
+    Parameters
+    ----------
+    values : Mapping
+        The design's values (its ``place.back``).
+    ctx : DesignContext
+        From :func:`prepare`.
+    robot : Robot
+        The design's model (:func:`pollard_pin.load` of its parameters).
+    n : int
+        The robots in the cell.
+
+    Returns
+    -------
+    PaintJob or pollard_pin.painting.job.PartJob
+        The job with its ``robots`` (a cell's ``[[robot]]`` tables).
+
+    Raises
+    ------
+    pollard_pin.errors.PollardError
+        The layout's refusal.
+    """
+    job = ctx.job
+    if job.line is None:
+        return job
+    o = _back_offset(ctx, ctx.space.place_back(values))
+    robots = tuple(replace(r, base=tuple(float(c) for c in np.subtract(r.base, o)))
+                   for r in propose_layout(robot, moved_job(job, o), n))
+    return replace(job, robots=robots)
+
+
 def _objectives(design: Design | None, n: int, **known) -> dict[str, float]:
     mass = design.moving_mass * n if design is not None else math.inf
     out = {"parts_per_hour": 0.0, "robots": float(n), "motor_use": 10.0, "kmin": 0.0,
@@ -310,16 +345,12 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
     options = ctx.options
     if level == "search":  # the same plan, cheaper checks (docs/model.md §31.5)
         options = ctx.search.options(options, ctx.job.sigma)
-    job, n = ctx.job, design.robots
+    n = design.robots
     figures = dict(screened.figures)
     cons = dict(screened.constraints)
-    robots = None
     try:
-        if job.line is not None:  # proposed where the robot stands, then moved back there
-            o = _back_offset(ctx, ctx.space.place_back(values))
-            robots = tuple(replace(r, base=tuple(float(c) for c in np.subtract(r.base, o)))
-                           for r in propose_layout(robot, moved_job(job, o), n))
-            job = replace(job, robots=robots)
+        job = placed_job(values, ctx, robot, n)
+        robots = job.robots or None
         result = paint(robot, job, design.actuators, options)
     except PollardError as exc:  # the planner's refusal (a SolveError, a CellError): said
         figures["full_s"] = time.perf_counter() - t0
@@ -443,4 +474,5 @@ def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dic
 
 
 __all__ = ["CONSTRAINTS", "DesignContext", "Evaluation", "LEVELS", "OBJECTIVES", "SENSES",
-           "UNITS", "baseline_values", "design_files", "evaluate", "moved_job", "prepare"]
+           "UNITS", "baseline_values", "design_files", "evaluate", "moved_job", "placed_job",
+           "prepare"]

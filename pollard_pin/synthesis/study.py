@@ -284,7 +284,8 @@ def best_text(study_best: dict | None) -> str:
 
 
 def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
-              options: DesignOptions, report: Callable | None = None) -> None:
+              options: DesignOptions, report: Callable | None = None,
+              runner=None) -> None:
     """Evaluate designs until the study holds ``options.trials`` evaluations.
 
     Parameters
@@ -303,6 +304,10 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
         Workers, Dask, trials.
     report : Callable or None, optional
         ``report(done, total, feasible, best)`` after each evaluation.
+    runner : Runner or None, optional
+        Where the designs run, left open for the caller's next stage (default: one of
+        ``options``' workers or Dask, :func:`~pollard_pin.synthesis.backends.make_runner`,
+        closed at the end).
 
     Raises
     ------
@@ -319,7 +324,8 @@ def run_study(study, variables, ctx, evaluate: Callable, names: Sequence[str],
     first_error = None
     if report is not None:
         report(done, options.trials, feasible, best)
-    with make_runner(ctx, evaluate, options.workers, options.dask) as runner:
+    with (contextlib.nullcontext(runner) if runner is not None
+          else make_runner(ctx, evaluate, options.workers, options.dask)) as runner:
         try:
             while done < options.trials or inflight:
                 while len(inflight) < runner.capacity and done + len(inflight) < options.trials:

@@ -185,3 +185,22 @@ def test_moved_job_moves_the_part_only():
     assert m.center == pytest.approx((1.0, -0.5, 0.16)) and m.normal == panel.normal
     part = pp.load_job("examples/line_part.toml")
     assert moved_job(part, [0.1, 0.0, 0.2]).position == pytest.approx((0.1, -0.75, 0.2))
+
+
+def test_placed_job_is_the_job_the_evaluation_paints(strip):
+    """The robots the full evaluation proposes and writes (robots.toml) are placed_job's; a
+    job without a line is painted as it is."""
+    import tomllib
+    from dataclasses import replace
+
+    from pollard_pin.synthesis.concrete import build
+    from pollard_pin.synthesis.evaluation import placed_job
+
+    space, ctx, values, ev = strip
+    robot = pp.load(build(values, space).params)
+    job = placed_job(values, ctx, robot, 1)
+    written = tomllib.loads(ev.robots_toml)["robot"]
+    assert [r.name for r in job.robots] == [r["name"] for r in written]
+    assert [list(r.base) for r in job.robots] == [r["base"] for r in written]
+    still = replace(ctx, job=replace(ctx.job, line=None))
+    assert placed_job(values, still, robot, 1) is still.job

@@ -1,0 +1,133 @@
+#!/usr/bin/env python
+"""Where a design evaluation's CPU time goes (docs/model.md §31.5), for the example's designs
+of one, two and three robots: the search's and the full evaluation, and the full one's parts
+timed alone — the layout, the plan (at the search's motor check and at the full one's), the
+clearances (every 4th sample, every sample), the film (σ/2, σ/3) — and whether the search's
+plan is the full one's; then the 200-evaluation study projected on two cores from them.
+
+    python scripts/bench_design.py            (benchmark.py's design section prints it too)
+"""
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import pollard_pin as pp
+
+REPO = Path(__file__).resolve().parents[1]
+
+#: The example's designs by robot count (examples/design/): one robot, the study's choice
+#: (×1.7, S200 base motors, 0.3 m back); two: the thesis robot; three: a front design of a
+#: 200-evaluation study (×1.35 arms, ×1.47 links, S200 base and W10 wrist motors, 0.1 m back).
+DESIGNS = {
+    1: {"limits.theta21.upper": -35.0, "scale.arms": 1.7, "scale.links": 1.7, "motor.base": 3,
+        "ratio.base": 1, "motor.wrist": 4, "ratio.wrist": 0, "place.back": 0.3, "robots": 1},
+    2: None,  # the thesis robot: baseline_values
+    3: {"limits.theta21.upper": -21.122299070355538, "scale.arms": 1.3451347483471792,
+        "scale.links": 1.465018298108687, "motor.base": 3, "ratio.base": 0, "motor.wrist": 5,
+        "ratio.wrist": 0, "place.back": 0.10276665747466765, "robots": 3},
+}
+#: A 200-evaluation study of the example (the default, docs/model.md §31.5): the designs the
+#: search planned, feasible or not, and those planned again (its front of 50 and the thesis
+#: robot, the baseline), by robot count.
+SEARCHED = {1: 6, 2: 43, 3: 82}
+FRONT = {1: 5, 2: 16, 3: 30}
+SCREENS = 200 + 495  # the study's screens and the ladder's
+SCREEN_CPU = 0.04  # [s] a screen (docs/model.md §31.4)
+
+
+def _cpu(fn):
+    t0 = time.process_time()
+    out = fn()
+    return out, time.process_time() - t0
+
+
+def breakdown(n: int, values: dict, ctx, search_ctx) -> dict:
+    """CPU seconds of design ``values`` (``n`` robots): ``search`` and ``full`` evaluations
+    and the full one's parts, each alone; ``same``: the search's plan is the full one's."""
+    from pollard_pin.painting.api import film_spacing_of
+    from pollard_pin.painting.cell.frames import robot_model_in_base
+    from pollard_pin.painting.cell.plan import cell_clearance_of, cell_planner
+    from pollard_pin.painting.film.cell import cell_panel_film
+    from pollard_pin.painting.line.panel import line_clearance
+    from pollard_pin.synthesis import evaluate
+    from pollard_pin.synthesis.concrete import build
+    from pollard_pin.synthesis.evaluation import placed_job
+
+    out = {}
+    searched, out["search"] = _cpu(lambda: evaluate(values, search_ctx, "search"))
+    full, out["full"] = _cpu(lambda: evaluate(values, ctx, "full"))
+    out["feasible"] = searched.feasible and full.feasible
+    design = build(values, ctx.space)
+    robot = pp.load(design.params)
+    job, out["layout"] = _cpu(lambda: placed_job(values, ctx, robot, n))
+    plans = {}
+    for name, options in (("search", search_ctx.search.options(ctx.options, ctx.job.sigma)),
+                          ("full", ctx.options)):
+        policy = options.policy
+        plan, out[f"plan_{name}"] = _cpu(lambda p=policy: cell_planner(
+            robot, job, design.actuators, None, None, p)(job.line.speed))
+        _, out[f"clearance_{name}"] = _cpu(lambda p=policy, c=plan: (
+            [line_clearance(robot_model_in_base(robot, r.robot), r.plan, p.clearance_stride)
+             for r in c.robots], cell_clearance_of(robot, c, p.clearance_stride)))
+        res = film_spacing_of(job, options.resolution)
+        _, out[f"film_{name}"] = _cpu(lambda c=plan, r=res: cell_panel_film(c, r))
+        plans[name] = plan
+    out["same"] = all(np.array_equal(a.plan.trajectory.t, b.plan.trajectory.t)
+                      and np.array_equal(a.plan.trajectory.poses, b.plan.trajectory.poses)
+                      for a, b in zip(plans["search"].robots, plans["full"].robots))
+    out["motor_use"] = (searched.objectives["motor_use"], full.objectives["motor_use"])
+    return out
+
+
+def design_breakdown() -> dict:
+    """Print the breakdown of :data:`DESIGNS` and the 200-evaluation projection; the rows by
+    robot count."""
+    from pollard_pin.synthesis import SearchFidelity, baseline_values, load_space, prepare
+
+    job = pp.load_job(REPO / "examples" / "design" / "job.toml")
+    space = load_space(REPO / "examples" / "design" / "space.toml")
+    ctx = prepare(job, space)
+    search_ctx = prepare(job, space, search=SearchFidelity())
+    from pollard_pin.synthesis import evaluate
+
+    evaluate(DESIGNS[1], search_ctx, "search")  # warm-up: the planner's imports and caches
+    rows = {}
+    print("\ndesign evaluation, CPU [s] (examples/design; plan: the cell's programs with their "
+          "motor check, no clearance; the search's at its fidelity, the full one's exact)")
+    head = ("robots", "search", "full", "layout", "plan s", "plan f", "clear s", "clear f",
+            "film s", "film f", "same plan")
+    print("  " + "".join(f"{h:>10s}" for h in head))
+    for n, values in DESIGNS.items():
+        values = baseline_values(space, ctx) if values is None else values
+        b = breakdown(n, values, ctx, search_ctx)
+        rows[n] = b
+        cells = [b[k] for k in ("search", "full", "layout", "plan_search", "plan_full",
+                                "clearance_search", "clearance_full", "film_search",
+                                "film_full")]
+        print(f"  {n:>10d}" + "".join(f"{c:10.1f}" for c in cells) + f"{b['same']!s:>10s}")
+    print("  the full evaluation's share that is planning (layout and the plan at the "
+          "search's motor check): " + ", ".join(
+              f"{n} robot{'s' * (n > 1)} {(r['layout'] + r['plan_search']) / r['full']:.0%}"
+              for n, r in rows.items()))
+    # the 200-evaluation study on two cores: the screens, the search's plans, the front
+    # planned again in full — or judged by the exact checks on the search's own plan (the
+    # full evaluation less the layout and the plan, plus the motor check's refinement)
+    screens = SCREENS * SCREEN_CPU
+    search = sum(k * rows[n]["search"] for n, k in SEARCHED.items())
+    replan = sum(k * rows[n]["full"] for n, k in FRONT.items())
+    exact = sum(k * (rows[n]["full"] - rows[n]["layout"] - rows[n]["plan_search"])
+                for n, k in FRONT.items())
+    print(f"  a 200-evaluation study on 2 cores, projected [min]: the search "
+          f"{(screens + search) / 120:.1f}, the front planned again {replan / 120:.1f} (total "
+          f"{(screens + search + replan) / 120:.1f}); the front's exact checks on the search's "
+          f"plan instead {exact / 120:.1f} (total {(screens + search + exact) / 120:.1f})")
+    return rows
+
+
+if __name__ == "__main__":
+    design_breakdown()
+    sys.exit(0)
