@@ -110,46 +110,15 @@ def _guarded(fn, *args):
 _WORKER: dict = {}  # a pool worker's context and evaluator, set once by _init_worker
 
 
-# the variables BLAS libraries read when they load, and the setters of OpenBLAS builds
-# (numpy's and scipy's wheels prefix theirs) for one already loaded
-BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
-_OPENBLAS_SETTERS = ("scipy_openblas_set_num_threads64_", "scipy_openblas_set_num_threads",
-                     "openblas_set_num_threads64_", "openblas_set_num_threads")
+def one_blas_thread() -> None:
+    """One BLAS thread in this process (threadpoolctl): the pool's workers are one per core
+    already, and a BLAS pool in each of them only competes for the cores (its threads cost
+    6–9 % of an evaluation's CPU time, the figures the same to the bit). A forked worker
+    inherits its parent's loaded BLAS, so the libraries are told directly, not through the
+    environment."""
+    from threadpoolctl import threadpool_limits
 
-
-def one_blas_thread() -> int:
-    """One BLAS thread in this process: the pool's workers are one per core already, and a
-    BLAS pool in each of them only competes for the cores (its threads cost 6–9 % of an
-    evaluation's CPU time, the figures the same to the bit). The variables for libraries
-    loaded from now on; the OpenBLAS libraries already loaded (a forked worker inherits its
-    parent's numpy) told directly.
-
-    Returns
-    -------
-    int
-        How many loaded OpenBLAS libraries were set (0 where none is, or on a system
-        without ``/proc/self/maps``).
-    """
-    import ctypes
-
-    for name in BLAS_THREADS:
-        os.environ[name] = "1"
-    try:
-        with open("/proc/self/maps") as f:
-            paths = {line.split()[-1] for line in f if "openblas" in line.rsplit("/", 1)[-1]}
-    except OSError:
-        return 0
-    done = 0
-    for path in sorted(paths):
-        try:
-            lib = ctypes.CDLL(path)
-        except OSError:
-            continue
-        setter = next((getattr(lib, n) for n in _OPENBLAS_SETTERS if hasattr(lib, n)), None)
-        if setter is not None:
-            setter(1)
-            done += 1
-    return done
+    threadpool_limits(limits=1, user_api="blas")
 
 
 def _init_worker(ctx, evaluate) -> None:
