@@ -249,8 +249,7 @@ def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
     for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(rows)]):
         c = per[lo:hi]
         row = np.repeat(np.arange(lo, hi), c)
-        k = np.repeat(first[rows[lo:hi] // COARSE], c) + np.arange(c.sum()) - np.repeat(
-            np.cumsum(c) - c, c)
+        k = _ranges(first[rows[lo:hi] // COARSE], c)
         n, ii, jj = rows[row], i[k], j[k]
         np.minimum.at(out, row, segment_distance(a1[n, ii], b1[n, ii], a2[n, jj], b2[n, jj])
                       - rr[ii, jj])
@@ -288,8 +287,13 @@ def _pairs(near1, near2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     counts = np.bincount(n2, minlength=len(near2))
     rep = counts[n1]  # each (n, i) with every j of its sample
     start = np.cumsum(counts) - counts  # where each sample's j's begin in j2
-    within = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
-    return np.repeat(n1, rep), np.repeat(i1, rep), j2[np.repeat(start[n1], rep) + within]
+    return np.repeat(n1, rep), np.repeat(i1, rep), j2[_ranges(start[n1], rep)]
+
+
+def _ranges(starts, counts) -> np.ndarray:
+    """The ranges starts[m] … starts[m] + counts[m] − 1 one after another (integers)."""
+    return np.repeat(starts, counts) + np.arange(counts.sum()) - np.repeat(
+        np.cumsum(counts) - counts, counts)
 
 
 def _coarse(a1, b1, a2, b2, r1, r2) -> tuple[float, int, np.ndarray]:
@@ -403,8 +407,8 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
             a, b = np.concatenate([a0, a]), np.concatenate([b0, b])
         if len(a) > 1:
             chords.append(_chords(a, b))
-    # a sphere's step is at most its capsule's chord (relative to the part)
-    way = travelled(np.concatenate(chords) if chords else [])
+    steps = np.concatenate(chords) if chords else np.zeros(0)
+    way = travelled(steps)  # a sphere's step is at most its capsule's chord (in the part)
     best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index, way)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
@@ -413,7 +417,7 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
                                                                  caps), index, way[rows])
         if d < best:
             best, n, less = d, int(rows[k]), l2
-    between = float(np.concatenate(chords).max()) / 2 if len(s.t) > 1 else 0.0
+    between = float(steps.max()) / 2 if len(s.t) > 1 else 0.0
     return best, float(s.t[n]), less + between
 
 
