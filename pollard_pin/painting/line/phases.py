@@ -245,7 +245,7 @@ def _off_passes_out(robot, rel: Relative, t, e) -> str:
     if span is None:
         return ""  # nothing near the reach: the passes' own refusal covers it
     xs = np.arange(span[0], span[1] + SHIFT_STEP, SHIFT_STEP)
-    off = off[~_in_reach_somewhere(robot, poses, e, xs)]  # every fourth among the first
+    off = off[~_in_reach_somewhere(robot, poses, e, xs)]
     if not len(off):
         return ""
     before = np.cumsum([k == "pass" for k in rel.kind])  # passes up to each piece
@@ -367,9 +367,9 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
         poses, d, dd, spray = world_motion_reusing(rel, speed, e, times, t, (tf, checked))
     traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
-    if screened:
+    if screened:  # passed: the check's samples, the path's among them
         _screen(robot, act, (poses, d, dd), speed)
-        checked = world_motion(rel, speed, e, times, tf)
+        checked = world_motion_reusing(rel, speed, e, times, tf, (t, (poses, d, dd, spray)))
     try:
         fine = motion(robot, act, *checked[:3])
     except ReachError as exc:
