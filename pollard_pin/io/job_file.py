@@ -1,5 +1,5 @@
 """A paint job written back as TOML (``place`` writes the placed job): the tables of
-:meth:`pollard_pin.painting.job.PartJob.to_dict` (a cell's robots as ``[[robot]]`` tables), file
+:meth:`pollard_pin.painting.job.JobBase.to_dict` (a cell's robots as ``[[robot]]`` tables), file
 paths made relative to the written file's folder so that ``load_job`` finds the same mesh and
 actuators. Values are written by :func:`toml_value`, the one TOML value writer (robots.toml's
 too): strings as TOML basic strings with the spec's escapes, so any path reads back as itself."""

@@ -50,12 +50,59 @@ MAX_PART_COATS = 5
 MAX_RECOIL = 100.0
 
 
+@dataclass(frozen=True, kw_only=True)
+class JobBase:
+    """What a panel job (:class:`PaintJob`) and a part job (:class:`PartJob`) share, SI units,
+    given by keyword: the gun (``standoff``, ``sigma``, ``flow``, ``spot``, ``apex``,
+    ``clearance``, ``recoil``), the film (``thickness``, ``spacing``, ``speed``,
+    ``direction``, ``coats``, ``paint``), the motors (``actuators``), where it is painted
+    (``line``, ``robots``) and the job file (``source``); each as :class:`PaintJob`'s
+    attributes say."""
+
+    standoff: float
+    sigma: float
+    flow: float
+    thickness: float
+    spacing: float | None = None
+    speed: float | None = None
+    direction: str = "horizontal"
+    coats: int | None = None
+    actuators: str | None = None  # a path, relative to the job file's folder
+    source: str = "<python>"
+    line: Line | None = None  # the conveyor (docs/model.md §24); None: still
+    clearance: float | None = None  # gun body to part [m]; None: the default (§25)
+    robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
+    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
+    paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
+    spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
+    apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
+
+    def __post_init__(self):
+        check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
+        check_paint(self)  # a Paint made in Python meets [paint]'s rules (material.py)
+
+    def to_dict(self) -> dict:
+        """The job as the file would say it (None entries left out)."""
+        d = {k: v for k, v in asdict(self).items()
+             if v is not None and k not in ("source", "robots", "paint")}
+        return {**self._target_table(d),
+                "gun": gun_table(self, d, REQUIRED["gun"] + OPTIONAL["gun"]),
+                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
+                **({"line": self.line.to_dict()} if self.line is not None else {}),
+                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {}),
+                **({"paint": self.paint.to_dict()} if self.paint is not None else {})}
+
+    def _target_table(self, d: dict) -> dict:
+        """What is painted, as the file's table, from the job's entries ``d``."""
+        raise NotImplementedError
 
 
 @dataclass(frozen=True)
-class PaintJob:
+class PaintJob(JobBase):
     """A checked panel job, SI units (:func:`~pollard_pin.load_job`). ``normal`` is unit
-    length; optional entries are None when the file leaves them to the planner.
+    length; optional entries are None when the file leaves them to the planner. The entries
+    after ``height`` (:class:`~pollard_pin.painting.job.JobBase`'s, a part job's too) are
+    given by keyword.
 
     Attributes
     ----------
@@ -104,97 +151,39 @@ class PaintJob:
     normal: tuple[float, float, float]
     width: float
     height: float
-    standoff: float
-    sigma: float
-    flow: float
-    thickness: float
-    spacing: float | None = None
-    speed: float | None = None
-    direction: str = "horizontal"
-    coats: int | None = None
-    actuators: str | None = None  # a path, relative to the job file's folder
-    source: str = "<python>"
-    line: Line | None = None  # the conveyor (docs/model.md §24); None: a still panel
-    clearance: float | None = None  # gun body to part [m]; None: the default (§25)
-    robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
-    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
-    paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
-    spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
-    apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
 
-    def __post_init__(self):
-        check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
-        check_paint(self)  # a Paint made in Python meets [paint]'s rules (material.py)
-
-    def to_dict(self) -> dict:
-        """The job as the file would say it (None entries left out)."""
-        d = {k: v for k, v in asdict(self).items()
-             if v is not None and k not in ("source", "robots", "paint")}
-        return {"panel": {k: d[k] for k in REQUIRED["panel"]},
-                "gun": gun_table(self, d, REQUIRED["gun"] + OPTIONAL["gun"]),
-                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
-                **({"line": self.line.to_dict()} if self.line is not None else {}),
-                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {}),
-                **({"paint": self.paint.to_dict()} if self.paint is not None else {})}
+    def _target_table(self, d: dict) -> dict:
+        return {"panel": {k: d[k] for k in REQUIRED["panel"]}}
 
 
 @dataclass(frozen=True)
-class PartJob:
+class PartJob(JobBase):
     """A checked paint job over a part's mesh (``[part]``), SI units: ``mesh`` the file (a
     path, relative to the job file's folder once loaded), its length ``units`` (a name of
     UNITS) or ``scale`` (the file's unit in m; :attr:`unit` is the one rule), ``position``
     [m] and ``rotation`` (rx, ry, rz) [deg]
     (``painting.workpiece.mesh.placement``), the painted faces' ``facing`` direction (None:
-    towards the robot) and ``max_angle`` [deg] (None: the default); the gun as
-    :class:`PaintJob`'s; ``paint`` the ``[paint]`` table
-    (:class:`~pollard_pin.painting.material.Paint`, docs/model.md §29)."""
+    towards the robot) and ``max_angle`` [deg] (None: the default); the gun, film and
+    conveyor as :class:`PaintJob`'s (:class:`JobBase`'s, by keyword); ``paint`` the
+    ``[paint]`` table (:class:`~pollard_pin.painting.material.Paint`, docs/model.md §29)."""
 
     mesh: str
     position: tuple[float, float, float]
-    standoff: float
-    sigma: float
-    flow: float
-    thickness: float
     units: str = "m"
     scale: float | None = None
     rotation: tuple[float, float, float] = (0.0, 0.0, 0.0)
     facing: tuple[float, float, float] | None = None
     max_angle: float | None = None
-    spacing: float | None = None
-    speed: float | None = None
-    direction: str = "horizontal"
-    coats: int | None = None
-    actuators: str | None = None
-    source: str = "<python>"
-    line: Line | None = None  # the conveyor (docs/model.md §24); None: a still part
-    clearance: float | None = None  # gun body to part [m]; None: the default (§25)
-    robots: tuple[CellRobot, ...] = ()  # a cell's robots (§26); (): one robot at the origin
-    recoil: float | None = None  # the spray's push back on the gun [N] (§27.7); None: none
-    paint: Paint | None = None  # the paint's solids, density, transfer efficiency (§29)
-    spot: Spot | None = None  # the spray pattern (§20); None: the round Gaussian of sigma
-    apex: float | None = None  # the spray cone's apex in front of the nozzle [m]; None: 0
-
-    def __post_init__(self):
-        check_spot(self, MAX_LENGTH)  # a spot's sigma is its width (gun_table.py)
-        check_paint(self)  # a Paint made in Python meets [paint]'s rules (material.py)
 
     @property
     def unit(self) -> float:
         """The mesh file's length unit [m]: ``scale`` if given, else ``units``'."""
         return self.scale if self.scale is not None else UNITS[self.units]
 
-    def to_dict(self) -> dict:
-        """The job as the file would say it (None entries left out)."""
-        d = {k: v for k, v in asdict(self).items()
-             if v is not None and k not in ("source", "robots", "paint")}
+    def _target_table(self, d: dict) -> dict:
         if self.scale is not None:  # the file names one of units and scale
             del d["units"]
-        return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d},
-                "gun": gun_table(self, d, REQUIRED["gun"] + OPTIONAL["gun"]),
-                "job": {k: d[k] for k in ("thickness",) + OPTIONAL["job"] if k in d},
-                **({"line": self.line.to_dict()} if self.line is not None else {}),
-                **({"robot": [r.to_dict() for r in self.robots]} if self.robots else {}),
-                **({"paint": self.paint.to_dict()} if self.paint is not None else {})}
+        return {"part": {k: d[k] for k in PART_REQUIRED + PART_OPTIONAL if k in d}}
 
 
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
@@ -492,5 +481,5 @@ def job_kind(job: Any) -> str:
                        "or PartJob, from load_job)")
 
 
-__all__ = ["DIRECTIONS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "PaintJob",
+__all__ = ["DIRECTIONS", "MAX_RECOIL", "UNITS", "MIN_PANEL_SIGMAS", "JobBase", "PaintJob",
            "PartJob", "job_from_dict", "job_kind", "load_job", "part_job_from_dict"]
