@@ -1,4 +1,5 @@
-"""The paint job file (TOML, SI units; ``examples/paint.toml``), read and checked.
+"""The paint job file (TOML, SI units; ``examples/paint.toml``), read and checked: the job
+types and the reader (each table's keys and values: ``job_tables.py``).
 
 Every rule broken is one :class:`JobError` line naming the key, its value and the rule.
 """
@@ -13,31 +14,32 @@ import numpy as np
 
 from ..checks import file_path, instance
 from ..model.params import did_you_mean
-from ..model.values import fail, integer, number, read_toml
+from ..model.values import read_toml
 from .cell.robots import CellRobot, robots_from_tables
 from .errors import JobError, JobKindError
-from .gun_table import SPOT_KEYS, check_spot, gun_table, required_gun_keys, spot_values
+from .gun_table import check_spot, gun_table
+from .job_tables import (
+    DIRECTIONS,
+    MAX_LENGTH,
+    MAX_RECOIL,
+    OPTIONAL,
+    PART_OPTIONAL,
+    PART_REQUIRED,
+    REQUIRED,
+    UNITS,
+    check_table,
+    checked_number,
+    checked_positive,
+    checked_vector,
+    fail_key,
+    gun_values,
+    job_values,
+    unit_values,
+)
 from .line.conveyor import Line, line_from_table
 from .material import Paint, check_paint, paint_from_table
 from .spray.spots import Spot
 
-# Required and optional keys per table, in file order.
-REQUIRED = {"panel": ("center", "normal", "width", "height"),
-            "gun": ("standoff", "sigma", "flow"),
-            "job": ("thickness",)}
-OPTIONAL = {"panel": (),
-            "gun": ("clearance", "recoil", *(k for k in SPOT_KEYS if k != "sigma")),
-            "job": ("spacing", "speed", "direction", "coats", "actuators")}
-# A part's mesh instead of a panel (paint/target/mesh.py reads and places it): [part]
-# replaces [panel].
-PART_REQUIRED = ("mesh", "position")
-PART_OPTIONAL = ("units", "scale", "rotation", "facing", "max_angle")
-# The mesh file's length unit [m]: ``units`` names one, or ``scale`` gives it as a number
-# (a mesh of unknown unit, sized to a plausible part).
-UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "in": 0.0254}
-DIRECTIONS = ("horizontal", "vertical")
-# A length beyond this is a unit slip (mm for m): the robot reaches ~0.5 m.
-MAX_LENGTH = 10.0
 # The smallest panel side, in spray spots σ: below it the film is the spot's own profile and
 # "within ±10 %" says nothing about the panel (docs/model.md §21).
 MIN_PANEL_SIGMAS = 1.0
@@ -45,9 +47,6 @@ MIN_PANEL_SIGMAS = 1.0
 # fastest pass leaves the thinnest coat at ~1/5 of the example target (the panel planner's
 # "at most 5 coat(s)"): more only make the program longer and the film thinner per coat.
 MAX_PART_COATS = 5
-# The spray's recoil [N]: a gun kicks back by a few N at most; beyond this a unit slip (the
-# drives' linear deflection, docs/model.md §27.7, is long gone anyway).
-MAX_RECOIL = 100.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -189,98 +188,31 @@ class PartJob(JobBase):
 def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
     """Validate a parsed job file with a [part] table (the mesh itself is read by
     :func:`.workpiece.mesh.load_part`, which checks the units, facing and max_angle)."""
-    part, gun, job = (_check_table(source, d, name) for name in ("part", "gun", "job"))
+    part, gun, job = (check_table(source, d, name) for name in ("part", "gun", "job"))
     mesh = part["mesh"]
     if not (isinstance(mesh, str) and mesh.strip()):
-        _fail(source, "part.mesh", mesh, "must be a mesh file name (STL, OBJ or PLY)")
+        fail_key(source, "part.mesh", mesh, "must be a mesh file name (STL, OBJ or PLY)")
     values: dict[str, Any] = {"mesh": mesh,
-                              "position": _vector(source, "part.position", part["position"])}
-    values.update(_unit_values(source, part))
+                              "position": checked_vector(source, "part.position", part["position"])}
+    values.update(unit_values(source, part))
     if "rotation" in part:
         r = part["rotation"]
         if not isinstance(r, list) or len(r) != 3:
-            _fail(source, "part.rotation", r, "must be a list of 3 angles [rx, ry, rz] in "
-                                              "degrees")
-        values["rotation"] = tuple(_number(source, f"part.rotation[{i}]", v)
+            fail_key(source, "part.rotation", r, "must be a list of 3 angles [rx, ry, rz] in "
+                                                 "degrees")
+        values["rotation"] = tuple(checked_number(source, f"part.rotation[{i}]", v)
                                    for i, v in enumerate(r))
     if "facing" in part:
-        values["facing"] = _vector(source, "part.facing", part["facing"])
+        values["facing"] = checked_vector(source, "part.facing", part["facing"])
     if "max_angle" in part:
-        values["max_angle"] = _number(source, "part.max_angle", part["max_angle"])
-    values.update(_gun_values(source, gun))
-    values.update(_job_values(source, job))
+        values["max_angle"] = checked_number(source, "part.max_angle", part["max_angle"])
+    values.update(gun_values(source, gun))
+    values.update(job_values(source, job))
     if values.get("coats", 1) > MAX_PART_COATS:
-        _fail(source, "job.coats", job["coats"], f"must be at most {MAX_PART_COATS} for a part "
-              "(each coat repeats every pass): a slower gun (job.speed) lays more per coat")
+        fail_key(source, "job.coats", job["coats"], f"must be at most {MAX_PART_COATS} for a "
+                 "part (each coat repeats every pass): a slower gun (job.speed) lays more per coat")
     return PartJob(direction=job.get("direction", "horizontal"), actuators=job.get("actuators"),
                    source=source, **values)
-
-
-def _unit_values(source: str, part: Mapping) -> dict:
-    """``units`` (a name of UNITS) or ``scale`` (the file's unit [m], a number > 0), not
-    both: the job reader's one rule for the mesh's length unit."""
-    if "units" in part and "scale" in part:
-        raise JobError(f"{source}: give part.units or part.scale, not both (scale = the mesh "
-                       "file's length unit in m, e.g. 0.001 for mm)")
-    if "scale" in part:
-        scale = _positive(source, "part.scale", part["scale"])
-        if not 1e-6 <= scale <= 1e3:
-            _fail(source, "part.scale", part["scale"], "must be within 1e-6..1e3 m per file "
-                  "unit (the mesh's length unit in m: 0.001 for mm)")
-        return {"scale": scale}
-    if "units" in part:
-        u = part["units"]
-        if not (isinstance(u, str) and u in UNITS):
-            _fail(source, "part.units", u, f"must be {', '.join(repr(k) for k in UNITS)}"
-                  f"{did_you_mean(str(u), tuple(UNITS))} (or give part.scale, the unit in m)")
-        return {"units": u}
-    return {}
-
-
-def _fail(source: str, key: str, value: Any, rule: str):
-    fail(JobError, f"{source}: ", key, value, rule)
-
-
-_LENGTH_RULE = f"must be at most {MAX_LENGTH:g} m in size (SI units: metres, not mm)"
-
-
-def _number(source: str, key: str, value: Any, length: bool = False,
-            positive: bool = False) -> float:
-    return number(value, key, JobError, f"{source}: ", positive=positive,
-                  limit=MAX_LENGTH if length else None, limit_rule=_LENGTH_RULE)
-
-
-def _positive(source: str, key: str, value: Any, length: bool = False) -> float:
-    return _number(source, key, value, length, positive=True)
-
-
-def _vector(source: str, key: str, value: Any) -> tuple[float, float, float]:
-    if not isinstance(value, list) or len(value) != 3:
-        _fail(source, key, value, "must be a list of 3 numbers [x, y, z]")
-    return tuple(_number(source, f"{key}[{i}]", v, length=True) for i, v in enumerate(value))
-
-
-def _check_table(source: str, d: Mapping, name: str) -> Mapping:
-    if name not in d:
-        raise JobError(f"{source}: missing table [{name}] (a job has [panel] or [part], [gun] "
-                       "and [job])")
-    table = d[name]
-    if not isinstance(table, Mapping):
-        _fail(source, name, table, f"must be a table [{name}]")
-    required = PART_REQUIRED if name == "part" else REQUIRED[name]
-    allowed = required + (PART_OPTIONAL if name == "part" else OPTIONAL[name])
-    if name == "gun":  # the keys its spray model needs (gun_table.py)
-        required = required_gun_keys(source, table)
-    for k in table:
-        if k not in allowed:
-            _fail(source, f"{name}.{k}", table[k],
-                  f"unknown key{did_you_mean(k, allowed)}; [{name}] takes "
-                  f"{', '.join(allowed)}")
-    for k in required:
-        if k not in table:
-            raise JobError(f"{source}: '{name}.{k}' is missing ([{name}] needs "
-                           f"{', '.join(required)})")
-    return table
 
 
 def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
@@ -349,65 +281,29 @@ def job_from_dict(d: Mapping, source: str = "<python>") -> PaintJob | PartJob:
         if "panel" in d:
             raise JobError(f"{source}: a job paints a [panel] or a [part], not both")
         return part_job_from_dict(d, source)
-    panel, gun, job = (_check_table(source, d, name) for name in REQUIRED)
-    center = _vector(source, "panel.center", panel["center"])
-    normal = _vector(source, "panel.normal", panel["normal"])
+    panel, gun, job = (check_table(source, d, name) for name in REQUIRED)
+    center = checked_vector(source, "panel.center", panel["center"])
+    normal = checked_vector(source, "panel.normal", panel["normal"])
     length = float(np.linalg.norm(normal))
     if not length > 1e-12:
-        _fail(source, "panel.normal", panel["normal"], "has zero length; give the direction "
-                                                       "from the panel towards the robot")
+        fail_key(source, "panel.normal", panel["normal"], "has zero length; give the direction "
+                                                          "from the panel towards the robot")
     normal = tuple(float(c) / length for c in normal)
     if abs(normal[2]) > 1.0 - 1e-9:
-        _fail(source, "panel.normal", panel["normal"],
-              "is vertical: the panel's height runs along world z projected onto the panel, "
-              "which a horizontal panel does not define")
-    values = {k: _positive(source, f"panel.{k}", panel[k], length=True)
+        fail_key(source, "panel.normal", panel["normal"],
+                 "is vertical: the panel's height runs along world z projected onto the panel, "
+                 "which a horizontal panel does not define")
+    values = {k: checked_positive(source, f"panel.{k}", panel[k], length=True)
               for k in ("width", "height")}
-    values.update(_gun_values(source, gun))
+    values.update(gun_values(source, gun))
     for k in ("width", "height"):
         if values[k] < MIN_PANEL_SIGMAS * values["sigma"]:
-            _fail(source, f"panel.{k}", panel[k], f"is smaller than the spray spot (σ = "
-                  f"{values['sigma']:.4g} m): a panel must be at least "
-                  f"{MIN_PANEL_SIGMAS:g} σ wide and high")
-    values.update(_job_values(source, job))
+            fail_key(source, f"panel.{k}", panel[k], f"is smaller than the spray spot (σ = "
+                     f"{values['sigma']:.4g} m): a panel must be at least "
+                     f"{MIN_PANEL_SIGMAS:g} σ wide and high")
+    values.update(job_values(source, job))
     return PaintJob(center=center, normal=normal, direction=job.get("direction", "horizontal"),
                     actuators=job.get("actuators"), source=source, **values)
-
-
-def _gun_values(source: str, gun: Mapping) -> dict:
-    values = {"standoff": _positive(source, "gun.standoff", gun["standoff"], length=True)}
-    values.update(spot_values(source, gun, values["standoff"], MAX_LENGTH))
-    values["flow"] = _positive(source, "gun.flow", gun["flow"])
-    if "clearance" in gun:  # the gun body's least distance from the part (§25)
-        values["clearance"] = _number(source, "gun.clearance", gun["clearance"], length=True)
-        if values["clearance"] < 0:
-            _fail(source, "gun.clearance", gun["clearance"], "must be ≥ 0 m")
-    if "recoil" in gun:  # along the spray axis, pushing the gun back (§27.7)
-        values["recoil"] = number(gun["recoil"], "gun.recoil", JobError, f"{source}: ",
-                                  nonnegative=True, limit=MAX_RECOIL,
-                                  limit_rule=f"must be at most {MAX_RECOIL:g} N (the force "
-                                             "the spray pushes the gun back with)")
-    return values
-
-
-def _job_values(source: str, job: Mapping) -> dict:
-    """The [job] table's numbers (thickness, spacing, speed, coats), its direction and
-    actuators checked."""
-    values = {}
-    values["thickness"] = _positive(source, "job.thickness", job["thickness"], length=True)
-    for k in ("spacing", "speed"):
-        if k in job:
-            values[k] = _positive(source, f"job.{k}", job[k], length=k == "spacing")
-    if "direction" in job and job["direction"] not in DIRECTIONS:
-        _fail(source, "job.direction", job["direction"],
-              f"must be {' or '.join(repr(x) for x in DIRECTIONS)}"
-              f"{did_you_mean(str(job['direction']), DIRECTIONS)}")
-    if "coats" in job:
-        values["coats"] = integer(job["coats"], "job.coats", JobError, f"{source}: ")
-    a = job.get("actuators")
-    if "actuators" in job and not (isinstance(a, str) and a and "\0" not in a):
-        _fail(source, "job.actuators", a, "must be a file name (a string, no NUL)")
-    return values
 
 
 def check_job(job, name: str = "job") -> PaintJob | PartJob:
