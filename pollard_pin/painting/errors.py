@@ -33,17 +33,6 @@ class CellError(InputError):
     """A ``[[robot]]`` table breaks a rule, or the robots cannot stand where they are put."""
 
 
-class LayoutSearchError(CellError):
-    """No proposed cell of the robot counts tried paints the part (``--robots auto``):
-    ``causes`` maps each count to why it failed
-    (:class:`pollard_pin.painting.causes.Cause`: the constraint that binds, its figure),
-    ``speed`` the line speed [m/s] tried (None: any, ``max_line_speed``)."""
-
-    def __init__(self, message: str, causes: dict, speed: float | None = None):
-        super().__init__(message)
-        self.causes, self.speed = dict(causes), speed
-
-
 class ResolutionError(InputError):
     """A film point spacing the film cannot be computed at (not > 0, over σ, or over the
     budget of film points)."""
@@ -80,6 +69,19 @@ class PlaceError(PlanError):
 class LineReachError(PlanError):
     """Passes out of one robot's reach at any place on the line (too tall or too long for the
     reach): a cell of more robots may paint the part."""
+
+
+class LayoutSearchError(PlanError):
+    """No proposed cell of the robot counts tried paints the part (``--robots auto``):
+    ``causes`` maps each count to why it failed
+    (:class:`pollard_pin.painting.causes.Cause`: the constraint that binds, its figure),
+    ``speed`` the line speed [m/s] tried (None: any, ``max_line_speed``). The job is valid
+    and no cell found paints it, a :class:`PlanError` whichever way each count failed (its
+    proposal a :class:`CellError`, or its plan a :class:`PlanError`)."""
+
+    def __init__(self, message: str, causes: dict, speed: float | None = None):
+        super().__init__(message)
+        self.causes, self.speed = dict(causes), speed
 
 
 class LineSpeedError(PlanError):

@@ -23,9 +23,9 @@ def test_family():
 
 
 INPUT = {"JobError", "JobKindError", "MeshError", "MeshFileError", "CellError",
-         "LayoutSearchError", "ResolutionError"}
+         "ResolutionError"}
 SOLVE = {"PlanError", "ReachError", "BudgetError", "ClearanceError", "PlaceError",
-         "LineSpeedError", "LineReachError", "ReportError"}
+         "LineSpeedError", "LineReachError", "LayoutSearchError", "ReportError"}
 
 
 def test_every_paint_error_is_here_by_the_rule():
@@ -59,7 +59,9 @@ def test_every_paint_error_is_here_by_the_rule():
     causes = {3: "a cause"}
     e = paint_errors.LayoutSearchError("no cell", causes, 0.024)
     assert (str(e), e.causes, e.speed) == ("no cell", causes, 0.024) and e.causes is not causes
-    assert issubclass(paint_errors.LayoutSearchError, paint_errors.CellError)
+    # no cell found for a valid job: a plan that does not exist, not a [[robot]] table refused
+    assert issubclass(paint_errors.LayoutSearchError, paint_errors.PlanError)
+    assert not issubclass(paint_errors.LayoutSearchError, paint_errors.CellError)
 
 
 def test_reach_error_names_the_sample_and_pose_the_ik_refuses(robot, plan, act):
