@@ -209,7 +209,7 @@ def max_cell_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     ``policy`` the planner's knobs."""
     speed, plan = fastest_line_speed(cell_planner(robot, job, act, part, split, policy),
                                      job.line.speed, job.source, resolution)
-    return speed, _with_clearance(robot, plan, policy.clearance_stride)
+    return speed, _with_clearance(robot, plan, policy)
 
 
 def cell_waiting_floor(plan: CellPlan, policy: PlannerPolicy = DEFAULT_POLICY):
@@ -232,8 +232,7 @@ def cell_speeds(robot, job, act: Actuators, plan: CellPlan | None = None,
     plan_at = cell_planner(robot, job, act, part, split, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: _with_clearance(robot, p,
-                                                               policy.clearance_stride),
+                               check=lambda p: _with_clearance(robot, p, policy),
                                floor=lambda p: cell_waiting_floor(p, policy))
 
 
@@ -248,13 +247,14 @@ def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
     plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
                                 job.line.speed, job.source,
                                 floor=lambda p: cell_waiting_floor(p, policy))
-    return _with_clearance(robot, plan, policy.clearance_stride)
+    return _with_clearance(robot, plan, policy)
 
 
-def _with_clearance(robot, plan: CellPlan, stride: int = 1) -> CellPlan:
+def _with_clearance(robot, plan: CellPlan, policy: PlannerPolicy = DEFAULT_POLICY) -> CellPlan:
     """Each robot's gun body from the part (today's check), then every pair of robots and
     every robot's links against the moving part along the clock (docs/model.md §26.4); every
-    ``stride``-th sample of each program (:attr:`.policy.PlannerPolicy.clearance_stride`)."""
+    ``policy.clearance_stride``-th sample of each program."""
+    stride = policy.clearance_stride
     robots = tuple(replace(r, plan=replace(r.plan, clearance=line_clearance(
         robot_model_in_base(robot, r.robot), r.plan, stride))) for r in plan.robots)
     return replace(plan, robots=robots, clearance=cell_clearance_of(robot, plan, stride))

@@ -107,7 +107,7 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
     searches leave it to the plan they return, but where two stroke strategies plan,
     ``auto`` checks it to choose (docs/model.md §24.2). ``policy``: the planner's knobs."""
     def check(plan):
-        return cleared(robot, plan, policy.clearance_stride)
+        return cleared(robot, plan, policy)
 
     if isinstance(job, PartJob):
         from .part import plan_line_part
@@ -120,13 +120,13 @@ def plan_line(robot, job, act: Actuators, speed: float | None = None, part: Part
                     check, clearance, job.source)
 
 
-def cleared(robot, plan, stride: int = 1):
+def cleared(robot, plan, policy: PlannerPolicy = DEFAULT_POLICY):
     """``plan`` with its gun body's clearance checked (:func:`line_clearance`, every
-    ``stride``-th sample), unless it already is (auto's choice checks it where two strategies
-    plan, docs/model.md §24.2)."""
+    ``policy.clearance_stride``-th sample), unless it already is (auto's choice checks it
+    where two strategies plan, docs/model.md §24.2)."""
     if plan.clearance is not None:
         return plan
-    return replace(plan, clearance=line_clearance(robot, plan, stride))
+    return replace(plan, clearance=line_clearance(robot, plan, policy.clearance_stride))
 
 
 def step_order(offsets, es, e, strokes: Strokes) -> np.ndarray:
@@ -199,7 +199,7 @@ def max_line_speed(robot, job, act: Actuators, resolution: float = SPEED_RESOLUT
     plan_at = line_planner(robot, job, act, part, policy)
     speed, found = fastest_line_speed(lambda s: plan if plan is not None and s == plan.speed
                                       else plan_at(s), job.line.speed, job.source, resolution)
-    return speed, cleared(robot, found, policy.clearance_stride)
+    return speed, cleared(robot, found, policy)
 
 
 def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
@@ -212,7 +212,7 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
     plan_at = line_planner(robot, job, act, part, policy)
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
-                               check=lambda p: cleared(robot, p, policy.clearance_stride),
+                               check=lambda p: cleared(robot, p, policy),
                                floor=lambda p: waiting_floor(p, policy))
 
 
@@ -222,7 +222,7 @@ def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
     painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source, floor=lambda p: waiting_floor(p, policy))
-    return cleared(robot, plan, policy.clearance_stride)
+    return cleared(robot, plan, policy)
 
 
 __all__ = ["CATCH", "LinePlan", "LineSpeedError", "LineTimes", "SPEED_RESOLUTION",
