@@ -142,7 +142,7 @@ class _Summary:
 
 def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
                   sink: Callable[[dict], None] | None = None, progress=None,
-                  reachable: tuple | None = None) -> WorkspaceMap:
+                  reach_box: tuple | None = None) -> WorkspaceMap:
     """Map where the tool reaches at a fixed orientation (docs/model.md §22): every point of a
     plane grid or of a box, under ``run``'s rules plus the joint limits; each unreachable
     point names the first rule it breaks.
@@ -161,10 +161,11 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
         reachable, reason, ...) in grid order (how a volume is streamed to a file).
     progress : Callable or None, optional
         ``progress(done, total)`` per chunk.
-    reachable : tuple or None, optional
-        :func:`reachable_box` of ``robot`` at ``options``' orientation and margins, when the
-        caller has it (a sweep of planes at one orientation): a refusal names it instead of
-        computing it again. None (default): computed when a refusal needs it.
+    reach_box : tuple or None, optional
+        ``pollard_pin.workspace.grid.reachable_box(robot, orientation, ReachOptions(margins))``
+        at ``options``' orientation and margins, when the caller has it (a sweep of planes at
+        one orientation): a refusal names it instead of computing it again. None (default):
+        computed when a refusal needs it.
 
     Returns
     -------
@@ -201,7 +202,7 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
         centre, radius = reach_sphere(params, orient)
         a, v = plane_
         if abs(v - centre[a]) > radius:
-            raise _missed(robot, orient, opts, reachable, f"plane {AXES[a]} = {v:g} m misses "
+            raise _missed(robot, orient, opts, reach_box, f"plane {AXES[a]} = {v:g} m misses "
                           f"the robot (its reach at this orientation is {AXES[a]} ∈ "
                           f"[{centre[a] - radius:.3g}, {centre[a] + radius:.3g}] m at most)")
     grid = make_grid(params, orient, o.resolution, plane_, o.bounds)
@@ -225,7 +226,7 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
     if totals.reachable == 0:
         where = (f"plane {AXES[plane_[0]]} = {plane_[1]:g} m" if plane_ is not None
                  else "the volume")
-        raise _missed(robot, orient, opts, reachable, f"no point of {where} is reachable "
+        raise _missed(robot, orient, opts, reach_box, f"no point of {where} is reachable "
                       f"within the bounds {_bounds_text(grid)}")
     columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
     rect = None

@@ -67,7 +67,7 @@ def test_area_converges_on_finer_grids(bounded):
 def test_volume_streams_and_equals_the_stacked_planes(robot):
     """A coarse volume, streamed chunk by chunk: its volume is the sum over its x-slices of
     the plane maps' areas times the step (the grids coincide point for point). The planes
-    share one reachable box for their refusals (``reachable``): the same refusal as without."""
+    share one reachable box for their refusals (``reach_box``): the same refusal as without."""
     h = 0.06
     chunks = []
     vol = map_workspace(robot, None, WorkspaceOptions(volume=True, resolution=h, chunk=1000),
@@ -80,7 +80,7 @@ def test_volume_streams_and_equals_the_stacked_planes(robot):
     total, refusals = 0.0, {}
     for x in xs:
         try:
-            ws = map_workspace(robot, ("x", float(x)), o, reachable=box)
+            ws = map_workspace(robot, ("x", float(x)), o, reach_box=box)
         except WorkspaceError as e:
             refusals[float(x)] = str(e)
             continue  # plane with no reachable point
