@@ -252,12 +252,17 @@ def reachable_box(robot, orientation, options: ReachOptions | None = None,
     volume grid (``cells`` points across the reach sphere), or None if none is reachable.
     The true box may exceed it by up to one step."""
     options = ReachOptions() if options is None else options
-    _, radius = reach_sphere(robot.params, orientation)
+    centre, radius = reach_sphere(robot.params, orientation)
     h = 2.0 * radius / (cells - 1)
     grid = make_grid(robot.params, orientation, h)
     totals = _Summary()
     for start in range(0, grid.size, CHUNK):
         pts = grid.points(np.arange(start, min(start + CHUNK, grid.size)))
+        # only the points in the ball that holds every reachable tip (reach_sphere): the
+        # cube's corners beyond it (half its points) reach nothing
+        pts = pts[np.linalg.norm(pts - centre, axis=1) <= radius * (1 + 1e-9)]
+        if not len(pts):
+            continue
         poses = np.concatenate([pts, np.broadcast_to(orientation, (len(pts), 3))], axis=1)
         totals.add(pts, evaluate(robot, poses, options))
     return None if totals.reachable == 0 else (totals.low, totals.high, h)
