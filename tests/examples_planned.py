@@ -276,6 +276,37 @@ def panel_result(robot, job, act, tmp_path_factory):
 
 
 # --- the CLI's output folders -------------------------------------------------------------
+THESIS_SAMPLES = 801
+
+
+@pytest.fixture(scope="session")
+def thesis_sized(tmp_path_factory):
+    """`pollard-pin size --samples 801 --quiet --actuators examples/actuators.toml --retime
+    DIR/fast.csv --format json --out DIR/r.json --plot DIR/fig` (every output of the sizing:
+    the JSON report, the retimed file, the figures): (exit code, standard error, DIR)."""
+    import contextlib
+    import io
+
+    from cli_run import check_refusal
+
+    from pollard_pin.cli import main
+
+    def size():
+        folder = tmp_path_factory.mktemp("thesis_sized")
+        stdout, stderr = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            code = main(["size", "--samples", str(THESIS_SAMPLES), "--quiet", "--actuators",
+                         str(EXAMPLES / "actuators.toml"), "--retime", str(folder / "fast.csv"),
+                         "--format", "json", "--out", str(folder / "r.json"), "--plot",
+                         str(folder / "fig")])
+        check_refusal(stderr.getvalue())
+        return code, stderr.getvalue(), folder
+
+    code, err, folder = _once(tmp_path_factory, "thesis_sized", size)
+    for same in _unchanged(folder):  # checked unchanged at the session's end
+        yield code, err, same
+
+
 @pytest.fixture(scope="session")
 def panel_painted(tmp_path_factory):
     """`pollard-pin paint --job examples/paint.toml --out DIR`: DIR."""
