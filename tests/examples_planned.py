@@ -284,6 +284,15 @@ def thesis_sized(tmp_path_factory):
     """`pollard-pin size --samples 801 --quiet --actuators examples/actuators.toml --retime
     DIR/fast.csv --format json --out DIR/r.json --plot DIR/fig` (every output of the sizing:
     the JSON report, the retimed file, the figures): (exit code, standard error, DIR)."""
+    yield from _size(tmp_path_factory, "thesis_sized", [
+        "--samples", THESIS_SAMPLES, "--quiet", "--actuators", EXAMPLES / "actuators.toml"],
+        retime="fast.csv", out="r.json", plot="fig")
+
+
+def _size(tmp_path_factory, name: str, args: list, **outputs):
+    """`pollard-pin size ARGS --format json` with its ``outputs`` (``retime``, ``out``,
+    ``plot``: file names) in a folder DIR, once per run (:func:`_once`), DIR checked
+    unchanged at the session's end: yields (exit code, standard error, DIR)."""
     import contextlib
     import io
 
@@ -292,18 +301,16 @@ def thesis_sized(tmp_path_factory):
     from pollard_pin.cli import main
 
     def size():
-        folder = tmp_path_factory.mktemp("thesis_sized")
+        folder = tmp_path_factory.mktemp(name)
+        given = [x for k, v in outputs.items() for x in (f"--{k}", folder / v)]
         stdout, stderr = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
-            code = main(["size", "--samples", str(THESIS_SAMPLES), "--quiet", "--actuators",
-                         str(EXAMPLES / "actuators.toml"), "--retime", str(folder / "fast.csv"),
-                         "--format", "json", "--out", str(folder / "r.json"), "--plot",
-                         str(folder / "fig")])
+            code = main([str(a) for a in ("size", *args, "--format", "json", *given)])
         check_refusal(stderr.getvalue())
         return code, stderr.getvalue(), folder
 
-    code, err, folder = _once(tmp_path_factory, "thesis_sized", size)
-    for same in _unchanged(folder):  # checked unchanged at the session's end
+    code, err, folder = _once(tmp_path_factory, name, size)
+    for same in _unchanged(folder):
         yield code, err, same
 
 
@@ -318,3 +325,13 @@ def panel_painted(tmp_path_factory):
         return out
 
     yield from _unchanged(_once(tmp_path_factory, "panel_painted", paint))
+
+
+@pytest.fixture(scope="session")
+def panel_sized(panel_painted, tmp_path_factory):
+    """`pollard-pin size --trajectory P/path.csv --quiet --actuators examples/actuators.toml
+    --retime DIR/rt.csv --format json --out DIR/r.json` of :func:`panel_painted`'s program P:
+    (exit code, standard error, DIR)."""
+    yield from _size(tmp_path_factory, "panel_sized", [
+        "--trajectory", panel_painted / "path.csv", "--quiet", "--actuators",
+        EXAMPLES / "actuators.toml"], retime="rt.csv", out="r.json")

@@ -160,17 +160,15 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
     assert shares["switching"] < 0.15
 
 
-def test_a_paint_program_keeps_its_passes_and_its_spray_column(panel_painted, tmp_path,
-                                                               capsys):
+def test_a_paint_program_keeps_its_passes_and_its_spray_column(panel_painted, panel_sized):
     """examples/paint.toml's program (`paint`'s path.csv: tests/examples_planned.py) sprays
     throughout (its turnarounds too): ``--retime`` keeps every row, the spray column with it,
     at the planned times (seen: exact), and the report's time-optimal cycle is the planned
-    one, saying why (the gun-off stretches retimed: tests/dynamics/test_passes.py)."""
+    one, saying why (the gun-off stretches retimed: tests/dynamics/test_passes.py). The
+    session's `size --retime … --format json --out …` of it (tests/examples_planned.py)."""
     src = pp.from_csv(panel_painted / "path.csv")
-    out, rep = tmp_path / "rt.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--trajectory", panel_painted / "path.csv", "--quiet",
-                         "--actuators", EXAMPLE, "--retime", out, "--format", "json",
-                         "--out", rep], capsys)
+    code, err, folder = panel_sized
+    out, rep = folder / "rt.csv", folder / "r.json"
     assert code == 0, err
     got = pp.from_csv(out)
     for key in ("poses", "d_poses", "dd_poses", "spray"):
