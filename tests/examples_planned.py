@@ -275,6 +275,23 @@ def panel_result(robot, job, act, tmp_path_factory):
     return _read_only(_once(tmp_path_factory, "panel_result", lambda: pp.paint(robot, job, act)))
 
 
+@pytest.fixture(scope="session")
+def figure8_sized(robot, tmp_path_factory):
+    """examples/figure8.csv and its sizing with examples/actuators.toml
+    (``actuator_sizing(robot, run_pipeline(robot, traj), act)``: its ``timing`` is
+    ``time_optimal_path``'s of it): (traj, Sizing). (The actuators read here: a module may
+    have its own ``act`` fixture.)"""
+    import pollard_pin as pp
+    from pollard_pin.dynamics.sizing import actuator_sizing
+
+    def size():
+        traj = pp.from_csv(EXAMPLES / "figure8.csv")
+        act = pp.load_actuators(EXAMPLES / "actuators.toml")
+        return traj, actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
+
+    return _read_only(_once(tmp_path_factory, "figure8_sized", size))
+
+
 # --- the CLI's output folders -------------------------------------------------------------
 THESIS_SAMPLES = 801
 
