@@ -1,4 +1,4 @@
-"""The shipped examples and the common test jobs, each planned (or painted by the CLI) once
+"""The shipped examples and the common test jobs, each planned (or painted or sized by the CLI) once
 per test session: every test that needs a plan, a film or an output folder of the same job
 and inputs takes it from here (loaded by tests/conftest.py). A test that plans with other
 inputs (another speed, a moved part, a patched knob) plans its own.
