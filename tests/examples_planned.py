@@ -1,4 +1,4 @@
-"""The shipped examples and the common test jobs, each planned (or painted by the CLI) once
+"""The shipped examples and the common test jobs, each planned (or painted or sized by the CLI) once
 per test session: every test that needs a plan, a film or an output folder of the same job
 and inputs takes it from here (loaded by tests/conftest.py). A test that plans with other
 inputs (another speed, a moved part, a patched knob) plans its own.
@@ -275,7 +275,62 @@ def panel_result(robot, job, act, tmp_path_factory):
     return _read_only(_once(tmp_path_factory, "panel_result", lambda: pp.paint(robot, job, act)))
 
 
+@pytest.fixture(scope="session")
+def figure8_sized(robot, tmp_path_factory):
+    """examples/figure8.csv and its sizing with examples/actuators.toml
+    (``actuator_sizing(robot, run_pipeline(robot, traj), act)``: its ``timing`` is
+    ``time_optimal_path``'s of it): (traj, Sizing). (The actuators read here: a module may
+    have its own ``act`` fixture.)"""
+    import pollard_pin as pp
+    from pollard_pin.dynamics.sizing import actuator_sizing
+
+    def size():
+        traj = pp.from_csv(EXAMPLES / "figure8.csv")
+        act = pp.load_actuators(EXAMPLES / "actuators.toml")
+        return traj, actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
+
+    return _read_only(_once(tmp_path_factory, "figure8_sized", size))
+
+
 # --- the CLI's output folders -------------------------------------------------------------
+THESIS_SAMPLES = 801
+
+
+@pytest.fixture(scope="session")
+def thesis_sized(tmp_path_factory):
+    """`pollard-pin size --samples 801 --quiet --actuators examples/actuators.toml --retime
+    DIR/fast.csv --format json --out DIR/r.json --plot DIR/fig` (every output of the sizing:
+    the JSON report, the retimed file, the figures): (exit code, standard error, DIR)."""
+    yield from _size(tmp_path_factory, "thesis_sized", [
+        "--samples", THESIS_SAMPLES, "--quiet", "--actuators", EXAMPLES / "actuators.toml"],
+        retime="fast.csv", out="r.json", plot="fig")
+
+
+def _size(tmp_path_factory, name: str, args: list, **outputs):
+    """`pollard-pin size ARGS --format json` with its ``outputs`` (``retime``, ``out``,
+    ``plot``: file names) in a folder DIR, once per run (:func:`_once`), DIR checked
+    unchanged at the session's end: yields (exit code, standard error, DIR)."""
+    import contextlib
+    import io
+
+    from cli_run import check_refusal
+
+    from pollard_pin.cli import main
+
+    def size():
+        folder = tmp_path_factory.mktemp(name)
+        given = [x for k, v in outputs.items() for x in (f"--{k}", folder / v)]
+        stdout, stderr = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            code = main([str(a) for a in ("size", *args, "--format", "json", *given)])
+        check_refusal(stderr.getvalue())
+        return code, stderr.getvalue(), folder
+
+    code, err, folder = _once(tmp_path_factory, name, size)
+    for same in _unchanged(folder):
+        yield code, err, same
+
+
 @pytest.fixture(scope="session")
 def panel_painted(tmp_path_factory):
     """`pollard-pin paint --job examples/paint.toml --out DIR`: DIR."""
@@ -287,3 +342,13 @@ def panel_painted(tmp_path_factory):
         return out
 
     yield from _unchanged(_once(tmp_path_factory, "panel_painted", paint))
+
+
+@pytest.fixture(scope="session")
+def panel_sized(panel_painted, tmp_path_factory):
+    """`pollard-pin size --trajectory P/path.csv --quiet --actuators examples/actuators.toml
+    --retime DIR/rt.csv --format json --out DIR/r.json` of :func:`panel_painted`'s program P:
+    (exit code, standard error, DIR)."""
+    yield from _size(tmp_path_factory, "panel_sized", [
+        "--trajectory", panel_painted / "path.csv", "--quiet", "--actuators",
+        EXAMPLES / "actuators.toml"], retime="rt.csv", out="r.json")

@@ -140,6 +140,41 @@ def _check_header(path: Path, rows: list[list[str]]) -> list[str]:
 def _parse_cells(path: Path, rows, lines, header) -> dict[str, np.ndarray]:
     """Every cell a finite number, each row full; the columns by name (at least 2 samples,
     ``spray`` in [0, 1])."""
+    data = _all_cells(rows[1:], len(header))
+    if data is None:  # a short row or a bad cell: found and named cell by cell
+        data = _cell_by_cell(path, rows, lines, header)
+    if len(data) < 2:
+        raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
+    col = {h: data[:, i] for i, h in enumerate(header)}
+    if SPRAY in col:  # the gun's trigger (paint): the motion does not depend on it
+        bad = (col[SPRAY] < 0) | (col[SPRAY] > 1)
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {SPRAY!r}: "
+                                  f"{float(col[SPRAY][r])!r} is outside [0, 1] (the fraction "
+                                  "of the gun's flow)")
+    return col
+
+
+def _all_cells(rows, width: int) -> np.ndarray | None:
+    """The cells (n, width) read at once, when every row has ``width`` cells and every cell
+    is a finite number as :func:`parse_float` reads it (its value is ``float``'s: the same
+    bits); else None."""
+    if any(len(row) != width for row in rows):
+        return None
+    cells = [cell for row in rows for cell in row]
+    text = "".join(cells)
+    if not text.isascii() or "_" in text:  # what parse_float refuses and float takes
+        return None
+    try:
+        data = np.fromiter(map(float, cells), float, len(cells)).reshape(len(rows), width)
+    except ValueError:
+        return None
+    return data if np.isfinite(data).all() else None
+
+
+def _cell_by_cell(path: Path, rows, lines, header) -> np.ndarray:
+    """The cells one by one: the first short row or bad cell raises, naming its line."""
     data = np.empty((len(rows) - 1, len(header)))
     for r, row in enumerate(rows[1:]):
         line = lines[r + 1]  # file line, comment and blank lines counted
@@ -156,17 +191,7 @@ def _parse_cells(path: Path, rows, lines, header) -> dict[str, np.ndarray]:
             if not math.isfinite(data[r, c]):
                 raise TrajectoryError(f"{path}: row {line}, column {header[c]!r}: "
                                       f"value {shorten(cell)} is not finite")
-    if len(data) < 2:
-        raise TrajectoryError(f"{path}: need at least 2 samples, found {len(data)}")
-    col = {h: data[:, i] for i, h in enumerate(header)}
-    if SPRAY in col:  # the gun's trigger (paint): the motion does not depend on it
-        bad = (col[SPRAY] < 0) | (col[SPRAY] > 1)
-        if bad.any():
-            r = int(np.argmax(bad))
-            raise TrajectoryError(f"{path}: row {lines[r + 1]}, column {SPRAY!r}: "
-                                  f"{float(col[SPRAY][r])!r} is outside [0, 1] (the fraction "
-                                  "of the gun's flow)")
-    return col
+    return data
 
 
 def _check_times(path: Path, col, lines) -> np.ndarray:

@@ -141,7 +141,8 @@ class _Summary:
 
 
 def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
-                  sink: Callable[[dict], None] | None = None, progress=None) -> WorkspaceMap:
+                  sink: Callable[[dict], None] | None = None, progress=None,
+                  reach_box: tuple | None = None) -> WorkspaceMap:
     """Map where the tool reaches at a fixed orientation (docs/model.md §22): every point of a
     plane grid or of a box, under ``run``'s rules plus the joint limits; each unreachable
     point names the first rule it breaks.
@@ -160,6 +161,11 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
         reachable, reason, ...) in grid order (how a volume is streamed to a file).
     progress : Callable or None, optional
         ``progress(done, total)`` per chunk.
+    reach_box : tuple or None, optional
+        ``pollard_pin.workspace.grid.reachable_box(robot, orientation, ReachOptions(margins))``
+        at ``options``' orientation and margins, when the caller has it (a sweep of planes at
+        one orientation): a refusal names it instead of computing it again. None (default):
+        computed when a refusal needs it.
 
     Returns
     -------
@@ -196,8 +202,8 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
         centre, radius = reach_sphere(params, orient)
         a, v = plane_
         if abs(v - centre[a]) > radius:
-            raise _missed(robot, orient, opts, f"plane {AXES[a]} = {v:g} m misses the robot "
-                          f"(its reach at this orientation is {AXES[a]} ∈ "
+            raise _missed(robot, orient, opts, reach_box, f"plane {AXES[a]} = {v:g} m misses "
+                          f"the robot (its reach at this orientation is {AXES[a]} ∈ "
                           f"[{centre[a] - radius:.3g}, {centre[a] + radius:.3g}] m at most)")
     grid = make_grid(params, orient, o.resolution, plane_, o.bounds)
     keep = plane_ is not None if o.keep is None else o.keep
@@ -220,8 +226,8 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
     if totals.reachable == 0:
         where = (f"plane {AXES[plane_[0]]} = {plane_[1]:g} m" if plane_ is not None
                  else "the volume")
-        raise _missed(robot, orient, opts, f"no point of {where} is reachable within the "
-                      f"bounds {_bounds_text(grid)}")
+        raise _missed(robot, orient, opts, reach_box, f"no point of {where} is reachable "
+                      f"within the bounds {_bounds_text(grid)}")
     columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
     rect = None
     if plane_ is not None and columns is not None:
@@ -246,19 +252,25 @@ def reachable_box(robot, orientation, options: ReachOptions | None = None,
     volume grid (``cells`` points across the reach sphere), or None if none is reachable.
     The true box may exceed it by up to one step."""
     options = ReachOptions() if options is None else options
-    _, radius = reach_sphere(robot.params, orientation)
+    centre, radius = reach_sphere(robot.params, orientation)
     h = 2.0 * radius / (cells - 1)
     grid = make_grid(robot.params, orientation, h)
     totals = _Summary()
     for start in range(0, grid.size, CHUNK):
         pts = grid.points(np.arange(start, min(start + CHUNK, grid.size)))
+        # only the points in the ball that holds every reachable tip (reach_sphere): the
+        # cube's corners beyond it (half its points) reach nothing
+        pts = pts[np.linalg.norm(pts - centre, axis=1) <= radius * (1 + 1e-9)]
+        if not len(pts):
+            continue
         poses = np.concatenate([pts, np.broadcast_to(orientation, (len(pts), 3))], axis=1)
         totals.add(pts, evaluate(robot, poses, options))
     return None if totals.reachable == 0 else (totals.low, totals.high, h)
 
 
-def _missed(robot, orient, opts, what: str) -> WorkspaceError:
-    box = reachable_box(robot, orient, ReachOptions(opts.margins))
+def _missed(robot, orient, opts, box, what: str) -> WorkspaceError:
+    """The refusal ``what``, naming the reachable box ``box`` (None: computed here)."""
+    box = reachable_box(robot, orient, ReachOptions(opts.margins)) if box is None else box
     if box is None:
         return WorkspaceError(f"{what}; no tool position at all is reachable at orientation "
                               f"(psi, theta, phi) = {_deg(orient)} deg")

@@ -93,18 +93,18 @@ def test_panel_thickness_table_has_the_parts_columns(painted):
     assert abs(area @ np.asarray(table["thickness"]) / area.sum() / brute - 1) < 1e-12
 
 
-def test_plan_run_size_film(painted, capsys, tmp_path):
-    """The written path: run solves it, size confirms every motor within its ratings, and
+def test_plan_run_size_film(painted, panel_sized, capsys, tmp_path):
+    """The written path: run solves it, size confirms every motor within its ratings (the
+    session's `size … --format json --out r.json` of it: tests/examples_planned.py), and
     the film map stays within ±2 % of the target."""
     traj = from_csv(painted / "path.csv")
     assert traj.derivatives == "file columns"
     code, out, err = run_cli(["run", "--trajectory", painted / "path.csv", "--out",
                            tmp_path / "run.csv", "--quiet"], capsys)
     assert code == 0, err
-    code, out, err = run_cli(["size", "--trajectory", painted / "path.csv", "--actuators", ACT,
-                           "--format", "json", "--quiet"], capsys)
+    code, err, folder = panel_sized
     assert code == 0, err
-    sized = json.loads(out)
+    sized = json.loads((folder / "r.json").read_text())
     assert sized["given_within_ratings"] is True
     rep = json.loads((painted / "paint.json").read_text())
     for name, m in rep["motors"].items():

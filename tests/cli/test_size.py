@@ -5,9 +5,7 @@ actuator file is one line, and it checks every destination before the work. (The
 tests/dynamics/test_sizing.py, test_motors.py, test_timeopt.py.) SIGTERM and Ctrl-C stop it
 promptly with one line and nothing written, an interrupt inside a ctypes call too (cli/main.py;
 below)."""
-import contextlib
 import ctypes
-import io
 import json
 import math
 import os
@@ -19,20 +17,19 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import check_refusal
+from examples_planned import THESIS_SAMPLES
 from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
 from motor_model import cli as _cli
 from motor_model import motor as _motor
 from motor_model import rms as _rms
 
 import pollard_pin as pp
-from pollard_pin.cli import main
 from pollard_pin.cli import size as size_cli
 from pollard_pin.dynamics import timeopt as TO
 from pollard_pin.io.table import read_result
 from pollard_pin.paths.curves import wait_then_strokes
 
-SAMPLES = 801
+SAMPLES = THESIS_SAMPLES  # the session's thesis_sized (tests/examples_planned.py)
 
 
 @pytest.mark.parametrize("extra", [["--retime", "{d}/afile/x.csv"], ["--plot", "{d}/afile"],
@@ -42,20 +39,6 @@ def test_size_checks_destinations_before_the_work(tmp_path, capsys, extra):
     extra = [x.format(d=tmp_path) for x in extra]
     code, _, err = _cli(["size", "--actuators", str(EXAMPLE), *extra], capsys)
     assert code == 2 and len(err.strip().splitlines()) == 1, err
-
-
-@pytest.fixture(scope="module")
-def thesis_sized(tmp_path_factory):
-    """``size`` of the thesis curve at SAMPLES samples with every output (the JSON report,
-    ``--retime``, ``--plot``), run once per module: (exit code, stderr, folder)."""
-    folder = tmp_path_factory.mktemp("thesis")
-    stdout, stderr = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
-        code = main(["size", "--samples", str(SAMPLES), "--quiet", "--actuators", str(EXAMPLE),
-                     "--retime", str(folder / "fast.csv"), "--format", "json", "--out",
-                     str(folder / "r.json"), "--plot", str(folder / "fig")])
-    check_refusal(stderr.getvalue())
-    return code, stderr.getvalue(), folder
 
 
 def test_motor_quantities_match_a_run_csv(tmp_path, capsys, thesis_sized):
@@ -177,17 +160,15 @@ def test_time_optimal_replays_within_the_limits_with_one_active(tmp_path, capsys
     assert shares["switching"] < 0.15
 
 
-def test_a_paint_program_keeps_its_passes_and_its_spray_column(panel_painted, tmp_path,
-                                                               capsys):
+def test_a_paint_program_keeps_its_passes_and_its_spray_column(panel_painted, panel_sized):
     """examples/paint.toml's program (`paint`'s path.csv: tests/examples_planned.py) sprays
     throughout (its turnarounds too): ``--retime`` keeps every row, the spray column with it,
     at the planned times (seen: exact), and the report's time-optimal cycle is the planned
-    one, saying why (the gun-off stretches retimed: tests/dynamics/test_passes.py)."""
+    one, saying why (the gun-off stretches retimed: tests/dynamics/test_passes.py). The
+    session's `size --retime … --format json --out …` of it (tests/examples_planned.py)."""
     src = pp.from_csv(panel_painted / "path.csv")
-    out, rep = tmp_path / "rt.csv", tmp_path / "r.json"
-    code, _, err = _cli(["size", "--trajectory", panel_painted / "path.csv", "--quiet",
-                         "--actuators", EXAMPLE, "--retime", out, "--format", "json",
-                         "--out", rep], capsys)
+    code, err, folder = panel_sized
+    out, rep = folder / "rt.csv", folder / "r.json"
     assert code == 0, err
     got = pp.from_csv(out)
     for key in ("poses", "d_poses", "dd_poses", "spray"):

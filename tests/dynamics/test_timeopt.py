@@ -6,7 +6,7 @@ from functools import partial
 
 import numpy as np
 import pytest
-from motor_model import EXAMPLE, NAMES, RATINGS, ROOT, run_columns
+from motor_model import EXAMPLE, NAMES, RATINGS, run_columns
 from motor_model import motor as _motor
 from thesis_curves import figure_eight
 
@@ -110,16 +110,6 @@ def test_thesis_curve_holds_between_samples(robot, act, thesis_timing, samples):
     retimed = pickle.loads(pickle.dumps(retimed_trajectory(traj, timing)))  # it travels
     for got, want in zip(retimed.curve(dense.t), (dense.poses, dense.d_poses, dense.dd_poses)):
         np.testing.assert_allclose(got, want, rtol=1e-7, atol=1e-9 * np.abs(want).max())
-
-
-@pytest.fixture(scope="module")
-def figure8_sized(robot, act):
-    """examples/figure8.csv and its sizing (whose traversal is ``time_optimal_path``'s of it),
-    once per module."""
-    from pollard_pin.dynamics.sizing import actuator_sizing
-
-    traj = pp.from_csv(ROOT / "examples" / "figure8.csv")
-    return traj, actuator_sizing(robot, pp.run_pipeline(robot, traj), act)
 
 
 def test_figure8_csv_holds_between_samples(robot, act, figure8_sized):

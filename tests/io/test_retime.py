@@ -82,14 +82,16 @@ def test_a_timing_of_another_length_is_refused(traj):
 
 
 @pytest.mark.parametrize("source", ["thesis", "figure8"])
-def test_the_retimed_file_holds_between_its_rows(robot, tmp_path, capsys, source):
-    out = tmp_path / "opt.csv"
-    if source == "thesis":
-        args, curve = ["--samples", "801"], partial(thesis_curve, duration=20.0)
+def test_the_retimed_file_holds_between_its_rows(robot, tmp_path, capsys, source,
+                                                 thesis_sized):
+    if source == "thesis":  # the session's `size --samples 801 … --retime DIR/fast.csv`
+        code, err, folder = thesis_sized
+        out, curve = folder / "fast.csv", partial(thesis_curve, duration=20.0)
     else:
-        args, curve = ["--trajectory", str(ROOT / "examples" / "figure8.csv")], figure_eight()
-    code, _, err = _cli(["size", *args, "--quiet", "--actuators", str(EXAMPLE),
-                         "--retime", str(out), "--out", str(tmp_path / "r.md")], capsys)
+        out, curve = tmp_path / "opt.csv", figure_eight()
+        code, _, err = _cli(["size", "--trajectory", str(ROOT / "examples" / "figure8.csv"),
+                             "--quiet", "--actuators", str(EXAMPLE), "--retime", str(out),
+                             "--out", str(tmp_path / "r.md")], capsys)
     assert code == 0, err
     cols, meta = read_retimed(out)
     use = replay(robot, cols, meta, curve)

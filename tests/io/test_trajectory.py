@@ -72,17 +72,15 @@ def test_exact_derivatives_pass(tmp_path, samples):
     assert _rms_rel(fd, traj.d_poses[1:-1]) < DERIVATIVE_TOLERANCE / 10  # 1.6e-3 at 41
 
 
-def test_retimed_and_thesis_files_pass(tmp_path, robot):
+def test_retimed_and_thesis_files_pass(tmp_path, figure8_sized):
     """The files the package writes itself (exact thesis derivatives, a TOPP-RA retiming with
-    its piecewise-constant s̈) are accepted."""
-    from pollard_pin.dynamics.sizing import actuator_sizing
+    its piecewise-constant s̈) are accepted (figure8.csv's sizing: the session's,
+    tests/examples_planned.py)."""
     from pollard_pin.io.retime import retimed_trajectory
 
     to_csv(pp.thesis_trajectory(samples=201), tmp_path / "thesis.csv")
     assert from_csv(tmp_path / "thesis.csv").derivatives == "file columns"
-    traj = from_csv(FIGURE8)
-    sized = actuator_sizing(robot, pp.run_pipeline(robot, traj),
-                            pp.load_actuators(FIGURE8.parent / "actuators.toml"))
+    traj, sized = figure8_sized
     to_csv(retimed_trajectory(traj, sized.timing), tmp_path / "retimed.csv")
     assert from_csv(tmp_path / "retimed.csv").derivatives == "file columns"
 

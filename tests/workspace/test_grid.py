@@ -10,9 +10,14 @@ import numpy as np
 import pytest
 from refusals import WRONG, refused
 
-from pollard_pin.workspace.grid import WorkspaceError, largest_panel, map_workspace
+from pollard_pin.workspace.grid import (
+    WorkspaceError,
+    largest_panel,
+    map_workspace,
+    reachable_box,
+)
 from pollard_pin.workspace.options import WorkspaceOptions
-from pollard_pin.workspace.reach import REASONS, evaluate
+from pollard_pin.workspace.reach import REASONS, ReachOptions, evaluate
 
 BOUNDS = {"y": (-0.4, 0.4), "z": (-0.15, 0.35)}
 
@@ -61,7 +66,8 @@ def test_area_converges_on_finer_grids(bounded):
 
 def test_volume_streams_and_equals_the_stacked_planes(robot):
     """A coarse volume, streamed chunk by chunk: its volume is the sum over its x-slices of
-    the plane maps' areas times the step (the grids coincide point for point)."""
+    the plane maps' areas times the step (the grids coincide point for point). The planes
+    share one reachable box for their refusals (``reach_box``): the same refusal as without."""
     h = 0.06
     chunks = []
     vol = map_workspace(robot, None, WorkspaceOptions(volume=True, resolution=h, chunk=1000),
@@ -69,14 +75,22 @@ def test_volume_streams_and_equals_the_stacked_planes(robot):
     assert vol.columns is None and len(chunks) > 1
     assert sum(len(c["x"]) for c in chunks) == vol.grid.size
     xs = vol.grid.coordinates(0)
-    total = 0.0
+    o = WorkspaceOptions(resolution=h)
+    box = reachable_box(robot, o.orientation, ReachOptions(o.margins))
+    total, refusals = 0.0, {}
     for x in xs:
         try:
-            ws = map_workspace(robot, ("x", float(x)), WorkspaceOptions(resolution=h))
-        except WorkspaceError:
+            ws = map_workspace(robot, ("x", float(x)), o, reach_box=box)
+        except WorkspaceError as e:
+            refusals[float(x)] = str(e)
             continue  # plane with no reachable point
         total += ws.summary["area"] * h
     assert math.isclose(total, vol.summary["volume"], rel_tol=1e-12)
+    for kind in ("misses the robot", "no point of"):  # one of each: the box computed
+        x = next(x for x, said in refusals.items() if kind in said)
+        with pytest.raises(WorkspaceError) as err:
+            map_workspace(robot, ("x", x), o)
+        assert str(err.value) == refusals[x] and "reachable region spans" in refusals[x]
 
 
 def test_largest_panel_is_reachable_and_maximal(robot, panels):
