@@ -3,7 +3,9 @@
 of one, two and three robots: the search's and the full evaluation, and the full one's parts
 timed alone — the layout, the plan (at the search's motor check and at the full one's), the
 clearances (every 4th sample, every sample), the film (σ/2, σ/3) — and whether the search's
-plan is the full one's; then the 200-evaluation study projected on two cores from them.
+plan is the full one's; then the 200-evaluation study projected on two cores from them; and
+a design the planner refuses at the job's line speed, searched with and without the interval
+of speeds that paint it.
 
     python scripts/bench_design.py            (benchmark.py's design section prints it too)
 """
@@ -30,6 +32,12 @@ DESIGNS = {
         "scale.links": 1.465018298108687, "motor.base": 3, "ratio.base": 0, "motor.wrist": 5,
         "ratio.wrist": 0, "place.back": 0.10276665747466765, "robots": 3},
 }
+#: A design the planner refuses at the job's line speed (one robot, every length ×1.8, S200
+#: base motors behind 50:1, S40 wrist motors, 0.32 m back): a motor needs 100 % of its rating
+#: at 0.012 m/s; the interval that paints, 0.01238–0.01295 m/s, searched only when named.
+REFUSED = {"limits.theta21.upper": -6.902538076137084, "scale.arms": 1.798908373153903,
+           "scale.links": 1.798908373153903, "motor.base": 3, "ratio.base": 0, "motor.wrist": 1,
+           "ratio.wrist": 1, "place.back": 0.3205250242071094, "robots": 1}
 #: A 200-evaluation study of the example (the default, docs/model.md §31.5): the designs the
 #: search planned, feasible or not, and those planned again (its front of 50 and the thesis
 #: robot, the baseline), by robot count.
@@ -83,9 +91,28 @@ def breakdown(n: int, values: dict, ctx, search_ctx) -> dict:
     return out
 
 
+def refused_breakdown(ctx, search_ctx) -> dict:
+    """CPU seconds of the search's evaluation of :data:`REFUSED` without the interval of
+    line speeds that paint it (the search's own, ``SearchFidelity.name_speeds`` False) and
+    with it (``True``, as before), and their binding constraints."""
+    from pollard_pin.synthesis import SearchFidelity, evaluate, prepare
+
+    named_ctx = prepare(ctx.job, ctx.space, search=SearchFidelity(name_speeds=True))
+    out = {}
+    for name, c in (("search", search_ctx), ("named", named_ctx)):
+        ev, out[name] = _cpu(lambda c=c: evaluate(REFUSED, c, "search"))
+        out[f"binding_{name}"] = ev.binding
+        out[f"constraints_{name}"] = ev.constraints
+    print(f"  a design refused at the line speed (one robot): search {out['search']:.1f} s, "
+          f"{out['named']:.1f} s with the interval of speeds that paint it named (binding "
+          f"{out['binding_search']}, {out['binding_named']}; the same constraints: "
+          f"{out['constraints_search'] == out['constraints_named']})")
+    return out
+
+
 def design_breakdown() -> dict:
-    """Print the breakdown of :data:`DESIGNS` and the 200-evaluation projection; the rows by
-    robot count."""
+    """Print the breakdown of :data:`DESIGNS`, the 200-evaluation projection and the refused
+    design's search; the rows by robot count, and ``"refused"``."""
     from pollard_pin.synthesis import SearchFidelity, baseline_values, load_space, prepare
 
     job = pp.load_job(REPO / "examples" / "design" / "job.toml")
@@ -125,6 +152,7 @@ def design_breakdown() -> dict:
           f"{(screens + search) / 120:.1f}, the front planned again {replan / 120:.1f} (total "
           f"{(screens + search + replan) / 120:.1f}); the front's exact checks on the search's "
           f"plan instead {exact / 120:.1f} (total {(screens + search + exact) / 120:.1f})")
+    rows["refused"] = refused_breakdown(ctx, search_ctx)
     return rows
 
 

@@ -55,6 +55,11 @@ class PlannerPolicy:
         cheaper and more cautious: the least distance is over fewer samples, and the bound
         on what lies between them grows with the stride (the design study's search,
         docs/model.md §31.5).
+    name_speeds : bool, optional
+        A line speed that does not paint is refused naming the interval of speeds that do,
+        found by planning others (docs/model.md §24.3; default True). False: refused as that
+        speed's plan failed, its constraint named, without that search (the design study's
+        search, which reads only the binding constraint, docs/model.md §31.5).
 
     Raises
     ------
@@ -73,6 +78,7 @@ class PlannerPolicy:
     strokes: str = "auto"
     step_from: str = "leading"
     clearance_stride: int = 1
+    name_speeds: bool = True
 
     def __post_init__(self):
         least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1,
@@ -84,9 +90,12 @@ class PlannerPolicy:
         if self.strokes == "along" and self.step_from == "trailing":
             raise InputError("PlannerPolicy.step_from = 'trailing': strokes along the travel "
                              "step across it, from no end of the part")
+        if not isinstance(self.name_speeds, bool):
+            raise InputError(f"PlannerPolicy.name_speeds = {self.name_speeds!r}: expected "
+                             "true or false")
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in CHOICES:
+            if f.name in CHOICES or f.name == "name_speeds":
                 continue
             if f.name in least:
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral):

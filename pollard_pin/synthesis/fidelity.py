@@ -33,11 +33,18 @@ class SearchFidelity:
         The final motor check samples the path this many times more densely (default 1: on
         the path's own samples, :attr:`~pollard_pin.painting.policy.PlannerPolicy.check_refine`;
         never denser than the full level's): the worst motor use between them unseen.
+    name_speeds : bool
+        A design refused at the job's line speed is refused naming the interval of line
+        speeds that paint it (default False:
+        :attr:`~pollard_pin.painting.policy.PlannerPolicy.name_speeds`; the search reads
+        only the refusal's binding constraint, and that interval's search cost an infeasible
+        design about as much again as its plan).
     """
 
     film: float = 0.5
     clearance_stride: int = 4
     check_refine: int = 1
+    name_speeds: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "film", real(self.film, "SearchFidelity.film", 0.0, 1.0,
@@ -46,16 +53,20 @@ class SearchFidelity:
             c = getattr(self, name)
             if isinstance(c, bool) or not isinstance(c, int) or c < 1:
                 raise InputError(f"SearchFidelity.{name} = {c!r}: expected an integer >= 1")
+        if not isinstance(self.name_speeds, bool):
+            raise InputError(f"SearchFidelity.name_speeds = {self.name_speeds!r}: expected "
+                             "true or false")
 
     def options(self, options: PaintOptions, sigma: float) -> PaintOptions:
         """The paint options of the search: ``options`` with the film's spacing
         ``film``·σ, the clearance stride and the motor check's refinement (none of them
-        finer than theirs)."""
+        finer than theirs), a refused line speed's interval named only if both ask."""
         policy = options.policy
         exact = sigma / 3 if options.resolution is None else options.resolution
         return replace(options, resolution=max(exact, self.film * sigma), policy=replace(
             policy, clearance_stride=max(policy.clearance_stride, self.clearance_stride),
-            check_refine=min(policy.check_refine, self.check_refine)))
+            check_refine=min(policy.check_refine, self.check_refine),
+            name_speeds=policy.name_speeds and self.name_speeds))
 
 
 __all__ = ["SearchFidelity"]

@@ -43,6 +43,7 @@ def test_defaults_are_the_planners_figures():
             p.max_path_samples, p.max_passes, p.first_deceleration) == (
         0.97, 48, 4, 0.002, 0.25, 250_000, 1000, 10.0)
     assert p.clearance_stride == 1  # every sample: the planners' own check
+    assert p.name_speeds is True  # a refused line speed names the interval that paints
     # the time step: max_step, or step_sigma σ of travel if that is shorter
     assert p.step(0.01, 0.1) == 0.002 and p.step(0.01, 2.0) == 0.25 * 0.01 / 2.0
     with pytest.raises(AttributeError):
@@ -59,7 +60,8 @@ def test_defaults_are_the_planners_figures():
     ("clearance_stride", 0, ">= 1"), ("clearance_stride", 2.0, "not an integer"),
     ("first_deceleration", 0.0, "> 0"), ("first_deceleration", None, "not a number"),
     ("strokes", "diagonal", "one of auto, across, along"),
-    ("step_from", "middle", "one of leading, trailing"), ("strokes", None, "one of auto")])
+    ("step_from", "middle", "one of leading, trailing"), ("strokes", None, "one of auto"),
+    ("name_speeds", 1, "true or false"), ("name_speeds", "no", "true or false")])
 def test_a_bad_value_is_one_line(field, value, rule):
     with pytest.raises(InputError) as exc:
         PlannerPolicy(**{field: value})

@@ -154,6 +154,28 @@ def test_the_search_judges_the_strip_as_the_full_plan_does(strip, strip_searched
     assert ev.params_toml == exact.params_toml and ev.robots_toml == exact.robots_toml
 
 
+def test_a_design_refused_at_the_line_speed_keeps_its_binding_without_the_interval(example):
+    """The search refuses a design at the job's line speed as that speed's plan failed
+    (SearchFidelity.name_speeds False, docs/model.md §31.5): the binding constraint read from
+    that refusal, no interval of speeds that paint it sought. Every length ×1.1 with the W10
+    base motors, two robots at the origin (a design the default study refused): no
+    turnaround keeps the path in reach and the motors within their ratings at 0.012 m/s."""
+    from dataclasses import replace
+
+    from pollard_pin.synthesis import SearchFidelity
+
+    space, ctx = example
+    values = {"limits.theta21.upper": -35.0, "scale.arms": 1.1, "scale.links": 1.1,
+              "motor.base": 5, "ratio.base": 1, "motor.wrist": 4, "ratio.wrist": 0,
+              "place.back": 0.0, "robots": 2}
+    ev = evaluate(values, replace(ctx, search=SearchFidelity()), "search")
+    assert ev.level == "search" and not ev.feasible and ev.binding == "motors"
+    assert ev.constraints["plan"] == 1.0 and ev.constraints["motors"] == pytest.approx(0.01)
+    assert "at line speed 0.012 m/s no ramp or turnaround" in ev.message
+    assert "paints at" not in ev.message and "no line speed paints" not in ev.message
+    assert ev.objectives["parts_per_hour"] == 0.0 and ev.objectives["kmin"] == 0.0
+
+
 def test_full_evaluation_reproduced_by_paint(strip, tmp_path):
     """paint with the design's files and robots gives the evaluation's figures."""
     space, ctx, values, ev = strip

@@ -241,12 +241,14 @@ def plan_cell_job(robot, job, act: Actuators, part: Part | None = None,
                   policy: PlannerPolicy = DEFAULT_POLICY) -> CellPlan:
     """The job's line speed planned (``policy``: the planner's knobs); a speed no robot
     ordering can paint is refused naming the interval that does
-    (:func:`.line.speeds.plan_or_name_fastest`)."""
+    (:func:`.line.speeds.plan_or_name_fastest`; not searched where ``policy.name_speeds`` is
+    False)."""
     from ..line.speeds import plan_or_name_fastest
 
     plan = plan_or_name_fastest(cell_planner(robot, job, act, part, split, policy),
                                 job.line.speed, job.source,
-                                floor=lambda p: cell_waiting_floor(p, policy))
+                                floor=lambda p: cell_waiting_floor(p, policy),
+                                name=policy.name_speeds)
     return _with_clearance(robot, plan, policy)
 
 

@@ -219,9 +219,11 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
 def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
                   policy: PlannerPolicy = DEFAULT_POLICY):
     """The job's line speed planned (``policy``: the planner's knobs); a speed that cannot be
-    painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`)."""
+    painted is refused naming the interval that does (:func:`.line.speeds.plan_or_name_fastest`;
+    not searched where ``policy.name_speeds`` is False)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
-                                job.source, floor=lambda p: waiting_floor(p, policy))
+                                job.source, floor=lambda p: waiting_floor(p, policy),
+                                name=policy.name_speeds)
     return cleared(robot, plan, policy)
 
 

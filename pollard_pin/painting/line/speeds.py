@@ -294,14 +294,17 @@ def line_speed_interval(plan_at, start: float, source: str,
                          low_plan, high_plan)
 
 
-def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None):
+def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: bool = True):
     """``plan_at(speed)``; a speed that cannot be painted is refused naming the interval of
     speeds that do (:func:`line_speed_interval`: the fastest to :data:`SPEED_RESOLUTION`, as
     ``--max-line-speed`` finds it, the slowest to :data:`INTERVAL_RESOLUTION`, ``floor`` as
-    there), or, if none does, both sides and the constraint that binds each."""
+    there), or, if none does, both sides and the constraint that binds each; ``name`` False:
+    that speed's own :class:`LineSpeedError`, no other speed planned (docs/model.md §31.5)."""
     try:
         return plan_at(speed)
     except LineSpeedError as exc:
+        if not name:
+            raise
         try:
             found = line_speed_interval(plan_at, speed, source, SPEED_RESOLUTION,
                                         slow_resolution=INTERVAL_RESOLUTION, floor=floor)

@@ -87,6 +87,19 @@ def test_a_speed_too_fast_names_the_fastest():
     assert calls == [0.03]
 
 
+@pytest.mark.parametrize("speed, why", [(0.2, "drifts at 0.2"), (0.001, "turns at 0.001")])
+def test_a_refusal_not_naming_the_interval_plans_no_other_speed(speed, why):
+    """name=False (PlannerPolicy.name_speeds, the design study's search): the speed's own
+    LineSpeedError, its side and why kept, and no other speed planned."""
+    calls = []
+    with pytest.raises(LineSpeedError) as info:
+        plan_or_name_fastest(planner(0.01, 0.0371, calls), speed, "j.toml", name=False)
+    assert calls == [speed] and info.value.why == why
+    assert info.value.too_fast == (speed > 0.0371) and "paints at" not in str(info.value)
+    assert plan_or_name_fastest(planner(0.01, 0.0371, calls), 0.03, "j", name=False).speed \
+        == 0.03
+
+
 # --- the interval --------------------------------------------------------------------------------
 def runs(spans, calls: list, floor: float = 0.0, slow_why="the program drifts -0.2 m, out of "
          "the reach", fast_why="a motor at 104 % of its rating"):
