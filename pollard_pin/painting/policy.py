@@ -7,7 +7,7 @@ from __future__ import annotations
 import numbers
 from dataclasses import dataclass, fields
 
-from ..checks import real
+from ..checks import instance, real
 from ..errors import InputError
 
 STROKES = ("auto", "across", "along")  # docs/model.md §24.2
@@ -90,9 +90,7 @@ class PlannerPolicy:
         if self.strokes == "along" and self.step_from == "trailing":
             raise InputError("PlannerPolicy.step_from = 'trailing': strokes along the travel "
                              "step across it, from no end of the part")
-        if not isinstance(self.name_speeds, bool):
-            raise InputError(f"PlannerPolicy.name_speeds = {self.name_speeds!r}: expected "
-                             "true or false")
+        instance(self.name_speeds, "PlannerPolicy.name_speeds", bool, "true or false")
         for f in fields(self):
             value = getattr(self, f.name)
             if f.name in CHOICES or f.name == "name_speeds":

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from ..checks import real
+from ..checks import instance, real
 from ..errors import InputError
 from ..painting.options import PaintOptions
 
@@ -53,9 +53,7 @@ class SearchFidelity:
             c = getattr(self, name)
             if isinstance(c, bool) or not isinstance(c, int) or c < 1:
                 raise InputError(f"SearchFidelity.{name} = {c!r}: expected an integer >= 1")
-        if not isinstance(self.name_speeds, bool):
-            raise InputError(f"SearchFidelity.name_speeds = {self.name_speeds!r}: expected "
-                             "true or false")
+        instance(self.name_speeds, "SearchFidelity.name_speeds", bool, "true or false")
 
     def options(self, options: PaintOptions, sigma: float) -> PaintOptions:
         """The paint options of the search: ``options`` with the film's spacing
