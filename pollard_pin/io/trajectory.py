@@ -13,7 +13,7 @@ import numpy as np
 from ..analytic.taskspace import TASK_NAMES
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
-from ..model.values import open_regular, parse_float, shorten, shown_path
+from ..model.values import float_text_problem, open_regular, parse_float, shorten, shown_path
 from ..paths.splines import QuinticSpline
 from ..paths.trajectory import Trajectory, TrajectoryError
 
@@ -163,8 +163,7 @@ def _all_cells(rows, width: int) -> np.ndarray | None:
     if any(len(row) != width for row in rows):
         return None
     cells = [cell for row in rows for cell in row]
-    text = "".join(cells)
-    if not text.isascii() or "_" in text:  # what parse_float refuses and float takes
+    if float_text_problem("".join(cells)):  # what parse_float refuses and float takes
         return None
     try:
         data = np.fromiter(map(float, cells), float, len(cells)).reshape(len(rows), width)

@@ -203,12 +203,21 @@ def parse_float(text: str) -> float:
     without what it also takes but a user never means: ``_`` digit separators (``0.5_5``) and
     non-ASCII digits (full-width ``０.５５``). ValueError says why."""
     value = float(text)
+    why = float_text_problem(text)
+    if why:
+        raise ValueError(why)
+    return value
+
+
+def float_text_problem(text: str) -> str | None:
+    """Why :func:`parse_float` refuses ``text`` that ``float`` reads, or None: the one home
+    of that rule (a whole file's cells may be checked at once, joined)."""
     if "_" in text:
-        raise ValueError("'_' digit separators are not accepted")
+        return "'_' digit separators are not accepted"
     if not text.isascii():
         char = next(c for c in text if not c.isascii())
-        raise ValueError(f"{char!r} is not an ASCII digit")
-    return value
+        return f"{char!r} is not an ASCII digit"
+    return None
 
 
 def parse_int(text: str) -> int:
@@ -220,6 +229,6 @@ def parse_int(text: str) -> int:
     return int(body)
 
 
-__all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "clip", "fail", "integer", "loads_toml", "number",
-           "open_regular", "parse_float", "parse_int", "read_bytes", "read_toml", "shorten",
-           "shown_path"]
+__all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "clip", "fail", "float_text_problem", "integer",
+           "loads_toml", "number", "open_regular", "parse_float", "parse_int", "read_bytes",
+           "read_toml", "shorten", "shown_path"]

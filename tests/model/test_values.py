@@ -15,6 +15,7 @@ from pollard_pin.model.values import (
     loads_toml,
     number,
     open_regular,
+    float_text_problem,
     parse_float,
     parse_int,
     read_toml,
@@ -132,12 +133,15 @@ def test_parse_float_refuses_what_float_takes_but_no_user_means(text):
     float(text)  # Python takes it...
     with pytest.raises(ValueError):
         parse_float(text)  # ...the package does not
+    assert float_text_problem(text)  # the same rule, read on a whole file's cells at once
+    assert float_text_problem("1.0" + text + "2")
 
 
 @pytest.mark.parametrize("text, value", [("0.55", 0.55), (" -1e-3 ", -1e-3), ("inf", math.inf),
                                          ("+.5", 0.5)])
 def test_parse_float_takes_plain_numbers(text, value):
     assert parse_float(text) == value
+    assert float_text_problem(text) is None
 
 
 @pytest.mark.parametrize("text", ["1_1", "１１", "1" * 5000, "1.0", "", "-", "0x10"])
