@@ -11,11 +11,11 @@ import pytest
 from pollard_pin.errors import InputError
 from pollard_pin.model.values import (
     MAX_DEPTH,
+    float_text_problem,
     integer,
     loads_toml,
     number,
     open_regular,
-    float_text_problem,
     parse_float,
     parse_int,
     read_toml,
