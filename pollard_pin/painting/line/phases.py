@@ -2,8 +2,8 @@
 (docs/model.md §24): the relative program behind :class:`Relative`, the line's phases (hold,
 catch up, program, slow down, return), the shift along the line that keeps it in reach (its
 scan in ``shifts.py``), the turnarounds timed on the world path, every check on the world path
-(the speeds that paint: ``speeds.py``). ``line.py`` (a panel) and ``line_part.py`` (a part's
-mesh) only build their relative programs.
+(the motors': ``motors.py``; the speeds that paint: ``speeds.py``). ``line.py`` (a panel) and
+``line_part.py`` (a part's mesh) only build their relative programs.
 """
 from __future__ import annotations
 
@@ -22,6 +22,7 @@ from ..checks.motion import fastest, motion
 from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, ReachError
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
+from .motors import first_kept, motors_within, screen_motors, wait_motion
 from .reach import ball_shift_range, coarse_to_fine, out_of_reach, unreachable_passes
 from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
@@ -128,13 +129,14 @@ def world_motion(rel: Relative, speed: float, e, times: LineTimes, t):
     r0, _, _ = rel.evaluate(np.array([0.0]))
     r1, _, _ = rel.evaluate(np.array([rel.total]))
     hold = speed * (D - CATCH / 2)  # the start pose's shift along the line
-    before = t < D
-    x = np.clip((t[before] - (D - CATCH)) / CATCH, 0.0, 1.0)
-    g = hold + speed * CATCH * _RISE(x)
-    poses[before] = r0[0]
-    poses[before, :3] += g[:, None] * e
-    d[before, :3] = (speed * SMOOTHSTEP(x))[:, None] * e
-    dd[before, :3] = (speed / CATCH * _RATE(x))[:, None] * e
+    held = t < D - CATCH  # x = 0 there: one row made, the same to the bit (a slow line's wait)
+    for rows, x in ((held, np.zeros(int(held.any()))), ((t < D) & ~held, None)):
+        x = np.clip((t[rows] - (D - CATCH)) / CATCH, 0.0, 1.0) if x is None else x
+        g = hold + speed * CATCH * _RISE(x)
+        poses[rows] = r0[0]
+        poses[rows, :3] += g[:, None] * e
+        d[rows, :3] = (speed * SMOOTHSTEP(x))[:, None] * e
+        dd[rows, :3] = (speed / CATCH * _RATE(x))[:, None] * e
     slow = (t > E) & (t <= E + CATCH)
     x = (t[slow] - E) / CATCH
     g = speed * E + speed * CATCH * (x - _RISE(x))
@@ -360,18 +362,20 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     drift = _drift_along(rel, speed, e)
     r = policy.check_refine  # a power of two: the check's times hold the path's, bit for bit
     screened = screen and drift <= 0 and r > 1 and r & (r - 1) == 0
+    j = first_kept(tf, times.leave)  # the check's rows from j: a long wait's once (motors.py)
     if screened:  # the path first: the screen may refuse it before the finer samples
         poses, d, dd, spray = world_motion(rel, speed, e, times, t)
     else:  # the path's samples among the check's
-        checked = world_motion(rel, speed, e, times, tf)
-        poses, d, dd, spray = world_motion_reusing(rel, speed, e, times, t, (tf, checked))
+        checked = world_motion(rel, speed, e, times, tf[j:])
+        poses, d, dd, spray = world_motion_reusing(rel, speed, e, times, t, (tf[j:], checked))
     traj = Trajectory(t, poses, d, dd, name="paint line", derivatives="analytic",
                       curve=lambda t_: world_motion(rel, speed, e, times, t_)[:3])
     if screened:  # passed: the check's samples, the path's among them
-        _screen(robot, act, (poses, d, dd), speed)
-        checked = world_motion_reusing(rel, speed, e, times, tf, (t, (poses, d, dd, spray)))
+        screen_motors(robot, act, (poses, d, dd), speed, first_kept(t, times.leave))
+        checked = world_motion_reusing(rel, speed, e, times, tf[j:], (t, (poses, d, dd, spray)))
     try:
-        fine = motion(robot, act, *checked[:3])
+        fine = wait_motion(robot, act, checked[:3], j,
+                           lambda: world_motion(rel, speed, e, times, tf)[:3])
     except ReachError as exc:
         said = f"at line speed {speed:.4g} m/s the path leaves the workspace at t = " \
                f"{tf[exc.sample]:.3f} s"
@@ -379,34 +383,15 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
                                       said), drift > 0,
                              f"the path leaves the workspace at t = {tf[exc.sample]:.3f} s"
                              ) from None
+    tf = tf[j:]  # the rows checked: all but the wait's first j, the same as those kept
     cyc = tf >= times.leave - 1e-12  # RMS over the repeating cycle, not the wait
     ratios = {"peak_torque": fine.torque_ratio.max(0),
               "rms_torque": time_rms(tf[cyc], fine.torque[cyc])
               / act.column("continuous_torque"),
               "speed": fine.speed_ratio.max(0)}
-    _motors_within(max(float(ratios["peak_torque"].max()), float(ratios["speed"].max())),
-                   speed, drift > 0)
+    motors_within(max(float(ratios["peak_torque"].max()), float(ratios["speed"].max())),
+                  speed, drift > 0)
     return World(rel, times, traj, spray, ratios)
-
-
-def _screen(robot, act: Actuators, path, speed: float) -> None:
-    """The motors along ``path`` (poses, rates, accelerations at the path's own samples), a
-    too slow line's :class:`LineSpeedError` where they are over their ratings (a path out
-    of reach there is left to the check)."""
-    try:
-        m = motion(robot, act, *path)
-    except ReachError:
-        return
-    _motors_within(float(m.utilisation.max()), speed, False, "at least ")
-
-
-def _motors_within(worst: float, speed: float, too_fast: bool, least: str = "") -> None:
-    """The :class:`LineSpeedError` of a path whose motors' ``worst`` use is over 1 (``least``:
-    "at least " where only some samples were checked)."""
-    if worst > 1.0:
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs {least}"
-                             f"{100 * worst:.0f} % of its peak torque or speed", too_fast,
-                             f"a motor at {100 * worst:.0f} % of its rating")
 
 
 def _per_tau(pieces, worst) -> np.ndarray:

@@ -248,3 +248,34 @@ def test_world_motion_reusing_takes_known_rows_and_evaluates_the_rest():
     assert sum(asked) == 2 + len(seams)  # the program's ends and the new samples alone
     for a, b in zip(got, world_motion(rel, 0.02, e, times, t2)):
         assert a.tobytes() == b.tobytes()
+
+
+def test_world_motion_rows_are_each_times_alone():
+    """Each row of world_motion is its time's alone, bit for bit, however many are asked (the
+    long wait's rows made once, the reuse and the check's leaving out rely on it): the held
+    start pose r0 + s·(D − CATCH/2)·e at rest, the catch-up, program, slow-down and return,
+    a direction with a negative component (−0.0 rates stay −0.0)."""
+    from pollard_pin.painting.line.phases import CATCH, LineTimes, world_motion
+
+    def motion(t):
+        p = np.column_stack([np.sin(t), np.cos(0.3 * t), t ** 2 / 7, 0.1 * t, np.exp(-t),
+                             np.sqrt(1 + t)])
+        return p, np.cos(p), np.sin(p)
+
+    rel = Relative(motion, np.array([0.0, 1.0, 3.0]), np.array([1.0, 2.0, 1.0]),
+                   ("ramp", "pass", "ramp"))
+    e, s = np.array([0.0, -0.6, 0.8]), 0.02
+    times = LineTimes(30.0, 30.0 + rel.total, 1.7)
+    edges = [times.leave, times.delay, times.end, times.end + CATCH, times.total]
+    t = np.concatenate([np.linspace(0.0, times.total, 401), edges,
+                        np.nextafter(edges, 0.0), np.nextafter(edges, 99.0)])
+    got = world_motion(rel, s, e, times, t)
+    alone = [world_motion(rel, s, e, times, t[k:k + 1]) for k in range(len(t))]
+    for i, a in enumerate(got):
+        assert a.tobytes() == np.concatenate([r[i] for r in alone]).tobytes(), i
+    held = t < times.leave
+    assert held.sum() > 300
+    want = motion(np.zeros(1))[0][0] + np.r_[s * (times.delay - CATCH / 2) * e, 0, 0, 0]
+    assert np.abs(got[0][held] - want).max() < 1e-15
+    assert not got[1][held].any() and not got[2][held].any() and not got[3][held].any()
+    assert np.signbit(got[1][held, 1]).all()  # s·0·e, as the catch-up's formula at x = 0
