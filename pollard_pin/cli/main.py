@@ -106,6 +106,8 @@ def main(argv=None) -> int:
         written = ("", "")
         if out and out != STDOUT:
             written = (f" (nothing written to {out})", " (nothing written)")
+            if getattr(exc, "kept", None):  # what a failed command kept (design's study)
+                written = (f" ({exc.kept})", "")
         head = f"pollard-pin {args.command}: error: "
         named = re.sub(r"^\S*/([^/\s]+): ", r"\1: ", message)  # a leading path: its name
         # one line within LONGEST_LINE: the suffixes and the path's folders give way before
