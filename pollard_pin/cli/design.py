@@ -3,6 +3,8 @@ the robots that paint a job (docs/model.md §31); a thin layer over
 :func:`pollard_pin.synthesis.api.design`."""
 from __future__ import annotations
 
+import contextlib
+import os
 import signal
 import sys
 from pathlib import Path
@@ -23,6 +25,7 @@ STUDY = "study.db"
 
 
 def run(args) -> int:
+    from ..errors import PollardError
     from ..io.atomic import check_outputs
     from ..synthesis.api import design
     from ..synthesis.storage import check_study_file, require_optuna
@@ -39,12 +42,15 @@ def run(args) -> int:
         from ..sweep.backends import require_distributed
 
         require_distributed()
+    made = [p for p in (out, out / STUDY) if not os.path.lexists(p)]  # this run's to make
+    before = _signature(out / STUDY)
     options = DesignOptions(trials=args.trials, workers=args.workers, dask=args.dask,
                             seed=args.seed, population=args.population, study=out / STUDY,
                             resume=args.resume, pick=args.pick, progress=not args.quiet)
     try:
         with warnings_as_notes(args):
             result = design(args.job, args.space, options)
+        result.write(out)  # a full disk here: the study is kept, and said so
     except KeyboardInterrupt as exc:
         if not (out / STUDY).is_file():
             raise  # stopped before the study began: nothing was written
@@ -58,7 +64,9 @@ def run(args) -> int:
         finally:
             signal.pthread_sigmask(signal.SIG_SETMASK, held)
         return code
-    result.write(out)
+    except PollardError as exc:
+        _after_failure(out, made, before, exc)
+        raise
     print("\n".join(result.summary_lines()))
     wrote(out, f" (chosen: design {result.design['design']}; the study: {out / STUDY})")
     return 0
@@ -66,18 +74,58 @@ def run(args) -> int:
 
 def _kept(path: Path, finished) -> str:
     """How many finished evaluations the study file holds (or "all" if it cannot say)."""
+    count = _finished_count(path, finished)
+    return "all" if count is None else str(count)
+
+
+def _finished_count(path: Path, finished) -> int | None:
+    """How many finished evaluations the study file holds (None: it cannot say)."""
     from ..synthesis.storage import STUDY_NAME, require_optuna
 
     optuna = require_optuna()
     try:
         storage = optuna.storages.RDBStorage(f"sqlite:///{path.resolve()}")
         try:
-            return str(finished(optuna.load_study(study_name=STUDY_NAME,
-                                                  storage=storage))[0])
+            return finished(optuna.load_study(study_name=STUDY_NAME, storage=storage))[0]
         finally:
             storage.engine.dispose()
     except Exception:  # noqa: BLE001 — a count for the message, never a second failure
-        return "all"
+        return None
+
+
+def _signature(path: Path) -> tuple | None:
+    """(size, modification time) of a file, None if there is none: whether a run wrote it."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return st.st_size, st.st_mtime_ns
+
+
+def _after_failure(out: Path, made: list[Path], before: tuple | None,
+                   exc: BaseException) -> None:
+    """After a refusal or failure: a study file this run started that holds no finished
+    evaluation (a full disk while it was made, a scheduler that never answered) is removed
+    with its logs, and the folder if this run made it and it is empty, so that "nothing
+    written" holds; a study this run wrote that holds evaluations is kept, and the error
+    says so (``exc.kept``, which the command line says instead of "nothing written"). A
+    study refused before it was opened is as it was."""
+    from ..synthesis.study import finished
+
+    study = out / STUDY
+    if not study.is_file() or (study not in made and _signature(study) == before):
+        return
+    count = _finished_count(study, finished)
+    if study in made and not count:
+        for path in (study, *(Path(f"{study}{end}") for end in ("-wal", "-shm", "-journal"))):
+            with contextlib.suppress(FileNotFoundError):
+                path.unlink()
+        if out in made:
+            with contextlib.suppress(OSError):  # not empty: left alone
+                out.rmdir()
+        return
+    exc.kept = (f"{'all' if count is None else count} finished evaluations kept in {study}: "
+                "--resume continues the study")
 
 
 def add_parser(sub, parents) -> None:

@@ -106,6 +106,8 @@ def main(argv=None) -> int:
         written = ("", "")
         if out and out != STDOUT:
             written = (f" (nothing written to {out})", " (nothing written)")
+            if getattr(exc, "kept", None):  # what a failed command kept (design's study)
+                written = (f" ({exc.kept})", "")
         head = f"pollard-pin {args.command}: error: "
         named = re.sub(r"^\S*/([^/\s]+): ", r"\1: ", message)  # a leading path: its name
         # one line within LONGEST_LINE: the suffixes and the path's folders give way before
@@ -126,6 +128,8 @@ def main(argv=None) -> int:
               file=sys.stderr)
         return 2
     except OSError as exc:
+        if exc.errno == errno.ENAMETOOLONG and _too_long(args.command, exc.filename):
+            return 2  # an input's name, asked by Path.exists or is_dir (outputs: check_name)
         if exc.errno in _FULL and not _broken_pipe(exc):
             # the outputs' own write errors are OutputErrors (above): this is the text the
             # command prints, to a full or failing standard output
@@ -141,6 +145,21 @@ def main(argv=None) -> int:
     finally:
         for signum, handler in previous:
             signal.signal(signum, handler)
+
+
+def _too_long(command: str, path) -> bool:
+    """Say in one line (as io.atomic.check_name words it) that ``path`` is too long for the
+    file system; whether it was."""
+    from ..io.atomic import OutputError, check_name
+
+    try:
+        check_name(path)
+    except OutputError as exc:
+        print(f"pollard-pin {command}: error: {exc}", file=sys.stderr)
+        return True
+    except (TypeError, ValueError):  # no path to name (None)
+        pass
+    return False
 
 
 def _flushed_stdout(command: str) -> bool:

@@ -107,6 +107,7 @@ def run(args) -> int:
         OutputError,
         all_or_nothing,
         atomic_open,
+        check_name,
         check_outputs,
         make_folder,
         remove_stale,
@@ -126,6 +127,7 @@ def run(args) -> int:
         except WorkspaceError as exc:
             raise UsageError(f"--plane: {exc}") from None
     out = Path(args.out)
+    check_name(out)  # a name too long for the file system: exists() raised
     if out.exists() and not out.is_dir():
         raise OutputError(f"--out {out}: exists and is not a folder")
     paths = {"table": out / f"workspace.{args.format}", "json": out / "workspace.json",

@@ -46,6 +46,9 @@ LIMITS = ("peak_torque", "rms_torque", "speed")  # the three checks, in report o
 # the compliance and the flexible-joint simulation need it.
 OPTIONAL = ("stiffness",)
 MAX_STIFFNESS = 1e9  # N·m/rad: above it the drive is rigid for any use here, or a unit slip
+# N·m/rad: below it the weight alone would turn a drive by ~10² rad (a unit slip); the
+# examples' are 300 and 3000
+MIN_STIFFNESS = 1e-3
 
 
 class ActuatorError(InputError):
@@ -165,10 +168,13 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
             _fail(source, f"{name}.continuous_torque", table["continuous_torque"],
                   f"exceeds {name}.peak_torque = {values['peak_torque']:.4g}")
         if "stiffness" in table:
+            rule = (f"must be between {MIN_STIFFNESS:g} and {MAX_STIFFNESS:g} N·m/rad (joint "
+                    "side)")
             values["stiffness"] = number(
                 table["stiffness"], f"{name}.stiffness", ActuatorError, f"{source}: ",
-                positive=True, limit=MAX_STIFFNESS,
-                limit_rule=f"must be > 0 and at most {MAX_STIFFNESS:g} N·m/rad (joint side)")
+                positive=True, limit=MAX_STIFFNESS, limit_rule=rule)
+            if values["stiffness"] < MIN_STIFFNESS:
+                _fail(source, f"{name}.stiffness", table["stiffness"], rule)
         units.append(Actuator(**values))
     return Actuators(tuple(names), tuple(units), source)
 

@@ -203,13 +203,16 @@ def check_steps(dt: float, control_period: float) -> None:
             "step <= the control period")
 
 
-def integration_steps(duration: float, dt: float, control_period: float) -> int:
+def integration_steps(duration: float, dt: float, control_period: float) -> int | float:
     """The number of RK4 steps :func:`simulate_tracking` takes over ``duration`` [s], each
     control period in ⌈T/dt⌉ equal steps (computed without building the grid; output samples
-    off that grid add one step each)."""
+    off that grid add one step each); ``math.inf`` past what a float counts (a period or a
+    step of 5e-324 s), which every budget refuses."""
     check_steps(dt, control_period)
-    periods = math.ceil(duration / control_period - 1e-9)
-    return int(periods * math.ceil(control_period / dt - 1e-9))
+    periods, within = duration / control_period - 1e-9, control_period / dt - 1e-9
+    if math.isinf(periods) or math.isinf(within):  # math.ceil(inf) raised OverflowError
+        return math.inf
+    return int(math.ceil(periods) * math.ceil(within))
 
 
 def check_step_count(duration: float, dt: float, control_period: float) -> None:
@@ -225,7 +228,8 @@ def check_step_count(duration: float, dt: float, control_period: float) -> None:
 def estimated_wall(duration: float, dt: float, control_period: float) -> float:
     """A rough wall time [s] of :func:`simulate_tracking` over ``duration`` [s] (reference and
     output excluded), from :data:`STEP_SECONDS` and :data:`TICK_SECONDS`."""
-    ticks = math.ceil(duration / control_period - 1e-9)
+    ticks = duration / control_period - 1e-9
+    ticks = math.ceil(ticks) if math.isfinite(ticks) else math.inf  # a period of 5e-324 s
     return (integration_steps(duration, dt, control_period) * STEP_SECONDS
             + ticks * TICK_SECONDS)
 

@@ -69,11 +69,33 @@ def _target(path: Path) -> Path:
     return Path(os.path.realpath(path)) if os.path.islink(path) else path
 
 
+NAME_MAX, PATH_MAX = 255, 4096  # bytes: a name, a whole path (Linux, macOS: 255 and 1024+)
+
+
+def check_name(path: str | Path) -> None:
+    """Raise :class:`OutputError` if ``path`` holds a name longer than a file system takes
+    (:data:`NAME_MAX` bytes) or is longer than :data:`PATH_MAX` bytes: the system's refusal
+    (ENAMETOOLONG) came from the first ``Path.exists`` as a traceback. The message shows the
+    path cut short (the name itself is too long for a line)."""
+    whole = len(os.fsencode(os.path.abspath(path)))
+    longest = max((len(os.fsencode(part)) for part in Path(path).parts), default=0)
+    if longest > NAME_MAX or whole >= PATH_MAX:
+        what = (f"holds a name of {longest} bytes, over the {NAME_MAX} a file system takes"
+                if longest > NAME_MAX else
+                f"is {whole} bytes long, over the {PATH_MAX} a file system takes")
+        raise OutputError(f"{_cut(str(path))}: {what}: give a shorter one")
+
+
+def _cut(text: str, width: int = 50) -> str:
+    return text if len(text) <= width else f"{text[:20]}…{text[-(width - 21):]}"
+
+
 def check_destination(path: str | Path, *, folder: bool = False) -> None:
     """Raise :class:`OutputError` unless ``path`` can be written (a folder if ``folder``),
     before any work is done: it or its nearest existing parent must be writable."""
     if str(path) == STDOUT and not folder:
         return
+    check_name(path)
     path = Path(path)
     broken = _broken_link(path)
     if broken:

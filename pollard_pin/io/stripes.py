@@ -34,6 +34,8 @@ MIN_POINTS = 10  # a profile of fewer points cannot show a spot's shape
 MAX_CSV_BYTES = 16 << 20  # a profilometer scan of 100,000 points is ~3 MB
 # Unit slips: beyond these a value is in other units (mm for m, mm/s for m/s, l/min for m³/s)
 MAX_STANDOFF = 2.0  # m: a spray gun paints from 0.1-0.3 m
+# m: nearer, no gun sprays a pattern; the fit divides by the standoff (1e-300 divided by zero)
+MIN_STANDOFF = 0.01
 MAX_SPEED = 10.0  # m/s: a gun moves at 0.1-1 m/s
 MAX_FLOW = 1e-4  # m³/s: 6 l/min; a gun sprays 0.05-1 l/min
 MAX_SPAN = 1.0  # m: no spray pattern is wider than a metre
@@ -49,8 +51,10 @@ def _fail(where: str, what: str) -> None:
     raise StripeError(f"{where}: {what}")
 
 
-def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> float:
-    """A positive finite number at most ``high`` (beyond: the unit slip ``slip`` named)."""
+def _value(where: str, key: str, value, high: float, unit: str, slip: str,
+           low: float = 0.0) -> float:
+    """A positive finite number at most ``high`` (beyond: the unit slip ``slip`` named) and
+    at least ``low``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         _fail(where, f"{key} = {shorten(value)}: must be a number [{unit}]")
     try:
@@ -61,6 +65,9 @@ def _value(where: str, key: str, value, high: float, unit: str, slip: str) -> fl
         _fail(where, f"{key} = {shorten(value)}: must be a finite number > 0 [{unit}]")
     if v > high:
         _fail(where, f"{key} = {shorten(value)}: over {high:g} {unit}: {slip}")
+    if v < low:
+        _fail(where, f"{key} = {shorten(value)}: under {low:g} {unit}: no spray gun paints that "
+                     "close (0.1-0.3 m)")
     return v
 
 
@@ -152,7 +159,8 @@ class Stripe:
         object.__setattr__(self, "position", x)
         object.__setattr__(self, "thickness", t)
         object.__setattr__(self, "standoff", _value(where, "standoff", self.standoff,
-                                                    MAX_STANDOFF, "m", "in mm? give metres"))
+                                                    MAX_STANDOFF, "m", "in mm? give metres",
+                                                    MIN_STANDOFF))
         object.__setattr__(self, "speed", _value(where, "speed", self.speed, MAX_SPEED, "m/s",
                                                  "in mm/s? give m/s"))
         object.__setattr__(self, "flow", _value(where, "flow", self.flow, MAX_FLOW, "m³/s",
@@ -193,7 +201,8 @@ class StripeSet:
         object.__setattr__(self, "solids", float(solids))
         if self.standoff is not None:
             object.__setattr__(self, "standoff", _value(where, "standoff", self.standoff,
-                                                        MAX_STANDOFF, "m", "in mm? give metres"))
+                                                        MAX_STANDOFF, "m", "in mm? give metres",
+                                                        MIN_STANDOFF))
 
 
 def read_profile(path: Path, where: str) -> tuple[np.ndarray, np.ndarray]:

@@ -15,11 +15,10 @@ from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
 from ..model.values import float_text_problem, open_regular, parse_float, shorten, shown_path
 from ..paths.splines import QuinticSpline
-from ..paths.trajectory import Trajectory, TrajectoryError
+from ..paths.trajectory import MAX_TIME, Trajectory, TrajectoryError
 
 MAX_LENGTH = 3.0  # m: a coordinate beyond this is almost surely in mm
 MAX_ANGLE = 2.0 * math.pi  # rad: an angle beyond this is almost surely in degrees
-MAX_TIME = 1e6  # s: a time beyond this (11.6 days) is a unit slip, and its squares overflow
 PARQUET_MAGIC = b"PAR1"  # the first (and last) four bytes of every Parquet file
 # Given d_* columns must agree with the positions: the largest gap between q(t) − q(t0) and
 # the running trapezoid integral of q̇, relative to the largest excursion |q(t) − q(t0)| (the

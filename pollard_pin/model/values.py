@@ -117,12 +117,34 @@ def read_toml(path: str | Path, what: str, error: type[Exception]) -> dict:
     return loads_toml(text, where, error)
 
 
+class _Beyond(float):
+    """A TOML float written beyond the float range (``1e400`` reads as inf, ``1e-400`` as 0),
+    shown as written: a message then says what the file says."""
+
+    text = ""
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+def _parse_float(text: str) -> float:
+    """tomllib's float reader, marking a written number that does not survive it: one of
+    magnitude beyond about 1.8e308, or below the smallest float and not zero."""
+    value = float(text)
+    digits = text.lower().split("e")[0]
+    if (math.isinf(value) and "inf" not in text) or (value == 0 and digits.strip("+-0.")):
+        value = _Beyond(value)
+        value.text = text
+    return value
+
+
 def loads_toml(text: str, where: str, error: type[Exception], ints: bool = True) -> dict:
     """``tomllib.loads`` within limits: nesting deeper than :data:`MAX_DEPTH`, an integer
-    beyond Python's digit limit or (``ints``) beyond the float range raise ``error`` (one
-    line)."""
+    beyond Python's digit limit or (``ints``) a number beyond the float range (an integer, or
+    a float written as ``1e400`` or ``1e-400``) raise ``error`` (one line); with ``ints``
+    false they go on to the value's own check, shown as written."""
     try:
-        data = tomllib.loads(text)
+        data = tomllib.loads(text, parse_float=_parse_float)
     except tomllib.TOMLDecodeError as exc:
         raise error(f"{where} is not valid TOML: {exc}") from None
     except RecursionError:
@@ -153,6 +175,10 @@ def _check_tree(data: dict, where: str, error: type[Exception], ints: bool) -> N
                 and not _fits_float(node):
             raise error(f"{where}: '{key}' = {shorten(node)}: must be within the float range "
                         "(about ±1.8e308)")
+        elif ints and isinstance(node, _Beyond):
+            rule = ("within the float range (about ±1.8e308)" if node else
+                    "0, or at least about 4.9e-324 in magnitude (it reads as 0)")
+            raise error(f"{where}: '{key}' = {node.text}: must be {rule}")
 
 
 def _fits_float(value: int) -> bool:

@@ -8,7 +8,7 @@ from functools import partial
 
 import numpy as np
 
-from .trajectory import Trajectory, TrajectoryError
+from .trajectory import MAX_TIME, Trajectory, TrajectoryError
 
 THESIS_DURATION = 20.0  # s (docs/model.md §9)
 THESIS_SAMPLES = 2001
@@ -104,7 +104,8 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     ------
     TrajectoryError
         A duration that is not a positive number (or so short that the accelerations
-        overflow), a sample count that is not an integer ≥ 2 or over the budget.
+        overflow, or over 1e6 s: a trajectory file's times' limit), a sample count that is not
+        an integer ≥ 2 or over the budget.
 
     Examples
     --------
@@ -119,6 +120,9 @@ def thesis_trajectory(duration: float = THESIS_DURATION, samples: int = THESIS_S
     """
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise TrajectoryError(f"duration must be a positive number of seconds, got {duration}")
+    if duration > MAX_TIME:  # a trajectory file's rule: 1e308 s overflowed the plots' axes
+        raise TrajectoryError(f"duration {duration:g} s is beyond {MAX_TIME:g} s (seconds, not "
+                              "ms?)")
     if not 2.0 * U_RANGE / duration < 1e150:  # the accelerations grow as 1/duration²
         raise TrajectoryError(f"duration {duration} s is too short: the curve's accelerations "
                               "overflow")

@@ -11,6 +11,8 @@ import numpy as np
 from ..errors import InputError
 from .splines import quintic_hermite
 
+MAX_TIME = 1e6  # s: a time beyond this (11.6 days) is a unit slip, and its squares overflow
+
 
 class TrajectoryError(InputError):
     """A trajectory (file) is malformed; the message names the row and column (a file) or the

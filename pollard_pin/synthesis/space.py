@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path
 from ..errors import InputError
 from ..model.overrides import ParameterError, apply_overrides, lookup
 from ..model.params import did_you_mean, merge_partial, params_from_dict, read_params_dict
@@ -352,12 +353,14 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
                              f"(expected {', '.join(KEYS)})")
     folder = Path(folder)
     ref = read_params_dict()
-    if "params" in d:
-        ref = merge_partial(ref, read_params_dict(folder / str(d["params"])))
+    if "params" in d:  # a file name: a number or a list is no name (nor an empty string)
+        ref = merge_partial(ref, read_params_dict(
+            folder / file_path(d["params"], f"{source}: params", error=SpaceError)))
     if catalogue is None:
         if not isinstance(d.get("catalogue"), str):
             raise SpaceError(f"{source}: catalogue = \"FILE\" (the motor catalogue) is missing")
-        catalogue = load_catalogue(folder / d["catalogue"])
+        catalogue = load_catalogue(folder / file_path(d["catalogue"], f"{source}: catalogue",
+                                                      error=SpaceError))
     bounds_in = d.get("bounds", {})
     if not isinstance(bounds_in, Mapping):
         raise SpaceError(f"{source}: [bounds] must be a table of key = [low, high]")

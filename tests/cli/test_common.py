@@ -32,6 +32,31 @@ def test_types_reject_in_one_line(parse, text, says):
     assert says in str(info.value) and "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize("text", ["tcp://127.0.0.1:8786", " localhost:8786 ", "tls://h:1",
+                                  "tcp://[::1]:8786", "inproc://x"])
+def test_a_scheduler_address_dask_takes_is_taken(text):
+    pytest.importorskip("distributed")
+    assert C.scheduler_address(text) == text.strip()
+
+
+@pytest.mark.parametrize("text, says", [
+    ("tcp://[::1", "'tcp://[::1' (invalid address '[::1'; maybe: ipv6 needs brackets"),
+    ("localhost", "'localhost' (missing port number in address 'localhost')"),
+    ("tcp://h:port", "'tcp://h:port' (invalid literal for int()"),
+    ("tcp://127.0.0.1:99999", "(port 99999 is not in 1..65535)"),
+    ("tpc://127.0.0.1:8786", "(unknown address scheme 'tpc'"),
+])
+def test_a_malformed_scheduler_address_is_refused_before_any_work(text, says):
+    # the old code took any text: design then screened its first generation (84 s) before
+    # the connection said the address was malformed
+    pytest.importorskip("distributed")
+    with pytest.raises(argparse.ArgumentTypeError) as info:
+        C.scheduler_address(text)
+    msg = str(info.value)
+    assert msg.startswith("not a scheduler address: ") and says in msg, msg
+    assert msg.endswith("; e.g. tcp://127.0.0.1:8786") and "\n" not in msg, msg
+
+
 def test_parser_takes_negative_numbers_as_values_and_errs_in_one_line(capsys):
     p = C.Parser(prog="pollard-pin x")
     p.add_argument("--margin", type=C.fraction)

@@ -95,3 +95,34 @@ def test_a_study_writes_the_chosen_design_and_resumes(tmp_path, capsys, stand_in
     assert code == 0, err
     assert out.splitlines()[0].startswith("16 evaluations, ")
     assert "chosen: design 2" in err and "design 2 (chosen): " in out
+
+
+def test_a_study_that_fails_before_any_evaluation_leaves_nothing(tmp_path, capsys, stand_in,
+                                                                  monkeypatch):
+    # a scheduler that never answers (or a full disk) after the study file was made: the old
+    # code left out/study.db behind a line that said "nothing written to out"
+    from pollard_pin.errors import SolveError
+    from pollard_pin.synthesis import api
+
+    def unreachable(*args, **kwargs):
+        raise SolveError("cannot connect to the Dask scheduler at 'tcp://127.0.0.1:1'")
+
+    monkeypatch.setattr(api, "make_runner", unreachable)
+    _refused(_argv(tmp_path, "--trials", "4", "--workers", "1", "--population", "4"),
+             "cannot connect to the Dask scheduler at 'tcp://127.0.0.1:1' (nothing written to",
+             capsys, tmp_path)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_study_that_fails_after_its_evaluations_says_they_are_kept(tmp_path, capsys,
+                                                                     stand_in):
+    argv = _argv(tmp_path, "--trials", "8", "--workers", "1", "--population", "4")
+    code, out, err = run_cli([*argv, "--pick", "99"], capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and out == "" and len(lines) == 1, err
+    assert lines[0].startswith("pollard-pin design: error: --pick 99: the front has "), lines[0]
+    assert lines[0].endswith(f"(8 finished evaluations kept in {tmp_path / 'out' / 'study.db'}"
+                             ": --resume continues the study)"), lines[0]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["study.db"]
+    code, out, err = run_cli([*argv, "--resume"], capsys)  # and it does
+    assert code == 0 and out.startswith("8 evaluations, "), err

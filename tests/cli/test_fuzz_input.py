@@ -305,7 +305,7 @@ CASES += [([*SWEEP, "grid_ok.toml", "--dask", address], "argument --dask: an emp
           for address in ("", "  ")]
 if importlib.util.find_spec("distributed") is not None:
     CASES += [([*SWEEP, "grid_ok.toml", "--dask", "tcp://"],
-               "cannot connect to the Dask scheduler at 'tcp://': missing port number")]
+               "argument --dask: not a scheduler address: 'tcp://' (missing port number")]
 IDS = [" ".join(a if len(a) <= 40 else f"{a[:30]}…({len(a)})" for a in argv)
        for argv, _ in CASES]
 

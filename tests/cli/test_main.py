@@ -307,3 +307,22 @@ def test_a_long_refusal_gives_way_its_suffix_then_its_folders_never_its_cause(
     with caplog.at_level("INFO", logger="pollard_pin"):  # -v: the whole story
         run_cli(["-v", "paint", "--job", "j.toml", "--out", out], capsys)
     assert f"{folder}job.toml" in caplog.text and f"nothing written to {out}" in caplog.text
+
+
+@pytest.mark.parametrize("argv", [
+    ["plot", "--samples", "11", "--out", "p", "--simulation", "a" * 300 + ".csv"],
+    ["view", "--samples", "11", "--html", "v.html", "--paint", "a" * 300],
+    ["view", "--samples", "11", "--html", "v.html", "--workspace", "a" * 300],
+])
+def test_an_input_name_too_long_for_the_file_system_is_one_line(tmp_path, monkeypatch, capsys,
+                                                                argv):
+    # Path.is_dir() and exists() raise ENAMETOOLONG (a traceback) where they answer False for
+    # a missing file
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_cli(argv, capsys)
+    lines = err.strip().splitlines()
+    assert code == 2 and out == "" and len(lines) == 1, err[-2000:]
+    assert lines[0].startswith(f"pollard-pin {argv[0]}: error: aaaaaaaaaaaaaaaaaaaa…"), lines[0]
+    assert "holds a name of 30" in lines[0] and lines[0].endswith(
+        "bytes, over the 255 a file system takes: give a shorter one"), lines[0]
+    assert list(tmp_path.iterdir()) == []

@@ -28,6 +28,10 @@ def short_csv(tmp_path_factory):
     (["--control-period", "5e-7"], "1,000,000 RK4 steps (0.5 s, --control-period 5e-07 s, "
                                    "--dt 5e-07 s) would take about"),
     (["--dt", "1e-7"], "over the budget of 500,000 steps: give --force"),
+    # steps past what a float counts: an OverflowError traceback
+    (["--dt", "5e-324"], "inf RK4 steps (0.5 s, --control-period 0.001 s, --dt 4.94066e-324 s): "
+                         "more than a simulation can hold (5e+07), even with --force"),
+    (["--control-period", "5e-324"], "inf RK4 steps"),
     (["--mass-error", "-2"], "mass error must be a fraction > -1"),
     (["--torque-limit", "1", "2"], "--torque-limit takes 1 value"),
     (["--start", "home"], "trajectory starts off the path"),

@@ -137,3 +137,19 @@ def test_as_actuators_reads_a_path_and_refuses_the_rest():
     assert A.as_actuators(str(EXAMPLE)) == act == A.as_actuators(Path(EXAMPLE))
     for wrong in (3, float("nan"), [1, 2], {"a": 1}, b"bytes"):
         refused(lambda w=wrong: A.as_actuators(w), "actuators")
+
+
+@pytest.mark.parametrize("k, ok", [("1e-3", True), ("1e9", True), ("9e-4", False),
+                                   ("1e-300", False), ("1.5e9", False)])
+def test_an_actuator_file_stiffness_is_within_its_range(tmp_path, k, ok):
+    # the old loader took 1e-300 (> 0), and the stiffness model refused it later without
+    # naming the file or the key: "stiffness of actuator 1 = 1e-300: must be 0.001 to 1e+12"
+    path = tmp_path / "act.toml"
+    path.write_text(EXAMPLE.read_text().replace("stiffness = 3000.0", f"stiffness = {k}", 1))
+    if ok:
+        assert A.load_actuators(path).units[0].stiffness == float(k)
+        return
+    with pytest.raises(A.ActuatorError) as info:
+        A.load_actuators(path)
+    assert str(info.value) == (f"{path}: 'theta21.stiffness' = {float(k)!r}: must be between "
+                               "0.001 and 1e+09 N·m/rad (joint side)"), str(info.value)

@@ -64,6 +64,13 @@ def test_the_step_cap_refuses_past_it_and_not_at_it():
         check_step_count((MAX_STEPS + 1000) * 1e-3, 1e-3, 1e-3)
     with pytest.raises(ControlError, match=r"^2\.2e\+299 RK4 steps"):  # not 300 digits
         check_step_count(0.22, 1e-300, 1e-300)
+    # a step or a period of 5e-324 s: the count's ceil overflowed (an OverflowError traceback
+    # from simulate --dt 5e-324)
+    for dt, period in ((5e-324, 1e-3), (5e-324, 5e-324)):
+        assert integration_steps(6.0, dt, period) == math.inf
+        with pytest.raises(ControlError, match=r"^inf RK4 steps .* more than a simulation"):
+            check_step_count(6.0, dt, period)
+    assert estimated_wall(6.0, 5e-324, 1e-3) == math.inf
 
 
 def test_a_run_past_the_cap_or_with_one_tick_stops_before_any_work(robot):

@@ -15,6 +15,7 @@ from pollard_pin.io.atomic import (
     all_or_nothing,
     atomic_open,
     check_destination,
+    check_name,
     check_not_inputs,
     check_outputs,
     make_folder,
@@ -114,6 +115,23 @@ def test_a_dangling_or_looping_link_is_refused_before_any_work(tmp_path, make, s
         with atomic_open(tmp_path / "out") as f:
             f.write("x")
     assert os.path.islink(tmp_path / "out")  # the link itself is left alone
+
+
+@pytest.mark.parametrize("name, says", [
+    ("a" * 300 + ".csv", "holds a name of 304 bytes, over the 255 a file system takes"),
+    ("é" * 128, "holds a name of 256 bytes"),  # bytes, not characters
+    ("/".join(["b" * 200] * 25), "bytes long, over the 4096 a file system takes"),
+])
+@pytest.mark.parametrize("folder", [False, True])
+def test_a_name_too_long_for_the_file_system_is_one_short_line(tmp_path, name, says, folder):
+    # os.stat's ENAMETOOLONG came out of Path.exists() as a traceback, in every command
+    with pytest.raises(OutputError) as info:
+        check_outputs(*([] if folder else [tmp_path / name]),
+                      folders=(tmp_path / name,) if folder else ())
+    msg = str(info.value)
+    assert says in msg and msg.endswith(": give a shorter one") and len(msg) < 160, msg
+    assert list(tmp_path.iterdir()) == []
+    check_name(tmp_path / ("a" * 255))  # the longest name is taken
 
 
 def test_a_link_to_a_file_is_written_through_and_stays_a_link(tmp_path):

@@ -83,6 +83,10 @@ BAD_TOML = [
     ("missing key", TOP.replace("speed = 0.5\n", ""), "'speed' is missing"),
     ("direction", TOP.replace('"across"', '"acros"'), "(did you mean 'across'?)"),
     ("standoff mm", TOP.replace("standoff = 0.2", "standoff = 200"), "in mm? give metres"),
+    # a nozzle on the panel: the fit divided by the standoff's square (a ZeroDivisionError)
+    ("standoff zero", TOP.replace("standoff = 0.2", "standoff = 1e-300"),
+     "stripe 1 (s.csv): standoff = 1e-300: under 0.01 m: no spray gun paints that close"),
+    ("standoff 5 mm", TOP.replace("standoff = 0.2", "standoff = 0.005"), "under 0.01 m"),
     ("speed", TOP.replace("speed = 0.5", "speed = 500"), "in mm/s? give m/s"),
     ("flow", TOP.replace("flow = 2e-6", "flow = 120"), "in ml/min or l/min? give m³/s"),
     ("negative", TOP.replace("speed = 0.5", "speed = -0.5"), "must be a finite number > 0"),

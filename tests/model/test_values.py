@@ -89,11 +89,24 @@ def test_an_over_large_toml_file_is_refused(tmp_path):
     ("[t]\na = " + "9" * 400, "'t.a' = 9.999e+399 (a 400-digit integer): must be within the float"),
     ("a = [1, -" + "9" * 400 + "]", "'a[1]' = -9.999e+399 (a 400-digit integer)"),
     ("a = ", "is not valid TOML"),
+    # a float beyond the range: tomllib reads 1e400 as inf and 1e-400 as 0, and the old
+    # messages said "'a' = inf: must be a finite number" of a file that says 1e400
+    ("[t]\na = 1e400", "f.toml: 't.a' = 1e400: must be within the float range (about ±1.8e308)"),
+    ("a = [1.0, -2.5E+999]", "'a[1]' = -2.5E+999: must be within the float range"),
+    ("a = 1e-400", "'a' = 1e-400: must be 0, or at least about 4.9e-324 in magnitude (it reads "
+                   "as 0)"),
 ])
 def test_toml_within_limits(text, says):
     with pytest.raises(Bad) as info:
         loads_toml(text, "f.toml", Bad)
     assert says in str(info.value) and len(str(info.value)) < 200, str(info.value)
+
+
+def test_a_float_beyond_the_range_goes_on_shown_as_written_without_ints():
+    # a --set value: the parameter's own check names the key, and shows what was typed
+    v = loads_toml("v = 1e400", "override", Bad, ints=False)["v"]
+    assert v == math.inf and shorten(v) == "1e400"
+    assert shorten(loads_toml("v = -1e-400", "override", Bad, ints=False)["v"]) == "-1e-400"
 
 
 def test_toml_limits_keep_what_a_file_needs():

@@ -54,3 +54,21 @@ def test_wait_then_strokes_rests_then_moves_with_consistent_derivatives():
                        np.abs(ddq - tr.dd_poses[still + 1:-1]).max()])
     ratio = np.array(errors[0]) / np.array(errors[1])
     np.testing.assert_allclose(ratio, 4.0, rtol=0.05)
+
+
+@pytest.mark.parametrize("duration, says", [
+    # 1e308 s: plot's axes overflowed (a RuntimeWarning), size's dynamics made NaN; a file's
+    # times beyond 1e6 s were refused (pollard_pin.io.trajectory), the thesis curve's not
+    (1e308, "duration 1e+308 s is beyond 1e+06 s (seconds, not ms?)"),
+    (1.5e6, "duration 1.5e+06 s is beyond 1e+06 s"),
+    (5e-324, "duration 5e-324 s is too short"),
+])
+def test_an_absurd_thesis_duration_is_refused(duration, says):
+    from pollard_pin.paths.trajectory import TrajectoryError
+
+    with pytest.raises(TrajectoryError) as info:
+        thesis_trajectory(duration=duration, samples=11)
+    assert str(info.value).startswith(says), str(info.value)
+    with pytest.raises(TrajectoryError):  # the streamed one checks the same
+        ThesisTrajectory(duration=duration, samples=11)
+    assert len(thesis_trajectory(duration=1e6, samples=11)) == 11  # the limit itself is taken

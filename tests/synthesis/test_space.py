@@ -96,6 +96,26 @@ def test_catalogue_is_read_beside_the_space(tmp_path):
         load_space(tmp_path / "S.toml")
 
 
+@pytest.mark.parametrize("value, says", [
+    (["base.toml"], "S.toml: params = ['base.toml']: expected a file path (str or "
+                    "pathlib.Path), got list"),
+    (3, "S.toml: params = 3: expected a file path"),
+    ("", "S.toml: params = '': an empty path"),
+])
+def test_a_params_entry_that_names_no_file_is_one_line(cat, tmp_path, value, says):
+    # the old code read str(value): "parameter file \"['base.toml']\" does not exist", and
+    # an empty name read the space's folder
+    with pytest.raises(SpaceError) as e:
+        space_from_dict({**BASE, "params": value}, "S.toml", tmp_path, catalogue=cat)
+    assert str(e.value).startswith(says) and "\n" not in str(e.value), str(e.value)
+
+
+def test_an_empty_catalogue_name_is_one_line(tmp_path):
+    (tmp_path / "S.toml").write_text('catalogue = ""\nrobots = 1\n')
+    with pytest.raises(SpaceError, match="^S.toml: catalogue = '': an empty path$"):
+        load_space(tmp_path / "S.toml")
+
+
 def test_reference_design_from_a_partial_file(cat, tmp_path):
     (tmp_path / "base.toml").write_text("[chain0]\nx32 = 0.35\n", encoding="utf-8")
     sp = space_from_dict({**BASE, "params": "base.toml"}, "S.toml", tmp_path, catalogue=cat)

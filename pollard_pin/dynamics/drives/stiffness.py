@@ -26,6 +26,7 @@ from ...errors import InputError
 from ...kinematics.errors import SingularityError
 from ...kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ...kinematics.singularity import inverse_stack
+from ..motors import MIN_STIFFNESS
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
 FREQUENCIES = tuple(f"f{i}" for i in range(1, 7))
@@ -38,8 +39,8 @@ MAX_WRENCH = 1e6  # N, N·m: beyond it a unit slip (the linear model is long gon
 # measured at ≤ 3.2 × max |Δθᵢ| against the nonlinear equilibrium, so ≈ 1 % here (§27.2).
 MAX_TURN = 3e-3
 # k [N·m/rad] outside it is a unit slip (the weight alone would turn a drive by ~10² rad, or
-# 1/k's squares leave float range); the examples' are 300 and 3000
-STIFFNESS_RANGE = (1e-3, 1e12)
+# 1/k's squares leave float range); the low end is the actuator file's (dynamics.motors)
+STIFFNESS_RANGE = (MIN_STIFFNESS, 1e12)
 
 
 class StiffnessError(InputError):

@@ -27,7 +27,7 @@ from ...analytic.taskspace import turn
 from ...model.values import read_bytes
 from ..errors import MeshError, MeshFileError
 from ..job import UNITS, PaintJob
-from .mesh_check import check_indices, obj_absolute, ply_counts, unique_faces
+from .mesh_check import check_indices, obj_absolute, ply_counts, stl_count, unique_faces
 from .panel import panel_frame
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
@@ -192,11 +192,14 @@ def make_part(vertices, faces, facing=None, max_angle: float = MAX_ANGLE,
 
 def _read_mesh(data: bytes, ext: str, src: str):
     """(vertices, faces) of a mesh file's bytes, checked against what the file says
-    (:mod:`.mesh_check`): indices, PLY counts; repeated faces dropped with a warning."""
+    (:mod:`.mesh_check`): indices, PLY and binary STL counts; repeated faces dropped with a
+    warning."""
     if ext == "obj":
         data = obj_absolute(data, src)
     elif ext == "ply":
         ply_counts(data, src)
+    else:
+        stl_count(data, src)
     import trimesh
 
     try:

@@ -9,6 +9,10 @@ never turned silently into another part.
 - **PLY**: the header's element counts must match the data: an ASCII body with more or fewer
   lines than the header declares is refused (the reader would take the wrong lines as faces);
   a face index outside 0..V−1 is refused, naming the face.
+- **STL**: an ASCII file reads as text (``solid`` first, no NUL byte); any other is binary,
+  whose size must be its 84-byte header and 50 bytes for each triangle the header counts: a
+  count that does not match (a truncated copy, a damaged header, another format named .stl) is
+  refused, saying both, not read as an ASCII file with no triangles.
 - **Faces**: a face that repeats another (the same three corners in the same turning order) is
   dropped and counted: painting it twice would double its film and area. The same corners in
   the opposite order are the two sides of a sheet and both stay.
@@ -114,6 +118,27 @@ def ply_counts(data: bytes, source: str) -> dict[str, int]:
     return counts
 
 
+STL_HEADER, STL_TRIANGLE = 84, 50  # bytes: a binary STL's header (with its count), a triangle
+
+
+def stl_count(data: bytes, source: str) -> int | None:
+    """A binary STL's triangle count, checked against the file's size (None: an ASCII STL,
+    ``solid`` first and no NUL byte)."""
+    if data.lstrip()[:5].lower() == b"solid" and b"\0" not in data:
+        return None
+    if len(data) < STL_HEADER:
+        raise MeshFileError(f"{source}: {len(data)} bytes: not an ASCII STL (solid … endsolid), "
+                            f"and shorter than a binary STL's {STL_HEADER}-byte header")
+    count = int.from_bytes(data[80:STL_HEADER], "little")
+    size = STL_HEADER + STL_TRIANGLE * count
+    if len(data) != size:
+        held = (len(data) - STL_HEADER) / STL_TRIANGLE
+        raise MeshFileError(f"{source}: a binary STL whose header counts {count} triangles "
+                            f"({size} bytes), but the file has {len(data)} bytes ({held:.6g} "
+                            "triangles): truncated, damaged, or another format")
+    return count
+
+
 def check_indices(vertices: np.ndarray, faces: np.ndarray, source: str) -> None:
     """Refuse a face index outside 0..V−1, naming the first such face."""
     f = np.asarray(faces)
@@ -138,5 +163,5 @@ def unique_faces(faces: np.ndarray) -> tuple[np.ndarray, int]:
     return f[keep], len(f) - len(keep)
 
 
-__all__ = ["check_indices", "obj_absolute", "ply_counts",
-           "unique_faces"]
+__all__ = ["STL_HEADER", "STL_TRIANGLE", "check_indices", "obj_absolute", "ply_counts",
+           "stl_count", "unique_faces"]

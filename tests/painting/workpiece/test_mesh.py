@@ -97,7 +97,8 @@ TRI = "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"  # normal +x: faces away from the r
 @pytest.mark.parametrize("name, text, kwargs, fragment", [
     ("none.stl", None, {}, "does not exist"),
     ("part.step", "x", {}, "format '.step' is not a mesh"),
-    ("junk.stl", "hello\n", {}, "no triangles in the file"),
+    ("junk.stl", "hello\n", {}, "6 bytes: not an ASCII STL (solid … endsolid), and shorter "
+     "than a binary STL's 84-byte header"),
     ("junk.ply", "hello\n", {}, "not a PLY file"),
     ("cloud.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y"
      "\nproperty float z\nend_header\n0 0 0\n", {}, "no triangles in the file"),

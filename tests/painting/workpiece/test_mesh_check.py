@@ -11,6 +11,7 @@ from pollard_pin.painting.workpiece.mesh_check import (
     check_indices,
     obj_absolute,
     ply_counts,
+    stl_count,
     unique_faces,
 )
 
@@ -104,6 +105,53 @@ def test_loader_reads_relative_obj_indices_as_the_file_means(tmp_path):
     another part)."""
     part = _load(tmp_path, "t.obj", INTERLEAVED, facing=(0, 0, 1))
     assert np.allclose(np.sort(part.areas), [0.5, 2.0], rtol=0, atol=1e-14)
+
+
+def _binary_stl(triangles: list, header: bytes = b"binary") -> bytes:
+    """A binary STL of ``triangles`` (3 corners each), written by hand: an 80-byte header, the
+    count, then per triangle a zero normal, the corners as float32 and two attribute bytes."""
+    body = b"".join(np.zeros(3, "<f4").tobytes() + np.asarray(t, "<f4").tobytes() + b"\0\0"
+                    for t in triangles)
+    return header.ljust(80, b" ") + len(triangles).to_bytes(4, "little") + body
+
+
+SQUARE = [[[0, 0, 0], [1, 0, 0], [1, 1, 0]], [[0, 0, 0], [1, 1, 0], [0, 1, 0]]]
+GOOD_STL = _binary_stl(SQUARE)
+
+
+def test_a_binary_stl_count_is_checked_against_its_size():
+    assert len(GOOD_STL) == 84 + 2 * 50 and stl_count(GOOD_STL, "t.stl") == 2
+    # a header that begins "solid" (some writers'), and an ASCII file: read as they are
+    assert stl_count(_binary_stl(SQUARE, b"solid square"), "t.stl") == 2
+    assert stl_count(b"solid s\nfacet normal 0 0 1\nendsolid s\n", "t.stl") is None
+
+
+def _count(data: bytes, count: int) -> bytes:
+    return data[:80] + count.to_bytes(4, "little") + data[84:]
+
+
+@pytest.mark.parametrize("data, says", [
+    (_count(GOOD_STL, 3), "header counts 3 triangles (234 bytes), but the file has 184 bytes "
+                          "(2 triangles): truncated"),
+    (_count(GOOD_STL, 1), "header counts 1 triangles (134 bytes), but the file has 184 bytes"),
+    (_count(GOOD_STL, 2**32 - 1), "header counts 4294967295 triangles"),
+    (GOOD_STL[:150], "the file has 150 bytes (1.32 triangles)"),
+    (_count(_binary_stl(SQUARE, b"solid square"), 7), "header counts 7 triangles"),
+    (b"\x89PNG\r\n\x1a\n" + bytes(range(256)), "truncated, damaged, or another format"),
+    (GOOD_STL[:60], "60 bytes: not an ASCII STL (solid … endsolid), and shorter than a binary "
+                    "STL's 84-byte header"),
+])
+def test_a_binary_stl_that_lies_about_its_count_is_refused(tmp_path, data, says):
+    # the old loader read each as an ASCII STL: "no triangles in the file"
+    with pytest.raises(MeshFileError) as exc:
+        _load(tmp_path, "lie.stl", data, facing=(0, 0, 1))
+    msg = str(exc.value)
+    assert says in msg and "\n" not in msg and len(msg) <= 250, msg
+
+
+def test_loader_reads_a_binary_stl_written_by_hand(tmp_path):
+    part = _load(tmp_path, "square.stl", GOOD_STL, facing=(0, 0, 1))
+    assert len(part.faces) == 2 and abs(part.areas.sum() - 1.0) < 1e-14
 
 
 @pytest.mark.parametrize("name, data, says", [
