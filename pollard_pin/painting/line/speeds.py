@@ -312,13 +312,13 @@ def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: b
             said = str(none).removeprefix(f"{source}: ")
             if isinstance(none, BudgetError):  # halved down to the floor, none painting
                 said = "no slower line paints it, down to the sample budget's floor"
-            raise PlanError(say_less(f"{exc}; {said}", f"at line speed {speed:.4g} m/s "
-                                     f"{exc.why}; {said}", str(none))) from None
+            raise PlanError(say_less(f"{source}: {exc}; {said}", f"{source}: at line speed "
+                                     f"{speed:.4g} m/s {exc.why}; {said}", str(none))) from None
         slower = " or slower" if found.low_bound.startswith("waits") else ""
         paints = f"it paints at {found.said()}{slower} (--max-line-speed)"
-        raise PlanError(say_less(f"{exc}; {paints}", f"at line speed {speed:.4g} m/s "
-                                 f"{exc.why}; {paints}", f"line speed {speed:.4g} m/s: "
-                                 f"{paints}")) from None
+        raise PlanError(say_less(f"{source}: {exc}; {paints}", f"{source}: at line speed "
+                                 f"{speed:.4g} m/s {exc.why}; {paints}", f"{source}: line "
+                                 f"speed {speed:.4g} m/s: {paints}")) from None
 
 
 __all__ = ["BUDGET_FLOOR", "INTERVAL_RESOLUTION", "SPEED_RESOLUTION", "SPEED_TRIES",
