@@ -78,7 +78,7 @@ def test_a_speed_too_fast_names_the_fastest():
     with pytest.raises(PlanError) as info:
         plan_or_name_fastest(planner(0.01, 0.0371, calls), 0.2, "j.toml")
     msg = str(info.value)
-    assert msg.startswith("0.2 too fast; it paints at ")  # the interval, its fastest end:
+    assert msg.startswith("j.toml: 0.2 too fast; it paints at ")  # the file; the fast end:
     named = float(msg.split("–")[1].split()[0])
     assert 0.0371 / 1.01 <= named <= 0.0371
     assert not isinstance(info.value, LineSpeedError)  # not to be searched again
@@ -262,7 +262,8 @@ def test_no_speed_at_all_refuses_with_both_sides():
         plan_or_name_fastest(runs([(0.05, 0.04)], []), 0.03, "j.toml")
     msg = str(info.value)
     assert "no line speed paints the part" in msg and "binding: " in msg and len(msg) <= 250
-    assert msg.startswith("0.03 too slow; no line speed paints the part: too slow at "), msg
+    assert msg.startswith("j.toml: 0.03 too slow; no line speed paints the part: too slow "
+                          "at "), msg
     assert not isinstance(info.value, LineSpeedError)
 
 
@@ -279,8 +280,8 @@ def test_too_fast_down_to_the_budget_floor_says_so():
 
     with pytest.raises(PlanError) as info:
         plan_or_name_fastest(plan_at, 0.03, "j.toml")
-    assert str(info.value) == ("at line speed 0.03 m/s the program drifts +1.985 m; no slower "
-                               "line paints it, down to the sample budget's floor")
+    assert str(info.value) == ("j.toml: at line speed 0.03 m/s the program drifts +1.985 m; "
+                               "no slower line paints it, down to the sample budget's floor")
     assert not isinstance(info.value, (LineSpeedError, BudgetError))
 
 # --- a real job ----------------------------------------------------------------------------------
