@@ -68,7 +68,7 @@ def parse_orientation(text: str) -> tuple[float, float, float]:
         raise UsageError(f"--orientation {text!r}: expected three finite numbers "
                          "PSI,THETA,PHI in degrees, e.g. 0,0,0")
     try:
-        return check_orientation([math.radians(v) for v in vals])
+        return check_orientation(vals, deg=True)
     except WorkspaceError as exc:
         raise UsageError(f"--orientation {text!r}: {exc}") from None
 

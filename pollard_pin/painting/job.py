@@ -15,7 +15,7 @@ import numpy as np
 from ..checks import file_path, instance
 from ..model.params import did_you_mean
 from ..model.values import read_toml
-from .cell.robots import CellRobot, robots_from_tables
+from .cell.robots import CellRobot, robots_from_tables, turn_angle
 from .errors import JobError, JobKindError
 from .gun_table import check_spot, gun_table
 from .job_tables import (
@@ -200,7 +200,7 @@ def part_job_from_dict(d: Mapping, source: str = "<python>") -> PartJob:
         if not isinstance(r, list) or len(r) != 3:
             fail_key(source, "part.rotation", r, "must be a list of 3 angles [rx, ry, rz] in "
                                                  "degrees")
-        values["rotation"] = tuple(checked_number(source, f"part.rotation[{i}]", v)
+        values["rotation"] = tuple(turn_angle(v, f"part.rotation[{i}]", JobError, f"{source}: ")
                                    for i, v in enumerate(r))
     if "facing" in part:
         values["facing"] = checked_vector(source, "part.facing", part["facing"])

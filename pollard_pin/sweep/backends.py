@@ -130,18 +130,22 @@ def require_distributed():
     return distributed
 
 
-def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> list[dict]:
+def connect(address: Any, error: type[Exception] = SweepError) -> tuple[Any, bool]:
+    """A ``distributed.Client`` for a scheduler ``address`` (connected now: an unreachable one
+    is ``error``, one line, before any work), or ``address`` itself if it is a client; and
+    whether the caller owns it (closes it when done)."""
     distributed = require_distributed()
-    Client, as_completed = distributed.Client, distributed.as_completed
-    own = not isinstance(address, Client)
-    if own:
-        try:
-            client = Client(address)
-        except (OSError, TimeoutError, ValueError) as exc:  # ValueError: a malformed address
-            raise SweepError(f"cannot connect to the Dask scheduler at {address!r}: {exc}"
-                             ) from None
-    else:
-        client = address
+    if isinstance(address, distributed.Client):
+        return address, False
+    try:
+        return distributed.Client(address), True
+    except (OSError, TimeoutError, ValueError) as exc:  # ValueError: a malformed address
+        raise error(f"cannot connect to the Dask scheduler at {address!r}: {exc}") from None
+
+
+def _run_dask(specs: list[dict], address: Any, progress: Progress | None) -> list[dict]:
+    as_completed = require_distributed().as_completed
+    client, own = connect(address)
     try:
         futures = client.map(evaluate_variant, specs, pure=False)
         index = {f.key: k for k, f in enumerate(futures)}

@@ -10,6 +10,7 @@ from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from types import SimpleNamespace
+from typing import Any
 
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
@@ -116,6 +117,18 @@ def _no_front(rows: list[dict]) -> SolveError:
                       f"{most}")
 
 
+def _connected(dask: Any, stack: contextlib.ExitStack) -> Any:
+    """``dask`` (a scheduler address) as a connected client, closed by ``stack`` (a client
+    or None: as given; an empty address: make_runner's refusal)."""
+    if not isinstance(dask, str) or not dask.strip():
+        return dask
+    from ..sweep.backends import connect
+
+    client, _ = connect(dask, SolveError)
+    stack.callback(client.close)
+    return client
+
+
 def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
            progress: Callable | None = None) -> DesignResult:
     """Search the design space for the robots that paint ``job`` (docs/model.md §31): an
@@ -165,14 +178,20 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     names = tuple(ev.OBJECTIVES)
     if options.study is not None:  # its refusals before the work, and before any write
         check_study_file(options.study, options.resume)
-    ctx = ev.prepare(job, space, search=options.search)
-    variables = list(space.variables())
-    base = ev.baseline_values(space, ctx)
-    study, close = open_study(options.study, job=job_fingerprint(job), space=space.fingerprint(),
-                       objectives=objectives_of(names), sampler=None, resume=options.resume)
+    stack = contextlib.ExitStack()  # the cluster and the study's runner, until the front
+    dask = _connected(options.dask, stack)  # an unreachable one before the work and writes
+    try:
+        ctx = ev.prepare(job, space, search=options.search)
+        variables = list(space.variables())
+        base = ev.baseline_values(space, ctx)
+        study, close = open_study(options.study, job=job_fingerprint(job),
+                                  space=space.fingerprint(), objectives=objectives_of(names),
+                                  sampler=None, resume=options.resume)
+    except BaseException:
+        stack.close()
+        raise
     report = progress if progress is not None else (_bar(options) if options.progress
                                                     else None)
-    stack = contextlib.ExitStack()  # the study's runner, open until the front is planned
     try:
         close_stale(study)
         if not study.trials:  # the thesis robot is the study's first design, then the ladder's
@@ -185,8 +204,7 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
             if line is not None:
                 study.set_user_attr("ladder", line)
         study.sampler = sampler(options, finished(study)[0])
-        runner = stack.enter_context(make_runner(ctx, ev.evaluate, options.workers,
-                                                 options.dask))
+        runner = stack.enter_context(make_runner(ctx, ev.evaluate, options.workers, dask))
         run_study(study, variables, ctx, ev.evaluate, names, options, report, runner)
         rows = trial_rows(study, variables, names)
         stored = {t.number: (dict(t.params), t.user_attrs.get(EVALUATION, {}))

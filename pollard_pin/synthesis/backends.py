@@ -192,18 +192,10 @@ class DaskRunner(Runner):
     scheduler, and one that raises is retried ``retries`` times: only it is lost."""
 
     def __init__(self, ctx, evaluate: Callable, address: Any, retries: int = 2):
-        from ..sweep.backends import require_distributed
+        from ..sweep.backends import connect, require_distributed
 
         distributed = require_distributed()
-        self.own = not isinstance(address, distributed.Client)
-        if self.own:
-            try:
-                self.client = distributed.Client(address)
-            except (OSError, TimeoutError, ValueError) as exc:  # ValueError: a bad address
-                raise SolveError(f"cannot connect to the Dask scheduler at {address!r}: {exc}"
-                                 ) from None
-        else:
-            self.client = address
+        self.client, self.own = connect(address, SolveError)
         workers = len(self.client.scheduler_info().get("workers", {})) or 1
         self.capacity = 2 * workers  # one queued behind each running design
         self.ctx = self.client.scatter(ctx, broadcast=True)

@@ -395,8 +395,27 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
     space = DesignSpace(bounds, tuple(scales), catalogue, _robots(d["robots"], source), source,
                         _motor_groups(d.get("motors"), source), ref,
                         _back(d.get("place"), source))
+    _check_ends(space)
     check_home(space)
     return space
+
+
+def _check_ends(space: DesignSpace) -> None:
+    """SpaceError when an end of a bound or of a scale's range breaks a parameter's own rule
+    (model/params.py's; the other bounds at their middles, the other scales at 1): one line
+    naming the entry, the end and the rule."""
+    entries = [(f"{space.source} [bounds]", repr(k), k, (k,), lo, hi)
+               for k, (lo, hi) in space.bounds.items()]
+    entries += [(f"{space.source} [[scale]] {i}", "range", f"scale.{g.name}", g.keys, g.low,
+                 g.high) for i, g in enumerate(space.scales, start=1)]
+    for where, name, var, keys, lo, hi in entries:
+        for end, value in (("low", lo), ("high", hi)):
+            try:
+                params_from_dict(space.design_dict({var: value}), check_home=False)
+            except ParameterError as exc:  # the key's own rule, not another's
+                if any(str(exc).startswith(f"parameter '{k}' = ") for k in keys):
+                    raise SpaceError(f"{where}: {name} = [{lo:g}, {hi:g}]: its {end} end: "
+                                     f"{exc}") from None
 
 
 def _corner_values(space: DesignSpace) -> list[dict[str, float]]:

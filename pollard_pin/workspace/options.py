@@ -96,18 +96,23 @@ def finite_value(value, what: str, unit: str, limit: float = 1e3) -> float:
     return v
 
 
-def check_orientation(orientation) -> tuple[float, float, float]:
-    """(ψ, θ, φ) [rad], three finite numbers."""
+def check_orientation(orientation, deg: bool = False) -> tuple[float, float, float]:
+    """(ψ, θ, φ) [rad], three finite numbers; given in degrees if ``deg`` (a command line's),
+    then named in degrees as typed, returned in radians."""
+    unit = "deg" if deg else "rad"
     try:
         vals = [float(v) for v in orientation]
     except (TypeError, ValueError):
         raise WorkspaceError(f"orientation {orientation!r}: expected three numbers "
-                             "(psi, theta, phi) [rad]") from None
+                             f"(psi, theta, phi) [{unit}]") from None
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
-                             "(psi, theta, phi) [rad]")
+                             f"(psi, theta, phi) [{unit}]")
+    limit = math.degrees(MAX_ABS_TASK) if deg else MAX_ABS_TASK
     for name, v in zip(TASK_NAMES[3:], vals):
-        if abs(v) > MAX_ABS_TASK:  # the poses' own rule (analytic.taskspace)
-            raise WorkspaceError(f"orientation {name} = {v:.6g} rad is absurd: |{name}| > "
-                                 f"{MAX_ABS_TASK:g} rad (a unit or data error?)")
-    return tuple(vals)
+        if abs(v) > limit:  # the poses' own rule (analytic.taskspace)
+            said = f" ({MAX_ABS_TASK:g} rad" if deg else " ("
+            raise WorkspaceError(f"orientation {name} = {v:.6g} {unit} is absurd: |{name}| > "
+                                 f"{limit:g} {unit}{said}{'; ' if deg else ''}a unit or data "
+                                 "error?)")
+    return tuple(math.radians(v) for v in vals) if deg else tuple(vals)

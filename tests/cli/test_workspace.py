@@ -79,6 +79,7 @@ BAD = [
     (["--volume", "--resolution", "0.001"], ["would need", "at least"]),
     (["--orientation", "1,2"], ["--orientation", "three"]),
     (["--orientation", "a,b,c"], ["--orientation"]),
+    (["--orientation", "1e300,0,0"], ["psi = 1e+300 deg is absurd", "5.72958e+07 deg"]),
     (["--bounds", "y=0.3"], ["--bounds", "AXIS=LOW:HIGH"]),
     (["--bounds", "y=0.3:-0.3"], ["below the upper bound"]),
     (["--bounds", "x=0:1"], ["other two axes"]),

@@ -72,6 +72,22 @@ def test_a_parts_coats_are_capped(coats, ok):
     assert "\n" not in msg and len(msg) <= 250, msg
 
 
+@pytest.mark.parametrize("turn, ok", [(360.0, True), (-360.0, True), (360.5, False),
+                                      (1e300, False)])
+def test_a_parts_rotation_is_within_a_turn(turn, ok):
+    """A part's rotation beyond ±360° is a slip (1e300 was taken and failed later as out of
+    reach): one line naming the angle, the rule of a cell robot's rotation (cell/robots.py)."""
+    d = {"part": {"mesh": "p.stl", "position": [0.0, 0.0, 0.0], "rotation": [0, 0, turn]},
+         "gun": good_panel()["gun"], "job": {"thickness": 25e-6}}
+    if ok:
+        assert job_from_dict(d, "job.toml").rotation == (0.0, 0.0, turn)
+        return
+    with pytest.raises(JobError) as info:
+        job_from_dict(d, "job.toml")
+    msg = str(info.value)
+    assert msg == f"job.toml: 'part.rotation[2]' = {turn:g}: must be within ±360 deg", msg
+
+
 def test_scale_scales_the_mesh(tmp_path):
     """A file in inches read with units = 'in' and with scale = 0.0254: the same vertices,
     the file's × 0.0254 (numpy)."""

@@ -118,3 +118,24 @@ def test_a_screened_front_is_planned_in_full():
     for d in result.front:
         assert d["objectives"] == pytest.approx(stub.figures(d["values"], {"shift": 0.0})[0])
     assert result.baseline["feasible"]
+
+
+def test_an_unreachable_scheduler_is_refused_before_any_work_or_write(tmp_path):
+    """A well-formed scheduler address that does not answer: one line before the job is
+    prepared, the screened ladder run (84 s of the example's) or the study file made."""
+    import dask
+
+    calls = []
+
+    def prepare(*args, **kwargs):
+        calls.append("prepare")
+        return stub.prepare(*args, **kwargs)
+
+    spy = type("Spy", (), {"OBJECTIVES": stub.OBJECTIVES, "prepare": staticmethod(prepare),
+                           "baseline_values": staticmethod(stub.baseline_values),
+                           "evaluate": staticmethod(stub.evaluate)})
+    with dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}), \
+            pytest.raises(SolveError, match=r"^cannot connect to the Dask scheduler at "
+                                            r"'tcp://127.0.0.1:1': "):
+        run_stub(tmp_path / "study.db", 8, dask="tcp://127.0.0.1:1", evaluator=spy)
+    assert calls == [] and list(tmp_path.iterdir()) == []

@@ -87,6 +87,29 @@ def test_refusals_are_one_line(cat, change, match):
     assert "\n" not in str(e.value) and len(str(e.value)) <= 250
 
 
+@pytest.mark.parametrize("change, says", [
+    ({"bounds": {"chain0.x32": [0.3, 400]}},
+     "S.toml [bounds]: 'chain0.x32' = [0.3, 400]: its high end: parameter 'chain0.x32' = 400.0: "
+     "must be at most 10 m (lengths are in metres, not mm)"),
+    ({"bounds": {"limits.theta21.upper": [-35.0, 1e300]}},
+     "S.toml [bounds]: 'limits.theta21.upper' = [-35, 1e+300]: its high end: parameter "
+     "'limits.theta21.upper' = 1e+300: must be within ±720 deg (two turns)"),
+    ({"scale": [{"name": "a", "keys": ["leg1.x43", "chain0.x32"], "range": [1, 1e300]}]},
+     "S.toml [[scale]] 1: range = [1, 1e+300]: its high end: parameter 'chain0.x32' = "),
+])
+def test_both_ends_of_a_bound_keep_the_parameters_rule(cat, change, says):
+    """Each end of a bound, and each key a scale's end makes, meets the rule the parameter
+    itself has (model/params.py): only the low end was checked, and trials past an absurd high
+    end were all infeasible."""
+    with pytest.raises(SpaceError) as e:
+        space(cat, **change)
+    msg = str(e.value)
+    assert msg.startswith(says), msg
+    assert "\n" not in msg and len(msg) <= 250, msg
+    # a sane end is no refusal: the reference's own values scaled within the rules
+    space(cat, scale=[{"name": "a", "keys": ["chain0.x32"], "range": [0.9, 1.1]}])
+
+
 def test_catalogue_is_read_beside_the_space(tmp_path):
     (tmp_path / "S.toml").write_text('catalogue = "none.toml"\nrobots = 1\n')
     with pytest.raises(Exception, match="none.toml"):

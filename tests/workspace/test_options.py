@@ -39,6 +39,11 @@ def test_bad_options_are_one_line_at_construction(kwargs, error, says):
 
 def test_the_shared_value_rules():
     assert check_orientation(("1", 2, 3.5)) == (1.0, 2.0, 3.5)
+    # given in degrees, checked and named in degrees, returned in radians
+    assert check_orientation((0, 90, -180), deg=True) == pytest.approx((0, np.pi / 2, -np.pi))
+    with pytest.raises(WorkspaceError, match=r"^orientation psi = 1e\+300 deg is absurd: \|psi\| "
+                                             r"> 5.72958e\+07 deg \(1e\+06 rad"):
+        check_orientation((1e300, 0, 0), deg=True)
     assert finite_value("0.25", "x", "m") == 0.25
     with pytest.raises(WorkspaceError, match=r"x = 10000.0 must be a finite number within "
                                              r"±1000 m"):

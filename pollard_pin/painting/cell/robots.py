@@ -67,6 +67,13 @@ class CellRobot:
         return {"name": self.name, "base": list(self.base), "rotation": list(self.rotation)}
 
 
+def turn_angle(value: Any, key: str, error: type[Exception], prefix: str = "") -> float:
+    """``value`` as an angle [deg] within ±:data:`MAX_TURN` (a robot's or a part's rotation),
+    or ``error``: ``{prefix}'{key}' = {value}: must be within ±360 deg``."""
+    return number(value, key, error, prefix, limit=MAX_TURN,
+                  limit_rule=f"must be within ±{MAX_TURN:g} deg")
+
+
 def _triple(source: str, key: str, value: Any, limit: float, unit: str) -> tuple:
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         fail(CellError, f"{source}: ", key, value, "must be a list of 3 numbers [x, y, z]")
