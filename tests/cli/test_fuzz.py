@@ -798,7 +798,7 @@ CASES += [([*WS, *extra], says) for extra, says in [
     (["--orientation", "a,b,c"], "expected three finite numbers"),
     (["--orientation", ""], "expected three finite numbers"),
     (["--orientation", "0;0;0"], "expected three finite numbers"),
-    (["--orientation", "0,0,1e300"], "phi = 1.74533e+298 rad is absurd"),
+    (["--orientation", "0,0,1e300"], "phi = 1e+300 deg is absurd"),
     (["--bounds", "y"], "expected AXIS=LOW:HIGH items"),
     (["--bounds", "y=1"], "expected AXIS=LOW:HIGH items"),
     (["--bounds", ""], "expected AXIS=LOW:HIGH items"),

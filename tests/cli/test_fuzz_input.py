@@ -289,7 +289,7 @@ CASES += [([*prefix, option, value], says) for prefix, option, value, says in [
     (["run", "--out", "out.csv", "--samples", "11"], "--duration", B5000,
      "argument --duration: must be a finite number, got '111"),
     (["workspace", "--quiet", "--out", "ws"], "--orientation", "-10,0,1e300",
-     "--orientation '-10,0,1e300': orientation phi = 1.74533e+298 rad is absurd"),
+     "--orientation '-10,0,1e300': orientation phi = 1e+300 deg is absurd"),
     (["workspace", "--quiet", "--out", "ws"], "--orientation", "-10,abc,0",
      "expected three finite numbers"),
     (["workspace", "--quiet", "--out", "ws"], "--orientation", "-1_0,0,0",
