@@ -33,6 +33,7 @@ import time
 from pathlib import Path
 
 from ..errors import DestinationError, PollardError
+from ..model.values import shown_path
 
 STDOUT = "-"
 
@@ -83,11 +84,7 @@ def check_name(path: str | Path) -> None:
         what = (f"holds a name of {longest} bytes, over the {NAME_MAX} a file system takes"
                 if longest > NAME_MAX else
                 f"is {whole} bytes long, over the {PATH_MAX} a file system takes")
-        raise OutputError(f"{_cut(str(path))}: {what}: give a shorter one")
-
-
-def _cut(text: str, width: int = 50) -> str:
-    return text if len(text) <= width else f"{text[:20]}…{text[-(width - 21):]}"
+        raise OutputError(f"{shown_path(path, 50)}: {what}: give a shorter one")
 
 
 def check_destination(path: str | Path, *, folder: bool = False) -> None:

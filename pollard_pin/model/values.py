@@ -47,11 +47,12 @@ def shorten(value: Any, width: int = SHOWN) -> str:
     return text[:width - 1 - len(end)] + "…" + end
 
 
-def shown_path(path: str | Path) -> str:
-    """A path quoted for a message: whole up to 160 characters, else its start and its end
-    (the file name stays)."""
+def shown_path(path: str | Path, width: int = 160) -> str:
+    """A path quoted for a message: whole up to ``width`` characters, else its start (a
+    quarter) and its end (the file name stays)."""
     text = repr(str(path))
-    return text if len(text) <= 160 else f"{text[:40]}…{text[-119:]}"
+    head = width // 4
+    return text if len(text) <= width else f"{text[:head]}…{text[-(width - head - 1):]}"
 
 
 def clip(text: str, width: int = 120) -> str:

@@ -322,7 +322,7 @@ def test_an_input_name_too_long_for_the_file_system_is_one_line(tmp_path, monkey
     code, out, err = run_cli(argv, capsys)
     lines = err.strip().splitlines()
     assert code == 2 and out == "" and len(lines) == 1, err[-2000:]
-    assert lines[0].startswith(f"pollard-pin {argv[0]}: error: aaaaaaaaaaaaaaaaaaaa…"), lines[0]
+    assert lines[0].startswith(f"pollard-pin {argv[0]}: error: 'aaaaaaaaaaa…"), lines[0]
     assert "holds a name of 30" in lines[0] and lines[0].endswith(
         "bytes, over the 255 a file system takes: give a shorter one"), lines[0]
     assert list(tmp_path.iterdir()) == []
