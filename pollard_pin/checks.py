@@ -70,3 +70,23 @@ def file_path(value, name: str, *, error=InputError) -> Path:
         raise error(f"{name} = {_shown(value)}: " + ("an empty path" if not value else
                                                       "a path with a NUL character"))
     return Path(value)
+
+
+def float_array(value, name: str, *, error=InputError):
+    """``value`` as an ndarray of floats; anything else (strings, complex or bool values,
+    objects, ragged lists, an integer beyond a float) raises ``error("<name>: ...")``, so a
+    wrong value is refused with one line before it reaches numpy or Pinocchio. numpy is
+    imported here only: the CLI's argument types import this module."""
+    import numpy as np
+
+    shown = " ".join(_shown(value).split())  # an array's repr spans lines
+    try:
+        arr = np.asarray(value)
+        if arr.dtype.kind == "O":  # Python numbers numpy could not type (10**400), or worse
+            arr = arr.astype(float)
+    except (TypeError, ValueError, OverflowError):
+        raise error(f"{name} = {shown}: expected an array of real numbers") from None
+    if arr.dtype.kind not in "iuf":
+        raise error(f"{name} = {shown}: expected an array of real numbers, got {arr.dtype} "
+                    "values")
+    return arr.astype(float, copy=False)

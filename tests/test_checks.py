@@ -3,11 +3,12 @@ error family."""
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import pytest
 
-from pollard_pin.checks import file_path, instance, problem, real
+from pollard_pin.checks import file_path, float_array, instance, problem, real
 from pollard_pin.errors import InputError
 
 
@@ -65,3 +66,24 @@ def test_file_path_refuses_what_names_no_file(value, says):
 
 def test_file_path_takes_a_str_or_a_path():
     assert file_path("a/b.toml", "p") == Path("a/b.toml") == file_path(Path("a/b.toml"), "p")
+
+
+@pytest.mark.parametrize("value, says", [
+    ("abc", "got <U3 values"),
+    ([[1.0, 2.0], [3.0]], "expected an array of real numbers"),  # ragged
+    ([10**400, 0.0], "expected an array of real numbers"),  # beyond a float
+    ([object()], "expected an array of real numbers"),
+    ([1 + 2j], "got complex128 values"),
+    ([True, False], "got bool values"),
+])
+def test_float_array_refuses_what_is_not_real_numbers(value, says):
+    with pytest.raises(InputError, match="^poses = .*" + re.escape(says)) as got:
+        float_array(value, "poses")
+    assert "\n" not in str(got.value) and len(str(got.value)) <= 250
+
+
+def test_float_array_takes_numbers_as_floats():
+    np = pytest.importorskip("numpy")
+    out = float_array([[1, 2], [3, 4.5]], "x")
+    assert out.dtype == np.float64 and out.tolist() == [[1.0, 2.0], [3.0, 4.5]]
+    assert float_array(np.array([7], dtype=object), "x").tolist() == [7.0]

@@ -122,3 +122,19 @@ def test_ik_options_normalise_the_margins_and_the_solver_refuses_other_types(rob
 
     with pytest.raises(SingularityError, match=f"{home_wrist:.4f} is below the margin"):
         inverse_kinematics(robot, pose, options=IkOptions(margins=Margins(home_wrist + 0.1)))
+
+
+@pytest.mark.parametrize("field, value", [
+    ("poses", [["0.5", "0", "0.16", "0", "0", "0"]]),
+    ("poses", [[10**400, 0, 0.16, 0, 0, 0]]),
+    ("poses", np.full((1, 6), 0.5 + 1j)),
+    ("d_poses", np.ones((1, 6), dtype=bool)),
+    ("t", ["zero"]),
+])
+def test_task_inputs_refuse_what_is_not_real_numbers(field, value):
+    """Strings, integers beyond a float, complex or bool values: one KinematicsInputError line
+    naming the argument, not numpy's ValueError or OverflowError (complex was cast silently)."""
+    args = {"poses": [[0.5, 0.0, 0.16, 0.0, 0.0, 0.0]], "d_poses": None, "dd_poses": None,
+            "t": None, field: value}
+    with pytest.raises(KinematicsInputError, match=f"^{field} = .*expected an array of real"):
+        task_inputs(**args)
