@@ -36,16 +36,21 @@ def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
             raise TypeError
         x = float(value)
     except (TypeError, ValueError):
-        raise error(f"{name} = {value!r}: is not a number{why}") from None
+        raise error(f"{name} = {_shown(value)}: is not a number{why}") from None
+    except OverflowError:  # an integer beyond a float (10**400)
+        raise error(f"{name} = {_shown(value)}: must be a finite number{why}") from None
     wrong = problem(x, low, high, above)
     if wrong is not None:
-        raise error(f"{name} = {value!r}: {wrong}{why}")
+        raise error(f"{name} = {_shown(value)}: {wrong}{why}")
     return x
 
 
 def _shown(value) -> str:
     """``value`` short, for a one-line message."""
-    text = repr(value)
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):  # an integer beyond str's digit limit (10**5000)
+        return f"<{type(value).__name__}>"
     return text if len(text) <= 60 else text[:57] + "..."
 
 

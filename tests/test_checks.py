@@ -31,6 +31,17 @@ def test_real_refuses_what_is_not_a_number(value):
         real(value, "m")
 
 
+@pytest.mark.parametrize("value, says", [
+    (10**400, "must be a finite number"),  # beyond a float: not numpy's OverflowError
+    (10**5000, "must be a finite number"),  # beyond repr's digit limit too
+    ("x" * 1000, "is not a number"),
+])
+def test_real_refuses_the_huge_in_one_short_line(value, says):
+    with pytest.raises(InputError, match=f"^m = .*: {says}$") as got:
+        real(value, "m")
+    assert len(str(got.value)) < 100
+
+
 def test_real_speaks_through_the_callers_family():
     class Mine(InputError):
         pass
