@@ -35,7 +35,7 @@ def test_real_refuses_what_is_not_a_number(value):
     (10**400, "must be a finite number"),  # beyond a float: not numpy's OverflowError
     (10**5000, "must be a finite number"),  # beyond repr's digit limit too
     ("x" * 1000, "is not a number"),
-])
+], ids=["1e400", "1e5000", "long string"])
 def test_real_refuses_the_huge_in_one_short_line(value, says):
     with pytest.raises(InputError, match=f"^m = .*: {says}$") as got:
         real(value, "m")
