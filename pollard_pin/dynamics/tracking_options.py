@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from .. import checks
+from ..model.values import shorten
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
 from .drives.flexible import FlexibleDrives
 from .inverse import JointLosses
@@ -55,8 +57,9 @@ class MeasurementNoise:
     def __post_init__(self):
         for name, value in (("position noise", self.position),
                             ("velocity noise", self.velocity)):
-            if not (math.isfinite(value) and value >= 0):
-                raise ControlError(f"{name} standard deviation must be >= 0, got {value}")
+            if not _real(value, 0.0, above=False):
+                raise ControlError(f"{name} standard deviation must be >= 0, got "
+                                   f"{shorten(value)}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,11 +153,15 @@ class TrackingOptions:
                                f"{type(self.controller).__name__}")
         if not isinstance(self.gains, Gains):
             raise ControlError(f"gains must be a Gains, got {type(self.gains).__name__}")
-        if not (isinstance(self.loop_tolerance, (int, float)) and self.loop_tolerance > 0):
-            raise ControlError(f"loop tolerance must be > 0 m, got {self.loop_tolerance}")
-        if self.drives is not None and not isinstance(self.drives, FlexibleDrives):
-            raise ControlError(f"drives must be a FlexibleDrives, got "
-                               f"{type(self.drives).__name__}")
+        if not (_real(self.loop_tolerance, 0.0) or self.loop_tolerance == math.inf):  # inf: off
+            raise ControlError(f"loop tolerance must be > 0 m, got {shorten(self.loop_tolerance)}")
+        for name, value, kind in (("drives", self.drives, FlexibleDrives),
+                                  ("noise", self.noise, MeasurementNoise),
+                                  ("errors", self.errors, ModelMismatch),
+                                  ("known_losses", self.known_losses, JointLosses)):
+            if value is not None and not isinstance(value, kind):
+                raise ControlError(f"{name} must be a {kind.__name__}, got "
+                                   f"{type(value).__name__}")
         object.__setattr__(self, "_limits", _torque_limit(self.torque_limit))
 
     @property
@@ -188,14 +195,25 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 def default_step(control_period: float) -> float:
     """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
-    return min(DT, control_period) if control_period > 0 else DT
+    return min(DT, control_period) if _real(control_period, 0.0) else DT  # bad: checked later
+
+
+def _real(value, low: float, above: bool = True) -> bool:
+    """Whether ``value`` is a real number (not a bool or a string), finite and above ``low``
+    (at least ``low`` without ``above``); an integer beyond a float is not."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        return False
+    try:
+        return checks.problem(float(value), low, above=above) is None
+    except OverflowError:
+        return False
 
 
 def check_steps(dt: float, control_period: float) -> None:
     """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
     for name, value in (("time step", dt), ("control period", control_period)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            raise ControlError(f"{name} must be > 0 s, got {value}")
+        if not _real(value, 0.0):
+            raise ControlError(f"{name} must be > 0 s, got {shorten(value)}")
     if dt > control_period * (1 + 1e-9):
         raise ControlError(
             f"time step {dt:g} s is longer than the control period {control_period:g} s (each "
