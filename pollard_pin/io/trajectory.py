@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..checks import file_path
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
 from ..model.values import open_regular, parse_float, shorten, shown_path
@@ -69,7 +70,7 @@ def from_csv(path: str | Path) -> Trajectory:
     >>> len(traj), traj.derivatives
     (101, 'file columns')
     """
-    path = Path(path)
+    path = file_path(path, "path", error=TrajectoryError)
     rows, lines = _read_rows(path)
     header = _check_header(path, rows)
     col = _parse_cells(path, rows, lines, header)

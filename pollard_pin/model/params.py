@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path
 from ..names import ACTUATED, BODIES, TREE_JOINTS
 from .overrides import ParameterError, apply_overrides, plain_value
 from .paths import models_dir
@@ -391,6 +392,7 @@ def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | N
     """
     d = read_params_dict()
     if path is not None:  # a partial file overrides the shipped values
+        path = file_path(path, "path", error=ParameterError)
         d = merge_partial(d, read_params_dict(path))
     d = apply_overrides(d, overrides or {})
     src = str(path) if path is not None else DEFAULT_PARAMS

@@ -143,3 +143,9 @@ def test_carried_metadata_is_the_robots_entries_checked(tmp_path):
     with pytest.raises(InputError, match="gravity_base.*not booleans"):
         carried_metadata(path)
     assert carried_metadata(tmp_path / "none.csv") == {}
+
+
+@pytest.mark.parametrize("path", [3, None, ""])
+def test_from_csv_refuses_what_names_no_file(path):
+    with pytest.raises(TrajectoryError, match="^path = .*: (expected a file path|an empty path)"):
+        from_csv(path)
