@@ -158,3 +158,16 @@ def test_stream_options_refuse_bad_values_before_any_work(kw, says):
 
     with pytest.raises(InputError, match=says):
         StreamOptions(**kw)
+
+
+def test_stream_run_refuses_wrong_arguments_before_writing(robot, tmp_path):
+    """A dict for the options, a string for the trajectory, None for the robot: one
+    InputError line (not an AttributeError from inside), and no file written."""
+    traj = thesis_trajectory(samples=11)
+    out = tmp_path / "run.csv"
+    for args, says in (((robot, traj, out, {}), "^stream = {}: expected StreamOptions"),
+                       ((robot, "x", out), "^traj = 'x': expected a Trajectory"),
+                       ((None, traj, out), "^robot = None: expected a Robot")):
+        with pytest.raises(pp.InputError, match=says):
+            stream_run(*args)
+    assert list(tmp_path.iterdir()) == []
