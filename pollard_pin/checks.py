@@ -7,6 +7,7 @@ the same one line the CLI gives, never a traceback from deep inside."""
 from __future__ import annotations
 
 import math
+import numbers
 import os
 from pathlib import Path
 
@@ -25,6 +26,18 @@ def problem(x: float, low: float = -math.inf, high: float = math.inf,
     if x > high:
         return f"must be at most {high:g}"
     return None
+
+
+def is_real(value, low: float = -math.inf, high: float = math.inf, *,
+            above: bool = False) -> bool:
+    """Whether ``value`` is a real number (not a bool or a string) that :func:`problem` passes;
+    an integer beyond a float (10**400) is not, where ``math.isfinite`` would raise."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    try:
+        return problem(float(value), low, high, above) is None
+    except OverflowError:
+        return False
 
 
 def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,

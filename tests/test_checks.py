@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from pollard_pin.checks import file_path, float_array, instance, problem, real
+from pollard_pin.checks import file_path, float_array, instance, is_real, problem, real
 from pollard_pin.errors import InputError
 
 
@@ -98,3 +98,10 @@ def test_float_array_takes_numbers_as_floats():
     out = float_array([[1, 2], [3, 4.5]], "x")
     assert out.dtype == np.float64 and out.tolist() == [[1.0, 2.0], [3.0, 4.5]]
     assert float_array(np.array([7], dtype=object), "x").tolist() == [7.0]
+
+
+def test_is_real_says_what_real_would_refuse_without_raising():
+    assert is_real(0.5, 0.0, 1.0) and is_real(3, 0.0, above=True)
+    assert is_real(0.0, 0.0) and not is_real(0.0, 0.0, above=True)
+    for value in ("0.5", True, None, 1j, math.nan, math.inf, 10**400, -(10**400), [1.0]):
+        assert not is_real(value), value  # 10**400: math.isfinite would raise OverflowError

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import checks
+from ..checks import is_real
 from ..model.values import shorten
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
 from .drives.flexible import FlexibleDrives
@@ -57,7 +57,7 @@ class MeasurementNoise:
     def __post_init__(self):
         for name, value in (("position noise", self.position),
                             ("velocity noise", self.velocity)):
-            if not _real(value, 0.0, above=False):
+            if not is_real(value, 0.0):
                 raise ControlError(f"{name} standard deviation must be >= 0, got "
                                    f"{shorten(value)}")
 
@@ -153,7 +153,8 @@ class TrackingOptions:
                                f"{type(self.controller).__name__}")
         if not isinstance(self.gains, Gains):
             raise ControlError(f"gains must be a Gains, got {type(self.gains).__name__}")
-        if not (_real(self.loop_tolerance, 0.0) or self.loop_tolerance == math.inf):  # inf: off
+        tol = self.loop_tolerance
+        if not (is_real(tol, 0.0, above=True) or tol == math.inf):  # inf: no check
             raise ControlError(f"loop tolerance must be > 0 m, got {shorten(self.loop_tolerance)}")
         for name, value, kind in (("drives", self.drives, FlexibleDrives),
                                   ("noise", self.noise, MeasurementNoise),
@@ -195,24 +196,14 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 def default_step(control_period: float) -> float:
     """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
-    return min(DT, control_period) if _real(control_period, 0.0) else DT  # bad: checked later
-
-
-def _real(value, low: float, above: bool = True) -> bool:
-    """Whether ``value`` is a real number (not a bool or a string), finite and above ``low``
-    (at least ``low`` without ``above``); an integer beyond a float is not."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        return False
-    try:
-        return checks.problem(float(value), low, above=above) is None
-    except OverflowError:
-        return False
+    # a bad period is refused by check_steps
+    return min(DT, control_period) if is_real(control_period, 0.0, above=True) else DT
 
 
 def check_steps(dt: float, control_period: float) -> None:
     """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
     for name, value in (("time step", dt), ("control period", control_period)):
-        if not _real(value, 0.0):
+        if not is_real(value, 0.0, above=True):
             raise ControlError(f"{name} must be > 0 s, got {shorten(value)}")
     if dt > control_period * (1 + 1e-9):
         raise ControlError(
