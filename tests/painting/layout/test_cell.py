@@ -101,6 +101,9 @@ def test_options_and_bad_counts(robot):
     for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"}):
         with pytest.raises(InputError):
             LayoutOptions(**bad)
+    for bad in ({"spacing": 10**400}, {"prefix": 10**400}):  # not OverflowError, shown short
+        with pytest.raises(InputError, match=r"= 1e\+400 \(a 401-digit integer\): expected"):
+            LayoutOptions(**bad)
     placed = tall_panel(robots=[{"name": "a", "base": [0.0, 0.0, 0.0]}])
     with pytest.raises(CellError, match="already places its 1 robot"):
         propose_layout(robot, placed, 2)
