@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import is_real
+from ..checks import float_array, is_real
 from ..model.values import shorten
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
 from .drives.flexible import FlexibleDrives
@@ -185,10 +185,11 @@ class TrackingOptions:
 def _torque_limit(torque_limit) -> np.ndarray | None:
     if torque_limit is None:
         return None
-    if np.size(torque_limit) not in (1, 6):
+    limit = float_array(torque_limit, "torque limit", error=ControlError)
+    if limit.size not in (1, 6):
         raise ControlError(f"torque limit: give one value or 6 (one per actuator), got "
-                           f"{np.size(torque_limit)}")
-    limit = np.broadcast_to(np.asarray(torque_limit, dtype=float), (6,)).copy()
+                           f"{limit.size}")
+    limit = np.broadcast_to(limit, (6,)).copy()
     if not (np.all(np.isfinite(limit)) and np.all(limit > 0)):
         raise ControlError(f"torque limits must be > 0 N·m, got {limit.tolist()}")
     return limit

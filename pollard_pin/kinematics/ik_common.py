@@ -12,6 +12,7 @@ from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
 from ..checks import float_array, real
 from ..model.build import Robot
+from ..model.values import shorten
 from .errors import (
     KinematicsError,
     KinematicsInputError,
@@ -69,7 +70,7 @@ class IkOptions:
     def __post_init__(self):
         if self.method is not None and self.method not in METHODS:
             raise KinematicsInputError(f"method must be 'batch' or 'newton', got "
-                                       f"{self.method!r}")
+                                       f"{shorten(self.method)}")
         object.__setattr__(self, "margins", check_options(
             self.tol, self.margins, max_iter=self.max_iter, chunk=self.chunk))
 
@@ -259,7 +260,7 @@ def check_options(tol, margins, **counts) -> Margins:
          error=lambda msg: KinematicsInputError(msg, chain="tol"))
     for name, value in counts.items():
         if not (isinstance(value, (int, np.integer)) and value >= 1):
-            raise KinematicsInputError(f"{name} = {value!r}: must be an integer >= 1",
+            raise KinematicsInputError(f"{name} = {shorten(value)}: must be an integer >= 1",
                                        chain=name)
     return as_margins(margins)
 

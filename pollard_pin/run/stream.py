@@ -13,6 +13,7 @@ from ..errors import InputError
 from ..io.table import TableWriter
 from ..kinematics.ik import BATCH_CHUNK
 from ..model.build import check_robot
+from ..model.values import shorten
 from ..paths.curves import ThesisTrajectory
 from ..paths.trajectory import Trajectory
 from .pipeline import run_pipeline
@@ -47,9 +48,9 @@ class StreamOptions:
 
     def __post_init__(self):
         if not (isinstance(self.chunk, int) and self.chunk >= 2):
-            raise InputError(f"chunk must be an integer >= 2, got {self.chunk!r}")
+            raise InputError(f"chunk must be an integer >= 2, got {shorten(self.chunk)}")
         if not (isinstance(self.workers, int) and self.workers >= 1):
-            raise InputError(f"workers must be an integer >= 1, got {self.workers!r}")
+            raise InputError(f"workers must be an integer >= 1, got {shorten(self.workers)}")
 
 
 def _overlapping_windows(traj, size: int):

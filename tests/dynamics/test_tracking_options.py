@@ -40,6 +40,8 @@ from pollard_pin.dynamics.tracking_options import (
     ({"control_period": "x"}, "control period must be > 0 s, got 'x'"),
     ({"control_period": True}, "control period must be > 0 s, got True"),
     ({"noise": "n"}, "noise must be a MeasurementNoise"),
+    ({"torque_limit": "x"}, "torque limit = 'x': expected an array of real numbers"),
+    ({"torque_limit": [10**400] * 6}, "torque limit = [1000"),
 ])
 def test_bad_options_are_one_line_at_construction(kwargs, says):
     with pytest.raises(ControlError) as err:

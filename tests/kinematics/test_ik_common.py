@@ -138,3 +138,14 @@ def test_task_inputs_refuse_what_is_not_real_numbers(field, value):
             "t": None, field: value}
     with pytest.raises(KinematicsInputError, match=f"^{field} = .*expected an array of real"):
         task_inputs(**args)
+
+
+@pytest.mark.parametrize("field", ["method", "max_iter", "chunk", "margins"])
+def test_ik_options_show_a_huge_value_short(field):
+    """An integer beyond a float is one short line, not its 401 digits echoed."""
+    from pollard_pin.errors import InputError
+    from pollard_pin.kinematics.ik_common import IkOptions
+
+    with pytest.raises(InputError, match=r"1e\+400 \(a 401-digit integer\)") as got:
+        IkOptions(**{field: -10**400 if field != "method" else 10**400})
+    assert len(str(got.value)) < 200

@@ -152,7 +152,11 @@ def test_cli_window_size_is_the_streaming_window():
 
 @pytest.mark.parametrize("kw, says", [({"chunk": 1}, "chunk must be an integer >= 2, got 1"),
                                       ({"chunk": 2.0}, "chunk must be an integer >= 2"),
-                                      ({"workers": 0}, "workers must be an integer >= 1")])
+                                      ({"workers": 0}, "workers must be an integer >= 1"),
+                                      # shown short, not in 401 digits
+                                      ({"chunk": -10**400}, r"got -1e\+400 \(a 401-digit"),
+                                      ({"workers": -10**400}, r"got -1e\+400 \(a 401-digit")],
+                         ids=["chunk 1", "chunk 2.0", "workers 0", "chunk huge", "workers huge"])
 def test_stream_options_refuse_bad_values_before_any_work(kw, says):
     from pollard_pin.errors import InputError
 
