@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
-from ..checks import file_path
+from ..checks import file_path, instance
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
 from ..model.values import open_regular, parse_float, shorten, shown_path
@@ -328,6 +328,7 @@ def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     """
     from .table import write_table
 
+    instance(traj, "traj", Trajectory, "a Trajectory", error=TrajectoryError)
     cols = {"t": traj.t}
     for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})

@@ -149,3 +149,9 @@ def test_carried_metadata_is_the_robots_entries_checked(tmp_path):
 def test_from_csv_refuses_what_names_no_file(path):
     with pytest.raises(TrajectoryError, match="^path = .*: (expected a file path|an empty path)"):
         from_csv(path)
+
+
+def test_to_csv_refuses_what_is_not_a_trajectory(tmp_path):
+    with pytest.raises(TrajectoryError, match="^traj = 'x': expected a Trajectory, got str$"):
+        to_csv("x", tmp_path / "x.csv")
+    assert list(tmp_path.iterdir()) == []

@@ -26,3 +26,12 @@ def test_dask_local_cluster_gives_the_pool_table(sweep, pool_rows, tmp_path):
     write_sweep_table(pool_rows, tmp_path / "pool.csv", sweep.columns)
     write_sweep_table(rows, tmp_path / "dask.csv", sweep.columns)
     assert (tmp_path / "pool.csv").read_bytes() == (tmp_path / "dask.csv").read_bytes()
+
+
+def test_run_sweep_refuses_what_is_not_a_sweep():
+    import pytest
+
+    from pollard_pin.errors import InputError
+
+    with pytest.raises(InputError, match=r"^sweep = 'x': expected a Sweep \(pollard_pin"):
+        run_sweep("x")
