@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import float_array
 from ..errors import InputError
 from .splines import quintic_hermite
 
@@ -46,7 +47,8 @@ class Trajectory:
     Raises
     ------
     TrajectoryError
-        An array whose shape does not match ``t``'s.
+        An array whose shape does not match ``t``'s, or that is not real numbers (strings,
+        complex values, an integer beyond a float).
 
     Examples
     --------
@@ -88,6 +90,11 @@ class Trajectory:
             yield start, self.window(start, start + size)
 
     def __post_init__(self):
+        for label in ("t", "poses", "d_poses", "dd_poses"):  # real numbers (no copy if so)
+            object.__setattr__(self, label, float_array(
+                getattr(self, label), f"{self.name}: {label}", error=TrajectoryError))
+        if self.t.ndim != 1:
+            raise TrajectoryError(f"{self.name}: t has shape {self.t.shape}, expected (N,)")
         n = len(self.t)
         for label, arr in (("poses", self.poses), ("d_poses", self.d_poses),
                            ("dd_poses", self.dd_poses)):
