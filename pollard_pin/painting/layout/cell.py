@@ -163,7 +163,7 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     options = instance(options, "options", LayoutOptions, "LayoutOptions or None",
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
-        raise CellError(f"n = {n!r}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
+        raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
     return _propose(robot, job, n, options, part)
 
 

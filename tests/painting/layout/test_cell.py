@@ -98,6 +98,8 @@ def test_options_and_bad_counts(robot):
     for n in (0, 17, 10 ** 6, 2.0, True):
         with pytest.raises(CellError, match=r"expected 1\.\.16"):
             propose_layout(robot, job, n)
+    with pytest.raises(CellError, match=r"^n = 1e\+400 \(a 401-digit integer\): expected"):
+        propose_layout(robot, job, 10**400)  # shown short, not in 401 digits
     for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"}):
         with pytest.raises(InputError):
             LayoutOptions(**bad)
