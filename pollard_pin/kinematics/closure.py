@@ -173,6 +173,9 @@ def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
     >>> tool_pose(robot, robot.home()).translation.round(3).tolist()  # docs/model.md §9
     [0.55, 0.0, 0.16]
     """
+    if np.shape(q) != (robot.model.nq,):  # Pinocchio's own check is a multi-line C++ error
+        raise KinematicsInputError(f"q has shape {np.shape(q)}, expected ({robot.model.nq},) "
+                                   "(the joint angles, Robot.joint_names order)", chain="q")
     pin.framesForwardKinematics(robot.model, robot.data, q)
     return pin.SE3(robot.data.oMf[robot.tip_frame])
 

@@ -67,3 +67,10 @@ def test_forward_kinematics_refuses_bad_arguments(robot, actuated, q_guess, says
     assert isinstance(got.value, ValueError) and "\n" not in str(got.value)
     with pytest.raises(InputError, match="robot = None: expected a Robot"):
         pp.forward_kinematics(None, robot.home()[robot.actuated_v])
+
+
+def test_tool_pose_refuses_a_configuration_of_another_size(robot):
+    from pollard_pin.kinematics import tool_pose
+
+    with pytest.raises(KinematicsInputError, match=r"^q has shape \(5,\), expected \(12,\)"):
+        tool_pose(robot, np.zeros(5))
