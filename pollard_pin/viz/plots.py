@@ -294,7 +294,7 @@ def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
 
     Raises
     ------
-    InputError
+    pollard_pin.errors.InputError
         ``result`` is no :class:`~pollard_pin.run.RunResult` or has no dynamics
         (``run_pipeline(..., dynamics=False)``); nothing is written.
 
