@@ -76,6 +76,16 @@ def instance(value, name: str, kinds, expected: str, *, none: bool = False,
     raise error(f"{name} = {_shown(value)}: expected {expected}, got {type(value).__name__}")
 
 
+def callback(value, name: str, *, error=InputError):
+    """``value`` when it is a function (any callable) or None; else
+    ``error("<name> = <value>: expected a function or None, got <type>")``, said before any
+    work rather than as a TypeError at the first call."""
+    if value is None or callable(value):
+        return value
+    raise error(f"{name} = {_shown(value)}: expected a function or None, got "
+                f"{type(value).__name__}")
+
+
 def file_path(value, name: str, *, error=InputError) -> Path:
     """``value`` (a str or an os.PathLike naming a file, not empty, no NUL) as a Path; else
     ``error("<name> = <value>: ...")``."""

@@ -8,7 +8,15 @@ from pathlib import Path
 
 import pytest
 
-from pollard_pin.checks import file_path, float_array, instance, is_real, problem, real
+from pollard_pin.checks import (
+    callback,
+    file_path,
+    float_array,
+    instance,
+    is_real,
+    problem,
+    real,
+)
 from pollard_pin.errors import InputError
 
 
@@ -105,3 +113,9 @@ def test_is_real_says_what_real_would_refuse_without_raising():
     assert is_real(0.0, 0.0) and not is_real(0.0, 0.0, above=True)
     for value in ("0.5", True, None, 1j, math.nan, math.inf, 10**400, -(10**400), [1.0]):
         assert not is_real(value), value  # 10**400: math.isfinite would raise OverflowError
+
+
+def test_callback_takes_a_function_or_none_only():
+    assert callback(None, "progress") is None and callback(print, "progress") is print
+    with pytest.raises(InputError, match=r"^progress = 'x': expected a function or None, got str$"):
+        callback("x", "progress")

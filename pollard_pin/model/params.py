@@ -330,7 +330,8 @@ def did_you_mean(word: str, choices) -> str:
 def read_params_dict(path: str | Path | None = None) -> dict:
     """The raw thesis-unit dictionary of a parameter file (default: the shipped one), as
     written: a partial file gives a partial dictionary (see :func:`merge_partial`)."""
-    path = Path(path) if path is not None else models_dir() / DEFAULT_PARAMS
+    path = (file_path(path, "path", error=ParameterError) if path is not None
+            else models_dir() / DEFAULT_PARAMS)
     return read_toml(path, "parameter file", ParameterError)
 
 
@@ -392,7 +393,6 @@ def load_params(path: str | Path | None = None, overrides: Mapping[str, Any] | N
     """
     d = read_params_dict()
     if path is not None:  # a partial file overrides the shipped values
-        path = file_path(path, "path", error=ParameterError)
         d = merge_partial(d, read_params_dict(path))
     d = apply_overrides(d, overrides or {})
     src = str(path) if path is not None else DEFAULT_PARAMS

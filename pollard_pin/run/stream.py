@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import instance
+from ..checks import callback, instance
 from ..errors import InputError
 from ..io.table import TableWriter
 from ..kinematics.ik import BATCH_CHUNK
@@ -212,6 +212,8 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     check_robot(robot)
     instance(traj, "traj", (Trajectory, ThesisTrajectory), "a Trajectory (or the lazy thesis "
              "curve)")
+    callback(progress, "progress")
+    instance(metadata, "metadata", dict, "a dict or None", none=True)
     timings = {} if timings is None else timings
     stream = stream_options(stream)
     stats = RunStats(traj.name, traj.derivatives)

@@ -6,7 +6,7 @@ import os
 from collections.abc import Callable
 from typing import Any
 
-from ..checks import instance
+from ..checks import callback, instance
 from .evaluate import SweepError, evaluate_variant
 from .grid import Sweep
 
@@ -72,6 +72,7 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     """
     instance(sweep, "sweep", Sweep, "a Sweep (pollard_pin.make_sweep or load_grid)",
              error=SweepError)
+    callback(progress, "progress", error=SweepError)
     specs = sweep.specs()
     if isinstance(dask, str) and not dask.strip():
         raise SweepError("dask: an empty scheduler address (give None to run locally)")

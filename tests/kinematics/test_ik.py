@@ -491,3 +491,8 @@ def test_ik_refuses_what_is_not_a_robot_or_a_start(robot, method):
     if method == "newton":
         with pytest.raises(KinematicsInputError, match="q_start = 'x': expected an array"):
             pp.inverse_kinematics(robot, pose, q_start="x")
+
+
+def test_ik_refuses_a_progress_that_is_no_function(robot):
+    with pytest.raises(KinematicsInputError, match="^progress = 'x': expected a function"):
+        pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]], progress="x")

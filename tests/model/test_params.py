@@ -198,3 +198,5 @@ def test_limits_round_trip_and_override():
 def test_load_params_refuses_what_names_no_file():
     with pytest.raises(ParameterError, match=r"^path = 3: expected a file path \(str or "):
         load_params(3)
+    with pytest.raises(ParameterError, match=r"^path = 3: expected a file path \(str or "):
+        read_params_dict(3)  # the one home of the check (make_sweep's params too)

@@ -174,4 +174,8 @@ def test_stream_run_refuses_wrong_arguments_before_writing(robot, tmp_path):
                        ((None, traj, out), "^robot = None: expected a Robot")):
         with pytest.raises(pp.InputError, match=says):
             stream_run(*args)
+    for kw, says in (({"progress": "x"}, "^progress = 'x': expected a function or None"),
+                     ({"metadata": "x"}, "^metadata = 'x': expected a dict or None")):
+        with pytest.raises(pp.InputError, match=says):
+            stream_run(robot, traj, out, **kw)
     assert list(tmp_path.iterdir()) == []
