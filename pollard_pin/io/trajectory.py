@@ -4,6 +4,7 @@ curves live in :mod:`pollard_pin.paths`)."""
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import warnings
 from pathlib import Path
@@ -332,9 +333,10 @@ def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     cols = {"t": traj.t}
     for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
-    spray = traj.spray if spray is None else spray
-    if spray is not None:
-        cols[SPRAY] = np.asarray(spray, dtype=float)
+    if spray is not None:  # checked as a trajectory's own (shape, [0, 1]): readable back
+        traj = dataclasses.replace(traj, spray=spray)
+    if traj.spray is not None:
+        cols[SPRAY] = traj.spray
     write_table(path, cols, {"trajectory": traj.name, "derivatives": traj.derivatives},
                 fmt="csv")
 

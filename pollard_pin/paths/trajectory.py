@@ -48,7 +48,7 @@ class Trajectory:
     ------
     TrajectoryError
         An array whose shape does not match ``t``'s, or that is not real numbers (strings,
-        complex values, an integer beyond a float).
+        complex values, an integer beyond a float); a spray outside [0, 1].
 
     Examples
     --------
@@ -101,9 +101,17 @@ class Trajectory:
             if np.shape(arr) != (n, 6):
                 raise TrajectoryError(f"{self.name}: {label} has shape {np.shape(arr)}, "
                                       f"expected ({n}, 6)")
-        if self.spray is not None and np.shape(self.spray) != (n,):
-            raise TrajectoryError(f"{self.name}: spray has shape {np.shape(self.spray)}, "
-                                  f"expected ({n},)")
+        if self.spray is not None:
+            spray = float_array(self.spray, f"{self.name}: spray", error=TrajectoryError)
+            if spray.shape != (n,):
+                raise TrajectoryError(f"{self.name}: spray has shape {spray.shape}, "
+                                      f"expected ({n},)")
+            bad = np.flatnonzero(~((spray >= 0) & (spray <= 1)))  # NaN too
+            if len(bad):
+                k = int(bad[0])
+                raise TrajectoryError(f"{self.name}: spray[{k}] = {spray[k]:g} is outside [0, 1] "
+                                      "(the fraction of the gun's flow)")
+            object.__setattr__(self, "spray", spray)
 
 
 def trajectory_curve(traj) -> Callable:

@@ -58,3 +58,16 @@ def test_a_trajectory_keeps_float_arrays_as_given():
     traj = Trajectory(t, p, p, p)
     assert traj.t is t and traj.poses is p  # no copy: a window stays a view
     assert Trajectory([0, 1, 2], p, p, p).t.dtype == np.float64
+
+
+@pytest.mark.parametrize("spray, says", [
+    (np.full(3, np.nan), r"spray\[0\] = nan is outside \[0, 1\]"),
+    ([0.0, 1.0, 2.0], r"spray\[2\] = 2 is outside \[0, 1\]"),
+    (np.full(3, 1j), "spray = .*got complex128 values"),
+    ([10**400] * 3, "spray = .*expected an array of real numbers"),
+], ids=["nan", "2", "complex", "1e400"])
+def test_a_spray_outside_its_range_is_refused(spray, says):
+    """As from_csv refuses it: to_csv must not write what from_csv cannot read."""
+    p = np.zeros((3, 6))
+    with pytest.raises(TrajectoryError, match="^trajectory: " + says):
+        Trajectory([0.0, 1.0, 2.0], p, p, p, spray=spray)
