@@ -7,6 +7,7 @@ the same one line the CLI gives, never a traceback from deep inside."""
 from __future__ import annotations
 
 import math
+import numbers
 import os
 from pathlib import Path
 
@@ -27,6 +28,18 @@ def problem(x: float, low: float = -math.inf, high: float = math.inf,
     return None
 
 
+def is_real(value, low: float = -math.inf, high: float = math.inf, *,
+            above: bool = False) -> bool:
+    """Whether ``value`` is a real number (not a bool or a string) that :func:`problem` passes;
+    an integer beyond a float (10**400) is not, where ``math.isfinite`` would raise."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    try:
+        return problem(float(value), low, high, above) is None
+    except OverflowError:
+        return False
+
+
 def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
          above: bool = False, why: str = "", error=InputError) -> float:
     """``value`` as a float, checked by :func:`problem`; a string, a bool or anything that is
@@ -36,16 +49,21 @@ def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
             raise TypeError
         x = float(value)
     except (TypeError, ValueError):
-        raise error(f"{name} = {value!r}: is not a number{why}") from None
+        raise error(f"{name} = {_shown(value)}: is not a number{why}") from None
+    except OverflowError:  # an integer beyond a float (10**400)
+        raise error(f"{name} = {_shown(value)}: must be a finite number{why}") from None
     wrong = problem(x, low, high, above)
     if wrong is not None:
-        raise error(f"{name} = {value!r}: {wrong}{why}")
+        raise error(f"{name} = {_shown(value)}: {wrong}{why}")
     return x
 
 
 def _shown(value) -> str:
     """``value`` short, for a one-line message."""
-    text = repr(value)
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):  # an integer beyond str's digit limit (10**5000)
+        return f"<{type(value).__name__}>"
     return text if len(text) <= 60 else text[:57] + "..."
 
 
@@ -56,6 +74,16 @@ def instance(value, name: str, kinds, expected: str, *, none: bool = False,
     if (none and value is None) or isinstance(value, kinds):
         return value
     raise error(f"{name} = {_shown(value)}: expected {expected}, got {type(value).__name__}")
+
+
+def callback(value, name: str, *, error=InputError):
+    """``value`` when it is a function (any callable) or None; else
+    ``error("<name> = <value>: expected a function or None, got <type>")``, said before any
+    work rather than as a TypeError at the first call."""
+    if value is None or callable(value):
+        return value
+    raise error(f"{name} = {_shown(value)}: expected a function or None, got "
+                f"{type(value).__name__}")
 
 
 def file_path(value, name: str, *, error=InputError) -> Path:
@@ -70,3 +98,23 @@ def file_path(value, name: str, *, error=InputError) -> Path:
         raise error(f"{name} = {_shown(value)}: " + ("an empty path" if not value else
                                                       "a path with a NUL character"))
     return Path(value)
+
+
+def float_array(value, name: str, *, error=InputError):
+    """``value`` as an ndarray of floats; anything else (strings, complex or bool values,
+    objects, ragged lists, an integer beyond a float) raises ``error("<name>: ...")``, so a
+    wrong value is refused with one line before it reaches numpy or Pinocchio. numpy is
+    imported here only: the CLI's argument types import this module."""
+    import numpy as np
+
+    shown = " ".join(_shown(value).split())  # an array's repr spans lines
+    try:
+        arr = np.asarray(value)
+        if arr.dtype.kind == "O":  # Python numbers numpy could not type (10**400), or worse
+            arr = arr.astype(float)
+    except (TypeError, ValueError, OverflowError):
+        raise error(f"{name} = {shown}: expected an array of real numbers") from None
+    if arr.dtype.kind not in "iuf":
+        raise error(f"{name} = {shown}: expected an array of real numbers, got {arr.dtype} "
+                    "values")
+    return arr.astype(float, copy=False)

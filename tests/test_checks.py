@@ -3,11 +3,20 @@ error family."""
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import pytest
 
-from pollard_pin.checks import file_path, instance, problem, real
+from pollard_pin.checks import (
+    callback,
+    file_path,
+    float_array,
+    instance,
+    is_real,
+    problem,
+    real,
+)
 from pollard_pin.errors import InputError
 
 
@@ -28,6 +37,17 @@ def test_problem_at_and_beside_the_bounds(x, low, high, above, expected):
 def test_real_refuses_what_is_not_a_number(value):
     with pytest.raises(InputError, match=r"^m = .*: is not a number$"):
         real(value, "m")
+
+
+@pytest.mark.parametrize("value, says", [
+    (10**400, "must be a finite number"),  # beyond a float: not numpy's OverflowError
+    (10**5000, "must be a finite number"),  # beyond repr's digit limit too
+    ("x" * 1000, "is not a number"),
+], ids=["1e400", "1e5000", "long string"])
+def test_real_refuses_the_huge_in_one_short_line(value, says):
+    with pytest.raises(InputError, match=f"^m = .*: {says}$") as got:
+        real(value, "m")
+    assert len(str(got.value)) < 100
 
 
 def test_real_speaks_through_the_callers_family():
@@ -65,3 +85,37 @@ def test_file_path_refuses_what_names_no_file(value, says):
 
 def test_file_path_takes_a_str_or_a_path():
     assert file_path("a/b.toml", "p") == Path("a/b.toml") == file_path(Path("a/b.toml"), "p")
+
+
+@pytest.mark.parametrize("value, says", [
+    ("abc", "got <U3 values"),
+    ([[1.0, 2.0], [3.0]], "expected an array of real numbers"),  # ragged
+    ([10**400, 0.0], "expected an array of real numbers"),  # beyond a float
+    ([object()], "expected an array of real numbers"),
+    ([1 + 2j], "got complex128 values"),
+    ([True, False], "got bool values"),
+])
+def test_float_array_refuses_what_is_not_real_numbers(value, says):
+    with pytest.raises(InputError, match="^poses = .*" + re.escape(says)) as got:
+        float_array(value, "poses")
+    assert "\n" not in str(got.value) and len(str(got.value)) <= 250
+
+
+def test_float_array_takes_numbers_as_floats():
+    np = pytest.importorskip("numpy")
+    out = float_array([[1, 2], [3, 4.5]], "x")
+    assert out.dtype == np.float64 and out.tolist() == [[1.0, 2.0], [3.0, 4.5]]
+    assert float_array(np.array([7], dtype=object), "x").tolist() == [7.0]
+
+
+def test_is_real_says_what_real_would_refuse_without_raising():
+    assert is_real(0.5, 0.0, 1.0) and is_real(3, 0.0, above=True)
+    assert is_real(0.0, 0.0) and not is_real(0.0, 0.0, above=True)
+    for value in ("0.5", True, None, 1j, math.nan, math.inf, 10**400, -(10**400), [1.0]):
+        assert not is_real(value), value  # 10**400: math.isfinite would raise OverflowError
+
+
+def test_callback_takes_a_function_or_none_only():
+    assert callback(None, "progress") is None and callback(print, "progress") is print
+    with pytest.raises(InputError, match=r"^progress = 'x': expected a function or None, got str$"):
+        callback("x", "progress")

@@ -8,6 +8,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..checks import instance
+from ..model.build import check_robot
+from ..paths.trajectory import Trajectory
 from .motors import Actuators
 from .path import PathDynamics
 from .timeopt import Options, TimeOptimal, time_optimal_segment
@@ -75,7 +78,11 @@ def time_optimal_path(robot, act: Actuators, traj, options: Options | None = Non
     >>> round(float(timing.t[-1]), 2), bool(timing.between <= 1.001)
     (0.83, True)
     """
-    options = options or Options()
+    check_robot(robot)
+    instance(act, "act", Actuators, "Actuators (pollard_pin.load_actuators())")
+    instance(traj, "traj", Trajectory, "a Trajectory")
+    options = instance(options, "options", Options, "pollard_pin.dynamics.timeopt.Options or None",
+                       none=True) or Options()
     spans = moving_segments(traj)
     n = len(traj.t)
     parts = []

@@ -13,10 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..errors import SolveError
+from ..checks import float_array, instance
+from ..errors import InputError, SolveError
 from ..kinematics.ik import IkOptions, inverse_kinematics
-from ..model.build import Robot, constraint_residual
-from .inverse import inverse_dynamics_sample, reduced_mass_matrix
+from ..model.build import Robot, check_robot, constraint_residual
+from .inverse import JointLosses, inverse_dynamics_sample, reduced_mass_matrix
 
 NEWTON = IkOptions(method="newton")  # sample by sample, warm-started at the last pose
 
@@ -88,6 +89,30 @@ def forward_dynamics(robot: Robot, q, v, tau_act, settings=None, losses=None) ->
     >>> bool(np.allclose(a, ik.a[5], atol=1e-8))
     True
     """
+    check_robot(robot)
+    n = {"q": robot.model.nq, "v": robot.model.nv, "tau_act": len(robot.actuated_v)}
+    q, v, tau_act = (_vector(x, name, n[name]) for x, name in ((q, "q"), (v, "v"),
+                                                               (tau_act, "tau_act")))
+    instance(settings, "settings", pin.ProximalSettings, "pinocchio.ProximalSettings",
+             none=True)
+    instance(losses, "losses", JointLosses, "a JointLosses", none=True)
+    return _accelerations(robot, q, v, tau_act, settings, losses)
+
+
+def _vector(value, name: str, n: int) -> np.ndarray:
+    """``value`` as n finite floats; else one InputError line (Pinocchio given a vector of the
+    wrong size raises from C++, or aborts)."""
+    x = float_array(value, name)
+    if x.shape != (n,):
+        raise InputError(f"{name} has shape {x.shape}, expected ({n},)")
+    if not np.isfinite(x).all():
+        raise InputError(f"{name}[{int(np.flatnonzero(~np.isfinite(x))[0])}] = "
+                         f"{x[~np.isfinite(x)][0]}: must be a finite number")
+    return x
+
+
+def _accelerations(robot: Robot, q, v, tau_act, settings=None, losses=None) -> np.ndarray:
+    """:func:`forward_dynamics` on arguments already checked (the integrator's inner loop)."""
     tau = np.zeros(robot.model.nv)
     tau[robot.actuated_v] = tau_act
     if losses is not None:
@@ -147,7 +172,7 @@ def _rk4(robot: Robot, torques, q0, v0, duration: float, dt: float) -> Simulatio
     settings = pin.ProximalSettings(1e-14, 0.0, 1)
 
     def f(t, q, v):
-        return forward_dynamics(robot, q, v, torques(t, q, v), settings)
+        return _accelerations(robot, q, v, torques(t, q, v), settings)
 
     steps = int(round(duration / dt))
     ts = np.arange(steps + 1) * dt

@@ -13,6 +13,7 @@ from functools import cache
 import numpy as np
 import pinocchio as pin
 
+from ..checks import instance
 from ..kinematics.closure import closure_drift
 from ..kinematics.errors import SingularityError
 from ..kinematics.ik import IKResult
@@ -24,7 +25,7 @@ from ..kinematics.singularity import (
     solve_stack,
 )
 from ..kinematics.tree import cross, joint_motion
-from ..model.build import Robot, constraint_jacobian
+from ..model.build import Robot, check_robot, constraint_jacobian
 from ..timing import Stopwatch
 
 
@@ -241,6 +242,9 @@ def inverse_dynamics(robot: Robot, ik: IKResult, losses: JointLosses | None = No
     >>> round(float(abs(dyn.tau[:, 0]).max()), 2)      # theta21's peak torque [N·m]
     1.21
     """
+    check_robot(robot)
+    instance(ik, "ik", IKResult, "an IKResult (pollard_pin.inverse_kinematics)")
+    instance(losses, "losses", JointLosses, "a JointLosses", none=True)
     clock = Stopwatch(timings)
     model, data = robot.model, robot.data
     n = len(ik)

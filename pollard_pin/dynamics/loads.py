@@ -23,11 +23,14 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from ..checks import instance
+from ..errors import InputError
 from ..kinematics.ik import IKResult
 from ..kinematics.tree import AXES, cross, joint_motion, matvec
-from ..model.build import Robot
+from ..model.build import Robot, check_robot
 from ..timing import Stopwatch
 from .averages import cubic_mean
+from .inverse import DynamicsResult
 
 
 @dataclass
@@ -187,9 +190,12 @@ def _passes(model, tree: _Tree, Q, V, A, lam):
 
 
 def _closure_forces(robot: Robot, ik: IKResult, dyn) -> np.ndarray:
+    check_robot(robot)
+    instance(ik, "ik", IKResult, "an IKResult (pollard_pin.inverse_kinematics)")
+    instance(dyn, "dyn", DynamicsResult, "a DynamicsResult (pollard_pin.inverse_dynamics)")
     lam = np.asarray(dyn.closure_forces, dtype=float)
     if lam.shape != (len(ik), len(robot.closures), 3):
-        raise ValueError(f"closure forces of shape {lam.shape} do not match the IK result's "
+        raise InputError(f"closure forces of shape {lam.shape} do not match the IK result's "
                          f"{len(ik)} samples × {len(robot.closures)} closures × 3")
     return lam
 

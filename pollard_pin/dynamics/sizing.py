@@ -14,7 +14,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import instance
+from ..errors import InputError
 from ..kinematics.errors import SAMPLE_ERRORS
+from ..model.build import check_robot
+from ..model.values import shorten
 from .averages import mean_weights
 from .cycle import time_optimal_path
 from .motors import (
@@ -121,6 +125,11 @@ def actuator_sizing(robot, result, act: Actuators) -> Sizing:
     >>> report["given_within_ratings"], round(report["time_optimal_duration"], 2)
     (True, 0.83)
     """
+    check_robot(robot)
+    instance(act, "act", Actuators, "Actuators (pollard_pin.load_actuators())")
+    if not all(hasattr(result, a) for a in ("ik", "trajectory", "dynamics")):
+        raise InputError(f"result = {shorten(result)}: expected a run's result "
+                         f"(pollard_pin.run_pipeline), got {type(result).__name__}")
     ik, traj = result.ik, result.trajectory
     given = motor_load_of(robot, act, ik, result.dynamics)
     path = path_dynamics(robot, ik)

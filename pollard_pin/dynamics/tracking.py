@@ -32,7 +32,8 @@ from ..kinematics.kernels import rk4_step
 from ..kinematics.limits import first_violation, limit_bounds, violation_text
 from ..kinematics.sensing import LoopSensor
 from ..kinematics.singularity import actuator_velocity_map
-from ..model.build import Robot
+from ..model.build import Robot, check_robot
+from ..model.values import shorten
 from .control import (
     ComputedTorque,
     ControlError,
@@ -419,6 +420,10 @@ def simulate_tracking(robot: Robot, trajectory,
     opts = TrackingOptions() if options is None else options
     if not isinstance(opts, TrackingOptions):
         raise ControlError(f"options must be a TrackingOptions, got {type(opts).__name__}")
+    check_robot(robot)
+    if not all(hasattr(trajectory, a) for a in ("t", "poses", "d_poses", "dd_poses")):
+        raise ControlError(f"trajectory = {shorten(trajectory)}: expected a Trajectory (t, "
+                           f"poses, d_poses, dd_poses), got {type(trajectory).__name__}")
     samples = np.asarray(trajectory.t, dtype=float)
     drives = opts.drives
     if drives is not None and opts.known_losses is None:

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import float_array, is_real
+from ..model.values import shorten
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
 from .drives.flexible import FlexibleDrives
 from .inverse import JointLosses
@@ -55,8 +57,9 @@ class MeasurementNoise:
     def __post_init__(self):
         for name, value in (("position noise", self.position),
                             ("velocity noise", self.velocity)):
-            if not (math.isfinite(value) and value >= 0):
-                raise ControlError(f"{name} standard deviation must be >= 0, got {value}")
+            if not is_real(value, 0.0):
+                raise ControlError(f"{name} standard deviation must be >= 0, got "
+                                   f"{shorten(value)}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,11 +153,16 @@ class TrackingOptions:
                                f"{type(self.controller).__name__}")
         if not isinstance(self.gains, Gains):
             raise ControlError(f"gains must be a Gains, got {type(self.gains).__name__}")
-        if not (isinstance(self.loop_tolerance, (int, float)) and self.loop_tolerance > 0):
-            raise ControlError(f"loop tolerance must be > 0 m, got {self.loop_tolerance}")
-        if self.drives is not None and not isinstance(self.drives, FlexibleDrives):
-            raise ControlError(f"drives must be a FlexibleDrives, got "
-                               f"{type(self.drives).__name__}")
+        tol = self.loop_tolerance
+        if not (is_real(tol, 0.0, above=True) or tol == math.inf):  # inf: no check
+            raise ControlError(f"loop tolerance must be > 0 m, got {shorten(self.loop_tolerance)}")
+        for name, value, kind in (("drives", self.drives, FlexibleDrives),
+                                  ("noise", self.noise, MeasurementNoise),
+                                  ("errors", self.errors, ModelMismatch),
+                                  ("known_losses", self.known_losses, JointLosses)):
+            if value is not None and not isinstance(value, kind):
+                raise ControlError(f"{name} must be a {kind.__name__}, got "
+                                   f"{type(value).__name__}")
         object.__setattr__(self, "_limits", _torque_limit(self.torque_limit))
 
     @property
@@ -177,10 +185,11 @@ class TrackingOptions:
 def _torque_limit(torque_limit) -> np.ndarray | None:
     if torque_limit is None:
         return None
-    if np.size(torque_limit) not in (1, 6):
+    limit = float_array(torque_limit, "torque limit", error=ControlError)
+    if limit.size not in (1, 6):
         raise ControlError(f"torque limit: give one value or 6 (one per actuator), got "
-                           f"{np.size(torque_limit)}")
-    limit = np.broadcast_to(np.asarray(torque_limit, dtype=float), (6,)).copy()
+                           f"{limit.size}")
+    limit = np.broadcast_to(limit, (6,)).copy()
     if not (np.all(np.isfinite(limit)) and np.all(limit > 0)):
         raise ControlError(f"torque limits must be > 0 N·m, got {limit.tolist()}")
     return limit
@@ -188,14 +197,15 @@ def _torque_limit(torque_limit) -> np.ndarray | None:
 
 def default_step(control_period: float) -> float:
     """The default longest RK4 step: :data:`DT`, or the control period if shorter."""
-    return min(DT, control_period) if control_period > 0 else DT
+    # a bad period is refused by check_steps
+    return min(DT, control_period) if is_real(control_period, 0.0, above=True) else DT
 
 
 def check_steps(dt: float, control_period: float) -> None:
     """Raise :class:`ControlError` unless 0 < dt ≤ control period (both finite, in s)."""
     for name, value in (("time step", dt), ("control period", control_period)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            raise ControlError(f"{name} must be > 0 s, got {value}")
+        if not is_real(value, 0.0, above=True):
+            raise ControlError(f"{name} must be > 0 s, got {shorten(value)}")
     if dt > control_period * (1 + 1e-9):
         raise ControlError(
             f"time step {dt:g} s is longer than the control period {control_period:g} s (each "

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..checks import file_path
 from ..errors import InputError
 from ..model.values import clip, open_regular, shorten
 from ..names import JOINTS
@@ -245,7 +246,7 @@ def read_result(path: str | Path) -> ResultTable:
     >>> len(table), table.units["theta21"], table.units["tau_theta21"]
     (11, 'rad', 'N·m')
     """
-    path = Path(path)
+    path = file_path(path, "path", error=ResultFileError)
     if path.is_dir():
         raise ResultFileError(f"{path}: is a folder, not a result file")
     if not path.exists():

@@ -4,6 +4,7 @@ curves live in :mod:`pollard_pin.paths`)."""
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import warnings
 from pathlib import Path
@@ -11,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..checks import file_path, instance
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
 from ..model.values import float_text_problem, open_regular, parse_float, shorten, shown_path
@@ -68,7 +70,7 @@ def from_csv(path: str | Path) -> Trajectory:
     >>> len(traj), traj.derivatives
     (101, 'file columns')
     """
-    path = Path(path)
+    path = file_path(path, "path", error=TrajectoryError)
     rows, lines = _read_rows(path)
     header = _check_header(path, rows)
     col = _parse_cells(path, rows, lines, header)
@@ -350,12 +352,14 @@ def to_csv(traj: Trajectory, path: str | Path, spray=None) -> None:
     """
     from .table import write_table
 
+    instance(traj, "traj", Trajectory, "a Trajectory", error=TrajectoryError)
     cols = {"t": traj.t}
     for prefix, arr in (("", traj.poses), ("d_", traj.d_poses), ("dd_", traj.dd_poses)):
         cols.update({prefix + n: arr[:, i] for i, n in enumerate(TASK_NAMES)})
-    spray = traj.spray if spray is None else spray
-    if spray is not None:
-        cols[SPRAY] = np.asarray(spray, dtype=float)
+    if spray is not None:  # checked as a trajectory's own (shape, [0, 1]): readable back
+        traj = dataclasses.replace(traj, spray=spray)
+    if traj.spray is not None:
+        cols[SPRAY] = traj.spray
     write_table(path, cols, {"trajectory": traj.name, "derivatives": traj.derivatives},
                 fmt="csv")
 

@@ -8,9 +8,11 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import pose_from_se3
+from ..checks import float_array
 from ..errors import say_less
-from ..model.build import Robot, constraint_residual_jacobian
-from .errors import ClosureError, ClosureSingularError
+from ..model.build import Robot, check_robot, constraint_residual_jacobian
+from ..model.values import shorten
+from .errors import ClosureError, ClosureSingularError, KinematicsInputError
 from .singularity import SIGMA_FLOOR, sigma_range, solve_small
 
 CLOSURE_TOL = 1e-12  # m, closure residual reached by Newton
@@ -87,12 +89,13 @@ def close_loops(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray | None =
     act = np.asarray(actuated, dtype=float).reshape(-1)
     # a finite sum means every entry is finite (one reduction: this runs every control tick)
     if act.shape != (6,) or not math.isfinite(act.sum()):
-        raise ValueError(f"actuator angles must be 6 finite numbers "
-                         f"({', '.join(robot.actuated)}), got {act.tolist()}")
+        raise KinematicsInputError(f"actuator angles must be 6 finite numbers "
+                                   f"({', '.join(robot.actuated)}), got "
+                                   f"{shorten(act.tolist())}", chain="actuated")
     q = (robot.q_reference if q_guess is None else np.asarray(q_guess, dtype=float)).copy()
     if q.shape != (robot.model.nq,) or not math.isfinite(q.sum()):
-        raise ValueError(f"q_guess must be {robot.model.nq} finite joint angles, got "
-                         f"{np.asarray(q_guess).tolist()}")
+        raise KinematicsInputError(f"q_guess must be {robot.model.nq} finite joint angles, "
+                                   f"got {shorten(q.tolist())}", chain="q_guess")
     ia, ip = robot.actuated_v, robot.passive_v
     q[ia] = act
     r, Jc = constraint_residual_jacobian(robot, q)
@@ -170,6 +173,9 @@ def tool_pose(robot: Robot, q: np.ndarray) -> pin.SE3:
     >>> tool_pose(robot, robot.home()).translation.round(3).tolist()  # docs/model.md §9
     [0.55, 0.0, 0.16]
     """
+    if np.shape(q) != (robot.model.nq,):  # Pinocchio's own check is a multi-line C++ error
+        raise KinematicsInputError(f"q has shape {np.shape(q)}, expected ({robot.model.nq},) "
+                                   "(the joint angles, Robot.joint_names order)", chain="q")
     pin.framesForwardKinematics(robot.model, robot.data, q)
     return pin.SE3(robot.data.oMf[robot.tip_frame])
 
@@ -213,7 +219,13 @@ def forward_kinematics(robot: Robot, actuated: np.ndarray, q_guess: np.ndarray |
     >>> poses.round(3).tolist()
     [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]]
     """
-    act = np.atleast_2d(np.asarray(actuated, dtype=float))
+    check_robot(robot)
+    act = np.atleast_2d(float_array(actuated, "actuated", error=KinematicsInputError))
+    if act.ndim != 2 or act.shape[1] != 6:
+        raise KinematicsInputError(f"actuator angles have shape {np.shape(actuated)}, expected "
+                                   f"(N, 6) or (6,) ({', '.join(robot.actuated)})")
+    if q_guess is not None:
+        q_guess = float_array(q_guess, "q_guess", error=KinematicsInputError)
     qs = np.empty((len(act), robot.model.nq))
     poses = np.empty((len(act), 6))
     q = q_guess

@@ -3,7 +3,8 @@ velocities and accelerations of all tree joints from the tool pose, batched
 (:mod:`.ik_batch`) or per sample (:mod:`.ik_newton`)."""
 from __future__ import annotations
 
-from ..model.build import Robot
+from ..checks import callback
+from ..model.build import Robot, check_robot
 from .errors import KinematicsInputError
 from .ik_batch import inverse_kinematics_batch
 from .ik_common import BATCH_CHUNK, IK_TOL, IkOptions, IKResult, ik_options
@@ -73,6 +74,8 @@ def inverse_kinematics(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
     ...
     pollard_pin.kinematics.errors.UnreachablePoseError: sample 0 ...
     """
+    check_robot(robot)
+    callback(progress, "progress", error=KinematicsInputError)
     options = ik_options(options)
     method = options.method or ("newton" if q_start is not None else "batch")
     if method == "newton":

@@ -10,8 +10,9 @@ import numpy as np
 
 from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
-from ..checks import real
+from ..checks import float_array, real
 from ..model.build import Robot
+from ..model.values import shorten
 from .errors import (
     KinematicsError,
     KinematicsInputError,
@@ -69,7 +70,7 @@ class IkOptions:
     def __post_init__(self):
         if self.method is not None and self.method not in METHODS:
             raise KinematicsInputError(f"method must be 'batch' or 'newton', got "
-                                       f"{self.method!r}")
+                                       f"{shorten(self.method)}")
         object.__setattr__(self, "margins", check_options(
             self.tol, self.margins, max_iter=self.max_iter, chunk=self.chunk))
 
@@ -207,17 +208,18 @@ def task_inputs(poses, d_poses, dd_poses, t):
     Raises :class:`KinematicsInputError` naming the cause: an empty or mis-shaped array,
     times that are not finite or not increasing by at least MIN_TIME_STEP (sample k), or a
     non-finite or absurd entry (column x … phi, d_x … d_phi, dd_x … dd_phi; sample, value)."""
-    poses = np.atleast_2d(np.asarray(poses, dtype=float))
+    poses = np.atleast_2d(float_array(poses, "poses", error=KinematicsInputError))
     n = len(poses)
     if poses.size == 0:
         raise KinematicsInputError(f"no samples: the pose array is empty (shape "
                                    f"{poses.shape}); give at least one pose (x, y, z, psi, "
                                    "theta, phi)")
-    t = np.arange(n, dtype=float) if t is None else np.asarray(t, dtype=float).reshape(-1)
+    t = (np.arange(n, dtype=float) if t is None
+         else float_array(t, "t", error=KinematicsInputError).reshape(-1))
     arrays = [poses]
-    for arr in (d_poses, dd_poses):
-        arrays.append(np.zeros_like(poses) if arr is None
-                      else np.atleast_2d(np.asarray(arr, dtype=float)))
+    for label, arr in (("d_poses", d_poses), ("dd_poses", dd_poses)):
+        arrays.append(np.zeros_like(poses) if arr is None else np.atleast_2d(
+            float_array(arr, label, error=KinematicsInputError)))
     names = ("pose", "pose rate", "pose acceleration")
     for name, arr in zip(names, arrays):
         if arr.shape != (n, 6):
@@ -258,7 +260,7 @@ def check_options(tol, margins, **counts) -> Margins:
          error=lambda msg: KinematicsInputError(msg, chain="tol"))
     for name, value in counts.items():
         if not (isinstance(value, (int, np.integer)) and value >= 1):
-            raise KinematicsInputError(f"{name} = {value!r}: must be an integer >= 1",
+            raise KinematicsInputError(f"{name} = {shorten(value)}: must be an integer >= 1",
                                        chain=name)
     return as_margins(margins)
 

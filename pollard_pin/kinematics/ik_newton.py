@@ -9,6 +9,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import rotation, twist, twist_dot
+from ..checks import float_array
 from ..model.build import Robot, constraint_jacobian
 from .errors import KinematicsError, KinematicsInputError, SingularityError, UnreachablePoseError
 from .ik_common import (
@@ -150,7 +151,7 @@ def _diagnose(robot: Robot, pose, k, tk, e, margins: Margins):
 
 
 def _start_configuration(robot: Robot, q_start) -> np.ndarray:
-    q = np.asarray(q_start, dtype=float).reshape(-1)
+    q = float_array(q_start, "q_start", error=KinematicsInputError).reshape(-1)
     if q.shape != (robot.model.nq,) or not np.isfinite(q).all():
         raise KinematicsInputError(f"q_start must be {robot.model.nq} finite joint angles "
                                    f"({', '.join(robot.joint_names)}), got {q_start!r}",

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from ..checks import real
 from ..errors import InputError
+from ..model.values import shorten
 
 SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
 WRIST_MARGIN = 0.05  # default smallest |sin θ1716| allowed (≈ 2.9°)
@@ -115,7 +116,7 @@ def as_margins(value) -> Margins:
     if value is None:
         return Margins()
     if not isinstance(value, Margins):
-        raise MarginError(f"margins = {value!r}: expected Margins(wrist=…, singularity=…)")
+        raise MarginError(f"margins = {shorten(value)}: expected Margins(wrist=…, singularity=…)")
     return value
 
 

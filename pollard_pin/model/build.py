@@ -8,6 +8,7 @@ the force the platform exerts on ``link_i`` at the ball joint, in world axes.
 """
 from __future__ import annotations
 
+import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -19,6 +20,7 @@ import pinocchio as pin
 from ..checks import instance
 from ..errors import InputError
 from ..names import ACTUATED, PASSIVE, TREE_JOINTS
+from .overrides import ParameterError
 from .params import Params, load_params
 from .paths import models_dir
 from .urdf import generate_srdf, generate_urdf
@@ -309,6 +311,8 @@ def load(params: Params | str | Path | None = None) -> Robot:
                                  f"{d / 'pollard.toml'}: regenerate them from the parameters "
                                  "(generate(params), or `make urdf` in a checkout)")
         return build(params, urdf, srdf)
+    instance(params, "params", (Params, str, os.PathLike),
+             "a Params, a parameter file's path or None", error=ParameterError)
     if not isinstance(params, Params):
         params = load_params(params)
     return build(params, *generate(params))

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path
 from ..names import ACTUATED, BODIES, TREE_JOINTS
 from .overrides import ParameterError, apply_overrides, plain_value
 from .paths import models_dir
@@ -329,7 +330,8 @@ def did_you_mean(word: str, choices) -> str:
 def read_params_dict(path: str | Path | None = None) -> dict:
     """The raw thesis-unit dictionary of a parameter file (default: the shipped one), as
     written: a partial file gives a partial dictionary (see :func:`merge_partial`)."""
-    path = Path(path) if path is not None else models_dir() / DEFAULT_PARAMS
+    path = (file_path(path, "path", error=ParameterError) if path is not None
+            else models_dir() / DEFAULT_PARAMS)
     return read_toml(path, "parameter file", ParameterError)
 
 

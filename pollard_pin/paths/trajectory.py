@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..checks import float_array
 from ..errors import InputError
 from .splines import quintic_hermite
 
@@ -48,7 +49,8 @@ class Trajectory:
     Raises
     ------
     TrajectoryError
-        An array whose shape does not match ``t``'s.
+        An array whose shape does not match ``t``'s, or that is not real numbers (strings,
+        complex values, an integer beyond a float); a spray outside [0, 1].
 
     Examples
     --------
@@ -90,15 +92,28 @@ class Trajectory:
             yield start, self.window(start, start + size)
 
     def __post_init__(self):
+        for label in ("t", "poses", "d_poses", "dd_poses"):  # real numbers (no copy if so)
+            object.__setattr__(self, label, float_array(
+                getattr(self, label), f"{self.name}: {label}", error=TrajectoryError))
+        if self.t.ndim != 1:
+            raise TrajectoryError(f"{self.name}: t has shape {self.t.shape}, expected (N,)")
         n = len(self.t)
         for label, arr in (("poses", self.poses), ("d_poses", self.d_poses),
                            ("dd_poses", self.dd_poses)):
             if np.shape(arr) != (n, 6):
                 raise TrajectoryError(f"{self.name}: {label} has shape {np.shape(arr)}, "
                                       f"expected ({n}, 6)")
-        if self.spray is not None and np.shape(self.spray) != (n,):
-            raise TrajectoryError(f"{self.name}: spray has shape {np.shape(self.spray)}, "
-                                  f"expected ({n},)")
+        if self.spray is not None:
+            spray = float_array(self.spray, f"{self.name}: spray", error=TrajectoryError)
+            if spray.shape != (n,):
+                raise TrajectoryError(f"{self.name}: spray has shape {spray.shape}, "
+                                      f"expected ({n},)")
+            bad = np.flatnonzero(~((spray >= 0) & (spray <= 1)))  # NaN too
+            if len(bad):
+                k = int(bad[0])
+                raise TrajectoryError(f"{self.name}: spray[{k}] = {spray[k]:g} is outside [0, 1] "
+                                      "(the fraction of the gun's flow)")
+            object.__setattr__(self, "spray", spray)
 
 
 def trajectory_curve(traj) -> Callable:

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
+from ..checks import instance
 from ..errors import InputError
 from ..io.table import write_table
 from ..kinematics.ik import IkOptions, IKResult, inverse_kinematics
@@ -149,4 +150,5 @@ def write_run_table(result: RunResult, path: str | Path, metadata: dict | None =
     >>> open("run.csv").readline().split(",")[:4]
     ['t', 'x', 'y', 'z']
     """
+    instance(result, "result", RunResult, "a RunResult (pollard_pin.run_pipeline)")
     write_table(path, result.columns(), metadata)

@@ -8,9 +8,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ..checks import callback, instance
 from ..errors import InputError
 from ..io.table import TableWriter
 from ..kinematics.ik import BATCH_CHUNK
+from ..model.build import check_robot
+from ..model.values import shorten
+from ..paths.curves import ThesisTrajectory
 from ..paths.trajectory import Trajectory
 from .pipeline import run_pipeline
 from .stats import RunStats
@@ -44,9 +48,9 @@ class StreamOptions:
 
     def __post_init__(self):
         if not (isinstance(self.chunk, int) and self.chunk >= 2):
-            raise InputError(f"chunk must be an integer >= 2, got {self.chunk!r}")
+            raise InputError(f"chunk must be an integer >= 2, got {shorten(self.chunk)}")
         if not (isinstance(self.workers, int) and self.workers >= 1):
-            raise InputError(f"workers must be an integer >= 1, got {self.workers!r}")
+            raise InputError(f"workers must be an integer >= 1, got {shorten(self.workers)}")
 
 
 def _overlapping_windows(traj, size: int):
@@ -73,6 +77,13 @@ def worker_robot(robot):
                                                  for cm in robot.constraint_models])
 
 
+def stream_options(stream) -> StreamOptions:
+    """``stream`` when a :class:`StreamOptions`, its defaults for None; else one InputError
+    line."""
+    return instance(stream, "stream", StreamOptions, "StreamOptions or None",
+                    none=True) or StreamOptions()
+
+
 def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
     """Yield ``(start, result, columns)`` for the windows of ``traj`` in order: ``result`` the
     :class:`RunResult` of the window (overlap sample included), ``columns`` its output columns
@@ -91,7 +102,7 @@ def solve_windows(robot, traj, stream: StreamOptions | None = None, **options):
 
     from ..kinematics.errors import SAMPLE_ERRORS
 
-    stream = StreamOptions() if stream is None else stream
+    stream = stream_options(stream)
     chunk, workers = stream.chunk, stream.workers
     local = threading.local()
 
@@ -198,8 +209,13 @@ def stream_run(robot, traj, path: str | Path, stream: StreamOptions | None = Non
     >>> stats.samples, len(pp.read_result("big.csv"))
     (10001, 10001)
     """
+    check_robot(robot)
+    instance(traj, "traj", (Trajectory, ThesisTrajectory), "a Trajectory (or the lazy thesis "
+             "curve)")
+    callback(progress, "progress")
+    instance(metadata, "metadata", dict, "a dict or None", none=True)
     timings = {} if timings is None else timings
-    stream = StreamOptions() if stream is None else stream
+    stream = stream_options(stream)
     stats = RunStats(traj.name, traj.derivatives)
     n = len(traj)
     write = 0.0

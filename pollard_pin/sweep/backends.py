@@ -6,6 +6,7 @@ import os
 from collections.abc import Callable
 from typing import Any
 
+from ..checks import callback, instance
 from .evaluate import SweepError, evaluate_variant
 from .grid import Sweep
 
@@ -69,6 +70,9 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
     or ``"forkserver"`` a script that calls this must guard its top level with
     ``if __name__ == "__main__":``, as with any such pool.
     """
+    instance(sweep, "sweep", Sweep, "a Sweep (pollard_pin.make_sweep or load_grid)",
+             error=SweepError)
+    callback(progress, "progress", error=SweepError)
     specs = sweep.specs()
     if isinstance(dask, str) and not dask.strip():
         raise SweepError("dask: an empty scheduler address (give None to run locally)")

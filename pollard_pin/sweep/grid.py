@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import file_path, instance
 from ..model.overrides import ParameterError, apply_overrides, plain_value
 from ..model.params import params_from_dict, read_params_dict
 from ..model.values import number, read_toml, shorten
@@ -175,6 +176,8 @@ def make_sweep(grid: Mapping[str, Sequence[Any]] | None = None,
         except ParameterError as exc:
             raise SweepError(f"params: {exc}") from None
     vlist: list[tuple[str, dict]] = []
+    instance(grid, "grid", Mapping, "a mapping of parameter keys to lists of values",
+             none=True, error=SweepError)
     if grid:
         for key, values in grid.items():
             if not isinstance(values, (list, tuple)):
@@ -269,7 +272,7 @@ def load_grid(path: str | Path) -> Sweep:
     >>> [name for name, _ in pp.load_grid("grid.toml").variants]
     ['x32=0.32', 'x32=0.34']
     """
-    path = Path(path)
+    path = file_path(path, "path", error=SweepError)
     d = read_toml(path, "grid file", SweepError)
     unknown = [k for k in d if k not in GRID_KEYS]
     if unknown:

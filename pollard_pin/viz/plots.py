@@ -16,7 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..checks import instance
+from ..errors import InputError
 from ..names import ACTUATED, CHAIN_JOINTS, SPHERICAL
+from ..run.pipeline import RunResult
 
 # Figure name → file name (without .png), in the order they are written.
 FIGURES = ("chain0_joints", "wrist_joints", "leg1_joints", "leg2_joints", "spherical_joints",
@@ -225,8 +228,9 @@ def _path_figure(plt, cols, name):
 def figures(result) -> dict:
     """``{name: matplotlib Figure}`` for a :class:`~pollard_pin.run.RunResult` (with its
     dynamics). They are not registered with pyplot: nothing to close."""
+    instance(result, "result", RunResult, "a RunResult (pollard_pin.run_pipeline)")
     if result.dynamics is None:
-        raise ValueError("plots need the dynamics: run_pipeline(..., dynamics=True)")
+        raise InputError("plots need the dynamics: run_pipeline(..., dynamics=True)")
     plt = figure_maker()
     cols = result.columns()
     name, chains = result.trajectory.name, dict(CHAIN_JOINTS)
@@ -290,8 +294,9 @@ def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
 
     Raises
     ------
-    ValueError
-        The result has no dynamics (``run_pipeline(..., dynamics=False)``).
+    pollard_pin.errors.InputError
+        ``result`` is no :class:`~pollard_pin.run.RunResult` or has no dynamics
+        (``run_pipeline(..., dynamics=False)``); nothing is written.
 
     Examples
     --------
@@ -302,5 +307,6 @@ def write_figures(result, out_dir, dpi: int = 100) -> list[Path]:
     """
     from ..io.atomic import make_folder
 
+    made = figures(result)  # first: a result that cannot be drawn leaves no folder behind
     out_dir = make_folder(out_dir)
-    return [save_png(fig, out_dir / f"{name}.png", dpi) for name, fig in figures(result).items()]
+    return [save_png(fig, out_dir / f"{name}.png", dpi) for name, fig in made.items()]

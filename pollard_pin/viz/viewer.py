@@ -30,7 +30,10 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from ..checks import file_path, instance
 from ..errors import InputError
+from ..kinematics.ik import IKResult
+from ..model.build import check_robot
 from .meshcat_page import OfflineWindow, import_meshcat
 
 ROOT = "pollard"  # scene node of everything this module draws
@@ -297,6 +300,8 @@ def build_scene(vis, robot, ik, *, frames: bool = False, fps: float = DEFAULT_FP
 def static_html(robot, ik, *, frames: bool = False, fps: float = DEFAULT_FPS,
                 title: str | None = None, overlay=None) -> str:
     """The scene of :func:`build_scene` as a self-contained HTML page (no server needed)."""
+    check_robot(robot)
+    instance(ik, "ik", IKResult, "an IKResult (pollard_pin.inverse_kinematics)")
     meshcat = import_meshcat()
 
     window = OfflineWindow()
@@ -340,6 +345,7 @@ def write_html(path, robot, ik, **kwargs) -> Path:
     """
     from ..io.atomic import atomic_open
 
+    path = file_path(path, "path")
     html = static_html(robot, ik, **kwargs)
     with atomic_open(path) as f:
         f.write(html)

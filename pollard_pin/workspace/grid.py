@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..checks import callback
 from ..errors import say_less, without_asides
 from ..model.build import check_robot
 from .lattice import AXES, COORD_DECIMALS, Grid, make_grid, parse_plane, reach_sphere
@@ -191,6 +192,8 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
     o = WorkspaceOptions() if options is None else options
     if not isinstance(o, WorkspaceOptions):
         raise WorkspaceError(f"options must be a WorkspaceOptions, got {type(o).__name__}")
+    callback(sink, "sink", error=WorkspaceError)
+    callback(progress, "progress", error=WorkspaceError)
     if (plane is None) == (not o.volume):
         raise WorkspaceError("give either a plane (e.g. x=0.55) or volume=True")
     t0 = time.perf_counter()

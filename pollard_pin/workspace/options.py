@@ -80,7 +80,7 @@ class WorkspaceOptions:
                 self.length_scale, "length_scale", 0.0, above=True, why=" [m]",
                 error=WorkspaceError))
         if isinstance(self.chunk, bool) or not isinstance(self.chunk, int) or self.chunk < 1:
-            raise WorkspaceError(f"chunk = {self.chunk!r}: must be a whole number of points "
+            raise WorkspaceError(f"chunk = {shorten(self.chunk)}: must be a whole number of points "
                                  ">= 1")
 
 
@@ -88,6 +88,8 @@ def finite_value(value, what: str, unit: str, limit: float = 1e3) -> float:
     """``value`` as a float, finite and within ±``limit`` [``unit``] (text as typed)."""
     try:  # text as the user typed it: no "0.5_5", no full-width digits
         v = parse_float(value) if isinstance(value, str) else float(value)
+    except OverflowError:  # an integer beyond a float
+        v = math.inf
     except (TypeError, ValueError):
         raise WorkspaceError(f"{what} = {shorten(value)} is not a number [{unit}]") from None
     if not math.isfinite(v) or abs(v) > limit:
@@ -102,12 +104,12 @@ def check_orientation(orientation, deg: bool = False) -> tuple[float, float, flo
     unit = "deg" if deg else "rad"
     try:
         vals = [float(v) for v in orientation]
-    except (TypeError, ValueError):
-        raise WorkspaceError(f"orientation {orientation!r}: expected three numbers "
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an integer beyond a float
+        raise WorkspaceError(f"orientation {shorten(orientation)}: expected three numbers "
                              f"(psi, theta, phi) [{unit}]") from None
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise WorkspaceError(f"orientation {orientation!r}: expected three finite numbers "
-                             f"(psi, theta, phi) [{unit}]")
+        raise WorkspaceError(f"orientation {shorten(orientation)}: expected three finite "
+                             f"numbers (psi, theta, phi) [{unit}]")
     limit = math.degrees(MAX_ABS_TASK) if deg else MAX_ABS_TASK
     for name, v in zip(TASK_NAMES[3:], vals):
         if abs(v) > limit:  # the poses' own rule (analytic.taskspace)

@@ -1,6 +1,8 @@
 """A path with waits (dynamics/cycle.py, docs/model.md §19): its moving segments, each solved
 on its own, give the cycle, exactly the strokes' own solved alone (so the shortcut can fail),
 and the sizing and the retimed file are of that cycle."""
+import re
+
 import numpy as np
 from motor_model import EXAMPLE
 
@@ -97,3 +99,19 @@ def test_a_wait_inside_splits_the_cycle_into_its_strokes(robot):
                                atol=5e-14)
     meta = retime_metadata(full, timing)
     assert [s["rows"] for s in meta["segments"]] == [[0, k - 1], [k - 1, len(retimed.t) - 1]]
+
+
+def test_time_optimal_path_refuses_wrong_arguments(robot):
+    """A string for the motors or the trajectory, a dict for the options: one InputError line
+    naming the argument, not an AttributeError from inside."""
+    act, traj = pp.load_actuators(), pp.thesis_trajectory(samples=11)
+    for args, says in (((None, act, traj), "^robot = None: expected a Robot"),
+                       ((robot, "x", traj), r"^act = 'x': expected Actuators \("),
+                       ((robot, act, "x"), "^traj = 'x': expected a Trajectory"),
+                       ((robot, act, traj, {}), "^options = {}: expected pollard_pin.dynamics")):
+        try:
+            pp.time_optimal_path(*args)
+        except pp.InputError as exc:
+            assert re.search(says, str(exc)), exc
+        else:
+            raise AssertionError(f"{says} not raised")

@@ -2,10 +2,12 @@
 (docs/model.md §14): rotor inertia and Baumgarte gains go on their own copies, never on the
 shared model, not even for the duration of a call."""
 import numpy as np
+import pytest
 
 from pollard_pin.dynamics.forward import forward_dynamics, replay_open_loop
 from pollard_pin.dynamics.inverse import JointLosses, inverse_dynamics_sample
 from pollard_pin.dynamics.plant import ModelMismatch, Plant
+from pollard_pin.errors import InputError
 
 
 def _fields(robot) -> dict:
@@ -58,3 +60,23 @@ def test_api_names_say_what_they_do():
     assert replay_open_loop is replay_open_loop
     assert "simulate" not in pp.__all__ and not hasattr(plant, "PlantErrors")
     assert ModelMismatch is ModelMismatch
+
+
+@pytest.mark.parametrize("which, value, says", [
+    ("q", np.zeros(5), r"^q has shape \(5,\), expected \(12,\)$"),
+    ("v", np.zeros((1, 12)), r"^v has shape \(1, 12\), expected \(12,\)$"),
+    ("tau_act", np.zeros(5), r"^tau_act has shape \(5,\), expected \(6,\)$"),
+    ("tau_act", [0.0, np.nan, 0, 0, 0, 0], r"^tau_act\[1\] = nan: must be a finite number$"),
+    ("q", "a", "^q = 'a': expected an array of real numbers"),
+    ("tau_act", [10**400] * 6, "^tau_act = .*expected an array of real numbers"),
+    ("settings", {}, "^settings = {}: expected pinocchio.ProximalSettings, got dict$"),
+    ("losses", "x", "^losses = 'x': expected a JointLosses, got str$"),
+])
+def test_forward_dynamics_refuses_bad_arguments(robot, which, value, says):
+    """A wrong size, a non-number or a NaN: one InputError line before Pinocchio is given
+    the vector (its C++ check raises a multi-line ValueError or aborts)."""
+    args = {"q": robot.home(), "v": np.zeros(12), "tau_act": np.zeros(6), which: value}
+    with pytest.raises(InputError, match=says):
+        forward_dynamics(robot, **args)
+    with pytest.raises(InputError, match="^robot = None: expected a Robot"):
+        forward_dynamics(None, robot.home(), np.zeros(12), np.zeros(6))

@@ -241,3 +241,14 @@ def test_reduced_inverse_dynamics_is_m_red_u_plus_h_red(robot):
         tau = reduced_inverse_dynamics(robot, ik.q[k], ik.v[k], ik.a[k, ia])
         want = inverse_dynamics_sample(robot, ik.q[k], ik.v[k], ik.a[k])[0]
         np.testing.assert_allclose(tau, want, rtol=0, atol=1e-12)
+
+
+def test_inverse_dynamics_refuses_what_is_not_its_arguments(robot):
+    """None for the robot, a string for the IK result, a dict for the losses: one InputError
+    line naming the argument, not an AttributeError from inside."""
+    ik = pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])
+    for args, says in (((None, ik), "^robot = None: expected a Robot"),
+                       ((robot, "x"), "^ik = 'x': expected an IKResult"),
+                       ((robot, ik, {}), "^losses = {}: expected a JointLosses")):
+        with pytest.raises(pp.InputError, match=says):
+            inverse_dynamics(*args)

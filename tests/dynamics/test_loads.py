@@ -215,3 +215,19 @@ def test_report_has_the_bearing_table_and_the_three_way_agreement(robot):
         assert check["joint_moment"]["relative"] < AGREE
     md = to_markdown(rep)
     assert "## Bearings and pins" in md and "| theta65_1 |" in md
+
+
+def test_joint_loads_refuse_what_is_not_their_arguments(robot):
+    """None for the robot, a string for the dynamics, an IK result of other samples: one
+    InputError line, not an AttributeError or a bare ValueError."""
+    ik = pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]] * 2, t=[0.0, 1.0])
+    dyn = pp.inverse_dynamics(robot, ik)
+    one = pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])
+    for args, says in (((None, ik, dyn), "^robot = None: expected a Robot"),
+                       ((robot, "x", dyn), "^ik = 'x': expected an IKResult"),
+                       ((robot, ik, "x"), "^dyn = 'x': expected a DynamicsResult"),
+                       ((robot, one, dyn), r"^closure forces of shape \(2, 2, 3\) do not")):
+        with pytest.raises(pp.InputError, match=says):
+            joint_loads(*args)
+    with pytest.raises(pp.InputError, match=r"^closure forces of shape \(2, 2, 3\) do not"):
+        joint_loads_rnea(robot, one, dyn)  # the rule the two share

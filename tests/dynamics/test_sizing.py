@@ -20,3 +20,14 @@ def test_a_path_that_does_not_move_the_actuators_is_refused(robot):
                                               r"travels at most .* rad over its 50 samples\)$"):
         actuator_sizing(robot, pp.run_pipeline(robot, still), M.load_actuators(EXAMPLE))
 
+
+
+def test_actuator_sizing_refuses_wrong_arguments(robot):
+    """None for the robot or the run's result, a string for the motors: one InputError line
+    naming the argument, not an AttributeError from inside."""
+    act = M.load_actuators(EXAMPLE)
+    for args, says in (((None, None, act), "^robot = None: expected a Robot"),
+                       ((robot, None, "x"), r"^act = 'x': expected Actuators \("),
+                       ((robot, "x", act), r"^result = 'x': expected a run's result")):
+        with pytest.raises(pp.InputError, match=says):
+            actuator_sizing(*args)

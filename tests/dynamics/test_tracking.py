@@ -23,6 +23,7 @@ from pollard_pin.dynamics.tracking import (
     simulate_tracking,
     step_used,
 )
+from pollard_pin.errors import InputError
 from pollard_pin.kinematics.closure import solve_closure
 from pollard_pin.kinematics.singularity import actuator_velocity_map
 from pollard_pin.model.build import constraint_jacobian
@@ -293,3 +294,12 @@ def test_compiled_sensing_tracks_as_pinocchio_sensing(robot, monkeypatch):
     # nearly massless last wrist joint), ≤ 2e-14 for the others
     for name, col in ref.items():
         assert np.abs(fast[name] - col).max() <= 3e-11 * max(np.abs(col).max(), 1.0), name
+
+
+def test_simulate_tracking_refuses_what_is_not_a_trajectory(robot):
+    """A string for the trajectory, None for the robot: one InputError line, not an
+    AttributeError from inside."""
+    with pytest.raises(ControlError, match=r"^trajectory = 'x': expected a Trajectory \(t, "):
+        simulate_tracking(robot, "x")
+    with pytest.raises(InputError, match="^robot = None: expected a Robot"):
+        simulate_tracking(None, thesis_trajectory(samples=11))

@@ -17,6 +17,7 @@ from pollard_pin.dynamics.tracking_options import (
     MAX_STEPS,
     STEP_SECONDS,
     TICK_SECONDS,
+    MeasurementNoise,
     TrackingOptions,
     check_step_count,
     estimated_wall,
@@ -33,11 +34,25 @@ from pollard_pin.dynamics.tracking_options import (
     ({"torque_limit": [1, 2]}, "give one value or 6 (one per actuator), got 2"),
     ({"torque_limit": -1}, "torque limits must be > 0 N·m"),
     ({"loop_tolerance": 0.0}, "loop tolerance must be > 0 m, got 0.0"),
+    # an integer beyond a float, a string, a bool: the same line, not OverflowError/TypeError
+    ({"dt": 10**400}, "time step must be > 0 s, got 1e+400 (a 401-digit integer)"),
+    ({"dt": "0.001"}, "time step must be > 0 s, got '0.001'"),
+    ({"control_period": "x"}, "control period must be > 0 s, got 'x'"),
+    ({"control_period": True}, "control period must be > 0 s, got True"),
+    ({"noise": "n"}, "noise must be a MeasurementNoise"),
+    ({"torque_limit": "x"}, "torque limit = 'x': expected an array of real numbers"),
+    ({"torque_limit": [10**400] * 6}, "torque limit = [1000"),
 ])
 def test_bad_options_are_one_line_at_construction(kwargs, says):
     with pytest.raises(ControlError) as err:
         TrackingOptions(**kwargs)
     assert says in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("value", ["x", 10**400, math.nan, -1.0], ids=["str", "1e400", "nan", "-1"])
+def test_bad_noise_is_one_line(value):
+    with pytest.raises(ControlError, match="^position noise standard deviation must be >= 0"):
+        MeasurementNoise(position=value)
 
 
 def test_the_step_and_the_limits_as_the_run_uses_them():

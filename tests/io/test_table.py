@@ -78,3 +78,11 @@ def test_non_finite_metadata_is_one_line_and_nothing_written(tmp_path):
             write_table(tmp_path / name, {"t": np.zeros(2)},
                         {"wrench": [0.0, 0.0, 0.0, float("inf")]})
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("path", [3, None, ""])
+def test_read_result_refuses_what_names_no_file(path):
+    from pollard_pin.io.table import ResultFileError
+
+    with pytest.raises(ResultFileError, match="^path = .*: (expected a file path|an empty path)"):
+        read_result(path)

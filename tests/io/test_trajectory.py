@@ -141,3 +141,24 @@ def test_carried_metadata_is_the_robots_entries_checked(tmp_path):
     with pytest.raises(InputError, match="gravity_base.*not booleans"):
         carried_metadata(path)
     assert carried_metadata(tmp_path / "none.csv") == {}
+
+
+@pytest.mark.parametrize("path", [3, None, ""])
+def test_from_csv_refuses_what_names_no_file(path):
+    with pytest.raises(TrajectoryError, match="^path = .*: (expected a file path|an empty path)"):
+        from_csv(path)
+
+
+def test_to_csv_refuses_what_is_not_a_trajectory(tmp_path):
+    with pytest.raises(TrajectoryError, match="^traj = 'x': expected a Trajectory, got str$"):
+        to_csv("x", tmp_path / "x.csv")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_to_csv_refuses_a_spray_from_csv_cannot_read(tmp_path):
+    traj = pp.thesis_trajectory(samples=5)
+    with pytest.raises(TrajectoryError, match=r"spray\[1\] = 2 is outside \[0, 1\]"):
+        to_csv(traj, tmp_path / "x.csv", spray=[0.0, 2.0, 1.0, 1.0, 0.0])
+    assert list(tmp_path.iterdir()) == []
+    to_csv(traj, tmp_path / "ok.csv", spray=[0.0, 0.5, 1.0, 1.0, 0.0])
+    assert from_csv(tmp_path / "ok.csv").spray.tolist() == [0.0, 0.5, 1.0, 1.0, 0.0]

@@ -7,6 +7,8 @@ from ik_runs import RUN_NAMES, to_joints_order, wrap
 
 import pollard_pin as pp
 from pollard_pin.analytic import closed_form as T
+from pollard_pin.errors import InputError
+from pollard_pin.kinematics.errors import KinematicsInputError
 from pollard_pin.model.build import constraint_residual
 
 FK_TOL = 1e-10  # m and rad: Pinocchio's forward-kinematics Newton (achieves 2.4e-12)
@@ -45,3 +47,30 @@ def test_closure_residual_along_trajectory(robot, runs, name):
     # point.
     cp = T.closure_points(robot.params, to_joints_order(robot, ik.q))
     assert np.linalg.norm(cp[..., 0, :] - cp[..., 1, :], axis=-1).max() <= CLOSURE_TOL
+
+
+@pytest.mark.parametrize("actuated, q_guess, says", [
+    (np.zeros(5), None, r"actuator angles have shape \(5,\)"),
+    (np.zeros((1, 1, 6)), None, r"actuator angles have shape \(1, 1, 6\)"),
+    ("abc", None, "actuated = 'abc': expected an array of real numbers"),
+    ([10**400] * 6, None, "actuated = .*expected an array of real numbers"),
+    (np.full(6, np.nan), None, "actuator angles must be 6 finite numbers"),
+    (None, np.zeros(5), "q_guess must be 12 finite joint angles"),
+    (None, "x", "q_guess = 'x': expected an array of real numbers"),
+])
+def test_forward_kinematics_refuses_bad_arguments(robot, actuated, q_guess, says):
+    """A wrong shape, a non-number or a NaN: one KinematicsInputError line (an InputError and
+    still a ValueError), before Pinocchio is given the vector."""
+    act = robot.home()[robot.actuated_v] if actuated is None else actuated
+    with pytest.raises(KinematicsInputError, match=says) as got:
+        pp.forward_kinematics(robot, act, q_guess)
+    assert isinstance(got.value, ValueError) and "\n" not in str(got.value)
+    with pytest.raises(InputError, match="robot = None: expected a Robot"):
+        pp.forward_kinematics(None, robot.home()[robot.actuated_v])
+
+
+def test_tool_pose_refuses_a_configuration_of_another_size(robot):
+    from pollard_pin.kinematics import tool_pose
+
+    with pytest.raises(KinematicsInputError, match=r"^q has shape \(5,\), expected \(12,\)"):
+        tool_pose(robot, np.zeros(5))

@@ -479,3 +479,20 @@ def test_csv_spray_column_is_read_and_range_checked(tmp_path):
     with pytest.raises(TrajectoryError, match=r"row 4, column 'spray'.*outside \[0, 1\]"):
         from_csv(write_text(tmp_path / "bad.csv", HEADER + ",spray",
                             _edit(rows, 2, 7, "1.5")))
+
+
+@pytest.mark.parametrize("method", ["batch", "newton"])
+def test_ik_refuses_what_is_not_a_robot_or_a_start(robot, method):
+    """None for the robot, a string for q_start: one InputError line, not an AttributeError or
+    numpy's ValueError from inside."""
+    pose = [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]]
+    with pytest.raises(InputError, match="robot = None: expected a Robot"):
+        pp.inverse_kinematics(None, pose, options=pp.IkOptions(method=method))
+    if method == "newton":
+        with pytest.raises(KinematicsInputError, match="q_start = 'x': expected an array"):
+            pp.inverse_kinematics(robot, pose, q_start="x")
+
+
+def test_ik_refuses_a_progress_that_is_no_function(robot):
+    with pytest.raises(KinematicsInputError, match="^progress = 'x': expected a function"):
+        pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]], progress="x")

@@ -122,3 +122,30 @@ def test_ik_options_normalise_the_margins_and_the_solver_refuses_other_types(rob
 
     with pytest.raises(SingularityError, match=f"{home_wrist:.4f} is below the margin"):
         inverse_kinematics(robot, pose, options=IkOptions(margins=Margins(home_wrist + 0.1)))
+
+
+@pytest.mark.parametrize("field, value", [
+    ("poses", [["0.5", "0", "0.16", "0", "0", "0"]]),
+    ("poses", [[10**400, 0, 0.16, 0, 0, 0]]),
+    ("poses", np.full((1, 6), 0.5 + 1j)),
+    ("d_poses", np.ones((1, 6), dtype=bool)),
+    ("t", ["zero"]),
+])
+def test_task_inputs_refuse_what_is_not_real_numbers(field, value):
+    """Strings, integers beyond a float, complex or bool values: one KinematicsInputError line
+    naming the argument, not numpy's ValueError or OverflowError (complex was cast silently)."""
+    args = {"poses": [[0.5, 0.0, 0.16, 0.0, 0.0, 0.0]], "d_poses": None, "dd_poses": None,
+            "t": None, field: value}
+    with pytest.raises(KinematicsInputError, match=f"^{field} = .*expected an array of real"):
+        task_inputs(**args)
+
+
+@pytest.mark.parametrize("field", ["method", "max_iter", "chunk", "margins"])
+def test_ik_options_show_a_huge_value_short(field):
+    """An integer beyond a float is one short line, not its 401 digits echoed."""
+    from pollard_pin.errors import InputError
+    from pollard_pin.kinematics.ik_common import IkOptions
+
+    with pytest.raises(InputError, match=r"1e\+400 \(a 401-digit integer\)") as got:
+        IkOptions(**{field: -10**400 if field != "method" else 10**400})
+    assert len(str(got.value)) < 200

@@ -877,3 +877,10 @@ def test_check_robot_names_the_argument(robot):
     for wrong in (None, "robot", 3, float("nan")):
         with pytest.raises(InputError, match=r"^robot = .*expected a Robot \(pollard_pin.load"):
             check_robot(wrong)
+
+
+@pytest.mark.parametrize("params", [{"chain0.x32": 0.34}, 3])
+def test_load_refuses_what_is_no_parameters(params):
+    """A dict or a number: one ParameterError line naming what load takes, not a TypeError."""
+    with pytest.raises(pollard_pin.InputError, match=r"^params = .*: expected a Params, a "):
+        pollard_pin.load(params)

@@ -193,3 +193,10 @@ def test_limits_round_trip_and_override():
     again = params_from_dict(p.to_toml_dict())
     assert again.limits == p.limits
     assert 'effort="3.0"' in pollard_pin.load(p).urdf
+
+
+def test_load_params_refuses_what_names_no_file():
+    with pytest.raises(ParameterError, match=r"^path = 3: expected a file path \(str or "):
+        load_params(3)
+    with pytest.raises(ParameterError, match=r"^path = 3: expected a file path \(str or "):
+        read_params_dict(3)  # the one home of the check (make_sweep's params too)

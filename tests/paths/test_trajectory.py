@@ -38,3 +38,36 @@ def test_the_curve_is_the_trajectorys_own_else_the_hermite_through_its_samples()
     assert isinstance(curve, QuinticHermite)
     for got, want in zip(curve(traj.t), (traj.poses, traj.d_poses, traj.dd_poses)):
         np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("field, value, says", [
+    ("poses", np.full((3, 6), 0.5 + 1j), "poses = .*got complex128 values"),  # was cast
+    ("t", [0.0, 1.0, 10**400], "t = .*expected an array of real numbers"),
+    ("t", np.zeros((3, 1)), r"t has shape \(3, 1\), expected \(N,\)"),
+    ("d_poses", "abc", "d_poses = 'abc': expected an array of real numbers"),
+], ids=["complex", "1e400", "2-D t", "str"])
+def test_a_trajectory_of_what_is_not_real_numbers_is_refused(field, value, says):
+    args = {"t": [0.0, 1.0, 2.0], "poses": np.zeros((3, 6)), "d_poses": np.zeros((3, 6)),
+            "dd_poses": np.zeros((3, 6)), field: value}
+    with pytest.raises(TrajectoryError, match="^trajectory: " + says):
+        Trajectory(**args)
+
+
+def test_a_trajectory_keeps_float_arrays_as_given():
+    t, p = np.arange(3.0), np.zeros((3, 6))
+    traj = Trajectory(t, p, p, p)
+    assert traj.t is t and traj.poses is p  # no copy: a window stays a view
+    assert Trajectory([0, 1, 2], p, p, p).t.dtype == np.float64
+
+
+@pytest.mark.parametrize("spray, says", [
+    (np.full(3, np.nan), r"spray\[0\] = nan is outside \[0, 1\]"),
+    ([0.0, 1.0, 2.0], r"spray\[2\] = 2 is outside \[0, 1\]"),
+    (np.full(3, 1j), "spray = .*got complex128 values"),
+    ([10**400] * 3, "spray = .*expected an array of real numbers"),
+], ids=["nan", "2", "complex", "1e400"])
+def test_a_spray_outside_its_range_is_refused(spray, says):
+    """As from_csv refuses it: to_csv must not write what from_csv cannot read."""
+    p = np.zeros((3, 6))
+    with pytest.raises(TrajectoryError, match="^trajectory: " + says):
+        Trajectory([0.0, 1.0, 2.0], p, p, p, spray=spray)

@@ -54,3 +54,9 @@ def test_table_reads_back_bit_for_bit(result, tmp_path, name):
 def test_a_trajectory_that_is_not_one_is_one_line(robot, traj):
     with pytest.raises(InputError, match="not a Trajectory"):
         run_pipeline(robot, traj)
+
+
+def test_write_run_table_refuses_what_is_not_a_result(tmp_path):
+    with pytest.raises(InputError, match="^result = 'x': expected a RunResult"):
+        write_run_table("x", tmp_path / "run.csv")
+    assert list(tmp_path.iterdir()) == []

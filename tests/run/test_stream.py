@@ -152,9 +152,30 @@ def test_cli_window_size_is_the_streaming_window():
 
 @pytest.mark.parametrize("kw, says", [({"chunk": 1}, "chunk must be an integer >= 2, got 1"),
                                       ({"chunk": 2.0}, "chunk must be an integer >= 2"),
-                                      ({"workers": 0}, "workers must be an integer >= 1")])
+                                      ({"workers": 0}, "workers must be an integer >= 1"),
+                                      # shown short, not in 401 digits
+                                      ({"chunk": -10**400}, r"got -1e\+400 \(a 401-digit"),
+                                      ({"workers": -10**400}, r"got -1e\+400 \(a 401-digit")],
+                         ids=["chunk 1", "chunk 2.0", "workers 0", "chunk huge", "workers huge"])
 def test_stream_options_refuse_bad_values_before_any_work(kw, says):
     from pollard_pin.errors import InputError
 
     with pytest.raises(InputError, match=says):
         StreamOptions(**kw)
+
+
+def test_stream_run_refuses_wrong_arguments_before_writing(robot, tmp_path):
+    """A dict for the options, a string for the trajectory, None for the robot: one
+    InputError line (not an AttributeError from inside), and no file written."""
+    traj = thesis_trajectory(samples=11)
+    out = tmp_path / "run.csv"
+    for args, says in (((robot, traj, out, {}), "^stream = {}: expected StreamOptions"),
+                       ((robot, "x", out), "^traj = 'x': expected a Trajectory"),
+                       ((None, traj, out), "^robot = None: expected a Robot")):
+        with pytest.raises(pp.InputError, match=says):
+            stream_run(*args)
+    for kw, says in (({"progress": "x"}, "^progress = 'x': expected a function or None"),
+                     ({"metadata": "x"}, "^metadata = 'x': expected a dict or None")):
+        with pytest.raises(pp.InputError, match=says):
+            stream_run(robot, traj, out, **kw)
+    assert list(tmp_path.iterdir()) == []

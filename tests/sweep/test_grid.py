@@ -101,3 +101,14 @@ def test_a_sweep_over_its_budget_is_refused_before_the_grid_is_built():
         make_sweep(variants=many, samples=SAMPLES)
     with pytest.raises(SweepError, match="two variants are named 'v3'"):
         make_sweep(variants=[*many[:50], ("v3", {})], samples=SAMPLES)
+
+
+def test_load_grid_refuses_what_names_no_file():
+    with pytest.raises(pp.InputError, match=r"^path = 3: expected a file path \(str or "):
+        pp.load_grid(3)
+
+
+@pytest.mark.parametrize("grid", ["abc", [("x32", [0.3])]])
+def test_make_sweep_refuses_a_grid_that_is_no_mapping(grid):
+    with pytest.raises(pp.InputError, match="^grid = .*: expected a mapping of parameter keys"):
+        pp.make_sweep(grid)

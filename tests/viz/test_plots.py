@@ -121,3 +121,13 @@ def test_figures_need_dynamics(robot):
     res = run_pipeline(robot, pp.thesis_trajectory(samples=SAMPLES), dynamics=False)
     with pytest.raises(ValueError, match="dynamics"):
         figures(res)
+
+
+def test_write_figures_refuses_before_making_the_folder(robot, tmp_path):
+    """No dynamics, or no run's result at all: one InputError line and no folder made."""
+    res = run_pipeline(robot, pp.thesis_trajectory(samples=SAMPLES), dynamics=False)
+    for result, says in ((res, "plots need the dynamics"),
+                         ("x", "^result = 'x': expected a RunResult")):
+        with pytest.raises(pp.InputError, match=says):
+            pp.write_figures(result, tmp_path / "plots")
+        assert not (tmp_path / "plots").exists()

@@ -179,3 +179,16 @@ def test_static_page_renders_robot_in_chromium(html_file, tmp_path):
     assert masks0["path"].sum() > minimum["path"]
     if os.environ.get("POLLARD_KEEP_SCREENSHOT"):
         shot.replace(os.environ["POLLARD_KEEP_SCREENSHOT"])
+
+
+def test_write_html_refuses_wrong_arguments_before_writing(robot, tmp_path):
+    """None for the robot, a string for the IK, a number for the path: one InputError line
+    (not an AttributeError or TypeError from inside), and no page written."""
+    ik = pp.inverse_kinematics(robot, [[0.55, 0.0, 0.16, 0.0, 0.0, 0.0]])
+    page = tmp_path / "v.html"
+    for args, says in (((page, None, ik), "^robot = None: expected a Robot"),
+                       ((page, robot, "x"), "^ik = 'x': expected an IKResult"),
+                       ((3, robot, ik), r"^path = 3: expected a file path")):
+        with pytest.raises(pp.InputError, match=says):
+            pp.write_html(*args)
+    assert list(tmp_path.iterdir()) == []

@@ -167,3 +167,10 @@ def test_bad_input(robot, kw, words):
 @pytest.mark.parametrize("wrong", WRONG, ids=repr)
 def test_a_wrong_robot_is_one_line(wrong):
     refused(lambda: map_workspace(wrong, "x=0.55"), "robot")
+
+
+@pytest.mark.parametrize("kw", [{"sink": "x"}, {"progress": 3}])
+def test_a_callback_that_is_no_function_is_refused_first(robot, kw):
+    """Refused before any point is solved, not a TypeError at the first chunk."""
+    with pytest.raises(WorkspaceError, match=r"^(sink|progress) = .*: expected a function or None"):
+        map_workspace(robot, "x=0.55", **kw)

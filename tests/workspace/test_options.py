@@ -61,3 +61,11 @@ def test_no_options_is_the_default_options_and_chunks_do_not_change_the_map(robo
     with pytest.raises(WorkspaceError, match="must be a WorkspaceOptions, got dict"):
         map_workspace(robot, "x=0.55", {"resolution": 0.05})
     assert math.isclose(WorkspaceOptions().resolution, 0.005)
+
+
+@pytest.mark.parametrize("kw", [{"chunk": -10**400}, {"orientation": 10**400},
+                                {"orientation": (10**400,) * 40}], ids=["chunk", "int", "long"])
+def test_a_huge_value_is_shown_short(kw):
+    with pytest.raises(WorkspaceError) as got:
+        WorkspaceOptions(**kw)
+    assert len(str(got.value)) < 200 and "\n" not in str(got.value)

@@ -22,10 +22,12 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
+from ...checks import float_array
 from ...errors import InputError
 from ...kinematics.errors import SingularityError
 from ...kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ...kinematics.singularity import inverse_stack
+from ...model.values import shorten
 from ..motors import MIN_STIFFNESS
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")
@@ -69,9 +71,9 @@ class StiffnessOptions:
         w = self.wrench
         try:
             values = tuple(float(x) for x in w)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):  # OverflowError: 10**400
             raise StiffnessError(f"wrench must be six numbers {', '.join(WRENCH)}, got "
-                                 f"{w!r}") from None
+                                 f"{shorten(w)}") from None
         if len(values) != 6:
             raise StiffnessError(f"wrench must be six numbers {', '.join(WRENCH)}, got "
                                  f"{len(values)}")
@@ -85,7 +87,7 @@ class StiffnessOptions:
 def check_stiffness(k) -> np.ndarray:
     """The six drive stiffnesses [N·m/rad] as an array, each finite, > 0 and within
     :data:`STIFFNESS_RANGE` (:class:`StiffnessError` naming the first that is not)."""
-    k = np.asarray(k, dtype=float).reshape(-1)
+    k = float_array(k, "stiffness", error=StiffnessError).reshape(-1)
     if k.shape != (6,):
         raise StiffnessError(f"stiffness must be six numbers (one per actuator), got {k.size}")
     bad = np.flatnonzero(~(np.isfinite(k) & (k > 0)))

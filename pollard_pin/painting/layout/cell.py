@@ -19,10 +19,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...checks import instance
+from ...checks import instance, is_real
 from ...dynamics.motors import as_actuators
 from ...errors import InputError, say_less
 from ...model.build import check_robot
+from ...model.values import shorten
 from ...workspace.reach import evaluate
 from ..causes import cause_of
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
@@ -62,14 +63,13 @@ class LayoutOptions:
 
     def __post_init__(self):
         s = self.spacing
-        if s is not None and (isinstance(s, bool) or not isinstance(s, numbers.Real)
-                              or not (math.isfinite(s) and 0 < s <= 10)):
-            raise InputError(f"LayoutOptions.spacing = {s!r}: expected a distance in (0, 10] m "
-                             "(or None)")
+        if s is not None and not is_real(s, 0.0, 10.0, above=True):
+            raise InputError(f"LayoutOptions.spacing = {shorten(s)}: expected a distance in "
+                             "(0, 10] m (or None)")
         if not (isinstance(self.prefix, str) and self.prefix.isalnum() and
                 len(self.prefix) <= 24):
-            raise InputError(f"LayoutOptions.prefix = {self.prefix!r}: expected 1-24 letters "
-                             "or digits")
+            raise InputError(f"LayoutOptions.prefix = {shorten(self.prefix)}: expected 1-24 "
+                             "letters or digits")
 
 
 def zone_needs(strokes: Strokes, n: int, ends: tuple[float, float] | None = None
@@ -163,7 +163,7 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     options = instance(options, "options", LayoutOptions, "LayoutOptions or None",
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
-        raise CellError(f"n = {n!r}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
+        raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
     return _propose(robot, job, n, options, part)
 
 

@@ -18,7 +18,6 @@ line is placed as if still, across the line: where it starts along the line stay
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -26,9 +25,10 @@ import numpy as np
 from scipy import ndimage
 
 from ...analytic.taskspace import angles_from_rotation
-from ...checks import file_path, instance
+from ...checks import file_path, instance, is_real
 from ...errors import InputError
 from ...model.build import check_robot
+from ...model.values import shorten
 from ...workspace.grid import reachable_box
 from ...workspace.options import CHUNK
 from ...workspace.reach import evaluate
@@ -86,13 +86,12 @@ class PlaceOptions:
         for name, lo, hi in (("step", 1e-3, 0.2), ("max_turn", 0.0, 180.0),
                              ("turn_step", 1.0, 180.0)):
             v = getattr(self, name)
-            if (isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v)
-                    or not lo <= v <= hi):
-                raise InputError(f"PlaceOptions.{name} = {v!r}: expected a number in "
+            if not is_real(v, lo, hi):
+                raise InputError(f"PlaceOptions.{name} = {shorten(v)}: expected a number in "
                                  f"[{lo:g}, {hi:g}]")
         s = self.samples
         if isinstance(s, bool) or not isinstance(s, int) or not 20 <= s <= 100_000:
-            raise InputError(f"PlaceOptions.samples = {s!r}: expected a whole number in "
+            raise InputError(f"PlaceOptions.samples = {shorten(s)}: expected a whole number in "
                              "[20, 100000]")
 
     @property

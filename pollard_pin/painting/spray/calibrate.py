@@ -24,6 +24,7 @@ from ...checks import instance, real
 from ...errors import InputError, SolveError
 from ...io.stripes import StripeError, StripeSet
 from ...model.params import did_you_mean
+from ...model.values import shorten
 from .deposition import Gun
 from .spots import SPOTS
 from .stripe_fit import ModelFit, StripeData, fit_model
@@ -68,7 +69,7 @@ class CalibrateOptions:
         for key, choices in (("model", ("auto", *MODELS)), ("spread", SPREADS)):
             value = getattr(self, key)
             if value not in choices:
-                raise InputError(f"CalibrateOptions.{key} = {value!r}: expected one of "
+                raise InputError(f"CalibrateOptions.{key} = {shorten(value)}: expected one of "
                                  f"{', '.join(choices)}{did_you_mean(str(value), choices)}")
         if self.efficiency is not None:
             object.__setattr__(self, "efficiency", real(

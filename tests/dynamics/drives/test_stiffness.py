@@ -421,3 +421,15 @@ def test_deflection_with_a_wrench_per_sample(robot, q):
     for bad in (np.zeros((len(q) + 1, 6)), np.zeros(5), np.full(6, np.inf)):
         with pytest.raises(StiffnessError, match="wrench"):
             deflection_at(robot, q, K, bad)
+
+
+@pytest.mark.parametrize("k", ["x", [10**400] * 6, [1j] * 6], ids=["str", "1e400", "complex"])
+def test_check_stiffness_refuses_what_is_not_real_numbers(k):
+    with pytest.raises(StiffnessError, match="^stiffness = .*expected an array of real numbers"):
+        check_stiffness(k)
+
+
+def test_a_wrench_beyond_a_float_is_one_short_line():
+    with pytest.raises(StiffnessError, match="^wrench must be six numbers") as got:
+        StiffnessOptions(wrench=[10**400] * 6)
+    assert len(str(got.value)) < 150

@@ -98,8 +98,13 @@ def test_options_and_bad_counts(robot):
     for n in (0, 17, 10 ** 6, 2.0, True):
         with pytest.raises(CellError, match=r"expected 1\.\.16"):
             propose_layout(robot, job, n)
+    with pytest.raises(CellError, match=r"^n = 1e\+400 \(a 401-digit integer\): expected"):
+        propose_layout(robot, job, 10**400)  # shown short, not in 401 digits
     for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"}):
         with pytest.raises(InputError):
+            LayoutOptions(**bad)
+    for bad in ({"spacing": 10**400}, {"prefix": 10**400}):  # not OverflowError, shown short
+        with pytest.raises(InputError, match=r"= 1e\+400 \(a 401-digit integer\): expected"):
             LayoutOptions(**bad)
     placed = tall_panel(robots=[{"name": "a", "base": [0.0, 0.0, 0.0]}])
     with pytest.raises(CellError, match="already places its 1 robot"):

@@ -140,7 +140,9 @@ def test_vertical_passes_suggested_where_they_paint(robot):
     (dict(step=0.0), "PlaceOptions.step = 0.0"),
     (dict(max_turn=-1.0), "PlaceOptions.max_turn = -1.0"),
     (dict(samples=3), "PlaceOptions.samples = 3"),
-])
+    (dict(step=10**400), "PlaceOptions.step = 1e"),  # shown short, not OverflowError
+    (dict(samples=10**400), "PlaceOptions.samples = 1e"),  # not 401 digits echoed
+], ids=["step 0", "max_turn -1", "samples 3", "step 1e400", "samples 1e400"])
 def test_bad_options(options, fragment):
     with pytest.raises(PollardError, match=fragment.replace(".", r"\.")):
         PlaceOptions(**options)
