@@ -107,14 +107,18 @@ def float_array(value, name: str, *, error=InputError):
     imported here only: the CLI's argument types import this module."""
     import numpy as np
 
-    shown = " ".join(_shown(value).split())  # an array's repr spans lines
     try:
         arr = np.asarray(value)
         if arr.dtype.kind == "O":  # Python numbers numpy could not type (10**400), or worse
             arr = arr.astype(float)
     except (TypeError, ValueError, OverflowError):
-        raise error(f"{name} = {shown}: expected an array of real numbers") from None
+        raise error(f"{name} = {_one_line(value)}: expected an array of real numbers") from None
     if arr.dtype.kind not in "iuf":
-        raise error(f"{name} = {shown}: expected an array of real numbers, got {arr.dtype} "
-                    "values")
+        raise error(f"{name} = {_one_line(value)}: expected an array of real numbers, got "
+                    f"{arr.dtype} values")
     return arr.astype(float, copy=False)
+
+
+def _one_line(value) -> str:
+    """:func:`_shown` on one line (an array's repr spans lines), made only for a refusal."""
+    return " ".join(_shown(value).split())
