@@ -56,7 +56,7 @@ def run(args) -> int:
             raise  # stopped before the study began: nothing was written
         held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
         try:  # a second signal waits until this is said
-            kept = _kept(out / STUDY, finished)
+            kept = _kept(_finished_count(out / STUDY, finished))
             how, code = (("interrupted", 130) if type(exc) is KeyboardInterrupt else
                          ("terminated", 143))
             print(f"pollard-pin design: {how}: {kept} finished evaluations kept in "
@@ -72,9 +72,9 @@ def run(args) -> int:
     return 0
 
 
-def _kept(path: Path, finished) -> str:
-    """How many finished evaluations the study file holds (or "all" if it cannot say)."""
-    count = _finished_count(path, finished)
+def _kept(count: int | None) -> str:
+    """How many finished evaluations a study holds, in words: ``count``, or "all" when
+    :func:`_finished_count` cannot say."""
     return "all" if count is None else str(count)
 
 
@@ -124,7 +124,7 @@ def _after_failure(out: Path, made: list[Path], before: tuple | None,
             with contextlib.suppress(OSError):  # not empty: left alone
                 out.rmdir()
         return
-    exc.kept = (f"{'all' if count is None else count} finished evaluations kept in {study}: "
+    exc.kept = (f"{_kept(count)} finished evaluations kept in {study}: "
                 "--resume continues the study")
 
 

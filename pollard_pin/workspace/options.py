@@ -113,8 +113,7 @@ def check_orientation(orientation, deg: bool = False) -> tuple[float, float, flo
     limit = math.degrees(MAX_ABS_TASK) if deg else MAX_ABS_TASK
     for name, v in zip(TASK_NAMES[3:], vals):
         if abs(v) > limit:  # the poses' own rule (analytic.taskspace)
-            said = f" ({MAX_ABS_TASK:g} rad" if deg else " ("
+            said = f"{MAX_ABS_TASK:g} rad; " if deg else ""  # the rule's own unit too
             raise WorkspaceError(f"orientation {name} = {v:.6g} {unit} is absurd: |{name}| > "
-                                 f"{limit:g} {unit}{said}{'; ' if deg else ''}a unit or data "
-                                 "error?)")
+                                 f"{limit:g} {unit} ({said}a unit or data error?)")
     return tuple(math.radians(v) for v in vals) if deg else tuple(vals)
