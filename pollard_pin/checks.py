@@ -1,5 +1,6 @@
 """The value rules every layer shares (a real number, finite, within bounds; an argument of
-the expected type; a file path), written once. No numpy: the CLI's argument types use them too.
+the expected type; a file path; a Dask scheduler's address) and the one way a value is shown
+in a message (:func:`shorten`), written once. No numpy: the CLI's argument types use them too.
 Each caller passes its own error family (a callable taking the one-line message), so a library
 error still speaks of values and units and the CLI adds the flag name. The public entry points
 check their arguments with these once, where they are called, so a user's mistake in Python is
@@ -12,6 +13,38 @@ import os
 from pathlib import Path
 
 from .errors import InputError
+
+SHOWN = 60  # characters of a value shown in a message
+NUL_IN_PATH = "a path with a NUL character"  # the words of that refusal, every reader's
+EXAMPLE_ADDRESS = "tcp://127.0.0.1:8786"  # a Dask scheduler's address, as refusals show one
+
+
+def shorten(value, width: int = SHOWN) -> str:
+    """``repr(value)`` cut to ``width`` characters; an integer beyond 16 digits as ``:.4g``
+    (never a 700-digit number echoed back)."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**16:
+        try:
+            return f"{float(value):.4g}"
+        except OverflowError:  # beyond float: :.4g by hand (str() may refuse the integer)
+            n, digits = abs(value), int((abs(value).bit_length() - 1) * math.log10(2))
+            while 10**digits <= n:
+                digits += 1
+            lead = n // 10 ** (digits - 4) / 1000  # the first four digits, d.ddd
+            return f"{'-' if value < 0 else ''}{lead:.4g}e+{digits - 1} (a {digits}-digit integer)"
+    try:
+        text = repr(value)
+    except (ValueError, RecursionError):  # a huge integer or deep nesting inside
+        return f"<{type(value).__name__}>"
+    if len(text) <= width:
+        return text
+    end = text[-1] if text[-1] in "'\")]}" else ""  # a cut list still reads as a list
+    return text[:width - 1 - len(end)] + "…" + end
+
+
+def clip(text: str, width: int = 120) -> str:
+    """``text`` on one line, cut to ``width`` characters (a library's own message, a path)."""
+    text = " ".join(str(text).split())
+    return text if len(text) <= width else text[:width - 1] + "…"
 
 
 def problem(x: float, low: float = -math.inf, high: float = math.inf,
@@ -49,22 +82,13 @@ def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
             raise TypeError
         x = float(value)
     except (TypeError, ValueError):
-        raise error(f"{name} = {_shown(value)}: is not a number{why}") from None
+        raise error(f"{name} = {shorten(value)}: is not a number{why}") from None
     except OverflowError:  # an integer beyond a float (10**400)
-        raise error(f"{name} = {_shown(value)}: must be a finite number{why}") from None
+        raise error(f"{name} = {shorten(value)}: must be a finite number{why}") from None
     wrong = problem(x, low, high, above)
     if wrong is not None:
-        raise error(f"{name} = {_shown(value)}: {wrong}{why}")
+        raise error(f"{name} = {shorten(value)}: {wrong}{why}")
     return x
-
-
-def _shown(value) -> str:
-    """``value`` short, for a one-line message."""
-    try:
-        text = repr(value)
-    except (ValueError, RecursionError):  # an integer beyond str's digit limit (10**5000)
-        return f"<{type(value).__name__}>"
-    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def instance(value, name: str, kinds, expected: str, *, none: bool = False,
@@ -73,7 +97,7 @@ def instance(value, name: str, kinds, expected: str, *, none: bool = False,
     ``error("<name> = <value>: expected <expected>, got <type>")``."""
     if (none and value is None) or isinstance(value, kinds):
         return value
-    raise error(f"{name} = {_shown(value)}: expected {expected}, got {type(value).__name__}")
+    raise error(f"{name} = {shorten(value)}: expected {expected}, got {type(value).__name__}")
 
 
 def callback(value, name: str, *, error=InputError):
@@ -82,7 +106,7 @@ def callback(value, name: str, *, error=InputError):
     work rather than as a TypeError at the first call."""
     if value is None or callable(value):
         return value
-    raise error(f"{name} = {_shown(value)}: expected a function or None, got "
+    raise error(f"{name} = {shorten(value)}: expected a function or None, got "
                 f"{type(value).__name__}")
 
 
@@ -92,11 +116,11 @@ def file_path(value, name: str, *, error=InputError) -> Path:
     if isinstance(value, os.PathLike):
         value = os.fspath(value)
     if not isinstance(value, str):
-        raise error(f"{name} = {_shown(value)}: expected a file path (str or pathlib.Path), "
+        raise error(f"{name} = {shorten(value)}: expected a file path (str or pathlib.Path), "
                     f"got {type(value).__name__}")
     if not value or "\0" in value:
-        raise error(f"{name} = {_shown(value)}: " + ("an empty path" if not value else
-                                                      "a path with a NUL character"))
+        raise error(f"{name} = {shorten(value)}: "
+                    + ("an empty path" if not value else NUL_IN_PATH))
     return Path(value)
 
 
@@ -120,5 +144,50 @@ def float_array(value, name: str, *, error=InputError):
 
 
 def _one_line(value) -> str:
-    """:func:`_shown` on one line (an array's repr spans lines), made only for a refusal."""
-    return " ".join(_shown(value).split())
+    """:func:`shorten` on one line (an array's repr spans lines), made only for a refusal."""
+    return " ".join(shorten(value).split())
+
+
+def address_problem(text: str) -> str | None:
+    """What is wrong with ``text`` as a Dask scheduler's address: empty (blank), or malformed
+    by dask.distributed's rules (a known scheme, a host and a port in 1..65535) when it is
+    installed ("not a scheduler address: '…' (why)"); None when nothing is. The one rule of
+    ``--dask``, :class:`~pollard_pin.synthesis.DesignOptions` and the runners, so that a typo
+    is refused before the work that comes before connecting."""
+    address = text.strip()
+    if not address:
+        return "an empty scheduler address"
+    try:
+        from distributed.comm.addressing import parse_address, parse_host_port
+        from distributed.comm.registry import get_backend
+    except ImportError:  # the extra is missing: connecting says so, before any work
+        return None
+    try:
+        scheme, location = parse_address(address)
+        get_backend(scheme)  # ValueError: an unknown scheme
+        if scheme in ("tcp", "tls", "ws", "wss"):
+            port = parse_host_port(location)[1]  # ValueError: no port, a malformed host
+            if not 0 < port < 65536:
+                raise ValueError(f"port {port} is not in 1..65535")
+    except (ValueError, TypeError) as exc:
+        return f"not a scheduler address: {shorten(address)} ({clip(str(exc), 100)})"
+    return None
+
+
+def scheduler_address(value, name: str, *, error=InputError):
+    """``value`` when it is None, a ``distributed.Client`` or an address :func:`address_problem`
+    passes; else ``error("<name>: <problem>; e.g. tcp://127.0.0.1:8786, or None to run
+    locally")`` or ``error("<name> = <value>: expected …, got <type>")``."""
+    if value is None:
+        return value
+    if isinstance(value, str):
+        wrong = address_problem(value)
+        if wrong is not None:
+            raise error(f"{name}: {wrong}; e.g. {EXAMPLE_ADDRESS}, or None to run locally")
+        return value
+    try:
+        from distributed import Client
+    except ImportError:
+        Client = ()  # nothing is a client then
+    return instance(value, name, Client, "a scheduler address (str), a distributed.Client or "
+                    "None", error=error)

@@ -9,6 +9,8 @@ from pathlib import Path
 import pytest
 
 from pollard_pin.checks import (
+    EXAMPLE_ADDRESS,
+    address_problem,
     callback,
     file_path,
     float_array,
@@ -16,6 +18,8 @@ from pollard_pin.checks import (
     is_real,
     problem,
     real,
+    scheduler_address,
+    shorten,
 )
 from pollard_pin.errors import InputError
 
@@ -119,3 +123,40 @@ def test_callback_takes_a_function_or_none_only():
     assert callback(None, "progress") is None and callback(print, "progress") is print
     with pytest.raises(InputError, match=r"^progress = 'x': expected a function or None, got str$"):
         callback("x", "progress")
+
+
+def test_every_refusal_shows_its_value_by_shorten():
+    """One rule for a value shown short (it was two: a repr cut to 60 here, shorten in the
+    model): a huge integer as its leading digits and its length, a long text cut with '…'."""
+    with pytest.raises(InputError, match=r"^flag = 1e\+400 \(a 401-digit integer\): expected "
+                                         r"True or False, got int$"):
+        instance(10**400, "flag", bool, "True or False")
+    with pytest.raises(InputError) as got:
+        real("x" * 1000, "m")
+    assert str(got.value) == f"m = {shorten('x' * 1000)}: is not a number"
+    assert shorten("x" * 1000) == "'" + "x" * 57 + "…'"
+
+
+@pytest.mark.parametrize("text, says", [
+    ("", "an empty scheduler address"), (" \t", "an empty scheduler address"),
+    ("localhost", "not a scheduler address: 'localhost' (missing port number"),
+    ("tcp://127.0.0.1:99999", "not a scheduler address: 'tcp://127.0.0.1:99999' (port 99999 "
+                              "is not in 1..65535)"),
+])
+def test_address_problem_is_the_one_rule_of_a_scheduler_address(text, says):
+    if text.strip():
+        pytest.importorskip("distributed")
+    assert address_problem(text).startswith(says)
+
+
+def test_scheduler_address_takes_what_dask_takes_and_names_the_rest():
+    pytest.importorskip("distributed")
+    for value in (None, "tcp://127.0.0.1:8786", " localhost:8786 ", "inproc://x"):
+        assert scheduler_address(value, "dask") == value  # as given: the connection strips
+    assert address_problem(EXAMPLE_ADDRESS) is None
+    with pytest.raises(Refused, match=r"^dask: an empty scheduler address; e\.g\. "
+                                      r"tcp://127\.0\.0\.1:8786, or None to run locally$"):
+        scheduler_address(" ", "dask", error=Refused)
+    with pytest.raises(Refused, match=r"^dask = b'x': expected a scheduler address \(str\), a "
+                                      r"distributed\.Client or None, got bytes$"):
+        scheduler_address(b"x", "dask", error=Refused)

@@ -12,10 +12,10 @@ import time
 import warnings
 from pathlib import Path
 
-from ..checks import problem
+from ..checks import EXAMPLE_ADDRESS, address_problem, problem
 from ..errors import InputError
 from ..io.atomic import STDOUT
-from ..model.values import clip, parse_float, parse_int, shorten
+from ..model.values import parse_float, parse_int, shorten
 
 log = logging.getLogger("pollard_pin")
 
@@ -97,29 +97,12 @@ def name(text: str) -> str:
 
 def scheduler_address(text: str) -> str:
     """A Dask scheduler's address, not empty (no --dask is the local pool), and well formed
-    by dask.distributed's rules (a known scheme, a host and a port in 1..65535) when it is
-    installed: a typo is refused here, not after the work that comes before connecting."""
-    address = text.strip()
-    if not address:
-        raise argparse.ArgumentTypeError("an empty address; give the scheduler's, e.g. "
-                                         "tcp://127.0.0.1:8786")
-    try:
-        from distributed.comm.addressing import parse_address, parse_host_port
-        from distributed.comm.registry import get_backend
-    except ImportError:  # the extra is missing: the command says so before any work
-        return address
-    try:
-        scheme, location = parse_address(address)
-        get_backend(scheme)  # ValueError: an unknown scheme
-        if scheme in ("tcp", "tls", "ws", "wss"):
-            port = parse_host_port(location)[1]  # ValueError: no port, a malformed host
-            if not 0 < port < 65536:
-                raise ValueError(f"port {port} is not in 1..65535")
-    except (ValueError, TypeError) as exc:
-        raise argparse.ArgumentTypeError(f"not a scheduler address: {shorten(address)} "
-                                         f"({clip(str(exc), 100)}); e.g. "
-                                         "tcp://127.0.0.1:8786") from None
-    return address
+    (:func:`pollard_pin.checks.address_problem`, the API's rule too): a typo is refused here,
+    not after the work that comes before connecting."""
+    wrong = address_problem(text)
+    if wrong is not None:
+        raise argparse.ArgumentTypeError(f"{wrong}; e.g. {EXAMPLE_ADDRESS}")
+    return text.strip()
 
 
 def count(minimum: int, maximum: int | None = None):

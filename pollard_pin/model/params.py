@@ -240,9 +240,11 @@ def _joint_limits(key: str, t: Any, actuated: bool) -> JointLimits:
     if not lower < upper:
         _fail(f"{key}.upper", t["upper"], f"must be greater than {key}.lower = {lower:.4g} deg")
     if upper - lower > 360.0:  # a revolute joint's range; wider is a placeholder
-        raise ParameterError(f"parameter '{key}.lower' = {lower:.4g}, '{key}.upper' = "
+        exc = ParameterError(f"parameter '{key}.lower' = {lower:.4g}, '{key}.upper' = "
                              f"{upper:.4g}: the range {upper - lower:.4g} deg exceeds one turn "
                              "(360)")
+        exc.key = f"{key}.lower"  # the key named first, as fail() names its key
+        raise exc
     effort = _number(f"{key}.effort", t["effort"])
     if actuated and effort <= 0.0:
         _fail(f"{key}.effort", t["effort"], "must be > 0 N·m (an actuated joint)")

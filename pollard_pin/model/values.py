@@ -1,5 +1,6 @@
 """One home for reading what the user gives: input files opened safely, TOML parsed within
-limits, numbers checked, and values shown short in messages.
+limits, numbers checked; values are shown short in messages by :func:`shorten` and
+:func:`clip` (their home is :mod:`pollard_pin.checks`, below the model; imported here).
 
 Every reader of the package (parameter, actuator, paint job and grid files, trajectory CSVs,
 result tables, command-line numbers) uses these, so that a FIFO, a 5,000-digit integer,
@@ -18,33 +19,10 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from ..checks import problem
+from ..checks import NUL_IN_PATH, clip, problem, shorten  # shorten, clip: their home
 
 MAX_DEPTH = 32  # nested arrays/tables: a parameter file needs 3 (an inertia matrix)
 MAX_TOML_BYTES = 1 << 20  # 1 MiB: the shipped parameter file is ~5 kB
-SHOWN = 60  # characters of a value shown in a message
-
-
-def shorten(value: Any, width: int = SHOWN) -> str:
-    """``repr(value)`` cut to ``width`` characters; an integer beyond 16 digits as ``:.4g``
-    (never a 700-digit number echoed back)."""
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**16:
-        try:
-            return f"{float(value):.4g}"
-        except OverflowError:  # beyond float: :.4g by hand (str() may refuse the integer)
-            n, digits = abs(value), int((abs(value).bit_length() - 1) * math.log10(2))
-            while 10**digits <= n:
-                digits += 1
-            lead = n // 10 ** (digits - 4) / 1000  # the first four digits, d.ddd
-            return f"{'-' if value < 0 else ''}{lead:.4g}e+{digits - 1} (a {digits}-digit integer)"
-    try:
-        text = repr(value)
-    except (ValueError, RecursionError):  # a huge integer or deep nesting inside
-        return f"<{type(value).__name__}>"
-    if len(text) <= width:
-        return text
-    end = text[-1] if text[-1] in "'\")]}" else ""  # a cut list still reads as a list
-    return text[:width - 1 - len(end)] + "…" + end
 
 
 def shown_path(path: str | Path, width: int = 160) -> str:
@@ -55,12 +33,6 @@ def shown_path(path: str | Path, width: int = 160) -> str:
     return text if len(text) <= width else f"{text[:head]}…{text[-(width - head - 1):]}"
 
 
-def clip(text: str, width: int = 120) -> str:
-    """``text`` on one line, cut to ``width`` characters (a library's own message, a path)."""
-    text = " ".join(str(text).split())
-    return text if len(text) <= width else text[:width - 1] + "…"
-
-
 # --- files ------------------------------------------------------------------------------------
 def open_regular(path: str | Path, mode: str = "rb", **kwargs):
     """``open(path, mode)`` for reading that refuses what is not a regular file (a FIFO with
@@ -69,7 +41,7 @@ def open_regular(path: str | Path, mode: str = "rb", **kwargs):
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     except ValueError:  # "embedded null byte"
-        raise OSError(errno.EINVAL, "the name holds a NUL character", str(path)) from None
+        raise OSError(errno.EINVAL, NUL_IN_PATH, str(path)) from None
     try:
         st = os.fstat(fd)
         if stat.S_ISDIR(st.st_mode):
@@ -221,8 +193,11 @@ def integer(value: Any, key: str, error: type[Exception], prefix: str = "",
 
 
 def fail(error: type[Exception], prefix: str, key: str, value: Any, rule: str):
-    """Raise ``error("{prefix}'{key}' = {short value}: {rule}")``."""
-    raise error(f"{prefix}'{key}' = {shorten(value)}: {rule}")
+    """Raise ``error("{prefix}'{key}' = {short value}: {rule}")`` with ``.key`` = ``key``:
+    the key whose own rule it is, for a caller that tells it from another key's."""
+    exc = error(f"{prefix}'{key}' = {shorten(value)}: {rule}")
+    exc.key = key
+    raise exc
 
 
 def parse_float(text: str) -> float:

@@ -5,9 +5,8 @@ from __future__ import annotations
 import numbers
 from dataclasses import dataclass
 
-from ..checks import is_real
+from ..checks import instance, is_real, shorten
 from ..errors import InputError
-from ..model.values import shorten
 from .line.speeds import SPEED_RESOLUTION
 from .policy import DEFAULT_POLICY, PlannerPolicy
 
@@ -67,22 +66,12 @@ class PaintOptions:
         if r is not None and not is_real(r, 0.0, above=True):
             raise InputError(f"PaintOptions.resolution = {shorten(r)}: expected a spacing > 0 "
                              "[m] (or None for σ/3)")
-        if not isinstance(self.max_line_speed, bool):
-            raise InputError(f"PaintOptions.max_line_speed = {shorten(self.max_line_speed)}: "
-                             "expected True or False")
+        for flag in ("max_line_speed", "speeds", "compliance", "progress"):
+            instance(getattr(self, flag), f"PaintOptions.{flag}", bool, "True or False")
         s = self.speed_resolution
         if isinstance(s, bool) or not isinstance(s, numbers.Real) or not 0 < s < 1:
             raise InputError(f"PaintOptions.speed_resolution = {shorten(s)}: expected a relative "
                              "bracket in (0, 1)")
-        if not isinstance(self.speeds, bool):
-            raise InputError(f"PaintOptions.speeds = {shorten(self.speeds)}: expected True or "
-                             "False")
-        if not isinstance(self.compliance, bool):
-            raise InputError(f"PaintOptions.compliance = {shorten(self.compliance)}: expected "
-                             "True or False")
-        if not isinstance(self.progress, bool):
-            raise InputError(f"PaintOptions.progress = {shorten(self.progress)}: expected "
-                             "True or False")
         if not isinstance(self.policy, PlannerPolicy):
             raise InputError(f"PaintOptions.policy = {shorten(self.policy)}: expected a "
                              "PlannerPolicy")

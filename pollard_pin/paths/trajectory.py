@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..analytic.taskspace import TASK_NAMES
 from ..checks import float_array
 from ..errors import InputError
 from .splines import quintic_hermite
@@ -50,7 +51,8 @@ class Trajectory:
     ------
     TrajectoryError
         An array whose shape does not match ``t``'s, or that is not real numbers (strings,
-        complex values, an integer beyond a float); a spray outside [0, 1].
+        complex values, an integer beyond a float); a value that is not finite (NaN, ±inf:
+        the first such sample and column named); a spray outside [0, 1].
 
     Examples
     --------
@@ -103,6 +105,13 @@ class Trajectory:
             if np.shape(arr) != (n, 6):
                 raise TrajectoryError(f"{self.name}: {label} has shape {np.shape(arr)}, "
                                       f"expected ({n}, 6)")
+        for label, arr in (("t", self.t), ("poses", self.poses), ("d_poses", self.d_poses),
+                           ("dd_poses", self.dd_poses)):
+            if not np.isfinite(arr).all():  # NaN or ±inf: said here, not at the IK's sample
+                k, *c = (int(i) for i in np.argwhere(~np.isfinite(arr))[0])
+                column = "t" if not c else label.removesuffix("poses") + TASK_NAMES[c[0]]
+                raise TrajectoryError(f"{self.name}: sample {k}: {column} = {arr[(k, *c)]} is not "
+                                      f"a finite number ({label}[{', '.join(map(str, [k, *c]))}])")
         if self.spray is not None:
             spray = float_array(self.spray, f"{self.name}: spray", error=TrajectoryError)
             if spray.shape != (n,):

@@ -97,7 +97,8 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     Raises
     ------
     InputError
-        ``traj`` is not a :class:`~pollard_pin.paths.trajectory.Trajectory`.
+        ``traj`` is not a :class:`~pollard_pin.paths.trajectory.Trajectory`; ``dynamics``,
+        ``loads`` or ``joint_limits`` is not a bool.
     KinematicsError
         A sample the kinematics cannot solve: out of reach, too close to a singularity, a
         branch flip, a joint out of its limits (the message names the sample, time and
@@ -116,6 +117,8 @@ def run_pipeline(robot, traj: Trajectory, progress=None, dynamics: bool = True,
     if not isinstance(traj, Trajectory):
         raise InputError(f"run_pipeline: traj is {type(traj).__name__}, not a Trajectory "
                          "(pollard_pin.thesis_trajectory, from_csv, …)")
+    for flag, value in (("dynamics", dynamics), ("loads", loads), ("joint_limits", joint_limits)):
+        instance(value, flag, bool, "True or False")  # "no" is truthy: a flag is a real bool
     ik = inverse_kinematics(robot, traj.poses, traj.d_poses, traj.dd_poses, traj.t,
                             options=IkOptions(method=method, margins=margins),
                             progress=progress)

@@ -6,7 +6,7 @@ import os
 from collections.abc import Callable
 from typing import Any
 
-from ..checks import callback, instance
+from ..checks import callback, instance, scheduler_address
 from .evaluate import SweepError, evaluate_variant
 from .grid import Sweep
 
@@ -74,9 +74,7 @@ def run_sweep(sweep: Sweep, *, workers: int | None = None, dask: Any = None,
              error=SweepError)
     callback(progress, "progress", error=SweepError)
     specs = sweep.specs()
-    if isinstance(dask, str) and not dask.strip():
-        raise SweepError("dask: an empty scheduler address (give None to run locally)")
-    if dask is not None:
+    if scheduler_address(dask, "dask", error=SweepError) is not None:
         return _run_dask(specs, dask, progress)
     n = len(specs)
     workers = (os.cpu_count() or 1) if workers is None else int(workers)

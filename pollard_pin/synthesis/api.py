@@ -12,6 +12,7 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
+from ..checks import callback, instance, shorten
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
 from .front import choose, non_dominated, rank_key
@@ -44,6 +45,9 @@ def _as_job(job):
         from ..painting.job import load_job
 
         return load_job(job)
+    if not callable(getattr(job, "to_dict", None)):  # a job's (or a stand-in's) interface
+        raise InputError(f"job = {shorten(job)}: expected a paint job (PaintJob, PartJob) or "
+                         f"a job file's path, got {type(job).__name__}")
     return job
 
 
@@ -56,6 +60,9 @@ def _as_space(space):
         from .space import space_from_dict
 
         return space_from_dict(space)
+    if not all(callable(getattr(space, m, None)) for m in ("variables", "fingerprint")):
+        raise InputError(f"space = {shorten(space)}: expected a DesignSpace, a space file's "
+                         f"path or its table (a Mapping), got {type(space).__name__}")
     return space
 
 
@@ -171,8 +178,8 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
     """
     t0 = time.perf_counter()
     options = DesignOptions() if options is None else options
-    if not isinstance(options, DesignOptions):
-        raise InputError(f"options: expected DesignOptions, got {type(options).__name__}")
+    instance(options, "options", DesignOptions, "DesignOptions or None")
+    callback(progress, "progress")
     ev = default_evaluator() if evaluator is None else evaluator
     job, space = _as_job(job), _as_space(space)
     names = tuple(ev.OBJECTIVES)

@@ -17,6 +17,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from ..checks import scheduler_address
 from ..errors import InputError, PollardError, SolveError
 
 # How long a runner waits for a finished evaluation before it hands control back: the study
@@ -258,9 +259,7 @@ def make_runner(ctx, evaluate: Callable, workers: int | None = None, dask: Any =
     Runner
         A context manager; leaving it stops what still runs.
     """
-    if isinstance(dask, str) and not dask.strip():
-        raise InputError("dask: an empty scheduler address (give None to run locally)")
-    if dask is not None:
+    if scheduler_address(dask, "dask") is not None:
         return DaskRunner(ctx, evaluate, dask)
     workers = (os.cpu_count() or 1) if workers is None else int(workers)
     if workers < 1:

@@ -413,7 +413,7 @@ def _check_ends(space: DesignSpace) -> None:
             try:
                 params_from_dict(space.design_dict({var: value}), check_home=False)
             except ParameterError as exc:  # the key's own rule, not another's
-                if any(str(exc).startswith(f"parameter '{k}' = ") for k in keys):
+                if exc.key in keys:
                     raise SpaceError(f"{where}: {name} = [{lo:g}, {hi:g}]: its {end} end: "
                                      f"{exc}") from None
 

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..checks import scheduler_address
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
@@ -120,6 +121,7 @@ class DesignOptions:
                                       or not isinstance(self.seed, int)):
             raise InputError(f"DesignOptions.seed: must be an integer or None, got "
                              f"{self.seed!r}")
+        scheduler_address(self.dask, "DesignOptions.dask")  # --dask's rule, before any work
         if self.resume and self.study is None:
             raise InputError("DesignOptions.resume: needs a study file to resume")
         if self.search is not None and not isinstance(self.search, SearchFidelity):

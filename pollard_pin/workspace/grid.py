@@ -229,8 +229,9 @@ def map_workspace(robot, plane=None, options: WorkspaceOptions | None = None, *,
     if totals.reachable == 0:
         where = (f"plane {AXES[plane_[0]]} = {plane_[1]:g} m" if plane_ is not None
                  else "the volume")
+        # the grid's points span less than the bounds when the step does not divide them
         raise _missed(robot, orient, opts, reach_box, f"no point of {where} is reachable "
-                      f"within the bounds {_bounds_text(grid)}")
+                      f"on its grid {_bounds_text(grid)} (step {grid.step:g} m)")
     columns = ({k: np.concatenate([c[k] for c in kept]) for k in kept[0]} if keep else None)
     rect = None
     if plane_ is not None and columns is not None:

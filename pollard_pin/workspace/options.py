@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES
-from ..checks import real
+from ..checks import instance, real
 from ..errors import InputError
 from ..kinematics.margins import Margins, as_margins
 from ..model.values import parse_float, shorten
@@ -50,7 +50,7 @@ class WorkspaceOptions:
     ------
     WorkspaceError
         An orientation that is not three finite angles, a non-positive length scale or
-        chunk.
+        chunk, a ``volume`` or ``keep`` that is not a bool (or None for ``keep``).
     MarginError
         Margins that are not a :class:`~pollard_pin.Margins`.
 
@@ -73,6 +73,9 @@ class WorkspaceOptions:
     chunk: int = CHUNK
 
     def __post_init__(self):
+        instance(self.volume, "volume", bool, "True or False", error=WorkspaceError)
+        instance(self.keep, "keep", bool, "True, False or None", none=True,
+                 error=WorkspaceError)
         object.__setattr__(self, "orientation", check_orientation(self.orientation))
         object.__setattr__(self, "margins", as_margins(self.margins))
         if self.length_scale is not None:

@@ -779,8 +779,9 @@ CASES += [([*WS, *extra], says) for extra, says in [
                            f"(0, 0, 0) deg the {REACHABLE_BOX}"),  # (said with less: 250)
     (["--plane", "z=-5"], "misses the robot"),
     (["--plane", "x=0.55", "--bounds", "y=5:6,z=5:6"], "no point of plane x = 0.55 m is "
-                                                       "reachable within the bounds y ∈ [5, 6] "
-                                                       "m, z ∈ [5, 6] m; at orientation"),
+                                                       "reachable on its grid y ∈ [5, 6] m, "
+                                                       "z ∈ [5, 6] m (step 0.005 m); at "
+                                                       "orientation"),
     (["--plane", "x=0.5", "--volume"], "not allowed with argument --plane"),
     (["--resolution", "0"], "must be > 0"),
     (["--resolution", "-1"], "must be > 0"),

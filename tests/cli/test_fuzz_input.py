@@ -301,7 +301,8 @@ CASES += [([*prefix, option, value], says) for prefix, option, value, says in [
 CASES += [(["simulate", "--trajectory", "good.csv", "--out", "out.csv", option, "1e300"],
            "simulation diverged at t = 0.001 s") for option in ("--viscous", "--coulomb")]
 # an empty or malformed scheduler address
-CASES += [([*SWEEP, "grid_ok.toml", "--dask", address], "argument --dask: an empty address")
+CASES += [([*SWEEP, "grid_ok.toml", "--dask", address], "argument --dask: an empty scheduler "
+           "address")
           for address in ("", "  ")]
 if importlib.util.find_spec("distributed") is not None:
     CASES += [([*SWEEP, "grid_ok.toml", "--dask", "tcp://"],

@@ -186,6 +186,26 @@ def test_limit_rules(edit, pattern):
         params_from_dict(d)
 
 
+@pytest.mark.parametrize("edit, key", [
+    (lambda d: d["chain0"].update(x32=400.0), "chain0.x32"),
+    (lambda d: d["chain0"].update(x32="a"), "chain0.x32"),
+    (lambda d: d["home"].update(tip=[0.5, float("nan"), 0.1]), "home.tip[1]"),
+    (lambda d: d["limits"]["theta1716"].update(velocity=-1.0), "limits.theta1716.velocity"),
+    # a joint's range over one turn: the key its message names first
+    (lambda d: d["limits"]["theta21"].update(lower=-400.0), "limits.theta21.lower"),
+    # no one key's rule: the home pose out of reach
+    (lambda d: d["home"].update(tip=[5.0, 0.0, 0.0]), None),
+], ids=["length", "not a number", "list entry", "velocity", "range", "home pose"])
+def test_a_parameter_error_carries_the_key_whose_rule_it_is(edit, key):
+    """What a design space asks to tell a bound's own rule from another key's (synthesis/
+    space.py), without reading the message's words."""
+    d = read_params_dict()
+    edit(d)
+    with pytest.raises(ParameterError) as e:
+        params_from_dict(d)
+    assert e.value.key == key, str(e.value)
+
+
 def test_limits_round_trip_and_override():
     p = load_params(overrides={"limits.theta21.effort": 3.0, "limits.theta43.lower": 60.0})
     assert p.joint_limits("theta21").effort == 3.0

@@ -62,8 +62,38 @@ def test_a_fifo_is_refused_at_once(tmp_path):
 
 
 def test_a_nul_in_a_name_is_an_oserror(tmp_path):
-    with pytest.raises(OSError, match="the name holds a NUL character"):
+    with pytest.raises(OSError, match="a path with a NUL character"):
         open_regular(str(tmp_path / "a\0b"))
+
+
+def test_a_nul_is_said_in_the_words_of_checks_file_path(tmp_path):
+    """One rule, one wording: the reader's OSError and the path check say the same."""
+    from pollard_pin.checks import file_path
+
+    with pytest.raises(OSError) as opened:
+        open_regular(str(tmp_path / "a\0b"))
+    with pytest.raises(Bad) as checked:
+        file_path("a\0b", "path", error=Bad)
+    assert opened.value.strerror and str(checked.value).endswith(": " + opened.value.strerror)
+    with pytest.raises(Bad, match=r"^grid file '.*a\\x00b' cannot be read: a path with a NUL "
+                                  r"character$"):
+        read_toml(str(tmp_path / "a\0b"), "grid file", Bad)
+
+
+def test_shorten_is_the_checks_one():
+    """model.values.shorten and clip are imported from pollard_pin.checks (their home, below
+    the model): one rule for showing a value short."""
+    from pollard_pin import checks
+    from pollard_pin.model import values
+
+    assert values.shorten is checks.shorten and values.clip is checks.clip
+
+
+def test_fail_says_the_key_and_sets_it_on_the_error():
+    with pytest.raises(Bad, match=r"^parameter 'a\.b\[2\]' = 1e\+400 \(a 401-digit integer\): "
+                                  r"must be within the float range") as e:
+        number(10**400, "a.b[2]", Bad, "parameter ")
+    assert e.value.key == "a.b[2]"
 
 
 def test_a_folder_and_a_missing_file(tmp_path):

@@ -71,3 +71,22 @@ def test_a_spray_outside_its_range_is_refused(spray, says):
     p = np.zeros((3, 6))
     with pytest.raises(TrajectoryError, match="^trajectory: " + says):
         Trajectory([0.0, 1.0, 2.0], p, p, p, spray=spray)
+
+
+@pytest.mark.parametrize("field, index, value, says", [
+    ("poses", (4, 3), np.nan, "sample 4: psi = nan is not a finite number (poses[4, 3])"),
+    ("d_poses", (2, 0), np.inf, "sample 2: d_x = inf is not a finite number (d_poses[2, 0])"),
+    ("dd_poses", (9, 5), -np.inf, "sample 9: dd_phi = -inf is not a finite number "
+                                  "(dd_poses[9, 5])"),
+    ("t", (3,), np.nan, "sample 3: t = nan is not a finite number (t[3])"),
+], ids=["nan pose", "inf rate", "-inf acceleration", "nan time"])
+def test_a_value_that_is_not_finite_is_refused_naming_its_sample_and_column(field, index,
+                                                                            value, says):
+    """Said when the trajectory is made (the old one took it, and the IK refused it later)."""
+    traj = thesis_trajectory(samples=11)
+    arrays = {n: getattr(traj, n).copy() for n in ("t", "poses", "d_poses", "dd_poses")}
+    arrays[field][index] = value
+    arrays[field][-1] = value  # the first bad sample is named
+    with pytest.raises(TrajectoryError) as e:
+        Trajectory(arrays["t"], arrays["poses"], arrays["d_poses"], arrays["dd_poses"])
+    assert str(e.value) == f"trajectory: {says}"

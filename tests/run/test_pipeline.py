@@ -1,6 +1,8 @@
 """The whole-trajectory run (run/pipeline.py): its columns are the solvers' arrays under their
 names, the dynamics and joint loads come only when asked, and the table reads back bit for
 bit."""
+import re
+
 import numpy as np
 import pytest
 
@@ -60,3 +62,16 @@ def test_write_run_table_refuses_what_is_not_a_result(tmp_path):
     with pytest.raises(InputError, match="^result = 'x': expected a RunResult"):
         write_run_table("x", tmp_path / "run.csv")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("flag", ["dynamics", "loads", "joint_limits"])
+@pytest.mark.parametrize("value", ["no", 0, None])
+def test_a_flag_must_be_a_real_bool(robot, flag, value):
+    """"no" is truthy: the old code solved the dynamics (or skipped the joint limits' check
+    on 0) as if True (or False) were meant; refused before any sample is solved."""
+    calls = []
+    with pytest.raises(InputError, match=rf"^{flag} = {re.escape(repr(value))}: expected True "
+                                         rf"or False, got {type(value).__name__}$"):
+        run_pipeline(robot, thesis_trajectory(samples=11), progress=lambda *a: calls.append(a),
+                     **{flag: value})
+    assert calls == []

@@ -139,3 +139,39 @@ def test_an_unreachable_scheduler_is_refused_before_any_work_or_write(tmp_path):
                                             r"'tcp://127.0.0.1:1': "):
         run_stub(tmp_path / "study.db", 8, dask="tcp://127.0.0.1:1", evaluator=spy)
     assert calls == [] and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args, says", [
+    ((3, stub.StubSpace()), "job = 3: expected a paint job (PaintJob, PartJob) or a job file's "
+                            "path, got int"),
+    ((None, stub.StubSpace()), "job = None: expected a paint job"),
+    ((stub.StubJob(), 3), "space = 3: expected a DesignSpace, a space file's path or its table "
+                          "(a Mapping), got int"),
+    ((stub.StubJob(), [0.3, 0.4]), "space = [0.3, 0.4]: expected a DesignSpace"),
+    ((stub.StubJob(), stub.StubSpace(), 3), "options = 3: expected DesignOptions or None, "
+                                            "got int"),
+], ids=["job", "job None", "space", "space list", "options"])
+def test_a_wrong_type_is_one_line_naming_the_argument(args, says):
+    # the old code gave AttributeError: 'int' object has no attribute 'line' (or 'robots')
+    from pollard_pin.errors import InputError
+    from pollard_pin.synthesis.api import design
+
+    calls = []
+    spy = type("Spy", (), {"OBJECTIVES": stub.OBJECTIVES,
+                           "prepare": staticmethod(lambda *a, **k: calls.append(a)),
+                           "baseline_values": staticmethod(stub.baseline_values),
+                           "evaluate": staticmethod(stub.evaluate)})
+    with pytest.raises(InputError) as e:
+        design(*args, evaluator=spy)
+    assert str(e.value) == says or str(e.value).startswith(says), str(e.value)
+    assert "\n" not in str(e.value) and len(str(e.value)) <= 250 and calls == []
+
+
+def test_a_progress_that_is_no_function_is_refused_first():
+    from pollard_pin.errors import InputError
+    from pollard_pin.synthesis.api import design
+    from pollard_pin.synthesis.study import DesignOptions
+
+    with pytest.raises(InputError, match=r"^progress = 3: expected a function or None, got int$"):
+        design(stub.StubJob(), stub.StubSpace(), DesignOptions(trials=2, workers=1), evaluator=stub,
+               progress=3)

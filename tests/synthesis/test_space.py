@@ -147,3 +147,15 @@ def test_reference_design_from_a_partial_file(cat, tmp_path):
     with pytest.raises(Exception, match="unknown key"):
         (tmp_path / "bad.toml").write_text("[chain0]\nx33 = 0.35\n", encoding="utf-8")
         space_from_dict({**BASE, "params": "bad.toml"}, "S.toml", tmp_path, catalogue=cat)
+
+
+def test_a_bound_end_is_refused_by_the_rule_the_error_says_is_its_keys(cat):
+    """_check_ends asks the ParameterError whose rule it is (its ``key``), not its words: a
+    joint's range over one turn is the lower key's rule (model/params.py names it first)."""
+    with pytest.raises(SpaceError) as e:
+        space(cat, bounds={"limits.theta21.lower": [-400.0, -106.0]})
+    assert str(e.value).startswith(
+        "S.toml [bounds]: 'limits.theta21.lower' = [-400, -106]: its low end: parameter "
+        "'limits.theta21.lower' = -400, 'limits.theta21.upper' = -35: the range 365 deg "
+        "exceeds one turn (360)"), str(e.value)
+    space(cat, bounds={"limits.theta21.lower": [-300.0, -106.0]})  # within one turn: taken

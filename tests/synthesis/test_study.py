@@ -155,3 +155,29 @@ def _some_finished(path):
         return n >= 2
     except sqlite3.Error:  # being created
         return False
+
+
+@pytest.mark.parametrize("dask, says", [
+    (" ", "DesignOptions.dask: an empty scheduler address; e.g. tcp://127.0.0.1:8786, or None "
+          "to run locally"),
+    ("", "DesignOptions.dask: an empty scheduler address"),
+    ("localhost", "DesignOptions.dask: not a scheduler address: 'localhost' (missing port "
+                  "number in address 'localhost'); e.g. tcp://127.0.0.1:8786"),
+    ("tpc://127.0.0.1:8786", "DesignOptions.dask: not a scheduler address: "
+                             "'tpc://127.0.0.1:8786' (unknown address scheme 'tpc'"),
+    (3, "DesignOptions.dask = 3: expected a scheduler address (str), a distributed.Client or "
+        "None, got int"),
+], ids=["blank", "empty", "no port", "scheme", "int"])
+def test_a_blank_or_malformed_scheduler_is_refused_when_the_options_are_made(dask, says):
+    # the old options took them: " " was refused after the ladder had started, a malformed
+    # one by the connection, and 3 as a TypeError from distributed.Client
+    pytest.importorskip("distributed")
+    with pytest.raises(InputError) as e:
+        DesignOptions(dask=dask)
+    assert str(e.value).startswith(says) and "\n" not in str(e.value), str(e.value)
+
+
+def test_a_well_formed_scheduler_address_is_taken_as_given():
+    pytest.importorskip("distributed")
+    for address in ("tcp://127.0.0.1:8786", " localhost:8786 ", "inproc://x", None):
+        assert DesignOptions(dask=address).dask == address  # --dask's rule: the same ones

@@ -174,3 +174,16 @@ def test_a_callback_that_is_no_function_is_refused_first(robot, kw):
     """Refused before any point is solved, not a TypeError at the first chunk."""
     with pytest.raises(WorkspaceError, match=r"^(sink|progress) = .*: expected a function or None"):
         map_workspace(robot, "x=0.55", **kw)
+
+
+def test_a_grid_coarser_than_its_bounds_is_named_as_the_grid(robot):
+    """A step that does not divide the bounds gives a grid that spans less: here one point,
+    (y, z) = (-0.3, -0.3). The refusal named that extent "the bounds" (y ∈ [-0.3, -0.3] m for
+    bounds -0.3:0.3): it is the grid's."""
+    with pytest.raises(WorkspaceError) as err:
+        map_workspace(robot, "x=0.55", WorkspaceOptions(resolution=1.0, bounds={
+            "y": (-0.3, 0.3), "z": (-0.3, 0.3)}))
+    msg = str(err.value)
+    assert msg.startswith("no point of plane x = 0.55 m is reachable on its grid y ∈ [-0.3, "
+                          "-0.3] m, z ∈ [-0.3, -0.3] m"), msg
+    assert "bounds" not in msg and "\n" not in msg, msg

@@ -16,6 +16,11 @@ from pollard_pin.workspace.options import (
 )
 
 
+def test_keep_takes_true_false_or_none():
+    for keep in (True, False, None):
+        assert WorkspaceOptions(keep=keep).keep is keep
+
+
 def test_values_are_normalised_once():
     o = WorkspaceOptions(orientation=[0, "0.5", np.float32(1)], length_scale=1)
     assert o.orientation == (0.0, 0.5, 1.0) and all(type(v) is float for v in o.orientation)
@@ -30,6 +35,10 @@ def test_values_are_normalised_once():
     ({"chunk": 0}, WorkspaceError, "chunk = 0: must be a whole number of points >= 1"),
     ({"chunk": 2.5}, WorkspaceError, "chunk = 2.5"),
     ({"chunk": True}, WorkspaceError, "chunk = True"),
+    # "x" is truthy: the old options kept every chunk's columns of a volume
+    ({"keep": "x"}, WorkspaceError, "keep = 'x': expected True, False or None, got str"),
+    ({"keep": 0}, WorkspaceError, "keep = 0: expected True, False or None, got int"),
+    ({"volume": "no"}, WorkspaceError, "volume = 'no': expected True or False, got str"),
 ])
 def test_bad_options_are_one_line_at_construction(kwargs, error, says):
     with pytest.raises(error) as err:
