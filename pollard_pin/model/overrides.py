@@ -18,8 +18,8 @@ from .values import loads_toml, shorten
 class ParameterError(InputError):
     """A parameter file or override breaks a rule; the message names key, value and rule.
 
-    ``key`` is the dotted key whose own rule it is (:func:`~pollard_pin.model.values.fail`
-    sets it), None when the rule is not one key's (the home pose, a malformed override)."""
+    ``key`` is the dotted key whose own rule it is (``model.values.fail`` sets it), None when
+    the rule is not one key's (the home pose, a malformed override)."""
 
     key: str | None = None
 

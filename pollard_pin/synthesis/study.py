@@ -71,7 +71,8 @@ class DesignOptions:
     workers : int or None
         Local processes (None: every core; 1: this process).
     dask : str or distributed.Client or None
-        A Dask scheduler address or client: the evaluations run there.
+        A Dask scheduler address or client: the evaluations run there (a blank or malformed
+        address is refused here, by ``--dask``'s rule, ``pollard_pin.checks.address_problem``).
     seed : int or None
         The sampler's seed (None: random).
     population : int
