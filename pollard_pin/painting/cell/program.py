@@ -235,7 +235,8 @@ def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAU
     strokes = cell_strokes(policy)
     horizontal = across(strokes, across_the_travel(part_b, e))
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e, strokes.start)
+    layout = leading_first(surface_layout(part_b, job_x, min_smoothing=policy.smoothing,
+                                          policy=policy), e, strokes.start)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike

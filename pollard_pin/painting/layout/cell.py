@@ -37,6 +37,7 @@ WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the 
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
 AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
 EDGE_TRIES = 10  # bands computed at most to move a robot onto its zone (or its edge)
+MAX_ROOM = 0.5  # m: LayoutOptions.edge_room at most (a robot's band is ~0.25 m)
 EDGE_RATE = 0.2  # the slowest a band is taken to move with its base (edge moves ≤ 5× the gap)
 
 
@@ -51,15 +52,20 @@ class LayoutOptions:
         reach window along the line plus twice the base's footprint).
     prefix : str
         The robots' names: prefix1, prefix2, … (1–24 letters or digits; default "robot").
+    edge_room : float
+        The end robots hold this much [m] more past the part's free edges than the run-on,
+        in [0, 0.5] (default 0): room for the ramps there (a ramp runs on v·τ/2 past its
+        pass, 22 mm at the first guess on a 0.33 m bevelled door, docs/model.md §26.5).
 
     Raises
     ------
     pollard_pin.errors.InputError
-        A spacing or prefix out of range.
+        A spacing, prefix or room out of range.
     """
 
     spacing: float | None = None
     prefix: str = "robot"
+    edge_room: float = 0.0
 
     def __post_init__(self):
         s = self.spacing
@@ -70,6 +76,10 @@ class LayoutOptions:
                 len(self.prefix) <= 24):
             raise InputError(f"LayoutOptions.prefix = {shorten(self.prefix)}: expected 1-24 "
                              "letters or digits")
+        if not is_real(self.edge_room, 0.0, MAX_ROOM):
+            raise InputError(f"LayoutOptions.edge_room = {shorten(self.edge_room)}: expected "
+                             f"a length in [0, {MAX_ROOM:g}] m")
+        object.__setattr__(self, "edge_room", float(self.edge_room))
 
 
 def zone_needs(strokes: Strokes, n: int, ends: tuple[float, float] | None = None
@@ -179,6 +189,8 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
     if reference is None:
         strokes = job_strokes(job, part)
         band = reference_band(robot, strokes)
+    if options.edge_room:  # the end robots hold more past the free edges (§26.5)
+        strokes = replace(strokes, room=options.edge_room)
     needs = zone_needs(strokes, n)
     narrow = _too_narrow(strokes, band, n)
     if narrow:
@@ -305,7 +317,7 @@ def _edge_zones(robot, robots, strokes: Strokes) -> tuple[float, float] | None:
             return None
         band = robot_band(robot, at, strokes)
         held = band.holding(lo=lo).hi - lo if low else hi - band.holding(hi=hi).lo
-        out.append(held - strokes.run_on - strokes.runout - STEP)
+        out.append(held - strokes.run_on - strokes.room - strokes.runout - STEP)
     return None if min(out) <= strokes.runout else (out[0], out[1])
 
 
