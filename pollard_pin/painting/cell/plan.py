@@ -161,8 +161,8 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
             panel_in_base(job, cr)
         part_b = robot_part(job.standoff, part, cr, zone.facing) if is_part else None
         try:
-            run = split.runout if policy.seam_run is None else policy.seam_run
-            view = ZoneView(zone, run, cr.direction_to_base(axis), float(cr.origin @ axis))
+            view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
+                            float(cr.origin @ axis))
             plan = plan_zone(model, act, job_b, view, speed, part_b, policy)
         except LineSpeedError as exc:
             raise LineSpeedError(_robot_said(cr, exc), exc.too_fast, exc.why,
