@@ -13,6 +13,7 @@ from .common import (
     model_args,
     name,
     nonnegative,
+    number,
     numbers,
     positive,
     refuse_inputs,
@@ -48,9 +49,10 @@ def run(args) -> int:
     check_outputs(folders=(out,))  # the destination itself, before the job is read
     job = load_job(args.job)
     check_job(count, job)
-    if args.edge_room is not None and count is None:
-        raise UsageError("--edge-room: only a proposed cell (--robots N|auto) places its end "
-                         "robots")
+    for flag in ("edge_room", "end_pitch"):
+        if getattr(args, flag) is not None and count is None:
+            raise UsageError(f"--{flag.replace('_', '-')}: only a proposed cell (--robots "
+                             "N|auto) places its end robots")
     # the files, once: a cell writes a folder per robot (docs/model.md §26)
     files, stale = output_files(out, args.format, [r.name for r in job.robots]
                                 or proposed_names(count))
@@ -79,7 +81,7 @@ def run(args) -> int:
             result = paint(load_robot(args), job, act, options)
         else:
             robots, result = paint_layout(count, load_robot(args), job, act, options,
-                                          args.edge_room or 0.0)
+                                          args.edge_room or 0.0, args.end_pitch or 0.0)
     with all_or_nothing():
         name = result.write(out, args.format)
         if count is not None:
@@ -155,6 +157,10 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--edge-room", type=nonnegative, default=None, metavar="M",
                    help="with --robots: the end robots hold M more past the part's free "
                         "edges, room for the ramps there (default 0, docs/model.md §26.5)")
+    p.add_argument("--end-pitch", type=number, default=None, metavar="DEG",
+                   help="with --robots: the top robot turned DEG about the line, away from the "
+                        "wrist's singularity at a bevelled edge (default 0, docs/model.md "
+                        "§26.5)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "
