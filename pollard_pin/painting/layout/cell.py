@@ -388,7 +388,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     options : PaintOptions or None, optional
         As for :func:`pollard_pin.painting.api.paint_job`.
     layout : LayoutOptions or None, optional
-        The spacing and the names.
+        The spacing, the names, the room at the free edges and the top robot's pitch.
 
     Returns
     -------
