@@ -197,7 +197,7 @@ def split_cell(robot, job, robots, part=None, seams=None) -> Split:
         The painted part if already read (default None: read here; a panel has none).
     seams : tuple of float or None, optional
         The seams of the robots facing the job's side, increasing (default None: the bands',
-        balanced; :attr:`~pollard_pin.painting.policy.PlannerPolicy.seams`).
+        balanced; ``PlannerPolicy.seams``).
 
     Returns
     -------
