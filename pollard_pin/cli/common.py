@@ -83,6 +83,11 @@ def nonnegative(text: str) -> float:
     return _ruled(number(text), text, 0.0)
 
 
+def numbers(text: str) -> tuple[float, ...]:
+    """Comma-separated numbers (e.g. a cell's seams, 0.092,0.159)."""
+    return tuple(number(t) for t in text.split(","))
+
+
 def fraction(text: str) -> float:
     """A number in [0, 1] (e.g. a margin on |sin θ|)."""
     return _ruled(number(text), text, 0.0, 1.0)

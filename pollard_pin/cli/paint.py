@@ -12,6 +12,9 @@ from .common import (
     load_robot,
     model_args,
     name,
+    nonnegative,
+    number,
+    numbers,
     positive,
     refuse_inputs,
     warnings_as_notes,
@@ -46,6 +49,10 @@ def run(args) -> int:
     check_outputs(folders=(out,))  # the destination itself, before the job is read
     job = load_job(args.job)
     check_job(count, job)
+    for flag in ("edge_room", "end_pitch"):
+        if getattr(args, flag) is not None and count is None:
+            raise UsageError(f"--{flag.replace('_', '-')}: only a proposed cell (--robots "
+                             "N|auto) places its end robots")
     # the files, once: a cell writes a folder per robot (docs/model.md §26)
     files, stale = output_files(out, args.format, [r.name for r in job.robots]
                                 or proposed_names(count))
@@ -62,7 +69,9 @@ def run(args) -> int:
     # --actuators read before any planning; None: paint's own rule (the job's, else the
     # package's ratings)
     act = as_actuators(args.actuators)
-    policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from)  # checked once
+    policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from,
+                           seam_run=args.seam_run, smoothing=args.smoothing or 0.0,
+                           seams=args.seams)  # checked once
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
                            speeds=args.speeds,
                            compliance=not args.no_compliance, policy=policy,
@@ -71,7 +80,8 @@ def run(args) -> int:
         if count is None:
             result = paint(load_robot(args), job, act, options)
         else:
-            robots, result = paint_layout(count, load_robot(args), job, act, options)
+            robots, result = paint_layout(count, load_robot(args), job, act, options,
+                                          args.edge_room or 0.0, args.end_pitch or 0.0)
     with all_or_nothing():
         name = result.write(out, args.format)
         if count is not None:
@@ -135,6 +145,22 @@ def add_parser(sub, parents) -> None:
     p.add_argument("--step-from", choices=("leading", "trailing"), default="leading",
                    help="a job with [line]: the end of the part the strokes across the "
                         "travel step from (default: leading)")
+    p.add_argument("--seam-run", type=nonnegative, default=None, metavar="M",
+                   help="a cell: its strokes run M past a seam (default: R = 4σ; the trigger "
+                        "still closes at the seam, docs/model.md §26.5)")
+    p.add_argument("--smoothing", type=nonnegative, default=None, metavar="M",
+                   help="a cell painting a part: every robot's passes average the surface "
+                        "normal over at least M (default 0: the least the gun can follow)")
+    p.add_argument("--seams", type=numbers, default=None, metavar="W,...",
+                   help="a cell: its seams [m along the split's axis], increasing, one fewer "
+                        "than its robots (default: where the bands meet, docs/model.md §26.2)")
+    p.add_argument("--edge-room", type=nonnegative, default=None, metavar="M",
+                   help="with --robots: the end robots hold M more past the part's free "
+                        "edges, room for the ramps there (default 0, docs/model.md §26.5)")
+    p.add_argument("--end-pitch", type=number, default=None, metavar="DEG",
+                   help="with --robots: the top robot turned DEG about the line, away from the "
+                        "wrist's singularity at a bevelled edge (default 0, docs/model.md "
+                        "§26.5)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
                    help="exit with status 3 (after writing the outputs) when less than SHARE "

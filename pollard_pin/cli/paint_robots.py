@@ -51,16 +51,20 @@ def check_job(count, job) -> None:
                          "the part as the line carries it past them")
 
 
-def paint_layout(count, robot, job, act, options):
-    """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest."""
+def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
+                 end_pitch: float = 0.0):
+    """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest; the
+    end robots holding ``edge_room`` [m] more past the part's free edges, the top one
+    turned ``end_pitch`` [deg] about the line."""
     from dataclasses import replace
 
     from ..outputs.result import fewest_robots, paint
-    from ..painting.layout.cell import propose_layout
+    from ..painting.layout.cell import LayoutOptions, propose_layout
 
+    layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
     if count == "auto":
-        return fewest_robots(robot, job, act, options)
-    robots = propose_layout(robot, job, count)
+        return fewest_robots(robot, job, act, options, layout)
+    robots = propose_layout(robot, job, count, layout)
     return robots, paint(robot, replace(job, robots=robots), act, options)
 
 

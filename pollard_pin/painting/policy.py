@@ -9,10 +9,14 @@ from dataclasses import dataclass, fields
 
 from ..checks import instance, real
 from ..errors import InputError
+from ..model.values import shorten
 
 STROKES = ("auto", "across", "along")  # docs/model.md §24.2
 STEP_FROM = ("leading", "trailing")
 CHOICES = {"strokes": STROKES, "step_from": STEP_FROM}
+CELL = ("name_speeds", "seam_run", "smoothing", "seams")  # checked apart (_check_cell)
+MAX_LENGTH = 10.0  # m: a cell's run, averaging or seam beyond this is a unit slip
+MAX_SEAMS = 15  # a cell has at most 16 robots (cell.robots.MAX_ROBOTS)
 
 
 @dataclass(frozen=True)
@@ -60,6 +64,19 @@ class PlannerPolicy:
         found by planning others (docs/model.md §24.3; default True). False: refused as that
         speed's plan failed, its constraint named, without that search (the design study's
         search, which reads only the binding constraint, docs/model.md §31.5).
+    seam_run : float or None, optional
+        A cell's strokes run this far [m] past a seam, at least 0 (default None: R, the
+        seam's run-out, docs/model.md §26.3). The trigger still closes at the seam on the
+        constant-speed stroke, so the film is the same for any run; a shorter one keeps the
+        ramps and turnarounds beyond it within the band the split gave the robot (§26.5).
+    smoothing : float, optional
+        A cell's passes over a part average the surface normal over at least this width [m]
+        (docs/model.md §23), every robot alike (a seam is invisible only between two halves
+        of one pass), at least 0 (default 0: the least that lets the gun follow).
+    seams : tuple of float or None, optional
+        A cell's seams [m along the split's axis, the part at t = 0], increasing, one fewer
+        than the robots facing the job's side (default None: the split's, §26.2), where the
+        motors allow rather than where the bands meet (§26.5).
 
     Raises
     ------
@@ -79,6 +96,9 @@ class PlannerPolicy:
     step_from: str = "leading"
     clearance_stride: int = 1
     name_speeds: bool = True
+    seam_run: float | None = None
+    smoothing: float = 0.0
+    seams: tuple[float, ...] | None = None
 
     def __post_init__(self):
         least = {"turn_samples": 2, "check_refine": 1, "max_path_samples": 2, "max_passes": 1,
@@ -91,9 +111,10 @@ class PlannerPolicy:
             raise InputError("PlannerPolicy.step_from = 'trailing': strokes along the travel "
                              "step across it, from no end of the part")
         instance(self.name_speeds, "PlannerPolicy.name_speeds", bool, "true or false")
+        self._check_cell()
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in CHOICES or f.name == "name_speeds":
+            if f.name in CHOICES or f.name in CELL:
                 continue
             if f.name in least:
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral):
@@ -106,6 +127,25 @@ class PlannerPolicy:
                 high = 1.0 if f.name == "utilisation" else float("inf")
                 object.__setattr__(self, f.name, real(value, f"PlannerPolicy.{f.name}", 0.0,
                                                       high, above=True))
+
+    def _check_cell(self) -> None:
+        """The cell's knobs (docs/model.md §26.5): lengths at least 0, seams increasing."""
+        if self.seam_run is not None:
+            object.__setattr__(self, "seam_run", real(self.seam_run, "PlannerPolicy.seam_run",
+                                                      0.0, MAX_LENGTH))
+        object.__setattr__(self, "smoothing", real(self.smoothing, "PlannerPolicy.smoothing",
+                                                   0.0, MAX_LENGTH))
+        if self.seams is None:
+            return
+        if isinstance(self.seams, (str, bytes)) or not hasattr(self.seams, "__len__") or \
+                not 1 <= len(self.seams) <= MAX_SEAMS:
+            raise InputError(f"PlannerPolicy.seams = {shorten(self.seams)}: expected 1-"
+                             f"{MAX_SEAMS} seams [m], increasing (or None)")
+        seams = tuple(real(x, f"PlannerPolicy.seams[{i}]", -MAX_LENGTH, MAX_LENGTH)
+                      for i, x in enumerate(self.seams))
+        if any(b <= a for a, b in zip(seams, seams[1:])):
+            raise InputError(f"PlannerPolicy.seams = {shorten(self.seams)}: must increase")
+        object.__setattr__(self, "seams", seams)
 
     def first_guess(self, speed: float) -> float:
         """The duration search's first turnaround/ramp duration [s] at pass ``speed`` [m/s]:

@@ -13,7 +13,8 @@ from pollard_pin.model.params import ParameterError
 
 @pytest.mark.parametrize("parse, text, value", [
     (C.number, "-1e-3", -1e-3), (C.positive, "2.5", 2.5), (C.nonnegative, "0", 0.0),
-    (C.fraction, "1", 1.0), (C.count(2), "2", 2), (C.count(1, 3), "3", 3), (C.name, "a", "a"),
+    (C.fraction, "1", 1.0), (C.numbers, "0.092,-1e-3", (0.092, -1e-3)),
+    (C.count(2), "2", 2), (C.count(1, 3), "3", 3), (C.name, "a", "a"),
 ])
 def test_types_accept(parse, text, value):
     assert parse(text) == value
@@ -23,6 +24,7 @@ def test_types_accept(parse, text, value):
     (C.number, "abc", "not a number: 'abc'"), (C.number, "nan", "finite"),
     (C.number, "-inf", "finite"), (C.positive, "0", "must be > 0, got 0"),
     (C.nonnegative, "-1e-9", "must be >= 0, got -1e-9"), (C.fraction, "1.5", "at most 1"),
+    (C.numbers, "0.1,,0.2", "not a number: ''"), (C.numbers, "0.1,inf", "finite"),
     (C.count(2), "1", "must be >= 2, got 1"), (C.count(1, 3), "4", "between 1 and 3"),
     (C.count(1), "2.0", "not an integer: '2.0'"), (C.name, "", "an empty name"),
 ])

@@ -39,6 +39,23 @@ def test_jobs_that_cannot_take_a_layout(tmp_path, capsys, extra, words):
     assert not out.exists()
 
 
+@pytest.mark.parametrize("flags, words", [
+    (["--edge-room", "0.02"], "--edge-room: only a proposed cell (--robots N|auto)"),
+    (["--end-pitch", "-5"], "--end-pitch: only a proposed cell (--robots N|auto)"),
+    (["--robots", "2", "--edge-room", "0.6"], "LayoutOptions.edge_room = 0.6: expected a "
+     "length in [0, 0.5] m"),
+    (["--seams", "0.2,0.1"], "PlannerPolicy.seams = (0.2, 0.1): must increase"),
+])
+def test_a_cells_levers_out_of_place_are_one_line(tmp_path, capsys, flags, words):
+    """The layout's room at the free edges and its top robot's pitch need a proposal; a room
+    or seams out of range are refused before any planning, nothing written (docs/model.md
+    §26.5)."""
+    out = tmp_path / "out"
+    code, _, err = run_cli(["paint", "--job", LINE, "--out", out, *flags], capsys)
+    assert code == 2 and err.count("\n") == 1 and words in err, err
+    assert not out.exists()
+
+
 def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatch):
     import pollard_pin.outputs.result as result
 

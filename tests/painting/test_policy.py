@@ -44,6 +44,10 @@ def test_defaults_are_the_planners_figures():
         0.97, 48, 4, 0.002, 0.25, 250_000, 1000, 10.0)
     assert p.clearance_stride == 1  # every sample: the planners' own check
     assert p.name_speeds is True  # a refused line speed names the interval that paints
+    # a cell's run past a seam R, its averaging the planner's, its seams the bands'
+    assert (p.seam_run, p.smoothing, p.seams) == (None, 0.0, None)
+    cell = PlannerPolicy(seam_run=0, smoothing=0.06, seams=[0.1, 0.2])
+    assert (cell.seam_run, cell.smoothing, cell.seams) == (0.0, 0.06, (0.1, 0.2))
     # the time step: max_step, or step_sigma σ of travel if that is shorter
     assert p.step(0.01, 0.1) == 0.002 and p.step(0.01, 2.0) == 0.25 * 0.01 / 2.0
     with pytest.raises(AttributeError):
@@ -61,7 +65,11 @@ def test_defaults_are_the_planners_figures():
     ("first_deceleration", 0.0, "> 0"), ("first_deceleration", None, "not a number"),
     ("strokes", "diagonal", "one of auto, across, along"),
     ("step_from", "middle", "one of leading, trailing"), ("strokes", None, "one of auto"),
-    ("name_speeds", 1, "true or false"), ("name_speeds", "no", "true or false")])
+    ("name_speeds", 1, "true or false"), ("name_speeds", "no", "true or false"),
+    ("seam_run", -0.001, ">= 0"), ("seam_run", "5", "not a number"),
+    ("smoothing", math.inf, "finite"), ("smoothing", None, "not a number"),
+    ("seams", (), "expected 1-15 seams"), ("seams", 0.1, "expected 1-15 seams"),
+    ("seams", (0.2, 0.1), "must increase"), ("seams", (0.1, math.nan), "seams[1]")])
 def test_a_bad_value_is_one_line(field, value, rule):
     with pytest.raises(InputError) as exc:
         PlannerPolicy(**{field: value})

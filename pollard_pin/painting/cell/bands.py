@@ -48,7 +48,8 @@ class Strokes:
     run-on [m] (4σ on a panel, 3σ on a part, within a finite spot's reach:
     :func:`.passes.raster.spot_runon`), ``runout`` R = 4σ (so bounded) past a seam;
     ``panel``: the gun's roll referred to base z (a panel's frame), else to
-    :func:`.passes.surface.reference_axis` of the facing."""
+    :func:`.passes.surface.reference_axis` of the facing; ``room`` [m] more held past a free
+    edge (a layout's room for the ramps there, docs/model.md §26.5)."""
 
     axis: np.ndarray
     facing: np.ndarray
@@ -58,12 +59,13 @@ class Strokes:
     run_on: float
     runout: float
     panel: bool
+    room: float = 0.0
 
     def needed(self, lo: float, hi: float) -> tuple[float, float]:
         """The stretch of the axis a zone [lo, hi] (±inf: a free edge) needs in reach: R past
-        a seam, the run-on past a free edge."""
-        a = self.extent[0] - self.run_on if lo == -math.inf else lo - self.runout
-        b = self.extent[1] + self.run_on if hi == math.inf else hi + self.runout
+        a seam, the run-on (and ``room``) past a free edge."""
+        a = self.extent[0] - self.run_on - self.room if lo == -math.inf else lo - self.runout
+        b = self.extent[1] + self.run_on + self.room if hi == math.inf else hi + self.runout
         return a, b
 
     def grid(self, margin: float = MARGIN, step: float = STEP):

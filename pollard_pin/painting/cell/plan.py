@@ -148,7 +148,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
     speed = job.line.speed if speed is None else float(speed)
     robots = job.robots or (CellRobot("robot"),)
     if split is None:
-        split = split_cell(robot, job, robots, part)
+        split = split_cell(robot, job, robots, part, policy.seams)
     axis = np.asarray(split.axis, float)
     out = []
     for cr in robots:
@@ -194,7 +194,8 @@ def cell_planner(robot, job, act: Actuators, part: Part | None = None,
     (the plan is the same every time)."""
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
-        split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part)
+        split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part,
+                           policy.seams)
     # a refusal's search starts at the refused speed: refused again without planning
     memo = remembering(lambda speed: plan_cell(robot, job, act, speed, part, split,
                                                clearance=False, policy=policy))

@@ -68,6 +68,12 @@ class ClippedPass(PassPiece):
         return self.spline(s), self.d1(s) * rate, self.d2(s) * self.v ** 2
 
 
+def _seam_run(view: ZoneView, policy: PlannerPolicy) -> ZoneView:
+    """The view with the run past a seam the policy's (``PlannerPolicy.seam_run``), else R
+    (docs/model.md §26.5): the trigger still closes at the seam, so the film is the same."""
+    return view if policy.seam_run is None else replace(view, runout=policy.seam_run)
+
+
 def _axis_sign(along, axis_b, what: str,
                rule: str = "zones are stacked along the passes, across the travel") -> float:
     c = float(np.asarray(along) @ axis_b)
@@ -110,6 +116,7 @@ def panel_program(job_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLI
     """(LineProgram, job, frame, offsets, horizontal, spacing, pass speed) of the panel job
     in a robot's base frame (``job_b``), its raster clipped to its zone (``view``);
     ``policy`` the planner's knobs."""
+    view = _seam_run(view, policy)
     zone, runout, axis_b, offset = view.zone, view.runout, view.axis, view.offset
     strokes = cell_strokes(policy)
     horizontal = across(strokes, pass_direction(panel_frame(job_b), e))
@@ -232,10 +239,12 @@ def _poses(layout, piece):
 def part_program(job_b, part_b, view: ZoneView, e, policy: PlannerPolicy = DEFAULT_POLICY):
     """(LineProgram, job, layout, pass speed) of the part (``part_b``, base frame) for one
     robot, its passes clipped to its zone (``view``); ``policy`` the planner's knobs."""
+    view = _seam_run(view, policy)
     strokes = cell_strokes(policy)
     horizontal = across(strokes, across_the_travel(part_b, e))
     job_x = replace(job_b, direction="horizontal" if horizontal else "vertical")
-    layout = leading_first(surface_layout(part_b, job_x, policy=policy), e, strokes.start)
+    layout = leading_first(surface_layout(part_b, job_x, min_smoothing=policy.smoothing,
+                                          policy=policy), e, strokes.start)
     v = pass_speed(job_x, layout.spacing)
     full = pass_pieces(layout, v, 1)
     dt = time_step(job_x, full, v, policy)  # the whole part's: every robot samples alike

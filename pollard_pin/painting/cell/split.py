@@ -181,7 +181,7 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
             for i, b in enumerate(bands)]
 
 
-def split_cell(robot, job, robots, part=None) -> Split:
+def split_cell(robot, job, robots, part=None, seams=None) -> Split:
     """Which robot paints which zone of the job's part: each zone within its robot's reach
     over the part's whole passage, the programs balanced (docs/model.md §26.2).
 
@@ -195,6 +195,9 @@ def split_cell(robot, job, robots, part=None) -> Split:
         The cell's robots (:class:`~pollard_pin.painting.cell.robots.CellRobot`).
     part : object or None, optional
         The painted part if already read (default None: read here; a panel has none).
+    seams : tuple of float or None, optional
+        The seams of the robots facing the job's side, increasing (default None: the bands',
+        balanced; ``PlannerPolicy.seams``).
 
     Returns
     -------
@@ -204,8 +207,8 @@ def split_cell(robot, job, robots, part=None) -> Split:
     Raises
     ------
     pollard_pin.painting.errors.CellError
-        One line if a robot reaches none of the part (where the part passes it), or no split
-        covers it (the region no robot reaches).
+        One line if a robot reaches none of the part (where the part passes it), no split
+        covers it (the region no robot reaches), or ``seams`` do not fit the robots.
     """
     robots = tuple(robots)
     if not robots:
@@ -233,8 +236,28 @@ def split_cell(robot, job, robots, part=None) -> Split:
         zones += split_group(robot, members, side, job.source, facing)
     key = [(0 if z.facing is None else 1, z.facing or (), z.lo) for z in zones]
     order = sorted(range(len(zones)), key=lambda i: key[i])
+    if seams is not None:  # the job's side's zones, in order, cut where asked (§26.5)
+        zones = [zones[i] for i in order]
+        zones[:len(groups[0][1])] = _cut_at(zones[:len(groups[0][1])], seams, strokes.extent,
+                                            job.source)
+        order = range(len(zones))
     return Split(tuple(float(c) for c in axis), tuple(zones[i] for i in order),
                  float(strokes.runout))
+
+
+def _cut_at(zones: list[Zone], seams, extent, source: str) -> list[Zone]:
+    """``zones`` (stacked, bottom first) with their seams moved to ``seams``, each within
+    the part's ``extent``."""
+    seams = [float(s) for s in seams]
+    if len(seams) != len(zones) - 1:
+        raise CellError(f"{source}: {len(seams)} seam(s) given for {len(zones)} robots "
+                        f"facing the painted faces: expected {len(zones) - 1}")
+    inside = [s for s in seams if not extent[0] < s < extent[1]]
+    if inside:
+        raise CellError(f"{source}: the seam at {inside[0]:.4g} m lies off the part "
+                        f"({_mm(extent[0])}…{_mm(extent[1])} m along the split's axis)")
+    edges = [-math.inf, *seams, math.inf]
+    return [Zone(z.robot, edges[i], edges[i + 1], z.facing) for i, z in enumerate(zones)]
 
 
 def _vec(v) -> str:

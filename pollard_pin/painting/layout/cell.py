@@ -37,6 +37,8 @@ WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the 
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
 AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
 EDGE_TRIES = 10  # bands computed at most to move a robot onto its zone (or its edge)
+MAX_ROOM = 0.5  # m: LayoutOptions.edge_room at most (a robot's band is ~0.25 m)
+MAX_PITCH = 45.0  # deg: LayoutOptions.end_pitch at most
 EDGE_RATE = 0.2  # the slowest a band is taken to move with its base (edge moves ≤ 5× the gap)
 
 
@@ -51,15 +53,25 @@ class LayoutOptions:
         reach window along the line plus twice the base's footprint).
     prefix : str
         The robots' names: prefix1, prefix2, … (1–24 letters or digits; default "robot").
+    edge_room : float
+        The end robots hold this much [m] more past the part's free edges than the run-on,
+        in [0, 0.5] (default 0): room for the ramps there (a ramp runs on v·τ/2 past its
+        pass, 22 mm at the first guess on a 0.33 m bevelled door, docs/model.md §26.5).
+    end_pitch : float
+        The last robot along the cell's axis (the top one) turned this much [deg] about the
+        line, in [-45, 45] (default 0; the line along a world axis): away from the wrist's
+        singularity at a bevelled top edge (−5° on the 0.33 m door, docs/model.md §26.5).
 
     Raises
     ------
     pollard_pin.errors.InputError
-        A spacing or prefix out of range.
+        A spacing, prefix, room or pitch out of range.
     """
 
     spacing: float | None = None
     prefix: str = "robot"
+    edge_room: float = 0.0
+    end_pitch: float = 0.0
 
     def __post_init__(self):
         s = self.spacing
@@ -70,6 +82,14 @@ class LayoutOptions:
                 len(self.prefix) <= 24):
             raise InputError(f"LayoutOptions.prefix = {shorten(self.prefix)}: expected 1-24 "
                              "letters or digits")
+        if not is_real(self.edge_room, 0.0, MAX_ROOM):
+            raise InputError(f"LayoutOptions.edge_room = {shorten(self.edge_room)}: expected "
+                             f"a length in [0, {MAX_ROOM:g}] m")
+        object.__setattr__(self, "edge_room", float(self.edge_room))
+        if not is_real(self.end_pitch, -MAX_PITCH, MAX_PITCH):
+            raise InputError(f"LayoutOptions.end_pitch = {shorten(self.end_pitch)}: expected "
+                             f"an angle in [-{MAX_PITCH:g}, {MAX_PITCH:g}] deg")
+        object.__setattr__(self, "end_pitch", float(self.end_pitch))
 
 
 def zone_needs(strokes: Strokes, n: int, ends: tuple[float, float] | None = None
@@ -179,6 +199,8 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
     if reference is None:
         strokes = job_strokes(job, part)
         band = reference_band(robot, strokes)
+    if options.edge_room:  # the end robots hold more past the free edges (§26.5)
+        strokes = replace(strokes, room=options.edge_room)
     needs = zone_needs(strokes, n)
     narrow = _too_narrow(strokes, band, n)
     if narrow:
@@ -200,10 +222,30 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
             needs = zone_needs(strokes, n, ends)
             if max(b - a for a, b in needs[1:-1] or [(0.0, 0.0)]) <= band.width + 1e-9:
                 robots = cover_edges(robot, placed(needs), strokes, needs)[0]
+    if options.end_pitch:  # the top robot turned, moved onto the top edge (§26.5)
+        robots = (*robots[:-1], _pitched(robot, robots[-1], strokes, options.end_pitch,
+                                         job.source))
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
     split_cell(robot, replace(job, robots=robots), robots, part)
     return robots
+
+
+def _pitched(robot, top: CellRobot, strokes: Strokes, deg: float, source: str) -> CellRobot:
+    """The top robot turned ``deg`` about the line (a world axis: about one axis
+    R = Rx·Ry·Rz is that axis's turn alone), moved as far down as it still holds the top
+    edge's need (:func:`cover_edge`)."""
+    e = np.asarray(strokes.direction, float)
+    if np.abs(e).max() < 1 - 1e-9:
+        raise CellError(f"{source}: LayoutOptions.end_pitch turns a robot about the line, "
+                        "which must run along a world axis")
+    hi = strokes.needed(-math.inf, math.inf)[1]
+    turned = replace(top, rotation=_triple(deg * np.round(e)))
+    moved = cover_edge(robot, turned, strokes, (hi - STEP, hi), toward=-1.0)
+    if moved is None:
+        raise CellError(f"{source}: robot {top.name!r} turned {deg:g}° about the line holds "
+                        f"no stretch up to the top edge's run-on ({hi:.3f} m)")
+    return moved
 
 
 def _too_narrow(strokes: Strokes, band: Band, n: int) -> str:
@@ -305,7 +347,7 @@ def _edge_zones(robot, robots, strokes: Strokes) -> tuple[float, float] | None:
             return None
         band = robot_band(robot, at, strokes)
         held = band.holding(lo=lo).hi - lo if low else hi - band.holding(hi=hi).lo
-        out.append(held - strokes.run_on - strokes.runout - STEP)
+        out.append(held - strokes.run_on - strokes.room - strokes.runout - STEP)
     return None if min(out) <= strokes.runout else (out[0], out[1])
 
 
@@ -346,7 +388,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     options : PaintOptions or None, optional
         As for :func:`pollard_pin.painting.api.paint_job`.
     layout : LayoutOptions or None, optional
-        The spacing and the names.
+        The spacing, the names, the room at the free edges and the top robot's pitch.
 
     Returns
     -------

@@ -110,6 +110,27 @@ def test_turned_robots_are_planned_with_their_gravity(robot, act, cell):
     assert np.allclose(robot.model.gravity.linear, [0.0, 0.0, -9.81])  # shared one untouched
 
 
+def test_the_policys_seams_and_run_reach_every_robot(robot, act, cell, monkeypatch):
+    """PlannerPolicy.seams cut the zones where asked and every robot's program is made with
+    the policy (its run past a seam, docs/model.md §26.5): each robot's zone view recorded
+    (its program not planned)."""
+    import pollard_pin.painting.cell.plan as cell_plan
+    from pollard_pin.painting.policy import PlannerPolicy
+
+    seen = []
+
+    def plan_zone(model, act, job_b, view, speed, part_b, policy):
+        seen.append((view.zone, view.runout, policy.seam_run))
+        return cell.robots[len(seen) - 1].plan
+
+    monkeypatch.setattr(cell_plan, "plan_zone", plan_zone)
+    policy = PlannerPolicy(seams=(0.2,), seam_run=0.005)
+    got = plan_cell(robot, cell.job, act, clearance=False, policy=policy)
+    assert got.split.seams() == [0.2]
+    assert sorted(z.hi for z, _, _ in seen) == [0.2, math.inf]
+    assert [(r, run) for _, r, run in seen] == [(cell.split.runout, 0.005)] * 2
+
+
 def test_bases_closer_than_two_footprints_are_refused(robot, act):
     """Two bases 0.1 m apart (each base's joints lie 85 mm from its origin)."""
     from pollard_pin.painting.errors import CellError

@@ -78,6 +78,40 @@ def test_a_robot_on_the_far_side_paints_the_back(two_sided):
         assert np.abs(th[side] - 1).max() <= 0.05
 
 
+@pytest.mark.parametrize("run, smoothing", [(None, 0.0), (0.005, 0.06)])
+def test_the_run_past_a_seam_and_the_averaging_are_the_policys(tmp_path, run, smoothing):
+    """A robot's strokes run R (or ``PlannerPolicy.seam_run``) past its seam and average the
+    normal over ``PlannerPolicy.smoothing`` at least (docs/model.md §26.5): a flat plate
+    z 0.05…0.15 m, its zone below z 0.10 m; the passes' gun positions reach z 0.10 + run
+    (spline sampling: seen < 1e-6 m; asserted 1 mm)."""
+    from dataclasses import replace
+
+    from pollard_pin.painting.cell.bands import job_strokes
+    from pollard_pin.painting.cell.plan import robot_part
+    from pollard_pin.painting.cell.program import ZoneView, part_program
+    from pollard_pin.painting.cell.robots import CellRobot
+    from pollard_pin.painting.cell.zones import Zone
+    from pollard_pin.painting.policy import PlannerPolicy
+
+    trimesh.creation.box((0.02, 0.2, 0.1)).export(tmp_path / "plate.stl")
+    (tmp_path / "plate.toml").write_text(PLATE_CELL)
+    job = load_job(tmp_path / "plate.toml")
+    part = load_painted_part(job)
+    part_b = robot_part(job.standoff, part, CellRobot("near"), None)
+    policy = PlannerPolicy(seam_run=run, smoothing=smoothing)
+    R = job_strokes(job, part).runout  # the split's
+    view = ZoneView(Zone("near", -math.inf, 0.10), R, np.array([0.0, 0.0, 1.0]), 0.0)
+    R = R if run is None else run
+    program, _, layout, _ = part_program(replace(job, robots=()), part_b, view,
+                                         np.array([0.0, 1.0, 0.0]), policy)
+    rel = program.build(program.guess)
+    t = np.concatenate([np.linspace(a, a + d, 50) for a, d, k in
+                        zip(rel.start, rel.duration, rel.kind) if k == "pass"])
+    assert rel.evaluate(t)[0][:, 2].max() == pytest.approx(0.10 + R, abs=1e-3)
+    assert R == pytest.approx(0.04 if run is None else 0.005, abs=1e-12)
+    assert layout.smoothing == (0.004 if smoothing == 0.0 else 0.06)  # flat: the least
+
+
 def test_a_cells_strokes_run_across_from_the_policys_end():
     from pollard_pin.painting.cell.program import cell_strokes
     from pollard_pin.painting.line.strokes import Strokes

@@ -34,6 +34,21 @@ def test_the_seam_moves_to_where_both_run_outs_fit(robot):
     assert split.zones[0].hi == pytest.approx(0.19, abs=1e-3)  # seen 2.4e-6
 
 
+def test_seams_given_cut_the_zones_there(robot):
+    """Seams set by hand (PlannerPolicy.seams, docs/model.md §26.5) replace the bands'
+    balanced ones, the robots kept in order; a count or a seam off the part is one line."""
+    job = tall_panel()
+    split = split_cell(robot, job, [HIGH, LOW], seams=(0.12,))
+    assert [(z.robot, z.lo, z.hi) for z in split.zones] == [("low", -math.inf, 0.12),
+                                                           ("high", 0.12, math.inf)]
+    assert split.seams() == [0.12] and split.runout == pytest.approx(0.04, abs=1e-15)
+    for seams, words in [((0.1, 0.2), "2 seam(s) given for 2 robots facing the painted faces: "
+                          "expected 1"), ((0.5,), "the seam at 0.5 m lies off the part")]:
+        with pytest.raises(CellError) as info:
+            split_cell(robot, job, [HIGH, LOW], seams=seams)
+        assert words in str(info.value) and "\n" not in str(info.value), str(info.value)
+
+
 def test_three_robots_take_a_third_each(robot):
     job = tall_panel()
     robots = [LOW, HIGH, CellRobot("mid", (0.0, 1.5, 0.08))]

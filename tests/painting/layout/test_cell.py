@@ -100,7 +100,9 @@ def test_options_and_bad_counts(robot):
             propose_layout(robot, job, n)
     with pytest.raises(CellError, match=r"^n = 1e\+400 \(a 401-digit integer\): expected"):
         propose_layout(robot, job, 10**400)  # shown short, not in 401 digits
-    for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"}):
+    for bad in ({"spacing": 0.0}, {"spacing": math.nan}, {"prefix": "a b"},
+                {"edge_room": -0.001}, {"edge_room": 0.6}, {"edge_room": "0.02"},
+                {"end_pitch": 46.0}, {"end_pitch": math.inf}, {"end_pitch": None}):
         with pytest.raises(InputError):
             LayoutOptions(**bad)
     for bad in ({"spacing": 10**400}, {"prefix": 10**400}):  # not OverflowError, shown short
@@ -356,6 +358,41 @@ def test_cover_edge_moves_a_robot_by_its_shortfall_on_a_flat_part(robot, tmp_pat
     assert band.reached[0] == pytest.approx(at.reached[0] + moved.base[2], abs=STEP + 1e-9)
     assert moved.base[:2] == (0.0, 0.0)
     assert cover_edge(robot, CellRobot("a"), strokes, (lo, lo + 0.5)) is None  # too long
+
+
+def test_room_at_the_free_edges_moves_the_end_robots_out(robot):
+    """LayoutOptions.edge_room (docs/model.md §26.5): each end zone needs the room more past
+    its free edge, so on a flat panel (its band moving with its base, to the grid) the
+    bottom robot moves down and the top one up by half the room, their bands holding it."""
+    job = tall_panel(height=0.34, z=0.17)
+    strokes = job_strokes(job)
+    room = 0.02
+    wide = replace(strokes, room=room)
+    lo, hi = strokes.needed(-math.inf, math.inf)
+    assert wide.needed(-math.inf, math.inf) == pytest.approx((lo - room, hi + room), abs=1e-15)
+    assert wide.needed(0.1, 0.2) == strokes.needed(0.1, 0.2)  # a seam's R alone
+    plain = propose_layout(robot, job, 2)
+    roomy = propose_layout(robot, job, 2, LayoutOptions(edge_room=room))
+    moved = [b.base[2] - a.base[2] for a, b in zip(plain, roomy)]
+    assert moved == pytest.approx([-room / 2, room / 2], abs=1e-6)
+    first, last = (robot_band(robot, r, strokes) for r in (roomy[0], roomy[-1]))
+    assert first.lo <= lo - room + STEP and last.hi >= hi + room - STEP
+
+
+def test_a_pitched_top_robot_is_moved_onto_the_top_edge(robot):
+    """LayoutOptions.end_pitch (docs/model.md §26.5): the top robot turned about the line
+    (along y: rotation (0, pitch, 0)), as far down as its band still holds the top edge's
+    run-on (to the grid), the robot below unmoved."""
+    job = tall_panel(height=0.34, z=0.17)
+    strokes = job_strokes(job)
+    hi = strokes.needed(-math.inf, math.inf)[1]
+    plain = propose_layout(robot, job, 2)
+    turned = propose_layout(robot, job, 2, LayoutOptions(end_pitch=-5.0))
+    assert turned[0] == plain[0] and turned[1].rotation == (0.0, -5.0, 0.0)
+    band = robot_band(robot, turned[1], strokes)
+    assert band.holding(hi=hi).hi >= hi - 1e-9
+    lower = replace(turned[1], base=tuple(np.add(turned[1].base, (0.0, 0.0, -2 * STEP))))
+    assert robot_band(robot, lower, strokes).holding(hi=hi).hi < hi  # no lower holds it
 
 
 def test_zone_needs_with_end_zones(robot):
