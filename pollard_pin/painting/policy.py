@@ -7,9 +7,8 @@ from __future__ import annotations
 import numbers
 from dataclasses import dataclass, fields
 
-from ..checks import instance, real
+from ..checks import instance, real, shorten
 from ..errors import InputError
-from ..model.values import shorten
 
 STROKES = ("auto", "across", "along")  # docs/model.md §24.2
 STEP_FROM = ("leading", "trailing")
