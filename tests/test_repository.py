@@ -2,6 +2,7 @@
 way, every core dependency is used, and each optional one that is missing gives one clear line.
 """
 import ast
+import functools
 import subprocess
 import sys
 import tomllib
@@ -77,15 +78,24 @@ def _rank(module: str) -> int:
     return next(r for prefix, r in RANKS if module == prefix or module.startswith(prefix + "."))
 
 
+@functools.cache
+def _package_trees() -> dict:
+    """{path: syntax tree} of every module of the package, parsed once for the tests that
+    read its import statements (not to be modified)."""
+    return {p: ast.parse(p.read_text(encoding="utf-8")) for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+@functools.cache
 def _module_imports():
-    """{module: {imported pollard_pin module}} from every import statement (lazy ones too)."""
+    """{module: {imported pollard_pin module}} from every import statement (lazy ones too);
+    made once (the two tests of the layers read it, neither modifies it)."""
     files = {".".join(p.relative_to(ROOT).with_suffix("").parts).removesuffix(".__init__"): p
-             for p in PACKAGE.rglob("*.py")}
+             for p in _package_trees()}
     graph = {}
     for mod, path in files.items():
         pkg = mod if path.name == "__init__.py" else mod.rpartition(".")[0]
         out = set()
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(_package_trees()[path]):
             if isinstance(node, ast.Import):
                 names = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom):
@@ -145,8 +155,8 @@ def test_every_core_dependency_is_imported_by_the_package():
     names = {d.split(">")[0].split("<")[0].split("=")[0].strip() for d in deps}
     assert not names & {"example-robot-data", "yourdfpy"}, "test-only packages in the core"
     imported = set()
-    for path in PACKAGE.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for tree in _package_trees().values():
+        for node in ast.walk(tree):
             if isinstance(node, ast.Import):
                 imported |= {a.name.split(".")[0] for a in node.names}
             elif isinstance(node, ast.ImportFrom) and not node.level:
