@@ -166,6 +166,17 @@ def line_plan(robot, line_job, act, tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
+def slow_plan(robot, line_job, act, tmp_path_factory):
+    """examples/line.toml at 0.01 m/s, a third of its speed (plan_line, clearance not
+    checked): refused before the dwell, it now waits at each turnaround (docs/model.md
+    §24.1)."""
+    from pollard_pin.painting.line.panel import plan_line
+
+    return _read_only(_once(tmp_path_factory, "slow_plan", lambda: plan_line(
+        robot, line_job, act, 0.01, clearance=False)))
+
+
+@pytest.fixture(scope="session")
 def line_plan_film(line_plan, tmp_path_factory):
     """(U, V, points, Film) of :func:`line_plan` at the default grid (line_film)."""
     from pollard_pin.painting.film.line import line_film

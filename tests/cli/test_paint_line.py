@@ -19,7 +19,9 @@ ACT = ROOT / "examples" / "actuators.toml"
 @pytest.fixture(scope="module")
 def painted(tmp_path_factory):
     out = tmp_path_factory.mktemp("line") / "out"
-    assert main(["paint", "--job", str(JOB), "--out", str(out), "--resolution", "0.005"]) == 0
+    # compliance not asserted here (tests/painting/checks/test_compliance.py checks it): left out
+    assert main(["paint", "--job", str(JOB), "--out", str(out), "--resolution", "0.005",
+                 "--no-compliance"]) == 0
     return out
 
 
@@ -195,9 +197,10 @@ def part_painted(tmp_path_factory):
     folder = tmp_path_factory.mktemp("line_part")
     out = folder / "out"
     job = write_line_part(folder)
-    # across the travel: auto keeps along for this short strip (a shorter cycle, §24.2)
+    # across the travel: auto keeps along for this short strip (a shorter cycle, §24.2);
+    # compliance not asserted here (tests/painting/checks/test_compliance.py checks it)
     assert main(["paint", "--job", str(job), "--out", str(out), "--resolution", "0.007",
-                 "--strokes", "across"]) == 0
+                 "--strokes", "across", "--no-compliance"]) == 0
     return out
 
 
@@ -248,7 +251,9 @@ def test_view_shows_the_mesh_riding(part_painted, tmp_path, capsys):
 @pytest.mark.parametrize("kwargs, words", [
     ({"position": (0.0, 2.5, 0.0)}, "never comes within reach: the gun's track at the part's "
                                     "centre runs through"),
-    ({"speed": 0.2}, "; it paints at 0.0"),  # the interval (test_speeds.py)
+    # the interval (test_speeds.py), searched over some 20 plans: a 0.08 m strip plans in
+    # two thirds of the 0.30 m one's time (it paints at 0.0009277–0.1516 m/s)
+    ({"speed": 0.4, "width": 0.08}, "; it paints at 0.0"),
 ])
 def test_bad_part_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, kwargs, words):
     from line_parts import write_line_part

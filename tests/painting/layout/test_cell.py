@@ -29,13 +29,16 @@ BAND = 0.34  # m: one robot's band along z at the gun plane x = 0.55 (test_bands
 
 @pytest.fixture(scope="module", autouse=True)
 def bands_remembered():
-    """robot_band remembered by its arguments in the layout and the split, for this module
-    (it is a function of them: the same bands, computed once). Layouts of one job share a
-    reference band, the split of a layout asks again for the bands its proposal just moved,
-    and several tests lay out the same panel."""
+    """robot_band remembered by its arguments in the layout, the split and this module's
+    checks (check_zones, tests/cell_split_jobs.py, reads cell.bands' at each call), for this
+    module (it is a function of them: the same bands, computed once). Layouts of one job
+    share a reference band, the split of a layout asks again for the bands its proposal
+    just moved, the checks ask for the bands the split held, and several tests lay out the
+    same panel."""
     import hashlib
     import pickle
 
+    from pollard_pin.painting.cell import bands as cell_bands
     from pollard_pin.painting.cell import split as cell_split
 
     band, seen = cell_layout.robot_band, {}
@@ -52,6 +55,8 @@ def bands_remembered():
     with pytest.MonkeyPatch.context() as m:
         m.setattr(cell_layout, "robot_band", remembered)
         m.setattr(cell_split, "robot_band", remembered)
+        m.setattr(cell_bands, "robot_band", remembered)
+        m.setitem(globals(), "robot_band", remembered)
         yield
 
 

@@ -132,7 +132,8 @@ def test_the_paths_samples_are_the_checks_own(refine):
         times = LineTimes(delay, end, float(rng.uniform(0.1, 3)))
         steps = int(rng.integers(1, 50_000))
         t, tf = path_times(times, steps), path_times(times, refine * steps)
-        assert np.isin(t, tf).all()
+        # each of t found in tf where it sorts (np.isin's check, without its sort: 20× faster)
+        assert np.array_equal(tf[np.searchsorted(tf, t).clip(max=len(tf) - 1)], t)
 
 
 @pytest.fixture(scope="module")

@@ -290,7 +290,7 @@ def test_example_line_interval(robot, act, line_job, line_plan, slow_plan):
     the fixture's). Just past the fast end plan_line itself refuses as too fast; the slow end
     is the first plan that waits at its turnarounds (docs/model.md §24.1), its bound naming
     the budget's floor below it, and a slower line (0.01 m/s, the package's ``slow_plan``,
-    tests/painting/line/conftest.py) paints too, waiting longer."""
+    tests/examples_planned.py) paints too, waiting longer."""
     planner = line_planner(robot, line_job, act)
     got = line_speed_interval(lambda s: line_plan if s == line_plan.speed else planner(s),
                               line_job.line.speed, line_job.source, 0.1,
