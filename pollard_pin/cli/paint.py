@@ -150,16 +150,16 @@ def add_parser(sub, parents) -> None:
                         "still closes at the seam, docs/model.md §26.5)")
     p.add_argument("--smoothing", type=nonnegative, default=None, metavar="M",
                    help="a cell painting a part: every robot's passes average the surface "
-                        "normal over at least M (default 0: the least the gun can follow)")
+                        "normal over at least M (default: 0, the least the gun can follow)")
     p.add_argument("--seams", type=numbers, default=None, metavar="W,...",
                    help="a cell: its seams [m along the split's axis], increasing, one fewer "
                         "than its robots (default: where the bands meet, docs/model.md §26.2)")
     p.add_argument("--edge-room", type=nonnegative, default=None, metavar="M",
                    help="with --robots: the end robots hold M more past the part's free "
-                        "edges, room for the ramps there (default 0, docs/model.md §26.5)")
+                        "edges, room for the ramps there (default: 0, docs/model.md §26.5)")
     p.add_argument("--end-pitch", type=number, default=None, metavar="DEG",
                    help="with --robots: the top robot turned DEG about the line, away from the "
-                        "wrist's singularity at a bevelled edge (default 0, docs/model.md "
+                        "wrist's singularity at a bevelled edge (default: 0, docs/model.md "
                         "§26.5)")
     p.add_argument("--strict", type=fraction, nargs="?", const=True, default=None,
                    metavar="SHARE",
