@@ -379,8 +379,17 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
 def _spheres(a, b, layout, caps: np.ndarray):
     """Centres (N, S, 3) and radii (S,) of the spheres holding capsules ``caps``."""
     owner, frac, radii = axis_spheres(layout.a[caps], layout.b[caps], layout.r[caps], AXIS_STEP)
-    owner = caps[owner]
-    return a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner]), radii
+    # a + frac·(b − a), capsule by capsule: the same operations on the same numbers (the
+    # same bits) as gathering every sphere's ends, which walked the ends once a sphere
+    # (10⁷ of them: seconds)
+    out = np.empty((len(a), len(owner), 3))
+    for i in np.unique(owner):
+        k = np.flatnonzero(owner == i)
+        c = int(caps[i])
+        these = out[:, k[0]:k[-1] + 1]  # a capsule's spheres are consecutive
+        np.multiply(frac[k][None, :, None], (b[:, c] - a[:, c])[:, None], out=these)
+        np.add(a[:, c, None], these, out=these)
+    return out, radii
 
 
 def _to_part(s: _Sampled, layout, part: MovingPart, index):

@@ -183,10 +183,11 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
         rows = np.flatnonzero(ask[:, k])
         if len(rows):
             approx[rows, k] = tree.query(centres[rows, k], distance_upper_bound=bound[k])[0]
-    lower = (approx - delta - radii).ravel()  # inf: at least the ceiling
+    lower = approx - delta  # inf: at least the ceiling
+    lower = np.subtract(lower, radii, out=lower).ravel()  # in place: the same bits
     flat = centres.reshape(-1, 3)
-    order = np.argsort(lower)
-    order = order[np.isfinite(lower[order])][:EXACT_POINTS]
+    order = np.argsort(lower)[:EXACT_POINTS]
+    order = order[np.isfinite(lower[order])]  # the finite sort first: the same as before
     if len(order) == 0:  # no sphere within the ceiling + δ: only round-off can do this
         order = np.array([int(np.argmin(np.where(np.isfinite(approx), approx, coarse.max())))])
     # a face within d ≤ d̃ of c has one of its own samples within d̃ + δ
