@@ -153,9 +153,13 @@ def may_come_within(known, at, way, limit, rows=None) -> np.ndarray:
     i = np.searchsorted(at, n, side="right") - 1
     after = np.minimum(i + 1, len(at) - 1)  # past the last: no later one
     shape = (-1,) + (1,) * (known.ndim - 1)
-    low = known[i] - (way[n] - way[at[i]]).reshape(shape)
-    later = known[after] - (way[at[after]] - way[n]).reshape(shape)
-    low = np.where((i + 1 < len(at)).reshape(shape), np.maximum(low, later), low)
+    # in place on the gathered rows (R × a part check's spheres: 10⁷ of them): the same
+    # operations on the same numbers (the same bits), two arrays instead of five
+    low, later = known[i], known[after]
+    np.subtract(low, (way[n] - way[at[i]]).reshape(shape), out=low)
+    np.subtract(later, (way[at[after]] - way[n]).reshape(shape), out=later)
+    inner = np.broadcast_to((i + 1 < len(at)).reshape(shape), low.shape)
+    np.maximum(low, later, out=low, where=inner)
     return low <= np.asarray(limit, float) + SLACK
 
 
