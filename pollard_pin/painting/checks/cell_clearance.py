@@ -376,12 +376,6 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
     return least[i, j][0], (members[i].name, members[j].name), least[i, j][1], between[i, j]
 
 
-def _spheres(a, b, layout, caps: np.ndarray):
-    """Centres (N, S, 3) and radii (S,) of the spheres holding capsules ``caps``."""
-    spheres = _Spheres.of(a, b, layout, caps)
-    return spheres[:], spheres.radii
-
-
 @dataclass(frozen=True, eq=False)
 class _Spheres:
     """The centres (N, S, 3) of the spheres holding some capsules (ends ``a``, ``b``
@@ -441,8 +435,8 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
     centres, lower, chords = [], [], []
     for start in range(0, len(s.t), BLOCK):
         a, b = _in_part(s, v, slice(start, start + BLOCK))  # in the part's frame at t = 0
-        c, r = _spheres(a, b, layout, gun)
-        centres.append(c)
+        guns = _Spheres.of(a, b, layout, gun)
+        centres.append(guns[:])
         ao, bo = a[:, others], b[:, others]
         mid = (ao + bo) / 2
         lower.append(_norm(mid - np.clip(mid, lo, hi)) - rho - _norm(bo - ao) / 2)
@@ -453,7 +447,8 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
             chords.append(_chords(a, b))
     steps = np.concatenate(chords) if chords else np.zeros(0)
     way = travelled(steps)  # a sphere's step is at most its capsule's chord (in the part)
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index, way)
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), guns.radii,
+                                           index, way)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
