@@ -376,11 +376,49 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
     return least[i, j][0], (members[i].name, members[j].name), least[i, j][1], between[i, j]
 
 
-def _spheres(a, b, layout, caps: np.ndarray):
-    """Centres (N, S, 3) and radii (S,) of the spheres holding capsules ``caps``."""
-    owner, frac, radii = axis_spheres(layout.a[caps], layout.b[caps], layout.r[caps], AXIS_STEP)
-    owner = caps[owner]
-    return a[:, owner] + frac[None, :, None] * (b[:, owner] - a[:, owner]), radii
+@dataclass(frozen=True, eq=False)
+class _Spheres:
+    """The centres (N, S, 3) of the spheres holding some capsules (ends ``a``, ``b``
+    (N, L, 3)), made where they are asked (:func:`.clearance.least_distance` takes them
+    so): sphere s on capsule ``cap[s]`` at ``frac[s]`` along it, a + frac·(b − a), the same
+    operations on the same numbers wherever they are made (the same bits as the whole
+    array; a part check's second stage would make 10⁷ of them and ask a few 10⁴)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    cap: np.ndarray  # (S,) each sphere's capsule
+    frac: np.ndarray  # (S,)
+    radii: np.ndarray  # (S,)
+
+    @classmethod
+    def of(cls, a, b, layout, caps: np.ndarray) -> _Spheres:
+        owner, frac, radii = axis_spheres(layout.a[caps], layout.b[caps], layout.r[caps],
+                                          AXIS_STEP)
+        return cls(a, b, caps[owner], frac, radii)
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        return (len(self.a), len(self.cap), 3)
+
+    def __len__(self) -> int:
+        return len(self.a)
+
+    def __getitem__(self, key) -> np.ndarray:
+        if isinstance(key, slice):  # samples: every sphere, capsule by capsule
+            a, b = self.a[key], self.b[key]
+            out = np.empty((len(a), len(self.cap), 3))
+            for c in np.unique(self.cap):
+                k = np.flatnonzero(self.cap == c)
+                these = out[:, k[0]:k[-1] + 1]  # a capsule's spheres are consecutive
+                np.multiply(self.frac[k][None, :, None], (b[:, c] - a[:, c])[:, None],
+                            out=these)
+                np.add(a[:, c, None], these, out=these)
+            return out
+        n, k = key  # samples and spheres (arrays, or one sphere)
+        c = self.cap[k]
+        f = self.frac[k]
+        start = self.a[n, c]
+        return start + (f if np.ndim(f) == 0 else f[:, None]) * (self.b[n, c] - start)
 
 
 def _to_part(s: _Sampled, layout, part: MovingPart, index):
@@ -397,8 +435,8 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
     centres, lower, chords = [], [], []
     for start in range(0, len(s.t), BLOCK):
         a, b = _in_part(s, v, slice(start, start + BLOCK))  # in the part's frame at t = 0
-        c, r = _spheres(a, b, layout, gun)
-        centres.append(c)
+        guns = _Spheres.of(a, b, layout, gun)
+        centres.append(guns[:])
         ao, bo = a[:, others], b[:, others]
         mid = (ao + bo) / 2
         lower.append(_norm(mid - np.clip(mid, lo, hi)) - rho - _norm(bo - ao) / 2)
@@ -409,12 +447,13 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
             chords.append(_chords(a, b))
     steps = np.concatenate(chords) if chords else np.zeros(0)
     way = travelled(steps)  # a sphere's step is at most its capsule's chord (in the part)
-    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), r, index, way)
+    best, (n, _), _, less = least_distance(part.mesh, np.concatenate(centres), guns.radii,
+                                           index, way)
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
-        d, (k, _), _, l2 = least_distance(part.mesh, *_spheres(*_in_part(s, v, rows), layout,
-                                                                 caps), index, way[rows])
+        far = _Spheres.of(*_in_part(s, v, rows), layout, caps)  # made where asked
+        d, (k, _), _, l2 = least_distance(part.mesh, far, far.radii, index, way[rows])
         if d < best:
             best, n, less = d, int(rows[k]), l2
     between = float(steps.max()) / 2 if len(s.t) > 1 else 0.0

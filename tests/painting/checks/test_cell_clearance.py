@@ -274,6 +274,8 @@ def test_the_parts_screen_keeps_the_nearest_link(robot, sway):
     every, (n, s), _, _ = least_distance(block, centres, radii)
     assert not lay.gun[owner[s]]  # a leg, not the gun, is nearest
     assert c.to_part == pytest.approx(every, abs=1e-12) and c.part_time == t[n]
+    # the spheres made capsule by capsule (not gathered sphere by sphere): the same bits
+    assert c.to_part == every
 
 
 def test_blocks_of_the_union_change_nothing(robot, sway, monkeypatch):

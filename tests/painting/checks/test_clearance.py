@@ -196,6 +196,34 @@ def test_may_come_within_keeps_every_sample_within_the_limit():
                                limit)[d <= limit].all()
 
 
+def test_may_come_within_is_its_bounds_formula_to_the_bit():
+    """The bounds computed in place on the gathered rows: the same answer as the formula
+    written out (the larger of the bounds from the coarse samples around each sample, the
+    last one's alone), for one distance a sample and several, every row and some."""
+    from pollard_pin.painting.checks.clearance import SLACK, may_come_within, travelled
+
+    def formula(known, at, way, limit, rows=None):
+        n = np.arange(len(way)) if rows is None else np.asarray(rows)
+        i = np.searchsorted(at, n, side="right") - 1
+        after = np.minimum(i + 1, len(at) - 1)
+        shape = (-1,) + (1,) * (known.ndim - 1)
+        low = known[i] - (way[n] - way[at[i]]).reshape(shape)
+        later = known[after] - (way[at[after]] - way[n]).reshape(shape)
+        low = np.where((i + 1 < len(at)).reshape(shape), np.maximum(low, later), low)
+        return low <= np.asarray(limit, float) + SLACK
+
+    rng = np.random.default_rng(11)
+    way = travelled(rng.uniform(0.0, 0.01, 300))
+    at = np.arange(0, 301, 16)
+    for known, limit in ((rng.uniform(0.0, 0.2, len(at)), 0.08),
+                         (rng.uniform(0.0, 0.2, (len(at), 7)), rng.uniform(0.0, 0.2, 7))):
+        for rows in (None, np.sort(rng.choice(301, 90, replace=False))):
+            got = may_come_within(known, at, way, limit, rows)
+            want = formula(known, at, way, limit, rows)
+            assert got.shape == want.shape and np.array_equal(got, want)
+            assert 0.0 < want.mean() < 1.0  # both answers occur
+
+
 def test_the_skip_answers_as_every_sample_asked(monkeypatch):
     """clearance_of asks the k-d tree only what the way travelled cannot prove past the
     bound (module notes): on a dip between coarse samples, a raster over the ribbed plate and
