@@ -39,6 +39,7 @@ from ..cell.robots import CellRobot
 from ..errors import ClearanceError
 from ..spray.gun_body import AXIS_STEP
 from .clearance import SLACK, least_distance, may_come_within, surface_index, travelled
+from .spheres import CapsuleSpheres
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
     import trimesh
@@ -376,51 +377,6 @@ def _robots(members: Sequence[_Sampled], r: np.ndarray):
     return least[i, j][0], (members[i].name, members[j].name), least[i, j][1], between[i, j]
 
 
-@dataclass(frozen=True, eq=False)
-class _Spheres:
-    """The centres (N, S, 3) of the spheres holding some capsules (ends ``a``, ``b``
-    (N, L, 3)), made where they are asked (:func:`.clearance.least_distance` takes them
-    so): sphere s on capsule ``cap[s]`` at ``frac[s]`` along it, a + frac·(b − a), the same
-    operations on the same numbers wherever they are made (the same bits as the whole
-    array; a part check's second stage would make 10⁷ of them and ask a few 10⁴)."""
-
-    a: np.ndarray
-    b: np.ndarray
-    cap: np.ndarray  # (S,) each sphere's capsule
-    frac: np.ndarray  # (S,)
-    radii: np.ndarray  # (S,)
-
-    @classmethod
-    def of(cls, a, b, layout, caps: np.ndarray) -> _Spheres:
-        owner, frac, radii = axis_spheres(layout.a[caps], layout.b[caps], layout.r[caps],
-                                          AXIS_STEP)
-        return cls(a, b, caps[owner], frac, radii)
-
-    @property
-    def shape(self) -> tuple[int, int, int]:
-        return (len(self.a), len(self.cap), 3)
-
-    def __len__(self) -> int:
-        return len(self.a)
-
-    def __getitem__(self, key) -> np.ndarray:
-        if isinstance(key, slice):  # samples: every sphere, capsule by capsule
-            a, b = self.a[key], self.b[key]
-            out = np.empty((len(a), len(self.cap), 3))
-            for c in np.unique(self.cap):
-                k = np.flatnonzero(self.cap == c)
-                these = out[:, k[0]:k[-1] + 1]  # a capsule's spheres are consecutive
-                np.multiply(self.frac[k][None, :, None], (b[:, c] - a[:, c])[:, None],
-                            out=these)
-                np.add(a[:, c, None], these, out=these)
-            return out
-        n, k = key  # samples and spheres (arrays, or one sphere)
-        c = self.cap[k]
-        f = self.frac[k]
-        start = self.a[n, c]
-        return start + (f if np.ndim(f) == 0 else f[:, None]) * (self.b[n, c] - start)
-
-
 def _to_part(s: _Sampled, layout, part: MovingPart, index):
     """(distance, time, between) of one robot against the moving part (taken BLOCK samples
     at a time: every quantity is a sample's own, so the blocks only keep the arrays small);
@@ -435,7 +391,7 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
     centres, lower, chords = [], [], []
     for start in range(0, len(s.t), BLOCK):
         a, b = _in_part(s, v, slice(start, start + BLOCK))  # in the part's frame at t = 0
-        guns = _Spheres.of(a, b, layout, gun)
+        guns = CapsuleSpheres.of(a, b, layout, gun)
         centres.append(guns[:])
         ao, bo = a[:, others], b[:, others]
         mid = (ao + bo) / 2
@@ -452,7 +408,7 @@ def _to_part(s: _Sampled, layout, part: MovingPart, index):
     near = np.concatenate(lower) < best
     rows, caps = np.flatnonzero(near.any(axis=1)), others[near.any(axis=0)]
     if len(rows):
-        far = _Spheres.of(*_in_part(s, v, rows), layout, caps)  # made where asked
+        far = CapsuleSpheres.of(*_in_part(s, v, rows), layout, caps)  # made where asked
         d, (k, _), _, l2 = least_distance(part.mesh, far, far.radii, index, way[rows])
         if d < best:
             best, n, less = d, int(rows[k]), l2
