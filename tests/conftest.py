@@ -1,5 +1,7 @@
 """Session fixtures: one loaded robot, the examples planned once (tests/examples_planned.py);
-``slow`` tests run only with --runslow."""
+``slow`` tests run only with --runslow; one BLAS/OpenMP thread in each of several workers."""
+import os
+
 import pytest
 
 pytest_plugins = ["examples_planned"]
@@ -12,6 +14,23 @@ def pytest_addoption(parser):
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "slow: long test, skipped unless --runslow is given")
+    if int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1")) > 1:
+        one_thread_per_worker(config)
+
+
+def one_thread_per_worker(config):
+    """The xdist workers are one per core (-n auto): numpy's OpenBLAS and pinocchio's OpenMP
+    with a thread per core each oversubscribe them (measured: the heaviest files' wall time
+    -15 %). One thread in this worker (threadpoolctl, kept until the session ends) and in the
+    processes it starts (their environment)."""
+    from threadpoolctl import threadpool_limits
+
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(name, "1")
+    config.stash[LIMITS] = threadpool_limits(limits=1)
+
+
+LIMITS = pytest.StashKey[object]()
 
 
 # The files whose tests take longest (each over 4 s: they plan paint jobs, search line speeds,

@@ -74,8 +74,13 @@ def _blas(values, ctx, level="screen"):
 
 def test_pool_workers_run_one_blas_thread():
     """A pool worker (forked: numpy's OpenBLAS already loaded with a thread per core) runs one
-    BLAS thread: the workers are one per core already."""
-    with make_runner(CTX, _blas, workers=2) as pool:
-        (outcome,) = _all(pool, [GOOD])
+    BLAS thread: the workers are one per core already. (The test's own process is given two
+    first: under xdist tests/conftest.py limits it to one, which the fork would inherit.)"""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=2, user_api="blas"):
+        assert set(_blas(None, None)) == {2}  # what the fork inherits, before the runner's
+        with make_runner(CTX, _blas, workers=2) as pool:
+            (outcome,) = _all(pool, [GOOD])
     counts = outcome.final
     assert counts and set(counts) == {1}
