@@ -65,7 +65,9 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
     Raises
     ------
     pollard_pin.errors.InputError
-        An argument of the wrong type (one line naming it), before anything is planned.
+        An argument of the wrong type (one line naming it), or a cell's knob of the policy
+        (``seam_run``, ``smoothing``, ``seams``) for a job of one robot, before anything is
+        planned.
     """
     check_robot(robot)
     kind = kind_of(job)
@@ -77,6 +79,11 @@ def paint_job(robot, job, actuators: Actuators | str | Path | None = None,
         if getattr(options, flag) and job.line is None:
             raise InputError(f"{job.source}: {flag}: the {kind.name} job has no [line] "
                              "table (speed, direction)")
+    knobs = options.policy.cell_knobs()
+    if knobs and not job.robots:  # not read by one robot's planner: not silently dropped
+        raise InputError(f"{job.source}: PlannerPolicy.{', '.join(knobs)}: a cell's (a job "
+                         f"with [[robot]] tables, or --robots); the {kind.name} job has one "
+                         "robot")
     res = film_spacing_of(job, options.resolution)
     act = default_actuators(job) if actuators is None else actuators
     with showing(options.progress):

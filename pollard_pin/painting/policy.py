@@ -146,6 +146,12 @@ class PlannerPolicy:
             raise InputError(f"PlannerPolicy.seams = {shorten(self.seams)}: must increase")
         object.__setattr__(self, "seams", seams)
 
+    def cell_knobs(self) -> tuple[str, ...]:
+        """The cell's knobs set away from their defaults (``seam_run``, ``smoothing``,
+        ``seams``): only a cell's planner reads them, so a job of one robot refuses them."""
+        return tuple(n for n, default in (("seam_run", None), ("smoothing", 0.0),
+                                          ("seams", None)) if getattr(self, n) != default)
+
     def first_guess(self, speed: float) -> float:
         """The duration search's first turnaround/ramp duration [s] at pass ``speed`` [m/s]:
         reversing at about ``first_deceleration``; the search then finds the shortest the

@@ -45,6 +45,9 @@ def test_jobs_that_cannot_take_a_layout(tmp_path, capsys, extra, words):
     (["--robots", "2", "--edge-room", "0.6"], "LayoutOptions.edge_room = 0.6: expected a "
      "length in [0, 0.5] m"),
     (["--seams", "0.2,0.1"], "PlannerPolicy.seams = (0.2, 0.1): must increase"),
+    # a cell's knob on the line job of one robot: refused, not silently dropped
+    (["--smoothing", "0.05", "--seam-run", "0"], "PlannerPolicy.seam_run, smoothing: a "
+     "cell's (a job with [[robot]] tables, or --robots); the line panel job has one robot"),
 ])
 def test_a_cells_levers_out_of_place_are_one_line(tmp_path, capsys, flags, words):
     """The layout's room at the free edges and its top robot's pitch need a proposal; a room

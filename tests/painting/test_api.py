@@ -34,6 +34,22 @@ def test_a_job_of_another_kind_is_named(robot, act, job):
         pp.paint(robot, job, act, PaintOptions(speeds=True))
 
 
+@pytest.mark.parametrize("knobs, named", [
+    ({"seams": (0.1,)}, "PlannerPolicy.seams: a cell's"),
+    ({"seam_run": 0.0, "smoothing": 0.05}, "PlannerPolicy.seam_run, smoothing: a cell's"),
+])
+def test_a_cells_knobs_on_one_robot_are_refused(robot, act, job, knobs, named):
+    """A cell's knobs of the policy, which only the cell's planner reads, on a job of one
+    robot: one line naming them, before any planning (not silently dropped)."""
+    from pollard_pin.painting.policy import PlannerPolicy
+
+    policy = PlannerPolicy(**knobs)
+    assert policy.cell_knobs() == tuple(knobs) and PlannerPolicy().cell_knobs() == ()
+    with pytest.raises(InputError, match=named) as info:
+        pp.paint(robot, job, act, PaintOptions(policy=policy))
+    assert "the panel job has one robot" in str(info.value) and "\n" not in str(info.value)
+
+
 def test_paint_is_a_plain_function():
     """pp.paint is a plain function (outputs/result.py: painting.api.paint_job's result as one
     that writes itself); the subpackage is pollard_pin.painting, not callable."""
