@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..checks import scheduler_address
+from ..checks import callback, instance, scheduler_address, shorten
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
@@ -117,11 +117,15 @@ class DesignOptions:
                 continue
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 raise InputError(f"DesignOptions.{name}: must be an integer >= {low}, got "
-                                 f"{value!r}")
+                                 f"{shorten(value)}")
         if self.seed is not None and (isinstance(self.seed, bool)
                                       or not isinstance(self.seed, int)):
             raise InputError(f"DesignOptions.seed: must be an integer or None, got "
-                             f"{self.seed!r}")
+                             f"{shorten(self.seed)}")
+        for flag in ("resume", "screen_only", "ladder"):  # "no" is truthy: real bools only
+            instance(getattr(self, flag), f"DesignOptions.{flag}", bool, "True or False")
+        if not isinstance(self.progress, bool):
+            callback(self.progress, "DesignOptions.progress")
         scheduler_address(self.dask, "DesignOptions.dask")  # --dask's rule, before any work
         if self.resume and self.study is None:
             raise InputError("DesignOptions.resume: needs a study file to resume")

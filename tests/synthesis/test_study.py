@@ -106,6 +106,16 @@ def test_options_are_checked_once():
         DesignOptions(resume=True)
     with pytest.raises(InputError, match="seed"):
         DesignOptions(seed=1.5)
+    for flag in ("resume", "screen_only", "ladder"):  # a truthy string is not True
+        with pytest.raises(InputError, match=f"DesignOptions.{flag} = 'no': expected True or "
+                           "False, got str"):
+            DesignOptions(**{flag: "no"})
+    with pytest.raises(InputError, match="DesignOptions.progress = 'yes': expected a function "
+                       "or None, got str"):
+        DesignOptions(progress="yes")
+    with pytest.raises(InputError, match=r"trials: must be an integer >= 1, got -1e\+400 \(a "
+                       r"401-digit integer\)"):
+        DesignOptions(trials=-10**400)
 
 
 # SIGTERM raised as the command line raises it (pollard_pin.cli.main): an exception that
