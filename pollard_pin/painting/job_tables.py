@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from ..checks import NUL_IN_PATH
 from ..model.params import did_you_mean
 from ..model.values import fail, integer, number
 from .errors import JobError
@@ -143,8 +144,10 @@ def job_values(source: str, job: Mapping) -> dict:
     if "coats" in job:
         values["coats"] = integer(job["coats"], "job.coats", JobError, f"{source}: ")
     a = job.get("actuators")
-    if "actuators" in job and not (isinstance(a, str) and a and "\0" not in a):
-        fail_key(source, "job.actuators", a, "must be a file name (a string, no NUL)")
+    if "actuators" in job and not (isinstance(a, str) and a):
+        fail_key(source, "job.actuators", a, "must be a file name (a non-empty string)")
+    if isinstance(a, str) and "\0" in a:  # the words of every reader's NUL refusal
+        fail_key(source, "job.actuators", a, NUL_IN_PATH)
     return values
 
 

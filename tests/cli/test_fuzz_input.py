@@ -192,7 +192,7 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("j_coats.toml", f"'job.coats' = 1.111e+399 (a 400-digit integer){BEYOND}"),
     ("j_digits.toml", DIGITS),
     ("j_deep.toml", NESTED),
-    ("j_nul.toml", "'job.actuators' = 'a\\x00b': must be a file name (a string, no NUL)"),
+    ("j_nul.toml", "'job.actuators' = 'a\\x00b': a path with a NUL character"),
     ("j_fifo_actuators.toml", f"fifo.toml' cannot be read: {FIFO}"),
     ("fifo.toml", f"paint job file 'fifo.toml' cannot be read: {FIFO}"),
 ]]
