@@ -13,7 +13,7 @@ from ..errors import InputError
 STROKES = ("auto", "across", "along")  # docs/model.md §24.2
 STEP_FROM = ("leading", "trailing")
 CHOICES = {"strokes": STROKES, "step_from": STEP_FROM}
-CELL = ("name_speeds", "seam_run", "smoothing", "seams")  # checked apart (_check_cell)
+CELL = ("seam_run", "smoothing", "seams")  # a cell's knobs, checked apart (_check_cell)
 MAX_LENGTH = 10.0  # m: a cell's run, averaging or seam beyond this is a unit slip
 MAX_SEAMS = 15  # a cell has at most 16 robots (cell.robots.MAX_ROBOTS)
 
@@ -113,7 +113,7 @@ class PlannerPolicy:
         self._check_cell()
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in CHOICES or f.name in CELL:
+            if f.name in CHOICES or f.name in CELL or f.name == "name_speeds":
                 continue
             if f.name in least:
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral):
@@ -149,8 +149,8 @@ class PlannerPolicy:
     def cell_knobs(self) -> tuple[str, ...]:
         """The cell's knobs set away from their defaults (``seam_run``, ``smoothing``,
         ``seams``): only a cell's planner reads them, so a job of one robot refuses them."""
-        return tuple(n for n, default in (("seam_run", None), ("smoothing", 0.0),
-                                          ("seams", None)) if getattr(self, n) != default)
+        return tuple(f.name for f in fields(self)
+                     if f.name in CELL and getattr(self, f.name) != f.default)
 
     def first_guess(self, speed: float) -> float:
         """The duration search's first turnaround/ramp duration [s] at pass ``speed`` [m/s]:
