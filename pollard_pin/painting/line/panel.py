@@ -213,7 +213,14 @@ def line_speeds(robot, job, act: Actuators, plan=None, part: Part | None = None,
     return line_speed_interval(lambda s: plan if plan is not None and s == plan.speed
                                else plan_at(s), job.line.speed, job.source, resolution,
                                check=lambda p: cleared(robot, p, policy),
-                               floor=lambda p: waiting_floor(p, policy))
+                               floor=lambda p: waiting_floor(p, policy),
+                               budget=lambda p: path_samples(p, policy))
+
+
+def path_samples(plan, policy: PlannerPolicy = DEFAULT_POLICY) -> tuple[int, int]:
+    """(the plan's path samples, the budget): guides the slow speed search to the budget's
+    floor (:func:`.line.speeds.budget_floor`)."""
+    return len(plan.trajectory.t), policy.max_path_samples
 
 
 def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
@@ -223,7 +230,7 @@ def plan_line_job(robot, job, act: Actuators, part: Part | None = None,
     not searched where ``policy.name_speeds`` is False)."""
     plan = plan_or_name_fastest(line_planner(robot, job, act, part, policy), job.line.speed,
                                 job.source, floor=lambda p: waiting_floor(p, policy),
-                                name=policy.name_speeds)
+                                name=policy.name_speeds, budget=lambda p: path_samples(p, policy))
     return cleared(robot, plan, policy)
 
 

@@ -186,14 +186,29 @@ def waits_bound(floor: float) -> str:
     return f"waits: slower lines wait longer, down to the budget's floor ≈ {floor:.2g} m/s"
 
 
+def budget_floor(points, budget: float) -> float | None:
+    """The line speed [m/s] at which a path's samples reach ``budget``, from the two slowest
+    plans' (speed, samples) ``points``: samples ≈ a + b/s (the hold before the part
+    arrives grows as 1/s, the program does not; docs/model.md §24.3); None with fewer
+    points or samples that do not grow."""
+    if len(points) < 2:
+        return None
+    (s1, n1), (s2, n2) = points[-2:]
+    b = (n2 - n1) / (1 / s2 - 1 / s1) if s1 != s2 else 0.0
+    a = n1 - b / s1
+    return b / (budget - a) if b > 0 and budget > a else None
+
+
 def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution: float,
-             floor=None):
+             floor=None, budget=None):
     """From ``hi`` that plans, down to the slowest that plans: halved until a speed fails
     (unless ``slow``, a speed known to fail, > 0), then bisected; a :class:`BudgetError`
     fails as the budget's floor. ``floor(plan)``: where a plan waits at its turnarounds,
     the budget's floor it paints down to (else None): the search stops at the first such
-    plan, since a slower line only waits longer (§24.1). (The slowest that plans, its
-    plan, what fails below it.)"""
+    plan, since a slower line only waits longer (§24.1). ``budget(plan)``: (its path's
+    samples, the budget) or None: the halving jumps to just above the floor the last two
+    plans put it at (:func:`budget_floor`), and the bisection first tries just above the
+    failure found there (§24.3). (The slowest that plans, its plan, what fails below it.)"""
     if floor is not None and (f := floor(plan)) is not None:
         return hi, plan, waits_bound(f)
     bound = slow_bound if slow > 0 else "searched no further"
@@ -208,20 +223,42 @@ def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution:
             bound = BUDGET_FLOOR
         return None
 
+    def counted(p):
+        return None if budget is None else budget(p)
+
+    guided = False  # the last speed tried was the guide's, not a halving
     if slow <= 0:
+        bottom = hi * 0.5**SPEED_TRIES  # 12 halvings at most, as without a guide
+        points = [] if (n := counted(plan)) is None else [(hi, n[0])]
         for _ in range(SPEED_TRIES):
-            p = tried(0.5 * hi)
+            est = budget_floor(points, n[1]) if n is not None else None
+            s, guided = 0.5 * hi, est is not None
+            if guided:  # just above the floor put, or just below hi if the floor is above
+                target = est * (1 + 0.5 * resolution)
+                s = max(target, bottom) if target < hi else hi / (1 + 0.99 * resolution)
+            p = tried(s)
             if p is None:
-                slow = 0.5 * hi
+                slow = s
                 break
-            hi, plan = 0.5 * hi, p
+            if guided and floor is not None and floor(p) is not None:
+                # waits begin above the jump: the first halving that waits, as unguided
+                return _descend(plan_at, hi, plan, 0.0, "", resolution, floor)
+            if guided and s >= 0.5 * hi and est * (1 + 0.5 * resolution) >= hi:
+                n = None  # the floor was put too high: halve from here on
+            hi, plan = s, p
+            if n is not None and (m := counted(plan)) is not None:
+                points.append((hi, m[0]))
             if floor is not None and (f := floor(plan)) is not None:
                 return hi, plan, waits_bound(f)
+            if hi <= bottom * (1 + 1e-9):
+                return hi, plan, bound
         else:
             return hi, plan, bound
     fails = bound
     while (hi - slow) > resolution * slow:
         mid = 0.5 * (slow + hi)
+        if guided:  # the guide's failure is just below the floor: try just above it first
+            mid, guided = slow * (1 + 0.99 * resolution), False
         p = tried(mid)
         if p is None:
             slow, fails = mid, bound
@@ -232,7 +269,8 @@ def _descend(plan_at, hi: float, plan, slow: float, slow_bound: str, resolution:
 
 def line_speed_interval(plan_at, start: float, source: str,
                         resolution: float = INTERVAL_RESOLUTION, check=None,
-                        slow_resolution: float | None = None, floor=None) -> SpeedInterval:
+                        slow_resolution: float | None = None, floor=None,
+                        budget=None) -> SpeedInterval:
     """The line speeds that paint the job (docs/model.md §24.3): the run of speeds about
     ``start`` (the job's) that ``plan_at(speed)`` plans, each end bisected to ``resolution``
     (relative).
@@ -267,6 +305,10 @@ def line_speed_interval(plan_at, start: float, source: str,
         ``floor(plan)`` → where the plan waits at its turnarounds, the sample budget's floor
         [m/s] it paints down to (a slower line only waits longer), else None: the slow end
         is then the first plan that waits, its bound saying so (not planned further).
+    budget : Callable or None, optional
+        ``budget(plan)`` → (its path's samples, the sample budget), or None: the slow search
+        jumps to just above the floor where the samples reach the budget, put from the last
+        two plans (:func:`budget_floor`), instead of halving down to it.
 
     Returns
     -------
@@ -286,7 +328,7 @@ def line_speed_interval(plan_at, start: float, source: str,
         s, plan, (slow, slow_bound) = _find(planned, start, source, resolution)
         slow_res = resolution if slow_resolution is None else slow_resolution
         low, low_plan, low_bound = _descend(planned, s, plan, slow, slow_bound, slow_res,
-                                            floor)
+                                            floor, budget)
         high, high_plan, high_bound = _climb(planned, s, plan, resolution)
     if check is not None:
         low_plan, high_plan = check(low_plan), check(high_plan)
@@ -294,12 +336,14 @@ def line_speed_interval(plan_at, start: float, source: str,
                          low_plan, high_plan)
 
 
-def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: bool = True):
+def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: bool = True,
+                         budget=None):
     """``plan_at(speed)``; a speed that cannot be painted is refused naming the interval of
     speeds that do (:func:`line_speed_interval`: the fastest to :data:`SPEED_RESOLUTION`, as
-    ``--max-line-speed`` finds it, the slowest to :data:`INTERVAL_RESOLUTION`, ``floor`` as
-    there), or, if none does, both sides and the constraint that binds each; ``name`` False:
-    that speed's own :class:`LineSpeedError`, no other speed planned (docs/model.md §31.5)."""
+    ``--max-line-speed`` finds it, the slowest to :data:`INTERVAL_RESOLUTION`, ``floor`` and
+    ``budget`` as there), or, if none does, both sides and the constraint that binds each;
+    ``name`` False: that speed's own :class:`LineSpeedError`, no other speed planned
+    (docs/model.md §31.5)."""
     try:
         return plan_at(speed)
     except LineSpeedError as exc:
@@ -307,7 +351,8 @@ def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: b
             raise
         try:
             found = line_speed_interval(plan_at, speed, source, SPEED_RESOLUTION,
-                                        slow_resolution=INTERVAL_RESOLUTION, floor=floor)
+                                        slow_resolution=INTERVAL_RESOLUTION, floor=floor,
+                                        budget=budget)
         except PlanError as none:
             said = str(none).removeprefix(f"{source}: ")
             if isinstance(none, BudgetError):  # halved down to the floor, none painting
@@ -322,5 +367,5 @@ def plan_or_name_fastest(plan_at, speed: float, source: str, floor=None, name: b
 
 
 __all__ = ["BUDGET_FLOOR", "INTERVAL_RESOLUTION", "SPEED_RESOLUTION", "SPEED_TRIES",
-           "SpeedInterval", "constraint", "fastest_line_speed", "line_speed_interval",
-           "plan_or_name_fastest", "remembering", "waits_bound"]
+           "SpeedInterval", "budget_floor", "constraint", "fastest_line_speed",
+           "line_speed_interval", "plan_or_name_fastest", "remembering", "waits_bound"]

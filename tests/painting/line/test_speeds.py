@@ -160,6 +160,58 @@ def test_interval_floored_by_the_budget():
     assert within(got.high, 0.0371, 0.05, inside=False)
 
 
+def held(calls: list, hold: float = 0.4, rest: int = 4300, wait_below: float = 0.0,
+         budget: int = 250_000, dt: float = 0.002):
+    """A part held upstream ``hold`` m: its path's samples rest + (hold/s − 3 s)/dt, the
+    hold not quite 1/s (as the line's delay); past ``budget`` a BudgetError; below
+    ``wait_below`` its plans wait; above 0.068 m/s too fast."""
+
+    def plan_at(s):
+        calls.append(s)
+        n = rest + max(0.0, hold / s - 3.0) / dt
+        if n > budget:
+            raise BudgetError(f"{s} past the budget")
+        if s > 0.068:
+            raise LineSpeedError(f"{s} too fast", True, "drifts")
+        return SimpleNamespace(speed=s, n=int(n), waits=s < wait_below)
+
+    return plan_at
+
+
+def test_the_budget_guides_the_slow_end():
+    """The slow end is the budget's floor (where the samples reach it): halved and bisected
+    down to it unguided; guided by the plans' samples (budget_floor), the same floor to the
+    resolution with fewer plans."""
+    floor = 0.4 / ((250_000 - 4300) * 0.002 + 3.0)  # where the samples reach the budget
+    slow, fast = [], []
+    unguided = line_speed_interval(held(slow), 0.2, "j", 0.05)
+    guided = line_speed_interval(held(fast), 0.2, "j", 0.05,
+                                 budget=lambda p: (p.n, 250_000))
+    for got in (unguided, guided):
+        assert within(got.low, floor, 0.05) and got.low_bound == BUDGET_FLOOR
+        assert got.low_plan.speed == got.low and got.high == unguided.high
+    assert len(fast) <= len(slow) - 6, (slow, fast)
+
+
+def test_the_budget_guide_stops_where_waits_begin_as_unguided():
+    """Plans below 0.005 m/s wait: the slow end is the first halving that waits, guided or
+    not (the guide's jump lands among the waits and goes back to halving)."""
+    got = [line_speed_interval(held([], wait_below=0.005), 0.05, "j", 0.05,
+                               floor=lambda p: 0.0001 if p.waits else None, budget=b)
+           for b in (None, lambda p: (p.n, 250_000))]
+    assert got[0].low == got[1].low == 0.05 / 16 and got[1].low_bound.startswith("waits")
+
+
+def test_budget_floor_of_two_plans():
+    """samples = a + b/s through two points: the speed where they reach the budget."""
+    from pollard_pin.painting.line.speeds import budget_floor
+
+    a, b = 1000.0, 20.0
+    pts = [(s, a + b / s) for s in (0.05, 0.01)]
+    assert budget_floor(pts, 5000.0) == pytest.approx(b / 4000.0, rel=1e-12)
+    assert budget_floor(pts[:1], 5000.0) is None and budget_floor(pts, 900.0) is None
+
+
 def test_interval_is_the_run_about_the_jobs_speed():
     """Two runs, [0.003, 0.007] and [0.011, 0.04] m/s: from 0.02 the run about it (the
     halving meets the gap at 0.01); from 0.005 the other; from a speed too slow for both,
