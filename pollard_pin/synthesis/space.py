@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import file_path
+from ..checks import file_path, is_real
 from ..errors import InputError
 from ..model.overrides import ParameterError, apply_overrides, lookup
 from ..model.params import did_you_mean, merge_partial, params_from_dict, read_params_dict
@@ -228,6 +228,9 @@ def _pair(value: Any, key: str, where: str) -> tuple[float, float]:
     if (not isinstance(value, (list, tuple)) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
         raise SpaceError(f"{where}: {key} = {shorten(value)}: expected [low, high]")
+    if not all(is_real(v) for v in value):  # NaN, inf, or an integer beyond a float (10**400)
+        shown = ", ".join(shorten(v) for v in value)
+        raise SpaceError(f"{where}: {key} = [{shown}]: bounds must be finite")
     lo, hi = (float(v) for v in value)
     if not (math.isfinite(lo) and math.isfinite(hi)):
         raise SpaceError(f"{where}: {key} = {shorten(value)}: bounds must be finite")
@@ -288,10 +291,12 @@ def _back(value: Any, where: str) -> tuple[float, float]:
         raise SpaceError(f"{where}: [place] holds back = [low, high] (m) or back = D only")
     b = value["back"]
     if isinstance(b, (int, float)) and not isinstance(b, bool):
+        if not is_real(b):
+            raise SpaceError(f"{where}: place.back = {shorten(b)}: must be a finite distance")
         lo = hi = float(b)
     else:
         lo, hi = _pair(b, "place.back", where)
-    if not (0.0 <= lo and hi <= MAX_BACK and math.isfinite(lo)):
+    if not (0.0 <= lo and hi <= MAX_BACK):
         raise SpaceError(f"{where}: place.back = {shorten(value['back'])}: expected distances "
                          f"in [0, {MAX_BACK:g}] m (a bound below zero?)")
     return lo, hi
@@ -366,6 +371,9 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
         raise SpaceError(f"{source}: [bounds] must be a table of key = [low, high]")
     bounds = {}
     for k, v in bounds_in.items():
+        if isinstance(v, Mapping):  # a bare dotted key is a TOML table: leg1.x87 = [...]
+            raise SpaceError(f"{source} [bounds]: {shorten(k)} holds a table; quote a dotted "
+                             f"key: \"{k}.KEY\" = [low, high]")
         key = _check_key(ref, k, f"{source} [bounds]")
         bounds[key] = _pair(v, repr(key), f"{source} [bounds]")
         _lengths_nonnegative(key, bounds[key][0], f"{source} [bounds]")
@@ -390,14 +398,57 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
         scales.append(ScaleGroup(str(t.get("name", i)), keys, lo, hi))
     if len({g.name for g in scales}) != len(scales):
         raise SpaceError(f"{source}: two [[scale]] tables share a name")
+    _given_once(bounds, scales, source)
     if "robots" not in d:
         raise SpaceError(f"{source}: robots = N or [1, N] is missing")
     space = DesignSpace(bounds, tuple(scales), catalogue, _robots(d["robots"], source), source,
                         _motor_groups(d.get("motors"), source), ref,
                         _back(d.get("place"), source))
     _check_ends(space)
+    _check_limits(space)
     check_home(space)
     return space
+
+
+def _given_once(bounds: Mapping, scales, source: str) -> None:
+    """SpaceError when a key is varied twice: in [bounds] and a [[scale]], in two
+    [[scale]] tables or twice in one (its value would be a product nobody wrote)."""
+    seen = {k: "[bounds]" for k in bounds}
+    for i, g in enumerate(scales, start=1):
+        for k in g.keys:
+            if k in seen:
+                was = "twice in" if seen[k] == f"[[scale]] {i}" else f"in {seen[k]} and in"
+                raise SpaceError(f"{source}: {k!r} is varied {was} [[scale]] {i}; give each "
+                                 "key one entry")
+            seen[k] = f"[[scale]] {i}"
+
+
+def _check_limits(space: DesignSpace) -> None:
+    """SpaceError when a joint's limits, varied, can cross (upper ≤ lower) or span more than
+    one turn somewhere in the box (model/params.py's rule at every corner of the entries that
+    vary them, not only at each end with the others at their middles): one line naming the
+    entries and how far off. upper − lower is linear in each entry: its extremes are corners."""
+    varies = {k: ("[bounds]", k, lo, hi) for k, (lo, hi) in space.bounds.items()}
+    for i, g in enumerate(space.scales, start=1):  # each key varied once (_given_once)
+        varies.update({k: (f"[[scale]] {i}", f"scale.{g.name}", g.low, g.high) for k in g.keys})
+    for j in sorted({k.split(".")[1] for k in varies if k.startswith("limits.")}):
+        keys = (f"limits.{j}.lower", f"limits.{j}.upper")
+        entries = {varies[k][1:] for k in keys if k in varies}
+        ends = []
+        for corner in itertools.product(*[((n, lo), (n, hi)) for n, lo, hi in entries]):
+            ov = space.overrides(dict(corner))
+            lo_, up = (ov.get(k, float(lookup(space.reference, k))) for k in keys)
+            ends.append((up - lo_, lo_, up))
+        who = f"{space.source}: " + " and ".join(f"{varies[k][0]} {k!r}" for k in keys
+                                                 if k in varies)
+        width, lo_, up = min(ends)
+        if width <= 0:
+            raise SpaceError(f"{who}: the upper limit can be {up:.4g} deg with the lower "
+                             f"{lo_:.4g} deg: upper must exceed lower (off by {-width:.4g} deg)")
+        width, lo_, up = max(ends)
+        if width > 360.0:
+            raise SpaceError(f"{who}: the range can reach {width:.4g} deg ({lo_:.4g} to "
+                             f"{up:.4g}): one turn (360) at most, {width - 360:.4g} over")
 
 
 def _check_ends(space: DesignSpace) -> None:
@@ -443,26 +494,11 @@ def check_home(space: DesignSpace) -> None:
 
 
 def load_space(path: str | Path) -> DesignSpace:
-    """Read and check a design space file ``S.toml`` (docs/model.md §31.2).
-
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        The file (format: the module's help, ``examples/design/space.toml``); its
-        ``catalogue`` and ``params`` file names are read beside it.
-
-    Returns
-    -------
-    DesignSpace
-        The checked space.
-
-    Raises
-    ------
-    SpaceError
-        As :func:`space_from_dict`, or an unreadable file.
-    pollard_pin.synthesis.catalogue.CatalogueError
-        A bad catalogue.
-    """
+    """Read and check a design space file ``S.toml`` (docs/model.md §31.2; format: the
+    module's help, ``examples/design/space.toml``), its ``catalogue`` and ``params`` file
+    names read beside it. Raises :class:`SpaceError` as :func:`space_from_dict`, or for an
+    unreadable file; a bad catalogue:
+    :class:`pollard_pin.synthesis.catalogue.CatalogueError`."""
     path = Path(path)
     return space_from_dict(read_toml(path, "design space", SpaceError), path.name, path.parent)
 

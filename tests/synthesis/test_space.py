@@ -88,8 +88,8 @@ def test_refusals_are_one_line(cat, change, match):
 
 
 @pytest.mark.parametrize("change, says", [
-    ({"bounds": {"chain0.x32": [0.3, 400]}},
-     "S.toml [bounds]: 'chain0.x32' = [0.3, 400]: its high end: parameter 'chain0.x32' = 400.0: "
+    ({"bounds": {"chain0.x65": [0.3, 400]}},
+     "S.toml [bounds]: 'chain0.x65' = [0.3, 400]: its high end: parameter 'chain0.x65' = 400.0: "
      "must be at most 10 m (lengths are in metres, not mm)"),
     ({"bounds": {"limits.theta21.upper": [-35.0, 1e300]}},
      "S.toml [bounds]: 'limits.theta21.upper' = [-35, 1e+300]: its high end: parameter "
@@ -159,3 +159,55 @@ def test_a_bound_end_is_refused_by_the_rule_the_error_says_is_its_keys(cat):
         "'limits.theta21.lower' = -400, 'limits.theta21.upper' = -35: the range 365 deg "
         "exceeds one turn (360)"), str(e.value)
     space(cat, bounds={"limits.theta21.lower": [-300.0, -106.0]})  # within one turn: taken
+
+
+@pytest.mark.parametrize("change, says", [
+    # the upper limit's bound alone: at its high end the range is 505 deg (lower −105)
+    ({"bounds": {"limits.theta21.upper": [-35.0, 400.0]}},
+     "S.toml: [bounds] 'limits.theta21.upper': the range can reach 505 deg (-105 to 400): "
+     "one turn (360) at most, 145 over"),
+    # the lower limit's bound alone crosses the reference's upper (−35 deg)
+    ({"bounds": {"limits.theta21.lower": [-100.0, 10.0]}},
+     "S.toml: [bounds] 'limits.theta21.lower': the upper limit can be -35 deg with the lower "
+     "10 deg: upper must exceed lower (off by 45 deg)"),
+    # both bounded, each sane at the other's middle, crossing at a corner of the box
+    ({"bounds": {"limits.theta21.lower": [-100.0, -20.0],
+                 "limits.theta21.upper": [-30.0, 0.0]}},
+     "S.toml: [bounds] 'limits.theta21.lower' and [bounds] 'limits.theta21.upper': the upper "
+     "limit can be -30 deg with the lower -20 deg: upper must exceed lower (off by 10 deg)"),
+])
+def test_joint_limits_hold_over_the_whole_box(cat, change, says):
+    """A joint's limits varied must keep upper > lower and one turn at most at every corner
+    of the box, not only at each end with the others at their middles (_check_ends lets a
+    rule that names the other key pass: the design then fails at its first such trial)."""
+    with pytest.raises(SpaceError) as e:
+        space(cat, **change)
+    assert str(e.value) == says
+    space(cat, bounds={"limits.theta21.upper": [-35.0, 200.0]})  # 305 deg at most: taken
+    # one factor on both limits moves them together: never crossing, 210 deg at most
+    space(cat, scale=[{"keys": ["limits.theta21.upper", "limits.theta21.lower"],
+                       "range": [1.0, 3.0]}])
+
+
+@pytest.mark.parametrize("change, says", [
+    ({"bounds": {"leg1.x87": [0.3, 10**400]}},
+     "S.toml [bounds]: 'leg1.x87' = [0.3, 1e+400 (a 401-digit integer)]: bounds must be "
+     "finite"),
+    ({"place": {"back": 10**400}},
+     "S.toml: place.back = 1e+400 (a 401-digit integer): must be a finite distance"),
+    ({"place": {"back": float("nan")}}, "S.toml: place.back = nan: must be a finite distance"),
+    ({"bounds": {"leg1.x87": [0.3, 0.4]},
+      "scale": [{"keys": ["leg1.x87"], "range": [1.0, 1.5]}]},
+     "S.toml: 'leg1.x87' is varied in [bounds] and in [[scale]] 1; give each key one entry"),
+    ({"scale": [{"keys": ["chain0.x32", "chain0.x32"], "range": [1.0, 1.5]}]},
+     "S.toml: 'chain0.x32' is varied twice in [[scale]] 1; give each key one entry"),
+    ({"bounds": {"leg1": {"x87": [0.3, 0.4]}}},  # TOML's bare leg1.x87 = [...]
+     'S.toml [bounds]: \'leg1\' holds a table; quote a dotted key: "leg1.KEY" = [low, high]'),
+])
+def test_absurd_or_doubled_bounds_are_one_line(cat, change, says):
+    """An integer beyond a float was an OverflowError; a key in [bounds] and a [[scale]] (or
+    twice in one) was taken, its value a product nobody wrote; a bare dotted key was said to
+    name no parameter."""
+    with pytest.raises(SpaceError) as e:
+        space(cat, **change)
+    assert str(e.value) == says
