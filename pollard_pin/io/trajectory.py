@@ -107,7 +107,8 @@ def _read_rows(path: Path) -> tuple[list[list[str]], list[int]]:
                               f"{exc.object[exc.start:exc.start + 1]!r}); save it as UTF-8 "
                               "CSV") from None
     except csv.Error as exc:  # a field over the csv module's limit: not a trajectory
-        raise TrajectoryError(f"{path}: line {reader.line_num + 1}: not CSV ({exc})") from None
+        # the csv module has read the offending line when it refuses it: line_num is its own
+        raise TrajectoryError(f"{path}: line {reader.line_num}: not CSV ({exc})") from None
     if magic == PARQUET_MAGIC:  # Parquet bytes that happen to decode as UTF-8
         raise TrajectoryError(f"{path}: a Parquet file; trajectories are read from CSV text "
                               "(t,x,y,z,psi,theta,phi)")
@@ -130,8 +131,11 @@ def _check_header(path: Path, rows: list[list[str]]) -> list[str]:
         if h not in allowed:
             raise TrajectoryError(f"{path}: unknown column {shorten(h)}{did_you_mean(h, allowed)}; "
                                   f"expected {', '.join(base)} and optional d_*, dd_*, {SPRAY}")
-    if len(set(header)) != len(header):
-        raise TrajectoryError(f"{path}: duplicate column names in header {shorten(header)}")
+    again = next((i for i, h in enumerate(header) if h in header[:i]), None)
+    if again is not None:
+        first = header.index(header[again])
+        raise TrajectoryError(f"{path}: duplicate column {shorten(header[again])} (columns "
+                              f"{first + 1} and {again + 1})")
     missing = [c for c in base if c not in header]
     if missing:
         raise TrajectoryError(f"{path}: missing column(s) {', '.join(missing)}")

@@ -51,7 +51,9 @@ def test_a_held_study_needs_resume(tmp_path, capsys):
 @pytest.mark.parametrize("flag, value, says", [
     ("--trials", "0", "must be between 1 and"), ("--pick", "0", "must be >= 1"),
     ("--workers", "x", "not an integer"), ("--dask", " ", "an empty scheduler address"),
-    ("--population", "1", "must be between 2 and")])
+    ("--population", "1", "must be between 2 and"),
+    # beyond numpy's seeds: was a traceback from the sampler, the study file left behind
+    ("--seed", str(2**32), "must be between 0 and 4294967295")])
 def test_bad_options_are_one_line(tmp_path, capsys, flag, value, says):
     _refused(_argv(tmp_path, flag, value), says, capsys, tmp_path)
 

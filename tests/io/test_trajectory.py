@@ -162,3 +162,18 @@ def test_to_csv_refuses_a_spray_from_csv_cannot_read(tmp_path):
     assert list(tmp_path.iterdir()) == []
     to_csv(traj, tmp_path / "ok.csv", spray=[0.0, 0.5, 1.0, 1.0, 0.0])
     assert from_csv(tmp_path / "ok.csv").spray.tolist() == [0.0, 0.5, 1.0, 1.0, 0.0]
+
+
+@pytest.mark.parametrize("text, says", [
+    # the header's field over the csv module's limit, on line 1 (it was said to be line 2)
+    ("t," + "x" * 200_000 + "\n0,1\n", "line 1: not CSV (field larger than field limit"),
+    ("t,x\n0,\"" + "y" * 200_000 + "\"\n", "line 2: not CSV (field larger than field limit"),
+    # the column given twice named, with where (it was the whole header, cut)
+    ("t,x,y,z,psi,theta,phi,y\n0,0.5,0,0.1,0,0,0,0\n", "duplicate column 'y' (columns 3 and 8)"),
+])
+def test_malformed_csv_names_the_line_and_the_column(tmp_path, text, says):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(text)
+    with pytest.raises(TrajectoryError) as info:
+        from_csv(bad)
+    assert says in str(info.value) and "\n" not in str(info.value), str(info.value)
