@@ -58,6 +58,7 @@ SMOOTHING = (0.004, 0.006, 0.01, 0.015, 0.02, 0.03, 0.04, 0.05, 0.06, 0.08)
 FORWARD = 0.25  # the tip advances at least this fraction of the surface arc ...
 STRETCH = 3.0  # ... and at most this multiple of it
 EXTENSION = 3.0  # σ: the passes run on this far past the painted faces' edges
+MAX_PASS_SPEED = 10.0  # m/s: beyond any spray robot's pass (the example's motors: 1.8)
 MAX_SAMPLES = 200_000  # pass samples over all passes (each a small spline knot)
 
 
@@ -263,9 +264,18 @@ def pass_spacing(job) -> float:
 
 
 def pass_speed(job, spacing: float) -> float:
-    """Surface speed [m/s] of the spot: film per coat = flow/(speed·spacing) (§21)."""
+    """Surface speed [m/s] of the spot: film per coat = flow/(speed·spacing) (§21); over
+    :data:`MAX_PASS_SPEED` a :class:`PlanError` (a unit slip, not a pass any robot runs)."""
     coats = job.coats or 1
-    return job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    v = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    if not v <= MAX_PASS_SPEED:  # the motors' check would square it: 1e300 overflows
+        given = ("job.speed" if job.speed is not None else
+                 f"gun.flow {job.flow:.3g} m³/s, {coats} coat(s) of "
+                 f"{job.thickness / coats * 1e6:.4g} µm at spacing {spacing * 1e3:.4g} mm")
+        raise PlanError(f"{job.source}: the target needs a gun speed of {v:.4g} m/s ({given}),"
+                        f" {v / MAX_PASS_SPEED:.3g} times the {MAX_PASS_SPEED:g} m/s of any "
+                        "spray pass: gun.flow in m³/s, job.thickness in m?")
+    return v
 
 
 def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: float = 0.0,
@@ -351,6 +361,6 @@ def surface_layout(part: Part, job, step: float = SAMPLE_STEP, min_smoothing: fl
     return SurfaceLayout(frame, tuple(passes), spacing, width, worst, extension, extent)
 
 
-__all__ = ["EXTENSION", "FORWARD", "SAMPLE_STEP", "SMOOTHING", "STRETCH", "SurfaceFrame",
-           "SurfaceLayout", "SurfacePass", "pass_spacing", "pass_speed", "reference_axis",
-           "section", "surface_frame", "surface_layout"]
+__all__ = ["EXTENSION", "FORWARD", "MAX_PASS_SPEED", "SAMPLE_STEP", "SMOOTHING", "STRETCH",
+           "SurfaceFrame", "SurfaceLayout", "SurfacePass", "pass_spacing", "pass_speed",
+           "reference_axis", "section", "surface_frame", "surface_layout"]

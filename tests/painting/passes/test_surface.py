@@ -186,3 +186,27 @@ def test_a_horizontal_part_has_a_finite_frame(facing):
     assert np.abs(basis @ basis.T - np.eye(3)).max() < 1e-12  # achieved ~1e-16
     assert np.abs(np.cross(f.n, f.across) - f.along).max() < 1e-12
     assert np.array_equal(reference_axis([-1.0, 0.0, 0.0]), [0.0, 0.0, 1.0])
+
+
+@pytest.mark.parametrize("given, says", [
+    # a flow in mm³/s read as m³/s: the pass speed flow/(thickness·spacing) 2.2e306 m/s
+    ({"flow": 1e300}, "needs a gun speed of 2.222e+306 m/s (gun.flow 1e+300 m³/s, 1 coat(s) of "
+                      "25 µm at spacing 18 mm), 2.22e+305 times the 10 m/s"),
+    ({"thickness": 1e-300}, "needs a gun speed of 8.333e+294 m/s"),
+    ({"speed": 1e300}, "needs a gun speed of 1e+300 m/s (job.speed)"),
+])
+def test_an_absurd_pass_speed_is_refused(given, says):
+    """A pass speed no robot runs is one line naming it (was an OverflowError where the
+    motors' check squares it, or the path's 'd_y absurd' far from the cause); the speed of
+    the example's numbers is flow/(thickness·spacing)."""
+    from types import SimpleNamespace
+
+    from pollard_pin.painting.passes.surface import pass_speed
+
+    job = SimpleNamespace(**{"coats": None, "speed": None, "flow": 1.5e-7, "thickness": 25e-6,
+                             "source": "j.toml", **given})
+    with pytest.raises(PlanError) as info:
+        pass_speed(job, 0.018)
+    assert str(info.value).startswith("j.toml: the target needs") and says in str(info.value)
+    ok = SimpleNamespace(coats=2, speed=None, flow=1.5e-7, thickness=25e-6, source="j.toml")
+    assert pass_speed(ok, 0.018) == pytest.approx(1.5e-7 * 2 / (25e-6 * 0.018), rel=1e-12)
