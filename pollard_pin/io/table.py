@@ -91,9 +91,23 @@ def units_path(path: str | Path) -> Path:
     return path.with_name(path.stem + ".units.json")
 
 
+# names of another format's file: a table written there (as CSV) would be misread by name
+NOT_TABLES = (".png", ".jpg", ".jpeg", ".svg", ".pdf", ".html", ".json", ".toml", ".md",
+              ".ply", ".stl", ".obj", ".db", ".zip", ".gz")
+
+
+def _writable_name(path: str | Path, fmt: str | None) -> None:
+    """OutputError when a table with no format given would be written under another
+    format's name (``run.png``: CSV text in a file every viewer takes for an image)."""
+    suffix = Path(str(path)).suffix.lower()
+    if fmt is None and suffix in NOT_TABLES:
+        raise OutputError(f"{path}: a {suffix} name for a table: name it .csv or .parquet")
+
+
 def table_files(path: str | Path, fmt: str | None = None) -> tuple:
     """Every file a table at ``path`` is written to: the table, and for a CSV file its units
     sidecar (none for standard output, a FIFO or a device). Check them all before the work."""
+    _writable_name(path, fmt)
     if table_format(path, fmt) == "csv" and str(path) != STDOUT and not is_special(Path(path)):
         return (path, units_path(path))
     return (path,)
@@ -109,6 +123,7 @@ class TableWriter:
 
     def __init__(self, path: str | Path, metadata: Mapping | None = None,
                  fmt: str | None = None):
+        _writable_name(path, fmt)
         self.path, self.fmt = path, table_format(path, fmt)
         self.metadata = dict(metadata or {})
         finite_json(self.metadata, f"{path}: metadata")  # refused before anything is written

@@ -86,3 +86,19 @@ def test_read_result_refuses_what_names_no_file(path):
 
     with pytest.raises(ResultFileError, match="^path = .*: (expected a file path|an empty path)"):
         read_result(path)
+
+
+@pytest.mark.parametrize("name", ["run.png", "run.JSON", "r.toml"])
+def test_a_table_under_another_formats_name_is_refused(tmp_path, name):
+    """``run --out run.png`` wrote CSV text into a file every viewer takes for an image; now
+    one line, nothing written. A .csv, .parquet or any other name is written as before."""
+    from pollard_pin.io.atomic import OutputError
+    from pollard_pin.io.table import table_files
+
+    with pytest.raises(OutputError, match="name for a table: name it .csv or .parquet"):
+        table_files(tmp_path / name)
+    with pytest.raises(OutputError):
+        write_table(tmp_path / name, {"t": np.arange(3.0)})
+    assert list(tmp_path.iterdir()) == []
+    write_table(tmp_path / "r.txt", {"t": np.arange(3.0)})  # not another format's: CSV
+    assert (tmp_path / "r.txt").read_text().startswith("t\n")
