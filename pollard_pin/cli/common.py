@@ -30,6 +30,19 @@ class UsageError(InputError):
 NEGATIVE_NUMBER = re.compile(r"^-(\.?\d|inf(inity)?\b|nan\b)", re.I)
 
 
+@contextlib.contextmanager
+def as_flags(owner: str):
+    """An InputError naming a field of ``owner`` (``PlannerPolicy.seam_run = 1e+300: …``)
+    said as the flag that set it (``--seam-run 1e+300: …``): the user typed the flag. Only
+    around the options' construction, where each field is a flag's."""
+    try:
+        yield
+    except InputError as exc:
+        said = re.sub(rf"\b{owner}\.(\w+)(\[\d+\])?( = )?",
+                      lambda m: f"--{m[1].replace('_', '-')}{' ' if m[3] else ''}", str(exc))
+        raise UsageError(said) from None
+
+
 class Parser(argparse.ArgumentParser):
     """argparse with one-line errors (no usage block): ``pollard-pin run: error: ...``."""
 

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from .common import (
     UsageError,
+    as_flags,
     command,
     fraction,
     load_robot,
@@ -69,9 +70,10 @@ def run(args) -> int:
     # --actuators read before any planning; None: paint's own rule (the job's, else the
     # package's ratings)
     act = as_actuators(args.actuators)
-    policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from,
-                           seam_run=args.seam_run, smoothing=args.smoothing or 0.0,
-                           seams=args.seams)  # checked once
+    with as_flags("PlannerPolicy"):  # checked once; a refusal names the flag
+        policy = PlannerPolicy(strokes=args.strokes, step_from=args.step_from,
+                               seam_run=args.seam_run, smoothing=args.smoothing or 0.0,
+                               seams=args.seams)
     options = PaintOptions(resolution=res, max_line_speed=args.max_line_speed,
                            speeds=args.speeds,
                            compliance=not args.no_compliance, policy=policy,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .common import UsageError
+from .common import UsageError, as_flags
 
 
 def robots_arg(text: str) -> str:
@@ -61,7 +61,8 @@ def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
     from ..outputs.result import fewest_robots, paint
     from ..painting.layout.cell import LayoutOptions, propose_layout
 
-    layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
+    with as_flags("LayoutOptions"):  # a refusal names the flag that set it
+        layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
     if count == "auto":
         return fewest_robots(robot, job, act, options, layout)
     robots = propose_layout(robot, job, count, layout)

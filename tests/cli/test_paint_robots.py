@@ -42,9 +42,13 @@ def test_jobs_that_cannot_take_a_layout(tmp_path, capsys, extra, words):
 @pytest.mark.parametrize("flags, words", [
     (["--edge-room", "0.02"], "--edge-room: only a proposed cell (--robots N|auto)"),
     (["--end-pitch", "-5"], "--end-pitch: only a proposed cell (--robots N|auto)"),
-    (["--robots", "2", "--edge-room", "0.6"], "LayoutOptions.edge_room = 0.6: expected a "
-     "length in [0, 0.5] m"),
-    (["--seams", "0.2,0.1"], "PlannerPolicy.seams = (0.2, 0.1): must increase"),
+    # the options' refusals name the flag the user typed, not the field it set
+    (["--robots", "2", "--edge-room", "0.6"], "error: --edge-room 0.6: expected a length in "
+     "[0, 0.5] m"),
+    (["--seams", "0.2,0.1"], "error: --seams (0.2, 0.1): must increase"),
+    (["--seam-run", "1e300"], "error: --seam-run 1e+300: must be at most 10"),
+    (["--strokes", "along", "--step-from", "trailing"], "error: --step-from 'trailing': "
+     "strokes along the travel step across it"),
     # a cell's knob on the line job of one robot: refused, not silently dropped
     (["--smoothing", "0.05", "--seam-run", "0"], "PlannerPolicy.seam_run, smoothing: a "
      "cell's (a job with [[robot]] tables, or --robots); the line panel job has one robot"),
