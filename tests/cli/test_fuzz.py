@@ -938,7 +938,10 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_hidden.toml", "all 1 faces within 45° of facing are hidden from a gun at 0.15 m"),
     ("part_max_angle_90.toml", "max_angle = 90° must be in (0, 90)"),
     ("part_coats.toml", "'job.coats' = 1000000000: must be at most 5 for a part"),
-    ("part_spacing.toml", "passes (1 coat(s) at spacing 1e-05 m over"),
+    # the pass speed that spacing asks (flow/(thickness·spacing), 600 m/s) is refused first
+    ("part_spacing.toml", "needs a gun speed of 600 m/s (gun.flow 1.5e-07 m³/s, 1 coat(s) of "
+                          "25 µm at spacing 0.01 mm), 60 times the 10 m/s of any spray pass: "
+                          "gun.flow in m³/s, job.thickness and job.spacing in m?"),
     ("", "an empty name"),
 ]]
 CASES += [([*PAINT, "part_line.toml", "--resolution", "0.011"],

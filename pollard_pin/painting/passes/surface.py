@@ -272,9 +272,10 @@ def pass_speed(job, spacing: float) -> float:
         given = ("job.speed" if job.speed is not None else
                  f"gun.flow {job.flow:.3g} m³/s, {coats} coat(s) of "
                  f"{job.thickness / coats * 1e6:.4g} µm at spacing {spacing * 1e3:.4g} mm")
+        spaced = " and job.spacing" if getattr(job, "spacing", None) is not None else ""
         raise PlanError(f"{job.source}: the target needs a gun speed of {v:.4g} m/s ({given}),"
                         f" {v / MAX_PASS_SPEED:.3g} times the {MAX_PASS_SPEED:g} m/s of any "
-                        "spray pass: gun.flow in m³/s, job.thickness in m?")
+                        f"spray pass: gun.flow in m³/s, job.thickness{spaced} in m?")
     return v
 
 
