@@ -12,9 +12,9 @@ from pollard_pin.painting.cell.bands import STEP, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.cell.split import split_cell
 from pollard_pin.painting.layout.cell import cover_edge
-from pollard_pin.painting.layout.seat import SEAT_TRIES, paint_seated, plans_alone, seat_ends
+from pollard_pin.painting.layout.seat import SEAT_TRIES, paint_seated, plans_alone
 from pollard_pin.painting.options import PaintOptions
-from pollard_pin.painting.policy import DEFAULT_POLICY
+from pollard_pin.painting.policy import PlannerPolicy
 
 
 @pytest.fixture(scope="module")
@@ -33,11 +33,15 @@ def test_a_refused_top_robot_is_seated_at_the_first_place_that_plans(robot, low_
     job, strokes = low_top
     low, high = job.robots
     act = default_actuators(job)
+    policy = PlannerPolicy(clearance_stride=8)  # the clearances are not what is tested
     split = split_cell(robot, job, job.robots)
-    assert plans_alone(robot, job, low, act, split, None, DEFAULT_POLICY) is None
-    assert "out of reach" in str(plans_alone(robot, job, high, act, split, None,
-                                             DEFAULT_POLICY))
-    robots, seams = seat_ends(robot, job, act, DEFAULT_POLICY)
+    assert plans_alone(robot, job, low, act, split, None, policy) is None
+    assert "out of reach" in str(plans_alone(robot, job, high, act, split, None, policy))
+    # seated and painted at the job's line speed
+    robots, painted = paint_seated(robot, replace(job, robots=()), job.robots, options=
+                                   PaintOptions(resolution=0.005, compliance=False,
+                                                policy=policy))
+    assert painted.plan.speed == job.line.speed
     assert robots[0] == low
     seated = robots[1]
     k = round((seated.base[2] - high.base[2]) / STEP)
@@ -46,21 +50,15 @@ def test_a_refused_top_robot_is_seated_at_the_first_place_that_plans(robot, low_
                                         abs=1e-6)
     # the seam stays the split's: both bands still hold it with R past it (the bands, not
     # the planner, say so)
+    seams = tuple(z.hi for z in painted.plan.split.zones[:-1])
     assert seams == (split.zones[0].hi,)
     for r, (lo, hi) in ((low, (-math.inf, seams[0])), (seated, (seams[0], math.inf))):
         need = strokes.needed(lo, hi)
         assert robot_band(robot, r, strokes).holding(*need).holds(*need)
-    # every place below it was refused: the first that plans
-    moved = replace(job, robots=(low, seated))
-    at = split_cell(robot, moved, moved.robots, seams=seams)
-    for i in range(k):
-        lower = replace(seated, base=(*seated.base[:2], round(high.base[2] + i * STEP, 6)))
-        assert plans_alone(robot, replace(job, robots=(low, lower)), lower, act, at, None,
-                           replace(DEFAULT_POLICY, seams=seams)) is not None
-    # the cell paints: its film, every robot's zone, at the job's line speed
-    robots2, painted = paint_seated(robot, replace(job, robots=()), job.robots,
-                                    options=PaintOptions(compliance=False))
-    assert robots2 == robots
-    assert [z.hi for z in painted.plan.split.zones[:-1]] == list(seams)
+    # the place a step below was refused: the first that plans
+    lower = replace(seated, base=(*seated.base[:2], round(seated.base[2] - STEP, 6)))
+    at = split_cell(robot, replace(job, robots=(low, lower)), (low, lower), seams=seams)
+    assert plans_alone(robot, replace(job, robots=(low, lower)), lower, act, at, None,
+                       replace(policy, seams=seams)) is not None
+    # the cell paints its film (the robots' programs on the part, not their reach)
     assert painted.report.thickness["within_5pct"] >= 0.99
-    assert painted.plan.speed == job.line.speed
