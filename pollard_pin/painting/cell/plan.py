@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import threading
 import time
 from collections import OrderedDict
 from dataclasses import dataclass, replace
@@ -187,6 +188,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
 
 ZONE_PLANS = 16  # robots' zone plans remembered (a layout's search plans a robot again)
 _zone_plans: OrderedDict = OrderedDict()
+_zone_lock = threading.Lock()
 
 
 def _part_key(part: Part | None):
@@ -212,10 +214,14 @@ def _planned(robot, key, plan, *args):
             raise
         except PlanError as exc:
             hit = (robot, None, exc)
-        _zone_plans[key] = hit
-        while len(_zone_plans) > ZONE_PLANS:
-            _zone_plans.popitem(last=False)
-    _zone_plans.move_to_end(key)
+        with _zone_lock:  # threads of a study may plan cells at once
+            _zone_plans[key] = hit
+            while len(_zone_plans) > ZONE_PLANS:
+                _zone_plans.popitem(last=False)
+    else:
+        with _zone_lock:
+            if key in _zone_plans:
+                _zone_plans.move_to_end(key)
     if hit[2] is not None:
         raise hit[2]
     return hit[1]
