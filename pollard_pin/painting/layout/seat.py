@@ -76,9 +76,11 @@ def seat_ends(robot, job, act, policy, part=None):
     from ..job import PartJob
     from ..spray.occlusion import load_painted_part
 
+    robots = tuple(job.robots)
+    if len(robots) < 2:
+        return robots, None
     if part is None and isinstance(job, PartJob):
         part = load_painted_part(job)
-    robots = tuple(job.robots)
     split = split_cell(robot, job, robots, part, policy.seams)
     zones = sorted((z for z in split.zones if z.facing is None), key=lambda z: z.lo)
     if len(zones) < 2:
