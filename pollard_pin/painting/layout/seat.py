@@ -35,11 +35,10 @@ import numpy as np
 
 from ..cell.bands import STEP, job_strokes, robot_band
 from ..cell.plan import plan_cell
-from ..cell.split import split_cell
+from ..cell.split import EDGE_TOL, split_cell
 from ..errors import BudgetError, PlanError
 
 SEAT_TRIES = 6  # STEP moves of a seam, and of an end robot, at most (30 mm: a bevel's room)
-EDGE_TOL = 1e-9  # m: a band ending on the edge's need, up to rounding, holds it
 
 
 def plans_alone(robot, job, cell_robot, act, split, part, policy) -> PlanError | None:
