@@ -56,17 +56,17 @@ def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
     """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest; the
     end robots holding ``edge_room`` [m] more past the part's free edges, the top one
     turned ``end_pitch`` [deg] about the line."""
-    from dataclasses import replace
-
-    from ..outputs.result import fewest_robots, paint
+    from ..outputs.result import PaintResult, fewest_robots
     from ..painting.layout.cell import LayoutOptions, propose_layout
+    from ..painting.layout.seat import paint_seated
 
     with as_flags("LayoutOptions"):  # a refusal names the flag that set it
         layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
     if count == "auto":
         return fewest_robots(robot, job, act, options, layout)
-    robots = propose_layout(robot, job, count, layout)
-    return robots, paint(robot, replace(job, robots=robots), act, options)
+    robots, painted = paint_seated(robot, job, propose_layout(robot, job, count, layout), act,
+                                   options)
+    return robots, PaintResult.of(painted)
 
 
 def write_layout(robots, out: Path, count, job) -> Path:

@@ -64,9 +64,9 @@ def test_a_cells_levers_out_of_place_are_one_line(tmp_path, capsys, flags, words
 
 
 def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatch):
-    import pollard_pin.outputs.result as result
+    import pollard_pin.painting.api as api
 
-    real, planned = result.paint_job, []
+    real, planned = api.paint_job, []
 
     def paint_job(robot, job, actuators=None, options=None):
         # the proposal recorded, the job planned by one robot: the cell's own planning is
@@ -74,7 +74,7 @@ def test_the_proposal_is_written_beside_the_outputs(tmp_path, capsys, monkeypatc
         planned.append(job.robots)
         return real(robot, replace(job, robots=()), actuators, options)
 
-    monkeypatch.setattr(result, "paint_job", paint_job)
+    monkeypatch.setattr(api, "paint_job", paint_job)
     out = tmp_path / "out"
     # compliance not asserted here (tests/painting/checks/test_compliance.py checks it)
     code, _, err = run_cli(["paint", "--job", LINE, "--out", out, "--robots", "1",
@@ -92,6 +92,7 @@ def test_a_search_that_finds_no_cell_names_each_count_and_its_cause(tmp_path, ca
     (docs/model.md §26.5), exit 2, nothing written."""
     import pollard_pin.painting.api as api
     from pollard_pin.painting.errors import PlanError
+    from pollard_pin.painting.layout import seat
 
     def paint_job(robot, job, actuators=None, options=None):
         n = len(job.robots)
@@ -101,6 +102,8 @@ def test_a_search_that_finds_no_cell_names_each_count_and_its_cause(tmp_path, ca
                         "126 % of its rating); binding: slow (motors), fast (motors)")
 
     monkeypatch.setattr(api, "paint_job", paint_job)
+    # no robot planned alone either (the seating, tests/painting/layout/test_seat.py)
+    monkeypatch.setattr(seat, "seat_ends", lambda robot, job, *args: (job.robots, None))
     out = tmp_path / "out"
     code, _, err = run_cli(["paint", "--job", LINE, "--out", out, "--robots", "auto"], capsys)
     assert code == 2 and err.count("\n") == 1 and not out.exists(), err

@@ -6,8 +6,11 @@ The slowest robot sets the cell's line speed.
 """
 from __future__ import annotations
 
+import hashlib
 import math
+import threading
 import time
+from collections import OrderedDict
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -163,7 +166,10 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
         try:
             view = ZoneView(zone, split.runout, cr.direction_to_base(axis),
                             float(cr.origin @ axis))
-            plan = plan_zone(model, act, job_b, view, speed, part_b, policy)
+            key = (cr, zone, split.runout, split.axis, act, replace(job, robots=()), speed,
+                   _part_key(part), replace(policy, seams=None))  # seams: in the zone
+            plan = _planned(robot, key, plan_zone, model, act, job_b, view, speed, part_b,
+                            policy)
         except LineSpeedError as exc:
             raise LineSpeedError(_robot_said(cr, exc), exc.too_fast, exc.why,
                                  exc.hint) from None
@@ -178,6 +184,47 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
     world_part = cell_part(job, part, split) if isinstance(job, PartJob) else None
     return CellPlan(job, split, tuple(out), speed, world_part,
                     {"plan": time.perf_counter() - clock})
+
+
+ZONE_PLANS = 16  # robots' zone plans remembered (a layout's search plans a robot again)
+_zone_plans: OrderedDict = OrderedDict()
+_zone_lock = threading.Lock()
+
+
+def _part_key(part: Part | None):
+    """The part by its contents (a part read again is the same part), None for a panel."""
+    if part is None:
+        return None
+    digest = hashlib.sha1()
+    for a in (part.vertices, part.faces, part.painted):
+        digest.update(np.ascontiguousarray(a).tobytes())
+    return digest.hexdigest(), part.facing, part.max_angle
+
+
+def _planned(robot, key, plan, *args):
+    """``plan(*args)`` remembered by ``key`` (everything the zone's program depends on, but the
+    shared model, compared by identity), its refusal too: a layout's search plans a robot
+    alone, then the cell with it (docs/model.md §26.5); the same inputs, the same plan."""
+    key = (id(robot), key)
+    hit = _zone_plans.get(key)
+    if hit is None or hit[0] is not robot:
+        try:
+            hit = (robot, plan(*args), None)
+        except BudgetError:  # a budget spent is not the inputs' answer: not remembered
+            raise
+        except PlanError as exc:
+            hit = (robot, None, exc)
+        with _zone_lock:  # threads of a study may plan cells at once
+            _zone_plans[key] = hit
+            while len(_zone_plans) > ZONE_PLANS:
+                _zone_plans.popitem(last=False)
+    else:
+        with _zone_lock:
+            if key in _zone_plans:
+                _zone_plans.move_to_end(key)
+    if hit[2] is not None:
+        raise hit[2]
+    return hit[1]
 
 
 def _line_b(job, cr: CellRobot):

@@ -409,9 +409,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     pollard_pin.painting.errors.CellError
         The job has robots or no line, or no count up to MAX_ROBOTS has bands wide enough.
     """
-    from ..api import paint_job
     from ..options import PaintOptions
     from ..spray.occlusion import load_painted_part
+    from .seat import paint_seated
 
     check_robot(robot)
     check_job(job)
@@ -432,8 +432,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
                 robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference)
-                return robots, paint_job(robot, replace(job, robots=robots), actuators,
-                                         options)
+                return paint_seated(robot, job, robots, actuators, options, part)
             except BudgetError:
                 raise
             except (CellError, PlanError) as exc:

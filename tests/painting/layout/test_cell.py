@@ -60,6 +60,13 @@ def bands_remembered():
         yield
 
 
+def no_seating(monkeypatch):
+    """No robot planned alone before a mocked paint_job (the seating: test_seat.py)."""
+    from pollard_pin.painting.layout import seat
+
+    monkeypatch.setattr(seat, "seat_ends", lambda robot, job, *args: (job.robots, None))
+
+
 @pytest.mark.parametrize("height, fewest", [(0.24, 1), (0.34, 2), (0.6, 3), (1.0, 4)])
 def test_the_fewest_robots_whose_bands_hold_the_zones(robot, height, fewest):
     job = tall_panel(height=height, z=height / 2)
@@ -163,6 +170,7 @@ def test_the_search_stops_at_the_first_layout_that_paints(robot, monkeypatch):
     import pollard_pin.painting.api as api
 
     monkeypatch.setattr(api, "paint_job", paint_job)
+    no_seating(monkeypatch)
     robots, result = fewest_robots(robot, tall_panel())
     assert (tried, len(robots), result) == ([2, 3], 3, "painted")
     tried.clear()
@@ -184,6 +192,7 @@ def test_the_search_refusal_says_each_counts_first_cause_in_one_line(robot, monk
     import pollard_pin.painting.api as api
 
     monkeypatch.setattr(api, "paint_job", paint_job)
+    no_seating(monkeypatch)
     monkeypatch.setattr(cell_layout, "AUTO_MORE", 2)
     with pytest.raises(LayoutSearchError) as err:
         fewest_robots(robot, tall_panel())
@@ -219,6 +228,7 @@ def as_doors(monkeypatch):
         raise kind(said)
 
     monkeypatch.setattr(api, "paint_job", paint_job)
+    no_seating(monkeypatch)
     monkeypatch.setattr(cell_layout, "AUTO_MORE", 2)
 
 
@@ -318,6 +328,7 @@ def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch
     from pollard_pin.painting.options import PaintOptions
 
     monkeypatch.setattr(api, "paint_job", lambda *args, **kwargs: "painted")
+    no_seating(monkeypatch)
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
     fewest_robots(robot, tall_panel())  # a Python caller who did not ask: silent
     assert capsys.readouterr().err == ""
