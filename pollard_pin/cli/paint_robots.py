@@ -69,14 +69,20 @@ def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
     return robots, PaintResult.of(painted)
 
 
-def write_layout(robots, out: Path, count, job) -> Path:
-    """robots.toml in ``out`` (inside the command's all-or-nothing block), one line said."""
+def write_layout(robots, out: Path, count, job, seams=None) -> Path:
+    """robots.toml in ``out`` (inside the command's all-or-nothing block), one line said;
+    ``seams`` (the plan's, where given or seated) said in its header: the same cell needs
+    them again."""
     from ..outputs.robots_toml import write_robots
 
     how = "the fewest robots that paint" if count == "auto" else f"{count} robot(s)"
+    again = ("" if seams is None else "\nplanned with its seams at "
+             + ", ".join(f"{s:.6g}" for s in seams) + " m: plan them again with --seams "
+             + ",".join(f"{s:.6g}" for s in seams))
     path = write_robots(robots, out / "robots.toml", f"[[robot]] tables proposed by "
                         f"pollard-pin paint --robots {count} ({how}) for {job.source}\n"
-                        "(docs/model.md §26.5): add them to the job to plan with them")
+                        "(docs/model.md §26.5): add them to the job to plan with them"
+                        + again)
     print(f"proposed {len(robots)} robot(s): " + ", ".join(
         f"{r.name} at ({', '.join(f'{c:.3f}' for c in r.base)}) m" for r in robots),
         file=sys.stderr)

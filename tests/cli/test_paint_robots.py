@@ -5,6 +5,7 @@ import re
 import tomllib
 from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 from cli_run import run_cli
@@ -112,3 +113,20 @@ def test_a_search_that_finds_no_cell_names_each_count_and_its_cause(tmp_path, ca
     assert said == ("pollard-pin paint: error: line.toml: no cell of 1–3 robots paints the part "
                     "at 0.03 m/s: 1 first ramp out of reach; 2 first ramp out of reach; 3 motor "
                     "131 % at any speed"), err
+
+
+def test_seated_seams_are_said_in_the_proposal(tmp_path, capsys):
+    """A proposal planned with seams of its own (seated, docs/model.md §26.5) says them in
+    robots.toml's header, as the --seams that plans the same cell; the tables read back."""
+    from pollard_pin.cli.paint_robots import write_layout
+    from pollard_pin.painting.cell.robots import CellRobot
+
+    cell = (CellRobot("robot1"), CellRobot("robot2", (0.0, 0.77, 0.2)))
+    job = SimpleNamespace(source="door.toml")
+    write_layout(cell, tmp_path, 2, job, (0.2950001,))
+    text = (tmp_path / "robots.toml").read_text()
+    assert "# planned with its seams at 0.295 m: plan them again with --seams 0.295\n" in text
+    assert robots_from_tables("robots.toml", tomllib.loads(text)["robot"]) == cell
+    (tmp_path / "split").mkdir()
+    write_layout(cell, tmp_path / "split", 2, job)  # the split's own seams: none said
+    assert "--seams" not in (tmp_path / "split" / "robots.toml").read_text()

@@ -6,11 +6,12 @@ The slowest robot sets the cell's line speed.
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import math
-import threading
 import time
 from collections import OrderedDict
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -186,9 +187,21 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
                     {"plan": time.perf_counter() - clock})
 
 
-ZONE_PLANS = 16  # robots' zone plans remembered (a layout's search plans a robot again)
-_zone_plans: OrderedDict = OrderedDict()
-_zone_lock = threading.Lock()
+ZONE_PLANS = 16  # zone plans a memo holds at most (a seat search's plans, §26.5)
+_memo: ContextVar[OrderedDict | None] = ContextVar("zone_plans", default=None)
+
+
+@contextlib.contextmanager
+def zone_plans_remembered():
+    """Within it, :func:`plan_cell` remembers each robot's zone plan (its refusal too) by
+    everything the plan depends on, the last :data:`ZONE_PLANS`: a layout's search plans each
+    robot alone, then the cell with the same robots (docs/model.md §26.5); the same inputs,
+    the same plan, made once. Outside it nothing is remembered (no state between calls)."""
+    token = _memo.set(OrderedDict())
+    try:
+        yield
+    finally:
+        _memo.reset(token)
 
 
 def _part_key(part: Part | None):
@@ -202,26 +215,25 @@ def _part_key(part: Part | None):
 
 
 def _planned(robot, key, plan, *args):
-    """``plan(*args)`` remembered by ``key`` (everything the zone's program depends on, but the
-    shared model, compared by identity), its refusal too: a layout's search plans a robot
-    alone, then the cell with it (docs/model.md §26.5); the same inputs, the same plan."""
+    """``plan(*args)``, remembered by ``key`` within :func:`zone_plans_remembered` (the shared
+    model compared by identity); a budget spent is not the inputs' answer: not remembered."""
+    memo = _memo.get()
+    if memo is None:
+        return plan(*args)
     key = (id(robot), key)
-    hit = _zone_plans.get(key)
+    hit = memo.get(key)
     if hit is None or hit[0] is not robot:
         try:
             hit = (robot, plan(*args), None)
-        except BudgetError:  # a budget spent is not the inputs' answer: not remembered
+        except BudgetError:
             raise
         except PlanError as exc:
             hit = (robot, None, exc)
-        with _zone_lock:  # threads of a study may plan cells at once
-            _zone_plans[key] = hit
-            while len(_zone_plans) > ZONE_PLANS:
-                _zone_plans.popitem(last=False)
+        memo[key] = hit
+        while len(memo) > ZONE_PLANS:
+            memo.popitem(last=False)
     else:
-        with _zone_lock:
-            if key in _zone_plans:
-                _zone_plans.move_to_end(key)
+        memo.move_to_end(key)
     if hit[2] is not None:
         raise hit[2]
     return hit[1]
@@ -336,5 +348,5 @@ def _robot_said(cr, exc: Exception) -> str:
     return say_less(f"robot {cr.name!r}: {exc}", f"robot {cr.name!r}: {without_asides(str(exc))}")
 
 
-__all__ = ["CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds",
+__all__ = ["ZONE_PLANS", "CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds",
            "cell_waiting_floor", "max_cell_speed", "plan_cell", "plan_cell_job", "robot_part"]

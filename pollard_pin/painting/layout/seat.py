@@ -6,7 +6,8 @@ where a robot reaches, not where its motors follow the passes (a robot moved ont
 holds its need with millimetres spare, its ramps and turnarounds in the bevel's averaging,
 and the robot below it paints up into that averaging). So before the cell is planned every
 robot's program is planned alone at the job's line speed (the program the cell's plan then
-takes: :func:`.cell.plan.plan_cell` remembers it). Where only the robots of an edge pair (an
+takes: :func:`.cell.plan.plan_cell` remembers it within
+:func:`.cell.plan.zone_plans_remembered`). Where only the robots of an edge pair (an
 end robot along the cell's axis and its neighbour) are refused, the pair is seated:
 
 1. the seam between them moved inwards (away from the edge) STEP at a time until the
@@ -34,7 +35,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..cell.bands import STEP, job_strokes, robot_band
-from ..cell.plan import plan_cell
+from ..cell.plan import plan_cell, zone_plans_remembered
 from ..cell.split import EDGE_TOL, split_cell
 from ..errors import BudgetError, PlanError
 
@@ -171,13 +172,14 @@ def paint_seated(robot, job, robots, actuators=None, options=None, part=None):
 
     options = options or PaintOptions()
     job = replace(job, robots=tuple(robots))
-    if not options.max_line_speed:
-        act = default_actuators(job) if actuators is None else actuators
-        seated, seams = seat_ends(robot, job, act, options.policy, part)
-        if seams is not None:
-            job = replace(job, robots=seated)
-            options = replace(options, policy=replace(options.policy, seams=seams))
-    return job.robots, paint_job(robot, job, actuators, options)
+    with zone_plans_remembered():  # the search's programs are the cell's: planned once
+        if not options.max_line_speed:
+            act = default_actuators(job) if actuators is None else actuators
+            seated, seams = seat_ends(robot, job, act, options.policy, part)
+            if seams is not None:
+                job = replace(job, robots=seated)
+                options = replace(options, policy=replace(options.policy, seams=seams))
+        return job.robots, paint_job(robot, job, actuators, options)
 
 
 __all__ = ["SEAT_TRIES", "paint_seated", "plans_alone", "seat_ends"]

@@ -29,8 +29,18 @@ def low_top(robot):
     return replace(job, robots=(CellRobot("low"), high)), strokes
 
 
-def test_a_refused_top_robot_is_seated_at_the_first_place_that_plans(robot, low_top):
+def test_a_refused_top_robot_is_seated_at_the_first_place_that_plans(robot, low_top,
+                                                                    monkeypatch):
     job, strokes = low_top
+    from pollard_pin.painting.cell import plan as cell_plan
+
+    planned = []  # the zone programs made, by robot: the search's are the cell's
+
+    def counted(model, act, job_b, view, *args):
+        planned.append(view.zone.robot)
+        return plan_zone(model, act, job_b, view, *args)
+
+    plan_zone = cell_plan.plan_zone
     low, high = job.robots
     act = default_actuators(job)
     policy = PlannerPolicy(clearance_stride=8)  # the clearances are not what is tested
@@ -38,10 +48,13 @@ def test_a_refused_top_robot_is_seated_at_the_first_place_that_plans(robot, low_
     assert plans_alone(robot, job, low, act, split, None, policy) is None
     assert "out of reach" in str(plans_alone(robot, job, high, act, split, None, policy))
     # seated and painted at the job's line speed
+    monkeypatch.setattr(cell_plan, "plan_zone", counted)
     robots, painted = paint_seated(robot, replace(job, robots=()), job.robots, options=
                                    PaintOptions(resolution=0.005, compliance=False,
                                                 policy=policy))
+    monkeypatch.undo()
     assert painted.plan.speed == job.line.speed
+    assert planned.count("low") == 1  # planned alone, then taken by the cell's plan
     assert robots[0] == low
     seated = robots[1]
     k = round((seated.base[2] - high.base[2]) / STEP)
