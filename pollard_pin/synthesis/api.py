@@ -87,17 +87,20 @@ def trial_rows(study, variables, names: Sequence[str]) -> list[dict]:
     return rows
 
 
-def _replan(runner, designs: list[dict]) -> list:
-    """Each design planned in full on ``runner`` (the study's, still open), in parallel;
-    the outcomes (or exceptions) in input order. The most robots first (the longest plans:
-    the last to finish is then a short one, not a worker idle beside a long one)."""
+def _replan(runner, designs: list[dict], notes: list | None = None) -> list:
+    """Each design planned in full on ``runner`` (the study's, still open), in parallel,
+    with its search's ``notes`` (a list beside ``designs``, None each where none: the same
+    plans made again without their searches); the outcomes (or exceptions) in input order.
+    The most robots first (the longest plans: the last to finish is then a short one, not a
+    worker idle beside a long one)."""
     out: list = [None] * len(designs)
+    notes = [None] * len(designs) if notes is None else notes
     pending = sorted(enumerate(designs), key=lambda kv: -float(kv[1].get("robots", 1)))
     inflight = 0
     while pending or inflight:
         while pending and inflight < runner.capacity:
             k, values = pending.pop(0)
-            runner.submit(k, values, "full")
+            runner.submit(k, values, "full", notes[k])
             inflight += 1
         for k, outcome in runner.done():
             out[k], inflight = outcome, inflight - 1
@@ -242,11 +245,12 @@ def _front(rows, stored, runner, names, options, base: int | None = None
            ) -> tuple[list[dict], list[str], dict]:
     """The front's designs, each judged by a full plan: the study's own full evaluations
     (from the database); a design the study judged by the screen alone or by the search's
-    cheaper checks is planned in full now (one that fails it leaves the front, with a note,
-    and the designs it hid are considered in turn); the notes; the outcomes of the plans
-    made, by trial. The baseline's trial ``base``, if it needs a full plan
-    (:func:`_needs_plan`), is planned with the first of them (on the same workers, not
-    after them)."""
+    cheaper checks is planned in full now, with what its search noted (its layout and line
+    plans' searches: the same plan made again without them, only its checks exact; one that
+    fails it leaves the front, with a note, and the designs it hid are considered in turn);
+    the notes; the outcomes of the plans made, by trial. The baseline's trial ``base``, if
+    it needs a full plan (:func:`_needs_plan`), is planned with the first of them (on the
+    same workers, not after them)."""
     levels = ("screen",) if options.screen_only else ("search", "full")
     candidates = [r for r in rows if r["feasible"] and r["level"] in levels]
     if not candidates:
@@ -267,7 +271,8 @@ def _front(rows, stored, runner, names, options, base: int | None = None
         also = [base] if base is not None and base not in todo and base not in outcomes \
             and _needs_plan(stored[base][1]) else []
         designs = [stored[n][0] for n in todo + also]
-        outcomes.update(zip(todo + also, _replan(runner, designs)))
+        searched = [stored[n][1].get("notes") for n in todo + also]  # their plans' notes
+        outcomes.update(zip(todo + also, _replan(runner, designs, searched)))
         for n, values in zip(todo, designs):
             outcome = outcomes[n]
             planned[n] = _design_row(0, n, values, outcome, names) or {}
@@ -302,7 +307,8 @@ def _baseline(base, trial, stored, runner, names, outcomes: dict) -> dict:
                 "binding": found.get("binding"),
                 "objectives": ({n: found["objectives"][n] for n in names}
                                if found["feasible"] else None)}
-    (b,) = [outcomes[trial]] if trial in outcomes else _replan(runner, [base])
+    (b,) = [outcomes[trial]] if trial in outcomes else _replan(
+        runner, [base], [None if found is None else found.get("notes")])
     if isinstance(b, BaseException):
         return {"values": base, "trial": trial, "feasible": False, "objectives": None,
                 "binding": failure(b)}

@@ -35,7 +35,8 @@ class Outcome:
     seconds: float
 
 
-def run_design(values: Mapping, ctx, evaluate: Callable, level: str = "full") -> Outcome:
+def run_design(values: Mapping, ctx, evaluate: Callable, level: str = "full",
+               notes: dict | None = None) -> Outcome:
     """Screen the design, and plan it when it passes and ``level`` asks for it (the
     evaluator's ``level="search"`` and ``"full"`` screen first and stop there when the screen
     rejects the design).
@@ -50,6 +51,9 @@ def run_design(values: Mapping, ctx, evaluate: Callable, level: str = "full") ->
         ``evaluate(values, ctx, level)`` → an evaluation with ``level`` and ``feasible``.
     level : str, optional
         ``"screen"``, ``"search"`` (planned at the search's fidelity) or ``"full"`` (default).
+    notes : dict or None, optional
+        The design's notes from its search (the evaluation's ``notes``), handed to
+        ``evaluate`` as ``notes=`` (None: not passed).
 
     Returns
     -------
@@ -57,18 +61,20 @@ def run_design(values: Mapping, ctx, evaluate: Callable, level: str = "full") ->
         The evaluation that judges the design, and its time [s].
     """
     t0 = time.perf_counter()
-    found = evaluate(dict(values), ctx, level=level)
+    more = {} if notes is None else {"notes": notes}
+    found = evaluate(dict(values), ctx, level=level, **more)
     return Outcome(found, time.perf_counter() - t0)
 
 
 class Runner:
-    """Runs :func:`run_design` for submitted designs: ``submit(key, values, level)``,
+    """Runs :func:`run_design` for submitted designs: ``submit(key, values, level, notes)``,
     ``done()`` → [(key, Outcome or the exception it raised)], ``capacity`` designs in
     flight at once, ``close()`` (stops what is still running)."""
 
     capacity = 1
 
-    def submit(self, key: int, values: Mapping, level: str = "full") -> None:
+    def submit(self, key: int, values: Mapping, level: str = "full",
+               notes: dict | None = None) -> None:
         raise NotImplementedError
 
     def done(self) -> list[tuple[int, Any]]:
@@ -90,14 +96,14 @@ class SerialRunner(Runner):
     def __init__(self, ctx, evaluate: Callable):
         self.ctx, self.evaluate, self.queue = ctx, evaluate, []
 
-    def submit(self, key, values, level="full"):
-        self.queue.append((key, values, level))
+    def submit(self, key, values, level="full", notes=None):
+        self.queue.append((key, values, level, notes))
 
     def done(self):
         if not self.queue:
             return []
-        key, values, level = self.queue.pop(0)
-        return [(key, _guarded(run_design, values, self.ctx, self.evaluate, level))]
+        key, values, level, notes = self.queue.pop(0)
+        return [(key, _guarded(run_design, values, self.ctx, self.evaluate, level, notes))]
 
 
 def _guarded(fn, *args):
@@ -130,8 +136,8 @@ def _init_worker(ctx, evaluate) -> None:
     _WORKER.update(ctx=ctx, evaluate=evaluate)
 
 
-def _pool_task(values, level):
-    return run_design(values, _WORKER["ctx"], _WORKER["evaluate"], level)
+def _pool_task(values, level, notes=None):
+    return run_design(values, _WORKER["ctx"], _WORKER["evaluate"], level, notes)
 
 
 class PoolRunner(Runner):
@@ -153,8 +159,8 @@ class PoolRunner(Runner):
                                         initializer=_init_worker, initargs=(ctx, evaluate))
         self.futures: dict = {}
 
-    def submit(self, key, values, level="full"):
-        self.futures[self.pool.submit(_pool_task, dict(values), level)] = key
+    def submit(self, key, values, level="full", notes=None):
+        self.futures[self.pool.submit(_pool_task, dict(values), level, notes)] = key
 
     def done(self):
         from concurrent.futures import FIRST_COMPLETED, wait
@@ -203,9 +209,9 @@ class DaskRunner(Runner):
         self.evaluate, self.retries, self.futures = evaluate, retries, {}
         self.wait = distributed.wait
 
-    def submit(self, key, values, level="full"):
+    def submit(self, key, values, level="full", notes=None):
         fut = self.client.submit(run_design, dict(values), self.ctx, self.evaluate, level,
-                                 pure=False, retries=self.retries)
+                                 notes, pure=False, retries=self.retries)
         self.futures[fut] = key
 
     def done(self):

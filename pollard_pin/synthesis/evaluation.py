@@ -37,8 +37,10 @@ from ..model.overrides import ParameterError
 from ..outputs.result import paint
 from ..painting.causes import binding_of
 from ..painting.cell.bands import job_strokes
+from ..painting.cell.robots import CellRobot
 from ..painting.job import PartJob, load_job
 from ..painting.layout.cell import propose_layout
+from ..painting.line.notes import plan_notes
 from ..painting.options import PaintOptions
 from .concrete import Design, actuators_toml, build, params_toml
 from .fidelity import SearchFidelity
@@ -62,6 +64,7 @@ FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
 REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
 LEVELS = ("screen", "search", "full")
+LAYOUT = "layout"  # a design's notes: its cell's proposed robots (the rest: its line plans')
 
 
 @dataclass(frozen=True)
@@ -89,6 +92,11 @@ class Evaluation:
         evaluation (None after the screen: :func:`design_files` writes them).
     message : str or None
         The planner's refusal, one line (None: none).
+    notes : dict or None
+        A planned design's notes (``level="search"``): the layout and what its line plans
+        searched (:mod:`pollard_pin.painting.line.notes`), plain data, with which
+        ``evaluate(values, ctx, "full", notes)`` plans the same design exactly without
+        searching again (None: none).
     """
 
     level: str
@@ -101,6 +109,7 @@ class Evaluation:
     actuators_toml: str | None = None
     robots_toml: str | None = None
     message: str | None = None
+    notes: dict | None = field(default=None, repr=False, compare=False)
 
     def objective_vector(self) -> tuple[float, ...]:
         """The objectives in :data:`OBJECTIVES` order (senses: :data:`SENSES`)."""
@@ -201,7 +210,8 @@ def _back_offset(ctx: DesignContext, back: float) -> np.ndarray:
     return -back * np.asarray(ctx.strokes.facing, float)
 
 
-def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int):
+def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int,
+               notes: dict | None = None):
     """The job a design paints (docs/model.md §31.3): a line job with its ``n`` robots
     proposed as ``paint --robots N`` does, where the robot stands (the part moved for
     ``place.back``), then their bases moved back there; a job without a line as it is.
@@ -216,6 +226,9 @@ def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int):
         The design's model (:func:`pollard_pin.load` of its parameters).
     n : int
         The robots in the cell.
+    notes : dict or None, optional
+        A design's notes (:attr:`Evaluation.notes`): the layout taken from there if it was
+        proposed for this robot, count and place, else proposed and noted there.
 
     Returns
     -------
@@ -230,9 +243,18 @@ def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int):
     job = ctx.job
     if job.line is None:
         return job
-    o = _back_offset(ctx, ctx.space.place_back(values))
+    back = ctx.space.place_back(values)
+    key = repr((robot.params, n, back))  # what the layout reads besides the study's job
+    noted = (notes or {}).get(LAYOUT)
+    if noted is not None and noted["for"] == key:
+        return replace(job, robots=tuple(CellRobot(name, tuple(base), tuple(rotation))
+                                         for name, base, rotation in noted["robots"]))
+    o = _back_offset(ctx, back)
     robots = tuple(replace(r, base=tuple(float(c) for c in np.subtract(r.base, o)))
                    for r in propose_layout(robot, moved_job(job, o), n))
+    if notes is not None:
+        notes[LAYOUT] = {"for": key, "robots": [[r.name, list(r.base), list(r.rotation)]
+                                                for r in robots]}
     return replace(job, robots=robots)
 
 
@@ -338,7 +360,7 @@ def _kmin(robot, plans, actuators) -> float:
 
 
 def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluation,
-          level: str = "full") -> Evaluation:
+          level: str = "full", notes: dict | None = None) -> Evaluation:
     from ..outputs.robots_toml import robots_toml
 
     t0 = time.perf_counter()
@@ -348,10 +370,12 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
     n = design.robots
     figures = dict(screened.figures)
     cons = dict(screened.constraints)
+    made = dict(notes or {})  # the search's notes taken, its own added (not the caller's)
     try:
-        job = placed_job(values, ctx, robot, n)
+        job = placed_job(values, ctx, robot, n, made)
         robots = job.robots or None
-        result = paint(robot, job, design.actuators, options)
+        with plan_notes(made):  # the same plan made again: its searches not repeated
+            result = paint(robot, job, design.actuators, options)
     except PollardError as exc:  # the planner's refusal (a SolveError, a CellError): said
         figures["full_s"] = time.perf_counter() - t0
         binding = binding_of(str(exc))
@@ -386,7 +410,7 @@ def _full(values, design: Design, robot, ctx: DesignContext, screened: Evaluatio
         robots, f"[[robot]] tables of a design of pollard-pin design for {_job_name(ctx.job)}\n"
         "(docs/model.md §31): add them to the job to plan with them")
     return Evaluation(level, binding is None, objectives, cons, binding, figures,
-                      *_files(design), text)
+                      *_files(design), text, notes=made if level == "search" else None)
 
 
 def _job_name(job) -> str:
@@ -394,8 +418,8 @@ def _job_name(job) -> str:
     return Path(str(job.source)).name or str(job.source)
 
 
-def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
-             ) -> Evaluation:
+def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full",
+             notes: dict | None = None) -> Evaluation:
     """Judge one design (docs/model.md §31.3).
 
     Parameters
@@ -410,6 +434,10 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
         passes, the paint plan, film, motors, cycle and kmin; ``"search"``: as ``"full"``,
         its checks at ``ctx.search``'s fidelity (:class:`SearchFidelity`; an evaluation of
         level ``"search"``), or exactly ``"full"`` when the context has none.
+    notes : dict or None, optional
+        The design's notes from its search (:attr:`Evaluation.notes`): its layout and line
+        plans' searches taken from there where their inputs are the same (the plan made
+        again is the same plan, only its checks at this level's fidelity), none by default.
 
     Returns
     -------
@@ -427,7 +455,7 @@ def evaluate(values: Mapping[str, Any], ctx: DesignContext, level: str = "full"
     if level == "screen" or not ev.feasible:
         return ev
     return _full(values, design, robot, ctx, ev,
-                 "search" if level == "search" and ctx.search is not None else "full")
+                 "search" if level == "search" and ctx.search is not None else "full", notes)
 
 
 def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dict[str, Any]:

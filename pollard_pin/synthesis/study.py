@@ -241,6 +241,8 @@ def record(study, trial, outcome: Outcome | BaseException, names: Sequence[str])
         if feasible and ev.level != "screen":
             attrs["files"] = {n: t for n, t in zip(FILES, (ev.params_toml, ev.actuators_toml,
                                                           ev.robots_toml)) if t}
+        if feasible and ev.level == "search" and getattr(ev, "notes", None):
+            attrs["notes"] = ev.notes  # its exact plan, if on the front, without searching
         trial.set_user_attr(EVALUATION, attrs)  # one write: every write is a commit
         for k, v in constraints.items():  # optuna's named constraints: NSGA-II reads them
             trial.set_constraint(k, v)

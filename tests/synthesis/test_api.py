@@ -175,3 +175,34 @@ def test_a_progress_that_is_no_function_is_refused_first():
     with pytest.raises(InputError, match=r"^progress = 3: expected a function or None, got int$"):
         design(stub.StubJob(), stub.StubSpace(), DesignOptions(trials=2, workers=1), evaluator=stub,
                progress=3)
+
+
+def test_a_front_design_is_planned_again_with_its_own_search_notes():
+    """What the search noted of a design (Evaluation.notes: its layout and line plans'
+    searches) is stored with its trial and handed back with that design, and no other, when
+    the front (or the baseline) is planned exactly."""
+    from dataclasses import dataclass, fields
+
+    from pollard_pin.synthesis.evaluation import SearchFidelity
+
+    @dataclass(frozen=True)
+    class Noted(stub.Evaluation):
+        notes: dict | None = None
+
+    got = []
+
+    def noting(values, ctx, level="screen", notes=None):
+        ev = stub.evaluate(values, ctx, level)
+        if level == "full":
+            got.append((dict(values), notes))
+            return ev
+        own = {"for": [values["chain0.x32"], values["y"], values["robots"]]}
+        return Noted(**{f.name: getattr(ev, f.name) for f in fields(ev)}, notes=own)
+
+    ev = type("Noting", (), {"OBJECTIVES": stub.OBJECTIVES, "prepare": stub.prepare,
+                             "baseline_values": staticmethod(stub.baseline_values),
+                             "evaluate": staticmethod(noting)})
+    result = run_stub(None, 16, search=SearchFidelity(), evaluator=ev)
+    assert got and len(got) >= len(result.front)
+    for values, notes in got:  # every one a searched design's, with its own notes
+        assert notes == {"for": [values["chain0.x32"], values["y"], values["robots"]]}

@@ -226,3 +226,48 @@ def test_placed_job_is_the_job_the_evaluation_paints(strip):
     assert [list(r.base) for r in job.robots] == [r["base"] for r in written]
     still = replace(ctx, job=replace(ctx.job, line=None))
     assert placed_job(values, still, robot, 1) is still.job
+
+
+def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_searched,
+                                                                 monkeypatch):
+    """The strip planned exactly with the notes of its search (Evaluation.notes, plain data:
+    the layout, and the line plan's turnarounds, delay and return by the fingerprint of what
+    that search read) searches nothing again and is the full evaluation from scratch to the
+    bit: objectives, constraints, figures and files (docs/model.md §31.5)."""
+    import json
+
+    import pollard_pin.painting.line.phases as phases
+
+    space, ctx, values, exact = strip
+    notes = json.loads(json.dumps(strip_searched.notes))  # as the study stores them
+    assert notes == strip_searched.notes and "layout" in notes and len(notes) == 2
+    searched = []
+    real = phases._searched
+    monkeypatch.setattr(phases, "_searched", lambda *a: searched.append(1) or real(*a))
+    ev = evaluate(values, ctx, "full", notes=notes)
+    assert not searched and ev.level == "full" and ev.notes is None
+    timed = ("screen_s", "full_s")
+    assert {k: v for k, v in ev.figures.items() if k not in timed} == \
+        {k: v for k, v in exact.figures.items() if k not in timed}
+    assert (ev.objectives, ev.constraints, ev.binding, ev.feasible) == \
+        (exact.objectives, exact.constraints, exact.binding, exact.feasible)
+    assert (ev.params_toml, ev.actuators_toml, ev.robots_toml) == \
+        (exact.params_toml, exact.actuators_toml, exact.robots_toml)
+    # the notes hold the search, not its verdict: the exact motor check still runs, and
+    # where it refuses (here made to, once), the design is refused as from scratch
+    refused = []
+
+    def once(worst, speed, too_fast, least=""):
+        if not refused:
+            refused.append(worst)
+            raise phases.LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs "
+                                        f"{100 * worst:.0f} % of its peak torque or speed",
+                                        too_fast, "a motor over its rating")
+    monkeypatch.setattr(phases, "motors_within", once)
+    from dataclasses import replace
+
+    named = replace(ctx, options=replace(ctx.options, policy=replace(
+        ctx.options.policy, name_speeds=False)))  # that speed's refusal, no interval sought
+    ev = evaluate(values, named, "full", notes=notes)
+    assert refused and not searched and not ev.feasible and ev.binding == "motors"
+    assert ev.constraints["plan"] == 1.0 and "a motor needs" in ev.message

@@ -23,6 +23,7 @@ from ..errors import BudgetError, LineReachError, LineSpeedError, PlanError, Rea
 from ..passes.raster import SMOOTHSTEP
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from .motors import first_kept, motors_within, screen_motors, wait_motion
+from .notes import noted
 from .reach import ball_shift_range, coarse_to_fine, out_of_reach, unreachable_passes
 from .shifts import SHIFT_RANGE, SHIFT_STEP, feasible_shifts, shift_window
 
@@ -310,50 +311,15 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     ``check_refine`` a power of two, every ``check_refine``-th of the check's, bit for
     bit): over their ratings there, the path is refused without the finer check, which
     would refuse it too."""
-    build, guess, dt, where = program.build, program.guess, program.dt, program.where
-    passes, source = program.passes, program.source
+    build, dt, source = program.build, program.dt, program.source
     e = np.asarray(e, dtype=float)
     slow_budget(speed, dt, source, policy)
-    ns = policy.turn_samples
-    rel = build(guess)
-    shift = choose_shift(robot, rel, speed, e, where)
-    # the wait and the passes alone, before the turnarounds are searched
-    passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
-    samples_budget(shift / speed + passes_time, dt, source, policy)
-    centre = shift + _mid_along(rel, speed, e)
-    built = {np.asarray(guess, dtype=float).tobytes(): rel}  # the search starts at the guess
-
-    def evaluate(tau):
-        r = built.pop(np.asarray(tau).tobytes(), None) or build(tau)
-        pieces = r.not_passes()
-        u = np.linspace(0.0, 1.0 - 1e-12, ns)
-        tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
-        ct, n = r.coarse_times(), len(tt)
-        # the samples and _mid_along's coarse times in one evaluation (row by row the same)
-        p, v, a = r.evaluate(np.concatenate([tt, ct]))
-        x = centre - _mid(line_shift(p[n:], v[n:], ct, speed, e)[0], e)
-        p, v = line_shift(p[:n], v[:n], tt + x / speed, speed, e)
-        a = a[:n]
-        try:
-            m = motion(robot, act, p, v, a)
-        except ReachError:  # per τ, as below: a slow line's turn halves and wait share one
-            return _per_tau(pieces, np.full(len(pieces), np.inf))
-        worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
-        return _per_tau(pieces, worst)
-
-    try:
-        rel = build(fastest(evaluate, np.asarray(guess, float), policy.utilisation))
-    except PlanError:
-        # too fast or too slow by the drift's sign, as every other failure here: the
-        # turnarounds fail on the reach where the program drifts out of it (§24)
-        raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
-                             f"{passes} keeps the world path in reach and the motors within "
-                             "their ratings with the line's speed added",
-                             _drift_along(rel, speed, e) > 0,
-                             "no turnaround keeps the path in reach and the motors within "
-                             "ratings") from None
-    delay = choose_shift(robot, rel, speed, e, where) / speed
-    back = _return_time(robot, act, rel, speed, e, delay, policy)
+    rel = build(program.guess)
+    # the searches (shift, turnarounds, return) once per inputs within plan_notes (notes.py)
+    made = noted(lambda: _searched(robot, act, program, rel, speed, e, policy), robot, act,
+                 program, rel, speed, e, policy, screen)
+    rel = build(np.asarray(made["tau"], dtype=float))
+    delay, back = made["delay"], made["back"]
     times = LineTimes(delay, delay + rel.total, back)
     samples_budget(times.total, dt, source, policy)
     steps = math.ceil((times.total - times.delay) / dt - 1e-9)  # the program's, on
@@ -392,6 +358,57 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     motors_within(max(float(ratios["peak_torque"].max()), float(ratios["speed"].max())),
                   speed, drift > 0)
     return World(rel, times, traj, spray, ratios)
+
+
+def _searched(robot, act: Actuators, program: LineProgram, rel: Relative, speed: float, e,
+              policy: PlannerPolicy) -> dict:
+    """What :func:`plan_world` searches before it samples and checks the path (none of it
+    reads ``policy.check_refine``): the ramps' and turnarounds' durations ``tau``, the
+    ``delay`` [s] and the return's duration ``back`` [s], as plain numbers (a note,
+    :mod:`.line.notes`); ``rel`` the program at its guess."""
+    build, guess, where, passes = program.build, program.guess, program.where, program.passes
+    ns = policy.turn_samples
+    shift = choose_shift(robot, rel, speed, e, where)
+    # the wait and the passes alone, before the turnarounds are searched
+    passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
+    samples_budget(shift / speed + passes_time, program.dt, program.source, policy)
+    centre = shift + _mid_along(rel, speed, e)
+    built = {np.asarray(guess, dtype=float).tobytes(): rel}  # the search starts at the guess
+
+    def evaluate(tau):
+        r = built.pop(np.asarray(tau).tobytes(), None) or build(tau)
+        pieces = r.not_passes()
+        u = np.linspace(0.0, 1.0 - 1e-12, ns)
+        tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
+        ct, n = r.coarse_times(), len(tt)
+        # the samples and _mid_along's coarse times in one evaluation (row by row the same)
+        p, v, a = r.evaluate(np.concatenate([tt, ct]))
+        x = centre - _mid(line_shift(p[n:], v[n:], ct, speed, e)[0], e)
+        p, v = line_shift(p[:n], v[:n], tt + x / speed, speed, e)
+        a = a[:n]
+        try:
+            m = motion(robot, act, p, v, a)
+        except ReachError:  # per τ, as below: a slow line's turn halves and wait share one
+            return _per_tau(pieces, np.full(len(pieces), np.inf))
+        worst = m.utilisation.reshape(len(pieces), ns, -1).max(axis=(1, 2))
+        return _per_tau(pieces, worst)
+
+    try:
+        tau = fastest(evaluate, np.asarray(guess, float), policy.utilisation)
+    except PlanError:
+        # too fast or too slow by the drift's sign, as every other failure here: the
+        # turnarounds fail on the reach where the program drifts out of it (§24)
+        raise LineSpeedError(f"at line speed {speed:.4g} m/s no ramp or turnaround between "
+                             f"{passes} keeps the world path in reach and the motors within "
+                             "their ratings with the line's speed added",
+                             _drift_along(rel, speed, e) > 0,
+                             "no turnaround keeps the path in reach and the motors within "
+                             "ratings") from None
+    rel = build(tau)
+    delay = choose_shift(robot, rel, speed, e, where) / speed
+    back = _return_time(robot, act, rel, speed, e, delay, policy)
+    return {"tau": np.asarray(tau, dtype=float).tolist(), "delay": float(delay),
+            "back": float(back)}
 
 
 def _per_tau(pieces, worst) -> np.ndarray:
