@@ -17,6 +17,7 @@ from .errors import InputError
 SHOWN = 60  # characters of a value shown in a message
 NUL_IN_PATH = "a path with a NUL character"  # the words of that refusal, every reader's
 EXAMPLE_ADDRESS = "tcp://127.0.0.1:8786"  # a Dask scheduler's address, as refusals show one
+SEEDS = 2**32  # numpy's random seeds: 0..2^32 − 1 (a sampler's, a study's)
 
 
 def shorten(value, width: int = SHOWN) -> str:

@@ -9,6 +9,7 @@ import signal
 import sys
 from pathlib import Path
 
+from ..checks import SEEDS
 from .common import (
     command,
     count,
@@ -155,7 +156,7 @@ def add_parser(sub, parents) -> None:
                    help="choose front row N (front.csv's design N); default: the rule, "
                         "within motor use 0.9 the fewest robots, then the most parts per "
                         "hour, then the least moving mass")
-    p.add_argument("--seed", type=count(0, 2**32 - 1), default=0, metavar="S",
+    p.add_argument("--seed", type=count(0, SEEDS - 1), default=0, metavar="S",
                    help="the sampler's seed, 0 to 2^32 − 1 (numpy's range; default: 0)")
     p.add_argument("--population", type=count(2, 10**4), default=24, metavar="N",
                    help="NSGA-II's population (designs per generation)")

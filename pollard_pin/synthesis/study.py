@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..checks import callback, instance, scheduler_address, shorten
+from ..checks import SEEDS, callback, instance, scheduler_address, shorten
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
@@ -119,9 +119,10 @@ class DesignOptions:
                 raise InputError(f"DesignOptions.{name}: must be an integer >= {low}, got "
                                  f"{shorten(value)}")
         if self.seed is not None and (isinstance(self.seed, bool)
-                                      or not isinstance(self.seed, int)):
-            raise InputError(f"DesignOptions.seed: must be an integer or None, got "
-                             f"{shorten(self.seed)}")
+                                      or not isinstance(self.seed, int)
+                                      or not 0 <= self.seed < SEEDS):
+            raise InputError(f"DesignOptions.seed: must be an integer 0..2^32 − 1 (numpy's "
+                             f"seeds) or None, got {shorten(self.seed)}")
         for flag in ("resume", "screen_only", "ladder"):  # "no" is truthy: real bools only
             instance(getattr(self, flag), f"DesignOptions.{flag}", bool, "True or False")
         if not isinstance(self.progress, bool):
@@ -149,7 +150,7 @@ def sampler(options: DesignOptions, finished: int = 0):
     """NSGA-II with the options' population and seed (a resumed study: the seed moved on by
     the evaluations it holds, so that it proposes new designs, not the first ones again)."""
     optuna = require_optuna()
-    seed = None if options.seed is None else options.seed + finished
+    seed = None if options.seed is None else (options.seed + finished) % SEEDS
     return optuna.samplers.NSGAIISampler(population_size=options.population, seed=seed)
 
 

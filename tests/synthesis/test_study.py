@@ -106,6 +106,9 @@ def test_options_are_checked_once():
         DesignOptions(resume=True)
     with pytest.raises(InputError, match="seed"):
         DesignOptions(seed=1.5)
+    for seed in (-1, 2**32, 2**95):  # numpy's seeds are 0..2^32 − 1
+        with pytest.raises(InputError, match=r"seed: must be an integer 0..2\^32 − 1"):
+            DesignOptions(seed=seed)
     for flag in ("resume", "screen_only", "ladder"):  # a truthy string is not True
         with pytest.raises(InputError, match=f"DesignOptions.{flag} = 'no': expected True or "
                            "False, got str"):
@@ -191,3 +194,18 @@ def test_a_well_formed_scheduler_address_is_taken_as_given():
     pytest.importorskip("distributed")
     for address in ("tcp://127.0.0.1:8786", " localhost:8786 ", "inproc://x", None):
         assert DesignOptions(dask=address).dask == address  # --dask's rule: the same ones
+
+
+def test_a_resumed_studys_seed_wraps_round_numpys_range(monkeypatch):
+    """The sampler's seed moves on by the evaluations held (docs/model.md §31.5), within
+    numpy's 0..2^32 − 1 (beyond it the sampler raised)."""
+    import optuna
+
+    from pollard_pin.synthesis.study import sampler
+
+    seeds = []
+    monkeypatch.setattr(optuna.samplers, "NSGAIISampler",
+                        lambda population_size, seed: seeds.append(seed))
+    sampler(DesignOptions(seed=2**32 - 1), finished=3)
+    sampler(DesignOptions(seed=7), finished=3)
+    assert seeds == [2, 10]
