@@ -12,10 +12,10 @@ import time
 import warnings
 from pathlib import Path
 
-from ..checks import EXAMPLE_ADDRESS, address_problem, problem
+from ..checks import EXAMPLE_ADDRESS, address_problem, problem, shorten
 from ..errors import InputError
 from ..io.atomic import STDOUT
-from ..model.values import parse_float, parse_int, shorten
+from ..model.values import parse_float, parse_int
 
 log = logging.getLogger("pollard_pin")
 

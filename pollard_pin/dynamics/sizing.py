@@ -14,11 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import instance
+from ..checks import instance, shorten
 from ..errors import InputError
 from ..kinematics.errors import SAMPLE_ERRORS
 from ..model.build import check_robot
-from ..model.values import shorten
 from .averages import mean_weights
 from .cycle import time_optimal_path
 from .motors import (

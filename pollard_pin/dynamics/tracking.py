@@ -25,6 +25,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import rotation
+from ..checks import shorten
 from ..errors import say_less
 from ..kinematics.closure import close_loops, tool_pose
 from ..kinematics.errors import ClosureError, SingularityError
@@ -33,7 +34,6 @@ from ..kinematics.limits import first_violation, limit_bounds, violation_text
 from ..kinematics.sensing import LoopSensor
 from ..kinematics.singularity import actuator_velocity_map
 from ..model.build import Robot, check_robot
-from ..model.values import shorten
 from .control import (
     ComputedTorque,
     ControlError,

@@ -9,8 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import float_array, is_real
-from ..model.values import shorten
+from ..checks import float_array, is_real, shorten
 from .control import CONTROL_PERIOD, CONTROLLERS, ControlError, Controller, DesiredTrajectory, Gains
 from .drives.flexible import FlexibleDrives
 from .inverse import JointLosses

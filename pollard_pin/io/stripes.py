@@ -20,10 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import file_path
+from ..checks import file_path, shorten
 from ..errors import InputError
 from ..model.params import did_you_mean
-from ..model.values import parse_float, read_bytes, read_toml, shorten
+from ..model.values import parse_float, read_bytes, read_toml
 
 TOP_KEYS = ("solids", "standoff", "stripe")
 STRIPE_KEYS = ("file", "standoff", "speed", "flow", "direction")

@@ -18,9 +18,9 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
-from ..checks import file_path
+from ..checks import clip, file_path, shorten
 from ..errors import InputError
-from ..model.values import clip, open_regular, shorten
+from ..model.values import open_regular
 from ..names import JOINTS
 from .atomic import STDOUT, OutputError, all_or_nothing, atomic_open, check_destination, is_special
 from .json_text import finite_json

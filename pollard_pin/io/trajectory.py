@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 
 from ..analytic.taskspace import TASK_NAMES
-from ..checks import file_path, instance
+from ..checks import file_path, instance, shorten
 from ..kinematics.ik_common import MIN_TIME_STEP
 from ..model.params import did_you_mean
-from ..model.values import float_text_problem, open_regular, parse_float, shorten, shown_path
+from ..model.values import float_text_problem, open_regular, parse_float, shown_path
 from ..paths.splines import QuinticSpline
 from ..paths.trajectory import MAX_TIME, Trajectory, TrajectoryError
 

@@ -8,10 +8,9 @@ import numpy as np
 import pinocchio as pin
 
 from ..analytic.taskspace import pose_from_se3
-from ..checks import float_array
+from ..checks import float_array, shorten
 from ..errors import say_less
 from ..model.build import Robot, check_robot, constraint_residual_jacobian
-from ..model.values import shorten
 from .errors import ClosureError, ClosureSingularError, KinematicsInputError
 from .singularity import SIGMA_FLOOR, sigma_range, solve_small
 

@@ -10,9 +10,8 @@ import numpy as np
 
 from ..analytic import closed_form
 from ..analytic.taskspace import TaskInputError, check_task_array
-from ..checks import float_array, real
+from ..checks import float_array, real, shorten
 from ..model.build import Robot
-from ..model.values import shorten
 from .errors import (
     KinematicsError,
     KinematicsInputError,

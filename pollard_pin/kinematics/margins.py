@@ -6,9 +6,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..checks import real
+from ..checks import real, shorten
 from ..errors import InputError
-from ..model.values import shorten
 
 SINGULARITY_MARGIN = 1e-3  # default smallest singular value allowed (parallel and serial)
 WRIST_MARGIN = 0.05  # default smallest |sin θ1716| allowed (≈ 2.9°)

@@ -11,8 +11,9 @@ from typing import Any
 
 import numpy as np
 
+from ..checks import shorten
 from ..errors import InputError
-from .values import loads_toml, shorten
+from .values import loads_toml
 
 
 class ParameterError(InputError):

@@ -1,6 +1,7 @@
 """One home for reading what the user gives: input files opened safely, TOML parsed within
-limits, numbers checked; values are shown short in messages by :func:`shorten` and
-:func:`clip` (their home is :mod:`pollard_pin.checks`, below the model; imported here).
+limits, numbers checked; values are shown short in messages by
+:func:`pollard_pin.checks.shorten` and :func:`~pollard_pin.checks.clip` (their home, below the
+model: imported from there, not from here).
 
 Every reader of the package (parameter, actuator, paint job and grid files, trajectory CSVs,
 result tables, command-line numbers) uses these, so that a FIFO, a 5,000-digit integer,
@@ -19,7 +20,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from ..checks import NUL_IN_PATH, clip, problem, shorten  # shorten, clip: their home
+from ..checks import NUL_IN_PATH, problem, shorten
 
 MAX_DEPTH = 32  # nested arrays/tables: a parameter file needs 3 (an inertia matrix)
 MAX_TOML_BYTES = 1 << 20  # 1 MiB: the shipped parameter file is ~5 kB
@@ -231,6 +232,6 @@ def parse_int(text: str) -> int:
     return int(body)
 
 
-__all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "clip", "fail", "float_text_problem", "integer",
+__all__ = ["MAX_DEPTH", "MAX_TOML_BYTES", "fail", "float_text_problem", "integer",
            "loads_toml", "number", "open_regular", "parse_float", "parse_int", "read_bytes",
-           "read_toml", "shorten", "shown_path"]
+           "read_toml", "shown_path"]

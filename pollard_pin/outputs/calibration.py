@@ -9,13 +9,12 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..checks import file_path
+from ..checks import file_path, shorten
 from ..errors import InputError
 from ..io.atomic import all_or_nothing, atomic_open, check_outputs, make_folder
 from ..io.job_file import toml_value
 from ..io.json_text import finite_json
 from ..io.stripes import StripeSet, read_stripes
-from ..model.values import shorten
 from ..painting.gun_table import spot_keys
 from ..painting.spray.calibrate import CRITERION, CalibrateOptions, CalibrationFit, fit_stripes
 from ..painting.spray.deposition import Gun

@@ -129,7 +129,7 @@ def _same(a, b) -> bool:
 
 
 def _short(value) -> str:
-    from ..model.values import clip
+    from ..checks import clip
 
     if value is None:
         return "nothing"
@@ -211,8 +211,8 @@ def read_film(folder, report: PaintJson, found) -> FolderFilm:
 
 
 def _panel_film(found: Path, report: PaintJson) -> FolderFilm:
+    from ..checks import clip, shorten
     from ..io.table import ResultFileError, read_result
-    from ..model.values import clip, shorten
 
     grid = report.grid
     nu, nv = (None, None) if grid is None else (grid.nu, grid.nv)

@@ -21,9 +21,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..checks import clip, shorten
 from ..io.json_text import finite_json
 from ..io.table import ResultFileError
-from ..model.values import clip, open_regular, shorten
+from ..model.values import open_regular
 from .sections import (
     FilmPly,
     FilmPoints,

@@ -9,8 +9,8 @@ from collections.abc import Mapping
 from dataclasses import MISSING, dataclass, fields
 from typing import Any
 
+from ..checks import clip, shorten
 from ..io.table import ResultFileError
-from ..model.values import clip, shorten
 
 # no figure of a report comes near this (the largest: film point counts, ~10⁶); a larger
 # one is a corrupt or hand-made file, not a paint report

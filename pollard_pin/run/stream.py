@@ -8,12 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import callback, instance
+from ..checks import callback, instance, shorten
 from ..errors import InputError
 from ..io.table import TableWriter
 from ..kinematics.ik import BATCH_CHUNK
 from ..model.build import check_robot
-from ..model.values import shorten
 from ..paths.curves import ThesisTrajectory
 from ..paths.trajectory import Trajectory
 from .pipeline import run_pipeline

@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import file_path, instance
+from ..checks import file_path, instance, shorten
 from ..model.overrides import ParameterError, apply_overrides, plain_value
 from ..model.params import params_from_dict, read_params_dict
-from ..model.values import number, read_toml, shorten
+from ..model.values import number, read_toml
 from .evaluate import FAILURE_COLUMNS, METRIC_COLUMNS, SweepError
 
 GRID_KEYS = ("trajectory", "duration", "samples", "params", "grid", "variant")

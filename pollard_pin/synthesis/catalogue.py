@@ -26,10 +26,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..checks import shorten
 from ..dynamics.motors import MAX_VALUE, MIN_POSITIVE, Actuator
 from ..errors import InputError
 from ..model.params import did_you_mean
-from ..model.values import fail, number, read_toml, shorten
+from ..model.values import fail, number, read_toml
 
 REQUIRED = ("rated_torque", "peak_torque", "speed", "rotor_inertia", "mass", "ratios")
 OPTIONAL = ("price", "stiffness", "viscous", "coulomb")

@@ -39,11 +39,11 @@ from typing import Any
 
 import numpy as np
 
-from ..checks import file_path, is_real
+from ..checks import file_path, is_real, shorten
 from ..errors import InputError
 from ..model.overrides import ParameterError, apply_overrides, lookup
 from ..model.params import did_you_mean, merge_partial, params_from_dict, read_params_dict
-from ..model.values import read_toml, shorten
+from ..model.values import read_toml
 from ..names import ACTUATED
 from .catalogue import Catalogue, load_catalogue
 

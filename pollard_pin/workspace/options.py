@@ -8,10 +8,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..analytic.taskspace import MAX_ABS_TASK, TASK_NAMES
-from ..checks import instance, real
+from ..checks import instance, real, shorten
 from ..errors import InputError
 from ..kinematics.margins import Margins, as_margins
-from ..model.values import parse_float, shorten
+from ..model.values import parse_float
 
 CHUNK = 8192  # points per stacked evaluation: ≈ 10 MB of working arrays
 

@@ -81,12 +81,22 @@ def test_a_nul_is_said_in_the_words_of_checks_file_path(tmp_path):
 
 
 def test_shorten_is_the_checks_one():
-    """model.values.shorten and clip are imported from pollard_pin.checks (their home, below
-    the model): one rule for showing a value short."""
+    """shorten and clip have one home, pollard_pin.checks (below the model): model.values
+    uses that one, and no module takes them from model.values (no second door)."""
+    import ast
+    from pathlib import Path
+
     from pollard_pin import checks
     from pollard_pin.model import values
 
-    assert values.shorten is checks.shorten and values.clip is checks.clip
+    assert values.shorten is checks.shorten
+    assert not {"shorten", "clip"} & set(values.__all__)
+    root = Path(checks.__file__).parent
+    through = [f"{p.relative_to(root)}:{node.lineno}" for p in sorted(root.rglob("*.py"))
+               for node in ast.walk(ast.parse(p.read_text()))
+               if isinstance(node, ast.ImportFrom) and (node.module or "").endswith("values")
+               and {a.name for a in node.names} & {"shorten", "clip"}]
+    assert not through, through
 
 
 def test_fail_says_the_key_and_sets_it_on_the_error():

@@ -22,12 +22,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
-from ...checks import float_array
+from ...checks import float_array, shorten
 from ...errors import InputError
 from ...kinematics.errors import SingularityError
 from ...kinematics.ik_batch import kinematic_inverse, layout, point_rows
 from ...kinematics.singularity import inverse_stack
-from ...model.values import shorten
 from ..motors import MIN_STIFFNESS
 
 DEFLECTION = ("dx", "dy", "dz", "rx", "ry", "rz")

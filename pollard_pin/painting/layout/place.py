@@ -25,10 +25,9 @@ import numpy as np
 from scipy import ndimage
 
 from ...analytic.taskspace import angles_from_rotation
-from ...checks import file_path, instance, is_real
+from ...checks import file_path, instance, is_real, shorten
 from ...errors import InputError
 from ...model.build import check_robot
-from ...model.values import shorten
 from ...workspace.grid import reachable_box
 from ...workspace.options import CHUNK
 from ...workspace.reach import evaluate

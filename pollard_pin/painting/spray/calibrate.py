@@ -20,11 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...checks import instance, real
+from ...checks import instance, real, shorten
 from ...errors import InputError, SolveError
 from ...io.stripes import StripeError, StripeSet
 from ...model.params import did_you_mean
-from ...model.values import shorten
 from .deposition import Gun
 from .spots import SPOTS
 from .stripe_fit import ModelFit, StripeData, fit_model
