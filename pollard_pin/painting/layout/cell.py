@@ -1,7 +1,8 @@
 """A cell's layout for a part: where to put n robots (docs/model.md §26.5).
 
 The part's strokes are split into n equal zones stacked along the cell's axis (the first and
-last with today's run-on past the part's free edges, the others R = 4σ past each seam). A
+last with today's run-on past the part's free edges, the others the run past each seam:
+R = 4σ, or the planner's ``seam_run``, ``Strokes.past_seam``). A
 robot at the world origin, unturned, has its band along the axis at the part's depth
 (:mod:`.cell.bands`, the strokes continued past the part); robot i is that robot moved along the
 axis so that its band's middle is its zone's (run-outs included) middle, the bands' overlaps
@@ -149,7 +150,7 @@ def reach_window(robot, strokes: Strokes, band: Band) -> float:
 
 
 def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
-                   part=None) -> tuple[CellRobot, ...]:
+                   part=None, seam_run: float | None = None) -> tuple[CellRobot, ...]:
     """Bases for n robots for this part on this line: their zones stacked across the travel,
     the robots spaced along the line to clear each other (docs/model.md §26.5).
 
@@ -165,6 +166,9 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         The spacing and the names (default :class:`LayoutOptions`).
     part : object or None, optional
         The job's painted part if already read (default None: read here).
+    seam_run : float or None, optional
+        How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
+        R): the overlap the bands hold at each seam is twice that.
 
     Returns
     -------
@@ -184,10 +188,15 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
-    return _propose(robot, job, n, options, part)
+    if seam_run is not None:
+        from ..policy import PlannerPolicy
+
+        seam_run = PlannerPolicy(seam_run=seam_run).seam_run  # checked as the planner's
+    return _propose(robot, job, n, options, part, seam_run=seam_run)
 
 
-def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
+def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
+             seam_run: float | None = None):
     """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
     reference band) if already at hand (:func:`fewest_robots` tries several n on one)."""
     if job.line is None:
@@ -201,6 +210,8 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
         band = reference_band(robot, strokes)
     if options.edge_room:  # the end robots hold more past the free edges (§26.5)
         strokes = replace(strokes, room=options.edge_room)
+    if seam_run is not None:  # the strokes run that far past a seam (§26.5)
+        strokes = replace(strokes, seam_run=seam_run)
     needs = zone_needs(strokes, n)
     narrow = _too_narrow(strokes, band, n)
     if narrow:
@@ -227,7 +238,7 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
                                          job.source))
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
-    split_cell(robot, replace(job, robots=robots), robots, part)
+    split_cell(robot, replace(job, robots=robots), robots, part, seam_run=seam_run)
     return robots
 
 
@@ -347,7 +358,7 @@ def _edge_zones(robot, robots, strokes: Strokes) -> tuple[float, float] | None:
             return None
         band = robot_band(robot, at, strokes)
         held = band.holding(lo=lo).hi - lo if low else hi - band.holding(hi=hi).lo
-        out.append(held - strokes.run_on - strokes.room - strokes.runout - STEP)
+        out.append(held - strokes.run_on - strokes.room - strokes.past_seam - STEP)
     return None if min(out) <= strokes.runout else (out[0], out[1])
 
 
@@ -419,7 +430,10 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
+    seam_run = getattr(getattr(options, "policy", None), "seam_run", None)
     strokes = job_strokes(job, part)
+    if seam_run is not None:  # the zones' needs, as the proposals' (§26.5)
+        strokes = replace(strokes, seam_run=seam_run)
     reference = (strokes, reference_band(robot, strokes))
     first = fewest_for(strokes, reference[1].width)
     if first is None:
@@ -431,7 +445,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
-                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference)
+                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference,
+                                  seam_run)
                 return paint_seated(robot, job, robots, actuators, options, part)
             except BudgetError:
                 raise
