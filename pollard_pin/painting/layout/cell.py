@@ -382,9 +382,10 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     the fastest, with ``options.max_line_speed``), and their plan (docs/model.md §26.5).
 
     The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
-    motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
-    every zone, which cures a motor or reach refusal at once or not at all (a line too slow
-    for the programs' drift gets worse). Each count's failure is sorted by
+    motors, the line's speed) tries n + 1, up to ``AUTO_MORE`` beyond the fewest whose bands
+    hold them with R past each seam (the same unless ``PlannerPolicy.seam_run`` is shorter):
+    more robots shorten every zone, which cures a motor or reach refusal at once or not at
+    all (a line too slow for the programs' drift gets worse). Each count's failure is sorted by
     :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure).
 
     Parameters
@@ -431,7 +432,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
     seam_run = getattr(getattr(options, "policy", None), "seam_run", None)
-    strokes = job_strokes(job, part)
+    strokes = plain = job_strokes(job, part)
     if seam_run is not None:  # the zones' needs, as the proposals' (§26.5)
         strokes = replace(strokes, seam_run=seam_run)
     reference = (strokes, reference_band(robot, strokes))
@@ -439,7 +440,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     if first is None:
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
-    last = min(MAX_ROBOTS, first + AUTO_MORE)
+    # a shorter run past a seam lets fewer bands hold the zones, not fewer robots paint
+    # them: the counts tried reach as far as at R's fewest (§26.5)
+    last = min(MAX_ROBOTS, (fewest_for(plain, reference[1].width) or MAX_ROBOTS) + AUTO_MORE)
     # the counts whose bands are too narrow, then each count planned: why each failed
     causes = {n: cause_of(_too_narrow(strokes, reference[1], n)) for n in range(1, first)}
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
