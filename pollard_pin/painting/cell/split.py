@@ -3,9 +3,9 @@
 Robots are grouped by the side of the part they face (the faces towards their gun, world
 −R·x̂ of the base: gun along base +x). Within a group each robot has its band along the
 cell's axis (:mod:`.bands`); robots are stacked by their bands' middles and the seams
-w_1 < … < w_{n−1} chosen so that robot i's zone [w_{i−1}, w_i] with its run-outs (the run
-past a seam, ``Strokes.past_seam``: R or the planner's ``seam_run``; today's run-on past a
-free edge) lies in its band, the longest zone as short as the
+w_1 < … < w_{n−1} chosen so that robot i's zone [w_{i−1}, w_i] with its run-outs (R past a
+seam where the bands allow it, else the planner's shorter ``seam_run``, ``Strokes.past_seam``;
+today's run-on past a free edge) lies in its band, the longest zone as short as the
 bands allow (equal stroke lengths: the slowest program sets the line's speed), and, among
 such seams, each midway between the lowest and highest the bands allow.
 """
@@ -177,7 +177,11 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
     else:
         bands[0], bands[-1] = bands[0].holding(lo=lo), bands[-1].holding(hi=hi)
     least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
-    seams = seams_between(bands, strokes, least)
+    # R past each seam where the bands allow it (room for the ramps there, docs/model.md
+    # §26.5), else the policy's shorter run
+    seams = seams_between(bands, replace(strokes, seam_run=None), least)
+    if seams is None and strokes.seam_run is not None:
+        seams = seams_between(bands, strokes, least)
     if seams is None:
         raise _why_not(source, bands, strokes, least)
     edges = [-math.inf, *seams, math.inf]

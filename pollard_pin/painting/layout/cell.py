@@ -1,8 +1,7 @@
 """A cell's layout for a part: where to put n robots (docs/model.md §26.5).
 
 The part's strokes are split into n equal zones stacked along the cell's axis (the first and
-last with today's run-on past the part's free edges, the others the run past each seam:
-R = 4σ, or the planner's ``seam_run``, ``Strokes.past_seam``). A
+last with today's run-on past the part's free edges, the others R = 4σ past each seam). A
 robot at the world origin, unturned, has its band along the axis at the part's depth
 (:mod:`.cell.bands`, the strokes continued past the part); robot i is that robot moved along the
 axis so that its band's middle is its zone's (run-outs included) middle, the bands' overlaps
@@ -168,7 +167,8 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         The job's painted part if already read (default None: read here).
     seam_run : float or None, optional
         How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
-        R): the overlap the bands hold at each seam is twice that.
+        R): the proposal's split holds that past a seam where R does not fit (its bands are
+        spaced for R: room for the ramps, docs/model.md §26.5).
 
     Returns
     -------
@@ -210,8 +210,6 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
         band = reference_band(robot, strokes)
     if options.edge_room:  # the end robots hold more past the free edges (§26.5)
         strokes = replace(strokes, room=options.edge_room)
-    if seam_run is not None:  # the strokes run that far past a seam (§26.5)
-        strokes = replace(strokes, seam_run=seam_run)
     needs = zone_needs(strokes, n)
     narrow = _too_narrow(strokes, band, n)
     if narrow:
@@ -358,7 +356,7 @@ def _edge_zones(robot, robots, strokes: Strokes) -> tuple[float, float] | None:
             return None
         band = robot_band(robot, at, strokes)
         held = band.holding(lo=lo).hi - lo if low else hi - band.holding(hi=hi).lo
-        out.append(held - strokes.run_on - strokes.room - strokes.past_seam - STEP)
+        out.append(held - strokes.run_on - strokes.room - strokes.runout - STEP)
     return None if min(out) <= strokes.runout else (out[0], out[1])
 
 
@@ -382,10 +380,9 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     the fastest, with ``options.max_line_speed``), and their plan (docs/model.md §26.5).
 
     The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
-    motors, the line's speed) tries n + 1, up to ``AUTO_MORE`` beyond the fewest whose bands
-    hold them with R past each seam (the same unless ``PlannerPolicy.seam_run`` is shorter):
-    more robots shorten every zone, which cures a motor or reach refusal at once or not at
-    all (a line too slow for the programs' drift gets worse). Each count's failure is sorted by
+    motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
+    every zone, which cures a motor or reach refusal at once or not at all (a line too slow
+    for the programs' drift gets worse). Each count's failure is sorted by
     :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure).
 
     Parameters
@@ -432,17 +429,13 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
     seam_run = getattr(getattr(options, "policy", None), "seam_run", None)
-    strokes = plain = job_strokes(job, part)
-    if seam_run is not None:  # the zones' needs, as the proposals' (§26.5)
-        strokes = replace(strokes, seam_run=seam_run)
+    strokes = job_strokes(job, part)
     reference = (strokes, reference_band(robot, strokes))
     first = fewest_for(strokes, reference[1].width)
     if first is None:
         raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
                         "to stack zones over the part")
-    # a shorter run past a seam lets fewer bands hold the zones, not fewer robots paint
-    # them: the counts tried reach as far as at R's fewest (§26.5)
-    last = min(MAX_ROBOTS, (fewest_for(plain, reference[1].width) or MAX_ROBOTS) + AUTO_MORE)
+    last = min(MAX_ROBOTS, first + AUTO_MORE)
     # the counts whose bands are too narrow, then each count planned: why each failed
     causes = {n: cause_of(_too_narrow(strokes, reference[1], n)) for n in range(1, first)}
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked

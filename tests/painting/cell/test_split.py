@@ -177,9 +177,9 @@ def test_the_seams_shorten_the_longest_zone_as_brute_force_does(seed):
 
 def test_a_seam_run_lets_bands_overlap_twice_it(robot):
     """With the strokes running ``seam_run`` past a seam (PlannerPolicy.seam_run, §26.5) the
-    split holds that run in both bands, not R: bands 50 mm over each other are refused at
-    R = 40 mm and split at 20 mm, the seam in both robots' bands (computed here) with 20 mm
-    past it, the free edges' needs as before."""
+    split holds that run in both bands where R does not fit: bands 50 mm over each other are
+    refused at R = 40 mm and split at 20 mm, the seam in both robots' bands (computed here)
+    with 20 mm past it, the free edges' needs as before."""
     job = tall_panel()
     high = CellRobot("high", (0.0, 0.75, 0.29))
     strokes = job_strokes(job)
@@ -194,6 +194,9 @@ def test_a_seam_run_lets_bands_overlap_twice_it(robot):
     lo, hi = strokes.needed(-math.inf, math.inf)  # the free edges' (no seam in them)
     assert low_band.holding(lo, seam + 0.02).holds(lo, seam + 0.02)
     assert high_band.holding(seam - 0.02, hi).holds(seam - 0.02, hi)
+    # where R fits the split keeps it (room for the ramps): the seams as without a seam run
+    assert split_cell(robot, job, [LOW, HIGH], seam_run=0.02).seams() == \
+        split_cell(robot, job, [LOW, HIGH]).seams()
     # and the pure split: the same bands' numbers, a seam run of 20 mm or R
     fake = [Band("a", -0.05, 0.55, None), Band("b", 0.49, 1.05, None)]
     assert seams_between(fake, fake_strokes(), 0.01) is None
