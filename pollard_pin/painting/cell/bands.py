@@ -49,7 +49,8 @@ class Strokes:
     :func:`.passes.raster.spot_runon`), ``runout`` R = 4σ (so bounded) past a seam;
     ``panel``: the gun's roll referred to base z (a panel's frame), else to
     :func:`.passes.surface.reference_axis` of the facing; ``room`` [m] more held past a free
-    edge (a layout's room for the ramps there, docs/model.md §26.5)."""
+    edge (a layout's room for the ramps there, docs/model.md §26.5); ``seam_run`` [m] how far
+    the strokes run past a seam when the planner says (``PlannerPolicy.seam_run``; None: R)."""
 
     axis: np.ndarray
     facing: np.ndarray
@@ -60,12 +61,19 @@ class Strokes:
     runout: float
     panel: bool
     room: float = 0.0
+    seam_run: float | None = None
+
+    @property
+    def past_seam(self) -> float:
+        """The run [m] a robot's strokes make past a seam: ``seam_run`` if set, else R
+        (the run-outs a split, a layout and a seating hold in reach, docs/model.md §26.5)."""
+        return self.runout if self.seam_run is None else self.seam_run
 
     def needed(self, lo: float, hi: float) -> tuple[float, float]:
-        """The stretch of the axis a zone [lo, hi] (±inf: a free edge) needs in reach: R past
-        a seam, the run-on (and ``room``) past a free edge."""
-        a = self.extent[0] - self.run_on - self.room if lo == -math.inf else lo - self.runout
-        b = self.extent[1] + self.run_on + self.room if hi == math.inf else hi + self.runout
+        """The stretch of the axis a zone [lo, hi] (±inf: a free edge) needs in reach:
+        :attr:`past_seam` past a seam, the run-on (and ``room``) past a free edge."""
+        a = self.extent[0] - self.run_on - self.room if lo == -math.inf else lo - self.past_seam
+        b = self.extent[1] + self.run_on + self.room if hi == math.inf else hi + self.past_seam
         return a, b
 
     def grid(self, margin: float = MARGIN, step: float = STEP):

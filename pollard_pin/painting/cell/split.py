@@ -4,13 +4,15 @@ Robots are grouped by the side of the part they face (the faces towards their gu
 −R·x̂ of the base: gun along base +x). Within a group each robot has its band along the
 cell's axis (:mod:`.bands`); robots are stacked by their bands' middles and the seams
 w_1 < … < w_{n−1} chosen so that robot i's zone [w_{i−1}, w_i] with its run-outs (R past a
-seam, today's run-on past a free edge) lies in its band, the longest zone as short as the
+seam where the bands allow it, else the planner's shorter ``seam_run``, ``Strokes.past_seam``;
+today's run-on past a free edge) lies in its band, the longest zone as short as the
 bands allow (equal stroke lengths: the slowest program sets the line's speed), and, among
 such seams, each midway between the lowest and highest the bands allow.
 """
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -18,6 +20,7 @@ from ..errors import CellError
 from ..job import PartJob
 from ..line.reach import reach_ball
 from ..passes.raster import SPOT_RADIUS
+from ..policy import PlannerPolicy
 from .bands import Band, Strokes, axis_name, job_strokes, robot_band
 from .robots import CellRobot
 from .zones import Split, Zone
@@ -107,7 +110,7 @@ def seams_between(bands: list[Band], strokes: Strokes, least: float) -> list[flo
     longest zone shortest, each seam midway in what that allows; None if the bands leave a
     region unreached or a zone too short for its run-outs."""
     e_lo, e_hi = strokes.extent
-    R = strokes.runout
+    R = strokes.past_seam
     need_lo, need_hi = strokes.needed(-math.inf, math.inf)
     if bands[0].lo > need_lo + EDGE_TOL or bands[-1].hi < need_hi - EDGE_TOL:
         return None
@@ -132,7 +135,8 @@ def _why_not(source: str, bands: list[Band], strokes: Strokes, least: float) -> 
     too short for a seam's run-outs, or a band with no room for a zone."""
     name = axis_name(strokes.axis)
     lo, hi = strokes.needed(-math.inf, math.inf)
-    R = strokes.runout
+    R = strokes.past_seam
+    run = "R" if strokes.seam_run is None else "seam_run"
     if bands[0].lo > lo + EDGE_TOL:
         return CellError(f"{source}: no robot reaches {_span(name, lo, bands[0].lo)} (the "
                          f"part's edge {_mm(strokes.extent[0])} m and its run-on; the lowest "
@@ -150,7 +154,7 @@ def _why_not(source: str, bands: list[Band], strokes: Strokes, least: float) -> 
             return CellError(f"{source}: robots {a.robot!r} and {b.robot!r} overlap along "
                              f"{name} by {1e3 * (a.hi - b.lo):.0f} mm ({_mm(b.lo)}…"
                              f"{_mm(a.hi)} m), less than the {2e3 * R:.0f} mm a seam's "
-                             f"run-outs need (R = {1e3 * R:.0f} mm each side)")
+                             f"run-outs need ({run} = {1e3 * R:.0f} mm each side)")
     short = min(bands, key=lambda b: b.width)
     return CellError(f"{source}: the bands leave robot {short.robot!r} "
                      f"({_span(name, short.lo, short.hi)}) no zone of at least "
@@ -173,7 +177,11 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
     else:
         bands[0], bands[-1] = bands[0].holding(lo=lo), bands[-1].holding(hi=hi)
     least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
-    seams = seams_between(bands, strokes, least)
+    # R past each seam where the bands allow it (room for the ramps there, docs/model.md
+    # §26.5), else the policy's shorter run
+    seams = seams_between(bands, replace(strokes, seam_run=None), least)
+    if seams is None and strokes.seam_run is not None:
+        seams = seams_between(bands, strokes, least)
     if seams is None:
         raise _why_not(source, bands, strokes, least)
     edges = [-math.inf, *seams, math.inf]
@@ -181,7 +189,7 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
             for i, b in enumerate(bands)]
 
 
-def split_cell(robot, job, robots, part=None, seams=None) -> Split:
+def split_cell(robot, job, robots, part=None, seams=None, seam_run=None) -> Split:
     """Which robot paints which zone of the job's part: each zone within its robot's reach
     over the part's whole passage, the programs balanced (docs/model.md §26.2).
 
@@ -198,6 +206,9 @@ def split_cell(robot, job, robots, part=None, seams=None) -> Split:
     seams : tuple of float or None, optional
         The seams of the robots facing the job's side, increasing (default None: the bands',
         balanced; ``PlannerPolicy.seams``).
+    seam_run : float or None, optional
+        How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
+        R), the run-out each band holds past a seam (``Strokes.past_seam``).
 
     Returns
     -------
@@ -216,7 +227,9 @@ def split_cell(robot, job, robots, part=None, seams=None) -> Split:
     if job.line is None:
         raise CellError(f"{job.source}: a cell's robots paint the part as the line carries "
                         "it past them: the job needs [line]")
-    strokes = job_strokes(job, part)
+    if seam_run is not None:  # checked as the planner's knob
+        seam_run = PlannerPolicy(seam_run=seam_run).seam_run
+    strokes = replace(job_strokes(job, part), seam_run=seam_run)
     zones, axis = [], strokes.axis
     groups = group_by_side(robots, strokes.facing)
     if groups[0][0] is not None:
@@ -228,7 +241,8 @@ def split_cell(robot, job, robots, part=None, seams=None) -> Split:
             raise CellError(f"{job.source}: robot {r.name!r} faces the panel's back (its gun "
                             f"points along {_vec(-np.asarray(facing))}; the panel's normal is "
                             f"{_vec(strokes.facing)}): a panel is painted on its front only")
-        side = strokes if facing is None else job_strokes(job, None, facing)
+        side = (strokes if facing is None else
+                replace(job_strokes(job, None, facing), seam_run=seam_run))
         if facing is not None and abs(float(side.axis @ axis)) < 1 - 1e-6:
             raise CellError(f"{job.source}: the faces robot {members[0].name!r} sees (facing "
                             f"{_vec(facing)}) are not parallel to the job's: one axis across "

@@ -149,7 +149,7 @@ def reach_window(robot, strokes: Strokes, band: Band) -> float:
 
 
 def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
-                   part=None) -> tuple[CellRobot, ...]:
+                   part=None, seam_run: float | None = None) -> tuple[CellRobot, ...]:
     """Bases for n robots for this part on this line: their zones stacked across the travel,
     the robots spaced along the line to clear each other (docs/model.md §26.5).
 
@@ -165,6 +165,10 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         The spacing and the names (default :class:`LayoutOptions`).
     part : object or None, optional
         The job's painted part if already read (default None: read here).
+    seam_run : float or None, optional
+        How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
+        R): the proposal's split holds that past a seam where R does not fit (its bands are
+        spaced for R: room for the ramps, docs/model.md §26.5).
 
     Returns
     -------
@@ -184,10 +188,15 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
-    return _propose(robot, job, n, options, part)
+    if seam_run is not None:
+        from ..policy import PlannerPolicy
+
+        seam_run = PlannerPolicy(seam_run=seam_run).seam_run  # checked as the planner's
+    return _propose(robot, job, n, options, part, seam_run=seam_run)
 
 
-def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
+def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
+             seam_run: float | None = None):
     """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
     reference band) if already at hand (:func:`fewest_robots` tries several n on one)."""
     if job.line is None:
@@ -227,7 +236,7 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None):
                                          job.source))
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
-    split_cell(robot, replace(job, robots=robots), robots, part)
+    split_cell(robot, replace(job, robots=robots), robots, part, seam_run=seam_run)
     return robots
 
 
@@ -419,6 +428,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
+    seam_run = getattr(getattr(options, "policy", None), "seam_run", None)
     strokes = job_strokes(job, part)
     reference = (strokes, reference_band(robot, strokes))
     first = fewest_for(strokes, reference[1].width)
@@ -431,7 +441,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
-                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference)
+                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference,
+                                  seam_run)
                 return paint_seated(robot, job, robots, actuators, options, part)
             except BudgetError:
                 raise

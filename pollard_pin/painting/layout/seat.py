@@ -81,7 +81,7 @@ def seat_ends(robot, job, act, policy, part=None):
         return robots, None
     if part is None and isinstance(job, PartJob):
         part = load_painted_part(job)
-    split = split_cell(robot, job, robots, part, policy.seams)
+    split = split_cell(robot, job, robots, part, policy.seams, policy.seam_run)
     zones = sorted((z for z in split.zones if z.facing is None), key=lambda z: z.lo)
     if len(zones) < 2:
         return robots, None
@@ -96,7 +96,8 @@ def seat_ends(robot, job, act, policy, part=None):
         return robots, None  # all plan, or a middle robot is refused: the cell says why
     cell = {r.name: r for r in robots}
     seams = [z.hi for z in zones[:-1]]
-    search = _Search(robot, job, act, policy, part, job_strokes(job, part), refused)
+    search = _Search(robot, job, act, policy, part,
+                     replace(job_strokes(job, part), seam_run=policy.seam_run), refused)
     for end, nb, j, top in pairs:
         if refused & {end, nb}:
             found = search.seat(cell, end, nb, seams, j, top)
@@ -112,12 +113,13 @@ class _Search:
     def __init__(self, robot, job, act, policy, part, strokes, refused: set):
         self.robot, self.job, self.act, self.policy = robot, job, act, policy
         self.part, self.strokes, self.refused = part, strokes, refused
-        self.run = strokes.runout if policy.seam_run is None else policy.seam_run
+        self.run = strokes.past_seam
 
     def plans(self, cell: dict, name: str, seams) -> bool:
         robots = tuple(cell.values())
         job = replace(self.job, robots=robots)
-        split = split_cell(self.robot, job, robots, self.part, tuple(seams))
+        split = split_cell(self.robot, job, robots, self.part, tuple(seams),
+                           self.policy.seam_run)
         return plans_alone(self.robot, job, cell[name], self.act, split, self.part,
                            replace(self.policy, seams=tuple(seams))) is None
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from cell_split_jobs import check_zones, plate_part, tall_panel
 
-from pollard_pin.painting.cell.bands import Band, Strokes, job_strokes
+from pollard_pin.painting.cell.bands import Band, Strokes, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.cell.split import seams_between, split_cell
 from pollard_pin.painting.errors import CellError
@@ -125,9 +125,10 @@ def test_no_robot_on_the_job_side_is_refused(robot, tmp_path):
         split_cell(robot, job, [CellRobot("back", (1.40, 0.3, 0.08), (0.0, 0.0, 180.0))])
 
 
-def fake_strokes(lo=0.0, hi=1.0, runout=0.04, run_on=0.03):
+def fake_strokes(lo=0.0, hi=1.0, runout=0.04, run_on=0.03, seam_run=None):
     return Strokes(np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, 0.0]),
-                   np.array([0.0, 1.0, 0.0]), (), (lo, hi), run_on, runout, True)
+                   np.array([0.0, 1.0, 0.0]), (), (lo, hi), run_on, runout, True,
+                   seam_run=seam_run)
 
 
 def brute_longest(bands, strokes, least, step=0.0025):
@@ -172,3 +173,32 @@ def test_the_seams_shorten_the_longest_zone_as_brute_force_does(seed):
     longest = max(b - a for a, b in zip(w, w[1:]))
     # the brute force on a 2.5 mm grid is at most a grid step worse; bisection to 1e-5
     assert brute - 0.0025 - 1e-9 <= longest <= brute + 1e-4, (longest, brute)
+
+
+def test_a_seam_run_lets_bands_overlap_twice_it(robot):
+    """With the strokes running ``seam_run`` past a seam (PlannerPolicy.seam_run, §26.5) the
+    split holds that run in both bands where R does not fit: bands 50 mm over each other are
+    refused at R = 40 mm and split at 20 mm, the seam in both robots' bands (computed here)
+    with 20 mm past it, the free edges' needs as before."""
+    job = tall_panel()
+    high = CellRobot("high", (0.0, 0.75, 0.29))
+    strokes = job_strokes(job)
+    low_band, high_band = (robot_band(robot, r, strokes) for r in (LOW, high))
+    overlap = low_band.hi - high_band.lo
+    assert 0.04 < overlap < 0.08, overlap  # between 2·seam_run and 2R
+    with pytest.raises(CellError, match=r"less than the 80 mm a seam's run-outs need \(R = "):
+        split_cell(robot, job, [LOW, high])
+    split = split_cell(robot, job, [LOW, high], seam_run=0.02)
+    assert split.runout == pytest.approx(0.04, abs=1e-15)  # the film's seam window: R
+    (seam,) = split.seams()
+    lo, hi = strokes.needed(-math.inf, math.inf)  # the free edges' (no seam in them)
+    assert low_band.holding(lo, seam + 0.02).holds(lo, seam + 0.02)
+    assert high_band.holding(seam - 0.02, hi).holds(seam - 0.02, hi)
+    # where R fits the split keeps it (room for the ramps): the seams as without a seam run
+    assert split_cell(robot, job, [LOW, HIGH], seam_run=0.02).seams() == \
+        split_cell(robot, job, [LOW, HIGH]).seams()
+    # and the pure split: the same bands' numbers, a seam run of 20 mm or R
+    fake = [Band("a", -0.05, 0.55, None), Band("b", 0.49, 1.05, None)]
+    assert seams_between(fake, fake_strokes(), 0.01) is None
+    (s,) = seams_between(fake, fake_strokes(seam_run=0.02), 0.01)
+    assert 0.49 + 0.02 - 1e-9 <= s <= 0.55 - 0.02 + 1e-9
