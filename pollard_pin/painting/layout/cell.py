@@ -19,11 +19,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...checks import instance, is_real
+from ...checks import instance, is_real, shorten
 from ...dynamics.motors import as_actuators
 from ...errors import InputError, say_less
 from ...model.build import check_robot
-from ...model.values import shorten
 from ...workspace.reach import evaluate
 from ..causes import cause_of
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
