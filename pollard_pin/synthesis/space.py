@@ -494,11 +494,26 @@ def check_home(space: DesignSpace) -> None:
 
 
 def load_space(path: str | Path) -> DesignSpace:
-    """Read and check a design space file ``S.toml`` (docs/model.md §31.2; format: the
-    module's help, ``examples/design/space.toml``), its ``catalogue`` and ``params`` file
-    names read beside it. Raises :class:`SpaceError` as :func:`space_from_dict`, or for an
-    unreadable file; a bad catalogue:
-    :class:`pollard_pin.synthesis.catalogue.CatalogueError`."""
+    """Read and check a design space file ``S.toml`` (docs/model.md §31.2).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file (format: the module's help, ``examples/design/space.toml``); its
+        ``catalogue`` and ``params`` file names are read beside it.
+
+    Returns
+    -------
+    DesignSpace
+        The checked space.
+
+    Raises
+    ------
+    SpaceError
+        As :func:`space_from_dict`, or an unreadable file.
+    pollard_pin.synthesis.catalogue.CatalogueError
+        A bad catalogue.
+    """
     path = Path(path)
     return space_from_dict(read_toml(path, "design space", SpaceError), path.name, path.parent)
 
