@@ -427,7 +427,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
-    seam_run = getattr(getattr(options, "policy", None), "seam_run", None)
+    seam_run = None if options is None else options.policy.seam_run  # checked: PaintOptions
     strokes = job_strokes(job, part)
     reference = (strokes, reference_band(robot, strokes))
     first = fewest_for(strokes, reference[1].width)
