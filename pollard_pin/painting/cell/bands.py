@@ -29,6 +29,7 @@ from ..passes.program import gun_frame
 from ..passes.raster import spot_runon
 from ..passes.surface import EXTENSION, reference_axis
 from .robots import CellRobot
+from .zones import past_seam
 
 STEP = 0.005  # m between grid points along the axis
 SHIFT_STEP = 0.01  # m between the shifts of the part tried along the line
@@ -65,9 +66,8 @@ class Strokes:
 
     @property
     def past_seam(self) -> float:
-        """The run [m] a robot's strokes make past a seam: ``seam_run`` if set, else R
-        (the run-outs a split, a layout and a seating hold in reach, docs/model.md §26.5)."""
-        return self.runout if self.seam_run is None else self.seam_run
+        """The run [m] a robot's strokes make past a seam (:func:`.zones.past_seam`)."""
+        return past_seam(self.runout, self.seam_run)
 
     def needed(self, lo: float, hi: float) -> tuple[float, float]:
         """The stretch of the axis a zone [lo, hi] (±inf: a free edge) needs in reach:

@@ -35,7 +35,7 @@ from ..plan.layout import panel_layout
 from ..plan.part import time_step
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..workpiece.panel import panel_frame
-from .zones import CLOSED, OPEN, ZoneRelative, seam_fractions, window, with_samples
+from .zones import CLOSED, OPEN, ZoneRelative, past_seam, seam_fractions, window, with_samples
 
 
 @dataclass(frozen=True)
@@ -69,9 +69,9 @@ class ClippedPass(PassPiece):
 
 
 def _seam_run(view: ZoneView, policy: PlannerPolicy) -> ZoneView:
-    """The view with the run past a seam the policy's (``PlannerPolicy.seam_run``), else R
-    (docs/model.md §26.5): the trigger still closes at the seam, so the film is the same."""
-    return view if policy.seam_run is None else replace(view, runout=policy.seam_run)
+    """The view with the run past a seam the policy's (:func:`.zones.past_seam`,
+    docs/model.md §26.5): the trigger still closes at the seam, so the film is the same."""
+    return replace(view, runout=past_seam(view.runout, policy.seam_run))
 
 
 def _axis_sign(along, axis_b, what: str,

@@ -102,6 +102,13 @@ def seam_runout(job) -> float:
     return spot_runon(job.sigma, job.spot, EXTENSION if isinstance(job, PartJob) else SPOT_RADIUS)
 
 
+def past_seam(runout: float, seam_run: float | None) -> float:
+    """The run [m] a robot's strokes make past a seam: the planner's ``seam_run``
+    (``PlannerPolicy.seam_run``) if set, else R = ``runout`` (docs/model.md §26.5): what a
+    split, a layout and a seating hold in reach and a robot's program runs."""
+    return runout if seam_run is None else seam_run
+
+
 def window(lo: float, hi: float, start: float, rate: float, duration: float) -> tuple:
     """The local times [τ0, τ1] ⊂ [0, duration] at which a coordinate start + rate·τ lies
     within [lo, hi] (∓inf allowed); CLOSED if never."""
@@ -169,4 +176,4 @@ def with_samples(t, extra, tol: float) -> np.ndarray:
 
 
 __all__ = ["CLOSED", "OPEN", "Split", "Zone", "ZoneRelative", "seam_fractions",
-           "seam_runout", "window", "with_samples"]
+           "past_seam", "seam_runout", "window", "with_samples"]
