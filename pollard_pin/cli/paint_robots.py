@@ -64,7 +64,7 @@ def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
         layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
     if count == "auto":
         return fewest_robots(robot, job, act, options, layout)
-    robots = propose_layout(robot, job, count, layout, seam_run=options.policy.seam_run)
+    robots = propose_layout(robot, job, count, layout, policy=options.policy)
     robots, painted = paint_seated(robot, job, robots, act, options)
     return robots, PaintResult.of(painted)
 

@@ -152,7 +152,7 @@ def plan_cell(robot, job, act: Actuators, speed: float | None = None,
     speed = job.line.speed if speed is None else float(speed)
     robots = job.robots or (CellRobot("robot"),)
     if split is None:
-        split = split_cell(robot, job, robots, part, policy.seams, policy.seam_run)
+        split = split_cell(robot, job, robots, part, policy.seams, policy)
     axis = np.asarray(split.axis, float)
     out = []
     for cr in robots:
@@ -254,7 +254,7 @@ def cell_planner(robot, job, act: Actuators, part: Part | None = None,
     check_spacing(job.robots, 2 * base_footprint(robot.model), job.source)
     if split is None:
         split = split_cell(robot, job, job.robots or (CellRobot("robot"),), part,
-                           policy.seams, policy.seam_run)
+                           policy.seams, policy)
     # a refusal's search starts at the refused speed: refused again without planning
     memo = remembering(lambda speed: plan_cell(robot, job, act, speed, part, split,
                                                clearance=False, policy=policy))

@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...checks import instance
 from ..errors import CellError
 from ..job import PartJob
 from ..line.reach import reach_ball
@@ -189,7 +190,8 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
             for i, b in enumerate(bands)]
 
 
-def split_cell(robot, job, robots, part=None, seams=None, seam_run=None) -> Split:
+def split_cell(robot, job, robots, part=None, seams=None,
+               policy: PlannerPolicy | None = None) -> Split:
     """Which robot paints which zone of the job's part: each zone within its robot's reach
     over the part's whole passage, the programs balanced (docs/model.md §26.2).
 
@@ -206,9 +208,10 @@ def split_cell(robot, job, robots, part=None, seams=None, seam_run=None) -> Spli
     seams : tuple of float or None, optional
         The seams of the robots facing the job's side, increasing (default None: the bands',
         balanced; ``PlannerPolicy.seams``).
-    seam_run : float or None, optional
-        How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
-        R), the run-out each band holds past a seam (``Strokes.past_seam``).
+    policy : PlannerPolicy or None, optional
+        The planner's knobs, checked (default None: the defaults): its ``seam_run``, how far
+        [m] the strokes run past a seam (None: R), is the run-out each band holds past a
+        seam (``Strokes.past_seam``).
 
     Returns
     -------
@@ -227,8 +230,8 @@ def split_cell(robot, job, robots, part=None, seams=None, seam_run=None) -> Spli
     if job.line is None:
         raise CellError(f"{job.source}: a cell's robots paint the part as the line carries "
                         "it past them: the job needs [line]")
-    if seam_run is not None:  # checked as the planner's knob
-        seam_run = PlannerPolicy(seam_run=seam_run).seam_run
+    instance(policy, "policy", PlannerPolicy, "PlannerPolicy or None", none=True)
+    seam_run = None if policy is None else policy.seam_run  # checked by the policy
     strokes = replace(job_strokes(job, part), seam_run=seam_run)
     zones, axis = [], strokes.axis
     groups = group_by_side(robots, strokes.facing)

@@ -30,6 +30,7 @@ from ..cell.robots import MAX_DISTANCE, MAX_ROBOTS, CellRobot, base_footprint, c
 from ..cell.split import split_cell
 from ..errors import BudgetError, CellError, LayoutSearchError, PlanError
 from ..job import PartJob, check_job
+from ..policy import PlannerPolicy
 from ..progress import bar, showing
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
@@ -148,7 +149,8 @@ def reach_window(robot, strokes: Strokes, band: Band) -> float:
 
 
 def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
-                   part=None, seam_run: float | None = None) -> tuple[CellRobot, ...]:
+                   part=None, policy: PlannerPolicy | None = None
+                   ) -> tuple[CellRobot, ...]:
     """Bases for n robots for this part on this line: their zones stacked across the travel,
     the robots spaced along the line to clear each other (docs/model.md §26.5).
 
@@ -164,10 +166,11 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         The spacing and the names (default :class:`LayoutOptions`).
     part : object or None, optional
         The job's painted part if already read (default None: read here).
-    seam_run : float or None, optional
-        How far [m] the strokes run past a seam (``PlannerPolicy.seam_run``; default None:
-        R): the proposal's split holds that past a seam where R does not fit (its bands are
-        spaced for R: room for the ramps, docs/model.md §26.5).
+    policy : PlannerPolicy or None, optional
+        The planner's knobs, checked (default None: the defaults): its ``seam_run``, how far
+        [m] the strokes run past a seam (None: R), is what the proposal's split holds past a
+        seam where R does not fit (its bands are spaced for R: room for the ramps,
+        docs/model.md §26.5).
 
     Returns
     -------
@@ -187,17 +190,15 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
                        none=True) or LayoutOptions()
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
-    if seam_run is not None:
-        from ..policy import PlannerPolicy
-
-        seam_run = PlannerPolicy(seam_run=seam_run).seam_run  # checked as the planner's
-    return _propose(robot, job, n, options, part, seam_run=seam_run)
+    instance(policy, "policy", PlannerPolicy, "PlannerPolicy or None", none=True)
+    return _propose(robot, job, n, options, part, policy=policy)
 
 
 def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
-             seam_run: float | None = None):
+             policy: PlannerPolicy | None = None):
     """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
-    reference band) if already at hand (:func:`fewest_robots` tries several n on one)."""
+    reference band) if already at hand (:func:`fewest_robots` tries several n on one);
+    ``policy``: its ``seam_run`` the split's run past a seam."""
     if job.line is None:
         raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
     if job.robots:
@@ -235,7 +236,7 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
                                          job.source))
     _check_bounds(robots, spacing, job.source)
     check_spacing(robots, 2 * foot, job.source)
-    split_cell(robot, replace(job, robots=robots), robots, part, seam_run=seam_run)
+    split_cell(robot, replace(job, robots=robots), robots, part, policy=policy)
     return robots
 
 
@@ -427,7 +428,6 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
     instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
-    seam_run = None if options is None else options.policy.seam_run  # checked: PaintOptions
     strokes = job_strokes(job, part)
     reference = (strokes, reference_band(robot, strokes))
     first = fewest_for(strokes, reference[1].width)
@@ -441,7 +441,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
                 robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference,
-                                  seam_run)
+                                  None if options is None else options.policy)
                 return paint_seated(robot, job, robots, actuators, options, part)
             except BudgetError:
                 raise

@@ -81,7 +81,7 @@ def seat_ends(robot, job, act, policy, part=None):
         return robots, None
     if part is None and isinstance(job, PartJob):
         part = load_painted_part(job)
-    split = split_cell(robot, job, robots, part, policy.seams, policy.seam_run)
+    split = split_cell(robot, job, robots, part, policy.seams, policy)
     zones = sorted((z for z in split.zones if z.facing is None), key=lambda z: z.lo)
     if len(zones) < 2:
         return robots, None
@@ -118,8 +118,7 @@ class _Search:
     def plans(self, cell: dict, name: str, seams) -> bool:
         robots = tuple(cell.values())
         job = replace(self.job, robots=robots)
-        split = split_cell(self.robot, job, robots, self.part, tuple(seams),
-                           self.policy.seam_run)
+        split = split_cell(self.robot, job, robots, self.part, tuple(seams), self.policy)
         return plans_alone(self.robot, job, cell[name], self.act, split, self.part,
                            replace(self.policy, seams=tuple(seams))) is None
 

@@ -12,6 +12,7 @@ from pollard_pin.painting.cell.robots import CellRobot
 from pollard_pin.painting.cell.split import seams_between, split_cell
 from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
+from pollard_pin.painting.policy import PlannerPolicy
 
 LOW, HIGH = CellRobot("low"), CellRobot("high", (0.0, 0.75, 0.17))
 
@@ -188,15 +189,15 @@ def test_a_seam_run_lets_bands_overlap_twice_it(robot):
     assert 0.04 < overlap < 0.08, overlap  # between 2·seam_run and 2R
     with pytest.raises(CellError, match=r"less than the 80 mm a seam's run-outs need \(R = "):
         split_cell(robot, job, [LOW, high])
-    split = split_cell(robot, job, [LOW, high], seam_run=0.02)
+    split = split_cell(robot, job, [LOW, high], policy=PlannerPolicy(seam_run=0.02))
     assert split.runout == pytest.approx(0.04, abs=1e-15)  # the film's seam window: R
     (seam,) = split.seams()
     lo, hi = strokes.needed(-math.inf, math.inf)  # the free edges' (no seam in them)
     assert low_band.holding(lo, seam + 0.02).holds(lo, seam + 0.02)
     assert high_band.holding(seam - 0.02, hi).holds(seam - 0.02, hi)
     # where R fits the split keeps it (room for the ramps): the seams as without a seam run
-    assert split_cell(robot, job, [LOW, HIGH], seam_run=0.02).seams() == \
-        split_cell(robot, job, [LOW, HIGH]).seams()
+    assert split_cell(robot, job, [LOW, HIGH], policy=PlannerPolicy(seam_run=0.02)
+                      ).seams() == split_cell(robot, job, [LOW, HIGH]).seams()
     # and the pure split: the same bands' numbers, a seam run of 20 mm or R
     fake = [Band("a", -0.05, 0.55, None), Band("b", 0.49, 1.05, None)]
     assert seams_between(fake, fake_strokes(), 0.01) is None
