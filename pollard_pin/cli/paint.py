@@ -87,7 +87,8 @@ def run(args) -> int:
     with all_or_nothing():
         name = result.write(out, args.format)
         if count is not None:
-            write_layout(robots, out, count, job, result.options.policy.seams)
+            write_layout(robots, out, count, job, result.options.policy.seams,
+                         result.report.data.get("levers"))
     print("\n".join(result.summary_lines()))
     say_written(out, name, result.robot_folders)
     return _strict(args.strict, result.report.data["film_check"])

@@ -69,16 +69,26 @@ def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
     return robots, PaintResult.of(painted)
 
 
-def write_layout(robots, out: Path, count, job, seams=None) -> Path:
+def write_layout(robots, out: Path, count, job, seams=None, levers=None) -> Path:
     """robots.toml in ``out`` (inside the command's all-or-nothing block), one line said;
     ``seams`` (the plan's, where given or seated) said in its header: the same cell needs
-    them again."""
+    them again; so do the planner's ``levers`` that ``--robots auto`` found (paint.json's
+    ``levers``: the plain proposal refused), said on standard error too."""
     from ..outputs.robots_toml import write_robots
 
     how = "the fewest robots that paint" if count == "auto" else f"{count} robot(s)"
     again = ("" if seams is None else "\nplanned with its seams at "
              + ", ".join(f"{s:.6g}" for s in seams) + " m: plan them again with --seams "
              + ",".join(f"{s:.6g}" for s in seams))
+    if levers:  # the planner's levers in the tables' command; the layout's are in the tables
+        from ..painting.layout.levers import Levers
+
+        found = Levers(**{k: v for k, v in levers.items() if k != "plain"})
+        used = found.flags()
+        again += (f"\nfound with {used} (the plain proposal refused: {levers['plain']}): "
+                  "plan them again with " + Levers(found.seam_run, found.smoothing).flags())
+        print(f"--robots {count}: the plain proposal refused, found with {used}",
+              file=sys.stderr)
     path = write_robots(robots, out / "robots.toml", f"[[robot]] tables proposed by "
                         f"pollard-pin paint --robots {count} ({how}) for {job.source}\n"
                         "(docs/model.md §26.5): add them to the job to plan with them"

@@ -1,5 +1,6 @@
 """What a planner's refusal says binds, and its figure in a few words (docs/model.md §26.5):
-one rule for the layout search's refusal (:func:`pollard_pin.painting.layout.cell.fewest_robots`)
+one rule for the layout search's refusal (:func:`search_refusal`, of
+:func:`pollard_pin.painting.layout.cell.fewest_robots`)
 and the design study's infeasible designs (:mod:`pollard_pin.synthesis.evaluation`).
 
 :func:`binding_of` sorts a refusal by the constraint its words name, in the design study's
@@ -14,7 +15,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from ..errors import without_asides
+from ..errors import say_less, without_asides
 
 #: The constraints :func:`cause_of` names: :func:`binding_of`'s and the two it narrows to.
 BINDINGS = ("reach", "band", "motors", "clearance", "film", "line speed", "plan")
@@ -171,4 +172,34 @@ def cause_of(message: str) -> Cause:
     return Cause(binding_of(body), said, said.split(": ")[0], robot and robot[1], text)
 
 
-__all__ = ["BINDINGS", "Cause", "binding_of", "cause_of"]
+def search_refusal(source: str, causes: dict, first: int, speed: float | None,
+                    levers: bool = False) -> str:
+    """The layout search's refusal, one line: the counts tried and each one's cause (the
+    plain proposal's; ``levers``: tried with them too), the longest said with less (its
+    figure, fewer words, its constraint alone) until the line holds them all; the counts
+    whose bands are too narrow said together."""
+    last = max(causes)
+    head = (f"{source}: no cell of {'1–' if last > 1 else ''}{last} robots paints the part "
+            + (f"at {speed:.4g} m/s" if speed is not None else "at any line speed")
+            + (" (its levers too): " if levers else ": "))
+    rows = [(str(n), causes[n].said, causes[n].short, causes[n].binding)
+            for n in range(first, last + 1)]
+    if first > 1:  # the narrowest shortfall, the fewest robots' (first − 1)
+        c = causes[first - 1]
+        more = "band ≥ " if first > 2 else "band "
+        rows.insert(0, ("1" if first == 2 else f"1–{first - 1}",
+                        c.said.replace("band ", more, 1), c.short.replace("band ", more, 1),
+                        c.binding))
+    # one cause at a time said with less: each in fewer words (the longest first) before any
+    # is its constraint alone
+    said, versions = [1] * len(rows), []
+    while True:
+        versions.append(head + "; ".join(f"{r[0]} {r[k]}" for r, k in zip(rows, said)))
+        left = [i for i, k in enumerate(said) if k < 3]
+        if not left:
+            return say_less(*versions)
+        i = max(left, key=lambda i: (-said[i], len(rows[i][said[i]]), -i))
+        said[i] += 1
+
+
+__all__ = ["BINDINGS", "Cause", "binding_of", "cause_of", "search_refusal"]

@@ -21,10 +21,10 @@ import numpy as np
 
 from ...checks import instance, is_real, shorten
 from ...dynamics.motors import as_actuators
-from ...errors import InputError, say_less
+from ...errors import InputError
 from ...model.build import check_robot
 from ...workspace.reach import evaluate
-from ..causes import cause_of
+from ..causes import cause_of, search_refusal
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from ..cell.robots import MAX_DISTANCE, MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
@@ -420,7 +420,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     """
     from ..options import PaintOptions
     from ..spray.occlusion import load_painted_part
-    from .seat import paint_seated
+    from .levers import levers_for, with_levers
 
     check_robot(robot)
     check_job(job)
@@ -437,45 +437,43 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     last = min(MAX_ROBOTS, first + AUTO_MORE)
     # the counts whose bands are too narrow, then each count planned: why each failed
     causes = {n: cause_of(_too_narrow(strokes, reference[1], n)) for n in range(1, first)}
+    layout = layout or LayoutOptions()
+    found = _tried(robot, job, actuators, options, layout, part, reference, first, last,
+                   causes)
+    if found:
+        return found
+    speed = None if getattr(options, "max_line_speed", False) else job.line.speed
+    plain = search_refusal(job.source, causes, first, speed)
+    options = options or PaintOptions()
+    levers = levers_for(job, strokes, options.policy, layout)
+    if levers is not None:  # refused plain: the levers left at their defaults, by rule
+        found = _tried(robot, job, actuators, *with_levers(options, layout, levers), part,
+                       reference, first, last, dict(causes))
+        if found:
+            robots, painted = found
+            said = {**levers.as_dict(), "plain": plain.removeprefix(f"{job.source}: ")}
+            return robots, replace(painted, report=replace(painted.report, data={
+                **painted.report.data, "levers": said}))
+        plain = search_refusal(job.source, causes, first, speed, levers=True)
+    raise LayoutSearchError(plain, causes, speed)
+
+
+def _tried(robot, job, actuators, options, layout, part, reference, first, last, causes):
+    """(robots, PaintedJob) of the fewest count from ``first`` to ``last`` whose proposal
+    paints the job, or None, each count's refusal put in ``causes``."""
+    from .seat import paint_seated
+
     with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
         for n in bar(range(first, last + 1), "layout search", unit="layout"):
             try:
-                robots = _propose(robot, job, n, layout or LayoutOptions(), part, reference,
+                robots = _propose(robot, job, n, layout, part, reference,
                                   None if options is None else options.policy)
                 return paint_seated(robot, job, robots, actuators, options, part)
             except BudgetError:
                 raise
             except (CellError, PlanError) as exc:
                 causes[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
-    speed = None if getattr(options, "max_line_speed", False) else job.line.speed
-    raise LayoutSearchError(_search_refusal(job.source, causes, first, speed), causes, speed)
-
-
-def _search_refusal(source: str, causes: dict, first: int, speed: float | None) -> str:
-    """The layout search's refusal, one line: the counts tried and each one's cause, the
-    longest said with less (its figure, fewer words, its constraint alone) until the line
-    holds them all; the counts whose bands are too narrow said together."""
-    last = max(causes)
-    head = (f"{source}: no cell of {'1–' if last > 1 else ''}{last} robots paints the part "
-            + (f"at {speed:.4g} m/s: " if speed is not None else "at any line speed: "))
-    rows = [(str(n), causes[n].said, causes[n].short, causes[n].binding)
-            for n in range(first, last + 1)]
-    if first > 1:  # the narrowest shortfall, the fewest robots' (first − 1)
-        c = causes[first - 1]
-        more = "band ≥ " if first > 2 else "band "
-        rows.insert(0, ("1" if first == 2 else f"1–{first - 1}",
-                        c.said.replace("band ", more, 1), c.short.replace("band ", more, 1),
-                        c.binding))
-    # one cause at a time said with less: each in fewer words (the longest first) before any
-    # is its constraint alone
-    said, versions = [1] * len(rows), []
-    while True:
-        versions.append(head + "; ".join(f"{r[0]} {r[k]}" for r, k in zip(rows, said)))
-        left = [i for i, k in enumerate(said) if k < 3]
-        if not left:
-            return say_less(*versions)
-        i = max(left, key=lambda i: (-said[i], len(rows[i][said[i]]), -i))
-        said[i] += 1
+    return None
 
 
 __all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",
