@@ -4,7 +4,8 @@ Robots are grouped by the side of the part they face (the faces towards their gu
 −R·x̂ of the base: gun along base +x). Within a group each robot has its band along the
 cell's axis (:mod:`.bands`); robots are stacked by their bands' middles and the seams
 w_1 < … < w_{n−1} chosen so that robot i's zone [w_{i−1}, w_i] with its run-outs (R past a
-seam where the bands allow it, else the planner's shorter ``seam_run``, ``Strokes.past_seam``;
+seam where the bands allow it, else as much of R as they do, at least the planner's shorter
+``seam_run`` (``Strokes.past_seam``), :func:`seam_runs`;
 today's run-on past a free edge) lies in its band, the longest zone as short as the
 bands allow (equal stroke lengths: the slowest program sets the line's speed), and, among
 such seams, each midway between the lowest and highest the bands allow.
@@ -106,17 +107,31 @@ def _backward(T, lo_bounds, hi_bounds, e_lo, e_hi, least):
     return None if seams is None else [-s for s in seams[::-1]]
 
 
-def seams_between(bands: list[Band], strokes: Strokes, least: float) -> list[float] | None:
-    """The seams of stacked ``bands`` (in order along the axis) over the part's extent, the
-    longest zone shortest, each seam midway in what that allows; None if the bands leave a
-    region unreached or a zone too short for its run-outs."""
+def seam_runs(bands: list[Band], strokes: Strokes, room: bool = True) -> list[float]:
+    """The run-out each seam of stacked ``bands`` holds on each side: R
+    (``Strokes.runout``) where their overlap allows it, else (``room``) as much of R as the
+    overlap does, at least the planner's run (``Strokes.past_seam``; room for a ramp there,
+    docs/model.md §26.5), or (not ``room``) that run at every seam."""
+    R, run = strokes.runout, strokes.past_seam
+    if not room:
+        return [run] * (len(bands) - 1)
+    return [min(R, max(run, (a.hi - b.lo) / 2)) for a, b in zip(bands, bands[1:])]
+
+
+def seams_between(bands: list[Band], strokes: Strokes, least: float,
+                  room: bool = True) -> list[float] | None:
+    """The seams of stacked ``bands`` (in order along the axis) over the part's extent, each
+    holding its :func:`seam_runs` past it, the longest zone shortest, each seam midway in
+    what that allows; None if the bands leave a region unreached or a zone too short for its
+    run-outs."""
     e_lo, e_hi = strokes.extent
-    R = strokes.past_seam
     need_lo, need_hi = strokes.needed(-math.inf, math.inf)
     if bands[0].lo > need_lo + EDGE_TOL or bands[-1].hi < need_hi - EDGE_TOL:
         return None
-    A = [bands[i + 1].lo + R for i in range(len(bands) - 1)]  # seam i's lowest ...
-    B = [bands[i].hi - R for i in range(len(bands) - 1)]  # ... and highest
+    runs = seam_runs(bands, strokes, room)
+    B = [bands[i].hi - r for i, r in enumerate(runs)]  # seam i's highest ...
+    A = [min(bands[i + 1].lo + r, B[i]) if r > strokes.past_seam else bands[i + 1].lo + r
+         for i, r in enumerate(runs)]  # ... and lowest (one point if its run is the overlap's)
     if _longest_zone_ok(e_hi - e_lo, A, B, e_lo, e_hi, least) is None:
         return None
     lo, hi = 0.0, e_hi - e_lo
@@ -178,11 +193,11 @@ def split_group(robot, robots, strokes: Strokes, source: str, facing=None) -> li
     else:
         bands[0], bands[-1] = bands[0].holding(lo=lo), bands[-1].holding(hi=hi)
     least = MIN_ZONE * strokes.runout / SPOT_RADIUS  # σ (R = SPOT_RADIUS σ)
-    # R past each seam where the bands allow it (room for the ramps there, docs/model.md
-    # §26.5), else the policy's shorter run
-    seams = seams_between(bands, replace(strokes, seam_run=None), least)
+    # R past each seam where the bands allow it, else as much of R as they do (room for the
+    # ramps there, docs/model.md §26.5), else the policy's shorter run at every seam
+    seams = seams_between(bands, strokes, least)
     if seams is None and strokes.seam_run is not None:
-        seams = seams_between(bands, strokes, least)
+        seams = seams_between(bands, strokes, least, room=False)
     if seams is None:
         raise _why_not(source, bands, strokes, least)
     edges = [-math.inf, *seams, math.inf]
@@ -281,5 +296,5 @@ def _vec(v) -> str:
     return "(" + ", ".join(f"{float(c) + 0.0:.3g}" for c in v) + ")"
 
 
-__all__ = ["MIN_ZONE", "SAME_SIDE", "group_by_side", "seams_between", "seen_facing",
-           "split_cell", "split_group"]
+__all__ = ["MIN_ZONE", "SAME_SIDE", "group_by_side", "seam_runs", "seams_between",
+           "seen_facing", "split_cell", "split_group"]

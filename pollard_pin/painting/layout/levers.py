@@ -11,13 +11,15 @@ left at its default is set from the job:
   (§26.3), and a ramp at a seam keeps R − STEP of the band's room;
 - ``smoothing`` = 2·run-on (EXTENSION σ each side: the spot's width at a part's free edge),
   every robot's passes the same;
-- ``edge_room`` = v·τ₀/2, the run of a ramp past its pass at the first guess of its
-  duration (τ₀ = 4v/``first_deceleration``, v the pass speed);
+- ``edge_room`` = v·τ₀/2 up to the millimetre, the run of a ramp past its pass at the first
+  guess of its duration (τ₀ = 4v/``first_deceleration``, v the pass speed; the search may
+  find it longer);
 - ``end_pitch`` = END_PITCH, the top robot turned about the line off the wrist's
   singularity.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 from ..cell.bands import STEP, Strokes
@@ -56,7 +58,7 @@ def levers_for(job, strokes: Strokes, policy, layout) -> Levers | None:
     found = Levers(
         seam_run=STEP if policy.seam_run is None else None,
         smoothing=2 * strokes.run_on if not policy.smoothing else None,
-        edge_room=round(ramp, 4) if not layout.edge_room else None,
+        edge_room=math.ceil(ramp * 1e3 - 1e-9) / 1e3 if not layout.edge_room else None,
         end_pitch=END_PITCH if not layout.end_pitch else None)
     return found if found.as_dict() else None
 

@@ -9,7 +9,7 @@ from cell_split_jobs import check_zones, plate_part, tall_panel
 
 from pollard_pin.painting.cell.bands import Band, Strokes, job_strokes, robot_band
 from pollard_pin.painting.cell.robots import CellRobot
-from pollard_pin.painting.cell.split import seams_between, split_cell
+from pollard_pin.painting.cell.split import seam_runs, seams_between, split_cell
 from pollard_pin.painting.errors import CellError
 from pollard_pin.painting.job import load_job
 from pollard_pin.painting.policy import PlannerPolicy
@@ -124,6 +124,30 @@ def test_no_robot_on_the_job_side_is_refused(robot, tmp_path):
     job = load_job(plate_part(tmp_path))
     with pytest.raises(CellError, match="no robot faces the job's painted faces"):
         split_cell(robot, job, [CellRobot("back", (1.40, 0.3, 0.08), (0.0, 0.0, 180.0))])
+
+
+def test_a_seam_keeps_what_room_its_overlap_allows():
+    """With a seam run set, a seam whose bands overlap by less than 2R keeps as much of R as
+    the overlap allows (half of it each side: room for a ramp, §26.5), the others R, before
+    the zones are balanced; a split that cannot falls back to the run at every seam. By hand:
+    overlaps 100 and 45 mm (R = 40 mm, run 5 mm): runs 40 and 22.5 mm, the top seam at the
+    overlap's middle 0.7225 m, the other as balanced as R lets it, at 0.36 m (zones 0.36,
+    0.3625, 0.2775 m; at 0.34…0.36 m the middle zone is longer)."""
+    fake = [Band("a", -0.05, 0.40, None), Band("b", 0.30, 0.745, None),
+            Band("c", 0.70, 1.05, None)]
+    strokes = fake_strokes(seam_run=0.005)
+    assert seam_runs(fake, strokes) == pytest.approx([0.04, 0.0225], abs=1e-15)
+    assert seam_runs(fake, strokes, room=False) == [0.005, 0.005]
+    assert seam_runs(fake, fake_strokes()) == [0.04, 0.04]  # no run set: R, as before
+    assert seams_between(fake, strokes, 0.01) == pytest.approx([0.36, 0.7225], abs=2e-5)
+    assert seams_between(fake, fake_strokes(), 0.01) is None  # R does not fit 45 mm
+    # a zone the held room leaves too short: the run at every seam (the old split)
+    tight = [Band("a", -0.05, 0.40, None), Band("b", 0.36, 0.45, None),
+             Band("c", 0.41, 1.05, None)]
+    assert seams_between(tight, strokes, 0.06) is None  # 20 mm runs: b's zone 50 < 60 mm
+    split = seams_between(tight, strokes, 0.06, room=False)
+    assert split is not None and split[1] - split[0] >= 0.06 - 1e-9
+    assert 0.365 - 1e-9 <= split[0] and split[1] <= 0.445 + 1e-9
 
 
 def fake_strokes(lo=0.0, hi=1.0, runout=0.04, run_on=0.03, seam_run=None):
