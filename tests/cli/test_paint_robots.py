@@ -130,3 +130,25 @@ def test_seated_seams_are_said_in_the_proposal(tmp_path, capsys):
     (tmp_path / "split").mkdir()
     write_layout(cell, tmp_path / "split", 2, job)  # the split's own seams: none said
     assert "--seams" not in (tmp_path / "split" / "robots.toml").read_text()
+
+
+def test_the_levers_auto_found_are_said(tmp_path, capsys):
+    """A cell --robots auto found with the levers (paint.json's ``levers``, docs/model.md
+    §26.5) says them on standard error and in robots.toml's header, with the plain refusal
+    and the planner's flags that plan the tables again (the room and pitch are in them)."""
+    from pollard_pin.cli.paint_robots import write_layout
+    from pollard_pin.painting.cell.robots import CellRobot
+
+    cell = (CellRobot("robot1"), CellRobot("robot2", (0.0, 0.77, 0.2), (0.0, -5.0, 0.0)))
+    levers = {"seam_run": 0.005, "smoothing": 0.06, "edge_room": 0.022, "end_pitch": -5.0,
+              "plain": "no cell of 1–2 robots paints the part at 0.024 m/s: 2 motor 106 %"}
+    write_layout(cell, tmp_path, "auto", SimpleNamespace(source="door.toml"), (0.295,),
+                 levers)
+    text = (tmp_path / "robots.toml").read_text()
+    flags = "--seam-run 0.005 --smoothing 0.06 --edge-room 0.022 --end-pitch -5"
+    assert (f"# found with {flags} (the plain proposal refused: no cell of 1–2 robots paints "
+            "the part at 0.024 m/s: 2 motor 106 %): plan them again with --seam-run 0.005 "
+            "--smoothing 0.06\n") in text, text
+    assert robots_from_tables("robots.toml", tomllib.loads(text)["robot"]) == cell
+    err = capsys.readouterr().err
+    assert f"--robots auto: the plain proposal refused, found with {flags}\n" in err, err

@@ -383,7 +383,10 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
     every zone, which cures a motor or reach refusal at once or not at all (a line too slow
     for the programs' drift gets worse). Each count's failure is sorted by
-    :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure).
+    :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure). A
+    part refused at every count is searched again with the cell's levers left at their
+    defaults set by rule (:mod:`.levers`); the plan found says them in its report
+    (``levers``: each set, and the plain refusal).
 
     Parameters
     ----------
