@@ -23,6 +23,7 @@ import math
 from dataclasses import dataclass, replace
 
 from ..cell.bands import STEP, Strokes
+from ..errors import PlanError
 from ..job import PartJob
 from ..passes.surface import pass_spacing, pass_speed
 
@@ -50,10 +51,13 @@ class Levers:
 def levers_for(job, strokes: Strokes, policy, layout) -> Levers | None:
     """The levers left at their defaults in ``policy`` (PlannerPolicy) and ``layout``
     (LayoutOptions), each set by its rule (module docstring), for a part (None: a panel, whose
-    flat strokes the levers do not answer, or nothing left to set)."""
+    flat strokes the levers do not answer, a pass speed refused, or nothing left to set)."""
     if not isinstance(job, PartJob):
         return None
-    v = pass_speed(job, pass_spacing(job))
+    try:
+        v = pass_speed(job, pass_spacing(job))
+    except PlanError:  # no pass at all (a unit slip): the plain refusal says why
+        return None
     ramp = v * policy.first_guess(v) / 2
     found = Levers(
         seam_run=STEP if policy.seam_run is None else None,

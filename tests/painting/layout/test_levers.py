@@ -49,6 +49,8 @@ def test_the_levers_rules(plate):
                       LayoutOptions(edge_room=0.01, end_pitch=3.0)) is None  # all given
     panel = tall_panel()
     assert levers_for(panel, job_strokes(panel), policy, LayoutOptions()) is None  # flat
+    slip = replace(job, flow=job.flow * 1e6)  # a pass at hundreds of km/s: refused plain
+    assert levers_for(slip, strokes, policy, LayoutOptions()) is None
 
 
 @dataclass(frozen=True)
