@@ -214,7 +214,7 @@ def _parts() -> dict[str, bytes | str]:
         "part_line_coats.toml": job + "coats = 2\n" + line,
         "part_line_past.toml": sub("position = [0.0, 0.0, 0.0]",
                                    "position = [0.0, 2.5, 0.0]") + line,
-        # malformed meshes, faces nobody can paint, absurd values (issue 33 §1, §2)
+        # malformed meshes, faces nobody can paint, absurd values
         "mesh_zero_based.obj": square + "f 0 2 1\n",
         "mesh_relative_out.obj": square + "f 1 3 -4\n",
         "mesh_counts.ply": "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
