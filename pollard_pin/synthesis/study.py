@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..checks import SEEDS, callback, instance, scheduler_address, shorten
+from ..checks import SEEDS, callback, instance, is_integer, scheduler_address, shorten
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
@@ -115,14 +115,15 @@ class DesignOptions:
             value = getattr(self, name)
             if value is None and name in ("workers", "pick"):
                 continue
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
+            if not is_integer(value, low):
                 raise InputError(f"DesignOptions.{name}: must be an integer >= {low}, got "
                                  f"{shorten(value)}")
-        if self.seed is not None and (isinstance(self.seed, bool)
-                                      or not isinstance(self.seed, int)
-                                      or not 0 <= self.seed < SEEDS):
-            raise InputError(f"DesignOptions.seed: must be an integer 0..2^32 − 1 (numpy's "
-                             f"seeds) or None, got {shorten(self.seed)}")
+            object.__setattr__(self, name, int(value))  # numpy's integers too, as ints
+        if self.seed is not None:
+            if not is_integer(self.seed, 0, SEEDS - 1):
+                raise InputError(f"DesignOptions.seed: must be an integer 0..2^32 − 1 (numpy's "
+                                 f"seeds) or None, got {shorten(self.seed)}")
+            object.__setattr__(self, "seed", int(self.seed))
         for flag in ("resume", "screen_only", "ladder"):  # "no" is truthy: real bools only
             instance(getattr(self, flag), f"DesignOptions.{flag}", bool, "True or False")
         if not isinstance(self.progress, bool):
