@@ -190,12 +190,18 @@ def _parts() -> dict[str, bytes | str]:
         "mesh_nan.obj": square.replace("0.2", "nan") + "f 1 3 2\n",
         "mesh_flat.obj": "v 0.7 0 0.1\nv 0.7 0 0.2\nv 0.7 0 0.3\nf 1 2 3\n",
         "mesh_png.stl": b"\x89PNG\r\n\x1a\n" + bytes(range(256)),
+        # a facet of two corners, ASCII (the reader said "cannot reshape array") and binary
+        "mesh_two_corners.stl": "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0.7 0 0.1\n"
+                                "vertex 0.7 0.1 0.1\nendloop\nendfacet\nendsolid s\n",
+        "mesh_two_corners_binary.stl": bytes(80) + (1).to_bytes(4, "little") + bytes(12 + 24 + 2),
         "part_missing_mesh.toml": mesh("nope.stl"),
         "part_broken.toml": mesh("mesh_broken.stl"),
         "part_empty.toml": mesh("mesh_empty.obj"),
         "part_nan.toml": mesh("mesh_nan.obj"),
         "part_degenerate.toml": mesh("mesh_flat.obj"),
         "part_png.toml": mesh("mesh_png.stl"),
+        "part_two_corners.toml": mesh("mesh_two_corners.stl"),
+        "part_two_corners_binary.toml": mesh("mesh_two_corners_binary.stl"),
         "part_format.toml": mesh("part.step"),
         "part_facing.toml": sub("max_angle = 45.0", "max_angle = 10.0",
                                 sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")),
@@ -908,7 +914,12 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_line_key.toml", "'line.pitch' = 1: unknown key"),
     ("job_line_table.toml", "'line' = 3: must be a table [line]"),
     ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
-    ("part_broken.toml", "mesh_broken.stl: no triangles in the file"),
+    ("part_broken.toml", "mesh_broken.stl: line 4: 'vertex 1 2': an ASCII STL vertex is "
+                         "'vertex x y z', three numbers"),
+    ("part_two_corners.toml", "mesh_two_corners.stl: line 2: an ASCII STL facet with 2 "
+                              "vertices (a triangle has 3)"),
+    ("part_two_corners_binary.toml", "mesh_two_corners_binary.stl: a binary STL whose header "
+                                     "counts 1 triangles (134 bytes), but the file has 122 bytes"),
     ("part_empty.toml", "mesh_empty.obj: no triangles"),
     ("part_nan.toml", "is not finite"),
     ("part_degenerate.toml", "faces have zero area"),

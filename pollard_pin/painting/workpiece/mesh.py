@@ -27,7 +27,14 @@ from ...analytic.taskspace import turn
 from ...model.values import read_bytes
 from ..errors import MeshError, MeshFileError
 from ..job import UNITS, PaintJob
-from .mesh_check import check_indices, obj_absolute, ply_counts, stl_count, unique_faces
+from .mesh_check import (
+    check_indices,
+    obj_absolute,
+    ply_counts,
+    stl_ascii,
+    stl_count,
+    unique_faces,
+)
 from .panel import panel_frame
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
@@ -198,8 +205,8 @@ def _read_mesh(data: bytes, ext: str, src: str):
         data = obj_absolute(data, src)
     elif ext == "ply":
         ply_counts(data, src)
-    else:
-        stl_count(data, src)
+    elif stl_count(data, src) is None:
+        stl_ascii(data, src)
     import trimesh
 
     try:
