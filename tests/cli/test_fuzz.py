@@ -203,6 +203,7 @@ def _parts() -> dict[str, bytes | str]:
         "part_two_corners.toml": mesh("mesh_two_corners.stl"),
         "part_two_corners_binary.toml": mesh("mesh_two_corners_binary.stl"),
         "part_format.toml": mesh("part.step"),
+        "part_no_extension.toml": mesh("/dev/stdin"),  # was "format '.' is not a mesh"
         "part_facing.toml": sub("max_angle = 45.0", "max_angle = 10.0",
                                 sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")),
         "part_units.toml": sub('units = "m"', 'units = "ft"'),
@@ -926,6 +927,8 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("part_png.toml", "mesh_png.stl: a binary STL whose header counts 1263159624 triangles "
                       "(63157981284 bytes), but the file has 264 bytes"),
     ("part_format.toml", "format '.step' is not a mesh this reads"),
+    ("part_no_extension.toml", "/dev/stdin: a name without an extension is not a mesh this "
+                               "reads (STL, OBJ or PLY)"),
     ("part_facing.toml", "no face has its outward normal within 10°"),
     ("part_units.toml", "'part.units' = 'ft': must be 'm', 'cm', 'mm', 'in'"),
     ("part_mm_as_m.toml", "read as millimetres (part.units)?"),

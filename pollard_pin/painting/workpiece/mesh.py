@@ -263,8 +263,9 @@ def load_part(path, units: str | float = "m", position=(0.0, 0.0, 0.0), rotation
     src = str(path)
     unit = unit_length(units, src)
     ext = path.suffix.lower().lstrip(".")
-    if ext not in FORMATS:
-        raise MeshError(f"{src}: format '.{ext}' is not a mesh this reads (STL, OBJ or PLY)")
+    if ext not in FORMATS:  # the format is the name's: a name without one says so
+        what = f"format '.{ext}' is" if ext else "a name without an extension is"
+        raise MeshError(f"{src}: {what} not a mesh this reads (STL, OBJ or PLY)")
     # the one reading rule: a regular file (a FIFO would block), within a size budget
     data = read_bytes(path, "mesh file", MeshError, MAX_MESH_BYTES)
     R, p = placement(position, rotation, src)
