@@ -723,6 +723,9 @@ CASES += [
     (["export", "--format", "urdf"], "invalid choice"),
     (["run", *SHORT, "--out", "afile/run.csv"], "not a folder"),
     (["run", *SHORT, "--out", "afolder"], "is a folder"),
+    # a folder's trailing '/': was written as the file run.csv
+    (["run", *SHORT, "--out", "run.csv/"], "run.csv/: ends in '/', as a folder's name does, "
+                                           "but a file is expected"),
     (["run", *SHORT, "--out", "/proc/run.csv"], "/proc/run.csv"),
     (["run", *SHORT, "--out", "/proc/run.parquet"], "/proc/run.parquet"),
     (["run", "--out", "existing.csv", "--trajectory", "nan_row.csv"], "is not finite"),
