@@ -92,6 +92,26 @@ def real(value, name: str, low: float = -math.inf, high: float = math.inf, *,
     return x
 
 
+def is_integer(value, low: int | None = None, high: int | None = None) -> bool:
+    """Whether ``value`` is an integer (Python's or numpy's, not a bool, not a float such as
+    2.0) within ``low <= value <= high`` (a bound None: none on that side): the one rule of a
+    count, a seed or an index, whose callers word their refusal as their tests pin it."""
+    return (isinstance(value, numbers.Integral) and not isinstance(value, bool)
+            and (low is None or value >= low) and (high is None or value <= high))
+
+
+def integer(value, name: str, low: int | None = None, high: int | None = None, *,
+            error=InputError) -> int:
+    """``value`` as an int, checked by :func:`is_integer`; else ``error("<name> = <value>: is
+    not an integer")`` or ``"...: must be >= <low>"`` / ``"...: must be at most <high>"``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise error(f"{name} = {shorten(value)}: is not an integer")
+    if not is_integer(value, low, high):
+        bound = f">= {low}" if low is not None and value < low else f"at most {high}"
+        raise error(f"{name} = {shorten(value)}: must be {bound}")
+    return int(value)
+
+
 def instance(value, name: str, kinds, expected: str, *, none: bool = False,
              error=InputError):
     """``value`` when it is one of ``kinds`` (or None, with ``none``); else

@@ -3,7 +3,7 @@
 (§23) and jobs on a moving line (§24), each timed as the CLI runs it, in seconds, through
 the public painting API (``pollard_pin.paint``).
 
-Run alone it times issue 42's cases against their targets, each ``pollard-pin paint`` in a
+Run alone it times the paint cases against their targets, each ``pollard-pin paint`` in a
 subprocess of its own (wall and CPU seconds, peak memory); figures only, no asserts:
 
     python scripts/bench_paint.py [--quick] [--case a|b|c|d]
@@ -33,7 +33,7 @@ REPO = Path(__file__).resolve().parents[1]
 
 
 def paint_section(robot, repeats: int) -> None:
-    """Paint planning (docs/model.md §21) of examples/paint.toml and its film map; the issue's
+    """Paint planning (docs/model.md §21) of examples/paint.toml and its film map; the
     budget is 10 s for both."""
     examples = REPO / "examples"
     act = pp.load_actuators(examples / "actuators.toml")
@@ -127,7 +127,7 @@ def cell_section(robot) -> None:
                   f"{best['speed']:.4g} m/s, {best['parts_per_hour']:.1f} parts/h")
 
 
-# issue 42's cases: (name, job, extra arguments, target [s])
+# the paint cases: (name, job, extra arguments, target [s])
 CASES = (
     ("(a) two-robot line case at its speed", "cell_part.toml", [], 30.0),
     ("(b) its --max-line-speed", "cell_part.toml", ["--max-line-speed"], 60.0),
@@ -195,7 +195,7 @@ def main(argv=None) -> None:
     ap.add_argument("--case", choices=list("abcd"), help="that case alone")
     args = ap.parse_args(argv)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"issue 42's targets on {os.cpu_count()} cores, load average {load:.1f} at the "
+    print(f"the paint targets on {os.cpu_count()} cores, load average {load:.1f} at the "
           "start (wall times grow with the load; the CPU seconds less so)")
     cases = QUICK if args.quick else CASES
     for case in cases if args.case is None else [c for c in cases if c[0][1] == args.case]:

@@ -1,5 +1,6 @@
-"""The motor model written out from the issue's formula, for the tests of the sizing: the
-shipped actuator file read directly (not through the loader), τm and ωm from run columns."""
+"""The motor model written out from its formula (docs/model.md §19), for the tests of the
+sizing: the shipped actuator file read directly (not through the loader), τm and ωm from run
+columns."""
 import math
 import tomllib
 from pathlib import Path

@@ -15,6 +15,8 @@ from pollard_pin.checks import (
     file_path,
     float_array,
     instance,
+    integer,
+    is_integer,
     is_real,
     problem,
     real,
@@ -117,6 +119,29 @@ def test_is_real_says_what_real_would_refuse_without_raising():
     assert is_real(0.0, 0.0) and not is_real(0.0, 0.0, above=True)
     for value in ("0.5", True, None, 1j, math.nan, math.inf, 10**400, -(10**400), [1.0]):
         assert not is_real(value), value  # 10**400: math.isfinite would raise OverflowError
+
+
+@pytest.mark.parametrize("value, low, high, says", [
+    (2, 2, None, None), (1, 2, None, "must be >= 2"),       # at and beside the low bound
+    (16, 1, 16, None), (17, 1, 16, "must be at most 16"),   # ... and the high one
+    (2.0, 1, None, "is not an integer"), (True, 0, None, "is not an integer"),
+    ("3", 1, None, "is not an integer"), (None, 1, None, "is not an integer"),
+])
+def test_integer_at_and_beside_its_bounds(value, low, high, says):
+    """The count rule PlannerPolicy, DesignOptions, the TOML readers and the CLI's counts
+    share: is_integer agrees with integer, which names the value and the bound."""
+    assert is_integer(value, low, high) == (says is None)
+    if says is None:
+        assert integer(value, "n", low, high) == value and type(integer(value, "n", low)) is int
+    else:
+        with pytest.raises(InputError, match=f"^n = {re.escape(repr(value))}: {says}$"):
+            integer(value, "n", low, high)
+
+
+def test_integer_takes_numpys_as_ints():
+    np = pytest.importorskip("numpy")
+    assert type(integer(np.int64(5), "n", 1)) is int
+    assert is_integer(np.uint32(7), 0, 7) and not is_integer(np.float64(7.0), 0)
 
 
 def test_callback_takes_a_function_or_none_only():

@@ -87,8 +87,9 @@ def test_example_script_uses_public_api(name):
 
 
 def test_bench_paint_quick_runs(tmp_path):
-    """scripts/bench_paint.py --quick (issue 42's figures; no asserts of its own): the ribbed
-    plate's film at 5 mm with compliance, in a subprocess, prints its times and memory."""
+    """scripts/bench_paint.py --quick (the paint targets' figures; no asserts of its
+    own): the ribbed plate's film at 5 mm with compliance, in a subprocess, prints its
+    times and memory."""
     env = {**os.environ, "PYTHONPATH": str(SCRIPTS.parent)}
     r = subprocess.run([sys.executable, str(SCRIPTS / "bench_paint.py"), "--quick"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=300, env=env)

@@ -12,7 +12,7 @@ import time
 import warnings
 from pathlib import Path
 
-from ..checks import EXAMPLE_ADDRESS, address_problem, problem, shorten
+from ..checks import EXAMPLE_ADDRESS, address_problem, is_integer, problem, shorten
 from ..errors import InputError
 from ..io.atomic import STDOUT
 from ..model.values import parse_float, parse_int
@@ -133,7 +133,7 @@ def count(minimum: int, maximum: int | None = None):
             value = parse_int(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"not an integer: {shorten(text)}") from None
-        if value < minimum or (maximum is not None and value > maximum):
+        if not is_integer(value, minimum, maximum):
             bound = f"between {minimum} and {maximum}" if maximum else f">= {minimum}"
             raise argparse.ArgumentTypeError(f"must be {bound}, got {text}")
         return value

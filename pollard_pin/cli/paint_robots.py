@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ..checks import clip
 from .common import UsageError, as_flags
 
 
@@ -25,7 +26,7 @@ def robot_count(text: str | None) -> int | str | None:
         return t
     n = int(t) if t.isascii() and t.isdigit() and len(t) < 6 else 0
     if not 1 <= n <= MAX_ROBOTS:
-        raise UsageError(f"--robots {text[:20]}: expected 1..{MAX_ROBOTS} or auto")
+        raise UsageError(f"--robots {clip(text, 24)}: expected 1..{MAX_ROBOTS} or auto")
     return n
 
 

@@ -93,6 +93,8 @@ def check_destination(path: str | Path, *, folder: bool = False) -> None:
     if str(path) == STDOUT and not folder:
         return
     check_name(path)
+    if not folder and str(path).endswith(("/", os.sep)):  # Path() would drop it: r.csv/ → r.csv
+        raise OutputError(f"{path}: ends in '/', as a folder's name does, but a file is expected")
     path = Path(path)
     broken = _broken_link(path)
     if broken:

@@ -20,7 +20,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from ..checks import NUL_IN_PATH, problem, shorten
+from ..checks import NUL_IN_PATH, is_integer, problem, shorten
 
 MAX_DEPTH = 32  # nested arrays/tables: a parameter file needs 3 (an inertia matrix)
 MAX_TOML_BYTES = 1 << 20  # 1 MiB: the shipped parameter file is ~5 kB
@@ -187,8 +187,8 @@ def number(value: Any, key: str, error: type[Exception], prefix: str = "", *,
 
 def integer(value: Any, key: str, error: type[Exception], prefix: str = "",
             minimum: int = 1) -> int:
-    """A whole number ``>= minimum`` (not a bool, not a float), or ``error``."""
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+    """A whole number ``>= minimum`` (pollard_pin.checks.is_integer), or ``error``."""
+    if not is_integer(value, minimum):
         fail(error, prefix, key, value, f"must be a whole number >= {minimum}")
     return int(value)
 

@@ -4,10 +4,9 @@ path's time step and the budgets checked before anything is built. The planners 
 an option (``policy=``), validated once; the defaults are the planners' own."""
 from __future__ import annotations
 
-import numbers
 from dataclasses import dataclass, fields
 
-from ..checks import instance, real, shorten
+from ..checks import instance, integer, real, shorten
 from ..errors import InputError
 
 STROKES = ("auto", "across", "along")  # docs/model.md §24.2
@@ -116,12 +115,8 @@ class PlannerPolicy:
             if f.name in CHOICES or f.name in CELL or f.name == "name_speeds":
                 continue
             if f.name in least:
-                if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-                    raise InputError(f"PlannerPolicy.{f.name} = {value!r}: is not an integer")
-                if value < least[f.name]:
-                    raise InputError(f"PlannerPolicy.{f.name} = {value!r}: must be >= "
-                                     f"{least[f.name]}")
-                object.__setattr__(self, f.name, int(value))
+                object.__setattr__(self, f.name, integer(value, f"PlannerPolicy.{f.name}",
+                                                         least[f.name]))
             else:
                 high = 1.0 if f.name == "utilisation" else float("inf")
                 object.__setattr__(self, f.name, real(value, f"PlannerPolicy.{f.name}", 0.0,

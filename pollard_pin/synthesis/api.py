@@ -6,13 +6,14 @@ from __future__ import annotations
 import contextlib
 import sys
 import time
+import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
-from ..checks import callback, instance, shorten
+from ..checks import callback, clip, instance, shorten
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
 from .front import choose, non_dominated, rank_key
@@ -26,6 +27,7 @@ from .study import (
     enqueue,
     finished,
     objectives_of,
+    outside_bounds,
     run_study,
     sampler,
 )
@@ -210,6 +212,11 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
             first, line = ([], None) if not options.ladder else first_generation(
                 variables, base, ctx, ev.evaluate, min(options.population, options.trials) - 1,
                 options.workers)
+            outside = outside_bounds(base, variables)
+            if outside:  # a bound in other units (rad for deg, mm for m) shows here
+                warnings.warn(f"the reference design (the study's first row) lies outside the "
+                              f"space: {clip(outside, 160)}; it is evaluated as it is "
+                              "(bounds in models/pollard.toml's units: m, deg)", stacklevel=2)
             enqueue(study, [base, *first])
             if line is not None:
                 study.set_user_attr("ladder", line)

@@ -29,7 +29,6 @@ A design is one value per :meth:`DesignSpace.variables`: each bound's key, ``sca
 from __future__ import annotations
 
 import hashlib
-import itertools
 import json
 import math
 from collections.abc import Mapping
@@ -40,27 +39,25 @@ from typing import Any
 import numpy as np
 
 from ..checks import file_path, is_real, shorten
-from ..errors import InputError
 from ..model.overrides import ParameterError, apply_overrides, lookup
-from ..model.params import did_you_mean, merge_partial, params_from_dict, read_params_dict
+from ..model.params import did_you_mean, merge_partial, read_params_dict
 from ..model.values import read_toml
 from ..names import ACTUATED
 from .catalogue import Catalogue, load_catalogue
+from .space_checks import (
+    SpaceError,
+    check_ends,
+    check_home,
+    check_limits,
+    given_once,
+    lengths_nonnegative,
+)
 
 MAX_ROBOTS = 16  # as paint --robots (pollard_pin.painting.cell.robots.MAX_ROBOTS)
 KEYS = ("catalogue", "robots", "params", "bounds", "scale", "motors", "place")
 # Keys a design does not choose: the mass model owns the bodies (§31.1), the motors the
 # limits' effort and velocity, and a side or a branch is no continuous quantity.
 FIXED = ("bodies.", "branches.", "leg1.side", "leg2.side")
-LENGTHS = ("chain0.", "leg1.y10", "leg1.z32", "leg1.x43", "leg1.x87", "leg1.x1211",
-           "leg1.z1312", "leg2.y10", "leg2.z32", "leg2.x43", "leg2.x87", "leg2.x1211",
-           "leg2.z1312", "home.tip")
-CORNERS = 64  # designs tried at most for the home pose's reach (corners, then the centre)
-
-
-class SpaceError(InputError):
-    """A design space that breaks a rule (one line)."""
-
 
 @dataclass(frozen=True)
 class ScaleGroup:
@@ -267,11 +264,6 @@ def _all_keys(d: Mapping, prefix: str = "") -> list[str]:
     return out
 
 
-def _lengths_nonnegative(key: str, lo: float, where: str) -> None:
-    if key.startswith(LENGTHS) and not key.startswith("home.") and lo < 0:
-        raise SpaceError(f"{where}: {key} = [{lo:g}, …]: a bound below zero (a length)")
-
-
 def _robots(value: Any, where: str) -> tuple[int, int]:
     pair = value if isinstance(value, list) else [value, value]
     if (len(pair) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in pair)
@@ -376,7 +368,7 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
                              f"key: \"{k}.KEY\" = [low, high]")
         key = _check_key(ref, k, f"{source} [bounds]")
         bounds[key] = _pair(v, repr(key), f"{source} [bounds]")
-        _lengths_nonnegative(key, bounds[key][0], f"{source} [bounds]")
+        lengths_nonnegative(key, bounds[key][0], f"{source} [bounds]")
     scales = []
     raw = d.get("scale", [])
     if not isinstance(raw, list) or any(not isinstance(t, Mapping) for t in raw):
@@ -398,99 +390,16 @@ def space_from_dict(d: Mapping, source: str = "<dict>", folder: str | Path = "."
         scales.append(ScaleGroup(str(t.get("name", i)), keys, lo, hi))
     if len({g.name for g in scales}) != len(scales):
         raise SpaceError(f"{source}: two [[scale]] tables share a name")
-    _given_once(bounds, scales, source)
+    given_once(bounds, scales, source)
     if "robots" not in d:
         raise SpaceError(f"{source}: robots = N or [1, N] is missing")
     space = DesignSpace(bounds, tuple(scales), catalogue, _robots(d["robots"], source), source,
                         _motor_groups(d.get("motors"), source), ref,
                         _back(d.get("place"), source))
-    _check_ends(space)
-    _check_limits(space)
+    check_ends(space)
+    check_limits(space)
     check_home(space)
     return space
-
-
-def _given_once(bounds: Mapping, scales, source: str) -> None:
-    """SpaceError when a key is varied twice: in [bounds] and a [[scale]], in two
-    [[scale]] tables or twice in one (its value would be a product nobody wrote)."""
-    seen = {k: "[bounds]" for k in bounds}
-    for i, g in enumerate(scales, start=1):
-        for k in g.keys:
-            if k in seen:
-                was = "twice in" if seen[k] == f"[[scale]] {i}" else f"in {seen[k]} and in"
-                raise SpaceError(f"{source}: {k!r} is varied {was} [[scale]] {i}; give each "
-                                 "key one entry")
-            seen[k] = f"[[scale]] {i}"
-
-
-def _check_limits(space: DesignSpace) -> None:
-    """SpaceError when a joint's limits, varied, can cross (upper ≤ lower) or span more than
-    one turn somewhere in the box (model/params.py's rule at every corner of the entries that
-    vary them, not only at each end with the others at their middles): one line naming the
-    entries and how far off. upper − lower is linear in each entry: its extremes are corners."""
-    varies = {k: ("[bounds]", k, lo, hi) for k, (lo, hi) in space.bounds.items()}
-    for i, g in enumerate(space.scales, start=1):  # each key varied once (_given_once)
-        varies.update({k: (f"[[scale]] {i}", f"scale.{g.name}", g.low, g.high) for k in g.keys})
-    for j in sorted({k.split(".")[1] for k in varies if k.startswith("limits.")}):
-        keys = (f"limits.{j}.lower", f"limits.{j}.upper")
-        entries = {varies[k][1:] for k in keys if k in varies}
-        ends = []
-        for corner in itertools.product(*[((n, lo), (n, hi)) for n, lo, hi in entries]):
-            ov = space.overrides(dict(corner))
-            lo_, up = (ov.get(k, float(lookup(space.reference, k))) for k in keys)
-            ends.append((up - lo_, lo_, up))
-        who = f"{space.source}: " + " and ".join(f"{varies[k][0]} {k!r}" for k in keys
-                                                 if k in varies)
-        width, lo_, up = min(ends)
-        if width <= 0:
-            raise SpaceError(f"{who}: the upper limit can be {up:.4g} deg with the lower "
-                             f"{lo_:.4g} deg: upper must exceed lower (off by {-width:.4g} deg)")
-        width, lo_, up = max(ends)
-        if width > 360.0:
-            raise SpaceError(f"{who}: the range can reach {width:.4g} deg ({lo_:.4g} to "
-                             f"{up:.4g}): one turn (360) at most, {width - 360:.4g} over")
-
-
-def _check_ends(space: DesignSpace) -> None:
-    """SpaceError when an end of a bound or of a scale's range breaks a parameter's own rule
-    (model/params.py's; the other bounds at their middles, the other scales at 1): one line
-    naming the entry, the end and the rule."""
-    entries = [(f"{space.source} [bounds]", repr(k), k, (k,), lo, hi)
-               for k, (lo, hi) in space.bounds.items()]
-    entries += [(f"{space.source} [[scale]] {i}", "range", f"scale.{g.name}", g.keys, g.low,
-                 g.high) for i, g in enumerate(space.scales, start=1)]
-    for where, name, var, keys, lo, hi in entries:
-        for end, value in (("low", lo), ("high", hi)):
-            try:
-                params_from_dict(space.design_dict({var: value}), check_home=False)
-            except ParameterError as exc:  # the key's own rule, not another's
-                if exc.key in keys:
-                    raise SpaceError(f"{where}: {name} = [{lo:g}, {hi:g}]: its {end} end: "
-                                     f"{exc}") from None
-
-
-def _corner_values(space: DesignSpace) -> list[dict[str, float]]:
-    """The centre, then corners of the continuous box (at most :data:`CORNERS`)."""
-    box = [(v.name, v.low, v.high) for v in space.variables() if v.kind == "float"]
-    out = [{n: (lo + hi) / 2 for n, lo, hi in box}]
-    for corner in itertools.islice(itertools.product(*[(lo, hi) for _, lo, hi in box]),
-                                   CORNERS - 1):
-        out.append(dict(zip([n for n, _, _ in box], corner)))
-    return out
-
-
-def check_home(space: DesignSpace) -> None:
-    """SpaceError unless the home pose is reachable for the centre or some corner of the
-    bounds (a space where no design can stand at home)."""
-    why = ""
-    for values in _corner_values(space):
-        try:
-            params_from_dict(space.design_dict(values), check_home=True)
-            return
-        except ParameterError as exc:
-            why = why or str(exc)
-    raise SpaceError(f"{space.source}: the home pose is unreachable at the centre and corners "
-                     f"of the bounds (e.g. {shorten(why, 120)})")
 
 
 def load_space(path: str | Path) -> DesignSpace:

@@ -37,12 +37,13 @@ import math
 import os
 import signal
 import threading
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..checks import SEEDS, callback, instance, scheduler_address, shorten
+from ..checks import SEEDS, callback, instance, is_integer, scheduler_address, shorten
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
@@ -115,14 +116,15 @@ class DesignOptions:
             value = getattr(self, name)
             if value is None and name in ("workers", "pick"):
                 continue
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
+            if not is_integer(value, low):
                 raise InputError(f"DesignOptions.{name}: must be an integer >= {low}, got "
                                  f"{shorten(value)}")
-        if self.seed is not None and (isinstance(self.seed, bool)
-                                      or not isinstance(self.seed, int)
-                                      or not 0 <= self.seed < SEEDS):
-            raise InputError(f"DesignOptions.seed: must be an integer 0..2^32 − 1 (numpy's "
-                             f"seeds) or None, got {shorten(self.seed)}")
+            object.__setattr__(self, name, int(value))  # numpy's integers too, as ints
+        if self.seed is not None:
+            if not is_integer(self.seed, 0, SEEDS - 1):
+                raise InputError(f"DesignOptions.seed: must be an integer 0..2^32 − 1 (numpy's "
+                                 f"seeds) or None, got {shorten(self.seed)}")
+            object.__setattr__(self, "seed", int(self.seed))
         for flag in ("resume", "screen_only", "ladder"):  # "no" is truthy: real bools only
             instance(getattr(self, flag), f"DesignOptions.{flag}", bool, "True or False")
         if not isinstance(self.progress, bool):
@@ -157,14 +159,27 @@ def sampler(options: DesignOptions, finished: int = 0):
 def suggest(trial, variables) -> dict:
     """The trial's values of the design variables (optuna's distributions, one per kind)."""
     values = {}
-    for v in variables:
-        if v.kind == "categorical":  # an index into the choices, as the evaluator takes it
-            values[v.name] = trial.suggest_categorical(v.name, list(range(len(v.choices))))
-        elif v.kind == "int":
-            values[v.name] = trial.suggest_int(v.name, int(v.low), int(v.high))
-        else:
-            values[v.name] = trial.suggest_float(v.name, float(v.low), float(v.high))
+    with warnings.catch_warnings():
+        # an enqueued design outside a bound (the thesis robot's row) is meant: said once in
+        # the project's words (outside_bounds), not by optuna per parameter and trial
+        warnings.filterwarnings("ignore", message="Fixed parameter .* is out of range")
+        for v in variables:
+            if v.kind == "categorical":  # an index into the choices, as the evaluator takes it
+                values[v.name] = trial.suggest_categorical(v.name,
+                                                           list(range(len(v.choices))))
+            elif v.kind == "int":
+                values[v.name] = trial.suggest_int(v.name, int(v.low), int(v.high))
+            else:
+                values[v.name] = trial.suggest_float(v.name, float(v.low), float(v.high))
     return values
+
+
+def outside_bounds(values: Mapping, variables) -> str | None:
+    """Which of ``values`` lie outside their variable's bounds ("KEY = x, bound [lo, hi]",
+    joined), or None: a reference design outside the space, or a bound in other units."""
+    out = [f"{v.name} = {values[v.name]:g} (bound [{v.low:g}, {v.high:g}])" for v in variables
+           if v.kind == "float" and v.name in values and not v.low <= values[v.name] <= v.high]
+    return "; ".join(out) or None
 
 
 @contextlib.contextmanager

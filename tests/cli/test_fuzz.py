@@ -190,13 +190,20 @@ def _parts() -> dict[str, bytes | str]:
         "mesh_nan.obj": square.replace("0.2", "nan") + "f 1 3 2\n",
         "mesh_flat.obj": "v 0.7 0 0.1\nv 0.7 0 0.2\nv 0.7 0 0.3\nf 1 2 3\n",
         "mesh_png.stl": b"\x89PNG\r\n\x1a\n" + bytes(range(256)),
+        # a facet of two corners, ASCII (the reader said "cannot reshape array") and binary
+        "mesh_two_corners.stl": "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0.7 0 0.1\n"
+                                "vertex 0.7 0.1 0.1\nendloop\nendfacet\nendsolid s\n",
+        "mesh_two_corners_binary.stl": bytes(80) + (1).to_bytes(4, "little") + bytes(12 + 24 + 2),
         "part_missing_mesh.toml": mesh("nope.stl"),
         "part_broken.toml": mesh("mesh_broken.stl"),
         "part_empty.toml": mesh("mesh_empty.obj"),
         "part_nan.toml": mesh("mesh_nan.obj"),
         "part_degenerate.toml": mesh("mesh_flat.obj"),
         "part_png.toml": mesh("mesh_png.stl"),
+        "part_two_corners.toml": mesh("mesh_two_corners.stl"),
+        "part_two_corners_binary.toml": mesh("mesh_two_corners_binary.stl"),
         "part_format.toml": mesh("part.step"),
+        "part_no_extension.toml": mesh("/dev/stdin"),  # was "format '.' is not a mesh"
         "part_facing.toml": sub("max_angle = 45.0", "max_angle = 10.0",
                                 sub("facing = [-1.0, 0.0, 0.0]", "facing = [0.0, 1.0, 0.0]")),
         "part_units.toml": sub('units = "m"', 'units = "ft"'),
@@ -214,7 +221,7 @@ def _parts() -> dict[str, bytes | str]:
         "part_line_coats.toml": job + "coats = 2\n" + line,
         "part_line_past.toml": sub("position = [0.0, 0.0, 0.0]",
                                    "position = [0.0, 2.5, 0.0]") + line,
-        # malformed meshes, faces nobody can paint, absurd values (issue 33 §1, §2)
+        # malformed meshes, faces nobody can paint, absurd values
         "mesh_zero_based.obj": square + "f 0 2 1\n",
         "mesh_relative_out.obj": square + "f 1 3 -4\n",
         "mesh_counts.ply": "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
@@ -716,6 +723,9 @@ CASES += [
     (["export", "--format", "urdf"], "invalid choice"),
     (["run", *SHORT, "--out", "afile/run.csv"], "not a folder"),
     (["run", *SHORT, "--out", "afolder"], "is a folder"),
+    # a folder's trailing '/': was written as the file run.csv
+    (["run", *SHORT, "--out", "run.csv/"], "run.csv/: ends in '/', as a folder's name does, "
+                                           "but a file is expected"),
     (["run", *SHORT, "--out", "/proc/run.csv"], "/proc/run.csv"),
     (["run", *SHORT, "--out", "/proc/run.parquet"], "/proc/run.parquet"),
     (["run", "--out", "existing.csv", "--trajectory", "nan_row.csv"], "is not finite"),
@@ -908,13 +918,20 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_line_key.toml", "'line.pitch' = 1: unknown key"),
     ("job_line_table.toml", "'line' = 3: must be a table [line]"),
     ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
-    ("part_broken.toml", "mesh_broken.stl: no triangles in the file"),
+    ("part_broken.toml", "mesh_broken.stl: line 4: 'vertex 1 2': an ASCII STL vertex is "
+                         "'vertex x y z', three numbers"),
+    ("part_two_corners.toml", "mesh_two_corners.stl: line 2: an ASCII STL facet with 2 "
+                              "vertices (a triangle has 3)"),
+    ("part_two_corners_binary.toml", "mesh_two_corners_binary.stl: a binary STL whose header "
+                                     "counts 1 triangles (134 bytes), but the file has 122 bytes"),
     ("part_empty.toml", "mesh_empty.obj: no triangles"),
     ("part_nan.toml", "is not finite"),
     ("part_degenerate.toml", "faces have zero area"),
     ("part_png.toml", "mesh_png.stl: a binary STL whose header counts 1263159624 triangles "
                       "(63157981284 bytes), but the file has 264 bytes"),
     ("part_format.toml", "format '.step' is not a mesh this reads"),
+    ("part_no_extension.toml", "/dev/stdin: a name without an extension is not a mesh this "
+                               "reads (STL, OBJ or PLY)"),
     ("part_facing.toml", "no face has its outward normal within 10°"),
     ("part_units.toml", "'part.units' = 'ft': must be 'm', 'cm', 'mm', 'in'"),
     ("part_mm_as_m.toml", "read as millimetres (part.units)?"),

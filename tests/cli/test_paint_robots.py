@@ -16,12 +16,15 @@ ROOT = Path(__file__).resolve().parents[2]
 LINE = ROOT / "examples" / "line.toml"
 
 
-@pytest.mark.parametrize("value", ["0", "1000000", "17", "-1", "two", "1e3", ""])
-def test_bad_counts_are_one_line(tmp_path, capsys, value):
+@pytest.mark.parametrize("value, shown", [
+    ("0", "0"), ("1000000", "1000000"), ("17", "17"), ("-1", "-1"), ("two", "two"),
+    ("1e3", "1e3"), ("", ""),
+    ("9" * 40, "9" * 23 + "…")])  # was cut to 20 nines without a mark: another number
+def test_bad_counts_are_one_line(tmp_path, capsys, value, shown):
     out = tmp_path / "out"
     code, _, err = run_cli(["paint", "--job", LINE, "--out", out, f"--robots={value}"], capsys)
     assert code == 2 and err.count("\n") == 1, err
-    assert f"--robots {value}: expected 1..16 or auto" in err and not out.exists()
+    assert f"--robots {shown}: expected 1..16 or auto" in err and not out.exists()
 
 
 @pytest.mark.parametrize("extra, words", [

@@ -53,7 +53,7 @@ from pollard_pin.model import constraint_jacobian
 from pollard_pin.paths.curves import thesis_trajectory
 from pollard_pin.paths.trajectory import Trajectory
 
-# A pose exactly on leg 2's reach boundary (θ76_2 = 0), from the issue.
+# A pose exactly on leg 2's reach boundary (θ76_2 = 0), a reported case.
 EDGE = np.array([0.5479217373830817, -0.14140430553739233, 0.2619590809778902,
                  0.1515515281768794, 0.34846838034929445, 0.04014162356854648])
 METHODS = ("batch", "newton")
@@ -511,7 +511,7 @@ def test_bad_time_steps_name_the_sample(robot, method, dt, k, what):
     traj = thesis_trajectory(samples=6)
     t = traj.t.copy()
     t[k:] += dt - (t[k] - t[k - 1])
-    if dt == 1e-300:  # the issue's case: samples 1e-300 s apart
+    if dt == 1e-300:  # the reported case: samples 1e-300 s apart
         t = np.arange(6) * dt
     dd = traj.dd_poses.copy()
     dd[k] = np.nan  # what a spline through such times gives; the cause is the time step

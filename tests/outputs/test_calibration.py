@@ -1,6 +1,7 @@
-"""The calibration that writes itself (outputs/calibration.py), issue 44's check: a panel
-painted with the gun fitted to noisy stripes gets the film the true pattern gives, within a
-few per cent of the target; gun.toml, calibration.json and fits.png are written all or none."""
+"""The calibration that writes itself (outputs/calibration.py), the acceptance check
+(docs/model.md §30): a panel painted with the gun fitted to noisy stripes gets the film the true
+pattern gives, within a few per cent of the target; gun.toml, calibration.json and fits.png are
+written all or none."""
 import dataclasses
 import json
 import math
@@ -68,7 +69,7 @@ def test_the_summary_says_the_fit(cal):
 
 
 def test_a_panel_job_painted_with_the_gun_toml_gets_the_true_film(robot):
-    """The issue's check through the planner: the stripes calibrated for a gun at 0.25 m (the
+    """The acceptance check through the planner: the stripes calibrated for a gun at 0.25 m (the
     file's reference standoff: the sizes carried there by the fitted spread law), a small
     panel job whose [gun] is gun.toml's table as it is, planned and filmed; the same program
     filmed with the true pattern at 0.25 m gives the same film to within 1 % of the target

@@ -64,7 +64,7 @@ def _panel_film(job, t, tips, axes, resolution=None):
 
 def test_a_panel_wider_than_the_spray_catches_all_of_it():
     """A 0.10 m pass over a 0.34 m panel: the spot (σ = 10 mm) stays 12σ from every edge,
-    so the panel gets all that is sprayed (achieved 2e-15; asserted 1e-6, the issue's)."""
+    so the panel gets all that is sprayed (achieved 2e-15; asserted 1e-6, the required bound)."""
     job = _job(0.34, 0.34)
     t, tips, axes = _gun_path(job, (-0.05, 0.05))
     pf = _panel_film(job, t, tips, axes)

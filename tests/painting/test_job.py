@@ -13,7 +13,7 @@ from pollard_pin.painting.job import job_from_dict, load_job
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "paint.toml"
 
 
-def test_example_reads_as_the_issue_gives_it():
+def test_example_reads_as_specified():
     job = load_job(EXAMPLE)
     assert job.center == (0.70, 0.0, 0.16) and job.normal == (-1.0, 0.0, 0.0)
     assert (job.width, job.height, job.standoff, job.sigma, job.flow, job.thickness) == \

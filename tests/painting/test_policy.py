@@ -59,6 +59,9 @@ def test_defaults_are_the_planners_figures():
     ("utilisation", math.nan, "finite"), ("utilisation", "0.9", "not a number"),
     ("turn_samples", 1, ">= 2"), ("turn_samples", 48.0, "not an integer"),
     ("turn_samples", True, "not an integer"), ("check_refine", 0, ">= 1"),
+    # repr() of it raised ValueError (over 4300 digits): now shortened, one line
+    pytest.param("turn_samples", -10**5000, "= -1e+5000 (a 5001-digit integer): must be >= 2",
+                 id="turn_samples-huge"),
     ("max_step", -0.001, "> 0"), ("max_step", math.inf, "finite"), ("step_sigma", 0, "> 0"),
     ("max_path_samples", 1, ">= 2"), ("max_passes", 0, ">= 1"),
     ("clearance_stride", 0, ">= 1"), ("clearance_stride", 2.0, "not an integer"),

@@ -16,7 +16,14 @@ from synthesis_runs import run_stub
 
 from pollard_pin.errors import InputError, SolveError
 from pollard_pin.synthesis.api import design
-from pollard_pin.synthesis.study import EVALUATION, DesignOptions, finished
+from pollard_pin.synthesis.space import Variable
+from pollard_pin.synthesis.study import (
+    EVALUATION,
+    DesignOptions,
+    finished,
+    outside_bounds,
+    suggest,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -97,6 +104,21 @@ def test_a_local_pool_gives_a_study_of_the_same_designs(tmp_path):
         objectives, _ = stub.figures(values, {"shift": 0.0})
         if row["feasible"]:
             assert row["kmin"] == pytest.approx(objectives["kmin"])
+
+
+def test_a_reference_outside_a_bound_is_named_once_in_the_projects_words(recwarn):
+    """A bound in radians for a limit in degrees: the thesis robot's −35° lies outside
+    [−0.6, 0]; outside_bounds names it (and only it: the bound's ends are inside), and the
+    enqueued row's suggest no longer passes on optuna's "Fixed parameter … out of range"."""
+    variables = [Variable("limits.theta21.upper", -0.6, 0.0, "float"),
+                 Variable("scale.arms", 1.0, 1.8, "float"), Variable("robots", 1, 3, "int")]
+    base = {"limits.theta21.upper": -35.0, "scale.arms": 1.0, "robots": 1}
+    assert outside_bounds(base, variables) == "limits.theta21.upper = -35 (bound [-0.6, 0])"
+    assert outside_bounds({**base, "limits.theta21.upper": -0.6}, variables) is None
+    study = optuna.create_study()
+    study.enqueue_trial(base)
+    assert suggest(study.ask(), variables) == base
+    assert not [w for w in recwarn if "Fixed parameter" in str(w.message)], recwarn.list
 
 
 def test_options_are_checked_once():

@@ -107,7 +107,7 @@ def test_figures_plot_the_run_arrays(result, run_csv):
     finally:
         for fig in figs.values():
             plt.close(fig)
-    # Everything the issue asks for is on some figure.
+    # Everything asked of the plots is on some figure.
     tree = ["theta21", "theta43", "theta54", "theta1615", "theta1716", "theta1817"] + [
         f"{n}_{i}" for i in (1, 2) for n in ("theta21", "theta65", "theta76")]
     wanted = {p + j for j in tree for p in ("", "d_", "dd_")}

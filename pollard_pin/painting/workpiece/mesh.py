@@ -27,7 +27,14 @@ from ...analytic.taskspace import turn
 from ...model.values import read_bytes
 from ..errors import MeshError, MeshFileError
 from ..job import UNITS, PaintJob
-from .mesh_check import check_indices, obj_absolute, ply_counts, stl_count, unique_faces
+from .mesh_check import (
+    check_indices,
+    obj_absolute,
+    ply_counts,
+    stl_ascii,
+    stl_count,
+    unique_faces,
+)
 from .panel import panel_frame
 
 if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: not for `run`
@@ -198,8 +205,8 @@ def _read_mesh(data: bytes, ext: str, src: str):
         data = obj_absolute(data, src)
     elif ext == "ply":
         ply_counts(data, src)
-    else:
-        stl_count(data, src)
+    elif stl_count(data, src) is None:
+        stl_ascii(data, src)
     import trimesh
 
     try:
@@ -256,8 +263,9 @@ def load_part(path, units: str | float = "m", position=(0.0, 0.0, 0.0), rotation
     src = str(path)
     unit = unit_length(units, src)
     ext = path.suffix.lower().lstrip(".")
-    if ext not in FORMATS:
-        raise MeshError(f"{src}: format '.{ext}' is not a mesh this reads (STL, OBJ or PLY)")
+    if ext not in FORMATS:  # the format is the name's: a name without one says so
+        what = f"format '.{ext}' is" if ext else "a name without an extension is"
+        raise MeshError(f"{src}: {what} not a mesh this reads (STL, OBJ or PLY)")
     # the one reading rule: a regular file (a FIFO would block), within a size budget
     data = read_bytes(path, "mesh file", MeshError, MAX_MESH_BYTES)
     R, p = placement(position, rotation, src)

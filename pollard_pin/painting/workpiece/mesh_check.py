@@ -12,12 +12,16 @@ never turned silently into another part.
 - **STL**: an ASCII file reads as text (``solid`` first, no NUL byte); any other is binary,
   whose size must be its 84-byte header and 50 bytes for each triangle the header counts: a
   count that does not match (a truncated copy, a damaged header, another format named .stl) is
-  refused, saying both, not read as an ASCII file with no triangles.
+  refused, saying both, not read as an ASCII file with no triangles. An ASCII file's facets
+  must hold three vertices of three numbers each, every ``facet`` closed by ``endfacet``: the
+  first that does not is refused, naming its line (the reader said "cannot reshape array").
 - **Faces**: a face that repeats another (the same three corners in the same turning order) is
   dropped and counted: painting it twice would double its film and area. The same corners in
   the opposite order are the two sides of a sheet and both stay.
 """
 from __future__ import annotations
+
+import re
 
 import numpy as np
 
@@ -139,6 +143,60 @@ def stl_count(data: bytes, source: str) -> int | None:
     return count
 
 
+_NUMBER = rb"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?(?:nan|inf(?:inity)?)"
+_STL_WORD = re.compile(rb"^[ \t]*(facet|vertex|endfacet)\b", re.M | re.I)
+_STL_INITIAL = re.compile(rb"^[ \t]*(f|v|e)(?:acet|ertex|ndfacet)\b", re.M | re.I)
+_STL_VERTEX = re.compile(rb"^[ \t]*vertex[ \t]+(?:(?:%s)[ \t]+){2}(?:%s)[ \t]*\r?$"
+                         % (_NUMBER, _NUMBER), re.M | re.I)
+
+
+def stl_ascii(data: bytes, source: str) -> int:
+    """An ASCII STL's facet count, its structure checked: each ``facet`` … ``endfacet`` holds
+    three ``vertex x y z`` lines of three numbers, and no vertex stands outside a facet."""
+    # the keywords' initials in file order: a sound file's are "fvvve" per facet
+    initials = b"".join(_STL_INITIAL.findall(data)).lower()
+    facets = len(initials) // 5
+    if initials == b"fvvve" * facets and len(_STL_VERTEX.findall(data)) == 3 * facets:
+        return facets
+    # something is wrong: find the first place, in file order (only on failure)
+    found = list(_STL_WORD.finditer(data))
+    kind = [b"fve".index(m[1][:1].lower()) for m in found]  # 0 facet, 1 vertex, 2 endfacet
+
+    def line(i: int) -> int:
+        return data.count(b"\n", 0, found[i].start()) + 1
+
+    start, corners = None, 0
+    for i, m in enumerate(found):
+        if kind[i] == 1:
+            end = data.find(b"\n", m.start())
+            text = data[m.start():end if end >= 0 else len(data)].rstrip(b"\r")
+            if not _STL_VERTEX.fullmatch(text):
+                shown = text.strip().decode("latin-1")[:60]
+                raise MeshFileError(f"{source}: line {line(i)}: {shown!r}: an ASCII STL vertex "
+                                    "is 'vertex x y z', three numbers")
+            if start is None:
+                raise MeshFileError(f"{source}: line {line(i)}: an ASCII STL vertex outside "
+                                    "any facet … endfacet")
+            corners += 1
+        elif kind[i] == 0:
+            if start is not None:
+                raise MeshFileError(f"{source}: line {line(start)}: an ASCII STL facet with no "
+                                    "endfacet before the next facet")
+            start, corners = i, 0
+        else:
+            if start is None:
+                raise MeshFileError(f"{source}: line {line(i)}: an ASCII STL endfacet with no "
+                                    "facet before it")
+            if corners != 3:
+                raise MeshFileError(f"{source}: line {line(start)}: an ASCII STL facet with "
+                                    f"{corners} vertices (a triangle has 3)")
+            start = None
+    if start is None:  # nothing found wrong after all: the reader judges
+        return facets
+    raise MeshFileError(f"{source}: line {line(start)}: an ASCII STL facet with no endfacet "
+                        "(a truncated file?)")
+
+
 def check_indices(vertices: np.ndarray, faces: np.ndarray, source: str) -> None:
     """Refuse a face index outside 0..V−1, naming the first such face."""
     f = np.asarray(faces)
@@ -164,4 +222,4 @@ def unique_faces(faces: np.ndarray) -> tuple[np.ndarray, int]:
 
 
 __all__ = ["STL_HEADER", "STL_TRIANGLE", "check_indices", "obj_absolute", "ply_counts",
-           "stl_count", "unique_faces"]
+           "stl_ascii", "stl_count", "unique_faces"]

@@ -98,7 +98,7 @@ def test_a_bevelled_edge_holds_a_shorter_stretch_than_the_longest(robot, tmp_pat
     at = robot_band(robot, CellRobot("a"), strokes)
     low = robot_band(robot, CellRobot("b", (0.0, 0.0, -0.06)), strokes)
     # the gun stands 0.15 m off a 40° chamfer along its normal and tilts: lowering the base
-    # 60 mm moves the band's bottom by far less (the 15 mm of 60)
+    # 60 mm moves the band's bottom by far less (about 15 mm of 60 is expected)
     assert 0.0 < at.lo - low.lo < 0.5 * 0.06, (at, low)
     # raised 0.27 m: the longest stretch stops 5 mm short of the top edge's run-on, a
     # shorter one holds it

@@ -17,7 +17,7 @@ from pollard_pin.painting.plan.panel import plan_paint
 
 
 def test_film_within_two_percent_edges_included(plan, film, job):
-    """Issue target ±2 %; the layout allows 1 % and the film achieves −0.81 % / +0.50 %."""
+    """Target ±2 %; the layout allows 1 % and the film achieves −0.81 % / +0.50 %."""
     U, V, _, f = film
     assert U[0] == -job.width / 2 and U[-1] == job.width / 2  # edges on the grid
     assert V[0] == -job.height / 2 and V[-1] == job.height / 2
@@ -54,7 +54,7 @@ def test_film_resolution_default_and_limit(job):
 
 def test_film_integration_converged(plan, film, job):
     """The film of the written samples against the same path integrated at 4× the sampling
-    (exact segment positions): the planner's 2 ms steps are converged far below the issue's
+    (exact segment positions): the planner's 2 ms steps are converged far below the required
     0.1 % of the target (achieved 5e-11 relative); the a-posteriori estimate (achieved 1.4e-9
     of the target) bounds it."""
     from pollard_pin.painting.passes.raster import task_motion

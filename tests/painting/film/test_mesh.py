@@ -80,8 +80,8 @@ def _rate(s, n, p, a):
 def test_curved_part_against_brute_force():
     """A cylinder section (R = 0.4 m, convex towards the robot), the gun orbiting its axis
     normal to it at the standoff, three passes: every film point against a per-point
-    evaluation at 3× the time samples. Achieved 4e-14 relative; asserted 1e-11 (the issue
-    asks for 1 %)."""
+    evaluation at 3× the time samples. Achieved 4e-14 relative; asserted 1e-11 (1 % is
+    required)."""
     R = 0.4
     m = shapes.curved_panel(radius=R, width=0.08, height=0.04)
     part = make_part(m.vertices, m.faces)
@@ -234,7 +234,7 @@ def test_shadow_edges_against_fine_time_sampling(ribbed):
     """Plate points within 4 mm of the rib's walls, two passes across it (the gun σ/4 per
     step): the film against 1024 substeps per step with a segment test at each, within 0.1 %
     of the flat plate's film (achieved 3e-5, the brute force's own first-order error about
-    as large; asserted 1e-3, the issue's bound). The rule with a segment test at the samples
+    as large; asserted 1e-3, the required bound). The rule with a segment test at the samples
     only (the trapezoid rule through the shadow's jump) misses by 3 %; without the lit
     chain's end term by 0.1 %. The error estimate stays below 0.1 % (achieved 0.02 %)."""
     rib, flat = ribbed

@@ -203,7 +203,7 @@ def test_the_search_refusal_says_each_counts_first_cause_in_one_line(robot, monk
                          "robots; 4 cause 4: the motors of 4 robots"), said  # no figures, no fix
 
 
-# each count's refusal as the planner words it (the three cabinet doors of issue 42), and
+# each count's refusal as the planner words it (the three cabinet doors' case), and
 # what the search's line says of it
 DOOR_REFUSALS = {
     2: (CellError, "<python>: no robot reaches z -0.015…0.025 m (the part's edge 0.015 m and "

@@ -150,7 +150,7 @@ def test_a_slow_line_waits_at_the_turnarounds(robot, act):
 
 def test_a_step_across_the_passes_widens_the_averaging(robot, act, tmp_path):
     """A 0.30 × 0.12 m front with a bar 4 cm proud of it, 1 cm tall, across the vertical
-    passes (a drawer's handle, issue 42): at the least averaging the tip jumps 4 cm in depth
+    passes (a drawer's handle): at the least averaging the tip jumps 4 cm in depth
     within a few mm of the pass, and the motors need over twice their rating on the passes,
     whatever the line's speed; the line planner averages wider, until the passes alone are
     within the utilisation, and the world path holds."""

@@ -1,7 +1,7 @@
-"""The calibration (painting/spray/calibrate.py), issue 44's check: stripes made from a known
-pattern with measurement noise, at two standoffs and two speeds, give back that pattern within
-its stated standard errors, and the model chosen is the true one; every stripe a fit cannot
-use is one line saying what to measure."""
+"""The calibration (painting/spray/calibrate.py), the acceptance check (docs/model.md §30):
+stripes made from a known pattern with measurement noise, at two standoffs and two speeds, give
+back that pattern within its stated standard errors, and the model chosen is the true one; every
+stripe a fit cannot use is one line saying what to measure."""
 import math
 from dataclasses import replace
 

@@ -27,7 +27,7 @@ def _straight_pass(y, speed=0.4, half=0.08, step=GUN.sigma / 4):
 def test_straight_pass_cross_profile():
     """flow/(√(2π)σv)·exp(−y²/2σ²), times the pass's finite length erf(L/(√2σ)) exactly.
     Achieved 3e-15 relative (trapezoid at σ/4 steps: Poisson summation error ~e^-316);
-    asserted 1e-12, well within the issue's 1e-6."""
+    asserted 1e-12, well within the required 1e-6."""
     y = np.linspace(-3 * GUN.sigma, 3 * GUN.sigma, 25)
     speed, half = 0.4, 0.08
     f = _straight_pass(y, speed, half)
@@ -53,7 +53,7 @@ def test_coarse_steps_lose_accuracy():
 def test_flux_balance_on_a_large_plane(tilt_deg):
     """Film integrated over a large plane = flow × spraying time: the gun circles at the
     standoff (axis along −z) over a plane tilted by ``tilt_deg`` about y (every ray with
-    h > 0 hits it). Achieved 4e-15 (0°) and 1.4e-14 (30°); asserted 1e-12, within the issue's
+    h > 0 hits it). Achieved 4e-15 (0°) and 1.4e-14 (30°); asserted 1e-12, within the required
     1e-4."""
     tilt = math.radians(tilt_deg)
     n_plane = np.array([math.sin(tilt), 0.0, math.cos(tilt)])
@@ -77,7 +77,7 @@ def test_tilted_plane_against_ray_sampling():
     """A static gun over a plane tilted 40° about y: the rate equals the density of rays
     (straight lines from the nozzle through a Gaussian spot of σ at the standoff, quasi-random
     Sobol samples) hitting each cell. Achieved 2.8e-4 relative on the 36 cells within 1.5σ of
-    the spot centre (sampling noise); asserted 1 % as in the issue (a wrong cos i/cos α
+    the spot centre (sampling noise); asserted 1 % as required (a wrong cos i/cos α
     factor is off by 30 % here)."""
     tilt = math.radians(40)
     n_plane = np.array([math.sin(tilt), 0.0, math.cos(tilt)])  # towards the gun (+z side)

@@ -11,6 +11,7 @@ from pollard_pin.painting.workpiece.mesh_check import (
     check_indices,
     obj_absolute,
     ply_counts,
+    stl_ascii,
     stl_count,
     unique_faces,
 )
@@ -147,6 +148,47 @@ def test_a_binary_stl_that_lies_about_its_count_is_refused(tmp_path, data, says)
         _load(tmp_path, "lie.stl", data, facing=(0, 0, 1))
     msg = str(exc.value)
     assert says in msg and "\n" not in msg and len(msg) <= 250, msg
+
+
+def _ascii_stl(*facets: str) -> bytes:
+    return ("solid s\n" + "".join(f"facet normal 0 0 1\nouter loop\n{f}endloop\nendfacet\n"
+                                   for f in facets) + "endsolid s\n").encode()
+
+
+TRIANGLE = "vertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+
+
+@pytest.mark.parametrize("data, says", [
+    (_ascii_stl(TRIANGLE, "vertex 0 0 0\nvertex 1 0 0\n"),
+     "line 9: an ASCII STL facet with 2 vertices (a triangle has 3)"),
+    (_ascii_stl(TRIANGLE + "vertex 0 1 0\n"), "line 2: an ASCII STL facet with 4 vertices (a "
+                                                  "triangle has 3)"),
+    (_ascii_stl(TRIANGLE.replace("1 1 0", "1 1 zz")),
+     "line 6: 'vertex 1 1 zz': an ASCII STL vertex is 'vertex x y z', three numbers"),
+    (_ascii_stl(TRIANGLE).replace(b"endfacet\n", b""), "line 2: an ASCII STL facet with no "
+                                                        "endfacet (a truncated file?)"),
+    (_ascii_stl(TRIANGLE, TRIANGLE).replace(b"endfacet\n", b"", 1),
+     "line 2: an ASCII STL facet with no endfacet before the next facet"),
+    (b"solid s\nvertex 0 0 0\n" + _ascii_stl(TRIANGLE)[8:],
+     "line 2: an ASCII STL vertex outside any facet … endfacet"),
+    (b"solid s\nendfacet\n" + _ascii_stl(TRIANGLE)[8:],
+     "line 2: an ASCII STL endfacet with no facet before it"),
+])
+def test_an_ascii_stl_facet_not_a_triangle_is_refused_naming_its_line(tmp_path, data, says):
+    """Line numbers counted by hand in the files above; the reader alone said "cannot reshape
+    array of size 6 into shape (3)" or read no triangles."""
+    with pytest.raises(MeshFileError) as exc:
+        stl_ascii(data, "t.stl")
+    assert str(exc.value) == f"t.stl: {says}"
+
+
+def test_a_sound_ascii_stl_is_read_as_written(tmp_path):
+    """CRLF ends, indentation, upper-case keywords and exponents pass the check; the loader's
+    two triangles are the file's (areas 1/2 each, by hand)."""
+    data = _ascii_stl(TRIANGLE, "  VERTEX 0 0 0\n  vertex 1e0 1 0\n  vertex 0 +1.0 -0\n")
+    assert stl_ascii(data, "t.stl") == 2
+    part = _load(tmp_path, "t.stl", data.replace(b"\n", b"\r\n"), facing=(0, 0, 1))
+    assert np.allclose(part.areas, [0.5, 0.5], rtol=0, atol=1e-14)
 
 
 def test_loader_reads_a_binary_stl_written_by_hand(tmp_path):
