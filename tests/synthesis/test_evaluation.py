@@ -200,7 +200,7 @@ def test_context_travels_to_workers(example):
 
 
 def test_moved_job_moves_the_part_only():
-    from pollard_pin.synthesis.evaluation import moved_job
+    from pollard_pin.synthesis.layout import moved_job
 
     panel = pp.job_from_dict(STRIP)
     m = moved_job(panel, [0.3, 0.0, 0.0])
@@ -216,7 +216,7 @@ def test_placed_job_is_the_job_the_evaluation_paints(strip):
     from dataclasses import replace
 
     from pollard_pin.synthesis.concrete import build
-    from pollard_pin.synthesis.evaluation import placed_job
+    from pollard_pin.synthesis.layout import placed_job
 
     space, ctx, values, ev = strip
     robot = pp.load(build(values, space).params)
