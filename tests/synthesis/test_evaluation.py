@@ -236,14 +236,15 @@ def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_sea
     bit: objectives, constraints, figures and files (docs/model.md §31.5)."""
     import json
 
-    import pollard_pin.painting.line.phases as phases
+    import pollard_pin.painting.line.search as search
+    import pollard_pin.painting.line.world as world
 
     space, ctx, values, exact = strip
     notes = json.loads(json.dumps(strip_searched.notes))  # as the study stores them
     assert notes == strip_searched.notes and "layout" in notes and len(notes) == 2
     searched = []
-    real = phases._searched
-    monkeypatch.setattr(phases, "_searched", lambda *a: searched.append(1) or real(*a))
+    real = search.searched
+    monkeypatch.setattr(world, "searched", lambda *a: searched.append(1) or real(*a))
     ev = evaluate(values, ctx, "full", notes=notes)
     assert not searched and ev.level == "full" and ev.notes is None
     timed = ("screen_s", "full_s")
@@ -260,10 +261,10 @@ def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_sea
     def once(worst, speed, too_fast, least=""):
         if not refused:
             refused.append(worst)
-            raise phases.LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs "
+            raise world.LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs "
                                         f"{100 * worst:.0f} % of its peak torque or speed",
                                         too_fast, "a motor over its rating")
-    monkeypatch.setattr(phases, "motors_within", once)
+    monkeypatch.setattr(world, "motors_within", once)
     from dataclasses import replace
 
     named = replace(ctx, options=replace(ctx.options, policy=replace(
