@@ -109,11 +109,12 @@ def _off_passes_out(robot, rel: Relative, t, e) -> str:
 
 
 def searched(robot, act: Actuators, program: LineProgram, rel: Relative, speed: float, e,
-             policy: PlannerPolicy) -> dict:
+             policy: PlannerPolicy, built: dict | None = None) -> dict:
     """What :func:`.line.world.plan_world` searches before it samples and checks the path
     (none of it reads ``policy.check_refine``): the ramps' and turnarounds' durations ``tau``, the
     ``delay`` [s] and the return's duration ``back`` [s], as plain numbers (a note,
-    :mod:`.line.notes`); ``rel`` the program at its guess."""
+    :mod:`.line.notes`); ``rel`` the program at its guess. ``built`` (a dict) gains the
+    program built at the τ found, by τ's bytes, for the caller not to build it again."""
     build, guess, where, passes = program.build, program.guess, program.where, program.passes
     ns = policy.turn_samples
     shift = choose_shift(robot, rel, speed, e, where)
@@ -121,10 +122,10 @@ def searched(robot, act: Actuators, program: LineProgram, rel: Relative, speed: 
     passes_time = float(sum(d for d, k in zip(rel.duration, rel.kind) if k == "pass"))
     samples_budget(shift / speed + passes_time, program.dt, program.source, policy)
     centre = shift + mid_along(rel, speed, e)
-    built = {np.asarray(guess, dtype=float).tobytes(): rel}  # the search starts at the guess
+    first = {np.asarray(guess, dtype=float).tobytes(): rel}  # the search starts at the guess
 
     def evaluate(tau):
-        r = built.pop(np.asarray(tau).tobytes(), None) or build(tau)
+        r = first.pop(np.asarray(tau).tobytes(), None) or build(tau)
         pieces = r.not_passes()
         u = np.linspace(0.0, 1.0 - 1e-12, ns)
         tt = (r.start[pieces, None] + r.duration[pieces, None] * u[None, :]).ravel()
@@ -153,6 +154,8 @@ def searched(robot, act: Actuators, program: LineProgram, rel: Relative, speed: 
                              "no turnaround keeps the path in reach and the motors within "
                              "ratings") from None
     rel = build(tau)
+    if built is not None:
+        built[np.asarray(tau, dtype=float).tobytes()] = rel
     delay = choose_shift(robot, rel, speed, e, where) / speed
     back = return_time(robot, act, rel, speed, e, delay, policy)
     return {"tau": np.asarray(tau, dtype=float).tolist(), "delay": float(delay),

@@ -30,6 +30,9 @@ from .phases import (
 )
 from .search import searched
 
+#: A note's mark (notes.py): the path's motors were within their ratings at its own samples.
+SAMPLES_OK = "motors_at_samples"
+
 
 @dataclass(frozen=True)
 class World:
@@ -60,9 +63,11 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     slow_budget(speed, dt, source, policy)
     rel = build(program.guess)
     # the searches (shift, turnarounds, return) once per inputs within plan_notes (notes.py)
-    made = noted(lambda: searched(robot, act, program, rel, speed, e, policy), robot, act,
-                 program, rel, speed, e, policy, screen)
-    rel = build(np.asarray(made["tau"], dtype=float))
+    built: dict = {}  # the program at the τ found, when searched here (not from a note)
+    made = noted(lambda: searched(robot, act, program, rel, speed, e, policy, built), robot,
+                 act, program, rel, speed, e, policy, screen)
+    tau = np.asarray(made["tau"], dtype=float)
+    rel = built.get(tau.tobytes()) or build(tau)
     delay, back = made["delay"], made["back"]
     times = LineTimes(delay, delay + rel.total, back)
     samples_budget(times.total, dt, source, policy)
@@ -71,7 +76,9 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
     tf = path_times(times, policy.check_refine * steps)
     drift = drift_along(rel, speed, e)
     r = policy.check_refine  # a power of two: the check's times hold the path's, bit for bit
-    screened = screen and drift <= 0 and r > 1 and r & (r - 1) == 0
+    # the screen is the check at the path's own samples: noted as passed there (a search's
+    # check, check_refine 1, of this same path), it would pass again
+    screened = screen and drift <= 0 and r > 1 and r & (r - 1) == 0 and not made.get(SAMPLES_OK)
     j = first_kept(tf, times.leave)  # the check's rows from j: a long wait's once (motors.py)
     if screened:  # the path first: the screen may refuse it before the finer samples
         poses, d, dd, spray = world_motion(rel, speed, e, times, t)
@@ -101,7 +108,9 @@ def plan_world(robot, act: Actuators, program: LineProgram, speed: float, e,
               "speed": fine.speed_ratio.max(0)}
     motors_within(max(float(ratios["peak_torque"].max()), float(ratios["speed"].max())),
                   speed, drift > 0)
+    if r == 1:  # within plan_notes: the note says so to a plan of this path at a finer check
+        made[SAMPLES_OK] = True
     return World(rel, times, traj, spray, ratios)
 
 
-__all__ = ["World", "plan_world"]
+__all__ = ["SAMPLES_OK", "World", "plan_world"]
