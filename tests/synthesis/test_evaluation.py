@@ -242,6 +242,8 @@ def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_sea
     space, ctx, values, exact = strip
     notes = json.loads(json.dumps(strip_searched.notes))  # as the study stores them
     assert notes == strip_searched.notes and "layout" in notes and len(notes) == 2
+    # the search's check passed at the path's own samples: the exact plan skips that screen
+    assert all(v[world.SAMPLES_OK] for k, v in notes.items() if k != "layout")
     searched = []
     real = search.searched
     monkeypatch.setattr(world, "searched", lambda *a: searched.append(1) or real(*a))
