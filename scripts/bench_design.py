@@ -65,7 +65,7 @@ def breakdown(n: int, values: dict, ctx, search_ctx) -> dict:
     from pollard_pin.painting.line.panel import line_clearance
     from pollard_pin.synthesis import evaluate
     from pollard_pin.synthesis.concrete import build
-    from pollard_pin.synthesis.evaluation import placed_job
+    from pollard_pin.synthesis.layout import placed_job
 
     out = {}
     searched, out["search"] = _cpu(lambda: evaluate(values, search_ctx, "search"))

@@ -37,13 +37,12 @@ from ..model.overrides import ParameterError
 from ..outputs.result import paint
 from ..painting.causes import binding_of
 from ..painting.cell.bands import job_strokes
-from ..painting.cell.robots import CellRobot
 from ..painting.job import PartJob, load_job
-from ..painting.layout.cell import propose_layout
 from ..painting.line.notes import plan_notes
 from ..painting.options import PaintOptions
 from .concrete import Design, actuators_toml, build, params_toml
 from .fidelity import SearchFidelity
+from .layout import back_offset, placed_job
 from .screen import held_poses, motors, panel_reach, reach, turn_runon
 from .space import DesignSpace
 
@@ -64,7 +63,6 @@ FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
 REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
 LEVELS = ("screen", "search", "full")
-LAYOUT = "layout"  # a design's notes: its cell's proposed robots (the rest: its line plans')
 
 
 @dataclass(frozen=True)
@@ -195,69 +193,6 @@ def prepare(job, space: DesignSpace, options: PaintOptions | None = None,
     return DesignContext(job, space, strokes, options, search)
 
 
-def moved_job(job, offset):
-    """The job with its part moved by ``offset`` [m] (world): a panel's centre, a part's
-    position."""
-    o = np.asarray(offset, float)
-    if isinstance(job, PartJob):
-        return replace(job, position=tuple(float(c) for c in np.add(job.position, o)))
-    return replace(job, center=tuple(float(c) for c in np.add(job.center, o)))
-
-
-def _back_offset(ctx: DesignContext, back: float) -> np.ndarray:
-    """Where a robot standing ``back`` [m] from the origin sees the part moved: away from it,
-    along the part's facing (docs/model.md §31.3)."""
-    return -back * np.asarray(ctx.strokes.facing, float)
-
-
-def placed_job(values: Mapping[str, Any], ctx: DesignContext, robot, n: int,
-               notes: dict | None = None):
-    """The job a design paints (docs/model.md §31.3): a line job with its ``n`` robots
-    proposed as ``paint --robots N`` does, where the robot stands (the part moved for
-    ``place.back``), then their bases moved back there; a job without a line as it is.
-
-    Parameters
-    ----------
-    values : Mapping
-        The design's values (its ``place.back``).
-    ctx : DesignContext
-        From :func:`prepare`.
-    robot : Robot
-        The design's model (:func:`pollard_pin.load` of its parameters).
-    n : int
-        The robots in the cell.
-    notes : dict or None, optional
-        A design's notes (:attr:`Evaluation.notes`): the layout taken from there if it was
-        proposed for this robot, count and place, else proposed and noted there.
-
-    Returns
-    -------
-    PaintJob or pollard_pin.painting.job.PartJob
-        The job with its ``robots`` (a cell's ``[[robot]]`` tables).
-
-    Raises
-    ------
-    pollard_pin.errors.PollardError
-        The layout's refusal.
-    """
-    job = ctx.job
-    if job.line is None:
-        return job
-    back = ctx.space.place_back(values)
-    key = repr((robot.params, n, back))  # what the layout reads besides the study's job
-    noted = (notes or {}).get(LAYOUT)
-    if noted is not None and noted["for"] == key:
-        return replace(job, robots=tuple(CellRobot(name, tuple(base), tuple(rotation))
-                                         for name, base, rotation in noted["robots"]))
-    o = _back_offset(ctx, back)
-    robots = tuple(replace(r, base=tuple(float(c) for c in np.subtract(r.base, o)))
-                   for r in propose_layout(robot, moved_job(job, o), n))
-    if notes is not None:
-        notes[LAYOUT] = {"for": key, "robots": [[r.name, list(r.base), list(r.rotation)]
-                                                for r in robots]}
-    return replace(job, robots=robots)
-
-
 def _objectives(design: Design | None, n: int, **known) -> dict[str, float]:
     mass = design.moving_mass * n if design is not None else math.inf
     out = {"parts_per_hour": 0.0, "robots": float(n), "motor_use": 10.0, "kmin": 0.0,
@@ -314,7 +249,7 @@ def _screen(values, ctx: DesignContext):
     try:
         robot = load(design.params)
         if ctx.strokes is not None:
-            o = _back_offset(ctx, back)
+            o = back_offset(ctx, back)
             strokes = replace(ctx.strokes, samples=tuple((w, tips + o, ax) for w, tips, ax
                                                          in ctx.strokes.samples))
             cons["reach"], more, band = reach(robot, strokes, n)
@@ -502,5 +437,4 @@ def baseline_values(space: DesignSpace, ctx: DesignContext | None = None) -> dic
 
 
 __all__ = ["CONSTRAINTS", "DesignContext", "Evaluation", "LEVELS", "OBJECTIVES", "SENSES",
-           "UNITS", "baseline_values", "design_files", "evaluate", "moved_job", "placed_job",
-           "prepare"]
+           "UNITS", "baseline_values", "design_files", "evaluate", "prepare"]

@@ -200,7 +200,7 @@ def test_context_travels_to_workers(example):
 
 
 def test_moved_job_moves_the_part_only():
-    from pollard_pin.synthesis.evaluation import moved_job
+    from pollard_pin.synthesis.layout import moved_job
 
     panel = pp.job_from_dict(STRIP)
     m = moved_job(panel, [0.3, 0.0, 0.0])
@@ -216,7 +216,7 @@ def test_placed_job_is_the_job_the_evaluation_paints(strip):
     from dataclasses import replace
 
     from pollard_pin.synthesis.concrete import build
-    from pollard_pin.synthesis.evaluation import placed_job
+    from pollard_pin.synthesis.layout import placed_job
 
     space, ctx, values, ev = strip
     robot = pp.load(build(values, space).params)
@@ -236,14 +236,17 @@ def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_sea
     bit: objectives, constraints, figures and files (docs/model.md §31.5)."""
     import json
 
-    import pollard_pin.painting.line.phases as phases
+    import pollard_pin.painting.line.search as search
+    import pollard_pin.painting.line.world as world
 
     space, ctx, values, exact = strip
     notes = json.loads(json.dumps(strip_searched.notes))  # as the study stores them
     assert notes == strip_searched.notes and "layout" in notes and len(notes) == 2
+    # the search's check passed at the path's own samples: the exact plan skips that screen
+    assert all(v[world.SAMPLES_OK] for k, v in notes.items() if k != "layout")
     searched = []
-    real = phases._searched
-    monkeypatch.setattr(phases, "_searched", lambda *a: searched.append(1) or real(*a))
+    real = search.searched
+    monkeypatch.setattr(world, "searched", lambda *a: searched.append(1) or real(*a))
     ev = evaluate(values, ctx, "full", notes=notes)
     assert not searched and ev.level == "full" and ev.notes is None
     timed = ("screen_s", "full_s")
@@ -260,10 +263,10 @@ def test_the_search_notes_make_the_exact_plan_without_searching(strip, strip_sea
     def once(worst, speed, too_fast, least=""):
         if not refused:
             refused.append(worst)
-            raise phases.LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs "
+            raise world.LineSpeedError(f"at line speed {speed:.4g} m/s a motor needs "
                                         f"{100 * worst:.0f} % of its peak torque or speed",
                                         too_fast, "a motor over its rating")
-    monkeypatch.setattr(phases, "motors_within", once)
+    monkeypatch.setattr(world, "motors_within", once)
     from dataclasses import replace
 
     named = replace(ctx, options=replace(ctx.options, policy=replace(

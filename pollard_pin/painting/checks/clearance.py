@@ -31,6 +31,7 @@ point on the part [mm] and the distance found against the clearance.
 """
 from __future__ import annotations
 
+import hashlib
 import itertools
 import math
 from collections.abc import Callable
@@ -124,8 +125,26 @@ class SurfaceIndex:
     every: cKDTree
 
 
+_INDEXES: dict = {}  # the last few meshes' indexes by their content (a study's one part)
+_INDEXES_KEPT = 2
+
+
 def surface_index(mesh: trimesh.Trimesh) -> SurfaceIndex:
-    """The :class:`SurfaceIndex` of a mesh."""
+    """The :class:`SurfaceIndex` of a mesh: made once per content (its vertices and faces)
+    for the last few meshes, every design of a study measured against the same part (the
+    same samples and trees, so the same answers to the bit)."""
+    v, f = np.ascontiguousarray(mesh.vertices, float), np.ascontiguousarray(mesh.faces)
+    key = hashlib.blake2b(v.tobytes() + b"|" + f.tobytes() + repr((v.shape, f.shape, f.dtype))
+                          .encode(), digest_size=16).digest()
+    index = _INDEXES.get(key)
+    if index is None:
+        index = _INDEXES[key] = _index(mesh)
+        while len(_INDEXES) > _INDEXES_KEPT:
+            _INDEXES.pop(next(iter(_INDEXES)))
+    return index
+
+
+def _index(mesh: trimesh.Trimesh) -> SurfaceIndex:
     samples, owner, delta = surface_samples(mesh.vertices, mesh.faces)
     # an unbalanced tree of distinct points answers the far queries several times faster
     tree = cKDTree(np.unique(samples, axis=0), balanced_tree=False, compact_nodes=False)

@@ -14,13 +14,14 @@ from ..progress import bar
 from ..spray.deposition import (
     BLOCK_ELEMENTS,
     Film,
+    Reach,
     coarse_weights,
     deposition_rate,
     gun_of,
-    near_spot,
+    spot_block,
 )
 from .grid import MAX_FILM_PAIRS, film_grid
-from .mesh import MeshFilm, mesh_film
+from .mesh import MeshFilm, film_groups, mesh_film
 
 
 def world_gun(rp) -> tuple:
@@ -57,9 +58,15 @@ def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
     p, s = p - origin, s - origin
     total, coarse = np.zeros(len(s)), np.zeros(len(s))
     block = max(1, BLOCK_ELEMENTS // max(len(s), 1))
+    groups, centres, radii = film_groups(s, [np.arange(len(s))])
     for start in bar(range(0, len(live), block), "film"):
         i = live[start:start + block]
-        k = near_spot(gun, p[i], a[i], s)
+        # near_spot's points: keep's test, point by point, on the points of the groups whose
+        # bounding balls may hold one (holds is False only where keep keeps none), so the
+        # same points (a part's film likewise, film/mesh.py)
+        cull = Reach(gun, *spot_block(p[i], a[i]))
+        near = np.flatnonzero(cull.holds(centres, radii)[groups[0]])
+        k = near[cull.keep(s[near])]
         r = deposition_rate(gun, p[i], a[i], s[k], n)
         total[k] += w[i] @ r
         coarse[k] += w2[i] @ r

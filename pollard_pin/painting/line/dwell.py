@@ -21,7 +21,8 @@ import numpy as np
 from ..errors import LineSpeedError
 from ..passes.raster import RAMP_IN, RAMP_OUT
 from ..policy import DEFAULT_POLICY, PlannerPolicy
-from .phases import LineProgram, Relative, plan_world
+from .phases import LineProgram, Relative
+from .world import plan_world
 
 _OUT, _IN = RAMP_OUT, RAMP_IN  # σ/τ over u/τ: travels 1/2, rate 1 → 0 (0 → 1)
 _OUT1, _OUT2, _IN1, _IN2 = _OUT.deriv(), _OUT.deriv(2), _IN.deriv(), _IN.deriv(2)
@@ -154,7 +155,7 @@ def dwelling(program: LineProgram, speed: float, e) -> LineProgram:
 
 def plan_dwelling(robot, act, program: LineProgram, speed: float, e,
                   policy: PlannerPolicy = DEFAULT_POLICY):
-    """:func:`.line.phases.plan_world` of ``program``, waiting at the turnarounds where the
+    """:func:`.line.world.plan_world` of ``program``, waiting at the turnarounds where the
     line is too slow for it (docs/model.md §24.1): only when the program as it is fails
     as too slow (its drift beyond the reach's window, or what that brings), so that
     whatever planned before the waits plans as it did."""

@@ -1,4 +1,4 @@
-"""Notes of a line plan's searches (docs/model.md §31.5): what :func:`.line.phases.plan_world`
+"""Notes of a line plan's searches (docs/model.md §31.5): what :func:`.line.world.plan_world`
 searched before it sampled and checked the path — the turnarounds' durations, the delay, the
 return — kept by a fingerprint of everything that search reads, so that the same plan made
 again at another fidelity of its checks (``check_refine``, the clearance's stride, the film's
@@ -40,7 +40,7 @@ def plan_notes(notes: dict | None = None) -> Iterator[dict]:
 
 
 def fingerprint(robot, act, program, rel, speed: float, e, policy, screen: bool) -> str:
-    """A digest of what :func:`.line.phases.plan_world`'s searches read: the model (its
+    """A digest of what :func:`.line.world.plan_world`'s searches read: the model (its
     parameters and gravity), the motors, the relative program (``rel``, at its guess: its
     pieces and its motion at their ends and middles and at SHAPE_SAMPLES times), the guess,
     the time step, the line's speed and direction and the policy but for its checks'

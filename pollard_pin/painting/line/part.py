@@ -1,6 +1,6 @@
 """Paint a part's mesh riding a conveyor (docs/model.md §24): the surface planner's passes
 (§23) across the travel, leading end first, one coat, as the line's relative program; the
-world path, its checks and the fastest speed are :mod:`.line.phases`' as for a panel.
+world path, its checks and the fastest speed are :mod:`.line.world`'s as for a panel.
 
 The pass layout is the still part's (:func:`.passes.surface.surface_layout`), its normal's
 averaging the least the motors follow on the passes alone, each moved along the line into the

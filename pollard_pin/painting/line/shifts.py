@@ -7,11 +7,13 @@ import math
 
 import numpy as np
 
+from ...analytic.taskspace import MAX_ABS_TASK
 from ...kinematics.ik_batch import reachable_sequences
 
 SHIFT_RANGE = 2.0  # m: the line may carry the part this far before the program starts
 SHIFT_STEP = 0.005  # m: the scan of shifts along the line
 SHIFT_BISECT = 10  # bisection steps refining each end of the feasible shifts
+SCAN_COARSE = 8  # the scan's first pass: every 8th shift (scan)
 
 
 def fits(robot, poses, e, xs) -> np.ndarray:
@@ -21,6 +23,52 @@ def fits(robot, poses, e, xs) -> np.ndarray:
     p = np.repeat(np.asarray(poses, dtype=float)[None], len(xs), axis=0)
     p[..., :3] += np.asarray(xs, dtype=float)[:, None, None] * np.asarray(e, dtype=float)
     return reachable_sequences(robot, p)
+
+
+def longest_run(ok) -> tuple[int, int]:
+    """The first and last index of the first longest run of True in ``ok`` (one True at
+    least)."""
+    edges = np.diff(np.concatenate([[0], np.asarray(ok).astype(int), [0]]))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    k = int(np.argmax(stops - starts))
+    return int(starts[k]), int(stops[k]) - 1
+
+
+def scan(robot, poses, e, xs) -> np.ndarray:
+    """:func:`fits` at the shifts ``xs`` where it decides :func:`longest_run`, False elsewhere
+    (docs/model.md §24): every SCAN_COARSE-th shift (and the last) first, then every shift
+    between two of them of which one fits, so that each run holding a shift tried is known
+    whole with its ends; a run not met lies between two misses, at most SCAN_COARSE − 1
+    long, so when a run met is SCAN_COARSE long or more, it is the longest and the first of
+    the longest, as a scan of every shift finds it. Else every shift left is tried. Each
+    shift is judged as alone (:func:`fits`), so the ones tried are the full scan's to the
+    bit; a shift that puts a pose out of bounds (an input error, the first such shift's)
+    sends the whole scan to :func:`fits` at once."""
+    xs = np.asarray(xs, dtype=float)
+    n = len(xs)
+    p = np.asarray(poses, dtype=float)
+    far = np.abs(p).max(initial=0.0) + np.abs(xs).max(initial=0.0)  # |e| = 1
+    if n <= 2 * SCAN_COARSE or not far < MAX_ABS_TASK / 2:  # NaN too
+        return fits(robot, poses, e, xs)
+    ok, known = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+
+    def judge(i):
+        ok[i] = fits(robot, poses, e, xs[i])
+        known[i] = True
+
+    coarse = np.unique(np.append(np.arange(0, n, SCAN_COARSE), n - 1))
+    judge(coarse)
+    near = np.zeros(n, dtype=bool)
+    for i, j in zip(coarse[:-1], coarse[1:]):
+        if ok[i] or ok[j]:
+            near[i + 1:j] = True
+    if near.any():
+        judge(np.flatnonzero(near))
+    a, b = longest_run(ok) if ok.any() else (0, -1)
+    rest = np.flatnonzero(~known)
+    if b - a + 1 < SCAN_COARSE and len(rest):
+        judge(rest)
+    return ok
 
 
 def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
@@ -34,14 +82,10 @@ def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
     xs = np.arange(first, last + 1) * SHIFT_STEP - anchor
     if not len(xs):
         return None
-    ok = fits(robot, poses, e, xs)
+    ok = scan(robot, poses, e, xs)
     if not ok.any():
         return None
-    # the longest run of True
-    edges = np.diff(np.concatenate([[0], ok.astype(int), [0]]))
-    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    k = int(np.argmax(stops - starts))
-    a, b = int(starts[k]), int(stops[k]) - 1
+    a, b = longest_run(ok)
 
     # each end bisected between its last good and first bad shift, both ends in one batch
     ends = [[xs[a], xs[a] - SHIFT_STEP], [xs[b], xs[b] + SHIFT_STEP]]
@@ -65,4 +109,5 @@ def shift_window(lo: float, anchor: float) -> tuple[float, float]:
     return start, start + SHIFT_RANGE
 
 
-__all__ = ["SHIFT_BISECT", "SHIFT_RANGE", "SHIFT_STEP", "feasible_shifts", "fits", "shift_window"]
+__all__ = ["SCAN_COARSE", "SHIFT_BISECT", "SHIFT_RANGE", "SHIFT_STEP", "feasible_shifts", "fits",
+           "longest_run", "scan", "shift_window"]

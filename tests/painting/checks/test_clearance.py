@@ -114,6 +114,29 @@ def test_a_surface_index_made_once_measures_as_one_made_each_time():
         assert given[0] - given[3] - 1e-12 <= brute <= given[0] + 1e-12
 
 
+def test_a_surface_index_is_kept_by_the_meshs_content():
+    """surface_index keeps the last meshes' indexes by content (a study measures every
+    design against one part): a copy of a mesh gets the same index, a moved one its own,
+    whose samples are the first's moved (as made afresh), and one made again after others
+    pushed it out equals the first."""
+    from pollard_pin.painting.checks import clearance
+
+    mesh = shapes.bent_plate(step=0.02)
+    first = clearance.surface_index(mesh)
+    assert clearance.surface_index(mesh.copy()) is first
+    moved = mesh.copy()
+    moved.apply_translation([0.0, 0.0, 0.25])
+    other = clearance.surface_index(moved)
+    assert other is not first
+    assert np.array_equal(other.samples, clearance._index(moved).samples)
+    assert np.allclose(other.samples - first.samples, [0.0, 0.0, 0.25], atol=1e-15)
+    for k in range(clearance._INDEXES_KEPT):
+        clearance.surface_index(plate(0.1 + 0.05 * k))
+    again = clearance.surface_index(mesh)
+    assert again is not first and np.array_equal(again.samples, first.samples)
+    assert again.delta == first.delta and np.array_equal(again.owner, first.owner)
+
+
 def test_a_mesh_of_many_faces_is_sampled_at_its_vertices(monkeypatch):
     from pollard_pin.painting.checks import clearance
 

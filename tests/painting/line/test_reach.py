@@ -8,7 +8,7 @@ from line_parts import LINE_PART_TOML
 from pollard_pin.painting.checks.motion import reach
 from pollard_pin.painting.errors import PlanError, ReachError
 from pollard_pin.painting.job import load_job
-from pollard_pin.painting.line import phases, speeds
+from pollard_pin.painting.line import phases, search, speeds
 from pollard_pin.painting.line.panel import plan_line_job
 from pollard_pin.painting.line.reach import PASS_SAMPLES, numbers, unreachable_passes
 from pollard_pin.painting.line.shifts import SHIFT_RANGE
@@ -56,18 +56,18 @@ def test_too_tall_is_refused_before_any_search(robot, act, tmp_path, no_search, 
 def relative_program(robot, job, act):
     """The relative program the line planner builds for ``job`` (its first ``build``)."""
     seen = {}
-    real = phases.choose_shift
+    real = search.choose_shift
 
     def spy(robot_, rel, *args):
         seen.setdefault("rel", rel)
         return real(robot_, rel, *args)
 
-    phases.choose_shift = spy
+    search.choose_shift = spy
     try:
         with pytest.raises(PlanError):
             plan_line_job(robot, job, act)
     finally:
-        phases.choose_shift = real
+        search.choose_shift = real
     return seen["rel"]
 
 
@@ -166,7 +166,7 @@ def test_out_of_reach_says_why():
 
 @pytest.mark.parametrize("coarsest", [1, 2, 16])
 def test_coarse_to_fine_tries_every_index_once(coarsest):
-    """The scans' rounds (unreachable_passes, the turnarounds' reach in phases.py): every
+    """The scans' rounds (unreachable_passes, the turnarounds’ reach in search.py): every
     index of 0..n−1 exactly once, every ``coarsest``-th in the first round, each round's
     indices the middles of the gaps the rounds before left."""
     from pollard_pin.painting.line.reach import coarse_to_fine

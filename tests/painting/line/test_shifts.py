@@ -62,3 +62,36 @@ def test_the_stacked_scan_equals_the_scan_shift_by_shift(robot):
     a, b = xs[starts[k]], xs[stops[k] - 1]
     assert feasible_shifts(robot, poses, e, lo, span) == (refine(a, a - SHIFT_STEP),
                                                          refine(b, b + SHIFT_STEP))
+
+
+def test_the_coarse_scan_finds_the_full_scans_longest_run(monkeypatch):
+    """The scan tries every SCAN_COARSE-th shift first and then only where a run may lie
+    (shifts.scan): on random patterns of shifts in reach (runs long and short, ties, none),
+    the longest run it finds is the one of every shift tried (the brute force), and where a
+    long run is met it tries fewer shifts."""
+    from pollard_pin.painting.line import shifts
+
+    rng = np.random.default_rng(7)
+    fewer = 0
+    for trial in range(300):
+        n = int(rng.integers(1, 420))
+        truth = rng.random(n) < rng.choice([0.05, 0.3, 0.7, 0.95])
+        if trial % 3 == 0:  # one long run among noise
+            a = int(rng.integers(0, n))
+            truth[a:a + int(rng.integers(1, 60))] = True
+        xs = np.arange(n) * 0.005
+        tried = []
+
+        def fits(robot, poses, e, x, truth=truth, tried=tried):
+            i = np.rint(np.asarray(x) / 0.005).astype(int)
+            tried.extend(i.tolist())
+            return truth[i]
+
+        monkeypatch.setattr(shifts, "fits", fits)
+        ok = shifts.scan(None, np.zeros((3, 6)), np.array([0.0, 1.0, 0.0]), xs)
+        assert len(tried) == len(set(tried)) and not ok[~truth].any()  # each once, no guess
+        assert ok.any() == truth.any()
+        if truth.any():
+            assert shifts.longest_run(ok) == shifts.longest_run(truth)
+        fewer += len(tried) < n
+    assert fewer > 50
