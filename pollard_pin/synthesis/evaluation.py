@@ -59,7 +59,7 @@ UNITS = {"parts_per_hour": "1/h", "robots": "", "motor_use": "", "kmin": "N/m",
          "moving_mass": "kg"}
 #: The constraints, in the order of :meth:`Evaluation.constraint_vector` (≤ 0 holds).
 CONSTRAINTS = ("home", "reach", "motors_static", "plan", "motors", "clearance", "film")
-FILM_SHARE = 0.99  # of the area within ±5 % of the target (issue's acceptance)
+FILM_SHARE = 0.99  # of the area within ±5 % of the target (the acceptance, docs/model.md §31.3)
 REFUSED = 0.01  # a constraint the planner's refusal names: this beyond what the screen saw
 KMIN_SAMPLES = 400  # program samples kmin is taken over at most, evenly spread
 LEVELS = ("screen", "search", "full")

@@ -1,6 +1,6 @@
 """One cell robot's program (docs/model.md §26.1, §26.3): the shared strokes of the whole
 part, in the robot's base frame, clipped to its zone, run on the line by today's line
-planner (:func:`.line.phases.plan_world`), the seam instants inserted as samples.
+planner (:func:`.line.world.plan_world`), the seam instants inserted as samples.
 
 A panel's raster over [−H, H] (H the half pass length) is clipped to [a, b] = [lo − R,
 hi + R] ∩ [−H, H] by running the same raster over a half length (b − a)/2 about the frame's
