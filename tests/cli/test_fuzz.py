@@ -313,6 +313,10 @@ def _jobs() -> dict[str, bytes | str]:
         "job_line_text.toml": job + "[line]\nspeed = 'fast'\ndirection = [0.0, 1.0, 0.0]\n",
         "job_line_key.toml": job + "[line]\nspeed = 0.03\ndirection = [0, 1, 0]\npitch = 1\n",
         "job_line_table.toml": "line = 3\n" + job,
+        # two robots whose folders are one on a case-insensitive file system
+        "job_robots_case.toml": job + "[line]\nspeed = 0.03\ndirection = [0.0, 1.0, 0.0]\n"
+                                "[[robot]]\nname = 'low'\nbase = [0.0, 0.0, 0.0]\n"
+                                "[[robot]]\nname = 'LOW'\nbase = [0.0, 0.75, 0.0]\n",
     }
 
 
@@ -917,6 +921,9 @@ CASES += [([*PAINT, name], says) for name, says in [
     ("job_line_text.toml", "'line.speed' = 'fast': must be a number"),
     ("job_line_key.toml", "'line.pitch' = 1: unknown key"),
     ("job_line_table.toml", "'line' = 3: must be a table [line]"),
+    ("job_robots_case.toml", "robots 'low' and 'LOW' differ only in case (robot[0] and "
+                             "robot[1]); each names its own output folder, and the two "
+                             "collide on a case-insensitive file system"),
     ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
     ("part_broken.toml", "mesh_broken.stl: line 4: 'vertex 1 2': an ASCII STL vertex is "
                          "'vertex x y z', three numbers"),
