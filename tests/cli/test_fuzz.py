@@ -305,6 +305,7 @@ def _jobs() -> dict[str, bytes | str]:
         "job_too_big.toml": sub("width = 0.26", "width = 2.6"),
         "job_thin.toml": sub("thickness = 25e-6", "thickness = 1e-9"),
         "job_thin_coats.toml": job + "coats = 40\n",
+        "job_flow_slip.toml": sub("flow = 1.5e-7", "flow = 150"),  # m³/s: 1.5e-7 meant
         "job_fast.toml": job + "speed = 50.0\n",
         # a moving line (docs/model.md §24)
         "job_line_zero.toml": job + "[line]\nspeed = 0.03\ndirection = [0.0, 0.0, 0.0]\n",
@@ -912,9 +913,17 @@ CASES += [([*PAINT, name], says) for name, says in [
                               "(-170, -73) mm: "),
     ("job_too_big.toml", "the largest panel that fits (same centre, proportions) is "
                          "0.446 × 0.020 m, planned in full"),
-    ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
-                      "spacing 18.15 mm) but the motors allow 1.825 m/s"),
-    ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
+    # an absurd pass speed is a unit slip, said as a part's is (not the motors' 1.8 m/s) ...
+    ("job_thin.toml", "the target needs a gun speed of 8264 m/s (gun.flow 1.5e-07 m³/s, 1 "
+                      "coat(s) of 0.001 µm at spacing 18.15 mm), 826 times the 10 m/s of any "
+                      "spray pass: gun.flow in m³/s, job.thickness in m?"),
+    ("job_flow_slip.toml", "needs a gun speed of 3.306e+08 m/s (gun.flow 150 m³/s, 1 coat(s) "
+                           "of 25 µm at spacing 18.15 mm), 3.31e+07 times the 10 m/s of any "
+                           "spray pass: gun.flow in m³/s"),
+    # ... while too many coats (13 m/s, one coat's 0.33) keep the motors' advice
+    ("job_thin_coats.toml", "the target needs a gun speed of 13.22 m/s (40 coat(s) of 0.625 µm "
+                            "at spacing 18.15 mm) but the motors allow 1.825 m/s: the thinnest "
+                            "film per coat is 4.528 µm; at most 5 coat(s) of this target"),
     ("job_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
     ("job_line_still.toml", "'line.speed' = 0: must be > 0"),
     ("job_line_absurd.toml", "'line.speed' = 30: must be at most 2 m/s"),
