@@ -138,8 +138,12 @@ def _files() -> dict[str, bytes | str | None]:
         "act_huge.toml": act.replace("gear_ratio = 100.0", "gear_ratio = 1e300", 1),
         "act_continuous.toml": act.replace("continuous_torque = 0.02", "continuous_torque = 1",
                                            1),
+        # a weak motor with a rotor it can spin up (Jm·ω/τ = 0.5 s, docs/model.md §19)
         "act_weak.toml": act.replace("peak_torque = 0.05", "peak_torque = 1e-6", 1)
+                            .replace("rotor_inertia = 5e-6", "rotor_inertia = 1e-9", 1)
                             .replace("continuous_torque = 0.02", "continuous_torque = 1e-6", 1),
+        # 5 kg·m² for 5e-6: the motor would take 5e4 s to spin its own rotor up
+        "act_heavy_rotor.toml": act.replace("rotor_inertia = 5e-6", "rotor_inertia = 5", 1),
         # sweep grids
         "grid_good.toml": sweep,
         "grid_unknown.toml": "speed = 3\n" + sweep,
@@ -642,6 +646,9 @@ BAD_ACTUATORS = [
     ("act_string.toml", "must be a number"),
     ("act_huge.toml", "must be between"),
     ("act_continuous.toml", "exceeds"),
+    ("act_heavy_rotor.toml", "'theta21.rotor_inertia' = 5: the motor would take 5e+04 s to "
+                             "bring its own rotor to max_speed at peak_torque (Jm·ω/τ), 5e+03 "
+                             "times the 10 s of any motor"),
 ]
 CASES += [(["size", *SHORT, "--out", "out.md", "--actuators", name], says)
           for name, says in BAD_ACTUATORS]
