@@ -849,6 +849,10 @@ CASES += [([*WS, *extra], says) for extra, says in [
     (["--out", "existing.csv"], "exists and is not a folder"),
     (["--out", "afile/ws"], "afile is a file, not a folder"),
     (["--out", "/proc/ws"], "/proc/ws"),
+    # '..' out of a folder that does not exist: it was made, and left behind empty
+    (["--out", "w/../w2/"], "w/../w2: '..' climbs out of w, which does not exist (it would be "
+                            "made only to be left empty): give w2"),
+    (["--out", "afolder/../ws", "--resolution", "1e-9"], "would need"),  # out of one that is
     (["--out", "afolder", "--plane", "x=9"], "misses the robot"),  # an existing folder
     (["--out", "empty_folder", "--volume", "--resolution", "1e-9"], "would need"),
     # a streamed volume fails after its folder is made: new folders go, old files stay
