@@ -42,6 +42,11 @@ _POSITIVE = ("gear_ratio", "peak_torque", "continuous_torque", "max_speed")
 MIN_POSITIVE, MAX_VALUE = 1e-6, 1e6
 UNITS = dict(zip(KEYS, ("", " kg·m²", " N·m·s/rad", " N·m", " N·m", " N·m", " rad/s")))
 LIMITS = ("peak_torque", "rms_torque", "speed")  # the three checks, in report order
+# s: the time a motor takes to bring its own rotor to full speed at peak torque,
+# Jm·max_speed/peak_torque, is tens of ms for a servo motor (the examples' 0.05-0.08 s) and
+# under a second for any motor that drives a machine; beyond this one Jm is a unit slip
+# (g·cm² or kg·cm² written as kg·m²), docs/model.md §19
+MAX_RUN_UP = 10.0
 # Optional: the drive's torsional stiffness k [N·m/rad], joint side (docs/model.md §19); only
 # the compliance and the flexible-joint simulation need it.
 OPTIONAL = ("stiffness",)
@@ -126,6 +131,20 @@ def _fail(where: str, key: str, value: Any, rule: str):
     fail(ActuatorError, f"{where}: ", key, value, rule)
 
 
+def check_run_up(values: Mapping, speed: str, key: str, value: Any, prefix: str,
+                 error: type[Exception] = ActuatorError) -> None:
+    """Refuse a rotor inertia whose motor would take longer than :data:`MAX_RUN_UP` to bring
+    its own rotor to full speed at peak torque (docs/model.md §19): ``values`` the checked
+    ``rotor_inertia``, ``peak_torque`` and maximum speed (under the key ``speed``), ``key``
+    and ``value`` the rotor inertia's as written."""
+    run_up = values["rotor_inertia"] * values[speed] / values["peak_torque"]
+    if run_up > MAX_RUN_UP:
+        fail(error, prefix, key, value,
+             f"the motor would take {run_up:.3g} s to bring its own rotor to {speed} at "
+             f"peak_torque (Jm·ω/τ), {run_up / MAX_RUN_UP:.3g} times the {MAX_RUN_UP:g} s of "
+             "any motor: Jm in kg·m² (1 g·cm² = 1e-7 kg·m²)?")
+
+
 def actuators_from_dict(d: Mapping, source: str = "<python>",
                         names: tuple[str, ...] = ACTUATED_JOINTS) -> Actuators:
     """Validate a parsed actuator file: one table per actuator, every key of :data:`KEYS`."""
@@ -167,6 +186,8 @@ def actuators_from_dict(d: Mapping, source: str = "<python>",
         if values["continuous_torque"] > values["peak_torque"]:
             _fail(source, f"{name}.continuous_torque", table["continuous_torque"],
                   f"exceeds {name}.peak_torque = {values['peak_torque']:.4g}")
+        check_run_up(values, "max_speed", f"{name}.rotor_inertia", table["rotor_inertia"],
+                     f"{source}: ")
         if "stiffness" in table:
             rule = (f"must be between {MIN_STIFFNESS:g} and {MAX_STIFFNESS:g} N·m/rad (joint "
                     "side)")
@@ -411,6 +432,8 @@ __all__ = [
     "OPTIONAL",
     "LIMITS",
     "Actuator",
+    "MAX_RUN_UP",
+    "check_run_up",
     "ActuatorError",
     "Actuators",
     "MotorLoad",

@@ -87,12 +87,30 @@ def check_name(path: str | Path) -> None:
         raise OutputError(f"{shown_path(path, 50)}: {what}: give a shorter one")
 
 
+def _check_climb(path: str | Path) -> None:
+    """Refuse a '..' out of a folder that does not exist (``w/../w2``): the system resolves it
+    only once the folder is made, and the folder would be left behind, empty, whether the
+    command succeeds or fails. Out of an existing folder, '..' is the system's to resolve."""
+    parts = Path(path).parts
+    for i, part in enumerate(parts):
+        if part == ".." and i > 0 and parts[i - 1] != ".." and not os.path.lexists(
+                Path(*parts[:i])):
+            # the first missing folder on: below it no link can make '..' mean other than
+            # what it says, so the rest is resolved as text
+            m = next(k for k in range(i) if not os.path.lexists(Path(*parts[:k + 1])))
+            meant = Path(*parts[:m], os.path.normpath(Path(*parts[m:])))
+            raise OutputError(f"{path}: '..' climbs out of {Path(*parts[:i])}, which does "
+                              f"not exist (it would be made only to be left empty): give "
+                              f"{meant}")
+
+
 def check_destination(path: str | Path, *, folder: bool = False) -> None:
     """Raise :class:`OutputError` unless ``path`` can be written (a folder if ``folder``),
     before any work is done: it or its nearest existing parent must be writable."""
     if str(path) == STDOUT and not folder:
         return
     check_name(path)
+    _check_climb(path)
     if not folder and str(path).endswith(("/", os.sep)):  # Path() would drop it: r.csv/ → r.csv
         raise OutputError(f"{path}: ends in '/', as a folder's name does, but a file is expected")
     path = Path(path)

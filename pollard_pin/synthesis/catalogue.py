@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from ..checks import shorten
-from ..dynamics.motors import MAX_VALUE, MIN_POSITIVE, Actuator
+from ..dynamics.motors import MAX_VALUE, MIN_POSITIVE, Actuator, check_run_up
 from ..errors import InputError
 from ..model.params import did_you_mean
 from ..model.values import fail, number, read_toml
@@ -174,6 +174,8 @@ def motor_from_dict(name: str, t: Any, source: str = "<python>") -> Motor:
     if v["rated_torque"] > v["peak_torque"]:
         fail(CatalogueError, f"{source}: ", f"{key}.rated_torque", t["rated_torque"],
              f"exceeds {key}.peak_torque = {v['peak_torque']:.4g}")
+    check_run_up(v, "speed", f"{key}.rotor_inertia", t["rotor_inertia"], f"{source}: ",
+                 CatalogueError)
     return Motor(name=name, ratios=_ratios(source, f"{key}.ratios", t["ratios"]), **v)
 
 

@@ -138,8 +138,12 @@ def _files() -> dict[str, bytes | str | None]:
         "act_huge.toml": act.replace("gear_ratio = 100.0", "gear_ratio = 1e300", 1),
         "act_continuous.toml": act.replace("continuous_torque = 0.02", "continuous_torque = 1",
                                            1),
+        # a weak motor with a rotor it can spin up (Jm·ω/τ = 0.5 s, docs/model.md §19)
         "act_weak.toml": act.replace("peak_torque = 0.05", "peak_torque = 1e-6", 1)
+                            .replace("rotor_inertia = 5e-6", "rotor_inertia = 1e-9", 1)
                             .replace("continuous_torque = 0.02", "continuous_torque = 1e-6", 1),
+        # 5 kg·m² for 5e-6: the motor would take 5e4 s to spin its own rotor up
+        "act_heavy_rotor.toml": act.replace("rotor_inertia = 5e-6", "rotor_inertia = 5", 1),
         # sweep grids
         "grid_good.toml": sweep,
         "grid_unknown.toml": "speed = 3\n" + sweep,
@@ -305,6 +309,7 @@ def _jobs() -> dict[str, bytes | str]:
         "job_too_big.toml": sub("width = 0.26", "width = 2.6"),
         "job_thin.toml": sub("thickness = 25e-6", "thickness = 1e-9"),
         "job_thin_coats.toml": job + "coats = 40\n",
+        "job_flow_slip.toml": sub("flow = 1.5e-7", "flow = 150"),  # m³/s: 1.5e-7 meant
         "job_fast.toml": job + "speed = 50.0\n",
         # a moving line (docs/model.md §24)
         "job_line_zero.toml": job + "[line]\nspeed = 0.03\ndirection = [0.0, 0.0, 0.0]\n",
@@ -313,6 +318,10 @@ def _jobs() -> dict[str, bytes | str]:
         "job_line_text.toml": job + "[line]\nspeed = 'fast'\ndirection = [0.0, 1.0, 0.0]\n",
         "job_line_key.toml": job + "[line]\nspeed = 0.03\ndirection = [0, 1, 0]\npitch = 1\n",
         "job_line_table.toml": "line = 3\n" + job,
+        # two robots whose folders are one on a case-insensitive file system
+        "job_robots_case.toml": job + "[line]\nspeed = 0.03\ndirection = [0.0, 1.0, 0.0]\n"
+                                "[[robot]]\nname = 'low'\nbase = [0.0, 0.0, 0.0]\n"
+                                "[[robot]]\nname = 'LOW'\nbase = [0.0, 0.75, 0.0]\n",
     }
 
 
@@ -637,6 +646,9 @@ BAD_ACTUATORS = [
     ("act_string.toml", "must be a number"),
     ("act_huge.toml", "must be between"),
     ("act_continuous.toml", "exceeds"),
+    ("act_heavy_rotor.toml", "'theta21.rotor_inertia' = 5: the motor would take 5e+04 s to "
+                             "bring its own rotor to max_speed at peak_torque (Jm·ω/τ), 5e+03 "
+                             "times the 10 s of any motor"),
 ]
 CASES += [(["size", *SHORT, "--out", "out.md", "--actuators", name], says)
           for name, says in BAD_ACTUATORS]
@@ -837,6 +849,10 @@ CASES += [([*WS, *extra], says) for extra, says in [
     (["--out", "existing.csv"], "exists and is not a folder"),
     (["--out", "afile/ws"], "afile is a file, not a folder"),
     (["--out", "/proc/ws"], "/proc/ws"),
+    # '..' out of a folder that does not exist: it was made, and left behind empty
+    (["--out", "w/../w2/"], "w/../w2: '..' climbs out of w, which does not exist (it would be "
+                            "made only to be left empty): give w2"),
+    (["--out", "afolder/../ws", "--resolution", "1e-9"], "would need"),  # out of one that is
     (["--out", "afolder", "--plane", "x=9"], "misses the robot"),  # an existing folder
     (["--out", "empty_folder", "--volume", "--resolution", "1e-9"], "would need"),
     # a streamed volume fails after its folder is made: new folders go, old files stay
@@ -908,15 +924,26 @@ CASES += [([*PAINT, name], says) for name, says in [
                               "(-170, -73) mm: "),
     ("job_too_big.toml", "the largest panel that fits (same centre, proportions) is "
                          "0.446 × 0.020 m, planned in full"),
-    ("job_thin.toml", "the target needs a gun speed of 8264 m/s (1 coat(s) of 0.001 µm at "
-                      "spacing 18.15 mm) but the motors allow 1.825 m/s"),
-    ("job_thin_coats.toml", "at most 5 coat(s) of this target"),
+    # an absurd pass speed is a unit slip, said as a part's is (not the motors' 1.8 m/s) ...
+    ("job_thin.toml", "the target needs a gun speed of 8264 m/s (gun.flow 1.5e-07 m³/s, 1 "
+                      "coat(s) of 0.001 µm at spacing 18.15 mm), 826 times the 10 m/s of any "
+                      "spray pass: gun.flow in m³/s, job.thickness in m?"),
+    ("job_flow_slip.toml", "needs a gun speed of 3.306e+08 m/s (gun.flow 150 m³/s, 1 coat(s) "
+                           "of 25 µm at spacing 18.15 mm), 3.31e+07 times the 10 m/s of any "
+                           "spray pass: gun.flow in m³/s"),
+    # ... while too many coats (13 m/s, one coat's 0.33) keep the motors' advice
+    ("job_thin_coats.toml", "the target needs a gun speed of 13.22 m/s (40 coat(s) of 0.625 µm "
+                            "at spacing 18.15 mm) but the motors allow 1.825 m/s: the thinnest "
+                            "film per coat is 4.528 µm; at most 5 coat(s) of this target"),
     ("job_line_zero.toml", "'line.direction' = [0.0, 0.0, 0.0]: has zero length"),
     ("job_line_still.toml", "'line.speed' = 0: must be > 0"),
     ("job_line_absurd.toml", "'line.speed' = 30: must be at most 2 m/s"),
     ("job_line_text.toml", "'line.speed' = 'fast': must be a number"),
     ("job_line_key.toml", "'line.pitch' = 1: unknown key"),
     ("job_line_table.toml", "'line' = 3: must be a table [line]"),
+    ("job_robots_case.toml", "robots 'low' and 'LOW' differ only in case (robot[0] and "
+                             "robot[1]); each names its own output folder, and the two "
+                             "collide on a case-insensitive file system"),
     ("part_missing_mesh.toml", "mesh file 'nope.stl' does not exist"),
     ("part_broken.toml", "mesh_broken.stl: line 4: 'vertex 1 2': an ASCII STL vertex is "
                          "'vertex x y z', three numbers"),

@@ -87,15 +87,38 @@ def test_one_file_written_twice_in_a_block_is_refused(tmp_path):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.parametrize("name, meant", [("w/../w2", "w2"), ("a/b/../../c.csv", "c.csv"),
+                                         ("e/a/../x", "e/x"), ("e/a/../../../z", "e/../../z")])
+@pytest.mark.parametrize("folder", [False, True])
+def test_dot_dot_out_of_a_missing_folder_is_refused_and_makes_nothing(tmp_path, monkeypatch,
+                                                                      name, meant, folder):
+    """'w/../w2' resolves only once w is made, and w was left behind, empty: refused, the
+    path meant named (os.path.normpath of the missing part: no link can lie below it)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "e").mkdir()
+    with pytest.raises(OutputError, match=re.escape(f"which does not exist (it would be made "
+                                                    f"only to be left empty): give {meant}")):
+        check_destination(name, folder=folder)
+    with pytest.raises(OutputError), all_or_nothing():
+        make_folder(name)
+    assert os.listdir(tmp_path) == ["e"] and not os.listdir(tmp_path / "e")
+    # out of a folder that exists, '..' is the system's: made, and gone again on a failure
+    with pytest.raises(RuntimeError), all_or_nothing():
+        make_folder("e/../w2/deep")
+        raise RuntimeError("the work failed")
+    assert os.listdir(tmp_path) == ["e"]
+    assert make_folder("e/../w2").resolve() == tmp_path / "w2"
+
+
 def test_check_outputs_refuses_two_outputs_naming_one_file(tmp_path):
     (tmp_path / "real.csv").write_text("x")
     (tmp_path / "link.csv").symlink_to("real.csv")
     os.link(tmp_path / "real.csv", tmp_path / "hard.csv")
+    (tmp_path / "sub").mkdir()  # '..' out of a missing folder is refused on its own
     for a, b in [("x.csv", "x.csv"), ("x.csv", "./x.csv"), ("sub/../x.csv", "x.csv"),
                  ("link.csv", "real.csv"), ("hard.csv", "real.csv"), ("-", "-")]:
         with pytest.raises(OutputError, match="named by two outputs"):
             check_outputs(tmp_path / a if a != "-" else a, tmp_path / b if b != "-" else b)
-    (tmp_path / "sub").mkdir()
     check_outputs(tmp_path / "x.csv", tmp_path / "y.csv", "-", folders=(tmp_path / "sub",))
     check_outputs(os.devnull, os.devnull)  # a device takes several outputs
 

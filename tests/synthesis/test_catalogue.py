@@ -31,6 +31,10 @@ def test_ratio_near_is_nearest_in_log():
     ({"mass": -1.0}, "mass"),
     ({"rated_torque": 1.0}, "exceeds"),
     ({"speeed": 1.0}, "unknown column.*speed"),
+    # 5 kg·m² behind 0.05 N·m: 5·500/0.05 = 5e4 s to spin the rotor up, 5e3 × the 10 s bound
+    ({"rotor_inertia": 5}, r"'motors.a.rotor_inertia' = 5: the motor would take 5e\+04 s .* "
+                           r"5e\+03 times the 10 s"),
+    ({"rotor_inertia": 1.01e-3}, "would take 10.1 s"),  # just over: 1.01e-3·500/0.05
 ])
 def test_bad_motor_is_one_line(change, match):
     with pytest.raises(CatalogueError, match=match) as e:

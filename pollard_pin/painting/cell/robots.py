@@ -113,11 +113,17 @@ def robots_from_tables(source: str, tables: Any) -> tuple[CellRobot, ...]:
         rot = _triple(source, f"{where}.rotation", t.get("rotation", [0.0, 0.0, 0.0]),
                       MAX_TURN, "deg")
         robots.append(CellRobot(name, base, rot))
-    names = [r.name for r in robots]
-    for i, n in enumerate(names):
-        if n in names[:i]:
-            raise CellError(f"{source}: two robots are named {n!r} (robot[{names.index(n)}] "
-                            f"and robot[{i}]); each names its own output folder")
+    # compared case-folded: 'low' and 'LOW' are one folder on a case-insensitive file system
+    folded = [r.name.casefold() for r in robots]
+    for i, n in enumerate(folded):
+        if n in folded[:i]:
+            j = folded.index(n)
+            a, b = robots[j].name, robots[i].name
+            said = (f"two robots are named {a!r}" if a == b else
+                    f"robots {a!r} and {b!r} differ only in case")
+            raise CellError(f"{source}: {said} (robot[{j}] and robot[{i}]); each names its "
+                            "own output folder" + ("" if a == b else ", and the two collide "
+                                                   "on a case-insensitive file system"))
     return tuple(robots)
 
 

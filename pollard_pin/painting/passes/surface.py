@@ -264,11 +264,16 @@ def pass_spacing(job) -> float:
 
 
 def pass_speed(job, spacing: float) -> float:
-    """Surface speed [m/s] of the spot: film per coat = flow/(speed·spacing) (§21); over
-    :data:`MAX_PASS_SPEED` a :class:`PlanError` (a unit slip, not a pass any robot runs)."""
+    """Surface speed [m/s] of the spot: film per coat = flow/(speed·spacing) (§21), the one
+    formula of a panel's and a part's passes. The job's speed, or the whole film's in one
+    coat, over :data:`MAX_PASS_SPEED` is a :class:`PlanError` (a unit slip, not a pass any
+    robot runs); more coats only multiply a speed that is not, and too many are the motors'
+    to refuse (the panel's "at most N coat(s)")."""
     coats = job.coats or 1
     v = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
-    if not v <= MAX_PASS_SPEED:  # the motors' check would square it: 1e300 overflows
+    # the motors' check would square it (1e300 overflows); coats are bounded by the passes'
+    one = v if job.speed is not None else v / coats
+    if not one <= MAX_PASS_SPEED:
         given = ("job.speed" if job.speed is not None else
                  f"gun.flow {job.flow:.3g} m³/s, {coats} coat(s) of "
                  f"{job.thickness / coats * 1e6:.4g} µm at spacing {spacing * 1e3:.4g} mm")

@@ -19,6 +19,7 @@ from ..passes.raster import (
     ripple_spacing,
     spot_runon,
 )
+from ..passes.surface import pass_speed
 from ..policy import DEFAULT_POLICY, PlannerPolicy
 from ..spray.spots import STROKES
 from ..workpiece.panel import PanelFrame, panel_frame
@@ -55,7 +56,7 @@ def panel_layout(job: PaintJob, policy: PlannerPolicy = DEFAULT_POLICY) -> Panel
         raise BudgetError(f"{job.source}: {passes:.3g} passes ({coats} coat(s) at spacing "
                           f"{spacing * 1e3:.4g} mm over {extent:g} m), budget {policy.max_passes}: "
                           "a wider spacing, fewer coats or a smaller panel")
-    speed = job.speed if job.speed is not None else job.flow * coats / (job.thickness * spacing)
+    speed = pass_speed(job, spacing)  # an absurd one refused as a part's is (a unit slip)
     half_length = length / 2 + spot_runon(job.sigma, job.spot)
     # the passes alone, before any turnaround: their samples bound the path's from below
     passing = passes * 2 * half_length / speed if speed > 0 else math.inf

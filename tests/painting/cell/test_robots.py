@@ -58,6 +58,9 @@ def test_frame_is_rx_ry_rz_about_world_axes():
 @pytest.mark.parametrize("robots, words", [
     ([{"name": "a", "base": [0, 0, 0]}, {"name": "a", "base": [0, 1, 0]}],
      "two robots are named 'a'"),
+    ([{"name": "Low", "base": [0, 0, 0]}, {"name": "b", "base": [0, 1, 0]},
+      {"name": "lOW", "base": [0, 2, 0]}], "robots 'Low' and 'lOW' differ only in case "
+                                           "(robot[0] and robot[2])"),
     ([{"name": "a", "base": [0, float("nan"), 0]}], "robot[0].base[1]"),
     ([{"name": "a", "base": [0, 0, 1e4]}], "within ±10 m"),
     ([{"name": "a", "base": [0, 0]}], "list of 3 numbers"),

@@ -210,3 +210,7 @@ def test_an_absurd_pass_speed_is_refused(given, says):
     assert str(info.value).startswith("j.toml: the target needs") and says in str(info.value)
     ok = SimpleNamespace(coats=2, speed=None, flow=1.5e-7, thickness=25e-6, source="j.toml")
     assert pass_speed(ok, 0.018) == pytest.approx(1.5e-7 * 2 / (25e-6 * 0.018), rel=1e-12)
+    # 40 coats: 13.3 m/s, over the bound, but the film in one coat asks 0.33 m/s: too many
+    # coats are the motors' to refuse (the panel's "at most N coat(s)"), not a unit slip
+    many = SimpleNamespace(coats=40, speed=None, flow=1.5e-7, thickness=25e-6, source="j.toml")
+    assert pass_speed(many, 0.018) == pytest.approx(40 * 1.5e-7 / (25e-6 * 0.018), rel=1e-12)
