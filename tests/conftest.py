@@ -9,7 +9,8 @@ pytest_plugins = ["examples_planned"]
 
 def pytest_addoption(parser):
     parser.addoption("--runslow", action="store_true", default=False,
-                     help="also run tests marked slow (each > 60 s or needing a full install)")
+                     help="also run tests marked slow (each > 60 s, needing a full install, "
+                          "or only checking that a script runs)")
 
 
 def pytest_configure(config):
