@@ -57,9 +57,9 @@ def test_waits_at_the_ends_are_left_out_of_the_time_optimal_cycle(robot):
 
 def test_a_wait_inside_splits_the_cycle_into_its_strokes(robot):
     """Two strokes (the thesis curve's first quarters, rest to rest) with a 400-sample wait
-    between: the time-optimal cycle is the strokes' own, each solved alone, one after the other (bit
-    for bit; with the wait solved along, the path stopped inside and all 800 samples were
-    TOPP-RA's grid); the retimed file has their rows once, times increasing."""
+    between: the time-optimal cycle is the strokes' own, each solved alone, one after the
+    other (bit for bit; with the wait solved along, the path stopped inside and all 800
+    samples were TOPP-RA's grid); the retimed file has their rows once, times increasing."""
     act = M.load_actuators(EXAMPLE)
     from pollard_pin.paths.curves import thesis_curve
 
