@@ -9,7 +9,8 @@ pytest_plugins = ["examples_planned"]
 
 def pytest_addoption(parser):
     parser.addoption("--runslow", action="store_true", default=False,
-                     help="also run tests marked slow (each > 60 s or needing a full install)")
+                     help="also run tests marked slow (each > 60 s, needing a full install, "
+                          "or only checking that a script runs)")
 
 
 def pytest_configure(config):
@@ -60,14 +61,13 @@ HEAVY_FIRST = (
     "painting/line/test_panel.py",
     "cli/test_view.py",
     "painting/checks/test_cell_compliance.py",
-    "dynamics/test_cycle.py",
     "io/test_retime.py",
-    "test_scripts.py",
     "painting/layout/test_place.py",
     "dynamics/test_passes.py",
     "sweep/test_backends.py",
     "cli/test_main.py",
     "painting/line/test_speeds.py",
+    "dynamics/test_cycle.py",
     "viz/test_viewer.py",
     "test_doc_examples.py",
     "cli/test_workspace.py",
@@ -77,7 +77,6 @@ HEAVY_FIRST = (
     "painting/spray/test_occlusion.py",
     "painting/film/test_part.py",
     "cli/test_plot.py",
-    "run/test_stream.py",
 )
 
 

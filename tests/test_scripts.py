@@ -86,6 +86,7 @@ def test_example_script_uses_public_api(name):
             assert not node.attr.startswith("_"), f"{name} uses pp.{node.attr}"
 
 
+@pytest.mark.slow  # only that it runs (6 s CPU); the ribbed plate's film is tested elsewhere
 def test_bench_paint_quick_runs(tmp_path):
     """scripts/bench_paint.py --quick (the paint targets' figures; no asserts of its
     own): the ribbed plate's film at 5 mm with compliance, in a subprocess, prints its

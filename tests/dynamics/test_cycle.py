@@ -13,15 +13,16 @@ from pollard_pin.dynamics.sizing import actuator_sizing
 from pollard_pin.io.retime import retime_metadata, retimed_trajectory
 
 
-def _stroke(n=201, duration=4.0):
-    """The thesis curve once over, timed by the smooth step 10x³ − 15x⁴ + 6x⁵: at rest at
-    both ends (exact rates and accelerations by the chain rule)."""
+def _stroke(n=201, duration=4.0, share=0.25):
+    """The first ``share`` of the thesis curve, timed by the smooth step 10x³ − 15x⁴ + 6x⁵:
+    at rest at both ends (exact rates and accelerations by the chain rule). A quarter: the
+    time-optimal grid, the cost, follows the arc length; the equalities hold at any."""
     from pollard_pin.paths.curves import thesis_curve
 
     x = np.linspace(0.0, 1.0, n)
-    u = duration * (10 * x**3 - 15 * x**4 + 6 * x**5)
-    du = 30 * x**2 - 60 * x**3 + 30 * x**4
-    ddu = (60 * x - 180 * x**2 + 120 * x**3) / duration
+    u = share * duration * (10 * x**3 - 15 * x**4 + 6 * x**5)
+    du = share * (30 * x**2 - 60 * x**3 + 30 * x**4)
+    ddu = share * (60 * x - 180 * x**2 + 120 * x**3) / duration
     p, d, dd = thesis_curve(u, duration)
     return x * duration, p, d * du[:, None], dd * du[:, None] ** 2 + d * ddu[:, None]
 
@@ -55,21 +56,22 @@ def test_waits_at_the_ends_are_left_out_of_the_time_optimal_cycle(robot):
 
 
 def test_a_wait_inside_splits_the_cycle_into_its_strokes(robot):
-    """Two strokes (the thesis curve's halves, rest to rest) with a 400-sample wait between:
-    the time-optimal cycle is the strokes' own, each solved alone, one after the other (bit
-    for bit; with the wait solved along, the path stopped inside and all 800 samples were
-    TOPP-RA's grid); the retimed file has their rows once, times increasing."""
+    """Two strokes (the thesis curve's first quarters, rest to rest) with a 400-sample wait
+    between: the time-optimal cycle is the strokes' own, each solved alone, one after the
+    other (bit for bit; with the wait solved along, the path stopped inside and all 800
+    samples were TOPP-RA's grid); the retimed file has their rows once, times increasing."""
     act = M.load_actuators(EXAMPLE)
     from pollard_pin.paths.curves import thesis_curve
 
-    # the second half of the curve: u from 10 to 20 s of the 20 s curve
+    # the curve's first two quarters (u from 0 to 5 s and 5 to 10 s of the 20 s curve; a
+    # quarter each, not a half: the time-optimal grid, the cost, follows the arc length)
     x = np.linspace(0.0, 1.0, 201)
     w, dw = 10 * x**3 - 15 * x**4 + 6 * x**5, 30 * x**2 - 60 * x**3 + 30 * x**4
     ddw = 60 * x - 180 * x**2 + 120 * x**3
     T = 4.0
-    p2, d2, dd2 = thesis_curve(10.0 + 10.0 * w, 20.0)
-    p1, d1, dd1 = thesis_curve(10.0 * w, 20.0)
-    du, ddu = 10.0 * dw / T, 10.0 * ddw / T**2
+    p2, d2, dd2 = thesis_curve(5.0 + 5.0 * w, 20.0)
+    p1, d1, dd1 = thesis_curve(5.0 * w, 20.0)
+    du, ddu = 5.0 * dw / T, 5.0 * ddw / T**2
     one = pp.Trajectory(x * T, p1, d1 * du[:, None], dd1 * du[:, None] ** 2 + d1 * ddu[:, None])
     two = pp.Trajectory(x * T, p2, d2 * du[:, None], dd2 * du[:, None] ** 2 + d2 * ddu[:, None])
     wait = 400

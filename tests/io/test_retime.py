@@ -101,20 +101,21 @@ def test_the_retimed_file_holds_between_its_rows(robot, tmp_path, capsys, source
     assert meta["worst_utilisation_between_rows"] <= 1.001
 
 
-STROKE, WAIT = 2.0, 1.0  # s: each stroke (half the thesis curve, rest to rest), the wait
+STROKE, WAIT = 2.0, 1.0  # s: each stroke (a quarter of the thesis curve, at rest), the wait
 
 
 def _strokes(t):
-    """The thesis curve's first half in [0, STROKE], a wait at its end pose, its second half
-    from STROKE + WAIT: poses, rates, accelerations, exact (smooth-step timing)."""
+    """The thesis curve's first quarter in [0, STROKE], a wait at its end pose, its second
+    quarter from STROKE + WAIT: poses, rates, accelerations, exact (smooth-step timing).
+    Quarters, not halves: the time-optimal grid, the cost, follows the arc length."""
     t = np.atleast_1d(np.asarray(t, dtype=float))
     second = t > STROKE + WAIT / 2
     x = np.clip(np.where(second, t - STROKE - WAIT, t) / STROKE, 0.0, 1.0)
     w = 10 * x**3 - 15 * x**4 + 6 * x**5
     dw = (30 * x**2 - 60 * x**3 + 30 * x**4) / STROKE
     ddw = (60 * x - 180 * x**2 + 120 * x**3) / STROKE**2
-    p, d, dd = thesis_curve(10.0 * (w + second), 20.0)
-    return p, 10.0 * d * dw[:, None], 100.0 * dd * (dw**2)[:, None] + 10.0 * d * ddw[:, None]
+    p, d, dd = thesis_curve(5.0 * (w + second), 20.0)
+    return p, 5.0 * d * dw[:, None], 25.0 * dd * (dw**2)[:, None] + 5.0 * d * ddw[:, None]
 
 
 def test_a_path_with_a_wait_holds_between_its_rows_per_segment(robot, tmp_path, capsys):
@@ -136,7 +137,7 @@ def test_a_path_with_a_wait_holds_between_its_rows_per_segment(robot, tmp_path, 
         a, b = seg["rows"]
         use = replay(robot, {k: v[a:b + 1] for k, v in cols.items()}, seg, _strokes)
         worst = max(worst, use.max())
-    # seen 1.0008: a limit binds, none is broken
+    # seen 1.0008 (halves and quarters alike): a limit binds, none is broken
     assert 0.999 <= worst <= 1.002, worst
 
 

@@ -759,19 +759,14 @@ def test_load_works_from_the_installed_wheel_in_a_fresh_venv(fresh, tmp_path):
     _check_installed(fresh["venv"], tmp_path)
 
 
-# The README's commands from the installed package, in one interpreter (the console script
-# runs `info`): an interpreter per command cost 1.2 s of imports each. `plot` is left to
-# scripts/check_install.py (`make install-check`, CI's next step), which runs every command
-# through the console script of a plain install and checks plots/actuators.png.
+# Commands from the installed package, in one interpreter (the console script runs `info`):
+# an interpreter per command cost 1.2 s of imports each. The others (report, view, size,
+# simulate, plot, ...) are left to scripts/check_install.py (`make install-check`, CI's next
+# step), which runs every command through the console script of a plain install; here the
+# CSV run and the Parquet run with joint loads, which it does not read back and compare.
 INSTALLED_COMMANDS = (
     (["run", "--samples", "401", "--out", "r.csv"], "r.csv"),
-    (["report", "--samples", "401", "--no-cross-check", "--out", "rep.md"], "rep.md"),
-    (["view", "--samples", "401", "--html", "p.html"], "p.html"),
     (["run", "--samples", "401", "--loads", "--out", "loads.parquet"], "loads.parquet"),
-    (["size", "--actuators", str(REPO / "examples" / "actuators.toml"), "--samples", "401",
-      "--format", "json", "--out", "size.json"], "size.json"),
-    (["simulate", "--duration", "1", "--samples", "51", "--quiet", "--out", "sim.csv"],
-     "sim.csv"),
 )
 
 
@@ -811,14 +806,13 @@ def _check_installed(venv, cwd):
     assert str(Path(res["models"]).resolve()).startswith(site), res["models"]
     assert res["nq"] == 12 and abs(res["mass"] - 0.92) <= 1e-14
     assert np.abs(np.array(res["tip"]) - HOME_TIP).max() <= 1e-13
-    # Every command the README shows works from the installed package.
+    # Each command works from the installed package.
     for (args, made), status in zip(INSTALLED_COMMANDS, res["codes"], strict=True):
         assert status == 0, (args, out.stderr)
         assert (Path(cwd) / made).stat().st_size > 0, (args, made)
     # The Parquet run (with joint loads) and the CSV run read back through the installed API
     # (polars and pyarrow resolved there) and agree on the torques.
     assert res["rows"] == [401, 401] and res["loads"] == 36 and res["dtau"] <= 1e-12, res
-    assert json.loads((Path(cwd) / "size.json").read_text())["actuators"].keys() >= {"theta21"}
 
 
 @pytest.mark.slow

@@ -78,8 +78,9 @@ def test_never_within_reach(robot, line_job, act):
 
 
 def test_fastest_plans_and_five_percent_more_is_refused(robot, line_job, act, line_plan):
-    # the search starts from the job's speed: its plan the fixture's, not made again
-    fastest_speed, plan = max_line_speed(robot, line_job, act, plan=line_plan)
+    # the search starts from the job's speed: its plan the fixture's, not made again; to 4 %,
+    # not the default 1 %: 5 % more is past the bracket's upper end either way
+    fastest_speed, plan = max_line_speed(robot, line_job, act, resolution=0.04, plan=line_plan)
     assert plan.speed == fastest_speed
     assert line_table(plan)["upper_bound"] > fastest_speed
     with pytest.raises(LineSpeedError):
