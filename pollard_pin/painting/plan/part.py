@@ -180,8 +180,9 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
         if not wider:
             raise PlanError(f"{part.source}: the motors need {use:.3g}× their peak torque or "
                             f"speed on the passes at {v:.4g} m/s even with the gun's normal "
-                            f"averaged over {layout.smoothing:g} m: a thinner coat (more "
-                            "coats), a smaller standoff or a gentler part")
+                            f"averaged over {layout.smoothing:g} m: a slower pass (fewer, "
+                            "thicker coats or less gun flow), a smaller standoff or a "
+                            "gentler part")
         smoothing = wider[0]
     dt = time_step(job, pieces, v, policy)
     ns = policy.turn_samples
@@ -233,8 +234,8 @@ def plan_surface(robot, job, act: Actuators, part: Part | None = None,
             k = int(np.argmax(r))
             raise PlanError(f"motor {act.names[k]} needs {r[k]:.3g}× its "
                             f"{what.replace('_', ' ')} rating on the passes at "
-                            f"{v:.4g} m/s: more coats of a thinner film, or a wider "
-                            "spacing")
+                            f"{v:.4g} m/s: a slower pass (fewer, thicker coats, less gun "
+                            "flow or a wider spacing)")
     clear = job_clearance(robot, job, part.mesh, traj.poses, t,
                           lambda i: _piece_name(program, layout, t[i]), policy.clearance_stride)
     clock.append(time.perf_counter())
