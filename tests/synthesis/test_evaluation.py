@@ -199,16 +199,6 @@ def test_context_travels_to_workers(example):
     assert back.space.fingerprint() == space.fingerprint()
 
 
-def test_moved_job_moves_the_part_only():
-    from pollard_pin.synthesis.layout import moved_job
-
-    panel = pp.job_from_dict(STRIP)
-    m = moved_job(panel, [0.3, 0.0, 0.0])
-    assert m.center == pytest.approx((1.0, -0.5, 0.16)) and m.normal == panel.normal
-    part = pp.load_job("examples/line_part.toml")
-    assert moved_job(part, [0.1, 0.0, 0.2]).position == pytest.approx((0.1, -0.75, 0.2))
-
-
 def test_placed_job_is_the_job_the_evaluation_paints(strip):
     """The robots the full evaluation proposes and writes (robots.toml) are placed_job's; a
     job without a line is painted as it is."""

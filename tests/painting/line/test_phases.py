@@ -1,11 +1,10 @@
-"""The line's shared phases (paint/line/phases.py, search.py, world.py; docs/model.md §24): the
+"""The line's shared phases (paint/line/phases.py; docs/model.md §24): the
 relative program's interface (the speed searches: test_speeds.py); where the job puts the part
 at t = 0 sets the wait, not the cycle: the examples' strip and part moved upstream give the same
 parts per hour, world program and film (fixtures line_job, line_plan, line_part_example_job,
 line_part_example_plan: tests/examples_planned.py). The world path of real plans is tested in
 test_panel.py (a panel) and test_part.py (a part)."""
 from dataclasses import replace
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -31,87 +30,6 @@ def test_relative_program_interface():
     assert list(panel.trigger(t)) == [1] * 7
     assert list(part.coarse_times()) == [0, 0.5, 1, 2, 3, 3.5, 4, 5, 6, 6.5, 7]
     assert list(part.not_passes()) == [0, 2, 4]
-
-
-def test_turnarounds_never_in_reach_are_no_line_speed(monkeypatch):
-    """A program whose passes are in reach but some of whose turnarounds (or ramps) are at no
-    place on the line (a cell robot's turns past its seam, examples/cell_curved.toml) is
-    refused as a plan naming them, not as a line speed (no drift would help): a reach that
-    ends at z = −0.04 m, passes down to −0.03 m, the turn after the first pass and the
-    first ramp dipping to −0.05 m."""
-    from pollard_pin.painting.errors import LineSpeedError, PlanError
-    from pollard_pin.painting.line import search
-
-    start, dur = np.arange(7.0), np.ones(7)
-    kind = ("ramp", "pass", "turn", "pass", "turn", "pass", "ramp")
-    low = {0: -0.05, 2: -0.05, 4: 0.2, 6: 0.2}  # each piece's z off the passes
-
-    def motion(t):
-        k = np.clip(np.floor(np.asarray(t, float)).astype(int), 0, 6)
-        p = np.zeros((len(k), 6))
-        p[:, 1] = -0.02 * k  # stepping against the travel
-        p[:, 2] = [low.get(int(j), -0.03) for j in k]
-        return p, np.zeros_like(p), np.zeros_like(p)
-
-    rel = Relative(motion, start, dur, kind, passes_only=True)
-    ROBOT = SimpleNamespace(params=None)  # noqa: N806 (the reach is the fake's below)
-    judged = []
-
-    def reachable(robot, poses):
-        judged.append(poses.shape)
-        return (np.asarray(poses)[..., 2] > -0.04).all(axis=-1)
-
-    monkeypatch.setattr(search, "feasible_shifts", lambda *a, **k: None)
-    monkeypatch.setattr(search, "unreachable_passes", lambda robot, rel, e, lo, hi: ([], 3))
-    monkeypatch.setattr(search, "reachable_sequences", reachable)
-    monkeypatch.setattr(search, "ball_shift_range", lambda params, points, e: (-0.1, 0.1))
-    e = np.array([0.0, 1.0, 0.0])
-    with pytest.raises(PlanError) as err:
-        search.choose_shift(ROBOT, rel, 0.01, e, "track")
-    assert not isinstance(err.value, LineSpeedError)
-    assert "keeps 1 of its 2 turnarounds and its first ramp in reach" in str(err.value)
-    assert judged and all(s[1:] == (1, 6) for s in judged)  # each sample judged alone
-    low[0] = low[2] = 0.2  # all in reach: the drift's failure, as before
-    with pytest.raises(LineSpeedError):
-        search.choose_shift(ROBOT, rel, 0.01, e, "track")
-
-
-def test_a_dwelling_program_out_of_reach_is_judged_per_turnaround(monkeypatch):
-    """On a slow line a turnaround is two halves and a wait (dwell.py), three pieces sharing
-    one τ: a try whose path leaves the reach is infinite once per τ, as a try in reach is
-    (the search compares it with the guess, one entry per τ), and ends as a line speed
-    refusal, not a shape error."""
-    from pollard_pin.painting.errors import LineSpeedError
-    from pollard_pin.painting.line import search, world
-    from pollard_pin.painting.line.phases import LineProgram
-    from pollard_pin.painting.policy import DEFAULT_POLICY
-
-    kind = ("ramp", "pass", "turn", "wait", "turn", "pass", "ramp")
-    start, dur = np.arange(7.0), np.ones(7)
-
-    def motion(t):
-        p = np.zeros((len(np.atleast_1d(t)), 6))
-        return p, np.zeros_like(p), np.zeros_like(p)
-
-    rel = Relative(motion, start, dur, kind, passes_only=True)
-    tried = []
-
-    def fastest(evaluate, guess, utilisation):
-        got = evaluate(guess)
-        tried.append((len(guess), got.shape))
-        raise search.PlanError("no τ")
-
-    def unreachable(*a, **k):
-        raise search.ReachError("out of reach", 0)
-
-    monkeypatch.setattr(search, "choose_shift", lambda *a, **k: 0.0)
-    monkeypatch.setattr(search, "motion", unreachable)
-    monkeypatch.setattr(search, "fastest", fastest)
-    program = LineProgram(lambda tau: rel, np.ones(3), 0.01, "track", "2 passes", "job")
-    with pytest.raises(LineSpeedError):
-        world.plan_world(SimpleNamespace(params=None), None, program, 0.01,
-                         np.array([0.0, 1.0, 0.0]), DEFAULT_POLICY)
-    assert tried == [(3, (3,))]  # ramp, turn + wait + turn, ramp: 3 τ, not 5 pieces
 
 
 # --- the part placed further upstream ------------------------------------------------------------
