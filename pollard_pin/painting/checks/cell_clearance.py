@@ -45,8 +45,9 @@ if TYPE_CHECKING:  # trimesh (with scipy, networkx) loads where a mesh is made: 
     import trimesh
 
 CHUNK = 4096  # samples a block of the pairwise distances (≈ 40 MB at 25 capsules)
-COARSE = 16  # every this many samples, every capsule pair sets the ceiling
-LEVELS = (8, 4, 2, 1)  # the spacings measured in turn between the coarse samples
+COARSE = 16  # every this many samples, every capsule pair sets the ceiling (and wins a tie)
+FIRST = 64  # with steps: every this many samples measured first, every capsule pair
+LEVELS = (32, 16, 8, 4, 2, 1)  # the spacings measured in turn between those
 PAIRS = 1 << 18  # capsule pairs measured at a time between the coarse samples (≈ 60 MB)
 BLOCK = 2048  # samples a block of the distances to the part (their arrays stay in cache)
 
@@ -192,39 +193,57 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
     ``below``: only a least under it is sought (default inf); with none, a distance found,
     at least ``below``, and its sample."""
     rr = r1[:, None] + r2[None, :]
-    best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE], r1,
-                                 r2)
-    ceiling, where = best, where * COARSE
     ends = (a1, b1, a2, b2, r1, r2, rr)
     if steps is None:
-        rows = np.arange(len(a1))
-        least = _row_least(ends, rows, max(best, 0.0))
-    else:
-        way = travelled(steps)
-        # a sample the same as the one before measures the same: not the first least
-        fresh = np.concatenate([[True], np.asarray(steps) > 0])
-        at, low, done = np.arange(0, len(a1), COARSE), known.min(axis=(1, 2)), []
-        for spacing in LEVELS:
-            rows = np.arange(spacing, len(a1), 2 * spacing)
-            rows = rows[fresh[rows]]
-            # a sample left out is further than the least so far: not the least
-            rows = rows[may_come_within(low, at, way, min(best, below), rows)]
-            if len(rows) == 0:
-                continue
-            limit = min(best, below)
-            least = _pairs_least(ends, rows, known, way, limit)
-            best = min(best, float(least.min()))
-            done.append((rows, least))
-            # a pair not measured is further than the limit
-            order = np.argsort(np.concatenate([at, rows]), kind="stable")
-            at = np.concatenate([at, rows])[order]
-            low = np.concatenate([low, np.minimum(least, limit)])[order]
-        rows = np.concatenate([r for r, _ in done]) if done else np.arange(0)
-        least = np.concatenate([d for _, d in done]) if done else np.zeros(0)
-    if len(rows) and least.min() < ceiling:  # else the coarse samples' first least
-        best = float(least.min())
-        where = int(rows[least == least.min()].min())
-    return best, where
+        best, where, known = _coarse(a1[::COARSE], b1[::COARSE], a2[::COARSE], b2[::COARSE],
+                                     r1, r2)
+        ceiling, where = best, where * COARSE
+        least = _row_least(ends, np.arange(len(a1)), max(best, 0.0))
+        if least.min() < ceiling:  # else the coarse samples' first least
+            best = float(least.min())
+            where = int(np.flatnonzero(least == least.min()).min())
+        return best, where
+    return _skipping(ends, steps, below)
+
+
+def _skipping(ends, steps, below: float) -> tuple[float, int]:
+    """:func:`pair_distance` with ``steps``: every FIRST-th sample, every capsule pair, then
+    the spacings LEVELS between them, each sample measured only where the way travelled from
+    those measured cannot prove it beyond the least so far (or ``below``), there only the
+    capsule pairs it cannot prove so (:func:`_pairs_least`), and a sample the same as the one
+    before not measured unless it is a COARSE-th (docs/model.md §26.4). Named: the first
+    COARSE-th sample at the least, else the first sample there (every sample measured names
+    the same)."""
+    a1, b1, a2, b2, r1, r2, _ = ends
+    best, _, known = _coarse(a1[::FIRST], b1[::FIRST], a2[::FIRST], b2[::FIRST], r1, r2)
+    way = travelled(steps)
+    # a sample the same as the one before measures the same: not the first least (a COARSE-th
+    # is measured all the same: it wins a tie)
+    fresh = np.concatenate([[True], np.asarray(steps) > 0])
+    fresh[::COARSE] = True
+    at, low = np.arange(0, len(a1), FIRST), known.min(axis=(1, 2))
+    # a FIRST-th sample's least, where it holds the least so far (its pairs not measured lie
+    # farther than one measured): the first of `low` at the least is that sample's exact least
+    done = [(at, low)]
+    for spacing in LEVELS:
+        rows = np.arange(spacing, len(a1), 2 * spacing)
+        rows = rows[fresh[rows]]
+        # a sample left out is further than the least so far: not the least
+        limit = min(best, below)
+        rows = rows[may_come_within(low, at, way, limit, rows)]
+        if len(rows) == 0:
+            continue
+        least = _pairs_least(ends, rows, known, way, limit)
+        best = min(best, float(least.min()))
+        done.append((rows, least))
+        # a pair not measured is further than the limit
+        order = np.argsort(np.concatenate([at, rows]), kind="stable")
+        at = np.concatenate([at, rows])[order]
+        low = np.concatenate([low, np.minimum(least, limit)])[order]
+    rows = np.concatenate([r for r, _ in done])
+    held = rows[np.concatenate([d for _, d in done]) == best]
+    grid = held[held % COARSE == 0]
+    return best, int(grid.min() if len(grid) else held.min())
 
 
 def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
@@ -236,21 +255,21 @@ def _pairs_least(ends, rows, known, way, limit: float) -> np.ndarray:
     limit; ``ends`` (a1, b1, a2, b2, r1, r2, r1 + r2 of each pair). Taken about PAIRS
     capsule pairs at a time."""
     a1, b1, a2, b2, _, _, rr = ends
-    start = np.arange(len(known)) * COARSE
-    stop = np.minimum(start + COARSE, len(way) - 1)  # the next coarse sample, or the last
+    start = np.arange(len(known)) * FIRST
+    stop = np.minimum(start + FIRST, len(way) - 1)  # the next coarse sample, or the last
     bound = known.copy()  # a pair's least lower bound at the two coarse samples
     bound[:-1] = np.maximum(known[:-1], known[1:])
     may = bound - (way[stop] - way[start])[:, None, None] <= limit + SLACK
     p, i, j = np.nonzero(may)  # the pairs of each interval, in its order
     counts = np.bincount(p, minlength=len(known))
     first = np.cumsum(counts) - counts
-    per = counts[rows // COARSE]  # each row's pairs
+    per = counts[rows // FIRST]  # each row's pairs
     out = np.full(len(rows), np.inf)
     cuts = np.searchsorted(np.cumsum(per), np.arange(PAIRS, per.sum(), PAIRS))
     for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(rows)]):
         c = per[lo:hi]
         row = np.repeat(np.arange(lo, hi), c)
-        k = _ranges(first[rows[lo:hi] // COARSE], c)
+        k = _ranges(first[rows[lo:hi] // FIRST], c)
         n, ii, jj = rows[row], i[k], j[k]
         np.minimum.at(out, row, segment_distance(a1[n, ii], b1[n, ii], a2[n, jj], b2[n, jj])
                       - rr[ii, jj])
