@@ -207,13 +207,8 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
 
 
 def _skipping(ends, steps, below: float) -> tuple[float, int]:
-    """:func:`pair_distance` with ``steps``: every FIRST-th sample, every capsule pair, then
-    the spacings LEVELS between them, each sample measured only where the way travelled from
-    those measured cannot prove it beyond the least so far (or ``below``), there only the
-    capsule pairs it cannot prove so (:func:`_pairs_least`), and a sample the same as the one
-    before not measured unless it is a COARSE-th (docs/model.md §26.4). Named: the first
-    COARSE-th sample at the least, else the first sample there (every sample measured names
-    the same)."""
+    """:func:`pair_distance` with ``steps`` (docs/model.md §26.4). Named: the first COARSE-th
+    sample at the least, else the first sample there, as with every sample measured."""
     a1, b1, a2, b2, r1, r2, _ = ends
     best, _, known = _coarse(a1[::FIRST], b1[::FIRST], a2[::FIRST], b2[::FIRST], r1, r2)
     way = travelled(steps)
@@ -222,8 +217,8 @@ def _skipping(ends, steps, below: float) -> tuple[float, int]:
     fresh = np.concatenate([[True], np.asarray(steps) > 0])
     fresh[::COARSE] = True
     at, low = np.arange(0, len(a1), FIRST), known.min(axis=(1, 2))
-    # a FIRST-th sample's least, where it holds the least so far (its pairs not measured lie
-    # farther than one measured): the first of `low` at the least is that sample's exact least
+    # `low` is a FIRST-th sample's exact least where that is the least (a pair not measured
+    # lies farther than one measured)
     done = [(at, low)]
     for spacing in LEVELS:
         rows = np.arange(spacing, len(a1), 2 * spacing)
