@@ -10,9 +10,10 @@ samples, found so:
    sub-triangle's longest edge is at most δ, so any point of the mesh lies within δ of one
    of its own face's samples; a k-d tree gives each centre's distance d̃ to the samples,
    and d̃ − δ − r ≤ |c − mesh| − r ≤ d̃ − r;
-2. every COARSE_STRIDE-th sample's spheres set a ceiling (an achieved d̃ − r); the others
-   are asked only within the ceiling + r + δ (a sphere further off cannot hold the least),
-   which keeps the queries short;
+2. every COARSE_STRIDE-th sample's spheres set a ceiling (an achieved d̃ − r; with the way
+   travelled, asked only within a first ceiling of every 4·COARSE_STRIDE-th, plus the way:
+   :func:`_coarse_bounds`); the others are asked only within the ceiling + r + δ (a sphere
+   further off cannot hold the least), which keeps the queries short;
 3. the EXACT_POINTS spheres of lowest bound get their exact distance: the closest points of
    the faces that own a sample within d̃ + δ of c (``trimesh.triangles.closest_point``).
    The least of them is the figure; the least bound left unchecked says how much less the
@@ -195,7 +196,8 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
     sphere): the centres are then made only where asked."""
     index = surface_index(mesh) if index is None else index
     tri, owner, delta, tree = index.triangles, index.owner, index.delta, index.distinct
-    coarse, _ = tree.query(centres[::COARSE_STRIDE])
+    coarse = (tree.query(centres[::COARSE_STRIDE])[0] if way is None else
+              _coarse_bounds(tree, centres, radii, delta, way))
     ceiling = float((coarse - radii).min())  # an achieved upper bound of the least
     bound = ceiling + radii + delta  # a query's: a sphere further off cannot hold the least
     if way is None:
@@ -232,6 +234,23 @@ def least_distance(mesh: trimesh.Trimesh, centres, radii, index: SurfaceIndex | 
             math.inf)
     floor = min(best, float(rest), ceiling if np.isinf(lower).any() else math.inf)
     return best, divmod(int(who[j]), len(radii)), closest[j], best - floor
+
+
+def _coarse_bounds(tree, centres, radii, delta: float, way) -> np.ndarray:
+    """d̃ (M, K) at every COARSE_STRIDE-th sample where it may hold the ceiling, a lower bound
+    of it elsewhere: every 4·COARSE_STRIDE-th sample's spheres set a first ceiling c₁ (an
+    achieved d̃ − r); a query bounded at c₁ + r + δ + 2·(the longest way between two
+    COARSE_STRIDE-th samples) answers every d̃ under it, the ceiling's among them (the same
+    float), and a sphere past it is at least that bound (docs/model.md §25)."""
+    first, _ = tree.query(centres[::4 * COARSE_STRIDE])
+    steps = np.diff(np.asarray(way, float)[::COARSE_STRIDE])
+    upper = (float((first - radii).min()) + radii + delta
+             + 2 * (float(steps.max()) if len(steps) else 0.0))
+    at = centres[::COARSE_STRIDE]
+    out = np.empty(at.shape[:2])
+    for k in range(len(radii)):
+        out[:, k] = tree.query(at[:, k], distance_upper_bound=upper[k])[0]
+    return np.where(np.isinf(out), upper, out)  # past the bound: at least it
 
 
 def _flat(centres, index) -> np.ndarray:

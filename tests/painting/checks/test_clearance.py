@@ -265,7 +265,12 @@ def test_the_skip_answers_as_every_sample_asked(monkeypatch):
              (rib, poses_along([1, 0, 0], raster), np.arange(900.0)),
              (rib, np.vstack([poses_along(a, t[None]) for a, t in zip(
                  [1.0, 0.0, 0.0] + rng.normal(scale=0.3, size=(300, 3)), jumps)]),
-              np.arange(300.0))]
+              np.arange(300.0)),
+             # a slow sweep (0.6 mm a step, its least between coarse samples): the first
+             # ceiling's bound is tight
+             (plate(), poses_along([1, 0, 0], np.column_stack([
+                 0.55 - 0.02 * np.cos(np.linspace(0.3, 6 * np.pi + 0.3, 600)),
+                 np.linspace(-0.05, 0.05, 600), np.zeros(600)])), np.arange(600.0))]
     real, asked = clearance.may_come_within, []
 
     def counted(*args):
@@ -278,6 +283,9 @@ def test_the_skip_answers_as_every_sample_asked(monkeypatch):
         skipped = clearance_of(mesh, poses, t)
         monkeypatch.setattr(clearance, "may_come_within", asked_everywhere)
         assert clearance_of(mesh, poses, t) == skipped
+        with monkeypatch.context() as m:  # no way: every coarse sphere asked unbounded too
+            m.setattr(clearance, "travelled", lambda steps: None)
+            assert clearance_of(mesh, poses, t) == skipped
     assert asked[0] < 0.6 and asked[1] < 0.2  # the skip did skip (0.48, 0.06)
     monkeypatch.setattr(clearance, "may_come_within", real)
     dip = clearance_of(plate(), *dip_path())
