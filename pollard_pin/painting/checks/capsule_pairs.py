@@ -27,8 +27,9 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
     then only the pairs of capsules whose bounding boxes come within it of the other robot's
     (the union of its capsules' boxes) are measured. ``steps`` (N − 1,): how far the two
     robots' points may move apart or together in each step (the sum of both robots' largest
-    step, :func:`_chords`), to measure every pair at every FIRST-th sample only and the
-    samples between at halving spacings (LEVELS), only those the way travelled from the
+    step, the chords of :mod:`.cell_clearance`), to measure every pair at every FIRST-th
+    sample only and the samples between at halving spacings (LEVELS), only those the way
+    travelled from the
     samples measured cannot prove beyond the least so far (or ``below``), there only the
     capsule pairs it cannot prove so (:func:`pairs_least`, instead of the boxes), and not a
     sample the same as the one before (:func:`skipping_least`; default None: every sample); the
