@@ -29,11 +29,11 @@ def pair_distance(a1, b1, a2, b2, r1, r2, steps=None,
     robots' points may move apart or together in each step (the sum of both robots' largest
     step, the chords of :mod:`.cell_clearance`), to measure every pair at every FIRST-th
     sample only and the samples between at halving spacings (LEVELS), only those the way
-    travelled from the
-    samples measured cannot prove beyond the least so far (or ``below``), there only the
-    capsule pairs it cannot prove so (:func:`pairs_least`, instead of the boxes), and not a
-    sample the same as the one before (:func:`skipping_least`; default None: every sample); the
-    answer is the same either way (docs/model.md §26.4).
+    travelled from the samples measured cannot prove beyond the least so far (or
+    ``below``), there only the capsule pairs it cannot prove so (:func:`pairs_least`,
+    instead of the boxes), and not a sample the same as the one before
+    (:func:`skipping_least`; default None: every sample); the answer is the same either way
+    (docs/model.md §26.4).
     ``below``: only a least under it is sought (default inf); with none, a distance found,
     at least ``below``, and its sample."""
     rr = r1[:, None] + r2[None, :]
