@@ -54,20 +54,16 @@ def check_job(count, job) -> None:
 
 def paint_layout(count, robot, job, act, options, edge_room: float = 0.0,
                  end_pitch: float = 0.0):
-    """(robots, PaintResult): the proposal of ``count`` robots planned, or the fewest; the
-    end robots holding ``edge_room`` [m] more past the part's free edges, the top one
-    turned ``end_pitch`` [deg] about the line."""
-    from ..outputs.result import PaintResult, fewest_robots
-    from ..painting.layout.cell import LayoutOptions, propose_layout
-    from ..painting.layout.seat import paint_seated
+    """(robots, PaintResult): the proposal of ``count`` robots planned (with the cell's
+    levers if refused plain), or the fewest; the end robots holding ``edge_room`` [m] more
+    past the part's free edges, the top one turned ``end_pitch`` [deg] about the line."""
+    from ..outputs.result import fewest_robots
+    from ..painting.layout.cell import LayoutOptions
 
     with as_flags("LayoutOptions"):  # a refusal names the flag that set it
         layout = LayoutOptions(edge_room=edge_room, end_pitch=end_pitch)
-    if count == "auto":
-        return fewest_robots(robot, job, act, options, layout)
-    robots = propose_layout(robot, job, count, layout, policy=options.policy)
-    robots, painted = paint_seated(robot, job, robots, act, options)
-    return robots, PaintResult.of(painted)
+    return fewest_robots(robot, job, act, options, layout,
+                         None if count == "auto" else count)
 
 
 def write_layout(robots, out: Path, count, job, seams=None, levers=None) -> Path:

@@ -10,8 +10,8 @@ from pathlib import Path
 from ..checks import file_path
 from ..dynamics.motors import Actuators
 from ..painting.api import paint_job
+from ..painting.layout.auto import fewest_robots as fewest_painted
 from ..painting.layout.cell import LayoutOptions
-from ..painting.layout.cell import fewest_robots as fewest_painted
 from ..painting.options import PaintOptions
 from ..painting.result import PaintedJob
 from .paint_cell_files import write_cell
@@ -129,9 +129,10 @@ def paint(robot, job, actuators: Actuators | str | Path | None = None,
 
 
 def fewest_robots(robot, job, actuators: Actuators | None = None,
-                  options: PaintOptions | None = None, layout: LayoutOptions | None = None):
+                  options: PaintOptions | None = None, layout: LayoutOptions | None = None,
+                  count: int | None = None):
     """The fewest robots that paint the job and their cell's result, which writes itself:
-    :func:`pollard_pin.painting.layout.cell.fewest_robots` (docs/model.md §26.5), its
+    :func:`pollard_pin.painting.layout.auto.fewest_robots` (docs/model.md §26.5), its
     painted job returned as a :class:`PaintResult`.
 
     Parameters
@@ -145,7 +146,9 @@ def fewest_robots(robot, job, actuators: Actuators | None = None,
     options : PaintOptions or None, optional
         As for :func:`paint`.
     layout : LayoutOptions or None, optional
-        The spacing and the names.
+        The spacing, the names, the room at the free edges and the top robot's pitch.
+    count : int or None, optional
+        This many robots only, plain then with the levers (default None: the fewest).
 
     Returns
     -------
@@ -159,8 +162,10 @@ def fewest_robots(robot, job, actuators: Actuators | None = None,
     pollard_pin.painting.LayoutSearchError
         No count tried paints the part: one line naming each count's cause; its ``causes``
         maps each count to its :class:`~pollard_pin.painting.causes.Cause`.
+    pollard_pin.painting.errors.PlanError
+        With ``count``: that count's refusal.
     """
-    robots, painted = fewest_painted(robot, job, actuators, options, layout)
+    robots, painted = fewest_painted(robot, job, actuators, options, layout, count)
     return robots, PaintResult.of(painted)
 
 

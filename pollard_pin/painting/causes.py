@@ -1,6 +1,6 @@
 """What a planner's refusal says binds, and its figure in a few words (docs/model.md §26.5):
 one rule for the layout search's refusal (:func:`search_refusal`, of
-:func:`pollard_pin.painting.layout.cell.fewest_robots`)
+:func:`pollard_pin.painting.layout.auto.fewest_robots`)
 and the design study's infeasible designs (:mod:`pollard_pin.synthesis.evaluation`).
 
 :func:`binding_of` sorts a refusal by the constraint its words name, in the design study's
@@ -52,6 +52,17 @@ class Cause:
     short: str
     robot: str | None
     message: str
+    speeds: tuple[float, float] | None = None
+
+    def past_speeds(self, speed: float, factor: float) -> bool:
+        """Whether ``speed`` [m/s] lies more than ``factor`` times past the interval of line
+        speeds this refusal names as painting (over its top, or under its bottom where that
+        is not "or slower"); False when it names none."""
+        if self.speeds is None:
+            return False
+        low, high = self.speeds
+        slower = "or slower" in self.said
+        return speed > factor * high or (not slower and speed * factor < low)
 
 
 def binding_of(message: str) -> str:
@@ -91,6 +102,12 @@ def _passes(m):
     tall = re.search(r"(\d+) mm too (tall|long)", m.string)
     return (m[1] + " out of reach" + (f", {tall[1]} mm too {tall[2]}" if tall else ""),
             "passes out of reach")
+
+
+def _speeds(said: str) -> tuple[float, float] | None:
+    """(low, high) [m/s] of an interval said "0.0156–0.0459 m/s" (one speed: both)."""
+    values = [float(v) for v in re.findall(r"\d+(?:\.\d+)?(?:e-?\d+)?", said)]
+    return (values[0], values[-1]) if values else None
 
 
 def _motor(m):
@@ -167,23 +184,35 @@ def cause_of(message: str) -> Cause:
         m = words.search(body)
         if m:
             said, short = figure(m)
-            return Cause(binding or binding_of(body), said, short, robot and robot[1], text)
+            speeds = _speeds(m[1]) if binding == "line speed" else None
+            return Cause(binding or binding_of(body), said, short, robot and robot[1], text,
+                         speeds)
     said = without_asides(body).split("; ")[0]
     return Cause(binding_of(body), said, said.split(": ")[0], robot and robot[1], text)
 
 
 def search_refusal(source: str, causes: dict, first: int, speed: float | None,
-                    levers: bool = False) -> str:
+                   levered: dict | None = None) -> str:
     """The layout search's refusal, one line: the counts tried and each one's cause (the
-    plain proposal's; ``levers``: tried with them too), the longest said with less (its
-    figure, fewer words, its constraint alone) until the line holds them all; the counts
-    whose bands are too narrow said together."""
+    plain proposal's; ``levered``: count → the cause with the levers, said beside the plain
+    one where it differs), the longest said with less (its figure, fewer words, its
+    constraint alone) until the line holds them all; the counts whose bands are too narrow
+    said together."""
+    levered = levered or {}
     last = max(causes)
     head = (f"{source}: no cell of {'1–' if last > 1 else ''}{last} robots paints the part "
             + (f"at {speed:.4g} m/s" if speed is not None else "at any line speed")
-            + (" (its levers too): " if levers else ": "))
-    rows = [(str(n), causes[n].said, causes[n].short, causes[n].binding)
-            for n in range(first, last + 1)]
+            + (" (its levers too): " if levered else ": "))
+
+    def row(n):
+        c, lever = causes[n], levered.get(n)
+        if lever is None or lever.said == c.said:
+            return str(n), c.said, c.short, c.binding
+        return (str(n), f"{c.said} (levers: {lever.said})", f"{c.short} (levers: "
+                f"{lever.short})", c.binding if lever.binding == c.binding else
+                f"{c.binding} (levers: {lever.binding})")
+
+    rows = [row(n) for n in range(first, last + 1)]
     if first > 1:  # the narrowest shortfall, the fewest robots' (first − 1)
         c = causes[first - 1]
         more = "band ≥ " if first > 2 else "band "

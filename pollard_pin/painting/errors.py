@@ -75,13 +75,15 @@ class LayoutSearchError(PlanError):
     """No proposed cell of the robot counts tried paints the part (``--robots auto``):
     ``causes`` maps each count to why it failed
     (:class:`pollard_pin.painting.causes.Cause`: the constraint that binds, its figure),
-    ``speed`` the line speed [m/s] tried (None: any, ``max_line_speed``). The job is valid
+    ``levered`` each count's cause with the cell's levers, where they were tried, ``speed``
+    the line speed [m/s] tried (None: any, ``max_line_speed``). The job is valid
     and no cell found paints it, a :class:`PlanError` whichever way each count failed (its
     proposal a :class:`CellError`, or its plan a :class:`PlanError`)."""
 
-    def __init__(self, message: str, causes: dict, speed: float | None = None):
+    def __init__(self, message: str, causes: dict, speed: float | None = None,
+                 levered: dict | None = None):
         super().__init__(message)
-        self.causes, self.speed = dict(causes), speed
+        self.causes, self.speed, self.levered = dict(causes), speed, dict(levered or {})
 
 
 class LineSpeedError(PlanError):

@@ -8,8 +8,8 @@ axis so that its band's middle is its zone's (run-outs included) middle, the ban
 holding the seams' run-outs, and set ``spacing`` further down the line than robot i − 1
 (default: the tip's reach window along the line at the part's depth plus twice the base's
 footprint, the room one robot sweeps painting). The proposal is then split by
-:func:`.split.split_cell`, which checks it as any given cell. :func:`fewest_robots` tries
-n = 1, 2, … until :func:`pollard_pin.painting.paint` paints the job with the proposal.
+:func:`.split.split_cell`, which checks it as any given cell. :func:`.auto.fewest_robots`
+tries n = 1, 2, … until :func:`pollard_pin.painting.paint` paints the job with the proposal.
 """
 from __future__ import annotations
 
@@ -20,22 +20,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...checks import instance, is_real, shorten
-from ...dynamics.motors import as_actuators
 from ...errors import InputError
 from ...model.build import check_robot
 from ...workspace.reach import evaluate
-from ..causes import cause_of, search_refusal
 from ..cell.bands import STEP, Band, Strokes, axis_name, base_poses, job_strokes, robot_band
 from ..cell.robots import MAX_DISTANCE, MAX_ROBOTS, CellRobot, base_footprint, check_spacing
 from ..cell.split import split_cell
-from ..errors import BudgetError, CellError, LayoutSearchError, PlanError
-from ..job import PartJob, check_job
+from ..errors import CellError
+from ..job import check_job
 from ..policy import PlannerPolicy
-from ..progress import bar, showing
 
 WINDOW_STEP = 0.005  # m between the shifts scanning the reach window along the line
 REFERENCE_STROKES = 5  # distinct stroke shapes the reference band is taken over
-AUTO_MORE = 2  # robots tried beyond the fewest whose bands hold the zones (--robots auto)
 EDGE_TRIES = 10  # bands computed at most to move a robot onto its zone (or its edge)
 MAX_ROOM = 0.5  # m: LayoutOptions.edge_room at most (a robot's band is ~0.25 m)
 MAX_PITCH = 45.0  # deg: LayoutOptions.end_pitch at most
@@ -149,7 +145,7 @@ def reach_window(robot, strokes: Strokes, band: Band) -> float:
 
 
 def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
-                   part=None, policy: PlannerPolicy | None = None
+                   part=None, policy: PlannerPolicy | None = None, reference=None
                    ) -> tuple[CellRobot, ...]:
     """Bases for n robots for this part on this line: their zones stacked across the travel,
     the robots spaced along the line to clear each other (docs/model.md §26.5).
@@ -171,6 +167,9 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         [m] the strokes run past a seam (None: R), is what the proposal's split holds past a
         seam where R does not fit (its bands are spaced for R: room for the ramps,
         docs/model.md §26.5).
+    reference : tuple or None, optional
+        The job's strokes and the reference robot's band (:func:`reference_band`) if at
+        hand: :func:`.auto.fewest_robots` tries several n on one (default None: made here).
 
     Returns
     -------
@@ -191,13 +190,13 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= MAX_ROBOTS:
         raise CellError(f"n = {shorten(n)}: expected 1..{MAX_ROBOTS} (a whole number of robots)")
     instance(policy, "policy", PlannerPolicy, "PlannerPolicy or None", none=True)
-    return _propose(robot, job, n, options, part, policy=policy)
+    return _propose(robot, job, n, options, part, reference, policy)
 
 
 def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
              policy: PlannerPolicy | None = None):
     """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
-    reference band) if already at hand (:func:`fewest_robots` tries several n on one);
+    reference band) if already at hand;
     ``policy``: its ``seam_run`` the split's run past a seam."""
     if job.line is None:
         raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
@@ -211,7 +210,7 @@ def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
     if options.edge_room:  # the end robots hold more past the free edges (§26.5)
         strokes = replace(strokes, room=options.edge_room)
     needs = zone_needs(strokes, n)
-    narrow = _too_narrow(strokes, band, n)
+    narrow = narrow_refusal(strokes, band, n)
     if narrow:
         raise CellError(f"{job.source}: {narrow}")
     foot = base_footprint(robot.model)
@@ -257,7 +256,7 @@ def _pitched(robot, top: CellRobot, strokes: Strokes, deg: float, source: str) -
     return moved
 
 
-def _too_narrow(strokes: Strokes, band: Band, n: int) -> str:
+def narrow_refusal(strokes: Strokes, band: Band, n: int) -> str:
     """Why n robots' bands cannot hold n equal zones with their run-outs, naming the fewest
     that can ('' if they can)."""
     widest = max(b - a for a, b in zone_needs(strokes, n))
@@ -375,110 +374,6 @@ def _triple(v) -> tuple[float, float, float]:
     return tuple(round(float(c), 6) + 0.0 for c in v)
 
 
-def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOptions | None = None):
-    """The fewest robots whose :func:`propose_layout` paints the job at its line speed (or at
-    the fastest, with ``options.max_line_speed``), and their plan (docs/model.md §26.5).
-
-    The first n tried is the fewest whose bands hold the zones; a plan refused (reach,
-    motors, the line's speed) tries n + 1, at most ``AUTO_MORE`` times: more robots shorten
-    every zone, which cures a motor or reach refusal at once or not at all (a line too slow
-    for the programs' drift gets worse). Each count's failure is sorted by
-    :func:`pollard_pin.painting.causes.cause_of` (the constraint that binds, its figure). A
-    part refused at every count is searched again with the cell's levers left at their
-    defaults set by rule (:mod:`.levers`); the plan found says them in its report
-    (``levers``: each set, and the plain refusal).
-
-    Parameters
-    ----------
-    robot : Robot
-        The model every robot shares (:func:`pollard_pin.load`).
-    job : PaintJob or pollard_pin.painting.job.PartJob
-        A job with ``[line]`` and no ``[[robot]]`` tables.
-    actuators : Actuators or str or Path or None, optional
-        The motor ratings or an actuator file's path (default: the job's file, else the
-        package's).
-    options : PaintOptions or None, optional
-        As for :func:`pollard_pin.painting.api.paint_job`.
-    layout : LayoutOptions or None, optional
-        The spacing, the names, the room at the free edges and the top robot's pitch.
-
-    Returns
-    -------
-    robots : tuple of CellRobot
-        The proposed robots.
-    result : pollard_pin.painting.result.PaintedJob
-        The cell's plan, film and report with them (``pollard_pin.PaintResult.of(result)``
-        writes itself).
-
-    Raises
-    ------
-    pollard_pin.painting.errors.LayoutSearchError
-        No layout of up to ``AUTO_MORE`` more robots paints the part: one line naming the
-        counts tried (from 1) and each one's cause, said with less until it fits
-        ("3 bottom band 40 mm short of the run-on; 4 turnarounds out of reach; 5 motor 126 %
-        at any speed"); its ``causes`` holds each count's
-        :class:`~pollard_pin.painting.causes.Cause`.
-    pollard_pin.painting.errors.CellError
-        The job has robots or no line, or no count up to MAX_ROBOTS has bands wide enough.
-    """
-    from ..options import PaintOptions
-    from ..spray.occlusion import load_painted_part
-    from .levers import levers_for, with_levers
-
-    check_robot(robot)
-    check_job(job)
-    actuators = as_actuators(actuators)
-    instance(options, "options", PaintOptions, "PaintOptions or None", none=True)
-    instance(layout, "layout", LayoutOptions, "LayoutOptions or None", none=True)
-    part = load_painted_part(job) if isinstance(job, PartJob) else None
-    strokes = job_strokes(job, part)
-    reference = (strokes, reference_band(robot, strokes))
-    first = fewest_for(strokes, reference[1].width)
-    if first is None:
-        raise CellError(f"{job.source}: more than {MAX_ROBOTS} robots' bands would be needed "
-                        "to stack zones over the part")
-    last = min(MAX_ROBOTS, first + AUTO_MORE)
-    # the counts whose bands are too narrow, then each count planned: why each failed
-    causes = {n: cause_of(_too_narrow(strokes, reference[1], n)) for n in range(1, first)}
-    layout = layout or LayoutOptions()
-    found = _tried(robot, job, actuators, options, layout, part, reference, first, last,
-                   causes)
-    if found:
-        return found
-    speed = None if getattr(options, "max_line_speed", False) else job.line.speed
-    plain = search_refusal(job.source, causes, first, speed)
-    options = options or PaintOptions()
-    levers = levers_for(job, strokes, options.policy, layout)
-    if levers is not None:  # refused plain: the levers left at their defaults, by rule
-        found = _tried(robot, job, actuators, *with_levers(options, layout, levers), part,
-                       reference, first, last, dict(causes))
-        if found:
-            robots, painted = found
-            said = {**levers.as_dict(), "plain": plain.removeprefix(f"{job.source}: ")}
-            return robots, replace(painted, report=replace(painted.report, data={
-                **painted.report.data, "levers": said}))
-        plain = search_refusal(job.source, causes, first, speed, levers=True)
-    raise LayoutSearchError(plain, causes, speed)
-
-
-def _tried(robot, job, actuators, options, layout, part, reference, first, last, causes):
-    """(robots, PaintedJob) of the fewest count from ``first`` to ``last`` whose proposal
-    paints the job, or None, each count's refusal put in ``causes``."""
-    from .seat import paint_seated
-
-    with showing(getattr(options, "progress", False)):  # a bar on a terminal, if asked
-        for n in bar(range(first, last + 1), "layout search", unit="layout"):
-            try:
-                robots = _propose(robot, job, n, layout, part, reference,
-                                  None if options is None else options.policy)
-                return paint_seated(robot, job, robots, actuators, options, part)
-            except BudgetError:
-                raise
-            except (CellError, PlanError) as exc:
-                causes[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
-    return None
-
-
-__all__ = ["AUTO_MORE", "EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES",
-           "cover_edge", "cover_edges", "fewest_for", "fewest_robots", "propose_layout",
-           "reach_window", "reference_band", "zone_needs"]
+__all__ = ["EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES", "cover_edge",
+           "cover_edges", "fewest_for", "narrow_refusal", "propose_layout", "reach_window",
+           "reference_band", "zone_needs"]
