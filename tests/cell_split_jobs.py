@@ -66,11 +66,12 @@ def check_zones(robot, robots, split, strokes):
     return [min(b.hi, strokes.extent[1]) - max(b.lo, strokes.extent[0]) for b in z]
 
 
-def door_part(folder, height: float = 0.33, chamfer: float = 0.04, angle: float = 40.0):
+def door_part(folder, height: float = 0.33, chamfer: float = 0.04, angle: float = 40.0,
+              speed: float = 0.024):
     """A door 0.8 m long (along y) and ``height`` high from z = 0.015 m, its top and bottom
     edges bevelled ``angle`` degrees away from the robots over ``chamfer`` of surface
     (:func:`pollard_pin.painting.workpiece.shapes.chamfered_plate`), written in mm, upstream
-    on a +y line: (the job file's path)."""
+    on a +y line at ``speed`` [m/s] (docs/model.md §26.5's): (the job file's path)."""
     from pollard_pin.painting.workpiece.shapes import chamfered_plate
 
     mesh = chamfered_plate(height=height, chamfer=chamfer, angle_deg=angle,
@@ -93,7 +94,7 @@ flow = {GUN["flow"]}
 thickness = 25e-6
 
 [line]
-speed = {LINE["speed"]}
+speed = {speed}
 direction = [0.0, 1.0, 0.0]
 """
     (folder / "door.toml").write_text(text)

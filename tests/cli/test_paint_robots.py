@@ -113,9 +113,9 @@ def test_a_search_that_finds_no_cell_names_each_count_and_its_cause(tmp_path, ca
     assert code == 2 and err.count("\n") == 1 and not out.exists(), err
     # the job's folders and the outputs' name as long as the line allows
     said = re.sub(r" \(nothing written[^()]*\)\n$", "", err.replace(f"{LINE.parent}/", ""))
-    assert said == ("pollard-pin paint: error: line.toml: no cell of 1–3 robots paints the part "
+    assert said == ("pollard-pin paint: error: line.toml: no cell of 1–4 robots paints the part "
                     "at 0.03 m/s: 1 first ramp out of reach; 2 first ramp out of reach; 3 motor "
-                    "131 % at any speed"), err
+                    "131 % at any speed; 4 motor 131 % at any speed"), err
 
 
 def test_seated_seams_are_said_in_the_proposal(tmp_path, capsys):

@@ -110,3 +110,21 @@ def test_words_it_does_not_know_keep_their_first_clause():
 def test_binding_of_in_the_design_studys_words(message, binding):
     """The design study's constraint (synthesis/evaluation.py), first word that names one."""
     assert binding_of(message) == binding
+
+
+@pytest.mark.parametrize("message, speeds, past", [
+    ("at line speed 0.5 m/s it drifts; it paints at 0.01562–0.0459 m/s or slower "
+     "(--max-line-speed)", (0.01562, 0.0459), {0.5: True, 0.09: False, 0.0001: False}),
+    ("line speed 0.001 m/s: it paints at 0.003–0.04 m/s (--max-line-speed)", (0.003, 0.04),
+     {0.001: True, 0.0016: False, 0.08: False, 0.0801: True}),
+    ("line speed 1e-05 m/s: it paints at 2.5e-05–0.0459 m/s (--max-line-speed)",
+     (2.5e-05, 0.0459), {1e-05: True, 2e-05: False}),
+    ("robot 'a': no place on the line keeps its first ramp in reach", None, {9.0: False}),
+])
+def test_the_speeds_a_refusal_names_and_a_speed_past_them(message, speeds, past):
+    """A line-speed refusal's interval read back from its words (as line.speeds says it,
+    with exponents); a speed more than twice past it: over the top, or under the bottom
+    unless the slow end is "or slower"; a refusal naming no interval is past nothing."""
+    c = cause_of(message)
+    assert c.speeds == speeds
+    assert {v: c.past_speeds(v, 2.0) for v in past} == past
