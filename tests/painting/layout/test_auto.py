@@ -161,3 +161,13 @@ def test_the_search_shows_a_bar_only_when_asked_on_a_terminal(robot, monkeypatch
     assert capsys.readouterr().err == ""
     fewest_robots(robot, tall_panel(), options=PaintOptions(progress=True))
     assert "layout search" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("wrong", [0, 17, 2.5, True, float("nan"), "3", [1, 2], -1], ids=repr)
+def test_a_wrong_count_is_refused_before_any_planning(robot, wrong, monkeypatch):
+    """fewest_robots' count (--robots N from Python): a whole number 1..16 or None; else one
+    line naming it, nothing planned."""
+    import pollard_pin.painting.api as api
+
+    monkeypatch.setattr(api, "paint_job", lambda *a, **k: pytest.fail("planned"))
+    refused(lambda: fewest_robots(robot, tall_panel(), count=wrong), "count")
