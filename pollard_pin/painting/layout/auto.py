@@ -12,10 +12,9 @@ the turns; they do not bring a part twice too fast within reach of the line.
 """
 from __future__ import annotations
 
-import numbers
 from dataclasses import replace
 
-from ...checks import instance, shorten
+from ...checks import instance, integer
 from ...dynamics.motors import as_actuators
 from ...errors import say_less
 from ...model.build import check_robot
@@ -98,10 +97,8 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
                        none=True) or PaintOptions()
     layout = instance(layout, "layout", LayoutOptions, "LayoutOptions or None",
                       none=True) or LayoutOptions()
-    if count is not None and (isinstance(count, bool) or not isinstance(count, numbers.Integral)
-                              or not 1 <= count <= MAX_ROBOTS):
-        raise CellError(f"count = {shorten(count)}: expected 1..{MAX_ROBOTS} (a whole number "
-                        "of robots) or None")
+    if count is not None:
+        count = integer(count, "count", 1, MAX_ROBOTS, error=CellError)
     part = load_painted_part(job) if isinstance(job, PartJob) else None
     strokes = job_strokes(job, part)
     reference = (strokes, reference_band(robot, strokes))
