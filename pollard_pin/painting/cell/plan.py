@@ -204,6 +204,15 @@ def zone_plans_remembered():
         _memo.reset(token)
 
 
+def forget_zone_plans() -> None:
+    """Within :func:`zone_plans_remembered`, drop the plans (and refusals) remembered so far:
+    a cell planned, its film plans nothing, and a seat search's plans beside the film would
+    hold their samples to its end (docs/model.md §26.5)."""
+    memo = _memo.get()
+    if memo is not None:
+        memo.clear()
+
+
 def _part_key(part: Part | None):
     """The part by its contents (a part read again is the same part), None for a panel."""
     if part is None:
@@ -349,4 +358,5 @@ def _robot_said(cr, exc: Exception) -> str:
 
 
 __all__ = ["ZONE_PLANS", "CellPlan", "RobotPlan", "cell_part", "cell_planner", "cell_speeds",
-           "cell_waiting_floor", "max_cell_speed", "plan_cell", "plan_cell_job", "robot_part"]
+           "cell_waiting_floor", "forget_zone_plans", "max_cell_speed", "plan_cell",
+           "plan_cell_job", "robot_part", "zone_plans_remembered"]

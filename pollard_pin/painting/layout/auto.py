@@ -128,7 +128,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
             except BudgetError:
                 raise
             except (CellError, PlanError) as exc:
-                plain = exc
+                plain = _bare(exc)
                 causes[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
             if (levers is None or narrow_refusal(strokes, reference[1], n)
                     or speed is not None and causes[n].past_speeds(speed, SPEED_PAST)):
@@ -153,6 +153,13 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     lever = levered[count]
     raise PlanError(say_less(f"{plain}; with its levers ({levers.flags()}): {lever.said}",
                              f"{plain}; with its levers: {lever.short}", str(plain)))
+
+
+def _bare(exc: Exception) -> Exception:
+    """``exc`` without its traceback and the exceptions it chains: kept to be raised again
+    after the levers' plan and film, not with the frames (and the plans) it was raised in."""
+    exc.__traceback__ = exc.__context__ = exc.__cause__ = None
+    return exc
 
 
 __all__ = ["AUTO_MORE", "SPEED_PAST", "fewest_robots"]

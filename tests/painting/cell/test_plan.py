@@ -289,3 +289,32 @@ def test_a_clearance_stride_sees_the_pair_no_closer_within_its_bound(robot, cell
     assert fourth.between_robots - fourth.robots_between <= every.between_robots <= \
         fourth.between_robots + 1e-12
     assert fourth.to_part - fourth.part_between <= every.to_part + 1e-12
+
+
+def test_the_plans_remembered_are_forgotten_when_asked(robot, act, cell, monkeypatch):
+    """Within zone_plans_remembered a robot's zone is planned once (the cell planned twice
+    makes each program once); forget_zone_plans drops them (the cell's film plans nothing
+    and holds no seat search's plans): the next plan makes each again, the same."""
+    from pollard_pin.painting.cell import plan as cell_plan
+
+    made = []
+    real = cell_plan.plan_zone
+
+    def plan_zone(*args):
+        made.append(1)
+        return real(*args)
+
+    monkeypatch.setattr(cell_plan, "plan_zone", plan_zone)
+    job, n = cell.job, len(cell.robots)
+    with cell_plan.zone_plans_remembered():
+        first = plan_cell(robot, job, act, split=cell.split, clearance=False)
+        again = plan_cell(robot, job, act, split=cell.split, clearance=False)
+        assert len(made) == n
+        assert all(a.plan is b.plan for a, b in zip(first.robots, again.robots))
+        cell_plan.forget_zone_plans()
+        fresh = plan_cell(robot, job, act, split=cell.split, clearance=False)
+        assert len(made) == 2 * n
+        assert all(a.plan is not b.plan for a, b in zip(first.robots, fresh.robots))
+        assert all(np.array_equal(a.plan.trajectory.poses, b.plan.trajectory.poses)
+                   for a, b in zip(first.robots, fresh.robots))
+    cell_plan.forget_zone_plans()  # outside: nothing to forget, nothing raised
