@@ -13,7 +13,7 @@ import numpy as np
 from ...dynamics.motors import Actuators
 from ...version import __version__
 from ..cell.frames import gravity_in_base
-from ..cell.plan import cell_speeds, forget_zone_plans, max_cell_speed, plan_cell_job
+from ..cell.plan import cell_speeds, max_cell_speed, plan_cell_job
 from ..film.cell import cell_panel_film, cell_part_film
 from ..film.grid import grid_areas
 from ..film.stats import film_stats
@@ -33,7 +33,6 @@ def paint(robot, job, act, options, res):
                                  policy=options.policy)
     else:
         plan = plan_cell_job(robot, job, act, part, policy=options.policy)
-    forget_zone_plans()  # a layout search's plans: not held through the film
     t1 = time.perf_counter()
     if part is None:
         U, V, pts, film = cell_panel_film(plan, res)

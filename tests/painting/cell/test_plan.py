@@ -291,30 +291,40 @@ def test_a_clearance_stride_sees_the_pair_no_closer_within_its_bound(robot, cell
     assert fourth.to_part - fourth.part_between <= every.to_part + 1e-12
 
 
-def test_the_plans_remembered_are_forgotten_when_asked(robot, act, cell, monkeypatch):
-    """Within zone_plans_remembered a robot's zone is planned once (the cell planned twice
-    makes each program once); forget_zone_plans drops them (the cell's film plans nothing
-    and holds no seat search's plans): the next plan makes each again, the same."""
-    from pollard_pin.painting.cell import plan as cell_plan
+def test_a_remembered_refusal_holds_no_frames_and_is_said_again(robot, act, cell, monkeypatch):
+    """A zone's refusal remembered: raised again the same (class, words, the speed search's
+    attributes) without planning, and its plan's frames are not kept: the garbage collector
+    off, what the refused plan held is freed once the search drops the refusal (a remembered
+    exception would hold its traceback's frames in a cycle with the memo: every refused
+    count's plans held to the end of a layout search)."""
+    import gc
+    import weakref
 
-    made = []
-    real = cell_plan.plan_zone
+    from pollard_pin.painting.cell import plan as cell_plan
+    from pollard_pin.painting.errors import LineSpeedError
+
+    class Held:  # what a refused plan holds in its frames (its samples)
+        pass
+
+    held, made = [], []
 
     def plan_zone(*args):
+        samples = Held()
+        held.append(weakref.ref(samples))
         made.append(1)
-        return real(*args)
+        raise LineSpeedError("drifts out of reach", too_fast=True, why="drifts", hint=0.01)
 
     monkeypatch.setattr(cell_plan, "plan_zone", plan_zone)
-    job, n = cell.job, len(cell.robots)
-    with cell_plan.zone_plans_remembered():
-        first = plan_cell(robot, job, act, split=cell.split, clearance=False)
-        again = plan_cell(robot, job, act, split=cell.split, clearance=False)
-        assert len(made) == n
-        assert all(a.plan is b.plan for a, b in zip(first.robots, again.robots))
-        cell_plan.forget_zone_plans()
-        fresh = plan_cell(robot, job, act, split=cell.split, clearance=False)
-        assert len(made) == 2 * n
-        assert all(a.plan is not b.plan for a, b in zip(first.robots, fresh.robots))
-        assert all(np.array_equal(a.plan.trajectory.poses, b.plan.trajectory.poses)
-                   for a, b in zip(first.robots, fresh.robots))
-    cell_plan.forget_zone_plans()  # outside: nothing to forget, nothing raised
+    said = []
+    gc.disable()
+    try:
+        with cell_plan.zone_plans_remembered():
+            for _ in range(2):
+                try:
+                    plan_cell(robot, cell.job, act, split=cell.split, clearance=False)
+                except LineSpeedError as exc:
+                    said.append((str(exc), exc.too_fast, exc.why, exc.hint))
+        assert held and all(ref() is None for ref in held)
+    finally:
+        gc.enable()
+    assert len(made) == 1 and said[0] == said[1] and said[0][1:] == (True, "drifts", 0.01)
