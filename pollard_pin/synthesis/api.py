@@ -16,7 +16,7 @@ from typing import Any
 from ..checks import callback, clip, instance, shorten
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
-from .front import choose, non_dominated, rank_key
+from .front import choose, epsilon_front, rank_key
 from .ladder import first_generation
 from .result import DesignResult, shown
 from .storage import check_study_file, job_fingerprint, open_study
@@ -238,14 +238,15 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
                      None)
         front, notes, outcomes = _front(rows, stored, runner, names, options, trial)
         baseline = _baseline(base, trial, stored, runner, names, outcomes)
-    keep = non_dominated([d["objectives"] for d in front])
+    # the exact figures' ε-front (the same boxes as the selection re-planned, §31.5)
+    keep = epsilon_front([d["objectives"] for d in front], options.front)
     front = sorted((front[i] for i in keep), key=lambda d: rank_key(d["objectives"]))
     for k, d in enumerate(front, start=1):
         d["design"] = k
     chosen = choose([d["objectives"] for d in front], options.pick)
     return DesignResult(tuple(variables), names, tuple(rows), tuple(front), baseline, chosen,
                         None if options.study is None else str(options.study),
-                        time.perf_counter() - t0, tuple(notes))
+                        time.perf_counter() - t0, tuple(notes), options.front)
 
 
 def _front(rows, stored, runner, names, options, base: int | None = None
@@ -270,7 +271,7 @@ def _front(rows, stored, runner, names, options, base: int | None = None
         if not pool:
             raise SolveError("no front design stayed feasible when planned in full: "
                              + "; ".join(notes))
-        trials = [pool[i]["trial"] for i in non_dominated(pool)]
+        trials = [pool[i]["trial"] for i in epsilon_front(pool, options.front)]
         todo = [n for n in trials if n not in planned and stored[n][1].get("level") != "full"]
         if not todo:
             return ([planned.get(n) or _stored_row(n, *stored[n], names) for n in trials],
