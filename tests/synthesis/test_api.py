@@ -224,3 +224,17 @@ def test_a_front_design_is_planned_again_with_its_own_search_notes():
     assert got and len(got) >= len(result.front)
     for values, notes in got:  # every one a searched design's, with its own notes
         assert notes == {"for": [values["chain0.x32"], values["y"], values["robots"]]}
+
+
+def test_an_exact_resolution_reports_the_exact_front():
+    """DesignOptions(front=EXACT), every resolution 0: the front is the plain Pareto front of
+    every feasible evaluation (each on it, or its figures beaten or equalled by one on it)."""
+    from pollard_pin.synthesis.front import EXACT
+
+    result = run_stub(None, 24, front=EXACT)
+    front = [d["objectives"] for d in result.front]
+    feasible = [{n: r[n] for n in SENSES} for r in result.trials if r["feasible"]]
+    assert len(front) == len(non_dominated(feasible))
+    for o in feasible:
+        assert o in front or any(dominates(f, o) for f in front)
+    assert result.summary_lines()[0].count("box") == 0
