@@ -114,19 +114,20 @@ class FrontResolution:
                for name in SENSES if (eps := getattr(self, name, 0.0))]
         return f" (one per box of {', '.join(out)})" if out else ""
 
-    def box(self, objectives: Mapping) -> tuple:
-        """The box ``objectives`` fall in, one index per objective (0 resolution: the
-        figure itself; a relative one's figure at or below 0: a box below every other)."""
-        out = []
+    def box(self, objectives: Mapping) -> dict:
+        """The box ``objectives`` fall in: name → its index along each objective (0
+        resolution: the figure itself; a relative one's figure at or below 0: a box below
+        every other), compared as figures are (:func:`dominates`)."""
+        out = {}
         for name in SENSES:
             v, eps = objectives[name], getattr(self, name, 0.0)
             if eps == 0:
-                out.append(v)
+                out[name] = v
             elif name not in self.RELATIVE:
-                out.append(math.floor(v / eps))
+                out[name] = math.floor(v / eps)
             else:
-                out.append(math.floor(math.log(v) / math.log1p(eps)) if v > 0 else -math.inf)
-        return tuple(out)
+                out[name] = math.floor(math.log(v) / math.log1p(eps)) if v > 0 else -math.inf
+        return out
 
 
 EXACT = FrontResolution(0.0, 0.0, 0.0, 0.0)  # the plain Pareto front
@@ -156,25 +157,15 @@ def epsilon_front(rows: Sequence[Mapping], resolution: FrontResolution = EXACT) 
     if not front:
         return []
     boxes = {i: resolution.box(rows[i]) for i in front}
-    first: dict[tuple, int] = {}
+    first: dict[tuple, int] = {}  # a box (its indices) → the row rank_key puts first in it
     for i in front:
-        b = boxes[i]
+        b = tuple(boxes[i].values())
         if b not in first or rank_key(rows[i]) < rank_key(rows[first[b]]):
             first[b] = i
-    signs = tuple(SENSES.values())
-    kept = {i for b, i in first.items()
-            if not any(_box_dominates(c, b, signs) for c in first)}
+    kept = {i for i in first.values()
+            if not any(dominates(boxes[j], boxes[i]) for j in first.values())}
     kept.add(min(front, key=lambda i: rank_key(rows[i])))  # choose's row, whatever its box
     return sorted(kept)
-
-
-def _box_dominates(a: tuple, b: tuple, signs: tuple) -> bool:
-    better = False
-    for x, y, s in zip(a, b, signs):
-        if s * x < s * y:
-            return False
-        better |= s * x > s * y
-    return better
 
 
 def rank_key(objectives: Mapping) -> tuple:
