@@ -251,11 +251,13 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
 
 def _front(rows, stored, runner, names, options, base: int | None = None
            ) -> tuple[list[dict], list[str], dict]:
-    """The front's designs, each judged by a full plan: the study's own full evaluations
-    (from the database); a design the study judged by the screen alone or by the search's
-    cheaper checks is planned in full now, with what its search noted (its layout and line
-    plans' searches: the same plan made again without them, only its checks exact; one that
-    fails it leaves the front, with a note, and the designs it hid are considered in turn);
+    """The front's designs (the ε-front at ``options.front`` of the study's feasible
+    evaluations, :func:`~pollard_pin.synthesis.front.epsilon_front`), each judged by a full
+    plan: the study's own full evaluations (from the database); a design the study judged by
+    the screen alone or by the search's cheaper checks is planned in full now, with what its
+    search noted (its layout and line plans' searches: the same plan made again without them,
+    only its checks exact; one that fails it leaves the front, with a note, and the designs
+    it hid are considered in turn);
     the notes; the outcomes of the plans made, by trial. The baseline's trial ``base``, if
     it needs a full plan (:func:`_needs_plan`), is planned with the first of them (on the
     same workers, not after them)."""
