@@ -29,6 +29,7 @@ def run(args) -> int:
     from ..errors import PollardError
     from ..io.atomic import check_outputs
     from ..synthesis.api import design
+    from ..synthesis.front import EXACT, FrontResolution
     from ..synthesis.storage import check_study_file, require_optuna
     from ..synthesis.study import DesignOptions, finished
 
@@ -47,7 +48,8 @@ def run(args) -> int:
     before = _signature(out / STUDY)
     options = DesignOptions(trials=args.trials, workers=args.workers, dask=args.dask,
                             seed=args.seed, population=args.population, study=out / STUDY,
-                            resume=args.resume, pick=args.pick, progress=not args.quiet)
+                            resume=args.resume, pick=args.pick, progress=not args.quiet,
+                            front=EXACT if args.exact_front else FrontResolution())
     try:
         with warnings_as_notes(args):
             result = design(args.job, args.space, options)
@@ -156,6 +158,10 @@ def add_parser(sub, parents) -> None:
                    help="choose front row N (front.csv's design N); default: the rule, "
                         "within motor use 0.9 the fewest robots, then the most parts per "
                         "hour, then the least moving mass")
+    p.add_argument("--exact-front", action="store_true",
+                   help="report the exact Pareto front (default: of designs closer than "
+                        "parts/h 1 %%, motor use 0.01, kmin 10 %%, moving mass 2 %%, one, "
+                        "docs/model.md §31.5)")
     p.add_argument("--seed", type=count(0, SEEDS - 1), default=0, metavar="S",
                    help="the sampler's seed, 0 to 2^32 − 1 (numpy's range; default: 0)")
     p.add_argument("--population", type=count(2, 10**4), default=24, metavar="N",

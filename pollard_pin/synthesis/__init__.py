@@ -24,7 +24,8 @@ __all__ = ["CONSTRAINTS", "Catalogue", "CatalogueError", "Design", "DesignContex
 # The study (docs/model.md §31.5): ``pollard_pin.design(job, space, options)``.
 from .api import design  # noqa: E402
 from .fidelity import SearchFidelity  # noqa: E402
+from .front import FrontResolution  # noqa: E402
 from .result import DesignResult  # noqa: E402
 from .study import DesignOptions  # noqa: E402
 
-__all__ += ["DesignOptions", "DesignResult", "SearchFidelity", "design"]
+__all__ += ["DesignOptions", "DesignResult", "FrontResolution", "SearchFidelity", "design"]

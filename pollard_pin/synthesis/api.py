@@ -16,7 +16,7 @@ from typing import Any
 from ..checks import callback, clip, instance, shorten
 from ..errors import InputError, SolveError
 from .backends import failure, make_runner
-from .front import choose, non_dominated, rank_key
+from .front import choose, epsilon_front, rank_key
 from .ladder import first_generation
 from .result import DesignResult, shown
 from .storage import check_study_file, job_fingerprint, open_study
@@ -238,23 +238,26 @@ def design(job, space, options: DesignOptions | None = None, *, evaluator=None,
                      None)
         front, notes, outcomes = _front(rows, stored, runner, names, options, trial)
         baseline = _baseline(base, trial, stored, runner, names, outcomes)
-    keep = non_dominated([d["objectives"] for d in front])
+    # the exact figures' ε-front (the same boxes as the selection re-planned, §31.5)
+    keep = epsilon_front([d["objectives"] for d in front], options.front)
     front = sorted((front[i] for i in keep), key=lambda d: rank_key(d["objectives"]))
     for k, d in enumerate(front, start=1):
         d["design"] = k
     chosen = choose([d["objectives"] for d in front], options.pick)
     return DesignResult(tuple(variables), names, tuple(rows), tuple(front), baseline, chosen,
                         None if options.study is None else str(options.study),
-                        time.perf_counter() - t0, tuple(notes))
+                        time.perf_counter() - t0, tuple(notes), options.front)
 
 
 def _front(rows, stored, runner, names, options, base: int | None = None
            ) -> tuple[list[dict], list[str], dict]:
-    """The front's designs, each judged by a full plan: the study's own full evaluations
-    (from the database); a design the study judged by the screen alone or by the search's
-    cheaper checks is planned in full now, with what its search noted (its layout and line
-    plans' searches: the same plan made again without them, only its checks exact; one that
-    fails it leaves the front, with a note, and the designs it hid are considered in turn);
+    """The front's designs (the ε-front at ``options.front`` of the study's feasible
+    evaluations, :func:`~pollard_pin.synthesis.front.epsilon_front`), each judged by a full
+    plan: the study's own full evaluations (from the database); a design the study judged by
+    the screen alone or by the search's cheaper checks is planned in full now, with what its
+    search noted (its layout and line plans' searches: the same plan made again without them,
+    only its checks exact; one that fails it leaves the front, with a note, and the designs
+    it hid are considered in turn);
     the notes; the outcomes of the plans made, by trial. The baseline's trial ``base``, if
     it needs a full plan (:func:`_needs_plan`), is planned with the first of them (on the
     same workers, not after them)."""
@@ -270,7 +273,7 @@ def _front(rows, stored, runner, names, options, base: int | None = None
         if not pool:
             raise SolveError("no front design stayed feasible when planned in full: "
                              + "; ".join(notes))
-        trials = [pool[i]["trial"] for i in non_dominated(pool)]
+        trials = [pool[i]["trial"] for i in epsilon_front(pool, options.front)]
         todo = [n for n in trials if n not in planned and stored[n][1].get("level") != "full"]
         if not todo:
             return ([planned.get(n) or _stored_row(n, *stored[n], names) for n in trials],

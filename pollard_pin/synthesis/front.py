@@ -6,6 +6,9 @@ one (each objective by its sense: more parts per hour, fewer robots, a lower wor
 higher ``kmin``, less moving mass). The front is the feasible designs no feasible design
 dominates, each design once.
 
+The reported front is its ε-front (:func:`epsilon_front`, :class:`FrontResolution`,
+docs/model.md §31.5): designs closer than each objective's resolution are one box, shown once.
+
 The chosen design (:func:`choose`), unless the caller picks a front row: among the front
 designs whose worst motor use is at most :data:`MOTOR_USE_LIMIT`, the fewest robots, then the
 most parts per hour, then the least moving mass (when no front design keeps that margin: the
@@ -16,7 +19,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, fields
 
+from ..checks import real
 from ..errors import InputError
 from .evaluation import SENSES as OBJECTIVE_SENSES
 
@@ -59,6 +64,108 @@ def non_dominated(rows: Sequence[Mapping], senses: Mapping[str, int] = SENSES) -
             continue  # the same figures twice: one row
         keep.append(i)
     return keep
+
+
+@dataclass(frozen=True)
+class FrontResolution:
+    """How far apart two designs' objectives must be for the reported front to tell them
+    apart (docs/model.md §31.5: each default's reason). Each objective's axis is cut into
+    boxes of this size (relative: boxes of equal ratio; absolute: of equal width); the
+    robots are counted, never boxed. All 0: the exact front. Checked once.
+
+    Attributes
+    ----------
+    parts_per_hour : float
+        Relative, in [0, 1] (default 0.01: 1 %).
+    motor_use : float
+        Absolute, in [0, 1] (default 0.01).
+    kmin : float
+        Relative, in [0, 1] (default 0.1: 10 %).
+    moving_mass : float
+        Relative, in [0, 1] (default 0.02: 2 %).
+    """
+
+    parts_per_hour: float = 0.01
+    motor_use: float = 0.01
+    kmin: float = 0.1
+    moving_mass: float = 0.02
+
+    RELATIVE = ("parts_per_hour", "kmin", "moving_mass")  # class constant (no annotation)
+
+    def __post_init__(self):
+        for f in fields(self):
+            object.__setattr__(self, f.name, real(
+                getattr(self, f.name), f"FrontResolution.{f.name}", 0.0, 1.0,
+                why=" (a resolution in [0, 1])"))
+
+    def described(self) -> dict:
+        """Each objective's resolution as front.csv's metadata keeps it: ``{"relative": x}``
+        or ``{"absolute": x}`` (the robots: absolute 0, counted)."""
+        out = {}
+        for name in SENSES:
+            kind = "relative" if name in self.RELATIVE else "absolute"
+            out[name] = {kind: getattr(self, name, 0.0)}
+        return out
+
+    def phrase(self) -> str:
+        """The summary's words: ``" (one per box of parts/h 1 %, …)"``; none when exact."""
+        out = [f"{name.replace('_', ' ').replace('parts per hour', 'parts/h')} "
+               + (f"{100 * eps:g} %" if name in self.RELATIVE else f"{eps:g}")
+               for name in SENSES if (eps := getattr(self, name, 0.0))]
+        return f" (one per box of {', '.join(out)})" if out else ""
+
+    def box(self, objectives: Mapping) -> dict:
+        """The box ``objectives`` fall in: name → its index along each objective (0
+        resolution: the figure itself; a relative one's figure at or below 0: a box below
+        every other), compared as figures are (:func:`dominates`)."""
+        out = {}
+        for name in SENSES:
+            v, eps = objectives[name], getattr(self, name, 0.0)
+            if eps == 0:
+                out[name] = v
+            elif name not in self.RELATIVE:
+                out[name] = math.floor(v / eps)
+            else:
+                out[name] = math.floor(math.log(v) / math.log1p(eps)) if v > 0 else -math.inf
+        return out
+
+
+EXACT = FrontResolution(0.0, 0.0, 0.0, 0.0)  # the plain Pareto front
+
+
+def epsilon_front(rows: Sequence[Mapping], resolution: FrontResolution = EXACT) -> list[int]:
+    """The rows' ε-front (ε-box dominance, Laumanns et al. 2002): the front's rows
+    (:func:`non_dominated`) in boxes of ``resolution``; of a box that no other box dominates
+    (no worse in every objective's box, better in one, by the objectives' senses), the row
+    :func:`rank_key` puts first (the first in input order on a tie); and always the row
+    :func:`choose` takes from the whole front. Every front row is then within one box of a
+    kept one in every objective, no worse beyond it; all resolutions 0: the front itself.
+
+    Parameters
+    ----------
+    rows : Sequence of Mapping
+        Each row's objectives (name → value), every one finite.
+    resolution : FrontResolution, optional
+        The boxes (default: none, the exact front).
+
+    Returns
+    -------
+    list of int
+        The kept row indices, in input order.
+    """
+    front = non_dominated(rows)
+    if not front:
+        return []
+    boxes = {i: resolution.box(rows[i]) for i in front}
+    first: dict[tuple, int] = {}  # a box (its indices) → the row rank_key puts first in it
+    for i in front:
+        b = tuple(boxes[i].values())
+        if b not in first or rank_key(rows[i]) < rank_key(rows[first[b]]):
+            first[b] = i
+    kept = {i for i in first.values()
+            if not any(dominates(boxes[j], boxes[i]) for j in first.values())}
+    kept.add(min(front, key=lambda i: rank_key(rows[i])))  # choose's row, whatever its box
+    return sorted(kept)
 
 
 def rank_key(objectives: Mapping) -> tuple:

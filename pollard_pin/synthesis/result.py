@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ..checks import file_path
 from .evaluation import UNITS
-from .front import SENSES, gains
+from .front import EXACT, SENSES, FrontResolution, gains
 
 # The files of the chosen design (robots.toml for a cell only), then the study's tables
 DESIGN_FILES = ("params.toml", "actuators.toml", "robots.toml")
@@ -55,7 +55,8 @@ class DesignResult:
         as ``c_<name>`` and the evaluation's wall time ``seconds``; a categorical variable's
         choice (not its index).
     front : tuple of dict
-        The front's designs, each judged by its full plan, in the order of
+        The front's designs (its ε-front at ``resolution``), each judged by its full plan, in
+        the order of
         :func:`~pollard_pin.synthesis.front.rank_key`: ``design`` (1, 2, …), ``trial``,
         ``values``, ``objectives``, ``figures``, ``files`` (name → TOML text).
     baseline : dict
@@ -69,6 +70,8 @@ class DesignResult:
         The wall time of this run [s].
     notes : tuple of str
         What the reader should know (designs dropped when planned in full …).
+    resolution : FrontResolution
+        The resolution the front told designs apart at (front.csv's metadata says it).
     """
 
     variables: tuple
@@ -80,6 +83,7 @@ class DesignResult:
     study: str | None = None
     seconds: float = 0.0
     notes: tuple = field(default=())
+    resolution: FrontResolution = EXACT
 
     @property
     def design(self) -> dict:
@@ -105,7 +109,7 @@ class DesignResult:
         base = (gains(b["objectives"], None) if b.get("feasible") else
                 f"cannot paint the job (binding: {b.get('binding') or 'unknown'})")
         return [f"{len(self.trials)} evaluations, {self.feasible} feasible, front of "
-                f"{len(self.front)} designs ({self.seconds:.1f} s)",
+                f"{len(self.front)} designs{self.resolution.phrase()} ({self.seconds:.1f} s)",
                 f"thesis robot: {base}", *self.gains(), *self.notes]
 
     def front_rows(self) -> list[dict]:
@@ -154,7 +158,8 @@ class DesignResult:
 
         folder = make_folder(file_path(folder, "folder"))
         meta = {"objectives": {n: "max" if SENSES[n] > 0 else "min" for n in self.objectives},
-                "chosen": self.design["design"], "study": self.study}
+                "chosen": self.design["design"], "study": self.study,
+                "front_resolution": self.resolution.described()}
         with all_or_nothing():
             for name, text in self.design["files"].items():
                 with atomic_open(folder / name) as f:

@@ -47,7 +47,7 @@ from ..checks import SEEDS, callback, instance, is_integer, scheduler_address, s
 from ..errors import InputError, SolveError
 from .backends import Outcome, failure, make_runner
 from .fidelity import SearchFidelity
-from .front import SENSES
+from .front import SENSES, FrontResolution
 from .storage import require_optuna
 
 FILES = ("params.toml", "actuators.toml", "robots.toml")
@@ -96,6 +96,11 @@ class DesignOptions:
         :class:`~pollard_pin.synthesis.SearchFidelity`: the film on a coarser grid,
         the clearance over fewer samples); the front and the baseline are planned again
         exactly before they are reported. None: every design planned exactly.
+    front : FrontResolution
+        The resolution the reported front tells designs apart at (default
+        :class:`~pollard_pin.synthesis.front.FrontResolution`: parts per hour 1 %, motor use
+        0.01, kmin 10 %, moving mass 2 %, docs/model.md §31.5): of designs closer than that,
+        one is planned again and reported. All 0: the exact Pareto front.
     """
 
     trials: int = 200
@@ -110,6 +115,7 @@ class DesignOptions:
     progress: bool | Callable = False
     ladder: bool = True
     search: SearchFidelity | None = SearchFidelity()
+    front: FrontResolution = FrontResolution()
 
     def __post_init__(self):
         for name, low in (("trials", 1), ("population", 2), ("workers", 1), ("pick", 1)):
@@ -135,6 +141,7 @@ class DesignOptions:
         if self.search is not None and not isinstance(self.search, SearchFidelity):
             raise InputError(f"DesignOptions.search: expected a SearchFidelity or None, got "
                              f"{type(self.search).__name__}")
+        instance(self.front, "DesignOptions.front", FrontResolution, "FrontResolution")
 
     @property
     def stage(self) -> str:

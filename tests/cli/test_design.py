@@ -86,16 +86,19 @@ def test_a_study_writes_the_chosen_design_and_resumes(tmp_path, capsys, stand_in
     lines = out.splitlines()
     assert lines[0].startswith("12 evaluations, ") and lines[1].startswith("thesis robot: ")
     assert lines[2].startswith("design 1 (chosen): ")
+    assert "(one per box of parts/h 1 %, motor use 0.01, kmin 10 %, moving mass 2 %)" in lines[0]
     names = {p.name for p in (tmp_path / "out").iterdir()}
     assert {"params.toml", "actuators.toml", "front.csv", "front.units.json",
             "trials.parquet", "front.png", "study.db"} <= names
     assert not [n for n in names if n.startswith("study.db-")]  # no -wal, no -shm left
     assert "wrote " in err and "chosen: design 1" in err
-    # resumed to 16: the 12 kept, 4 more; --pick 2 writes the second row's files
+    # resumed to 16: the 12 kept, 4 more; --pick 2 writes the second row's files (of the
+    # exact front: --exact-front)
     code, out, err = run_cli([*argv[:-6], "--trials", "16", "--workers", "1", "--population",
-                              "4", "--resume", "--pick", "2"], capsys)
+                              "4", "--resume", "--pick", "2", "--exact-front"], capsys)
     assert code == 0, err
     assert out.splitlines()[0].startswith("16 evaluations, ")
+    assert "box" not in out.splitlines()[0]
     assert "chosen: design 2" in err and "design 2 (chosen): " in out
 
 

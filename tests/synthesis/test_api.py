@@ -7,7 +7,13 @@ import synthesis_stub as stub
 from synthesis_runs import run_stub, stub_result  # noqa: F401 — the shared study
 
 from pollard_pin.errors import SolveError
-from pollard_pin.synthesis.front import SENSES, dominates, rank_key
+from pollard_pin.synthesis.front import (
+    SENSES,
+    FrontResolution,
+    dominates,
+    non_dominated,
+    rank_key,
+)
 
 
 def test_the_front_is_non_dominated_over_every_evaluation(stub_result):  # noqa: F811
@@ -17,11 +23,21 @@ def test_the_front_is_non_dominated_over_every_evaluation(stub_result):  # noqa:
         assert not any(dominates({n: r[n] for n in SENSES}, d["objectives"]) for r in feasible)
     for a, b in itertools.permutations(stub_result.front, 2):
         assert not dominates(a["objectives"], b["objectives"])
-    # every feasible evaluation is on the front or beaten by a front design (or its equal)
+    # every feasible evaluation is ε-dominated by a front design (the default resolution: a
+    # front design at most one box worse in each objective, Laumanns et al.'s (1+ε) rule)
+    res = FrontResolution()
     front = [d["objectives"] for d in stub_result.front]
     for r in feasible:
-        o = {n: r[n] for n in SENSES}
-        assert o in front or any(dominates(f, o) for f in front)
+        assert any(all(_within(f[n], r[n], SENSES[n], getattr(res, n, 0.0),
+                               n in res.RELATIVE) for n in SENSES) for f in front), r
+    assert len(front) < len(non_dominated([{n: r[n] for n in SENSES} for r in feasible]))
+
+
+def _within(f, r, sense, eps, relative):
+    """Whether ``f`` is no worse than ``r`` by more than ε (relative: a factor 1 + ε)."""
+    if relative:
+        return (f * (1 + eps) >= r) if sense > 0 else (f <= r * (1 + eps))
+    return sense * f >= sense * r - eps
 
 
 def test_front_designs_are_replanned_in_full_and_ranked(stub_result):  # noqa: F811
@@ -73,7 +89,7 @@ def test_a_searched_front_is_planned_again_exactly():
     """A study at the search's fidelity (the stand-in's: the film unchecked) plans its front
     exactly before reporting it: a front design the exact film check refuses (y above
     SEARCH_FILM) leaves it, with a note, and the designs it hid take its place; the front is
-    that of the exactly feasible designs, by brute force."""
+    the ε-front of the exactly feasible designs, by brute force."""
     from pollard_pin.synthesis.evaluation import SearchFidelity
 
     calls = []
@@ -103,8 +119,10 @@ def test_a_searched_front_is_planned_again_exactly():
             objectives)
     exact = [{n: r[n] for n in SENSES} for r in searched if r["y"] <= stub.SEARCH_FILM]
     front = [d["objectives"] for d in result.front]
-    for o in exact:  # every exactly feasible design is on the front or beaten by it
-        assert o in front or any(dominates(f, o) for f in front)
+    res = FrontResolution()  # every exactly feasible design ε-dominated by a front design
+    for o in exact:
+        assert any(all(_within(f[n], o[n], SENSES[n], getattr(res, n, 0.0),
+                               n in res.RELATIVE) for n in SENSES) for f in front), o
     assert result.baseline["feasible"] and result.baseline["objectives"] == pytest.approx(
         stub.figures(result.baseline["values"], {"shift": 0.0})[0])
 
@@ -206,3 +224,17 @@ def test_a_front_design_is_planned_again_with_its_own_search_notes():
     assert got and len(got) >= len(result.front)
     for values, notes in got:  # every one a searched design's, with its own notes
         assert notes == {"for": [values["chain0.x32"], values["y"], values["robots"]]}
+
+
+def test_an_exact_resolution_reports_the_exact_front():
+    """DesignOptions(front=EXACT), every resolution 0: the front is the plain Pareto front of
+    every feasible evaluation (each on it, or its figures beaten or equalled by one on it)."""
+    from pollard_pin.synthesis.front import EXACT
+
+    result = run_stub(None, 24, front=EXACT)
+    front = [d["objectives"] for d in result.front]
+    feasible = [{n: r[n] for n in SENSES} for r in result.trials if r["feasible"]]
+    assert len(front) == len(non_dominated(feasible))
+    for o in feasible:
+        assert o in front or any(dominates(f, o) for f in front)
+    assert result.summary_lines()[0].count("box") == 0

@@ -1,5 +1,6 @@
 """What a design study writes (synthesis/result.py): the chosen design's files, read back through
 the model's own loaders, the front and every evaluation with units, the plot; all or none."""
+import json
 import tomllib
 
 import pytest
@@ -46,6 +47,11 @@ def test_front_and_trials_tables_with_units(stub_result, tmp_path):  # noqa: F81
         if r["level"] == "full" and not r["feasible"]:
             assert r["kmin"] is None
     assert (folder / "front.png").read_bytes()[:4] == b"\x89PNG"
+    meta = json.loads((folder / "front.units.json").read_text())["metadata"]
+    assert meta["front_resolution"] == {  # the default FrontResolution, said with the front
+        "parts_per_hour": {"relative": 0.01}, "robots": {"absolute": 0.0},
+        "motor_use": {"absolute": 0.01}, "kmin": {"relative": 0.1},
+        "moving_mass": {"relative": 0.02}}
 
 
 def test_writing_is_all_or_nothing(stub_result, tmp_path):  # noqa: F811
