@@ -197,7 +197,9 @@ def test_long_raster_at_rest_ends_solves(robot, act):
         TO._rows = rows
 
 
-@pytest.mark.parametrize("viscous", [5e-5, 1e-4])
+# half the peak torque (5e-5): slow (~4 s of CPU), the same path and checks as all of it
+# (1e-4), the harder case the default suite keeps
+@pytest.mark.parametrize("viscous", [pytest.param(5e-5, marks=pytest.mark.slow), 1e-4])
 def test_time_optimal_with_strong_viscous_friction(robot, act, viscous):
     # b·ωm at the motors' max speed is half / all of their peak torque: the viscous term,
     # evaluated at the frictionless profile's speed, left no traversal and the sizing
