@@ -252,8 +252,12 @@ def test_view_shows_the_mesh_riding(part_painted, tmp_path, capsys):
     ({"position": (0.0, 2.5, 0.0)}, "never comes within reach: the gun's track at the part's "
                                     "centre runs through"),
     # the interval (test_speeds.py), searched over some 20 plans: a 0.08 m strip plans in
-    # two thirds of the 0.30 m one's time (it paints at 0.0009277–0.1516 m/s)
-    ({"speed": 0.4, "width": 0.08}, "; it paints at 0.0"),
+    # two thirds of the 0.30 m one's time (it paints at 0.0009277–0.1516 m/s). slow: ~11 s of
+    # CPU for a path the default suite keeps: the same CLI → line_plan → plan_line_job →
+    # plan_or_name_fastest chain refusing a panel on the line (test_bad_line_jobs_..., speed
+    # 0.0675), a part's too-fast refusals and bracketing (painting/line/test_part.py,
+    # test_fastest_plans_...), the refusal's words (test_speeds.py, stand-in planners)
+    pytest.param({"speed": 0.4, "width": 0.08}, "; it paints at 0.0", marks=pytest.mark.slow),
 ])
 def test_bad_part_line_jobs_are_one_line_and_write_nothing(tmp_path, capsys, kwargs, words):
     from line_parts import write_line_part

@@ -1,9 +1,10 @@
 """The line's shared phases (paint/line/phases.py; docs/model.md §24): the
 relative program's interface (the speed searches: test_speeds.py); where the job puts the part
-at t = 0 sets the wait, not the cycle: the examples' strip and part moved upstream give the same
-parts per hour, world program and film (fixtures line_job, line_plan, line_part_example_job,
-line_part_example_plan: tests/examples_planned.py). The world path of real plans is tested in
-test_panel.py (a panel) and test_part.py (a part)."""
+at t = 0 sets the wait, not the cycle: the example panel, the small strip and the example
+strip moved upstream give the same parts per hour, world program and film (fixtures line_job,
+line_plan, line_part_job, line_part_plan, line_part_example_job, line_part_example_plan:
+tests/examples_planned.py). The world path of real plans is tested in test_panel.py (a panel)
+and test_part.py (a part)."""
 from dataclasses import replace
 
 import numpy as np
@@ -14,6 +15,7 @@ from pollard_pin.painting.film.part import surface_film
 from pollard_pin.painting.film.stats import film_stats
 from pollard_pin.painting.line.panel import plan_line
 from pollard_pin.painting.line.phases import Relative
+from pollard_pin.painting.policy import PlannerPolicy
 from pollard_pin.painting.report import line_table
 
 
@@ -55,14 +57,18 @@ def test_the_paths_samples_are_the_checks_own(refine):
 
 
 @pytest.fixture(scope="module")
-def moved(robot, act, line_job, line_part_example_job):
-    """(kind, by) ↦ the example's plan ``by`` m upstream, each planned once."""
+def moved(robot, act, line_job, line_part_job, line_part_example_job):
+    """(kind, by) ↦ the plan ``by`` m upstream of examples/line.toml (``"panel"``), of the
+    small strip across the travel as line_part_plan plans it (``"part"``), or of
+    examples/line_part.toml (``"example"``), each planned once."""
     plans = {}
 
     def plan(kind: str, by: float):
         if (kind, by) not in plans:
-            job = line_job if kind == "panel" else line_part_example_job
-            plans[kind, by] = plan_line(robot, upstream(job, by), act)
+            job = {"panel": line_job, "part": line_part_job,
+                   "example": line_part_example_job}[kind]
+            across = {"policy": PlannerPolicy(strokes="across")} if kind == "part" else {}
+            plans[kind, by] = plan_line(robot, upstream(job, by), act, **across)
         return plans[kind, by]
 
     return plan
@@ -101,25 +107,36 @@ def same_cycle(a, b, by: float):
     assert np.abs(a.ratios["rms_torque"] - b.ratios["rms_torque"]).max() < 1e-9
 
 
-@pytest.mark.parametrize("by", UPSTREAM)
+# 0.1 m: slow (~2.5 s of CPU), the same panel planner and checks as 0.3 m and 1.0 m (a whole
+# and a fractional number of seconds' wait), which the default suite keeps; the part keeps
+# all three (the small strip plans in under half the panel's time)
+@pytest.mark.parametrize("by", [pytest.param(UPSTREAM[0], marks=pytest.mark.slow),
+                                *UPSTREAM[1:]])
 def test_panel_upstream_same_parts_per_hour(line_plan, moved, by):
     same_cycle(line_plan, moved("panel", by), by)
 
 
 @pytest.mark.parametrize("by", UPSTREAM)
-def test_part_upstream_same_parts_per_hour(line_part_example_plan, moved, by):
-    same_cycle(line_part_example_plan, moved("part", by), by)
+def test_part_upstream_same_parts_per_hour(line_part_plan, moved, by):
+    """A part's upstream moves on the small strip (tests/line_parts.py, the session's plan):
+    the same part planner (plan_surface's passes, the part's shifts and delay, its trigger on
+    the passes only) at a third of the 0.90 m example strip's planning time; the example
+    itself is moved 0.3 m in test_same_film_figures_upstream."""
+    same_cycle(line_part_plan, moved("part", by), by)
 
 
 def test_same_film_figures_upstream(line_job, line_plan, line_part_example_job,
                                     line_part_example_plan, moved):
     """The films themselves, 0.3 m upstream, at a coarse film resolution (the comparison,
-    not the film, is tested): the same statistics to 1e-9 of the target."""
+    not the film, is tested): the same statistics to 1e-9 of the target; the example strip's
+    cycle too (:func:`same_cycle`, as the small strip's in test_part_upstream_...)."""
     res = 2 * line_job.sigma / 3
     a, b = line_film(line_plan, res)[3], line_film(moved("panel", 0.3), res)[3]
     assert np.abs(a.thickness - b.thickness).max() < 1e-9 * line_job.thickness  # ~1e-19 m
+    same_cycle(line_part_example_plan, moved("example", 0.3), 0.3)
     (pts, fa, pa, ea), (_, fb, pb, eb) = (surface_film(p.in_part_frame(), res)
-                                          for p in (line_part_example_plan, moved("part", 0.3)))
+                                          for p in (line_part_example_plan,
+                                                    moved("example", 0.3)))
     assert np.array_equal(pa, pb) and ea == pytest.approx(eb, rel=1e-9)
     sa, sb = (film_stats(f.thickness[pa], line_part_example_job.thickness, pts.areas[pa])
               for f in (fa, fb))
