@@ -117,7 +117,7 @@ class FrontResolution:
     def box(self, objectives: Mapping) -> dict:
         """The box ``objectives`` fall in: name → its index along each objective (0
         resolution: the figure itself; a relative one's figure at or below 0: a box below
-        every other), compared as figures are (:func:`dominates`)."""
+        every other), compared as figures are (``dominates``)."""
         out = {}
         for name in SENSES:
             v, eps = objectives[name], getattr(self, name, 0.0)

@@ -168,8 +168,9 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
         seam where R does not fit (its bands are spaced for R: room for the ramps,
         docs/model.md §26.5).
     reference : tuple or None, optional
-        The job's strokes and the reference robot's band (:func:`reference_band`) if at
-        hand: :func:`.auto.fewest_robots` tries several n on one (default None: made here).
+        The job's strokes and the reference robot's band (``reference_band``) if at
+        hand: ``fewest_robots`` (:mod:`pollard_pin.painting.layout.auto`) tries several n
+        on one (default None: made here).
 
     Returns
     -------
