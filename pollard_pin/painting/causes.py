@@ -45,6 +45,9 @@ class Cause:
         The robot the refusal names first (None: the cell's or the job's).
     message : str
         The refusal in full.
+    speeds : tuple of float or None
+        The line speeds [m/s] a ``line speed`` refusal names as painting, (low, high)
+        (None: it names none).
     """
 
     binding: str
