@@ -16,6 +16,7 @@ from pollard_pin.painting.options import PaintOptions
 from pollard_pin.painting.passes.surface import pass_spacing
 from pollard_pin.painting.policy import PlannerPolicy
 
+pytestmark = pytest.mark.usefixtures("bands_remembered")  # one band per robot, once
 
 @pytest.fixture(scope="module")
 def plate(tmp_path_factory):
