@@ -24,7 +24,14 @@ from ..cell.robots import MAX_ROBOTS
 from ..errors import BudgetError, CellError, LayoutSearchError, PlanError
 from ..job import PartJob, check_job
 from ..progress import bar, showing
-from .cell import LayoutOptions, fewest_for, narrow_refusal, propose_layout, reference_band
+from .cell import (
+    LayoutOptions,
+    check_layout_job,
+    fewest_for,
+    narrow_refusal,
+    propose_layout,
+    reference_band,
+)
 from .levers import levers_for, with_levers
 from .seat import paint_seated
 
@@ -92,6 +99,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
 
     check_robot(robot)
     check_job(job)
+    check_layout_job(job)
     actuators = as_actuators(actuators)
     options = instance(options, "options", PaintOptions, "PaintOptions or None",
                        none=True) or PaintOptions()

@@ -194,16 +194,21 @@ def propose_layout(robot, job, n: int, options: LayoutOptions | None = None,
     return _propose(robot, job, n, options, part, reference, policy)
 
 
-def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
-             policy: PlannerPolicy | None = None):
-    """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
-    reference band) if already at hand;
-    ``policy``: its ``seam_run`` the split's run past a seam."""
+def check_layout_job(job) -> None:
+    """A layout is proposed for a job on a line without its own robots; else one line."""
     if job.line is None:
         raise CellError(f"{job.source}: a cell's layout needs the job's [line]")
     if job.robots:
         raise CellError(f"{job.source}: the job already places its {len(job.robots)} "
                         "robot(s) ([[robot]]): a layout is proposed for a job without them")
+
+
+def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
+             policy: PlannerPolicy | None = None):
+    """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
+    reference band) if already at hand;
+    ``policy``: its ``seam_run`` the split's run past a seam."""
+    check_layout_job(job)
     strokes, band = reference or (None, None)
     if reference is None:
         strokes = job_strokes(job, part)
@@ -375,6 +380,6 @@ def _triple(v) -> tuple[float, float, float]:
     return tuple(round(float(c), 6) + 0.0 for c in v)
 
 
-__all__ = ["EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES", "cover_edge",
-           "cover_edges", "fewest_for", "narrow_refusal", "propose_layout", "reach_window",
-           "reference_band", "zone_needs"]
+__all__ = ["EDGE_RATE", "EDGE_TRIES", "LayoutOptions", "REFERENCE_STROKES", "check_layout_job",
+           "cover_edge", "cover_edges", "fewest_for", "narrow_refusal", "propose_layout",
+           "reach_window", "reference_band", "zone_needs"]

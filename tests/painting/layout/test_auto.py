@@ -171,3 +171,20 @@ def test_a_wrong_count_is_refused_before_any_planning(robot, wrong, monkeypatch)
 
     monkeypatch.setattr(api, "paint_job", lambda *a, **k: pytest.fail("planned"))
     refused(lambda: fewest_robots(robot, tall_panel(), count=wrong), "count")
+
+
+@pytest.mark.parametrize("count", [None, 2])
+def test_a_job_with_robots_or_without_a_line_is_refused_before_any_planning(robot, count,
+                                                                            monkeypatch):
+    """A layout is for a job on a line without [[robot]] tables: one line saying which,
+    before any count or lever is planned."""
+    import pollard_pin.painting.api as api
+    from pollard_pin.painting.cell.robots import CellRobot
+
+    monkeypatch.setattr(api, "paint_job", lambda *a, **k: pytest.fail("planned"))
+    placed = replace(tall_panel(), robots=(CellRobot("a"), CellRobot("b", (0.0, 1.0, 0.0))))
+    with pytest.raises(CellError, match=r"already places its 2 robot\(s\)") as err:
+        fewest_robots(robot, placed, count=count)
+    assert "\n" not in str(err.value)
+    with pytest.raises(CellError, match=r"needs the job's \[line\]"):
+        fewest_robots(robot, replace(tall_panel(), line=None), count=count)
