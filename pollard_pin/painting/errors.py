@@ -99,6 +99,23 @@ class LineSpeedError(PlanError):
         self.hint = hint
 
 
+def kept(exc: PlanError) -> tuple:
+    """A refusal as a memo keeps it: its class, words and attributes, not the exception (its
+    traceback would hold the frames of the plan refused: with the memo held by the frame
+    raising it again, a cycle only the garbage collector frees, docs/model.md §26.5)."""
+    return type(exc), exc.args, dict(vars(exc))
+
+
+def made_again(refusal: tuple) -> PlanError:
+    """The refusal :func:`kept` kept, made anew to be raised (the same class, words and
+    attributes; a traceback of its own)."""
+    kind, args, attrs = refusal
+    exc = kind.__new__(kind)
+    exc.args = args
+    vars(exc).update(attrs)
+    return exc
+
+
 class ReportError(SolveError):
     """A report number breaks an invariant the model guarantees (a lower bound over the cycle,
     a transfer efficiency over 100 %): a bug, refused rather than printed."""
@@ -107,4 +124,4 @@ class ReportError(SolveError):
 __all__ = ["BudgetError", "CellError", "ClearanceError", "JobError", "JobKindError",
            "LayoutSearchError", "LineReachError", "LineSpeedError", "MeshError",
            "MeshFileError", "PlaceError", "PlanError", "ReachError", "ReportError",
-           "ResolutionError"]
+           "ResolutionError", "kept", "made_again"]

@@ -79,3 +79,37 @@ def test_reach_error_names_the_sample_and_pose_the_ik_refuses(robot, plan, act):
     assert np.array_equal(e.pose, poses[6])
     with pytest.raises(KinematicsError):
         inverse_kinematics(robot, poses[6:7], 0 * poses[6:7], 0 * poses[6:7], np.zeros(1))
+
+
+def test_a_kept_refusal_is_made_again_the_same_without_its_frames():
+    """errors.kept / made_again: the class, words and attributes of a refusal (a subclass
+    with its own, LineSpeedError's side, why and hint) come back equal, as a new exception
+    with no traceback; what the raising frame held is not kept (freed with the collector
+    off)."""
+    import gc
+    import weakref
+
+    from pollard_pin.painting.errors import LineSpeedError, kept, made_again
+
+    class Held:
+        pass
+
+    def refuse():
+        samples = Held()
+        refuse.ref = weakref.ref(samples)
+        raise LineSpeedError("drifts out of reach", too_fast=True, why="drifts", hint=0.01)
+
+    gc.disable()
+    try:
+        try:
+            refuse()
+        except LineSpeedError as exc:
+            memo = kept(exc)
+        assert refuse.ref() is None  # the exception gone, the frame with it
+    finally:
+        gc.enable()
+    again = made_again(memo)
+    assert type(again) is LineSpeedError and again.__traceback__ is None
+    assert (str(again), again.too_fast, again.why, again.hint) == (
+        "drifts out of reach", True, "drifts", 0.01)
+    assert made_again(memo) is not again

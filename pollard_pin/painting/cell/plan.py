@@ -19,7 +19,7 @@ import numpy as np
 
 from ...dynamics.motors import Actuators
 from ...errors import say_less, without_asides
-from ..errors import BudgetError, LineSpeedError, PlanError
+from ..errors import BudgetError, LineSpeedError, PlanError, kept, made_again
 from ..job import PartJob
 from ..line.dwell import waiting_floor
 from ..line.panel import line_clearance
@@ -228,26 +228,15 @@ def _planned(robot, key, plan, *args):
         except BudgetError:
             raise
         except PlanError as exc:
-            hit = (robot, None, (type(exc), exc.args, dict(vars(exc))))
+            hit = (robot, None, kept(exc))  # its words: no frames held
         memo[key] = hit
         while len(memo) > ZONE_PLANS:
             memo.popitem(last=False)
     else:
         memo.move_to_end(key)
     if hit[2] is not None:
-        raise _refusal(*hit[2])
+        raise made_again(hit[2])
     return hit[1]
-
-
-def _refusal(kind, args, attrs) -> PlanError:
-    """A remembered refusal made anew: the memo keeps its class and words, not the exception
-    (its traceback would hold the frames of the plan refused, and the frame that raises it
-    again the memo: a cycle only the garbage collector frees, ~0.4 GB a refused cell of the
-    0.33 m door)."""
-    exc = kind.__new__(kind)
-    exc.args = args
-    vars(exc).update(attrs)
-    return exc
 
 
 def _line_b(job, cr: CellRobot):

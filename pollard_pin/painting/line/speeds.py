@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass, field
 
 from ...errors import say_less
-from ..errors import BudgetError, LineSpeedError, PlanError
+from ..errors import BudgetError, LineSpeedError, PlanError, kept, made_again
 from ..progress import ticking
 from .conveyor import MAX_LINE_SPEED
 
@@ -96,16 +96,16 @@ def remembering(plan_at):
     """``plan_at`` (speed ↦ plan) with a memory of the speeds it refused: a speed refused
     once (a :class:`LineSpeedError`) is refused again in the same words without planning
     (the plan is the same every time)."""
-    failed = {}  # speed → its refusal's (message, too_fast, why, hint)
+    failed = {}  # speed → its refusal, kept (errors.kept: no frames held)
 
     def plan(speed):
         key = float(speed)
         if key in failed:
-            raise LineSpeedError(*failed[key])
+            raise made_again(failed[key])
         try:
             return plan_at(speed)
-        except LineSpeedError as exc:  # the words only: an error keeps its plan's frames
-            failed[key] = (str(exc), exc.too_fast, exc.why, exc.hint)
+        except LineSpeedError as exc:
+            failed[key] = kept(exc)
             raise
 
     return plan
