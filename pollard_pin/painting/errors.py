@@ -99,14 +99,14 @@ class LineSpeedError(PlanError):
         self.hint = hint
 
 
-def kept(exc: PlanError) -> tuple:
+def kept(exc: Exception) -> tuple:
     """A refusal as a memo keeps it: its class, words and attributes, not the exception (its
     traceback would hold the frames of the plan refused: with the memo held by the frame
     raising it again, a cycle only the garbage collector frees, docs/model.md §26.5)."""
     return type(exc), exc.args, dict(vars(exc))
 
 
-def made_again(refusal: tuple) -> PlanError:
+def made_again(refusal: tuple) -> Exception:
     """The refusal :func:`kept` kept, made anew to be raised (the same class, words and
     attributes; a traceback of its own)."""
     kind, args, attrs = refusal

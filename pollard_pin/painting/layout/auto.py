@@ -21,7 +21,7 @@ from ...model.build import check_robot
 from ..causes import cause_of, search_refusal
 from ..cell.bands import job_strokes
 from ..cell.robots import MAX_ROBOTS
-from ..errors import BudgetError, CellError, LayoutSearchError, PlanError
+from ..errors import BudgetError, CellError, LayoutSearchError, PlanError, kept, made_again
 from ..job import PartJob, check_job
 from ..progress import bar, showing
 from .cell import (
@@ -136,7 +136,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
             except BudgetError:
                 raise
             except (CellError, PlanError) as exc:
-                plain = _bare(exc)
+                plain = kept(exc)  # its words: not the frames (and plans) it was raised in
                 causes[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
             if (levers is None or narrow_refusal(strokes, reference[1], n)
                     or speed is not None and causes[n].past_speeds(speed, SPEED_PAST)):
@@ -148,7 +148,7 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
             except (CellError, PlanError) as exc:
                 levered[n] = cause_of(str(exc).removeprefix(f"{job.source}: "))
                 continue
-            said = (str(plain) if count is not None else  # the plain counts' refusal
+            said = (str(made_again(plain)) if count is not None else  # the plain refusal
                     search_refusal(job.source, causes, first, speed))
             said = {**levers.as_dict(), "plain": said.removeprefix(f"{job.source}: ")}
             return robots, replace(painted, report=replace(painted.report, data={
@@ -156,18 +156,12 @@ def fewest_robots(robot, job, actuators=None, options=None, layout: LayoutOption
     if count is None:
         raise LayoutSearchError(search_refusal(job.source, causes, first, speed, levered),
                                 causes, speed, levered)
+    plain = made_again(plain)
     if count not in levered:
         raise plain
     lever = levered[count]
     raise PlanError(say_less(f"{plain}; with its levers ({levers.flags()}): {lever.said}",
                              f"{plain}; with its levers: {lever.short}", str(plain)))
-
-
-def _bare(exc: Exception) -> Exception:
-    """``exc`` without its traceback and the exceptions it chains: kept to be raised again
-    after the levers' plan and film, not with the frames (and the plans) it was raised in."""
-    exc.__traceback__ = exc.__context__ = exc.__cause__ = None
-    return exc
 
 
 __all__ = ["AUTO_MORE", "SPEED_PAST", "fewest_robots"]

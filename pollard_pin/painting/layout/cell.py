@@ -206,8 +206,8 @@ def check_layout_job(job) -> None:
 def _propose(robot, job, n: int, options: LayoutOptions, part, reference=None,
              policy: PlannerPolicy | None = None):
     """:func:`propose_layout` of checked arguments; ``reference``: the job's (strokes,
-    reference band) if already at hand;
-    ``policy``: its ``seam_run`` the split's run past a seam."""
+    reference band) if already at hand; ``policy``: its ``seam_run`` the split's run past a
+    seam."""
     check_layout_job(job)
     strokes, band = reference or (None, None)
     if reference is None:
