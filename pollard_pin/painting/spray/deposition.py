@@ -34,6 +34,7 @@ import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
 from ..progress import bar
+from . import kernel
 from .spots import REACH_SIGMAS, RoundGaussian, Spot
 
 # Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
@@ -177,7 +178,16 @@ class Sources:
     axes: tuple | None  # the spot's (u, v) axes (T, 3) each with their p·u, p·v; None: round
 
     def rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:
-        """:func:`rate_and_height` of these sources at points ``s`` (P, 3), normals ``n``."""
+        """:func:`rate_and_height` of these sources at points ``s`` (P, 3), normals ``n``: the
+        compiled loop for the round Gaussian spot (:mod:`.kernel`), numpy's for the others."""
+        if type(gun.spot) is RoundGaussian:
+            s = np.atleast_2d(np.asarray(s, dtype=float))
+            return kernel.round_rate(self.p, self.a, self.pa, self.pp, s, n, *_round(gun))
+        return self.numpy_rate_and_height(gun, s, n)
+
+    def numpy_rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`rate_and_height` by numpy's matrix products and elementwise passes, for
+        every spot: the compiled loop's reference."""
         s = np.atleast_2d(np.asarray(s, dtype=float))
         p, a = self.p, self.a
         n = np.asarray(n, dtype=float)
@@ -308,13 +318,18 @@ def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     return _rate(gun, h, d2, dn, *(np.einsum("ij,ij->i", d, e) for e in axes))
 
 
+def _round(gun: Gun) -> tuple[float, float]:
+    """The round Gaussian spot's k (σ(h) = k·h) and flow/2π."""
+    return gun.sigma / (gun.standoff - gun.apex), gun.flow / (2.0 * math.pi)
+
+
 def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
     """The rate from h = d·a, d2 = |d|², dn = d·n and, for a spot that is not round, the
     spot coordinates u, v (any one shape)."""
     h, d2, dn = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (h, d2, dn)))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        if type(gun.spot) is RoundGaussian:  # in place: the film's hot loop
-            k = gun.sigma / (gun.standoff - gun.apex)  # σ(h) = k·h
+        if type(gun.spot) is RoundGaussian:  # in place (the compiled loop's reference)
+            k, coef = _round(gun)
             sh2 = k * h
             sh2 *= sh2
             rho2 = d2 - h * h
@@ -322,7 +337,7 @@ def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
             rho2 *= -0.5
             rho2 /= sh2
             g = np.exp(rho2, out=rho2)  # exp(−ρ²/(2σ(h)²))
-            rate = gun.flow / (2.0 * math.pi) / sh2
+            rate = coef / sh2
             rate *= g
         else:
             c = h / (gun.standoff - gun.apex)  # the spot's scale
