@@ -11,41 +11,28 @@
 #include "checks.h"
 #include <math.h>
 
-/* One block: rate and height (T × P, row-major). work: 2 P. */
+/* One block: rate and height (T × P, row-major). */
 static void round_loop(const double *s, const double *n, int per_point, const double *p,
-                      const double *a, const double *pa, const double *pp, idx T, idx P,
-                      double k, double coef, double *rate, double *height, double *work)
+                       const double *a, idx T, idx P, double k, double coef, double *rate,
+                       double *height)
 {
-    double *ss = work, *sn = work + P;  /* per point: s·s and s·n */
-    for (idx i = 0; i < P; i++) {
-        const double *si = s + 3 * i, *ni = per_point ? n + 3 * i : n;
-        ss[i] = si[0] * si[0] + si[1] * si[1] + si[2] * si[2];
-        sn[i] = si[0] * ni[0] + si[1] * ni[1] + si[2] * ni[2];
-    }
     for (idx j = 0; j < T; j++) {
         const double *aj = a + 3 * j, *pj = p + 3 * j;
-        const double paj = pa[j], ppj = pp[j];
-        const double pn = per_point ? 0.0 : pj[0] * n[0] + pj[1] * n[1] + pj[2] * n[2];
         double *rj = rate + j * P, *hj = height + j * P;
         for (idx i = 0; i < P; i++) {
-            const double *si = s + 3 * i;
-            double np_ = pn;
-            if (per_point) {
-                const double *ni = n + 3 * i;
-                np_ = ni[0] * pj[0] + ni[1] * pj[1] + ni[2] * pj[2];
-            }
-            const double dn = sn[i] - np_;
-            const double h = (si[0] * aj[0] + si[1] * aj[1] + si[2] * aj[2]) - paj;
+            const double *si = s + 3 * i, *ni = per_point ? n + 3 * i : n;
+            const double d0 = si[0] - pj[0], d1 = si[1] - pj[1], d2_ = si[2] - pj[2];
+            const double dn = d0 * ni[0] + d1 * ni[1] + d2_ * ni[2];
+            const double h = d0 * aj[0] + d1 * aj[1] + d2_ * aj[2];
             double r = 0.0;
             hj[i] = -dn;
-            if (h > 0.0 && -dn > 0.0) {  /* else numpy's rate is 0 (or NaN, set to 0) */
-                const double sp = si[0] * pj[0] + si[1] * pj[1] + si[2] * pj[2];
-                const double d2 = (ss[i] + ppj) - 2.0 * sp;
+            if (h > 0.0 && -dn > 0.0) {  /* else _rate's is 0 (or NaN, set to 0) */
+                const double d2 = d0 * d0 + d1 * d1 + d2_ * d2_;
                 double sh2 = k * h;
                 sh2 *= sh2;
                 double rho2 = d2 - h * h;
-                if (!(rho2 >= 0.0))  /* np.maximum: NaN stays NaN */
-                    rho2 = rho2 != rho2 ? rho2 : 0.0;
+                if (rho2 < 0.0)
+                    rho2 = 0.0;
                 rho2 *= -0.5;
                 rho2 /= sh2;
                 r = coef / sh2;
@@ -60,41 +47,34 @@ static void round_loop(const double *s, const double *n, int per_point, const do
     }
 }
 
-/* round_rate(s, n, per_point, p, a, pa, pp, T, P, k, coef, rate, height) */
+/* round_rate(s, n, per_point, p, a, T, P, k, coef, rate, height) */
 static PyObject *pd_round_rate(PyObject *self, PyObject *args)
 {
-    Py_buffer b[8] = {{0}};
+    Py_buffer b[6] = {{0}};
     int per_point;
     idx T, P;
     double k, coef;
-    if (!PyArg_ParseTuple(args, "y*y*py*y*y*y*nnddw*w*", &b[0], &b[1], &per_point, &b[2], &b[3],
-                          &b[4], &b[5], &T, &P, &k, &coef, &b[6], &b[7]))
+    if (!PyArg_ParseTuple(args, "y*y*py*y*nnddw*w*", &b[0], &b[1], &per_point, &b[2], &b[3], &T,
+                          &P, &k, &coef, &b[4], &b[5]))
         return NULL;
     if (!(T >= 0 && P >= 0 && pk_check_len(&b[0], 3 * P, "s")
           && pk_check_len(&b[1], per_point ? 3 * P : 3, "n") && pk_check_len(&b[2], 3 * T, "p")
-          && pk_check_len(&b[3], 3 * T, "a") && pk_check_len(&b[4], T, "pa")
-          && pk_check_len(&b[5], T, "pp") && pk_check_len(&b[6], T * P, "rate")
-          && pk_check_len(&b[7], T * P, "height"))) {
-        pk_release(b, 8);
+          && pk_check_len(&b[3], 3 * T, "a") && pk_check_len(&b[4], T * P, "rate")
+          && pk_check_len(&b[5], T * P, "height"))) {
+        pk_release(b, 6);
         return NULL;
     }
-    double *work = malloc(sizeof(double) * (2 * P + 1));
-    if (work == NULL) {
-        pk_release(b, 8);
-        return PyErr_NoMemory();
-    }
     Py_BEGIN_ALLOW_THREADS
-    round_loop(b[0].buf, b[1].buf, per_point, b[2].buf, b[3].buf, b[4].buf, b[5].buf, T, P, k,
-               coef, b[6].buf, b[7].buf, work);
+    round_loop(b[0].buf, b[1].buf, per_point, b[2].buf, b[3].buf, T, P, k, coef, b[4].buf,
+               b[5].buf);
     Py_END_ALLOW_THREADS
-    free(work);
-    pk_release(b, 8);
+    pk_release(b, 6);
     Py_RETURN_NONE;
 }
 
 static PyMethodDef methods[] = {
     {"round_rate", pd_round_rate, METH_VARARGS,
-     "s, n, per_point, p, a, pa, pp, T, P, k, coef, rate, height"},
+     "s, n, per_point, p, a, T, P, k, coef, rate, height"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -182,7 +182,7 @@ class Sources:
         compiled loop for the round Gaussian spot (:mod:`.kernel`), numpy's for the others."""
         if type(gun.spot) is RoundGaussian:
             s = np.atleast_2d(np.asarray(s, dtype=float))
-            return kernel.round_rate(self.p, self.a, self.pa, self.pp, s, n, *_round(gun))
+            return kernel.round_rate(self.p, self.a, s, n, *_round(gun))
         return self.numpy_rate_and_height(gun, s, n)
 
     def numpy_rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:

@@ -25,11 +25,11 @@ def _f64(x):
     return np.ascontiguousarray(x, dtype=np.float64)
 
 
-def round_rate(p, a, pa, pp, s, n, k: float, coef: float) -> tuple[np.ndarray, np.ndarray]:
-    """(rate (T, P), height (T, P)) of sources ``p`` (T, 3) on unit axes ``a`` (T, 3) with
-    ``pa`` = p·a and ``pp`` = p·p (T,), at points ``s`` (P, 3) of unit normals ``n`` ((P, 3)
-    or (3,)): the round Gaussian spot of σ(h) = ``k``·h and flow/2π = ``coef``
-    (docs/model.md §20); the height is each source's (p − s)·n."""
+def round_rate(p, a, s, n, k: float, coef: float) -> tuple[np.ndarray, np.ndarray]:
+    """(rate (T, P), height (T, P)) of sources ``p`` (T, 3) on unit axes ``a`` (T, 3) at
+    points ``s`` (P, 3) of unit normals ``n`` ((P, 3) or (3,)): the round Gaussian spot of
+    σ(h) = ``k``·h and flow/2π = ``coef`` (docs/model.md §20); the height is each source's
+    (p − s)·n."""
     p, a, s, n = _f64(p), _f64(a), _f64(s), _f64(n)
     T, P = len(p), len(s)
     if not (p.shape == a.shape == (T, 3) and s.shape == (P, 3) and n.shape in ((3,), (P, 3))):
@@ -37,8 +37,7 @@ def round_rate(p, a, pa, pp, s, n, k: float, coef: float) -> tuple[np.ndarray, n
                          f"and normals {n.shape}: expected (T, 3), (T, 3), (P, 3), and (P, 3) "
                          "or (3,)")
     rate, height = np.empty((T, P)), np.empty((T, P))
-    _c.round_rate(s, n, n.ndim == 2, p, a, _f64(pa), _f64(pp), T, P, float(k), float(coef),
-                  rate, height)
+    _c.round_rate(s, n, n.ndim == 2, p, a, T, P, float(k), float(coef), rate, height)
     return rate, height
 
 
