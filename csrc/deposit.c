@@ -2,47 +2,58 @@
  * the round Gaussian spot's deposition rate and each source's height over each point's tangent
  * plane, for a block of sources × points in one pass with no temporaries (docs/model.md §20).
  *
- * Every operation is numpy's formulation's (spray/deposition.py: Sources.numpy_rate_and_height
- * and _rate), in its order and without FMA contraction (setup.py): h = s·a − p·a,
- * |d|² = (s·s + p·p) − 2 s·p, d·n = s·n − p·n; then σ² = (k h)², ρ² = max(|d|² − h², 0),
- * rate = ((flow/2π) / σ²) · exp(−ρ²/2 / σ²) · max(−d·n, 0) / h, 0 unless h > 0 and the rate is
- * finite. So the two differ only where numpy's matrix products (BLAS) and exp round
- * differently. */
+ * Pair by pair, as spray/deposition.py's pair_rate: d = s − p, h = d·a, |d|², d·n, then _rate's
+ * operations in their order without FMA contraction (setup.py): σ² = (k h)²,
+ * ρ² = max(|d|² − h², 0), rate = ((flow/2π) / σ²) · exp(−ρ²/2 / σ²) · max(−d·n, 0) / h, 0
+ * unless h > 0 and the rate is finite. numpy's block formulation (Sources.numpy_rate_and_height)
+ * expands |d|² = s·s + p·p − 2 s·p in matrix products instead, whose round-off grows with the
+ * coordinates' size: ~eps (|s|² + |p|²) / σ² of the rate (docs/model.md §20). */
 #include "checks.h"
 #include <math.h>
 
-/* One block: rate and height (T × P, row-major). */
+#define CHUNK 64 /* points at a time: their exponents (in SIMD), exp, then their rates */
+
+/* One block: rate and height (T × P, row-major). A pair with h ≤ 0 or d·n ≥ 0 (or NaN) gets
+ * exp(0) and a rate of 0, as _rate's mask gives it. */
 static void round_loop(const double *s, const double *n, int per_point, const double *p,
                        const double *a, idx T, idx P, double k, double coef, double *rate,
                        double *height)
 {
+    double x[CHUNK], q[CHUNK], hh[CHUNK], e[CHUNK];
     for (idx j = 0; j < T; j++) {
         const double *aj = a + 3 * j, *pj = p + 3 * j;
         double *rj = rate + j * P, *hj = height + j * P;
-        for (idx i = 0; i < P; i++) {
-            const double *si = s + 3 * i, *ni = per_point ? n + 3 * i : n;
-            const double d0 = si[0] - pj[0], d1 = si[1] - pj[1], d2_ = si[2] - pj[2];
-            const double dn = d0 * ni[0] + d1 * ni[1] + d2_ * ni[2];
-            const double h = d0 * aj[0] + d1 * aj[1] + d2_ * aj[2];
-            double r = 0.0;
-            hj[i] = -dn;
-            if (h > 0.0 && -dn > 0.0) {  /* else _rate's is 0 (or NaN, set to 0) */
+        for (idx i0 = 0; i0 < P; i0 += CHUNK) {
+            const idx m = P - i0 < CHUNK ? P - i0 : CHUNK;
+            for (idx c = 0; c < m; c++) {
+                const idx i = i0 + c;
+                const double *si = s + 3 * i, *ni = per_point ? n + 3 * i : n;
+                const double d0 = si[0] - pj[0], d1 = si[1] - pj[1], d2_ = si[2] - pj[2];
+                const double dn = d0 * ni[0] + d1 * ni[1] + d2_ * ni[2];
+                const double h = d0 * aj[0] + d1 * aj[1] + d2_ * aj[2];
                 const double d2 = d0 * d0 + d1 * d1 + d2_ * d2_;
+                hj[i] = -dn;
                 double sh2 = k * h;
                 sh2 *= sh2;
                 double rho2 = d2 - h * h;
-                if (rho2 < 0.0)
-                    rho2 = 0.0;
+                rho2 = rho2 < 0.0 ? 0.0 : rho2;
                 rho2 *= -0.5;
                 rho2 /= sh2;
-                r = coef / sh2;
-                r *= exp(rho2);
-                r *= -dn;
-                r /= h;
-                if (!(r < INFINITY))
-                    r = 0.0;
+                const int live = h > 0.0 && -dn > 0.0;
+                x[c] = live ? rho2 : 0.0;
+                q[c] = live ? coef / sh2 : 0.0;
+                hh[c] = live ? h : 1.0;
             }
-            rj[i] = r;
+            for (idx c = 0; c < m; c++)
+                e[c] = exp(x[c]);
+            for (idx c = 0; c < m; c++) {
+                const idx i = i0 + c;
+                double r = q[c];
+                r *= e[c];
+                r *= hj[i];
+                r /= hh[c];
+                rj[i] = r > 0.0 && r < INFINITY ? r : 0.0;  /* NaN, ±inf, −0: 0 */
+            }
         }
     }
 }

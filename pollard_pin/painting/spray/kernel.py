@@ -3,11 +3,13 @@ each source's height over each point's tangent plane for a block of sources × p
 pass with no temporaries (docs/model.md §20).
 
 The loop is C (the repository's ``csrc/deposit.c``), compiled into ``_deposit`` when the
-package is installed (as :mod:`pollard_pin.kinematics.kernels`). It does numpy's operations
-(:meth:`.deposition.Sources.numpy_rate_and_height`) in their order without FMA contraction,
-so the two differ only where numpy's matrix products and exp round otherwise: ~1e-15 of the
-rate. This front makes the inputs C-contiguous float64, allocates the outputs and checks the
-shapes; the C side checks every buffer's size.
+package is installed (as :mod:`pollard_pin.kinematics.kernels`). It takes each pair's
+d = s − p as :func:`.deposition.pair_rate` does and then does ``_rate``'s operations in their
+order without FMA contraction, so it differs from numpy's block formulation
+(:meth:`.deposition.Sources.numpy_rate_and_height`, whose expanded |d|² = s·s + p·p − 2 s·p
+rounds worse the further the coordinates lie from their origin) only by round-off. This front
+makes the inputs C-contiguous float64, allocates the outputs and checks the shapes; the C side
+checks every buffer's size.
 """
 from __future__ import annotations
 
