@@ -230,10 +230,9 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             if given is None or len(given):  # the unshaded sums: for the shadow edges
                 smooth[k] += part_sum.T
             if given is None:
-                ti, ri = np.nonzero(in_spot(gun, r))
-                pairs += len(ti)
-                dark = ~open_pairs(part, faces[k[ri]], height[ti, ri])  # those worth a ray
-                ti, ri = ti[dark], ri[dark]
+                spot = in_spot(gun, r)
+                pairs += int(np.count_nonzero(spot))
+                ti, ri = np.nonzero(spot & ~open_pairs(part, faces[k], height))
                 if len(ti):
                     q = idx[k[ri]]
                     vis = visible(part, p[b[ti]], s[q], n[q], intersector)
