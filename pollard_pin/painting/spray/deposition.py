@@ -8,14 +8,15 @@ cos α = h/|d|, cos i = max(0, −d·n)/|d|; the film grows at
 
 and the film is its time integral over the path (the gun sprays throughout). Any other spot
 (:mod:`.spray.spots`) replaces the Gaussian by flow·D(u/c, v/c)/c², c = h/standoff its
-scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to
-p + apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form. The
-elliptic spot turns with the gun: its callers pass the gun's rotations (T, 3, 3) where the
-others may pass the axes (T, 3) alone (:func:`gun_axes`). The integral is
-the trapezoid rule over the path's samples: for a spot crossing a point at constant speed its
-error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson summation, Δx the gun's travel per step), so
-Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9; :func:`film` also returns the difference
-from the rule on every second sample, an a-posteriori bound on the error.
+scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to p
++ apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form, a
+compiled pass over each block (:mod:`.kernel`). The elliptic spot turns with the gun: its
+callers pass the gun's rotations (T, 3, 3) where the others may pass the axes (T, 3) alone
+(:func:`gun_axes`). The integral is the trapezoid rule over the path's samples: for a spot
+crossing a point at constant speed its error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson
+summation, Δx the gun's travel per step), so Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9;
+:func:`film` also returns the difference from the rule on every second sample, an
+a-posteriori bound on the error.
 
 Each block of samples evaluates only the points :func:`near_spot` keeps: those inside the
 cone of half-angle atan(CULL_SIGMAS·σ/standoff) around some sample's axis, or close to a
@@ -123,7 +124,8 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     """dT/dt [m/s] for gun tips ``p`` (T, 3) spraying along unit axes ``a`` (T, 3) at surface
     points ``s`` (P, 3) of unit normals ``n`` ((P, 3) or (3,), towards the gun): (T, P).
 
-    Every pairwise quantity is a product of small matrices (h = s·a − p·a, …); coordinates
+    The round Gaussian takes each pair's d = s − p (:mod:`.kernel`); for the other spots every
+    pairwise quantity is a product of small matrices (h = s·a − p·a, …), so coordinates
     should be centred near the scene (the caller's origin) to keep |d|² − h² exact enough.
     The model: a point source with a self-similar Gaussian spot, cos i / cos α on tilted
     surfaces (docs/model.md §20).
