@@ -8,8 +8,8 @@ cos α = h/|d|, cos i = max(0, −d·n)/|d|; the film grows at
 
 and the film is its time integral over the path (the gun sprays throughout). Any other spot
 (:mod:`.spray.spots`) replaces the Gaussian by flow·D(u/c, v/c)/c², c = h/standoff its
-scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to p
-+ apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form, a
+scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to
+p + apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form, a
 compiled pass over each block (:mod:`.kernel`). The elliptic spot turns with the gun: its
 callers pass the gun's rotations (T, 3, 3) where the others may pass the axes (T, 3) alone
 (:func:`gun_axes`). The integral is the trapezoid rule over the path's samples: for a spot
