@@ -45,5 +45,6 @@ bench: $(STAMP)
 	$(VENV)/bin/python scripts/benchmark.py
 
 clean:
-	rm -rf $(VENV) build *.egg-info pollard_pin/kinematics/_kernels.*.so docs/auto_tutorials \
+	rm -rf $(VENV) build *.egg-info pollard_pin/kinematics/_kernels.*.so \
+		pollard_pin/painting/spray/_deposit.*.so docs/auto_tutorials \
 		docs/sg_execution_times.rst

@@ -3,23 +3,14 @@
  * front: it makes every array C-contiguous float64 / int64, allocates the outputs and documents
  * the mathematics (docs/model.md §11–§12); this code checks sizes and indices, then computes.
  *
- * module.c: the argument checks and the module; linalg.c: Gram extremes and the block inverse;
- * tree.c: placements, point Jacobians and drifts; sense.c: a control tick's closed-loop state;
- * rk4.c: a simulation's RK4 step around a Python callable. Every function takes buffers (read-only "y*",
- * written "w*") and their dimensions. */
+ * module.c: the module (its argument checks: checks.c); linalg.c: Gram extremes and the block
+ * inverse; tree.c: placements, point Jacobians and drifts; sense.c: a control tick's
+ * closed-loop state; rk4.c: a simulation's RK4 step around a Python callable. Every function
+ * takes buffers (read-only "y*", written "w*") and their dimensions. */
 #ifndef POLLARD_KERNELS_H
 #define POLLARD_KERNELS_H
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
+#include "checks.h"
 #include <math.h>
-#include <stdint.h>
-
-typedef Py_ssize_t idx;
-
-/* argument checks (module.c), before the GIL is released: 0 with a ValueError set */
-int pk_check_len(const Py_buffer *b, idx count, const char *what);
-int pk_check_range(const Py_buffer *b, idx lo, idx hi, const char *what);
-void pk_release(Py_buffer *bufs, int count);
 
 /* Partial pivoting's row: the r in [c, rows) with the largest |A[r][c]| (the first on ties,
  * as LAPACK's idamax) of a row-major A with row stride w; that |value| in *best. */

@@ -678,8 +678,9 @@ def test_wheel_ships_the_models(wheel):
                    for f in package.rglob("*.py")}
         assert sources <= names, f"modules missing from the wheel: {sorted(sources - names)}"
         # the C kernels, compiled when the wheel was built (nothing compiles at run time)
-        assert any(re.fullmatch(r"pollard_pin/kinematics/_kernels\..*\.(so|pyd)", n)
-                   for n in names), sorted(n for n in names if "_kernels" in n)
+        for ext in ("kinematics/_kernels", "painting/spray/_deposit"):
+            assert any(re.fullmatch(rf"pollard_pin/{ext}\..*\.(so|pyd)", n)
+                       for n in names), sorted(n for n in names if ".so" in n or ".pyd" in n)
         entry = z.read(next(n for n in names if n.endswith("entry_points.txt"))).decode()
     assert "pollard-pin = pollard_pin.cli:main" in entry
 

@@ -9,13 +9,14 @@ cos α = h/|d|, cos i = max(0, −d·n)/|d|; the film grows at
 and the film is its time integral over the path (the gun sprays throughout). Any other spot
 (:mod:`.spray.spots`) replaces the Gaussian by flow·D(u/c, v/c)/c², c = h/standoff its
 scale, (u, v) = (d·R e_y, d·R e_z); a cone apex in front of the nozzle moves the source to
-p + apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form. The
-elliptic spot turns with the gun: its callers pass the gun's rotations (T, 3, 3) where the
-others may pass the axes (T, 3) alone (:func:`gun_axes`). The integral is
-the trapezoid rule over the path's samples: for a spot crossing a point at constant speed its
-error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson summation, Δx the gun's travel per step), so
-Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9; :func:`film` also returns the difference
-from the rule on every second sample, an a-posteriori bound on the error.
+p + apex·a (h, standoff measured from it). The round Gaussian keeps its own fast form, a
+compiled pass over each block (:mod:`.kernel`). The elliptic spot turns with the gun: its
+callers pass the gun's rotations (T, 3, 3) where the others may pass the axes (T, 3) alone
+(:func:`gun_axes`). The integral is the trapezoid rule over the path's samples: for a spot
+crossing a point at constant speed its error is ≈ 2·exp(−2π²(σ/Δx)²) relative (Poisson
+summation, Δx the gun's travel per step), so Δx ≤ σ/2 gives < 1e-33 and Δx ≤ σ gives < 6e-9;
+:func:`film` also returns the difference from the rule on every second sample, an
+a-posteriori bound on the error.
 
 Each block of samples evaluates only the points :func:`near_spot` keeps: those inside the
 cone of half-angle atan(CULL_SIGMAS·σ/standoff) around some sample's axis, or close to a
@@ -34,6 +35,7 @@ import numpy as np
 
 from ...dynamics.averages import trapezoid_weights
 from ..progress import bar
+from . import kernel
 from .spots import REACH_SIGMAS, RoundGaussian, Spot
 
 # Time samples per vectorised block: (block × points) float64 arrays of ~8 MB each.
@@ -122,7 +124,8 @@ def deposition_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     """dT/dt [m/s] for gun tips ``p`` (T, 3) spraying along unit axes ``a`` (T, 3) at surface
     points ``s`` (P, 3) of unit normals ``n`` ((P, 3) or (3,), towards the gun): (T, P).
 
-    Every pairwise quantity is a product of small matrices (h = s·a − p·a, …); coordinates
+    The round Gaussian takes each pair's d = s − p (:mod:`.kernel`); for the other spots every
+    pairwise quantity is a product of small matrices (h = s·a − p·a, …), so coordinates
     should be centred near the scene (the caller's origin) to keep |d|² − h² exact enough.
     The model: a point source with a self-similar Gaussian spot, cos i / cos α on tilted
     surfaces (docs/model.md §20).
@@ -177,7 +180,16 @@ class Sources:
     axes: tuple | None  # the spot's (u, v) axes (T, 3) each with their p·u, p·v; None: round
 
     def rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:
-        """:func:`rate_and_height` of these sources at points ``s`` (P, 3), normals ``n``."""
+        """:func:`rate_and_height` of these sources at points ``s`` (P, 3), normals ``n``: the
+        compiled loop for the round Gaussian spot (:mod:`.kernel`), numpy's for the others."""
+        if type(gun.spot) is RoundGaussian:
+            s = np.atleast_2d(np.asarray(s, dtype=float))
+            return kernel.round_rate(self.p, self.a, s, n, *_round(gun))
+        return self.numpy_rate_and_height(gun, s, n)
+
+    def numpy_rate_and_height(self, gun: Gun, s, n) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`rate_and_height` by numpy's matrix products and elementwise passes, for
+        every spot: the compiled loop's reference."""
         s = np.atleast_2d(np.asarray(s, dtype=float))
         p, a = self.p, self.a
         n = np.asarray(n, dtype=float)
@@ -308,13 +320,18 @@ def pair_rate(gun: Gun, p, a, s, n) -> np.ndarray:
     return _rate(gun, h, d2, dn, *(np.einsum("ij,ij->i", d, e) for e in axes))
 
 
+def _round(gun: Gun) -> tuple[float, float]:
+    """The round Gaussian spot's k (σ(h) = k·h) and flow/2π."""
+    return gun.sigma / (gun.standoff - gun.apex), gun.flow / (2.0 * math.pi)
+
+
 def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
     """The rate from h = d·a, d2 = |d|², dn = d·n and, for a spot that is not round, the
     spot coordinates u, v (any one shape)."""
     h, d2, dn = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (h, d2, dn)))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        if type(gun.spot) is RoundGaussian:  # in place: the film's hot loop
-            k = gun.sigma / (gun.standoff - gun.apex)  # σ(h) = k·h
+        if type(gun.spot) is RoundGaussian:  # in place (the compiled loop's reference)
+            k, coef = _round(gun)
             sh2 = k * h
             sh2 *= sh2
             rho2 = d2 - h * h
@@ -322,7 +339,7 @@ def _rate(gun: Gun, h, d2, dn, u=None, v=None) -> np.ndarray:
             rho2 *= -0.5
             rho2 /= sh2
             g = np.exp(rho2, out=rho2)  # exp(−ρ²/(2σ(h)²))
-            rate = gun.flow / (2.0 * math.pi) / sh2
+            rate = coef / sh2
             rate *= g
         else:
             c = h / (gun.standoff - gun.apex)  # the spot's scale
