@@ -308,9 +308,27 @@ def reachable_sequences(robot: Robot, poses, margins: Margins | None = None) -> 
 
 def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
-    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
+    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans. A screen
+    first: SCREEN samples of each sequence solved alone from the whole sequence's unwrapped
+    angles (each sample's figures the whole solve's, to the bit) fail the sequences where
+    one of them breaks a rule (a branch sign taking both signs among them, both along the
+    whole), most of those that fail (the joint limits, the margins), at ~2 % of the solve."""
     S, N = poses.shape[:2]
-    q0 = continuous_sequences(q18[:, :, :12]).reshape(S * N, -1)
+    q0 = continuous_sequences(q18[:, :, :12])
+    ok = np.ones(S, dtype=bool)
+    if N > 2 * SCREEN:
+        at = np.linspace(0, N - 1, SCREEN).astype(int)
+        ok = _rules_hold(robot, poses[:, at], q0[:, at], margins)
+    if ok.any():
+        ok[ok] = _rules_hold(robot, poses[ok], q0[ok], margins)
+    return ok
+
+
+def _rules_hold(robot: Robot, poses, q0, margins: Margins) -> np.ndarray:
+    """:func:`_solved_pass`'s rules on sequences of ``poses`` (S, N, 6) from their unwrapped
+    closed-form angles ``q0`` (S, N, 12), (S,) booleans."""
+    S, N = poses.shape[:2]
+    q0 = q0.reshape(S * N, -1)
     sub = poses.reshape(-1, 6)
     zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
     fine, q = [], []

@@ -147,6 +147,38 @@ def test_reachable_sequences_judge_each_sequence_as_alone(robot):
     assert str(stacked.value) == str(alone.value) and stacked.value.sample == 7
 
 
+def test_the_solved_screen_fails_only_what_the_whole_solve_fails(robot):
+    # reachable_sequences' second screen (SCREEN samples of each sequence through every
+    # rule, from the whole sequence's unwrapped angles) against the whole solve of every
+    # sequence (no screen): the same answers, and the screen alone fails some of those the
+    # whole solve fails (the point of it: 93 % of them in a line plan's shift scans)
+    from pollard_pin.kinematics.ik_batch import (
+        SCREEN,
+        _closed_form_passes,
+        _rules_hold,
+        _solved_pass,
+        continuous_sequences,
+    )
+    from pollard_pin.kinematics.margins import Margins
+
+    base = pp.thesis_trajectory(samples=41).poses
+    rng = np.random.default_rng(8)
+    seqs = np.repeat(base[None], 120, axis=0)
+    seqs[:, :, :3] += rng.normal(0.0, 0.05, (120, 1, 3))
+    seqs[:, :, 3:] += rng.normal(0.0, 0.25, (120, 1, 3))
+    margins = Margins()
+    passes, q18 = _closed_form_passes(robot, seqs, margins)
+    alive = passes.all(axis=1)
+    seqs, q18 = seqs[alive], q18[alive]
+    q0 = continuous_sequences(q18[:, :, :12])
+    whole = _rules_hold(robot, seqs, q0, margins)
+    at = np.linspace(0, len(base) - 1, SCREEN).astype(int)
+    screened = _rules_hold(robot, seqs[:, at], q0[:, at], margins)
+    assert np.array_equal(_solved_pass(robot, seqs, q18, margins), whole)
+    assert not (screened < whole).any() and 10 <= whole.sum() <= len(whole) - 10
+    assert (~screened).sum() >= 3
+
+
 def test_gather_equals_the_blocks_concatenated(robot):
     # The blocks written in place into one result: bit for bit the old path's concatenation
     # of the blocks' fields (every sample, every field, the arrays' shapes and dtypes).
