@@ -201,10 +201,14 @@ def gather(result: IKResult | None, part: IKResult, sl: slice, poses, t) -> IKRe
     return result
 
 
-def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True) -> IKResult:
+def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True,
+                 at_rest: bool = False) -> IKResult:
     """One block of samples from its closed-form angles ``q0``; ``task``: its (poses,
     d_poses, dd_poses, t), the first being sample ``start``; not ``strict``: a residual above
-    ``tol`` is left in the result's residuals instead of raised."""
+    ``tol`` is left in the result's residuals instead of raised. ``at_rest`` (the rates and
+    accelerations given are zeros): the rates, accelerations and spherical rates are K⁻¹·0
+    and the rates of a body at rest (0 but where their system is singular: NaN, as the drifts
+    of v = 0 give), the drifts not computed; every other figure the same."""
     poses, d_poses, dd_poses, t = task
     n = len(poses)
     model = robot.model
@@ -216,7 +220,8 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
     rhs = np.zeros((n, 12, 2))
     rhs[:, :, 0] = _residuals(R, pos, lay, P_des, R_des)
     clock.lap("position")
-    rhs[:, 6:, 1] = twist(poses, d_poses)
+    if not at_rest:
+        rhs[:, 6:, 1] = twist(poses, d_poses)
     # One K⁻¹ per sample serves the Newton step, the velocities, the accelerations and the
     # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
     K_inv = kinematic_inverse(K, lay)
@@ -240,10 +245,13 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
     singular = ~np.isfinite(v).all(axis=1)
     if singular.any():  # keep NaN out of the drifts; those samples stay NaN
         v = np.where(singular[:, None], 0.0, v)
-    drift, omega = point_drifts(lay, R, o, v, pos)
-    rhs_a = -drift
-    rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
-    a = matvec(K_inv, rhs_a)
+    if at_rest:  # K⁻¹ times the zero drift of v = 0: 0 where K⁻¹'s row is finite
+        a, omega = v * 0.0, np.zeros((R.shape[0], n, 3))
+    else:
+        drift, omega = point_drifts(lay, R, o, v, pos)
+        rhs_a = -drift
+        rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
+        a = matvec(K_inv, rhs_a)
     if singular.any():
         v[singular] = a[singular] = np.nan
     # re-measured at the returned configuration: where no sample moved, that is the closed
@@ -335,7 +343,7 @@ def _rules_hold(robot: Robot, poses, q0, margins: Margins) -> np.ndarray:
     for a in range(0, len(sub), BATCH_CHUNK):
         sl = slice(a, min(a + BATCH_CHUNK, len(sub)))
         r = _batch_block(robot, q0[sl], (sub[sl], zero[sl], zero[sl], t[sl]), IK_TOL, a,
-                         Stopwatch(None), strict=False)
+                         Stopwatch(None), strict=False, at_rest=True)
         sph = [np.abs(np.sin(r.spherical[:, 3 * i - 2])) for i in (1, 2)]
         viol = margins.violations(wrist=r.wrist_margin, parallel=r.sigma_parallel,
                                   serial=r.sigma_serial, parallel_max=r.sigma_parallel_max,
