@@ -152,9 +152,12 @@ SCREEN = 8  # samples per sequence screened by the closed form before the rest (
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                              options: IkOptions | None = None, *, progress=None,
-                             timings: dict | None = None) -> IKResult:
+                             timings: dict | None = None, at_rest: bool = False) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples (``options``: its
-    ``margins``, ``tol`` and ``chunk``, samples per block).
+    ``margins``, ``tol`` and ``chunk``, samples per block). ``at_rest`` (no rates or
+    accelerations given: a caller that reads the positions): the rates, accelerations and
+    spherical rates are K⁻¹·0 without the drifts (:func:`_batch_block`), the same samples
+    refused with the same error, the other figures the same.
 
     Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
     step on the [closure residual; tool-pose error]; velocities and accelerations solve the
@@ -174,6 +177,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     options = ik_options(options)
     margins, chunk = options.margins, options.chunk
     clock = Stopwatch(timings)
+    at_rest = at_rest and d_poses is None and dd_poses is None  # none given: zeros
     poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
     q0 = closed_form_angles(robot, poses, t, margins)
@@ -182,7 +186,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
         task = (poses[sl], d_poses[sl], dd_poses[sl], t[sl])
-        part = _batch_block(robot, q0[sl], task, options.tol, start, clock)
+        part = _batch_block(robot, q0[sl], task, options.tol, start, clock, at_rest=at_rest)
         result = part if n <= chunk else gather(result, part, sl, poses, t)
         if progress is not None:
             progress(sl.stop, n)
