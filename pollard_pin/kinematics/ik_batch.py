@@ -26,7 +26,13 @@ from .ik_common import (
 )
 from .limits import limit_violations
 from .margins import Margins, as_margins
-from .singularity import BranchQuantities, check_margins, conditioning, inverse_stack
+from .singularity import (
+    BranchQuantities,
+    all_finite,
+    check_margins,
+    conditioning,
+    inverse_stack,
+)
 from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
 
 
@@ -146,9 +152,12 @@ SCREEN = 8  # samples per sequence screened by the closed form before the rest (
 
 def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t=None,
                              options: IkOptions | None = None, *, progress=None,
-                             timings: dict | None = None) -> IKResult:
+                             timings: dict | None = None, at_rest: bool = False) -> IKResult:
     """Same result as :func:`inverse_kinematics`, stacked over samples (``options``: its
-    ``margins``, ``tol`` and ``chunk``, samples per block).
+    ``margins``, ``tol`` and ``chunk``, samples per block). ``at_rest`` (no rates or
+    accelerations given: a caller that reads the positions): the rates, accelerations and
+    spherical rates are K⁻¹·0 without the drifts (:func:`_batch_block`), the same samples
+    refused with the same error, the other figures the same.
 
     Positions start from the closed-form IK of docs/model.md §7 (vectorised) and take one Newton
     step on the [closure residual; tool-pose error]; velocities and accelerations solve the
@@ -168,6 +177,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     options = ik_options(options)
     margins, chunk = options.margins, options.chunk
     clock = Stopwatch(timings)
+    at_rest = at_rest and d_poses is None and dd_poses is None  # none given: zeros
     poses, d_poses, dd_poses, t = task_inputs(poses, d_poses, dd_poses, t)
     n = len(poses)
     q0 = closed_form_angles(robot, poses, t, margins)
@@ -176,7 +186,7 @@ def inverse_kinematics_batch(robot: Robot, poses, d_poses=None, dd_poses=None, t
     for start in range(0, n, chunk):
         sl = slice(start, min(start + chunk, n))
         task = (poses[sl], d_poses[sl], dd_poses[sl], t[sl])
-        part = _batch_block(robot, q0[sl], task, options.tol, start, clock)
+        part = _batch_block(robot, q0[sl], task, options.tol, start, clock, at_rest=at_rest)
         result = part if n <= chunk else gather(result, part, sl, poses, t)
         if progress is not None:
             progress(sl.stop, n)
@@ -201,10 +211,14 @@ def gather(result: IKResult | None, part: IKResult, sl: slice, poses, t) -> IKRe
     return result
 
 
-def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True) -> IKResult:
+def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True,
+                 at_rest: bool = False) -> IKResult:
     """One block of samples from its closed-form angles ``q0``; ``task``: its (poses,
     d_poses, dd_poses, t), the first being sample ``start``; not ``strict``: a residual above
-    ``tol`` is left in the result's residuals instead of raised."""
+    ``tol`` is left in the result's residuals instead of raised. ``at_rest`` (the rates and
+    accelerations given are zeros): the rates, accelerations and spherical rates are K⁻¹·0
+    and the rates of a body at rest (0 but where their system is singular: NaN, as the drifts
+    of v = 0 give), the drifts not computed; every other figure the same."""
     poses, d_poses, dd_poses, t = task
     n = len(poses)
     model = robot.model
@@ -216,7 +230,8 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
     rhs = np.zeros((n, 12, 2))
     rhs[:, :, 0] = _residuals(R, pos, lay, P_des, R_des)
     clock.lap("position")
-    rhs[:, 6:, 1] = twist(poses, d_poses)
+    if not at_rest:
+        rhs[:, 6:, 1] = twist(poses, d_poses)
     # One K⁻¹ per sample serves the Newton step, the velocities, the accelerations and the
     # serial conditioning (conditioning(K_inv=...)). NaN where K is singular (checked below).
     K_inv = kinematic_inverse(K, lay)
@@ -240,10 +255,13 @@ def _batch_block(robot: Robot, q0, task, tol, start, clock, strict: bool = True)
     singular = ~np.isfinite(v).all(axis=1)
     if singular.any():  # keep NaN out of the drifts; those samples stay NaN
         v = np.where(singular[:, None], 0.0, v)
-    drift, omega = point_drifts(lay, R, o, v, pos)
-    rhs_a = -drift
-    rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
-    a = matvec(K_inv, rhs_a)
+    if at_rest:  # K⁻¹ times the zero drift of v = 0: 0 where K⁻¹'s row is finite
+        a, omega = v * 0.0, np.zeros((R.shape[0], n, 3))
+    else:
+        drift, omega = point_drifts(lay, R, o, v, pos)
+        rhs_a = -drift
+        rhs_a[:, 6:] += twist_dot(poses, d_poses, dd_poses)
+        a = matvec(K_inv, rhs_a)
     if singular.any():
         v[singular] = a[singular] = np.nan
     # re-measured at the returned configuration: where no sample moved, that is the closed
@@ -308,16 +326,34 @@ def reachable_sequences(robot: Robot, poses, margins: Margins | None = None) -> 
 
 def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
     """Per sequence of ``poses`` (S, N, 6) whose closed form ``q18`` (S, N, 18) solves every
-    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans."""
+    sample: the rest of :func:`reachable_sequences`' rules hold, (S,) booleans. A screen
+    first: SCREEN samples of each sequence solved alone from the whole sequence's unwrapped
+    angles (each sample's figures the whole solve's, to the bit) fail the sequences where
+    one of them breaks a rule (a branch sign taking both signs among them, both along the
+    whole), most of those that fail (the joint limits, the margins), at ~2 % of the solve."""
     S, N = poses.shape[:2]
-    q0 = continuous_sequences(q18[:, :, :12]).reshape(S * N, -1)
+    q0 = continuous_sequences(q18[:, :, :12])
+    ok = np.ones(S, dtype=bool)
+    if N > 2 * SCREEN:
+        at = np.linspace(0, N - 1, SCREEN).astype(int)
+        ok = _rules_hold(robot, poses[:, at], q0[:, at], margins)
+    if ok.any():
+        ok[ok] = _rules_hold(robot, poses[ok], q0[ok], margins)
+    return ok
+
+
+def _rules_hold(robot: Robot, poses, q0, margins: Margins) -> np.ndarray:
+    """:func:`_solved_pass`'s rules on sequences of ``poses`` (S, N, 6) from their unwrapped
+    closed-form angles ``q0`` (S, N, 12), (S,) booleans."""
+    S, N = poses.shape[:2]
+    q0 = q0.reshape(S * N, -1)
     sub = poses.reshape(-1, 6)
     zero, t = np.zeros_like(sub), np.tile(np.arange(N, dtype=float), S)
     fine, q = [], []
     for a in range(0, len(sub), BATCH_CHUNK):
         sl = slice(a, min(a + BATCH_CHUNK, len(sub)))
         r = _batch_block(robot, q0[sl], (sub[sl], zero[sl], zero[sl], t[sl]), IK_TOL, a,
-                         Stopwatch(None), strict=False)
+                         Stopwatch(None), strict=False, at_rest=True)
         sph = [np.abs(np.sin(r.spherical[:, 3 * i - 2])) for i in (1, 2)]
         viol = margins.violations(wrist=r.wrist_margin, parallel=r.sigma_parallel,
                                   serial=r.sigma_serial, parallel_max=r.sigma_parallel_max,
@@ -325,7 +361,8 @@ def _solved_pass(robot: Robot, poses, q18, margins: Margins) -> np.ndarray:
         f = np.maximum(r.closure_residual, r.tool_error) <= IK_TOL
         f &= ~np.logical_or.reduce(list(viol.values()))
         for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
-            f &= np.isfinite(arr).all(axis=1)
+            if not all_finite(arr):
+                f &= np.isfinite(arr).all(axis=1)
         f &= ~limit_violations(robot.params, r.q, robot.joint_names)[0].any(axis=1)
         fine.append(f)
         q.append(r.q)

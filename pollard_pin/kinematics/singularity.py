@@ -48,6 +48,14 @@ def _batched(A):
     return A.reshape((-1,) + A.shape[-2:]), A.shape[:-2]
 
 
+def all_finite(a) -> bool:
+    """True when the sum of ``a`` is finite, so every entry is (one reduction, the common
+    case): False where an entry is NaN or ±inf, or finite ones overflow (a caller then looks
+    at each)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return math.isfinite(np.sum(a))
+
+
 def sigma_range(A):
     """(σ_min, σ_max) of each matrix of a stack (..., m, n), m ≥ n; NaN for non-finite ones.
 
@@ -61,7 +69,7 @@ def sigma_range(A):
         s = _singular_values(A)
         return s[-1], s[0]
     A, shape = _batched(A)
-    ok = np.isfinite(A).all(axis=(1, 2))
+    ok = np.ones(len(A), bool) if all_finite(A) else np.isfinite(A).all(axis=(1, 2))
     if not ok.all():
         A = np.where(ok[:, None, None], A, 0.0)
     lo, hi = kernels.gram_extremes(A)
@@ -352,7 +360,8 @@ def check_margins(robot, r, margins: Margins):
                 amount=lim - v if np.isfinite(v) else None))
     finite = np.ones(n, bool)
     for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
-        finite &= np.isfinite(arr).all(axis=1)
+        if not all_finite(arr):
+            finite &= np.isfinite(arr).all(axis=1)
     bad = np.flatnonzero(~finite)
     if len(bad) and (first is None or bad[0] < first[0]):
         k = int(bad[0])

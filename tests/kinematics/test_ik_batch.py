@@ -147,6 +147,71 @@ def test_reachable_sequences_judge_each_sequence_as_alone(robot):
     assert str(stacked.value) == str(alone.value) and stacked.value.sample == 7
 
 
+def test_the_solved_screen_fails_only_what_the_whole_solve_fails(robot):
+    # reachable_sequences' second screen (SCREEN samples of each sequence through every
+    # rule, from the whole sequence's unwrapped angles) against the whole solve of every
+    # sequence (no screen): the same answers, and the screen alone fails some of those the
+    # whole solve fails (the point of it: 93 % of them in a line plan's shift scans)
+    from pollard_pin.kinematics.ik_batch import (
+        SCREEN,
+        _closed_form_passes,
+        _rules_hold,
+        _solved_pass,
+        continuous_sequences,
+    )
+    from pollard_pin.kinematics.margins import Margins
+
+    base = pp.thesis_trajectory(samples=41).poses
+    rng = np.random.default_rng(8)
+    seqs = np.repeat(base[None], 120, axis=0)
+    seqs[:, :, :3] += rng.normal(0.0, 0.05, (120, 1, 3))
+    seqs[:, :, 3:] += rng.normal(0.0, 0.25, (120, 1, 3))
+    margins = Margins()
+    passes, q18 = _closed_form_passes(robot, seqs, margins)
+    alive = passes.all(axis=1)
+    seqs, q18 = seqs[alive], q18[alive]
+    q0 = continuous_sequences(q18[:, :, :12])
+    whole = _rules_hold(robot, seqs, q0, margins)
+    at = np.linspace(0, len(base) - 1, SCREEN).astype(int)
+    screened = _rules_hold(robot, seqs[:, at], q0[:, at], margins)
+    assert np.array_equal(_solved_pass(robot, seqs, q18, margins), whole)
+    assert not (screened < whole).any() and 10 <= whole.sum() <= len(whole) - 10
+    assert (~screened).sum() >= 3
+
+
+def test_a_block_at_rest_is_the_block_with_zero_rates(robot):
+    # _batch_block at_rest (no drifts) against the same block given zero rates: every
+    # figure the same to the bit, the rates, accelerations and spherical rates zero or not
+    # finite alike (a pose singular by construction among them: a wrist at θ1716 = 0)
+    from pollard_pin.analytic import closed_form
+    from pollard_pin.kinematics.ik_batch import _batch_block, continuous_sequences
+    from pollard_pin.kinematics.ik_common import IK_TOL
+    from pollard_pin.timing import Stopwatch
+
+    rng = np.random.default_rng(9)
+    poses = pp.thesis_trajectory(samples=200).poses.copy()
+    poses[:, :3] += rng.normal(0.0, 0.08, (200, 3))
+    poses[:, 3:] += rng.normal(0.0, 0.6, (200, 3))
+    q18, failed = closed_form.position_ik_masked(robot.params, poses)
+    fine = ~np.logical_or.reduce(list(failed.values()))
+    poses = poses[fine]
+    q0 = continuous_sequences(q18[fine][None, :, :12])[0]
+    q0[5, robot.joint_names.index("theta1716")] = 0.0  # a wrist singular by construction
+    zero, t = np.zeros_like(poses), np.arange(len(poses), dtype=float)
+    args = (robot, q0, (poses, zero, zero, t), IK_TOL, 0, Stopwatch(None))
+    moving, rest = _batch_block(*args, strict=False), _batch_block(*args, strict=False,
+                                                                   at_rest=True)
+    for f in ("q", "spherical", "closure_residual", "tool_error", "wrist_margin",
+              "sigma_parallel", "sigma_serial", "sigma_parallel_max", "sigma_serial_max",
+              "constraint_jacobian"):
+        assert getattr(rest, f).tobytes() == getattr(moving, f).tobytes(), f
+    for f in ("v", "a", "d_spherical"):
+        m, r = getattr(moving, f), getattr(rest, f)
+        assert np.array_equal(np.isfinite(m), np.isfinite(r)), f
+        assert (m[np.isfinite(m)] == 0).all() and (r[np.isfinite(r)] == 0).all(), f
+    assert not np.isfinite(moving.v).all() or not np.isfinite(moving.d_spherical).all()
+
+
 def test_gather_equals_the_blocks_concatenated(robot):
     # The blocks written in place into one result: bit for bit the old path's concatenation
     # of the blocks' fields (every sample, every field, the arrays' shapes and dtypes).

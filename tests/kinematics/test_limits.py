@@ -131,3 +131,26 @@ def test_limit_violations_modulo_two_pi():
     assert side[:, 0].tolist() == [0, 0, 1, -1, 0, 0]
     np.testing.assert_allclose(excess[:, 0], np.radians([0, 0, 5, 5, 0, 0]), atol=1e-12)
     assert lim.lower < lim.upper
+
+
+def test_the_fast_path_agrees_with_the_rule_at_and_near_the_limits(robot):
+    """first_violation's fast path (a stack well inside as it stands) never passes a stack
+    the rule (limit_violations: angles modulo 2π) finds outside: stacks at the limits, a few
+    ulps and INSIDE_SLACK off them, a turn away and in between, against the rule itself."""
+    from pollard_pin.kinematics.limits import INSIDE_SLACK, first_violation, limit_bounds
+
+    names = robot.joint_names
+    lo, hi = limit_bounds(robot.params, names)
+    rng = np.random.default_rng(4)
+    edges = [lo, hi, np.nextafter(lo, -9), np.nextafter(hi, 9), lo + INSIDE_SLACK,
+             hi - INSIDE_SLACK, lo + 2 * INSIDE_SLACK, hi - 2 * INSIDE_SLACK]
+    seen = {True: 0, False: 0}
+    for _ in range(400):
+        q = lo + rng.random((6, len(names))) * (hi - lo)
+        rows, cols = rng.integers(0, 6, 3), rng.integers(0, len(names), 3)
+        for r, c in zip(rows, cols):
+            q[r, c] = edges[rng.integers(len(edges))][c] + 2 * np.pi * rng.integers(-1, 2)
+        outside = bool(limit_violations(robot.params, q, names)[0].any())
+        assert (first_violation(robot.params, q, names) is not None) == outside
+        seen[outside] += 1
+    assert min(seen.values()) > 20  # both answers met

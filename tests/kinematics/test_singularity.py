@@ -34,6 +34,32 @@ def test_one_matrix_sigma_range_is_the_svds():
     assert all(np.isnan(x) for x in sigma_range(np.full((6, 6), np.nan)))
 
 
+def test_a_stacks_non_finite_matrices_are_nan_and_only_they():
+    """sigma_range of a stack: its finite-sum fast path agrees with looking at each matrix
+    — a NaN, a +inf and a −inf matrix give NaN, their neighbours and a finite stack whose
+    sum overflows (every matrix looked at then) their own values, bit for bit those of each
+    matrix in a finite stack (against the SVD)."""
+    rng = np.random.default_rng(6)
+    A = rng.normal(size=(9, 6, 6))
+    alone = [sigma_range(A[k:k + 1]) for k in range(9)]
+    bad = A.copy()
+    bad[2, 1, 3], bad[5, 0, 0], bad[7, 4, 2] = np.nan, np.inf, -np.inf
+    huge = A.copy()
+    huge[:, 0, 0] = 1e308  # finite entries, an infinite sum
+    for stack, nan in ((A, ()), (bad, (2, 5, 7)), (huge, ())):
+        smin, smax = sigma_range(stack)
+        for k in range(9):
+            if k in nan:
+                assert np.isnan(smin[k]) and np.isnan(smax[k])
+            elif stack is huge:
+                s = np.linalg.svd(huge[k], compute_uv=False)
+                assert smax[k] == pytest.approx(s[0], rel=1e-12)
+            else:
+                assert smin[k] == alone[k][0][0] and smax[k] == alone[k][1][0]
+        s = np.linalg.svd(A, compute_uv=False)
+    np.testing.assert_allclose(sigma_range(A)[1], s[:, 0], rtol=1e-12)
+
+
 def test_velocity_map_of_one_matrix_is_the_stacks():
     """The single-matrix path (one dgesv) gives the stacked path's N; a singular Jc_p still
     raises."""

@@ -148,9 +148,21 @@ def surface_index(mesh: trimesh.Trimesh) -> SurfaceIndex:
 def _index(mesh: trimesh.Trimesh) -> SurfaceIndex:
     samples, owner, delta = surface_samples(mesh.vertices, mesh.faces)
     # an unbalanced tree of distinct points answers the far queries several times faster
-    tree = cKDTree(np.unique(samples, axis=0), balanced_tree=False, compact_nodes=False)
+    tree = cKDTree(distinct_rows(samples), balanced_tree=False, compact_nodes=False)
     return SurfaceIndex(np.asarray(mesh.triangles, float), samples, owner, delta, tree,
                         cKDTree(samples))
+
+
+def distinct_rows(points) -> np.ndarray:
+    """``np.unique(points, axis=0)`` of finite points (N, D): the same rows in the same order
+    (of equal rows the first kept, so a zero's sign may be the other's: the same distances),
+    by a stable sort on the columns; ≈ 10× faster than numpy's sort of the rows as records
+    (a mesh's index, 0.3 s a part)."""
+    p = np.asarray(points, float)
+    s = p[np.lexsort(p.T[::-1])]
+    keep = np.ones(len(s), bool)
+    keep[1:] = (s[1:] != s[:-1]).any(axis=1)
+    return s[keep]
 
 
 def travelled(steps) -> np.ndarray:
@@ -341,5 +353,5 @@ def panel_mesh(frame) -> trimesh.Trimesh:
 
 
 __all__ = ["Clearance", "SurfaceIndex", "between_samples", "body_points", "check_clearance",
-           "clearance_of", "job_clearance", "least_distance", "may_come_within", "panel_mesh",
-           "strided", "surface_index", "surface_samples", "travelled"]
+           "clearance_of", "distinct_rows", "job_clearance", "least_distance", "may_come_within",
+           "panel_mesh", "strided", "surface_index", "surface_samples", "travelled"]

@@ -65,22 +65,31 @@ def reach(robot, poses, d_poses=None, dd_poses=None, *, margins: Margins | None 
     limits. Returns the IKResult; raises :class:`ReachError` (its ``sample``) where a pose
     fails. A path's wait (its first LEADING_RUN or more samples the same) is solved once:
     the same result, the same sample named."""
-    ik, m = _solved(robot, poses, d_poses, dd_poses, margins)
+    ik, m = _solved(robot, poses, d_poses, dd_poses, margins, at_rest=True)
     return _spread(ik, m, poses)
 
 
-def _solved(robot, poses, d_poses, dd_poses, margins):
+def _solved(robot, poses, d_poses, dd_poses, margins, at_rest: bool = False):
     """(IKResult of samples m.. only, m): :func:`reach` with its wait, samples 0..m the
-    same, solved at sample m alone."""
-    from ...kinematics.ik import IkOptions, inverse_kinematics
+    same, solved at sample m alone. ``at_rest`` (:func:`reach`) without rates and
+    accelerations (the clearance's and the compliance's, which read the positions): the
+    poses solved at rest, their rates K⁻¹·0 without the drifts
+    (:func:`.kinematics.ik_batch.inverse_kinematics_batch`), the same samples refused."""
+    from ...kinematics.ik import IkOptions, inverse_kinematics, inverse_kinematics_batch
+    from ...model.build import check_robot
 
     n = len(poses)
     m = _leading_run(poses, d_poses, dd_poses)
     m = m if m >= LEADING_RUN else 0
     tail = [None if a is None else np.asarray(a)[m:] for a in (poses, d_poses, dd_poses)]
+    t = np.arange(m, n, dtype=float)
     try:
-        ik = inverse_kinematics(robot, *tail, np.arange(m, n, dtype=float),
-                                options=IkOptions(margins=margins))
+        if at_rest and d_poses is None and dd_poses is None:
+            check_robot(robot)
+            ik = inverse_kinematics_batch(robot, tail[0], None, None, t,
+                                          IkOptions(margins=margins), at_rest=True)
+        else:
+            ik = inverse_kinematics(robot, *tail, t, options=IkOptions(margins=margins))
         check_joint_limits(robot, ik.q)
     except KinematicsError as exc:
         if exc.sample is not None and exc.sample > 0:

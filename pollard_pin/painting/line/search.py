@@ -39,10 +39,11 @@ def choose_shift(robot, rel: Relative, speed: float, e, where: str) -> float:
     poses = drifted(rel, speed, e, t)
     anchor = mid_of(poses, e)  # mid_along's, from the same poses
     lo, hi = speed * CATCH, speed * CATCH + SHIFT_RANGE
-    found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
+    known: dict = {}  # the first window's shifts, judged once (its grid is the second's)
+    found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor, known=known)
     if found is None and shift_window(lo, anchor) != (lo, hi):  # a robot far down the line
         lo, hi = shift_window(lo, anchor)
-        found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor)
+        found = feasible_shifts(robot, poses, e, lo, SHIFT_RANGE, anchor=anchor, known=known)
     if found is None:
         # each pass alone, no drift: a pass out of reach at every shift fails at any speed
         bad, n = unreachable_passes(robot, rel, e, lo, hi)

@@ -34,7 +34,7 @@ def longest_run(ok) -> tuple[int, int]:
     return int(starts[k]), int(stops[k]) - 1
 
 
-def scan(robot, poses, e, xs) -> np.ndarray:
+def scan(robot, poses, e, xs, known: dict | None = None) -> np.ndarray:
     """:func:`fits` at the shifts ``xs`` where it decides :func:`longest_run`, False elsewhere
     (docs/model.md §24): every SCAN_COARSE-th shift (and the last) first, then every shift
     between two of them of which one fits, so that each run holding a shift tried is known
@@ -43,18 +43,24 @@ def scan(robot, poses, e, xs) -> np.ndarray:
     the longest, as a scan of every shift finds it. Else every shift left is tried. Each
     shift is judged as alone (:func:`fits`), so the ones tried are the full scan's to the
     bit; a shift that puts a pose out of bounds (an input error, the first such shift's)
-    sends the whole scan to :func:`fits` at once."""
+    sends the whole scan to :func:`fits` at once. ``known`` (a dict, shift → fits) holds the
+    shifts of these poses judged before (another window's scan) and gains those judged
+    here: a shift is judged once, its answer the same."""
     xs = np.asarray(xs, dtype=float)
     n = len(xs)
     p = np.asarray(poses, dtype=float)
     far = np.abs(p).max(initial=0.0) + np.abs(xs).max(initial=0.0)  # |e| = 1
     if n <= 2 * SCAN_COARSE or not far < MAX_ABS_TASK / 2:  # NaN too
         return fits(robot, poses, e, xs)
-    ok, known = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+    ok, tried = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+    known = {} if known is None else known
 
     def judge(i):
-        ok[i] = fits(robot, poses, e, xs[i])
-        known[i] = True
+        new = [k for k in i if float(xs[k]) not in known]
+        if new:
+            known.update(zip(xs[new].tolist(), fits(robot, poses, e, xs[new]).tolist()))
+        ok[i] = [known[float(xs[k])] for k in i]
+        tried[i] = True
 
     coarse = np.unique(np.append(np.arange(0, n, SCAN_COARSE), n - 1))
     judge(coarse)
@@ -65,24 +71,25 @@ def scan(robot, poses, e, xs) -> np.ndarray:
     if near.any():
         judge(np.flatnonzero(near))
     a, b = longest_run(ok) if ok.any() else (0, -1)
-    rest = np.flatnonzero(~known)
+    rest = np.flatnonzero(~tried)
     if b - a + 1 < SCAN_COARSE and len(rest):
         judge(rest)
     return ok
 
 
 def feasible_shifts(robot, poses, e, lo: float, span: float = SHIFT_RANGE,
-                    anchor: float = 0.0):
+                    anchor: float = 0.0, known: dict | None = None):
     """The longest run of shifts x ∈ [lo, lo + span] along the line with every pose + x·e in
     reach (scan at the x with x + ``anchor`` a multiple of SHIFT_STEP, ends refined by
     bisection), or None. With ``anchor`` the poses' world place along e, the scanned places
-    are fixed in the world, wherever the job puts the part at t = 0."""
+    are fixed in the world, wherever the job puts the part at t = 0. ``known``: the scan's
+    shifts of the same poses already judged (:func:`scan`), for a second window."""
     first = math.ceil((lo + anchor) / SHIFT_STEP - 1e-9)
     last = math.floor((lo + span + anchor) / SHIFT_STEP + 1e-9)
     xs = np.arange(first, last + 1) * SHIFT_STEP - anchor
     if not len(xs):
         return None
-    ok = scan(robot, poses, e, xs)
+    ok = scan(robot, poses, e, xs, known)
     if not ok.any():
         return None
     a, b = longest_run(ok)

@@ -123,10 +123,16 @@ class Program:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         start, idx = self.start, self.piece_at(t)
         out = [np.empty((len(t), 6)) for _ in range(3)]
-        for i in np.unique(idx):
-            sel = idx == i
-            for o, x in zip(out, self.pieces[i].evaluate(t[sel] - start[i])):
-                o[sel] = x
+        # each piece's times in their order, as idx == i selects them: a slice where t
+        # increases (a path), else a stable sort's run (a mask per piece costs P passes)
+        order = None if (np.diff(idx) >= 0).all() else np.argsort(idx, kind="stable")
+        ks = idx if order is None else idx[order]
+        cuts = np.flatnonzero(np.diff(ks)) + 1
+        for a, b in zip(np.r_[0, cuts], np.r_[cuts, len(ks)]) if len(ks) else ():
+            rows = slice(a, b) if order is None else order[a:b]
+            i = int(ks[a])
+            for o, x in zip(out, self.pieces[i].evaluate(t[rows] - start[i])):
+                o[rows] = x
         ends = (t <= 0.0) | (t >= self.total)
         out[1][ends], out[2][ends] = 0.0, 0.0
         return tuple(out)

@@ -114,6 +114,23 @@ def test_a_surface_index_made_once_measures_as_one_made_each_time():
         assert given[0] - given[3] - 1e-12 <= brute <= given[0] + 1e-12
 
 
+def test_distinct_rows_are_numpys_unique_rows():
+    """distinct_rows (the index's distinct samples) gives np.unique(axis=0)'s rows in its
+    order, on a part's surface samples (shared corners and edges repeated) and on rows that
+    tie in their first columns, with −0.0 among them."""
+    from pollard_pin.painting.checks.clearance import distinct_rows, surface_samples
+
+    mesh = shapes.bent_plate(step=0.02)
+    pts = surface_samples(mesh.vertices, mesh.faces)[0]
+    rng = np.random.default_rng(5)
+    ties = rng.integers(-2, 3, (3000, 3)).astype(float) * 0.5
+    ties[rng.random(ties.shape) < 0.1] = -0.0
+    for p in (pts, ties, pts[:1]):
+        mine, theirs = distinct_rows(p), np.unique(p, axis=0)
+        assert mine.shape == theirs.shape and np.array_equal(mine, theirs)
+    assert len(distinct_rows(pts)) < len(pts)  # the case holds repeats
+
+
 def test_a_surface_index_is_kept_by_the_meshs_content():
     """surface_index keeps the last meshes' indexes by content (a study measures every
     design against one part): a copy of a mesh gets the same index, a moved one its own,

@@ -139,3 +139,32 @@ def test_a_wait_is_solved_once_with_the_same_result(robot):
         with pytest.raises(ReachError) as e:
             reach(robot, Q, D, A)
         assert e.value.sample == named(Q) == bad[0]
+
+
+def test_reach_at_rest_is_the_ik_with_zero_rates(robot):
+    """reach without rates solves the poses at rest (no drifts): its positions and every
+    figure but the rates are those of the IK given zero rates, to the bit, the rates zero;
+    a path that fails (a sample out of reach, one past a joint limit, one under a tighter
+    singularity margin) fails at the same sample with the same words."""
+    import pollard_pin as pp
+    from pollard_pin.kinematics.ik import inverse_kinematics
+    from pollard_pin.painting.checks.motion import reach
+    from pollard_pin.painting.errors import ReachError
+
+    poses = pp.thesis_trajectory(samples=120).poses
+    zero = np.zeros_like(poses)
+    got, want = reach(robot, poses), inverse_kinematics(robot, poses, zero, zero)
+    for f in ("q", "spherical", "sigma_parallel", "sigma_serial", "closure_residual",
+              "wrist_margin", "constraint_jacobian"):
+        assert getattr(got, f).tobytes() == getattr(want, f).tobytes(), f
+    assert not np.abs(got.v).any() and not np.abs(got.a).any()
+    far, bent = poses.copy(), poses.copy()
+    far[70, 0] += 1.0
+    bent[40:60, 2] -= np.linspace(0.0, 0.3, 20)
+    tight = pp.Margins(singularity=0.14)  # a σ under it along the path: the margins' check
+    for bad, margins in ((far, None), (bent, None), (poses, tight)):
+        with pytest.raises(ReachError) as rest:
+            reach(robot, bad, margins=margins)
+        with pytest.raises(ReachError) as moving:
+            reach(robot, bad, zero, zero, margins=margins)
+        assert str(rest.value) == str(moving.value) and rest.value.sample == moving.value.sample

@@ -95,3 +95,32 @@ def test_the_coarse_scan_finds_the_full_scans_longest_run(monkeypatch):
             assert shifts.longest_run(ok) == shifts.longest_run(truth)
         fewer += len(tried) < n
     assert fewer > 50
+
+
+def test_a_second_windows_scan_takes_the_first_windows_shifts(monkeypatch):
+    """The shifts a first window's scan judged (``known``) are not judged again by a second,
+    overlapping window's (choose_shift's robot far down the line): each shift judged once
+    over both, and each window's answer the one of its scan alone."""
+    from pollard_pin.painting.line import shifts
+
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        truth = rng.random(720) < rng.choice([0.05, 0.5, 0.95])
+        tried = []
+
+        def fits(robot, poses, e, x, truth=truth, tried=tried):
+            i = np.rint(np.asarray(x) / 0.005).astype(int)
+            tried.extend(np.atleast_1d(i).tolist())
+            return truth[i]
+
+        monkeypatch.setattr(shifts, "fits", fits)
+        a, b = sorted(rng.integers(0, 700, 2)), sorted(rng.integers(0, 700, 2))
+        first, second = (np.arange(lo, hi + 20) * 0.005 for lo, hi in (a, b))
+        args = (None, np.zeros((3, 6)), np.array([0.0, 1.0, 0.0]))
+        alone = [shifts.scan(*args, xs) for xs in (first, second)]
+        tried.clear()
+        known: dict = {}
+        both = [shifts.scan(*args, xs, known) for xs in (first, second)]
+        assert all(np.array_equal(p, q) for p, q in zip(both, alone))
+        assert len(tried) == len(set(tried))  # no shift judged twice
+        assert all(known[x] == truth[int(round(x / 0.005))] for x in known)

@@ -67,3 +67,33 @@ def test_a_pass_end_state_is_evaluated_once_and_kept():
                            PassPiece(s, poses[::-1], 0.2, False, 1)], [0.5, 0.7, 0.5])
     assert all(np.array_equal(x, y) for x, y in zip(one.evaluate(t), again.evaluate(t)))
     assert two.total != one.total
+
+
+def test_a_program_evaluates_each_piece_at_its_own_times():
+    # Program.evaluate groups the times by piece (a slice where they increase, a stable
+    # sort's run where not): against each piece evaluated at its times picked by a mask (the
+    # brute force), times increasing, shuffled, repeated, on the pieces' joints and outside
+    # the program, to the bit
+    from pollard_pin.painting.passes.program import PassPiece, build_program
+
+    s = np.linspace(0.0, 0.3, 12)
+    poses = np.column_stack([0.5 + 0.01 * np.sin(s), s, 0.1 * s ** 2, 0.2 * s, 0.0 * s,
+                             0.1 + 0.0 * s])
+    prog = build_program([PassPiece(s, poses, 0.2, True, 0),
+                          PassPiece(s, poses[::-1], 0.2, False, 1),
+                          PassPiece(s, poses, 0.2, True, 2)], [0.5, 0.7, 0.6, 0.5])
+    rng = np.random.default_rng(2)
+    t = np.concatenate([[-0.1, 0.0], np.linspace(0.0, prog.total, 301), prog.start,
+                        [prog.total, prog.total + 1.0]])
+    for times in (np.sort(t), rng.permutation(t), np.repeat(rng.permutation(t)[:40], 3)):
+        idx, start = prog.piece_at(times), prog.start
+        want = [np.empty((len(times), 6)) for _ in range(3)]
+        for i in range(len(prog.pieces)):
+            sel = idx == i
+            for w, x in zip(want, prog.pieces[i].evaluate(times[sel] - start[i])):
+                w[sel] = x
+        ends = (times <= 0.0) | (times >= prog.total)
+        want[1][ends], want[2][ends] = 0.0, 0.0
+        got = prog.evaluate(times)
+        assert all(g.tobytes() == w.tobytes() for g, w in zip(got, want))
+    assert all(len(a) == 0 for a in prog.evaluate(np.array([])))
