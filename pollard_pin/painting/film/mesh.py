@@ -216,16 +216,13 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
             if j not in cull:
                 cull[j] = Reach(gun, *summary[j])
                 held[j] = cull[j].holds(centres, radii)
-            # keep's test, point by point, on the points of the groups that may hold one
-            near = np.flatnonzero(held[j][groups[c]])
-            if not len(near):
-                continue
-            k = near[cull[j].keep(sc[near])]
-            if not len(k):
-                continue
             if j not in src:
                 src[j] = sources(gun, po[b], a[b])
-            r, height = src[j].rate_and_height(gun, sc[k], nc[k])  # (samples, points)
+            # keep's test, point by point, on the points of the groups that may hold one,
+            # and the rate of those kept (samples, points)
+            k, r, height = cull[j].rate_near(gun, src[j], sc, nc, groups[c], held[j])
+            if not len(k):
+                continue
             part_sum = W[b].T @ r  # (2, points)
             if given is None or len(given):  # the unshaded sums: for the shadow edges
                 smooth[k] += part_sum.T
