@@ -63,21 +63,38 @@ static void round_loop(const double *s, const double *n, int per_point, const do
  * formula's operations in their order: d = s − p̄, r = |d|, angle = arccos(clip(d·ā / r)),
  * spread = arcsin(clip((δp + radius) / r)), kept where angle − δa − spread ≤ cone, or
  * r ≤ throw/4 + δp + radius (``base`` + radius), or the angle is not finite (r = 0, NaN).
- * The clips keep a NaN, as numpy's minimum and maximum do. */
+ * The clips keep a NaN, as numpy's minimum and maximum do. The clauses are tried cheapest
+ * first, and a cosine above ``inside`` (cos(cone + δa) + 1e-9, accept_above) is inside the
+ * cone with neither arccos nor arcsin: its angle lies ≥ 1e-9 rad inside cone + δa, far past
+ * their and the sums' round-off, and spread ≥ 0, so the formula's verdict is the same. */
 static inline int cone_keeps(const double *si, const double *pm, const double *am, double dp,
-                             double da, double cone, double base, double radius)
+                             double da, double cone, double base, double radius, double inside)
 {
     const double d0 = si[0] - pm[0], d1 = si[1] - pm[1], d2 = si[2] - pm[2];
     const double r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    if (r <= base + radius)
+        return 1;
     double c = (d0 * am[0] + d1 * am[1] + d2 * am[2]) / r;
+    if (isnan(c))  /* its angle is not finite */
+        return 1;
     c = c < -1.0 ? -1.0 : c;
     c = c > 1.0 ? 1.0 : c;
+    if (c > inside)
+        return 1;
     const double angle = acos(c);
     double sp = (dp + radius) / r;
     sp = sp < 0.0 ? 0.0 : sp;
     sp = sp > 1.0 ? 1.0 : sp;
     const double spread = asin(sp);
-    return angle - da - spread <= cone || r <= base + radius || !isfinite(angle);
+    return angle - da - spread <= cone || !isfinite(angle);
+}
+
+/* The cosine above which a point lies inside the cone (cone_keeps): none where cone + δa
+ * nears π (or is NaN). */
+static double accept_above(double da, double cone)
+{
+    const double x = cone + da;
+    return x >= 0.0 && x <= 3.0 ? cos(x) + 1e-9 : 2.0;
 }
 
 /* The cone's arguments: p̄ (3), ā (3), then δp, δa, cone, base. */
@@ -121,10 +138,11 @@ static PyObject *pd_cone_keep(PyObject *self, PyObject *args)
     }
     const double *s = b[0].buf, *rad = b[1].buf;
     char *keep = b[3].buf;
+    const double inside = accept_above(da, cone);
     Py_BEGIN_ALLOW_THREADS
     for (idx i = 0; i < P; i++)
         keep[i] = (char)cone_keeps(s + 3 * i, pm, am, dp, da, cone, base,
-                                   rad[per_point ? i : 0]);
+                                   rad[per_point ? i : 0], inside);
     Py_END_ALLOW_THREADS
     pk_release(b, 4);
     Py_RETURN_NONE;
@@ -164,9 +182,11 @@ static PyObject *pd_round_near(PyObject *self, PyObject *args)
     int64_t *kept = b[7].buf;
     idx K = 0;
     int failed = 0;
+    const double inside = all ? 2.0 : accept_above(da, cone);
     Py_BEGIN_ALLOW_THREADS
     for (idx i = 0; i < P; i++)
-        if (held[group[i]] && (all || cone_keeps(s + 3 * i, pm, am, dp, da, cone, base, 0.0)))
+        if (held[group[i]]
+            && (all || cone_keeps(s + 3 * i, pm, am, dp, da, cone, base, 0.0, inside)))
             kept[K++] = i;
     if (K) {
         double *sk = malloc(sizeof(double) * 3 * K * (per_point ? 2 : 1));
