@@ -1,6 +1,7 @@
-/* The compiled loop behind pollard_pin.painting.spray.kernel (that module is its typed front):
+/* The compiled loops behind pollard_pin.painting.spray.kernel (that module is its typed front):
  * the round Gaussian spot's deposition rate and each source's height over each point's tangent
- * plane, for a block of sources × points in one pass with no temporaries (docs/model.md §20).
+ * plane, for a block of sources × points in one pass with no temporaries, and the cull's cone
+ * test point by point, alone or before the rate of the points it keeps (docs/model.md §20).
  *
  * Pair by pair, as spray/deposition.py's pair_rate: d = s − p, h = d·a, |d|², d·n, then _rate's
  * operations in their order without FMA contraction (setup.py): σ² = (k h)²,
