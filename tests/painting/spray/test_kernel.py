@@ -117,22 +117,25 @@ def test_the_kernel_checks_its_shapes_and_takes_any_layout():
         round_rate(p, a[:3], s, n, K, COEF)
 
 
-def _cone_case(seed: int, P: int = 4000):
+def _cone_case(seed: int, P: int = 4000, tight: bool = False):
     """A block of 16 samples and points around it: near the cone's edge (angles spread
-    about it), inside, behind the nozzle, at the block's mean tip (r = 0, where the angle is
-    0/0), a hair off it, and a NaN point."""
+    about it, a quarter within 1e-6 rad of it), inside, behind the nozzle, at the block's
+    mean tip (r = 0, where the angle is 0/0), a hair off it, and a NaN point. ``tight``: the
+    tips within 1e-9 m of each other, no apex (the spread ≈ 0: the edge the angle's own)."""
     from pollard_pin.painting.spray.deposition import Reach, spot_block
     rng = np.random.default_rng(seed)
     p, a, _, _ = _block(seed, T=16, P=80)
     a[0] *= -1  # all towards the points
-    reach = Reach(GUN, *spot_block(p, a))
+    if tight:
+        p = p[0] + 1e-9 * rng.standard_normal(p.shape)
+    reach = Reach(Gun(GUN.standoff, GUN.sigma, GUN.flow) if tight else GUN, *spot_block(p, a))
     u = rng.standard_normal((P, 3))
     u /= np.linalg.norm(u, axis=1, keepdims=True)
     # directions at angles about the cone's edge (widened by δa and the spread) from the
     # mean axis, beyond the nozzle's ball
     r = rng.uniform(0.1, 0.6, P)
     tilt = reach.cone + reach.da + np.arcsin(np.minimum(reach.dp / r, 1)) + rng.uniform(
-        -0.3, 0.3, P)
+        -0.3, 0.3, P) * np.where(np.arange(P) % 4, 1.0, 3e-6)
     side = u - (u @ reach.am)[:, None] * reach.am
     side /= np.linalg.norm(side, axis=1, keepdims=True)
     dirs = np.cos(tilt)[:, None] * reach.am + np.sin(tilt)[:, None] * side
@@ -148,8 +151,8 @@ def test_the_compiled_cone_test_is_keeps_numpy_formula():
     points about the cone's edge, at the mean tip (kept: the angle is not finite) and NaN
     (kept); both verdicts occur near the edge; an 'everywhere' cone keeps all."""
     from pollard_pin.painting.spray.deposition import Reach, spot_block
-    for seed in (5, 6):
-        reach, s, rng = _cone_case(seed)
+    for seed, tight in ((5, False), (6, True)):
+        reach, s, rng = _cone_case(seed, tight=tight)
         for radius in (0.0, 0.004, rng.uniform(0.0, 0.02, len(s))):
             got, want = reach.keep(s, radius), reach.numpy_keep(s, radius)
             assert np.array_equal(got, want)
