@@ -16,8 +16,8 @@ from ..spray.deposition import (
     Film,
     Reach,
     coarse_weights,
-    deposition_rate,
     gun_of,
+    sources,
     spot_block,
 )
 from .grid import MAX_FILM_PAIRS, film_grid
@@ -65,9 +65,8 @@ def weighted_film(gun, t, p, a, spray, s, n, origin) -> Film:
         # bounding balls may hold one (holds is False only where keep keeps none), so the
         # same points (a part's film likewise, film/mesh.py)
         cull = Reach(gun, *spot_block(p[i], a[i]))
-        near = np.flatnonzero(cull.holds(centres, radii)[groups[0]])
-        k = near[cull.keep(s[near])]
-        r = deposition_rate(gun, p[i], a[i], s[k], n)
+        k, r, _ = cull.rate_near(gun, sources(gun, p[i], a[i]), s, n, groups[0],
+                                 cull.holds(centres, radii))
         total[k] += w[i] @ r
         coarse[k] += w2[i] @ r
     return Film(total, np.abs(total - coarse), float(gun.flow * w.sum()))

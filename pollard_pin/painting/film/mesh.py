@@ -192,7 +192,8 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     blocks = [live[i:i + BLOCK_SAMPLES] for i in range(0, len(live), BLOCK_SAMPLES)]
     po = p - o  # the tips for the rate's products
     summary = [spot_block(po[b], a[b]) for b in blocks]
-    src, cull = {}, {}  # each block's sources and cone, made once for every chunk it meets
+    # each block's sources, weights W[b].T and cone, made once for every chunk it meets
+    src, wt, cull = {}, {}, {}
     chunks = film_chunks(s, len(live))
     if shade is not None and (shade.points, shade.samples, len(shade.keys)) != (
             len(s), len(t), len(chunks)):
@@ -203,32 +204,34 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
     pairs = shaded = switches = 0
     reach = _reach(gun, s, o, chunks, summary)
     groups, centres, radii = film_groups(s - o, chunks)
+    group_range = [(int(g.min()), int(g.max()) + 1) for g in groups]  # each chunk's labels
     held = {}  # each block's groups that may hold a point it reaches
     for c, idx in enumerate(bar(chunks, "film")):
         sc, nc, faces = s[idx] - o, n[idx], points.faces[idx]
-        acc = np.zeros((len(idx), 2))  # the rule and the coarse rule, shaded
-        smooth = np.zeros((len(idx), 2))  # the same on the unshaded rate
+        # the rule and the coarse rule, shaded (rows: one fancy-indexed add each, ~5x faster
+        # than a column pair's); smooth the same on the unshaded rate, acc itself until the
+        # first shaded pair (the same additions in the same order)
+        acc, smooth = np.zeros((2, len(idx))), None
         dark_t, dark_p = [], []
         given = None if shade is None else shade.keys[c]
+        first, last = group_range[c]
         for j in np.flatnonzero(reach[:, c]):
             b = blocks[j]
             # near_spot: the rest get < 3e-18 of the spot's rate (§20)
             if j not in cull:
                 cull[j] = Reach(gun, *summary[j])
                 held[j] = cull[j].holds(centres, radii)
-            # keep's test, point by point, on the points of the groups that may hold one
-            near = np.flatnonzero(held[j][groups[c]])
-            if not len(near):
-                continue
-            k = near[cull[j].keep(sc[near])]
-            if not len(k):
+            if not held[j][first:last].any():  # no group of the chunk: none kept
                 continue
             if j not in src:
                 src[j] = sources(gun, po[b], a[b])
-            r, height = src[j].rate_and_height(gun, sc[k], nc[k])  # (samples, points)
-            part_sum = W[b].T @ r  # (2, points)
-            if given is None or len(given):  # the unshaded sums: for the shadow edges
-                smooth[k] += part_sum.T
+                wt[j] = W[b].T
+            # keep's test, point by point, on the points of the groups that may hold one,
+            # and the rate of those kept (samples, points)
+            k, r, height = cull[j].rate_near(gun, src[j], sc, nc, groups[c], held[j])
+            if not len(k):
+                continue
+            part_sum = wt[j] @ r  # (2, points)
             if given is None:
                 spot = in_spot(gun, r)
                 pairs += int(np.count_nonzero(spot))
@@ -249,11 +252,18 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
                 inside = (ci >= 0) & (row < len(b))
                 inside[inside] &= b[row[inside]] == kb[inside] // len(idx)
                 ti, ri = row[inside], ci[inside]
+            if len(ti) and smooth is None:
+                smooth = acc.copy()
+            if smooth is not None:  # the unshaded sums: for the shadow edges
+                smooth[0][k] += part_sum[0]
+                smooth[1][k] += part_sum[1]
             if len(ti):
                 r[ti, ri] = 0.0
-                part_sum = W[b].T @ r
-            acc[k] += part_sum.T
-        chunk_total, chunk_coarse = acc[:, 0], acc[:, 1]
+                part_sum = wt[j] @ r
+            acc[0][k] += part_sum[0]
+            acc[1][k] += part_sum[1]
+        smooth = acc if smooth is None else smooth
+        chunk_total, chunk_coarse = acc[0], acc[1]
         e = np.abs(chunk_total - chunk_coarse)
         if given is None:
             dt_, dp_ = (np.concatenate(x) if x else np.zeros(0, np.int32)
@@ -270,7 +280,7 @@ def mesh_film(gun: Gun, t, p, a, points: SurfacePoints, part: Part, spray=None,
                                               fix_cuts)
             chunk_total = chunk_total + fix
             edge = bound > 0
-            e = np.where(edge, np.abs(smooth[:, 0] - smooth[:, 1]) + bound, e)
+            e = np.where(edge, np.abs(smooth[0] - smooth[1]) + bound, e)
             switches += m
         else:
             cut = np.zeros(0)

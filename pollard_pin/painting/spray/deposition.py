@@ -266,10 +266,21 @@ class Reach:
         self.pm, self.dp, self.da = pm, dp, da
         self.am = am if self.everywhere else am / norm
         self.cone = math.atan(tan_c)
+        # the compiled test's arguments (keep's scalars as numpy_keep combines them)
+        self.cone_args = np.r_[self.pm, self.am, self.dp, self.da, self.cone,
+                               self.throw / 4 + self.dp]
 
     def keep(self, s, radius=0.0) -> np.ndarray:
         """(P,) True where the block may reach a point of ``s`` (P, 3) (or a ball of
-        ``radius`` about it): :func:`may_reach`."""
+        ``radius`` about it): :func:`may_reach`, point by point in the compiled pass
+        (:func:`.kernel.cone_keep`: :meth:`numpy_keep`'s operations)."""
+        s = np.atleast_2d(np.asarray(s, dtype=float))
+        if self.everywhere:
+            return np.ones(len(s), dtype=bool)
+        return kernel.cone_keep(s, self.cone_args, radius)
+
+    def numpy_keep(self, s, radius=0.0) -> np.ndarray:
+        """:meth:`keep` by numpy's elementwise passes: the compiled test's reference."""
         s = np.atleast_2d(np.asarray(s, dtype=float))
         if self.everywhere:
             return np.ones(len(s), dtype=bool)
@@ -284,6 +295,19 @@ class Reach:
         keep = (angle - self.da - spread <= self.cone) | (r <= self.throw / 4 + self.dp
                                                           + radius)
         return keep | ~np.isfinite(angle)
+
+    def rate_near(self, gun: Gun, src: Sources, s, n, group, held) -> tuple:
+        """(kept (K,), rate (T, K), height (T, K)): the points of ``s`` (P, 3) whose group's
+        ball may hold a kept point (``held[group]``, :meth:`holds`) and that :meth:`keep`
+        keeps, ascending, with :meth:`Sources.rate_and_height` of them (normals ``n`` (P, 3)
+        or (3,)): for the round Gaussian one compiled call (:func:`.kernel.round_near`)."""
+        if type(gun.spot) is RoundGaussian:
+            return kernel.round_near(src.p, src.a, s, n, group, held,
+                                     None if self.everywhere else self.cone_args, *_round(gun))
+        near = np.flatnonzero(np.asarray(held)[group])
+        k = near[self.keep(s[near])]
+        n = np.asarray(n, dtype=float)
+        return (k, *src.rate_and_height(gun, s[k], n if n.ndim == 1 else n[k]))
 
     def holds(self, centres, radii) -> np.ndarray:
         """(G,) True where :meth:`keep` may keep a point of a ball (``centres`` (G, 3),

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from pollard_pin.painting.spray.deposition import Gun, sources
-from pollard_pin.painting.spray.kernel import round_rate
+from pollard_pin.painting.spray.kernel import cone_keep, round_near, round_rate
 
 GUN = Gun(standoff=0.15, sigma=0.010, flow=1.5e-7, apex=-0.01)
 K = GUN.sigma / (GUN.standoff - GUN.apex)  # σ(h) = K·h
@@ -115,3 +115,86 @@ def test_the_kernel_checks_its_shapes_and_takes_any_layout():
         round_rate(p, a, s, n[:5], K, COEF)
     with pytest.raises(ValueError, match="axes"):
         round_rate(p, a[:3], s, n, K, COEF)
+
+
+def _cone_case(seed: int, P: int = 4000, tight: bool = False):
+    """A block of 16 samples and points around it: near the cone's edge (angles spread
+    about it, a quarter within 1e-6 rad of it), inside, behind the nozzle, at the block's
+    mean tip (r = 0, where the angle is 0/0), a hair off it, and a NaN point. ``tight``: the
+    tips within 1e-9 m of each other, no apex (the spread ≈ 0: the edge the angle's own)."""
+    from pollard_pin.painting.spray.deposition import Reach, spot_block
+    rng = np.random.default_rng(seed)
+    p, a, _, _ = _block(seed, T=16, P=80)
+    a[0] *= -1  # all towards the points
+    if tight:
+        p = p[0] + 1e-9 * rng.standard_normal(p.shape)
+    reach = Reach(Gun(GUN.standoff, GUN.sigma, GUN.flow) if tight else GUN, *spot_block(p, a))
+    u = rng.standard_normal((P, 3))
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    # directions at angles about the cone's edge (widened by δa and the spread) from the
+    # mean axis, beyond the nozzle's ball
+    r = rng.uniform(0.1, 0.6, P)
+    tilt = reach.cone + reach.da + np.arcsin(np.minimum(reach.dp / r, 1)) + rng.uniform(
+        -0.3, 0.3, P) * np.where(np.arange(P) % 4, 1.0, 3e-6)
+    side = u - (u @ reach.am)[:, None] * reach.am
+    side /= np.linalg.norm(side, axis=1, keepdims=True)
+    dirs = np.cos(tilt)[:, None] * reach.am + np.sin(tilt)[:, None] * side
+    s = reach.pm + r[:, None] * dirs
+    s[:50] = reach.pm - rng.uniform(0.0, 0.3, (50, 1)) * u[:50]  # all round, behind too
+    s[50], s[51], s[52] = reach.pm, reach.pm + 1e-300, np.nan
+    return reach, s, rng
+
+
+def test_the_compiled_cone_test_is_keeps_numpy_formula():
+    """Reach.keep (compiled) and Reach.numpy_keep (the formula it replaced) give the same
+    verdict on every point, with no radius, one radius and a radius per point (balls), on
+    points about the cone's edge, at the mean tip (kept: the angle is not finite) and NaN
+    (kept); both verdicts occur near the edge; an 'everywhere' cone keeps all."""
+    from pollard_pin.painting.spray.deposition import Reach, spot_block
+    for seed, tight in ((5, False), (6, True)):
+        reach, s, rng = _cone_case(seed, tight=tight)
+        for radius in (0.0, 0.004, rng.uniform(0.0, 0.02, len(s))):
+            got, want = reach.keep(s, radius), reach.numpy_keep(s, radius)
+            assert np.array_equal(got, want)
+            assert got[50:53].all() and 0.2 < got.mean() < 0.8
+    wide = Gun(standoff=0.15, sigma=0.1, flow=1.5e-7)  # tan = 10 σ/standoff > CULL_WIDEST
+    p, a, s, _ = _block(7, T=16, P=80)
+    reach = Reach(wide, *spot_block(p, a))
+    assert reach.everywhere and reach.keep(s).all() and reach.numpy_keep(s).all()
+
+
+@pytest.mark.parametrize("per_point", [True, False])
+def test_the_cull_and_rate_in_one_call_are_keep_then_the_rate(per_point):
+    """Reach.rate_near (one compiled call: the held groups' points, the cone test, the rate
+    of those kept) against its steps done apart: the points of the held groups, numpy_keep's
+    verdicts on them and the compiled rate of the kept points, bitwise; without a cone
+    (everywhere) every point of a held group."""
+    from pollard_pin.painting.spray.deposition import sources
+    reach, s, rng = _cone_case(8)
+    s = s[53:]  # no NaN
+    n = rng.standard_normal((len(s), 3)) + [0.0, 0.0, 3.0]
+    n = n / np.linalg.norm(n, axis=1, keepdims=True) if per_point else n[0] / np.linalg.norm(n[0])
+    group = rng.integers(0, 40, len(s))
+    held = rng.uniform(size=40) < 0.7
+    p, a, _, _ = _block(8, T=16, P=80)
+    src = sources(GUN, p, a)
+    k, rate, height = reach.rate_near(GUN, src, s, n, group, held)
+    near = np.flatnonzero(held[group])
+    want = near[reach.numpy_keep(s[near])]
+    assert np.array_equal(k, want) and 0 < len(k) < len(near)
+    r, h = src.rate_and_height(GUN, s[k], n[k] if per_point else n)
+    assert np.array_equal(rate, r) and np.array_equal(height, h) and (rate > 0).any()
+    k, rate, _ = round_near(src.p, src.a, s, n, group, held, None, K, COEF)
+    assert np.array_equal(k, near) and np.array_equal(rate, src.rate_and_height(
+        GUN, s[near], n[near] if per_point else n)[0])
+
+
+def test_the_cone_test_checks_its_arguments():
+    reach, s, _ = _cone_case(9, P=60)
+    with pytest.raises(ValueError, match="radii"):
+        cone_keep(s, reach.cone_args, np.zeros(7))
+    with pytest.raises(ValueError, match="cone"):
+        cone_keep(s, reach.cone_args[:9])
+    with pytest.raises(ValueError, match="group"):  # a group beyond held's
+        round_near(s[:2], s[:2], s, [0.0, 0.0, 1.0], np.full(len(s), 40), np.ones(40, bool),
+                   reach.cone_args, K, COEF)
