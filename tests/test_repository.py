@@ -63,6 +63,7 @@ RANKS = [
     ("pollard_pin.version", 0), ("pollard_pin.timing", 0), ("pollard_pin.errors", 0),
     ("pollard_pin.checks", 0), ("pollard_pin.names", 0),
     ("pollard_pin.film_scale", 0),  # the film's colours: any writer's, any figure's
+    ("pollard_pin.compiled", 0),  # the compiled loops' loader: the kinematics' and the spray's
     ("pollard_pin.analytic.jet", 0),
     ("pollard_pin.analytic.taskspace", 0), ("pollard_pin.analytic", 1),
     ("pollard_pin.model", 2), ("pollard_pin.paths", 2), ("pollard_pin.kinematics", 3),

@@ -25,16 +25,9 @@ from __future__ import annotations
 
 import numpy as np
 
-try:
-    from . import _kernels as _c
-except ImportError as exc:  # a source tree used without installing it
-    raise ImportError(f"pollard_pin's compiled kernels are missing ({exc}); install the "
-                      "package (`pip install .` or `pip install -e .`, which needs a C "
-                      "compiler) instead of importing it from the source tree") from None
+from ..compiled import extension, f64
 
-
-def _f64(x):
-    return np.ascontiguousarray(x, dtype=np.float64)
+_c = extension("pollard_pin.kinematics._kernels")
 
 
 def _i64(x):
@@ -43,7 +36,7 @@ def _i64(x):
 
 def gram_extremes(A):
     """λ_min and λ_max (n,) of AᵀA for a stack A (n, m, k) of finite matrices."""
-    A = _f64(A)
+    A = f64(A)
     n, m, k = A.shape
     lo, hi = np.empty(n), np.empty(n)
     _c.gram_extremes(A, n, m, k, lo, hi)
@@ -60,7 +53,7 @@ def block_inverse(K, top, bottom, first, second):
 
     Two inverses of half the size (Gauss–Jordan with partial pivoting, an eighth of the work
     each). NaN where T or X is exactly singular (then so is K)."""
-    K = _f64(K)
+    K = f64(K)
     n, size = K.shape[0], K.shape[1]
     top, bottom, first, second = (_i64(x) for x in (top, bottom, first, second))
     out = np.empty((n, size, size))
@@ -73,12 +66,12 @@ def tree_placements(C, S, parent, axis, idx_q, M_rot, M_trans):
     samples, slot 0 the base, from cos/sin of the configurations (n, nq): R_j =
     R_parent M_rot_j R_axis(q), o_j = o_parent + R_parent M_trans_j (docs/model.md §11).
     ``parent`` holds each joint's parent slot, listed before it."""
-    C, S = _f64(C), _f64(S)
+    C, S = f64(C), f64(S)
     n, nq = C.shape
     J = len(axis)
     R, o = np.empty((J + 1, n, 3, 3)), np.empty((J + 1, n, 3))
-    _c.tree_placements(C, S, n, nq, _i64(parent), _i64(axis), _i64(idx_q), _f64(M_rot),
-                       _f64(M_trans), J, R, o)
+    _c.tree_placements(C, S, n, nq, _i64(parent), _i64(axis), _i64(idx_q), f64(M_rot),
+                       f64(M_trans), J, R, o)
     return R, o
 
 
@@ -89,14 +82,14 @@ def point_jacobians(R, o, axis, col, pt_slot, pt_local, pt_support, pt_row, pt_s
     pt_local[i], adds pt_sign[i] · z_c × (p − o_c) to rows pt_row[i] … + 2, column col[c], for
     each revolute joint (slot) c = pt_support[i, m] (−1 ends the list) that moves it; the rows
     ang_row … + 2 are the angular velocity of point ang_point's body: z_c per column."""
-    R, o = _f64(R), _f64(o)
+    R, o = f64(R), f64(o)
     S, n = R.shape[0], R.shape[1]
     pt_support = _i64(pt_support)
     P = len(pt_slot)
     K, pos = np.empty((n, ang_row + 3, nv)), np.empty((n, P, 3))
-    _c.point_jacobians(R, o, S, n, _i64(axis), _i64(col), _i64(pt_slot), _f64(pt_local),
+    _c.point_jacobians(R, o, S, n, _i64(axis), _i64(col), _i64(pt_slot), f64(pt_local),
                        pt_support, pt_support.shape[1] if pt_support.ndim == 2 else 0,
-                       _i64(pt_row), _f64(pt_sign), P, ang_point, ang_row, nv, K, pos)
+                       _i64(pt_row), f64(pt_sign), P, ang_point, ang_row, nv, K, pos)
     return K, pos
 
 
@@ -108,12 +101,12 @@ def point_drifts(R, o, parent, axis, col, V, pt_slot, pt_row, pt_sign, pos, ang_
     Forward recursion at q̈ = 0 (docs/model.md §11), joint j in parent body p, r = o_j − o_p:
     ω_j = ω_p + z_j q̇_j, α_j = α_p + (ω_p × z_j) q̇_j, ö_j = ö_p + α_p × r + ω_p × (ω_p × r);
     a point fixed in body b at r = x − o_b accelerates by ö_b + α_b × r + ω_b × (ω_b × r)."""
-    R, o, V = _f64(R), _f64(o), _f64(V)
+    R, o, V = f64(R), f64(o), f64(V)
     S, n = R.shape[0], R.shape[1]
     P = len(pt_slot)
     drift, omega = np.empty((n, ang_row + 3)), np.empty((S, n, 3))
     _c.point_drifts(R, o, S, n, _i64(parent), _i64(axis), _i64(col), V, V.shape[1],
-                    _i64(pt_slot), _i64(pt_row), _f64(pt_sign), _f64(pos), P, ang_point,
+                    _i64(pt_slot), _i64(pt_row), f64(pt_sign), f64(pos), P, ang_point,
                     ang_row, drift, omega)
     return drift, omega
 
@@ -135,9 +128,9 @@ class ClosedState:
         ang_point, ang_row = tree.tool
         self.nq, self.nv, self.m = nq, nv, len(ia)
         self._head = (_i64(tree.parent), _i64(tree.axis), _i64(tree.idx_q), _i64(tree.col),
-                      _f64(tree.rot), _f64(tree.trans), _i64(tree.pt_slot),
-                      _f64(tree.pt_local), _i64(tree.pt_support), _i64(tree.pt_row),
-                      _f64(tree.pt_sign), _i64(ia), _i64(ip), len(tree.parent),
+                      f64(tree.rot), f64(tree.trans), _i64(tree.pt_slot),
+                      f64(tree.pt_local), _i64(tree.pt_support), _i64(tree.pt_row),
+                      f64(tree.pt_sign), _i64(ia), _i64(ip), len(tree.parent),
                       len(tree.pt_slot), tree.pt_support.shape[1], ang_point, ang_row, nq, nv,
                       len(ia))
 
@@ -145,7 +138,7 @@ class ClosedState:
         nv, m = self.nv, self.m
         q, v, a0 = np.empty(self.nq), np.empty(nv), np.empty(nv)
         Jc, N, lohi = np.empty((m, nv)), np.empty((nv, m)), np.empty(2)
-        steps = _c.closed_state(*self._head, _f64(theta), _f64(dtheta), _f64(guess),
+        steps = _c.closed_state(*self._head, f64(theta), f64(dtheta), f64(guess),
                                 float(tol), int(max_iter), q, v, Jc, N, a0, lohi)
         return steps, q, v, Jc, N, a0, lohi
 
@@ -156,8 +149,8 @@ def rk4_step(f, q, v, a1, h: float, stage_q, stage_v):
     v + (h/2)·a1, …, q + (h/6)·(v + 2v₂ + 2v₃ + v₄) (docs/model.md §18). ``f`` is called
     with ``stage_q``, ``stage_v`` (float64 (n,) arrays it may not keep: overwritten by the
     next stage) and must return n float64 values."""
-    q, v = _f64(q), _f64(v)
+    q, v = f64(q), f64(v)
     n = len(q)
     q_out, v_out = np.empty(n), np.empty(n)
-    _c.rk4_step(f, q, v, _f64(a1), float(h), n, stage_q, stage_v, q_out, v_out)
+    _c.rk4_step(f, q, v, f64(a1), float(h), n, stage_q, stage_v, q_out, v_out)
     return q_out, v_out

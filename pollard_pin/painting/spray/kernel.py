@@ -16,16 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-try:
-    from . import _deposit as _c
-except ImportError as exc:  # a source tree used without installing it
-    raise ImportError(f"pollard_pin's compiled kernels are missing ({exc}); install the "
-                      "package (`pip install .` or `pip install -e .`, which needs a C "
-                      "compiler) instead of importing it from the source tree") from None
+from ...compiled import extension, f64
 
-
-def _f64(x):
-    return np.ascontiguousarray(x, dtype=np.float64)
+_c = extension("pollard_pin.painting.spray._deposit")
 
 
 def round_rate(p, a, s, n, k: float, coef: float) -> tuple[np.ndarray, np.ndarray]:
@@ -33,7 +26,7 @@ def round_rate(p, a, s, n, k: float, coef: float) -> tuple[np.ndarray, np.ndarra
     points ``s`` (P, 3) of unit normals ``n`` ((P, 3) or (3,)): the round Gaussian spot of
     σ(h) = ``k``·h and flow/2π = ``coef`` (docs/model.md §20); the height is each source's
     (p − s)·n."""
-    p, a, s, n = _f64(p), _f64(a), _f64(s), _f64(n)
+    p, a, s, n = f64(p), f64(a), f64(s), f64(n)
     T, P = len(p), len(s)
     if not (p.shape == a.shape == (T, 3) and s.shape == (P, 3) and n.shape in ((3,), (P, 3))):
         raise ValueError(f"round_rate: sources {p.shape}, axes {a.shape}, points {s.shape} "
@@ -49,8 +42,8 @@ def cone_keep(s, cone, radius=0.0) -> np.ndarray:
     ``radius`` (one, or (P,)) about it): :meth:`.deposition.Reach.keep`'s test point by point,
     its numpy formula's operations in their order (docs/model.md §20). ``cone``: (10,) the
     mean tip p̄, unit mean axis ā, δp, δa, the cone's half-angle and throw/4 + δp."""
-    s, cone = _f64(s), _f64(cone)
-    radius = _f64(np.ravel(radius))
+    s, cone = f64(s), f64(cone)
+    radius = f64(np.ravel(radius))
     if not (s.ndim == 2 and s.shape[1] == 3 and len(radius) in (1, len(s))):
         raise ValueError(f"cone_keep: points {s.shape} and radii {radius.shape}: expected "
                          "(P, 3) and (P,) or one")
@@ -64,7 +57,7 @@ def round_near(p, a, s, n, group, held, cone, k: float, coef: float) -> tuple:
     (``group`` (P,) into ``held`` (G,) bool) may hold a kept point and that the cone ``cone``
     keeps (:func:`cone_keep`'s (10,); None: every such point), in ascending order, with
     :func:`round_rate` of them (normals ``n`` (P, 3) or (3,)), in one compiled call."""
-    p, a, s, n = _f64(p), _f64(a), _f64(s), _f64(n)
+    p, a, s, n = f64(p), f64(a), f64(s), f64(n)
     group = np.ascontiguousarray(group, dtype=np.int64)
     held = np.ascontiguousarray(held, dtype=bool)
     T, P = len(p), len(s)
@@ -75,7 +68,7 @@ def round_near(p, a, s, n, group, held, cone, k: float, coef: float) -> tuple:
                          "expected (T, 3), (T, 3), (P, 3), (P, 3) or (3,), (P,) and (G,)")
     kept, rate, height = np.empty(P, dtype=np.int64), np.empty(T * P), np.empty(T * P)
     K = _c.round_near(s, n, n.ndim == 2, group, held, P, len(held),
-                      b"" if cone is None else _f64(cone), p, a, T, float(k), float(coef),
+                      b"" if cone is None else f64(cone), p, a, T, float(k), float(coef),
                       kept, rate, height)
     return kept[:K], rate[:T * K].reshape(T, K), height[:T * K].reshape(T, K)
 
