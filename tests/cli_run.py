@@ -5,6 +5,7 @@ import contextlib
 import hashlib
 import importlib
 import os
+import signal
 import stat
 
 import pytest
@@ -21,6 +22,14 @@ def run_cli(argv, capsys):
     out, err = capsys.readouterr()
     check_refusal(err)
     return code, out, err
+
+
+def ctrl_c_as_at_a_terminal() -> None:
+    """A child process's ``preexec_fn``: SIGINT back to its default, as a terminal's Ctrl-C
+    finds it. A run started in the background (a script's ``&``, as a CI may start the suite)
+    hands its children SIGINT ignored, Python then leaves it ignored, and the command's Ctrl-C
+    rule (an ignored SIGINT stays ignored) would let a test's Ctrl-C wait forever."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 LONGEST_REFUSAL = 250  # characters: a refusal says its first cause, where, and what to change

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import ctrl_c_as_at_a_terminal
 from examples_planned import THESIS_SAMPLES
 from motor_model import EXAMPLE, NAMES, RATINGS, ROOT
 from motor_model import cli as _cli
@@ -243,7 +244,8 @@ def test_size_stops_on_a_signal_with_one_line(tmp_path, signum, code, word):
         [sys.executable, "-m", "pollard_pin.cli", "size", "--trajectory", str(tmp_path /
          "long.csv"), "--actuators", str(EXAMPLE), "--quiet", "--out", str(out / "r.md"),
          "--retime", str(out / "fast.csv")], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-        env=env, start_new_session=True)  # Ctrl-C goes to the process alone
+        env=env, start_new_session=True,  # Ctrl-C goes to the process alone
+        preexec_fn=ctrl_c_as_at_a_terminal)
     catches_term(proc)  # past the imports (the command's handlers are in), into the work
     assert proc.poll() is None, proc.communicate()
     sent = time.monotonic()
