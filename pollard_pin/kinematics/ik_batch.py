@@ -28,9 +28,9 @@ from .limits import limit_violations
 from .margins import Margins, as_margins
 from .singularity import (
     BranchQuantities,
-    all_finite,
     check_margins,
     conditioning,
+    finite_rows,
     inverse_stack,
 )
 from .tree import Point, TreeArrays, matvec, support_cols, tree_arrays
@@ -360,9 +360,7 @@ def _rules_hold(robot: Robot, poses, q0, margins: Margins) -> np.ndarray:
                                   serial_max=r.sigma_serial_max, spherical=sph)
         f = np.maximum(r.closure_residual, r.tool_error) <= IK_TOL
         f &= ~np.logical_or.reduce(list(viol.values()))
-        for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
-            if not all_finite(arr):
-                f &= np.isfinite(arr).all(axis=1)
+        f &= finite_rows(r)
         f &= ~limit_violations(robot.params, r.q, robot.joint_names)[0].any(axis=1)
         fine.append(f)
         q.append(r.q)

@@ -56,6 +56,17 @@ def all_finite(a) -> bool:
         return math.isfinite(np.sum(a))
 
 
+def finite_rows(r) -> np.ndarray:
+    """(n,) True where a sample of the IK result ``r`` has every joint position, rate,
+    acceleration and spherical angle and rate finite (:func:`all_finite` first: the common
+    case is one reduction per array)."""
+    finite = np.ones(len(r.q), bool)
+    for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
+        if not all_finite(arr):
+            finite &= np.isfinite(arr).all(axis=1)
+    return finite
+
+
 def sigma_range(A):
     """(σ_min, σ_max) of each matrix of a stack (..., m, n), m ≥ n; NaN for non-finite ones.
 
@@ -358,11 +369,7 @@ def check_margins(robot, r, margins: Margins):
                 sigma=v,
                 sample=k, time=float(r.t[k]), chain=check,
                 amount=lim - v if np.isfinite(v) else None))
-    finite = np.ones(n, bool)
-    for arr in (r.q, r.v, r.a, r.spherical, r.d_spherical):
-        if not all_finite(arr):
-            finite &= np.isfinite(arr).all(axis=1)
-    bad = np.flatnonzero(~finite)
+    bad = np.flatnonzero(~finite_rows(r))
     if len(bad) and (first is None or bad[0] < first[0]):
         k = int(bad[0])
         first = (k, SingularityError(

@@ -60,6 +60,28 @@ def test_a_stacks_non_finite_matrices_are_nan_and_only_they():
     np.testing.assert_allclose(sigma_range(A)[1], s[:, 0], rtol=1e-12)
 
 
+def test_finite_rows_is_each_arrays_rows_looked_at():
+    """finite_rows (the IK's and check_margins' one test) against each array's rows tested
+    entry by entry: a NaN, a +inf, a −inf in different arrays and rows, and finite entries
+    whose sum overflows (every row finite)."""
+    from types import SimpleNamespace
+
+    from pollard_pin.kinematics.singularity import finite_rows
+
+    rng = np.random.default_rng(7)
+    arrays = {k: rng.normal(size=(6, w)) for k, w in (("q", 12), ("v", 12), ("a", 12),
+                                                       ("spherical", 6), ("d_spherical", 6))}
+    arrays["v"][1, 3], arrays["spherical"][4, 0], arrays["a"][1, 0] = np.nan, np.inf, -np.inf
+    arrays["q"][:, 0] = 1e308  # an infinite sum of finite entries
+    r = SimpleNamespace(**arrays)
+    want = np.logical_and.reduce([np.isfinite(x).all(axis=1) for x in arrays.values()])
+    assert want.tolist() == [True, False, True, True, False, True]
+    assert finite_rows(r).tolist() == want.tolist()
+    clean = SimpleNamespace(**{k: np.nan_to_num(x, posinf=0, neginf=0)
+                               for k, x in arrays.items()})
+    assert finite_rows(clean).all()
+
+
 def test_velocity_map_of_one_matrix_is_the_stacks():
     """The single-matrix path (one dgesv) gives the stacked path's N; a singular Jc_p still
     raises."""
